@@ -1,0 +1,1 @@
+"""kinetology: joint-angle motion in, actiongrams out (an adapter over psgs)."""

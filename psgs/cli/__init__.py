@@ -1,0 +1,55 @@
+"""The ``psgs`` command line.
+
+Each group of subcommands lives in its own module with a ``register(subparsers)``
+function; errors derived from :class:`psgs.PSGSError` (and file errors) become
+one line on stderr and a non-zero exit status, never a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+
+# modules that add subcommands; each defines register(subparsers)
+_COMMAND_MODULES = ("core", "check", "induce")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="psgs", description="Parallel grammar systems: derive, check, export, induce.")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    sub.required = True
+    for name in _COMMAND_MODULES:
+        try:
+            module = importlib.import_module(f".{name}", __name__)
+        except ModuleNotFoundError as exc:
+            if exc.name != f"{__name__}.{name}":
+                raise
+            continue
+        module.register(sub)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    from ..errors import PSGSError
+
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        status = args.run(args)
+    except PSGSError as exc:
+        print(f"psgs: error: {exc}", file=sys.stderr)
+        return 2 if getattr(args, "error_status", None) is None else args.error_status
+    except OSError as exc:
+        where = f"{exc.filename}: " if getattr(exc, "filename", None) else ""
+        print(f"psgs: error: {where}{exc.strerror or exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("psgs: interrupted", file=sys.stderr)
+        return 130
+    return int(status or 0)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,433 @@
+"""The formal objects: symbols, rules, component grammars, PSGS and PCGS.
+
+Everything here is an immutable value, validated when it is built: a value
+that exists is well formed. ``dataclasses.replace(system, mode="single")``
+builds (and validates) the other reading of a system.
+
+Symbols are typed -- :class:`Terminal`, :class:`Nonterminal`, :class:`Query` --
+so a name never changes kind on its way through the library; the same name
+used as two kinds within one system is an error.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Literal, Union
+
+from .errors import ValidationError
+
+__all__ = [
+    "Terminal", "Nonterminal", "Query", "Symbol", "Word", "Form", "Rule", "Grammar",
+    "SyncTuple", "PSGS", "PCGS", "System", "IDLE", "word", "as_word", "is_identifier",
+]
+
+_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
+_BAD_TERMINAL = re.compile(r"[\s\x00-\x1f\x7f]")
+
+#: What ``#`` (this component idles) is in a synchronisation tuple.
+IDLE = None
+
+
+def is_identifier(name: object) -> bool:
+    """True when ``name`` can name a nonterminal, component, rule or system."""
+    return isinstance(name, str) and bool(_IDENTIFIER.match(name))
+
+
+def _require_identifier(name: object, what: str) -> None:
+    if not is_identifier(name):
+        raise ValidationError(
+            f"{what} {name!r} is not a valid name (letters, digits and _, not starting with a digit)")
+
+
+@dataclass(frozen=True, slots=True, order=True)
+class Terminal:
+    """A terminal symbol: any non-empty text without white space or control characters."""
+
+    name: str
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.name, str) or not self.name or _BAD_TERMINAL.search(self.name):
+            raise ValidationError(
+                f"terminal {self.name!r} must be non-empty text without white space")
+
+    def __str__(self) -> str:
+        return self.name
+
+
+@dataclass(frozen=True, slots=True, order=True)
+class Nonterminal:
+    """A nonterminal symbol; its name is an identifier."""
+
+    name: str
+
+    def __post_init__(self) -> None:
+        _require_identifier(self.name, "nonterminal")
+
+    def __str__(self) -> str:
+        return self.name
+
+
+@dataclass(frozen=True, slots=True, order=True)
+class Query:
+    """A query symbol of a PCGS: asks for the sentential form of component ``component``."""
+
+    component: str
+
+    def __post_init__(self) -> None:
+        _require_identifier(self.component, "queried component")
+
+    def __str__(self) -> str:
+        return f"?{self.component}"
+
+
+Symbol = Union[Terminal, Nonterminal, Query]
+#: A word: a tuple of terminals.
+Word = tuple[Terminal, ...]
+#: A sentential form: a tuple of any symbols.
+Form = tuple[Symbol, ...]
+
+
+def word(text: str | Iterable[str | Terminal]) -> Word:
+    """Make a word. A ``str`` is read as a sequence of one-character terminals.
+
+    >>> word("ab") == (Terminal("a"), Terminal("b"))
+    True
+    >>> word(["up", "down"]) == (Terminal("up"), Terminal("down"))
+    True
+    """
+    return as_word(text)
+
+
+def as_word(value: str | Iterable[str | Terminal]) -> Word:
+    """Coerce a word given as ``str``, a sequence of names, or of :class:`Terminal`."""
+    if isinstance(value, str):
+        return tuple(Terminal(ch) for ch in value)
+    out = []
+    for item in value:
+        if isinstance(item, Terminal):
+            out.append(item)
+        elif isinstance(item, str):
+            out.append(Terminal(item))
+        else:
+            raise ValidationError(f"a word holds terminals, not {item!r}")
+    return tuple(out)
+
+
+@dataclass(frozen=True, slots=True)
+class Rule:
+    """A context-free rule ``label: lhs -> rhs``; an empty ``rhs`` is ε."""
+
+    label: str
+    lhs: Nonterminal
+    rhs: Form = ()
+
+    def __post_init__(self) -> None:
+        _require_identifier(self.label, "rule label")
+        if not isinstance(self.lhs, Nonterminal):
+            raise ValidationError(
+                f"rule {self.label}: left-hand side must be a nonterminal, not {self.lhs!r}")
+        rhs = tuple(self.rhs)
+        for sym in rhs:
+            if not isinstance(sym, (Terminal, Nonterminal, Query)):
+                raise ValidationError(f"rule {self.label}: {sym!r} is not a symbol")
+        object.__setattr__(self, "rhs", rhs)
+
+    def __str__(self) -> str:
+        body = " ".join(_show_symbol(s) for s in self.rhs) if self.rhs else "ε"
+        return f"{self.lhs} → {body}"
+
+
+def _show_symbol(sym: Symbol) -> str:
+    return str(sym)
+
+
+@dataclass(frozen=True)
+class Grammar:
+    """A component grammar: a name, an axiom and context-free rules (labels unique)."""
+
+    name: str
+    start: Nonterminal
+    rules: tuple[Rule, ...]
+
+    def __post_init__(self) -> None:
+        _require_identifier(self.name, "component name")
+        if not isinstance(self.start, Nonterminal):
+            raise ValidationError(f"component {self.name}: start symbol must be a nonterminal, "
+                                  f"not {self.start!r}")
+        rules = tuple(self.rules)
+        object.__setattr__(self, "rules", rules)
+        seen_labels: dict[str, Rule] = {}
+        seen_bodies: dict[tuple, Rule] = {}
+        for rule in rules:
+            if not isinstance(rule, Rule):
+                raise ValidationError(f"component {self.name}: {rule!r} is not a Rule")
+            if rule.label in seen_labels:
+                raise ValidationError(f"component {self.name}: two rules are labelled {rule.label}")
+            key = (rule.lhs, rule.rhs)
+            if key in seen_bodies:
+                raise ValidationError(f"component {self.name}: rules {seen_bodies[key].label} and "
+                                      f"{rule.label} are the same rule {rule}")
+            seen_labels[rule.label] = rule
+            seen_bodies[key] = rule
+        if not any(r.lhs == self.start for r in rules):
+            raise ValidationError(f"component {self.name}: start symbol {self.start} has no rule")
+        _check_kinds(self.name, rules, (self.start,))
+
+    @cached_property
+    def rule_by_label(self) -> Mapping[str, Rule]:
+        return {r.label: r for r in self.rules}
+
+    @cached_property
+    def rules_by_lhs(self) -> Mapping[Nonterminal, tuple[Rule, ...]]:
+        table: dict[Nonterminal, list[Rule]] = {}
+        for r in self.rules:
+            table.setdefault(r.lhs, []).append(r)
+        return {k: tuple(v) for k, v in table.items()}
+
+    @cached_property
+    def nonterminals(self) -> frozenset[Nonterminal]:
+        out = {self.start}
+        for r in self.rules:
+            out.add(r.lhs)
+            out.update(s for s in r.rhs if isinstance(s, Nonterminal))
+        return frozenset(out)
+
+    @cached_property
+    def terminals(self) -> frozenset[Terminal]:
+        return frozenset(s for r in self.rules for s in r.rhs if isinstance(s, Terminal))
+
+    @cached_property
+    def queries(self) -> frozenset[Query]:
+        return frozenset(s for r in self.rules for s in r.rhs if isinstance(s, Query))
+
+    def rule(self, label: str) -> Rule:
+        """The rule labelled ``label``; :class:`ValidationError` when there is none."""
+        try:
+            return self.rule_by_label[label]
+        except KeyError:
+            raise ValidationError(f"component {self.name} has no rule labelled {label}") from None
+
+
+def _check_kinds(where: str, rules: Iterable[Rule], extra: Iterable[Symbol] = ()) -> None:
+    """A name may stand for one kind of symbol only."""
+    kinds: dict[str, str] = {}
+
+    def note(sym: Symbol) -> None:
+        if isinstance(sym, Query):
+            return
+        kind = "terminal" if isinstance(sym, Terminal) else "nonterminal"
+        prior = kinds.setdefault(sym.name, kind)
+        if prior != kind:
+            raise ValidationError(f"{where}: symbol {sym.name!r} is used both as a terminal "
+                                  f"and as a nonterminal")
+
+    for sym in extra:
+        note(sym)
+    for r in rules:
+        note(r.lhs)
+        for s in r.rhs:
+            note(s)
+
+
+#: A synchronisation tuple: one rule (or :data:`IDLE`, written ``#``) per component.
+SyncTuple = tuple[Union[Rule, None], ...]
+
+
+def _check_components(kind: str, components: Sequence[Grammar]) -> tuple[Grammar, ...]:
+    components = tuple(components)
+    if not components:
+        raise ValidationError(f"a {kind} needs at least one component")
+    names = set()
+    for g in components:
+        if not isinstance(g, Grammar):
+            raise ValidationError(f"a {kind}'s components are Grammar values, not {g!r}")
+        if g.name in names:
+            raise ValidationError(f"two components are named {g.name}")
+        names.add(g.name)
+    _check_kinds(f"this {kind}", [r for g in components for r in g.rules],
+                 [g.start for g in components])
+    return components
+
+
+@dataclass(frozen=True)
+class PSGS:
+    """A Parallel Synchronous Grammar System Γ = (N, T, G_1..G_n, M).
+
+    ``sync`` is M: each tuple holds, per component, a :class:`Rule` of that
+    component or :data:`IDLE` (``#``). Tuples may be given with rule labels
+    (``"p1"``) and ``"#"``; they are stored as rules and ``None``.
+
+    ``mode`` is ``"parallel"`` (a rule rewrites every occurrence of its
+    left-hand side at once, as in the paper's derivation) or ``"single"`` (one
+    occurrence, the paper's formal definition). ``unsynchronised`` is
+    ``"free"`` (a rule in no tuple may be applied on its own) or ``"strict"``.
+    See ``docs/semantics.md``.
+    """
+
+    components: tuple[Grammar, ...]
+    sync: tuple[SyncTuple, ...] = ()
+    mode: Literal["parallel", "single"] = "parallel"
+    unsynchronised: Literal["free", "strict"] = "free"
+    name: str = "system"
+
+    def __post_init__(self) -> None:
+        _require_identifier(self.name, "system name")
+        components = _check_components("PSGS", self.components)
+        object.__setattr__(self, "components", components)
+        if self.mode not in ("parallel", "single"):
+            raise ValidationError(f"mode must be 'parallel' or 'single', not {self.mode!r}")
+        if self.unsynchronised not in ("free", "strict"):
+            raise ValidationError(
+                f"unsynchronised must be 'free' or 'strict', not {self.unsynchronised!r}")
+        for g in components:
+            if g.queries:
+                raise ValidationError(f"component {g.name}: a PSGS has no query symbols "
+                                      f"(found {min(g.queries, key=str)})")
+        n = len(components)
+        tuples = []
+        seen = set()
+        for t_index, raw in enumerate(self.sync, start=1):
+            if isinstance(raw, (str, bytes)) or not isinstance(raw, Iterable):
+                raise ValidationError(f"tuple {t_index} must be a sequence of rules, not {raw!r}")
+            raw = tuple(raw)
+            if len(raw) != n:
+                raise ValidationError(f"tuple {t_index} has {len(raw)} entries but the system "
+                                      f"has {n} components")
+            entries: list[Rule | None] = []
+            for g, item in zip(components, raw):
+                if item is None or item == "#":
+                    entries.append(None)
+                elif isinstance(item, str):
+                    if item not in g.rule_by_label:
+                        raise ValidationError(f"tuple {t_index}: component {g.name} has no rule "
+                                              f"labelled {item}")
+                    entries.append(g.rule_by_label[item])
+                elif isinstance(item, Rule):
+                    if g.rule_by_label.get(item.label) != item:
+                        raise ValidationError(f"tuple {t_index}: rule {item.label}: {item} is not "
+                                              f"a rule of component {g.name}")
+                    entries.append(item)
+                else:
+                    raise ValidationError(f"tuple {t_index}: {item!r} is neither a rule nor #")
+            if all(e is None for e in entries):
+                raise ValidationError(f"tuple {t_index} idles in every component")
+            key = tuple(entries)
+            if key in seen:
+                raise ValidationError(f"tuple {t_index} repeats an earlier tuple")
+            seen.add(key)
+            tuples.append(key)
+        object.__setattr__(self, "sync", tuple(tuples))
+
+    # -- derived views ----------------------------------------------------
+    @property
+    def axioms(self) -> tuple[Nonterminal, ...]:
+        return tuple(g.start for g in self.components)
+
+    @property
+    def component_names(self) -> tuple[str, ...]:
+        return tuple(g.name for g in self.components)
+
+    @cached_property
+    def nonterminals(self) -> frozenset[Nonterminal]:
+        return frozenset().union(*(g.nonterminals for g in self.components))
+
+    @cached_property
+    def terminals(self) -> frozenset[Terminal]:
+        return frozenset().union(*(g.terminals for g in self.components))
+
+    @cached_property
+    def synchronised_rules(self) -> tuple[frozenset[Rule], ...]:
+        """Per component, the rules that appear in some tuple of M."""
+        return tuple(frozenset(t[i] for t in self.sync if t[i] is not None)
+                     for i in range(len(self.components)))
+
+    @cached_property
+    def unsynchronised_rules(self) -> tuple[tuple[Rule, ...], ...]:
+        """Per component, the rules in no tuple (applied alone under ``free``)."""
+        return tuple(tuple(r for r in g.rules if r not in synced)
+                     for g, synced in zip(self.components, self.synchronised_rules))
+
+    def index(self, component: str | int) -> int:
+        """The position of a component given by name or position."""
+        return _component_index(self.components, component)
+
+
+def _component_index(components: tuple[Grammar, ...], component: str | int) -> int:
+    if isinstance(component, int) and not isinstance(component, bool):
+        if 0 <= component < len(components):
+            return component
+        raise ValidationError(f"there is no component {component}")
+    for i, g in enumerate(components):
+        if g.name == component:
+            return i
+    raise ValidationError(f"there is no component named {component!r}")
+
+
+@dataclass(frozen=True)
+class PCGS:
+    """A Parallel Communicating Grammar System (Păun and Sântean).
+
+    Components may hold :class:`Query` symbols ``?name``. In a communication
+    step (which has priority) every query is replaced by the queried form;
+    when ``returning`` the queried component then restarts from its axiom. The
+    language is the set of terminal words of the ``master`` component (the
+    first one unless named). ``centralised`` is derived: only the master holds
+    query symbols.
+    """
+
+    components: tuple[Grammar, ...]
+    returning: bool = True
+    master: str = field(default="")
+    name: str = "system"
+
+    def __post_init__(self) -> None:
+        _require_identifier(self.name, "system name")
+        components = _check_components("PCGS", self.components)
+        object.__setattr__(self, "components", components)
+        if not isinstance(self.returning, bool):
+            raise ValidationError(f"returning must be True or False, not {self.returning!r}")
+        names = [g.name for g in components]
+        if not self.master:
+            object.__setattr__(self, "master", names[0])
+        elif self.master not in names:
+            raise ValidationError(f"the master {self.master!r} is not a component")
+        for g in components:
+            for q in g.queries:
+                if q.component not in names:
+                    raise ValidationError(f"component {g.name}: query ?{q.component} names no "
+                                          f"component")
+
+    @property
+    def axioms(self) -> tuple[Nonterminal, ...]:
+        return tuple(g.start for g in self.components)
+
+    @property
+    def component_names(self) -> tuple[str, ...]:
+        return tuple(g.name for g in self.components)
+
+    @property
+    def master_index(self) -> int:
+        return self.component_names.index(self.master)
+
+    @property
+    def centralised(self) -> bool:
+        """True when no component but the master holds a query symbol."""
+        return all(not g.queries for g in self.components if g.name != self.master)
+
+    @cached_property
+    def nonterminals(self) -> frozenset[Nonterminal]:
+        return frozenset().union(*(g.nonterminals for g in self.components))
+
+    @cached_property
+    def terminals(self) -> frozenset[Terminal]:
+        return frozenset().union(*(g.terminals for g in self.components))
+
+    def index(self, component: str | int) -> int:
+        """The position of a component given by name or position."""
+        return _component_index(self.components, component)
+
+
+System = Union[PSGS, PCGS]
