@@ -1,0 +1,356 @@
+"""Actiongrams: parallel, timed symbol strings, one per actuator (SPEC §4).
+
+An :class:`Actiongram` holds n named strings. Symbol ``j`` of string ``i``
+has a start time ``T_i(j)`` and a duration ``D_i(j) > 0`` with
+``T_i(j) + D_i(j) = T_i(j + 1)``; each string starts at its own start time
+(0 unless given). Strings may differ in length.
+
+Adjacent equal symbols are one segment: when a string is built with two equal
+neighbours they are merged into one symbol whose duration is the sum of
+theirs, so ``A_i(j) != A_i(j + 1)`` always holds, as the paper requires.
+
+The plain-text form, one actuator per line::
+
+    # a comment (a line, or the rest of a line after white space, starting with #)
+    lknee: B G R Y B@3 G@2.5
+    rknee@10: Y B G        # this string starts at time 10
+
+``sym@D`` gives a duration (default 1). Symbols are non-space tokens without
+``@`` or ``:`` and not starting with ``#``; actuator names likewise, also
+without white space. Bad input raises :class:`~psgs.errors.FormatError`
+naming ``source:line:column``.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+from .errors import FormatError
+
+__all__ = ["Actiongram", "load_actiongram"]
+
+_JSON_FORMAT = "psgs-actiongram"
+_NUMBER = re.compile(r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?\Z")
+
+
+def _bad_name(name: object) -> str | None:
+    """Why ``name`` cannot name an actuator, or None when it can."""
+    if not isinstance(name, str) or not name:
+        return "an actuator name must be non-empty text"
+    if any(ch.isspace() for ch in name) or "@" in name or ":" in name or name.startswith("#"):
+        return f"actuator name {name!r} must have no white space, '@' or ':' and not start with '#'"
+    return None
+
+
+def _bad_symbol(symbol: object) -> str | None:
+    if not isinstance(symbol, str) or not symbol:
+        return f"a symbol must be non-empty text, not {symbol!r}"
+    if any(ch.isspace() for ch in symbol) or "@" in symbol or ":" in symbol or symbol.startswith("#"):
+        return f"symbol {symbol!r} must have no white space, '@' or ':' and not start with '#'"
+    return None
+
+
+def _bad_duration(value: object) -> str | None:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return f"a duration must be a number, not {value!r}"
+    if not math.isfinite(value) or value <= 0:
+        return f"a duration must be positive and finite, not {value!r}"
+    return None
+
+
+def _format_number(value: float) -> str:
+    """Shortest text that reads back as the same float (integers without '.0')."""
+    if float(value).is_integer() and abs(value) < 1e15:
+        return str(int(value))
+    return repr(float(value))
+
+
+def _merge(symbols: Sequence[str], durations: Sequence[float]) -> tuple[tuple[str, ...],
+                                                                       tuple[float, ...]]:
+    """Merge runs of equal neighbours into one segment, adding their durations."""
+    out_symbols: list[str] = []
+    out_durations: list[float] = []
+    for sym, dur in zip(symbols, durations):
+        if out_symbols and out_symbols[-1] == sym:
+            out_durations[-1] += dur
+        else:
+            out_symbols.append(sym)
+            out_durations.append(float(dur))
+    return tuple(out_symbols), tuple(out_durations)
+
+
+@dataclass(frozen=True)
+class Actiongram:
+    """Named, timed symbol strings, one per actuator (immutable).
+
+    Build one with :meth:`from_strings`, :meth:`from_text`, :meth:`from_json`
+    or :func:`load_actiongram`. The constructor takes the normalised fields
+    (``names``, ``symbols``, ``durations`` as tuples of tuples, ``origins`` the
+    start time of each string) and validates and normalises them.
+
+    >>> ag = Actiongram.from_strings({"knee": "abba", "hip": ["x", "y"]})
+    >>> ag.string("knee"), ag.durations["knee"]
+    (('a', 'b', 'a'), (1.0, 2.0, 1.0))
+    >>> ag.starts["knee"]
+    (0.0, 1.0, 3.0)
+    """
+
+    names: tuple[str, ...]
+    symbols: tuple[tuple[str, ...], ...]
+    segment_durations: tuple[tuple[float, ...], ...]
+    origins: tuple[float, ...] = ()
+
+    def __post_init__(self) -> None:
+        names = tuple(self.names)
+        symbols = tuple(tuple(s) for s in self.symbols)
+        durations = tuple(tuple(d) for d in self.segment_durations)
+        origins = tuple(self.origins) if self.origins else (0.0,) * len(names)
+        if not (len(names) == len(symbols) == len(durations) == len(origins)):
+            raise ValueError("names, symbols, durations and origins must have one entry per string")
+        seen: set[str] = set()
+        merged_symbols, merged_durations = [], []
+        for name, syms, durs, origin in zip(names, symbols, durations, origins):
+            problem = _bad_name(name)
+            if problem:
+                raise FormatError(problem)
+            if name in seen:
+                raise FormatError(f"two strings are named {name!r}")
+            seen.add(name)
+            if len(syms) != len(durs):
+                raise FormatError(f"string {name!r} has {len(syms)} symbols but {len(durs)} "
+                                  f"durations")
+            for sym in syms:
+                problem = _bad_symbol(sym)
+                if problem:
+                    raise FormatError(f"string {name!r}: {problem}")
+            for dur in durs:
+                problem = _bad_duration(dur)
+                if problem:
+                    raise FormatError(f"string {name!r}: {problem}")
+            if isinstance(origin, bool) or not isinstance(origin, (int, float)) \
+                    or not math.isfinite(origin):
+                raise FormatError(f"string {name!r}: start time must be a finite number, "
+                                  f"not {origin!r}")
+            s, d = _merge(syms, durs)
+            merged_symbols.append(s)
+            merged_durations.append(d)
+        object.__setattr__(self, "names", names)
+        object.__setattr__(self, "symbols", tuple(merged_symbols))
+        object.__setattr__(self, "segment_durations", tuple(merged_durations))
+        object.__setattr__(self, "origins", tuple(float(o) for o in origins))
+
+    # -- construction ------------------------------------------------------
+    @classmethod
+    def from_strings(cls, strings: Mapping[str, Iterable[str] | str],
+                     durations: Mapping[str, Iterable[float]] | None = None,
+                     starts: Mapping[str, float] | None = None) -> "Actiongram":
+        """Build from ``{name: symbols}`` (a ``str`` is read one character per symbol).
+
+        ``durations`` maps a name to one duration per symbol (default 1 each);
+        ``starts`` maps a name to the start time of its string (default 0).
+        Adjacent equal symbols are merged, their durations added.
+        """
+        durations = durations or {}
+        starts = starts or {}
+        for extra in (set(durations) | set(starts)) - set(strings):
+            raise FormatError(f"durations or starts given for unknown string {extra!r}")
+        names, symbol_rows, duration_rows, origins = [], [], [], []
+        for name, syms in strings.items():
+            syms = tuple(syms)
+            durs = tuple(durations[name]) if name in durations else (1.0,) * len(syms)
+            names.append(name)
+            symbol_rows.append(syms)
+            duration_rows.append(durs)
+            origins.append(starts.get(name, 0.0))
+        return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins))
+
+    @classmethod
+    def from_text(cls, text: str, source: str = "<string>") -> "Actiongram":
+        """Read the plain-text form (see the module docstring)."""
+        names, symbol_rows, duration_rows, origins = [], [], [], []
+        where: dict[str, int] = {}
+        for line_no, raw in enumerate(text.splitlines(), start=1):
+            line = _strip_comment(raw)
+            if not line.strip():
+                continue
+            head, colon, body = line.partition(":")
+            if not colon:
+                col = len(raw) - len(raw.lstrip()) + 1
+                raise FormatError("expected 'name: symbols' (no ':' on this line)",
+                                  source=source, line=line_no, column=col)
+            name_col = len(head) - len(head.lstrip()) + 1
+            name_text = head.strip()
+            name, at, origin_text = name_text.partition("@")
+            origin = 0.0
+            if at:
+                origin = _read_number(origin_text, allow_nonpositive=True)
+                if origin is None:
+                    raise FormatError(f"start time {origin_text!r} is not a number",
+                                      source=source, line=line_no,
+                                      column=name_col + len(name) + 1)
+            problem = _bad_name(name)
+            if problem:
+                raise FormatError(problem, source=source, line=line_no, column=name_col)
+            if name in where:
+                raise FormatError(f"actuator {name!r} already given on line {where[name]}",
+                                  source=source, line=line_no, column=name_col)
+            where[name] = line_no
+            syms, durs = [], []
+            offset = len(head) + 1
+            for match in re.finditer(r"\S+", body):
+                token, col = match.group(), offset + match.start() + 1
+                sym, at, dur_text = token.partition("@")
+                if ":" in token:
+                    raise FormatError(f"symbol {token!r} contains ':'", source=source,
+                                      line=line_no, column=col)
+                if not sym:
+                    raise FormatError(f"{token!r} has a duration but no symbol", source=source,
+                                      line=line_no, column=col)
+                dur = 1.0
+                if at:
+                    dur = _read_number(dur_text, allow_nonpositive=True)
+                    if dur is not None and dur <= 0:
+                        raise FormatError(f"duration {dur_text} must be positive",
+                                          source=source, line=line_no, column=col + len(sym) + 1)
+                    if dur is None:
+                        raise FormatError(
+                            f"unknown duration syntax {'@' + dur_text!r} (write sym@D with D a "
+                            f"positive number)", source=source, line=line_no,
+                            column=col + len(sym))
+                syms.append(sym)
+                durs.append(dur)
+            names.append(name)
+            symbol_rows.append(tuple(syms))
+            duration_rows.append(tuple(durs))
+            origins.append(origin)
+        return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins))
+
+    @classmethod
+    def from_json(cls, text: str, source: str = "<string>") -> "Actiongram":
+        """Read the JSON form written by :meth:`to_json`."""
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError as exc:
+            raise FormatError(f"not JSON: {exc.msg}", source=source, line=exc.lineno,
+                              column=exc.colno) from None
+        if not isinstance(data, dict) or not isinstance(data.get("strings"), list):
+            raise FormatError("expected a JSON object with a 'strings' list", source=source)
+        names, symbol_rows, duration_rows, origins = [], [], [], []
+        for k, item in enumerate(data["strings"]):
+            if not isinstance(item, dict) or not isinstance(item.get("symbols"), list):
+                raise FormatError(f"strings[{k}] must be an object with 'name' and 'symbols'",
+                                  source=source)
+            syms = item["symbols"]
+            durs = item.get("durations", [1.0] * len(syms))
+            if not isinstance(durs, list):
+                raise FormatError(f"strings[{k}].durations must be a list", source=source)
+            names.append(item.get("name"))
+            symbol_rows.append(tuple(syms))
+            duration_rows.append(tuple(durs))
+            origins.append(item.get("start", 0.0))
+        try:
+            return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins))
+        except FormatError as exc:
+            raise FormatError(exc.message, source=source) from None
+
+    # -- output ------------------------------------------------------------
+    def to_text(self) -> str:
+        """The plain-text form; :meth:`from_text` reads it back to an equal value."""
+        lines = []
+        for name, syms, durs, origin in zip(self.names, self.symbols, self.segment_durations,
+                                            self.origins):
+            head = name if origin == 0 else f"{name}@{_format_number(origin)}"
+            tokens = [s if d == 1 else f"{s}@{_format_number(d)}" for s, d in zip(syms, durs)]
+            lines.append(f"{head}: {' '.join(tokens)}".rstrip())
+        return "\n".join(lines) + "\n"
+
+    def to_json(self) -> str:
+        """A JSON document; :meth:`from_json` reads it back to an equal value."""
+        return json.dumps({
+            "format": _JSON_FORMAT, "version": 1,
+            "strings": [{"name": n, "start": o, "symbols": list(s), "durations": list(d)}
+                        for n, s, d, o in zip(self.names, self.symbols, self.segment_durations,
+                                              self.origins)]})
+
+    # -- accessors ---------------------------------------------------------
+    def __len__(self) -> int:
+        """The number of strings (actuators)."""
+        return len(self.names)
+
+    @property
+    def strings(self) -> dict[str, tuple[str, ...]]:
+        """``{name: symbols}`` in actiongram order."""
+        return dict(zip(self.names, self.symbols))
+
+    @property
+    def durations(self) -> dict[str, tuple[float, ...]]:
+        """``{name: durations}``, one per symbol."""
+        return dict(zip(self.names, self.segment_durations))
+
+    @property
+    def starts(self) -> dict[str, tuple[float, ...]]:
+        """``{name: start times}``: T_i(j), with T_i(j) + D_i(j) = T_i(j + 1)."""
+        out = {}
+        for name, durs, origin in zip(self.names, self.segment_durations, self.origins):
+            times, t = [], origin
+            for d in durs:
+                times.append(t)
+                t += d
+            out[name] = tuple(times)
+        return out
+
+    @property
+    def total_symbols(self) -> int:
+        """The number of symbols over all strings."""
+        return sum(len(s) for s in self.symbols)
+
+    def index(self, name: str) -> int:
+        """The position of the string named ``name``."""
+        try:
+            return self.names.index(name)
+        except ValueError:
+            raise KeyError(f"no string named {name!r}") from None
+
+    def string(self, name: str) -> tuple[str, ...]:
+        """The symbols of string ``name``."""
+        return self.symbols[self.index(name)]
+
+    def subset(self, names: Iterable[str]) -> "Actiongram":
+        """The actiongram of the named strings only, in the order given."""
+        picks = [self.index(n) for n in names]
+        return Actiongram(tuple(self.names[i] for i in picks),
+                          tuple(self.symbols[i] for i in picks),
+                          tuple(self.segment_durations[i] for i in picks),
+                          tuple(self.origins[i] for i in picks))
+
+    def __repr__(self) -> str:
+        return f"<Actiongram {len(self)} strings, {self.total_symbols} symbols>"
+
+
+def _strip_comment(line: str) -> str:
+    """Drop a '#' comment: at line start or after white space."""
+    match = re.search(r"(?:^|\s)#", line)
+    return line if match is None else line[:match.start()]
+
+
+def _read_number(text: str, *, allow_nonpositive: bool) -> float | None:
+    if not _NUMBER.match(text):
+        return None
+    value = float(text)
+    if not math.isfinite(value) or (not allow_nonpositive and value <= 0):
+        return None
+    return value
+
+
+def load_actiongram(path: str | Path) -> Actiongram:
+    """Read an actiongram file: JSON when the name ends in ``.json``, else the text form."""
+    path = Path(path)
+    text = path.read_text(encoding="utf-8")
+    if path.suffix.lower() == ".json":
+        return Actiongram.from_json(text, source=str(path))
+    return Actiongram.from_text(text, source=str(path))
