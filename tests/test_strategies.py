@@ -1,0 +1,86 @@
+"""The hypothesis strategies draw valid, small, composable values."""
+
+import sys
+import subprocess
+
+from hypothesis import given, settings, strategies as st, find
+
+import psgs
+import psgs.strategies as pst
+from psgs.model import PCGS, PSGS, Grammar, Nonterminal, Query, Terminal
+
+FAST = settings(max_examples=60, deadline=None)
+
+
+def productive(g: Grammar) -> set:
+    done: set = set()
+    changed = True
+    while changed:
+        changed = False
+        for r in g.rules:
+            if r.lhs not in done and all(isinstance(s, Terminal) or s in done for s in r.rhs
+                                         if not isinstance(s, Query)):
+                done.add(r.lhs)
+                changed = True
+    return done
+
+
+@FAST
+@given(pst.grammars())
+def test_grammars_are_valid_and_productive(g):
+    assert isinstance(g, Grammar)
+    assert g.start == Nonterminal("S")
+    assert productive(g) == {r.lhs for r in g.rules}
+    assert len({r.label for r in g.rules}) == len(g.rules)
+
+
+@FAST
+@given(pst.grammars(allow_epsilon=False, allow_unit=False))
+def test_grammars_respect_epsilon_and_unit_flags(g):
+    for r in g.rules:
+        assert r.rhs
+        assert not (len(r.rhs) == 1 and isinstance(r.rhs[0], Nonterminal))
+
+
+@FAST
+@given(pst.psgs_systems(min_components=2, max_components=3, mode="single",
+                        unsynchronised="strict"))
+def test_psgs_systems_follow_parameters(system):
+    assert isinstance(system, PSGS)
+    assert 2 <= len(system.components) <= 3
+    assert system.mode == "single" and system.unsynchronised == "strict"
+    assert system.component_names == tuple(f"G{i}" for i in range(1, len(system.components) + 1))
+    for t in system.sync:
+        assert any(e is not None for e in t)
+
+
+@FAST
+@given(pst.pcgs_systems(min_components=2, centralised=True, returning=False))
+def test_pcgs_centralised_only_master_queries(system):
+    assert isinstance(system, PCGS)
+    assert system.centralised and system.returning is False
+    for g in system.components:
+        assert Query(g.name) not in g.queries
+
+
+def test_pcgs_non_centralised_can_query_from_any_component():
+    found = find(pst.pcgs_systems(min_components=2, centralised=False),
+                 lambda s: any(g.queries for g in s.components[1:]))
+    assert not found.centralised
+
+
+def test_shrinks_to_small_readable_grammar():
+    smallest = find(pst.grammars(), lambda g: len(g.rules) >= 2)
+    assert len(smallest.rules) == 2
+    assert {s.name for r in smallest.rules for s in r.rhs} <= {"a", "S", "A"}
+
+
+def test_shrinks_psgs_to_two_components_one_tuple():
+    smallest = find(pst.psgs_systems(), lambda s: len(s.components) >= 2 and s.sync)
+    assert len(smallest.components) == 2 and len(smallest.sync) == 1
+    assert all(len(g.rules) == 1 for g in smallest.components)
+
+
+def test_import_psgs_does_not_import_hypothesis():
+    code = "import sys, psgs; psgs.PSGS; assert 'hypothesis' not in sys.modules"
+    subprocess.run([sys.executable, "-c", code], check=True)
