@@ -1,0 +1,462 @@
+"""Enumerating languages by size: PSGS tuples, PCGS master words, context-free words.
+
+Every enumeration here is bounded and says so: the result is a
+:class:`Language` whose ``complete`` is ``True`` only when the search
+exhausted everything up to ``max_length``, and whose ``bound`` otherwise names
+the budget that stopped it.
+
+Two methods for a PSGS (see ``docs/derivation.md``):
+
+* ``"search"``: breadth-first search over configurations, with a visited
+  set and sound pruning (terminals never disappear; each nonterminal still
+  costs at least its minimum terminal yield). Fast in ``parallel`` mode; in
+  ``single`` mode the interleavings of independent rewrites explode.
+* ``"filter"``: enumerate each component's context-free words by length
+  (cheap), combine them into candidate tuples of total length ≤ L, and
+  keep those that :func:`psgs.membership.accepts` accepts. Sound and
+  complete because every word a component derives under either mode is in
+  its context-free language (a parallel step is a sequence of ordinary
+  steps).
+"""
+
+from __future__ import annotations
+
+import math
+from collections import deque
+from collections.abc import Iterable, Iterator, Sequence
+from dataclasses import dataclass
+from typing import Union
+
+from .errors import ValidationError
+from .model import PCGS, PSGS, Grammar, Nonterminal, Query, Rule, Terminal, Word, as_word
+
+__all__ = ["Language", "language", "min_yields", "context_free_words"]
+
+INFINITE = math.inf
+
+
+@dataclass(frozen=True)
+class Language:
+    """The words of a language up to a size bound, in order of size, each once.
+
+    ``words`` holds terminal tuples (one :data:`~psgs.model.Word` per
+    component) for a PSGS, master words for a PCGS, words for a
+    :class:`~psgs.model.Grammar`. They are sorted by size (total length),
+    then by the names of their terminals. ``complete`` is ``True`` when every
+    word up to ``max_length`` is listed; otherwise ``bound`` is a sentence
+    naming the budget that stopped the search, and ``words`` holds what was
+    found (for context-free enumeration: every word shorter than the length
+    at which it stopped). ``explored`` counts the configurations (search),
+    candidate tuples (filter) or words (context-free) that were examined;
+    ``kind`` is ``"tuples"`` (PSGS) or ``"words"``. ``item in language``
+    accepts words written as strings, e.g. ``("ab", "ba") in lang``.
+    """
+
+    words: tuple
+    complete: bool
+    bound: str | None
+    max_length: int
+    method: str
+    explored: int = 0
+    kind: str = "words"
+
+    def __iter__(self) -> Iterator:
+        return iter(self.words)
+
+    def __len__(self) -> int:
+        return len(self.words)
+
+    def __contains__(self, item: object) -> bool:
+        try:
+            key = _coerce(item, self.kind == "tuples")
+        except (ValidationError, TypeError):
+            return False
+        return key in self._word_set
+
+    @property
+    def _word_set(self) -> frozenset:
+        cached = self.__dict__.get("_cached_set")
+        if cached is None:
+            cached = frozenset(self.words)
+            object.__setattr__(self, "_cached_set", cached)
+        return cached
+
+
+def _coerce(item, of_tuples: bool):
+    """Accept a word or a word tuple written with strings, as the rest of the API does."""
+    if of_tuples:
+        if isinstance(item, (str, bytes)):
+            raise TypeError("a PSGS language holds tuples of words")
+        return tuple(as_word(w) for w in item)
+    return as_word(item)
+
+
+def _names(w: Word) -> tuple[str, ...]:
+    return tuple(t.name for t in w)
+
+
+def _word_key(w: Word):
+    return (len(w), _names(w))
+
+
+def _tuple_key(ws: tuple[Word, ...]):
+    return (sum(len(w) for w in ws), tuple(_names(w) for w in ws))
+
+
+# ---------------------------------------------------------------- context-free facts
+def min_yields(rules: Iterable[Rule], *, query_yield: float = INFINITE) -> dict:
+    """Each nonterminal's minimum terminal yield under ``rules`` (``math.inf`` if unproductive).
+
+    A query symbol yields ``query_yield``: infinite for a grammar taken alone
+    (it derives no word on its own), 0 as a sound lower bound inside a PCGS.
+    """
+    rules = tuple(rules)
+    best: dict[Nonterminal, float] = {}
+    for r in rules:
+        best.setdefault(r.lhs, INFINITE)
+        for s in r.rhs:
+            if isinstance(s, Nonterminal):
+                best.setdefault(s, INFINITE)
+
+    def cost(sym) -> float:
+        if isinstance(sym, Terminal):
+            return 1
+        if isinstance(sym, Query):
+            return query_yield
+        return best[sym]
+
+    changed = True
+    while changed:  # Bellman-Ford style: at most |N| rounds improve anything
+        changed = False
+        for r in rules:
+            value = sum((cost(s) for s in r.rhs), 0)
+            if value < best[r.lhs]:
+                best[r.lhs] = value
+                changed = True
+    return best
+
+
+def _form_lower_bound(form, yields) -> float:
+    total = 0
+    for s in form:
+        if isinstance(s, Terminal):
+            total += 1
+        elif isinstance(s, Nonterminal):
+            total += yields.get(s, INFINITE)
+    return total
+
+
+def context_free_words(grammar: Grammar, max_length: int, *, rules: Iterable[Rule] | None = None,
+                       start: Nonterminal | None = None, max_words: int = 1_000_000):
+    """The context-free words of ``grammar`` up to ``max_length``, by length.
+
+    Returns ``(words_by_length, bound)``: a list whose entry ``n`` is the
+    frozenset of words of length ``n`` derivable from ``start`` (the axiom
+    unless given) with ``rules`` (all the grammar's rules unless given), and
+    ``None`` or a sentence naming ``max_words`` when the table grew past it;
+    then the list stops before the length at which it was hit, and every
+    shorter length is complete. ε-rules, unit cycles and left recursion are
+    fine: each length is a fixpoint over finitely many words. Query symbols
+    derive nothing here.
+    """
+    rules = tuple(grammar.rules if rules is None else rules)
+    start = grammar.start if start is None else start
+    yields = min_yields(rules)
+    lhs_order = sorted({r.lhs for r in rules}, key=lambda n: n.name)
+    table: dict[Nonterminal, list[set]] = {a: [] for a in lhs_order}
+    stored = 0
+
+    def words_of(sym, n: int):
+        if isinstance(sym, Terminal):
+            return ((sym,),) if n == 1 else ()
+        if isinstance(sym, Query):
+            return ()
+        rows = table.get(sym)
+        if rows is None or n >= len(rows):
+            return ()
+        return rows[n]
+
+    for n in range(max_length + 1):
+        for a in lhs_order:
+            table[a].append(set())
+        changed = True
+        while changed:
+            changed = False
+            for r in rules:
+                if yields[r.lhs] > n:
+                    continue
+                found = _sequence_words(r.rhs, n, words_of, yields)
+                row = table[r.lhs][n]
+                before = len(row)
+                row.update(found)
+                if len(row) != before:
+                    stored += len(row) - before
+                    changed = True
+            if stored > max_words:
+                for a in lhs_order:
+                    table[a].pop()
+                bound = (f"stopped at length {n} after {stored} words (max_words={max_words}); "
+                         f"shorter words are complete")
+                return _rows_of(table, start, n), bound
+    return _rows_of(table, start, max_length + 1), None
+
+
+def _rows_of(table, start, count: int) -> list[frozenset]:
+    rows = table.get(start)
+    if rows is None:
+        return [frozenset() for _ in range(count)]
+    return [frozenset(rows[n]) for n in range(count)]
+
+
+def _sequence_words(rhs, n: int, words_of, yields) -> set:
+    """Words of length exactly ``n`` derivable from the symbol sequence ``rhs``."""
+    k = len(rhs)
+    suffix_min = [0] * (k + 1)
+    for i in range(k - 1, -1, -1):
+        s = rhs[i]
+        one = 1 if isinstance(s, Terminal) else (INFINITE if isinstance(s, Query)
+                                                 else yields.get(s, INFINITE))
+        suffix_min[i] = suffix_min[i + 1] + one
+    if suffix_min[0] > n:
+        return set()
+    memo: dict[tuple[int, int], set] = {}
+
+    def from_position(i: int, m: int) -> set:
+        if i == k:
+            return {()} if m == 0 else set()
+        key = (i, m)
+        if key in memo:
+            return memo[key]
+        out: set = set()
+        low = suffix_min[i] - suffix_min[i + 1]
+        for n1 in range(int(low), m - int(suffix_min[i + 1]) + 1):
+            heads = words_of(rhs[i], n1)
+            if not heads:
+                continue
+            tails = from_position(i + 1, m - n1)
+            for h in heads:
+                for t in tails:
+                    out.add(h + t)
+        memo[key] = out
+        return out
+
+    return from_position(0, n)
+
+
+# ---------------------------------------------------------------- entry point
+def language(system, max_length: int, *, max_configurations: int = 200_000,
+             max_candidates: int = 100_000, max_words: int = 1_000_000,
+             method: str | None = None, **membership_options) -> Language:
+    """Enumerate the language of ``system`` up to size ``max_length``, in order of size.
+
+    * :class:`~psgs.model.PSGS`: the terminal tuples whose total length is at
+      most ``max_length``. ``method`` is ``"search"`` (breadth-first over
+      configurations, bounded by ``max_configurations``) or ``"filter"``
+      (component words by length, kept when :func:`psgs.membership.accepts`
+      accepts the tuple; bounded by ``max_words`` and ``max_candidates``; the
+      remaining keyword arguments go to ``accepts``). The default is
+      ``"search"`` in ``parallel`` mode and ``"filter"`` in ``single`` mode.
+    * :class:`~psgs.model.PCGS`: the master's terminal words of length at
+      most ``max_length`` (search only).
+    * :class:`~psgs.model.Grammar`: its context-free words up to
+      ``max_length`` (the component taken alone; query symbols derive nothing).
+
+    Always terminates. When a budget stops it, ``complete`` is ``False`` and
+    ``bound`` names the budget, e.g. ``"stopped after 200000 configurations
+    (max_configurations)"``.
+
+    >>> from psgs import Grammar, Nonterminal, Rule, Terminal
+    >>> S = Nonterminal("S")
+    >>> g = Grammar("G", S, [Rule("r1", S, (Terminal("a"), S)), Rule("r2", S, ())])
+    >>> [''.join(map(str, w)) for w in language(g, 3)]
+    ['', 'a', 'aa', 'aaa']
+    """
+    if isinstance(max_length, bool) or not isinstance(max_length, int) or max_length < 0:
+        raise ValidationError(f"max_length must be a whole number ≥ 0, not {max_length!r}")
+    for name, value in (("max_configurations", max_configurations),
+                        ("max_candidates", max_candidates), ("max_words", max_words)):
+        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+            raise ValidationError(f"{name} must be a whole number ≥ 1, not {value!r}")
+    if method not in (None, "search", "filter"):
+        raise ValidationError(f"method must be 'search' or 'filter', not {method!r}")
+    if isinstance(system, Grammar):
+        return _grammar_language(system, max_length, max_words)
+    if isinstance(system, PCGS):
+        if method == "filter":
+            raise ValidationError("method 'filter' needs a PSGS; a PCGS is enumerated by search")
+        return _pcgs_search(system, max_length, max_configurations)
+    if isinstance(system, PSGS):
+        if method is None:
+            method = "search" if system.mode == "parallel" else _filter_if_available()
+        if method == "search":
+            return _psgs_search(system, max_length, max_configurations)
+        return _psgs_filter(system, max_length, max_words, max_candidates, membership_options)
+    raise ValidationError(f"expected a PSGS, a PCGS or a Grammar, not {type(system).__name__}")
+
+
+def _filter_if_available() -> str:
+    try:
+        from .membership import accepts  # noqa: F401
+    except ImportError:
+        return "search"
+    return "filter"
+
+
+def _grammar_language(grammar: Grammar, max_length: int, max_words: int) -> Language:
+    rows, bound = context_free_words(grammar, max_length, max_words=max_words)
+    words = sorted((w for row in rows for w in row), key=_word_key)
+    return Language(tuple(words), bound is None, bound, max_length, "context-free",
+                    sum(len(r) for r in rows))
+
+
+# ---------------------------------------------------------------- PSGS
+def _usable_rules(system: PSGS) -> list[tuple[Rule, ...]]:
+    if system.unsynchronised == "free":
+        return [g.rules for g in system.components]
+    return [tuple(r for r in g.rules if r in synced)
+            for g, synced in zip(system.components, system.synchronised_rules)]
+
+
+def _psgs_search(system: PSGS, max_length: int, max_configurations: int) -> Language:
+    from .derivation import _psgs_successors, initial_configuration
+
+    yields = [min_yields(rules) for rules in _usable_rules(system)]
+
+    def lower_bound(configuration) -> float:
+        return sum(_form_lower_bound(f, y) for f, y in zip(configuration, yields))
+
+    start = initial_configuration(system)
+    found: set = set()
+    bound = None
+    seen = {start}
+    queue = deque([start] if lower_bound(start) <= max_length else [])
+    while queue:
+        configuration = queue.popleft()
+        if all(isinstance(s, Terminal) for f in configuration for s in f):
+            found.add(configuration)
+            continue
+        for _, _, after in _psgs_successors(system, configuration):
+            if after in seen or lower_bound(after) > max_length:
+                continue
+            if len(seen) >= max_configurations:
+                bound = f"stopped after {len(seen)} configurations (max_configurations)"
+                queue.clear()
+                break
+            seen.add(after)
+            queue.append(after)
+    words = sorted(found, key=_tuple_key)
+    return Language(tuple(words), bound is None, bound, max_length, "search", len(seen),
+                    "tuples")
+
+
+def _psgs_filter(system: PSGS, max_length: int, max_words: int, max_candidates: int,
+                 membership_options: dict) -> Language:
+    try:
+        from .membership import accepts
+    except ImportError as exc:
+        raise ValidationError("method 'filter' needs psgs.membership, which is not "
+                              f"available ({exc})") from None
+    usable = _usable_rules(system)
+    yields = [min_yields(rules) for rules in usable]
+    floors = [y.get(g.start, INFINITE) for g, y in zip(system.components, yields)]
+    if sum(floors) > max_length:
+        return Language((), True, None, max_length, "filter", 0, "tuples")
+    per_component: list[list[Word]] = []
+    bounds: list[str] = []
+    for g, rules, floor in zip(system.components, usable, floors):
+        room = max_length - (sum(floors) - floor)
+        rows, bound = context_free_words(g, int(room), rules=rules, max_words=max_words)
+        if bound:
+            bounds.append(f"component {g.name}: {bound}")
+        per_component.append(sorted((w for row in rows for w in row), key=_word_key))
+
+    candidates = 0
+    accepted: list = []
+    unknown: list = []
+    stopped = None
+    for words in _tuples_within(per_component, max_length):
+        if candidates >= max_candidates:
+            stopped = f"stopped after {candidates} candidate tuples (max_candidates)"
+            break
+        candidates += 1
+        answer = accepts(system, words, **membership_options)
+        verdict = getattr(answer, "answer", "yes" if answer else "no")
+        if verdict == "yes":
+            accepted.append(words)
+        elif verdict != "no":
+            unknown.append(answer)
+    if unknown:
+        first = getattr(unknown[0], "bound", None) or getattr(unknown[0], "reason", None)
+        bounds.append(f"membership answered unknown for {len(unknown)} candidate tuples"
+                      + (f" ({first})" if first else ""))
+    if stopped:
+        bounds.append(stopped)
+    accepted.sort(key=_tuple_key)
+    bound = "; ".join(bounds) if bounds else None
+    return Language(tuple(accepted), bound is None, bound, max_length, "filter", candidates,
+                    "tuples")
+
+
+def _tuples_within(per_component: Sequence[Sequence[Word]], max_length: int) -> Iterator:
+    """Every choice of one word per component with total length ≤ max_length."""
+    shortest = [min((len(w) for w in ws), default=None) for ws in per_component]
+    if any(s is None for s in shortest):
+        return
+    rest_min = [0] * (len(per_component) + 1)
+    for i in range(len(per_component) - 1, -1, -1):
+        rest_min[i] = rest_min[i + 1] + shortest[i]
+
+    def extend(i: int, budget: int, prefix: tuple):
+        if i == len(per_component):
+            yield prefix
+            return
+        for w in per_component[i]:  # sorted by length, so stop at the first too long
+            if len(w) + rest_min[i + 1] > budget:
+                break
+            yield from extend(i + 1, budget - len(w), prefix + (w,))
+
+    yield from extend(0, max_length, ())
+
+
+# ---------------------------------------------------------------- PCGS
+def _pcgs_search(system: PCGS, max_length: int, max_configurations: int) -> Language:
+    from .derivation import _pcgs_steps, initial_configuration
+
+    master = system.master_index
+    master_queried = any(q.component == system.master for g in system.components
+                         for q in g.queries)
+    # Terminals never leave a form except when it is sent away in returning mode.
+    can_prune = not (system.returning and master_queried)
+    yields = min_yields(system.components[master].rules, query_yield=0)
+
+    def hopeless(configuration) -> bool:
+        return can_prune and _form_lower_bound(configuration[master], yields) > max_length
+
+    start = initial_configuration(system)
+    found: set = set()
+    bound = None
+    seen = {start}
+    queue = deque([] if hopeless(start) else [start])
+    while queue:
+        configuration = queue.popleft()
+        form = configuration[master]
+        if all(isinstance(s, Terminal) for s in form):
+            if len(form) <= max_length:
+                found.add(form)
+            if can_prune:
+                continue  # nobody can reset the master, so its word never changes again
+        for step in _pcgs_steps(system, configuration):
+            after = step.after
+            if after in seen or hopeless(after):
+                continue
+            if len(seen) >= max_configurations:
+                bound = f"stopped after {len(seen)} configurations (max_configurations)"
+                queue.clear()
+                break
+            seen.add(after)
+            queue.append(after)
+    words = sorted(found, key=_word_key)
+    return Language(tuple(words), bound is None, bound, max_length, "search", len(seen))
+
+
+_System = Union[PSGS, PCGS, Grammar]
