@@ -1,1 +1,38 @@
-"""kinetology: joint-angle motion in, actiongrams out (an adapter over psgs)."""
+"""kinetology: joint-angle motion in, actiongrams out (an adapter over psgs).
+
+Read motion capture (BVH, ASF/AMC) into a :class:`Motion`, segment each joint
+angle into kinetemes (states B, G, R, Y from the signs of velocity and
+acceleration), compress and reconstruct motion from its segments, and measure
+the paper's five kinetological principles. ``psgs`` is used only for its
+:class:`psgs.Actiongram` type.
+"""
+
+from __future__ import annotations
+
+import importlib
+
+from .motion import AXES, Joint, Motion, MotionFormatError, Skeleton
+
+# public name -> module that defines it (imported on first use)
+_LAZY = {
+    "read": "readers", "read_bvh": "bvh", "read_amc": "asf", "read_asf": "asf",
+    "forward_kinematics": "kinematics", "joint_angle": "kinematics",
+    "segment": "segmentation", "states": "segmentation", "segments": "segmentation",
+    "Segmentation": "segmentation", "STATES": "segmentation",
+    "compress": "codec", "decompress": "codec", "reconstruct": "codec",
+    "synthetic_motion": "synthetic",
+}
+
+__all__ = ["Motion", "MotionFormatError", "Joint", "Skeleton", "AXES", *_LAZY]
+
+
+def __getattr__(name: str):
+    if name in _LAZY:
+        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'kinetology' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))

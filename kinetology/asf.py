@@ -1,0 +1,278 @@
+"""Reading Acclaim ASF skeletons and AMC motions (the CMU database's format).
+
+An ASF bone is turned into a BVH-style :class:`~kinetology.motion.Joint`
+placed at the bone's *start*: its offset is the parent bone's vector
+(``direction * length``, in the ASF's global rest frame), its fixed rotation
+``axis`` is the ASF ``axis`` and its channels are the bone's ``dof``. With the
+local rotation ``C @ R @ C.T`` (``C`` from ``axis``) forward kinematics gives
+the ASF positions exactly, and a skeleton converted to BVH by the usual tools
+(joint ``LeftUpLeg`` = bone ``lfemur``) lines up joint for joint. ``axis ...
+XYZ`` means the matrix ``Rz @ Ry @ Rx`` (x applied first), for the axis and
+for the dof angles alike.
+
+An AMC file without its ASF still reads: channel names then come from a
+``SkeletonJoints.key`` beside it (lines ``bone dof dof ..``) when there is one,
+else they are ``bone.1``, ``bone.2`` .. (``root`` gets ``tx ty tz rx ry rz``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .motion import Joint, Motion, MotionFormatError, Skeleton
+from .numbers import parse_rows
+
+__all__ = ["AsfSkeleton", "read_asf", "parse_asf", "read_amc", "parse_amc", "find_asf"]
+
+_DOFS = {"tx", "ty", "tz", "rx", "ry", "rz"}
+_DEFAULT_FRAME_RATE = 120.0  # the CMU database's capture rate; AMC files do not say
+
+
+@dataclass(frozen=True)
+class AsfSkeleton:
+    """What an ASF file says: bone dofs and the skeleton in joint form."""
+
+    dofs: dict  # bone name -> tuple of dof names, in AMC value order ("root" included)
+    skeleton: Skeleton
+    length_scale: float  # the :units length (inches per unit is 1/scale in CMU's files)
+
+
+def read_asf(path: str | Path) -> AsfSkeleton:
+    path = Path(path)
+    return parse_asf(path.read_text(encoding="utf-8", errors="replace"), source=str(path))
+
+
+def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
+    """Parse ASF text into bone dofs and a :class:`Skeleton`."""
+    lines = text.splitlines()
+    section = None
+    root = {"order": ("tx", "ty", "tz", "rx", "ry", "rz"), "axis": "XYZ",
+            "position": (0.0, 0.0, 0.0), "orientation": (0.0, 0.0, 0.0)}
+    bones: dict[str, dict] = {}
+    children: dict[str, list[str]] = {}
+    current: dict | None = None
+    scale = 1.0
+
+    def fail(message, number, column=1):
+        raise MotionFormatError(message, source=source, line=number, column=column)
+
+    def numbers(parts, count, number):
+        if len(parts) < count:
+            fail(f"expected {count} numbers, found {len(parts)}", number)
+        try:
+            values = tuple(float(p) for p in parts[:count])
+        except ValueError:
+            fail(f"expected numbers, found {' '.join(parts[:count])!r}", number)
+        if not all(np.isfinite(values)):
+            fail("number is not finite", number)
+        return values
+
+    for number, raw in enumerate(lines, 1):
+        line = raw.split("#", 1)[0].strip()
+        if not line:
+            continue
+        if line.startswith(":"):
+            head, *rest = line.split()
+            section = head[1:].lower()
+            continue
+        parts = line.split()
+        key = parts[0].lower()
+        if section == "units" and key == "length":
+            scale = numbers(parts[1:], 1, number)[0]
+        elif section == "root":
+            if key == "order":
+                order = tuple(p.lower() for p in parts[1:])
+                if not set(order) <= _DOFS or len(set(order)) != len(order):
+                    fail(f"bad root order {' '.join(parts[1:])!r}", number)
+                root["order"] = order
+            elif key == "axis":
+                root["axis"] = _axis_order(parts[1], fail, number)
+            elif key in ("position", "orientation"):
+                root[key] = numbers(parts[1:], 3, number)
+        elif section == "bonedata":
+            if key == "begin":
+                current = {"dof": (), "axis": (0.0, 0.0, 0.0), "order": "XYZ",
+                           "direction": (0.0, 0.0, 0.0), "length": 0.0, "line": number}
+            elif key == "end":
+                if current is None or "name" not in current:
+                    fail("bone without a name", number)
+                bones[current["name"]] = current
+                current = None
+            elif current is None:
+                fail(f"{parts[0]!r} outside a begin/end bone block", number)
+            elif key == "name":
+                current["name"] = parts[1] if len(parts) > 1 else fail("bone name missing", number)
+            elif key == "direction":
+                current["direction"] = numbers(parts[1:], 3, number)
+            elif key == "length":
+                current["length"] = numbers(parts[1:], 1, number)[0]
+            elif key == "axis":
+                current["axis"] = numbers(parts[1:], 3, number)
+                current["order"] = _axis_order(parts[4] if len(parts) > 4 else "XYZ", fail,
+                                               number)
+            elif key == "dof":
+                dof = tuple(p.lower() for p in parts[1:])
+                if not set(dof) <= _DOFS or len(set(dof)) != len(dof):
+                    fail(f"bad dof list {' '.join(parts[1:])!r}", number)
+                current["dof"] = dof
+        elif section == "hierarchy":
+            if key in ("begin", "end"):
+                continue
+            children.setdefault(parts[0], []).extend(parts[1:])
+            for child in parts[1:]:
+                if child not in bones:
+                    fail(f"hierarchy names unknown bone {child!r}", number,
+                         raw.find(child) + 1)
+    if not bones:
+        raise MotionFormatError("no :bonedata bones", source=source)
+    joints: list[Joint] = []
+    root_order = root["axis"][::-1]
+    joints.append(Joint("root", None, root["position"],
+                        tuple(f"root.{d}" for d in root["order"]), root_order,
+                        root["orientation"]))
+    dofs = {"root": tuple(root["order"])}
+    placed: set[str] = set()
+
+    def place(bone: str, parent_index: int, offset) -> None:
+        if bone in placed:
+            raise MotionFormatError(f"bone {bone!r} appears twice in the hierarchy",
+                                    source=source)
+        placed.add(bone)
+        info = bones[bone]
+        dofs[bone] = info["dof"]
+        index = len(joints)
+        joints.append(Joint(bone, parent_index, offset,
+                            tuple(f"{bone}.{d}" for d in info["dof"]), info["order"][::-1],
+                            info["axis"]))
+        vector = tuple(float(info["length"]) * np.asarray(info["direction"]))
+        kids = children.get(bone, [])
+        for child in kids:
+            place(child, index, vector)
+        if not kids:
+            joints.append(Joint(f"{bone}.end", index, vector, (), "ZYX", (0.0, 0.0, 0.0), True))
+
+    for child in children.get("root", []):
+        place(child, 0, (0.0, 0.0, 0.0))
+    missing = [b for b in bones if b not in placed]
+    if missing:
+        raise MotionFormatError(f"bones not in the hierarchy: {', '.join(missing)}",
+                                source=source)
+    return AsfSkeleton(dofs, Skeleton(tuple(joints), length_unit=f"ASF units (length {scale})"),
+                       scale)
+
+
+def _axis_order(text: str, fail, number) -> str:
+    order = text.upper()
+    if sorted(order) != ["X", "Y", "Z"]:
+        fail(f"bad axis order {text!r}", number)
+    return order
+
+
+def find_asf(amc_path: Path) -> Path | None:
+    """The ASF for ``SS_TT.amc``: ``SS.asf`` beside it, else the only ``.asf`` there."""
+    stem = amc_path.stem.split("_")[0]
+    candidate = amc_path.with_name(f"{stem}.asf")
+    if candidate.is_file():
+        return candidate
+    others = sorted(amc_path.parent.glob("*.asf"))
+    return others[0] if len(others) == 1 else None
+
+
+def read_amc(path: str | Path, asf: str | Path | AsfSkeleton | None = "auto",
+             frame_rate: float = _DEFAULT_FRAME_RATE) -> Motion:
+    """Read an AMC motion; ``asf="auto"`` looks for its skeleton beside it."""
+    path = Path(path)
+    if isinstance(asf, str) and asf == "auto":
+        found = find_asf(path)
+        asf = read_asf(found) if found is not None else None
+    elif isinstance(asf, (str, Path)):
+        asf = read_asf(asf)
+    dofs = asf.dofs if asf is not None else _key_file_dofs(path.with_name("SkeletonJoints.key"))
+    return parse_amc(path.read_text(encoding="utf-8", errors="replace"), dofs=dofs,
+                     skeleton=asf.skeleton if asf is not None else None, source=str(path),
+                     frame_rate=frame_rate)
+
+
+def _key_file_dofs(path: Path) -> dict | None:
+    if not path.is_file():
+        return None
+    dofs = {}
+    for number, line in enumerate(path.read_text().splitlines(), 1):
+        parts = line.split()
+        if parts:
+            if not set(p.lower() for p in parts[1:]) <= _DOFS:
+                raise MotionFormatError(f"bad dof names in {line.strip()!r}", source=str(path),
+                                        line=number)
+            dofs[parts[0]] = tuple(p.lower() for p in parts[1:])
+    return dofs
+
+
+def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None = None,
+              source: str = "<amc>", frame_rate: float = _DEFAULT_FRAME_RATE) -> Motion:
+    """Parse AMC text. ``dofs`` (bone -> dof names) names the channels and checks counts."""
+    lines = text.splitlines()
+    start = 0
+    degrees = True
+    while start < len(lines) and (not lines[start].strip() or lines[start].lstrip()[0] in "#:"):
+        if lines[start].strip().upper() == ":RADIANS":
+            degrees = False
+        start += 1
+    data = lines[start:]
+    while data and not data[-1].strip():
+        data.pop()
+    if not data:
+        raise MotionFormatError("no frames", source=source, line=len(lines))
+
+    def line_of(i: int) -> int:
+        return start + i + 1
+
+    if not data[0].strip().isdigit():
+        raise MotionFormatError(f"expected a frame number, found {data[0].strip()[:30]!r}",
+                                source=source, line=line_of(0), column=1)
+    per_frame = 1
+    while per_frame < len(data) and not data[per_frame].strip().isdigit():
+        per_frame += 1
+    bones = [ln.split(None, 1)[0] for ln in data[1:per_frame]]
+    if len(set(bones)) != len(bones):
+        raise MotionFormatError("a bone appears twice in frame 1", source=source,
+                                line=line_of(1))
+    heads = [ln.split(None, 1)[0] if ln.strip() else "" for ln in data]
+    expected = ([None] + bones) * (len(data) // per_frame + 1)
+    for i, head in enumerate(heads):
+        slot = i % per_frame
+        ok = head.isdigit() if slot == 0 else head == expected[i]
+        if not ok:
+            what = "a frame number" if slot == 0 else f"bone {expected[i]!r}"
+            raise MotionFormatError(f"expected {what}, found {head or 'an empty line'!r}",
+                                    source=source, line=line_of(i), column=1)
+    if len(data) % per_frame:
+        raise MotionFormatError(f"last frame is truncated (it has {len(data) % per_frame - 1} "
+                                f"of {per_frame - 1} bone lines)", source=source,
+                                line=line_of(len(data) - 1))
+    frames = len(data) // per_frame
+    columns, names = [], []
+    for b, bone in enumerate(bones):
+        slot = b + 1
+        rows = [ln.split(None, 1)[1] if len(ln.split(None, 1)) > 1 else ""
+                for ln in data[slot::per_frame]]
+        if dofs is not None:
+            if bone not in dofs:
+                raise MotionFormatError(f"bone {bone!r} is not in the skeleton", source=source,
+                                        line=line_of(slot))
+            bone_dofs = dofs[bone]
+        else:
+            width = len(rows[0].split())
+            bone_dofs = (("tx", "ty", "tz", "rx", "ry", "rz") if bone == "root" and width == 6
+                         else tuple(str(k + 1) for k in range(width)))
+        block = parse_rows(rows, len(bone_dofs), source=source,
+                           line_of=lambda i, s=slot: line_of(s + i * per_frame))
+        columns.append(block)
+        names.extend(f"{bone}.{d}" for d in bone_dofs)
+    values = np.hstack(columns) if columns else np.zeros((frames, 0))
+    if not degrees:
+        rotation = [i for i, n in enumerate(names) if n.rsplit(".", 1)[1].startswith("r")]
+        values[:, rotation] = np.degrees(values[:, rotation])
+    return Motion(values, tuple(names), frame_rate, skeleton, source, {"format": "amc"})

@@ -1,0 +1,197 @@
+"""Reading BVH (Biovision hierarchy) files into a :class:`~kinetology.motion.Motion`.
+
+Channels are renamed ``joint.tx`` .. ``joint.rz`` (``Xposition`` -> ``tx``,
+``Zrotation`` -> ``rz``); a joint's rotation order is the order its rotation
+channels are listed in (``Zrotation Yrotation Xrotation`` -> ``"ZYX"``, the
+matrix ``Rz @ Ry @ Rx``). The frame block is parsed in one numpy pass; only
+when it is malformed is it walked line by line to name the bad line.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+
+from .motion import Joint, Motion, MotionFormatError, Skeleton
+from .numbers import parse_rows
+
+__all__ = ["read_bvh", "parse_bvh"]
+
+_CHANNEL_AXES = {"xposition": "tx", "yposition": "ty", "zposition": "tz",
+                 "xrotation": "rx", "yrotation": "ry", "zrotation": "rz"}
+_TOKEN = re.compile(r"\S+")
+
+
+def read_bvh(path: str | Path) -> Motion:
+    """Read a BVH file (errors name ``file:line:col``)."""
+    path = Path(path)
+    return parse_bvh(path.read_text(encoding="utf-8", errors="replace"), source=str(path))
+
+
+def parse_bvh(text: str, source: str = "<bvh>") -> Motion:
+    """Parse BVH text; see :func:`read_bvh`."""
+    lines = text.splitlines()
+    tokens = _HierarchyTokens(lines, source)
+    tokens.expect("HIERARCHY")
+    joints: list[Joint] = []
+    channels: list[str] = []
+    kind = tokens.next("ROOT")
+    if kind.upper() != "ROOT":
+        tokens.fail(f"expected ROOT, found {kind!r}")
+    _read_joint(tokens, joints, channels, parent=None)
+    if tokens.peek().upper() == "ROOT":
+        tokens.fail("only one ROOT is supported")
+    tokens.expect("MOTION")
+    frames_line = tokens.line_index
+    frames = _read_header_number(lines, tokens, "Frames:", source, integer=True)
+    frame_time = _read_header_number(lines, tokens, "Frame Time:", source, integer=False)
+    if frame_time <= 0:
+        raise MotionFormatError(f"frame time must be positive, not {frame_time}", source=source,
+                                line=tokens.line_index)
+    first_data = tokens.line_index + 1
+    body = [ln for ln in lines[first_data - 1:]]
+    # trailing blank lines are common; anything else beyond the frames is an error
+    while body and not body[-1].strip():
+        body.pop()
+    values = parse_rows(body, len(channels), source=source, first_line=first_data)
+    if values.shape[0] != frames:
+        raise MotionFormatError(
+            f"header says {frames} frames but {values.shape[0]} frame lines follow",
+            source=source, line=frames_line)
+    skeleton = Skeleton(tuple(joints), length_unit="BVH file units")
+    rate = 1.0 / frame_time
+    if abs(rate - round(rate)) < 0.01:  # "Frame Time: .0083333" means 120 fps
+        rate = float(round(rate))
+    return Motion(values, tuple(channels), rate, skeleton, source,
+                  {"format": "bvh"})
+
+
+def _read_header_number(lines, tokens, label: str, source: str, *, integer: bool):
+    index = tokens.line_index  # 1-based line of the current token position
+    # the header lines follow MOTION; skip blank lines
+    while index < len(lines) and not lines[index].strip():
+        index += 1
+    if index >= len(lines):
+        raise MotionFormatError(f"file ends before '{label}'", source=source, line=len(lines))
+    line = lines[index].strip()
+    if not line.lower().startswith(label.lower()):
+        raise MotionFormatError(f"expected '{label}', found {line[:40]!r}", source=source,
+                                line=index + 1, column=1)
+    raw = line[len(label):].strip()
+    try:
+        value = int(raw) if integer else float(raw)
+    except ValueError:
+        raise MotionFormatError(f"'{label}' needs a number, not {raw!r}", source=source,
+                                line=index + 1, column=len(label) + 2) from None
+    if integer and value < 0:
+        raise MotionFormatError(f"negative frame count {value}", source=source, line=index + 1)
+    tokens.line_index = index + 1
+    return value
+
+
+def _read_joint(tokens, joints, channels, parent, end_site=False, name=None):
+    if name is None:
+        name = tokens.next("joint name")
+    tokens.expect("{")
+    offset = (0.0, 0.0, 0.0)
+    own_channels: tuple[str, ...] = ()
+    order = ""
+    index = len(joints)
+    joints.append(None)  # reserve the slot so children come after their parent
+    children = []
+    while True:
+        word = tokens.next("'}'")
+        upper = word.upper()
+        if upper == "OFFSET":
+            offset = tuple(tokens.number() for _ in range(3))
+        elif upper == "CHANNELS":
+            if end_site:
+                tokens.fail("an End Site has no channels")
+            count_text = tokens.next("channel count")
+            try:
+                count = int(count_text)
+            except ValueError:
+                tokens.fail(f"channel count must be an integer, not {count_text!r}")
+            names = []
+            for _ in range(count):
+                raw = tokens.next("channel name")
+                axis = _CHANNEL_AXES.get(raw.lower())
+                if axis is None:
+                    tokens.fail(f"unknown channel {raw!r} (expected Xposition .. Zrotation)")
+                names.append(f"{name}.{axis}")
+                if axis.startswith("r"):
+                    order += axis[1].upper()
+            if len(set(names)) != len(names):
+                tokens.fail(f"joint {name!r} lists a channel twice")
+            own_channels = tuple(names)
+            channels.extend(names)
+        elif upper == "JOINT":
+            children.append(tokens.next("joint name"))
+            _read_joint(tokens, joints, channels, index, name=children[-1])
+        elif upper == "END":
+            site = tokens.next("Site")
+            if site.upper() != "SITE":
+                tokens.fail(f"expected 'End Site', found 'End {site}'")
+            _read_joint(tokens, joints, channels, index, end_site=True, name=f"{name}.end")
+        elif word == "}":
+            break
+        else:
+            tokens.fail(f"unexpected {word!r} in joint {name!r}")
+    if len(order) not in (0, 3) and not end_site:
+        # fewer than three rotation channels: the missing ones are zero, order as listed
+        order = order + "".join(a for a in "ZYX" if a not in order)
+    joints[index] = Joint(name, parent, offset, own_channels, order or "ZYX", (0.0, 0.0, 0.0),
+                          end_site)
+
+
+class _HierarchyTokens:
+    """White-space tokens of the hierarchy part, with their line and column."""
+
+    def __init__(self, lines: list[str], source: str) -> None:
+        self.lines = lines
+        self.source = source
+        self.line_index = 0  # number of lines fully consumed
+        self.pending: list[tuple[str, int]] = []
+        self.last = (1, 1)
+
+    def _fill(self) -> bool:
+        while not self.pending:
+            if self.line_index >= len(self.lines):
+                return False
+            line = self.lines[self.line_index]
+            self.line_index += 1
+            self.pending = [(m.group(), m.start() + 1) for m in _TOKEN.finditer(line)]
+            self.current_line = self.line_index
+        return True
+
+    def peek(self) -> str:
+        return self.pending[0][0] if self._fill() else ""
+
+    def next(self, what: str) -> str:
+        if not self._fill():
+            raise MotionFormatError(f"file ends where {what} was expected", source=self.source,
+                                    line=len(self.lines))
+        token, column = self.pending.pop(0)
+        self.last = (self.current_line, column)
+        return token
+
+    def expect(self, word: str) -> None:
+        token = self.next(repr(word))
+        if token.upper() != word.upper():
+            self.fail(f"expected {word!r}, found {token!r}")
+
+    def number(self) -> float:
+        token = self.next("a number")
+        try:
+            value = float(token)
+        except ValueError:
+            self.fail(f"expected a number, found {token!r}")
+        if not np.isfinite(value):
+            self.fail(f"offset {token!r} is not finite")
+        return value
+
+    def fail(self, message: str):
+        raise MotionFormatError(message, source=self.source, line=self.last[0],
+                                column=self.last[1])

@@ -1,0 +1,97 @@
+"""Forward kinematics: joint angles to 3D joint positions, vectorised over frames.
+
+A joint's global rotation is its parent's times its local rotation
+``C @ R(angles) @ C.T`` (see :class:`~kinetology.motion.Joint`); its position
+is the parent's position plus the parent's global rotation applied to its
+translation. The translation is the joint's offset, except along axes it has
+position channels for: those give the translation itself (in BVH files with
+position channels on every joint, such as Bandai Namco's, the channel values
+equal the offsets; adding the two would double every bone).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .motion import Motion
+
+__all__ = ["rotation_matrices", "forward_kinematics", "joint_angle"]
+
+
+def _elementary(axis: str, radians: np.ndarray) -> np.ndarray:
+    c, s = np.cos(radians), np.sin(radians)
+    out = np.zeros(radians.shape + (3, 3))
+    i = "XYZ".index(axis)
+    j, k = (i + 1) % 3, (i + 2) % 3
+    out[..., i, i] = 1.0
+    out[..., j, j] = c
+    out[..., k, k] = c
+    out[..., j, k] = -s
+    out[..., k, j] = s
+    return out
+
+
+def rotation_matrices(angles_deg: dict[str, np.ndarray], order: str, frames: int) -> np.ndarray:
+    """``R = R_order[0] @ R_order[1] @ R_order[2]`` per frame, from angles in degrees.
+
+    ``angles_deg`` maps ``"X"``, ``"Y"``, ``"Z"`` to per-frame angles; a missing
+    axis is zero.
+    """
+    result = np.broadcast_to(np.eye(3), (frames, 3, 3)).copy()
+    for axis in order:
+        if axis in angles_deg:
+            result = result @ _elementary(axis, np.radians(angles_deg[axis]))
+    return result
+
+
+def forward_kinematics(motion: Motion) -> np.ndarray:
+    """Global joint positions, shape ``frames x joints x 3`` (skeleton order).
+
+    Raises ``ValueError`` when the motion has no skeleton (an AMC read
+    without its ASF).
+    """
+    skeleton = motion.skeleton
+    if skeleton is None:
+        raise ValueError(f"{motion.source}: no skeleton, so no forward kinematics "
+                         f"(read an AMC file with its ASF)")
+    frames = motion.frames
+    index = {name: i for i, name in enumerate(motion.channels)}
+    rotations = np.empty((len(skeleton.joints), frames, 3, 3))
+    positions = np.empty((frames, len(skeleton.joints), 3))
+    for j, joint in enumerate(skeleton.joints):
+        angles, translation = {}, np.tile(np.asarray(joint.offset, float), (frames, 1))
+        for channel in joint.channels:
+            axis = channel.rsplit(".", 1)[1]
+            if channel not in index:
+                continue
+            column = motion.values[:, index[channel]]
+            if axis.startswith("t"):
+                translation[:, "xyz".index(axis[1])] = column
+            else:
+                angles[axis[1].upper()] = column
+        local = rotation_matrices(angles, joint.rotation_order, frames)
+        if any(joint.axis):
+            pre = rotation_matrices({a: np.full(1, v) for a, v in zip("XYZ", joint.axis)},
+                                    joint.rotation_order, 1)[0]
+            local = pre @ local @ pre.T
+        if joint.parent is None:
+            rotations[j] = local
+            positions[:, j] = translation
+        else:
+            parent_rotation = rotations[joint.parent]
+            rotations[j] = parent_rotation @ local
+            positions[:, j] = positions[:, joint.parent] + np.einsum(
+                "fij,fj->fi", parent_rotation, translation)
+    return positions
+
+
+def joint_angle(positions: np.ndarray, a: int, b: int, c: int) -> np.ndarray:
+    """The angle at joint ``b`` (degrees) between segments b->a and b->c, per frame.
+
+    Works on 3D positions and on 2D projections alike (last axis 2 or 3).
+    """
+    u = positions[:, a] - positions[:, b]
+    v = positions[:, c] - positions[:, b]
+    cos = np.einsum("fi,fi->f", u, v) / np.maximum(
+        np.linalg.norm(u, axis=1) * np.linalg.norm(v, axis=1), 1e-12)
+    return np.degrees(np.arccos(np.clip(cos, -1.0, 1.0)))

@@ -1,0 +1,53 @@
+"""Parsing blocks of numbers fast, and naming the bad line when they are malformed."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+from .motion import MotionFormatError
+
+__all__ = ["parse_rows"]
+
+
+def parse_rows(lines: list[str], width: int, *, source: str, first_line: int = 1,
+               line_of: Callable[[int], int] | None = None) -> np.ndarray:
+    """Parse ``lines`` (each ``width`` numbers) into a ``len(lines) x width`` array.
+
+    One vectorised pass (``str.split`` then one ``numpy`` conversion) when the
+    block is well formed; otherwise the lines are checked one by one so that
+    the error names the first bad one (``first_line`` is the file line number
+    of ``lines[0]``, or ``line_of(i)`` gives the file line of ``lines[i]``). Values that
+    are not finite (``nan``, ``inf``) are errors too.
+    """
+    def where(i: int) -> int:
+        return line_of(i) if line_of is not None else first_line + i
+
+    tokens = " ".join(lines).split()
+    values = None
+    if len(tokens) == width * len(lines):
+        try:
+            values = np.array(tokens, dtype=float).reshape(len(lines), width)
+        except ValueError:
+            values = None
+    if values is None:
+        for i, line in enumerate(lines):
+            parts = line.split()
+            if len(parts) != width:
+                raise MotionFormatError(f"expected {width} number{'s' * (width != 1)}, "
+                                        f"found {len(parts)}",
+                                        source=source, line=where(i), column=1)
+            for part in parts:
+                try:
+                    float(part)
+                except ValueError:
+                    raise MotionFormatError(f"not a number: {part!r}", source=source,
+                                            line=where(i),
+                                            column=line.find(part) + 1) from None
+        raise MotionFormatError("malformed numbers", source=source, line=where(0))
+    if not np.isfinite(values).all():
+        row, col = np.argwhere(~np.isfinite(values))[0]
+        raise MotionFormatError(f"value {col + 1} is not finite ({lines[row].split()[col]})",
+                                source=source, line=where(int(row)))
+    return values
