@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from .motion import Joint, Motion, MotionFormatError, Skeleton
-from .numbers import parse_rows
+from .textblocks import parse_rows
 
 __all__ = ["AsfSkeleton", "read_asf", "parse_asf", "read_amc", "parse_amc", "find_asf"]
 

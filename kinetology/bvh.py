@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from .motion import Joint, Motion, MotionFormatError, Skeleton
-from .numbers import parse_rows
+from .textblocks import parse_rows
 
 __all__ = ["read_bvh", "parse_bvh"]
 

@@ -1,0 +1,237 @@
+"""Segmenting joint angles into kinetemes: states from the signs of velocity and acceleration.
+
+Each frame of a joint angle ``θ(t)`` gets one of four states, from the sign
+of the velocity ``θ'`` and of the acceleration ``θ''``:
+
+=====  ======  ======  ====================================================
+state  ``θ'``  ``θ''`` reading
+=====  ======  ======  ====================================================
+``B``   ``+``   ``+``  rising, speeding up
+``G``   ``+``   ``-``  rising, slowing down (ends at a maximum)
+``R``   ``-``   ``-``  falling, speeding up
+``Y``   ``-``   ``+``  falling, slowing down (ends at a minimum)
+=====  ======  ======  ====================================================
+
+so one swing of an oscillation reads ``B G R Y`` (cyclically). Contiguous
+frames in one state form a segment.
+
+Noise is handled twice. The signal is first smoothed (a Gaussian of
+``smoothing`` seconds). Then a *dead band*: a run of frames with one sign of
+``θ'`` counts only if somewhere in it ``|θ'|`` exceeds ``velocity_deadband``
+(likewise ``|θ''|`` and ``acceleration_deadband``); a run that never does is
+sensor noise around zero and takes the sign of the run before it. So segment
+borders lie exactly at zero crossings of the smoothed derivatives (which the
+reconstruction in :mod:`kinetology.codec` relies on), and wiggles smaller than
+the dead band never split a segment.
+
+Channels whose smoothed range is below ``min_range`` degrees are *still* and
+are left out of the actiongram.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .motion import Motion
+
+__all__ = ["STATES", "DEFAULTS", "smooth", "derivatives", "significant_sign", "states",
+           "Segmentation", "segments", "segment"]
+
+#: State letters, indexed by code: code = 2 * (θ' < 0) + ((θ' >= 0) == (θ'' < 0)).
+STATES = ("B", "G", "R", "Y")
+
+#: Default parameters (all in seconds and degrees, so they hold from 30 to 120 fps).
+DEFAULTS = {
+    "smoothing": 0.025,              # Gaussian sigma, seconds (3 frames at 120 fps)
+    "velocity_deadband": 5.0,        # degrees per second
+    "acceleration_deadband": 200.0,  # degrees per second squared
+    "min_range": 2.0,                # degrees; channels that move less are still
+}
+
+
+def smooth(values: np.ndarray, frame_rate: float, sigma: float) -> np.ndarray:
+    """Gaussian smoothing along time (axis 0), ``sigma`` in seconds.
+
+    The edges are padded by odd reflection (``2 x[0] - x[k]``), which keeps the
+    slope at the ends instead of inventing a turning point there.
+
+    ``sigma <= 0`` returns a copy unchanged.
+    """
+    values = np.asarray(values, dtype=float)
+    sigma_frames = sigma * frame_rate
+    if sigma_frames <= 0 or values.shape[0] < 2:
+        return values.copy()
+    radius = max(1, int(np.ceil(3 * sigma_frames)))
+    radius = min(radius, values.shape[0] - 1)
+    offsets = np.arange(-radius, radius + 1)
+    kernel = np.exp(-0.5 * (offsets / sigma_frames) ** 2)
+    kernel /= kernel.sum()
+    padded = np.pad(values, [(radius, radius)] + [(0, 0)] * (values.ndim - 1), mode="reflect", reflect_type="odd")
+    out = np.zeros_like(values)
+    for weight, shift in zip(kernel, range(2 * radius + 1)):
+        out += weight * padded[shift:shift + values.shape[0]]
+    return out
+
+
+def derivatives(values: np.ndarray, frame_rate: float) -> tuple[np.ndarray, np.ndarray]:
+    """Velocity and acceleration (per second) by central differences along axis 0."""
+    if values.shape[0] < 3:
+        zero = np.zeros_like(values, dtype=float)
+        return zero, zero.copy()
+    velocity = np.gradient(values, axis=0) * frame_rate
+    acceleration = np.gradient(velocity, axis=0) * frame_rate
+    return velocity, acceleration
+
+
+def significant_sign(signal: np.ndarray, deadband: float) -> np.ndarray:
+    """Sign (+1/-1) per sample of a 1-D signal, runs that stay inside the dead band absorbed.
+
+    A run of one raw sign counts when its largest ``|signal|`` exceeds
+    ``deadband``; other runs take the sign of the previous counting run (the
+    first counting run's sign at the start). A signal with no counting run is
+    +1 throughout.
+    """
+    signal = np.asarray(signal, dtype=float)
+    if signal.size == 0:
+        return np.zeros(0, dtype=np.int8)
+    raw = signal >= 0
+    starts = np.concatenate(([0], np.flatnonzero(raw[1:] != raw[:-1]) + 1))
+    lengths = np.diff(np.append(starts, signal.size))
+    peak = np.maximum.reduceat(np.abs(signal), starts)
+    counting = peak > deadband
+    if not counting.any():
+        return np.ones(signal.size, dtype=np.int8)
+    run_sign = np.where(raw[starts], 1, -1)
+    # forward-fill the sign of the last counting run over the runs that do not count
+    last = np.where(counting, np.arange(starts.size), -1)
+    last = np.maximum.accumulate(last)
+    last[last < 0] = np.flatnonzero(counting)[0]
+    return np.repeat(run_sign[last], lengths).astype(np.int8)
+
+
+def _codes(velocity_sign: np.ndarray, acceleration_sign: np.ndarray) -> np.ndarray:
+    falling = velocity_sign < 0
+    braking = (velocity_sign > 0) == (acceleration_sign < 0)
+    return (2 * falling + braking).astype(np.int8)
+
+
+def states(values: np.ndarray, frame_rate: float, *, smoothing: float = DEFAULTS["smoothing"],
+           velocity_deadband: float = DEFAULTS["velocity_deadband"],
+           acceleration_deadband: float = DEFAULTS["acceleration_deadband"]) -> np.ndarray:
+    """State code (index into :data:`STATES`) of every frame, ``frames x channels``.
+
+    ``values`` is ``frames x channels`` (or 1-D, one channel) in degrees.
+    """
+    values = np.asarray(values, dtype=float)
+    one_channel = values.ndim == 1
+    if one_channel:
+        values = values[:, None]
+    smoothed = smooth(values, frame_rate, smoothing)
+    velocity, acceleration = derivatives(smoothed, frame_rate)
+    out = np.empty(values.shape, dtype=np.int8)
+    for c in range(values.shape[1]):
+        out[:, c] = _codes(significant_sign(velocity[:, c], velocity_deadband),
+                           significant_sign(acceleration[:, c], acceleration_deadband))
+    return out[:, 0] if one_channel else out
+
+
+@dataclass(frozen=True, eq=False)
+class Segmentation:
+    """The segments of every channel of a motion.
+
+    For channel ``c``: ``borders[c]`` holds the first frame of each segment
+    followed by the frame count, ``codes[c]`` the state code of each segment.
+    ``still`` names the channels left out because they do not move.
+    """
+
+    channels: tuple[str, ...]
+    frame_rate: float
+    frames: int
+    borders: tuple[np.ndarray, ...]
+    codes: tuple[np.ndarray, ...]
+    still: tuple[str, ...] = ()
+
+    def symbols(self, c: int) -> tuple[str, ...]:
+        return tuple(STATES[k] for k in self.codes[c])
+
+    def durations(self, c: int) -> np.ndarray:
+        """Segment durations of channel ``c`` in seconds."""
+        return np.diff(self.borders[c]) / self.frame_rate
+
+    @property
+    def segment_count(self) -> int:
+        return sum(len(k) for k in self.codes)
+
+    def to_actiongram(self):
+        """The segments as a :class:`psgs.Actiongram` (times in seconds)."""
+        from psgs.actiongram import Actiongram
+
+        strings = {name: self.symbols(c) for c, name in enumerate(self.channels)}
+        durations = {name: tuple(float(d) for d in self.durations(c))
+                     for c, name in enumerate(self.channels)}
+        return Actiongram.from_strings(strings, durations)
+
+
+def _check(params: dict) -> dict:
+    unknown = set(params) - set(DEFAULTS)
+    if unknown:
+        raise TypeError(f"unknown segmentation parameter(s): {', '.join(sorted(unknown))} "
+                        f"(known: {', '.join(DEFAULTS)})")
+    merged = {**DEFAULTS, **params}
+    for name, value in merged.items():
+        if not np.isfinite(value) or value < 0:
+            raise ValueError(f"{name} must be a non-negative number, not {value!r}")
+    return merged
+
+
+def segments(motion: Motion, channels=None, **params) -> Segmentation:
+    """Segment ``channels`` of ``motion`` (default: every angle channel, not ``t*``).
+
+    Parameters (defaults in :data:`DEFAULTS`): ``smoothing`` (Gaussian sigma in
+    seconds; larger merges quick wiggles), ``velocity_deadband`` (deg/s) and
+    ``acceleration_deadband`` (deg/s²) (larger: fewer, longer segments),
+    ``min_range`` (deg; channels whose smoothed range is smaller are still and
+    left out; 0 keeps every channel).
+    """
+    p = _check(params)
+    if channels is None:
+        channels = [c for c in motion.channels if c.rsplit(".", 1)[-1] not in ("tx", "ty", "tz")]
+    channels = list(channels)
+    for name in channels:
+        motion.index(name)  # KeyError naming the channel when it does not exist
+    values = motion.values[:, [motion.index(c) for c in channels]] if channels else \
+        np.zeros((motion.frames, 0))
+    smoothed = smooth(values, motion.frame_rate, p["smoothing"])
+    moving = (np.ptp(smoothed, axis=0) >= p["min_range"]) if motion.frames else \
+        np.zeros(len(channels), bool)
+    code = states(values[:, moving], motion.frame_rate, smoothing=p["smoothing"],
+                  velocity_deadband=p["velocity_deadband"],
+                  acceleration_deadband=p["acceleration_deadband"])
+    borders, codes = [], []
+    for c in range(code.shape[1]):
+        column = code[:, c]
+        starts = np.concatenate(([0], np.flatnonzero(column[1:] != column[:-1]) + 1))
+        borders.append(np.append(starts, motion.frames))
+        codes.append(column[starts])
+    kept = tuple(name for name, m in zip(channels, moving) if m)
+    still = tuple(name for name, m in zip(channels, moving) if not m)
+    return Segmentation(kept, motion.frame_rate, motion.frames, tuple(borders), tuple(codes),
+                        still)
+
+
+def segment(motion: Motion, channels=None, **params):
+    """Segment a motion into a :class:`psgs.Actiongram` (one string per moving channel).
+
+    Symbols are the states ``B G R Y`` (see the module docstring), durations
+    in seconds. ``channels`` and ``params`` as in :func:`segments`.
+
+    >>> import numpy as np
+    >>> from kinetology import Motion
+    >>> t = np.arange(240) / 120
+    >>> wave = Motion(30 * np.sin(2 * np.pi * t)[:, None], ("knee.rx",), 120)
+    >>> segment(wave).string("knee.rx")
+    ('G', 'R', 'Y', 'B', 'G', 'R', 'Y', 'B')
+    """
+    return segments(motion, channels, **params).to_actiongram()
