@@ -1,0 +1,505 @@
+"""Reading and writing the psgs text format (see ``docs/format.md``).
+
+A file describes one PSGS or one PCGS::
+
+    psgs Sync
+    mode parallel
+    component G1 start S
+      p1: S -> "a" S
+      p2: S -> "a"
+    component G2 start T
+      q1: T -> "b" T
+      q2: T -> "b"
+    sync
+      (p1, q1)
+      (p2, q2)
+
+The text is split into lines by a Lark grammar shipped with the package
+(``psgs/format.lark``); this module reads the keywords, checks the order of
+the lines and builds the model values. Every mistake, of syntax or of
+meaning, becomes one :class:`~psgs.errors.FormatError` naming
+``source:line:column``.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from functools import lru_cache
+from importlib import resources
+from os import PathLike
+from pathlib import Path
+
+import lark
+
+from .errors import FormatError, ValidationError
+from .model import IDLE, PCGS, PSGS, Grammar, Nonterminal, Query, Rule, Terminal
+
+__all__ = ["loads", "load", "dumps", "dump"]
+
+_MODES = ("parallel", "single")
+_UNSYNCHRONISED = ("free", "strict")
+_RETURNING = {"yes": True, "no": False}
+_SETTINGS = {"psgs": ("mode", "unsynchronised"), "pcgs": ("returning", "master")}
+
+# how a Lark terminal is named in a message
+_TOKEN_WORDS = {
+    "ARROW": "'->'", "NAME": "a name", "STRING": 'a quoted terminal like "a"',
+    "QUERY": "a query like ?G2", "EPSILON": "'ε'", "_NL": "the end of the line",
+    "COMMA": "','", "RPAR": "')'", "LPAR": "'('", "IDLE": "'#'", "COLON": "':'",
+    "$END": "the end of the text",
+}
+
+
+@lru_cache(maxsize=1)
+def _parser() -> lark.Lark:
+    text = resources.files("psgs").joinpath("format.lark").read_text(encoding="utf-8")
+    return lark.Lark(text, parser="lalr", propagate_positions=True, maybe_placeholders=False)
+
+
+# ---------------------------------------------------------------- reading
+def loads(text: str | bytes, source: str = "<string>") -> PSGS | PCGS:
+    """Read a PSGS or a PCGS from text in the psgs format.
+
+    ``source`` names the text in error messages. Bytes are decoded as UTF-8.
+    Raises :class:`~psgs.errors.FormatError` (``source:line:col: message``)
+    for any malformed input.
+
+    >>> system = loads('''
+    ... psgs Copy
+    ... component G1 start S
+    ...   p1: S -> "a" S
+    ...   p2: S -> "a"
+    ... component G2 start T
+    ...   q1: T -> "b" T
+    ...   q2: T -> "b"
+    ... sync
+    ...   (p1, q1)
+    ...   (p2, q2)
+    ... ''')
+    >>> system.name, len(system.sync), system.mode
+    ('Copy', 2, 'parallel')
+    """
+    if isinstance(text, (bytes, bytearray)):
+        text = _decode(bytes(text), source)
+    if not isinstance(text, str):
+        raise TypeError(f"loads expects text, not {type(text).__name__}")
+    if text.startswith("\ufeff"):
+        text = text[1:]  # a byte-order mark is not content; columns of line 1 shift by one
+    if not text.endswith("\n"):
+        text += "\n"
+    try:
+        tree = _parser().parse(text)
+    except lark.exceptions.UnexpectedInput as exc:
+        raise _syntax_error(exc, text, source) from None
+    except lark.exceptions.LarkError as exc:  # pragma: no cover - defensive
+        raise FormatError(f"cannot parse: {exc}", source=source) from None
+    return _Builder(source).build(tree)
+
+
+def load(path: str | PathLike) -> PSGS | PCGS:
+    """Read a PSGS or a PCGS from a file (UTF-8); the header line decides which.
+
+    Errors name the file: ``grammars/x.psgs:3:7: missing arrow ...``.
+    """
+    data = Path(path).read_bytes()
+    source = str(path)
+    return loads(_decode(data, source), source=source)
+
+
+def _decode(data: bytes, source: str) -> str:
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line_start = data.rfind(b"\n", 0, exc.start) + 1
+        line = data.count(b"\n", 0, exc.start) + 1
+        column = len(data[line_start:exc.start].decode("utf-8", errors="replace")) + 1
+        raise FormatError(f"not UTF-8 text: byte 0x{data[exc.start]:02x} cannot be decoded "
+                          f"(is this a binary file?)", source=source, line=line,
+                          column=column) from None
+
+
+def _syntax_error(exc: lark.exceptions.UnexpectedInput, text: str, source: str) -> FormatError:
+    line, column = exc.line, exc.column
+    if isinstance(exc, lark.exceptions.UnexpectedCharacters):
+        char = text[exc.pos_in_stream] if exc.pos_in_stream < len(text) else ""
+        if char == '"':
+            message = "unterminated string: a terminal needs its closing '\"' on the same line"
+        elif char == "(" or char == ")":
+            message = f"unexpected {char!r}: a tuple stands on a line of its own, after 'sync'"
+        elif not char.isprintable() and char not in "\t":
+            message = (f"unexpected character {char!r} (control characters and binary data "
+                       f"are not allowed)")
+        else:
+            message = f"unexpected character {char!r}"
+            allowed = sorted(_TOKEN_WORDS.get(name, name) for name in exc.allowed or ())
+            if allowed:
+                message += f"; expected {_one_of(allowed)}"
+        return FormatError(message, source=source, line=line, column=column)
+    token = getattr(exc, "token", None)
+    expected = set(getattr(exc, "expected", ()) or ())
+    found = _describe_token(token)
+    if "ARROW" in expected:
+        message = f"missing arrow: expected '->' (or '→') after the left-hand side, found {found}"
+    elif expected <= {"COMMA", "RPAR"} and expected:
+        message = f"unterminated tuple: expected ',' or ')', found {found}"
+    elif "COLON" in expected and token is not None and token.type == "ARROW":
+        message = "a rule needs a label: write 'label: LHS -> ...'"
+    else:
+        words = sorted(_TOKEN_WORDS.get(name, name) for name in expected)
+        message = f"unexpected {found}" + (f"; expected {_one_of(words)}" if words else "")
+    return FormatError(message, source=source, line=line, column=column)
+
+
+def _describe_token(token) -> str:
+    if token is None:
+        return "the end of the text"
+    if token.type == "_NL":
+        return "the end of the line"
+    if token.type == "$END":
+        return "the end of the text"
+    return repr(str(token))
+
+
+def _one_of(words: list[str]) -> str:
+    return words[0] if len(words) == 1 else "one of " + ", ".join(words)
+
+
+@dataclass
+class _Component:
+    name: str
+    start: Nonterminal
+    at: tuple[int, int]
+    rules: list[Rule]
+    rule_at: dict[str, tuple[int, int]]
+
+
+class _Builder:
+    """Reads the parsed lines in order and builds the system, with positions for every error."""
+
+    def __init__(self, source: str) -> None:
+        self.source = source
+        self.kind: str | None = None
+        self.name = ""
+        self.header_at = (1, 1)
+        self.settings: dict[str, tuple[str, tuple[int, int]]] = {}
+        self.components: list[_Component] = []
+        self.sync_at: tuple[int, int] | None = None
+        self.tuples: list[tuple[list[lark.Token], tuple[int, int]]] = []
+        # symbol name -> (kind, position of first use), to report a name used as two kinds
+        self.kinds: dict[str, tuple[str, tuple[int, int]]] = {}
+
+    def error(self, message: str, at: tuple[int, int] | None) -> FormatError:
+        line, column = at if at else (None, None)
+        return FormatError(message, source=self.source, line=line, column=column)
+
+    # -- lines ------------------------------------------------------------
+    def build(self, tree: lark.Tree) -> PSGS | PCGS:
+        for line in tree.children:
+            if line.data == "words":
+                self.words_line(line.children)
+            elif line.data == "rule":
+                self.rule_line(line)
+            else:
+                self.tuple_line(line)
+        if self.kind is None:
+            raise self.error("empty file: expected a first line 'psgs NAME' or 'pcgs NAME'",
+                             (1, 1))
+        if not self.components:
+            raise self.error(f"a {self.kind} needs at least one 'component NAME start SYMBOL' "
+                             f"line", self.header_at)
+        return self.system()
+
+    def words_line(self, words: list[lark.Token]) -> None:
+        first = words[0]
+        at = _at(first)
+        if self.kind is None:
+            if str(first) not in ("psgs", "pcgs") or len(words) != 2:
+                raise self.error("expected a first line 'psgs NAME' or 'pcgs NAME'", at)
+            self.kind, self.name, self.header_at = str(first), str(words[1]), at
+            return
+        if str(first) in ("psgs", "pcgs"):
+            raise self.error(f"a second header line: this file already describes "
+                             f"{self.kind} {self.name}", at)
+        if str(first) in ("mode", "unsynchronised", "returning", "master"):
+            self.setting_line(words)
+        elif str(first) == "component":
+            self.component_line(words)
+        elif str(first) == "sync" and len(words) == 1:
+            self.sync_line(at)
+        else:
+            raise self.error(f"cannot read line starting {str(first)!r}: expected a setting, "
+                             f"'component NAME start SYMBOL', 'sync', a rule 'label: LHS -> ...' "
+                             f"or a tuple", at)
+
+    def setting_line(self, words: list[lark.Token]) -> None:
+        key = str(words[0])
+        at = _at(words[0])
+        if key not in _SETTINGS[self.kind]:
+            other = "pcgs" if self.kind == "psgs" else "psgs"
+            raise self.error(f"'{key}' is a setting of a {other}, not of a {self.kind}", at)
+        if self.components:
+            raise self.error(f"the setting '{key}' must come before the first component", at)
+        if len(words) != 2:
+            raise self.error(f"write the setting as '{key} VALUE' (one value)", at)
+        if key in self.settings:
+            raise self.error(f"'{key}' is set twice (first on line "
+                             f"{self.settings[key][1][0]})", at)
+        value = str(words[1])
+        allowed = {"mode": _MODES, "unsynchronised": _UNSYNCHRONISED,
+                   "returning": tuple(_RETURNING)}.get(key)
+        if allowed and value not in allowed:
+            raise self.error(f"{key} must be {' or '.join(allowed)}, not {value!r}",
+                             _at(words[1]))
+        self.settings[key] = (value, _at(words[1]))
+
+    def component_line(self, words: list[lark.Token]) -> None:
+        at = _at(words[0])
+        if self.sync_at is not None:
+            raise self.error("components must come before the 'sync' section", at)
+        if len(words) != 4 or str(words[2]) != "start":
+            raise self.error("write a component as 'component NAME start SYMBOL'", at)
+        name = str(words[1])
+        for other in self.components:
+            if other.name == name:
+                raise self.error(f"a second component named {name} (the first is on line "
+                                 f"{other.at[0]})", _at(words[1]))
+        start = Nonterminal(str(words[3]))
+        self.note_kind(start.name, "nonterminal", _at(words[3]))
+        self.components.append(_Component(name, start, at, [], {}))
+
+    def sync_line(self, at: tuple[int, int]) -> None:
+        if self.kind == "pcgs":
+            raise self.error("a pcgs has no 'sync' section (its components communicate by "
+                             "queries)", at)
+        if self.sync_at is not None:
+            raise self.error(f"a second 'sync' line (the first is on line {self.sync_at[0]})", at)
+        if not self.components:
+            raise self.error("'sync' must follow the components", at)
+        self.sync_at = at
+
+    def rule_line(self, tree: lark.Tree) -> None:
+        label_token, lhs_token, _arrow, *symbols = tree.children
+        at = _at(label_token)
+        if self.kind is None:
+            raise self.error("expected a first line 'psgs NAME' or 'pcgs NAME'", at)
+        if self.sync_at is not None or not self.components:
+            where = "after 'sync'" if self.sync_at is not None else "before any component"
+            raise self.error(f"a rule {where}: rules belong under a 'component' line", at)
+        component = self.components[-1]
+        label = str(label_token)
+        if label in component.rule_at:
+            raise self.error(f"component {component.name}: a second rule labelled {label} "
+                             f"(the first is on line {component.rule_at[label][0]})", at)
+        lhs = Nonterminal(str(lhs_token))
+        self.note_kind(lhs.name, "nonterminal", _at(lhs_token))
+        rhs = self.right_side(symbols)
+        rule = Rule(label, lhs, rhs)
+        for other in component.rules:
+            if other.lhs == rule.lhs and other.rhs == rule.rhs:
+                raise self.error(f"component {component.name}: rule {label} repeats rule "
+                                 f"{other.label} ({other})", at)
+        component.rules.append(rule)
+        component.rule_at[label] = at
+
+    def right_side(self, symbols: list[lark.Tree]) -> tuple:
+        rhs = []
+        for node in symbols:
+            token = node.children[0]
+            at = _at(token)
+            if node.data == "epsilon":
+                if len(symbols) > 1:
+                    raise self.error("ε stands alone: write it as the whole right side, or leave "
+                                     "the right side empty", at)
+            elif node.data == "nonterminal":
+                self.note_kind(str(token), "nonterminal", at)
+                rhs.append(Nonterminal(str(token)))
+            elif node.data == "terminal":
+                rhs.append(self.terminal(token))
+            else:
+                if self.kind == "psgs":
+                    raise self.error(f"query symbol {token} in a psgs: only a pcgs has queries",
+                                     at)
+                rhs.append(Query(str(token)[1:]))
+        return tuple(rhs)
+
+    def terminal(self, token: lark.Token) -> Terminal:
+        at = _at(token)
+        try:
+            text = json.loads(str(token))
+        except json.JSONDecodeError as exc:
+            raise self.error(f"bad terminal {token}: {exc.msg}", at) from None
+        try:
+            terminal = Terminal(text)
+        except ValidationError as exc:
+            raise self.error(str(exc), at) from None
+        self.note_kind(text, "terminal", at)
+        return terminal
+
+    def note_kind(self, name: str, kind: str, at: tuple[int, int]) -> None:
+        prior = self.kinds.setdefault(name, (kind, at))
+        if prior[0] != kind:
+            shown = f'"{name}"' if kind == "terminal" else name
+            raise self.error(f"{shown} is used as a {kind} here but as a {prior[0]} on line "
+                             f"{prior[1][0]}: a name is either a terminal (quoted) or a "
+                             f"nonterminal (bare), not both", at)
+
+    def tuple_line(self, tree: lark.Tree) -> None:
+        entries = list(tree.children)
+        at = (tree.meta.line, tree.meta.column)
+        if self.kind is None:
+            raise self.error("expected a first line 'psgs NAME' or 'pcgs NAME'", at)
+        if self.sync_at is None:
+            raise self.error("a tuple outside the 'sync' section: write 'sync' on the line "
+                             "before the tuples", at)
+        self.tuples.append((entries, at))
+
+    # -- the system -------------------------------------------------------
+    def system(self) -> PSGS | PCGS:
+        grammars = [self.grammar(c) for c in self.components]
+        values = {key: value for key, (value, _) in self.settings.items()}
+        try:
+            if self.kind == "pcgs":
+                names = [g.name for g in grammars]
+                master = values.get("master", names[0])
+                if master not in names:
+                    raise self.error(f"the master {master} is not a component (components: "
+                                     f"{', '.join(names)})", self.settings["master"][1])
+                self.check_queries(names)
+                return PCGS(tuple(grammars), returning=_RETURNING[values.get("returning", "yes")],
+                            master=master, name=self.name)
+            sync = self.sync_tuples(grammars)
+            return PSGS(tuple(grammars), sync=sync, mode=values.get("mode", "parallel"),
+                        unsynchronised=values.get("unsynchronised", "free"), name=self.name)
+        except ValidationError as exc:
+            # anything the checks above did not place is reported at the header
+            raise self.error(str(exc), self.header_at) from None
+
+    def grammar(self, component: _Component) -> Grammar:
+        if not component.rules:
+            raise self.error(f"component {component.name} has no rules", component.at)
+        if not any(r.lhs == component.start for r in component.rules):
+            raise self.error(f"component {component.name}: start symbol {component.start} has "
+                             f"no rule", component.at)
+        try:
+            return Grammar(component.name, component.start, tuple(component.rules))
+        except ValidationError as exc:
+            raise self.error(str(exc), component.at) from None
+
+    def check_queries(self, names: list[str]) -> None:
+        for component in self.components:
+            for rule in component.rules:
+                for sym in rule.rhs:
+                    if isinstance(sym, Query) and sym.component not in names:
+                        raise self.error(f"component {component.name}: rule {rule.label} "
+                                         f"queries ?{sym.component}, which names no component",
+                                         component.rule_at[rule.label])
+
+    def sync_tuples(self, grammars: list[Grammar]) -> tuple:
+        out = []
+        seen: dict[tuple, int] = {}
+        for entries, at in self.tuples:
+            if len(entries) != len(grammars):
+                raise self.error(f"this tuple has {_count(len(entries), 'entry', 'entries')} but "
+                                 f"the system has {_count(len(grammars), 'component')} "
+                                 f"({', '.join(g.name for g in grammars)})", at)
+            resolved = []
+            for grammar, token in zip(grammars, entries):
+                if token.type == "IDLE":
+                    resolved.append(IDLE)
+                elif str(token) in grammar.rule_by_label:
+                    resolved.append(grammar.rule_by_label[str(token)])
+                else:
+                    raise self.error(f"component {grammar.name} has no rule labelled {token}",
+                                     _at(token))
+            key = tuple(resolved)
+            if all(r is IDLE for r in key):
+                raise self.error("this tuple idles in every component", at)
+            if key in seen:
+                raise self.error(f"this tuple repeats the tuple on line {seen[key]}", at)
+            seen[key] = at[0]
+            out.append(key)
+        return tuple(out)
+
+
+def _count(n: int, singular: str, plural: str | None = None) -> str:
+    return f"{n} {singular if n == 1 else plural or singular + 's'}"
+
+
+def _at(token: lark.Token) -> tuple[int, int]:
+    return (token.line, token.column)
+
+
+# ---------------------------------------------------------------- writing
+def dumps(system: PSGS | PCGS) -> str:
+    """The canonical text of a PSGS or a PCGS; ``loads(dumps(s)) == s``.
+
+    Every setting is written out, rules keep their order, terminals are
+    quoted (JSON escapes), ε is written ``ε``.
+
+    >>> from psgs import Grammar, Nonterminal, PSGS, Rule, Terminal
+    >>> g = Grammar("G", Nonterminal("S"), (Rule("p", Nonterminal("S"), (Terminal("a"),)),))
+    >>> print(dumps(PSGS((g,), sync=[("p",)], name="Tiny")), end="")
+    psgs Tiny
+    mode parallel
+    unsynchronised free
+    <BLANKLINE>
+    component G start S
+      p: S -> "a"
+    <BLANKLINE>
+    sync
+      (p)
+    """
+    if isinstance(system, PSGS):
+        lines = [f"psgs {system.name}", f"mode {system.mode}",
+                 f"unsynchronised {system.unsynchronised}"]
+    elif isinstance(system, PCGS):
+        lines = [f"pcgs {system.name}", f"returning {'yes' if system.returning else 'no'}",
+                 f"master {system.master}"]
+    else:
+        raise ValidationError(f"dumps writes a PSGS or a PCGS, not {type(system).__name__}")
+    for grammar in system.components:
+        lines.append("")
+        lines.append(f"component {grammar.name} start {grammar.start}")
+        for rule in grammar.rules:
+            body = " ".join(_symbol_text(s) for s in rule.rhs) if rule.rhs else "ε"
+            lines.append(f"  {rule.label}: {rule.lhs} -> {body}")
+    if isinstance(system, PSGS) and system.sync:
+        lines.append("")
+        lines.append("sync")
+        for sync_tuple in system.sync:
+            lines.append("  (" + ", ".join("#" if r is IDLE else r.label for r in sync_tuple)
+                         + ")")
+    return "\n".join(lines) + "\n"
+
+
+def dump(system: PSGS | PCGS, path: str | PathLike) -> None:
+    """Write ``dumps(system)`` to a file as UTF-8."""
+    Path(path).write_text(dumps(system), encoding="utf-8")
+
+
+def _symbol_text(symbol) -> str:
+    if isinstance(symbol, Terminal):
+        return _quote(symbol.name)
+    if isinstance(symbol, Query):
+        return f"?{symbol.component}"
+    return symbol.name
+
+
+def _quote(text: str) -> str:
+    """A JSON string literal; characters that are not printable are escaped."""
+    out = ['"']
+    for ch in text:
+        if ch in '"\\':
+            out.append("\\" + ch)
+        elif ch.isprintable():
+            out.append(ch)
+        else:
+            code = ord(ch)
+            if code > 0xFFFF:  # JSON spells it as a surrogate pair
+                code -= 0x10000
+                out.append(f"\\u{0xD800 + (code >> 10):04x}\\u{0xDC00 + (code & 0x3FF):04x}")
+            else:
+                out.append(f"\\u{code:04x}")
+    out.append('"')
+    return "".join(out)
