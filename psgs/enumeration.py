@@ -325,6 +325,15 @@ def _psgs_search(system: PSGS, max_length: int, max_configurations: int) -> Lang
     def lower_bound(configuration) -> float:
         return sum(_form_lower_bound(f, y) for f, y in zip(configuration, yields))
 
+    eager = _eager_rules(system)
+
+    def successors(configuration):
+        if eager:
+            forced = _forced_rewrites(configuration, eager)
+            if forced is not None:
+                return forced
+        return (after for _, _, after in _psgs_successors(system, configuration))
+
     start = initial_configuration(system)
     found: set = set()
     bound = None
@@ -335,7 +344,7 @@ def _psgs_search(system: PSGS, max_length: int, max_configurations: int) -> Lang
         if all(isinstance(s, Terminal) for f in configuration for s in f):
             found.add(configuration)
             continue
-        for _, _, after in _psgs_successors(system, configuration):
+        for after in successors(configuration):
             if after in seen or lower_bound(after) > max_length:
                 continue
             if len(seen) >= max_configurations:
@@ -347,6 +356,38 @@ def _psgs_search(system: PSGS, max_length: int, max_configurations: int) -> Lang
     words = sorted(found, key=_tuple_key)
     return Language(tuple(words), bound is None, bound, max_length, "search", len(seen),
                     "tuples")
+
+
+def _eager_rules(system: PSGS) -> list[dict] | None:
+    """Per component, the nonterminals all of whose rules are unsynchronised, with those rules.
+
+    Only in ``single`` mode under ``free``. Such an occurrence must be
+    rewritten some time by one of these rules applied alone, and that step
+    commutes with every other step (no tuple touches the occurrence, and
+    making a component terminal sooner only lets tuples skip it), so the
+    search may rewrite it first: one branch per rule instead of every
+    interleaving. Not sound in ``parallel`` mode, where a step rewrites
+    occurrences that later steps create.
+    """
+    if system.mode != "single" or system.unsynchronised != "free":
+        return None
+    out = []
+    for g, synced in zip(system.components, system.synchronised_rules):
+        synced_lhs = {r.lhs for r in synced}
+        table = {a: rules for a, rules in g.rules_by_lhs.items() if a not in synced_lhs}
+        out.append(table)
+    return out if any(out) else None
+
+
+def _forced_rewrites(configuration, eager) -> list | None:
+    for i, (form, table) in enumerate(zip(configuration, eager)):
+        for k, sym in enumerate(form):
+            rules = table.get(sym)
+            if rules:
+                head, tail = form[:k], form[k + 1:]
+                return [configuration[:i] + (head + r.rhs + tail,) + configuration[i + 1:]
+                        for r in rules if r.rhs != (sym,)]
+    return None
 
 
 def _psgs_filter(system: PSGS, max_length: int, max_words: int, max_candidates: int,
