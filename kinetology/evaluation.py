@@ -1,0 +1,244 @@
+"""The paper's five kinetological principles, measured.
+
+* compactness and reconstructivity: :func:`codec_point` (size of
+  :func:`kinetology.compress` output as a share of the original file, and the
+  mean absolute error of :func:`kinetology.decompress`);
+* view-invariance: :func:`view_invariance` (a 3D joint angle against the 2D
+  angle seen from a circle of viewpoints);
+* reproducibility: :func:`reproducibility` (per joint angle, the share of
+  performances of one action whose description is the most common one);
+* selectivity: :func:`selectivity` (how many joint angles get different
+  descriptions in different actions, and whether a performance's nearest
+  neighbour, by descriptions, is a performance of the same action).
+
+A performance's *description* of one channel (:func:`describe`) is ``still``
+when the channel moves less than ``min_range`` degrees during it; otherwise
+its most frequent *cycle*: the segment states from the start of one ``B``
+segment (a rise getting under way) to the start of the next, e.g. ``BGRY`` for
+a plain swing, ``BGBGRY`` for a rise with a pause in it. ``irregular`` when no
+complete cycle occurs.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .codec import compress, decompress
+from .kinematics import forward_kinematics, joint_angle
+from .motion import Motion
+from .segmentation import DEFAULTS, STATES, segments, smooth, states
+
+__all__ = ["codec_point", "CMU_ANGLES", "ViewInvariance", "view_invariance",
+           "MOCAP6_ACTIONS", "Performance", "mocap6_performances", "describe",
+           "reproducibility", "selectivity"]
+
+
+def codec_point(motion: Motion, original_size: int, **params) -> dict:
+    """Compress and decompress ``motion``; size (bytes, % of ``original_size``) and error.
+
+    ``mae`` is the mean absolute error over all channels and frames (root
+    translations included, in file units), ``mae_angles`` over angle
+    channels only, ``segments`` the number of segments stored.
+    """
+    data = compress(motion, **params)
+    decoded = decompress(data)
+    error = np.abs(decoded.values - motion.values)
+    angle_columns = [i for i, c in enumerate(motion.channels)
+                     if c.rsplit(".", 1)[-1] not in ("tx", "ty", "tz")]
+    return {"bytes": len(data), "percent": 100.0 * len(data) / original_size,
+            "mae": float(error.mean()), "mae_angles": float(error[:, angle_columns].mean()),
+            "max_error": float(error.max())}
+
+
+#: Joint angles of the CMU (ASF) skeleton as (end, vertex, end) joint triples.
+CMU_ANGLES = {
+    "lknee": ("lfemur", "ltibia", "lfoot"), "rknee": ("rfemur", "rtibia", "rfoot"),
+    "lhip": ("upperback", "lfemur", "ltibia"), "rhip": ("upperback", "rfemur", "rtibia"),
+    "lelbow": ("lhumerus", "lradius", "lwrist"), "relbow": ("rhumerus", "rradius", "rwrist"),
+    "lshoulder": ("lowerback", "lhumerus", "lradius"),
+    "rshoulder": ("lowerback", "rhumerus", "rradius"),
+    "lankle": ("ltibia", "lfoot", "ltoes"), "rankle": ("rtibia", "rfoot", "rtoes"),
+}
+
+
+@dataclass(frozen=True, eq=False)
+class ViewInvariance:
+    """States of one joint angle in 3D and seen from ``azimuths`` (degrees)."""
+
+    azimuths: np.ndarray
+    states_3d: np.ndarray   # frames
+    states_2d: np.ndarray   # views x frames
+    angle_3d: np.ndarray    # degrees, frames
+
+    @property
+    def agreement_per_view(self) -> np.ndarray:
+        return (self.states_2d == self.states_3d[None, :]).mean(axis=1)
+
+    @property
+    def agreement(self) -> float:
+        """Fraction of (view, frame) pairs whose 2D state is the 3D state."""
+        return float(self.agreement_per_view.mean())
+
+
+def view_invariance(motion: Motion, triple: tuple[str, str, str], *, views: int = 36,
+                    elevation: float = 0.0, up_axis: int = 1, **params) -> ViewInvariance:
+    """Segment a joint angle in 3D and in orthographic 2D views around the body.
+
+    The cameras stand on a circle around the vertical axis (``up_axis``,
+    ``y`` in CMU data), ``views`` of them evenly spaced, looking at the body
+    from ``elevation`` degrees above the horizon. The 2D angle is the angle
+    between the projected bones. ``params`` are segmentation parameters.
+    """
+    positions = forward_kinematics(motion)
+    index = [motion.skeleton.index(name) for name in triple]
+    angle3 = joint_angle(positions, *index)
+    p = {k: v for k, v in {**DEFAULTS, **params}.items() if k != "min_range"}
+    s3 = states(angle3, motion.frame_rate, **p)
+    horizontal = [a for a in range(3) if a != up_axis]
+    azimuths = np.arange(views) * 360.0 / views
+    s2 = np.empty((views, motion.frames), dtype=np.int8)
+    e = np.radians(elevation)
+    for v, azimuth in enumerate(np.radians(azimuths)):
+        right = np.zeros(3)
+        right[horizontal[0]], right[horizontal[1]] = -np.sin(azimuth), np.cos(azimuth)
+        forward = np.zeros(3)
+        forward[horizontal[0]], forward[horizontal[1]] = np.cos(azimuth), np.sin(azimuth)
+        up = np.zeros(3)
+        up[up_axis] = 1.0
+        screen_up = np.cos(e) * up - np.sin(e) * forward
+        projected = np.stack([positions @ right, positions @ screen_up], axis=-1)
+        s2[v] = states(joint_angle(projected, *index), motion.frame_rate, **p)
+    return ViewInvariance(azimuths, s3, s2, angle3)
+
+
+MOCAP6_ACTIONS = ("JumpJack", "Jog", "Squat", "KneeRaise", "ArmCircle", "Twist", "SideReach",
+                  "Box", "UpDown", "ToeTouchOneHand", "SideBend", "ToeTouchTwoHands")
+
+
+@dataclass(frozen=True, eq=False)
+class Performance:
+    """One labelled stretch of one take: an action done (usually many times over)."""
+
+    take: str
+    action: str
+    start: int   # first frame
+    stop: int    # one past the last frame
+
+
+def mocap6_performances(folder: str | Path, *, min_seconds: float = 2.0):
+    """Read cmu-mocap6: ``{take: Motion}`` and the list of :class:`Performance`.
+
+    ``truelabels/T.txt`` holds one label per 1/10 s (label ``t`` covers AMC
+    frames ``12t .. 12t+11``); a performance is a run of one label lasting at
+    least ``min_seconds``. Takes without an AMC file are skipped.
+    """
+    from .readers import read
+
+    folder = Path(folder)
+    motions, found = {}, []
+    for label_file in sorted((folder / "truelabels").glob("*.txt")):
+        amc = folder / "amc" / f"{label_file.stem}.amc"
+        if not amc.is_file():
+            continue
+        motion = read(amc)
+        motions[label_file.stem] = motion
+        labels = np.array(label_file.read_text().split(), dtype=int)
+        per_frame = np.repeat(labels, 12)[: motion.frames]
+        starts = np.concatenate(([0], np.flatnonzero(per_frame[1:] != per_frame[:-1]) + 1))
+        stops = np.append(starts[1:], per_frame.size)
+        for a, b in zip(starts, stops):
+            if (b - a) / motion.frame_rate >= min_seconds:
+                found.append(Performance(label_file.stem, MOCAP6_ACTIONS[per_frame[a] - 1],
+                                         int(a), int(b)))
+    return motions, found
+
+
+def describe(codes: np.ndarray, signal: np.ndarray, *, min_range: float = 5.0) -> str:
+    """A channel's description during one performance (see the module docstring).
+
+    ``codes`` are the per-frame state codes and ``signal`` the (smoothed)
+    angle over the performance's frames.
+    """
+    if signal.size == 0 or np.ptp(signal) < min_range:
+        return "still"
+    starts = np.concatenate(([0], np.flatnonzero(codes[1:] != codes[:-1]) + 1))
+    letters = "".join(STATES[c] for c in codes[starts])
+    cycle_starts = [i for i, ch in enumerate(letters) if ch == "B"]
+    words = [letters[a:b] for a, b in zip(cycle_starts, cycle_starts[1:])]
+    if not words:
+        return "irregular"
+    return Counter(words).most_common(1)[0][0]
+
+
+def _descriptions(motions, performances, channels, min_range, params):
+    table = {}
+    for take, motion in motions.items():
+        values = motion.values[:, [motion.index(c) for c in channels]]
+        smoothed = smooth(values, motion.frame_rate, params.get("smoothing",
+                                                                DEFAULTS["smoothing"]))
+        code = states(values, motion.frame_rate, **params)
+        for k, perf in enumerate(performances):
+            if perf.take == take:
+                table[k] = tuple(describe(code[perf.start:perf.stop, c],
+                                          smoothed[perf.start:perf.stop, c],
+                                          min_range=min_range)
+                                 for c in range(len(channels)))
+    return [table[k] for k in range(len(performances))]
+
+
+def reproducibility(motions, performances, channels, *, min_range: float = 5.0, **params):
+    """Per action and channel: (share of performances with the modal description, it).
+
+    Returns ``{action: {channel: (fraction, description, count)}}`` for actions
+    with at least two performances.
+    """
+    p = {k: v for k, v in {**DEFAULTS, **params}.items() if k != "min_range"}
+    described = _descriptions(motions, performances, channels, min_range, p)
+    by_action: dict[str, list] = {}
+    for perf, desc in zip(performances, described):
+        by_action.setdefault(perf.action, []).append(desc)
+    out = {}
+    for action, rows in by_action.items():
+        if len(rows) < 2:
+            continue
+        out[action] = {}
+        for c, channel in enumerate(channels):
+            word, count = Counter(r[c] for r in rows).most_common(1)[0]
+            out[action][channel] = (count / len(rows), word, len(rows))
+    return out
+
+
+def selectivity(motions, performances, channels, *, min_range: float = 5.0, **params) -> dict:
+    """How differently different actions are described.
+
+    ``pairwise[(a, b)]``: share of channels whose modal descriptions differ
+    between actions ``a`` and ``b``; ``nearest_neighbour_accuracy``: share of
+    performances whose nearest other performance (Hamming distance between
+    description vectors, ties to the earlier one) is of the same action,
+    with ``chance`` the accuracy of always guessing the commonest action.
+    """
+    p = {k: v for k, v in {**DEFAULTS, **params}.items() if k != "min_range"}
+    described = _descriptions(motions, performances, channels, min_range, p)
+    actions = sorted({perf.action for perf in performances})
+    modal = {}
+    for action in actions:
+        rows = [d for perf, d in zip(performances, described) if perf.action == action]
+        modal[action] = tuple(Counter(r[c] for r in rows).most_common(1)[0][0]
+                              for c in range(len(channels)))
+    pairwise = {(a, b): float(np.mean([x != y for x, y in zip(modal[a], modal[b])]))
+                for i, a in enumerate(actions) for b in actions[i + 1:]}
+    matrix = np.array([[x for x in d] for d in described], dtype=object)
+    hits = 0
+    for i in range(len(described)):
+        distance = [(np.sum(matrix[i] != matrix[j]), j) for j in range(len(described)) if j != i]
+        if distance:
+            hits += performances[min(distance)[1]].action == performances[i].action
+    counts = Counter(perf.action for perf in performances)
+    return {"pairwise": pairwise, "modal": modal,
+            "nearest_neighbour_accuracy": hits / max(1, len(described)),
+            "chance": max(counts.values()) / max(1, len(performances)),
+            "performances": len(performances)}
