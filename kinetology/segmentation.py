@@ -169,7 +169,8 @@ class Segmentation:
         from psgs.actiongram import Actiongram
 
         strings = {name: self.symbols(c) for c, name in enumerate(self.channels)}
-        durations = {name: tuple(float(d) for d in self.durations(c))
+        # rounded to the microsecond so the text form stays readable
+        durations = {name: tuple(round(float(d), 6) for d in self.durations(c))
                      for c, name in enumerate(self.channels)}
         return Actiongram.from_strings(strings, durations)
 

@@ -1,0 +1,155 @@
+"""Pictures in the style of the paper's figures (matplotlib, the optional ``plot`` extra).
+
+Each function draws into a new figure and returns it; ``save`` writes it.
+matplotlib is imported only when a function runs, with a clear message when
+it is missing.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .motion import Motion
+from .segmentation import DEFAULTS, STATES, states
+
+__all__ = ["STATE_COLOURS", "plot_states", "plot_reconstruction", "plot_view_invariance",
+           "plot_reproducibility", "plot_selectivity", "plot_rate_distortion", "save"]
+
+#: Colours of the four states (B blue, G green, R red, Y yellow).
+STATE_COLOURS = {"B": "#1f5fd6", "G": "#2ca02c", "R": "#d62728", "Y": "#e8b400"}
+
+
+def _pyplot():
+    try:
+        import matplotlib
+        matplotlib.use("Agg", force=False)
+        import matplotlib.pyplot as plt
+    except ImportError:  # pragma: no cover - depends on the environment
+        raise ImportError("plotting needs matplotlib: pip install 'psgs[plot]' "
+                          "(or pip install matplotlib)") from None
+    return plt
+
+
+def _state_cmap():
+    from matplotlib.colors import ListedColormap
+    return ListedColormap([STATE_COLOURS[s] for s in STATES])
+
+
+def plot_states(motion: Motion, channel: str, *, start: float = 0.0, stop: float | None = None,
+                **params):
+    """Fig. 1 style: one joint angle over time, each segment coloured by its state."""
+    plt = _pyplot()
+    p = {k: v for k, v in {**DEFAULTS, **params}.items() if k != "min_range"}
+    signal = motion.column(channel)
+    code = states(signal, motion.frame_rate, **p)
+    t = np.arange(motion.frames) / motion.frame_rate
+    window = (t >= start) & (t <= (stop if stop is not None else t[-1]))
+    fig, ax = plt.subplots(figsize=(9, 3))
+    for k, letter in enumerate(STATES):
+        masked = np.where((code == k) & window, signal, np.nan)
+        ax.plot(t, masked, color=STATE_COLOURS[letter], lw=2.2, label=letter)
+    ax.set_xlim(t[window][0], t[window][-1])
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel(f"{channel} (deg)")
+    ax.legend(ncol=4, loc="upper right", fontsize=8)
+    ax.set_title(f"{channel}: states B (θ'>0, θ''>0) G (+,-) R (-,-) Y (-,+)")
+    fig.tight_layout()
+    return fig
+
+
+def plot_reconstruction(original: Motion, decoded: Motion, channel: str, *, start: float = 0.0,
+                        stop: float | None = None):
+    """Fig. 9 style: a joint angle and its reconstruction from segments."""
+    plt = _pyplot()
+    t = np.arange(original.frames) / original.frame_rate
+    window = (t >= start) & (t <= (stop if stop is not None else t[-1]))
+    a, b = original.column(channel), decoded.column(channel)
+    fig, ax = plt.subplots(figsize=(9, 3))
+    ax.plot(t[window], a[window], color="black", lw=1.5, label="original")
+    ax.plot(t[window], b[window], color="#d62728", lw=1.2, ls="--", label="reconstructed")
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel(f"{channel} (deg)")
+    ax.set_title(f"{channel}: mean |error| {np.abs(a - b)[window].mean():.3f} deg")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def plot_view_invariance(result, title: str = "", frame_rate: float = 120.0):
+    """Fig. 6 style: viewpoint (rows) x time (columns), coloured by state; 3D on top."""
+    plt = _pyplot()
+    image = np.vstack([result.states_3d[None, :].repeat(2, axis=0), result.states_2d])
+    fig, ax = plt.subplots(figsize=(9, 4))
+    frames = result.states_3d.size
+    ax.imshow(image, aspect="auto", interpolation="nearest", cmap=_state_cmap(), vmin=-0.5,
+              vmax=3.5, extent=(0, frames / frame_rate, result.azimuths[-1] + 10, -20))
+    ax.axhline(0 - 5, color="white", lw=2)
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel("viewpoint azimuth (deg); top band: 3D")
+    ax.set_title(f"{title}  agreement with 3D: {100 * result.agreement:.1f}%")
+    fig.tight_layout()
+    return fig
+
+
+def plot_reproducibility(table: dict, channels, title: str = "Reproducibility"):
+    """Actions (rows) x channels (columns): share of performances with the modal description."""
+    plt = _pyplot()
+    actions = list(table)
+    grid = np.array([[table[a][c][0] for c in channels] for a in actions])
+    fig, ax = plt.subplots(figsize=(max(6, 0.35 * len(channels)), 0.5 * len(actions) + 2))
+    im = ax.imshow(grid, vmin=0, vmax=1, cmap="viridis", aspect="auto")
+    ax.set_xticks(range(len(channels)), channels, rotation=90, fontsize=7)
+    ax.set_yticks(range(len(actions)), [f"{a} ({table[a][channels[0]][2]})" for a in actions],
+                  fontsize=8)
+    fig.colorbar(im, ax=ax, label="share with the most common description")
+    ax.set_title(title)
+    fig.tight_layout()
+    return fig
+
+
+def plot_selectivity(motions, performances, channels, *, seconds: float = 3.0, **params):
+    """Fig. 8 style: for each action, a few seconds of each channel's states (rows)."""
+    plt = _pyplot()
+    p = {k: v for k, v in {**DEFAULTS, **params}.items() if k != "min_range"}
+    first = {}
+    for perf in performances:
+        first.setdefault(perf.action, perf)
+    fig, axes = plt.subplots(len(first), 1, figsize=(9, 1.0 + 0.9 * len(first)), sharex=True)
+    axes = np.atleast_1d(axes)
+    for ax, (action, perf) in zip(axes, sorted(first.items())):
+        motion = motions[perf.take]
+        n = min(perf.stop - perf.start, int(seconds * motion.frame_rate))
+        values = motion.values[:, [motion.index(c) for c in channels]]
+        code = states(values, motion.frame_rate, **p)[perf.start:perf.start + n].T
+        ax.imshow(code, aspect="auto", interpolation="nearest", cmap=_state_cmap(), vmin=-0.5,
+                  vmax=3.5, extent=(0, n / motion.frame_rate, len(channels) - 0.5, -0.5))
+        ax.set_yticks(range(len(channels)), channels, fontsize=7)
+        ax.set_ylabel(action, rotation=0, ha="right", va="center", fontsize=8)
+    axes[-1].set_xlabel("time from the start of the performance (s)")
+    fig.tight_layout()
+    return fig
+
+
+def plot_rate_distortion(curves: dict, paper=(3.698, 0.823)):
+    """Size (% of the original) against mean absolute error, one line per codec."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(6, 4))
+    markers = iter("osd^v<>")
+    for name, points in curves.items():
+        points = sorted(points, key=lambda p: p[1])
+        ax.plot([p[1] for p in points], [p[0] for p in points], marker=next(markers), label=name)
+    ax.plot([paper[1]], [paper[0]], "k*", ms=12, label="paper (3.698%, 0.823°)")
+    ax.set_xlabel("mean absolute error (deg, all channels)")
+    ax.set_ylabel("size (% of the AMC file)")
+    ax.set_yscale("log")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def save(fig, path) -> None:
+    """Write a figure (format by suffix) and close it."""
+    fig.savefig(path, dpi=110)
+    import matplotlib.pyplot as plt
+    plt.close(fig)
