@@ -1,0 +1,560 @@
+"""PAL: learn a parallel synchronous grammar system from an actiongram.
+
+From the paper (SPEC §5): each string is learnt on its own from its digram
+frequencies, growing rules N -> X Y; a string's structure is kept only when it
+is synchronised with the structure of other strings (a string with nothing
+synchronised is spurious and is not a component); the highest synchronised
+level of each component is its motion pattern; the axiom has
+S_i -> N_i S_i | N_i, synchronised across the components.
+
+Ours (the paper's algorithm figure is lost), built to survive noise and
+irregular repetition:
+
+1. **Motif by content, per string.** The most frequent digram seeds a motif;
+   the motif grows one symbol at a time (one rule N -> N' Y per step) to the
+   side whose column, read at every located copy, is most conserved, while
+   that column's plurality symbol is both frequent (``conserve``) and
+   unlikely by chance (a binomial test at ``column_alpha``). After every step
+   the copies are located again by scanning the whole string for windows that
+   agree with the motif in enough positions (a threshold chosen so that a
+   random string yields fewer than ``scan_alpha`` chance hits), so damaged
+   copies keep voting. A motif never grows longer than the spacing of its
+   copies; when copies tile the string without gaps, the motif is rotated so
+   that a copy starts where the string starts (the period is shared in time).
+2. **Significance.** A string is a candidate only when its motif has at least
+   ``min_copies`` copies and the chance that a random string (same length and
+   symbol frequencies) holds any motif of that length that often is below
+   ``alpha`` (a Poisson tail times the number of possible motifs).
+3. **Synchronisation in time.** Two candidates are synchronised when at
+   least ``sync_fraction`` of each one's copies overlap in time a copy of the
+   other. Candidates with no synchronised partner are dropped (spurious);
+   the others form groups (connected components).
+4. **Copies pooled over the group.** The copy intervals of all members of a
+   group are merged into shared time windows (kept when at least a share
+   ``window_support`` of the members has a copy there). In every window each
+   member's symbols are one located copy of its pattern, so a copy missed in
+   one string is still found through the others, and copies need not be
+   evenly spaced. Each member's pattern is the plurality vote over its copies
+   (first the most common copy length, then each position).
+"""
+
+from __future__ import annotations
+
+import math
+from collections import Counter
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..actiongram import Actiongram
+from .base import Induction, Inducer, StringReport, build_system, check_number, component_name
+
+__all__ = ["PAL"]
+
+
+class PAL(Inducer):
+    """The parallel learning algorithm (see the module docstring and ``docs/pal.md``).
+
+    Parameters (all keyword):
+
+    - ``min_copies`` (3): fewest copies of a motif that count as repetition.
+    - ``conserve`` (0.6): share of copies that must agree on a new column.
+    - ``edge_share`` (0.5): an end column of a voted pattern whose plurality symbol
+      holds no more than this share of the copies is trimmed (it is not conserved).
+    - ``match_fraction`` (0.5): least share of positions a copy must match.
+    - ``scan_alpha`` (0.05): expected chance copies per string tolerated by the scan.
+    - ``alpha`` (1e-4): chance level a string's repetition must beat to be a candidate.
+    - ``sync_fraction`` (0.7): share of copies that must coincide in time with a partner's.
+    - ``window_support`` (0.34): share of a group's members that must show a copy in a window.
+    - ``max_pattern`` (64): longest motif, in symbols.
+    - ``seeds`` (3): how many of a string's most frequent digrams are grown into motifs.
+    - ``rounds`` (2): rounds of pooling; after each but the last, every member's
+      copies are located again with its voted pattern.
+
+    >>> from psgs.synthetic import generate
+    >>> case = generate(seed=1, noise=0.1)
+    >>> result = PAL().induce(case.actiongram)
+    >>> sorted(result.components) == sorted(case.components)
+    True
+    """
+
+    name = "pal"
+
+    def __init__(self, *, min_copies: int = 3, conserve: float = 0.6, edge_share: float = 0.5,
+                 match_fraction: float = 0.5, scan_alpha: float = 0.05, alpha: float = 1e-4,
+                 sync_fraction: float = 0.7, window_support: float = 0.34,
+                 max_pattern: int = 64, seeds: int = 3, rounds: int = 2) -> None:
+        check_number("min_copies", min_copies, low=2, integer=True)
+        check_number("conserve", conserve, low=0, high=1, low_open=True)
+        check_number("edge_share", edge_share, low=0, high=1)
+        check_number("match_fraction", match_fraction, low=0, high=1, low_open=True)
+        check_number("scan_alpha", scan_alpha, low=0, low_open=True)
+        check_number("alpha", alpha, low=0, high=1, low_open=True)
+        check_number("sync_fraction", sync_fraction, low=0, high=1, low_open=True)
+        check_number("window_support", window_support, low=0, high=1)
+        check_number("max_pattern", max_pattern, low=2, integer=True)
+        check_number("seeds", seeds, low=1, integer=True)
+        check_number("rounds", rounds, low=1, integer=True)
+        self.min_copies = min_copies
+        self.conserve = conserve
+        self.edge_share = edge_share
+        self.match_fraction = match_fraction
+        self.scan_alpha = scan_alpha
+        self.alpha = alpha
+        self.sync_fraction = sync_fraction
+        self.window_support = window_support
+        self.max_pattern = max_pattern
+        self.seeds = seeds
+        self.rounds = rounds
+
+    def induce(self, actiongram: Actiongram) -> Induction:
+        """Learn a PSGS from ``actiongram``; see :class:`~psgs.induce.Induction`."""
+        if not isinstance(actiongram, Actiongram):
+            raise TypeError(f"PAL.induce needs an Actiongram, not {type(actiongram).__name__}")
+        alphabet: dict[str, int] = {}
+        for syms in actiongram.symbols:
+            for s in syms:
+                alphabet.setdefault(s, len(alphabet))
+        symbol_of = list(alphabet)
+        strings = [_Timed.build(syms, durs, origin, alphabet)
+                   for syms, durs, origin in zip(actiongram.symbols,
+                                                 actiongram.segment_durations,
+                                                 actiongram.origins)]
+        motifs = [_find_motif(s.codes, self) for s in strings]
+        candidates = [i for i, m in enumerate(motifs)
+                      if m is not None and m.significance <= math.log10(self.alpha)]
+        intervals = {i: strings[i].intervals(motifs[i].starts, len(motifs[i].motif))
+                     for i in candidates}
+        partners: dict[int, list[int]] = {i: [] for i in candidates}
+        for a_pos, i in enumerate(candidates):
+            for j in candidates[a_pos + 1:]:
+                if _synchronised(intervals[i], intervals[j], self.sync_fraction, self.min_copies):
+                    partners[i].append(j)
+                    partners[j].append(i)
+        groups = _groups(candidates, partners)
+
+        patterns: dict[int, tuple[str, ...]] = {}
+        occurrences: dict[int, tuple[tuple[float, float], ...]] = {}
+        for group in groups:
+            located = {i: intervals[i] for i in group}
+            for round_ in range(self.rounds):
+                windows = _pooled_windows([located[i] for i in group], self.window_support)
+                votes = {i: v for i in group if (v := _vote(strings[i], windows)) is not None}
+                kept_columns = _trim(votes, self.edge_share) if votes else {}
+                if round_ + 1 == self.rounds:
+                    break
+                # locate each member's copies again with its voted pattern
+                for i, (first, last) in kept_columns.items():
+                    again = _relocate(strings[i], votes[i].pattern[first:last], self)
+                    if again is not None:
+                        located[i] = again
+            for i, (first, last) in kept_columns.items():
+                if last <= first:
+                    continue
+                v = votes[i]
+                length = len(v.pattern)
+                patterns[i] = tuple(symbol_of[c] for c in v.pattern[first:last])
+                where = []
+                for a, b in v.spans:
+                    if b - a == length:
+                        a, b = a + first, a + last
+                    where.append((float(strings[i].starts[a]), float(strings[i].ends[b - 1])))
+                occurrences[i] = tuple(where)
+        kept = tuple(sorted(patterns))
+
+        reports = []
+        for i, name in enumerate(actiongram.names):
+            m = motifs[i]
+            if i in patterns:
+                status = "component"
+            elif m is None:
+                status = "no repetition"
+            elif i not in partners:
+                status = "not significant"
+            else:
+                status = "not synchronised"
+            reports.append(StringReport(
+                name=name, status=status,
+                motif=tuple(symbol_of[c] for c in m.motif) if m else (),
+                copies=len(m.starts) if m else 0,
+                significance=m.significance if m else 0.0,
+                synchronised_with=tuple(actiongram.names[j] for j in partners.get(i, ()))))
+
+        taken: set[str] = set()
+        comp_names = {actiongram.names[i]: component_name(actiongram.names[i], taken)
+                      for i in kept}
+        system = None
+        if kept:
+            system = build_system([(comp_names[actiongram.names[i]], patterns[i]) for i in kept],
+                                  synchronise=True, name="pal")
+        return Induction(
+            system=system,
+            components=tuple(actiongram.names[i] for i in kept),
+            patterns={actiongram.names[i]: patterns[i] for i in kept},
+            occurrences={actiongram.names[i]: occurrences[i] for i in kept},
+            reports=tuple(reports), component_names=comp_names, inducer=self.name,
+            params=self.get_params())
+
+
+@dataclass(frozen=True)
+class _Timed:
+    """One string as integer codes with start and end times."""
+
+    codes: np.ndarray
+    starts: np.ndarray
+    ends: np.ndarray
+
+    @classmethod
+    def build(cls, symbols, durations, origin, alphabet) -> "_Timed":
+        codes = np.fromiter((alphabet[s] for s in symbols), dtype=np.int64, count=len(symbols))
+        durs = np.asarray(durations, dtype=np.float64)
+        ends = origin + np.cumsum(durs)
+        return cls(codes, ends - durs, ends)
+
+    def intervals(self, copy_starts: np.ndarray, length: int) -> np.ndarray:
+        """(k, 2) array: the time span of each copy of a motif of ``length`` symbols."""
+        return np.column_stack((self.starts[copy_starts], self.ends[copy_starts + length - 1]))
+
+
+@dataclass(frozen=True)
+class _Motif:
+    motif: np.ndarray
+    starts: np.ndarray
+    significance: float
+
+
+# -- statistics -----------------------------------------------------------------
+def _log10_binom_sf(k: int, m: int, p: float) -> float:
+    """log10 P(X >= k) for X ~ Binomial(m, p)."""
+    if k <= 0:
+        return 0.0
+    if k > m or p <= 0:
+        return -math.inf
+    if p >= 1:
+        return 0.0
+    lp, lq = math.log(p), math.log1p(-p)
+    terms = []
+    for i in range(k, m + 1):
+        t = math.lgamma(m + 1) - math.lgamma(i + 1) - math.lgamma(m - i + 1) + i * lp + (m - i) * lq
+        terms.append(t)
+        if i > m * p and t < terms[0] - 30:
+            break
+    top = max(terms)
+    return (top + math.log(sum(math.exp(t - top) for t in terms))) / math.log(10)
+
+
+def _log10_poisson_sf(k: int, lam: float) -> float:
+    """log10 P(Y >= k) for Y ~ Poisson(lam)."""
+    if k <= 0:
+        return 0.0
+    if lam <= 0:
+        return -math.inf
+    terms, i = [], k
+    while True:
+        t = -lam + i * math.log(lam) - math.lgamma(i + 1)
+        terms.append(t)
+        if (i > lam and t < terms[0] - 30) or i > k + 10_000:
+            break
+        i += 1
+    top = max(terms)
+    return (top + math.log(sum(math.exp(t - top) for t in terms))) / math.log(10)
+
+
+def _scan_threshold(length: int, windows: int, match_rate: float, params: PAL) -> int:
+    """Fewest matching positions a window needs to count as a copy."""
+    low = max(2, math.ceil(params.match_fraction * length))
+    for t in range(low, length + 1):
+        if windows * 10 ** _log10_binom_sf(t, length, match_rate) <= params.scan_alpha:
+            return t
+    return length
+
+
+# -- motif finding in one string ---------------------------------------------------
+def _locate(codes: np.ndarray, motif: np.ndarray, threshold: int) -> np.ndarray:
+    """Non-overlapping windows agreeing with ``motif`` in >= threshold positions.
+
+    Best agreement first, earlier first among equals; returned in position order.
+    """
+    n, length = len(codes), len(motif)
+    width = n - length + 1
+    if width <= 0:
+        return np.zeros(0, dtype=np.int64)
+    score = np.zeros(width, dtype=np.int32)
+    for offset, sym in enumerate(motif):
+        score += codes[offset:offset + width] == sym
+    hits = np.flatnonzero(score >= threshold)
+    if len(hits) == 0:
+        return hits
+    order = hits[np.lexsort((hits, -score[hits]))]
+    if np.all(score[hits] == length) and (len(hits) < 2 or np.min(np.diff(hits)) >= length):
+        return hits  # exact, non-overlapping copies: nothing to choose
+    taken = np.zeros(n, dtype=bool)
+    chosen = []
+    for p in order:
+        if not taken[p:p + length].any():
+            taken[p:p + length] = True
+            chosen.append(p)
+    return np.sort(np.asarray(chosen, dtype=np.int64))
+
+
+def _merge_copies(old: np.ndarray, new: np.ndarray, length: int) -> np.ndarray:
+    """Copies from both lists, earlier first, dropping any that overlaps one already kept.
+
+    Copies located while the motif grew keep their place even when the longer
+    motif no longer passes the scan (a damaged copy still shows the pattern).
+    """
+    both = np.unique(np.concatenate((old, new)))
+    if len(both) < 2 or np.min(np.diff(both)) >= length:
+        return both
+    kept, last = [], None
+    for p in both.tolist():
+        if last is None or p >= last + length:
+            kept.append(p)
+            last = p
+    return np.asarray(kept, dtype=np.int64)
+
+
+def _find_motif(codes: np.ndarray, params: PAL) -> _Motif | None:
+    """The best-supported repeated motif of one string, or None.
+
+    Up to ``params.seeds`` of the most frequent digrams are grown in turn (a
+    burst of noise can stop one seed early); the most significant motif wins,
+    the earlier seed among equals.
+    """
+    n = len(codes)
+    if n < 2 * params.min_copies:
+        return None
+    size = int(codes.max()) + 1
+    freq = np.bincount(codes, minlength=size) / n
+    distinct = int(np.count_nonzero(freq))
+    match_rate = float(np.sum(freq ** 2))
+    keys = codes[:-1] * size + codes[1:]
+    uniq, first, counts = np.unique(keys, return_index=True, return_counts=True)
+    order = np.lexsort((first, -counts))
+    best: _Motif | None = None
+    covered: set[int] = set()
+    tried = 0
+    for index in order.tolist():
+        if tried >= params.seeds or counts[index] < params.min_copies:
+            break
+        if int(uniq[index]) in covered:
+            continue  # already inside a motif grown from an earlier seed
+        tried += 1
+        seed = np.array([uniq[index] // size, uniq[index] % size], dtype=np.int64)
+        found = _grow(codes, seed, np.flatnonzero(keys == uniq[index]), match_rate, distinct,
+                      params)
+        if found is None:
+            continue
+        covered.update((found.motif[:-1] * size + found.motif[1:]).tolist())
+        if best is None or found.significance < best.significance:
+            best = found
+    return best
+
+
+def _grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: float,
+          distinct: int, params: PAL) -> _Motif | None:
+    """Grow ``motif`` one conserved column at a time from its copies at ``starts``."""
+    n = len(codes)
+    size = int(codes.max()) + 1
+    while len(motif) < params.max_pattern:
+        length = len(motif)
+        spacing = int(np.median(np.diff(starts))) if len(starts) > 1 else n
+        if length + 1 > spacing:
+            break
+        choice = None
+        for side in ("right", "left"):
+            pos = starts + length if side == "right" else starts - 1
+            pos = pos[(pos >= 0) & (pos < n)]
+            if len(pos) < params.min_copies:
+                continue
+            column = np.bincount(codes[pos], minlength=size)
+            sym = int(np.argmax(column))
+            k = int(column[sym])
+            if k < params.min_copies or k < params.conserve * len(pos):
+                continue
+            share = k / len(pos)
+            if choice is None or share > choice[0]:
+                choice = (share, side, sym)
+        if choice is None:
+            break
+        _, side, sym = choice
+        grown = np.append(motif, sym) if side == "right" else np.insert(motif, 0, sym)
+        kept = starts if side == "right" else starts - 1
+        kept = kept[(kept >= 0) & (kept + len(grown) <= n)]
+        threshold = _scan_threshold(len(grown), n - len(grown) + 1, match_rate, params)
+        found = _merge_copies(kept, _locate(codes, grown, threshold), len(grown))
+        if len(found) < params.min_copies:
+            break
+        motif, starts = grown, found
+
+    length = len(motif)
+    threshold = _scan_threshold(length, n - length + 1, match_rate, params)
+    if len(starts) > 1 and int(np.median(np.diff(starts))) == length and starts[0] % length:
+        # copies tile the string: put a copy boundary where the string starts
+        shift = int(starts[0] % length)
+        rotated = np.roll(motif, shift)
+        found = _locate(codes, rotated, threshold)
+        if len(found) >= len(starts):
+            motif, starts = rotated, found
+    starts = _merge_copies(starts, _locate(codes, motif, threshold), length)
+    if len(starts) < params.min_copies:
+        return None
+    lam = (n - length + 1) * 10 ** _log10_binom_sf(threshold, length, match_rate)
+    significance = length * math.log10(max(distinct, 2)) + _log10_poisson_sf(len(starts), lam)
+    return _Motif(motif, starts, min(significance, 0.0))
+
+
+# -- synchronisation and pooling -----------------------------------------------------
+def _covered_share(a: np.ndarray, b: np.ndarray) -> tuple[float, int]:
+    """Share (and count) of intervals in ``a`` that overlap some interval of ``b``.
+
+    Both are sorted, non-overlapping (k, 2) arrays of [start, end).
+    """
+    if len(a) == 0 or len(b) == 0:
+        return 0.0, 0
+    last = np.searchsorted(b[:, 0], a[:, 1], side="left") - 1
+    ok = last >= 0
+    hit = np.zeros(len(a), dtype=bool)
+    hit[ok] = b[last[ok], 1] > a[ok, 0]
+    count = int(hit.sum())
+    return count / len(a), count
+
+
+def _synchronised(a: np.ndarray, b: np.ndarray, fraction: float, min_copies: int) -> bool:
+    # judged on the string with fewer copies: the other may have found more
+    fewer, more = (a, b) if len(a) <= len(b) else (b, a)
+    share, count = _covered_share(fewer, more)
+    return share >= fraction and count >= min_copies
+
+
+def _groups(candidates: list[int], partners: dict[int, list[int]]) -> list[list[int]]:
+    """Connected components of the synchronisation graph, singletons left out."""
+    seen: set[int] = set()
+    out = []
+    for i in candidates:
+        if i in seen or not partners[i]:
+            continue
+        stack, group = [i], []
+        seen.add(i)
+        while stack:
+            v = stack.pop()
+            group.append(v)
+            for w in partners[v]:
+                if w not in seen:
+                    seen.add(w)
+                    stack.append(w)
+        out.append(sorted(group))
+    return out
+
+
+def _pooled_windows(member_intervals: list[np.ndarray], support: float) -> np.ndarray:
+    """Merge overlapping copy intervals of a group's members into shared windows."""
+    tagged = np.concatenate([np.column_stack((iv, np.full(len(iv), k)))
+                             for k, iv in enumerate(member_intervals)])
+    tagged = tagged[np.lexsort((tagged[:, 1], tagged[:, 0]))]
+    need = max(1, math.ceil(support * len(member_intervals) - 1e-9))
+    windows = []
+    start, end, members = tagged[0, 0], tagged[0, 1], {int(tagged[0, 2])}
+    for s, e, k in tagged[1:]:
+        if s < end:
+            end = max(end, e)
+            members.add(int(k))
+        else:
+            if len(members) >= need:
+                windows.append((start, end))
+            start, end, members = s, e, {int(k)}
+    if len(members) >= need:
+        windows.append((start, end))
+    return np.asarray(windows, dtype=np.float64).reshape(-1, 2)
+
+
+def _relocate(string: _Timed, pattern: tuple[int, ...], params: PAL) -> np.ndarray | None:
+    """Copy intervals of ``pattern`` found by scanning the string, or None if too few."""
+    if len(pattern) < 2:
+        return None
+    codes = string.codes
+    freq = np.bincount(codes) / len(codes)
+    motif = np.asarray(pattern, dtype=np.int64)
+    threshold = _scan_threshold(len(motif), len(codes) - len(motif) + 1,
+                                float(np.sum(freq ** 2)), params)
+    found = _locate(codes, motif, threshold)
+    if len(found) < params.min_copies:
+        return None
+    # the pooled copies are many and reliable: let them grow the pattern further
+    grown = _grow(codes, motif, found, float(np.sum(freq ** 2)), int(np.count_nonzero(freq)),
+                  params)
+    if grown is None:
+        return string.intervals(found, len(motif))
+    return string.intervals(grown.starts, len(grown.motif))
+
+
+@dataclass(frozen=True)
+class _Vote:
+    """One member's copies in the shared windows and their column-wise plurality."""
+
+    pattern: tuple[int, ...]
+    shares: np.ndarray        # plurality share of each column
+    column_start: np.ndarray  # median time offset of each column from its window's start
+    column_end: np.ndarray
+    spans: tuple[tuple[int, int], ...]  # symbol index range of each copy
+    window_of: tuple[int, ...]          # which window each copy lies in
+
+
+def _vote(string: _Timed, windows: np.ndarray) -> _Vote | None:
+    """The plurality pattern of a string's copies in the shared windows.
+
+    A copy is the run of symbols whose middle lies in a window. The pattern
+    length is the most common copy length (the longer among equals); each
+    position takes the symbol most copies of that length agree on (the one
+    seen first in time among equals).
+    """
+    middles = (string.starts + string.ends) / 2
+    lo = np.searchsorted(middles, windows[:, 0], side="left").tolist()
+    hi = np.searchsorted(middles, windows[:, 1], side="left").tolist()
+    picked = [(k, a, b) for k, (a, b) in enumerate(zip(lo, hi)) if b > a]
+    if not picked:
+        return None
+    lengths = Counter(b - a for _, a, b in picked)
+    length = max(lengths, key=lambda n: (lengths[n], n))
+    full = [(k, a) for k, a, b in picked if b - a == length]
+    same = np.array([string.codes[a:a + length] for _, a in full])
+    offsets = np.array([string.starts[a:a + length] - windows[k, 0] for k, a in full])
+    ends = np.array([string.ends[a:a + length] - windows[k, 0] for k, a in full])
+    pattern, shares = [], []
+    for column in same.T:
+        counts = Counter(column.tolist())
+        top = max(counts.values())
+        pattern.append(next(s for s in column.tolist() if counts[s] == top))
+        shares.append(top / len(column))
+    return _Vote(tuple(pattern), np.asarray(shares), np.median(offsets, axis=0),
+                 np.median(ends, axis=0), tuple((a, b) for _, a, b in picked),
+                 tuple(k for k, _, _ in picked))
+
+
+def _trim(votes: dict[int, _Vote], edge_share: float) -> dict[int, tuple[int, int]]:
+    """Per member, the range of columns kept: end columns not conserved across the group go.
+
+    A column's conservation is pooled in time: the mean, over the members, of
+    the plurality share of the member's column at that time offset (0 where
+    a member has no column). So one string's chance agreement at a column the
+    others do not share is trimmed, and a column damaged in one string but
+    conserved in the others is kept.
+    """
+    def pooled(t: float) -> float:
+        total = 0.0
+        for v in votes.values():
+            hit = np.flatnonzero((v.column_start <= t) & (t < v.column_end))
+            if len(hit):
+                total += float(v.shares[hit[0]])
+        return total / len(votes)
+
+    out = {}
+    for i, v in votes.items():
+        middles = (v.column_start + v.column_end) / 2
+        first, last = 0, len(v.pattern)
+        while first < last and pooled(middles[first]) <= edge_share:
+            first += 1
+        while last > first and pooled(middles[last - 1]) <= edge_share:
+            last -= 1
+        out[i] = (first, last)
+    return out
