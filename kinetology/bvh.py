@@ -44,8 +44,8 @@ def parse_bvh(text: str, source: str = "<bvh>") -> Motion:
     if tokens.peek().upper() == "ROOT":
         tokens.fail("only one ROOT is supported")
     tokens.expect("MOTION")
-    frames_line = tokens.line_index
     frames = _read_header_number(lines, tokens, "Frames:", source, integer=True)
+    frames_line = tokens.line_index
     frame_time = _read_header_number(lines, tokens, "Frame Time:", source, integer=False)
     if frame_time <= 0:
         raise MotionFormatError(f"frame time must be positive, not {frame_time}", source=source,

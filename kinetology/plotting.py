@@ -46,7 +46,9 @@ def plot_states(motion: Motion, channel: str, *, start: float = 0.0, stop: float
     window = (t >= start) & (t <= (stop if stop is not None else t[-1]))
     fig, ax = plt.subplots(figsize=(9, 3))
     for k, letter in enumerate(STATES):
-        masked = np.where((code == k) & window, signal, np.nan)
+        mask = code == k
+        mask[1:] |= code[:-1] == k  # include the next frame, so segments touch
+        masked = np.where(mask & window, signal, np.nan)
         ax.plot(t, masked, color=STATE_COLOURS[letter], lw=2.2, label=letter)
     ax.set_xlim(t[window][0], t[window][-1])
     ax.set_xlabel("time (s)")
