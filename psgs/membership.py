@@ -216,6 +216,9 @@ def _accepts_psgs(system: PSGS, words: tuple[Word, ...], max_states: int,
                 return Acceptance("no", reason=(
                     f"component {g.name}'s word is not in its context-free language"),
                     system=system)
+        spine = _spine_check(system, compiled, charts, max_states, deadline)
+        if spine is not None:
+            return spine
         search = _ScheduleSearch(system, compiled, charts, max_states, deadline)
         return search.run()
     except BoundReached:
@@ -223,12 +226,59 @@ def _accepts_psgs(system: PSGS, words: tuple[Word, ...], max_states: int,
                           bound=f"max_seconds={max_seconds}", system=system)
 
 
+def _spine(cg: CompiledGrammar) -> frozenset[int]:
+    """Nonterminals that lie on a cycle of the grammar, or can reach one (upward closed)."""
+    n = len(cg.nonterminals)
+    edges = [set() for _ in range(n)]
+    for k, a in enumerate(cg.lhs):
+        edges[a].update(s for s in cg.body[k] if s >= 0)
+    reach = []
+    for a in range(n):
+        seen, todo = set(), [a]
+        while todo:
+            for y in edges[todo.pop()]:
+                if y not in seen:
+                    seen.add(y)
+                    todo.append(y)
+        reach.append(seen)
+    cyclic = {a for a in range(n) if a in reach[a]}
+    return frozenset(a for a in range(n) if a in cyclic or reach[a] & cyclic)
+
+
+def _spine_check(system, compiled, charts, max_states, deadline) -> Acceptance | None:
+    """A fast necessary condition: can the recursive parts (the spines) be scheduled alone?
+
+    Tracking only the occurrences of spine nonterminals (an upward-closed set:
+    a spine occurrence is only ever created by rewriting a spine occurrence)
+    relaxes the system: a tuple asks nothing of a component whose entry
+    rewrites a non-spine symbol, and a component with no spine occurrence
+    left skips its entry. Every derivation projects onto a schedule of this
+    relaxation, so when the relaxation has none the answer is a proved no.
+    Its states are few (spines are short frontiers), whereas the full search
+    would wander through the interleavings of the independent blocks.
+    """
+    focus = [_spine(cg) for cg in compiled]
+    if all(len(f) == len(cg.nonterminals) for f, cg in zip(focus, compiled)) or \
+            not any(focus):
+        return None
+    relaxed = _ScheduleSearch(system, compiled, charts, max(1, max_states // 4), deadline,
+                              focus=focus)
+    result = relaxed.run()
+    if result.answer == "no":
+        return Acceptance("no", reason="every component parses but no schedule of the tuples "
+                          "fits (even their recursive parts cannot be synchronised)",
+                          states=result.states, system=system)
+    return None
+
+
 class _ScheduleSearch:
     """Depth-first search for a synchronised schedule over span-annotated frontiers."""
 
     def __init__(self, system: PSGS, compiled: list[CompiledGrammar], charts: list[Chart],
-                 max_states: int, deadline: float) -> None:
+                 max_states: int, deadline: float, focus=None) -> None:
         self.system = system
+        # focus: per component the nonterminals tracked (None: all); see _spine_check
+        self.focus = focus
         self.compiled = compiled
         self.charts = charts
         self.max_states = max_states
@@ -256,6 +306,9 @@ class _ScheduleSearch:
 
     def _children(self, c: int, rule: int, split: tuple[int, ...]):
         body = self.compiled[c].body[rule]
+        if self.focus is not None:
+            keep = self.focus[c]
+            return [(s, split[t], split[t + 1]) for t, s in enumerate(body) if s in keep]
         return [(s, split[t], split[t + 1]) for t, s in enumerate(body) if s >= 0]
 
     def _component_options(self, c: int, front, rule: int):
@@ -263,6 +316,8 @@ class _ScheduleSearch:
         cg = self.compiled[c]
         chart = self.charts[c]
         a = cg.lhs[rule]
+        if self.focus is not None and a not in self.focus[c]:
+            return [(front, ())]  # an untracked occurrence: the relaxation asks nothing of it
         targets = [it for it in front if it[0] == a]
         if not targets:
             return None
@@ -319,7 +374,8 @@ class _ScheduleSearch:
                 if not options:
                     per_component = None
                     break
-                rewrites_somewhere = True
+                if options[0][1]:
+                    rewrites_somewhere = True
                 per_component.append(options)
             if per_component is None or not rewrites_somewhere:
                 continue
@@ -347,13 +403,35 @@ class _ScheduleSearch:
         return words, tuple(moves)
 
     def run(self) -> Acceptance:
+        """Search with a cap on ε-occurrences per component, doubled until it does not bind.
+
+        Occurrences with non-empty spans are disjoint, so at most ``len(w)``
+        per component; only occurrences that must derive ε can pile up (e.g.
+        ``S → S B``, ``B → ε``). Capping them makes each round finite; a round
+        that never met the cap has explored everything, so its "no" is proved.
+        """
+        cap = 4
+        explored = 0
+        while True:
+            result, explored, capped = self._run_capped(cap, explored)
+            if result is not None:
+                return result
+            if not capped:
+                return Acceptance(
+                    "no", reason="every component parses but no schedule of the tuples fits",
+                    states=explored, system=self.system)
+            cap *= 2
+
+    def _run_capped(self, cap: int, explored: int):
         initial = tuple(((cg.index[g.start], 0, chart.n),)
-                        for g, cg, chart in zip(self.system.components, self.compiled,
-                                                self.charts))
+                        if self.focus is None or cg.index[g.start] in self.focus[c] else ()
+                        for c, (g, cg, chart) in enumerate(zip(self.system.components,
+                                                               self.compiled, self.charts)))
         visited = {self.key(initial)}
         stack = [iter(self.successors(initial))]
         path: list = []
-        explored = 1
+        explored += 1
+        capped = False
         while stack:
             nxt = next(stack[-1], None)
             if nxt is None:
@@ -362,6 +440,9 @@ class _ScheduleSearch:
                     path.pop()
                 continue
             _, _, state, move = nxt
+            if any(sum(1 for _, i, j in front if i == j) > cap for front in state):
+                capped = True
+                continue
             k = self.key(state)
             if k in visited:
                 continue
@@ -369,17 +450,18 @@ class _ScheduleSearch:
             explored += 1
             path.append(move)
             if all(not front for front in state):
-                return Acceptance("yes", states=explored, system=self.system,
-                                  schedule=self._readable(path))
+                return (Acceptance("yes", states=explored, system=self.system,
+                                   schedule=self._readable(path)), explored, capped)
             if explored >= self.max_states:
-                return Acceptance(
-                    "unknown", reason=f"the schedule search stopped after {explored} states",
-                    bound=f"max_states={self.max_states}", states=explored, system=self.system)
+                reason = f"the schedule search stopped after {explored} states"
+                if capped:
+                    reason += " (occurrences that derive ε can pile up without end here)"
+                return (Acceptance("unknown", reason=reason, bound=f"max_states={self.max_states}",
+                                   states=explored, system=self.system), explored, capped)
             if explored % 256 == 0 and time.monotonic() > self.deadline:
                 raise BoundReached("max_seconds")
             stack.append(iter(self.successors(state)))
-        return Acceptance("no", reason="every component parses but no schedule of the tuples fits",
-                          states=explored, system=self.system)
+        return None, explored, capped
 
 
 def _item_order(item):
