@@ -1,0 +1,243 @@
+"""The core subcommands: ``psgs derive``, ``psgs export`` and ``psgs show``.
+
+Output on stdout is only the result (tuples, words, grammars, the summary),
+so it can be piped; notes about bounds go to stderr. Exit status: 0 done,
+2 an error (one line on stderr), 3 a bound stopped the work before it was
+complete (what was found is still printed).
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import re
+import sys
+from pathlib import Path
+
+from ..errors import ValidationError
+from ..format import load
+from ..model import IDLE, PCGS, PSGS
+
+#: Exit status when a search or a derivation stopped at a bound.
+INCOMPLETE = 3
+
+
+def register(subparsers) -> None:
+    """Add ``derive``, ``export`` and ``show`` to the ``psgs`` command."""
+    derive = subparsers.add_parser(
+        "derive", help="derive words of a grammar system: one random derivation or all up to "
+                       "a length",
+        description="Derive from a grammar system file. --random (the default) prints one "
+                    "seeded random derivation in the paper's notation; --enumerate prints every "
+                    "word tuple (PSGS) or master word (PCGS) up to --max-length, one per line, "
+                    "in order of size. Exit status 3 when a bound stopped the work.")
+    derive.add_argument("file", metavar="FILE", help="a .psgs file")
+    how = derive.add_mutually_exclusive_group()
+    how.add_argument("--random", action="store_true",
+                     help="one random derivation (the default)")
+    how.add_argument("--enumerate", action="store_true",
+                     help="every word up to --max-length, in order of size")
+    derive.add_argument("--seed", type=int, default=0, help="seed of --random (default 0)")
+    derive.add_argument("--max-steps", type=_positive, default=10_000, metavar="K",
+                        help="--random stops after K steps (default 10000)")
+    derive.add_argument("--max-length", type=_natural, default=None, metavar="L",
+                        help="--enumerate: total length bound (needed)")
+    derive.add_argument("--max-configurations", type=_positive, default=200_000, metavar="N",
+                        help="--enumerate: search budget (default 200000)")
+    derive.add_argument("--mode", choices=("parallel", "single"),
+                        help="PSGS: override the file's rewriting mode")
+    derive.add_argument("--returning", choices=("yes", "no"),
+                        help="PCGS: override the file's returning mode")
+    derive.add_argument("--trace", action="store_true",
+                        help="also print the derivation of each word (--enumerate) or each "
+                             "step (--random)")
+    derive.set_defaults(run=run_derive)
+
+    export = subparsers.add_parser(
+        "export", help="export each component's grammar (to Lark)",
+        description="Write each component's context-free grammar as a Lark grammar: one "
+                    "COMPONENT.lark file per component in DIR, or all of them to stdout.")
+    export.add_argument("file", metavar="FILE", help="a .psgs file")
+    export.add_argument("--to", choices=("lark",), default="lark", help="target (lark)")
+    export.add_argument("-o", "--output", metavar="DIR", default=None,
+                        help="directory for the .lark files (created if needed)")
+    export.set_defaults(run=run_export)
+
+    show = subparsers.add_parser(
+        "show", help="a readable summary of a grammar system",
+        description="Print the kind, settings, N, T, components with their rules, and the "
+                    "tuples (PSGS) or the communication settings (PCGS).")
+    show.add_argument("file", metavar="FILE", help="a .psgs file")
+    show.set_defaults(run=run_show)
+
+
+def _natural(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"{value} is negative")
+    return value
+
+
+def _positive(text: str) -> int:
+    value = _natural(text)
+    if value == 0:
+        raise argparse.ArgumentTypeError("must be at least 1")
+    return value
+
+
+# ---------------------------------------------------------------- derive
+def _system_for(args) -> PSGS | PCGS:
+    system = load(args.file)
+    if args.mode is not None:
+        if not isinstance(system, PSGS):
+            raise ValidationError("--mode applies to a PSGS; this file is a pcgs "
+                                  "(use --returning)")
+        system = dataclasses.replace(system, mode=args.mode)
+    if args.returning is not None:
+        if not isinstance(system, PCGS):
+            raise ValidationError("--returning applies to a PCGS; this file is a psgs "
+                                  "(use --mode)")
+        system = dataclasses.replace(system, returning=args.returning == "yes")
+    return system
+
+
+def run_derive(args) -> int:
+    system = _system_for(args)
+    if args.enumerate:
+        return _enumerate(system, args)
+    if args.max_length is not None:
+        raise ValidationError("--max-length goes with --enumerate")
+    return _random(system, args)
+
+
+def _show_words(system: PSGS | PCGS, words) -> str:
+    from ..derivation import format_configuration, format_form
+    if isinstance(system, PCGS):
+        return format_form(words, system)
+    return format_configuration(words, system)
+
+
+def _enumerate(system: PSGS | PCGS, args) -> int:
+    from ..derivation import language
+    if args.max_length is None:
+        raise ValidationError("--enumerate needs --max-length L")
+    found = language(system, args.max_length, max_configurations=args.max_configurations)
+    out = sys.stdout
+    for words in found:
+        print(_show_words(system, words), file=out)
+        if args.trace:
+            print("  " + _witness(system, words), file=out)
+    if not found.complete:
+        print(f"psgs: the enumeration is incomplete: {found.bound}; the words above are those "
+              f"found up to length {args.max_length}", file=sys.stderr)
+        return INCOMPLETE
+    return 0
+
+
+def _witness(system: PSGS | PCGS, words) -> str:
+    from ..membership import accepts
+    try:
+        answer = accepts(system, words)
+    except ModuleNotFoundError as exc:  # a membership back end not installed in this build
+        return f"(no derivation: {exc})"
+    if answer.answer == "yes" and answer.witness is not None:
+        return str(answer.witness)
+    return f"(no derivation found: {answer.bound or answer.reason or answer.answer})"
+
+
+def _random(system: PSGS | PCGS, args) -> int:
+    from ..derivation import format_configuration, random_derivation
+    derivation = random_derivation(system, args.seed, max_steps=args.max_steps)
+    if args.trace:
+        print(format_configuration(derivation.configurations[0], system))
+        for step in derivation.steps:
+            print(f"  ⇒ {format_configuration(step.after, system)}    by {step}")
+    else:
+        print(derivation)
+    if derivation.is_terminal:
+        return 0
+    if derivation.bound:
+        print(f"psgs: the derivation did not finish: {derivation.bound}", file=sys.stderr)
+    else:
+        print("psgs: the derivation is blocked: no step applies to its last configuration",
+              file=sys.stderr)
+    return INCOMPLETE
+
+
+# ---------------------------------------------------------------- export
+def run_export(args) -> int:
+    from ..lark_export import to_lark
+    system = load(args.file)
+    grammars = to_lark(system)
+    if args.output is None:
+        for k, (name, text) in enumerate(grammars.items()):
+            if k:
+                print()
+            print(f"// ===== {name}.lark =====")
+            print(text, end="")
+        return 0
+    directory = Path(args.output)
+    directory.mkdir(parents=True, exist_ok=True)
+    for name, text in grammars.items():
+        path = directory / f"{name}.lark"
+        path.write_text(text, encoding="utf-8")
+        print(path)
+    return 0
+
+
+# ---------------------------------------------------------------- show
+def run_show(args) -> int:
+    system = load(args.file)
+    print(summary(system), end="")
+    return 0
+
+
+def _natural_key(name: str):
+    return [int(part) if part.isdigit() else part for part in re.split(r"(\d+)", name)]
+
+
+def summary(system: PSGS | PCGS) -> str:
+    """A readable description of a system, as ``psgs show`` prints it."""
+    kind = "PSGS" if isinstance(system, PSGS) else "PCGS"
+    n = len(system.components)
+    lines = [f"{system.name}: a {kind} with {n} component{'s' if n != 1 else ''}"]
+    if isinstance(system, PSGS):
+        lines.append(f"  mode: {system.mode}" + (
+            " (a rule rewrites every occurrence of its left side at once)"
+            if system.mode == "parallel" else " (a rule rewrites one occurrence)"))
+        lines.append(f"  unsynchronised: {system.unsynchronised}" + (
+            " (a rule in no tuple applies on its own)" if system.unsynchronised == "free"
+            else " (only the tuples of M apply)"))
+    else:
+        lines.append(f"  returning: {'yes' if system.returning else 'no'}" + (
+            " (a queried component restarts from its axiom)" if system.returning
+            else " (a queried component keeps its form)"))
+        lines.append(f"  master: {system.master}")
+        lines.append(f"  centralised: {'yes' if system.centralised else 'no'}" + (
+            " (only the master queries)" if system.centralised else ""))
+    nonterminals = sorted((s.name for s in system.nonterminals), key=_natural_key)
+    terminals = sorted((s.name for s in system.terminals), key=_natural_key)
+    lines.append(f"  N ({len(nonterminals)}): {' '.join(nonterminals)}")
+    lines.append(f"  T ({len(terminals)}): {' '.join(terminals) if terminals else '(none)'}")
+    label_width = max(len(r.label) for g in system.components for r in g.rules)
+    for g in system.components:
+        lines.append("")
+        lines.append(f"component {g.name}: start {g.start}, {len(g.rules)} "
+                     f"rule{'s' if len(g.rules) != 1 else ''}")
+        for r in g.rules:
+            lines.append(f"  {(r.label + ':').ljust(label_width + 1)} {r}")
+    if isinstance(system, PSGS):
+        lines.append("")
+        lines.append(f"M: {len(system.sync)} tuple{'s' if len(system.sync) != 1 else ''}")
+        for t in system.sync:
+            lines.append("  (" + ", ".join("#" if r is IDLE else r.label for r in t) + ")")
+        loose = [f"{g.name}: {', '.join(r.label for r in rules)}"
+                 for g, rules in zip(system.components, system.unsynchronised_rules) if rules]
+        if loose:
+            how = ("applied on their own" if system.unsynchronised == "free"
+                   else "never applied (strict)")
+            lines.append(f"rules in no tuple ({how}): " + "; ".join(loose))
+    return "\n".join(lines) + "\n"
