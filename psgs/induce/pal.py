@@ -64,7 +64,8 @@ class PAL(Inducer):
     - ``match_fraction`` (0.5): least share of positions a copy must match.
     - ``scan_alpha`` (0.05): expected chance copies per string tolerated by the scan.
     - ``alpha`` (1e-4): chance level a string's repetition must beat to be a candidate.
-    - ``sync_fraction`` (0.7): share of copies that must coincide in time with a partner's.
+    - ``sync_fraction`` (0.5): share of the merged copy clusters of two strings that
+      must hold copies of both for them to be synchronised.
     - ``window_support`` (0.34): share of a group's members that must show a copy in a window.
     - ``max_pattern`` (64): longest motif, in symbols.
     - ``seeds`` (3): how many of a string's most frequent digrams are grown into motifs.
@@ -82,7 +83,7 @@ class PAL(Inducer):
 
     def __init__(self, *, min_copies: int = 3, conserve: float = 0.6, edge_share: float = 0.5,
                  match_fraction: float = 0.5, scan_alpha: float = 0.05, alpha: float = 1e-4,
-                 sync_fraction: float = 0.7, window_support: float = 0.34,
+                 sync_fraction: float = 0.5, window_support: float = 0.34,
                  max_pattern: int = 64, seeds: int = 3, rounds: int = 2) -> None:
         check_number("min_copies", min_copies, low=2, integer=True)
         check_number("conserve", conserve, low=0, high=1, low_open=True)
@@ -405,26 +406,39 @@ def _grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: 
 
 
 # -- synchronisation and pooling -----------------------------------------------------
-def _covered_share(a: np.ndarray, b: np.ndarray) -> tuple[float, int]:
-    """Share (and count) of intervals in ``a`` that overlap some interval of ``b``.
-
-    Both are sorted, non-overlapping (k, 2) arrays of [start, end).
-    """
-    if len(a) == 0 or len(b) == 0:
-        return 0.0, 0
-    last = np.searchsorted(b[:, 0], a[:, 1], side="left") - 1
-    ok = last >= 0
-    hit = np.zeros(len(a), dtype=bool)
-    hit[ok] = b[last[ok], 1] > a[ok, 0]
-    count = int(hit.sum())
-    return count / len(a), count
+def _clusters(parts: list[np.ndarray]) -> list[set[int]]:
+    """Merge the intervals of several lists wherever they overlap; which lists each cluster holds."""
+    tagged = np.concatenate([np.column_stack((iv, np.full(len(iv), k)))
+                             for k, iv in enumerate(parts)])
+    tagged = tagged[np.lexsort((tagged[:, 1], tagged[:, 0]))]
+    out, end, members = [], -math.inf, None
+    for s, e, k in tagged.tolist():
+        if members is not None and s < end:
+            end = max(end, e)
+            members.add(int(k))
+        else:
+            if members is not None:
+                out.append(members)
+            end, members = e, {int(k)}
+    if members is not None:
+        out.append(members)
+    return out
 
 
 def _synchronised(a: np.ndarray, b: np.ndarray, fraction: float, min_copies: int) -> bool:
-    # judged on the string with fewer copies: the other may have found more
-    fewer, more = (a, b) if len(a) <= len(b) else (b, a)
-    share, count = _covered_share(fewer, more)
-    return share >= fraction and count >= min_copies
+    """Whether two strings' copies cover the same time.
+
+    Overlapping copies of both strings are merged into clusters; the strings
+    are synchronised when at least ``min_copies`` clusters hold copies of both
+    and those are at least ``fraction`` of all clusters. (A string whose
+    period is half the other's has two copies in one cluster: still one
+    shared cluster, so the period is shared in time.)
+    """
+    if len(a) == 0 or len(b) == 0:
+        return False
+    clusters = _clusters([a, b])
+    both = sum(1 for c in clusters if len(c) == 2)
+    return both >= min_copies and both >= fraction * len(clusters)
 
 
 def _groups(candidates: list[int], partners: dict[int, list[int]]) -> list[list[int]]:
@@ -448,24 +462,39 @@ def _groups(candidates: list[int], partners: dict[int, list[int]]) -> list[list[
 
 
 def _pooled_windows(member_intervals: list[np.ndarray], support: float) -> np.ndarray:
-    """Merge overlapping copy intervals of a group's members into shared windows."""
-    tagged = np.concatenate([np.column_stack((iv, np.full(len(iv), k)))
-                             for k, iv in enumerate(member_intervals)])
-    tagged = tagged[np.lexsort((tagged[:, 1], tagged[:, 0]))]
+    """Shared copy windows of a group: the times enough members agree are in a copy.
+
+    Cores are the maximal time ranges covered by copies of at least a share
+    ``support`` of the members; each core then widens to the copies that
+    overlap it (so a copy one member located more completely still counts),
+    without reaching into the next core.
+    """
     need = max(1, math.ceil(support * len(member_intervals) - 1e-9))
-    windows = []
-    start, end, members = tagged[0, 0], tagged[0, 1], {int(tagged[0, 2])}
-    for s, e, k in tagged[1:]:
-        if s < end:
-            end = max(end, e)
-            members.add(int(k))
-        else:
-            if len(members) >= need:
-                windows.append((start, end))
-            start, end, members = s, e, {int(k)}
-    if len(members) >= need:
-        windows.append((start, end))
-    return np.asarray(windows, dtype=np.float64).reshape(-1, 2)
+    events = sorted([(float(s), 1) for iv in member_intervals for s in iv[:, 0]]
+                    + [(float(e), -1) for iv in member_intervals for e in iv[:, 1]])
+    cores, depth, opened = [], 0, None
+    for t, step in events:
+        depth += step
+        if depth >= need and opened is None:
+            opened = t
+        elif depth < need and opened is not None:
+            if t > opened:
+                cores.append((opened, t))
+            opened = None
+    if not cores:
+        return np.zeros((0, 2))
+    core = np.asarray(cores)
+    low, high = core[:, 0].copy(), core[:, 1].copy()
+    for iv in member_intervals:
+        for s, e in iv.tolist():
+            hit = np.flatnonzero((core[:, 0] < e) & (s < core[:, 1]))
+            if len(hit):
+                k = hit[0]
+                low[k] = min(low[k], s)
+                high[hit[-1]] = max(high[hit[-1]], e)
+    low[1:] = np.maximum(low[1:], core[:-1, 1])
+    high[:-1] = np.minimum(high[:-1], core[1:, 0])
+    return np.column_stack((low, high))
 
 
 def _relocate(string: _Timed, pattern: tuple[int, ...], params: PAL) -> np.ndarray | None:
