@@ -21,7 +21,12 @@ angle is a polynomial of degree 4 in ``s`` (0 to 1 across the segment) with
   conditions are dropped);
 * the last free coefficient(s) chosen to minimise the jerk ``∫ θ'''² ds``
   (with a 1e-6 weight on ``∫ θ''² ds`` so the answer is unique when fewer
-  conditions apply, at the two ends of a channel).
+  conditions apply).
+
+At the two ends of a recording there is no neighbour: the first segment is
+treated as entered from its predecessor in the cycle ``B G R Y B`` and the
+last as left towards its successor (``Y -> B`` changes the sign of the
+velocity, so a first segment in state ``B`` starts with ``θ' = 0``).
 
 Binary format (all integers unsigned LEB128 varints, signed ones zigzag
 encoded first; floats little-endian IEEE 754 doubles)::
@@ -131,6 +136,13 @@ def _border_flags(codes: np.ndarray) -> np.ndarray:
     ra = np.zeros(n, bool)
     lv[1:], la[1:] = velocity_flip, acceleration_flip
     rv[:-1], ra[:-1] = velocity_flip, acceleration_flip
+    if n:
+        # the recording's ends: as if the cycle B -> G -> R -> Y -> B went on, so the
+        # first segment enters as its predecessor leaves, the last leaves towards its
+        # successor (B->G and R->Y flip the acceleration, G->R and Y->B the velocity)
+        first, last = int(codes[0]), int(codes[-1])
+        lv[0], la[0] = first in (0, 2), first in (1, 3)
+        rv[-1], ra[-1] = last in (1, 3), last in (0, 2)
     return lv * 8 + la * 4 + rv * 2 + ra
 
 

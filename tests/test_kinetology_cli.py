@@ -1,0 +1,91 @@
+"""The kinetology command: outputs psgs reads back, and one-line errors."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import psgs
+from kinetology.cli import main
+
+from kinetology_fixtures import MOCAP, needs_mocap
+from test_kinetology_readers import SMALL_BVH
+
+
+@pytest.fixture
+def small_bvh(tmp_path):
+    t = np.arange(240) / 120
+    rows = "\n".join(f"0 0 0 0 0 0 {30 * np.sin(2 * np.pi * x):.4f} 0 {20 * np.cos(3 * x):.4f}"
+                     for x in t)
+    head = SMALL_BVH[: SMALL_BVH.index("Frames:")]
+    path = tmp_path / "small.bvh"
+    path.write_text(f"{head}Frames: 240\nFrame Time: 0.0083333\n{rows}\n")
+    return path
+
+
+def test_segment_writes_an_actiongram_psgs_loads(small_bvh, tmp_path, capsys):
+    out = tmp_path / "small.actiongram"
+    assert main(["segment", str(small_bvh), "-o", str(out)]) == 0
+    ag = psgs.load_actiongram(out)
+    assert set(ag.names) == {"Knee.rz", "Knee.rx"}
+    assert ag.string("Knee.rz")[:4] == ("G", "R", "Y", "B")
+    assert main(["segment", str(small_bvh), "--channels", "Knee.rz"]) == 0
+    text = capsys.readouterr().out
+    assert "Knee.rz:" in text and "Knee.rx:" not in text
+
+
+def test_compress_decompress_round_trip(small_bvh, tmp_path, capsys):
+    packed = tmp_path / "small.kin"
+    assert main(["compress", str(small_bvh), "-o", str(packed), "--quantum", "0.01"]) == 0
+    csv = tmp_path / "small.csv"
+    assert main(["decompress", str(packed), "-o", str(csv), "--against", str(small_bvh)]) == 0
+    err = capsys.readouterr().err
+    assert "mean absolute error" in err
+    table = np.loadtxt(csv, delimiter=",", skiprows=1)
+    assert table.shape == (240, 10)
+    np.testing.assert_allclose(table[:, 7], 30 * np.sin(2 * np.pi * table[:, 0]), atol=0.5)
+
+
+@pytest.mark.parametrize("args, fragment", [
+    (["segment", "missing.amc"], "No such file"),
+    (["segment", "{bad}"], "expected 9 numbers"),
+    (["segment", "{small}", "--channels", "nope"], "no channel 'nope'"),
+    (["segment", "{small}", "--smoothing", "-1"], "non-negative"),
+    (["decompress", "{small}"], "bad magic"),
+    (["evaluate"], "nothing to evaluate"),
+])
+def test_errors_are_one_line_and_exit_2(args, fragment, small_bvh, tmp_path, capsys):
+    bad = tmp_path / "bad.bvh"
+    bad.write_text(small_bvh.read_text().replace("0 0 0 0 0 0 0.0000 0 20.0000", "0 0 0", 1))
+    args = [a.format(bad=bad, small=small_bvh) for a in args]
+    assert main(args) == 2
+    captured = capsys.readouterr()
+    lines = captured.err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("kinetology: error:"), captured.err
+    assert fragment in lines[0]
+    assert "Traceback" not in captured.err
+
+
+def test_plot_writes_pictures(small_bvh, tmp_path):
+    pytest.importorskip("matplotlib")
+    for kind in ("states", "reconstruction"):
+        out = tmp_path / f"{kind}.png"
+        assert main(["plot", str(small_bvh), "--channel", "Knee.rz", "--kind", kind,
+                     "-o", str(out)]) == 0
+        assert out.stat().st_size > 1000 and out.read_bytes()[:4] == b"\x89PNG"
+
+
+@needs_mocap
+def test_evaluate_on_a_cmu_take(capsys):
+    path = MOCAP / "cmu-subject02" / "02_01.amc"
+    assert main(["evaluate", str(path), "--views", "6"]) == 0
+    out = capsys.readouterr().out
+    assert "compactness" in out and "reconstructivity" in out and "lknee" in out
+
+
+@needs_mocap
+def test_segment_a_cmu_amc_for_psgs(tmp_path):
+    out = tmp_path / "walk.txt"
+    assert main(["segment", str(MOCAP / "cmu-subject02" / "02_01.amc"), "-o", str(out)]) == 0
+    ag = psgs.load_actiongram(out)
+    assert "lfemur.rx" in ag.names and ag.total_symbols > 100
