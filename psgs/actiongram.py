@@ -63,6 +63,15 @@ def _bad_duration(value: object) -> str | None:
     return None
 
 
+def _plain_durations(durations: tuple) -> bool:
+    """Fast check that every duration is a positive finite int or float (not bool)."""
+    if not durations:
+        return True
+    if not set(map(type, durations)) <= {int, float}:
+        return False
+    return min(durations) > 0 and all(map(math.isfinite, durations))
+
+
 def _format_number(value: float) -> str:
     """Shortest text that reads back as the same float (integers without '.0')."""
     if float(value).is_integer() and abs(value) < 1e15:
@@ -124,14 +133,15 @@ class Actiongram:
             if len(syms) != len(durs):
                 raise FormatError(f"string {name!r} has {len(syms)} symbols but {len(durs)} "
                                   f"durations")
-            for sym in syms:
+            for sym in dict.fromkeys(syms):  # each distinct symbol once, in order
                 problem = _bad_symbol(sym)
                 if problem:
                     raise FormatError(f"string {name!r}: {problem}")
-            for dur in durs:
-                problem = _bad_duration(dur)
-                if problem:
-                    raise FormatError(f"string {name!r}: {problem}")
+            if not _plain_durations(durs):
+                for dur in durs:
+                    problem = _bad_duration(dur)
+                    if problem:
+                        raise FormatError(f"string {name!r}: {problem}")
             if isinstance(origin, bool) or not isinstance(origin, (int, float)) \
                     or not math.isfinite(origin):
                 raise FormatError(f"string {name!r}: start time must be a finite number, "

@@ -64,9 +64,10 @@ def _letters(count: int) -> list[str]:
 
 def _pick(rng: np.random.Generator, size: int, avoid: tuple[int, ...]) -> int:
     """A random letter differing from every code in ``avoid`` (None entries ignored)."""
-    banned = {a for a in avoid if a is not None}
-    choices = [k for k in range(size) if k not in banned]
-    return choices[int(rng.integers(len(choices)))]
+    while True:  # rejection keeps every allowed letter equally likely
+        k = int(rng.integers(size))
+        if k not in avoid:
+            return k
 
 
 def _template(rng: np.random.Generator, size: int, length: int) -> list[int]:
@@ -79,10 +80,12 @@ def _template(rng: np.random.Generator, size: int, length: int) -> list[int]:
 
 
 def _random_string(rng: np.random.Generator, size: int, length: int) -> list[int]:
-    out: list[int] = []
-    for _ in range(length):
-        out.append(_pick(rng, size, (out[-1] if out else None,)))
-    return out
+    """Uniform random letters, each differing from the one before it."""
+    if length <= 0:
+        return []
+    steps = rng.integers(1, size, size=length)
+    steps[0] = rng.integers(size)
+    return (np.cumsum(steps) % size).tolist()
 
 
 def _split(rng: np.random.Generator, total: float, parts: int, random: bool) -> list[float]:
@@ -185,3 +188,67 @@ def success(induction, truth: Synthetic) -> bool:
     if set(induction.components) != set(truth.components):
         return False
     return all(tuple(induction.patterns[n]) == truth.patterns[n] for n in truth.components)
+
+
+# -- the noise sweep (``psgs bench noise`` and benchmarks/noise.py) -------------------------
+@dataclass(frozen=True)
+class SweepRow:
+    """Success of one inducer at one noise level over ``trials`` actiongrams."""
+
+    inducer: str
+    noise: float
+    trials: int
+    successes: int
+    seconds: float
+
+    @property
+    def rate(self) -> float:
+        return self.successes / self.trials if self.trials else 0.0
+
+
+def _trial_batch(job):
+    """Run one (inducer, noise) cell; module level so worker processes can import it."""
+    import time
+
+    from .induce import get
+
+    inducer_name, params, noise, seeds, variant = job
+    inducer = get(inducer_name, **params)
+    began = time.perf_counter()
+    wins = 0
+    for seed in seeds:
+        case = generate(seed=seed, noise=noise, **variant)
+        wins += success(inducer.induce(case.actiongram), case)
+    return inducer_name, noise, len(seeds), wins, time.perf_counter() - began
+
+
+def noise_sweep(levels, trials: int, *, inducers=("pal",), params=None, seed: int = 0,
+                variant=None, jobs: int = 1, progress=None) -> list[SweepRow]:
+    """Success rate of each inducer at each noise level over ``trials`` seeded actiongrams.
+
+    Trial ``t`` at every level uses seed ``seed + t`` (the same templates and
+    strings, different noise), so levels are comparable. ``params`` maps an
+    inducer name to its keyword parameters; ``variant`` holds extra keyword
+    arguments of :func:`generate`. ``jobs`` > 1 runs cells in that many
+    processes. ``progress(done, total)`` is called after each cell.
+    """
+    params = params or {}
+    variant = dict(variant or {})
+    seeds = list(range(seed, seed + trials))
+    cells = [(name, dict(params.get(name, {})), float(level), seeds, variant)
+             for name in inducers for level in levels]
+    results = []
+    if jobs > 1 and len(cells) > 1:
+        from concurrent.futures import ProcessPoolExecutor
+
+        with ProcessPoolExecutor(max_workers=jobs) as pool:
+            for k, out in enumerate(pool.map(_trial_batch, cells), start=1):
+                results.append(out)
+                if progress:
+                    progress(k, len(cells))
+    else:
+        for k, cell in enumerate(cells, start=1):
+            results.append(_trial_batch(cell))
+            if progress:
+                progress(k, len(cells))
+    return [SweepRow(name, noise, n, wins, secs) for name, noise, n, wins, secs in results]

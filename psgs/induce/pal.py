@@ -40,6 +40,7 @@ irregular repetition:
 
 from __future__ import annotations
 
+import functools
 import math
 from collections import Counter
 from dataclasses import dataclass
@@ -263,9 +264,15 @@ def _log10_poisson_sf(k: int, lam: float) -> float:
 
 def _scan_threshold(length: int, windows: int, match_rate: float, params: PAL) -> int:
     """Fewest matching positions a window needs to count as a copy."""
-    low = max(2, math.ceil(params.match_fraction * length))
+    return _threshold(length, windows, match_rate, params.match_fraction, params.scan_alpha)
+
+
+@functools.lru_cache(maxsize=4096)
+def _threshold(length: int, windows: int, match_rate: float, match_fraction: float,
+               scan_alpha: float) -> int:
+    low = max(2, math.ceil(match_fraction * length))
     for t in range(low, length + 1):
-        if windows * 10 ** _log10_binom_sf(t, length, match_rate) <= params.scan_alpha:
+        if windows * 10 ** _log10_binom_sf(t, length, match_rate) <= scan_alpha:
             return t
     return length
 
@@ -296,6 +303,12 @@ def _locate(codes: np.ndarray, motif: np.ndarray, threshold: int) -> np.ndarray:
             taken[p:p + length] = True
             chosen.append(p)
     return np.sort(np.asarray(chosen, dtype=np.int64))
+
+
+def _median_gap(starts: np.ndarray) -> int:
+    """The median distance between consecutive copies (the lower middle one)."""
+    gaps = np.sort(np.diff(starts))
+    return int(gaps[(len(gaps) - 1) // 2])
 
 
 def _merge_copies(old: np.ndarray, new: np.ndarray, length: int) -> np.ndarray:
@@ -359,7 +372,7 @@ def _grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: 
     size = int(codes.max()) + 1
     while len(motif) < params.max_pattern:
         length = len(motif)
-        spacing = int(np.median(np.diff(starts))) if len(starts) > 1 else n
+        spacing = _median_gap(starts) if len(starts) > 1 else n
         if length + 1 > spacing:
             break
         choice = None
@@ -390,7 +403,7 @@ def _grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: 
 
     length = len(motif)
     threshold = _scan_threshold(length, n - length + 1, match_rate, params)
-    if len(starts) > 1 and int(np.median(np.diff(starts))) == length and starts[0] % length:
+    if len(starts) > 1 and _median_gap(starts) == length and starts[0] % length:
         # copies tile the string: put a copy boundary where the string starts
         shift = int(starts[0] % length)
         rotated = np.roll(motif, shift)
