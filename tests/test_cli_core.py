@@ -1,0 +1,189 @@
+"""psgs derive / export / show: output, exit status, one-line errors."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import lark
+import pytest
+
+import psgs
+from psgs.cli import main
+from psgs.lark_export import LARK_OPTIONS
+
+REPO = Path(__file__).resolve().parents[1]
+GAMMA = str(REPO / "grammars" / "paper_example.psgs")
+K1 = "(abcdbcad, bcadabcd, cdabcdab, abcdbcad)"
+K2 = "(abcdbcadabcdbcad, bcadabcdbcadabcd, cdabcdabcdabcdab, abcdbcadabcdbcad)"
+
+
+def run(capsys, *argv):
+    status = main(list(argv))
+    out, err = capsys.readouterr()
+    return status, out, err
+
+
+# ---------------------------------------------------------------- derive --enumerate
+@pytest.mark.parametrize("mode", [[], ["--mode", "parallel"], ["--mode", "single"]])
+def test_enumerate_gamma_to_32_prints_exactly_the_k1_tuple(capsys, mode):
+    status, out, err = run(capsys, "derive", GAMMA, "--enumerate", "--max-length", "32", *mode)
+    assert (status, out, err) == (0, K1 + "\n", "")
+
+
+@pytest.mark.parametrize("mode", ["parallel", "single"])
+def test_enumerate_gamma_to_64_adds_k2(capsys, mode):
+    status, out, err = run(capsys, "derive", GAMMA, "--enumerate", "--max-length", "64",
+                           "--mode", mode)
+    assert (status, out.splitlines(), err) == (0, [K1, K2], "")
+
+
+def test_enumerate_pcgs_prints_master_words(capsys):
+    status, out, _ = run(capsys, "derive", str(REPO / "grammars" / "pcgs_returning.psgs"),
+                         "--enumerate", "--max-length", "10", "--returning", "no")
+    assert status == 0 and out.split() == ["a", "aaa", "aaaaaa", "aaaaaaaaaa"]
+
+
+def test_multi_character_terminals_are_separated_by_spaces(capsys, tmp_path):
+    path = tmp_path / "long.psgs"
+    path.write_text('psgs L\ncomponent G start S\n  p: S -> "up" "down"\n  q: S -> "up"\n',
+                    encoding="utf-8")
+    status, out, _ = run(capsys, "derive", str(path), "--enumerate", "--max-length", "5")
+    assert status == 0 and out.splitlines() == ["(up)", "(up down)"]
+
+
+def test_a_bound_gives_a_note_on_stderr_and_status_3(capsys):
+    status, out, err = run(capsys, "derive", str(REPO / "grammars" / "modes.psgs"),
+                           "--enumerate", "--max-length", "30", "--max-configurations", "5")
+    assert status == 3
+    assert len(err.strip().splitlines()) == 1 and "max_configurations" in err
+    assert all(line.startswith("(") for line in out.splitlines())
+
+
+def test_trace_prints_a_witness_under_each_tuple(capsys):
+    status, out, _ = run(capsys, "derive", GAMMA, "--enumerate", "--max-length", "32",
+                         "--trace")
+    lines = out.splitlines()
+    assert status == 0 and lines[0] == K1 and len(lines) == 2
+    assert lines[1].startswith("  (S1, S2, S3, S4) ⇒ (N13, N18, N7, N23) ⇒")
+    assert lines[1].endswith("⇒ (abcdbcad, bcadabcd, cdabcdab, abcdbcad)")
+
+
+def test_enumerate_needs_a_length(capsys):
+    status, _, err = run(capsys, "derive", GAMMA, "--enumerate")
+    assert status == 2 and "--max-length" in err
+
+
+# ---------------------------------------------------------------- derive --random
+def test_random_is_seeded_and_printed_in_the_paper_notation(capsys):
+    first = run(capsys, "derive", GAMMA, "--random", "--seed", "5")
+    again = run(capsys, "derive", GAMMA, "--seed", "5")
+    assert first == again
+    status, out, err = first
+    assert status == 0 and err == ""
+    assert out.startswith("(S1, S2, S3, S4) ⇒ ")
+    final = out.strip().split(" ⇒ ")[-1]
+    words = tuple(final.strip("()").split(", "))
+    assert psgs.accepts(psgs.load(GAMMA), words).answer == "yes"
+
+
+def test_random_trace_prints_one_step_per_line(capsys):
+    status, out, _ = run(capsys, "derive", str(REPO / "grammars" / "modes.psgs"), "--random",
+                         "--seed", "1", "--trace")
+    lines = out.splitlines()
+    assert status == 0 and lines[0] == "(S)" and lines[1].startswith("  ⇒ (AA)")
+    assert all("by (" in line for line in lines[1:])
+
+
+def test_random_that_hits_max_steps_says_so(capsys):
+    status, out, err = run(capsys, "derive", GAMMA, "--random", "--max-steps", "2")
+    assert status == 3 and "max_steps" in err and out.count(" ⇒ ") == 2
+
+
+def test_a_blocked_derivation_says_so(capsys, tmp_path):
+    path = tmp_path / "blocked.psgs"
+    path.write_text('psgs B\nunsynchronised strict\ncomponent G start S\n  p: S -> A\n'
+                    '  q: A -> "a"\nsync\n  (p)\n', encoding="utf-8")
+    status, out, err = run(capsys, "derive", str(path))
+    assert status == 3 and "blocked" in err and out.strip() == "(S) ⇒ (A)"
+
+
+def test_mode_and_returning_overrides_check_the_kind(capsys):
+    status, _, err = run(capsys, "derive", GAMMA, "--returning", "no")
+    assert status == 2 and "--returning applies to a PCGS" in err
+
+
+# ---------------------------------------------------------------- export
+def test_export_to_a_directory_writes_one_loadable_file_per_component(capsys, tmp_path):
+    status, out, _ = run(capsys, "export", GAMMA, "--to", "lark", "-o", str(tmp_path / "out"))
+    assert status == 0
+    files = sorted((tmp_path / "out").glob("*.lark"))
+    assert [f.name for f in files] == ["G1.lark", "G2.lark", "G3.lark", "G4.lark"]
+    assert out.split() == [str(tmp_path / "out" / f"G{i}.lark") for i in range(1, 5)]
+    parser = lark.Lark(files[2].read_text(encoding="utf-8"), **LARK_OPTIONS)
+    parser.parse("c d a b c d a b")
+
+
+def test_export_to_stdout_holds_every_component(capsys):
+    status, out, _ = run(capsys, "export", GAMMA)
+    assert status == 0
+    for name in ("G1", "G2", "G3", "G4"):
+        assert f"// ===== {name}.lark =====" in out
+    assert out.count("start: n__s") == 4
+
+
+# ---------------------------------------------------------------- show
+def test_show_summarises_a_psgs(capsys):
+    status, out, _ = run(capsys, "show", GAMMA)
+    assert status == 0
+    assert out.startswith("Gamma: a PSGS with 4 components")
+    assert "mode: parallel" in out and "unsynchronised: free" in out
+    assert "T (4): a b c d" in out and "N (26): N1 N2 N3" in out
+    assert "  N7:  N7 → N4 N4" in out
+    assert "M: 8 tuples" in out and "  (N9, N14, #, N19)" in out
+    assert "rules in no tuple (applied on their own): G3: N2, N3" in out
+
+
+def test_show_summarises_a_pcgs(capsys):
+    status, out, _ = run(capsys, "show", str(REPO / "grammars" / "pcgs_abc.psgs"))
+    assert status == 0
+    assert out.startswith("ABC: a PCGS with 3 components")
+    assert "returning: yes" in out and "master: G1" in out and "centralised: yes" in out
+    assert "p2: S1 → a ?G2" in out
+
+
+# ---------------------------------------------------------------- errors
+def test_missing_file_is_one_line(capsys, tmp_path):
+    status, out, err = run(capsys, "show", str(tmp_path / "nothing.psgs"))
+    assert status == 2 and out == ""
+    assert len(err.splitlines()) == 1 and "nothing.psgs" in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("command", [["show"], ["export"], ["derive", "--enumerate",
+                                                             "--max-length", "4"]])
+def test_format_errors_are_one_located_line(capsys, tmp_path, command):
+    path = tmp_path / "bad.psgs"
+    path.write_text("psgs B\ncomponent G start S\n  p: S \"a\"\n", encoding="utf-8")
+    status, out, err = run(capsys, command[0], str(path), *command[1:])
+    assert status == 2 and out == ""
+    assert err.strip().splitlines() == [
+        f"psgs: error: {path}:3:8: missing arrow: expected '->' (or '→') after the left-hand "
+        f"side, found '\"a\"'"]
+
+
+def test_binary_file_through_the_installed_command(tmp_path):
+    path = tmp_path / "junk.psgs"
+    path.write_bytes(bytes(range(256)))
+    done = subprocess.run([sys.executable, "-m", "psgs", "derive", str(path)],
+                          capture_output=True, text=True)
+    assert done.returncode == 2 and done.stdout == ""
+    assert len(done.stderr.splitlines()) == 1 and f"{path}:" in done.stderr
+    assert "Traceback" not in done.stderr
+
+
+def test_the_acceptance_command_prints_one_line():
+    done = subprocess.run([sys.executable, "-m", "psgs", "derive", "grammars/paper_example.psgs",
+                           "--enumerate", "--max-length", "32"], capture_output=True, text=True,
+                          cwd=REPO)
+    assert (done.returncode, done.stdout, done.stderr) == (0, K1 + "\n", "")
