@@ -113,7 +113,10 @@ def generate(seed: int, noise: float = 0.0, *, strings: int = 20, alphabet: int 
         raise ValueError(f"durations must be 'unit' or 'random', not {durations!r}")
     if alphabet < 3 or template_length < 1 or copies < 1 or gap < (0 if not irregular_gaps else 1):
         raise ValueError("alphabet >= 3, template_length >= 1, copies >= 1, gap >= 0 required")
-    rng = np.random.default_rng(seed)
+    # separate streams: the same seed gives the same strings at every noise level
+    structure_seed, noise_seed = np.random.SeedSequence(seed).spawn(2)
+    rng = np.random.default_rng(structure_seed)
+    noise_rng = np.random.default_rng(noise_seed)
     letters = _letters(alphabet)
     pool = [_template(rng, alphabet, template_length) for _ in range(templates)]
     chosen_strings = sorted(rng.choice(strings, size=patterned, replace=False).tolist())
@@ -154,10 +157,10 @@ def generate(seed: int, noise: float = 0.0, *, strings: int = 20, alphabet: int 
                                        random_durs))
             truth[name] = tuple(letters[c] for c in template)
             n_noise = round(noise * len(codes))
-            for pos in sorted(rng.choice(len(codes), size=n_noise, replace=False).tolist()):
+            for pos in sorted(noise_rng.choice(len(codes), size=n_noise, replace=False).tolist()):
                 left = codes[pos - 1] if pos > 0 else None
                 right = codes[pos + 1] if pos + 1 < len(codes) else None
-                codes[pos] = _pick(rng, alphabet, (codes[pos], left, right))
+                codes[pos] = _pick(noise_rng, alphabet, (codes[pos], left, right))
         else:
             length = int(rng.integers(70, 131)) if unequal_lengths else int(round(span))
             codes = _random_string(rng, alphabet, length)

@@ -1,0 +1,100 @@
+"""psgs induce / synth / bench noise."""
+
+from __future__ import annotations
+
+import csv
+import json
+
+import pytest
+
+import psgs
+from psgs.cli import main
+
+
+def test_induce_example_explains_itself(capsys):
+    assert main(["induce", "--example"]) == 0
+    out = capsys.readouterr().out
+    assert "Hidden in it: 4 strings" in out
+    assert out.count("[the hidden template]") == 4
+    assert "found exactly the hidden patterns" in out
+    assert "component s" in out  # the grammar system text
+
+
+def test_induce_without_file_uses_the_example(capsys):
+    assert main(["induce"]) == 0
+    assert "Example:" in capsys.readouterr().out
+
+
+def test_synth_then_induce_json_and_output(tmp_path, capsys):
+    ag_path = tmp_path / "ag.txt"
+    assert main(["synth", "--noise", "0.05", "--seed", "3", "-o", str(ag_path)]) == 0
+    text = ag_path.read_text()
+    truth = {line.split()[2].rstrip(":"): tuple(line.split()[3:])
+             for line in text.splitlines() if line.startswith("# truth")}
+    assert len(truth) == 4
+    out_path = tmp_path / "out.psgs"
+    assert main(["induce", str(ag_path), "--json", "-o", str(out_path)]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert {k: tuple(v) for k, v in data["patterns"].items()} == truth
+    system = psgs.loads(out_path.read_text())
+    assert system.component_names == tuple(data["components"])
+    assert data["system"] == out_path.read_text()
+
+
+def test_induce_sequential_with_params(tmp_path, capsys):
+    path = tmp_path / "a.txt"
+    path.write_text("x: a b c a b c a b c\ny: p q r s t u v\n")
+    assert main(["induce", str(path), "--inducer", "sequential", "--param", "min_count=3"]) == 0
+    out = capsys.readouterr().out
+    assert "1 component(s)" in out and "x: a b c" in out
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["induce", "{bad}"], "bad.txt:2:7: unknown duration syntax"),
+    (["induce", "{bad}", "--inducer", "nope"], "unknown inducer 'nope'"),
+    (["induce", "{bad}", "--param", "alpha"], "write KEY=VALUE"),
+    (["induce", "--example", "--param", "alpha=7"], "alpha must be <= 1"),
+    (["induce", "--example", "--param", "colour=red"], "unexpected keyword argument"),
+    (["induce", "{missing}"], "No such file"),
+])
+def test_bad_input_is_one_line_and_status_2(tmp_path, capsys, argv, words):
+    bad = tmp_path / "bad.txt"
+    bad.write_text("x: a b\ny: a b@z\n")
+    argv = [a.format(bad=bad, missing=tmp_path / "missing.txt") for a in argv]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and words in err and "Traceback" not in err
+
+
+def test_no_component_is_said_plainly(tmp_path, capsys):
+    path = tmp_path / "r.txt"
+    assert main(["synth", "--patterned", "0", "-o", str(path)]) == 0
+    assert main(["induce", str(path)]) == 0
+    assert "No grammar system" in capsys.readouterr().out
+
+
+def test_bench_noise_writes_csv(tmp_path, capsys):
+    out = tmp_path / "n.csv"
+    assert main(["bench", "noise", "--trials", "2", "--levels", "0:0.1:0.1", "--jobs", "1",
+                 "--csv", str(out)]) == 0
+    captured = capsys.readouterr()
+    assert "2/4 cells" in captured.err or "4/4 cells" in captured.err
+    rows = list(csv.DictReader(out.open()))
+    assert len(rows) == 4
+    pal = [r for r in rows if r["inducer"] == "pal"]
+    assert [r["successes"] for r in pal] == ["2", "2"]
+    assert "100.00%" in captured.out
+
+
+def test_bench_noise_plot(tmp_path, capsys):
+    pytest.importorskip("matplotlib", reason="matplotlib (the plot extra) is not installed")
+    png = tmp_path / "n.png"
+    assert main(["bench", "noise", "--trials", "1", "--levels", "0", "--inducer", "pal",
+                 "--jobs", "1", "--plot", str(png)]) == 0
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_bad_levels_are_rejected(capsys):
+    with pytest.raises(SystemExit) as info:
+        main(["bench", "noise", "--levels", "0.5:0.1:0.1"])
+    assert info.value.code == 2

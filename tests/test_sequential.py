@@ -1,0 +1,74 @@
+"""The sequential baseline: Re-Pair per string, no synchronisation."""
+
+from __future__ import annotations
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import psgs
+from psgs import Actiongram
+from psgs.induce import Sequential
+from psgs.induce.sequential import _repair
+from psgs.synthetic import generate, success
+
+
+def test_learns_a_clean_repetition():
+    result = Sequential().induce(Actiongram.from_strings({"a": "abcd" * 4}))
+    assert result.components == ("a",)
+    pattern = "".join(result.patterns["a"])
+    # its longest rule spells a power of the period
+    assert pattern in ("abcd" * 4)[: len(pattern)] and len(pattern) % 4 == 0
+    assert result.system.sync == ()
+
+
+def test_keeps_random_strings_that_repeat_a_digram():
+    # the overgeneralisation the paper describes: no synchronisation, so noise is kept
+    strings = {"rand": "qwertyqwpzxqwmnb", "once": "abcdefg"}
+    result = Sequential().induce(Actiongram.from_strings(strings))
+    assert result.components == ("rand",)
+    assert result.patterns["rand"] == ("q", "w")
+    assert result.report("once").status == "no repetition"
+
+
+def test_fails_the_paper_protocol_by_keeping_random_strings():
+    case = generate(seed=4)
+    result = Sequential().induce(case.actiongram)
+    assert not success(result, case)
+    assert len(result.components) > len(case.components)
+    assert set(case.components) <= set(result.components)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.text(alphabet="abc", min_size=0, max_size=40))
+def test_pattern_occurs_where_reported(text):
+    found = _repair(tuple(text), 2, 1000)
+    if found is None:
+        return
+    pattern, positions, rules, bounded = found
+    assert rules >= 1 and not bounded
+    assert len(positions) >= 1
+    for p in positions:
+        assert tuple(text[p:p + len(pattern)]) == pattern
+    # occurrences never overlap
+    assert all(b - a >= len(pattern) for a, b in zip(positions, positions[1:]))
+
+
+def test_rule_bound_is_reported():
+    result = Sequential(max_rules=1).induce(Actiongram.from_strings({"a": "abcabcabcabc"}))
+    assert result.report("a").status == "rule bound reached"
+
+
+def test_each_component_generates_its_own_repetitions_independently():
+    strings = {"x": "abcabcabc", "y": "pqrpqrpqr"}
+    result = Sequential().induce(Actiongram.from_strings(strings))
+    px, py = result.patterns["x"], result.patterns["y"]
+    assert psgs.accepts(result.system, [px * 2, py * 1])
+
+
+def test_parameters():
+    assert Sequential(min_count=3).get_params() == {"min_count": 3, "max_rules": 100_000}
+    with pytest.raises(ValueError):
+        Sequential(min_count=1)
+    with pytest.raises(TypeError):
+        Sequential().induce("abc")
