@@ -368,3 +368,42 @@ def odd_psgs(draw):
 @given(odd_psgs())
 def test_round_trip_with_keywords_as_names_and_odd_terminal_text(system):
     assert loads(dumps(system)) == system
+
+
+# ---------------------------------------------------------------- docs/format.md
+DOC = REPO / "docs" / "format.md"
+
+
+def doc_blocks(kind: str) -> list[str]:
+    import re
+    return re.findall(rf"```{kind}\n(.*?)```", DOC.read_text(encoding="utf-8"), re.S)
+
+
+def test_every_psgs_block_of_the_format_page_parses():
+    blocks = doc_blocks("psgs")
+    assert len(blocks) >= 3
+    for block in blocks:
+        system = loads(block, source="docs")
+        assert loads(dumps(system)) == system
+    assert loads(blocks[0]) == load(REPO / "grammars" / "paper_example.psgs")
+
+
+def test_every_error_example_of_the_format_page_gives_its_message():
+    import re
+    text = DOC.read_text(encoding="utf-8")
+    pairs = re.findall(r"```psgs-error\n(.*?)```\s*```text\n(.*?)\n```", text, re.S)
+    assert len(pairs) >= 9
+    for source, message in pairs:
+        with pytest.raises(FormatError) as info:
+            loads(source, source="example.psgs")
+        assert str(info.value) == message
+
+
+def test_the_python_blocks_of_the_format_page_run(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(REPO)
+    blocks = doc_blocks("python")
+    assert len(blocks) >= 2
+    for block in blocks:
+        exec(compile(block, str(DOC), "exec"), {})
+    printed = capsys.readouterr().out
+    assert printed.rstrip("\n") == doc_blocks("text")[0].rstrip("\n")
