@@ -226,3 +226,15 @@ def test_every_component_of_a_generated_system_loads(system):
 
 def test_the_start_rule_is_documented():
     assert START_RULE == "start" and LARK_OPTIONS["start"] == START_RULE
+
+
+# ---------------------------------------------------------------- docs/export.md
+def test_the_python_blocks_of_the_export_page_print_what_it_says(monkeypatch, capsys):
+    doc = Path(__file__).resolve().parents[1] / "docs" / "export.md"
+    text = doc.read_text(encoding="utf-8")
+    pairs = re.findall(r"```python\n(.*?)```\s*prints\s*```text\n(.*?)```", text, re.S)
+    assert len(pairs) == len(re.findall(r"```python\n", text)) >= 4
+    monkeypatch.chdir(doc.parents[1])
+    for code, printed in pairs:
+        exec(compile(code, str(doc), "exec"), {})
+        assert capsys.readouterr().out == printed
