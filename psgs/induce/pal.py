@@ -114,14 +114,11 @@ class PAL(Inducer):
         if not isinstance(actiongram, Actiongram):
             raise TypeError(f"PAL.induce needs an Actiongram, not {type(actiongram).__name__}")
         alphabet: dict[str, int] = {}
-        for syms in actiongram.symbols:
-            for s in syms:
-                alphabet.setdefault(s, len(alphabet))
-        symbol_of = list(alphabet)
         strings = [_Timed.build(syms, durs, origin, alphabet)
                    for syms, durs, origin in zip(actiongram.symbols,
                                                  actiongram.segment_durations,
                                                  actiongram.origins)]
+        symbol_of = list(alphabet)
         motifs = [_find_motif(s.codes, self) for s in strings]
         candidates = [i for i, m in enumerate(motifs)
                       if m is not None and m.significance <= math.log10(self.alpha)]
@@ -207,8 +204,17 @@ class _Timed:
     ends: np.ndarray
 
     @classmethod
-    def build(cls, symbols, durations, origin, alphabet) -> "_Timed":
-        codes = np.fromiter((alphabet[s] for s in symbols), dtype=np.int64, count=len(symbols))
+    def build(cls, symbols, durations, origin, alphabet: dict[str, int]) -> "_Timed":
+        """Encode ``symbols``; new symbols join ``alphabet`` in order of first appearance."""
+        if symbols:
+            distinct, first, inverse = np.unique(np.array(symbols), return_index=True,
+                                                 return_inverse=True)
+            lookup = np.empty(len(distinct), dtype=np.int64)
+            for k in np.argsort(first, kind="stable").tolist():
+                lookup[k] = alphabet.setdefault(str(distinct[k]), len(alphabet))
+            codes = lookup[inverse.reshape(-1)]
+        else:
+            codes = np.zeros(0, dtype=np.int64)
         durs = np.asarray(durations, dtype=np.float64)
         ends = origin + np.cumsum(durs)
         return cls(codes, ends - durs, ends)
@@ -419,23 +425,22 @@ def _grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: 
 
 
 # -- synchronisation and pooling -----------------------------------------------------
-def _clusters(parts: list[np.ndarray]) -> list[set[int]]:
-    """Merge the intervals of several lists wherever they overlap; which lists each cluster holds."""
-    tagged = np.concatenate([np.column_stack((iv, np.full(len(iv), k)))
-                             for k, iv in enumerate(parts)])
-    tagged = tagged[np.lexsort((tagged[:, 1], tagged[:, 0]))]
-    out, end, members = [], -math.inf, None
-    for s, e, k in tagged.tolist():
-        if members is not None and s < end:
-            end = max(end, e)
-            members.add(int(k))
-        else:
-            if members is not None:
-                out.append(members)
-            end, members = e, {int(k)}
-    if members is not None:
-        out.append(members)
-    return out
+def _clusters(parts: list[np.ndarray]) -> np.ndarray:
+    """Merge the intervals of several lists wherever they overlap.
+
+    Returns a (clusters, lists) boolean array: which lists each cluster holds.
+    """
+    spans = np.concatenate(parts)
+    tags = np.concatenate([np.full(len(iv), k) for k, iv in enumerate(parts)])
+    order = np.lexsort((spans[:, 1], spans[:, 0]))
+    spans, tags = spans[order], tags[order]
+    reach = np.maximum.accumulate(spans[:, 1])
+    opens = np.ones(len(spans), dtype=bool)
+    opens[1:] = spans[1:, 0] >= reach[:-1]
+    cluster = np.cumsum(opens) - 1
+    held = np.zeros((int(cluster[-1]) + 1, len(parts)), dtype=bool)
+    held[cluster, tags] = True
+    return held
 
 
 def _synchronised(a: np.ndarray, b: np.ndarray, fraction: float, min_copies: int) -> bool:
@@ -449,9 +454,9 @@ def _synchronised(a: np.ndarray, b: np.ndarray, fraction: float, min_copies: int
     """
     if len(a) == 0 or len(b) == 0:
         return False
-    clusters = _clusters([a, b])
-    both = sum(1 for c in clusters if len(c) == 2)
-    return both >= min_copies and both >= fraction * len(clusters)
+    held = _clusters([a, b])
+    both = int(np.count_nonzero(held.all(axis=1)))
+    return both >= min_copies and both >= fraction * len(held)
 
 
 def _groups(candidates: list[int], partners: dict[int, list[int]]) -> list[list[int]]:
@@ -483,28 +488,25 @@ def _pooled_windows(member_intervals: list[np.ndarray], support: float) -> np.nd
     without reaching into the next core.
     """
     need = max(1, math.ceil(support * len(member_intervals) - 1e-9))
-    events = sorted([(float(s), 1) for iv in member_intervals for s in iv[:, 0]]
-                    + [(float(e), -1) for iv in member_intervals for e in iv[:, 1]])
-    cores, depth, opened = [], 0, None
-    for t, step in events:
-        depth += step
-        if depth >= need and opened is None:
-            opened = t
-        elif depth < need and opened is not None:
-            if t > opened:
-                cores.append((opened, t))
-            opened = None
-    if not cores:
+    spans = np.concatenate(member_intervals)
+    times = np.concatenate((spans[:, 0], spans[:, 1]))
+    steps = np.concatenate((np.ones(len(spans), dtype=np.int64),
+                            -np.ones(len(spans), dtype=np.int64)))
+    order = np.lexsort((steps, times))  # at equal times, ends before starts
+    times, depth = times[order], np.cumsum(steps[order])
+    inside = depth >= need
+    before = np.concatenate(([False], inside[:-1]))
+    opened, closed = times[inside & ~before], times[~inside & before]
+    keep = closed > opened
+    core = np.column_stack((opened[keep], closed[keep]))
+    if len(core) == 0:
         return np.zeros((0, 2))
-    core = np.asarray(cores)
     low, high = core[:, 0].copy(), core[:, 1].copy()
-    for iv in member_intervals:
-        for s, e in iv.tolist():
-            hit = np.flatnonzero((core[:, 0] < e) & (s < core[:, 1]))
-            if len(hit):
-                k = hit[0]
-                low[k] = min(low[k], s)
-                high[hit[-1]] = max(high[hit[-1]], e)
+    first = np.searchsorted(core[:, 1], spans[:, 0], side="right")  # first core ending after s
+    last = np.searchsorted(core[:, 0], spans[:, 1], side="left") - 1  # last core starting before e
+    hit = first <= last
+    np.minimum.at(low, first[hit], spans[hit, 0])
+    np.maximum.at(high, last[hit], spans[hit, 1])
     low[1:] = np.maximum(low[1:], core[:-1, 1])
     high[:-1] = np.minimum(high[:-1], core[1:, 0])
     return np.column_stack((low, high))
