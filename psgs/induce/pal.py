@@ -206,15 +206,10 @@ class _Timed:
     @classmethod
     def build(cls, symbols, durations, origin, alphabet: dict[str, int]) -> "_Timed":
         """Encode ``symbols``; new symbols join ``alphabet`` in order of first appearance."""
-        if symbols:
-            distinct, first, inverse = np.unique(np.array(symbols), return_index=True,
-                                                 return_inverse=True)
-            lookup = np.empty(len(distinct), dtype=np.int64)
-            for k in np.argsort(first, kind="stable").tolist():
-                lookup[k] = alphabet.setdefault(str(distinct[k]), len(alphabet))
-            codes = lookup[inverse.reshape(-1)]
-        else:
-            codes = np.zeros(0, dtype=np.int64)
+        for sym in dict.fromkeys(symbols):  # distinct symbols, in order of first appearance
+            alphabet.setdefault(sym, len(alphabet))
+        codes = np.fromiter(map(alphabet.__getitem__, symbols), dtype=np.int64,
+                            count=len(symbols))
         durs = np.asarray(durations, dtype=np.float64)
         ends = origin + np.cumsum(durs)
         return cls(codes, ends - durs, ends)
