@@ -24,7 +24,7 @@ meaning, becomes one :class:`~psgs.errors.FormatError` naming
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import lru_cache
 from importlib import resources
 from os import PathLike
@@ -54,7 +54,7 @@ _TOKEN_WORDS = {
 @lru_cache(maxsize=1)
 def _parser() -> lark.Lark:
     text = resources.files("psgs").joinpath("format.lark").read_text(encoding="utf-8")
-    return lark.Lark(text, parser="lalr", propagate_positions=True, maybe_placeholders=False)
+    return lark.Lark(text, parser="lalr", maybe_placeholders=False)
 
 
 # ---------------------------------------------------------------- reading
@@ -170,8 +170,9 @@ class _Component:
     name: str
     start: Nonterminal
     at: tuple[int, int]
-    rules: list[Rule]
-    rule_at: dict[str, tuple[int, int]]
+    rules: list[Rule] = field(default_factory=list)
+    rule_at: dict[str, tuple[int, int]] = field(default_factory=dict)
+    bodies: dict[tuple, Rule] = field(default_factory=dict)
 
 
 class _Builder:
@@ -188,6 +189,7 @@ class _Builder:
         self.tuples: list[tuple[list[lark.Token], tuple[int, int]]] = []
         # symbol name -> (kind, position of first use), to report a name used as two kinds
         self.kinds: dict[str, tuple[str, tuple[int, int]]] = {}
+        self.terminals: dict[str, Terminal] = {}  # quoted text -> terminal, decoded once
 
     def error(self, message: str, at: tuple[int, int] | None) -> FormatError:
         line, column = at if at else (None, None)
@@ -266,7 +268,7 @@ class _Builder:
                                  f"{other.at[0]})", _at(words[1]))
         start = Nonterminal(str(words[3]))
         self.note_kind(start.name, "nonterminal", _at(words[3]))
-        self.components.append(_Component(name, start, at, [], {}))
+        self.components.append(_Component(name, start, at))
 
     def sync_line(self, at: tuple[int, int]) -> None:
         if self.kind == "pcgs":
@@ -295,26 +297,25 @@ class _Builder:
         self.note_kind(lhs.name, "nonterminal", _at(lhs_token))
         rhs = self.right_side(symbols)
         rule = Rule(label, lhs, rhs)
-        for other in component.rules:
-            if other.lhs == rule.lhs and other.rhs == rule.rhs:
-                raise self.error(f"component {component.name}: rule {label} repeats rule "
-                                 f"{other.label} ({other})", at)
+        other = component.bodies.setdefault((rule.lhs, rule.rhs), rule)
+        if other is not rule:
+            raise self.error(f"component {component.name}: rule {label} repeats rule "
+                             f"{other.label} ({other})", at)
         component.rules.append(rule)
         component.rule_at[label] = at
 
-    def right_side(self, symbols: list[lark.Tree]) -> tuple:
+    def right_side(self, symbols: list[lark.Token]) -> tuple:
         rhs = []
-        for node in symbols:
-            token = node.children[0]
+        for token in symbols:
             at = _at(token)
-            if node.data == "epsilon":
+            if token.type == "EPSILON":
                 if len(symbols) > 1:
                     raise self.error("ε stands alone: write it as the whole right side, or leave "
                                      "the right side empty", at)
-            elif node.data == "nonterminal":
+            elif token.type == "NAME":
                 self.note_kind(str(token), "nonterminal", at)
                 rhs.append(Nonterminal(str(token)))
-            elif node.data == "terminal":
+            elif token.type == "STRING":
                 rhs.append(self.terminal(token))
             else:
                 if self.kind == "psgs":
@@ -324,6 +325,9 @@ class _Builder:
         return tuple(rhs)
 
     def terminal(self, token: lark.Token) -> Terminal:
+        known = self.terminals.get(str(token))
+        if known is not None:
+            return known
         at = _at(token)
         try:
             text = json.loads(str(token))
@@ -334,6 +338,7 @@ class _Builder:
         except ValidationError as exc:
             raise self.error(str(exc), at) from None
         self.note_kind(text, "terminal", at)
+        self.terminals[str(token)] = terminal
         return terminal
 
     def note_kind(self, name: str, kind: str, at: tuple[int, int]) -> None:
@@ -345,8 +350,8 @@ class _Builder:
                              f"nonterminal (bare), not both", at)
 
     def tuple_line(self, tree: lark.Tree) -> None:
-        entries = list(tree.children)
-        at = (tree.meta.line, tree.meta.column)
+        parenthesis, *entries = tree.children
+        at = _at(parenthesis)
         if self.kind is None:
             raise self.error("expected a first line 'psgs NAME' or 'pcgs NAME'", at)
         if self.sync_at is None:
