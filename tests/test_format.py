@@ -160,6 +160,13 @@ def test_load_reads_files_and_names_them_in_errors(tmp_path):
     assert str(info.value).startswith(f"{bad}:3:8: ")
 
 
+def test_loads_takes_utf8_bytes_and_locates_bad_ones():
+    assert loads(SMALL.encode("utf-8")) == small_system()
+    with pytest.raises(FormatError) as info:
+        loads(b"psgs G\n\xc3(\n", source="b.psgs")
+    assert str(info.value).startswith("b.psgs:2:1: not UTF-8")
+
+
 def test_load_accepts_a_byte_order_mark(tmp_path):
     path = tmp_path / "bom.psgs"
     path.write_bytes(b"\xef\xbb\xbf" + SMALL.encode())
