@@ -245,13 +245,16 @@ def _sequence_words(rhs, n: int, words_of, yields) -> set:
 
 # ---------------------------------------------------------------- entry point
 def language(system, max_length: int, *, max_configurations: int = 200_000,
-             max_candidates: int = 100_000, max_words: int = 1_000_000,
-             method: str | None = None, **membership_options) -> Language:
+             max_form_length: int = 1_000, max_candidates: int = 100_000,
+             max_words: int = 1_000_000, method: str | None = None,
+             **membership_options) -> Language:
     """Enumerate the language of ``system`` up to size ``max_length``, in order of size.
 
     * :class:`~psgs.model.PSGS`: the terminal tuples whose total length is at
       most ``max_length``. ``method`` is ``"search"`` (breadth-first over
-      configurations, bounded by ``max_configurations``) or ``"filter"``
+      configurations, bounded by ``max_configurations`` and by
+      ``max_form_length``, the longest sentential form it keeps: ε-rules let
+      forms grow without adding terminals) or ``"filter"``
       (component words by length, kept when :func:`psgs.membership.accepts`
       accepts the tuple; bounded by ``max_words`` and ``max_candidates``; the
       remaining keyword arguments go to ``accepts``). The default is
@@ -274,6 +277,7 @@ def language(system, max_length: int, *, max_configurations: int = 200_000,
     if isinstance(max_length, bool) or not isinstance(max_length, int) or max_length < 0:
         raise ValidationError(f"max_length must be a whole number ≥ 0, not {max_length!r}")
     for name, value in (("max_configurations", max_configurations),
+                        ("max_form_length", max_form_length),
                         ("max_candidates", max_candidates), ("max_words", max_words)):
         if isinstance(value, bool) or not isinstance(value, int) or value < 1:
             raise ValidationError(f"{name} must be a whole number ≥ 1, not {value!r}")
@@ -284,12 +288,12 @@ def language(system, max_length: int, *, max_configurations: int = 200_000,
     if isinstance(system, PCGS):
         if method == "filter":
             raise ValidationError("method 'filter' needs a PSGS; a PCGS is enumerated by search")
-        return _pcgs_search(system, max_length, max_configurations)
+        return _pcgs_search(system, max_length, max_configurations, max_form_length)
     if isinstance(system, PSGS):
         if method is None:
             method = "search" if system.mode == "parallel" else _filter_if_available()
         if method == "search":
-            return _psgs_search(system, max_length, max_configurations)
+            return _psgs_search(system, max_length, max_configurations, max_form_length)
         return _psgs_filter(system, max_length, max_words, max_candidates, membership_options)
     raise ValidationError(f"expected a PSGS, a PCGS or a Grammar, not {type(system).__name__}")
 
@@ -317,7 +321,17 @@ def _usable_rules(system: PSGS) -> list[tuple[Rule, ...]]:
             for g, synced in zip(system.components, system.synchronised_rules)]
 
 
-def _psgs_search(system: PSGS, max_length: int, max_configurations: int) -> Language:
+def _too_long(configuration, max_form_length: int) -> bool:
+    return any(len(f) > max_form_length for f in configuration)
+
+
+def _form_bound(max_form_length: int) -> str:
+    return (f"left out configurations with a form longer than {max_form_length} symbols "
+            f"(max_form_length)")
+
+
+def _psgs_search(system: PSGS, max_length: int, max_configurations: int,
+                 max_form_length: int) -> Language:
     from .derivation import _psgs_successors, initial_configuration
 
     yields = [min_yields(rules) for rules in _usable_rules(system)]
@@ -337,6 +351,7 @@ def _psgs_search(system: PSGS, max_length: int, max_configurations: int) -> Lang
     start = initial_configuration(system)
     found: set = set()
     bound = None
+    too_long = False
     seen = {start}
     queue = deque([start] if lower_bound(start) <= max_length else [])
     while queue:
@@ -347,12 +362,17 @@ def _psgs_search(system: PSGS, max_length: int, max_configurations: int) -> Lang
         for after in successors(configuration):
             if after in seen or lower_bound(after) > max_length:
                 continue
+            if _too_long(after, max_form_length):
+                too_long = True
+                continue
             if len(seen) >= max_configurations:
                 bound = f"stopped after {len(seen)} configurations (max_configurations)"
                 queue.clear()
                 break
             seen.add(after)
             queue.append(after)
+    if too_long:
+        bound = "; ".join(filter(None, [bound, _form_bound(max_form_length)]))
     words = sorted(found, key=_tuple_key)
     return Language(tuple(words), bound is None, bound, max_length, "search", len(seen),
                     "tuples")
@@ -460,7 +480,8 @@ def _tuples_within(per_component: Sequence[Sequence[Word]], max_length: int) -> 
 
 
 # ---------------------------------------------------------------- PCGS
-def _pcgs_search(system: PCGS, max_length: int, max_configurations: int) -> Language:
+def _pcgs_search(system: PCGS, max_length: int, max_configurations: int,
+                 max_form_length: int) -> Language:
     from .derivation import _pcgs_steps, initial_configuration
 
     master = system.master_index
@@ -476,6 +497,7 @@ def _pcgs_search(system: PCGS, max_length: int, max_configurations: int) -> Lang
     start = initial_configuration(system)
     found: set = set()
     bound = None
+    too_long = False
     seen = {start}
     queue = deque([] if hopeless(start) else [start])
     while queue:
@@ -490,12 +512,17 @@ def _pcgs_search(system: PCGS, max_length: int, max_configurations: int) -> Lang
             after = step.after
             if after in seen or hopeless(after):
                 continue
+            if _too_long(after, max_form_length):
+                too_long = True
+                continue
             if len(seen) >= max_configurations:
                 bound = f"stopped after {len(seen)} configurations (max_configurations)"
                 queue.clear()
                 break
             seen.add(after)
             queue.append(after)
+    if too_long:
+        bound = "; ".join(filter(None, [bound, _form_bound(max_form_length)]))
     words = sorted(found, key=_word_key)
     return Language(tuple(words), bound is None, bound, max_length, "search", len(seen))
 
