@@ -21,8 +21,11 @@ Names are mangled injectively and reversibly (:func:`from_lark_name`):
   lowercase letter as its uppercase, an uppercase letter ``X`` as ``_X``,
   a digit as itself, ``_`` as ``__`` and any other character as ``_<code>_``
   (its decimal code point);
-* a PCGS query ``?G2`` becomes the terminal ``Q_`` + the terminal-style
-  spelling of the component name, matching the text ``?G2``.
+
+A PCGS component taken alone derives nothing from a query symbol (it only
+gets a value by communication), so rules holding a query are left out, as
+are rules that take part in no terminal derivation; the language is
+unchanged.
 """
 
 from __future__ import annotations
@@ -30,7 +33,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 from .errors import ValidationError
-from .model import PCGS, PSGS, Grammar, Nonterminal, Query, Rule, Terminal
+from .model import PCGS, PSGS, Grammar, Nonterminal, Rule, Terminal
 
 __all__ = ["to_lark", "grammar_to_lark", "from_lark_name", "lark_name", "START_RULE",
            "EMPTY_TERMINAL", "LARK_OPTIONS"]
@@ -44,18 +47,15 @@ LARK_OPTIONS = {"start": START_RULE, "parser": "earley", "lexer": "basic"}
 
 _NT_PREFIX = "n_"
 _T_PREFIX = "T_"
-_Q_PREFIX = "Q_"
 
 
 # ---------------------------------------------------------------- names
-def lark_name(symbol: Nonterminal | Terminal | Query) -> str:
+def lark_name(symbol: Nonterminal | Terminal) -> str:
     """The Lark name of a symbol: a rule name for a nonterminal, a terminal name otherwise."""
     if isinstance(symbol, Nonterminal):
         return _NT_PREFIX + _encode_nonterminal(symbol.name)
     if isinstance(symbol, Terminal):
         return _T_PREFIX + _encode_terminal(symbol.name)
-    if isinstance(symbol, Query):
-        return _Q_PREFIX + _encode_terminal(symbol.component)
     raise ValidationError(f"{symbol!r} is not a symbol")
 
 
@@ -141,7 +141,7 @@ def _decode_terminal(code: str, whole: str) -> str:
     return "".join(out)
 
 
-def from_lark_name(name: str) -> Nonterminal | Terminal | Query:
+def from_lark_name(name: str) -> Nonterminal | Terminal:
     """The symbol a Lark rule or terminal name of an export stands for.
 
     The inverse of :func:`lark_name`:
@@ -150,8 +150,6 @@ def from_lark_name(name: str) -> Nonterminal | Terminal | Query:
     Nonterminal(name='N13')
     >>> from_lark_name("T_A")
     Terminal(name='a')
-    >>> from_lark_name("Q__G2")
-    Query(component='G2')
 
     Raises :class:`~psgs.errors.ValidationError` for a name no export uses
     (``start``, ``EMPTY_LANGUAGE``, Lark's anonymous names).
@@ -163,8 +161,6 @@ def from_lark_name(name: str) -> Nonterminal | Terminal | Query:
             symbol = Nonterminal(_decode_nonterminal(name[len(_NT_PREFIX):], name))
         elif name.startswith(_T_PREFIX):
             symbol = Terminal(_decode_terminal(name[len(_T_PREFIX):], name))
-        elif name.startswith(_Q_PREFIX):
-            symbol = Query(_decode_terminal(name[len(_Q_PREFIX):], name))
         else:
             raise _not_ours(name)
     except ValidationError as exc:
@@ -186,8 +182,8 @@ def to_lark(system: PSGS | PCGS | Grammar) -> dict[str, str]:
     text with ``lark.Lark(text, start="start", parser="earley",
     lexer="basic")`` and parse words as terminals joined by single spaces.
     The language of each text is exactly the component's context-free
-    language taken alone (query symbols of a PCGS count as terminals
-    ``?NAME``); synchronisation is not expressible in Lark.
+    language taken alone (a PCGS query derives nothing there);
+    synchronisation is not expressible in Lark.
     """
     if isinstance(system, Grammar):
         return {system.name: grammar_to_lark(system)}
@@ -222,7 +218,7 @@ def grammar_to_lark(grammar: Grammar, system: PSGS | PCGS | None = None) -> str:
         lines.append(f"{lark_name(lhs)}: " + "\n    | ".join(alternatives))
     lines.append("")
     for symbol in _terminals_in(useful):
-        lines.append(f"{lark_name(symbol)}: {_literal(_text(symbol))}")
+        lines.append(f"{lark_name(symbol)}: {_literal(symbol.name)}")
     lines.append("")
     lines.append('%ignore " "')
     return "\n".join(lines) + "\n"
@@ -248,8 +244,9 @@ def _header(grammar: Grammar, system) -> list[str]:
         ]
     elif isinstance(system, PCGS):
         lines += [
-            "// Communication between components is not expressible in Lark: a query ?NAME",
-            "// is kept as a terminal, matching the text ?NAME.",
+            "// Communication between components is not expressible in Lark: taken alone a",
+            "// component derives nothing from a query ?NAME, so rules with queries are left",
+            "// out, and the master's words in the system are not this grammar's language.",
         ]
     lines += [
         "// Names: nonterminal X1 -> rule n__x1; terminal \"a\" -> terminal T_A;",
@@ -265,15 +262,11 @@ def _expansion(rule: Rule) -> str:
     return " ".join(lark_name(s) for s in rule.rhs)
 
 
-def _text(symbol: Terminal | Query) -> str:
-    return symbol.name if isinstance(symbol, Terminal) else f"?{symbol.component}"
-
-
-def _terminals_in(rules: Iterable[Rule]) -> list[Terminal | Query]:
-    seen: dict[Terminal | Query, None] = {}
+def _terminals_in(rules: Iterable[Rule]) -> list[Terminal]:
+    seen: dict[Terminal, None] = {}
     for rule in rules:
         for s in rule.rhs:
-            if isinstance(s, (Terminal, Query)):
+            if isinstance(s, Terminal):
                 seen.setdefault(s, None)
     return list(seen)
 
@@ -301,29 +294,46 @@ def _literal(text: str) -> str:
 
 
 def _useful_rules(grammar: Grammar) -> list[Rule]:
-    """The rules that take part in some terminal derivation from the start symbol, in order."""
+    """The rules that take part in some terminal derivation from the start symbol, in order.
+
+    A query symbol derives nothing in a component taken alone, so a rule
+    holding one takes part in no terminal derivation. Linear in the size of
+    the grammar (a worklist, as induced grammars have thousands of rules).
+    """
+    waiting: dict[Nonterminal, list[int]] = {}  # nonterminal -> rules it still blocks
+    missing = []
     productive: set[Nonterminal] = set()
-    changed = True
-    while changed:
-        changed = False
-        for rule in grammar.rules:
-            if rule.lhs not in productive and all(
-                    not isinstance(s, Nonterminal) or s in productive for s in rule.rhs):
-                productive.add(rule.lhs)
-                changed = True
+    queue: list[Nonterminal] = []
+    for index, rule in enumerate(grammar.rules):
+        if any(not isinstance(s, (Terminal, Nonterminal)) for s in rule.rhs):
+            missing.append(-1)  # a query: never productive
+            continue
+        needed = {s for s in rule.rhs if isinstance(s, Nonterminal)}
+        missing.append(len(needed))
+        for symbol in needed:
+            waiting.setdefault(symbol, []).append(index)
+        if not needed and rule.lhs not in productive:
+            productive.add(rule.lhs)
+            queue.append(rule.lhs)
+    while queue:
+        for index in waiting.get(queue.pop(), ()):
+            missing[index] -= 1
+            lhs = grammar.rules[index].lhs
+            if missing[index] == 0 and lhs not in productive:
+                productive.add(lhs)
+                queue.append(lhs)
     if grammar.start not in productive:
         return []
-    candidates = [r for r in grammar.rules
-                  if r.lhs in productive
-                  and all(not isinstance(s, Nonterminal) or s in productive for s in r.rhs)]
+    candidates: dict[Nonterminal, list[Rule]] = {}
+    for index, rule in enumerate(grammar.rules):
+        if missing[index] == 0:
+            candidates.setdefault(rule.lhs, []).append(rule)
     reachable = {grammar.start}
     frontier = [grammar.start]
     while frontier:
-        lhs = frontier.pop()
-        for rule in candidates:
-            if rule.lhs == lhs:
-                for s in rule.rhs:
-                    if isinstance(s, Nonterminal) and s not in reachable:
-                        reachable.add(s)
-                        frontier.append(s)
-    return [r for r in candidates if r.lhs in reachable]
+        for rule in candidates.get(frontier.pop(), ()):
+            for s in rule.rhs:
+                if s not in reachable:
+                    reachable.add(s)
+                    frontier.append(s)
+    return [r for i, r in enumerate(grammar.rules) if missing[i] == 0 and r.lhs in reachable]
