@@ -143,8 +143,11 @@ def _syntax_error(exc: lark.exceptions.UnexpectedInput, text: str, source: str) 
         message = f"missing arrow: expected '->' (or '→') after the left-hand side, found {found}"
     elif expected <= {"COMMA", "RPAR"} and expected:
         message = f"unterminated tuple: expected ',' or ')', found {found}"
-    elif "COLON" in expected and token is not None and token.type == "ARROW":
+    elif token is not None and token.type == "ARROW":
         message = "a rule needs a label: write 'label: LHS -> ...'"
+    elif token is not None and token.type == "_NL":
+        words = sorted(_TOKEN_WORDS.get(name, name) for name in expected)
+        message = "unterminated line" + (f": expected {_one_of(words)}" if words else "")
     else:
         words = sorted(_TOKEN_WORDS.get(name, name) for name in expected)
         message = f"unexpected {found}" + (f"; expected {_one_of(words)}" if words else "")

@@ -180,6 +180,8 @@ ERRORS = [
     ("missing arrow", H + '  p: S "a"\n', 3, 8, "missing arrow"),
     ("missing arrow at end of line", H + "  p: S\n", 3, 7, "missing arrow"),
     ("unterminated string", H + '  p: S -> "a\n', 3, 11, "unterminated string"),
+    ("unterminated line", H + "  p:\n", 3, 5, "unterminated line: expected a name"),
+    ("label after the left side", H + '  S p -> "a"\n', 3, 7, "needs a label"),
     ("unterminated tuple", H + '  p: S -> "a"\nsync\n  (p\n', 5, 5, "unterminated tuple"),
     ("empty file", "", 1, 1, "empty file"),
     ("only comments", "# nothing\n\n// here\n", 1, 1, "empty file"),
