@@ -187,3 +187,17 @@ def test_the_acceptance_command_prints_one_line():
                            "--enumerate", "--max-length", "32"], capture_output=True, text=True,
                           cwd=REPO)
     assert (done.returncode, done.stdout, done.stderr) == (0, K1 + "\n", "")
+
+
+def test_the_console_examples_of_the_docs_print_what_they_say(capsys):
+    import re
+    import shlex
+    for page in ("format.md", "export.md"):
+        text = (REPO / "docs" / page).read_text(encoding="utf-8")
+        for block in re.findall(r"```console\n(.*?)```", text, re.S):
+            command, _, expected = block.partition("\n")
+            argv = shlex.split(command.removeprefix("$ "))
+            assert argv[0] == "psgs"
+            argv = [str(REPO / a) if a.startswith("grammars/") else a for a in argv[1:]]
+            status, out, _ = run(capsys, *argv)
+            assert status == 0 and out == expected
