@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import random
 import subprocess
 import sys
 from pathlib import Path
@@ -57,17 +58,14 @@ def test_settings_are_read():
     assert (system.mode, system.unsynchronised) == ("single", "strict")
 
 
-def test_comments_blank_lines_unicode_arrow_and_epsilon():
-    text = """
-    # a full-line comment, indented
-psgs E   // a trailing comment
-// a comment line
+def test_a_hash_after_text_is_not_a_comment():
+    # '#' starts a comment only as the first non-blank character of a line
+    with pytest.raises(FormatError) as info:
+        loads('psgs E\ncomponent G start S   # trailing\n  p: S -> "a"\n')
+    assert (info.value.line, info.value.column) == (2, 23)
 
-component G start S   # not a comment here? no: '#' only starts a comment first on a line
-"""
-    # '#' after text is not a comment: that line is malformed, and says so
-    with pytest.raises(FormatError):
-        loads(text)
+
+def test_comments_blank_lines_unicode_arrow_and_epsilon():
     text = """
   # comment
 psgs E   // trailing
@@ -255,7 +253,7 @@ def test_binary_junk_is_one_located_error(tmp_path):
 
 
 def test_random_bytes_never_escape_as_anything_but_format_error(tmp_path):
-    rng = __import__("random").Random(7)
+    rng = random.Random(7)
     path = tmp_path / "noise.psgs"
     for _ in range(30):
         path.write_bytes(bytes(rng.randrange(256) for _ in range(rng.randrange(1, 200))))
