@@ -8,8 +8,9 @@
 * a node per rule, id ``(component, "rule", label)``, attributes
   ``kind="rule"``, ``label``, ``component``, ``rule`` (the
   :class:`~psgs.model.Rule`), ``text`` (``"N5 → b c"``), ``terminals``
-  (the terminal texts of its right side, in order), ``synchronised``
-  (True when it appears in a tuple of M);
+  (the terminal texts of its right side, in order), ``queries`` (the
+  components its query symbols name), ``synchronised`` (True when it
+  appears in a tuple of M);
 
 and edges, each with a ``kind`` attribute:
 
@@ -84,6 +85,7 @@ def to_networkx(system: PSGS | PCGS | Grammar) -> nx.MultiDiGraph:
             graph.add_node(node, kind="rule", label=rule.label, component=grammar.name,
                            rule=rule, text=str(rule),
                            terminals=tuple(s.name for s in rule.rhs if isinstance(s, Terminal)),
+                           queries=tuple(s.component for s in rule.rhs if isinstance(s, Query)),
                            synchronised=rule in synchronised)
             graph.add_edge(nonterminal_node(grammar.name, rule.lhs.name), node, kind="rewrites",
                            position=None)
@@ -91,7 +93,8 @@ def to_networkx(system: PSGS | PCGS | Grammar) -> nx.MultiDiGraph:
                 if isinstance(symbol, Nonterminal):
                     graph.add_edge(node, nonterminal_node(grammar.name, symbol.name),
                                    kind="rewrites", position=position)
-                elif isinstance(symbol, Query):
+                elif isinstance(symbol, Query) and symbol.component in starts:
+                    # a grammar exported alone has no queried component to point at
                     target = nonterminal_node(symbol.component, starts[symbol.component].name)
                     graph.add_edge(node, target, kind="queries", position=position)
     if isinstance(system, PSGS):

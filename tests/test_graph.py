@@ -82,6 +82,14 @@ def test_pcgs_queries_point_at_the_queried_axiom():
         (rule_node("G1", "p"), nonterminal_node("G2", "T"), 1)]
 
 
+def test_a_pcgs_component_alone_keeps_its_queries_as_an_attribute():
+    S = Nonterminal("S")
+    g = Grammar("G1", S, (Rule("p", S, (Terminal("a"), Query("G2"))),))
+    graph = to_networkx(g)
+    assert graph.nodes[rule_node("G1", "p")]["queries"] == ("G2",)
+    assert not edges_of_kind(graph, "queries")
+
+
 def test_a_grammar_alone_and_bad_input():
     S = Nonterminal("S")
     graph = to_networkx(Grammar("G", S, (Rule("p", S, (S, S)), Rule("q", S, ()))))
