@@ -10,7 +10,7 @@ from hypothesis import HealthCheck, given, settings
 
 import psgs
 import psgs.strategies as pst
-from psgs import PCGS, PSGS, Grammar, Nonterminal, Query, Rule, Terminal, ValidationError
+from psgs import PCGS, Grammar, Nonterminal, Query, Rule, Terminal, ValidationError
 from psgs.graph import nonterminal_node, rule_node, to_networkx
 
 REPO = Path(__file__).resolve().parents[1]
