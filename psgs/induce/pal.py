@@ -72,6 +72,10 @@ class PAL(Inducer):
     - ``seeds`` (3): how many of a string's most frequent digrams are grown into motifs.
     - ``rounds`` (2): rounds of pooling; after each but the last, every member's
       copies are located again with its voted pattern.
+    - ``joins_copies`` (5): a string outside every group joins one when, read in
+      the group's windows, at least this many of its copies have the common
+      length and half of their columns agree, beyond chance, in a share
+      ``conserve`` of them.
 
     >>> from psgs.synthetic import generate
     >>> case = generate(seed=1, noise=0.1)
@@ -85,7 +89,8 @@ class PAL(Inducer):
     def __init__(self, *, min_copies: int = 3, conserve: float = 0.6, edge_share: float = 0.5,
                  match_fraction: float = 0.5, scan_alpha: float = 0.05, alpha: float = 1e-4,
                  sync_fraction: float = 0.5, window_support: float = 0.34,
-                 max_pattern: int = 64, seeds: int = 3, rounds: int = 2) -> None:
+                 max_pattern: int = 64, seeds: int = 3, rounds: int = 2,
+                 joins_copies: int = 5) -> None:
         check_number("min_copies", min_copies, low=2, integer=True)
         check_number("conserve", conserve, low=0, high=1, low_open=True)
         check_number("edge_share", edge_share, low=0, high=1)
@@ -97,6 +102,7 @@ class PAL(Inducer):
         check_number("max_pattern", max_pattern, low=2, integer=True)
         check_number("seeds", seeds, low=1, integer=True)
         check_number("rounds", rounds, low=1, integer=True)
+        check_number("joins_copies", joins_copies, low=2, integer=True)
         self.min_copies = min_copies
         self.conserve = conserve
         self.edge_share = edge_share
@@ -108,6 +114,7 @@ class PAL(Inducer):
         self.max_pattern = max_pattern
         self.seeds = seeds
         self.rounds = rounds
+        self.joins_copies = joins_copies
 
     def induce(self, actiongram: Actiongram) -> Induction:
         """Learn a PSGS from ``actiongram``; see :class:`~psgs.induce.Induction`."""
@@ -134,11 +141,21 @@ class PAL(Inducer):
 
         patterns: dict[int, tuple[str, ...]] = {}
         occurrences: dict[int, tuple[tuple[float, float], ...]] = {}
+        joined: dict[int, list[int]] = {}
+        grouped = {i for g in groups for i in g}
         for group in groups:
             located = {i: intervals[i] for i in group}
             for round_ in range(self.rounds):
                 windows = _pooled_windows([located[i] for i in group], self.window_support)
                 votes = {i: v for i in group if (v := _vote(strings[i], windows)) is not None}
+                if round_ + 1 == self.rounds:
+                    # strings whose own motif search fell short, read in the group's windows
+                    for i in range(len(strings)):
+                        if i not in grouped and (v := _vote(strings[i], windows)) is not None \
+                                and _repeats_in_windows(strings[i], v, self):
+                            votes[i] = v
+                            joined[i] = group
+                            grouped.add(i)
                 kept_columns = _trim(votes, self.edge_share) if votes else {}
                 if round_ + 1 == self.rounds:
                     break
@@ -166,6 +183,8 @@ class PAL(Inducer):
             m = motifs[i]
             if i in patterns:
                 status = "component"
+                if i in joined:
+                    partners[i] = joined[i]
             elif m is None:
                 status = "no repetition"
             elif i not in partners:
@@ -496,6 +515,7 @@ def _pooled_windows(member_intervals: list[np.ndarray], support: float) -> np.nd
     core = np.column_stack((opened[keep], closed[keep]))
     if len(core) == 0:
         return np.zeros((0, 2))
+    core = _join_fragments(core, spans)
     low, high = core[:, 0].copy(), core[:, 1].copy()
     first = np.searchsorted(core[:, 1], spans[:, 0], side="right")  # first core ending after s
     last = np.searchsorted(core[:, 0], spans[:, 1], side="left") - 1  # last core starting before e
@@ -504,6 +524,40 @@ def _pooled_windows(member_intervals: list[np.ndarray], support: float) -> np.nd
     np.maximum.at(high, last[hit], spans[hit, 1])
     low[1:] = np.maximum(low[1:], core[:-1, 1])
     high[:-1] = np.minimum(high[:-1], core[1:, 0])
+    return np.column_stack((low, high))
+
+
+def _join_fragments(core: np.ndarray, spans: np.ndarray) -> np.ndarray:
+    """Join touching cores that copies run across more than they stop or start at.
+
+    Where one member repeats a shorter motif twice per copy of the others
+    (and another misses its copy), coverage dips at the short motif's copy
+    boundary; that instant is inside a copy for the members spanning it.
+    Where every member's copy ends and the next begins (no gap between
+    copies), nobody spans it and the cores stay apart.
+    """
+    if len(core) < 2:
+        return core
+    eps = 1e-9 * max(1.0, float(np.abs(core).max()))
+    touching = np.flatnonzero(np.abs(core[1:, 0] - core[:-1, 1]) <= eps)
+    if len(touching) == 0:
+        return core
+    t = core[touching, 1]
+    starts, ends = np.sort(spans[:, 0]), np.sort(spans[:, 1])
+    spanning = (np.searchsorted(starts, t - eps, side="left")
+                - np.searchsorted(ends, t + eps, side="right"))
+    # a member whose copy ends where its next begins counts once
+    stopping = np.maximum(np.searchsorted(starts, t + eps, side="right")
+                          - np.searchsorted(starts, t - eps, side="left"),
+                          np.searchsorted(ends, t + eps, side="right")
+                          - np.searchsorted(ends, t - eps, side="left"))
+    join = np.zeros(len(core), dtype=bool)  # join[k]: core k continues core k - 1
+    join[touching[(spanning >= 1) & (spanning >= stopping)] + 1] = True
+    group = np.cumsum(~join) - 1
+    low = np.full(group[-1] + 1, np.inf)
+    high = np.full(group[-1] + 1, -np.inf)
+    np.minimum.at(low, group, core[:, 0])
+    np.maximum.at(high, group, core[:, 1])
     return np.column_stack((low, high))
 
 
@@ -568,6 +622,30 @@ def _vote(string: _Timed, windows: np.ndarray) -> _Vote | None:
     return _Vote(tuple(pattern), np.asarray(shares), np.median(offsets, axis=0),
                  np.median(ends, axis=0), tuple((a, b) for _, a, b in picked),
                  tuple(k for k, _, _ in picked))
+
+
+def _repeats_in_windows(string: _Timed, vote: _Vote, params: PAL) -> bool:
+    """Whether a string read in a group's windows repeats a pattern of its own.
+
+    It needs at least ``joins_copies`` copies of the common length, and at
+    least half of their columns (two or more) where the plurality symbol is
+    more frequent than chance: the binomial tail of its count, at the
+    symbol's frequency in the whole string, times the number of distinct
+    symbols (any of them could have been the plurality), below 0.01.
+    """
+    length = len(vote.pattern)
+    same = [a for a, b in vote.spans if b - a == length]
+    if len(same) < params.joins_copies or length < 2:
+        return False
+    freq = np.bincount(string.codes) / len(string.codes)
+    penalty = math.log10(max(2, int(np.count_nonzero(freq))))
+    agreeing = 0
+    for column, (sym, share) in enumerate(zip(vote.pattern, vote.shares.tolist())):
+        k = round(share * len(same))
+        if share >= params.conserve and \
+                _log10_binom_sf(k, len(same), float(freq[sym])) + penalty <= -2:
+            agreeing += 1
+    return agreeing >= max(2, math.ceil(length / 2))
 
 
 def _trim(votes: dict[int, _Vote], edge_share: float) -> dict[int, tuple[int, int]]:
