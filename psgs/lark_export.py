@@ -237,11 +237,17 @@ def _header(grammar: Grammar, system) -> list[str]:
         "// Its language is the component's context-free language taken alone.",
     ]
     if isinstance(system, PSGS):
-        lines += [
-            "// Synchronisation (the tuples of M) is not expressible in Lark, and neither is",
-            f"// rewriting every occurrence at once (mode {system.mode}): a word of this",
-            "// grammar is a necessary condition for membership, not the whole answer.",
-        ]
+        if system.mode == "parallel":
+            lines += [
+                "// Synchronisation (the tuples of M) is not expressible in Lark, and neither",
+                "// is rewriting every occurrence at once (mode parallel): a word of this",
+                "// grammar is a necessary condition for membership, not the whole answer.",
+            ]
+        else:
+            lines += [
+                "// Synchronisation (the tuples of M) is not expressible in Lark: a word of",
+                "// this grammar is a necessary condition for membership, not the whole answer.",
+            ]
     elif isinstance(system, PCGS):
         lines += [
             "// Communication between components is not expressible in Lark: taken alone a",

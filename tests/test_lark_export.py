@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import re
 from pathlib import Path
@@ -114,8 +115,11 @@ def test_export_text_documents_how_to_load_and_what_it_cannot_say():
     for text in texts.values():
         assert 'start="start", parser="earley", lexer="basic"' in text
         assert "Synchronisation" in text and "not expressible in Lark" in text
-        assert "necessary condition" in text
+        assert "necessary condition" in text and "mode parallel" in text
         assert '%ignore " "' in text
+    single = dataclasses.replace(system, mode="single")
+    for text in to_lark(single).values():
+        assert "necessary condition" in text and "parallel" not in text
 
 
 def test_a_single_grammar_exports_as_one_entry():
