@@ -414,3 +414,20 @@ def test_the_python_blocks_of_the_format_page_run(tmp_path, monkeypatch, capsys)
         exec(compile(block, str(DOC), "exec"), {})
     printed = capsys.readouterr().out
     assert printed.rstrip("\n") == doc_blocks("text")[0].rstrip("\n")
+
+
+@settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.too_slow,
+                                                                 HealthCheck.filter_too_much])
+@given(odd_psgs(), st.booleans(), st.data())
+def test_pcgs_round_trip_with_keywords_as_names(shape, returning, data):
+    components = list(shape.components)
+    asking = components[0]
+    target = data.draw(st.sampled_from([g.name for g in components]))
+    rule = asking.rules[0]
+    labels = {r.label for r in asking.rules}
+    label = next(f"ask{k}" for k in range(len(labels) + 1) if f"ask{k}" not in labels)
+    extra = Rule(label, rule.lhs, rule.rhs + (Query(target),))
+    components[0] = Grammar(asking.name, asking.start, asking.rules + (extra,))
+    master = data.draw(st.sampled_from([g.name for g in components]))
+    system = PCGS(tuple(components), returning=returning, master=master, name=shape.name)
+    assert loads(dumps(system)) == system
