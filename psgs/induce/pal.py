@@ -42,7 +42,6 @@ from __future__ import annotations
 
 import functools
 import math
-from collections import Counter
 from dataclasses import dataclass
 
 import numpy as np
@@ -602,26 +601,30 @@ def _vote(string: _Timed, windows: np.ndarray) -> _Vote | None:
     seen first in time among equals).
     """
     middles = (string.starts + string.ends) / 2
-    lo = np.searchsorted(middles, windows[:, 0], side="left").tolist()
-    hi = np.searchsorted(middles, windows[:, 1], side="left").tolist()
-    picked = [(k, a, b) for k, (a, b) in enumerate(zip(lo, hi)) if b > a]
-    if not picked:
+    lo = np.searchsorted(middles, windows[:, 0], side="left")
+    hi = np.searchsorted(middles, windows[:, 1], side="left")
+    sizes = hi - lo
+    picked = np.flatnonzero(sizes > 0)
+    if len(picked) == 0:
         return None
-    lengths = Counter(b - a for _, a, b in picked)
-    length = max(lengths, key=lambda n: (lengths[n], n))
-    full = [(k, a) for k, a, b in picked if b - a == length]
-    same = np.array([string.codes[a:a + length] for _, a in full])
-    offsets = np.array([string.starts[a:a + length] - windows[k, 0] for k, a in full])
-    ends = np.array([string.ends[a:a + length] - windows[k, 0] for k, a in full])
+    counts = np.bincount(sizes[picked])
+    length = int(len(counts) - 1 - np.argmax(counts[::-1]))  # most common; longer among equals
+    full = picked[sizes[picked] == length]
+    index = lo[full][:, None] + np.arange(length)
+    same = string.codes[index]
+    offsets = string.starts[index] - windows[full, 0][:, None]
+    ends = string.ends[index] - windows[full, 0][:, None]
     pattern, shares = [], []
     for column in same.T:
-        counts = Counter(column.tolist())
-        top = max(counts.values())
-        pattern.append(next(s for s in column.tolist() if counts[s] == top))
+        tally = np.bincount(column)
+        top = tally.max()
+        # ties go to the symbol seen first in time
+        pattern.append(int(column[np.argmax(tally[column] == top)]))
         shares.append(top / len(column))
     return _Vote(tuple(pattern), np.asarray(shares), np.median(offsets, axis=0),
-                 np.median(ends, axis=0), tuple((a, b) for _, a, b in picked),
-                 tuple(k for k, _, _ in picked))
+                 np.median(ends, axis=0),
+                 tuple(zip(lo[picked].tolist(), hi[picked].tolist())),
+                 tuple(picked.tolist()))
 
 
 def _repeats_in_windows(string: _Timed, vote: _Vote, params: PAL) -> bool:
