@@ -52,4 +52,4 @@ def __getattr__(name: str):
 
 
 def __dir__():
-    return sorted(set(globals()) | set(__all__) | _SUBMODULES)
+    return sorted(set(__all__) | _SUBMODULES | {"__version__"})
