@@ -427,6 +427,9 @@ class _ScheduleSearch:
                         if self.focus is None or cg.index[g.start] in self.focus[c] else ()
                         for c, (g, cg, chart) in enumerate(zip(self.system.components,
                                                                self.compiled, self.charts)))
+        if all(not front for front in initial):  # only in a relaxation with nothing to track
+            return (Acceptance("yes", states=explored + 1, system=self.system,
+                               schedule=self._readable([])), explored + 1, False)
         visited = {self.key(initial)}
         stack = [iter(self.successors(initial))]
         path: list = []
@@ -472,6 +475,8 @@ def _replay(system: PSGS, schedule) -> Any:
     """Turn a schedule into a Derivation, checking each step with the derivation engine."""
     from .derivation import Derivation, apply_tuple, initial_configuration
 
+    if schedule[0] == "pcgs":
+        return _replay_pcgs(system, schedule[1])
     words, moves = schedule
     configuration = initial_configuration(system)
     # per component, the span each symbol of the form must derive (None for terminals)
@@ -524,3 +529,21 @@ def _positions_in_order(rewrites, spans, form):
                 taken.append(k)
                 break
     return taken
+
+
+def _replay_pcgs(system: PCGS, found_steps) -> Any:
+    from .derivation import Derivation, apply_tuple, initial_configuration
+
+    configuration = initial_configuration(system)
+    steps = []
+    for found in found_steps:
+        if found.kind == "communicate":
+            step = apply_tuple(system, configuration, "communicate")
+        else:
+            step = apply_tuple(system, configuration, found.tuple,
+                               [p or None for p in found.positions])
+        if step.after != found.after:  # pragma: no cover - would be a bug
+            raise ValidationError("the PCGS witness does not replay")
+        steps.append(step)
+        configuration = step.after
+    return Derivation(system, tuple(steps))

@@ -28,7 +28,7 @@ from .model import PCGS, PSGS, Grammar, Nonterminal, Query, Rule, Terminal
 
 __all__ = [
     "terminals", "nonterminals", "symbols", "grammars", "psgs_systems", "pcgs_systems",
-    "near_misses",
+    "derivations", "derivable_words", "near_misses", "actiongrams",
 ]
 
 DEFAULT_ALPHABET = ("a", "b", "c")
@@ -162,3 +162,105 @@ def pcgs_systems(draw, *, min_components: int = 1, max_components: int = 3,
             max_rhs=max_rhs, alphabet=alphabet, allow_epsilon=allow_epsilon, queries=targets)))
     ret = draw(st.booleans()) if returning is None else returning
     return PCGS(tuple(components), returning=ret)
+
+
+@st.composite
+def derivations(draw, system, *, max_steps: int = 30, max_form_length: int = 40,
+                terminal: bool = False):
+    """A derivation of ``system`` (PSGS or PCGS), one drawn choice per step.
+
+    Each step is drawn among :func:`psgs.derivation.applicable_steps`, so the
+    derivation shrinks towards the first applicable step at each point and
+    towards fewer steps. It stops when terminal, blocked, after ``max_steps``
+    steps or when a form exceeds ``max_form_length`` symbols. With
+    ``terminal=True`` only terminal derivations are drawn (others are
+    rejected, so use it with systems that terminate easily).
+    """
+    from hypothesis import assume
+
+    from .derivation import (Derivation, applicable_steps, initial_configuration,
+                             is_terminal_configuration)
+
+    configuration = initial_configuration(system)
+    steps = []
+    length = draw(st.integers(0, max_steps))
+    while len(steps) < length and not is_terminal_configuration(system, configuration):
+        if max(len(f) for f in configuration) > max_form_length:
+            break
+        options = applicable_steps(system, configuration)
+        if not options:
+            break
+        step = options[draw(st.integers(0, len(options) - 1))]
+        steps.append(step)
+        configuration = step.after
+    derivation = Derivation(system, tuple(steps))
+    if terminal:
+        assume(derivation.is_terminal)
+    return derivation
+
+
+def derivable_words(system, *, max_steps: int = 30, max_form_length: int = 40):
+    """``(words, derivation)`` pairs: terminal results of :func:`derivations` of ``system``.
+
+    ``words`` is the tuple of words (PSGS) or the master's word (PCGS).
+    """
+    return derivations(system, max_steps=max_steps, max_form_length=max_form_length,
+                       terminal=True).map(lambda d: (d.words, d))
+
+
+@st.composite
+def near_misses(draw, system, words):
+    """``words`` with one symbol changed, inserted or deleted in one component's word.
+
+    These are *candidates* for non-members, not guaranteed non-members: the
+    edited tuple may still be in the language (check with
+    :func:`psgs.accepts`). Inserted and substituted symbols come from the
+    system's terminals. ``words`` is one word per component (PSGS) or one
+    word (PCGS).
+    """
+    from .model import as_word
+
+    alphabet = sorted(system.terminals) or [Terminal("a")]
+    single = isinstance(system, PCGS)
+    tuple_of_words = [as_word(words)] if single else [as_word(w) for w in words]
+    c = draw(st.integers(0, len(tuple_of_words) - 1))
+    w = list(tuple_of_words[c])
+    kinds = ["insert"] + (["change", "delete"] if w else [])
+    kind = draw(st.sampled_from(kinds))
+    if kind == "insert":
+        w.insert(draw(st.integers(0, len(w))), draw(st.sampled_from(alphabet)))
+    elif kind == "delete":
+        del w[draw(st.integers(0, len(w) - 1))]
+    else:
+        k = draw(st.integers(0, len(w) - 1))
+        others = [t for t in alphabet if t != w[k]]
+        if not others:
+            del w[k]
+        else:
+            w[k] = draw(st.sampled_from(others))
+    tuple_of_words[c] = tuple(w)
+    return tuple_of_words[0] if single else tuple(tuple_of_words)
+
+
+@st.composite
+def actiongrams(draw, *, min_strings: int = 1, max_strings: int = 4, max_length: int = 12,
+                alphabet: Sequence[str] = ("B", "G", "R", "Y"), durations: bool = True):
+    """An :class:`psgs.Actiongram`: named strings with no symbol repeated twice in a row.
+
+    Strings are named ``s1``, ``s2``, ...; lengths are drawn in
+    ``1..max_length``; with ``durations`` each symbol gets a duration in 1..5.
+    """
+    from .actiongram import Actiongram
+
+    alphabet = tuple(alphabet)
+    count = draw(st.integers(min_strings, max_strings))
+    strings, times = {}, {}
+    for k in range(1, count + 1):
+        length = draw(st.integers(1, max_length))
+        symbols = [draw(st.sampled_from(alphabet))]
+        for _ in range(length - 1):
+            symbols.append(draw(st.sampled_from([a for a in alphabet if a != symbols[-1]])))
+        strings[f"s{k}"] = symbols
+        if durations:
+            times[f"s{k}"] = [draw(st.integers(1, 5)) for _ in symbols]
+    return Actiongram.from_strings(strings, durations=times if durations else None)
