@@ -142,7 +142,7 @@ def main(argv=None) -> int:
 
     smoothing = (0.01, 0.02, 0.03, 0.04, 0.06) if args.quick else \
         (0.005, 0.01, 0.015, 0.02, 0.025, 0.03, 0.04, 0.05, 0.06, 0.08)
-    quanta = (0.1, 0.25, 0.5) if args.quick else (0.1, 0.2, 0.3, 0.5, 1.0)
+    quanta = (0.2, 0.5, 1.0) if args.quick else (0.2, 0.3, 0.5, 1.0, 2.0)
     sweep = []
     for s in smoothing:
         for q in quanta:

@@ -26,8 +26,9 @@ sys.path.insert(0, str(REPO))
 
 import kinetology  # noqa: E402
 from kinetology import plotting  # noqa: E402
-from kinetology.evaluation import (CMU_ANGLES, mocap6_performances,  # noqa: E402
-                                   reproducibility, selectivity, view_invariance)
+from kinetology.evaluation import (CMU_ANGLES, angle_table,  # noqa: E402
+                                   mocap6_performances, reproducibility, selectivity,
+                                   view_invariance)
 
 MOCAP = REPO.parent / "shared" / "data" / "mocap"
 IMG = REPO / "docs" / "img"
@@ -75,11 +76,14 @@ def main(argv=None) -> int:
     takes = {"02_01 walk": MOCAP / "cmu-subject02" / "02_01.amc",
              "02_03 run": MOCAP / "cmu-subject02" / "02_03.amc",
              "02_05 punch": MOCAP / "cmu-subject02" / "02_05.amc",
-             "01_01 (playground)": MOCAP / "cmu-01_01-pair" / "01_01.amc"}
+             "01_01 (playground)": MOCAP / "cmu-01_01-pair" / "01_01.amc",
+             "01_01 as BVH": MOCAP / "cmu-01_01-pair" / "01_01.bvh",
+             "Bandai walk (normal, 30 fps)": MOCAP / "bandai-namco-1" / "data" /
+             "dataset-1_walk_normal_001.bvh"}
     view_rows = []
     for label, path in takes.items():
         motion = walk if path.stem == "02_01" else kinetology.read(path)
-        for angle, triple in CMU_ANGLES.items():
+        for angle, triple in angle_table(motion.skeleton).items():
             result = view_invariance(motion, triple, views=args.views)
             per_view = result.agreement_per_view
             view_rows.append((label, angle, result.agreement, np.median(per_view),

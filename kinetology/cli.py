@@ -97,7 +97,7 @@ def _cmd_decompress(args) -> int:
 
 
 def _cmd_evaluate(args) -> int:
-    from .evaluation import (CMU_ANGLES, codec_point, mocap6_performances, reproducibility,
+    from .evaluation import (angle_table, codec_point, mocap6_performances, reproducibility,
                              selectivity, view_invariance)
     from .readers import read
     from .segmentation import segments
@@ -117,16 +117,16 @@ def _cmd_evaluate(args) -> int:
               f"(paper: 3.698%)")
         print(f"  reconstructivity: mean |error| {point['mae']:.3f} over all channels, "
               f"{point['mae_angles']:.3f} deg over angles (paper: 0.823 deg)")
-        if motion.skeleton is not None and all(
-                j in motion.skeleton.names for j in CMU_ANGLES["lknee"]):
+        table = angle_table(motion.skeleton)
+        if table:
             scores = []
-            for angle, triple in CMU_ANGLES.items():
+            for angle, triple in table.items():
                 vi = view_invariance(motion, triple, views=args.views, **params)
                 scores.append(f"{angle} {100 * vi.agreement:.1f}%")
             print(f"  view-invariance (2D state = 3D state, {args.views} views): "
                   + ", ".join(scores))
         else:
-            print("  view-invariance: needs a skeleton with CMU joint names (BVH or AMC+ASF)")
+            print("  view-invariance: needs a skeleton with CMU or Bandai Namco joint names")
     if args.mocap6:
         motions, perfs = mocap6_performances(args.mocap6)
         first = next(iter(motions.values()))
@@ -163,11 +163,14 @@ def _cmd_plot(args) -> int:
         fig = plotting.plot_reconstruction(motion, decoded, args.channel, start=args.start,
                                            stop=args.stop)
     else:
-        from .evaluation import CMU_ANGLES, view_invariance
-        if args.channel not in CMU_ANGLES:
-            raise MotionFormatError(f"--kind view needs --channel one of "
-                                    f"{', '.join(CMU_ANGLES)}", source=args.file)
-        result = view_invariance(motion, CMU_ANGLES[args.channel], **params)
+        from .evaluation import angle_table, view_invariance
+        table = angle_table(motion.skeleton)
+        if args.channel not in table:
+            raise MotionFormatError(f"--kind view needs a skeleton with CMU or Bandai Namco "
+                                    f"joint names and --channel one of "
+                                    f"{', '.join(table) or 'lknee, rknee, ...'}",
+                                    source=args.file)
+        result = view_invariance(motion, table[args.channel], **params)
         fig = plotting.plot_view_invariance(result, f"{args.channel}, {Path(args.file).name}",
                                             motion.frame_rate)
     plotting.save(fig, args.output)

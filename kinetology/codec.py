@@ -70,7 +70,7 @@ _VERSION = 1
 _FILTERS = [{"id": lzma.FILTER_LZMA2, "preset": 9 | lzma.PRESET_EXTREME}]
 
 #: Codec defaults: the segmentation's, plus the knot quantum in degrees.
-CODEC_DEFAULTS = {**DEFAULTS, "min_range": 0.0, "quantum": 0.2}
+CODEC_DEFAULTS = {**DEFAULTS, "min_range": 0.0, "quantum": 0.5}
 
 
 # -- the per-segment quartic ------------------------------------------------

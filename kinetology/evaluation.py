@@ -32,7 +32,8 @@ from .kinematics import forward_kinematics, joint_angle
 from .motion import Motion
 from .segmentation import DEFAULTS, STATES, segments, smooth, states
 
-__all__ = ["codec_point", "CMU_ANGLES", "ViewInvariance", "view_invariance",
+__all__ = ["codec_point", "CMU_ANGLES", "CMU_BVH_ANGLES", "BANDAI_ANGLES", "angle_table",
+           "ViewInvariance", "view_invariance",
            "MOCAP6_ACTIONS", "Performance", "mocap6_performances", "describe",
            "reproducibility", "selectivity"]
 
@@ -63,6 +64,46 @@ CMU_ANGLES = {
     "rshoulder": ("lowerback", "rhumerus", "rradius"),
     "lankle": ("ltibia", "lfoot", "ltoes"), "rankle": ("rtibia", "rfoot", "rtoes"),
 }
+
+
+def _mirror(table: dict, left: str, right: str) -> dict:
+    """Add the right-side angles of a table written for the left side."""
+    out = {}
+    for name, triple in table.items():
+        out[name] = triple
+        if name.startswith("l"):
+            out["r" + name[1:]] = tuple(j.replace(left, right) if left in j else j
+                                        for j in triple)
+    return out
+
+
+#: The same angles for the CMU BVH conversion's joint names.
+CMU_BVH_ANGLES = _mirror({
+    "lknee": ("LeftUpLeg", "LeftLeg", "LeftFoot"), "lhip": ("Spine", "LeftUpLeg", "LeftLeg"),
+    "lelbow": ("LeftArm", "LeftForeArm", "LeftHand"),
+    "lshoulder": ("Hips", "LeftArm", "LeftForeArm"),
+    "lankle": ("LeftLeg", "LeftFoot", "LeftToeBase")}, "Left", "Right")
+
+#: The same angles for the Bandai Namco dataset's joint names.
+BANDAI_ANGLES = _mirror({
+    "lknee": ("UpperLeg_L", "LowerLeg_L", "Foot_L"), "lhip": ("Chest", "UpperLeg_L", "LowerLeg_L"),
+    "lelbow": ("UpperArm_L", "LowerArm_L", "Hand_L"),
+    "lshoulder": ("Hips", "UpperArm_L", "LowerArm_L"),
+    "lankle": ("LowerLeg_L", "Foot_L", "Toes_L")}, "_L", "_R")
+
+
+def angle_table(skeleton) -> dict:
+    """The first of CMU_ANGLES, CMU_BVH_ANGLES, BANDAI_ANGLES whose joints the skeleton has.
+
+    Empty when there is no skeleton or none fits.
+    """
+    if skeleton is None:
+        return {}
+    names = set(skeleton.names)
+    for table in (CMU_ANGLES, CMU_BVH_ANGLES, BANDAI_ANGLES):
+        if all(j in names for triple in table.values() for j in triple):
+            return table
+    return {}
 
 
 @dataclass(frozen=True, eq=False)

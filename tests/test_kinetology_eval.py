@@ -116,3 +116,27 @@ def test_reproducibility_and_selectivity_on_mocap6():
     sel = selectivity(motions, perfs, channels)
     assert sel["nearest_neighbour_accuracy"] > sel["chance"]
     assert max(sel["pairwise"].values()) > 0.3
+
+
+@needs_mocap
+def test_view_invariance_agrees_between_the_bvh_and_amc_of_one_take():
+    from kinetology.evaluation import angle_table
+
+    folder = MOCAP / "cmu-01_01-pair"
+    amc, bvh = kinetology.read(folder / "01_01.amc"), kinetology.read(folder / "01_01.bvh")
+    a_table, b_table = angle_table(amc.skeleton), angle_table(bvh.skeleton)
+    assert a_table is CMU_ANGLES and set(b_table) == set(a_table)
+    for angle in ("lknee", "relbow"):
+        a = view_invariance(amc, a_table[angle], views=8).agreement
+        b = view_invariance(bvh, b_table[angle], views=8).agreement
+        assert abs(a - b) < 0.03, (angle, a, b)
+
+
+@needs_mocap
+def test_bandai_skeleton_has_an_angle_table():
+    from kinetology.evaluation import BANDAI_ANGLES, angle_table
+
+    m = kinetology.read(MOCAP / "bandai-namco-1" / "data" / "dataset-1_walk_normal_001.bvh")
+    assert angle_table(m.skeleton) is BANDAI_ANGLES
+    knee = view_invariance(m, BANDAI_ANGLES["lknee"], views=8)
+    assert knee.agreement > 0.7
