@@ -117,7 +117,9 @@ def accepts_pcgs(system: PCGS, word: Word, *, max_steps: int, max_states: int,
                 if master == word:
                     return Acceptance("yes", states=explored, system=system,
                                       schedule=_path(parent, after))
-                continue  # the derivation ended on another word
+                if prune:
+                    continue  # nobody can reset the master: its word is final
+                # otherwise a query may send the master's word away and restart it
             if len(parent) >= max_states:
                 return Acceptance(
                     "unknown", reason=f"the search stopped after {len(parent)} configurations",

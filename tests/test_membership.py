@@ -183,3 +183,54 @@ def test_acceptance_is_a_value():
     assert str(no).startswith("no: ")
     with pytest.raises(dataclasses.FrozenInstanceError):
         no.answer = "yes"
+
+
+# ---------------------------------------------------------------- the psgs check command
+def run_cli(*argv: str):
+    import subprocess
+    import sys
+    return subprocess.run([sys.executable, "-m", "psgs", "check", *argv], cwd=REPO,
+                          capture_output=True, text=True, timeout=120)
+
+
+PAPER = "grammars/paper_example.psgs"
+K2 = ["abcdbcadabcdbcad", "bcadabcdbcadabcd", "cdabcdabcdabcdab", "abcdbcadabcdbcad"]
+
+
+@pytest.mark.skipif(not (REPO / PAPER).exists(), reason="grammars/paper_example.psgs not written")
+def test_cli_check_exit_statuses():
+    yes = run_cli(PAPER, *K2)
+    assert yes.returncode == 0 and yes.stdout.strip() == "yes"
+    no = run_cli(PAPER, *K2[:3], "abcdbcad")
+    assert no.returncode == 1
+    assert no.stdout.startswith("no: every component parses but no schedule of the tuples fits")
+    unknown = run_cli(PAPER, *K2, "--max-states", "2")
+    assert unknown.returncode == 2 and "max_states=2" in unknown.stdout
+    traced = run_cli("--trace", PAPER, "a b c d b c a d", "bcadabcd", "cdabcdab", "abcdbcad")
+    assert traced.returncode == 0
+    assert traced.stdout.splitlines()[1].startswith("(S1, S2, S3, S4) ⇒ (N13, N18, N7, N23)")
+    assert traced.stdout.rstrip().endswith("(abcdbcad, bcadabcd, cdabcdab, abcdbcad)")
+
+
+def test_cli_check_errors_are_one_line_and_non_zero(tmp_path):
+    bad = tmp_path / "bad.psgs"
+    bad.write_text("psgs X\ncomponent\n")
+    for argv in ([str(bad), "a"], [str(tmp_path / "missing.psgs"), "a"]):
+        result = run_cli(*argv)
+        assert result.returncode == 3
+        assert len(result.stderr.strip().splitlines()) == 1
+        assert result.stderr.startswith("psgs: error: ")
+    if (REPO / PAPER).exists():
+        wrong = run_cli(PAPER, "abcd")
+        assert wrong.returncode == 3 and "give 4 words" in wrong.stderr
+
+
+def test_cli_reads_words_with_spaces_or_one_character_symbols():
+    from psgs.cli.check import read_word
+    system = PSGS((_grammar("G", "S", "r", ["S -> a S", "S -> a"]),), ())
+    assert read_word("a a a", system) == as_word("aaa")
+    assert read_word("aaa", system) == as_word("aaa")
+    assert read_word("", system) == ()
+    g = Grammar("G", N("S"), (Rule("r", N("S"), (T("up"), T("down"))),))
+    assert read_word("up", PSGS((g,), ())) == (T("up"),)
+    assert read_word("up down", PSGS((g,), ())) == (T("up"), T("down"))
