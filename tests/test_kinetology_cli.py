@@ -89,3 +89,18 @@ def test_segment_a_cmu_amc_for_psgs(tmp_path):
     assert main(["segment", str(MOCAP / "cmu-subject02" / "02_01.amc"), "-o", str(out)]) == 0
     ag = psgs.load_actiongram(out)
     assert "lfemur.rx" in ag.names and ag.total_symbols > 100
+
+
+@needs_mocap
+def test_psgs_induce_accepts_a_segmented_cmu_take(tmp_path, capsys):
+    try:
+        import psgs.cli.induce  # noqa: F401  (another module's command)
+    except ModuleNotFoundError:
+        pytest.skip("psgs induce is not available in this tree")
+    from psgs.cli import main as psgs_main
+
+    out = tmp_path / "walk.actiongram"
+    assert main(["segment", str(MOCAP / "cmu-subject02" / "02_01.amc"), "-o", str(out)]) == 0
+    capsys.readouterr()
+    assert psgs_main(["induce", str(out)]) == 0
+    assert "component" in capsys.readouterr().out
