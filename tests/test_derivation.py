@@ -261,3 +261,27 @@ def test_parallel_doubling_of_nullable_symbols_stops_at_max_form_length():
     lang = language(one_component(rules, mode="parallel", sync=[("r1",)]), 4)
     assert not lang.complete and "max_form_length" in lang.bound
     assert [t[0] for t in lang] == [w(""), w("a"), w("aa"), w("aaaa")]
+
+
+# ---------------------------------------------------------------- docs/derivation.md
+def test_the_examples_in_docs_derivation_run(capsys, monkeypatch):
+    import re
+    from pathlib import Path
+    root = Path(__file__).resolve().parents[1]
+    if not (root / "grammars" / "paper_example.psgs").exists():
+        pytest.skip("grammars/paper_example.psgs is not in this tree")
+    text = (root / "docs" / "derivation.md").read_text(encoding="utf-8")
+    blocks = re.findall(r"```python\n(.*?)```", text, flags=re.S)
+    assert len(blocks) >= 6
+    monkeypatch.chdir(root)
+    namespace: dict = {}
+    for block in blocks:
+        exec(compile(block, "docs/derivation.md", "exec"), namespace)
+    out = capsys.readouterr().out.splitlines()
+    # every "# comment" promising output on a print line must match what was printed
+    promised = [m.group(1).strip() for block in blocks for line in block.splitlines()
+                if line.lstrip().startswith("print(") and (m := re.search(r"\)\s+# (.*)$", line))]
+    for expected in promised:
+        assert any(expected.split(":")[0] in line for line in out), expected
+    assert "(S1, S2, S3, S4)" in out
+    assert "(abcdbcad, bcadabcd, cdabcdab, abcdbcad)" in out
