@@ -368,6 +368,8 @@ def apply_tuple(system: _System, configuration: Sequence[Form], sync_tuple,
         if terminal:
             if given is not None and given[i]:
                 raise ValidationError(f"component {g.name} is terminal and is not rewritten")
+            if isinstance(system, PCGS):
+                entries = entries[:i] + (IDLE,) + entries[i + 1:]  # as applicable_steps lists it
             chosen.append(())
             continue
         occ = _occurrences(form, rule.lhs)

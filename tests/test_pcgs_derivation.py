@@ -85,6 +85,8 @@ def test_terminal_components_stay_and_others_go_on():
     steps = applicable_steps(system, config)
     assert [s.after for s in steps] == [((a,), (b,), (c, c, Y))]
     assert steps[0].tuple[1] is None and steps[0].positions[1] == ()
+    # a rule named for a terminal component is skipped and recorded as idle, like the listing
+    assert apply_tuple(system, config, ("m4", "b2", "c2")) == steps[0]
 
 
 def test_a_component_that_cannot_rewrite_blocks_the_system():
