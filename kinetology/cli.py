@@ -110,9 +110,10 @@ def _cmd_evaluate(args) -> int:
                             **{k: v for k, v in params.items() if k != "min_range"})
         print(f"{name}: {motion.frames} frames, {len(motion.channels)} channels at "
               f"{motion.frame_rate:g} fps")
+        durations = [seg.durations(c) for c in range(len(seg.channels))]
+        mean_duration = float(np.mean(np.concatenate(durations))) if durations else 0.0
         print(f"  segments: {seg.segment_count} in {len(seg.channels)} moving channels "
-              f"({len(seg.still)} still), mean duration "
-              f"{np.mean(np.concatenate([seg.durations(c) for c in range(len(seg.channels))])) if seg.channels else 0:.3f} s")
+              f"({len(seg.still)} still), mean duration {mean_duration:.3f} s")
         print(f"  compactness: {point['bytes']} bytes = {point['percent']:.3f}% of the file "
               f"(paper: 3.698%)")
         print(f"  reconstructivity: mean |error| {point['mae']:.3f} over all channels, "

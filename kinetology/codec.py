@@ -186,8 +186,6 @@ def _fit_knots(knots, codes, signal) -> np.ndarray:
     rhs = np.bincount(seg, u * signal, n) + np.bincount(seg + 1, w * signal, n)
     # Thomas algorithm (the matrix is symmetric positive definite: every knot has
     # a frame where it alone sets the value)
-    c = np.zeros(n)
-    d = np.zeros(n)
     c_prev, d_prev = 0.0, 0.0
     diag_l, off_l, rhs_l = diag.tolist(), off.tolist() + [0.0], rhs.tolist()
     cl, dl = [0.0] * n, [0.0] * n
@@ -201,7 +199,6 @@ def _fit_knots(knots, codes, signal) -> np.ndarray:
     x[-1] = dl[-1]
     for i in range(n - 2, -1, -1):
         x[i] = dl[i] - cl[i] * x[i + 1]
-    del c, d
     return np.array(x)
 
 

@@ -30,7 +30,7 @@ import numpy as np
 from .codec import compress, decompress
 from .kinematics import forward_kinematics, joint_angle
 from .motion import Motion
-from .segmentation import DEFAULTS, STATES, segments, smooth, states
+from .segmentation import DEFAULTS, STATES, smooth, states
 
 __all__ = ["codec_point", "CMU_ANGLES", "CMU_BVH_ANGLES", "BANDAI_ANGLES", "angle_table",
            "ViewInvariance", "view_invariance",

@@ -10,6 +10,7 @@ needs. The array is read-only: a motion never changes after it is built.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from types import MappingProxyType
 
 import numpy as np
 
@@ -104,7 +105,7 @@ class Motion:
     frame_rate: float
     skeleton: Skeleton | None = None
     source: str = "<motion>"
-    meta: dict = field(default_factory=dict)
+    meta: dict = field(default_factory=dict)  # read-only after construction (format, truth)
 
     def __post_init__(self) -> None:
         values = np.array(self.values, dtype=float, copy=True)
@@ -125,7 +126,7 @@ class Motion:
         object.__setattr__(self, "values", values)
         object.__setattr__(self, "channels", channels)
         object.__setattr__(self, "frame_rate", rate)
-        object.__setattr__(self, "meta", dict(self.meta))
+        object.__setattr__(self, "meta", MappingProxyType(dict(self.meta)))
 
     @property
     def frames(self) -> int:

@@ -68,7 +68,8 @@ def smooth(values: np.ndarray, frame_rate: float, sigma: float) -> np.ndarray:
     offsets = np.arange(-radius, radius + 1)
     kernel = np.exp(-0.5 * (offsets / sigma_frames) ** 2)
     kernel /= kernel.sum()
-    padded = np.pad(values, [(radius, radius)] + [(0, 0)] * (values.ndim - 1), mode="reflect", reflect_type="odd")
+    padded = np.pad(values, [(radius, radius)] + [(0, 0)] * (values.ndim - 1), mode="reflect",
+                    reflect_type="odd")
     out = np.zeros_like(values)
     for weight, shift in zip(kernel, range(2 * radius + 1)):
         out += weight * padded[shift:shift + values.shape[0]]

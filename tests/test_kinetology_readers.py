@@ -187,6 +187,8 @@ def test_motion_is_immutable_and_validated():
         m.values[0, 0] = 1
     with pytest.raises(dataclasses.FrozenInstanceError):
         m.frame_rate = 10
+    with pytest.raises(TypeError):
+        m.meta["format"] = "changed"
     with pytest.raises(ValueError, match="not finite"):
         Motion(np.array([[np.nan]]), ("a.rx",), 30)
     with pytest.raises(ValueError, match="2 channel names for 3"):
