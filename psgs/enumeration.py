@@ -22,6 +22,7 @@ Two methods for a PSGS (see ``docs/derivation.md``):
 from __future__ import annotations
 
 import math
+import time
 from collections import deque
 from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
@@ -246,8 +247,8 @@ def _sequence_words(rhs, n: int, words_of, yields) -> set:
 # ---------------------------------------------------------------- entry point
 def language(system, max_length: int, *, max_configurations: int = 200_000,
              max_form_length: int = 1_000, max_candidates: int = 100_000,
-             max_words: int = 1_000_000, method: str | None = None,
-             **membership_options) -> Language:
+             max_words: int = 1_000_000, max_seconds: float | None = None,
+             method: str | None = None, **membership_options) -> Language:
     """Enumerate the language of ``system`` up to size ``max_length``, in order of size.
 
     * :class:`~psgs.model.PSGS`: the terminal tuples whose total length is at
@@ -263,6 +264,9 @@ def language(system, max_length: int, *, max_configurations: int = 200_000,
       most ``max_length`` (search only).
     * :class:`~psgs.model.Grammar`: its context-free words up to
       ``max_length`` (the component taken alone; query symbols derive nothing).
+
+    ``max_seconds`` (default ``None``: no limit) bounds the wall-clock time of
+    the search or of the filter loop; the other budgets are deterministic.
 
     Always terminates. When a budget stops it, ``complete`` is ``False`` and
     ``bound`` names the budget, e.g. ``"stopped after 200000 configurations
@@ -281,6 +285,11 @@ def language(system, max_length: int, *, max_configurations: int = 200_000,
                         ("max_candidates", max_candidates), ("max_words", max_words)):
         if isinstance(value, bool) or not isinstance(value, int) or value < 1:
             raise ValidationError(f"{name} must be a whole number ≥ 1, not {value!r}")
+    if max_seconds is not None and not (isinstance(max_seconds, (int, float))
+                                        and max_seconds > 0):
+        raise ValidationError(f"max_seconds must be a positive number or None, not "
+                              f"{max_seconds!r}")
+    clock = _Clock(max_seconds)
     if method not in (None, "search", "filter"):
         raise ValidationError(f"method must be 'search' or 'filter', not {method!r}")
     if isinstance(system, Grammar):
@@ -288,14 +297,29 @@ def language(system, max_length: int, *, max_configurations: int = 200_000,
     if isinstance(system, PCGS):
         if method == "filter":
             raise ValidationError("method 'filter' needs a PSGS; a PCGS is enumerated by search")
-        return _pcgs_search(system, max_length, max_configurations, max_form_length)
+        return _pcgs_search(system, max_length, max_configurations, max_form_length, clock)
     if isinstance(system, PSGS):
         if method is None:
             method = "search" if system.mode == "parallel" else _filter_if_available()
         if method == "search":
-            return _psgs_search(system, max_length, max_configurations, max_form_length)
-        return _psgs_filter(system, max_length, max_words, max_candidates, membership_options)
+            return _psgs_search(system, max_length, max_configurations, max_form_length, clock)
+        return _psgs_filter(system, max_length, max_words, max_candidates, membership_options,
+                            clock)
     raise ValidationError(f"expected a PSGS, a PCGS or a Grammar, not {type(system).__name__}")
+
+
+class _Clock:
+    """A wall-clock budget; ``expired()`` is always False without one."""
+
+    def __init__(self, seconds: float | None) -> None:
+        self.seconds = seconds
+        self.deadline = None if seconds is None else time.monotonic() + seconds
+
+    def expired(self) -> bool:
+        return self.deadline is not None and time.monotonic() > self.deadline
+
+    def bound(self) -> str:
+        return f"stopped after {self.seconds:g} seconds (max_seconds)"
 
 
 def _filter_if_available() -> str:
@@ -331,7 +355,7 @@ def _form_bound(max_form_length: int) -> str:
 
 
 def _psgs_search(system: PSGS, max_length: int, max_configurations: int,
-                 max_form_length: int) -> Language:
+                 max_form_length: int, clock: _Clock) -> Language:
     from .derivation import _psgs_successors, initial_configuration
 
     yields = [min_yields(rules) for rules in _usable_rules(system)]
@@ -355,6 +379,9 @@ def _psgs_search(system: PSGS, max_length: int, max_configurations: int,
     seen = {start}
     queue = deque([start] if lower_bound(start) <= max_length else [])
     while queue:
+        if clock.expired():
+            bound = clock.bound()
+            break
         configuration = queue.popleft()
         if all(isinstance(s, Terminal) for f in configuration for s in f):
             found.add(configuration)
@@ -411,7 +438,7 @@ def _forced_rewrites(configuration, eager) -> list | None:
 
 
 def _psgs_filter(system: PSGS, max_length: int, max_words: int, max_candidates: int,
-                 membership_options: dict) -> Language:
+                 membership_options: dict, clock: _Clock) -> Language:
     try:
         from .membership import accepts
     except ImportError as exc:
@@ -438,6 +465,9 @@ def _psgs_filter(system: PSGS, max_length: int, max_words: int, max_candidates: 
     for words in _tuples_within(per_component, max_length):
         if candidates >= max_candidates:
             stopped = f"stopped after {candidates} candidate tuples (max_candidates)"
+            break
+        if clock.expired():
+            stopped = clock.bound() + f" ({candidates} candidate tuples checked)"
             break
         candidates += 1
         answer = accepts(system, words, **membership_options)
@@ -481,7 +511,7 @@ def _tuples_within(per_component: Sequence[Sequence[Word]], max_length: int) -> 
 
 # ---------------------------------------------------------------- PCGS
 def _pcgs_search(system: PCGS, max_length: int, max_configurations: int,
-                 max_form_length: int) -> Language:
+                 max_form_length: int, clock: _Clock) -> Language:
     from .derivation import _pcgs_steps, initial_configuration
 
     master = system.master_index
@@ -501,6 +531,9 @@ def _pcgs_search(system: PCGS, max_length: int, max_configurations: int,
     seen = {start}
     queue = deque([] if hopeless(start) else [start])
     while queue:
+        if clock.expired():
+            bound = clock.bound()
+            break
         configuration = queue.popleft()
         form = configuration[master]
         if all(isinstance(s, Terminal) for s in form):

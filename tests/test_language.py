@@ -156,3 +156,12 @@ def test_filter_stops_at_max_candidates_and_says_so():
     assert not lang.complete
     assert lang.bound == "stopped after 10 candidate tuples (max_candidates)"
     assert lang.explored == 10
+
+
+def test_max_seconds_stops_a_long_search_and_says_so():
+    g = Grammar("G", S, [Rule("r1", S, (S, S)), Rule("r2", S, ())])
+    lang = language(PSGS((g,), mode="single"), 3, method="search", max_seconds=0.05,
+                    max_configurations=10**9, max_form_length=10**6)
+    assert not lang.complete and lang.bound == "stopped after 0.05 seconds (max_seconds)"
+    with pytest.raises(ValidationError, match="max_seconds must be"):
+        language(PSGS((g,)), 3, max_seconds=0)
