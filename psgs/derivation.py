@@ -97,9 +97,7 @@ class Step:
     kind: Literal["rewrite", "communicate"] = "rewrite"
 
     def __str__(self) -> str:
-        if self.kind == "communicate":
-            return "communicate"
-        return "(" + ", ".join("#" if r is IDLE else r.label for r in self.tuple) + ")"
+        return "communicate" if self.kind == "communicate" else _show_tuple(self.tuple)
 
 
 def applicable_steps(system: _System, configuration: Sequence[Form]) -> tuple[Step, ...]:

@@ -26,7 +26,6 @@ import time
 from collections import deque
 from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
-from typing import Union
 
 from .errors import ValidationError
 from .model import PCGS, PSGS, Grammar, Nonterminal, Query, Rule, Terminal, Word, as_word
@@ -559,5 +558,3 @@ def _pcgs_search(system: PCGS, max_length: int, max_configurations: int,
     words = sorted(found, key=_word_key)
     return Language(tuple(words), bound is None, bound, max_length, "search", len(seen))
 
-
-_System = Union[PSGS, PCGS, Grammar]
