@@ -105,6 +105,7 @@ def main(argv=None) -> int:
         "date": datetime.date.today().isoformat(),
         "trials": args.trials, "levels": len(PAPER_LEVELS), "jobs": args.jobs,
         "pal_sweep_seconds": pal_wall,
+        "pal_sweep_cpu_seconds": sum(r.cpu_seconds for r in pal_rows),
         "paper_table": [{"noise": lv, "pal": by["pal", lv], "sequential": by["sequential", lv],
                          "paper": (f"{PAPER_POINTS[lv]:.0%}" if lv in PAPER_POINTS else "")}
                         for lv in PAPER_LEVELS],
@@ -115,7 +116,8 @@ def main(argv=None) -> int:
     (DATA / "noise_summary.json").write_text(json.dumps(summary, indent=2) + "\n")
     for row in summary["paper_table"]:
         print(f"{row['noise']:.2f}  PAL {row['pal']:.0%}  Sequential {row['sequential']:.0%}")
-    print(f"PAL sweep: {pal_wall:.1f} s wall ({args.jobs} jobs)")
+    print(f"PAL sweep: {pal_wall:.1f} s wall ({args.jobs} jobs), "
+          f"{summary['pal_sweep_cpu_seconds']:.1f} s CPU in the workers")
 
     try:
         from psgs.cli.induce import plot_noise

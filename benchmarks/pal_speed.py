@@ -163,8 +163,10 @@ def write_section() -> None:
         for row in s["paper_table"]:
             lines.append(f"| {row['noise']:.2f} | {row['pal']:.0%} | {row['sequential']:.0%} | "
                          f"{row['paper']} |")
-        lines += ["", f"- PAL's whole paper sweep ({s['levels']} levels x {s['trials']}): "
-                      f"{s['pal_sweep_seconds']:.1f} s wall with {s['jobs']} processes.",
+        lines += ["", f"- PAL's whole paper sweep ({s['levels']} levels x {s['trials']}, "
+                      f"generating the actiongrams included): {s['pal_sweep_seconds']:.1f} s wall "
+                      f"with {s['jobs']} processes on the shared machine, "
+                      f"{s.get('pal_sweep_cpu_seconds', float('nan')):.1f} s of CPU in all.",
                   f"- All-random actiongrams: PAL found components in "
                   f"{s['random_with_components']['pal']} of {s['random_trials']}; "
                   f"Sequential in {s['random_with_components']['sequential']} of "

@@ -203,6 +203,7 @@ class SweepRow:
     trials: int
     successes: int
     seconds: float
+    cpu_seconds: float = 0.0
 
     @property
     def rate(self) -> float:
@@ -217,12 +218,13 @@ def _trial_batch(job):
 
     inducer_name, params, noise, seeds, variant = job
     inducer = get(inducer_name, **params)
-    began = time.perf_counter()
+    began, cpu = time.perf_counter(), time.process_time()
     wins = 0
     for seed in seeds:
         case = generate(seed=seed, noise=noise, **variant)
         wins += success(inducer.induce(case.actiongram), case)
-    return inducer_name, noise, len(seeds), wins, time.perf_counter() - began
+    return (inducer_name, noise, len(seeds), wins, time.perf_counter() - began,
+            time.process_time() - cpu)
 
 
 def noise_sweep(levels, trials: int, *, inducers=("pal",), params=None, seed: int = 0,
@@ -254,4 +256,4 @@ def noise_sweep(levels, trials: int, *, inducers=("pal",), params=None, seed: in
             results.append(_trial_batch(cell))
             if progress:
                 progress(k, len(cells))
-    return [SweepRow(name, noise, n, wins, secs) for name, noise, n, wins, secs in results]
+    return [SweepRow(*cell) for cell in results]

@@ -112,3 +112,23 @@ def test_round_trip_text_and_json(ag):
     assert Actiongram.from_json(ag.to_json()) == ag
     for syms in ag.symbols:
         assert all(a != b for a, b in zip(syms, syms[1:]))
+
+
+@pytest.mark.parametrize("page", ["actiongram.md", "pal.md"])
+def test_documentation_examples_run(page):
+    import doctest
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "docs" / page
+    result = doctest.testfile(str(path), module_relative=False, optionflags=doctest.ELLIPSIS)
+    assert result.attempted > 0 and result.failed == 0
+
+
+@pytest.mark.parametrize("module", ["psgs.actiongram", "psgs.induce", "psgs.induce.pal",
+                                    "psgs.induce.base"])
+def test_docstring_examples_run(module):
+    import doctest
+    import importlib
+
+    result = doctest.testmod(importlib.import_module(module))
+    assert result.failed == 0

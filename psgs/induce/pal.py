@@ -155,6 +155,12 @@ class PAL(Inducer):
                             votes[i] = v
                             joined[i] = group
                             grouped.add(i)
+                    # every member must repeat in the shared windows itself, not only
+                    # overlap them in time (a random string's chance motif can)
+                    votes = {i: v for i, v in votes.items()
+                             if _repeats_in_windows(strings[i], v, self)}
+                    if len(votes) < 2:
+                        votes = {}
                 kept_columns = _trim(votes, self.edge_share) if votes else {}
                 if round_ + 1 == self.rounds:
                     break
