@@ -47,7 +47,7 @@ def _require_system(system: object) -> None:
 
 
 def _is_terminal_form(form: Form) -> bool:
-    return all(isinstance(s, Terminal) for s in form)
+    return all(s.__class__ is Terminal for s in form)
 
 
 def is_terminal_configuration(system: _System, configuration: Configuration) -> bool:
@@ -62,13 +62,20 @@ def _check_configuration(system: _System, configuration: Sequence[Form]) -> Conf
     if len(configuration) != len(system.components):
         raise ValidationError(f"a configuration of this system has {len(system.components)} "
                               f"forms, not {len(configuration)}")
+    allowed = _PSGS_SYMBOLS if isinstance(system, PSGS) else _PCGS_SYMBOLS
     for g, form in zip(system.components, configuration):
+        if set(map(type, form)) <= allowed:  # the fast check; the loop below finds the culprit
+            continue
         for sym in form:
-            if not isinstance(sym, (Terminal, Nonterminal, Query)):
-                raise ValidationError(f"component {g.name}: {sym!r} is not a symbol")
             if isinstance(sym, Query) and isinstance(system, PSGS):
                 raise ValidationError(f"component {g.name}: a PSGS form holds no query symbol")
+            if type(sym) not in allowed:
+                raise ValidationError(f"component {g.name}: {sym!r} is not a symbol")
     return configuration
+
+
+_PSGS_SYMBOLS = frozenset({Terminal, Nonterminal})
+_PCGS_SYMBOLS = frozenset({Terminal, Nonterminal, Query})
 
 
 # ---------------------------------------------------------------- steps
@@ -135,8 +142,20 @@ def _candidate_tuples(system: PSGS) -> Iterator[tuple[Rule | None, ...]]:
                 yield tuple(rule if j == i else IDLE for j in range(n))
 
 
+def _is_allowed_tuple(system: PSGS, entries: tuple[Rule | None, ...]) -> bool:
+    """In M, or (under free) an unsynchronised rule alone."""
+    if entries in system.sync:
+        return True
+    if system.unsynchronised != "free":
+        return False
+    used = [(i, r) for i, r in enumerate(entries) if r is not IDLE]
+    return len(used) == 1 and used[0][1] in system.unsynchronised_rules[used[0][0]]
+
+
 def _occurrences(form: Form, symbol: Nonterminal) -> tuple[int, ...]:
-    return tuple(k for k, s in enumerate(form) if s == symbol)
+    # compares names rather than calling the dataclass __eq__ per symbol: forms get long
+    name = symbol.name
+    return tuple([k for k, s in enumerate(form) if s.__class__ is Nonterminal and s.name == name])
 
 
 def _rewrite(form: Form, positions: Sequence[int], rhs: Form) -> Form:
@@ -340,8 +359,7 @@ def apply_tuple(system: _System, configuration: Sequence[Form], sync_tuple,
     shown = _show_tuple(entries)
     n = len(system.components)
     if isinstance(system, PSGS):
-        allowed = set(_candidate_tuples(system))
-        if entries not in allowed:
+        if not _is_allowed_tuple(system, entries):
             rules = [r for r in entries if r is not IDLE]
             if len(rules) == 1 and system.unsynchronised == "strict":
                 raise ValidationError(f"tuple {shown} is not in M, and unsynchronised rules "
