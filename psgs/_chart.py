@@ -104,6 +104,8 @@ class CompiledGrammar:
             closure.append(tuple(sorted(seen)))
         self.unit_closure = closure
         self.useful_by_lhs = [[k for k in ks if k in set(useful_rules)] for ks in self.by_lhs]
+        self.first = self._edge_terminals(useful_rules, reverse=False)
+        self.last = self._edge_terminals(useful_rules, reverse=True)
         # per rule, min/max yield of each suffix of the body
         self.suffix_min: list[list[int]] = []
         self.suffix_max: list[list[int]] = []
@@ -116,6 +118,28 @@ class CompiledGrammar:
                 smax[t] = min(UNBOUNDED, smax[t + 1] + (1 if s < 0 else self.maxlen[s]))
             self.suffix_min.append(smin)
             self.suffix_max.append(smax)
+
+    def _edge_terminals(self, useful_rules: list[int], reverse: bool) -> list[frozenset[int]]:
+        """Terminal ids that can begin (or, reversed, end) a non-empty yield of each nonterminal."""
+        sets: list[set[int]] = [set() for _ in self.nonterminals]
+        changed = True
+        while changed:
+            changed = False
+            for k in useful_rules:
+                target = sets[self.lhs[k]]
+                body = self.body[k][::-1] if reverse else self.body[k]
+                for s in body:
+                    if s < 0:
+                        if ~s not in target:
+                            target.add(~s)
+                            changed = True
+                        break
+                    if not sets[s] <= target:
+                        target |= sets[s]
+                        changed = True
+                    if not self.nullable[s]:
+                        break
+        return [frozenset(x) for x in sets]
 
     def _max_lengths(self, useful_rules: list[int], productive: list[bool]) -> list[int]:
         """Longest yield per nonterminal, UNBOUNDED when a pumping cycle is reachable."""
@@ -196,6 +220,8 @@ class Chart:
             return g.nullable[a]
         if length < g.minlen[a] or length > g.maxlen[a]:
             return False
+        if self.word[i] not in g.first[a] or self.word[j - 1] not in g.last[a]:
+            return False
         key = (a, i, j)
         value = self.memo.get(key)
         if value is None:
@@ -220,6 +246,9 @@ class Chart:
             return self.g.nullable[s]
         g = self.g
         if q - p < g.minlen[s] or q - p > g.maxlen[s]:
+            return False
+        word = self.word
+        if word[p] not in g.first[s] or word[q - 1] not in g.last[s]:
             return False
         if missing is None:
             return self.derives(s, p, q)
