@@ -353,14 +353,60 @@ def _form_bound(max_form_length: int) -> str:
             f"(max_form_length)")
 
 
+class _Codes:
+    """Small integers for a system's symbols, looked up by object identity.
+
+    Hashing a configuration of dataclass symbols calls Python code per
+    symbol; keying the visited set by integer codes keeps that in C. Equal
+    symbols get equal codes (the table is built by equality once), so the
+    keys identify configurations exactly.
+    """
+
+    def __init__(self, system) -> None:
+        by_value: dict = {}
+        self.by_id: dict[int, int] = {}
+        self.objects: list = []
+        for g in system.components:
+            self.note(g.start, by_value)
+            for r in g.rules:
+                self.note(r.lhs, by_value)
+                for sym in r.rhs:
+                    self.note(sym, by_value)
+        self._by_value = by_value
+
+    def note(self, sym, by_value=None) -> None:
+        by_value = self._by_value if by_value is None else by_value
+        code = by_value.setdefault(sym, len(by_value))
+        if code == len(self.objects):
+            self.objects.append(sym)
+        self.by_id[id(sym)] = code
+
+    def key(self, configuration) -> tuple:
+        get = self.by_id.__getitem__
+        try:
+            return tuple(tuple(map(get, map(id, f))) for f in configuration)
+        except KeyError:  # a symbol object not from the system's rules: learn it
+            for f in configuration:
+                for sym in f:
+                    self.note(sym)
+            return self.key(configuration)
+
+
 def _psgs_search(system: PSGS, max_length: int, max_configurations: int,
                  max_form_length: int, clock: _Clock) -> Language:
     from .derivation import _psgs_successors, initial_configuration
 
+    codes = _Codes(system)
     yields = [min_yields(rules) for rules in _usable_rules(system)]
 
-    def lower_bound(configuration) -> float:
-        return sum(_form_lower_bound(f, y) for f, y in zip(configuration, yields))
+    def lower_bound(key) -> float:
+        total = 0
+        for codes_of_form, weight in zip(key, weights):
+            total += sum(map(weight.__getitem__, codes_of_form))
+        return total
+
+    def weight_table(y) -> list:
+        return [1 if isinstance(sym, Terminal) else y.get(sym, INFINITE) for sym in codes.objects]
 
     eager = _eager_rules(system)
 
@@ -372,11 +418,13 @@ def _psgs_search(system: PSGS, max_length: int, max_configurations: int,
         return (after for _, _, after in _psgs_successors(system, configuration))
 
     start = initial_configuration(system)
+    start_key = codes.key(start)
+    weights = [weight_table(y) for y in yields]
     found: set = set()
     bound = None
     too_long = False
-    seen = {start}
-    queue = deque([start] if lower_bound(start) <= max_length else [])
+    seen = {start_key}
+    queue = deque([start] if lower_bound(start_key) <= max_length else [])
     while queue:
         if clock.expired():
             bound = clock.bound()
@@ -386,7 +434,10 @@ def _psgs_search(system: PSGS, max_length: int, max_configurations: int,
             found.add(configuration)
             continue
         for after in successors(configuration):
-            if after in seen or lower_bound(after) > max_length:
+            key = codes.key(after)
+            if len(weights[0]) != len(codes.objects):  # new symbols were learnt
+                weights = [weight_table(y) for y in yields]
+            if key in seen or lower_bound(key) > max_length:
                 continue
             if _too_long(after, max_form_length):
                 too_long = True
@@ -395,7 +446,7 @@ def _psgs_search(system: PSGS, max_length: int, max_configurations: int,
                 bound = f"stopped after {len(seen)} configurations (max_configurations)"
                 queue.clear()
                 break
-            seen.add(after)
+            seen.add(key)
             queue.append(after)
     if too_long:
         bound = "; ".join(filter(None, [bound, _form_bound(max_form_length)]))
