@@ -177,3 +177,14 @@ def test_output_is_identical_whatever_the_hash_seed():
         assert done.returncode == 0, done.stderr
         outputs.append(done.stdout)
     assert outputs[0] == outputs[1] and "component" in outputs[0]
+
+
+@settings(max_examples=25, deadline=None)
+@given(seed=st.integers(0, 10**6), template_length=st.integers(5, 12),
+       copies=st.integers(8, 15), patterned=st.integers(2, 5), alphabet=st.integers(12, 26),
+       gap=st.integers(1, 3), extra=st.integers(1, 12))
+def test_recovers_varied_clean_protocols(seed, template_length, copies, patterned, alphabet, gap,
+                                         extra):
+    case = generate(seed=seed, template_length=template_length, copies=copies,
+                    patterned=patterned, alphabet=alphabet, gap=gap, strings=patterned + extra)
+    assert success(PAL().induce(case.actiongram), case)

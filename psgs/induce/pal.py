@@ -8,34 +8,21 @@ level of each component is its motion pattern; the axiom has
 S_i -> N_i S_i | N_i, synchronised across the components.
 
 Ours (the paper's algorithm figure is lost), built to survive noise and
-irregular repetition:
+irregular repetition -- ``docs/pal.md`` gives the details and every parameter:
 
-1. **Motif by content, per string.** The most frequent digram seeds a motif;
-   the motif grows one symbol at a time (one rule N -> N' Y per step) to the
-   side whose column, read at every located copy, is most conserved, while
-   that column's plurality symbol is both frequent (``conserve``) and
-   unlikely by chance (a binomial test at ``column_alpha``). After every step
-   the copies are located again by scanning the whole string for windows that
-   agree with the motif in enough positions (a threshold chosen so that a
-   random string yields fewer than ``scan_alpha`` chance hits), so damaged
-   copies keep voting. A motif never grows longer than the spacing of its
-   copies; when copies tile the string without gaps, the motif is rotated so
-   that a copy starts where the string starts (the period is shared in time).
-2. **Significance.** A string is a candidate only when its motif has at least
-   ``min_copies`` copies and the chance that a random string (same length and
-   symbol frequencies) holds any motif of that length that often is below
-   ``alpha`` (a Poisson tail times the number of possible motifs).
-3. **Synchronisation in time.** Two candidates are synchronised when at
-   least ``sync_fraction`` of each one's copies overlap in time a copy of the
-   other. Candidates with no synchronised partner are dropped (spurious);
-   the others form groups (connected components).
-4. **Copies pooled over the group.** The copy intervals of all members of a
-   group are merged into shared time windows (kept when at least a share
-   ``window_support`` of the members has a copy there). In every window each
-   member's symbols are one located copy of its pattern, so a copy missed in
-   one string is still found through the others, and copies need not be
-   evenly spaced. Each member's pattern is the plurality vote over its copies
-   (first the most common copy length, then each position).
+1. a motif per string, seeded by its most frequent digrams and grown one
+   conserved column at a time, its copies located again by a tolerant scan
+   after every step (damaged copies keep voting);
+2. a significance screen against random strings of the same length and
+   symbol frequencies;
+3. synchronisation in time: two strings are in step when most clusters of
+   their overlapping copies hold copies of both;
+4. copies pooled over each group of synchronised strings: shared time
+   windows, one copy per member and window, the pattern by plurality vote,
+   copies located again with the voted pattern (not a fixed period);
+5. strings too damaged to be significant alone join a group when, read in
+   its windows, they repeat beyond chance; members that do not are dropped;
+6. end columns not conserved across the group are trimmed.
 """
 
 from __future__ import annotations
@@ -63,7 +50,7 @@ class PAL(Inducer):
       holds no more than this share of the copies is trimmed (it is not conserved).
     - ``match_fraction`` (0.5): least share of positions a copy must match.
     - ``scan_alpha`` (0.05): expected chance copies per string tolerated by the scan.
-    - ``alpha`` (1e-4): chance level a string's repetition must beat to be a candidate.
+    - ``alpha`` (1e-2): chance level a string's repetition must beat to be a candidate.
     - ``sync_fraction`` (0.5): share of the merged copy clusters of two strings that
       must hold copies of both for them to be synchronised.
     - ``window_support`` (0.34): share of a group's members that must show a copy in a window.
@@ -71,7 +58,7 @@ class PAL(Inducer):
     - ``seeds`` (3): how many of a string's most frequent digrams are grown into motifs.
     - ``rounds`` (2): rounds of pooling; after each but the last, every member's
       copies are located again with its voted pattern.
-    - ``joins_copies`` (5): a string outside every group joins one when, read in
+    - ``joins_copies`` (4): a string outside every group joins one when, read in
       the group's windows, at least this many of its copies have the common
       length and half of their columns agree, beyond chance, in a share
       ``conserve`` of them.
@@ -86,10 +73,10 @@ class PAL(Inducer):
     name = "pal"
 
     def __init__(self, *, min_copies: int = 3, conserve: float = 0.6, edge_share: float = 0.5,
-                 match_fraction: float = 0.5, scan_alpha: float = 0.05, alpha: float = 1e-4,
+                 match_fraction: float = 0.5, scan_alpha: float = 0.05, alpha: float = 1e-2,
                  sync_fraction: float = 0.5, window_support: float = 0.34,
                  max_pattern: int = 64, seeds: int = 3, rounds: int = 2,
-                 joins_copies: int = 5) -> None:
+                 joins_copies: int = 4) -> None:
         check_number("min_copies", min_copies, low=2, integer=True)
         check_number("conserve", conserve, low=0, high=1, low_open=True)
         check_number("edge_share", edge_share, low=0, high=1)
@@ -151,14 +138,15 @@ class PAL(Inducer):
                     # strings whose own motif search fell short, read in the group's windows
                     for i in range(len(strings)):
                         if i not in grouped and (v := _vote(strings[i], windows)) is not None \
-                                and _repeats_in_windows(strings[i], v, self):
+                                and _repeats_in_windows(strings[i], v, self, self.joins_copies):
                             votes[i] = v
                             joined[i] = group
                             grouped.add(i)
                     # every member must repeat in the shared windows itself, not only
                     # overlap them in time (a random string's chance motif can)
                     votes = {i: v for i, v in votes.items()
-                             if _repeats_in_windows(strings[i], v, self)}
+                             if i in joined or _repeats_in_windows(strings[i], v, self,
+                                                                   self.min_copies)}
                     if len(votes) < 2:
                         votes = {}
                 kept_columns = _trim(votes, self.edge_share) if votes else {}
@@ -633,10 +621,10 @@ def _vote(string: _Timed, windows: np.ndarray) -> _Vote | None:
                  tuple(picked.tolist()))
 
 
-def _repeats_in_windows(string: _Timed, vote: _Vote, params: PAL) -> bool:
+def _repeats_in_windows(string: _Timed, vote: _Vote, params: PAL, copies_needed: int) -> bool:
     """Whether a string read in a group's windows repeats a pattern of its own.
 
-    It needs at least ``joins_copies`` copies of the common length, and at
+    It needs at least ``copies_needed`` copies of the common length, and at
     least half of their columns (two or more) where the plurality symbol is
     more frequent than chance: the binomial tail of its count, at the
     symbol's frequency in the whole string, times the number of distinct
@@ -644,7 +632,7 @@ def _repeats_in_windows(string: _Timed, vote: _Vote, params: PAL) -> bool:
     """
     length = len(vote.pattern)
     same = [a for a, b in vote.spans if b - a == length]
-    if len(same) < params.joins_copies or length < 2:
+    if len(same) < copies_needed or length < 2:
         return False
     freq = np.bincount(string.codes) / len(string.codes)
     penalty = math.log10(max(2, int(np.count_nonzero(freq))))
