@@ -234,3 +234,9 @@ def test_cli_reads_words_with_spaces_or_one_character_symbols():
     g = Grammar("G", N("S"), (Rule("r", N("S"), (T("up"), T("down"))),))
     assert read_word("up", PSGS((g,), ())) == (T("up"),)
     assert read_word("up down", PSGS((g,), ())) == (T("up"), T("down"))
+
+
+def test_docs_membership_page_runs():
+    from test_strategies import run_markdown_python
+    namespace = run_markdown_python("docs/membership.md")
+    assert namespace["short"].answer == "no" and namespace["hard"].bound == "max_states=3"

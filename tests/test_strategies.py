@@ -84,3 +84,28 @@ def test_shrinks_psgs_to_two_components_one_tuple():
 def test_import_psgs_does_not_import_hypothesis():
     code = "import sys, psgs; psgs.PSGS; assert 'hypothesis' not in sys.modules"
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def run_markdown_python(path):
+    """Run the python blocks of a docs page, in order, in one namespace."""
+    import re
+    from pathlib import Path
+    root = Path(__file__).resolve().parents[1]
+    text = (root / path).read_text(encoding="utf-8")
+    blocks = re.findall(r"```python\n(.*?)```", text, flags=re.S)
+    assert blocks, f"{path} has no python blocks"
+    namespace: dict = {}
+    import os
+    here = os.getcwd()
+    os.chdir(root)
+    try:
+        for block in blocks:
+            exec(compile(block, path, "exec"), namespace)
+    finally:
+        os.chdir(here)
+    return namespace
+
+
+def test_docs_testing_page_runs():
+    namespace = run_markdown_python("docs/testing.md")
+    assert "test_one_edit_breaks_the_count" in namespace
