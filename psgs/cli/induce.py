@@ -225,6 +225,12 @@ def run_induce(args) -> int:
         from ..synthetic import success
         out.append("  verdict: " + ("found exactly the hidden patterns" if success(result, truth)
                                    else "did not recover the hidden patterns exactly"))
+        if args.inducer == "pal":
+            from ..induce import Sequential
+            baseline = Sequential().induce(actiongram)
+            out.append(f"  for comparison, the sequential baseline (no synchronisation) keeps "
+                       f"{len(baseline.components)} of {len(actiongram)} strings: every random "
+                       f"string that repeats a digram")
     out.append("")
     if system_text is None:
         out.append("No grammar system: no string repeats in step with another.")
