@@ -24,7 +24,6 @@ import argparse
 import csv
 import json
 import math
-import resource
 import subprocess
 import sys
 import time
