@@ -210,6 +210,7 @@ def _accepts_psgs(system: PSGS, words: tuple[Word, ...], max_states: int,
         chart = Chart(cg, [terminal_ids[t] for t in w], deadline)
         compiled.append(cg)
         charts.append(chart)
+    search = None
     try:
         for g, cg, chart, w in zip(system.components, compiled, charts, words):
             if not chart.derives(cg.index[g.start], 0, len(w)):
@@ -222,8 +223,9 @@ def _accepts_psgs(system: PSGS, words: tuple[Word, ...], max_states: int,
         search = _ScheduleSearch(system, compiled, charts, max_states, deadline)
         return search.run()
     except BoundReached:
+        explored = search.explored if search is not None else 0
         return Acceptance("unknown", reason=f"the search ran out of time after {max_seconds} s",
-                          bound=f"max_seconds={max_seconds}", system=system)
+                          bound=f"max_seconds={max_seconds}", states=explored, system=system)
 
 
 def _spine(cg: CompiledGrammar) -> frozenset[int]:
@@ -279,6 +281,7 @@ class _ScheduleSearch:
         self.system = system
         # focus: per component the nonterminals tracked (None: all); see _spine_check
         self.focus = focus
+        self.explored = 0
         self.compiled = compiled
         self.charts = charts
         self.max_states = max_states
@@ -462,6 +465,7 @@ class _ScheduleSearch:
                 return (Acceptance("unknown", reason=reason, bound=f"max_states={self.max_states}",
                                    states=explored, system=self.system), explored, capped)
             if explored % 256 == 0 and time.monotonic() > self.deadline:
+                self.explored = explored
                 raise BoundReached("max_seconds")
             stack.append(iter(self.successors(state)))
         return None, explored, capped

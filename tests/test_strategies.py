@@ -109,3 +109,58 @@ def run_markdown_python(path):
 def test_docs_testing_page_runs():
     namespace = run_markdown_python("docs/testing.md")
     assert "test_one_edit_breaks_the_count" in namespace
+
+
+def test_derivations_are_replayable_and_shrink_to_nothing():
+    from psgs.derivation import apply_tuple
+
+    @FAST
+    @given(pst.psgs_systems(max_components=2), st.data())
+    def check(system, data):
+        d = data.draw(pst.derivations(system, max_steps=8))
+        configuration = d.configurations[0]
+        for step in d.steps:
+            again = apply_tuple(system, configuration, step.tuple, step.positions)
+            assert again.after == step.after
+            configuration = again.after
+    check()
+    system = find(pst.psgs_systems(), lambda s: True)
+    assert len(find(pst.derivations(system), lambda d: True).steps) == 0
+
+
+def test_derivable_words_are_terminal_results():
+    from psgs import PSGS
+    from psgs.model import Grammar, Nonterminal as N, Rule, Terminal as T
+    g = Grammar("G", N("S"), (Rule("p", N("S"), (T("a"), N("S"))), Rule("q", N("S"), (T("b"),))))
+    system = PSGS((g,), ())
+
+    @FAST
+    @given(pst.derivable_words(system, max_steps=10))
+    def check(pair):
+        words, derivation = pair
+        assert derivation.is_terminal and derivation.words == words
+        assert words[0][-1] == T("b")
+    check()
+
+
+@FAST
+@given(st.integers(0, 5).flatmap(lambda n: st.tuples(
+    st.just(n), pst.near_misses(psgs.loads(
+        'psgs C\nunsynchronised strict\ncomponent G1 start S\n  p: S -> "a" S\n  q: S -> "b"\n'),
+        ["a" * n + "b"]))))
+def test_near_misses_are_one_edit_away(pair):
+    n, (edited,) = pair
+    original = tuple(Terminal(x) for x in "a" * n + "b")
+    assert edited != original
+    assert abs(len(edited) - len(original)) <= 1
+    if len(edited) == len(original):
+        assert sum(x != y for x, y in zip(edited, original)) == 1
+
+
+@FAST
+@given(pst.actiongrams(min_strings=2, max_strings=3, max_length=6))
+def test_actiongrams_have_no_repeated_neighbours(actiongram):
+    assert 2 <= len(actiongram.names) <= 3
+    for row in actiongram.symbols:
+        assert 1 <= len(row) <= 6
+        assert all(a != b for a, b in zip(row, row[1:]))
