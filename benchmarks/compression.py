@@ -122,10 +122,8 @@ def main(argv=None) -> int:
     frames = sum(m.frames for _, m in motions)
     rows = []
 
-    raw = b"".join(p.read_bytes() for p in files)
     gz = sum(len(gzip.compress(p.read_bytes(), 9)) for p in files)
     xz = sum(len(lzma.compress(p.read_bytes(), preset=9 | lzma.PRESET_EXTREME)) for p in files)
-    del raw
     rows.append(("gzip -9 (lossless)", "", 100.0 * gz / total_bytes, 0.0, 0.0))
     rows.append(("xz -9e (lossless)", "", 100.0 * xz / total_bytes, 0.0, 0.0))
 
