@@ -14,6 +14,7 @@ only from an explicit seed. Language enumeration lives in
 from __future__ import annotations
 
 import itertools
+import math
 import random
 from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
@@ -517,6 +518,10 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
                       max_form_length: int = 100_000) -> Derivation:
     """A derivation from the axioms taking uniformly random applicable steps (seeded).
 
+    Each step is drawn uniformly among :func:`applicable_steps` (the same
+    step a listing would give for the same random stream) without listing
+    them: in single mode their number is a product of occurrence counts.
+
     It stops when the configuration is terminal (``status == "terminal"``),
     when no step applies (``"blocked"``), or at a bound: ``max_steps`` steps,
     or a form longer than ``max_form_length`` symbols (parallel rewriting
@@ -538,13 +543,85 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
             bound = (f"stopped when a form grew beyond {max_form_length} symbols "
                      f"(max_form_length)")
             break
-        options = applicable_steps(system, configuration)
-        if not options:
+        step = _random_step(system, configuration, rng)
+        if step is None:
             break
-        step = options[rng.randrange(len(options))]
         steps.append(step)
         configuration = step.after
     return Derivation(system, tuple(steps), bound=bound)
+
+
+def _random_step(system: _System, configuration: Configuration, rng: random.Random):
+    """A uniformly random applicable step, or None; never lists all of them.
+
+    In single mode the steps of one tuple are every choice of occurrences, a
+    product that grows like the forms' lengths to the power n; counting them
+    is cheap. The index drawn is the position the step would have in
+    :func:`applicable_steps`, so a seed picks the same step either way.
+    """
+    if isinstance(system, PCGS):
+        return _random_pcgs_step(system, configuration, rng)
+    candidates = []
+    total = 0
+    for sync_tuple in _candidate_tuples(system):
+        choices = _psgs_choices(system, configuration, sync_tuple)
+        if choices is None:
+            continue
+        first = tuple(c[0] for c in choices)
+        # whether a tuple changes something does not depend on the occurrences chosen
+        if _psgs_after(configuration, sync_tuple, first) == configuration:
+            continue
+        count = math.prod(len(c) for c in choices)
+        candidates.append((sync_tuple, choices, count))
+        total += count
+    if not total:
+        return None
+    index = rng.randrange(total)
+    for sync_tuple, choices, count in candidates:
+        if index < count:
+            break
+        index -= count
+    positions = _unrank(choices, index)
+    return Step(sync_tuple, positions, configuration,
+                _psgs_after(configuration, sync_tuple, positions))
+
+
+def _unrank(choices, index: int) -> tuple:
+    """The ``index``-th element of ``itertools.product(*choices)``."""
+    picked = []
+    for options in reversed(choices):
+        index, r = divmod(index, len(options))
+        picked.append(options[r])
+    return tuple(reversed(picked))
+
+
+def _random_pcgs_step(system: PCGS, configuration: Configuration, rng: random.Random):
+    if any(_has_query(f) for f in configuration):
+        step = _pcgs_communicate(system, configuration)
+        if step is not None:
+            rng.randrange(1)  # as if drawn from a list of one, so seeds match applicable_steps
+        return step
+    choices = _pcgs_rewrite_choices(system, configuration)
+    if choices is None:
+        return None
+    unchanged = [sum(1 for rule, _ in options if rule is IDLE or rule.rhs == (rule.lhs,))
+                 for options in choices]
+    total = math.prod(len(options) for options in choices)
+    void = math.prod(unchanged)  # combinations in which every component keeps its form
+    if total == void:
+        return None
+    if void == 0:
+        combo = _unrank(choices, rng.randrange(total))
+    else:  # rare (rules A → A): draw until the step changes something, still uniform
+        while True:
+            combo = _unrank(choices, rng.randrange(total))
+            if any(rule is not IDLE and rule.rhs != (rule.lhs,) for rule, _ in combo):
+                break
+    rules = tuple(r for r, _ in combo)
+    positions = tuple(p for _, p in combo)
+    after = tuple(form if not pos else _rewrite(form, pos, rule.rhs)
+                  for form, rule, pos in zip(configuration, rules, positions))
+    return Step(rules, positions, configuration, after)
 
 
 def language(system, max_length: int, **options):

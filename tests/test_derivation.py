@@ -285,3 +285,54 @@ def test_the_examples_in_docs_derivation_run(capsys, monkeypatch):
         assert any(expected.split(":")[0] in line for line in out), expected
     assert "(S1, S2, S3, S4)" in out
     assert "(abcdbcad, bcadabcd, cdabcdab, abcdbcad)" in out
+
+
+# ---------------------------------------------------------------- random steps without listing
+def _listing_choice(system, configuration, rng):
+    options = applicable_steps(system, configuration)
+    return options[rng.randrange(len(options))] if options else None
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(data=st.data())
+def test_a_random_step_is_the_step_a_listing_would_pick(data):
+    """random_derivation draws by counting; the same seed picks what applicable_steps lists."""
+    import random
+
+    from psgs.derivation import _random_step
+    from psgs.strategies import pcgs_systems
+    system = data.draw(st.one_of(_systems(), pcgs_systems(max_components=3, max_nonterminals=2,
+                                                         max_rules=4, max_rhs=2)))
+    seed = data.draw(st.integers(0, 2**16))
+    d = random_derivation(system, seed, max_steps=12, max_form_length=30)
+    # a PCGS rule A → A makes the draw reject combinations that change nothing: still uniform
+    # over the applicable steps, but the random stream is consumed differently
+    exact = isinstance(system, PSGS) or not any(
+        r.rhs == (r.lhs,) for g in system.components for r in g.rules)
+    for configuration in d.configurations:
+        fast, slow = random.Random(seed), random.Random(seed)
+        drawn = _random_step(system, configuration, fast)
+        listed = _listing_choice(system, configuration, slow)
+        if exact:
+            assert drawn == listed
+            assert fast.random() == slow.random()  # the two consumed the stream alike
+        else:
+            assert (drawn is None) == (listed is None)
+            assert drawn is None or drawn in applicable_steps(system, configuration)
+
+
+def test_random_derivation_does_not_list_single_mode_occurrence_products():
+    """Γ in single mode with 30 copies: 30⁴ occurrence choices per tuple, drawn by counting."""
+    from test_paper_derivation import gamma_in_python
+    system = gamma_in_python("single")
+    configuration = initial_configuration(system)
+    for _ in range(29):
+        configuration = apply_tuple(system, configuration, ("p1", "q1", "r1", "s1")).after
+    configuration = apply_tuple(system, configuration, ("p2", "q2", "r2", "s2")).after
+    step = apply_tuple(system, configuration, ("p8", "q8", "r6", "s8"))
+    import random
+
+    from psgs.derivation import _random_step
+    drawn = _random_step(system, step.after, random.Random(0))
+    assert drawn is not None and drawn.tuple in system.sync
+    assert drawn == apply_tuple(system, step.after, drawn.tuple, drawn.positions)
