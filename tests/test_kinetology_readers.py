@@ -258,3 +258,39 @@ def test_bvh_and_asf_amc_agree_through_forward_kinematics():
     # the angles of the legs are the same numbers in both files up to the axis change,
     # and the root translation is identical
     np.testing.assert_allclose(amc.values[:, :3], bvh.values[1:, :3], atol=1e-3)
+
+
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.integers(1, 40), st.integers(0, 2 ** 31))
+def test_bvh_values_read_back_as_written(frames, seed):
+    rng = np.random.default_rng(seed)
+    table = np.round(rng.uniform(-180, 180, size=(frames, 9)), 4)
+    rows = "\n".join(" ".join(repr(float(v)) for v in row) for row in table)
+    head = SMALL_BVH[: SMALL_BVH.index("Frames:")]
+    m = parse_bvh(f"{head}Frames: {frames}\nFrame Time: 0.01\n{rows}\n", "r.bvh")
+    np.testing.assert_array_equal(m.values, table)
+    # forward kinematics keeps bone lengths whatever the angles
+    p = forward_kinematics(m)
+    np.testing.assert_allclose(np.linalg.norm(p[:, 2] - p[:, 1], axis=1), 10.0, rtol=1e-9)
+
+
+def test_large_amc_reads_in_seconds(tmp_path):
+    frames = 100_000
+    asf = parse_asf(SMALL_ASF)
+    rng = np.random.default_rng(1)
+    values = np.round(rng.uniform(-90, 90, size=(frames, 3)), 3)
+    lines = [":FULLY-SPECIFIED", ":DEGREES"]
+    for k, (a, b, c) in enumerate(values, 1):
+        lines += [str(k), "root 0 0 0 0 0 0", f"femur {a}", f"tibia {b} {c}"]
+    path = tmp_path / "big.amc"
+    path.write_text("\n".join(lines) + "\n")
+    started = time.perf_counter()
+    m = kinetology.read(path, asf=asf)
+    elapsed = time.perf_counter() - started
+    assert m.frames == frames
+    np.testing.assert_array_equal(m.values[:, 6:], values)
+    assert elapsed < 10, f"reading 1e5 AMC frames took {elapsed:.1f} s"
