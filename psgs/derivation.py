@@ -331,9 +331,18 @@ def _normalise_positions(positions, n: int) -> tuple[tuple[int, ...], ...]:
             out.append(())
         elif isinstance(item, int) and not isinstance(item, bool):
             out.append((item,))
+        elif isinstance(item, Iterable) and not isinstance(item, (str, bytes)) and all(
+                isinstance(k, int) and not isinstance(k, bool) for k in (item := tuple(item))):
+            out.append(tuple(sorted(item)))
         else:
-            out.append(tuple(sorted(int(k) for k in item)))
+            raise ValidationError(f"a component's positions are an index, a sequence of "
+                                  f"indices or None, not {item!r}")
     return tuple(out)
+
+
+def _short(text: str, limit: int = 60) -> str:
+    """Long forms make unreadable messages: keep the start."""
+    return text if len(text) <= limit else text[:limit] + f"… ({len(text)} characters)"
 
 
 def apply_tuple(system: _System, configuration: Sequence[Form], sync_tuple,
@@ -392,7 +401,7 @@ def apply_tuple(system: _System, configuration: Sequence[Form], sync_tuple,
         occ = _occurrences(form, rule.lhs)
         if not occ:
             raise ValidationError(f"tuple {shown} does not apply: {rule.lhs} does not occur in "
-                                  f"component {g.name}'s form {format_form(form, system)}")
+                                  f"component {g.name}'s form {_short(format_form(form, system))}")
         parallel = isinstance(system, PSGS) and system.mode == "parallel"
         if given is None:
             chosen.append(occ if parallel else occ[:1])

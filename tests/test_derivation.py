@@ -336,3 +336,14 @@ def test_random_derivation_does_not_list_single_mode_occurrence_products():
     drawn = _random_step(system, step.after, random.Random(0))
     assert drawn is not None and drawn.tuple in system.sync
     assert drawn == apply_tuple(system, step.after, drawn.tuple, drawn.positions)
+
+
+def test_bad_positions_and_long_forms_give_short_clear_errors():
+    system = one_component(AA_RULES, mode="single", sync=[("r2",)])
+    for bad in ([["x"]], ["1"], [True]):
+        with pytest.raises(ValidationError, match="positions are an index"):
+            apply_tuple(system, ((A, A),), ("r2",), positions=bad)
+    long_form = ((b,) * 500 + (S,),)
+    with pytest.raises(ValidationError, match=r"does not occur .*… \(501 characters\)") as info:
+        apply_tuple(system, long_form, ("r2",))
+    assert len(str(info.value)) < 200
