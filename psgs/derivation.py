@@ -327,12 +327,14 @@ def _normalise_positions(positions, n: int) -> tuple[tuple[int, ...], ...]:
                               f"components")
     out = []
     for item in raw:
+        if isinstance(item, Iterable) and not isinstance(item, (str, bytes)):
+            item = tuple(item)
         if item is None:
             out.append(())
         elif isinstance(item, int) and not isinstance(item, bool):
             out.append((item,))
-        elif isinstance(item, Iterable) and not isinstance(item, (str, bytes)) and all(
-                isinstance(k, int) and not isinstance(k, bool) for k in (item := tuple(item))):
+        elif isinstance(item, tuple) and all(
+                isinstance(k, int) and not isinstance(k, bool) for k in item):
             out.append(tuple(sorted(item)))
         else:
             raise ValidationError(f"a component's positions are an index, a sequence of "
