@@ -230,8 +230,16 @@ def encode_segments(motion: Motion, **params):
                 codes = codes[:-1]
         else:
             knots, codes = np.array([0, motion.frames - 1]), np.zeros(1, np.int8)
-        values = _fit_knots(knots, codes, signal) if codes.size else signal[:1].astype(float)
-        out.append((knots, codes, np.round(values / quantum).astype(np.int64)))
+        if codes.size:
+            values = _fit_knots(knots, codes, signal)
+        else:  # one frame (its value) or none (a placeholder 0 the decoder never uses)
+            values = signal[:1].astype(float) if motion.frames else np.zeros(1)
+        steps = np.round(values / quantum)
+        if not np.all(np.abs(steps) < 2.0 ** 62):
+            # beyond this the int64 cast (and the zigzag varints) would silently wrap
+            raise ValueError(f"quantum {quantum!r} is too small for channel {name!r}: knot "
+                             f"values would need more than 62 bits")
+        out.append((knots, codes, steps.astype(np.int64)))
     return out, quantum
 
 
@@ -364,19 +372,36 @@ def decompress(data: bytes, source: str = "<compressed motion>") -> Motion:
     displacements = [[r.signed() for _ in range(n)] for n in seg_counts]
     if r.pos != len(body):
         r.fail("trailing bytes")
+    for c in range(count):  # check the layout before allocating frames x channels
+        n = seg_counts[c]
+        if frames and n == 0 and frames != 1:
+            r.fail(f"channel {names[c]!r} has no segments for {frames} frames")
+        if frames and n and (sum(durations[c]) != frames - 1 or min(durations[c]) <= 0):
+            r.fail(f"channel {names[c]!r}: durations do not add up to {frames - 1} frames")
+    try:
+        return _decode_values(frames, count, names, seg_counts, firsts, codes_list, durations,
+                              displacements, quantum, rate, source)
+    except MemoryError:
+        # a header can claim any frame count; say so instead of a traceback
+        raise MotionFormatError(f"{frames} frames x {count} channels do not fit in memory",
+                                source=source) from None
+
+
+def _decode_values(frames, count, names, seg_counts, firsts, codes_list, durations,
+                   displacements, quantum, rate, source) -> Motion:
     values = np.empty((frames, count))
     for c in range(count):
         n = seg_counts[c]
         if frames == 0:
             continue
         if n == 0:
-            if frames != 1:
-                r.fail(f"channel {names[c]!r} has no segments for {frames} frames")
             values[:, c] = firsts[c] * quantum
             continue
         knots = np.concatenate(([0], np.cumsum(durations[c])))
-        if knots[-1] != frames - 1 or (np.diff(knots) <= 0).any():
-            r.fail(f"channel {names[c]!r}: durations do not add up to {frames - 1} frames")
         knot_values = (firsts[c] + np.concatenate(([0], np.cumsum(displacements[c])))) * quantum
         values[:, c] = reconstruct(knots, codes_list[c], knot_values)
-    return Motion(values, tuple(names), rate, None, source, {"format": "kinetology-compressed"})
+    try:
+        return Motion(values, tuple(names), rate, None, source,
+                      {"format": "kinetology-compressed"})
+    except ValueError as exc:  # repeated channel names, values that overflow
+        raise MotionFormatError(str(exc), source=source) from None

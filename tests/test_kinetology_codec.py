@@ -125,3 +125,39 @@ def test_beats_the_papers_size_and_error_at_once_on_a_cmu_file():
     percent = 100 * len(data) / os.path.getsize(path)
     error = np.abs(back.values - m.values).mean()
     assert percent < 3.698 and error < 0.823, (percent, error)
+
+
+def _packed(frames, names, durations):
+    """A KIN1 stream with one segment per channel (state B) and the given durations."""
+    import lzma
+    import struct
+
+    from kinetology.codec import _FILTERS, _MAGIC, _varints
+
+    body = _varints([1]) + struct.pack("<d", 120.0) + _varints([frames])
+    body += struct.pack("<d", 0.5) + _varints([len(names)])
+    for name in names:
+        body += _varints([len(name)]) + name.encode()
+    body += _varints([1] * len(names)) + _varints([0] * len(names)) + bytes(len(names))
+    body += _varints(durations) + _varints([0] * len(names))
+    return _MAGIC + lzma.compress(body, format=lzma.FORMAT_RAW, filters=_FILTERS)
+
+
+def test_crafted_streams_are_one_clear_error_not_a_traceback():
+    assert decompress(_packed(3, ["a"], [2])).frames == 3  # the helper itself is valid
+    huge = 2 ** 40  # consistent durations, 8 TiB of decoded values
+    with pytest.raises(MotionFormatError, match="do not fit in memory"):
+        decompress(_packed(huge, ["a"], [huge - 1]))
+    with pytest.raises(MotionFormatError, match="do not add up"):
+        decompress(_packed(huge, ["a"], [5]))
+    with pytest.raises(MotionFormatError, match="distinct"):
+        decompress(_packed(3, ["a", "a"], [2, 2]))
+
+
+def test_empty_motion_round_trips_and_tiny_quantum_is_refused():
+    empty = Motion(np.zeros((0, 2)), ("a.rx", "b.rx"), 30)
+    back = decompress(compress(empty))
+    assert back.values.shape == (0, 2) and back.channels == empty.channels
+    m = synthetic_motion(2, (0,), seed=1)
+    with pytest.raises(ValueError, match="too small"):
+        compress(m, quantum=1e-300)
