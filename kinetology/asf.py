@@ -41,6 +41,7 @@ class AsfSkeleton:
 
 
 def read_asf(path: str | Path) -> AsfSkeleton:
+    """Read an ASF skeleton file (errors name ``file:line:col``); see :func:`parse_asf`."""
     path = Path(path)
     return parse_asf(path.read_text(encoding="utf-8", errors="replace"), source=str(path))
 
@@ -154,8 +155,11 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
         if not kids:
             joints.append(Joint(f"{bone}.end", index, vector, (), "ZYX", (0.0, 0.0, 0.0), True))
 
-    for child in children.get("root", []):
-        place(child, 0, (0.0, 0.0, 0.0))
+    try:
+        for child in children.get("root", []):
+            place(child, 0, (0.0, 0.0, 0.0))
+    except RecursionError:  # bones are placed by recursion; real skeletons are shallow
+        raise MotionFormatError("bones nested too deeply in :hierarchy", source=source) from None
     missing = [b for b in bones if b not in placed]
     if missing:
         raise MotionFormatError(f"bones not in the hierarchy: {', '.join(missing)}",
@@ -224,7 +228,7 @@ def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None 
     while data and not data[-1].strip():
         data.pop()
     if not data:
-        raise MotionFormatError("no frames", source=source, line=len(lines))
+        raise MotionFormatError("no frames", source=source, line=max(1, len(lines)))
 
     def line_of(i: int) -> int:
         return start + i + 1

@@ -40,7 +40,11 @@ def parse_bvh(text: str, source: str = "<bvh>") -> Motion:
     kind = tokens.next("ROOT")
     if kind.upper() != "ROOT":
         tokens.fail(f"expected ROOT, found {kind!r}")
-    _read_joint(tokens, joints, channels, parent=None)
+    try:
+        _read_joint(tokens, joints, channels, parent=None)
+    except RecursionError:  # joints nest by recursion; no real skeleton comes near the limit
+        raise MotionFormatError("joints nested too deeply", source=source,
+                                line=tokens.last[0]) from None
     if tokens.peek().upper() == "ROOT":
         tokens.fail("only one ROOT is supported")
     tokens.expect("MOTION")
@@ -172,7 +176,7 @@ class _HierarchyTokens:
     def next(self, what: str) -> str:
         if not self._fill():
             raise MotionFormatError(f"file ends where {what} was expected", source=self.source,
-                                    line=len(self.lines))
+                                    line=max(1, len(self.lines)))
         token, column = self.pending.pop(0)
         self.last = (self.current_line, column)
         return token

@@ -294,3 +294,23 @@ def test_large_amc_reads_in_seconds(tmp_path):
     assert m.frames == frames
     np.testing.assert_array_equal(m.values[:, 6:], values)
     assert elapsed < 10, f"reading 1e5 AMC frames took {elapsed:.1f} s"
+
+
+def test_absurdly_deep_hierarchies_and_empty_files_are_one_clear_error(tmp_path):
+    depth = 3000  # beyond Python's recursion limit
+    joints = "".join(f"JOINT j{i}\n{{\nOFFSET 0 1 0\nCHANNELS 1 Xrotation\n" for i in range(depth))
+    text = (f"HIERARCHY\nROOT r\n{{\nOFFSET 0 0 0\nCHANNELS 1 Xrotation\n{joints}"
+            + "}\n" * (depth + 1) + "MOTION\nFrames: 0\nFrame Time: 0.01\n")
+    with pytest.raises(MotionFormatError, match="nested too deeply"):
+        parse_bvh(text, "deep.bvh")
+    bones = "".join(f"begin\nname b{i}\ndirection 0 1 0\nlength 1\ndof rx\nend\n"
+                    for i in range(depth))
+    links = "".join(f"b{i} b{i + 1}\n" for i in range(depth - 1))
+    with pytest.raises(MotionFormatError, match="nested too deeply"):
+        parse_asf(f":bonedata\n{bones}:hierarchy\nbegin\nroot b0\n{links}end\n", "deep.asf")
+    for name in ("empty.bvh", "empty.amc"):
+        path = tmp_path / name
+        path.write_text("")
+        with pytest.raises(MotionFormatError) as info:
+            kinetology.read(path)
+        assert str(info.value).startswith(f"{path}:1:"), str(info.value)
