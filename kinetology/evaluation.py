@@ -117,6 +117,7 @@ class ViewInvariance:
 
     @property
     def agreement_per_view(self) -> np.ndarray:
+        """Per viewpoint, the fraction of frames whose 2D state is the 3D state."""
         return (self.states_2d == self.states_3d[None, :]).mean(axis=1)
 
     @property
@@ -134,6 +135,8 @@ def view_invariance(motion: Motion, triple: tuple[str, str, str], *, views: int 
     from ``elevation`` degrees above the horizon. The 2D angle is the angle
     between the projected bones. ``params`` are segmentation parameters.
     """
+    if int(views) != views or views < 1:
+        raise ValueError(f"views must be a positive whole number, not {views!r}")
     positions = forward_kinematics(motion)
     index = [motion.skeleton.index(name) for name in triple]
     angle3 = joint_angle(positions, *index)

@@ -35,15 +35,34 @@ def _state_cmap():
     return ListedColormap([STATE_COLOURS[s] for s in STATES])
 
 
+def _state_legend(target, **options):
+    """A legend of the four state colours (for pictures drawn with ``imshow``)."""
+    from matplotlib.patches import Patch
+    signs = {"B": "+,+", "G": "+,-", "R": "-,-", "Y": "-,+"}
+    handles = [Patch(color=STATE_COLOURS[s], label=f"{s} ({signs[s]})") for s in STATES]
+    return target.legend(handles=handles, ncol=4, fontsize=8, title="state (θ', θ'')",
+                         title_fontsize=8, **options)
+
+
+def _window(frames: int, frame_rate: float, start: float, stop: float | None) -> tuple:
+    """Frame times and the mask of those in ``[start, stop]``; an empty window is an error."""
+    t = np.arange(frames) / frame_rate
+    window = (t >= start) & (t <= (stop if stop is not None else np.inf))
+    if not window.any():
+        raise ValueError(f"no frames between {start:g} s and "
+                         f"{'the end' if stop is None else f'{stop:g} s'} (the motion has "
+                         f"{frames} frames, {frames / frame_rate:g} s)")
+    return t, window
+
+
 def plot_states(motion: Motion, channel: str, *, start: float = 0.0, stop: float | None = None,
                 **params):
     """Fig. 1 style: one joint angle over time, each segment coloured by its state."""
     plt = _pyplot()
     p = {k: v for k, v in {**DEFAULTS, **params}.items() if k != "min_range"}
     signal = motion.column(channel)
+    t, window = _window(motion.frames, motion.frame_rate, start, stop)
     code = states(signal, motion.frame_rate, **p)
-    t = np.arange(motion.frames) / motion.frame_rate
-    window = (t >= start) & (t <= (stop if stop is not None else t[-1]))
     fig, ax = plt.subplots(figsize=(9, 3))
     for k, letter in enumerate(STATES):
         mask = code == k
@@ -63,8 +82,7 @@ def plot_reconstruction(original: Motion, decoded: Motion, channel: str, *, star
                         stop: float | None = None):
     """Fig. 9 style: a joint angle and its reconstruction from segments."""
     plt = _pyplot()
-    t = np.arange(original.frames) / original.frame_rate
-    window = (t >= start) & (t <= (stop if stop is not None else t[-1]))
+    t, window = _window(original.frames, original.frame_rate, start, stop)
     a, b = original.column(channel), decoded.column(channel)
     fig, ax = plt.subplots(figsize=(9, 3))
     ax.plot(t[window], a[window], color="black", lw=1.5, label="original")
@@ -81,15 +99,19 @@ def plot_view_invariance(result, title: str = "", frame_rate: float = 120.0):
     """Fig. 6 style: viewpoint (rows) x time (columns), coloured by state; 3D on top."""
     plt = _pyplot()
     image = np.vstack([result.states_3d[None, :].repeat(2, axis=0), result.states_2d])
-    fig, ax = plt.subplots(figsize=(9, 4))
+    fig, ax = plt.subplots(figsize=(9, 4.6))
     frames = result.states_3d.size
+    step = 360.0 / len(result.azimuths)
+    # one row per view, centred on its azimuth; the two 3D rows sit above the first view
+    top, bottom = result.azimuths[0] - 2.5 * step, result.azimuths[-1] + 0.5 * step
     ax.imshow(image, aspect="auto", interpolation="nearest", cmap=_state_cmap(), vmin=-0.5,
-              vmax=3.5, extent=(0, frames / frame_rate, result.azimuths[-1] + 10, -20))
-    ax.axhline(0 - 5, color="white", lw=2)
+              vmax=3.5, extent=(0, frames / frame_rate, bottom, top))
+    ax.axhline(result.azimuths[0] - 0.5 * step, color="white", lw=2)
     ax.set_xlabel("time (s)")
     ax.set_ylabel("viewpoint azimuth (deg); top band: 3D")
     ax.set_title(f"{title}  agreement with 3D: {100 * result.agreement:.1f}%")
-    fig.tight_layout()
+    _state_legend(fig, loc="lower center")
+    fig.tight_layout(rect=(0, 0.08, 1, 1))
     return fig
 
 
@@ -128,7 +150,8 @@ def plot_selectivity(motions, performances, channels, *, seconds: float = 3.0, *
         ax.set_yticks(range(len(channels)), channels, fontsize=7)
         ax.set_ylabel(action, rotation=0, ha="right", va="center", fontsize=8)
     axes[-1].set_xlabel("time from the start of the performance (s)")
-    fig.tight_layout()
+    _state_legend(fig, loc="lower center")
+    fig.tight_layout(rect=(0, 0.05, 1, 1))
     return fig
 
 

@@ -104,3 +104,21 @@ def test_psgs_induce_accepts_a_segmented_cmu_take(tmp_path, capsys):
     capsys.readouterr()
     assert psgs_main(["induce", str(out)]) == 0
     assert "component" in capsys.readouterr().out
+
+
+def test_plot_window_outside_the_motion_is_one_line(small_bvh, tmp_path, capsys):
+    pytest.importorskip("matplotlib")
+    out = tmp_path / "late.png"
+    assert main(["plot", str(small_bvh), "--channel", "Knee.rz", "--start", "5",
+                 "-o", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "no frames between 5 s and the end" in err[0], err
+    assert not out.exists()
+
+
+def test_view_invariance_needs_at_least_one_view():
+    from kinetology.evaluation import view_invariance
+    from test_kinetology_eval import _planar_leg
+
+    with pytest.raises(ValueError, match="views must be a positive"):
+        view_invariance(_planar_leg(), ("Thigh", "Shin", "Shin.end"), views=0)
