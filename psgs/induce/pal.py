@@ -131,32 +131,44 @@ class PAL(Inducer):
         grouped = {i for g in groups for i in g}
         for group in groups:
             located = {i: intervals[i] for i in group}
+            members = list(group)
             for round_ in range(self.rounds):
-                windows = _pooled_windows([located[i] for i in group], self.window_support)
-                votes = {i: v for i in group if (v := _vote(strings[i], windows)) is not None}
-                if round_ + 1 == self.rounds:
-                    # strings whose own motif search fell short, read in the group's windows
-                    for i in range(len(strings)):
-                        if i not in grouped and (v := _vote(strings[i], windows)) is not None \
-                                and _repeats_in_windows(strings[i], v, self, self.joins_copies):
-                            votes[i] = v
-                            joined[i] = group
-                            grouped.add(i)
-                    # every member must repeat in the shared windows itself, not only
-                    # overlap them in time (a random string's chance motif can)
-                    votes = {i: v for i, v in votes.items()
-                             if i in joined or _repeats_in_windows(strings[i], v, self,
-                                                                   self.min_copies)}
-                    if len(votes) < 2:
-                        votes = {}
-                kept_columns = _trim(votes, self.edge_share) if votes else {}
-                if round_ + 1 == self.rounds:
+                if round_ + 1 < self.rounds:
+                    windows = _pooled_windows([located[i] for i in members],
+                                              self.window_support)
+                    votes = {i: v for i in members
+                             if (v := _vote(strings[i], windows)) is not None}
+                    kept_columns = _trim(votes, self.edge_share) if votes else {}
+                    # locate each member's copies again with its voted pattern
+                    for i, (first, last) in kept_columns.items():
+                        again = _relocate(strings[i], votes[i].pattern[first:last], self)
+                        if again is not None:
+                            located[i] = again
+                    continue
+                # every member must repeat in the shared windows itself, not only overlap
+                # them in time (a random string's chance motif can); windows are redrawn
+                # without the members that do not
+                for _ in range(len(group)):
+                    windows = _pooled_windows([located[i] for i in members],
+                                              self.window_support)
+                    votes = {i: v for i in members
+                             if (v := _vote(strings[i], windows)) is not None
+                             and _repeats_in_windows(strings[i], v, self, self.min_copies,
+                                                     beyond_chance=False)}
+                    if len(votes) == len(members) or len(votes) < 2:
+                        break
+                    members = sorted(votes)
+                if len(votes) < 2:
+                    votes = {}
                     break
-                # locate each member's copies again with its voted pattern
-                for i, (first, last) in kept_columns.items():
-                    again = _relocate(strings[i], votes[i].pattern[first:last], self)
-                    if again is not None:
-                        located[i] = again
+                # strings whose own motif search fell short, read in the group's windows
+                for i in range(len(strings)):
+                    if i not in grouped and (v := _vote(strings[i], windows)) is not None \
+                            and _repeats_in_windows(strings[i], v, self, self.joins_copies):
+                        votes[i] = v
+                        joined[i] = group
+                        grouped.add(i)
+            kept_columns = _trim(votes, self.edge_share) if votes else {}
             for i, (first, last) in kept_columns.items():
                 if last <= first:
                     continue
@@ -621,14 +633,16 @@ def _vote(string: _Timed, windows: np.ndarray) -> _Vote | None:
                  tuple(picked.tolist()))
 
 
-def _repeats_in_windows(string: _Timed, vote: _Vote, params: PAL, copies_needed: int) -> bool:
+def _repeats_in_windows(string: _Timed, vote: _Vote, params: PAL, copies_needed: int,
+                        beyond_chance: bool = True) -> bool:
     """Whether a string read in a group's windows repeats a pattern of its own.
 
     It needs at least ``copies_needed`` copies of the common length, and at
-    least half of their columns (two or more) where the plurality symbol is
-    more frequent than chance: the binomial tail of its count, at the
-    symbol's frequency in the whole string, times the number of distinct
-    symbols (any of them could have been the plurality), below 0.01.
+    least half of their columns (two or more) where the plurality symbol holds
+    a share ``conserve`` of the copies and, when ``beyond_chance``, is more
+    frequent than chance: the binomial tail of its count, at the symbol's
+    frequency in the whole string, times the number of distinct symbols (any
+    of them could have been the plurality), below 0.01.
     """
     length = len(vote.pattern)
     same = [a for a, b in vote.spans if b - a == length]
@@ -639,8 +653,8 @@ def _repeats_in_windows(string: _Timed, vote: _Vote, params: PAL, copies_needed:
     agreeing = 0
     for column, (sym, share) in enumerate(zip(vote.pattern, vote.shares.tolist())):
         k = round(share * len(same))
-        if share >= params.conserve and \
-                _log10_binom_sf(k, len(same), float(freq[sym])) + penalty <= -2:
+        if share >= params.conserve and (not beyond_chance or _log10_binom_sf(
+                k, len(same), float(freq[sym])) + penalty <= -2):
             agreeing += 1
     return agreeing >= max(2, math.ceil(length / 2))
 
