@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+from types import MappingProxyType
 
 import numpy as np
 
@@ -35,7 +36,7 @@ _DEFAULT_FRAME_RATE = 120.0  # the CMU database's capture rate; AMC files do not
 class AsfSkeleton:
     """What an ASF file says: bone dofs and the skeleton in joint form."""
 
-    dofs: dict  # bone name -> tuple of dof names, in AMC value order ("root" included)
+    dofs: MappingProxyType  # read-only: bone name -> tuple of dof names, in AMC value order ("root" included)
     skeleton: Skeleton
     length_scale: float  # the :units length (inches per unit is 1/scale in CMU's files)
 
@@ -164,7 +165,7 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
     if missing:
         raise MotionFormatError(f"bones not in the hierarchy: {', '.join(missing)}",
                                 source=source)
-    return AsfSkeleton(dofs, Skeleton(tuple(joints), length_unit=f"ASF units (length {scale})"),
+    return AsfSkeleton(MappingProxyType(dofs), Skeleton(tuple(joints), length_unit=f"ASF units (length {scale})"),
                        scale)
 
 

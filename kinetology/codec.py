@@ -56,6 +56,7 @@ import lzma
 import struct
 from functools import lru_cache
 from itertools import product
+from types import MappingProxyType
 
 import numpy as np
 
@@ -70,7 +71,7 @@ _VERSION = 1
 _FILTERS = [{"id": lzma.FILTER_LZMA2, "preset": 9 | lzma.PRESET_EXTREME}]
 
 #: Codec defaults: the segmentation's, plus the knot quantum in degrees.
-CODEC_DEFAULTS = {**DEFAULTS, "min_range": 0.0, "quantum": 0.5}
+CODEC_DEFAULTS = MappingProxyType({**DEFAULTS, "min_range": 0.0, "quantum": 0.5})
 
 
 # -- the per-segment quartic ------------------------------------------------
@@ -119,7 +120,9 @@ def basis(left_velocity: bool, left_acceleration: bool, right_velocity: bool,
     for y0, y1 in ((1.0, 0.0), (0.0, 1.0)):
         rhs = np.zeros(5 + m)
         rhs[5], rhs[6] = y0, y1
-        out.append(np.linalg.lstsq(kkt, rhs, rcond=None)[0][:5])
+        coefficients = np.linalg.lstsq(kkt, rhs, rcond=None)[0][:5]
+        coefficients.setflags(write=False)  # cached: shared by every caller
+        out.append(coefficients)
     return out[0], out[1]
 
 

@@ -24,6 +24,7 @@ from __future__ import annotations
 from collections import Counter
 from dataclasses import dataclass
 from pathlib import Path
+from types import MappingProxyType
 
 import numpy as np
 
@@ -56,17 +57,17 @@ def codec_point(motion: Motion, original_size: int, **params) -> dict:
 
 
 #: Joint angles of the CMU (ASF) skeleton as (end, vertex, end) joint triples.
-CMU_ANGLES = {
+CMU_ANGLES = MappingProxyType({
     "lknee": ("lfemur", "ltibia", "lfoot"), "rknee": ("rfemur", "rtibia", "rfoot"),
     "lhip": ("upperback", "lfemur", "ltibia"), "rhip": ("upperback", "rfemur", "rtibia"),
     "lelbow": ("lhumerus", "lradius", "lwrist"), "relbow": ("rhumerus", "rradius", "rwrist"),
     "lshoulder": ("lowerback", "lhumerus", "lradius"),
     "rshoulder": ("lowerback", "rhumerus", "rradius"),
     "lankle": ("ltibia", "lfoot", "ltoes"), "rankle": ("rtibia", "rfoot", "rtoes"),
-}
+})
 
 
-def _mirror(table: dict, left: str, right: str) -> dict:
+def _mirror(table: dict, left: str, right: str) -> MappingProxyType:
     """Add the right-side angles of a table written for the left side."""
     out = {}
     for name, triple in table.items():
@@ -74,7 +75,7 @@ def _mirror(table: dict, left: str, right: str) -> dict:
         if name.startswith("l"):
             out["r" + name[1:]] = tuple(j.replace(left, right) if left in j else j
                                         for j in triple)
-    return out
+    return MappingProxyType(out)
 
 
 #: The same angles for the CMU BVH conversion's joint names.
@@ -92,18 +93,18 @@ BANDAI_ANGLES = _mirror({
     "lankle": ("LowerLeg_L", "Foot_L", "Toes_L")}, "_L", "_R")
 
 
-def angle_table(skeleton) -> dict:
+def angle_table(skeleton) -> MappingProxyType:
     """The first of CMU_ANGLES, CMU_BVH_ANGLES, BANDAI_ANGLES whose joints the skeleton has.
 
     Empty when there is no skeleton or none fits.
     """
     if skeleton is None:
-        return {}
+        return MappingProxyType({})
     names = set(skeleton.names)
     for table in (CMU_ANGLES, CMU_BVH_ANGLES, BANDAI_ANGLES):
         if all(j in names for triple in table.values() for j in triple):
             return table
-    return {}
+    return MappingProxyType({})
 
 
 @dataclass(frozen=True, eq=False)

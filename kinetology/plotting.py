@@ -7,6 +7,8 @@ it is missing.
 
 from __future__ import annotations
 
+from types import MappingProxyType
+
 import numpy as np
 
 from .motion import Motion
@@ -16,7 +18,8 @@ __all__ = ["STATE_COLOURS", "plot_states", "plot_reconstruction", "plot_view_inv
            "plot_reproducibility", "plot_selectivity", "plot_rate_distortion", "save"]
 
 #: Colours of the four states (B blue, G green, R red, Y yellow).
-STATE_COLOURS = {"B": "#1f5fd6", "G": "#2ca02c", "R": "#d62728", "Y": "#e8b400"}
+STATE_COLOURS = MappingProxyType({"B": "#1f5fd6", "G": "#2ca02c", "R": "#d62728",
+                                  "Y": "#e8b400"})
 
 
 def _pyplot():

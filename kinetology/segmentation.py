@@ -31,6 +31,7 @@ are left out of the actiongram.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from types import MappingProxyType
 
 import numpy as np
 
@@ -43,12 +44,12 @@ __all__ = ["STATES", "DEFAULTS", "smooth", "derivatives", "significant_sign", "s
 STATES = ("B", "G", "R", "Y")
 
 #: Default parameters (all in seconds and degrees, so they hold from 30 to 120 fps).
-DEFAULTS = {
+DEFAULTS = MappingProxyType({
     "smoothing": 0.025,              # Gaussian sigma, seconds (3 frames at 120 fps)
     "velocity_deadband": 5.0,        # degrees per second
     "acceleration_deadband": 200.0,  # degrees per second squared
     "min_range": 2.0,                # degrees; channels that move less are still
-}
+})
 
 
 def smooth(values: np.ndarray, frame_rate: float, sigma: float) -> np.ndarray:

@@ -170,3 +170,17 @@ def test_real_amc_segments_into_an_actiongram_psgs_reads(tmp_path):
     path = tmp_path / "walk.txt"
     path.write_text(ag.to_text())
     assert psgs.load_actiongram(path).names == ag.names
+
+
+def test_shared_defaults_and_tables_are_read_only():
+    from kinetology.codec import CODEC_DEFAULTS, basis
+    from kinetology.evaluation import BANDAI_ANGLES, CMU_ANGLES, CMU_BVH_ANGLES
+    from kinetology.plotting import STATE_COLOURS
+
+    for table in (DEFAULTS, CODEC_DEFAULTS, CMU_ANGLES, CMU_BVH_ANGLES, BANDAI_ANGLES,
+                  STATE_COLOURS):
+        with pytest.raises(TypeError):
+            table["smoothing"] = 1.0
+    u, _ = basis(True, False, True, False)  # cached: a write would change later calls
+    with pytest.raises(ValueError):
+        u[0] = 1.0
