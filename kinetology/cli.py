@@ -180,6 +180,7 @@ def _cmd_plot(args) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of the ``kinetology`` command (one subparser per subcommand)."""
     parser = argparse.ArgumentParser(
         prog="kinetology",
         description="Motion capture (BVH, ASF/AMC) in, actiongrams out; compression by "

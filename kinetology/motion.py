@@ -82,9 +82,11 @@ class Skeleton:
 
     @property
     def names(self) -> tuple[str, ...]:
+        """Joint names in skeleton order."""
         return tuple(j.name for j in self.joints)
 
     def index(self, name: str) -> int:
+        """Position of the joint called ``name`` (``KeyError`` listing the joints if none)."""
         for i, joint in enumerate(self.joints):
             if joint.name == name:
                 return i
@@ -130,6 +132,7 @@ class Motion:
 
     @property
     def frames(self) -> int:
+        """Number of frames (rows of ``values``)."""
         return self.values.shape[0]
 
     @property
@@ -138,6 +141,7 @@ class Motion:
         return self.frames / self.frame_rate
 
     def index(self, channel: str) -> int:
+        """Column of ``channel`` (``KeyError`` naming it when there is none)."""
         try:
             return self.channels.index(channel)
         except ValueError:

@@ -156,6 +156,7 @@ class Segmentation:
     still: tuple[str, ...] = ()
 
     def symbols(self, c: int) -> tuple[str, ...]:
+        """State letters of channel ``c``'s segments, in time order."""
         return tuple(STATES[k] for k in self.codes[c])
 
     def durations(self, c: int) -> np.ndarray:
@@ -164,6 +165,7 @@ class Segmentation:
 
     @property
     def segment_count(self) -> int:
+        """Segments over all channels."""
         return sum(len(k) for k in self.codes)
 
     def to_actiongram(self):
