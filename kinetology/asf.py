@@ -57,6 +57,7 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
     children: dict[str, list[str]] = {}
     current: dict | None = None
     scale = 1.0
+    radians = False  # ':units angle rad': axis and orientation angles given in radians
 
     def fail(message, number, column=1):
         raise MotionFormatError(message, source=source, line=number, column=column)
@@ -84,6 +85,10 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
         key = parts[0].lower()
         if section == "units" and key == "length":
             scale = numbers(parts[1:], 1, number)[0]
+        elif section == "units" and key == "angle":
+            if len(parts) < 2 or parts[1].lower() not in ("deg", "rad"):
+                fail(f"angle unit must be deg or rad, not {' '.join(parts[1:])!r}", number)
+            radians = parts[1].lower() == "rad"
         elif section == "root":
             if key == "order":
                 order = tuple(p.lower() for p in parts[1:])
@@ -130,6 +135,10 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
                          raw.find(child) + 1)
     if not bones:
         raise MotionFormatError("no :bonedata bones", source=source)
+    if radians:
+        root["orientation"] = tuple(np.degrees(root["orientation"]).tolist())
+        for info in bones.values():
+            info["axis"] = tuple(np.degrees(info["axis"]).tolist())
     joints: list[Joint] = []
     root_order = root["axis"][::-1]
     joints.append(Joint("root", None, root["position"],
@@ -278,6 +287,8 @@ def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None 
         names.extend(f"{bone}.{d}" for d in bone_dofs)
     values = np.hstack(columns) if columns else np.zeros((frames, 0))
     if not degrees:
-        rotation = [i for i, n in enumerate(names) if n.rsplit(".", 1)[1].startswith("r")]
+        # every column but a translation is an angle (also ``bone.1`` .. without a skeleton)
+        rotation = [i for i, n in enumerate(names)
+                    if n.rsplit(".", 1)[1] not in ("tx", "ty", "tz")]
         values[:, rotation] = np.degrees(values[:, rotation])
     return Motion(values, tuple(names), frame_rate, skeleton, source, {"format": "amc"})

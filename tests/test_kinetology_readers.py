@@ -314,3 +314,18 @@ def test_absurdly_deep_hierarchies_and_empty_files_are_one_clear_error(tmp_path)
         with pytest.raises(MotionFormatError) as info:
             kinetology.read(path)
         assert str(info.value).startswith(f"{path}:1:"), str(info.value)
+
+
+def test_radian_units_are_converted_to_degrees(tmp_path):
+    asf_deg = parse_asf(SMALL_ASF)
+    asf_rad = parse_asf(SMALL_ASF.replace("length 1\n", "length 1\n  angle rad\n")
+                        .replace("axis 0 0 90 XYZ", f"axis 0 0 {np.pi / 2!r} XYZ"))
+    assert asf_rad.skeleton.joints[1].axis == pytest.approx(asf_deg.skeleton.joints[1].axis)
+    radians = SMALL_AMC.replace(":DEGREES", ":RADIANS").replace("femur 90",
+                                                               f"femur {np.pi / 2!r}")
+    with_asf = parse_amc(radians, dofs=asf_deg.dofs)
+    without = parse_amc(radians)
+    assert with_asf.column("femur.rx")[1] == pytest.approx(90.0)
+    assert without.column("femur.1")[1] == pytest.approx(90.0)
+    with pytest.raises(MotionFormatError, match="deg or rad"):
+        parse_asf(SMALL_ASF.replace("length 1\n", "length 1\n  angle grad\n"))
