@@ -18,6 +18,7 @@ __all__ = ["MotionFormatError", "Joint", "Skeleton", "Motion", "AXES"]
 
 #: Channel axes, in the order a joint's channels are listed.
 AXES = ("tx", "ty", "tz", "rx", "ry", "rz")
+_MESSAGE_LIMIT = 200  # characters of an error message, so that it stays one readable line
 
 
 class MotionFormatError(ValueError):
@@ -29,6 +30,8 @@ class MotionFormatError(ValueError):
 
     def __init__(self, message: str, *, source: str = "<data>", line: int | None = None,
                  column: int | None = None) -> None:
+        if len(message) > _MESSAGE_LIMIT:  # garbage input (a binary file) quoted in full
+            message = message[:_MESSAGE_LIMIT - 4] + " ..."
         self.message = message
         self.source = str(source)
         self.line = line

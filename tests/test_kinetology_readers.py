@@ -329,3 +329,15 @@ def test_radian_units_are_converted_to_degrees(tmp_path):
     assert without.column("femur.1")[1] == pytest.approx(90.0)
     with pytest.raises(MotionFormatError, match="deg or rad"):
         parse_asf(SMALL_ASF.replace("length 1\n", "length 1\n  angle grad\n"))
+
+
+@pytest.mark.parametrize("name", ["junk.bvh", "junk.amc"])
+def test_binary_or_run_on_garbage_gives_one_short_line(tmp_path, name):
+    path = tmp_path / name
+    rng = np.random.default_rng(4)
+    path.write_bytes(b"x" * 50_000 + rng.integers(0, 256, 5_000, dtype=np.uint8).tobytes())
+    with pytest.raises(MotionFormatError) as info:
+        kinetology.read(path)
+    text = str(info.value)
+    assert text.startswith(f"{path}:1:") and "\n" not in text
+    assert len(text) < len(str(path)) + 220, len(text)
