@@ -265,7 +265,8 @@ def language(system, max_length: int, *, max_configurations: int = 200_000,
       ``max_length`` (the component taken alone; query symbols derive nothing).
 
     ``max_seconds`` (default ``None``: no limit) bounds the wall-clock time of
-    the search or of the filter loop; the other budgets are deterministic.
+    the search or of the filter loop (each ``accepts`` call then gets the time
+    left as its own ``max_seconds``); the other budgets are deterministic.
 
     Always terminates. When a budget stops it, ``complete`` is ``False`` and
     ``bound`` names the budget, e.g. ``"stopped after 200000 configurations
@@ -520,7 +521,11 @@ def _psgs_filter(system: PSGS, max_length: int, max_words: int, max_candidates: 
             stopped = clock.bound() + f" ({candidates} candidate tuples checked)"
             break
         candidates += 1
-        answer = accepts(system, words, **membership_options)
+        options = membership_options
+        if clock.deadline is not None:  # one accepts call may not outlive language's budget
+            left = max(clock.deadline - time.monotonic(), 1e-3)
+            options = {**membership_options, "max_seconds": left}
+        answer = accepts(system, words, **options)
         verdict = getattr(answer, "answer", "yes" if answer else "no")
         if verdict == "yes":
             accepted.append(words)
