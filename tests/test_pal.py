@@ -188,3 +188,67 @@ def test_recovers_varied_clean_protocols(seed, template_length, copies, patterne
     case = generate(seed=seed, template_length=template_length, copies=copies,
                     patterned=patterned, alphabet=alphabet, gap=gap, strings=patterned + extra)
     assert success(PAL().induce(case.actiongram), case)
+
+
+# -- the period mode (copies as time windows pooled over the strings) -------------
+def oscillations(seed: int, cycles: int = 6, period: float = 1.0) -> Actiongram:
+    """Joints cycling B G R Y at the action's period (one at twice its rate), each
+    at its own phase and with jittered durations and flicker, beside jittering
+    strings over the same four states that do not repeat."""
+    rng = np.random.default_rng(seed)
+    strings, durations = {}, {}
+    for k, rate in enumerate((1, 1, 2, 1, 1)):
+        phase = rng.uniform(0, period)
+        symbols, durs = ["G"], [phase]
+        for _ in range(cycles * rate):
+            for sym in "BGRY":
+                part = period / rate / 4 * rng.uniform(0.8, 1.2)
+                if rng.random() < 0.15:  # a flicker back to the previous state
+                    symbols += [sym, symbols[-1]]
+                    durs += [part * 0.9, part * 0.1]
+                else:
+                    symbols.append(sym)
+                    durs.append(part)
+        strings[f"joint{k}"], durations[f"joint{k}"] = symbols, durs
+    for k in range(5):
+        symbols, durs = [], []
+        while sum(durs) < cycles * period:
+            symbols.append("BGRY"[int(rng.integers(4))])
+            durs.append(float(rng.uniform(0.05, 0.4)))
+        strings[f"noise{k}"], durations[f"noise{k}"] = symbols, durs
+    return Actiongram.from_strings(strings, durations=durations)
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_period_mode_finds_the_oscillating_strings(seed):
+    ag = oscillations(seed)
+    result = PAL(timing="period").induce(ag)
+    assert result.components == tuple(f"joint{k}" for k in range(5))
+    for name in result.components:
+        spans = result.occurrences[name]
+        assert len(spans) >= 4
+        assert all(0.75 < b - a < 1.25 for a, b in spans)
+    assert len(result.patterns["joint2"]) >= 6  # more than one B G R Y cycle per window
+    words = [result.patterns[n] * 3 for n in result.components]
+    assert psgs.accepts(result.system, words)
+    # nothing repeats by content here across strings; the default falls back to the period
+    assert PAL().induce(ag).components == result.components
+    dropped = [r for r in result.reports if r.status != "component"]
+    assert [r.name for r in dropped] == [f"noise{k}" for k in range(5)]
+
+
+@settings(max_examples=25, deadline=None)
+@given(seed=st.integers(0, 10**6))
+def test_period_mode_finds_nothing_in_all_random_actiongrams(seed):
+    case = generate(seed=seed, patterned=0, durations="random")
+    assert PAL(timing="period").induce(case.actiongram).components == ()
+
+
+def test_timing_is_validated_and_content_keeps_the_synthetic_results():
+    with pytest.raises(ValueError):
+        PAL(timing="tempo")
+    with pytest.raises(ValueError):
+        PAL(period_agreement=0)
+    case = generate(seed=3, noise=0.1)
+    assert PAL(timing="content").induce(case.actiongram).components == \
+        PAL().induce(case.actiongram).components == case.components

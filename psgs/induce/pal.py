@@ -23,6 +23,11 @@ irregular repetition -- ``docs/pal.md`` gives the details and every parameter:
 5. strings too damaged to be significant alone join a group when, read in
    its windows, they repeat beyond chance; members that do not are dropped;
 6. end columns not conserved across the group are trimmed.
+
+When content finds nothing (``timing="auto"``, the default) or on request
+(``timing="period"``), copies are instead time windows of the action's period,
+pooled over all strings and tracked through tempo changes; a string is a
+component when its symbols recur window after window (for real motion capture).
 """
 
 from __future__ import annotations
@@ -37,6 +42,8 @@ from ..actiongram import Actiongram
 from .base import Induction, Inducer, StringReport, build_system, check_number, component_name
 
 __all__ = ["PAL"]
+
+_TIMINGS = ("content", "period", "auto")
 
 
 class PAL(Inducer):
@@ -62,6 +69,15 @@ class PAL(Inducer):
       the group's windows, at least this many of its copies have the common
       length and half of their columns agree, beyond chance, in a share
       ``conserve`` of them.
+    - ``timing`` ("auto"): how copies are located. ``"content"``: by content in
+      each string, joined in time (steps 1-6); ``"period"``: by time windows of
+      the action's period pooled over all strings (for real motion, where joints
+      cycle through the same few states at different rates and phases);
+      ``"auto"``: content, and the period mode when content finds no component.
+    - ``period_quantile`` (0.9): the period mode's pooled excess self-agreement
+      at each lag is this quantile over the strings (the driving joints decide).
+    - ``period_agreement`` (0.6): in the period mode, least share of times at
+      which a string's symbol recurs one (tracked) window later.
 
     >>> from psgs.synthetic import generate
     >>> case = generate(seed=1, noise=0.1)
@@ -76,7 +92,8 @@ class PAL(Inducer):
                  match_fraction: float = 0.5, scan_alpha: float = 0.05, alpha: float = 1e-2,
                  sync_fraction: float = 0.5, window_support: float = 0.34,
                  max_pattern: int = 64, seeds: int = 3, rounds: int = 2,
-                 joins_copies: int = 4) -> None:
+                 joins_copies: int = 4, timing: str = "auto",
+                 period_quantile: float = 0.9, period_agreement: float = 0.6) -> None:
         check_number("min_copies", min_copies, low=2, integer=True)
         check_number("conserve", conserve, low=0, high=1, low_open=True)
         check_number("edge_share", edge_share, low=0, high=1)
@@ -89,6 +106,10 @@ class PAL(Inducer):
         check_number("seeds", seeds, low=1, integer=True)
         check_number("rounds", rounds, low=1, integer=True)
         check_number("joins_copies", joins_copies, low=2, integer=True)
+        if timing not in _TIMINGS:
+            raise ValueError(f"timing must be one of {', '.join(_TIMINGS)}, not {timing!r}")
+        check_number("period_quantile", period_quantile, low=0, high=1)
+        check_number("period_agreement", period_agreement, low=0, high=1, low_open=True)
         self.min_copies = min_copies
         self.conserve = conserve
         self.edge_share = edge_share
@@ -101,6 +122,9 @@ class PAL(Inducer):
         self.seeds = seeds
         self.rounds = rounds
         self.joins_copies = joins_copies
+        self.timing = timing
+        self.period_quantile = period_quantile
+        self.period_agreement = period_agreement
 
     def induce(self, actiongram: Actiongram) -> Induction:
         """Learn a PSGS from ``actiongram``; see :class:`~psgs.induce.Induction`."""
@@ -181,6 +205,15 @@ class PAL(Inducer):
                         a, b = a + first, a + last
                     where.append((float(strings[i].starts[a]), float(strings[i].ends[b - 1])))
                 occurrences[i] = tuple(where)
+        by_period = None
+        if self.timing == "period" or (self.timing == "auto" and not patterns):
+            by_period = _period_mode(strings, len(symbol_of), self)
+            patterns, occurrences = {}, {}
+            if by_period is not None:
+                for i, codes in by_period.patterns.items():
+                    patterns[i] = tuple(symbol_of[c] for c in codes)
+                    occurrences[i] = by_period.occurrences[i]
+                    partners[i] = [j for j in by_period.patterns if j != i]
         kept = tuple(sorted(patterns))
 
         reports = []
@@ -190,6 +223,8 @@ class PAL(Inducer):
                 status = "component"
                 if i in joined:
                     partners[i] = joined[i]
+            elif by_period is not None or self.timing == "period":
+                status = "not in step with the period"
             elif m is None:
                 status = "no repetition"
             elif i not in partners:
@@ -686,3 +721,221 @@ def _trim(votes: dict[int, _Vote], edge_share: float) -> dict[int, tuple[int, in
             last -= 1
         out[i] = (first, last)
     return out
+
+
+# -- the period mode: copies located by time pooled over the strings -----------------
+@dataclass(frozen=True)
+class _PeriodResult:
+    """Components found by the period mode: pattern codes and copy times per string."""
+
+    period: float
+    patterns: dict
+    occurrences: dict
+    agreement: dict
+
+
+def _time_grid(strings: list[_Timed], max_points: int = 1 << 14):
+    """Sample every string's symbol code on one time grid (-1 outside the string).
+
+    The step is half the lower quartile of the segment durations (so most
+    segments span two points or more; the quickest flickers fall between
+    points), coarser if the
+    actiongram would need more than ``max_points`` points.
+    """
+    present = [s for s in strings if len(s.codes)]
+    t0 = min(float(s.starts[0]) for s in present)
+    t1 = max(float(s.ends[-1]) for s in present)
+    durations = np.concatenate([s.ends - s.starts for s in present])
+    step = max(float(np.quantile(durations, 0.25)) / 2, (t1 - t0) / max_points)
+    times = t0 + step * (np.arange(int((t1 - t0) / step + 1e-9)) + 0.5)
+    grid = np.full((len(strings), len(times)), -1, dtype=np.int64)
+    for row, s in enumerate(strings):
+        if len(s.codes) == 0:
+            continue
+        index = np.searchsorted(s.ends, times, side="right")
+        inside = (times >= s.starts[0]) & (index < len(s.codes))
+        grid[row, inside] = s.codes[index[inside]]
+    return times, step, grid
+
+
+def _self_agreement(grid: np.ndarray, size: int) -> tuple[np.ndarray, np.ndarray]:
+    """Per string and lag (in grid points): share of times whose symbol recurs one lag later.
+
+    Also each string's chance rate, the sum of its squared symbol time shares
+    (what a string whose symbols were drawn independently would reach).
+    Computed with FFTs of one indicator per symbol.
+    """
+    n = grid.shape[1]
+    nfft = 1 << max(1, (2 * n - 1).bit_length())
+    valid = grid >= 0
+
+    def correlate(indicator):
+        spectrum = np.fft.rfft(indicator.astype(np.float64), nfft, axis=1)
+        return np.fft.irfft(spectrum * spectrum.conj(), nfft, axis=1)[:, :n]
+
+    pairs = np.round(correlate(valid))
+    same = np.zeros_like(pairs)
+    chance = np.zeros(grid.shape[0])
+    counted = np.maximum(valid.sum(axis=1), 1)
+    for sym in range(size):
+        indicator = grid == sym
+        if indicator.any():
+            same += np.round(correlate(indicator))
+            chance += (indicator.sum(axis=1) / counted) ** 2
+    return same / np.maximum(pairs, 1), chance
+
+
+def _action_period(excess: np.ndarray, params: PAL) -> int | None:
+    """The lag (grid points) at which the strings that repeat recur: the action's period.
+
+    Pooled over the strings as the upper ``period_quantile`` of their excess
+    agreement (agreement minus chance) at each lag, so the few joints that
+    drive an action decide and the many still or jittering ones do not
+    dilute them. Lags are searched from the end of the first decline (a
+    symbol agrees with itself a moment later) to a length leaving
+    ``min_copies`` copies; the shortest lag within 15% of the best peak wins
+    (a peak at twice the period is as high).
+    """
+    n = excess.shape[1]
+    longest = n // params.min_copies + 1
+    if longest < 3:
+        return None
+    pooled = np.quantile(excess[:, :longest], params.period_quantile, axis=0)
+    rises = np.flatnonzero(np.diff(pooled) > 0)
+    if len(rises) == 0:
+        return None
+    first = int(rises[0])
+    top = float(pooled[first:].max())
+    if top <= 0:
+        return None
+    for lag in range(max(first, 2), longest):
+        if pooled[lag] >= 0.85 * top and pooled[lag] >= pooled[lag - 1] and \
+                (lag + 1 >= longest or pooled[lag] >= pooled[lag + 1]):
+            return lag
+    return None
+
+
+def _window_agreement(grid: np.ndarray, a: int, b: int, length: int) -> float:
+    """Mean over rows of the share of points of windows at ``a`` and ``b`` with equal symbols."""
+    n = grid.shape[1]
+    span = min(length, n - b)
+    left, right = grid[:, a:a + span], grid[:, b:b + span]
+    valid = (left >= 0) & (right >= 0)
+    counts = valid.sum(axis=1)
+    share = ((left == right) & valid).sum(axis=1) / np.maximum(counts, 1)
+    return float(share[counts > 0].mean()) if np.any(counts > 0) else 0.0
+
+
+def _track_windows(grid: np.ndarray, lag: int) -> np.ndarray:
+    """Start points of consecutive copy windows of ``lag`` points, following tempo changes.
+
+    The phase is where the fewest segments of the given rows run across a
+    window boundary, among the phases that lose no whole window; each next window starts within 20% of ``lag`` after the
+    previous one, where the rows agree best with it (nearest to ``lag``
+    among equals), so a repetition that slows or speeds up stays in step.
+    """
+    n = grid.shape[1]
+    if n < 2 * lag:
+        return np.zeros(0, dtype=np.int64)
+    # phases that keep as many whole windows as the string holds
+    crossing = np.zeros(min(lag, n - (n // lag) * lag + 1))
+    for phase in range(len(crossing)):
+        cuts = np.arange(max(phase, 1), n, lag)
+        crossing[phase] = np.count_nonzero((grid[:, cuts - 1] == grid[:, cuts])
+                                           & (grid[:, cuts] >= 0)) / len(cuts)
+    starts = [int(np.argmin(crossing))]
+    slack = max(1, lag // 5)
+    # at most 41 tried lengths per window bounds the cost on long, finely sampled input
+    tried = np.unique(np.round(np.linspace(lag - slack, lag + slack, min(2 * slack + 1, 41))))
+    candidates = sorted(tried.astype(int).tolist(), key=lambda l: (abs(l - lag), l))
+    while True:
+        here = starts[-1]
+        options = [l for l in candidates if here + l + lag <= n]
+        if not options:
+            break
+        scores = [_window_agreement(grid, here, here + l, lag) for l in options]
+        starts.append(here + options[int(np.argmax(scores))])
+    return np.asarray(starts, dtype=np.int64)
+
+
+def _period_mode(strings: list[_Timed], size: int, params: PAL) -> _PeriodResult | None:
+    """Components whose symbols recur with the action's period, read in tracked windows.
+
+    For real motion: joints cycle through the same few states at different
+    rates and phases, so copies found by content in each string do not
+    cluster; here the copies are time windows shared by all strings. A string
+    is a component when, window after window, its symbols at the same time
+    offset agree in a share ``period_agreement`` of the times, beyond chance
+    (binomial tail on its segments, at its chance rate, times the number of
+    strings, below ``alpha``); at least two are needed (synchronisation). Its
+    pattern is the plurality symbol at each time offset, runs shorter than
+    two grid points dropped.
+    """
+    if sum(len(s.codes) > 0 for s in strings) < 2:
+        return None
+    times, step, grid = _time_grid(strings)
+    if grid.shape[1] < 2 * params.min_copies:
+        return None
+    agreement, chance = _self_agreement(grid, size)
+    lag = _action_period(agreement - chance[:, None], params)
+    if lag is None:
+        return None
+    drivers = np.flatnonzero(agreement[:, lag] >= params.period_agreement)
+    if len(drivers) < 2:
+        return None
+    starts = _track_windows(grid[drivers], lag)
+    if len(starts) < params.min_copies:
+        return None
+    windows = grid[:, starts[:, None] + np.arange(lag)]   # (strings, copies, lag)
+    penalty = math.log10(len(strings))
+    patterns, occurrences, agreed = {}, {}, {}
+    for row, s in enumerate(strings):
+        copies = windows[row]
+        valid = (copies[:-1] >= 0) & (copies[1:] >= 0)
+        if valid.sum() == 0:
+            continue
+        share = float(((copies[:-1] == copies[1:]) & valid).sum() / valid.sum())
+        if share < params.period_agreement:
+            continue
+        low = times[starts[0]] - step / 2
+        high = times[starts[-1] + lag - 1] + step / 2
+        segments = int(np.count_nonzero((s.ends > low) & (s.starts < high)))
+        if _log10_binom_sf(round(share * segments), segments, float(chance[row])) + penalty \
+                > math.log10(params.alpha):
+            continue
+        pattern = _plurality_runs(copies, size)
+        if len(pattern) < 2:
+            continue
+        patterns[row] = pattern
+        agreed[row] = share
+        occurrences[row] = tuple((float(times[a] - step / 2), float(times[a + lag - 1] + step / 2))
+                                 for a in starts.tolist())
+    if len(patterns) < 2:
+        return None
+    return _PeriodResult(float(lag * step), patterns, occurrences, agreed)
+
+
+def _plurality_runs(copies: np.ndarray, size: int) -> tuple[int, ...]:
+    """The symbols of the column-wise plurality of ``copies``, runs under two points dropped."""
+    column = []
+    for values in copies.T:
+        values = values[values >= 0]
+        if len(values) == 0:
+            column.append(-1)
+            continue
+        tally = np.bincount(values, minlength=size)
+        column.append(int(column[-1]) if column and column[-1] >= 0
+                      and tally[column[-1]] == tally.max() else int(np.argmax(tally)))
+    runs: list[list[int]] = []
+    for sym in column:
+        if runs and runs[-1][0] == sym:
+            runs[-1][1] += 1
+        else:
+            runs.append([sym, 1])
+    kept = [sym for sym, width in runs if sym >= 0 and width >= 2] or \
+        [sym for sym, _ in runs if sym >= 0]
+    out: list[int] = []
+    for sym in kept:
+        if not out or out[-1] != sym:
+            out.append(sym)
+    return tuple(out)
