@@ -26,7 +26,7 @@ import math
 import time
 from collections import deque
 
-from .derivation import Derivation, applicable_steps, initial_configuration
+from .derivation import applicable_steps, initial_configuration
 from .enumeration import min_yields
 from .model import PCGS, Nonterminal, Query, Terminal, Word
 
@@ -134,7 +134,7 @@ def accepts_pcgs(system: PCGS, word: Word, *, max_steps: int, max_states: int,
     return Acceptance("no", reason=reason, states=explored, system=system)
 
 
-def _path(parent: dict, end) -> Derivation:
+def _path(parent: dict, end) -> tuple:
     steps = []
     node = end
     while parent[node] is not None:
