@@ -785,34 +785,38 @@ def _self_agreement(grid: np.ndarray, size: int) -> tuple[np.ndarray, np.ndarray
     return same / np.maximum(pairs, 1), chance
 
 
-def _action_period(excess: np.ndarray, params: PAL) -> int | None:
-    """The lag (grid points) at which the strings that repeat recur: the action's period.
+def _candidate_periods(excess: np.ndarray, params: PAL, most: int = 4) -> list[int]:
+    """Lags (grid points) at which the strings that repeat recur: candidates for the action's period.
 
     Pooled over the strings as the upper ``period_quantile`` of their excess
     agreement (agreement minus chance) at each lag, so the few joints that
     drive an action decide and the many still or jittering ones do not
     dilute them. Lags are searched from the end of the first decline (a
     symbol agrees with itself a moment later) to a length leaving
-    ``min_copies`` copies; the shortest lag within 15% of the best peak wins
-    (a peak at twice the period is as high).
+    ``min_copies`` copies. The candidates are the peaks of that curve: first
+    the shortest within 15% of the highest (a peak at twice the period is as
+    high), then the others, highest first, at most ``most``.
     """
     n = excess.shape[1]
     longest = n // params.min_copies + 1
     if longest < 3:
-        return None
+        return []
     pooled = np.quantile(excess[:, :longest], params.period_quantile, axis=0)
     rises = np.flatnonzero(np.diff(pooled) > 0)
     if len(rises) == 0:
-        return None
-    first = int(rises[0])
+        return []
+    first = max(int(rises[0]), 2)
+    if first >= longest:
+        return []
     top = float(pooled[first:].max())
     if top <= 0:
-        return None
-    for lag in range(max(first, 2), longest):
-        if pooled[lag] >= 0.85 * top and pooled[lag] >= pooled[lag - 1] and \
-                (lag + 1 >= longest or pooled[lag] >= pooled[lag + 1]):
-            return lag
-    return None
+        return []
+    peaks = [lag for lag in range(first, longest)
+             if pooled[lag] > 0 and pooled[lag] >= pooled[lag - 1]
+             and (lag + 1 >= longest or pooled[lag] >= pooled[lag + 1])]
+    shortest = [lag for lag in peaks if pooled[lag] >= 0.85 * top][:1]
+    others = sorted((lag for lag in peaks if lag not in shortest), key=lambda l: (-pooled[l], l))
+    return (shortest + others)[:most]
 
 
 def _window_agreement(grid: np.ndarray, a: int, b: int, length: int) -> float:
@@ -877,9 +881,19 @@ def _period_mode(strings: list[_Timed], size: int, params: PAL) -> _PeriodResult
     if grid.shape[1] < 2 * params.min_copies:
         return None
     agreement, chance = _self_agreement(grid, size)
-    lag = _action_period(agreement - chance[:, None], params)
-    if lag is None:
-        return None
+    lags = _candidate_periods(agreement - chance[:, None], params)
+    best = None
+    for lag in lags:
+        found = _read_period(strings, size, times, step, grid, agreement, chance, lag,
+                             len(lags), params)
+        if found is not None and (best is None or len(found.patterns) > len(best.patterns)):
+            best = found
+    return best
+
+
+def _read_period(strings, size, times, step, grid, agreement, chance, lag, tried,
+                 params: PAL) -> _PeriodResult | None:
+    """The components of one candidate period (see :func:`_period_mode`)."""
     drivers = np.flatnonzero(agreement[:, lag] >= params.period_agreement)
     if len(drivers) < 2:
         return None
@@ -887,7 +901,7 @@ def _period_mode(strings: list[_Timed], size: int, params: PAL) -> _PeriodResult
     if len(starts) < params.min_copies:
         return None
     windows = grid[:, starts[:, None] + np.arange(lag)]   # (strings, copies, lag)
-    penalty = math.log10(len(strings))
+    penalty = math.log10(len(strings) * tried)
     patterns, occurrences, agreed = {}, {}, {}
     for row, s in enumerate(strings):
         copies = windows[row]
