@@ -38,26 +38,32 @@ _JSON_FORMAT = "psgs-actiongram"
 _NUMBER = re.compile(r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?\Z")
 
 
+def _shown(value: object, limit: int = 40) -> str:
+    """``repr(value)``, cut to about ``limit`` characters so one bad token keeps errors one line."""
+    text = repr(value)
+    return text if len(text) <= limit else text[:limit - 5] + "...'" + f" ({len(str(value))} chars)"
+
+
 def _bad_name(name: object) -> str | None:
     """Why ``name`` cannot name an actuator, or None when it can."""
     if not isinstance(name, str) or not name:
         return "an actuator name must be non-empty text"
     if any(ch.isspace() for ch in name) or "@" in name or ":" in name or name.startswith("#"):
-        return f"actuator name {name!r} must have no white space, '@' or ':' and not start with '#'"
+        return f"actuator name {_shown(name)} must have no white space, '@' or ':' and not start with '#'"
     return None
 
 
 def _bad_symbol(symbol: object) -> str | None:
     if not isinstance(symbol, str) or not symbol:
-        return f"a symbol must be non-empty text, not {symbol!r}"
+        return f"a symbol must be non-empty text, not {_shown(symbol)}"
     if any(ch.isspace() for ch in symbol) or "@" in symbol or ":" in symbol or symbol.startswith("#"):
-        return f"symbol {symbol!r} must have no white space, '@' or ':' and not start with '#'"
+        return f"symbol {_shown(symbol)} must have no white space, '@' or ':' and not start with '#'"
     return None
 
 
 def _bad_duration(value: object) -> str | None:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
-        return f"a duration must be a number, not {value!r}"
+        return f"a duration must be a number, not {_shown(value)}"
     if not math.isfinite(value) or value <= 0:
         return f"a duration must be positive and finite, not {value!r}"
     return None
@@ -128,24 +134,28 @@ class Actiongram:
             if problem:
                 raise FormatError(problem)
             if name in seen:
-                raise FormatError(f"two strings are named {name!r}")
+                raise FormatError(f"two strings are named {_shown(name)}")
             seen.add(name)
             if len(syms) != len(durs):
-                raise FormatError(f"string {name!r} has {len(syms)} symbols but {len(durs)} "
+                raise FormatError(f"string {_shown(name)} has {len(syms)} symbols but {len(durs)} "
                                   f"durations")
-            for sym in dict.fromkeys(syms):  # each distinct symbol once, in order
+            try:
+                distinct = dict.fromkeys(syms)  # each distinct symbol once, in order
+            except TypeError:  # an unhashable symbol (a list from JSON): not text
+                distinct = syms
+            for sym in distinct:
                 problem = _bad_symbol(sym)
                 if problem:
-                    raise FormatError(f"string {name!r}: {problem}")
+                    raise FormatError(f"string {_shown(name)}: {problem}")
             if not _plain_durations(durs):
                 for dur in durs:
                     problem = _bad_duration(dur)
                     if problem:
-                        raise FormatError(f"string {name!r}: {problem}")
+                        raise FormatError(f"string {_shown(name)}: {problem}")
             if isinstance(origin, bool) or not isinstance(origin, (int, float)) \
                     or not math.isfinite(origin):
-                raise FormatError(f"string {name!r}: start time must be a finite number, "
-                                  f"not {origin!r}")
+                raise FormatError(f"string {_shown(name)}: start time must be a finite number, "
+                                  f"not {_shown(origin)}")
             s, d = _merge(syms, durs)
             merged_symbols.append(s)
             merged_durations.append(d)
@@ -200,14 +210,14 @@ class Actiongram:
             if at:
                 origin = _read_number(origin_text, allow_nonpositive=True)
                 if origin is None:
-                    raise FormatError(f"start time {origin_text!r} is not a number",
+                    raise FormatError(f"start time {_shown(origin_text)} is not a number",
                                       source=source, line=line_no,
                                       column=name_col + len(name) + 1)
             problem = _bad_name(name)
             if problem:
                 raise FormatError(problem, source=source, line=line_no, column=name_col)
             if name in where:
-                raise FormatError(f"actuator {name!r} already given on line {where[name]}",
+                raise FormatError(f"actuator {_shown(name)} already given on line {where[name]}",
                                   source=source, line=line_no, column=name_col)
             where[name] = line_no
             syms, durs = [], []
@@ -216,20 +226,20 @@ class Actiongram:
                 token, col = match.group(), offset + match.start() + 1
                 sym, at, dur_text = token.partition("@")
                 if ":" in token:
-                    raise FormatError(f"symbol {token!r} contains ':'", source=source,
+                    raise FormatError(f"symbol {_shown(token)} contains ':'", source=source,
                                       line=line_no, column=col)
                 if not sym:
-                    raise FormatError(f"{token!r} has a duration but no symbol", source=source,
+                    raise FormatError(f"{_shown(token)} has a duration but no symbol", source=source,
                                       line=line_no, column=col)
                 dur = 1.0
                 if at:
                     dur = _read_number(dur_text, allow_nonpositive=True)
                     if dur is not None and dur <= 0:
-                        raise FormatError(f"duration {dur_text} must be positive",
+                        raise FormatError(f"duration {_shown(dur_text)} must be positive",
                                           source=source, line=line_no, column=col + len(sym) + 1)
                     if dur is None:
                         raise FormatError(
-                            f"unknown duration syntax {'@' + dur_text!r} (write sym@D with D a "
+                            f"unknown duration syntax {_shown('@' + dur_text)} (write sym@D with D a "
                             f"positive number)", source=source, line=line_no,
                             column=col + len(sym))
                 syms.append(sym)
@@ -358,9 +368,27 @@ def _read_number(text: str, *, allow_nonpositive: bool) -> float | None:
 
 
 def load_actiongram(path: str | Path) -> Actiongram:
-    """Read an actiongram file: JSON when the name ends in ``.json``, else the text form."""
+    """Read an actiongram file: JSON when the name ends in ``.json``, else the text form.
+
+    A file that is not UTF-8 text, or that holds no string at all, is a
+    :class:`~psgs.errors.FormatError` (an empty actiongram is almost always
+    the wrong file; build one in Python with ``Actiongram.from_strings({})``).
+    """
     path = Path(path)
-    text = path.read_text(encoding="utf-8")
+    data = path.read_bytes()
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data.count(b"\n", 0, exc.start) + 1
+        column = exc.start - (data.rfind(b"\n", 0, exc.start) + 1) + 1
+        raise FormatError(f"not UTF-8 text (byte {data[exc.start]:#04x})", source=str(path),
+                          line=line, column=column) from None
     if path.suffix.lower() == ".json":
-        return Actiongram.from_json(text, source=str(path))
-    return Actiongram.from_text(text, source=str(path))
+        actiongram = Actiongram.from_json(text, source=str(path))
+    else:
+        actiongram = Actiongram.from_text(text, source=str(path))
+    if not len(actiongram):
+        raise FormatError("empty actiongram: no 'name: symbols' line" if path.suffix.lower()
+                          != ".json" else "empty actiongram: the 'strings' list is empty",
+                          source=str(path), line=1, column=1)
+    return actiongram

@@ -132,3 +132,28 @@ def test_docstring_examples_run(module):
 
     result = doctest.testmod(importlib.import_module(module))
     assert result.failed == 0
+
+
+@pytest.mark.parametrize("name, content, words", [
+    ("junk.txt", b"a: x\n\xff\xfe\x00garbage", "junk.txt:2:1: not UTF-8 text"),
+    ("junk.json", b"\x89PNG\r\n", "junk.json:1:1: not UTF-8 text"),
+    ("empty.txt", b"", "empty.txt:1:1: empty actiongram"),
+    ("comments.txt", b"# only a comment\n\n", "comments.txt:1:1: empty actiongram"),
+    ("empty.json", b'{"strings": []}', "empty.json:1:1: empty actiongram"),
+    ("nested.json", b'{"strings": [{"name": "a", "symbols": [["x"]]}]}', "non-empty text"),
+])
+def test_unreadable_or_empty_files_are_one_format_error(tmp_path, name, content, words):
+    path = tmp_path / name
+    path.write_bytes(content)
+    with pytest.raises(FormatError) as info:
+        psgs.load_actiongram(path)
+    assert words in str(info.value)
+
+
+def test_a_huge_bad_token_gives_a_short_message():
+    with pytest.raises(FormatError) as info:
+        Actiongram.from_text("a: x@" + "q" * 100_000)
+    assert "unknown duration syntax" in str(info.value) and len(str(info.value)) < 200
+    with pytest.raises(FormatError) as info:
+        Actiongram.from_strings({"n" * 100_000 + " ": "x"})
+    assert "white space" in str(info.value) and len(str(info.value)) < 200
