@@ -105,6 +105,8 @@ def generate(seed: int, noise: float = 0.0, *, strings: int = 20, alphabet: int 
     segments, 20 letters, 4 patterned strings from 4 of 8 templates of 8
     symbols repeated 10 times, each copy followed by 2 random symbols.
     """
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+        raise ValueError(f"seed must be a non-negative integer, not {seed!r}")
     if not 0 <= noise <= 1:
         raise ValueError(f"noise must be between 0 and 1, not {noise!r}")
     if patterned > min(strings, templates):

@@ -87,3 +87,9 @@ def test_noise_sweep_counts_successes():
     assert by["sequential", 0.0].successes == 0
     assert all(r.trials == 3 for r in rows)
     assert PAPER_POINTS[0.10] == 0.96
+
+
+@pytest.mark.parametrize("seed", [-1, 1.5, True, "3"])
+def test_seed_must_be_a_non_negative_integer(seed):
+    with pytest.raises(ValueError, match="seed must be a non-negative integer"):
+        generate(seed=seed)
