@@ -54,7 +54,10 @@ def test_induce_sequential_with_params(tmp_path, capsys):
     (["induce", "{bad}", "--inducer", "nope"], "unknown inducer 'nope'"),
     (["induce", "{bad}", "--param", "alpha"], "write KEY=VALUE"),
     (["induce", "--example", "--param", "alpha=7"], "alpha must be <= 1"),
-    (["induce", "--example", "--param", "colour=red"], "unexpected keyword argument"),
+    (["induce", "--example", "--param", "colour=red"],
+     "inducer pal has no parameter 'colour' (its parameters: min_copies,"),
+    (["induce", "--example", "--inducer", "sequential", "--param", "min_count=x"],
+     "parameter min_count must be an integer"),
     (["induce", "{missing}"], "No such file"),
 ])
 def test_bad_input_is_one_line_and_status_2(tmp_path, capsys, argv, words):
@@ -98,3 +101,18 @@ def test_bad_levels_are_rejected(capsys):
     with pytest.raises(SystemExit) as info:
         main(["bench", "noise", "--levels", "0.5:0.1:0.1"])
     assert info.value.code == 2
+
+
+@pytest.mark.parametrize("argv", [
+    ["synth", "--seed", "-1"],
+    ["bench", "noise", "--seed", "-3"],
+    ["bench", "noise", "--levels", "5"],
+    ["bench", "noise", "--levels", "nan"],
+    ["bench", "noise", "--levels", "0:nan:0.1"],
+])
+def test_bad_seeds_and_levels_are_usage_errors(capsys, argv):
+    with pytest.raises(SystemExit) as info:
+        main(argv)
+    assert info.value.code == 2
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and "error: argument --" in err

@@ -46,7 +46,7 @@ def register(subparsers) -> None:
                     "The ground truth is written as comments at the top.")
     synth.add_argument("--noise", type=_share, default=0.0, metavar="P",
                        help="share of symbols replaced in each patterned string (default 0)")
-    synth.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    synth.add_argument("--seed", type=_seed, default=0, help="random seed (default 0)")
     synth.add_argument("--patterned", type=int, default=4,
                        help="patterned strings (default 4; 0 = all random)")
     synth.add_argument("--durations", choices=("unit", "random"), default="unit")
@@ -75,7 +75,7 @@ def register(subparsers) -> None:
     noise.add_argument("--variant", choices=("paper", "random-durations", "irregular-gaps",
                                              "unequal-lengths", "all"), default="paper",
                        help="protocol variant (default paper)")
-    noise.add_argument("--seed", type=int, default=0, help="first seed (default 0)")
+    noise.add_argument("--seed", type=_seed, default=0, help="first seed (default 0)")
     noise.add_argument("--jobs", type=_positive_int, default=2,
                        help="worker processes (default 2)")
     noise.add_argument("--csv", metavar="OUT.csv", help="write the results here")
@@ -108,17 +108,32 @@ def _positive_int(text: str) -> int:
     return value
 
 
+def _seed(text: str) -> int:
+    import argparse
+
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"{text} is negative (seeds are 0 or more)")
+    return value
+
+
 def _levels(text: str) -> tuple[float, ...]:
     import argparse
 
     parts = text.split(":")
     try:
         if len(parts) == 1:
-            return (float(parts[0]),)
+            level = float(parts[0])
+            if not 0 <= level <= 1:
+                raise argparse.ArgumentTypeError(f"{text!r}: a noise level is between 0 and 1")
+            return (level,)
         low, high, step = (float(p) for p in parts)
     except ValueError:
         raise argparse.ArgumentTypeError(f"{text!r} is not LO:HI:STEP") from None
-    if step <= 0 or low < 0 or high > 1 or high < low:
+    if not (step > 0 and 0 <= low <= high <= 1):
         raise argparse.ArgumentTypeError(f"{text!r}: need 0 <= LO <= HI <= 1 and STEP > 0")
     count = int(round((high - low) / step)) + 1
     return tuple(round(low + k * step, 10) for k in range(count) if low + k * step <= high + 1e-9)
@@ -152,6 +167,14 @@ def _make_inducer(name: str, params: dict):
     try:
         return get(name, **params)
     except TypeError as exc:
+        try:
+            known = tuple(get(name).get_params())
+        except Exception:  # a plug-in without defaults or get_params: keep Python's words
+            known = ()
+        unknown = [k for k in params if k not in known]
+        if known and unknown:
+            raise ValidationError(f"inducer {name} has no parameter {unknown[0]!r} "
+                                  f"(its parameters: {', '.join(known)})") from None
         raise ValidationError(f"inducer {name}: {exc}") from None
     except ValueError as exc:
         raise ValidationError(str(exc)) from None
