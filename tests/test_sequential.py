@@ -72,3 +72,15 @@ def test_parameters():
         Sequential(min_count=1)
     with pytest.raises(TypeError):
         Sequential().induce("abc")
+
+
+def test_the_induction_is_a_read_only_value():
+    import pickle
+
+    result = Sequential().induce(Actiongram.from_strings({"a": "abcd" * 4, "b": "xy"}))
+    for mapping in (result.patterns, result.occurrences, result.params, result.component_names):
+        with pytest.raises(TypeError):
+            mapping["a"] = ()
+    assert isinstance(result.patterns["a"], tuple)
+    assert all(isinstance(span, tuple) for span in result.occurrences["a"])
+    assert pickle.loads(pickle.dumps(result)) == result

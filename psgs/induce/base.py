@@ -11,6 +11,7 @@ import inspect
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from types import MappingProxyType
 
 from ..model import PSGS, Grammar, Nonterminal, Rule, Terminal
 
@@ -51,6 +52,8 @@ class Induction:
     ``occurrences``: actuator name -> the (start, end) time of each located
     copy of its pattern. ``reports``: one :class:`StringReport` per string of
     the actiongram, in its order. ``params``: the inducer's parameters.
+    The mappings are read-only views (patterns and occurrences hold tuples):
+    an induction is a value, like the system it holds.
     """
 
     system: PSGS | None
@@ -61,6 +64,25 @@ class Induction:
     component_names: Mapping[str, str] = field(default_factory=dict)
     inducer: str = ""
     params: Mapping[str, object] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        frozen = {
+            "components": tuple(self.components),
+            "patterns": MappingProxyType({k: tuple(v) for k, v in self.patterns.items()}),
+            "occurrences": MappingProxyType({k: tuple(tuple(span) for span in v)
+                                             for k, v in self.occurrences.items()}),
+            "reports": tuple(self.reports),
+            "component_names": MappingProxyType(dict(self.component_names)),
+            "params": MappingProxyType(dict(self.params)),
+        }
+        for key, value in frozen.items():
+            object.__setattr__(self, key, value)
+
+    def __reduce__(self):
+        # read-only views do not pickle; rebuild from plain dicts (e.g. across processes)
+        return (type(self), (self.system, self.components, dict(self.patterns),
+                             dict(self.occurrences), self.reports, dict(self.component_names),
+                             self.inducer, dict(self.params)))
 
     def report(self, name: str) -> StringReport:
         """The report of the string named ``name``."""
