@@ -33,7 +33,9 @@ the components and each one's pattern *is* its template, symbol for symbol
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from types import MappingProxyType
 
 import numpy as np
 
@@ -47,13 +49,25 @@ PAPER_POINTS = {0.0: 1.0, 0.07: 1.0, 0.10: 0.96}
 
 @dataclass(frozen=True)
 class Synthetic:
-    """A generated actiongram with its ground truth."""
+    """A generated actiongram with its ground truth (a value: the mappings are read-only)."""
 
     actiongram: Actiongram
     components: tuple[str, ...]
-    patterns: dict[str, tuple[str, ...]]
+    patterns: Mapping[str, tuple[str, ...]]
     windows: tuple[tuple[float, float], ...]
-    params: dict = field(default_factory=dict)
+    params: Mapping[str, object] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "components", tuple(self.components))
+        object.__setattr__(self, "patterns", MappingProxyType(
+            {k: tuple(v) for k, v in self.patterns.items()}))
+        object.__setattr__(self, "windows", tuple(tuple(w) for w in self.windows))
+        object.__setattr__(self, "params", MappingProxyType(dict(self.params)))
+
+    def __reduce__(self):
+        # read-only views do not pickle; rebuild from plain dicts
+        return (type(self), (self.actiongram, self.components, dict(self.patterns),
+                             self.windows, dict(self.params)))
 
 
 def _letters(count: int) -> list[str]:

@@ -93,3 +93,15 @@ def test_noise_sweep_counts_successes():
 def test_seed_must_be_a_non_negative_integer(seed):
     with pytest.raises(ValueError, match="seed must be a non-negative integer"):
         generate(seed=seed)
+
+
+def test_ground_truth_is_a_read_only_value():
+    import pickle
+
+    case = generate(seed=4)
+    with pytest.raises(TypeError):
+        case.patterns[case.components[0]] = ("x",)
+    with pytest.raises(TypeError):
+        case.params["noise"] = 0.5
+    again = pickle.loads(pickle.dumps(case))
+    assert again == case and dict(again.patterns) == dict(case.patterns)
