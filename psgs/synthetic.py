@@ -127,8 +127,12 @@ def generate(seed: int, noise: float = 0.0, *, strings: int = 20, alphabet: int 
         raise ValueError("patterned must not exceed strings or templates")
     if durations not in ("unit", "random"):
         raise ValueError(f"durations must be 'unit' or 'random', not {durations!r}")
-    if alphabet < 3 or template_length < 1 or copies < 1 or gap < (0 if not irregular_gaps else 1):
-        raise ValueError("alphabet >= 3, template_length >= 1, copies >= 1, gap >= 0 required")
+    # a noise replacement must differ from the symbol and both neighbours: 4 letters at least,
+    # or the draw could never end
+    if alphabet < 4 or template_length < 1 or copies < 1 or gap < (0 if not irregular_gaps else 1):
+        raise ValueError("alphabet >= 4, template_length >= 1, copies >= 1, gap >= 0 required")
+    if template_length == 1 and gap == 0 and not irregular_gaps and copies > 1:
+        raise ValueError("a 1-symbol template needs gap >= 1 (back-to-back copies would merge)")
     # separate streams: the same seed gives the same strings at every noise level
     structure_seed, noise_seed = np.random.SeedSequence(seed).spawn(2)
     rng = np.random.default_rng(structure_seed)

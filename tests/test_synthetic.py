@@ -105,3 +105,13 @@ def test_ground_truth_is_a_read_only_value():
         case.params["noise"] = 0.5
     again = pickle.loads(pickle.dumps(case))
     assert again == case and dict(again.patterns) == dict(case.patterns)
+
+
+def test_small_alphabets_are_refused_instead_of_drawing_forever():
+    # with 3 letters a noise symbol differing from itself and two distinct neighbours cannot exist
+    with pytest.raises(ValueError, match="alphabet >= 4"):
+        generate(seed=0, noise=0.3, alphabet=3, template_length=3)
+    case = generate(seed=0, noise=0.3, alphabet=4, template_length=3)
+    assert all(a != b for s in case.actiongram.symbols for a, b in zip(s, s[1:]))
+    with pytest.raises(ValueError, match="gap >= 1"):
+        generate(seed=0, template_length=1, gap=0)
