@@ -84,3 +84,15 @@ def test_the_induction_is_a_read_only_value():
     assert isinstance(result.patterns["a"], tuple)
     assert all(isinstance(span, tuple) for span in result.occurrences["a"])
     assert pickle.loads(pickle.dumps(result)) == result
+
+
+@pytest.mark.parametrize("params, words", [
+    (dict(alpha=float("nan")), "alpha must be a finite number"),
+    (dict(conserve=float("nan")), "conserve must be a finite number"),
+    (dict(scan_alpha=float("inf")), "scan_alpha must be a finite number"),
+])
+def test_non_finite_parameters_are_refused(params, words):
+    from psgs.induce import get
+
+    with pytest.raises(ValueError, match=words):
+        get("pal", **params)

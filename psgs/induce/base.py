@@ -8,6 +8,7 @@ An inducer is an object configured by keyword arguments at construction
 from __future__ import annotations
 
 import inspect
+import math
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -131,6 +132,8 @@ def check_number(name: str, value: object, *, low: float | None = None, high: fl
     if isinstance(value, bool) or not isinstance(value, ok_type):
         kind = "an integer" if integer else "a number"
         raise ValueError(f"parameter {name} must be {kind}, not {value!r}")
+    if not math.isfinite(value):  # NaN passes every comparison below
+        raise ValueError(f"parameter {name} must be a finite number, not {value!r}")
     if low is not None and (value <= low if low_open else value < low):
         raise ValueError(f"parameter {name} must be {'>' if low_open else '>='} {low}, "
                          f"not {value!r}")
