@@ -186,6 +186,7 @@ EXAMPLE_NOISE = 0.1
 
 
 def run_induce(args) -> int:
+    """``psgs induce``: learn from FILE (or the built-in example) and print or write the result."""
     from ..actiongram import load_actiongram
     from ..format import dumps
     from ..synthetic import generate
@@ -267,6 +268,7 @@ def run_induce(args) -> int:
 
 # -- psgs synth -------------------------------------------------------------------------
 def run_synth(args) -> int:
+    """``psgs synth``: write one seeded synthetic actiongram, its ground truth as comments."""
     from ..synthetic import generate
 
     if not 0 <= args.patterned <= 8:
@@ -311,6 +313,7 @@ def _progress_bar(done: int, total: int, began: float) -> None:
 
 
 def run_bench_noise(args) -> int:
+    """``psgs bench noise``: the success-against-noise sweep, as a table, a CSV and a plot."""
     from ..synthetic import noise_sweep
 
     inducers = tuple(args.inducer or ("pal", "sequential"))
