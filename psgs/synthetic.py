@@ -227,6 +227,7 @@ class SweepRow:
 
     @property
     def rate(self) -> float:
+        """Successes over trials (0 when there were no trials)."""
         return self.successes / self.trials if self.trials else 0.0
 
 
