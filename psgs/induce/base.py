@@ -122,6 +122,7 @@ class Inducer:
         return f"{type(self).__name__}({args})"
 
     def induce(self, actiongram):  # pragma: no cover - interface
+        """Learn from ``actiongram`` (a :class:`~psgs.actiongram.Actiongram`); an :class:`Induction`."""
         raise NotImplementedError
 
 
