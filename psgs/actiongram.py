@@ -49,7 +49,8 @@ def _bad_name(name: object) -> str | None:
     if not isinstance(name, str) or not name:
         return "an actuator name must be non-empty text"
     if any(ch.isspace() for ch in name) or "@" in name or ":" in name or name.startswith("#"):
-        return f"actuator name {_shown(name)} must have no white space, '@' or ':' and not start with '#'"
+        return (f"actuator name {_shown(name)} must have no white space, '@' or ':' and not "
+                f"start with '#'")
     return None
 
 
@@ -57,7 +58,8 @@ def _bad_symbol(symbol: object) -> str | None:
     if not isinstance(symbol, str) or not symbol:
         return f"a symbol must be non-empty text, not {_shown(symbol)}"
     if any(ch.isspace() for ch in symbol) or "@" in symbol or ":" in symbol or symbol.startswith("#"):
-        return f"symbol {_shown(symbol)} must have no white space, '@' or ':' and not start with '#'"
+        return (f"symbol {_shown(symbol)} must have no white space, '@' or ':' and not start "
+                f"with '#'")
     return None
 
 
@@ -229,7 +231,8 @@ class Actiongram:
                     raise FormatError(f"symbol {_shown(token)} contains ':'", source=source,
                                       line=line_no, column=col)
                 if not sym:
-                    raise FormatError(f"{_shown(token)} has a duration but no symbol", source=source,
+                    raise FormatError(f"{_shown(token)} has a duration but no symbol",
+                                      source=source,
                                       line=line_no, column=col)
                 dur = 1.0
                 if at:
@@ -239,8 +242,8 @@ class Actiongram:
                                           source=source, line=line_no, column=col + len(sym) + 1)
                     if dur is None:
                         raise FormatError(
-                            f"unknown duration syntax {_shown('@' + dur_text)} (write sym@D with D a "
-                            f"positive number)", source=source, line=line_no,
+                            f"unknown duration syntax {_shown('@' + dur_text)} (write sym@D "
+                            f"with D a positive number)", source=source, line=line_no,
                             column=col + len(sym))
                 syms.append(sym)
                 durs.append(dur)

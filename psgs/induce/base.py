@@ -122,7 +122,7 @@ class Inducer:
         return f"{type(self).__name__}({args})"
 
     def induce(self, actiongram):  # pragma: no cover - interface
-        """Learn from ``actiongram`` (a :class:`~psgs.actiongram.Actiongram`); an :class:`Induction`."""
+        """Learn from an :class:`~psgs.actiongram.Actiongram`; returns an :class:`Induction`."""
         raise NotImplementedError
 
 
