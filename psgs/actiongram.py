@@ -380,11 +380,12 @@ def load_actiongram(path: str | Path) -> Actiongram:
     path = Path(path)
     data = path.read_bytes()
     try:
-        text = data.decode("utf-8")
+        text = data.decode("utf-8-sig")  # a leading byte-order mark is not part of the first name
     except UnicodeDecodeError as exc:
-        line = data.count(b"\n", 0, exc.start) + 1
-        column = exc.start - (data.rfind(b"\n", 0, exc.start) + 1) + 1
-        raise FormatError(f"not UTF-8 text (byte {data[exc.start]:#04x})", source=str(path),
+        body = exc.object  # the bytes after any byte-order mark: exc.start indexes these
+        line = body.count(b"\n", 0, exc.start) + 1
+        column = exc.start - (body.rfind(b"\n", 0, exc.start) + 1) + 1
+        raise FormatError(f"not UTF-8 text (byte {body[exc.start]:#04x})", source=str(path),
                           line=line, column=column) from None
     if path.suffix.lower() == ".json":
         actiongram = Actiongram.from_json(text, source=str(path))

@@ -157,3 +157,12 @@ def test_a_huge_bad_token_gives_a_short_message():
     with pytest.raises(FormatError) as info:
         Actiongram.from_strings({"n" * 100_000 + " ": "x"})
     assert "white space" in str(info.value) and len(str(info.value)) < 200
+
+
+def test_a_byte_order_mark_is_not_part_of_the_first_name(tmp_path):
+    path = tmp_path / "bom.txt"
+    path.write_bytes("\ufeffhip: a b\n".encode("utf-8"))
+    assert psgs.load_actiongram(path).names == ("hip",)
+    path.write_bytes("\ufeffhip: a b\nknee: \xe9".encode("utf-8")[:-1] + b"\xff")
+    with pytest.raises(FormatError, match=r"bom.txt:2:7: not UTF-8 text \(byte 0xc3\)"):
+        psgs.load_actiongram(path)
