@@ -63,11 +63,19 @@ def _bad_symbol(symbol: object) -> str | None:
     return None
 
 
+def _finite(value: int | float) -> bool:
+    """``math.isfinite``, False for an int too large for a float (instead of OverflowError)."""
+    try:
+        return math.isfinite(value)
+    except OverflowError:
+        return False
+
+
 def _bad_duration(value: object) -> str | None:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         return f"a duration must be a number, not {_shown(value)}"
-    if not math.isfinite(value) or value <= 0:
-        return f"a duration must be positive and finite, not {value!r}"
+    if not _finite(value) or value <= 0:
+        return f"a duration must be positive and finite, not {_shown(value)}"
     return None
 
 
@@ -77,7 +85,7 @@ def _plain_durations(durations: tuple) -> bool:
         return True
     if not set(map(type, durations)) <= {int, float}:
         return False
-    return min(durations) > 0 and all(map(math.isfinite, durations))
+    return min(durations) > 0 and all(map(_finite, durations))
 
 
 def _format_number(value: float) -> str:
@@ -155,10 +163,13 @@ class Actiongram:
                     if problem:
                         raise FormatError(f"string {_shown(name)}: {problem}")
             if isinstance(origin, bool) or not isinstance(origin, (int, float)) \
-                    or not math.isfinite(origin):
+                    or not _finite(origin):
                 raise FormatError(f"string {_shown(name)}: start time must be a finite number, "
                                   f"not {_shown(origin)}")
             s, d = _merge(syms, durs)
+            if not math.isfinite(float(origin) + sum(d)):
+                raise FormatError(f"string {_shown(name)}: its times overflow (the durations "
+                                  f"add up to more than a float can hold)")
             merged_symbols.append(s)
             merged_durations.append(d)
         object.__setattr__(self, "names", names)

@@ -166,3 +166,16 @@ def test_a_byte_order_mark_is_not_part_of_the_first_name(tmp_path):
     path.write_bytes("\ufeffhip: a b\nknee: \xe9".encode("utf-8")[:-1] + b"\xff")
     with pytest.raises(FormatError, match=r"bom.txt:2:7: not UTF-8 text \(byte 0xc3\)"):
         psgs.load_actiongram(path)
+
+
+@pytest.mark.parametrize("item", [
+    '"durations": [1%s]' % ("0" * 400),
+    '"start": 1%s' % ("0" * 400),
+    '"durations": [1e308, 1e308]',
+])
+def test_numbers_too_large_for_a_float_are_format_errors(item):
+    text = '{"strings": [{"name": "a", "symbols": ["x", "y"], %s}]}' % item
+    if '"durations": [1' in item and "," not in item:
+        text = text.replace('["x", "y"]', '["x"]')
+    with pytest.raises(FormatError, match="finite|overflow"):
+        Actiongram.from_json(text)
