@@ -96,3 +96,21 @@ def test_non_finite_parameters_are_refused(params, words):
 
     with pytest.raises(ValueError, match=words):
         get("pal", **params)
+
+
+def test_a_broken_plug_in_is_one_clear_error(monkeypatch, capsys):
+    import psgs.induce as induce
+    from psgs.cli import main
+
+    class BrokenEntryPoint:
+        name = "broken"
+
+        def load(self):
+            raise ImportError("No module named 'nowhere'")
+
+    monkeypatch.setattr(induce, "entry_points", lambda group: [BrokenEntryPoint()])
+    with pytest.raises(ValueError, match="'broken' \\(a plug-in\\) could not be loaded"):
+        induce.get("broken")
+    assert main(["induce", "--example", "--inducer", "broken"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "No module named 'nowhere'" in err

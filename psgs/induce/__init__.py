@@ -40,5 +40,10 @@ def get(name: str, **params) -> Inducer:
         return _BUILT_IN[name](**params)
     plugins = _plugins()
     if name in plugins:
-        return plugins[name].load()(**params)
+        try:
+            factory = plugins[name].load()
+        except Exception as exc:  # a broken plug-in: say which, in one line
+            raise ValueError(f"inducer {name!r} (a plug-in) could not be loaded: "
+                             f"{type(exc).__name__}: {exc}") from None
+        return factory(**params)
     raise ValueError(f"unknown inducer {name!r}; available: {', '.join(available())}")
