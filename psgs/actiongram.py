@@ -190,8 +190,10 @@ class Actiongram:
         """
         durations = durations or {}
         starts = starts or {}
-        for extra in (set(durations) | set(starts)) - set(strings):
-            raise FormatError(f"durations or starts given for unknown string {extra!r}")
+        for extra in (*durations, *starts):  # in the order given: the same error every run
+            if extra not in strings:
+                raise FormatError(f"durations or starts given for unknown string "
+                                  f"{_shown(extra)}")
         names, symbol_rows, duration_rows, origins = [], [], [], []
         for name, syms in strings.items():
             syms = tuple(syms)

@@ -179,3 +179,19 @@ def test_numbers_too_large_for_a_float_are_format_errors(item):
         text = text.replace('["x", "y"]', '["x"]')
     with pytest.raises(FormatError, match="finite|overflow"):
         Actiongram.from_json(text)
+
+
+def test_unknown_names_in_durations_are_reported_in_the_order_given():
+    import subprocess
+    import sys
+
+    code = ("from psgs import Actiongram\n"
+            "try:\n"
+            "    Actiongram.from_strings({'a': 'x'}, durations={'q1': [1], 'q2': [1], 'q3': [1],"
+            " 'q4': [1]}, starts={'q5': 0})\n"
+            "except Exception as exc:\n"
+            "    print(exc.message)\n")
+    seen = {subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                           env={**__import__("os").environ, "PYTHONHASHSEED": str(seed)},
+                           check=True).stdout for seed in range(4)}
+    assert seen == {"durations or starts given for unknown string 'q1'\n"}
