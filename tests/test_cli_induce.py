@@ -116,3 +116,12 @@ def test_bad_seeds_and_levels_are_usage_errors(capsys, argv):
     assert info.value.code == 2
     err = capsys.readouterr().err
     assert "Traceback" not in err and "error: argument --" in err
+
+
+def test_a_component_kept_at_a_bound_is_not_also_called_dropped(tmp_path, capsys):
+    path = tmp_path / "a.txt"
+    path.write_text("x: a b c a b c a b c a b c\n")
+    assert main(["induce", str(path), "--inducer", "sequential", "--param", "max_rules=1"]) == 0
+    out = capsys.readouterr().out
+    assert "1 component(s)" in out and "note: x: rule bound reached" in out
+    assert "dropped" not in out

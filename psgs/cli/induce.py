@@ -241,7 +241,11 @@ def run_induce(args) -> int:
         out.append(line)
     dropped: dict[str, int] = {}
     for report in result.reports:
-        if report.status != "component":
+        if report.status == "component":
+            continue
+        if report.name in result.components:  # kept, with a caveat (e.g. a search bound hit)
+            out.append(f"  note: {report.name}: {report.status}")
+        else:
             dropped[report.status] = dropped.get(report.status, 0) + 1
     if dropped:
         out.append("  dropped: " + ", ".join(f"{n} {why}" for why, n in sorted(dropped.items())))
