@@ -125,3 +125,11 @@ def test_a_component_kept_at_a_bound_is_not_also_called_dropped(tmp_path, capsys
     out = capsys.readouterr().out
     assert "1 component(s)" in out and "note: x: rule bound reached" in out
     assert "dropped" not in out
+
+
+@pytest.mark.parametrize("flag", ["--csv", "--plot"])
+def test_bench_noise_checks_its_output_path_before_running(tmp_path, capsys, flag):
+    target = tmp_path / "no-such-dir" / "out.x"
+    assert main(["bench", "noise", "--trials", "1", "--levels", "0", flag, str(target)]) == 2
+    captured = capsys.readouterr()
+    assert "not a file in an existing directory" in captured.err and "cells" not in captured.err

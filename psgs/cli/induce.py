@@ -323,6 +323,9 @@ def run_bench_noise(args) -> int:
     inducers = tuple(args.inducer or ("pal", "sequential"))
     for name in inducers:
         _make_inducer(name, {})  # fail early, with one line, on an unknown name
+    for out in (args.csv, args.plot):  # and on an output path that cannot be written
+        if out and (Path(out).is_dir() or not Path(out).resolve().parent.is_dir()):
+            raise ValidationError(f"{out}: not a file in an existing directory")
     if args.plot:
         try:
             import matplotlib  # noqa: F401
