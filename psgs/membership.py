@@ -474,8 +474,15 @@ class _ScheduleSearch:
         path: list = []
         explored += 1
         capped = False
+        generated = 0
         while stack:
             nxt = next(stack[-1], None)
+            # the clock is read per generated successor, not per new state: successors that
+            # are already visited or over the ε cap cost time without adding a state
+            generated += 1
+            if generated % 1024 == 0 and time.monotonic() > self.deadline:
+                self.explored = explored
+                raise BoundReached("max_seconds")
             if nxt is None:
                 stack.pop()
                 if path:
