@@ -40,13 +40,15 @@ class CompiledGrammar:
     terminal ``t`` is ``~id(t)`` (< 0) with ids from ``terminal_ids``.
     """
 
-    def __init__(self, grammar: Grammar, terminal_ids: dict[Terminal, int]) -> None:
+    def __init__(self, grammar: Grammar, terminal_ids: dict[Terminal, int],
+                 rules=None) -> None:
         self.grammar = grammar
         nts = sorted(grammar.nonterminals, key=lambda n: n.name)
         self.nonterminals: list[Nonterminal] = nts
         self.index = {n: k for k, n in enumerate(nts)}
         self.terminal_of = {v: k for k, v in terminal_ids.items()}
-        self.rules: list[Rule] = list(grammar.rules)
+        # rules: the usable subset (None: all), e.g. under 'strict' only rules in some tuple
+        self.rules: list[Rule] = list(grammar.rules if rules is None else rules)
         self.rule_id = {r: k for k, r in enumerate(self.rules)}
         self.lhs = [self.index[r.lhs] for r in self.rules]
         self.body: list[tuple[int, ...]] = []

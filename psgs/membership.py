@@ -210,8 +210,14 @@ def _accepts_psgs(system: PSGS, words: tuple[Word, ...], max_states: int,
     for t in sorted(system.terminals):
         terminal_ids[t] = len(terminal_ids)
     compiled, charts = [], []
-    for g, w in zip(system.components, words):
-        cg = CompiledGrammar(g, terminal_ids)
+    for c, (g, w) in enumerate(zip(system.components, words)):
+        usable = None
+        if system.unsynchronised == "strict":
+            # a rule in no tuple can never apply under 'strict': parse without it, so a word
+            # that needs it is refused by the chart instead of by an endless schedule search
+            in_tuples = {m[c] for m in system.sync if m[c] is not IDLE}
+            usable = [r for r in g.rules if r in in_tuples]
+        cg = CompiledGrammar(g, terminal_ids, usable)
         for k, t in enumerate(w):
             if t not in g.terminals:
                 return Acceptance("no", reason=(
@@ -224,8 +230,10 @@ def _accepts_psgs(system: PSGS, words: tuple[Word, ...], max_states: int,
     try:
         for g, cg, chart, w in zip(system.components, compiled, charts, words):
             if not chart.derives(cg.index[g.start], 0, len(w)):
+                scope = (" (under 'strict', taking only the rules that are in some tuple)"
+                         if system.unsynchronised == "strict" else "")
                 return Acceptance("no", reason=(
-                    f"component {g.name}'s word is not in its context-free language"),
+                    f"component {g.name}'s word is not in its context-free language{scope}"),
                     system=system)
         spine = _spine_check(system, compiled, charts, max_states, deadline)
         if spine is not None:

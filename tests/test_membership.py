@@ -97,6 +97,22 @@ def test_strict_policy_forbids_gammas_unsynchronised_rules():
 
 
 @pytest.mark.parametrize("mode", ["parallel", "single"])
+def test_strict_rules_in_no_tuple_are_refused_by_the_chart_not_by_a_budget(mode):
+    # S → b and S → ε are in no tuple, so under strict only S → S S applies: the language is
+    # empty. Before, the schedule search piled up ε-occurrences and answered "unknown".
+    g = _grammar("G", "S", "r", ["S -> b", "S -> ", "S -> S S"])
+    doubling = next(r for r in g.rules if len(r.rhs) == 2)
+    system = PSGS((g,), ((doubling,),), mode=mode, unsynchronised="strict")
+    assert language(system, 4, method="search").words == ()
+    for word in ["", "b", "bb"]:
+        result = accepts(system, [word], max_seconds=5)
+        assert result.answer == "no", (word, result)
+        assert "strict" in result.reason
+    free = dataclasses.replace(system, unsynchronised="free")
+    assert accepts(free, ["bb"]).answer == "yes"
+
+
+@pytest.mark.parametrize("mode", ["parallel", "single"])
 def test_gamma_at_a_thousand_repetitions(mode):
     result = accepts(gamma(mode), gamma_words(1000), check_witness=False)
     assert result.answer == "yes"
