@@ -15,6 +15,7 @@ import re
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
+from types import MappingProxyType
 from typing import Literal, Union
 
 from .errors import ValidationError
@@ -176,19 +177,32 @@ class Grammar:
             raise ValidationError(f"component {self.name}: start symbol {self.start} has no rule")
         _check_kinds(self.name, rules, (self.start,))
 
+    # the tables are cached as plain dicts (they pickle) and handed out read-only, so a
+    # caller cannot change what a frozen grammar answers
     @cached_property
-    def rule_by_label(self) -> Mapping[str, Rule]:
+    def _label_table(self) -> dict[str, Rule]:
         return {r.label: r for r in self.rules}
 
     @cached_property
-    def rules_by_lhs(self) -> Mapping[Nonterminal, tuple[Rule, ...]]:
+    def _lhs_table(self) -> dict[Nonterminal, tuple[Rule, ...]]:
         table: dict[Nonterminal, list[Rule]] = {}
         for r in self.rules:
             table.setdefault(r.lhs, []).append(r)
         return {k: tuple(v) for k, v in table.items()}
 
+    @property
+    def rule_by_label(self) -> Mapping[str, Rule]:
+        """Read-only mapping from each rule label to its rule."""
+        return MappingProxyType(self._label_table)
+
+    @property
+    def rules_by_lhs(self) -> Mapping[Nonterminal, tuple[Rule, ...]]:
+        """Read-only mapping from each left-hand side to its rules, in file order."""
+        return MappingProxyType(self._lhs_table)
+
     @cached_property
     def nonterminals(self) -> frozenset[Nonterminal]:
+        """Every nonterminal of the grammar: its axiom, left sides and right sides."""
         out = {self.start}
         for r in self.rules:
             out.add(r.lhs)
@@ -197,10 +211,12 @@ class Grammar:
 
     @cached_property
     def terminals(self) -> frozenset[Terminal]:
+        """Every terminal on a right-hand side."""
         return frozenset(s for r in self.rules for s in r.rhs if isinstance(s, Terminal))
 
     @cached_property
     def queries(self) -> frozenset[Query]:
+        """Every query symbol on a right-hand side (PCGS components only)."""
         return frozenset(s for r in self.rules for s in r.rhs if isinstance(s, Query))
 
     def rule(self, label: str) -> Rule:
@@ -324,18 +340,22 @@ class PSGS:
     # -- derived views ----------------------------------------------------
     @property
     def axioms(self) -> tuple[Nonterminal, ...]:
+        """The start symbols, in component order."""
         return tuple(g.start for g in self.components)
 
     @property
     def component_names(self) -> tuple[str, ...]:
+        """The component names, in component order."""
         return tuple(g.name for g in self.components)
 
     @cached_property
     def nonterminals(self) -> frozenset[Nonterminal]:
+        """Every nonterminal of every component."""
         return frozenset().union(*(g.nonterminals for g in self.components))
 
     @cached_property
     def terminals(self) -> frozenset[Terminal]:
+        """Every terminal of every component."""
         return frozenset().union(*(g.terminals for g in self.components))
 
     @cached_property
@@ -402,14 +422,17 @@ class PCGS:
 
     @property
     def axioms(self) -> tuple[Nonterminal, ...]:
+        """The start symbols, in component order."""
         return tuple(g.start for g in self.components)
 
     @property
     def component_names(self) -> tuple[str, ...]:
+        """The component names, in component order."""
         return tuple(g.name for g in self.components)
 
     @property
     def master_index(self) -> int:
+        """The position of the master among the components."""
         return self.component_names.index(self.master)
 
     @property
@@ -419,10 +442,12 @@ class PCGS:
 
     @cached_property
     def nonterminals(self) -> frozenset[Nonterminal]:
+        """Every nonterminal of every component."""
         return frozenset().union(*(g.nonterminals for g in self.components))
 
     @cached_property
     def terminals(self) -> frozenset[Terminal]:
+        """Every terminal of every component."""
         return frozenset().union(*(g.terminals for g in self.components))
 
     def index(self, component: str | int) -> int:

@@ -122,3 +122,17 @@ def test_word_reads_a_str_as_one_character_symbols():
     assert word(["up", "down"]) == (Terminal("up"), Terminal("down"))
     with pytest.raises(ValidationError):
         word([S])  # type: ignore[list-item]
+
+
+def test_grammar_lookup_tables_are_read_only_and_pickle():
+    import pickle
+
+    N, T = Nonterminal, Terminal
+    g = Grammar("G", N("S"), (Rule("s", N("S"), (T("a"),)),))
+    assert g.rule("s").label == "s" and g.rules_by_lhs[N("S")][0].label == "s"
+    with pytest.raises(TypeError):
+        g.rule_by_label["t"] = g.rule("s")
+    with pytest.raises(TypeError):
+        g.rules_by_lhs[N("T")] = ()
+    assert "t" not in g.rule_by_label and N("T") not in g.rules_by_lhs
+    assert pickle.loads(pickle.dumps(g)) == g
