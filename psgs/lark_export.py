@@ -31,6 +31,7 @@ unchanged.
 from __future__ import annotations
 
 from collections.abc import Iterable
+from types import MappingProxyType
 
 from .errors import ValidationError
 from .model import PCGS, PSGS, Grammar, Nonterminal, Rule, Terminal
@@ -42,8 +43,8 @@ __all__ = ["to_lark", "grammar_to_lark", "from_lark_name", "lark_name", "START_R
 START_RULE = "start"
 #: The declared (never produced) terminal a component with an empty language derives.
 EMPTY_TERMINAL = "EMPTY_LANGUAGE"
-#: The options the exports are written for.
-LARK_OPTIONS = {"start": START_RULE, "parser": "earley", "lexer": "basic"}
+#: The options the exports are written for (read-only: pass them as ``lark.Lark(text, **LARK_OPTIONS)``).
+LARK_OPTIONS = MappingProxyType({"start": START_RULE, "parser": "earley", "lexer": "basic"})
 
 _NT_PREFIX = "n_"
 _T_PREFIX = "T_"

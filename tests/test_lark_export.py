@@ -230,6 +230,8 @@ def test_every_component_of_a_generated_system_loads(system):
 
 def test_the_start_rule_is_documented():
     assert START_RULE == "start" and LARK_OPTIONS["start"] == START_RULE
+    with pytest.raises(TypeError):  # shared options: no caller may change them for all others
+        LARK_OPTIONS["parser"] = "lalr"
 
 
 # ---------------------------------------------------------------- docs/export.md
