@@ -22,3 +22,17 @@ def test_index_tour_runs(capsys):
     out = capsys.readouterr().out
     assert "parallel free 4 8" in out
     assert "(S1, S2, S3, S4) ⇒" in out
+
+
+def test_semantics_examples_run():
+    text = (ROOT / "docs" / "semantics.md").read_text(encoding="utf-8")
+    blocks = re.findall(r"```python\n(.*?)```", text, flags=re.S)
+    assert blocks, "docs/semantics.md has no python example"
+    namespace: dict = {}
+    cwd = os.getcwd()
+    os.chdir(ROOT)
+    try:
+        for block in blocks:
+            exec(compile(block, "docs/semantics.md", "exec"), namespace)  # its asserts check
+    finally:
+        os.chdir(cwd)
