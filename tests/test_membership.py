@@ -228,6 +228,15 @@ def test_cli_check_exit_statuses():
     assert traced.stdout.rstrip().endswith("(abcdbcad, bcadabcd, cdabcdab, abcdbcad)")
 
 
+def test_cli_check_usage_errors_exit_3_not_the_unknown_status():
+    # argparse's own status 2 would read as "unknown"
+    for argv in [(), ("--max-seconds", "0", PAPER, "a"), ("--max-states", "x", PAPER, "a"),
+                 ("--bogus", PAPER, "a")]:
+        result = run_cli(*argv)
+        assert result.returncode == 3, (argv, result.returncode, result.stderr)
+        assert "error" in result.stderr and "Traceback" not in result.stderr
+
+
 def test_cli_check_errors_are_one_line_and_non_zero(tmp_path):
     bad = tmp_path / "bad.psgs"
     bad.write_text("psgs X\ncomponent\n")

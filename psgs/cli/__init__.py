@@ -35,16 +35,22 @@ def main(argv: list[str] | None = None) -> int:
     from ..errors import PSGSError
 
     parser = build_parser()
-    args = parser.parse_args(argv)
+    args, unrecognized = parser.parse_known_args(argv)
+    error_status = getattr(args, "error_status", None)
+    error_status = 2 if error_status is None else error_status
+    if unrecognized:  # what parse_args does, but with the subcommand's error status
+        parser.print_usage(sys.stderr)
+        print(f"psgs: error: unrecognized arguments: {' '.join(unrecognized)}", file=sys.stderr)
+        return error_status
     try:
         status = args.run(args)
     except PSGSError as exc:
         print(f"psgs: error: {exc}", file=sys.stderr)
-        return 2 if getattr(args, "error_status", None) is None else args.error_status
+        return error_status
     except OSError as exc:
         where = f"{exc.filename}: " if getattr(exc, "filename", None) else ""
         print(f"psgs: error: {where}{exc.strerror or exc}", file=sys.stderr)
-        return 2
+        return error_status
     except KeyboardInterrupt:
         print("psgs: interrupted", file=sys.stderr)
         return 130

@@ -40,6 +40,13 @@ def register(subparsers) -> None:
                        help="PCGS: longest derivation searched (default 200)")
     check.set_defaults(run=run_check, error_status=ERROR)
 
+    def usage_error(message: str):
+        # argparse exits 2 on a usage error, which for check would read as "unknown"
+        check.print_usage(sys.stderr)
+        check.exit(ERROR, f"{check.prog}: error: {message}\n")
+
+    check.error = usage_error
+
 
 def _positive(text: str) -> int:
     try:
