@@ -81,8 +81,14 @@ def _find(word: Word, run: list, start: int, end: int) -> int:
 
 def accepts_pcgs(system: PCGS, word: Word, *, max_steps: int, max_states: int,
                  max_seconds: float):
+    """Breadth-first search for a derivation of ``word`` by the master (yes / no / unknown)."""
     from .membership import Acceptance
 
+    # every terminal of the master's word comes from some component's rules
+    foreign = next((t for t in word if t not in system.terminals), None)
+    if foreign is not None:
+        return Acceptance("no", reason=f"{foreign} is a terminal of no component",
+                          states=0, system=system)
     deadline = time.monotonic() + max_seconds
     m = system.master_index
     prune = not _master_can_reset(system)

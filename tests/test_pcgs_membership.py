@@ -112,3 +112,19 @@ def test_pcgs_accepts_agrees_with_enumeration(system, data):
             assert word not in members
         if lang.complete and word in members:
             assert result.answer in ("yes", "unknown")
+
+
+def test_a_symbol_no_component_produces_is_a_proved_no():
+    # left recursion, a unit cycle and an ever-growing non-returning G2: before, "c" ran the
+    # search to max_steps and answered "unknown"
+    g1 = Grammar("G1", N("S"), (Rule("p1", N("S"), (N("S"), T("a"))), Rule("p2", N("S"), (N("A"),)),
+                                Rule("p3", N("A"), (N("S"),)), Rule("p4", N("S"), (Query("G2"),)),
+                                Rule("p5", N("S"), ())))
+    g2 = Grammar("G2", N("T"), (Rule("q1", N("T"), (N("T"), T("b"))), Rule("q2", N("T"), ())))
+    system = PCGS((g1, g2), returning=False)
+    assert accepts(system, "bba", max_seconds=10).answer == "yes"
+    result = accepts(system, "c", max_seconds=10)
+    assert result.answer == "no", result
+    assert "c is a terminal of no component" in result.reason
+    for abc in abc_systems():
+        assert accepts(abc, "aabxbcc").answer == "no"
