@@ -204,3 +204,14 @@ def test_the_console_examples_of_the_docs_print_what_they_say(capsys):
             assert status == 0 and out == expected
             checked += 1
     assert checked >= 1
+
+
+def test_a_reader_that_goes_away_ends_the_command_quietly():
+    """`psgs … | head` must not print a BrokenPipe error or a traceback."""
+    command = (f"{sys.executable} -m psgs derive grammars/modes.psgs --enumerate "
+               f"--max-length 400 | head -1")
+    done = subprocess.run(["bash", "-o", "pipefail", "-c", command], capture_output=True,
+                          text=True, cwd=Path(__file__).resolve().parent.parent, timeout=60)
+    assert done.stdout.strip() == "(bb)"
+    assert done.stderr == ""
+    assert done.returncode == 141

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
 
 # modules that add subcommands; each defines register(subparsers)
@@ -47,6 +48,11 @@ def main(argv: list[str] | None = None) -> int:
     except PSGSError as exc:
         print(f"psgs: error: {exc}", file=sys.stderr)
         return error_status
+    except BrokenPipeError:
+        # the reader (e.g. `| head`) went away: stop quietly, as Unix tools do
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 141
     except OSError as exc:
         where = f"{exc.filename}: " if getattr(exc, "filename", None) else ""
         print(f"psgs: error: {where}{exc.strerror or exc}", file=sys.stderr)
