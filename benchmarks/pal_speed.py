@@ -177,7 +177,7 @@ def write_section() -> None:
     speed = DATA / "pal_speed.csv"
     if speed.exists():
         summary = json.loads((DATA / "pal_speed.json").read_text())
-        lines += [f"Speed, measured with `{summary['command']}` (best of 3, wall clock, "
+        lines += [f"Speed, measured with `{summary['command']}` (best of 3 runs, but PAL best of 2 at 10⁶ symbols and the peer one run from 10⁵ up; wall clock, "
                   f"shared 2-core machine); peer: {summary['peer']} learning the same strings "
                   "one by one:", "",
                   "| symbols | PAL s | PAL symbols/s | peer s | peer symbols/s | peer/PAL |",
