@@ -7,12 +7,12 @@ stderr).
 
 from __future__ import annotations
 
-import argparse
 import dataclasses
 import sys
 
 from ..errors import ValidationError
 from ..model import PCGS, PSGS, Terminal
+from ._types import positive_float, positive_int
 
 YES, NO, UNKNOWN, ERROR = 0, 1, 2, 3
 
@@ -32,11 +32,11 @@ def register(subparsers) -> None:
                        help="print the witness derivation when the answer is yes")
     check.add_argument("--mode", choices=("parallel", "single"),
                        help="PSGS: override the file's rewriting mode")
-    check.add_argument("--max-states", type=_positive, default=200_000, metavar="N",
+    check.add_argument("--max-states", type=positive_int, default=200_000, metavar="N",
                        help="search budget in states (default 200000)")
-    check.add_argument("--max-seconds", type=_seconds, default=30.0, metavar="S",
+    check.add_argument("--max-seconds", type=positive_float, default=30.0, metavar="S",
                        help="search budget in seconds (default 30)")
-    check.add_argument("--max-steps", type=_positive, default=200, metavar="K",
+    check.add_argument("--max-steps", type=positive_int, default=200, metavar="K",
                        help="PCGS: longest derivation searched (default 200)")
     check.set_defaults(run=run_check, error_status=ERROR)
 
@@ -46,26 +46,6 @@ def register(subparsers) -> None:
         check.exit(ERROR, f"{check.prog}: error: {message}\n")
 
     check.error = usage_error
-
-
-def _positive(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError("must be at least 1")
-    return value
-
-
-def _seconds(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
-    if not value > 0:
-        raise argparse.ArgumentTypeError("must be positive")
-    return value
 
 
 def read_word(text: str, system) -> tuple[Terminal, ...]:

@@ -8,7 +8,6 @@ complete (what was found is still printed).
 
 from __future__ import annotations
 
-import argparse
 import dataclasses
 import re
 import sys
@@ -17,6 +16,7 @@ from pathlib import Path
 from ..errors import ValidationError
 from ..format import load
 from ..model import IDLE, PCGS, PSGS
+from ._types import natural, positive_int
 
 #: Exit status when a search or a derivation stopped at a bound.
 INCOMPLETE = 3
@@ -38,11 +38,11 @@ def register(subparsers) -> None:
     how.add_argument("--enumerate", action="store_true",
                      help="every word up to --max-length, in order of size")
     derive.add_argument("--seed", type=int, default=0, help="seed of --random (default 0)")
-    derive.add_argument("--max-steps", type=_positive, default=10_000, metavar="K",
+    derive.add_argument("--max-steps", type=positive_int, default=10_000, metavar="K",
                         help="--random stops after K steps (default 10000)")
-    derive.add_argument("--max-length", type=_natural, default=None, metavar="L",
+    derive.add_argument("--max-length", type=natural, default=None, metavar="L",
                         help="--enumerate: total length bound (needed)")
-    derive.add_argument("--max-configurations", type=_positive, default=200_000, metavar="N",
+    derive.add_argument("--max-configurations", type=positive_int, default=200_000, metavar="N",
                         help="--enumerate: search budget (default 200000)")
     derive.add_argument("--mode", choices=("parallel", "single"),
                         help="PSGS: override the file's rewriting mode")
@@ -69,23 +69,6 @@ def register(subparsers) -> None:
                     "tuples (PSGS) or the communication settings (PCGS).")
     show.add_argument("file", metavar="FILE", help="a .psgs file")
     show.set_defaults(run=run_show)
-
-
-def _natural(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"{value} is negative")
-    return value
-
-
-def _positive(text: str) -> int:
-    value = _natural(text)
-    if value == 0:
-        raise argparse.ArgumentTypeError("must be at least 1")
-    return value
 
 
 # ---------------------------------------------------------------- derive

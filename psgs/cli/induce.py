@@ -15,6 +15,7 @@ import time
 from pathlib import Path
 
 from ..errors import PSGSError, ValidationError
+from ._types import natural, positive_int, share
 
 
 def register(subparsers) -> None:
@@ -44,9 +45,9 @@ def register(subparsers) -> None:
                     "symbols over 20 letters, 4 of them repeating an 8-symbol template 10 "
                     "times, noise replacing round(P*100) symbols of each patterned string. "
                     "The ground truth is written as comments at the top.")
-    synth.add_argument("--noise", type=_share, default=0.0, metavar="P",
+    synth.add_argument("--noise", type=share, default=0.0, metavar="P",
                        help="share of symbols replaced in each patterned string (default 0)")
-    synth.add_argument("--seed", type=_seed, default=0, help="random seed (default 0)")
+    synth.add_argument("--seed", type=natural, default=0, help="random seed (default 0)")
     synth.add_argument("--patterned", type=int, default=4,
                        help="patterned strings (default 4; 0 = all random)")
     synth.add_argument("--durations", choices=("unit", "random"), default="unit")
@@ -66,7 +67,7 @@ def register(subparsers) -> None:
                     "successes (exactly the patterned strings are components, each pattern "
                     "is its template), print a table, write a CSV and optionally a plot "
                     "beside the paper's points. Progress goes to stderr.")
-    noise.add_argument("--trials", type=_positive_int, default=100,
+    noise.add_argument("--trials", type=positive_int, default=100,
                        help="actiongrams per level (default 100)")
     noise.add_argument("--levels", type=_levels, default=_levels("0:0.40:0.02"),
                        metavar="LO:HI:STEP", help="noise levels (default 0:0.40:0.02)")
@@ -75,8 +76,8 @@ def register(subparsers) -> None:
     noise.add_argument("--variant", choices=("paper", "random-durations", "irregular-gaps",
                                              "unequal-lengths", "all"), default="paper",
                        help="protocol variant (default paper)")
-    noise.add_argument("--seed", type=_seed, default=0, help="first seed (default 0)")
-    noise.add_argument("--jobs", type=_positive_int, default=2,
+    noise.add_argument("--seed", type=natural, default=0, help="first seed (default 0)")
+    noise.add_argument("--jobs", type=positive_int, default=2,
                        help="worker processes (default 2)")
     noise.add_argument("--csv", metavar="OUT.csv", help="write the results here")
     noise.add_argument("--plot", metavar="OUT.png", help="plot the curves (needs matplotlib)")
@@ -84,42 +85,6 @@ def register(subparsers) -> None:
 
 
 # -- argument types -------------------------------------------------------------------
-def _share(text: str) -> float:
-    import argparse
-
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
-    if not 0 <= value <= 1:
-        raise argparse.ArgumentTypeError(f"{text} is not between 0 and 1")
-    return value
-
-
-def _positive_int(text: str) -> int:
-    import argparse
-
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"{text} is not positive")
-    return value
-
-
-def _seed(text: str) -> int:
-    import argparse
-
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"{text} is negative (seeds are 0 or more)")
-    return value
-
-
 def _levels(text: str) -> tuple[float, ...]:
     import argparse
 
