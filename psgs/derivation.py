@@ -21,7 +21,8 @@ from dataclasses import dataclass
 from typing import Literal, Union
 
 from .errors import ValidationError
-from .model import IDLE, PCGS, PSGS, Form, Nonterminal, Query, Rule, Terminal
+from .model import (IDLE, PCGS, PSGS, Form, Nonterminal, Query, Rule, Terminal,
+                    resolve_tuple_entries)
 
 __all__ = [
     "Configuration", "Step", "Derivation", "initial_configuration", "applicable_steps",
@@ -298,20 +299,7 @@ def _resolve_tuple(system: _System, sync_tuple) -> tuple[Rule | None, ...]:
     if len(raw) != n:
         raise ValidationError(f"the tuple has {len(raw)} entries but the system has {n} "
                               f"components")
-    entries = []
-    for g, item in zip(system.components, raw):
-        if item is None or item == "#":
-            entries.append(IDLE)
-        elif isinstance(item, str):
-            entries.append(g.rule(item))
-        elif isinstance(item, Rule):
-            if g.rule_by_label.get(item.label) != item:
-                raise ValidationError(f"rule {item.label}: {item} is not a rule of component "
-                                      f"{g.name}")
-            entries.append(item)
-        else:
-            raise ValidationError(f"{item!r} is neither a rule nor #")
-    return tuple(entries)
+    return resolve_tuple_entries(system.components, raw)
 
 
 def _show_tuple(sync_tuple) -> str:

@@ -22,7 +22,7 @@ from .errors import ValidationError
 
 __all__ = [
     "Terminal", "Nonterminal", "Query", "Symbol", "Word", "Form", "Rule", "Grammar",
-    "SyncTuple", "PSGS", "PCGS", "System", "IDLE", "word", "as_word", "is_identifier",
+    "SyncTuple", "resolve_tuple_entries", "PSGS", "PCGS", "System", "IDLE", "word", "as_word", "is_identifier",
 ]
 
 _IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
@@ -252,6 +252,31 @@ def _check_kinds(where: str, rules: Iterable[Rule], extra: Iterable[Symbol] = ()
 SyncTuple = tuple[Union[Rule, None], ...]
 
 
+def resolve_tuple_entries(components: Sequence[Grammar], raw: Sequence[object],
+                          where: str = "") -> SyncTuple:
+    """Read one tuple's entries (rule labels, :class:`Rule` values, ``"#"`` or ``None``) as rules.
+
+    ``raw`` has one entry per component (the caller checks the arity); ``where``
+    prefixes every error message, e.g. ``"tuple 3: "``.
+    """
+    entries: list[Rule | None] = []
+    for g, item in zip(components, raw):
+        if item is None or item == "#":
+            entries.append(IDLE)
+        elif isinstance(item, str):
+            if item not in g.rule_by_label:
+                raise ValidationError(f"{where}component {g.name} has no rule labelled {item}")
+            entries.append(g.rule_by_label[item])
+        elif isinstance(item, Rule):
+            if g.rule_by_label.get(item.label) != item:
+                raise ValidationError(f"{where}rule {item.label}: {item} is not a rule of "
+                                      f"component {g.name}")
+            entries.append(item)
+        else:
+            raise ValidationError(f"{where}{item!r} is neither a rule nor #")
+    return tuple(entries)
+
+
 def _check_components(kind: str, components: Sequence[Grammar]) -> tuple[Grammar, ...]:
     components = tuple(components)
     if not components:
@@ -312,22 +337,7 @@ class PSGS:
             if len(raw) != n:
                 raise ValidationError(f"tuple {t_index} has {len(raw)} entries but the system "
                                       f"has {n} components")
-            entries: list[Rule | None] = []
-            for g, item in zip(components, raw):
-                if item is None or item == "#":
-                    entries.append(None)
-                elif isinstance(item, str):
-                    if item not in g.rule_by_label:
-                        raise ValidationError(f"tuple {t_index}: component {g.name} has no rule "
-                                              f"labelled {item}")
-                    entries.append(g.rule_by_label[item])
-                elif isinstance(item, Rule):
-                    if g.rule_by_label.get(item.label) != item:
-                        raise ValidationError(f"tuple {t_index}: rule {item.label}: {item} is not "
-                                              f"a rule of component {g.name}")
-                    entries.append(item)
-                else:
-                    raise ValidationError(f"tuple {t_index}: {item!r} is neither a rule nor #")
+            entries = resolve_tuple_entries(components, raw, f"tuple {t_index}: ")
             if all(e is None for e in entries):
                 raise ValidationError(f"tuple {t_index} idles in every component")
             key = tuple(entries)
