@@ -90,7 +90,7 @@ def run_markdown_python(path):
     """Run the python blocks of a docs page, in order, in one namespace."""
     import re
     from pathlib import Path
-    root = Path(__file__).resolve().parents[1]
+    root = Path(__file__).resolve().parents[2]
     text = (root / path).read_text(encoding="utf-8")
     blocks = re.findall(r"```python\n(.*?)```", text, flags=re.S)
     assert blocks, f"{path} has no python blocks"

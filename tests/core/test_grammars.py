@@ -23,7 +23,7 @@ from psgs import PCGS, PSGS, as_word
 from psgs.derivation import language
 from psgs.lark_export import LARK_OPTIONS, from_lark_name, to_lark
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 GRAMMARS = REPO / "grammars"
 
 

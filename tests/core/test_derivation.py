@@ -267,7 +267,7 @@ def test_parallel_doubling_of_nullable_symbols_stops_at_max_form_length():
 def test_the_examples_in_docs_derivation_run(capsys, monkeypatch):
     import re
     from pathlib import Path
-    root = Path(__file__).resolve().parents[1]
+    root = Path(__file__).resolve().parents[2]
     if not (root / "grammars" / "paper_example.psgs").exists():
         pytest.skip("grammars/paper_example.psgs is not in this tree")
     text = (root / "docs" / "derivation.md").read_text(encoding="utf-8")

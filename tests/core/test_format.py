@@ -17,7 +17,7 @@ import psgs.strategies as pst
 from psgs import (IDLE, PCGS, PSGS, FormatError, Grammar, Nonterminal, Query, Rule, Terminal,
                   dumps, load, loads)
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 GRAMMAR_FILES = sorted((REPO / "grammars").glob("*.psgs"))
 
 SMALL = """\

@@ -13,7 +13,7 @@ import psgs
 from psgs.cli import main
 from psgs.lark_export import LARK_OPTIONS
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 GAMMA = str(REPO / "grammars" / "paper_example.psgs")
 K1 = "(abcdbcad, bcadabcd, cdabcdab, abcdbcad)"
 K2 = "(abcdbcadabcdbcad, bcadabcdbcadabcd, cdabcdabcdabcdab, abcdbcadabcdbcad)"
@@ -211,7 +211,7 @@ def test_a_reader_that_goes_away_ends_the_command_quietly():
     command = (f"{sys.executable} -m psgs derive grammars/modes.psgs --enumerate "
                f"--max-length 400 | head -1")
     done = subprocess.run(["bash", "-o", "pipefail", "-c", command], capture_output=True,
-                          text=True, cwd=Path(__file__).resolve().parent.parent, timeout=60)
+                          text=True, cwd=Path(__file__).resolve().parents[2], timeout=60)
     assert done.stdout.strip() == "(bb)"
     assert done.stderr == ""
     assert done.returncode == 141

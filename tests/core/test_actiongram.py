@@ -119,7 +119,7 @@ def test_documentation_examples_run(page):
     import doctest
     from pathlib import Path
 
-    path = Path(__file__).resolve().parents[1] / "docs" / page
+    path = Path(__file__).resolve().parents[2] / "docs" / page
     result = doctest.testfile(str(path), module_relative=False, optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0
 

@@ -15,7 +15,7 @@ import pytest
 import psgs
 from psgs.induce import PAL
 
-MOCAP = Path(__file__).resolve().parents[1] / ".." / "shared" / "data" / "mocap"
+MOCAP = Path(__file__).resolve().parents[2] / ".." / "shared" / "data" / "mocap"
 kinetology = pytest.importorskip("kinetology")
 pytestmark = pytest.mark.skipif(not MOCAP.is_dir(),
                                 reason=f"shared motion-capture data not found at {MOCAP}")

@@ -13,7 +13,7 @@ import psgs.strategies as pst
 from psgs import PCGS, Grammar, Nonterminal, Query, Rule, Terminal, ValidationError
 from psgs.graph import nonterminal_node, rule_node, to_networkx
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 
 
 def edges_of_kind(graph, kind):

@@ -109,7 +109,7 @@ def test_names_no_export_writes_are_rejected(name):
 
 # ---------------------------------------------------------------- grammars
 def test_export_text_documents_how_to_load_and_what_it_cannot_say():
-    system = psgs.load(Path(__file__).resolve().parents[1] / "grammars" / "counting.psgs")
+    system = psgs.load(Path(__file__).resolve().parents[2] / "grammars" / "counting.psgs")
     texts = to_lark(system)
     assert list(texts) == ["G1", "G2"]
     for text in texts.values():
@@ -236,7 +236,7 @@ def test_the_start_rule_is_documented():
 
 # ---------------------------------------------------------------- docs/export.md
 def test_the_python_blocks_of_the_export_page_print_what_it_says(monkeypatch, capsys):
-    doc = Path(__file__).resolve().parents[1] / "docs" / "export.md"
+    doc = Path(__file__).resolve().parents[2] / "docs" / "export.md"
     text = doc.read_text(encoding="utf-8")
     pairs = re.findall(r"```python\n(.*?)```\s*prints\s*```text\n(.*?)```", text, re.S)
     assert len(pairs) == len(re.findall(r"```python\n", text)) >= 4

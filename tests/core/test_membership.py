@@ -11,7 +11,7 @@ from psgs import PSGS, Grammar, Nonterminal as N, Rule, Terminal as T, Validatio
 from psgs.derivation import language
 from psgs.membership import Acceptance, accepts
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 BLOCKS = ("abcdbcad", "bcadabcd", "cdabcdab", "abcdbcad")
 
 

@@ -11,7 +11,7 @@ from psgs import PSGS, Grammar, Nonterminal, Rule, Terminal
 from psgs.derivation import (Derivation, applicable_steps, apply_tuple, initial_configuration,
                              language)
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 
 
 def _symbols(text: str):

@@ -12,7 +12,7 @@ from psgs import PCGS, Grammar, Nonterminal as N, Query, Rule, Terminal as T, as
 from psgs.derivation import language
 from psgs.membership import accepts
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 
 
 def abc_in_python(returning: bool = True) -> PCGS:
