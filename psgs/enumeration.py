@@ -22,15 +22,17 @@ Two methods for a PSGS (see ``docs/derivation.md``):
 from __future__ import annotations
 
 import math
-import time
-from collections import deque
 from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 
+from .analysis import min_yields, usable_rules
+from .budget import Budget
 from .errors import ValidationError
+from .membership import accepts
 from .model import PCGS, PSGS, Grammar, Nonterminal, Query, Rule, Terminal, Word, as_word
+from .search import pcgs_search, psgs_search, seconds_bound
 
-__all__ = ["Language", "language", "min_yields", "context_free_words"]
+__all__ = ["Language", "language", "context_free_words"]
 
 INFINITE = math.inf
 
@@ -104,48 +106,6 @@ def _tuple_key(ws: tuple[Word, ...]):
 
 
 # ---------------------------------------------------------------- context-free facts
-def min_yields(rules: Iterable[Rule], *, query_yield: float = INFINITE) -> dict:
-    """Each nonterminal's minimum terminal yield under ``rules`` (``math.inf`` if unproductive).
-
-    A query symbol yields ``query_yield``: infinite for a grammar taken alone
-    (it derives no word on its own), 0 as a sound lower bound inside a PCGS.
-    """
-    rules = tuple(rules)
-    best: dict[Nonterminal, float] = {}
-    for r in rules:
-        best.setdefault(r.lhs, INFINITE)
-        for s in r.rhs:
-            if isinstance(s, Nonterminal):
-                best.setdefault(s, INFINITE)
-
-    def cost(sym) -> float:
-        if isinstance(sym, Terminal):
-            return 1
-        if isinstance(sym, Query):
-            return query_yield
-        return best[sym]
-
-    changed = True
-    while changed:  # Bellman-Ford style: at most |N| rounds improve anything
-        changed = False
-        for r in rules:
-            value = sum((cost(s) for s in r.rhs), 0)
-            if value < best[r.lhs]:
-                best[r.lhs] = value
-                changed = True
-    return best
-
-
-def _form_lower_bound(form, yields) -> float:
-    total = 0
-    for s in form:
-        if isinstance(s, Terminal):
-            total += 1
-        elif isinstance(s, Nonterminal):
-            total += yields.get(s, INFINITE)
-    return total
-
-
 def context_free_words(grammar: Grammar, max_length: int, *, rules: Iterable[Rule] | None = None,
                        start: Nonterminal | None = None, max_words: int = 1_000_000):
     """The context-free words of ``grammar`` up to ``max_length``, by length.
@@ -289,7 +249,7 @@ def language(system, max_length: int, *, max_configurations: int = 200_000,
                                         and max_seconds > 0):
         raise ValidationError(f"max_seconds must be a positive number or None, not "
                               f"{max_seconds!r}")
-    clock = _Clock(max_seconds)
+    clock = Budget(max_seconds)
     if method not in (None, "search", "filter"):
         raise ValidationError(f"method must be 'search' or 'filter', not {method!r}")
     if isinstance(system, Grammar):
@@ -297,37 +257,21 @@ def language(system, max_length: int, *, max_configurations: int = 200_000,
     if isinstance(system, PCGS):
         if method == "filter":
             raise ValidationError("method 'filter' needs a PSGS; a PCGS is enumerated by search")
-        return _pcgs_search(system, max_length, max_configurations, max_form_length, clock)
+        found = pcgs_search(system, max_length, max_configurations, max_form_length, clock)
+        words = sorted(found.found, key=_word_key)
+        return Language(tuple(words), found.bound is None, found.bound, max_length, "search",
+                        found.explored)
     if isinstance(system, PSGS):
         if method is None:
-            method = "search" if system.mode == "parallel" else _filter_if_available()
+            method = "search" if system.mode == "parallel" else "filter"
         if method == "search":
-            return _psgs_search(system, max_length, max_configurations, max_form_length, clock)
+            found = psgs_search(system, max_length, max_configurations, max_form_length, clock)
+            words = sorted(found.found, key=_tuple_key)
+            return Language(tuple(words), found.bound is None, found.bound, max_length,
+                            "search", found.explored, "tuples")
         return _psgs_filter(system, max_length, max_words, max_candidates, membership_options,
                             clock)
     raise ValidationError(f"expected a PSGS, a PCGS or a Grammar, not {type(system).__name__}")
-
-
-class _Clock:
-    """A wall-clock budget; ``expired()`` is always False without one."""
-
-    def __init__(self, seconds: float | None) -> None:
-        self.seconds = seconds
-        self.deadline = None if seconds is None else time.monotonic() + seconds
-
-    def expired(self) -> bool:
-        return self.deadline is not None and time.monotonic() > self.deadline
-
-    def bound(self) -> str:
-        return f"stopped after {self.seconds:g} seconds (max_seconds)"
-
-
-def _filter_if_available() -> str:
-    try:
-        from .membership import accepts  # noqa: F401
-    except ImportError:
-        return "search"
-    return "filter"
 
 
 def _grammar_language(grammar: Grammar, max_length: int, max_words: int) -> Language:
@@ -338,164 +282,9 @@ def _grammar_language(grammar: Grammar, max_length: int, max_words: int) -> Lang
 
 
 # ---------------------------------------------------------------- PSGS
-def _usable_rules(system: PSGS) -> list[tuple[Rule, ...]]:
-    if system.unsynchronised == "free":
-        return [g.rules for g in system.components]
-    return [tuple(r for r in g.rules if r in synced)
-            for g, synced in zip(system.components, system.synchronised_rules)]
-
-
-def _too_long(configuration, max_form_length: int) -> bool:
-    return any(len(f) > max_form_length for f in configuration)
-
-
-def _form_bound(max_form_length: int) -> str:
-    return (f"left out configurations with a form longer than {max_form_length} symbols "
-            f"(max_form_length)")
-
-
-class _Codes:
-    """Small integers for a system's symbols, looked up by object identity.
-
-    Hashing a configuration of dataclass symbols calls Python code per
-    symbol; keying the visited set by integer codes keeps that in C. Equal
-    symbols get equal codes (the table is built by equality once), so the
-    keys identify configurations exactly.
-    """
-
-    def __init__(self, system) -> None:
-        by_value: dict = {}
-        self.by_id: dict[int, int] = {}
-        self.objects: list = []
-        for g in system.components:
-            self.note(g.start, by_value)
-            for r in g.rules:
-                self.note(r.lhs, by_value)
-                for sym in r.rhs:
-                    self.note(sym, by_value)
-        self._by_value = by_value
-
-    def note(self, sym, by_value=None) -> None:
-        by_value = self._by_value if by_value is None else by_value
-        code = by_value.setdefault(sym, len(by_value))
-        if code == len(self.objects):
-            self.objects.append(sym)
-        self.by_id[id(sym)] = code
-
-    def key(self, configuration) -> tuple:
-        get = self.by_id.__getitem__
-        try:
-            return tuple(tuple(map(get, map(id, f))) for f in configuration)
-        except KeyError:  # a symbol object not from the system's rules: learn it
-            for f in configuration:
-                for sym in f:
-                    self.note(sym)
-            return self.key(configuration)
-
-
-def _psgs_search(system: PSGS, max_length: int, max_configurations: int,
-                 max_form_length: int, clock: _Clock) -> Language:
-    from .derivation import _psgs_successors, initial_configuration
-
-    codes = _Codes(system)
-    yields = [min_yields(rules) for rules in _usable_rules(system)]
-
-    def lower_bound(key) -> float:
-        total = 0
-        for codes_of_form, weight in zip(key, weights):
-            total += sum(map(weight.__getitem__, codes_of_form))
-        return total
-
-    def weight_table(y) -> list:
-        return [1 if isinstance(sym, Terminal) else y.get(sym, INFINITE) for sym in codes.objects]
-
-    eager = _eager_rules(system)
-
-    def successors(configuration):
-        if eager:
-            forced = _forced_rewrites(configuration, eager)
-            if forced is not None:
-                return forced
-        return (after for _, _, after in _psgs_successors(system, configuration))
-
-    start = initial_configuration(system)
-    start_key = codes.key(start)
-    weights = [weight_table(y) for y in yields]
-    found: set = set()
-    bound = None
-    too_long = False
-    seen = {start_key}
-    queue = deque([start] if lower_bound(start_key) <= max_length else [])
-    while queue:
-        if clock.expired():
-            bound = clock.bound()
-            break
-        configuration = queue.popleft()
-        if all(isinstance(s, Terminal) for f in configuration for s in f):
-            found.add(configuration)
-            continue
-        for after in successors(configuration):
-            key = codes.key(after)
-            if len(weights[0]) != len(codes.objects):  # new symbols were learnt
-                weights = [weight_table(y) for y in yields]
-            if key in seen or lower_bound(key) > max_length:
-                continue
-            if _too_long(after, max_form_length):
-                too_long = True
-                continue
-            if len(seen) >= max_configurations:
-                bound = f"stopped after {len(seen)} configurations (max_configurations)"
-                queue.clear()
-                break
-            seen.add(key)
-            queue.append(after)
-    if too_long:
-        bound = "; ".join(filter(None, [bound, _form_bound(max_form_length)]))
-    words = sorted(found, key=_tuple_key)
-    return Language(tuple(words), bound is None, bound, max_length, "search", len(seen),
-                    "tuples")
-
-
-def _eager_rules(system: PSGS) -> list[dict] | None:
-    """Per component, the nonterminals all of whose rules are unsynchronised, with those rules.
-
-    Only in ``single`` mode under ``free``. Such an occurrence must be
-    rewritten some time by one of these rules applied alone, and that step
-    commutes with every other step (no tuple touches the occurrence, and
-    making a component terminal sooner only lets tuples skip it), so the
-    search may rewrite it first: one branch per rule instead of every
-    interleaving. Not sound in ``parallel`` mode, where a step rewrites
-    occurrences that later steps create.
-    """
-    if system.mode != "single" or system.unsynchronised != "free":
-        return None
-    out = []
-    for g, synced in zip(system.components, system.synchronised_rules):
-        synced_lhs = {r.lhs for r in synced}
-        table = {a: rules for a, rules in g.rules_by_lhs.items() if a not in synced_lhs}
-        out.append(table)
-    return out if any(out) else None
-
-
-def _forced_rewrites(configuration, eager) -> list | None:
-    for i, (form, table) in enumerate(zip(configuration, eager)):
-        for k, sym in enumerate(form):
-            rules = table.get(sym)
-            if rules:
-                head, tail = form[:k], form[k + 1:]
-                return [configuration[:i] + (head + r.rhs + tail,) + configuration[i + 1:]
-                        for r in rules if r.rhs != (sym,)]
-    return None
-
-
 def _psgs_filter(system: PSGS, max_length: int, max_words: int, max_candidates: int,
-                 membership_options: dict, clock: _Clock) -> Language:
-    try:
-        from .membership import accepts
-    except ImportError as exc:
-        raise ValidationError("method 'filter' needs psgs.membership, which is not "
-                              f"available ({exc})") from None
-    usable = _usable_rules(system)
+                 membership_options: dict, clock: Budget) -> Language:
+    usable = usable_rules(system)
     yields = [min_yields(rules) for rules in usable]
     floors = [y.get(g.start, INFINITE) for g, y in zip(system.components, yields)]
     if sum(floors) > max_length:
@@ -518,13 +307,12 @@ def _psgs_filter(system: PSGS, max_length: int, max_words: int, max_candidates: 
             stopped = f"stopped after {candidates} candidate tuples (max_candidates)"
             break
         if clock.expired():
-            stopped = clock.bound() + f" ({candidates} candidate tuples checked)"
+            stopped = seconds_bound(clock) + f" ({candidates} candidate tuples checked)"
             break
         candidates += 1
         options = membership_options
         if clock.deadline is not None:  # one accepts call may not outlive language's budget
-            left = max(clock.deadline - time.monotonic(), 1e-3)
-            options = {**membership_options, "max_seconds": left}
+            options = {**membership_options, "max_seconds": clock.left()}
         answer = accepts(system, words, **options)
         verdict = getattr(answer, "answer", "yes" if answer else "no")
         if verdict == "yes":
@@ -563,54 +351,4 @@ def _tuples_within(per_component: Sequence[Sequence[Word]], max_length: int) -> 
 
     yield from extend(0, max_length, ())
 
-
-# ---------------------------------------------------------------- PCGS
-def _pcgs_search(system: PCGS, max_length: int, max_configurations: int,
-                 max_form_length: int, clock: _Clock) -> Language:
-    from .derivation import _pcgs_steps, initial_configuration
-
-    master = system.master_index
-    master_queried = any(q.component == system.master for g in system.components
-                         for q in g.queries)
-    # Terminals never leave a form except when it is sent away in returning mode.
-    can_prune = not (system.returning and master_queried)
-    yields = min_yields(system.components[master].rules, query_yield=0)
-
-    def hopeless(configuration) -> bool:
-        return can_prune and _form_lower_bound(configuration[master], yields) > max_length
-
-    start = initial_configuration(system)
-    found: set = set()
-    bound = None
-    too_long = False
-    seen = {start}
-    queue = deque([] if hopeless(start) else [start])
-    while queue:
-        if clock.expired():
-            bound = clock.bound()
-            break
-        configuration = queue.popleft()
-        form = configuration[master]
-        if all(isinstance(s, Terminal) for s in form):
-            if len(form) <= max_length:
-                found.add(form)
-            if can_prune:
-                continue  # nobody can reset the master, so its word never changes again
-        for step in _pcgs_steps(system, configuration):
-            after = step.after
-            if after in seen or hopeless(after):
-                continue
-            if _too_long(after, max_form_length):
-                too_long = True
-                continue
-            if len(seen) >= max_configurations:
-                bound = f"stopped after {len(seen)} configurations (max_configurations)"
-                queue.clear()
-                break
-            seen.add(after)
-            queue.append(after)
-    if too_long:
-        bound = "; ".join(filter(None, [bound, _form_bound(max_form_length)]))
-    words = sorted(found, key=_word_key)
-    return Language(tuple(words), bound is None, bound, max_length, "search", len(seen))
 

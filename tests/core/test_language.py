@@ -9,8 +9,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from psgs import PCGS, PSGS, Grammar, Nonterminal, Rule, Terminal, ValidationError
-from psgs.derivation import Language, language
-from psgs.enumeration import context_free_words, min_yields
+from psgs.analysis import min_yields
+from psgs.enumeration import Language, context_free_words, language
 
 S, A, B = Nonterminal("S"), Nonterminal("A"), Nonterminal("B")
 a, b = Terminal("a"), Terminal("b")

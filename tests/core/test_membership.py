@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from psgs import PSGS, Grammar, Nonterminal as N, Rule, Terminal as T, ValidationError, as_word
-from psgs.derivation import language
+from psgs.enumeration import language
 from psgs.membership import Acceptance, accepts
 
 REPO = Path(__file__).resolve().parents[2]
@@ -265,3 +265,21 @@ def test_docs_membership_page_runs():
     from test_strategies import run_markdown_python
     namespace = run_markdown_python("docs/membership.md")
     assert namespace["short"].answer == "no" and namespace["hard"].bound == "max_states=3"
+
+
+def test_a_yes_carries_a_typed_schedule_that_replays():
+    from psgs.membership.witness import PSGSSchedule, Rewrite, ScheduledMove, replay
+    system = gamma()
+    result = accepts(system, BLOCKS)
+    schedule = result.schedule
+    assert isinstance(schedule, PSGSSchedule) and schedule.words == tuple(map(as_word, BLOCKS))
+    assert all(isinstance(m, ScheduledMove) and len(m.rewrites) == 4 for m in schedule.moves)
+    first = schedule.moves[0]
+    assert first.entries in system.sync
+    assert all(isinstance(r, Rewrite) and r.split[0] == r.start and r.split[-1] == r.end
+               for rw in first.rewrites for r in rw)
+    assert replay(system, schedule).words == schedule.words
+    # a schedule that does not fit the system is refused by the derivation engine
+    broken = PSGSSchedule(schedule.words, schedule.moves[1:])
+    with pytest.raises(ValidationError):
+        replay(system, broken)

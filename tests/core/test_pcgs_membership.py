@@ -9,7 +9,7 @@ from hypothesis import given, settings, strategies as st
 
 import psgs.strategies as pst
 from psgs import PCGS, Grammar, Nonterminal as N, Query, Rule, Terminal as T, as_word
-from psgs.derivation import language
+from psgs.enumeration import language
 from psgs.membership import accepts
 
 REPO = Path(__file__).resolve().parents[2]

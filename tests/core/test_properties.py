@@ -8,7 +8,7 @@ import pytest
 from hypothesis import HealthCheck, assume, given, settings, strategies as st
 
 import psgs.strategies as pst
-from psgs.derivation import language
+from psgs.enumeration import language
 from psgs.membership import accepts
 from psgs.model import PCGS, Query, Terminal
 

@@ -26,9 +26,13 @@ import math
 import time
 from collections import deque
 
-from .derivation import applicable_steps, initial_configuration
-from .enumeration import min_yields
-from .model import PCGS, Nonterminal, Query, Terminal, Word
+from ..analysis import min_yields
+from ..model import PCGS, Nonterminal, Query, Terminal, Word
+from ..steps import initial_configuration, pcgs_steps
+from .result import Acceptance
+from .witness import PCGSSchedule
+
+__all__ = ["accepts_pcgs"]
 
 
 def _master_can_reset(system: PCGS) -> bool:
@@ -82,8 +86,6 @@ def _find(word: Word, run: list, start: int, end: int) -> int:
 def accepts_pcgs(system: PCGS, word: Word, *, max_steps: int, max_states: int,
                  max_seconds: float):
     """Breadth-first search for a derivation of ``word`` by the master (yes / no / unknown)."""
-    from .membership import Acceptance
-
     # every terminal of the master's word comes from some component's rules
     foreign = next((t for t in word if t not in system.terminals), None)
     if foreign is not None:
@@ -111,7 +113,7 @@ def accepts_pcgs(system: PCGS, word: Word, *, max_steps: int, max_states: int,
         if depth >= max_steps:
             cut_by_steps = True
             continue
-        for step in applicable_steps(system, configuration):
+        for step in pcgs_steps(system, configuration):
             after = step.after
             if after in parent:
                 continue
@@ -140,11 +142,11 @@ def accepts_pcgs(system: PCGS, word: Word, *, max_steps: int, max_states: int,
     return Acceptance("no", reason=reason, states=explored, system=system)
 
 
-def _path(parent: dict, end) -> tuple:
+def _path(parent: dict, end) -> PCGSSchedule:
     steps = []
     node = end
     while parent[node] is not None:
         step = parent[node]
         steps.append(step)
         node = step.before
-    return ("pcgs", tuple(reversed(steps)))
+    return PCGSSchedule(tuple(reversed(steps)))

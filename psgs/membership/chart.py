@@ -27,8 +27,9 @@ from __future__ import annotations
 import time
 from collections.abc import Sequence
 
-from .errors import BoundReached
-from .model import Grammar, Nonterminal, Rule, Terminal
+from ..analysis import reachable
+from ..errors import BoundReached
+from ..model import Grammar, Nonterminal, Rule, Terminal
 
 UNBOUNDED = 1 << 60
 
@@ -93,18 +94,7 @@ class CompiledGrammar:
             for t, s in enumerate(body):
                 if s >= 0 and all(o >= 0 and nullable[o] for u, o in enumerate(body) if u != t):
                     unit_edges[self.lhs[k]].add(s)
-        closure = []
-        for a in range(n):
-            seen = {a}
-            todo = [a]
-            while todo:
-                x = todo.pop()
-                for y in unit_edges[x]:
-                    if y not in seen:
-                        seen.add(y)
-                        todo.append(y)
-            closure.append(tuple(sorted(seen)))
-        self.unit_closure = closure
+        self.unit_closure = [tuple(sorted(reachable(unit_edges, [a]))) for a in range(n)]
         self.useful_by_lhs = [[k for k in ks if k in set(useful_rules)] for ks in self.by_lhs]
         self.first = self._edge_terminals(useful_rules, reverse=False)
         self.last = self._edge_terminals(useful_rules, reverse=True)
@@ -159,17 +149,7 @@ class CompiledGrammar:
             for s in self.body[k]:
                 if s >= 0:
                     edges[self.lhs[k]].add(s)
-        reach = []
-        for a in range(n):
-            seen = set()
-            todo = [a]
-            while todo:
-                x = todo.pop()
-                for y in edges[x]:
-                    if y not in seen:
-                        seen.add(y)
-                        todo.append(y)
-            reach.append(seen)
+        reach = [reachable(edges, [a], strict=True) for a in range(n)]
         # a rule of A pumps when A ⇒+ ...A... through one body symbol Y (A ∈ reach[Y] or Y = A)
         # while another symbol of the body can yield something
         pumping = [False] * n

@@ -1,165 +1,34 @@
-"""Membership: is a word tuple in L(Γ)? Is a word in the language of a PCGS?
+"""PSGS membership: parse each word, then search for a synchronised schedule.
 
-:func:`accepts` answers with an :class:`Acceptance`: ``"yes"`` (with a
-witness derivation, replayed step by step with the derivation engine),
-``"no"`` (with a reason) or ``"unknown"`` (naming the budget that ran out).
-
-PSGS (sound and complete in both modes and both policies): each component's
-word is parsed by a goal-directed chart (:mod:`psgs._chart`); then a
-depth-first search looks for a synchronised schedule over *span-annotated
-frontiers*: per component, the multiset of nonterminal occurrences still in
-the sentential form, each tagged with the span ``(i, j)`` of the word it must
-derive. A tuple rewrites, per component, one occurrence (``single``) or every
-occurrence of its left-hand side (``parallel``), choosing for each a split of
-its span that the chart allows. States are memoised up to equal substrings:
-occurrences ``(A, i, j)`` and ``(A, i', j')`` with ``w[i:j] == w[i':j']`` have
-the same futures, so a state is keyed by its multiset of (nonterminal,
-substring class). Substring classes are found with a polynomial rolling hash
-and confirmed by comparing the substrings, so a hash collision can cost time
-but never a wrong answer. See ``docs/membership.md``.
-
-PCGS (membership is undecidable in general): a breadth-first search over
-configurations, pruned soundly by the master's word; see
-:func:`accepts` for the budgets.
+Each component's word is parsed by a goal-directed chart
+(:mod:`psgs.membership.chart`); then a depth-first search looks for a
+synchronised schedule over *span-annotated frontiers*: per component, the
+multiset of nonterminal occurrences still in the sentential form, each tagged
+with the span ``(i, j)`` of the word it must derive. A tuple rewrites, per
+component, one occurrence (``single``) or every occurrence of its left-hand
+side (``parallel``), choosing for each a split of its span that the chart
+allows. States are memoised up to equal substrings: occurrences ``(A, i, j)``
+and ``(A, i', j')`` with ``w[i:j] == w[i':j']`` have the same futures, so a
+state is keyed by its multiset of (nonterminal, substring class). Substring
+classes are found with a polynomial rolling hash and confirmed by comparing
+the substrings, so a hash collision can cost time but never a wrong answer.
+See ``docs/membership.md``.
 """
 
 from __future__ import annotations
 
-import gc
 import itertools
 import time
 from collections.abc import Sequence
-from dataclasses import dataclass, field
-from functools import cached_property
-from typing import Any, Literal
 
-from ._chart import Chart, CompiledGrammar
-from .errors import BoundReached, ValidationError
-from .model import IDLE, PCGS, PSGS, Terminal, Word, as_word
+from ..analysis import moves as system_moves, reachable, usable_rules
+from ..errors import BoundReached
+from ..model import IDLE, PSGS, Terminal, Word
+from .chart import Chart, CompiledGrammar
+from .result import Acceptance
+from .witness import PSGSSchedule, Rewrite, ScheduledMove
 
-__all__ = ["Acceptance", "accepts"]
-
-#: Words of at most this many symbols in all get their witness replayed at once.
-EAGER_REPLAY_LIMIT = 2000
-
-
-@dataclass(frozen=True)
-class Acceptance:
-    """The answer of :func:`accepts`.
-
-    ``bool(result)`` is true only for ``answer == "yes"``. ``reason`` is a
-    short sentence when the answer is ``"no"`` or ``"unknown"``; ``bound``
-    names the budget that ran out (``"unknown"`` only). ``states`` counts the
-    search states explored. ``witness`` is the derivation (a
-    :class:`psgs.derivation.Derivation`, ``str()`` prints the paper's
-    notation) when the answer is ``"yes"``: it is replayed with
-    :func:`psgs.derivation.apply_tuple`, which checks every step, on first
-    access (at once for short words, see :data:`EAGER_REPLAY_LIMIT`).
-    """
-
-    answer: Literal["yes", "no", "unknown"]
-    reason: str | None = None
-    bound: str | None = None
-    states: int = 0
-    system: Any = field(default=None, repr=False, compare=False)
-    schedule: tuple = field(default=(), repr=False, compare=False)
-
-    def __bool__(self) -> bool:
-        return self.answer == "yes"
-
-    @cached_property
-    def witness(self):
-        """The witness derivation (``None`` unless the answer is yes)."""
-        if self.answer != "yes":
-            return None
-        return _replay(self.system, self.schedule)
-
-    def __str__(self) -> str:
-        if self.answer == "yes":
-            return "yes"
-        if self.answer == "no":
-            return f"no: {self.reason}"
-        return f"unknown: {self.reason}"
-
-
-def accepts(system: PSGS | PCGS, words, *, max_states: int = 200_000,
-            max_seconds: float = 30.0, max_steps: int = 200,
-            check_witness: bool | None = None) -> Acceptance:
-    """Decide whether ``words`` is in the language of ``system``.
-
-    PSGS: ``words`` holds one word per component; a word is a ``str`` of
-    one-character terminals or a sequence of terminal names or
-    :class:`~psgs.model.Terminal`. A one-component system also takes a
-    single word. The answer is ``"yes"``/``"no"`` unless a budget runs out:
-    ``max_states`` search states (default 200,000) or ``max_seconds`` of
-    wall-clock time (default 30), giving ``"unknown"`` with the budget named.
-
-    PCGS: ``words`` is the master's word. ``"yes"`` comes with a witness;
-    ``"no"`` only when the search proved it (every configuration from which
-    the master could still derive the word was explored); otherwise
-    ``"unknown"`` naming ``max_steps`` (derivation length, default 200),
-    ``max_states`` or ``max_seconds``.
-
-    ``check_witness`` replays the witness (a yes answer) with the derivation
-    engine before returning; ``None`` (default) does so when the words are at
-    most :data:`EAGER_REPLAY_LIMIT` symbols long in all, and leaves it to the
-    first access of ``.witness`` otherwise.
-
-    >>> from psgs.model import Grammar, Rule, PSGS, Nonterminal as N, Terminal as T
-    >>> g = Grammar("G", N("S"), (Rule("p", N("S"), (T("a"), N("S"))), Rule("q", N("S"), (T("a"),))))
-    >>> h = Grammar("H", N("R"), (Rule("u", N("R"), (T("b"), N("R"))), Rule("v", N("R"), (T("b"),))))
-    >>> system = PSGS((g, h), (("p", "u"), ("q", "v")), unsynchronised="strict")
-    >>> accepts(system, ["aaa", "bbb"]).answer, accepts(system, ["aaa", "bb"]).answer
-    ('yes', 'no')
-    """
-    for name, value in (("max_states", max_states), ("max_steps", max_steps)):
-        if not isinstance(value, int) or value < 1:
-            raise ValidationError(f"{name} must be a positive integer, not {value!r}")
-    if not isinstance(max_seconds, (int, float)) or max_seconds <= 0:
-        raise ValidationError(f"max_seconds must be a positive number, not {max_seconds!r}")
-    if isinstance(system, PCGS):
-        from ._pcgs_membership import accepts_pcgs
-        result = accepts_pcgs(system, as_word(words), max_steps=max_steps,
-                              max_states=max_states, max_seconds=max_seconds)
-        total = len(words)
-    elif isinstance(system, PSGS):
-        tuple_of_words = _coerce_words(system, words)
-        # The search keeps a deep stack and a large visited set alive while allocating many
-        # short-lived tuples: the cyclic collector's full passes over them made the run grow
-        # faster than linearly (measured: k = 2000 Γ repetitions 6.9 s with it, 2.2 s
-        # without). Nothing here makes reference cycles, so it is paused and then restored.
-        collecting = gc.isenabled()
-        gc.disable()
-        try:
-            result = _accepts_psgs(system, tuple_of_words, max_states, max_seconds)
-        finally:
-            if collecting:
-                gc.enable()
-        total = sum(len(w) for w in tuple_of_words)
-    else:
-        raise ValidationError(f"expected a PSGS or a PCGS, not {type(system).__name__}")
-    if result.answer == "yes":
-        if check_witness or (check_witness is None and total <= EAGER_REPLAY_LIMIT):
-            result.witness  # noqa: B018 -- replaying checks every step
-    return result
-
-
-# ---------------------------------------------------------------- PSGS
-def _coerce_words(system: PSGS, words) -> tuple[Word, ...]:
-    n = len(system.components)
-    if isinstance(words, str):
-        if n != 1:
-            raise ValidationError(f"give one word per component ({n}), not one string")
-        words = (words,)
-    try:
-        words = tuple(words)
-    except TypeError:
-        raise ValidationError(f"words must be a sequence of words, not {words!r}") from None
-    if n == 1 and words and all(isinstance(w, Terminal) for w in words):
-        words = (words,)
-    if len(words) != n:
-        raise ValidationError(f"the system has {n} components but {len(words)} words were given")
-    return tuple(as_word(w) for w in words)
+__all__ = ["accepts_psgs"]
 
 
 class _Substrings:
@@ -203,21 +72,18 @@ class _Substrings:
         return cls
 
 
-def _accepts_psgs(system: PSGS, words: tuple[Word, ...], max_states: int,
+def accepts_psgs(system: PSGS, words: tuple[Word, ...], max_states: int,
                   max_seconds: float) -> Acceptance:
     deadline = time.monotonic() + max_seconds
     terminal_ids: dict[Terminal, int] = {}
     for t in sorted(system.terminals):
         terminal_ids[t] = len(terminal_ids)
     compiled, charts = [], []
+    usable = usable_rules(system)
     for c, (g, w) in enumerate(zip(system.components, words)):
-        usable = None
-        if system.unsynchronised == "strict":
-            # a rule in no tuple can never apply under 'strict': parse without it, so a word
-            # that needs it is refused by the chart instead of by an endless schedule search
-            in_tuples = {m[c] for m in system.sync if m[c] is not IDLE}
-            usable = [r for r in g.rules if r in in_tuples]
-        cg = CompiledGrammar(g, terminal_ids, usable)
+        # a rule in no tuple can never apply under 'strict': parse without it, so a word that
+        # needs it is refused by the chart instead of by an endless schedule search
+        cg = CompiledGrammar(g, terminal_ids, usable[c])
         for k, t in enumerate(w):
             if t not in g.terminals:
                 return Acceptance("no", reason=(
@@ -252,15 +118,7 @@ def _spine(cg: CompiledGrammar) -> frozenset[int]:
     edges = [set() for _ in range(n)]
     for k, a in enumerate(cg.lhs):
         edges[a].update(s for s in cg.body[k] if s >= 0)
-    reach = []
-    for a in range(n):
-        seen, todo = set(), [a]
-        while todo:
-            for y in edges[todo.pop()]:
-                if y not in seen:
-                    seen.add(y)
-                    todo.append(y)
-        reach.append(seen)
+    reach = [reachable(edges, [a], strict=True) for a in range(n)]
     cyclic = {a for a in range(n) if a in reach[a]}
     return frozenset(a for a in range(n) if a in cyclic or reach[a] & cyclic)
 
@@ -306,12 +164,7 @@ class _ScheduleSearch:
         self.deadline = deadline
         self.parallel = system.mode == "parallel"
         self.substrings = [_Substrings(c.word) for c in charts]
-        moves = list(system.sync)
-        if system.unsynchronised == "free":
-            n = len(system.components)
-            for c, rules in enumerate(system.unsynchronised_rules):
-                for rule in rules:
-                    moves.append(tuple(rule if k == c else IDLE for k in range(n)))
+        moves = system_moves(system)
         self.moves = moves
         self.move_rule_ids = [
             tuple(None if r is IDLE else cg.rule_id[r] for r, cg in zip(m, compiled))
@@ -436,18 +289,19 @@ class _ScheduleSearch:
             if new_state != state:
                 yield (0, m, new_state, (m, tuple(rw for _, rw in combo)))
 
-    def _readable(self, path):
+    def _readable(self, path) -> PSGSSchedule:
         """The schedule with symbols instead of ints, and the words, for the replay."""
         moves = []
         for m, rewrites in path:
             per_component = []
             for c, rw in enumerate(rewrites):
                 nts = self.compiled[c].nonterminals
-                per_component.append(tuple(((nts[a], i, j), split) for (a, i, j), split in rw))
-            moves.append((self.moves[m], tuple(per_component)))
+                per_component.append(tuple(Rewrite(nts[a], i, j, split)
+                                           for (a, i, j), split in rw))
+            moves.append(ScheduledMove(self.moves[m], tuple(per_component)))
         words = tuple(tuple(self.compiled[c].terminal_of[x] for x in chart.word)
                       for c, chart in enumerate(self.charts))
-        return words, tuple(moves)
+        return PSGSSchedule(words, tuple(moves))
 
     def run(self) -> Acceptance:
         """Search with a cap on ε-occurrences per component, doubled until it does not bind.
@@ -526,79 +380,3 @@ def _item_order(item):
     return (item[1], item[2], item[0])
 
 
-def _replay(system: PSGS, schedule) -> Any:
-    """Turn a schedule into a Derivation, checking each step with the derivation engine."""
-    from .derivation import Derivation, apply_tuple, initial_configuration
-
-    if schedule[0] == "pcgs":
-        return _replay_pcgs(system, schedule[1])
-    words, moves = schedule
-    configuration = initial_configuration(system)
-    # per component, the span each symbol of the form must derive (None for terminals)
-    spans = [[(0, len(w))] for w in words]
-    steps = []
-    for entries, rewrites in moves:
-        positions = []
-        for c, rw in enumerate(rewrites):
-            where = []
-            form = configuration[c]
-            for (symbol, i, j), _split in rw:
-                for k, sp in enumerate(spans[c]):
-                    if k not in where and sp == (i, j) and form[k] == symbol:
-                        where.append(k)
-                        break
-                else:  # pragma: no cover - would be a bug in the search
-                    raise ValidationError("witness replay lost track of an occurrence")
-            positions.append(tuple(sorted(where)) if where else None)
-        step = apply_tuple(system, configuration, entries, positions)
-        for c, rw in enumerate(rewrites):
-            if not rw:
-                continue
-            split_at = {}
-            for ((symbol, i, j), split), k in zip(rw, _positions_in_order(rw, spans[c],
-                                                                          configuration[c])):
-                split_at[k] = split
-            rhs = entries[c].rhs
-            new_spans = []
-            for k, sp in enumerate(spans[c]):
-                if k in split_at:
-                    split = split_at[k]
-                    new_spans.extend(None if isinstance(sym, Terminal) else (split[t], split[t + 1])
-                                     for t, sym in enumerate(rhs))
-                else:
-                    new_spans.append(sp)
-            spans[c] = new_spans
-        steps.append(step)
-        configuration = step.after
-    derivation = Derivation(system, tuple(steps))
-    if derivation.words != words:  # pragma: no cover - would be a bug in the search
-        raise ValidationError("the witness does not derive the words it was found for")
-    return derivation
-
-
-def _positions_in_order(rewrites, spans, form):
-    taken = []
-    for (symbol, i, j), _split in rewrites:
-        for k, sp in enumerate(spans):
-            if k not in taken and sp == (i, j) and form[k] == symbol:
-                taken.append(k)
-                break
-    return taken
-
-
-def _replay_pcgs(system: PCGS, found_steps) -> Any:
-    from .derivation import Derivation, apply_tuple, initial_configuration
-
-    configuration = initial_configuration(system)
-    steps = []
-    for found in found_steps:
-        if found.kind == "communicate":
-            step = apply_tuple(system, configuration, "communicate")
-        else:
-            step = apply_tuple(system, configuration, found.tuple,
-                               [p or None for p in found.positions])
-        if step.after != found.after:  # pragma: no cover - would be a bug
-            raise ValidationError("the PCGS witness does not replay")
-        steps.append(step)
-        configuration = step.after
-    return Derivation(system, tuple(steps))
