@@ -229,8 +229,9 @@ class Derivation:
     """A sequence of steps and the configurations it passes through.
 
     ``configurations[k]`` is ``steps[k].before`` and ``configurations[k+1]``
-    is ``steps[k].after``. ``bound`` is ``None``, or a sentence naming the
-    bound a bounded producer (e.g. :func:`random_derivation`) stopped at.
+    is ``steps[k].after``. ``bound`` is ``None``, or the name of the bound a
+    bounded producer (e.g. :func:`random_derivation`) stopped at, e.g.
+    ``"max_steps"``; ``reason`` says it in words.
     ``str(d)`` prints the paper's notation ``(S1, S2) ⇒ (N13, N18) ⇒ …``.
     """
 
@@ -238,6 +239,7 @@ class Derivation:
     steps: tuple[Step, ...]
     configurations: tuple[Configuration, ...] = ()
     bound: str | None = None
+    reason: str | None = None
 
     def __post_init__(self) -> None:
         steps = tuple(self.steps)
@@ -303,7 +305,8 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
     when no step applies (``"blocked"``), or at a bound: ``max_steps`` steps,
     or a form longer than ``max_form_length`` symbols (parallel rewriting
     can double a form at every step). The bound hit is named in
-    ``Derivation.bound``. The same seed always gives the same derivation.
+    ``Derivation.bound`` (``"max_steps"`` or ``"max_form_length"``) and
+    described in ``Derivation.reason``. The same seed always gives the same derivation.
     """
     _require_system(system)
     if max_steps < 0:
@@ -311,13 +314,14 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
     rng = random.Random(seed)
     configuration = initial_configuration(system)
     steps: list[Step] = []
-    bound = None
+    bound = reason = None
     while not is_terminal_configuration(system, configuration):
         if len(steps) >= max_steps:
-            bound = f"stopped after {max_steps} steps (max_steps)"
+            bound, reason = "max_steps", f"stopped after {max_steps} steps (max_steps)"
             break
         if max(len(f) for f in configuration) > max_form_length:
-            bound = (f"stopped when a form grew beyond {max_form_length} symbols "
+            bound = "max_form_length"
+            reason = (f"stopped when a form grew beyond {max_form_length} symbols "
                      f"(max_form_length)")
             break
         step = random_step(system, configuration, rng)
@@ -325,7 +329,7 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
             break
         steps.append(step)
         configuration = step.after
-    return Derivation(system, tuple(steps), bound=bound)
+    return Derivation(system, tuple(steps), bound=bound, reason=reason)
 
 
 def __getattr__(name: str):

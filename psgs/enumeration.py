@@ -22,15 +22,16 @@ Two methods for a PSGS (see ``docs/derivation.md``):
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 
 from .analysis import min_yields, usable_rules
-from .budget import Budget
-from .errors import ValidationError
-from .membership import accepts
+from .budget import Budget, check_count, check_seconds
+from .errors import BoundReached, ValidationError
+from .membership import MAX_SYMBOLS, accepts
 from .model import PCGS, PSGS, Grammar, Nonterminal, Query, Rule, Terminal, Word, as_word
-from .search import pcgs_search, psgs_search, seconds_bound
+from .search import budget_sentence, pcgs_search, psgs_search
 
 __all__ = ["Language", "language", "context_free_words"]
 
@@ -45,10 +46,11 @@ class Language:
     component) for a PSGS, master words for a PCGS, words for a
     :class:`~psgs.model.Grammar`. They are sorted by size (total length),
     then by the names of their terminals. ``complete`` is ``True`` when every
-    word up to ``max_length`` is listed; otherwise ``bound`` is a sentence
-    naming the budget that stopped the search, and ``words`` holds what was
-    found (for context-free enumeration: every word shorter than the length
-    at which it stopped). ``explored`` counts the configurations (search),
+    word up to ``max_length`` is listed; otherwise ``bound`` is the name of
+    the budget that stopped the search (or left words out), e.g.
+    ``"max_configurations"``, ``reason`` says it in words, and ``words``
+    holds what was found (for context-free enumeration: every word shorter
+    than the length at which it stopped). ``explored`` counts the configurations (search),
     candidate tuples (filter) or words (context-free) that were examined;
     ``kind`` is ``"tuples"`` (PSGS) or ``"words"``. ``item in language``
     accepts words written as strings, e.g. ``("ab", "ba") in lang``.
@@ -61,6 +63,7 @@ class Language:
     method: str
     explored: int = 0
     kind: str = "words"
+    reason: str | None = None
 
     def __iter__(self) -> Iterator:
         return iter(self.words)
@@ -107,20 +110,30 @@ def _tuple_key(ws: tuple[Word, ...]):
 
 # ---------------------------------------------------------------- context-free facts
 def context_free_words(grammar: Grammar, max_length: int, *, rules: Iterable[Rule] | None = None,
-                       start: Nonterminal | None = None, max_words: int = 1_000_000):
+                       start: Nonterminal | None = None, max_words: int = 1_000_000,
+                       max_seconds: float | None = None):
     """The context-free words of ``grammar`` up to ``max_length``, by length.
 
     Returns ``(words_by_length, bound)``: a list whose entry ``n`` is the
     frozenset of words of length ``n`` derivable from ``start`` (the axiom
     unless given) with ``rules`` (all the grammar's rules unless given), and
-    ``None`` or a sentence naming ``max_words`` when the table grew past it;
-    then the list stops before the length at which it was hit, and every
-    shorter length is complete. ε-rules, unit cycles and left recursion are
+    ``None`` or a sentence naming ``max_words`` when the table grew past it
+    (or ``max_seconds``, default no limit, when time ran out); then the list
+    stops before the length at which it was hit, and every shorter length is
+    complete. ε-rules, unit cycles and left recursion are
     fine: each length is a fixpoint over finitely many words. Query symbols
     derive nothing here.
     """
+    check_seconds(max_seconds, optional=True)
     rules = tuple(grammar.rules if rules is None else rules)
     start = grammar.start if start is None else start
+    return _words_by_length(grammar, max_length, rules, start, max_words,
+                            Budget(max_seconds, every=32))
+
+
+def _words_by_length(grammar: Grammar, max_length: int, rules, start, max_words: int,
+                     clock: Budget):
+    """:func:`context_free_words` on a running budget; a time-out keeps the complete lengths."""
     yields = min_yields(rules)
     lhs_order = sorted({r.lhs for r in rules}, key=lambda n: n.name)
     table: dict[Nonterminal, list[set]] = {a: [] for a in lhs_order}
@@ -145,7 +158,14 @@ def context_free_words(grammar: Grammar, max_length: int, *, rules: Iterable[Rul
             for r in rules:
                 if yields[r.lhs] > n:
                     continue
-                found = _sequence_words(r.rhs, n, words_of, yields)
+                try:
+                    found = _sequence_words(r.rhs, n, words_of, yields, clock)
+                except BoundReached:
+                    for a in lhs_order:
+                        table[a].pop()
+                    return _rows_of(table, start, n), (
+                        f"stopped at length {n} after {clock.seconds:g} seconds (max_seconds); "
+                        f"shorter words are complete")
                 row = table[r.lhs][n]
                 before = len(row)
                 row.update(found)
@@ -168,8 +188,12 @@ def _rows_of(table, start, count: int) -> list[frozenset]:
     return [frozenset(rows[n]) for n in range(count)]
 
 
-def _sequence_words(rhs, n: int, words_of, yields) -> set:
-    """Words of length exactly ``n`` derivable from the symbol sequence ``rhs``."""
+def _sequence_words(rhs, n: int, words_of, yields, clock: Budget) -> set:
+    """Words of length exactly ``n`` derivable from the symbol sequence ``rhs``.
+
+    Built from the end of ``rhs`` backwards, one position at a time (no
+    recursion, so a body of thousands of symbols is fine).
+    """
     k = len(rhs)
     suffix_min = [0] * (k + 1)
     for i in range(k - 1, -1, -1):
@@ -179,35 +203,32 @@ def _sequence_words(rhs, n: int, words_of, yields) -> set:
         suffix_min[i] = suffix_min[i + 1] + one
     if suffix_min[0] > n:
         return set()
-    memo: dict[tuple[int, int], set] = {}
-
-    def from_position(i: int, m: int) -> set:
-        if i == k:
-            return {()} if m == 0 else set()
-        key = (i, m)
-        if key in memo:
-            return memo[key]
-        out: set = set()
-        low = suffix_min[i] - suffix_min[i + 1]
-        for n1 in range(int(low), m - int(suffix_min[i + 1]) + 1):
-            heads = words_of(rhs[i], n1)
-            if not heads:
-                continue
-            tails = from_position(i + 1, m - n1)
-            for h in heads:
-                for t in tails:
-                    out.add(h + t)
-        memo[key] = out
-        return out
-
-    return from_position(0, n)
+    # tails[m]: the words of length m derivable from rhs[i + 1:]
+    tails: dict[int, set] = {0: {()}}
+    for i in range(k - 1, -1, -1):
+        clock.tick()
+        here: dict[int, set] = {}
+        low, rest = int(suffix_min[i] - suffix_min[i + 1]), int(suffix_min[i + 1])
+        # rhs[:i] takes at least suffix_min[0] - suffix_min[i] symbols of the n
+        for m in range(int(suffix_min[i]), n - int(suffix_min[0] - suffix_min[i]) + 1):
+            out: set = set()
+            for n1 in range(low, m - rest + 1):
+                heads = words_of(rhs[i], n1)
+                after = tails.get(m - n1) if heads else None
+                if after:
+                    out.update(h + t for h in heads for t in after)
+            if out:
+                here[m] = out
+        tails = here
+    return tails.get(n, set())
 
 
 # ---------------------------------------------------------------- entry point
 def language(system, max_length: int, *, max_configurations: int = 200_000,
              max_form_length: int = 1_000, max_candidates: int = 100_000,
-             max_words: int = 1_000_000, max_seconds: float | None = None,
-             method: str | None = None, **membership_options) -> Language:
+             max_words: int = 1_000_000, max_seconds: float | None = 60.0,
+             max_symbols: int = MAX_SYMBOLS, method: str | None = None,
+             **membership_options) -> Language:
     """Enumerate the language of ``system`` up to size ``max_length``, in order of size.
 
     * :class:`~psgs.model.PSGS`: the terminal tuples whose total length is at
@@ -224,13 +245,17 @@ def language(system, max_length: int, *, max_configurations: int = 200_000,
     * :class:`~psgs.model.Grammar`: its context-free words up to
       ``max_length`` (the component taken alone; query symbols derive nothing).
 
-    ``max_seconds`` (default ``None``: no limit) bounds the wall-clock time of
-    the search or of the filter loop (each ``accepts`` call then gets the time
-    left as its own ``max_seconds``); the other budgets are deterministic.
+    ``max_seconds`` (default 60; ``None``: no limit) bounds the wall-clock
+    time of the whole call, grammar analysis included (in the filter each
+    ``accepts`` call gets the time left as its own ``max_seconds``).
+    ``max_symbols`` bounds memory: the configurations the search keeps,
+    counted as configurations × form size in symbols (default
+    :data:`psgs.membership.MAX_SYMBOLS`). The other budgets are deterministic.
 
-    Always terminates. When a budget stops it, ``complete`` is ``False`` and
-    ``bound`` names the budget, e.g. ``"stopped after 200000 configurations
-    (max_configurations)"``.
+    Always terminates. When a budget stops it, ``complete`` is ``False``,
+    ``bound`` is the budget's name, e.g. ``"max_configurations"``, and
+    ``reason`` says it in words (``"stopped after 200000 configurations
+    (max_configurations)"``).
 
     >>> from psgs import Grammar, Nonterminal, Rule, Terminal
     >>> S = Nonterminal("S")
@@ -245,22 +270,20 @@ def language(system, max_length: int, *, max_configurations: int = 200_000,
                         ("max_candidates", max_candidates), ("max_words", max_words)):
         if isinstance(value, bool) or not isinstance(value, int) or value < 1:
             raise ValidationError(f"{name} must be a whole number ≥ 1, not {value!r}")
-    if max_seconds is not None and not (isinstance(max_seconds, (int, float))
-                                        and max_seconds > 0):
-        raise ValidationError(f"max_seconds must be a positive number or None, not "
-                              f"{max_seconds!r}")
-    clock = Budget(max_seconds)
+    check_seconds(max_seconds, optional=True)
+    check_count(max_symbols, "max_symbols")
+    clock = Budget(max_seconds, max_symbols, every=32)
     if method not in (None, "search", "filter"):
         raise ValidationError(f"method must be 'search' or 'filter', not {method!r}")
     if isinstance(system, Grammar):
-        return _grammar_language(system, max_length, max_words)
+        return _grammar_language(system, max_length, max_words, clock)
     if isinstance(system, PCGS):
         if method == "filter":
             raise ValidationError("method 'filter' needs a PSGS; a PCGS is enumerated by search")
         found = pcgs_search(system, max_length, max_configurations, max_form_length, clock)
         words = sorted(found.found, key=_word_key)
         return Language(tuple(words), found.bound is None, found.bound, max_length, "search",
-                        found.explored)
+                        found.explored, reason=found.reason)
     if isinstance(system, PSGS):
         if method is None:
             method = "search" if system.mode == "parallel" else "filter"
@@ -268,17 +291,27 @@ def language(system, max_length: int, *, max_configurations: int = 200_000,
             found = psgs_search(system, max_length, max_configurations, max_form_length, clock)
             words = sorted(found.found, key=_tuple_key)
             return Language(tuple(words), found.bound is None, found.bound, max_length,
-                            "search", found.explored, "tuples")
+                            "search", found.explored, "tuples", found.reason)
         return _psgs_filter(system, max_length, max_words, max_candidates, membership_options,
                             clock)
     raise ValidationError(f"expected a PSGS, a PCGS or a Grammar, not {type(system).__name__}")
 
 
-def _grammar_language(grammar: Grammar, max_length: int, max_words: int) -> Language:
-    rows, bound = context_free_words(grammar, max_length, max_words=max_words)
+def _grammar_language(grammar: Grammar, max_length: int, max_words: int,
+                      clock: Budget) -> Language:
+    rows, reason = _words_by_length(grammar, max_length, grammar.rules, grammar.start,
+                                    max_words, clock)
     words = sorted((w for row in rows for w in row), key=_word_key)
-    return Language(tuple(words), bound is None, bound, max_length, "context-free",
-                    sum(len(r) for r in rows))
+    return Language(tuple(words), reason is None, _bound_name(reason), max_length,
+                    "context-free", sum(len(r) for r in rows), reason=reason)
+
+
+def _bound_name(sentence: str | None) -> str | None:
+    """The budget a sentence names: the last ``max_…`` in it."""
+    if sentence is None:
+        return None
+    found = re.findall(r"\b(max_[a-z_]+)\b", sentence)
+    return found[-1] if found else None
 
 
 # ---------------------------------------------------------------- PSGS
@@ -291,11 +324,13 @@ def _psgs_filter(system: PSGS, max_length: int, max_words: int, max_candidates: 
         return Language((), True, None, max_length, "filter", 0, "tuples")
     per_component: list[list[Word]] = []
     bounds: list[str] = []
+    names: list[str] = []
     for g, rules, floor in zip(system.components, usable, floors):
         room = max_length - (sum(floors) - floor)
-        rows, bound = context_free_words(g, int(room), rules=rules, max_words=max_words)
+        rows, bound = _words_by_length(g, int(room), rules, g.start, max_words, clock)
         if bound:
             bounds.append(f"component {g.name}: {bound}")
+            names.append(_bound_name(bound))
         per_component.append(sorted((w for row in rows for w in row), key=_word_key))
 
     candidates = 0
@@ -307,7 +342,8 @@ def _psgs_filter(system: PSGS, max_length: int, max_words: int, max_candidates: 
             stopped = f"stopped after {candidates} candidate tuples (max_candidates)"
             break
         if clock.expired():
-            stopped = seconds_bound(clock) + f" ({candidates} candidate tuples checked)"
+            stopped = (budget_sentence("max_seconds", clock)
+                       + f" ({candidates} candidate tuples checked)")
             break
         candidates += 1
         options = membership_options
@@ -320,15 +356,17 @@ def _psgs_filter(system: PSGS, max_length: int, max_words: int, max_candidates: 
         elif verdict != "no":
             unknown.append(answer)
     if unknown:
-        first = getattr(unknown[0], "bound", None) or getattr(unknown[0], "reason", None)
+        first = unknown[0]
         bounds.append(f"membership answered unknown for {len(unknown)} candidate tuples"
-                      + (f" ({first})" if first else ""))
+                      + (f" ({first.reason})" if first.reason else ""))
+        names.append(first.bound)
     if stopped:
         bounds.append(stopped)
+        names.insert(0, _bound_name(stopped))  # what stopped the loop comes first
     accepted.sort(key=_tuple_key)
-    bound = "; ".join(bounds) if bounds else None
-    return Language(tuple(accepted), bound is None, bound, max_length, "filter", candidates,
-                    "tuples")
+    reason = "; ".join(bounds) if bounds else None
+    return Language(tuple(accepted), reason is None, names[0] if names else None, max_length,
+                    "filter", candidates, "tuples", reason)
 
 
 def _tuples_within(per_component: Sequence[Sequence[Word]], max_length: int) -> Iterator:

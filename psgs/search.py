@@ -15,6 +15,7 @@ from collections import deque
 
 from .analysis import min_yields, moves, usable_rules
 from .budget import Budget
+from .errors import BoundReached
 from .model import PCGS, PSGS, Nonterminal, Terminal
 from .steps import initial_configuration, is_terminal_form, pcgs_steps, psgs_successors
 
@@ -24,18 +25,27 @@ INFINITE = math.inf
 
 
 class SearchResult:
-    """What a search found: the words, how many configurations it kept, the bound it hit."""
+    """What a search found: the words, the configurations it kept, the bound it hit.
 
-    __slots__ = ("found", "explored", "bound")
+    ``bound`` is the name of the budget that stopped the search or left
+    configurations out (``None`` when complete); ``reason`` says it in words.
+    """
 
-    def __init__(self, found: set, explored: int, bound: str | None) -> None:
+    __slots__ = ("found", "explored", "bound", "reason")
+
+    def __init__(self, found: set, explored: int, bound: str | None,
+                 reason: str | None) -> None:
         self.found = found
         self.explored = explored
         self.bound = bound
+        self.reason = reason
 
 
-def seconds_bound(budget: Budget) -> str:
-    """The sentence a result gives when ``max_seconds`` stopped it."""
+def budget_sentence(bound: str, budget: Budget) -> str:
+    """The sentence a result gives when ``max_seconds`` or ``max_symbols`` stopped it."""
+    if bound == "max_symbols":
+        return (f"stopped when the kept configurations held {budget.held} symbols "
+                f"(max_symbols={budget.max_symbols})")
     return f"stopped after {budget.seconds:g} seconds (max_seconds)"
 
 
@@ -53,34 +63,41 @@ def _breadth_first(start, successors, key, hopeless, finished, max_configuration
     says whether its successors may be skipped.
     """
     found: set = set()
-    bound = None
+    bound = reason = None
     too_long = False
     start_key = key(start)
     seen = {start_key}
     queue = deque([] if hopeless(start, start_key) else [start])
-    while queue:
-        if clock.expired():
-            bound = seconds_bound(clock)
-            break
-        configuration = queue.popleft()
-        if finished(configuration, found):
-            continue
-        for after in successors(configuration):
-            k = key(after)
-            if k in seen or hopeless(after, k):
+    tick, hold = clock.tick, clock.hold
+    try:
+        hold(1 + sum(map(len, start)))
+        while queue:
+            clock.check()
+            configuration = queue.popleft()
+            if finished(configuration, found):
                 continue
-            if any(len(f) > max_form_length for f in after):
-                too_long = True
-                continue
-            if len(seen) >= max_configurations:
-                bound = f"stopped after {len(seen)} configurations (max_configurations)"
-                queue.clear()
-                break
-            seen.add(k)
-            queue.append(after)
+            for after in successors(configuration):
+                tick()  # per successor: one configuration can have thousands
+                k = key(after)
+                if k in seen or hopeless(after, k):
+                    continue
+                if any(len(f) > max_form_length for f in after):
+                    too_long = True
+                    continue
+                if len(seen) >= max_configurations:
+                    bound = "max_configurations"
+                    reason = f"stopped after {len(seen)} configurations (max_configurations)"
+                    queue.clear()
+                    break
+                seen.add(k)
+                hold(1 + sum(map(len, after)))  # memory: configurations × form size
+                queue.append(after)
+    except BoundReached as stop:
+        bound, reason = stop.bound, budget_sentence(stop.bound, clock)
     if too_long:
-        bound = "; ".join(filter(None, [bound, _form_bound(max_form_length)]))
-    return SearchResult(found, len(seen), bound)
+        bound = bound or "max_form_length"
+        reason = "; ".join(filter(None, [reason, _form_bound(max_form_length)]))
+    return SearchResult(found, len(seen), bound, reason)
 
 
 class _Codes:

@@ -100,6 +100,15 @@ def occurrences(form: Form, symbol: Nonterminal) -> tuple[int, ...]:
     return tuple([k for k, s in enumerate(form) if s.__class__ is Nonterminal and s.name == name])
 
 
+def positions_by_name(form: Form) -> dict[str, tuple[int, ...]]:
+    """Every nonterminal of ``form`` by name, with its positions in order (one scan)."""
+    table: dict[str, list[int]] = {}
+    for k, s in enumerate(form):
+        if s.__class__ is Nonterminal:
+            table.setdefault(s.name, []).append(k)
+    return {name: tuple(where) for name, where in table.items()}
+
+
 def rewrite(form: Form, positions: Sequence[int], rhs: Form) -> Form:
     """Replace the symbols at ``positions`` (sorted) by ``rhs``."""
     out: list = []
@@ -119,16 +128,24 @@ def rewritten(configuration: Configuration, rules, positions) -> Configuration:
 
 
 # ---------------------------------------------------------------- PSGS
-def psgs_choices(system: PSGS, configuration: Configuration,
-                 sync_tuple: SyncTuple) -> list[list[tuple[int, ...]]] | None:
-    """Per component the possible position choices, or None when the tuple does not apply."""
+def psgs_choices(system: PSGS, configuration: Configuration, sync_tuple: SyncTuple,
+                 where: Sequence[dict[str, tuple[int, ...]]] | None = None
+                 ) -> list[list[tuple[int, ...]]] | None:
+    """Per component the possible position choices, or None when the tuple does not apply.
+
+    ``where`` (per component :func:`positions_by_name` of its form) saves a
+    scan of every form per tuple when many tuples are tried on one
+    configuration.
+    """
     per_component: list[list[tuple[int, ...]]] = []
     parallel = system.mode == "parallel"
-    for rule, form in zip(sync_tuple, configuration):
-        if rule is IDLE or is_terminal_form(form):
+    for c, (rule, form) in enumerate(zip(sync_tuple, configuration)):
+        # a PSGS form holds terminals and nonterminals only: no nonterminal means terminal
+        if rule is IDLE or (not where[c] if where is not None else is_terminal_form(form)):
             per_component.append([()])
             continue
-        occ = occurrences(form, rule.lhs)
+        occ = (occurrences(form, rule.lhs) if where is None
+               else where[c].get(rule.lhs.name, ()))
         if not occ:
             return None
         per_component.append([occ] if parallel else [(k,) for k in occ])
@@ -142,8 +159,9 @@ def psgs_successors(system: PSGS, configuration: Configuration,
     ``moves`` are the system's moves (:func:`psgs.analysis.moves`); a search
     that calls this per configuration passes them in so they are built once.
     """
+    where = [positions_by_name(form) for form in configuration]
     for sync_tuple in (system_moves(system) if moves is None else moves):
-        choices = psgs_choices(system, configuration, sync_tuple)
+        choices = psgs_choices(system, configuration, sync_tuple, where)
         if choices is None:
             continue
         for positions in itertools.product(*choices):
@@ -187,7 +205,8 @@ def _pcgs_rewrite_choices(system: PCGS, configuration: Configuration):
         if is_terminal_form(form):
             per_component.append([(IDLE, ())])
             continue
-        options = [(rule, (k,)) for rule in g.rules for k in occurrences(form, rule.lhs)]
+        where = positions_by_name(form)
+        options = [(rule, (k,)) for rule in g.rules for k in where.get(rule.lhs.name, ())]
         if not options:
             return None  # a component that must rewrite but cannot blocks the system
         per_component.append(options)
@@ -231,8 +250,9 @@ def random_step(system: _System, configuration: Configuration,
         return _random_pcgs_step(system, configuration, rng)
     candidates = []
     total = 0
+    where = [positions_by_name(form) for form in configuration]
     for sync_tuple in system_moves(system):
-        choices = psgs_choices(system, configuration, sync_tuple)
+        choices = psgs_choices(system, configuration, sync_tuple, where)
         if choices is None:
             continue
         first = tuple(c[0] for c in choices)

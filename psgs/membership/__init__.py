@@ -22,21 +22,28 @@ from __future__ import annotations
 
 import gc
 
+from ..budget import Budget
 from ..errors import ValidationError
 from ..model import PCGS, PSGS, Terminal, Word, as_word
 from .pcgs_search import accepts_pcgs
 from .result import Acceptance
 from .schedule_search import accepts_psgs
 
-__all__ = ["Acceptance", "accepts"]
+__all__ = ["Acceptance", "accepts", "EAGER_REPLAY_LIMIT", "MAX_SYMBOLS"]
 
 #: Words of at most this many symbols in all get their witness replayed at once.
 EAGER_REPLAY_LIMIT = 2000
+#: The default memory bound of a search, in symbols kept (states × form size).
+MAX_SYMBOLS = 10_000_000
+
+
+def _is_seconds(value) -> bool:
+    return not isinstance(value, bool) and isinstance(value, (int, float)) and value > 0
 
 
 def accepts(system: PSGS | PCGS, words, *, max_states: int = 200_000,
             max_seconds: float = 30.0, max_steps: int = 200,
-            check_witness: bool | None = None) -> Acceptance:
+            max_symbols: int = MAX_SYMBOLS, check_witness: bool | None = None) -> Acceptance:
     """Decide whether ``words`` is in the language of ``system``.
 
     PSGS: ``words`` holds one word per component; a word is a ``str`` of
@@ -45,6 +52,14 @@ def accepts(system: PSGS | PCGS, words, *, max_states: int = 200_000,
     single word. The answer is ``"yes"``/``"no"`` unless a budget runs out:
     ``max_states`` search states (default 200,000) or ``max_seconds`` of
     wall-clock time (default 30), giving ``"unknown"`` with the budget named.
+    The clock starts before the grammar analysis, so ``max_seconds`` covers
+    everything the caller waits for. ``max_symbols`` bounds memory: the
+    states a search keeps, counted as states × form size in symbols
+    (default :data:`MAX_SYMBOLS`, about 0.7 GB in the PSGS search).
+
+    ``bound`` of an ``"unknown"`` answer is the name of the budget that ran
+    out (``"max_seconds"``, ``"max_states"``, ``"max_symbols"`` or, PCGS only,
+    ``"max_steps"``); ``reason`` says it in words, with the budget's value.
 
     PCGS: ``words`` is the master's word. ``"yes"`` comes with a witness;
     ``"no"`` only when the search proved it (every configuration from which
@@ -64,14 +79,16 @@ def accepts(system: PSGS | PCGS, words, *, max_states: int = 200_000,
     >>> accepts(system, ["aaa", "bbb"]).answer, accepts(system, ["aaa", "bb"]).answer
     ('yes', 'no')
     """
-    for name, value in (("max_states", max_states), ("max_steps", max_steps)):
-        if not isinstance(value, int) or value < 1:
+    budget = Budget(max_seconds if _is_seconds(max_seconds) else 1.0, max_symbols, every=32)
+    for name, value in (("max_states", max_states), ("max_steps", max_steps),
+                        ("max_symbols", max_symbols)):
+        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
             raise ValidationError(f"{name} must be a positive integer, not {value!r}")
-    if not isinstance(max_seconds, (int, float)) or max_seconds <= 0:
+    if not _is_seconds(max_seconds):
         raise ValidationError(f"max_seconds must be a positive number, not {max_seconds!r}")
     if isinstance(system, PCGS):
         result = accepts_pcgs(system, as_word(words), max_steps=max_steps,
-                              max_states=max_states, max_seconds=max_seconds)
+                              max_states=max_states, budget=budget)
         total = len(words)
     elif isinstance(system, PSGS):
         tuple_of_words = _coerce_words(system, words)
@@ -82,7 +99,7 @@ def accepts(system: PSGS | PCGS, words, *, max_states: int = 200_000,
         collecting = gc.isenabled()
         gc.disable()
         try:
-            result = accepts_psgs(system, tuple_of_words, max_states, max_seconds)
+            result = accepts_psgs(system, tuple_of_words, max_states, budget)
         finally:
             if collecting:
                 gc.enable()

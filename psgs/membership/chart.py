@@ -14,24 +14,33 @@ down a chain of nodes whose other children derive ε. The chain is captured
 statically by the *unit closure* of ``A`` (nonterminals ``X`` with
 ``A ⇒* αXβ``, ``αβ ⇒* ε``), and the children of a proper split have strictly
 shorter spans, so the recursion is well founded. Empty spans use the static
-nullable set. The recursion runs on an explicit stack, so deep right
-recursion (thousands of ``S → N S``) does not hit Python's recursion limit.
+nullable set. The recursion runs on an explicit stack, and so does the walk
+over a rule's body, so deep right recursion (thousands of ``S → N S``) and
+long bodies (a rule of thousands of symbols) do not hit Python's recursion
+limit.
 
 Length windows (each nonterminal's minimum and maximum yield, the maximum
 capped at "unbounded") prune the split points: a block of fixed length has
 one possible end, so the chart never tries the others.
+
+The static analysis is near-linear in the grammar's size (least yields by
+Knuth's algorithm; maximum yields, first/last terminals and the unit closure
+bottom-up over the strongly connected components), so a grammar of
+thousands of rules is compiled in milliseconds, and every loop of the
+chart counts against the caller's :class:`~psgs.budget.Budget`.
 """
 
 from __future__ import annotations
 
-import time
 from collections.abc import Sequence
 
-from ..analysis import reachable
-from ..errors import BoundReached
+from ..analysis import least_sums, reachable, strongly_connected
+from ..budget import Budget
 from ..model import Grammar, Nonterminal, Rule, Terminal
 
 UNBOUNDED = 1 << 60
+#: How many unknown children one evaluation of an item notes before it stops looking further.
+_MISSING_PER_PASS = 64
 
 
 class CompiledGrammar:
@@ -42,8 +51,9 @@ class CompiledGrammar:
     """
 
     def __init__(self, grammar: Grammar, terminal_ids: dict[Terminal, int],
-                 rules=None) -> None:
+                 rules=None, budget: Budget | None = None) -> None:
         self.grammar = grammar
+        self.budget = budget if budget is not None else Budget()
         nts = sorted(grammar.nonterminals, key=lambda n: n.name)
         self.nonterminals: list[Nonterminal] = nts
         self.index = {n: k for k, n in enumerate(nts)}
@@ -68,116 +78,159 @@ class CompiledGrammar:
 
     def _analyse(self) -> None:
         n = len(self.nonterminals)
-        nullable = [False] * n
-        minlen = [UNBOUNDED] * n
-        changed = True
-        while changed:
-            changed = False
-            for k, a in enumerate(self.lhs):
-                body = self.body[k]
-                if not nullable[a] and all(s >= 0 and nullable[s] for s in body):
-                    nullable[a] = changed = True
-                total = sum(1 if s < 0 else minlen[s] for s in body)
-                if total < minlen[a]:
-                    minlen[a] = total
-                    changed = True
+        tick = self.budget.tick
+        least = least_sums([(a, [s for s in body if s >= 0], sum(1 for s in body if s < 0))
+                            for a, body in zip(self.lhs, self.body)])
+        minlen = [least.get(a, UNBOUNDED) for a in range(n)]
+        nullable = [m == 0 for m in minlen]
         self.nullable = nullable
         self.minlen = minlen
         productive = [m < UNBOUNDED for m in minlen]
         useful_rules = [k for k in range(len(self.rules))
                         if all(s < 0 or productive[s] for s in self.body[k])]
-        self.maxlen = self._max_lengths(useful_rules, productive)
-        # unit closure: A ⇒* α X β with α β ⇒* ε, over useful rules
+        self.budget.check()
+        edges: list[set[int]] = [set() for _ in range(n)]
+        for k in useful_rules:
+            tick()
+            edges[self.lhs[k]].update(s for s in self.body[k] if s >= 0)
+        # successor components first: a bottom-up pass sees each nonterminal after its parts
+        self._components = strongly_connected(range(n), edges)
+        self.budget.check()
+        self.maxlen = self._max_lengths(useful_rules, productive, edges)
+        # unit closure: A ⇒* α X β with α β ⇒* ε, over useful rules (computed per asked A)
         unit_edges: list[set[int]] = [set() for _ in range(n)]
         for k in useful_rules:
+            tick()
             body = self.body[k]
-            for t, s in enumerate(body):
-                if s >= 0 and all(o >= 0 and nullable[o] for u, o in enumerate(body) if u != t):
+            blocking = sum(1 for s in body if s < 0 or not nullable[s])
+            for s in body:
+                # every other symbol nullable: s is the only one that is not, or none is
+                if s >= 0 and blocking - (0 if nullable[s] else 1) == 0:
                     unit_edges[self.lhs[k]].add(s)
-        self.unit_closure = [tuple(sorted(reachable(unit_edges, [a]))) for a in range(n)]
-        self.useful_by_lhs = [[k for k in ks if k in set(useful_rules)] for ks in self.by_lhs]
+        self._unit_edges = unit_edges
+        self._unit_closure: dict[int, tuple[int, ...]] = {}
+        useful = set(useful_rules)
+        self.useful_by_lhs = [[k for k in ks if k in useful] for ks in self.by_lhs]
         self.first = self._edge_terminals(useful_rules, reverse=False)
         self.last = self._edge_terminals(useful_rules, reverse=True)
         # per rule, min/max yield of each suffix of the body
         self.suffix_min: list[list[int]] = []
         self.suffix_max: list[list[int]] = []
+        maxlen = self.maxlen
         for body in self.body:
+            tick()
             smin = [0] * (len(body) + 1)
             smax = [0] * (len(body) + 1)
             for t in range(len(body) - 1, -1, -1):
                 s = body[t]
                 smin[t] = smin[t + 1] + (1 if s < 0 else minlen[s])
-                smax[t] = min(UNBOUNDED, smax[t + 1] + (1 if s < 0 else self.maxlen[s]))
+                smax[t] = min(UNBOUNDED, smax[t + 1] + (1 if s < 0 else maxlen[s]))
             self.suffix_min.append(smin)
             self.suffix_max.append(smax)
 
-    def _edge_terminals(self, useful_rules: list[int], reverse: bool) -> list[frozenset[int]]:
-        """Terminal ids that can begin (or, reversed, end) a non-empty yield of each nonterminal."""
-        sets: list[set[int]] = [set() for _ in self.nonterminals]
-        changed = True
-        while changed:
-            changed = False
-            for k in useful_rules:
-                target = sets[self.lhs[k]]
-                body = self.body[k][::-1] if reverse else self.body[k]
-                for s in body:
-                    if s < 0:
-                        if ~s not in target:
-                            target.add(~s)
-                            changed = True
-                        break
-                    if not sets[s] <= target:
-                        target |= sets[s]
-                        changed = True
-                    if not self.nullable[s]:
-                        break
-        return [frozenset(x) for x in sets]
+    def unit_closure(self, a: int) -> tuple[int, ...]:
+        """The nonterminals ``X`` with ``a ⇒* α X β``, ``α β ⇒* ε`` (``a`` included), sorted."""
+        found = self._unit_closure.get(a)
+        if found is None:
+            found = tuple(sorted(reachable(self._unit_edges, [a])))
+            self._unit_closure[a] = found
+        return found
 
-    def _max_lengths(self, useful_rules: list[int], productive: list[bool]) -> list[int]:
+    def _edge_terminals(self, useful_rules: list[int], reverse: bool) -> list[frozenset[int]]:
+        """Terminal ids that can begin (or, reversed, end) a non-empty yield of each nonterminal.
+
+        A nonterminal's set is its own edge terminals plus the sets of the
+        nonterminals that can stand at its edge; one bottom-up pass over the
+        strongly connected components of that relation settles every set.
+        """
+        n = len(self.nonterminals)
+        direct = [0] * n  # bitsets of terminal ids
+        at_edge: list[set[int]] = [set() for _ in range(n)]
+        for k in useful_rules:
+            self.budget.tick()
+            a = self.lhs[k]
+            body = self.body[k][::-1] if reverse else self.body[k]
+            for s in body:
+                if s < 0:
+                    direct[a] |= 1 << ~s
+                    break
+                at_edge[a].add(s)
+                if not self.nullable[s]:
+                    break
+        bits = [0] * n
+        for component in strongly_connected(range(n), at_edge):
+            self.budget.tick()
+            value = 0
+            for a in component:
+                value |= direct[a]
+                for b in at_edge[a]:
+                    value |= bits[b]  # successor components are settled; own ones are 0 yet
+            for a in component:
+                bits[a] = value
+        cache: dict[int, frozenset[int]] = {}
+        out = []
+        for value in bits:
+            found = cache.get(value)
+            if found is None:
+                found = cache[value] = frozenset(t for t in range(value.bit_length())
+                                                 if value >> t & 1)
+            out.append(found)
+        return out
+
+    def _max_lengths(self, useful_rules: list[int], productive: list[bool],
+                     edges: list[set[int]]) -> list[int]:
         """Longest yield per nonterminal, UNBOUNDED when a pumping cycle is reachable."""
         n = len(self.nonterminals)
-        can_grow = [False] * n  # derives some non-empty word
-        changed = True
-        while changed:
-            changed = False
-            for k in useful_rules:
-                a = self.lhs[k]
-                if not can_grow[a] and any(s < 0 or can_grow[s] for s in self.body[k]):
-                    can_grow[a] = changed = True
-        edges: list[set[int]] = [set() for _ in range(n)]
+        tick = self.budget.tick
+        reverse: list[list[int]] = [[] for _ in range(n)]
+        for a in range(n):
+            for s in edges[a]:
+                reverse[s].append(a)
+        # derives some non-empty word: a useful rule with a terminal, or with a growing symbol
+        grows_directly = {self.lhs[k] for k in useful_rules if any(s < 0 for s in self.body[k])}
+        can_grow = [False] * n
+        for a in reachable(reverse, grows_directly):
+            can_grow[a] = True
+        component_of = [0] * n
+        for c, component in enumerate(self._components):
+            for a in component:
+                component_of[a] = c
+        # a rule of A pumps when A ⇒+ ...A... through one body symbol Y (Y in A's strongly
+        # connected component) while another symbol of the body can yield something
+        pumping = set()
         for k in useful_rules:
-            for s in self.body[k]:
-                if s >= 0:
-                    edges[self.lhs[k]].add(s)
-        reach = [reachable(edges, [a], strict=True) for a in range(n)]
-        # a rule of A pumps when A ⇒+ ...A... through one body symbol Y (A ∈ reach[Y] or Y = A)
-        # while another symbol of the body can yield something
-        pumping = [False] * n
-        for k in useful_rules:
+            tick()
             a = self.lhs[k]
             body = self.body[k]
-            for t, s in enumerate(body):
-                if s >= 0 and (s == a or a in reach[s]):
-                    if any(o < 0 or can_grow[o] for u, o in enumerate(body) if u != t):
-                        pumping[a] = True
-        unbounded = [pumping[a] or any(pumping[b] for b in reach[a]) for a in range(n)]
-        maxlen = [0 if productive[a] else 0 for a in range(n)]
-        for a in range(n):
-            if unbounded[a]:
-                maxlen[a] = UNBOUNDED
-        # bounded symbols: the longest yield is reached without pumping, so n+1 rounds settle it
-        for _ in range(n + 1):
-            changed = False
-            for k in useful_rules:
-                a = self.lhs[k]
-                if unbounded[a]:
-                    continue
-                total = sum(1 if s < 0 else maxlen[s] for s in self.body[k])
-                if total > maxlen[a]:
-                    maxlen[a] = total
-                    changed = True
-            if not changed:
-                break
+            growing = sum(1 for s in body if s < 0 or can_grow[s])
+            for s in body:
+                if s >= 0 and component_of[s] == component_of[a]:
+                    if growing - (1 if can_grow[s] else 0) > 0:
+                        pumping.add(a)
+        unbounded = [False] * n
+        for a in reachable(reverse, pumping):
+            unbounded[a] = True
+        maxlen = [UNBOUNDED if unbounded[a] else 0 for a in range(n)]
+        rules_of: list[list[int]] = [[] for _ in range(n)]
+        for k in useful_rules:
+            rules_of[self.lhs[k]].append(k)
+        # bounded symbols, bottom-up: the longest yield is reached without pumping, so
+        # |component| + 1 rounds settle a component whose parts below are settled
+        for component in self._components:
+            if unbounded[component[0]]:
+                continue
+            rules = [k for a in component for k in rules_of[a]]
+            for _ in range(len(component) + 1):
+                changed = False
+                for k in rules:
+                    tick()
+                    a = self.lhs[k]
+                    total = sum(1 if s < 0 else maxlen[s] for s in self.body[k])
+                    if total > maxlen[a]:
+                        maxlen[a] = total
+                        changed = True
+                if not changed:
+                    break
         return maxlen
 
 
@@ -185,12 +238,12 @@ class Chart:
     """Which nonterminals derive which spans of one word (computed on demand)."""
 
     def __init__(self, compiled: CompiledGrammar, word: Sequence[int],
-                 deadline: float | None = None) -> None:
+                 budget: Budget | None = None) -> None:
         self.g = compiled
         self.word = list(word)
         self.n = len(self.word)
         self.memo: dict[tuple[int, int, int], bool] = {}
-        self.deadline = deadline
+        self.budget = budget if budget is not None else Budget()
         self._split_cache: dict[tuple[int, int, int], tuple[tuple[int, ...], ...]] = {}
 
     # ---------------------------------------------------------- queries
@@ -253,19 +306,33 @@ class Chart:
             return
         if not (smin[0] <= span <= smax[0]):
             return
-        bounds = [i]
+        tick = self.budget.tick
+        minlen, maxlen = g.minlen, g.maxlen
 
-        def walk(t: int, p: int):
+        def ends(t: int, p: int):
             s = body[t]
             if t == r - 1:
-                ends = (j,)
-            elif s < 0:
-                ends = (p + 1,)
-            else:
-                lo = max(p + g.minlen[s], j - smax[t + 1])
-                hi = min(p + g.maxlen[s], j - smin[t + 1])
-                ends = range(lo, hi + 1)
-            for q in ends:
+                return (j,)
+            if s < 0:
+                return (p + 1,)
+            return range(max(p + minlen[s], j - smax[t + 1]),
+                         min(p + maxlen[s], j - smin[t + 1]) + 1)
+
+        # a depth-first walk over the body on an explicit stack (a body may be thousands of
+        # symbols long): bounds[t] is where symbol t starts, levels[t] its candidate ends,
+        # doubts[t] how many children before t are not known yet. When noting what is
+        # missing, the walk goes on past an unknown child (up to _MISSING_PER_PASS of them),
+        # so one pass asks for many children: a long body whose children are resolved one
+        # per pass would cost a quadratic number of steps
+        bounds = [i]
+        doubts = [0]
+        levels = [iter(ends(0, i))]
+        while levels:
+            t = len(levels) - 1
+            p = bounds[t]
+            s = body[t]
+            for q in levels[t]:
+                tick()
                 if q < p or q > j:
                     continue
                 rest = j - q
@@ -274,21 +341,31 @@ class Chart:
                 if proper and s >= 0 and q - p == span:
                     continue
                 ok = self._symbol_ok(s, p, q, missing)
-                if not ok:
+                if ok is None:  # unknown yet, and noted in missing
+                    if len(missing) > _MISSING_PER_PASS:
+                        continue
+                    doubt = doubts[t] + 1
+                elif ok:
+                    doubt = doubts[t]
+                else:
+                    continue
+                if t == r - 1:
+                    if not doubt:
+                        yield (*bounds, q)
                     continue
                 bounds.append(q)
-                if t == r - 1:
-                    yield tuple(bounds)
-                else:
-                    yield from walk(t + 1, q)
+                doubts.append(doubt)
+                levels.append(iter(ends(t + 1, q)))
+                break
+            else:
+                levels.pop()
                 bounds.pop()
-
-        yield from walk(0, i)
+                doubts.pop()
 
     def _evaluate(self, key: tuple[int, int, int], missing: list) -> bool | None:
         a, i, j = key
         g = self.g
-        for x in g.unit_closure[a]:
+        for x in g.unit_closure(a):
             for rule in g.useful_by_lhs[x]:
                 for _ in self._enumerate(rule, i, j, proper=True, missing=missing):
                     return True
@@ -297,16 +374,13 @@ class Chart:
     def _resolve(self, root: tuple[int, int, int]) -> None:
         stack = [root]
         memo = self.memo
-        counter = 0
+        tick = self.budget.tick
         while stack:
             key = stack[-1]
             if key in memo:
                 stack.pop()
                 continue
-            counter += 1
-            if self.deadline is not None and counter % 2048 == 0 and \
-                    time.monotonic() > self.deadline:
-                raise BoundReached("max_seconds")
+            tick()
             missing: list = []
             value = self._evaluate(key, missing)
             if value is None:

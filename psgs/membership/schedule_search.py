@@ -18,10 +18,10 @@ See ``docs/membership.md``.
 from __future__ import annotations
 
 import itertools
-import time
 from collections.abc import Sequence
 
-from ..analysis import moves as system_moves, reachable, usable_rules
+from ..analysis import moves as system_moves, reachable, strongly_connected, usable_rules
+from ..budget import Budget
 from ..errors import BoundReached
 from ..model import IDLE, PSGS, Terminal, Word
 from .chart import Chart, CompiledGrammar
@@ -73,27 +73,27 @@ class _Substrings:
 
 
 def accepts_psgs(system: PSGS, words: tuple[Word, ...], max_states: int,
-                  max_seconds: float) -> Acceptance:
-    deadline = time.monotonic() + max_seconds
+                 budget: Budget) -> Acceptance:
+    """Decide ``words ∈ L(system)``; ``budget`` was started by the caller, before any analysis."""
     terminal_ids: dict[Terminal, int] = {}
     for t in sorted(system.terminals):
         terminal_ids[t] = len(terminal_ids)
-    compiled, charts = [], []
-    usable = usable_rules(system)
-    for c, (g, w) in enumerate(zip(system.components, words)):
-        # a rule in no tuple can never apply under 'strict': parse without it, so a word that
-        # needs it is refused by the chart instead of by an endless schedule search
-        cg = CompiledGrammar(g, terminal_ids, usable[c])
+    for g, w in zip(system.components, words):
         for k, t in enumerate(w):
             if t not in g.terminals:
                 return Acceptance("no", reason=(
                     f"component {g.name}'s word is not in its context-free language "
                     f"({t} at position {k + 1} is not one of its terminals)"), system=system)
-        chart = Chart(cg, [terminal_ids[t] for t in w], deadline)
-        compiled.append(cg)
-        charts.append(chart)
     search = None
     try:
+        compiled, charts = [], []
+        usable = usable_rules(system)
+        for c, (g, w) in enumerate(zip(system.components, words)):
+            # a rule in no tuple can never apply under 'strict': parse without it, so a word
+            # that needs it is refused by the chart instead of by an endless schedule search
+            cg = CompiledGrammar(g, terminal_ids, usable[c], budget)
+            compiled.append(cg)
+            charts.append(Chart(cg, [terminal_ids[t] for t in w], budget))
         for g, cg, chart, w in zip(system.components, compiled, charts, words):
             if not chart.derives(cg.index[g.start], 0, len(w)):
                 scope = (" (under 'strict', taking only the rules that are in some tuple)"
@@ -101,29 +101,39 @@ def accepts_psgs(system: PSGS, words: tuple[Word, ...], max_states: int,
                 return Acceptance("no", reason=(
                     f"component {g.name}'s word is not in its context-free language{scope}"),
                     system=system)
-        spine = _spine_check(system, compiled, charts, max_states, deadline)
+        spine = _spine_check(system, compiled, charts, max_states, budget)
         if spine is not None:
             return spine
-        search = _ScheduleSearch(system, compiled, charts, max_states, deadline)
+        search = _ScheduleSearch(system, compiled, charts, max_states, budget)
         return search.run()
-    except BoundReached:
+    except BoundReached as stop:
         explored = search.explored if search is not None else 0
-        return Acceptance("unknown", reason=f"the search ran out of time after {max_seconds} s",
-                          bound=f"max_seconds={max_seconds}", states=explored, system=system)
+        if stop.bound == "max_symbols":
+            reason = (f"the search kept {budget.held} symbols in its states, more than "
+                      f"max_symbols={budget.max_symbols} ({explored} states)")
+        else:
+            reason = (f"the search ran out of time after {budget.seconds:g} s "
+                      f"({explored} states)")
+        return Acceptance("unknown", reason=reason, bound=stop.bound, states=explored,
+                          system=system)
 
 
 def _spine(cg: CompiledGrammar) -> frozenset[int]:
     """Nonterminals that lie on a cycle of the grammar, or can reach one (upward closed)."""
     n = len(cg.nonterminals)
     edges = [set() for _ in range(n)]
+    reverse = [set() for _ in range(n)]
     for k, a in enumerate(cg.lhs):
-        edges[a].update(s for s in cg.body[k] if s >= 0)
-    reach = [reachable(edges, [a], strict=True) for a in range(n)]
-    cyclic = {a for a in range(n) if a in reach[a]}
-    return frozenset(a for a in range(n) if a in cyclic or reach[a] & cyclic)
+        for s in cg.body[k]:
+            if s >= 0:
+                edges[a].add(s)
+                reverse[s].add(a)
+    cyclic = [a for component in strongly_connected(range(n), edges) for a in component
+              if len(component) > 1 or a in edges[a]]
+    return frozenset(reachable(reverse, cyclic))
 
 
-def _spine_check(system, compiled, charts, max_states, deadline) -> Acceptance | None:
+def _spine_check(system, compiled, charts, max_states, budget) -> Acceptance | None:
     """A fast necessary condition: can the recursive parts (the spines) be scheduled alone?
 
     Tracking only the occurrences of spine nonterminals (an upward-closed set:
@@ -139,7 +149,7 @@ def _spine_check(system, compiled, charts, max_states, deadline) -> Acceptance |
     if all(len(f) == len(cg.nonterminals) for f, cg in zip(focus, compiled)) or \
             not any(focus):
         return None
-    relaxed = _ScheduleSearch(system, compiled, charts, max(1, max_states // 4), deadline,
+    relaxed = _ScheduleSearch(system, compiled, charts, max(1, max_states // 4), budget,
                               focus=focus)
     result = relaxed.run()
     if result.answer == "no":
@@ -153,7 +163,7 @@ class _ScheduleSearch:
     """Depth-first search for a synchronised schedule over span-annotated frontiers."""
 
     def __init__(self, system: PSGS, compiled: list[CompiledGrammar], charts: list[Chart],
-                 max_states: int, deadline: float, focus=None) -> None:
+                 max_states: int, budget: Budget, focus=None) -> None:
         self.system = system
         # focus: per component the nonterminals tracked (None: all); see _spine_check
         self.focus = focus
@@ -161,7 +171,7 @@ class _ScheduleSearch:
         self.compiled = compiled
         self.charts = charts
         self.max_states = max_states
-        self.deadline = deadline
+        self.budget = budget
         self.parallel = system.mode == "parallel"
         self.substrings = [_Substrings(c.word) for c in charts]
         moves = system_moves(system)
@@ -169,6 +179,13 @@ class _ScheduleSearch:
         self.move_rule_ids = [
             tuple(None if r is IDLE else cg.rule_id[r] for r, cg in zip(m, compiled))
             for m in moves]
+        # moves by (component, left-hand side) of each non-idle entry: a state looks only at
+        # the moves that rewrite a nonterminal it holds, not at every move of the system
+        self.moves_needing: dict[tuple[int, int], list[int]] = {}
+        for m, rule_ids in enumerate(self.move_rule_ids):
+            for c, rule in enumerate(rule_ids):
+                if rule is not None:
+                    self.moves_needing.setdefault((c, compiled[c].lhs[rule]), []).append(m)
 
     # ---- states
     def key(self, state):
@@ -186,30 +203,44 @@ class _ScheduleSearch:
         return [(s, split[t], split[t + 1]) for t, s in enumerate(body) if s >= 0]
 
     def _component_options(self, c: int, front, rule: int):
-        """Ways component ``c`` can apply ``rule``: (new frontier, rewrites), or None."""
+        """Ways component ``c`` can apply ``rule``: (new frontier, rewrites), lazily; None if none.
+
+        A generator, so a step with a huge number of ways (parallel mode, many
+        equal occurrences) costs only the ways the search actually tries, and
+        each way counts against the budget.
+        """
         cg = self.compiled[c]
-        chart = self.charts[c]
         a = cg.lhs[rule]
         if self.focus is not None and a not in self.focus[c]:
-            return [(front, ())]  # an untracked occurrence: the relaxation asks nothing of it
+            return iter([(front, ())])  # an untracked occurrence: the relaxation asks nothing
         targets = [it for it in front if it[0] == a]
         if not targets:
             return None
-        classes = self.substrings[c]
-        options = []
         if not self.parallel:
-            seen = set()
-            for it in targets:
-                cls = classes.of(it[1], it[2])
-                if cls in seen:
-                    continue  # an equal occurrence has the same futures
-                seen.add(cls)
-                rest = list(front)
-                rest.remove(it)
-                for split in chart.splits(rule, it[1], it[2]):
-                    new = sorted(rest + self._children(c, rule, split), key=_item_order)
-                    options.append((tuple(new), ((it, split),)))
-            return options
+            return self._single_options(c, front, rule, targets)
+        return self._parallel_options(c, front, rule, a, targets)
+
+    def _single_options(self, c: int, front, rule: int, targets):
+        chart = self.charts[c]
+        classes = self.substrings[c]
+        tick = self.budget.tick
+        seen = set()
+        for it in targets:
+            cls = classes.of(it[1], it[2])
+            if cls in seen:
+                continue  # an equal occurrence has the same futures
+            seen.add(cls)
+            rest = list(front)
+            rest.remove(it)
+            for split in chart.splits(rule, it[1], it[2]):
+                tick()
+                new = sorted(rest + self._children(c, rule, split), key=_item_order)
+                yield tuple(new), ((it, split),)
+
+    def _parallel_options(self, c: int, front, rule: int, a: int, targets):
+        chart = self.charts[c]
+        classes = self.substrings[c]
+        tick = self.budget.tick
         rest = [it for it in front if it[0] != a]
         groups: dict[int, list] = {}
         for it in targets:
@@ -218,21 +249,28 @@ class _ScheduleSearch:
         for items in groups.values():
             splits = [chart.splits(rule, it[1], it[2]) for it in items]
             if not splits[0]:
-                return []  # an occurrence the rule cannot cover kills the step
+                return  # an occurrence the rule cannot cover kills the step
+            per_group.append((items, splits))
+
+        def group_choices(items, splits):
             # equal occurrences have the same splits (shifted): choose a multiset of them
-            choices = []
             for combo in itertools.combinations_with_replacement(range(len(splits[0])),
                                                                  len(items)):
-                choices.append(tuple((it, sp[k]) for it, sp, k in zip(items, splits, combo)))
-            per_group.append(choices)
-        for combo in itertools.product(*per_group):
+                yield tuple((it, sp[k]) for it, sp, k in zip(items, splits, combo))
+
+        # the product of lazy factors: itertools.product would list every factor first
+        factors = []
+        for items, splits in per_group:
+            choices = group_choices(items, splits)
+            factors.append(_Replayable(next(choices), choices))
+        for combo in _lazy_product(factors):
+            tick()
             rewrites = tuple(rw for group in combo for rw in group)
             new = list(rest)
             for it, split in rewrites:
                 new.extend(self._children(c, rule, split))
             new.sort(key=_item_order)
-            options.append((tuple(new), rewrites))
-        return options
+            yield tuple(new), rewrites
 
     def successors(self, state):
         """Successor states, lazily, moves whose leftmost target comes first.
@@ -248,7 +286,12 @@ class _ScheduleSearch:
                     table[a] = i
             leftmost_of.append(table)
         candidates = []
-        for m, rule_ids in enumerate(self.move_rule_ids):
+        relevant = set()
+        for c, table in enumerate(leftmost_of):
+            for a in table:
+                relevant.update(self.moves_needing.get((c, a), ()))
+        for m in sorted(relevant):
+            rule_ids = self.move_rule_ids[m]
             key = None
             for c, rule in enumerate(rule_ids):
                 if rule is None or not state[c]:
@@ -277,14 +320,15 @@ class _ScheduleSearch:
                 per_component.append(((front, ()),))
                 continue
             options = self._component_options(c, front, rule)
-            if not options:
+            first = None if options is None else next(options, None)
+            if first is None:
                 return
-            if options[0][1]:
+            if first[1]:
                 rewrites_somewhere = True
-            per_component.append(options)
+            per_component.append(_Replayable(first, options))
         if not rewrites_somewhere:
             return
-        for combo in itertools.product(*per_component):
+        for combo in _lazy_product(per_component):
             new_state = tuple(f for f, _ in combo)
             if new_state != state:
                 yield (0, m, new_state, (m, tuple(rw for _, rw in combo)))
@@ -314,6 +358,7 @@ class _ScheduleSearch:
         cap = 4
         explored = 0
         while True:
+            self.budget.held = 0  # the previous round's visited set is gone
             result, explored, capped = self._run_capped(cap, explored)
             if result is not None:
                 return result
@@ -335,16 +380,14 @@ class _ScheduleSearch:
         stack = [iter(self.successors(initial))]
         path: list = []
         explored += 1
+        self.explored = explored
         capped = False
-        generated = 0
+        budget = self.budget
         while stack:
             nxt = next(stack[-1], None)
             # the clock is read per generated successor, not per new state: successors that
             # are already visited or over the ε cap cost time without adding a state
-            generated += 1
-            if generated % 1024 == 0 and time.monotonic() > self.deadline:
-                self.explored = explored
-                raise BoundReached("max_seconds")
+            budget.tick()
             if nxt is None:
                 stack.pop()
                 if path:
@@ -359,6 +402,9 @@ class _ScheduleSearch:
                 continue
             visited.add(k)
             explored += 1
+            self.explored = explored
+            # memory: a state keeps one entry per tracked occurrence (states × form size)
+            budget.hold(1 + sum(len(front) for front in state))
             path.append(move)
             if all(not front for front in state):
                 return (Acceptance("yes", states=explored, system=self.system,
@@ -367,11 +413,9 @@ class _ScheduleSearch:
                 reason = f"the schedule search stopped after {explored} states"
                 if capped:
                     reason += " (occurrences that derive ε can pile up without end here)"
-                return (Acceptance("unknown", reason=reason, bound=f"max_states={self.max_states}",
-                                   states=explored, system=self.system), explored, capped)
-            if explored % 256 == 0 and time.monotonic() > self.deadline:
-                self.explored = explored
-                raise BoundReached("max_seconds")
+                return (Acceptance("unknown", reason=reason + f" (max_states={self.max_states})",
+                                   bound="max_states", states=explored, system=self.system),
+                        explored, capped)
             stack.append(iter(self.successors(state)))
         return None, explored, capped
 
@@ -380,3 +424,47 @@ def _item_order(item):
     return (item[1], item[2], item[0])
 
 
+
+
+class _Replayable:
+    """A lazy sequence of options that can be walked again (for the product of several)."""
+
+    __slots__ = ("seen", "rest")
+
+    def __init__(self, first, rest) -> None:
+        self.seen = [first]
+        self.rest = rest
+
+    def __iter__(self):
+        k = 0
+        while True:
+            if k < len(self.seen):
+                yield self.seen[k]
+                k += 1
+                continue
+            nxt = next(self.rest, None) if self.rest is not None else None
+            if nxt is None:
+                self.rest = None
+                return
+            self.seen.append(nxt)
+
+
+def _lazy_product(factors):
+    """``itertools.product(*factors)`` without listing the factors first, same order."""
+    if not factors:
+        yield ()
+        return
+    stack = [iter(factors[0])]
+    picked: list = []
+    while stack:
+        item = next(stack[-1], None)
+        if item is None:
+            stack.pop()
+            if picked:
+                picked.pop()
+            continue
+        if len(stack) == len(factors):
+            yield (*picked, item)
+            continue
+        picked.append(item)
+        stack.append(iter(factors[len(stack)]))

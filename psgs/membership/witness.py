@@ -104,15 +104,25 @@ def replay(system: PSGS | PCGS, schedule: Schedule) -> Derivation:
 
 
 def _locate(rewrites, spans, form) -> list[int]:
-    """The form positions of the rewritten occurrences, in the order of ``rewrites``."""
+    """The form positions of the rewritten occurrences, in the order of ``rewrites``.
+
+    Equal occurrences (same symbol, same span) are taken leftmost first; an
+    index of them keeps this linear in the form's length.
+    """
+    if not rewrites:
+        return []
+    wanted = {(r.symbol, r.start, r.end) for r in rewrites}
+    free: dict[tuple, list[int]] = {}
+    for k in range(len(spans) - 1, -1, -1):  # reversed, so pop() gives the leftmost
+        sp = spans[k]
+        if sp is not None and (form[k], *sp) in wanted:
+            free.setdefault((form[k], *sp), []).append(k)
     taken: list[int] = []
     for r in rewrites:
-        for k, sp in enumerate(spans):
-            if k not in taken and sp == (r.start, r.end) and form[k] == r.symbol:
-                taken.append(k)
-                break
-        else:  # pragma: no cover - would be a bug in the search
+        where = free.get((r.symbol, r.start, r.end))
+        if not where:  # pragma: no cover - would be a bug in the search
             raise ValidationError("witness replay lost track of an occurrence")
+        taken.append(where.pop())
     return taken
 
 

@@ -142,7 +142,8 @@ def test_an_infinite_configuration_space_stops_at_its_bound_and_says_so():
     lang = language(one_component(rules, mode="single"), 2, method="search",
                     max_configurations=50)
     assert not lang.complete
-    assert lang.bound == "stopped after 50 configurations (max_configurations)"
+    assert lang.bound == "max_configurations"
+    assert lang.reason == "stopped after 50 configurations (max_configurations)"
     assert lang.words == ((w(""),),)
 
 
@@ -203,7 +204,7 @@ def test_random_derivations_are_seeded_and_report_how_they_ended():
     grow = one_component([Rule("r1", S, (a, S))], sync=[("r1",)])
     stuck = random_derivation(grow, 0, max_steps=25)
     assert len(stuck) == 25 and stuck.status == "open"
-    assert stuck.bound == "stopped after 25 steps (max_steps)"
+    assert stuck.bound == "max_steps" and stuck.reason == "stopped after 25 steps (max_steps)"
     # a system that blocks: the tuple needs A in G2, which never appears
     g1 = Grammar("G1", S1, [Rule("p1", S1, (a, S1))])
     g2 = Grammar("G2", S2, [Rule("q1", S2, (b,)), Rule("q2", A, (b,))])

@@ -148,7 +148,7 @@ def test_epsilon_occurrences_that_pile_up_are_searched_beyond_the_first_cap():
     assert result.witness.words == (as_word("a"), as_word("c" * 9 + "d"))
     # a small state budget names itself
     small = accepts(system, ["a", "c" * 9 + "d"], max_states=5)
-    assert small.answer == "unknown" and small.bound == "max_states=5"
+    assert small.answer == "unknown" and small.bound == "max_states"
     assert not small
 
 
@@ -168,7 +168,7 @@ def test_unit_and_epsilon_rules_agree_with_enumeration():
 def test_budget_of_seconds_is_named():
     result = accepts(gamma("single"), gamma_words(300), max_seconds=1e-6)
     assert result.answer == "unknown"
-    assert result.bound == "max_seconds=1e-06"
+    assert result.bound == "max_seconds"
     assert "time" in result.reason
 
 
@@ -264,7 +264,7 @@ def test_cli_reads_words_with_spaces_or_one_character_symbols():
 def test_docs_membership_page_runs():
     from test_strategies import run_markdown_python
     namespace = run_markdown_python("docs/membership.md")
-    assert namespace["short"].answer == "no" and namespace["hard"].bound == "max_states=3"
+    assert namespace["short"].answer == "no" and namespace["hard"].bound == "max_states"
 
 
 def test_a_yes_carries_a_typed_schedule_that_replays():
