@@ -143,3 +143,23 @@ def test_loads_of_many_components_is_not_quadratic():
     # 16 times the components: a linear reader takes about 16 times as long, a quadratic one
     # (each component checked against every earlier one) about 256 times
     assert t_big < 60 * max(t_small, 0.01), (t_small, t_big)
+
+
+# ---------------------------------------------------------------- completeness (docs/membership.md)
+@pytest.mark.parametrize("mode", ["parallel", "single"])
+def test_epsilon_occurrences_made_by_non_empty_spans_still_give_a_proved_no(mode):
+    B = N("B")
+    g = Grammar("G", S, [Rule("p", S, (a, S, B)), Rule("q", S, (T("b"),)), Rule("e", B, ())])
+    system = PSGS((g,), mode=mode)
+    assert psgs.accepts(system, ["aaab"]).answer == "yes"
+    for word in ("aaa", "aaba", "ba"):
+        assert psgs.accepts(system, [word], max_seconds=5).answer == "no", word
+
+
+def test_the_documented_unknown_class_stays_unknown_naming_its_budget():
+    # S → S S | a | ε in parallel mode derives a^(2^k) and ε only; aaa is not a member, but
+    # ε-occurrences of S multiply themselves, so no round of the search is ever complete
+    assert psgs.accepts(piling(), ["aaaa"]).answer == "yes"
+    result = psgs.accepts(piling(), ["aaa"], max_states=100)
+    assert result.answer == "unknown" and result.bound == "max_states"
+    assert "pile up" in result.reason
