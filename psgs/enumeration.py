@@ -111,14 +111,14 @@ def _tuple_key(ws: tuple[Word, ...]):
 # ---------------------------------------------------------------- context-free facts
 def context_free_words(grammar: Grammar, max_length: int, *, rules: Iterable[Rule] | None = None,
                        start: Nonterminal | None = None, max_words: int = 1_000_000,
-                       max_seconds: float | None = None):
+                       max_seconds: float | None = 60.0):
     """The context-free words of ``grammar`` up to ``max_length``, by length.
 
     Returns ``(words_by_length, bound)``: a list whose entry ``n`` is the
     frozenset of words of length ``n`` derivable from ``start`` (the axiom
     unless given) with ``rules`` (all the grammar's rules unless given), and
     ``None`` or a sentence naming ``max_words`` when the table grew past it
-    (or ``max_seconds``, default no limit, when time ran out); then the list
+    (or ``max_seconds``, default 60, ``None`` for no limit, when time ran out); then the list
     stops before the length at which it was hit, and every shorter length is
     complete. ε-rules, unit cycles and left recursion are
     fine: each length is a fixpoint over finitely many words. Query symbols
