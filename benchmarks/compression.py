@@ -17,7 +17,6 @@ channels only.
 from __future__ import annotations
 
 import argparse
-import csv
 import gzip
 import lzma
 import sys
@@ -25,28 +24,14 @@ import time
 from pathlib import Path
 
 import numpy as np
+from _common import DATA, IMG, MOCAP, REPO, replace_section, require, write_csv
 
-REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO))
-
-import kinetology  # noqa: E402
+kinetology = require("kinetology")
 from kinetology.baselines import (quantise_delta_compress,  # noqa: E402
                                   quantise_delta_decompress)
 from kinetology.codec import CODEC_DEFAULTS  # noqa: E402
 
-MOCAP = REPO.parent / "shared" / "data" / "mocap"
 PAPER = (3.698, 0.823)
-
-
-def replace_section(path: Path, name: str, text: str) -> None:
-    """Rewrite the text between ``<!-- name:start -->`` and ``<!-- name:end -->``."""
-    start, end = f"<!-- {name}:start -->", f"<!-- {name}:end -->"
-    page = path.read_text()
-    if start not in page:
-        raise SystemExit(f"{path} has no {start} marker")
-    head, rest = page.split(start, 1)
-    _, tail = rest.split(end, 1)
-    path.write_text(f"{head}{start}\n{text.strip()}\n{end}{tail}")
 
 
 def cmu_files(quick: bool) -> list[Path]:
@@ -155,14 +140,10 @@ def main(argv=None) -> int:
     front = pareto(sweep)
     elapsed = time.perf_counter() - started
 
-    out_csv = REPO / "docs" / "data" / "kin_compression.csv"
     if not args.no_write:
-        out_csv.parent.mkdir(parents=True, exist_ok=True)
-        with out_csv.open("w", newline="") as handle:
-            writer = csv.writer(handle)
-            writer.writerow(["codec", "parameters", "size_percent", "mae_all", "mae_angles"])
-            for r in rows:
-                writer.writerow([r[0], r[1], f"{r[2]:.4f}", f"{r[3]:.4f}", f"{r[4]:.4f}"])
+        write_csv(DATA / "kin_compression.csv",
+                  ["codec", "parameters", "size_percent", "mae_all", "mae_angles"],
+                  [[r[0], r[1], f"{r[2]:.4f}", f"{r[3]:.4f}", f"{r[4]:.4f}"] for r in rows])
 
     lines = [f"Measured by `python benchmarks/compression.py{' --quick' if args.quick else ''}` "
              f"on {len(files)} CMU takes at 120 fps ({frames} frames, "
@@ -202,9 +183,8 @@ def main(argv=None) -> int:
             curves = {"kinetology (front of the sweep)": [(p[0], p[1]) for p in front],
                       "quantise+delta+xz": [(p[0], p[1]) for p in peer_points],
                       "kinetology defaults": [(default[0], default[1])]}
-            (REPO / "docs" / "img").mkdir(parents=True, exist_ok=True)
-            save(plot_rate_distortion(curves, PAPER), REPO / "docs" / "img" /
-                 "kin_rate_distortion.png")
+            IMG.mkdir(parents=True, exist_ok=True)
+            save(plot_rate_distortion(curves, PAPER), IMG / "kin_rate_distortion.png")
         except ImportError as exc:
             print(f"(no picture: {exc})")
         replace_section(REPO / "docs" / "benchmarks.md", "kin-compression", text)
