@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 from ...actiongram import Actiongram
-from ..base import Induction, Inducer, StringReport, build_system, check_number, component_name
+from ...errors import ValidationError
+from ..base import Inducer, as_performances, check_choice, check_number
+from ..results import Induction, StringReport
 from .content import ContentResult, find_candidates, pool_groups
 from .motifs import Timed
 from .period import period_mode
@@ -46,7 +48,7 @@ class PAL(Inducer):
     - ``period_agreement`` (0.6): in the period mode, least share of times at
       which a string's symbol recurs one (tracked) window later.
 
-    >>> from psgs.synthetic import generate
+    >>> from psgs.induce.synthetic import generate
     >>> case = generate(seed=1, noise=0.1)
     >>> result = PAL().induce(case.actiongram)
     >>> sorted(result.components) == sorted(case.components)
@@ -73,8 +75,7 @@ class PAL(Inducer):
         check_number("seeds", seeds, low=1, integer=True)
         check_number("rounds", rounds, low=1, integer=True)
         check_number("joins_copies", joins_copies, low=2, integer=True)
-        if timing not in _TIMINGS:
-            raise ValueError(f"timing must be one of {', '.join(_TIMINGS)}, not {timing!r}")
+        check_choice("timing", timing, _TIMINGS)
         check_number("period_quantile", period_quantile, low=0, high=1)
         check_number("period_agreement", period_agreement, low=0, high=1, low_open=True)
         self.min_copies = min_copies
@@ -93,10 +94,34 @@ class PAL(Inducer):
         self.period_quantile = period_quantile
         self.period_agreement = period_agreement
 
-    def induce(self, actiongram: Actiongram) -> Induction:
-        """Learn a PSGS from ``actiongram``; see :class:`~psgs.induce.Induction`."""
-        if not isinstance(actiongram, Actiongram):
-            raise TypeError(f"PAL.induce needs an Actiongram, not {type(actiongram).__name__}")
+    def induce(self, performances) -> Induction:
+        """Learn a PSGS from an actiongram; see :class:`~psgs.induce.Induction`.
+
+        Parameters
+        ----------
+        performances : Actiongram or sequence of Actiongram
+            One actiongram (a sequence holding one is the same). Several
+            performances are not learnt from yet (issue 9): they are refused
+            rather than joined into one stream.
+
+        Returns
+        -------
+        Induction
+            Synchronised: every component repeats its pattern the same number of times.
+
+        Raises
+        ------
+        TypeError
+            When the input is not an actiongram or a sequence of them.
+        ValidationError
+            For an empty sequence, performances whose actuators differ, or more
+            than one performance.
+        """
+        takes = as_performances(performances, "PAL.induce")
+        if len(takes) > 1:
+            raise ValidationError(f"PAL.induce learns from one performance for now, not "
+                                  f"{len(takes)} (several performances are issue 9)")
+        actiongram = takes[0]
         strings, symbol_of = encode(actiongram)
         found = pool_groups(strings, find_candidates(strings, self), self)
         by_period = None
@@ -160,16 +185,7 @@ def _result(inducer: PAL, actiongram: Actiongram, patterns: dict[int, tuple[str,
             occurrences: dict, reports: tuple[StringReport, ...]) -> Induction:
     """The Induction: components in actiongram order, their system and reports."""
     kept = tuple(sorted(patterns))
-    taken: set[str] = set()
-    comp_names = {actiongram.names[i]: component_name(actiongram.names[i], taken) for i in kept}
-    system = None
-    if kept:
-        system = build_system([(comp_names[actiongram.names[i]], patterns[i]) for i in kept],
-                              synchronise=True, name="pal")
-    return Induction(
-        system=system,
-        components=tuple(actiongram.names[i] for i in kept),
-        patterns={actiongram.names[i]: patterns[i] for i in kept},
-        occurrences={actiongram.names[i]: occurrences[i] for i in kept},
-        reports=reports, component_names=comp_names, inducer=inducer.name,
-        params=inducer.get_params())
+    names = actiongram.names
+    return inducer.build_induction(
+        names, {names[i]: patterns[i] for i in kept},
+        {names[i]: occurrences[i] for i in kept}, reports, synchronise=True)
