@@ -56,10 +56,21 @@ def _shown(value: object, limit: int = 40) -> str:
     return text if len(text) <= limit else text[:limit - 5] + "...'" + f" ({len(str(value))} chars)"
 
 
+def _not_unicode(text: str) -> bool:
+    """True for text with a lone surrogate (JSON ``"\\ud800"``): it cannot be written as UTF-8."""
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError:
+        return True
+    return False
+
+
 def _bad_name(name: object) -> str | None:
     """Why ``name`` cannot name an actuator, or None when it can."""
     if not isinstance(name, str) or not name:
         return "an actuator name must be non-empty text"
+    if _not_unicode(name):
+        return f"actuator name {_shown(name)} is not valid Unicode (a lone surrogate)"
     if any(ch.isspace() for ch in name) or "@" in name or ":" in name or name.startswith("#"):
         return (f"actuator name {_shown(name)} must have no white space, '@' or ':' and not "
                 f"start with '#'")
@@ -69,6 +80,8 @@ def _bad_name(name: object) -> str | None:
 def _bad_symbol(symbol: object) -> str | None:
     if not isinstance(symbol, str) or not symbol:
         return f"a symbol must be non-empty text, not {_shown(symbol)}"
+    if _not_unicode(symbol):
+        return f"symbol {_shown(symbol)} is not valid Unicode (a lone surrogate)"
     if any(ch.isspace() for ch in symbol) or "@" in symbol or ":" in symbol or symbol.startswith("#"):
         return (f"symbol {_shown(symbol)} must have no white space, '@' or ':' and not start "
                 f"with '#'")
@@ -116,6 +129,21 @@ def _plain_durations(durations: tuple) -> bool:
     if not set(map(type, durations)) <= {int, float}:
         return False
     return min(durations) > 0 and all(map(_finite, durations))
+
+
+def _check_times_advance(name: str, origin: float, durations: tuple[float, ...]) -> None:
+    """FormatError when a duration vanishes beside its start time (``T + D == T`` in floats).
+
+    ``s@1e15: a@1e-9`` is positive on paper but adds nothing to 1e15, so two symbols would
+    share one start time and every later computation on times (PAL's time grid) divides by 0.
+    """
+    t = origin
+    for j, d in enumerate(durations):
+        after = t + d
+        if after == t:
+            raise FormatError(f"string {_shown(name)}: duration {d!r} of symbol {j + 1} vanishes "
+                              f"beside its start time {t!r} (T + D == T in floating point)")
+        t = after
 
 
 def _format_number(value: float) -> str:
@@ -220,6 +248,7 @@ class Actiongram:
             if not math.isfinite(float(origin) + sum(d)):
                 raise FormatError(f"string {_shown(name)}: its times overflow (the durations "
                                   f"add up to more than a float can hold)")
+            _check_times_advance(name, float(origin), d)
             merged_symbols.append(s)
             merged_durations.append(d)
         object.__setattr__(self, "names", names)
@@ -445,6 +474,12 @@ class Actiongram:
         except json.JSONDecodeError as exc:
             raise FormatError(f"not JSON: {exc.msg}", source=source, line=exc.lineno,
                               column=exc.colno) from None
+        except RecursionError:  # '[' * 100000: the decoder recurses per nesting level
+            raise FormatError("not JSON that can be read: nested too deeply", source=source,
+                              line=1, column=1) from None
+        except ValueError as exc:  # an integer of thousands of digits (Python's int limit)
+            raise FormatError(f"not JSON that can be read: {str(exc).split(':')[0]}",
+                              source=source) from None
         if not isinstance(data, dict) or not isinstance(data.get("strings"), list):
             raise FormatError("expected a JSON object with a 'strings' list", source=source)
         names, symbol_rows, duration_rows, origins = [], [], [], []

@@ -309,3 +309,50 @@ def actiongrams_with_extras(draw):
 def test_round_trip_text_and_json_with_extras(ag):
     assert Actiongram.from_text(ag.to_text()) == ag
     assert Actiongram.from_json(ag.to_json()) == ag
+
+
+# ---- issue 11: inputs that crashed with an undocumented exception
+def test_deeply_nested_json_is_a_format_error():
+    with pytest.raises(FormatError, match="nested too deeply"):
+        Actiongram.from_json("[" * 100_000, source="deep.json")
+
+
+def test_a_json_integer_of_thousands_of_digits_is_a_format_error():
+    text = '{"strings": [{"name": "a", "symbols": ["x"], "durations": [' + "9" * 5000 + "]}]}"
+    with pytest.raises(FormatError, match="not JSON that can be read") as err:
+        Actiongram.from_json(text, source="long.json")
+    assert err.value.source == "long.json"
+
+
+def test_induce_on_unreadable_json_is_one_line_not_a_traceback(tmp_path, capsys):
+    from psgs.cli import main
+    path = tmp_path / "deep.json"
+    path.write_text("[" * 100_000)
+    assert main(["induce", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "nested too deeply" in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("text", ["s@1e15: a@1e-9 b@1e-9", "s: a@1e20 b@1"])
+def test_durations_that_vanish_beside_the_start_time_are_rejected(text):
+    with pytest.raises(FormatError, match="vanishes beside its start time"):
+        Actiongram.from_text(text)
+
+
+def test_durations_that_vanish_are_rejected_from_python_too():
+    with pytest.raises(FormatError, match="T \\+ D == T"):
+        Actiongram.from_strings({"s": "ab"}, durations={"s": [1e-9, 1e-9]}, starts={"s": 1e15})
+    # small durations beside a small start are fine
+    assert Actiongram.from_strings({"s": "ab"}, durations={"s": [1e-9, 1e-9]}).starts["s"] == (
+        0.0, 1e-9)
+
+
+@pytest.mark.parametrize("where", ["name", "symbol"])
+def test_a_lone_surrogate_is_rejected_so_to_text_can_be_written(where):
+    name, symbol = ("\\ud800", "a") if where == "name" else ("a", "\\ud800")
+    text = '{"strings": [{"name": "%s", "symbols": ["%s"]}]}' % (name, symbol)
+    with pytest.raises(FormatError, match="lone surrogate"):
+        Actiongram.from_json(text)
+    with pytest.raises(FormatError, match="lone surrogate"):
+        Actiongram.from_strings({"\ud800" if where == "name" else "a":
+                                 ["a" if where == "name" else "\ud800"]})
