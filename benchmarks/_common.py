@@ -12,7 +12,9 @@ from __future__ import annotations
 
 import csv
 import importlib
+import importlib.util
 import math
+import sys
 import time
 from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
@@ -38,6 +40,22 @@ def require(name: str):
                          f"pip install -e '.[bench]' from {REPO}") from None
     where = Path(getattr(module, "__file__", "?")).resolve().parent
     print(f"[measuring {name} from {where}]", flush=True)
+    return module
+
+
+def load_file(path: Path, name: str):
+    """Import the Python file ``path`` as module ``name`` (a helper outside any package).
+
+    For the few helpers the benchmarks share with the tests (``tests/fuzz_support.py``): the
+    file is loaded by its path, so nothing is added to ``sys.path`` and no other module of
+    its directory can shadow an installed one.
+    """
+    spec = importlib.util.spec_from_file_location(name, path)
+    if spec is None or spec.loader is None:
+        raise SystemExit(f"{path}: not a Python file")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module  # dataclasses and pickling look the module up by name
+    spec.loader.exec_module(module)
     return module
 
 
