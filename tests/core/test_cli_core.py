@@ -301,3 +301,27 @@ def test_in_a_pcgs_a_rule_in_any_component_rewrites_a_nonterminal():
     assert rule_less_nonterminals(psgs.loads(text.format(extra=""))) == []
     dead = psgs.loads(text.format(extra=' B'))
     assert rule_less_nonterminals(dead) == [("G2", "B")]
+
+
+def test_a_built_wheel_ships_the_example_grammars_and_the_metadata(tmp_path):
+    import zipfile
+    # the backend installed with the test extra, so no download at test time; the build
+    # writes only into tmp_path (a copy of the sources), never into the checkout
+    source = tmp_path / "src"
+    import shutil
+    shutil.copytree(REPO, source, symlinks=True,
+                    ignore=shutil.ignore_patterns(".git", ".venv*", "__pycache__", "build",
+                                                  "*.egg-info", ".hypothesis", "out"))
+    done = subprocess.run([sys.executable, "-m", "pip", "wheel", str(source), "--no-deps",
+                           "--no-build-isolation", "-q", "-w", str(tmp_path / "dist")],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr[-2000:]
+    (wheel,) = (tmp_path / "dist").glob("psgs-*.whl")
+    with zipfile.ZipFile(wheel) as archive:
+        names = set(archive.namelist())
+        metadata = archive.read(f"psgs-{psgs.__version__}.dist-info/METADATA").decode()
+    shipped = {n.rsplit("/", 1)[1] for n in names if n.startswith("psgs/grammars/")}
+    assert shipped == {p.name for p in (REPO / "psgs" / "grammars").glob("*.psgs")}
+    assert "paper_example.psgs" in shipped and "psgs/format.lark" in names
+    assert "kinetology/__main__.py" in names
+    assert "License-Expression: MIT" in metadata and "Project-URL: Homepage" in metadata
