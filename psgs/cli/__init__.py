@@ -15,7 +15,7 @@ import os
 import sys
 
 # modules that add subcommands; each defines register(subparsers)
-_COMMAND_MODULES = ("core", "check", "induce")
+_COMMAND_MODULES = ("core", "check", "induce", "bench")
 
 #: Exit statuses of every psgs and kinetology subcommand.
 OK, NO, ERROR, INCOMPLETE = 0, 1, 2, 3
