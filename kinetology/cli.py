@@ -43,6 +43,16 @@ _PARAM_HELP = {
 }
 
 
+class _TableHelpFormatter(argparse.HelpFormatter):
+    """Wraps descriptions as argparse does, but keeps text with line breaks (the exit-status
+    table) as written."""
+
+    def _fill_text(self, text, width, indent):
+        if "\n" in text:
+            return "".join(indent + line for line in text.splitlines(keepends=True))
+        return super()._fill_text(text, width, indent)
+
+
 def _add_params(parser, *, codec: bool = False) -> None:
     for name, default in DEFAULTS.items():
         if codec and name == "min_range":
@@ -284,7 +294,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.epilog = EXIT_STATUS_HELP
     for command in (parser, *sub.choices.values()):
         command.epilog = EXIT_STATUS_HELP
-        command.formatter_class = argparse.RawDescriptionHelpFormatter
+        command.formatter_class = _TableHelpFormatter
     return parser
 
 

@@ -46,10 +46,20 @@ def version() -> str:
         return __version__
 
 
+class TableHelpFormatter(argparse.HelpFormatter):
+    """Wraps descriptions as argparse does, but keeps text with line breaks (the exit-status
+    table) as written."""
+
+    def _fill_text(self, text, width, indent):
+        if "\n" in text:
+            return "".join(indent + line for line in text.splitlines(keepends=True))
+        return super()._fill_text(text, width, indent)
+
+
 def with_exit_status_help(parser: argparse.ArgumentParser, table: str) -> None:
     """Put ``table`` at the end of the help of ``parser`` and of every subcommand under it."""
     parser.epilog = table
-    parser.formatter_class = argparse.RawDescriptionHelpFormatter
+    parser.formatter_class = TableHelpFormatter
     for action in parser._actions:
         if isinstance(action, argparse._SubParsersAction):
             for sub in set(action.choices.values()):
