@@ -312,6 +312,14 @@ def main(argv: list[str] | None = None) -> int:
         where = f"{exc.filename}: " if getattr(exc, "filename", None) else ""
         print(f"kinetology: error: {where}{exc.strerror or exc}", file=sys.stderr)
         return 2
+    except RecursionError:  # the last line of defence: a limit of Python, not a traceback
+        print("kinetology: error: the input nests too deeply (Python's recursion limit)",
+              file=sys.stderr)
+        return 2
+    except MemoryError:
+        print("kinetology: out of memory: the file needs more memory than there is",
+              file=sys.stderr)
+        return 3
     except KeyboardInterrupt:
         print("kinetology: interrupted", file=sys.stderr)
         return 130

@@ -107,6 +107,14 @@ def main(argv: list[str] | None = None) -> int:
         where = f"{exc.filename}: " if getattr(exc, "filename", None) else ""
         print(f"psgs: error: {where}{exc.strerror or exc}", file=sys.stderr)
         return ERROR
+    except RecursionError:  # the last line of defence: a limit of Python, not a traceback
+        print("psgs: error: the input nests too deeply (Python's recursion limit)",
+              file=sys.stderr)
+        return ERROR
+    except MemoryError:
+        print("psgs: out of memory: the work needs more memory than there is; lower a budget",
+              file=sys.stderr)
+        return INCOMPLETE
     except KeyboardInterrupt:
         print("psgs: interrupted", file=sys.stderr)
         return INTERRUPTED

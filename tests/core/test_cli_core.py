@@ -325,3 +325,21 @@ def test_a_built_wheel_ships_the_example_grammars_and_the_metadata(tmp_path):
     assert "paper_example.psgs" in shipped and "psgs/format.lark" in names
     assert "kinetology/__main__.py" in names
     assert "License-Expression: MIT" in metadata and "Project-URL: Homepage" in metadata
+
+
+@pytest.mark.parametrize("error, status, words", [(RecursionError, 2, "nests too deeply"),
+                                                 (MemoryError, 3, "out of memory")])
+def test_resource_limits_are_one_line_not_a_traceback(capsys, monkeypatch, error, status, words):
+    import psgs.cli.core as core
+    from kinetology import cli as kinetology_cli
+
+    def fail(*args, **kwargs):
+        raise error()
+    monkeypatch.setattr(core, "run_show", fail)  # registered when main() builds the parser
+    assert main(["show", "counting"]) == status
+    err = capsys.readouterr().err
+    assert words in err and len(err.splitlines()) == 1
+    monkeypatch.setattr(kinetology_cli, "_read", fail)
+    assert kinetology_cli.main(["segment", "x.bvh"]) == status
+    err = capsys.readouterr().err
+    assert words in err and len(err.splitlines()) == 1
