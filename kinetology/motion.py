@@ -144,11 +144,16 @@ class Motion:
         return self.frames / self.frame_rate
 
     def index(self, channel: str) -> int:
-        """Column of ``channel`` (``KeyError`` naming it when there is none)."""
+        """Column of ``channel``; ``KeyError`` naming it, the closest names and every channel
+        of the motion when there is none (a misspelt name is found by reading the message)."""
         try:
             return self.channels.index(channel)
         except ValueError:
-            raise KeyError(f"no channel {channel!r} in {self.source}") from None
+            import difflib
+            close = difflib.get_close_matches(str(channel), self.channels, n=3)
+            hint = f" (did you mean {', '.join(close)}?)" if close else ""
+            raise KeyError(f"no channel {channel!r} in {self.source}{hint}; its "
+                           f"{len(self.channels)} channels: {', '.join(self.channels)}") from None
 
     def column(self, channel: str) -> np.ndarray:
         """The read-only column of one channel."""

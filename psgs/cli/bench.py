@@ -42,7 +42,8 @@ def register(subparsers) -> None:
     synth.add_argument("--seed", type=natural, default=0, help="random seed (default 0)")
     synth.add_argument("--patterned", type=int, default=4,
                        help="patterned strings (default 4; 0 = all random)")
-    synth.add_argument("--durations", choices=("unit", "random"), default="unit")
+    synth.add_argument("--durations", choices=("unit", "random"), default="unit",
+                       help="every symbol lasts 1 (unit, the default) or 0.5 to 1.5 (random)")
     synth.add_argument("--irregular-gaps", action="store_true",
                        help="1 to 4 random symbols between copies instead of 2")
     synth.add_argument("--unequal-lengths", action="store_true",
@@ -51,7 +52,8 @@ def register(subparsers) -> None:
     synth.set_defaults(run=run_synth)
 
     bench = subparsers.add_parser("bench", help="benchmarks (noise)")
-    bench_sub = bench.add_subparsers(dest="bench", metavar="BENCHMARK")
+    bench_sub = bench.add_subparsers(dest="bench", metavar="BENCHMARK",
+                                     help="the benchmark to run (noise)")
     bench_sub.required = True
     noise = bench_sub.add_parser(
         "noise", help="success rate against noise on the paper's synthetic protocol",
