@@ -7,15 +7,21 @@ package that has no docstring is logged as a warning, and ``mkdocs build --stric
 name without a leading underscore that is defined (not imported) in the module; methods and
 properties of a public class are public unless their name starts with an underscore. Names
 imported from elsewhere are checked where they are defined, not where they are re-exported.
+It also turns the Sphinx roles the docstrings use (``:func:`name```, ``:class:`~a.b.C```) into
+inline code, which is how they read in ``help()`` too; mkdocstrings would print them verbatim.
+
 The command-line modules (``psgs.cli``, ``kinetology.cli``) are not API: a command's documentation
 is its ``--help``, so they are not checked here.
 """
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 import griffe
+
+_ROLE = re.compile(r":(?:func|class|meth|attr|data|mod|exc|obj|const):`(~?)([^`]+)`")
 
 _NOT_API = {"cli"}  # submodules whose documentation lives elsewhere (see above)
 _checked: set[str] = set()  # each package once per build, however many pages render it
@@ -28,6 +34,7 @@ class PublicDocstrings(griffe.Extension):
         if pkg.path in _checked:
             return
         _checked.add(pkg.path)
+        _plain_roles(pkg)
         for path in sorted(_undocumented(pkg)):
             griffe.logger.warning(f"{path}: public, but has no docstring")
 
@@ -58,3 +65,13 @@ def _undocumented_methods(cls: griffe.Class):
             continue
         if not member.docstring:
             yield member.path
+
+
+def _plain_roles(obj) -> None:
+    if obj.docstring:
+        obj.docstring.value = _ROLE.sub(
+            lambda m: f"`{m.group(2).rsplit('.', 1)[-1] if m.group(1) else m.group(2)}`",
+            obj.docstring.value)
+    for member in obj.members.values():
+        if not member.is_alias:
+            _plain_roles(member)
