@@ -6,7 +6,8 @@ underlined with dashes). Required:
 
 * an ``Examples`` section with at least one ``>>>`` line (``--doctest-modules`` runs it);
 * for a function, or a class's constructor, a ``Parameters`` section naming every parameter
-  (``self`` aside; ``*args``/``**kwargs`` named with or without their stars);
+  (``self`` aside; ``*args``/``**kwargs`` named with or without their stars); a class may name
+  them under ``Attributes`` instead (result types, built by the library rather than by users);
 * for a function annotated to return something other than ``None``, a ``Returns`` (or ``Yields``)
   section;
 * for a function whose own body has a ``raise`` statement, a ``Raises`` section.
@@ -155,7 +156,11 @@ def missing_sections(obj) -> set[str]:
         missing.add("Examples")
     wanted = _parameters(obj)
     if wanted:
-        named = _documented_names(have.get("Parameters", ""))
+        # a class whose values are results rather than things to build may list its fields
+        # as Attributes (numpydoc's section for them)
+        listed = have.get("Parameters", "") + "\n" + (
+            have.get("Attributes", "") if inspect.isclass(obj) else "")
+        named = _documented_names(listed)
         if any(n not in named for n in wanted):
             missing.add("Parameters")
     if inspect.isfunction(obj):
