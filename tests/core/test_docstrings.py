@@ -44,7 +44,7 @@ NOT_YET: dict[str, str] = {
     "kinetology.states": "Parameters Returns Examples",
     "psgs.Acceptance": "Parameters Examples",
     "psgs.Actiongram": "Parameters Examples",
-    "psgs.BoundReached": "Parameters Examples",
+    "psgs.BoundReached": "Examples",
     "psgs.Derivation": "Parameters Examples",
     "psgs.FormatError": "Parameters Examples",
     "psgs.Grammar": "Parameters Examples",
@@ -52,12 +52,12 @@ NOT_YET: dict[str, str] = {
     "psgs.Nonterminal": "Parameters Examples",
     "psgs.PCGS": "Parameters Examples",
     "psgs.PSGS": "Parameters Examples",
-    "psgs.PSGSError": "Parameters Examples",
+    "psgs.PSGSError": "Examples",
     "psgs.Query": "Parameters Examples",
     "psgs.Rule": "Parameters Examples",
     "psgs.Step": "Parameters Examples",
     "psgs.Terminal": "Parameters Examples",
-    "psgs.ValidationError": "Parameters Examples",
+    "psgs.ValidationError": "Examples",
     "psgs.accepts": "Parameters Returns Raises Examples",
     "psgs.applicable_steps": "Parameters Returns Examples",
     "psgs.apply_step": "Parameters Returns Raises Examples",
@@ -106,10 +106,8 @@ def sections(doc: str) -> dict[str, str]:
 def _parameters(obj) -> list[str]:
     target = obj
     if inspect.isclass(obj):
-        if issubclass(obj, BaseException) and obj.__init__ is BaseException.__init__:
-            return []
         target = obj.__init__
-        if target is object.__init__:
+        if not inspect.isfunction(target):  # a built-in constructor (object, Exception, ...)
             return []
     try:
         signature = inspect.signature(target)
