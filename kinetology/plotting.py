@@ -68,8 +68,10 @@ def plot_states(motion: Motion, channel: str, *, start: float = 0.0, stop: float
         The motion.
     channel : str
         The channel to draw.
-    start, stop : float, default 0.0 and None (the end)
-        The time window drawn, seconds.
+    start : float, default 0.0
+        Start of the time window drawn, seconds.
+    stop : float, optional
+        End of the time window drawn, seconds (default: the end of the motion).
     **params
         Segmentation parameters (:data:`kinetology.segmentation.DEFAULTS`).
 
@@ -127,8 +129,10 @@ def plot_reconstruction(original: Motion, decoded: Motion, channel: str, *, star
         The motion and its reconstruction (e.g. ``kinetology.decompress(kinetology.compress(m))``).
     channel : str
         The channel to draw (the title gives its mean absolute error in the window).
-    start, stop : float, default 0.0 and None (the end)
-        The time window drawn, seconds.
+    start : float, default 0.0
+        Start of the time window drawn, seconds.
+    stop : float, optional
+        End of the time window drawn, seconds (default: the end of the motion).
 
     Returns
     -------

@@ -217,14 +217,22 @@ def psgs_systems(draw, *, min_components: int = 1, max_components: int = 3,
 
     Parameters
     ----------
-    min_components, max_components : int, default 1 and 3
-        Bounds on the number of components.
-    mode : {"parallel", "single", None}, default None
+    min_components : int, default 1
+        Fewest components.
+    max_components : int, default 3
+        Most components.
+    mode : {None, "parallel", "single"}
         The derivation mode; drawn when None.
-    unsynchronised : {"free", "strict", None}, default None
+    unsynchronised : {None, "free", "strict"}
         What a rule in no tuple may do; drawn when None.
-    max_nonterminals, max_rules, max_rhs, alphabet, allow_epsilon, allow_unit
-        Passed to :func:`grammars` for every component.
+    max_nonterminals : int, default 3
+        Passed to :func:`grammars` for every component, like the next four.
+    max_rules : int, default 4
+    max_rhs : int, default 3
+    alphabet : sequence of str, default ("a", "b")
+    allow_epsilon : bool, default True
+    allow_unit : bool, default True
+        Passed to :func:`grammars` (with the five above).
     max_tuples : int, default 4
         At most this many synchronisation tuples.
 
@@ -264,14 +272,20 @@ def pcgs_systems(draw, *, min_components: int = 1, max_components: int = 3,
 
     Parameters
     ----------
-    min_components, max_components : int, default 1 and 3
-        Bounds on the number of components.
+    min_components : int, default 1
+        Fewest components.
+    max_components : int, default 3
+        Most components.
     returning : bool or None, default None
         Returning (a queried component restarts from its axiom) or not; drawn when None.
     centralised : bool or None, default None
         Whether only the master may query; drawn when None.
-    max_nonterminals, max_rules, max_rhs, alphabet, allow_epsilon
-        Passed to :func:`grammars` for every component.
+    max_nonterminals : int, default 3
+        Passed to :func:`grammars` for every component, like the next four.
+    max_rules : int, default 4
+    max_rhs : int, default 3
+    alphabet : sequence of str, default ("a", "b")
+    allow_epsilon : bool, default True
 
     Returns
     -------
@@ -366,7 +380,9 @@ def derivable_words(system, *, max_steps: int = 30, max_form_length: int = 40):
     system : PSGS or PCGS
         The system to derive in (it should terminate easily: non-terminal
         derivations are rejected).
-    max_steps, max_form_length : int, default 30 and 40
+    max_steps : int, default 30
+        Passed to :func:`derivations`.
+    max_form_length : int, default 40
         Passed to :func:`derivations`.
 
     Returns
@@ -457,8 +473,10 @@ def actiongrams(draw, *, min_strings: int = 1, max_strings: int = 4, max_length:
 
     Parameters
     ----------
-    min_strings, max_strings : int, default 1 and 4
-        Bounds on the number of strings.
+    min_strings : int, default 1
+        Fewest strings.
+    max_strings : int, default 4
+        Most strings.
     max_length : int, default 12
         At most this many symbols in a string.
     alphabet : sequence of str, default ("B", "G", "R", "Y")
