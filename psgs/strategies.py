@@ -393,12 +393,12 @@ def derivable_words(system, *, max_steps: int = 30, max_form_length: int = 40):
     --------
     >>> import psgs
     >>> from hypothesis import find
-    >>> gamma = psgs.load("grammars/paper_example.psgs")
-    >>> words, derivation = find(derivable_words(gamma), lambda pair: True)
+    >>> counting = psgs.load("grammars/counting.psgs")           # (aⁿ, bⁿ), n ≥ 1
+    >>> words, derivation = find(derivable_words(counting), lambda pair: len(pair[0][0]) >= 2)
     >>> ["".join(t.name for t in w) for w in words]
-    ['abcdbcad', 'bcadabcd', 'cdabcdab', 'abcdbcad']
-    >>> bool(psgs.accepts(gamma, words))
-    True
+    ['aa', 'bb']
+    >>> bool(psgs.accepts(counting, words)), derivation.is_terminal
+    (True, True)
     """
     return derivations(system, max_steps=max_steps, max_form_length=max_form_length,
                        terminal=True).map(lambda d: (d.words, d))
