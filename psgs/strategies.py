@@ -10,9 +10,10 @@ sizes are drawn first, the alphabet is ``a``, ``b``, ... and nonterminals are
 ``S1``, ``A1``, ``S2``...). Every nonterminal of a drawn grammar is productive:
 its first rule uses only terminals and later nonterminals.
 
->>> from hypothesis import given
+>>> from hypothesis import given, settings
 >>> import psgs.strategies as pst
->>> @given(pst.psgs_systems(max_components=2))
+>>> @settings(max_examples=25)
+... @given(pst.psgs_systems(max_components=2))
 ... def test_has_axioms(system):
 ...     assert len(system.axioms) == len(system.components)
 >>> test_has_axioms()
