@@ -20,7 +20,10 @@ _LAZY = {
     "segment": "segmentation", "states": "segmentation", "segments": "segmentation",
     "Segmentation": "segmentation", "STATES": "segmentation",
     "compress": "codec", "decompress": "codec", "reconstruct": "codec",
-    "synthetic_motion": "synthetic",
+    "synthetic_motion": "synthetic", "unwrap": "segmentation",
+    "cut": "performances", "performances": "performances",
+    "Span": "labels", "read_cmu_truelabels": "labels", "read_bandai_json": "labels",
+    "actuator_map": "joints", "skeleton_parents": "joints",
 }
 
 __all__ = ["Motion", "MotionFormatError", "Joint", "Skeleton", "AXES", *_LAZY]
