@@ -20,6 +20,8 @@ _PARAM_HELP = {
     "velocity_deadband": "velocity dead band in deg/s",
     "acceleration_deadband": "acceleration dead band in deg/s^2",
     "min_range": "channels moving less than this many degrees are left out",
+    "relative_deadband": "dead bands at least this share of a channel's own 95th-percentile "
+                         "speed and acceleration",
     "unwrap": "period in degrees of rotation channels, unwrapped before smoothing (0: off)",
 }
 
@@ -49,18 +51,40 @@ def _write(text: str, out: str | None) -> None:
 
 
 def _cmd_segment(args) -> int:
+    from .performances import cut
     from .readers import read
     from .segmentation import segment
 
-    motion = read(args.file)
     channels = None
     if args.channels:
         channels = [c for item in args.channels for c in item.split(",") if c]
-    ag = segment(motion, channels, **_params(args, DEFAULTS))
-    header = (f"# kinetology segment {Path(args.file).name}: {motion.frames} frames at "
-              f"{motion.frame_rate:g} fps; states B(+,+) G(+,-) R(-,-) Y(-,+) of "
-              f"(velocity, acceleration); durations in seconds\n")
-    _write(header + ag.to_text(), args.output)
+    several = len(args.files) > 1
+    out_dir = None
+    if several or (args.output and (args.output.endswith("/") or Path(args.output).is_dir())):
+        if not args.output or args.output == "-":
+            raise ValueError("several files make one actiongram each: give -o DIR/")
+        out_dir = Path(args.output)
+        out_dir.mkdir(parents=True, exist_ok=True)
+    names = [Path(f).stem for f in args.files]
+    if out_dir is not None and len(set(names)) != len(names):
+        raise ValueError("two files share a name; their actiongrams would overwrite each other")
+    for name in args.files:
+        motion = read(name)
+        span = ""
+        if args.start is not None or args.stop is not None:
+            motion = cut(motion, args.start, args.stop)
+            first, last = motion.meta["cut"]
+            span = f" from {first:g} s to {last:g} s"
+        ag = segment(motion, channels, **_params(args, DEFAULTS))
+        header = (f"# kinetology segment {Path(name).name}{span}: {motion.frames} frames at "
+                  f"{motion.frame_rate:g} fps; states B(+,+) G(+,-) R(-,-) Y(-,+) of "
+                  f"(velocity, acceleration); durations in seconds\n")
+        if out_dir is None:
+            _write(header + ag.to_text(), args.output)
+        else:
+            target = out_dir / f"{Path(name).stem}.actiongram"
+            target.write_text(header + ag.to_text())
+            print(f"{target}: {len(ag)} strings, {ag.total_symbols} kinetemes")
     return 0
 
 
@@ -188,10 +212,15 @@ def build_parser() -> argparse.ArgumentParser:
                     "segments; the paper's kinetological principles measured.")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
 
-    p = sub.add_parser("segment", help="segment a motion file into an actiongram (text form)")
-    p.add_argument("file")
+    p = sub.add_parser("segment", help="segment motion files into actiongrams (text form), "
+                                       "one per file (one performance each)")
+    p.add_argument("files", nargs="+", metavar="FILE")
     p.add_argument("--channels", nargs="+", help="channels to keep (names or comma lists)")
-    p.add_argument("-o", "--output", help="output file (default: stdout)")
+    p.add_argument("--start", type=float, default=None,
+                   help="seconds: segment only from here (a performance within a take)")
+    p.add_argument("--stop", type=float, default=None, help="seconds: segment only up to here")
+    p.add_argument("-o", "--output", help="output file (default: stdout); with several files "
+                                          "a folder, DIR/, holding NAME.actiongram per file")
     _add_params(p)
     p.set_defaults(run=_cmd_segment)
 

@@ -49,7 +49,7 @@ from .joints import actuator_map, skeleton_parents
 from .motion import Motion
 
 __all__ = ["STATES", "DEFAULTS", "smooth", "unwrap", "derivatives", "significant_sign",
-           "states", "Segmentation", "segments", "segment"]
+           "channel_deadbands", "states", "Segmentation", "segments", "segment"]
 
 _TRANSLATIONS = ("tx", "ty", "tz")
 
@@ -58,9 +58,10 @@ STATES = ("B", "G", "R", "Y")
 
 #: Default parameters (all in seconds and degrees, so they hold from 30 to 120 fps).
 DEFAULTS = MappingProxyType({
-    "smoothing": 0.025,              # Gaussian sigma, seconds (3 frames at 120 fps)
-    "velocity_deadband": 5.0,        # degrees per second
-    "acceleration_deadband": 200.0,  # degrees per second squared
+    "smoothing": 0.05,               # Gaussian sigma, seconds (1.5 frames at 30 fps, 6 at 120)
+    "velocity_deadband": 2.0,        # degrees per second, the floor of the velocity dead band
+    "acceleration_deadband": 20.0,   # degrees per second squared, likewise
+    "relative_deadband": 0.1,        # share of a channel's own 95th-percentile |θ'|, |θ''|
     "min_range": 2.0,                # degrees; channels that move less are still
     "unwrap": 360.0,                 # period of rotation channels in degrees; 0: no unwrapping
 })
@@ -154,14 +155,32 @@ def _codes(velocity_sign: np.ndarray, acceleration_sign: np.ndarray) -> np.ndarr
     return (2 * falling + braking).astype(np.int8)
 
 
+def channel_deadbands(signals: np.ndarray, absolute: float, relative: float) -> np.ndarray:
+    """Per column: ``max(absolute, relative * the 95th percentile of |signal|)``.
+
+    A dead band relative to how fast the channel itself moves holds for slow and brisk
+    tempos alike (slowing a motion by ``k`` divides its velocities by ``k`` and its
+    accelerations by ``k²``, a fixed dead band does not follow); the absolute floor keeps a
+    nearly still channel from turning its noise into kinetemes.
+    """
+    if relative <= 0 or signals.shape[0] == 0:
+        return np.full(signals.shape[1], float(absolute))
+    scale = np.percentile(np.abs(signals), 95, axis=0)
+    return np.maximum(absolute, relative * scale)
+
+
 def states(values: np.ndarray, frame_rate: float, *, smoothing: float = DEFAULTS["smoothing"],
            velocity_deadband: float = DEFAULTS["velocity_deadband"],
            acceleration_deadband: float = DEFAULTS["acceleration_deadband"],
+           relative_deadband: float = DEFAULTS["relative_deadband"],
            unwrap: float = DEFAULTS["unwrap"]) -> np.ndarray:
     """State code (index into :data:`STATES`) of every frame, ``frames x channels``.
 
     ``values`` is ``frames x channels`` (or 1-D, one channel) of angles in
-    degrees, unwrapped with period ``unwrap`` (0: not) before smoothing.
+    degrees, unwrapped with period ``unwrap`` (0: not) before smoothing. A
+    channel's dead bands are ``max(velocity_deadband, relative_deadband * v95)``
+    and likewise for the acceleration, ``v95`` the 95th percentile of the
+    channel's own ``|θ'|`` (``|θ''|``).
     """
     values = np.asarray(values, dtype=float)
     one_channel = values.ndim == 1
@@ -170,10 +189,12 @@ def states(values: np.ndarray, frame_rate: float, *, smoothing: float = DEFAULTS
     values = _unwrap(values, unwrap)
     smoothed = smooth(values, frame_rate, smoothing)
     velocity, acceleration = derivatives(smoothed, frame_rate)
+    speed_band = channel_deadbands(velocity, velocity_deadband, relative_deadband)
+    turn_band = channel_deadbands(acceleration, acceleration_deadband, relative_deadband)
     out = np.empty(values.shape, dtype=np.int8)
-    for c in range(values.shape[1]):
-        out[:, c] = _codes(significant_sign(velocity[:, c], velocity_deadband),
-                           significant_sign(acceleration[:, c], acceleration_deadband))
+    for c in range(values.shape[1]):  # per channel: run lengths differ between channels
+        out[:, c] = _codes(significant_sign(velocity[:, c], speed_band[c]),
+                           significant_sign(acceleration[:, c], turn_band[c]))
     return out[:, 0] if one_channel else out
 
 
@@ -274,7 +295,8 @@ def segments(motion: Motion, channels=None, **params) -> Segmentation:
         np.zeros(len(channels), bool)
     code = states(values[:, moving], motion.frame_rate, smoothing=p["smoothing"],
                   velocity_deadband=p["velocity_deadband"],
-                  acceleration_deadband=p["acceleration_deadband"], unwrap=0.0)
+                  acceleration_deadband=p["acceleration_deadband"],
+                  relative_deadband=p["relative_deadband"], unwrap=0.0)
     borders, codes, moves = [], [], []
     kept_smooth = smoothed[:, moving]
     for c in range(code.shape[1]):
