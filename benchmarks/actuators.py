@@ -264,7 +264,7 @@ def excursions(motion) -> dict[str, float]:
     out = {}
     for joint, columns in rotation_joints(motion).items():
         values = smooth(unwrap(motion.values[:, columns]), motion.frame_rate,
-                        max(DEFAULTS["smoothing"], 1.0 / motion.frame_rate))
+                        DEFAULTS["smoothing"])
         spread = np.percentile(values, 95, axis=0) - np.percentile(values, 5, axis=0)
         out[joint] = float(spread.max())
     return out
@@ -296,7 +296,8 @@ def pal_joints(perfs, **options):
     except (TypeError, AttributeError, ValueError):
         induction = None
     if induction is not None and hasattr(induction, "actuators"):
-        return list(induction.actuators), "performances"
+        verdict = getattr(induction, "verdict", "") or ""
+        return list(induction.actuators), ("performances" + (f": {verdict}" if verdict else ""))
     # a PAL of one actiongram: join the performances, as a user had to
     joined = kinetology.Motion(np.vstack([m.values for m in perfs]), perfs[0].channels,
                                perfs[0].frame_rate, perfs[0].skeleton, "joined")
