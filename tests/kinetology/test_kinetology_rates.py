@@ -113,3 +113,23 @@ def test_channel_deadbands_follow_the_channel_with_a_floor():
 def test_defaults_act_at_30_fps():
     assert DEFAULTS["smoothing"] * 30 >= 1.0  # at least one frame of smoothing
     assert DEFAULTS["unwrap"] == 360.0
+
+
+def _direct_smooth(values, rate, sigma):
+    frames = sigma * rate
+    radius = min(max(1, int(np.ceil(3 * frames))), values.shape[0] - 1)
+    offsets = np.arange(-radius, radius + 1)
+    kernel = np.exp(-0.5 * (offsets / frames) ** 2)
+    kernel /= kernel.sum()
+    padded = np.pad(values, [(radius, radius), (0, 0)], mode="reflect", reflect_type="odd")
+    return sum(w * padded[k:k + values.shape[0]] for k, w in enumerate(kernel))
+
+
+@pytest.mark.parametrize("rate", [30, 120, 1000])  # direct sum, FFT, a long FFT kernel
+def test_smoothing_equals_the_direct_gaussian_sum(rate):
+    from kinetology.segmentation import smooth
+
+    values = np.cumsum(np.random.default_rng(3).normal(size=(400, 3)), axis=0)
+    np.testing.assert_allclose(smooth(values, rate, 0.05), _direct_smooth(values, rate, 0.05),
+                               atol=1e-9)
+    assert smooth(values[:, 0], rate, 0.05).shape == (400,)
