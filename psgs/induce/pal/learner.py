@@ -12,7 +12,8 @@ from .period import period_mode
 
 __all__ = ["PAL"]
 
-_TIMINGS = ("content", "period", "auto")
+_TIMINGS = ("content", "period", "auto", "performances")
+_EVIDENCE = ("kinetemes", "path")
 
 
 class PAL(Inducer):
@@ -62,7 +63,11 @@ class PAL(Inducer):
                  sync_fraction: float = 0.5, window_support: float = 0.34,
                  max_pattern: int = 64, seeds: int = 3, rounds: int = 2,
                  joins_copies: int = 4, timing: str = "auto",
-                 period_quantile: float = 0.9, period_agreement: float = 0.6) -> None:
+                 period_quantile: float = 0.9, period_agreement: float = 0.6,
+                 evidence: str = "kinetemes", joint_share: float = 0.25,
+                 neighbour_share: float = 0.03, channel_share: float = 0.25,
+                 max_shift: float = 0.1, min_cycle: float = 0.25,
+                 min_cycle_score: float = 0.05) -> None:
         check_number("min_copies", min_copies, low=2, integer=True)
         check_number("conserve", conserve, low=0, high=1, low_open=True)
         check_number("edge_share", edge_share, low=0, high=1)
@@ -93,6 +98,20 @@ class PAL(Inducer):
         self.timing = timing
         self.period_quantile = period_quantile
         self.period_agreement = period_agreement
+        check_choice("evidence", evidence, _EVIDENCE)
+        check_number("joint_share", joint_share, low=0, high=1, low_open=True)
+        check_number("neighbour_share", neighbour_share, low=0, high=1)
+        check_number("channel_share", channel_share, low=0, high=1)
+        check_number("max_shift", max_shift, low=0, high=0.5)
+        check_number("min_cycle", min_cycle, low=0)
+        check_number("min_cycle_score", min_cycle_score, low=0, high=1)
+        self.evidence = evidence
+        self.joint_share = joint_share
+        self.neighbour_share = neighbour_share
+        self.channel_share = channel_share
+        self.max_shift = max_shift
+        self.min_cycle = min_cycle
+        self.min_cycle_score = min_cycle_score
 
     def induce(self, performances) -> Induction:
         """Learn a PSGS from an actiongram; see :class:`~psgs.induce.Induction`.
