@@ -66,7 +66,7 @@ sys.path.insert(0, str(REPO))
 
 import kinetology  # noqa: E402
 from kinetology.labels import read_cmu_truelabels  # noqa: E402
-from kinetology.performances import from_spans  # noqa: E402
+from kinetology.performances import from_spans, segment_performances  # noqa: E402
 from kinetology.segmentation import DEFAULTS, segment, smooth, unwrap  # noqa: E402
 
 MOCAP = REPO.parent / "shared" / "data" / "mocap"
@@ -290,7 +290,7 @@ def pal_joints(perfs, **options):
     """Joints PAL names; ``(joints, how)`` where ``how`` says which PAL interface was used."""
     PAL = _pal_class()
     inducer = PAL(**options)
-    grams = [segment(m) for m in perfs]
+    grams = segment_performances(perfs)
     try:
         induction = inducer.induce(grams if len(grams) > 1 else grams[0])
     except (TypeError, AttributeError, ValueError):

@@ -51,7 +51,7 @@ def _write(text: str, out: str | None) -> None:
 
 
 def _cmd_segment(args) -> int:
-    from .performances import cut
+    from .performances import cut, segment_performances
     from .readers import read
     from .segmentation import segment
 
@@ -70,6 +70,7 @@ def _cmd_segment(args) -> int:
         raise ValueError("two files share a name; their actiongrams would overwrite each other")
     if args.labels:
         return _segment_spans(args, channels)
+    motions, spans = [], []
     for name in args.files:
         motion = read(name)
         span = ""
@@ -77,7 +78,13 @@ def _cmd_segment(args) -> int:
             motion = cut(motion, args.start, args.stop)
             first, last = motion.meta["cut"]
             span = f" from {first:g} s to {last:g} s"
-        ag = segment(motion, channels, **_params(args, DEFAULTS))
+        motions.append(motion)
+        spans.append(span)
+    if several:  # performances of one action: the same strings in every actiongram
+        grams = segment_performances(motions, channels, **_params(args, DEFAULTS))
+    else:
+        grams = [segment(motions[0], channels, **_params(args, DEFAULTS))]
+    for name, motion, span, ag in zip(args.files, motions, spans, grams):
         header = (f"# kinetology segment {Path(name).name}{span}: {motion.frames} frames at "
                   f"{motion.frame_rate:g} fps; states B(+,+) G(+,-) R(-,-) Y(-,+) of "
                   f"(velocity, acceleration); durations in seconds\n")
@@ -93,9 +100,8 @@ def _cmd_segment(args) -> int:
 def _segment_spans(args, channels) -> int:
     """One actiongram per labelled span of one take: DIR/TAKE-LABEL-K.actiongram."""
     from .labels import spans_of
-    from .performances import from_spans
+    from .performances import from_spans, segment_performances
     from .readers import read
-    from .segmentation import segment
 
     if len(args.files) != 1 or not args.output or args.output == "-":
         raise ValueError("--labels cuts one take into performances: give one FILE and -o DIR/")
@@ -110,11 +116,11 @@ def _segment_spans(args, channels) -> int:
     out_dir = Path(args.output)
     out_dir.mkdir(parents=True, exist_ok=True)
     count: dict[str, int] = {}
-    for part in parts:
+    grams = segment_performances(parts, channels, **_params(args, DEFAULTS))
+    for part, ag in zip(parts, grams):
         label = part.meta["label"]
         count[label] = count.get(label, 0) + 1
         first, last = part.meta["cut"]
-        ag = segment(part, channels, **_params(args, DEFAULTS))
         target = out_dir / f"{Path(args.files[0]).stem}-{label}-{count[label]}.actiongram"
         target.write_text(f"# kinetology segment {Path(args.files[0]).name} from {first:g} s "
                           f"to {last:g} s ({label}): {part.frames} frames at "
