@@ -31,7 +31,7 @@ import numpy as np
 from .codec import compress, decompress
 from .kinematics import forward_kinematics, joint_angle
 from .motion import Motion
-from .segmentation import DEFAULTS, STATES, smooth, states
+from .segmentation import DEFAULTS, STATES, smooth, states, unwrap
 
 __all__ = ["codec_point", "CMU_ANGLES", "CMU_BVH_ANGLES", "BANDAI_ANGLES", "angle_table",
            "ViewInvariance", "view_invariance",
@@ -406,7 +406,9 @@ def describe(codes: np.ndarray, signal: np.ndarray, *, min_range: float = 5.0) -
 def _descriptions(motions, performances, channels, min_range, params):
     table = {}
     for take, motion in motions.items():
-        values = motion.values[:, [motion.index(c) for c in channels]]
+        # unwrapped here, as states() does, so that 'still' is judged on the same signal
+        values = unwrap(motion.values[:, [motion.index(c) for c in channels]],
+                        params.get("unwrap", DEFAULTS["unwrap"]))
         smoothed = smooth(values, motion.frame_rate, params.get("smoothing",
                                                                 DEFAULTS["smoothing"]))
         code = states(values, motion.frame_rate, **params)
