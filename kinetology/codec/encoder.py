@@ -18,7 +18,7 @@ __all__ = ["CODEC_DEFAULTS", "Compressed", "compress_with", "decompress", "encod
 #: segmentation, the knot quantum (degrees), and no residual layer
 #: (``residual_step`` 0; ``hysteresis`` applies when there is one).
 CODEC_DEFAULTS = MappingProxyType({**PINNED, "quantum": 0.5, "residual_step": 0.0,
-                                   "hysteresis": 0.65})
+                                   "hysteresis": 0.7})
 
 
 class Compressed(bytes):

@@ -53,54 +53,49 @@ class EntropyError(ValueError):
     """The coded bytes are malformed (the caller turns it into a format error)."""
 
 
+# one flat table of probabilities per lane: slots for the zero bit (9 contexts),
+# the sign (3) and each unary magnitude level (3 contexts per level)
+_SIGN_SLOT = _HISTORY * _HISTORY
+_MAG_SLOT = _SIGN_SLOT + _SIGNS
+_SLOTS = _MAG_SLOT + _MAG_LEVELS * _HISTORY
+
+
 class _Model:
-    """Per-lane adaptive probabilities (of a 0 bit) for every decision and context."""
+    """Per-lane adaptive probabilities (of a 0 bit), each with the count of bits it has seen."""
 
-    def __init__(self, lanes: int, sides: int) -> None:
-        self.sides = sides
-        contexts = _HISTORY * _HISTORY * sides
-        # each probability beside the number of bits it has seen (capped)
-        self.zero = np.zeros((lanes, contexts, 2), np.int64)
-        self.sign = np.zeros((lanes, _SIGNS * sides, 2), np.int64)
-        self.magnitude = np.zeros((lanes, _MAG_LEVELS, _HISTORY * sides, 2), np.int64)
-        for table in (self.zero, self.sign, self.magnitude):
-            table[..., 0] = _HALF
+    def __init__(self, lanes: int) -> None:
+        self.p = np.full(lanes * _SLOTS, _HALF, np.int64)
+        self.seen = np.zeros(lanes * _SLOTS, np.int64)
+        self.base = np.arange(lanes, dtype=np.int64) * _SLOTS  # each lane's first slot
 
-    @staticmethod
-    def update(table, index, bits) -> None:
-        """Move the probabilities at ``index`` towards the ``bits`` just seen.
+    def update(self, index, bits) -> None:
+        """Move the probabilities at flat ``index`` towards the ``bits`` just seen.
 
         A fresh probability learns fast (the step is about 1/(seen + 2)) and
         settles to a 1/32 step, so rare contexts and short takes cost little.
+        With a shift of at least 1 a probability stays within 1 .. 2**12 - 1.
         """
-        cell = table[index]
-        p, seen = cell[..., 0], cell[..., 1]
+        p = self.p[index]
+        seen = self.seen[index]
         shift = _SHIFTS[seen]
-        p = np.where(bits, p - (p >> shift), p + ((_M - p) >> shift))
-        table[index + (0,)] = np.clip(p, 32, _M - 32)
-        table[index + (1,)] = np.minimum(seen + 1, _SHIFTS.size - 1)
+        self.p[index] = np.where(bits, p - (p >> shift), p + ((_M - p) >> shift))
+        self.seen[index] = np.minimum(seen + 1, _SHIFTS.size - 1)
 
 
-def _contexts(previous, before, side, sides):
-    """Context numbers from the lane's two previous symbols and the side context."""
+def _contexts(previous, before):
+    """Slot offsets from a lane's two previous symbols: zero bit, sign, magnitude level 0."""
     a = np.minimum(np.abs(previous), 2)
-    b = np.minimum(np.abs(before), 2)
-    zero_ctx = (a * _HISTORY + b) * sides + side
-    sign_ctx = (np.sign(previous) + 1) * sides + side
-    mag_ctx = a * sides + side
-    return zero_ctx, sign_ctx, mag_ctx
+    zero_slot = a * _HISTORY + np.minimum(np.abs(before), 2)
+    sign_slot = _SIGN_SLOT + np.sign(previous) + 1
+    mag_slot = _MAG_SLOT + a
+    return zero_slot, sign_slot, mag_slot
 
 
-def _check(symbols, side, sides):
+def _check(symbols):
     symbols = np.asarray(symbols, dtype=np.int64)
     if symbols.ndim != 2:
         raise ValueError(f"symbols must be frames x lanes, got shape {symbols.shape}")
-    side = np.zeros(symbols.shape, np.int64) if side is None else np.asarray(side, np.int64)
-    if side.shape != symbols.shape:
-        raise ValueError(f"side contexts of shape {side.shape} for symbols {symbols.shape}")
-    if side.size and (side.min() < 0 or side.max() >= sides):
-        raise ValueError(f"side contexts must lie in 0..{sides - 1}")
-    return symbols, side
+    return symbols
 
 
 def _varints(numbers) -> bytes:
@@ -114,22 +109,18 @@ def _varints(numbers) -> bytes:
     return bytes(out)
 
 
-def encode(symbols, side=None, sides: int = 1) -> bytes:
+def encode(symbols) -> bytes:
     """Code a ``frames x lanes`` integer matrix (one adaptive model per lane).
 
     Parameters
     ----------
     symbols : array_like of int, shape (frames, lanes)
         The values to code (any size; small magnitudes are cheap).
-    side : array_like of int, same shape, optional
-        A context the decoder knows too, in ``0 .. sides - 1`` (default all 0).
-    sides : int
-        Number of side contexts.
 
     Returns
     -------
     bytes
-        Decodable by :func:`decode` given the same shape and side contexts.
+        Decodable by :func:`decode` given the same shape.
 
     Examples
     --------
@@ -139,57 +130,57 @@ def encode(symbols, side=None, sides: int = 1) -> bytes:
     >>> bool((decode(data, 4, 2) == x).all())
     True
     """
-    symbols, side = _check(symbols, side, sides)
+    symbols = _check(symbols)
     frames, lanes = symbols.shape
-    model = _Model(lanes, sides)
-    rows = np.arange(lanes)
+    model = _Model(lanes)
     # forward pass: every coded bit with its probability of 0, in decoding order
-    steps: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []  # (active, bit, p0)
+    steps: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []  # (lanes, bits, p0)
     escapes: list[int] = []
     previous = np.zeros(lanes, np.int64)
     before = np.zeros(lanes, np.int64)
-    everyone = np.ones(lanes, bool)
+    every = np.arange(lanes)
     for t in range(frames):
         v = symbols[t]
-        zc, sc, mc = _contexts(previous, before, side[t], sides)
+        zs, ss, ms = _contexts(previous, before)
+        index = model.base + zs
         nonzero = v != 0
-        steps.append((everyone, nonzero, model.zero[rows, zc, 0]))
-        model.update(model.zero, (rows, zc), nonzero)
-        if nonzero.any():
-            negative = v < 0
-            steps.append((nonzero, negative, model.sign[rows, sc, 0]))
-            idx = (rows[nonzero], sc[nonzero])
-            model.update(model.sign, idx, negative[nonzero])
-            magnitude = np.abs(v)
-            active = nonzero
+        steps.append((every, nonzero, model.p[index]))
+        model.update(index, nonzero)
+        active = np.flatnonzero(nonzero)
+        if active.size:
+            negative = v[active] < 0
+            index = model.base[active] + ss[active]
+            steps.append((active, negative, model.p[index]))
+            model.update(index, negative)
+            magnitude = np.abs(v[active])
+            slots = model.base[active] + ms[active]
             for level in range(_MAG_LEVELS):
                 more = magnitude > level + 1
-                steps.append((active, more, model.magnitude[rows, level, mc, 0]))
-                idx = (rows[active], np.full(int(active.sum()), level), mc[active])
-                model.update(model.magnitude, idx, more[active])
-                active = active & more
-                if not active.any():
+                index = slots + level * _HISTORY
+                steps.append((active, more, model.p[index]))
+                model.update(index, more)
+                active, magnitude, slots = active[more], magnitude[more], slots[more]
+                if not active.size:
                     break
             else:
-                escapes.extend((magnitude[active] - ESCAPE).tolist())
+                escapes.extend((magnitude - ESCAPE).tolist())
         before, previous = previous, v
     # backward pass: rANS encode every lane's bits in reverse
     state = np.full(lanes, _LOW, np.int64)
     words: list[tuple[np.ndarray, np.ndarray]] = []
-    for active, bit, p0 in reversed(steps):
+    for where, bit, p0 in reversed(steps):
         freq = np.where(bit, _M - p0, p0)
-        start = np.where(bit, p0, 0)
-        flush = active & (state >= ((_LOW >> PRECISION) << 16) * freq)
+        x = state[where]
+        flush = x >= ((_LOW >> PRECISION) << 16) * freq
         if flush.any():
-            words.append((flush, state & 0xFFFF))
-            state = np.where(flush, state >> 16, state)
-        coded = (state // freq) * _M + start + state % freq
-        state = np.where(active, coded, state)
+            words.append((where[flush], x[flush] & 0xFFFF))
+            x = np.where(flush, x >> 16, x)
+        state[where] = (x // freq) * _M + np.where(bit, p0, 0) + x % freq
     # the decoder reads the words in the reverse order of their writing
     per_lane = [[] for _ in range(lanes)]
-    for flush, word in reversed(words):
-        for lane in np.flatnonzero(flush):
-            per_lane[lane].append(int(word[lane]))
+    for where, word in reversed(words):
+        for lane, w in zip(where.tolist(), word.tolist()):
+            per_lane[lane].append(w)
     out = bytearray(_varints([len(escapes)]) + _varints(escapes))
     out += _varints([len(w) for w in per_lane])
     for lane in range(lanes):
@@ -224,14 +215,14 @@ class _Bytes:
         return chunk
 
 
-def decode(data: bytes, frames: int, lanes: int, side=None, sides: int = 1) -> np.ndarray:
+def decode(data: bytes, frames: int, lanes: int) -> np.ndarray:
     """Inverse of :func:`encode`: the ``frames x lanes`` matrix.
 
     Raises
     ------
     EntropyError
-        When ``data`` is not what :func:`encode` wrote for this shape and side
-        contexts (too short, too long, a stream that runs dry).
+        When ``data`` is not what :func:`encode` wrote for this shape (too
+        short, too long, a stream that runs dry).
 
     Examples
     --------
@@ -242,11 +233,6 @@ def decode(data: bytes, frames: int, lanes: int, side=None, sides: int = 1) -> n
     >>> len(data) < 40, bool((decode(data, 100, 3) == x).all())
     (True, True)
     """
-    if side is None:
-        side = np.zeros((frames, lanes), np.int64)
-    side = np.asarray(side, np.int64)
-    if side.shape != (frames, lanes):
-        raise ValueError(f"side contexts of shape {side.shape} for {frames} x {lanes}")
     reader = _Bytes(bytes(data))
     count = reader.varint()
     if count > len(reader.data):
@@ -267,57 +253,55 @@ def decode(data: bytes, frames: int, lanes: int, side=None, sides: int = 1) -> n
         raise EntropyError("bad residual stream state")
     sizes_arr = np.array(sizes, np.int64)
     pointer = np.zeros(lanes, np.int64)
-    rows = np.arange(lanes)
-    model = _Model(lanes, sides)
+    model = _Model(lanes)
     escape_at = 0
 
-    def bit(active, p0):
-        nonlocal state
-        slot = state & (_M - 1)
+    def bit(where, index):
+        """Decode one bit in each lane of ``where`` with the probabilities at ``index``."""
+        p0 = model.p[index]
+        x = state[where]
+        slot = x & (_M - 1)
         one = slot >= p0
-        freq = np.where(one, _M - p0, p0)
-        start = np.where(one, p0, 0)
-        new = freq * (state >> PRECISION) + slot - start
-        state = np.where(active, new, state)
-        refill = active & (state < _LOW)
+        x = np.where(one, _M - p0, p0) * (x >> PRECISION) + slot - np.where(one, p0, 0)
+        refill = x < _LOW
         if refill.any():
-            if (pointer[refill] >= sizes_arr[refill]).any():
+            lanes_in = where[refill]
+            if (pointer[lanes_in] >= sizes_arr[lanes_in]).any():
                 raise EntropyError("a residual stream runs dry")
-            state = np.where(refill, (state << 16) | streams[rows, pointer], state)
-            pointer[refill] += 1
+            x[refill] = (x[refill] << 16) | streams[lanes_in, pointer[lanes_in]]
+            pointer[lanes_in] += 1
+        state[where] = x
+        model.update(index, one)
         return one
 
     out = np.zeros((frames, lanes), np.int64)
     previous = np.zeros(lanes, np.int64)
     before = np.zeros(lanes, np.int64)
-    everyone = np.ones(lanes, bool)
+    every = np.arange(lanes)
     for t in range(frames):
-        zc, sc, mc = _contexts(previous, before, side[t], sides)
-        nonzero = bit(everyone, model.zero[rows, zc, 0])
-        model.update(model.zero, (rows, zc), nonzero)
-        v = np.zeros(lanes, np.int64)
-        if nonzero.any():
-            negative = bit(nonzero, model.sign[rows, sc, 0])
-            model.update(model.sign, (rows[nonzero], sc[nonzero]), negative[nonzero])
-            magnitude = nonzero.astype(np.int64)
-            active = nonzero
+        zs, ss, ms = _contexts(previous, before)
+        nonzero = bit(every, model.base + zs)
+        v = out[t]
+        active = np.flatnonzero(nonzero)
+        if active.size:
+            negative = bit(active, model.base[active] + ss[active])
+            signs = np.where(negative, -1, 1)
+            magnitude = np.ones(active.size, np.int64)
+            slots = model.base[active] + ms[active]
+            alive = np.arange(active.size)
             for level in range(_MAG_LEVELS):
-                more = bit(active, model.magnitude[rows, level, mc, 0])
-                idx = (rows[active], np.full(int(active.sum()), level), mc[active])
-                model.update(model.magnitude, idx, more[active])
-                active = active & more
-                magnitude += active
-                if not active.any():
+                more = bit(active[alive], slots[alive] + level * _HISTORY)
+                alive = alive[more]
+                magnitude[alive] += 1
+                if not alive.size:
                     break
             else:
-                lanes_left = np.flatnonzero(active)
-                if escape_at + lanes_left.size > len(escapes):
+                if escape_at + alive.size > len(escapes):
                     raise EntropyError("fewer escaped magnitudes than the streams ask for")
-                for lane in lanes_left:
-                    magnitude[lane] = ESCAPE + escapes[escape_at]
-                    escape_at += 1
-            v = np.where(negative & nonzero, -magnitude, magnitude)
-        out[t] = v
+                magnitude[alive] += np.array(escapes[escape_at:escape_at + alive.size],
+                                             dtype=np.int64)
+                escape_at += alive.size
+            v[active] = signs * magnitude
         before, previous = previous, v
     if escape_at != len(escapes) or (pointer != sizes_arr).any() or (state != _LOW).any():
         raise EntropyError("residual streams do not end where they should")
