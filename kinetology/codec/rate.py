@@ -34,7 +34,7 @@ __all__ = ["BASE_LADDER", "RESIDUAL_BASES", "compress_to"]
 BASE_LADDER = ((0.08, 1.0), (0.06, 1.0), (0.05, 1.0), (0.04, 1.0), (0.03, 1.0), (0.025, 1.0),
                (0.025, 0.5), (0.02, 0.5), (0.015, 0.5))
 #: Bases under the residual layer: (smoothing in s, knot quantum in degrees).
-RESIDUAL_BASES = ((0.1, 2.0),)
+RESIDUAL_BASES = ((0.15, 2.0),)
 HYSTERESIS = CODEC_DEFAULTS["hysteresis"]
 _BISECTIONS = 12
 
