@@ -85,6 +85,21 @@ def mean_errors(original: Motion, decoded: Motion) -> tuple[float, float]:
     Rotation channels (``rx``, ``ry``, ``rz``) are compared modulo 360°; with
     none, the first number is over all channels.
 
+    Parameters
+    ----------
+    original, decoded : Motion
+        Two motions with the same channels and frame count.
+
+    Returns
+    -------
+    tuple of float
+        The mean over the rotation channels (degrees) and over every channel.
+
+    Raises
+    ------
+    ValueError
+        When the channels or frame counts differ.
+
     Examples
     --------
     >>> import numpy as np
@@ -119,9 +134,25 @@ def _settings(params: dict) -> dict:
 def encode_segments(motion: Motion, **params):
     """Per channel: knot frames, segment state codes, and quantised knot values (ints).
 
-    Rotation channels are unwrapped first. ``params``: the settings of
-    :data:`CODEC_DEFAULTS` (only the segmentation ones and ``quantum`` matter here).
-    Returns ``(channels, quantum)``.
+    Rotation channels are unwrapped first.
+
+    Parameters
+    ----------
+    motion : Motion
+    **params
+        Settings of :data:`CODEC_DEFAULTS` (only the segmentation ones and
+        ``quantum`` matter here).
+
+    Returns
+    -------
+    (list of (knots, codes, values), float)
+        Per channel the knot frames, the state code of each segment and the
+        knot values in quanta; and the quantum in degrees.
+
+    Raises
+    ------
+    TypeError, ValueError
+        For unknown or out-of-range settings (a quantum too small for 62 bits).
 
     Examples
     --------

@@ -382,3 +382,14 @@ def test_command_line_max_error(tmp_path, capsys):
     assert mean_errors(kinetology.read(path), back)[0] == pytest.approx(reached, abs=1e-4)
     assert main(["compress", str(path), "--max-error", "0.3", "--quantum", "1"]) == 2
     assert "chooses the settings itself" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("module", ["kinetology.codec", "kinetology.codec.encoder",
+                                    "kinetology.codec.quartic", "kinetology.codec.knots",
+                                    "kinetology.codec.residual", "kinetology.codec.entropy"])
+def test_docstring_examples_run(module):
+    import doctest
+    import importlib
+
+    result = doctest.testmod(importlib.import_module(module))
+    assert result.attempted > 0 and result.failed == 0
