@@ -38,8 +38,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..actiongram import Actiongram
-from .base import Induction, Inducer, StringReport, build_system, check_number, component_name
+from ..errors import ValidationError
+from .base import Inducer, as_performances, check_choice, check_number
+from .results import Induction, StringReport
 
 __all__ = ["PAL"]
 
@@ -79,7 +80,7 @@ class PAL(Inducer):
     - ``period_agreement`` (0.6): in the period mode, least share of times at
       which a string's symbol recurs one (tracked) window later.
 
-    >>> from psgs.synthetic import generate
+    >>> from psgs.induce.synthetic import generate
     >>> case = generate(seed=1, noise=0.1)
     >>> result = PAL().induce(case.actiongram)
     >>> sorted(result.components) == sorted(case.components)
@@ -106,8 +107,7 @@ class PAL(Inducer):
         check_number("seeds", seeds, low=1, integer=True)
         check_number("rounds", rounds, low=1, integer=True)
         check_number("joins_copies", joins_copies, low=2, integer=True)
-        if timing not in _TIMINGS:
-            raise ValueError(f"timing must be one of {', '.join(_TIMINGS)}, not {timing!r}")
+        check_choice("timing", timing, _TIMINGS)
         check_number("period_quantile", period_quantile, low=0, high=1)
         check_number("period_agreement", period_agreement, low=0, high=1, low_open=True)
         self.min_copies = min_copies
@@ -126,10 +126,34 @@ class PAL(Inducer):
         self.period_quantile = period_quantile
         self.period_agreement = period_agreement
 
-    def induce(self, actiongram: Actiongram) -> Induction:
-        """Learn a PSGS from ``actiongram``; see :class:`~psgs.induce.Induction`."""
-        if not isinstance(actiongram, Actiongram):
-            raise TypeError(f"PAL.induce needs an Actiongram, not {type(actiongram).__name__}")
+    def induce(self, performances) -> Induction:
+        """Learn a PSGS from an actiongram; see :class:`~psgs.induce.Induction`.
+
+        Parameters
+        ----------
+        performances : Actiongram or sequence of Actiongram
+            One actiongram (a sequence holding one is the same). Several
+            performances are not learnt from yet (issue 9): they are refused
+            rather than joined into one stream.
+
+        Returns
+        -------
+        Induction
+            Synchronised: every component repeats its pattern the same number of times.
+
+        Raises
+        ------
+        TypeError
+            When the input is not an actiongram or a sequence of them.
+        ValidationError
+            For an empty sequence, performances whose actuators differ, or more
+            than one performance.
+        """
+        takes = as_performances(performances, "PAL.induce")
+        if len(takes) > 1:
+            raise ValidationError(f"PAL.induce learns from one performance for now, not "
+                                  f"{len(takes)} (several performances are issue 9)")
+        actiongram = takes[0]
         alphabet: dict[str, int] = {}
         strings = [_Timed.build(syms, durs, origin, alphabet)
                    for syms, durs, origin in zip(actiongram.symbols,
@@ -238,20 +262,10 @@ class PAL(Inducer):
                 significance=m.significance if m else 0.0,
                 synchronised_with=tuple(actiongram.names[j] for j in partners.get(i, ()))))
 
-        taken: set[str] = set()
-        comp_names = {actiongram.names[i]: component_name(actiongram.names[i], taken)
-                      for i in kept}
-        system = None
-        if kept:
-            system = build_system([(comp_names[actiongram.names[i]], patterns[i]) for i in kept],
-                                  synchronise=True, name="pal")
-        return Induction(
-            system=system,
-            components=tuple(actiongram.names[i] for i in kept),
-            patterns={actiongram.names[i]: patterns[i] for i in kept},
-            occurrences={actiongram.names[i]: occurrences[i] for i in kept},
-            reports=tuple(reports), component_names=comp_names, inducer=self.name,
-            params=self.get_params())
+        names = actiongram.names
+        return self.build_induction(
+            names, {names[i]: patterns[i] for i in kept},
+            {names[i]: occurrences[i] for i in kept}, reports, synchronise=True)
 
 
 @dataclass(frozen=True)
