@@ -283,7 +283,9 @@ def main(argv=None) -> int:
             fig = plot_rate_distortion(curves, PAPER)
             ax = fig.axes[0]
             ax.set_xlabel("mean absolute error over the 59 angle channels (degrees)")
-            ax.set_title("16 CMU takes; the paper's point is over all channels", fontsize=9)
+            ax.set_title(f"{len(files)} CMU takes; the paper's point is over all channels",
+                         fontsize=9)
+            fig.tight_layout()
             (REPO / "docs" / "img").mkdir(parents=True, exist_ok=True)
             save(fig, REPO / "docs" / "img" / "kin_rate_distortion.png")
         except ImportError as exc:
