@@ -34,9 +34,9 @@ def _add_params(parser, *, codec: bool = False) -> None:
     if codec:  # the codec pins its own settings: its defaults, not the segmentation's
         from .codec import CODEC_DEFAULTS
         for name, default in CODEC_DEFAULTS.items():
+            text = _PARAM_HELP.get(name, _CODEC_HELP.get(name))
             parser.add_argument(f"--{name.replace('_', '-')}", dest=name, type=float,
-                                default=None, help=f"{_PARAM_HELP.get(name, _CODEC_HELP.get(name))}"
-                                                   f" (default {default:g})")
+                                default=None, help=f"{text} (default {default:g})")
         parser.add_argument("--max-error", dest="max_error", type=float, default=None,
                             help="rate control: mean angle error bound in degrees; the codec "
                                  "then chooses every setting itself")

@@ -108,7 +108,7 @@ def test_finer_settings_cost_bytes_and_buy_accuracy():
 
 
 def test_codec_results_do_not_move_with_the_segmentation_defaults(monkeypatch):
-    """The codec pins its own segmentation: changing the segmentation's defaults changes nothing."""
+    """The codec pins its own segmentation: the segmentation's defaults do not move it."""
     import kinetology.segmentation as segmentation
     m = synthetic_motion(4, (0, 1), seed=9)
     before = compress(m)
@@ -242,7 +242,8 @@ from kinetology import compress, decompress
 from kinetology.synthetic import synthetic_motion
 m = synthetic_motion(3, (0, 1), seed=21)
 data = compress(m, max_error=0.1)
-print(hashlib.sha256(bytes(data)).hexdigest(), hashlib.sha256(decompress(data).values.tobytes()).hexdigest())
+values = decompress(data).values.tobytes()
+print(hashlib.sha256(bytes(data)).hexdigest(), hashlib.sha256(values).hexdigest())
 """
 
 
