@@ -56,17 +56,27 @@ class _TableHelpFormatter(argparse.HelpFormatter):
         return super()._fill_text(text, width, indent)
 
 
+_CODEC_HELP = {
+    "quantum": "knot value step in degrees",
+    "residual_step": "residual layer grid step in degrees (0: no residual layer)",
+    "hysteresis": "residual grid hysteresis, a fraction of the step (>= 0.5)",
+}
+
+
 def _add_params(parser, *, codec: bool = False) -> None:
+    if codec:  # the codec pins its own settings: its defaults, not the segmentation's
+        from .codec import CODEC_DEFAULTS
+        for name, default in CODEC_DEFAULTS.items():
+            text = _PARAM_HELP.get(name, _CODEC_HELP.get(name))
+            parser.add_argument(f"--{name.replace('_', '-')}", dest=name, type=float,
+                                default=None, help=f"{text} (default {default:g})")
+        parser.add_argument("--max-error", dest="max_error", type=float, default=None,
+                            help="rate control: mean angle error bound in degrees; the codec "
+                                 "then chooses every setting itself")
+        return
     for name, default in DEFAULTS.items():
-        if codec and name == "min_range":
-            continue
         parser.add_argument(f"--{name.replace('_', '-')}", dest=name, type=float, default=None,
                             help=f"{_PARAM_HELP[name]} (default {default:g})")
-    if codec:
-        from .codec import CODEC_DEFAULTS
-        parser.add_argument("--quantum", type=float, default=None,
-                            help=f"knot value step in degrees (default "
-                                 f"{CODEC_DEFAULTS['quantum']:g})")
 
 
 def _version() -> str:
@@ -192,11 +202,16 @@ def _cmd_compress(args) -> int:
     from .codec import CODEC_DEFAULTS, compress
 
     motion = _read(args, args.file)
-    data = compress(motion, **_params(args, CODEC_DEFAULTS))
+    params = _params(args, CODEC_DEFAULTS)
+    if args.max_error is not None and params:
+        raise ValueError(f"--max-error chooses the settings itself; drop "
+                         f"{', '.join('--' + n.replace('_', '-') for n in sorted(params))}")
+    data = compress(motion, max_error=args.max_error, **params)
     out = args.output or str(Path(args.file).with_suffix(".kin"))
     Path(out).write_bytes(data)
     size = Path(args.file).stat().st_size
-    print(f"{out}: {len(data)} bytes, {100 * len(data) / size:.3f}% of {args.file}")
+    print(f"{out}: {len(data)} bytes, {100 * len(data) / size:.3f}% of {args.file}; mean "
+          f"angle error {data.mean_error:.4f} deg (all channels {data.mean_error_all:.4f})")
     return 0
 
 
@@ -214,8 +229,11 @@ def _cmd_decompress(args) -> int:
         if original.values.shape != motion.values.shape:
             raise MotionFormatError(f"{args.against} has shape {original.values.shape}, the "
                                     f"decoded motion {motion.values.shape}", source=args.file)
-        error = np.abs(original.values - motion.values)
-        print(f"mean absolute error {error.mean():.4f}, max {error.max():.3f}", file=sys.stderr)
+        from .codec import mean_errors
+        angles, every = mean_errors(original.select(motion.channels) if
+                                    original.channels != motion.channels else original, motion)
+        print(f"mean absolute error {every:.4f} over all channels, {angles:.4f} deg over "
+              f"angles (rotation channels compared modulo 360)", file=sys.stderr)
     return 0
 
 
