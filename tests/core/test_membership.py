@@ -221,19 +221,19 @@ def test_cli_check_exit_statuses():
     assert no.returncode == 1
     assert no.stdout.startswith("no: every component parses but no schedule of the tuples fits")
     unknown = run_cli(PAPER, *K2, "--max-states", "2")
-    assert unknown.returncode == 2 and "max_states=2" in unknown.stdout
+    assert unknown.returncode == 3 and "max_states=2" in unknown.stdout
     traced = run_cli("--trace", PAPER, "a b c d b c a d", "bcadabcd", "cdabcdab", "abcdbcad")
     assert traced.returncode == 0
     assert traced.stdout.splitlines()[1].startswith("(S1, S2, S3, S4) ⇒ (N13, N18, N7, N23)")
     assert traced.stdout.rstrip().endswith("(abcdbcad, bcadabcd, cdabcdab, abcdbcad)")
 
 
-def test_cli_check_usage_errors_exit_3_not_the_unknown_status():
-    # argparse's own status 2 would read as "unknown"
+def test_cli_check_usage_errors_exit_2_not_the_unknown_status():
+    # one table for every command: 2 usage or input error, 3 unknown
     for argv in [(), ("--max-seconds", "0", PAPER, "a"), ("--max-states", "x", PAPER, "a"),
                  ("--bogus", PAPER, "a")]:
         result = run_cli(*argv)
-        assert result.returncode == 3, (argv, result.returncode, result.stderr)
+        assert result.returncode == 2, (argv, result.returncode, result.stderr)
         assert "error" in result.stderr and "Traceback" not in result.stderr
 
 
@@ -242,12 +242,12 @@ def test_cli_check_errors_are_one_line_and_non_zero(tmp_path):
     bad.write_text("psgs X\ncomponent\n")
     for argv in ([str(bad), "a"], [str(tmp_path / "missing.psgs"), "a"]):
         result = run_cli(*argv)
-        assert result.returncode == 3
+        assert result.returncode == 2
         assert len(result.stderr.strip().splitlines()) == 1
         assert result.stderr.startswith("psgs: error: ")
     if (REPO / PAPER).exists():
         wrong = run_cli(PAPER, "abcd")
-        assert wrong.returncode == 3 and "give 4 words" in wrong.stderr
+        assert wrong.returncode == 2 and "give 4 words" in wrong.stderr
 
 
 def test_cli_reads_words_with_spaces_or_one_character_symbols():

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 import psgs
 from psgs import Actiongram
 from psgs.induce import PAL, Induction, Sequential, get
-from psgs.synthetic import generate, success
+from psgs.induce.synthetic import generate, success
 
 GAMMA = ("abcdbcad", "bcadabcd", "cdabcdab", "abcdbcad")
 

@@ -119,3 +119,96 @@ def test_view_invariance_needs_at_least_one_view():
 
     with pytest.raises(ValueError, match="views must be a positive"):
         view_invariance(_planar_leg(), ("Thigh", "Shin", "Shin.end"), views=0)
+
+
+# ---- issue 11: --frame-rate for AMC, misspelt channels listed
+def _small_amc(tmp_path):
+    from test_kinetology_readers import SMALL_AMC, SMALL_ASF
+    (tmp_path / "s.asf").write_text(SMALL_ASF)
+    rows = "".join(f"{k}\nroot 0 0 0 0 0 0\nfemur {40 * np.sin(k / 8):.3f}\ntibia 0 0\n"
+                   for k in range(1, 121))
+    path = tmp_path / "s_1.amc"
+    path.write_text(":FULLY-SPECIFIED\n:DEGREES\n" + rows)
+    return path
+
+
+def test_frame_rate_sets_an_amc_files_rate(tmp_path, capsys):
+    path = _small_amc(tmp_path)
+    assert main(["segment", str(path), "--frame-rate", "30"]) == 0
+    out = capsys.readouterr().out
+    assert "120 frames at 30 fps" in out
+    ag = psgs.Actiongram.from_text(out)
+    assert sum(ag.durations["femur.rx"]) == pytest.approx(120 / 30)
+
+
+def test_frame_rate_with_a_bvh_file_is_an_error(small_bvh, capsys):
+    assert main(["segment", str(small_bvh), "--frame-rate", "30"]) == 2
+    assert "applies to AMC files" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("rate", ["0", "-5", "nan", "x"])
+def test_a_bad_frame_rate_is_a_usage_error(tmp_path, rate, capsys):
+    with pytest.raises(SystemExit) as info:
+        main(["segment", str(_small_amc(tmp_path)), "--frame-rate", rate])
+    assert info.value.code == 2
+
+
+def test_a_misspelt_channel_lists_the_files_channels(small_bvh, capsys):
+    assert main(["segment", str(small_bvh), "--channels", "Kne.rz"]) == 2
+    err = capsys.readouterr().err
+    assert len(err.splitlines()) == 1
+    assert "did you mean Knee.rz" in err and "Hips.tx" in err and "9 channels" in err
+
+
+def test_segment_several_files_writes_one_actiongram_each_named_after_it(small_bvh, tmp_path,
+                                                                         capsys):
+    other = tmp_path / "other.bvh"
+    other.write_text(small_bvh.read_text())
+    out = tmp_path / "grams"
+    assert main(["segment", str(small_bvh), str(other), "-o", f"{out}/"]) == 0
+    assert sorted(p.name for p in out.iterdir()) == ["other.actiongram", "small.actiongram"]
+    ag = psgs.load_actiongram(out / "other.actiongram")
+    assert ag.actuator("Knee.rz") == "Knee"
+    assert "other.actiongram: 2 strings" in capsys.readouterr().out
+    # several files and no folder: refused, one line
+    assert main(["segment", str(small_bvh), str(other)]) == 2
+    assert "give -o DIR/" in capsys.readouterr().err
+
+
+def test_segment_start_stop_cuts_the_take(small_bvh, tmp_path, capsys):
+    out = tmp_path / "part.actiongram"
+    assert main(["segment", str(small_bvh), "--start", "0.5", "--stop", "1.5", "-o",
+                 str(out)]) == 0
+    text = out.read_text()
+    assert "from 0.5 s to 1.5 s: 120 frames" in text.splitlines()[0]
+    ag = psgs.load_actiongram(out)
+    assert sum(ag.durations["Knee.rz"]) == pytest.approx(1.0)
+    assert main(["segment", str(small_bvh), "--start", "3"]) == 2
+    assert "start 3 s is outside the take" in capsys.readouterr().err
+
+
+def test_segment_labels_writes_one_actiongram_per_labelled_span(small_bvh, tmp_path, capsys):
+    labels = tmp_path / "small.txt"  # CMU truelabels: one label per 12 frames (1/10 s)
+    labels.write_text(" ".join(["5"] * 5 + ["1"] * 10 + ["5"] * 5))
+    out = tmp_path / "spans"
+    assert main(["segment", str(small_bvh), "--labels", str(labels), "--label", "ArmCircle",
+                 "-o", f"{out}/"]) == 0
+    assert sorted(p.name for p in out.iterdir()) == ["small-ArmCircle-1.actiongram",
+                                                      "small-ArmCircle-2.actiongram"]
+    second = psgs.load_actiongram(out / "small-ArmCircle-2.actiongram")
+    assert sum(second.durations["Knee.rz"]) == pytest.approx(0.5)
+    assert main(["segment", str(small_bvh), "--labels", str(labels), "--label", "Squat",
+                 "-o", str(out)]) == 2
+    assert "no span labelled 'Squat'" in capsys.readouterr().err
+
+
+@needs_mocap
+def test_segment_labels_of_a_real_mocap6_take(tmp_path, capsys):
+    folder = MOCAP / "cmu-mocap6"
+    assert main(["segment", str(folder / "amc" / "13_29.amc"), "--labels",
+                 str(folder / "truelabels" / "13_29.txt"), "--label", "Squat",
+                 "--min-seconds", "2", "--channels", "ltibia.rx", "-o", str(tmp_path)]) == 0
+    grams = sorted(tmp_path.glob("13_29-Squat-*.actiongram"))
+    assert len(grams) == 1
+    ag = psgs.load_actiongram(grams[0])
+    assert len(ag.string("ltibia.rx")) >= 8  # several squats: several knee cycles
