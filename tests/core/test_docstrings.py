@@ -1,6 +1,6 @@
 """Every public function and class of psgs and kinetology has a numpydoc docstring that runs.
 
-Walks ``psgs.__all__`` and ``kinetology.__all__`` (constants such as ``psgs.IDLE`` have no
+Walks ``psgs.__all__``, ``psgs.induce.__all__`` and ``kinetology.__all__`` (constants such as ``psgs.IDLE`` have no
 docstring of their own and are skipped) and reads each docstring's numpydoc sections (a title line
 underlined with dashes). Required:
 
@@ -56,12 +56,13 @@ EXAMPLES_NOT_YET: set[str] = {
     "kinetology.codec.stream.write",
     "kinetology.motion.build_motion",
     "psgs.actiongram.default_actuator",
-    "psgs.induce.pal.learner.PAL",
 }
 
 
 def _public_objects():
-    for package in (psgs, kinetology):
+    import psgs.induce
+
+    for package in (psgs, psgs.induce, kinetology):
         for name in package.__all__:
             obj = getattr(package, name)
             if inspect.isclass(obj) or inspect.isfunction(obj):
