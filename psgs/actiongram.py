@@ -115,6 +115,8 @@ def _bad_displacement(value: object) -> str | None:
 def default_actuator(name: str) -> str:
     """The actuator a string belongs to by default: its name before the first dot.
 
+    Examples
+    --------
     >>> default_actuator("lfemur.rx"), default_actuator("root"), default_actuator(".x")
     ('lfemur', 'root', '.x')
     """

@@ -1,8 +1,8 @@
 """Every public function and class of psgs and kinetology has a numpydoc docstring that runs.
 
-Walks ``psgs.__all__``, ``psgs.induce.__all__`` and ``kinetology.__all__`` (constants such as ``psgs.IDLE`` have no
-docstring of their own and are skipped) and reads each docstring's numpydoc sections (a title line
-underlined with dashes). Required:
+Walks ``psgs.__all__``, ``psgs.induce.__all__`` and ``kinetology.__all__`` (constants such as
+``psgs.IDLE`` have no docstring of their own and are skipped) and reads each docstring's numpydoc
+sections (a title line underlined with dashes). Required, with no list of exceptions:
 
 * an ``Examples`` section with at least one ``>>>`` line (``--doctest-modules`` runs it);
 * for a function, or a class's constructor, a ``Parameters`` section naming every parameter
@@ -12,9 +12,9 @@ underlined with dashes). Required:
   section;
 * for a function whose own body has a ``raise`` statement, a ``Raises`` section.
 
-Beyond the two packages' ``__all__``, every function and class that a public module lists in its
+Beyond the packages' ``__all__``, every function and class that a public module lists in its
 own ``__all__`` (and defines) needs at least the ``Examples`` section: every public function
-and class has an example that runs (``EXAMPLES_NOT_YET`` lists those still without one).
+and class has an example that runs.
 
 The API pages in docs/api/ must name every public module, so that a new module appears in the
 site (whose strict build checks that its docstrings exist).
@@ -37,26 +37,6 @@ import psgs
 
 ROOT = Path(__file__).resolve().parents[2]
 
-# Public names whose docstring still lacks required sections (space-separated). This table only
-# shrinks; the test fails on a missing section not listed here and on a listed one now present.
-NOT_YET: dict[str, str] = {}
-
-
-# Functions and classes of public modules' __all__ still without an example (only shrinks).
-EXAMPLES_NOT_YET: set[str] = {
-    "kinetology.codec.encoder.Compressed",
-    "kinetology.codec.encoder.compress_with",
-    "kinetology.codec.entropy.EntropyError",
-    "kinetology.codec.knots.is_rotation",
-    "kinetology.codec.rate.compress_to",
-    "kinetology.codec.residual.decode",
-    "kinetology.codec.residual.encode",
-    "kinetology.codec.stream.Layout",
-    "kinetology.codec.stream.read",
-    "kinetology.codec.stream.write",
-    "kinetology.motion.build_motion",
-    "psgs.actiongram.default_actuator",
-}
 
 
 def _public_objects():
@@ -156,13 +136,9 @@ def missing_sections(obj) -> set[str]:
 
 
 def test_public_api_has_numpydoc_sections_with_examples():
-    actual = {(name, section) for name, obj in _public_objects()
-              for section in missing_sections(obj)}
-    allowed = {(name, section) for name, listed in NOT_YET.items() for section in listed.split()}
-    new = sorted(actual - allowed)
-    fixed = sorted(allowed - actual)
-    assert not new, f"public objects missing numpydoc sections: {new}"
-    assert not fixed, f"documented now, remove from NOT_YET: {fixed}"
+    missing = sorted((name, section) for name, obj in _public_objects()
+                     for section in missing_sections(obj))
+    assert not missing, f"public objects missing numpydoc sections: {missing}"
 
 
 def test_the_walk_finds_the_public_api():
@@ -223,11 +199,8 @@ def _module_objects():
 
 
 def test_every_public_function_and_class_has_an_example():
-    actual = {name for name, obj in _module_objects() if "Examples" in missing_sections(obj)}
-    new = sorted(actual - EXAMPLES_NOT_YET)
-    fixed = sorted(EXAMPLES_NOT_YET - actual)
-    assert not new, f"public functions and classes without an Examples section: {new}"
-    assert not fixed, f"have an example now, remove from EXAMPLES_NOT_YET: {fixed}"
+    missing = sorted(name for name, obj in _module_objects() if "Examples" in missing_sections(obj))
+    assert not missing, f"public functions and classes without an Examples section: {missing}"
 
 
 def test_api_pages_name_every_public_module():
