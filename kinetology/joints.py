@@ -38,6 +38,8 @@ CMU_PARENTS = MappingProxyType({
 def dot_actuator(channel: str) -> str:
     """The actuator of a channel by the dot rule: the name before the first dot.
 
+    Examples
+    --------
     >>> dot_actuator("lfemur.rx"), dot_actuator("knee")
     ('lfemur', 'knee')
     """
@@ -49,6 +51,20 @@ def actuator_map(motion: Motion, channels: Iterable[str] | None = None) -> dict[
 
     The skeleton joint that lists the channel, else the dot rule.
 
+    Parameters
+    ----------
+    motion : Motion
+        The motion (its skeleton, where it has one, names the joints).
+    channels : iterable of str, optional
+        The channels to map (default: all of them).
+
+    Returns
+    -------
+    dict of str to str
+        Channel name to joint name.
+
+    Examples
+    --------
     >>> import numpy as np
     >>> m = Motion(np.zeros((2, 2)), ("lfemur.rx", "lfemur.ry"), 120)
     >>> actuator_map(m)
@@ -70,6 +86,21 @@ def skeleton_parents(motion: Motion, actuators: Iterable[str]) -> dict[str, str 
     that is). Without a skeleton: the CMU standard hierarchy when every actuator is a CMU
     bone, else ``{}`` (unknown).
 
+    Parameters
+    ----------
+    motion : Motion
+        The motion (its skeleton, where it has one, gives the hierarchy).
+    actuators : iterable of str
+        The joints to relate.
+
+    Returns
+    -------
+    dict of str to str or None
+        Joint to its nearest ancestor among ``actuators`` (None for a root); empty when the
+        hierarchy is unknown.
+
+    Examples
+    --------
     >>> import numpy as np
     >>> m = Motion(np.zeros((2, 2)), ("lfemur.rx", "ltibia.rx"), 120)
     >>> skeleton_parents(m, ["lfemur", "ltibia"])

@@ -39,6 +39,28 @@ class Span:
     """One labelled stretch of a take: ``label`` from ``start`` to ``stop`` seconds.
 
     ``style`` is the performer's style where the labels give one (Bandai Namco), else None.
+
+    Parameters
+    ----------
+    label : str
+        The action's label.
+    start : float
+        Seconds from the start of the take.
+    stop : float
+        Seconds from the start of the take, after ``start``.
+    style : str, optional
+        The performer's style (Bandai Namco labels), else None.
+
+    Raises
+    ------
+    ValueError
+        Unless ``0 <= start < stop``.
+
+    Examples
+    --------
+    >>> span = Span("Squat", 1.5, 4.0)
+    >>> span.duration, span.style
+    (2.5, None)
     """
 
     label: str
@@ -198,7 +220,21 @@ def read_bandai_json(path: str | Path, duration: float | None = None) -> tuple[S
 
 
 def spans_of(path: str | Path, frame_rate: float = 120.0) -> tuple[Span, ...]:
-    """The spans of a label file of either format, chosen by suffix (``.txt`` / ``.json``)."""
+    """The spans of a label file of either format, chosen by suffix (``.txt`` / ``.json``).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> path = Path(tempfile.mkdtemp()) / "86_01.txt"
+    >>> _ = path.write_text("2 2 2 2\\n")
+    >>> spans_of(path)
+    (Span(label='Jog', start=0.0, stop=0.4, style=None),)
+    >>> spans_of(path.with_suffix(".csv"))
+    Traceback (most recent call last):
+    ...
+    kinetology.motion.MotionFormatError: ...86_01.csv: unknown label format '.csv'; expected .txt (CMU mocap6 truelabels) or .json (Bandai Namco)
+    """
     path = Path(path)
     if path.suffix.lower() == ".json":
         return read_bandai_json(path)

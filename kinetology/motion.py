@@ -278,6 +278,14 @@ def build_motion(values, channels, frame_rate, skeleton=None, source="<motion>",
     Readers check their input as they go; this is the last line of that defence, so that a
     file the checks missed still gives the documented error naming the file, never the plain
     ``ValueError`` of the constructor.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> build_motion(np.zeros((2, 2)), ("knee.rx",), 120, source="bad.bvh")
+    Traceback (most recent call last):
+    ...
+    kinetology.motion.MotionFormatError: bad.bvh: 1 channel names for 2 columns
     """
     try:
         return Motion(values, channels, frame_rate, skeleton, source, meta or {})

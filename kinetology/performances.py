@@ -72,7 +72,20 @@ def cut(motion: Motion, start: float | None = None, stop: float | None = None) -
 
 
 def from_files(paths: Iterable[str | Path], **options) -> tuple[Motion, ...]:
-    """One performance per file (each file one take), read by :func:`kinetology.read`."""
+    """One performance per file (each file one take), read by :func:`kinetology.read`.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> folder = Path(tempfile.mkdtemp())
+    >>> for name in ("a.bvh", "b.bvh"):
+    ...     _ = (folder / name).write_text("HIERARCHY\\nROOT knee\\n{ OFFSET 0 0 0\\n"
+    ...                                    "  CHANNELS 1 Xrotation\\n  End Site\\n  { OFFSET 0 -1 0 } }\\n"
+    ...                                    "MOTION\\nFrames: 2\\nFrame Time: 0.1\\n0\\n10\\n")
+    >>> [m.frames for m in from_files([folder / "a.bvh", folder / "b.bvh"])]
+    [2, 2]
+    """
     from .readers import read
 
     return tuple(read(p, **options) for p in paths)
@@ -123,6 +136,29 @@ def performances(*sources, spans: Iterable[Span] | None = None, label: str | Non
     ``performances("a.bvh", "b.bvh")`` reads each file as one performance (a
     :class:`Motion` is taken as it is). ``performances("take.amc", spans=spans,
     label="Squat")`` cuts the spans labelled ``Squat`` out of the one take.
+
+    Parameters
+    ----------
+    *sources : str, Path or Motion
+        Files (each read by :func:`kinetology.read`) or motions; with ``spans``, exactly one.
+    spans : iterable of Span, optional
+        Labelled stretches of the one take to cut out.
+    label : str, optional
+        Only the spans with this label (default: every span).
+    min_seconds : float, default 0.0
+        Spans shorter than this are left out.
+
+    Returns
+    -------
+    tuple of Motion
+        One motion per performance, in the order given (files) or in time order (spans).
+
+    Raises
+    ------
+    ValueError
+        When ``spans`` come with more than one source, or a span lies outside the take.
+    MotionFormatError
+        When a file is malformed.
 
     Examples
     --------

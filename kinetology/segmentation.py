@@ -76,6 +76,20 @@ def unwrap(values: np.ndarray, period: float = DEFAULTS["unwrap"]) -> np.ndarray
 
     ``period <= 0`` returns a copy unchanged.
 
+    Parameters
+    ----------
+    values : numpy.ndarray
+        Angles, degrees, frames along axis 0.
+    period : float, default 360.0
+        The period; 0 or less: no unwrapping.
+
+    Returns
+    -------
+    numpy.ndarray
+        A new array of the shape of ``values``.
+
+    Examples
+    --------
     >>> unwrap(np.array([170.0, 179.0, -178.0, -170.0]))
     array([170., 179., 182., 190.])
     """
@@ -98,6 +112,16 @@ def smooth(values: np.ndarray, frame_rate: float, sigma: float) -> np.ndarray:
     slope at the ends instead of inventing a turning point there.
 
     ``sigma <= 0`` returns a copy unchanged.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> spike = np.array([0.0, 0.0, 10.0, 0.0, 0.0])
+    >>> smoothed = smooth(spike, 1.0, 1.0)
+    >>> bool(smoothed.max() < 10.0), round(float(smoothed.sum()), 6) <= 10.0
+    (True, True)
+    >>> smooth(spike, 1.0, 0.0).tolist() == spike.tolist()
+    True
     """
     values = np.asarray(values, dtype=float)
     sigma_frames = sigma * frame_rate
@@ -130,7 +154,15 @@ def smooth(values: np.ndarray, frame_rate: float, sigma: float) -> np.ndarray:
 
 
 def derivatives(values: np.ndarray, frame_rate: float) -> tuple[np.ndarray, np.ndarray]:
-    """Velocity and acceleration (per second) by central differences along axis 0."""
+    """Velocity and acceleration (per second) by central differences along axis 0.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> velocity, acceleration = derivatives(np.array([0.0, 1.0, 4.0, 9.0, 16.0]), 1.0)
+    >>> velocity[1:-1], float(acceleration[2])
+    (array([2., 4., 6.]), 2.0)
+    """
     if values.shape[0] < 3:
         zero = np.zeros_like(values, dtype=float)
         return zero, zero.copy()
@@ -146,6 +178,12 @@ def significant_sign(signal: np.ndarray, deadband: float) -> np.ndarray:
     ``deadband``; other runs take the sign of the previous counting run (the
     first counting run's sign at the start). A signal with no counting run is
     +1 throughout.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> significant_sign(np.array([5.0, 0.5, -0.5, 0.5, -5.0]), 1.0)
+    array([ 1,  1,  1,  1, -1]...)
     """
     signal = np.asarray(signal, dtype=float)
     if signal.size == 0:
@@ -181,6 +219,13 @@ def channel_deadbands(signals: np.ndarray, absolute: float, relative: float) -> 
     tempos alike (slowing a motion by ``k`` divides its velocities by ``k`` and its
     accelerations by ``k²``, a fixed dead band does not follow); the absolute floor keeps a
     nearly still channel from turning its noise into kinetemes.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> brisk = np.linspace(-100, 100, 201)[:, None]
+    >>> channel_deadbands(np.hstack([brisk, brisk / 100]), 2.0, 0.05)
+    array([4.75, 2.  ])
     """
     if relative <= 0 or signals.shape[0] == 0:
         return np.full(signals.shape[1], float(absolute))
@@ -203,6 +248,37 @@ def states(values: np.ndarray, frame_rate: float, *, smoothing: float = DEFAULTS
     channel's dead bands are ``max(velocity_deadband, relative_deadband * v95)``
     and likewise for the acceleration, ``v95`` the 95th percentile of the
     channel's own ``|θ'|`` (``|θ''|``).
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        Frames x channels (or one channel, 1-D), degrees.
+    frame_rate : float
+        Frames per second.
+    smoothing : float, default DEFAULTS["smoothing"]
+        Gaussian sigma, seconds.
+    velocity_deadband : float, default DEFAULTS["velocity_deadband"]
+        Degrees per second.
+    acceleration_deadband : float, default DEFAULTS["acceleration_deadband"]
+        Degrees per second squared.
+    relative_deadband : float, default DEFAULTS["relative_deadband"]
+        A channel's dead bands are at least this share of its own 95th-percentile speed and
+        acceleration.
+    unwrap : float, default DEFAULTS["unwrap"]
+        Period of the angles, degrees, undone before smoothing; 0: no unwrapping.
+
+    Returns
+    -------
+    numpy.ndarray of int8
+        The state code of every frame, the shape of ``values``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.arange(120) / 120
+    >>> codes = states(30 * np.sin(2 * np.pi * t), 120.0)
+    >>> "".join(STATES[c] for c in codes[[5, 35, 65, 95]])
+    'GRYB'
     """
     values = np.asarray(values, dtype=float)
     one_channel = values.ndim == 1
@@ -238,6 +314,40 @@ class Segmentation:
     unwrapped angle; ``actuators`` maps every kept channel to its joint and
     ``skeleton`` every such joint to its parent joint (None for a root; empty
     when the file gives no hierarchy, see :mod:`kinetology.joints`).
+
+    Attributes
+    ----------
+    channels : tuple of str
+        The segmented (moving) channels.
+    frame_rate : float
+        Frames per second.
+    frames : int
+        Number of frames.
+    borders : tuple of numpy.ndarray
+        Per channel, the first frame of each segment, then the frame count.
+    codes : tuple of numpy.ndarray
+        Per channel, the state code of each segment.
+    still : tuple of str, default ()
+        Channels left out because they do not move.
+    displacements : tuple of numpy.ndarray, default ()
+        Per channel, each segment's signed change of the smoothed angle.
+    actuators : mapping of str to str, optional
+        Each kept channel's joint.
+    skeleton : mapping of str to str or None, optional
+        Each such joint's parent joint, None for a root.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from kinetology import Motion
+    >>> t = np.arange(240) / 120
+    >>> values = np.column_stack([30 * np.sin(2 * np.pi * t), 0 * t])   # a moving knee, a still hip
+    >>> wave = Motion(values, ("knee.rx", "hip.rx"), 120)
+    >>> found = segments(wave)
+    >>> found.segment_count, int(found.borders[0][0]), int(found.borders[0][-1])
+    (8, 0, 240)
+    >>> found.to_actiongram().names
+    ('knee.rx',)
     """
 
     channels: tuple[str, ...]
@@ -313,6 +423,43 @@ def segments(motion: Motion, channels=None, **params) -> Segmentation:
     ``min_range`` (deg; channels whose smoothed range is smaller are still and
     left out; 0 keeps every channel), ``unwrap`` (period in degrees of the
     rotation channels, unwrapped before smoothing; 0 turns it off).
+
+    Parameters
+    ----------
+    motion : Motion
+        The motion.
+    channels : sequence of str, optional
+        The channels to segment (default: every angle channel, not the ``t*`` translations).
+    **params
+        ``smoothing``, ``velocity_deadband``, ``acceleration_deadband``, ``min_range``
+        (defaults in :data:`DEFAULTS`).
+
+    Returns
+    -------
+    Segmentation
+        The moving channels' segments; ``still`` names the others.
+
+    Raises
+    ------
+    KeyError
+        Naming a channel the motion does not have.
+    TypeError
+        For an unknown parameter.
+    ValueError
+        For a parameter that is negative or not finite.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from kinetology import Motion
+    >>> t = np.arange(240) / 120
+    >>> values = np.column_stack([30 * np.sin(2 * np.pi * t), 0 * t])   # a moving knee, a still hip
+    >>> wave = Motion(values, ("knee.rx", "hip.rx"), 120)
+    >>> found = segments(wave)
+    >>> found.channels, found.still
+    (('knee.rx',), ('hip.rx',))
+    >>> found.symbols(0)[:4], float(found.durations(0).sum())
+    (('G', 'R', 'Y', 'B'), 2.0)
     """
     p = _check(params)
     if channels is None:
@@ -360,6 +507,31 @@ def segment(motion: Motion, channels=None, **params):
     Symbols are the states ``B G R Y`` (see the module docstring), durations
     in seconds. ``channels`` and ``params`` as in :func:`segments`.
 
+    Parameters
+    ----------
+    motion : Motion
+        The motion.
+    channels : sequence of str, optional
+        The channels to segment (default: every angle channel).
+    **params
+        Segmentation parameters (:data:`DEFAULTS`), see :func:`segments`.
+
+    Returns
+    -------
+    psgs.Actiongram
+        One string per moving channel; symbols ``B G R Y``, durations in seconds.
+
+    Raises
+    ------
+    KeyError
+        Naming a channel the motion does not have.
+    TypeError
+        For an unknown parameter.
+    ValueError
+        For a parameter that is negative or not finite.
+
+    Examples
+    --------
     >>> import numpy as np
     >>> from kinetology import Motion
     >>> t = np.arange(240) / 120

@@ -115,6 +115,8 @@ def _bad_displacement(value: object) -> str | None:
 def default_actuator(name: str) -> str:
     """The actuator a string belongs to by default: its name before the first dot.
 
+    Examples
+    --------
     >>> default_actuator("lfemur.rx"), default_actuator("root"), default_actuator(".x")
     ('lfemur', 'root', '.x')
     """
@@ -190,6 +192,34 @@ class Actiongram:
     (``names``, ``symbols``, ``durations`` as tuples of tuples, ``origins`` the
     start time of each string) and validates and normalises them.
 
+    Parameters
+    ----------
+    names : tuple of str
+        The actuators' names, distinct.
+    symbols : tuple of tuple of str
+        Each actuator's symbol string (no symbol twice in a row).
+    segment_durations : tuple of tuple of float
+        Each symbol's duration, positive.
+    origins : tuple of float, default () (every string starts at 0)
+        The start time of each string.
+    segment_displacements : tuple, default ()
+        Per string, each symbol's displacement (``sym@D~X`` in the text form), or None for a
+        string without them; () when no string has them.
+    string_actuators : tuple of str, default () (each string its own actuator)
+        The actuator (joint) each string belongs to.
+    skeleton_edges : tuple of (str, str or None), default ()
+        Actuator to parent actuator (None for a root), where a skeleton is known.
+
+    Raises
+    ------
+    FormatError
+        For an empty or repeated name, a symbol that is not text, a duration that is not
+        positive and finite, or strings and durations of different lengths.
+    ValueError
+        When an optional field (displacements, actuators) has not one entry per string.
+
+    Examples
+    --------
     >>> ag = Actiongram.from_strings({"knee": "abba", "hip": ["x", "y"]})
     >>> ag.string("knee"), ag.durations["knee"]
     (('a', 'b', 'a'), (1.0, 2.0, 1.0))
@@ -701,6 +731,33 @@ def load_actiongram(path: str | Path) -> Actiongram:
     A file that is not UTF-8 text, or that holds no string at all, is a
     :class:`~psgs.errors.FormatError` (an empty actiongram is almost always
     the wrong file; build one in Python with ``Actiongram.from_strings({})``).
+
+    Parameters
+    ----------
+    path : str or Path
+        A ``.json`` file, or a file in the text form.
+
+    Returns
+    -------
+    Actiongram
+
+    Raises
+    ------
+    FormatError
+        For malformed text, naming ``path:line:col``; for a file that is not UTF-8 or holds
+        no string.
+    FileNotFoundError
+        When the file does not exist.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> path = Path(tempfile.mkdtemp()) / "walk.actiongram"
+    >>> _ = path.write_text("lknee: B G R@2.5 Y\\nrknee: Y B\\n")
+    >>> ag = load_actiongram(path)
+    >>> ag.names, ag.durations["lknee"]
+    (('lknee', 'rknee'), (1.0, 1.0, 2.5, 1.0))
     """
     path = Path(path)
     data = path.read_bytes()

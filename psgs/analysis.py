@@ -45,6 +45,8 @@ def reachable(graph, sources: Iterable[Hashable], *, strict: bool = False) -> se
     edge do, so a source is in the answer exactly when it lies on a cycle or
     another source reaches it.
 
+    Examples
+    --------
     >>> sorted(reachable({1: [2], 2: [3], 3: [], 4: [1]}, [1]))
     [1, 2, 3]
     >>> sorted(reachable({1: [2], 2: [1], 3: [1]}, [3], strict=True))
@@ -77,6 +79,8 @@ def strongly_connected(nodes: Sequence[Hashable], graph) -> list[list]:
     listed earlier, so a bottom-up pass over it sees each component after
     everything it depends on.
 
+    Examples
+    --------
     >>> strongly_connected([1, 2, 3], {1: [2], 2: [1, 3], 3: []})
     [[3], [1, 2]]
     """
@@ -131,6 +135,13 @@ def least_sums(rules: Sequence[tuple[Hashable, Sequence[Hashable], float]]) -> d
     Dijkstra's algorithm: each head is settled once, in order of value, so
     the cost is O(R log R) in the total size R of the rules, where a
     round-by-round fixpoint is quadratic on a long chain.
+
+    Examples
+    --------
+    ``S`` costs 1 plus two ``A``; ``A`` costs 2 (or one ``S``, which is dearer):
+
+    >>> least_sums([("S", ["A", "A"], 1), ("A", [], 2), ("A", ["S"], 0)])
+    {'A': 2, 'S': 5}
     """
     waiting = []
     partial = []
@@ -164,6 +175,8 @@ def min_yields(rules: Iterable[Rule], *, query_yield: float = INFINITE) -> dict:
     A query symbol yields ``query_yield``: infinite for a grammar taken alone
     (it derives no word on its own), 0 as a sound lower bound inside a PCGS.
 
+    Examples
+    --------
     >>> from psgs.model import Nonterminal as N, Rule, Terminal as T
     >>> S, A = N("S"), N("A")
     >>> min_yields([Rule("r", S, (T("a"), A, A)), Rule("q", A, (T("b"),)), Rule("e", A, (S,))])
@@ -194,6 +207,13 @@ def usable_rules(system: PSGS) -> tuple[tuple[Rule, ...], ...]:
 
     Under ``free`` every rule; under ``strict`` only the rules that appear in
     some tuple of M (a rule in no tuple can never fire).
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> [len(rules) for rules in usable_rules(gamma)]
+    [8, 8, 6, 8]
     """
     if system.unsynchronised == "free":
         return tuple(g.rules for g in system.components)
@@ -206,6 +226,16 @@ def moves(system: PSGS) -> tuple[SyncTuple, ...]:
 
     The tuples of M in order, then (under ``free``) each unsynchronised rule
     alone as ``(#, …, p, …, #)``, by component and rule order (SPEC D2).
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> from psgs.notation import show_tuple
+    >>> [show_tuple(move) for move in moves(gamma)][:2]
+    ['(S1a, S2a, S3a, S4a)', '(S1b, S2b, S3b, S4b)']
+    >>> len(moves(gamma)) - len(gamma.sync)      # the unsynchronised rules, each alone
+    2
     """
     out = list(system.sync)
     if system.unsynchronised == "free":

@@ -19,7 +19,17 @@ __all__ = ["Budget", "check_seconds", "check_count"]
 
 
 def check_seconds(value, name: str = "max_seconds", *, optional: bool = False) -> None:
-    """A positive number of seconds (or ``None`` when ``optional``); :class:`ValidationError` if not."""
+    """A positive number of seconds (or ``None`` when ``optional``); :class:`ValidationError` if not.
+
+    Examples
+    --------
+    >>> check_seconds(2.5)
+    >>> check_seconds(None, optional=True)
+    >>> check_seconds(-1)
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: max_seconds must be a positive number, not -1
+    """
     if value is None and optional:
         return
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0:
@@ -28,7 +38,16 @@ def check_seconds(value, name: str = "max_seconds", *, optional: bool = False) -
 
 
 def check_count(value, name: str, minimum: int = 1) -> None:
-    """A whole number ≥ ``minimum``; :class:`ValidationError` if not."""
+    """A whole number ≥ ``minimum``; :class:`ValidationError` if not.
+
+    Examples
+    --------
+    >>> check_count(3, "max_states")
+    >>> check_count(0, "max_states")
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: max_states must be a whole number ≥ 1, not 0
+    """
     if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
         raise ValidationError(f"{name} must be a whole number ≥ {minimum}, not {value!r}")
 
@@ -41,6 +60,18 @@ class Budget:
     ``every`` calls and raises ``BoundReached("max_seconds")`` once the
     deadline has passed; ``hold(n)`` adds ``n`` symbols and raises
     ``BoundReached("max_symbols")`` past the limit.
+
+    Examples
+    --------
+    >>> from psgs.errors import BoundReached
+    >>> budget = Budget(seconds=None, max_symbols=10)
+    >>> budget.expired()
+    False
+    >>> try:
+    ...     budget.hold(11)
+    ... except BoundReached as stop:
+    ...     print(stop)
+    max_symbols
     """
 
     __slots__ = ("seconds", "deadline", "max_symbols", "held", "_count", "_every")

@@ -39,7 +39,25 @@ _System = Union[PSGS, PCGS]
 
 # ---------------------------------------------------------------- basics
 def initial_configuration(system: _System) -> Configuration:
-    """The axioms ``(S_1, …, S_n)``, one one-symbol form per component."""
+    """The axioms ``(S_1, …, S_n)``, one one-symbol form per component.
+
+    Parameters
+    ----------
+    system : PSGS or PCGS
+        The system.
+
+    Returns
+    -------
+    tuple of forms
+        One one-symbol form (the axiom) per component.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> [str(form[0]) for form in psgs.initial_configuration(gamma)]
+    ['S1', 'S2', 'S3', 'S4']
+    """
     _require_system(system)
     return _initial(system)
 
@@ -88,6 +106,32 @@ def applicable_steps(system: _System, configuration: Sequence[Form]) -> tuple[St
     every rewriting step in which each non-terminal component rewrites one
     occurrence once; a non-terminal component that cannot rewrite blocks the
     system (no steps).
+
+    Parameters
+    ----------
+    system : PSGS or PCGS
+        The system.
+    configuration : sequence of forms
+        One sentential form per component.
+
+    Returns
+    -------
+    tuple of Step
+        Empty when the configuration is terminal or blocked.
+
+    Raises
+    ------
+    ValidationError
+        When the configuration does not fit the system (wrong number of forms, symbols of
+        another kind).
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> start = psgs.initial_configuration(gamma)
+    >>> [[rule.label for rule in step.tuple] for step in psgs.applicable_steps(gamma, start)]
+    [['S1a', 'S2a', 'S3a', 'S4a'], ['S1b', 'S2b', 'S3b', 'S4b']]
     """
     _require_system(system)
     configuration = _check_configuration(system, configuration)
@@ -107,7 +151,18 @@ def _is_allowed_tuple(system: PSGS, entries: tuple) -> bool:
 
 
 def communication_step(system: PCGS, configuration: Sequence[Form]) -> Step:
-    """The communication step of a PCGS configuration; :class:`ValidationError` if none applies."""
+    """The communication step of a PCGS configuration; :class:`ValidationError` if none applies.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> copy = psgs.load("grammars/pcgs_copy.psgs")
+    >>> start = psgs.initial_configuration(copy)
+    >>> communication_step(copy, start)
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: ...
+    """
     if not isinstance(system, PCGS):
         raise ValidationError("communication steps exist only in a PCGS")
     configuration = _check_configuration(system, configuration)
@@ -160,6 +215,41 @@ def apply_tuple(system: _System, configuration: Sequence[Form], sync_tuple,
 
     Raises :class:`ValidationError` naming the reason when the step does not
     apply (this is how witnesses are replayed and checked).
+
+    Parameters
+    ----------
+    system : PSGS or PCGS
+        The system.
+    configuration : sequence of forms
+        One sentential form per component.
+    sync_tuple : sequence or "communicate"
+        Per component a Rule, a label, or ``"#"``/``None``; for a PCGS the string
+        ``"communicate"`` asks for the communication step.
+    positions : sequence, optional
+        Per component an index, a sequence of indices or None: the occurrences to rewrite.
+
+    Returns
+    -------
+    Step
+        With ``before`` and ``after`` the configurations around it.
+
+    Raises
+    ------
+    ValidationError
+        When the step does not apply, naming the reason.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> start = psgs.initial_configuration(gamma)
+    >>> step = psgs.apply_tuple(gamma, start, ("S1a", "S2a", "S3a", "S4a"))
+    >>> [" ".join(map(str, form)) for form in step.after]
+    ['N13 S1', 'N18 S2', 'N7 S3', 'N23 S4']
+    >>> psgs.apply_tuple(gamma, start, ("#", "#", "#", "#"))
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: tuple (#, #, #, #) is not in M
     """
     _require_system(system)
     configuration = _check_configuration(system, configuration)
@@ -233,6 +323,29 @@ class Derivation:
     bounded producer (e.g. :func:`random_derivation`) stopped at, e.g.
     ``"max_steps"``; ``reason`` says it in words.
     ``str(d)`` prints the paper's notation ``(S1, S2) ⇒ (N13, N18) ⇒ …``.
+
+    Attributes
+    ----------
+    system : PSGS or PCGS
+        The system derived in.
+    steps : tuple of Step
+        The steps, in order.
+    configurations : tuple of Configuration, default () (computed from the steps)
+        The configurations passed through, the axioms first.
+    bound : str or None, default None
+        The bound a bounded producer stopped at.
+    reason : str or None, default None
+        The same in words, with the bound's value.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> derivation = psgs.random_derivation(gamma, seed=1)
+    >>> len(derivation) == len(derivation.steps), derivation.status
+    (True, 'terminal')
+    >>> str(derivation).startswith("(S1, S2, S3, S4) ⇒")
+    True
     """
 
     system: _System
@@ -307,6 +420,39 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
     can double a form at every step). The bound hit is named in
     ``Derivation.bound`` (``"max_steps"`` or ``"max_form_length"``) and
     described in ``Derivation.reason``. The same seed always gives the same derivation.
+
+    Parameters
+    ----------
+    system : PSGS or PCGS
+        The system.
+    seed : int or other hashable
+        Seeds a private ``random.Random``; the same seed gives the same derivation.
+    max_steps : int, default 10_000
+        Stop after this many steps.
+    max_form_length : int, default 100_000
+        Stop once a form is longer than this.
+
+    Returns
+    -------
+    Derivation
+        Its ``status`` is ``"terminal"``, ``"blocked"`` or ``"open"`` (a bound was hit, named
+        by ``bound``).
+
+    Raises
+    ------
+    ValidationError
+        When a bound is not a positive whole number or ``system`` is not a grammar system.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> derivation = psgs.random_derivation(gamma, seed=1)
+    >>> derivation.status, derivation.is_terminal
+    ('terminal', True)
+    >>> short = psgs.random_derivation(gamma, seed=1, max_steps=2)
+    >>> short.status, len(short.steps), short.bound is not None
+    ('open', 2, True)
     """
     _require_system(system)
     if max_steps < 0:

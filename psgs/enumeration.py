@@ -54,6 +54,35 @@ class Language:
     candidate tuples (filter) or words (context-free) that were examined;
     ``kind`` is ``"tuples"`` (PSGS) or ``"words"``. ``item in language``
     accepts words written as strings, e.g. ``("ab", "ba") in lang``.
+
+    Attributes
+    ----------
+    words : tuple
+        The words (or tuples of words), by size and then by terminal names.
+    complete : bool
+        Whether every word up to ``max_length`` is listed.
+    bound : str or None
+        The budget that stopped an incomplete enumeration.
+    reason : str or None
+        The same in words, with the budget's value.
+    max_length : int
+        The size bound asked for.
+    method : str
+        ``"search"``, ``"filter"`` or ``"context-free"``.
+    explored : int, default 0
+        Configurations, candidate tuples or words examined.
+    kind : str, default "words"
+        ``"tuples"`` (PSGS) or ``"words"``.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> found = psgs.language(gamma, max_length=32)
+    >>> found.kind, found.complete, found.bound
+    ('tuples', True, None)
+    >>> ["".join(map(str, w)) for w in found.words[0]]
+    ['abcdbcad', 'bcadabcd', 'cdabcdab', 'abcdbcad']
     """
 
     words: tuple
@@ -123,6 +152,15 @@ def context_free_words(grammar: Grammar, max_length: int, *, rules: Iterable[Rul
     complete. ε-rules, unit cycles and left recursion are
     fine: each length is a fixpoint over finitely many words. Query symbols
     derive nothing here.
+
+    Examples
+    --------
+    >>> from psgs import Grammar, Nonterminal, Rule, Terminal
+    >>> S = Nonterminal("S")
+    >>> g = Grammar("G", S, [Rule("r1", S, (Terminal("a"), S, Terminal("b"))), Rule("r2", S, ())])
+    >>> by_length, bound = context_free_words(g, 4)
+    >>> [sorted("".join(map(str, w)) for w in words) for words in by_length], bound
+    ([[''], [], ['ab'], [], ['aabb']], None)
     """
     check_seconds(max_seconds, optional=True)
     rules = tuple(grammar.rules if rules is None else rules)
@@ -257,11 +295,55 @@ def language(system, max_length: int, *, max_configurations: int = 200_000,
     ``reason`` says it in words (``"stopped after 200000 configurations
     (max_configurations)"``).
 
+    Parameters
+    ----------
+    system : PSGS, PCGS or Grammar
+        The system (or one grammar) to enumerate.
+    max_length : int
+        The size bound: total length of a tuple (PSGS), length of a word otherwise.
+    max_configurations : int, default 200_000
+        Search: at most this many configurations explored.
+    max_form_length : int, default 1_000
+        Search: sentential forms longer than this are not kept.
+    max_candidates : int, default 100_000
+        Filter: at most this many candidate tuples checked.
+    max_words : int, default 1_000_000
+        Filter: at most this many component words listed.
+    max_seconds : float or None, default 60.0
+        Wall-clock budget (None: none).
+    max_symbols : int, optional
+        Budget of memory: the configurations the search keeps times their size in symbols.
+    method : {None, "search", "filter"}
+        PSGS only; None chooses by mode (see above).
+    **membership_options
+        Filter: passed to :func:`psgs.accepts`.
+
+    Returns
+    -------
+    Language
+        Says whether it is complete and, if not, which bound stopped it.
+
+    Raises
+    ------
+    ValidationError
+        For an unknown method, a method that does not fit the system, or a budget that is not
+        a positive whole number.
+
+    Examples
+    --------
     >>> from psgs import Grammar, Nonterminal, Rule, Terminal
     >>> S = Nonterminal("S")
     >>> g = Grammar("G", S, [Rule("r1", S, (Terminal("a"), S)), Rule("r2", S, ())])
     >>> [''.join(map(str, w)) for w in language(g, 3)]
     ['', 'a', 'aa', 'aaa']
+
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> found = psgs.language(gamma, max_length=32)
+    >>> found.complete, len(found)
+    (True, 1)
+    >>> ("abcdbcad", "bcadabcd", "cdabcdab", "abcdbcad") in found
+    True
     """
     if isinstance(max_length, bool) or not isinstance(max_length, int) or max_length < 0:
         raise ValidationError(f"max_length must be a whole number ≥ 0, not {max_length!r}")

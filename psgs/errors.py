@@ -8,7 +8,17 @@ from __future__ import annotations
 
 
 class PSGSError(Exception):
-    """Base class of every error psgs raises on purpose."""
+    """Base class of every error psgs raises on purpose.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> try:
+    ...     psgs.loads("psgs Broken", source="broken.psgs")
+    ... except psgs.PSGSError as error:        # every error psgs raises on purpose
+    ...     print(type(error).__name__, error.source)
+    FormatError broken.psgs
+    """
 
 
 class ValidationError(PSGSError, ValueError):
@@ -16,6 +26,16 @@ class ValidationError(PSGSError, ValueError):
 
     The message says what is wrong in words, e.g. ``tuple 3 has 3 entries but
     the system has 4 components``.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> psgs.Nonterminal("2x")
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: nonterminal '2x' is not a valid name (letters, digits and _, not starting with a digit)
+    >>> issubclass(psgs.ValidationError, ValueError)
+    True
     """
 
 
@@ -24,6 +44,21 @@ class FormatError(PSGSError, ValueError):
 
     ``str(error)`` is one line, ``file:line:col: message``; the parts are kept
     as attributes for programs.
+
+    Parameters
+    ----------
+    message : str
+        What is wrong, in words.
+    source : str, default "<string>"
+        The file (or a description of the text).
+    line, column : int, optional
+        Where, counting from 1.
+
+    Examples
+    --------
+    >>> error = FormatError("missing arrow", source="x.psgs", line=3, column=7)
+    >>> str(error), error.line
+    ('x.psgs:3:7: missing arrow', 3)
     """
 
     def __init__(self, message: str, *, source: str = "<string>", line: int | None = None,
@@ -50,6 +85,11 @@ class BoundReached(PSGSError):
     stop at a bound normally report it in their result (``complete=False`` and
     the name of the bound). ``bound`` is the name of the budget parameter
     that ran out, e.g. ``"max_seconds"``.
+
+    Examples
+    --------
+    >>> issubclass(BoundReached, PSGSError)
+    True
     """
 
     @property

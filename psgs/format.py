@@ -65,6 +65,26 @@ def loads(text: str | bytes, source: str = "<string>") -> PSGS | PCGS:
     Raises :class:`~psgs.errors.FormatError` (``source:line:col: message``)
     for any malformed input.
 
+    Parameters
+    ----------
+    text : str or bytes
+        The system in the psgs text format (bytes are decoded as UTF-8).
+    source : str, default "<string>"
+        The name error messages give.
+
+    Returns
+    -------
+    PSGS or PCGS
+        Whichever the header line (``psgs NAME`` or ``pcgs NAME``) says.
+
+    Raises
+    ------
+    FormatError
+        For malformed text, as ``source:line:col: message``; also for a system that is not
+        valid (a tuple of the wrong arity, ...), at the place it is written.
+
+    Examples
+    --------
     >>> system = loads('''
     ... psgs Copy
     ... component G1 start S
@@ -79,6 +99,11 @@ def loads(text: str | bytes, source: str = "<string>") -> PSGS | PCGS:
     ... ''')
     >>> system.name, len(system.sync), system.mode
     ('Copy', 2, 'parallel')
+
+    >>> loads("psgs Broken", source="broken.psgs")
+    Traceback (most recent call last):
+    ...
+    psgs.errors.FormatError: broken.psgs:1:...
     """
     if isinstance(text, (bytes, bytearray)):
         text = _decode(bytes(text), source)
@@ -101,6 +126,29 @@ def load(path: str | PathLike) -> PSGS | PCGS:
     """Read a PSGS or a PCGS from a file (UTF-8); the header line decides which.
 
     Errors name the file: ``grammars/x.psgs:3:7: missing arrow ...``.
+
+    Parameters
+    ----------
+    path : str or PathLike
+        A file in the psgs text format.
+
+    Returns
+    -------
+    PSGS or PCGS
+
+    Raises
+    ------
+    FormatError
+        For malformed text or bytes that are not UTF-8, naming ``path:line:col``.
+    FileNotFoundError
+        When the file does not exist.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> gamma.name, len(gamma.components), len(gamma.sync)
+    ('Gamma', 4, 8)
     """
     data = Path(path).read_bytes()
     source = str(path)
@@ -451,6 +499,23 @@ def dumps(system: PSGS | PCGS) -> str:
     Every setting is written out, rules keep their order, terminals are
     quoted (JSON escapes), ε is written ``ε``.
 
+    Parameters
+    ----------
+    system : PSGS or PCGS
+        The system to write.
+
+    Returns
+    -------
+    str
+        Text that :func:`loads` reads back to an equal system.
+
+    Raises
+    ------
+    ValidationError
+        When ``system`` is neither a PSGS nor a PCGS.
+
+    Examples
+    --------
     >>> from psgs import Grammar, Nonterminal, PSGS, Rule, Terminal
     >>> g = Grammar("G", Nonterminal("S"), (Rule("p", Nonterminal("S"), (Terminal("a"),)),))
     >>> print(dumps(PSGS((g,), sync=[("p",)], name="Tiny")), end="")
@@ -488,7 +553,26 @@ def dumps(system: PSGS | PCGS) -> str:
 
 
 def dump(system: PSGS | PCGS, path: str | PathLike) -> None:
-    """Write ``dumps(system)`` to a file as UTF-8."""
+    """Write ``dumps(system)`` to a file as UTF-8.
+
+    Parameters
+    ----------
+    system : PSGS or PCGS
+        The system to write.
+    path : str or PathLike
+        The file (overwritten).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> path = Path(tempfile.mkdtemp()) / "copy.psgs"
+    >>> dump(gamma, path)
+    >>> psgs.load(path) == gamma
+    True
+    """
     Path(path).write_text(dumps(system), encoding="utf-8")
 
 

@@ -37,18 +37,49 @@ __all__ = ["to_networkx", "nonterminal_node", "rule_node"]
 
 
 def nonterminal_node(component: str, name: str) -> tuple[str, str, str]:
-    """The node id of nonterminal ``name`` in ``component``."""
+    """The node id of nonterminal ``name`` in ``component``.
+
+    Examples
+    --------
+    >>> nonterminal_node("G1", "S1")
+    ('G1', 'nonterminal', 'S1')
+    """
     return (component, "nonterminal", name)
 
 
 def rule_node(component: str, label: str) -> tuple[str, str, str]:
-    """The node id of the rule labelled ``label`` in ``component``."""
+    """The node id of the rule labelled ``label`` in ``component``.
+
+    Examples
+    --------
+    >>> rule_node("G1", "S1a")
+    ('G1', 'rule', 'S1a')
+    """
     return (component, "rule", label)
 
 
 def to_networkx(system: PSGS | PCGS | Grammar) -> nx.MultiDiGraph:
     """The rules and nonterminals of ``system`` as a networkx multigraph.
 
+    Parameters
+    ----------
+    system : PSGS, PCGS or Grammar
+        The system (or one grammar) to draw.
+
+    Returns
+    -------
+    networkx.MultiDiGraph
+        Nodes ``(component, "rule", label)`` and ``(component, "nonterminal", name)``; edges
+        from a left-hand side to its rules, from a rule to the nonterminals it yields, and
+        "synchronised with" edges between rules of a tuple.
+
+    Raises
+    ------
+    ValidationError
+        When ``system`` is not a PSGS, PCGS or Grammar.
+
+    Examples
+    --------
     >>> from psgs import Grammar, Nonterminal, PSGS, Rule, Terminal
     >>> S = Nonterminal("S")
     >>> g = Grammar("G", S, (Rule("p", S, (Terminal("a"), S)), Rule("q", S, ())))

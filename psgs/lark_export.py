@@ -52,7 +52,16 @@ _T_PREFIX = "T_"
 
 # ---------------------------------------------------------------- names
 def lark_name(symbol: Nonterminal | Terminal) -> str:
-    """The Lark name of a symbol: a rule name for a nonterminal, a terminal name otherwise."""
+    """The Lark name of a symbol: a rule name for a nonterminal, a terminal name otherwise.
+
+    Examples
+    --------
+    >>> from psgs import Nonterminal, Terminal
+    >>> lark_name(Nonterminal("N13")), lark_name(Terminal("a"))
+    ('n__n13', 'T_A')
+    >>> from_lark_name(lark_name(Nonterminal("N13")))
+    Nonterminal(name='N13')
+    """
     if isinstance(symbol, Nonterminal):
         return _NT_PREFIX + _encode_nonterminal(symbol.name)
     if isinstance(symbol, Terminal):
@@ -145,15 +154,31 @@ def _decode_terminal(code: str, whole: str) -> str:
 def from_lark_name(name: str) -> Nonterminal | Terminal:
     """The symbol a Lark rule or terminal name of an export stands for.
 
-    The inverse of :func:`lark_name`:
+    The inverse of :func:`lark_name`.
 
+    Raises :class:`~psgs.errors.ValidationError` for a name no export uses
+    (``start``, ``EMPTY_LANGUAGE``, Lark's anonymous names).
+
+    Parameters
+    ----------
+    name : str
+        A rule or terminal name of an exported grammar.
+
+    Returns
+    -------
+    Nonterminal or Terminal
+
+    Raises
+    ------
+    ValidationError
+        For a name no export uses (``start``, ``EMPTY_LANGUAGE``, Lark's anonymous names).
+
+    Examples
+    --------
     >>> from_lark_name("n__n13")
     Nonterminal(name='N13')
     >>> from_lark_name("T_A")
     Terminal(name='a')
-
-    Raises :class:`~psgs.errors.ValidationError` for a name no export uses
-    (``start``, ``EMPTY_LANGUAGE``, Lark's anonymous names).
     """
     if not isinstance(name, str):
         raise ValidationError(f"a Lark name is text, not {name!r}")
@@ -185,6 +210,33 @@ def to_lark(system: PSGS | PCGS | Grammar) -> dict[str, str]:
     The language of each text is exactly the component's context-free
     language taken alone (a PCGS query derives nothing there);
     synchronisation is not expressible in Lark.
+
+    Parameters
+    ----------
+    system : PSGS, PCGS or Grammar
+        The system (or one grammar) to export.
+
+    Returns
+    -------
+    dict of str to str
+        Lark grammar text by component name.
+
+    Raises
+    ------
+    ValidationError
+        When ``system`` is not a PSGS, PCGS or Grammar.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> import lark
+    >>> texts = to_lark(gamma)
+    >>> sorted(texts)
+    ['G1', 'G2', 'G3', 'G4']
+    >>> parser = lark.Lark(texts["G1"], start="start", parser="earley", lexer="basic")
+    >>> parser.parse("a b c d b c a d").data
+    Token('RULE', 'start')
     """
     if isinstance(system, Grammar):
         return {system.name: grammar_to_lark(system)}
@@ -195,7 +247,16 @@ def to_lark(system: PSGS | PCGS | Grammar) -> dict[str, str]:
 
 
 def grammar_to_lark(grammar: Grammar, system: PSGS | PCGS | None = None) -> str:
-    """One component's Lark grammar text (see :func:`to_lark`)."""
+    """One component's Lark grammar text (see :func:`to_lark`).
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> text = grammar_to_lark(gamma.components[0])
+    >>> text == psgs.to_lark(gamma.components[0])["G1"]
+    True
+    """
     useful = _useful_rules(grammar)
     lines = _header(grammar, system)
     if not useful:

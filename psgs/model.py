@@ -33,7 +33,13 @@ IDLE = None
 
 
 def is_identifier(name: object) -> bool:
-    """True when ``name`` can name a nonterminal, component, rule or system."""
+    """True when ``name`` can name a nonterminal, component, rule or system.
+
+    Examples
+    --------
+    >>> is_identifier("S1"), is_identifier("1S"), is_identifier(None)
+    (True, False, False)
+    """
     return isinstance(name, str) and bool(_IDENTIFIER.match(name))
 
 
@@ -45,7 +51,28 @@ def _require_identifier(name: object, what: str) -> None:
 
 @dataclass(frozen=True, slots=True, order=True)
 class Terminal:
-    """A terminal symbol: any non-empty text without white space or control characters."""
+    """A terminal symbol: any non-empty text without white space or control characters.
+
+    Parameters
+    ----------
+    name : str
+        Non-empty, no white space or control characters (``"a"``, ``"up"``, ``"+"``).
+
+    Raises
+    ------
+    ValidationError
+        When ``name`` is empty or holds white space.
+
+    Examples
+    --------
+    >>> a = Terminal("a")
+    >>> str(a), a < Terminal("b")
+    ('a', True)
+    >>> Terminal("a b")
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: terminal 'a b' must be non-empty text without white space
+    """
 
     name: str
 
@@ -60,7 +87,23 @@ class Terminal:
 
 @dataclass(frozen=True, slots=True, order=True)
 class Nonterminal:
-    """A nonterminal symbol; its name is an identifier."""
+    """A nonterminal symbol; its name is an identifier.
+
+    Parameters
+    ----------
+    name : str
+        An identifier: letters, digits and ``_``, not starting with a digit.
+
+    Raises
+    ------
+    ValidationError
+        When ``name`` is not an identifier.
+
+    Examples
+    --------
+    >>> str(Nonterminal("S1"))
+    'S1'
+    """
 
     name: str
 
@@ -73,7 +116,23 @@ class Nonterminal:
 
 @dataclass(frozen=True, slots=True, order=True)
 class Query:
-    """A query symbol of a PCGS: asks for the sentential form of component ``component``."""
+    """A query symbol of a PCGS: asks for the sentential form of component ``component``.
+
+    Parameters
+    ----------
+    component : str
+        The name of the queried component (an identifier).
+
+    Raises
+    ------
+    ValidationError
+        When ``component`` is not an identifier.
+
+    Examples
+    --------
+    >>> str(Query("G2"))
+    '?G2'
+    """
 
     component: str
 
@@ -96,10 +155,33 @@ def as_word(value: str | Iterable[str | Terminal]) -> Word:
 
     A sequence of names or of :class:`Terminal` gives one terminal per item.
 
+    Parameters
+    ----------
+    value : str or iterable of str or Terminal
+        A ``str`` is one terminal per character; otherwise one terminal per item.
+
+    Returns
+    -------
+    tuple of Terminal
+
+    Raises
+    ------
+    ValidationError
+        When an item is neither a ``str`` nor a :class:`Terminal`, or is not a valid terminal.
+
+    Examples
+    --------
     >>> as_word("ab") == (Terminal("a"), Terminal("b"))
     True
     >>> as_word(["up", "down"]) == (Terminal("up"), Terminal("down"))
     True
+
+    >>> as_word(["up", Terminal("down")])
+    (Terminal(name='up'), Terminal(name='down'))
+    >>> as_word([1])
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: a word holds terminals, not 1
     """
     if isinstance(value, str):
         return tuple(Terminal(ch) for ch in value)
@@ -116,7 +198,29 @@ def as_word(value: str | Iterable[str | Terminal]) -> Word:
 
 @dataclass(frozen=True, slots=True)
 class Rule:
-    """A context-free rule ``label: lhs -> rhs``; an empty ``rhs`` is ε."""
+    """A context-free rule ``label: lhs -> rhs``; an empty ``rhs`` is ε.
+
+    Parameters
+    ----------
+    label : str
+        The rule's name (an identifier), unique within its grammar.
+    lhs : Nonterminal
+        The left-hand side.
+    rhs : sequence of Terminal, Nonterminal or Query, default ()
+        The right-hand side (stored as a tuple); empty for ε.
+
+    Raises
+    ------
+    ValidationError
+        When ``label`` is not an identifier, ``lhs`` is not a nonterminal or ``rhs`` holds
+        something that is not a symbol.
+
+    Examples
+    --------
+    >>> S = Nonterminal("S")
+    >>> print(Rule("p", S, [Terminal("a"), S]), "|", Rule("q", S))
+    S → a S | S → ε
+    """
 
     label: str
     lhs: Nonterminal
@@ -144,7 +248,33 @@ def _show_symbol(sym: Symbol) -> str:
 
 @dataclass(frozen=True)
 class Grammar:
-    """A component grammar: a name, an axiom and context-free rules (labels unique)."""
+    """A component grammar: a name, an axiom and context-free rules (labels unique).
+
+    Parameters
+    ----------
+    name : str
+        The component's name (an identifier).
+    start : Nonterminal
+        The axiom; it must have a rule.
+    rules : tuple of Rule
+        Distinct labels and distinct rules; a name is used as one kind of symbol only.
+
+    Raises
+    ------
+    ValidationError
+        Naming the component and what is wrong.
+
+    Examples
+    --------
+    >>> S = Nonterminal("S")
+    >>> g = Grammar("G", S, (Rule("p", S, (Terminal("a"), S)), Rule("q", S, ())))
+    >>> g.rule("p").rhs, sorted(t.name for t in g.terminals)
+    ((Terminal(name='a'), Nonterminal(name='S')), ['a'])
+    >>> Grammar("G", Nonterminal("T"), g.rules)
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: component G: start symbol T has no rule
+    """
 
     name: str
     start: Nonterminal
@@ -255,6 +385,17 @@ def resolve_tuple(components: Sequence[Grammar], raw: object, name: str = "the t
     The one place that checks a tuple: that it is a sequence, that it has one
     entry per component, and that each entry is ``#`` or a rule of its
     component. ``name`` names the tuple in error messages, e.g. ``"tuple 3"``.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> [entry and entry.label for entry in resolve_tuple(gamma.components, ("S1a", "#", None, "#"))]
+    ['S1a', None, None, None]
+    >>> resolve_tuple(gamma.components, ("S1a", "#"), "tuple 3")
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: tuple 3 has 2 entries but the system has 4 components
     """
     if isinstance(raw, (str, bytes)) or not isinstance(raw, Iterable):
         raise ValidationError(f"{name} must be a sequence of rules (or labels, or '#'), "
@@ -341,6 +482,39 @@ class PSGS(_Components):
     occurrence, the paper's formal definition). ``unsynchronised`` is
     ``"free"`` (a rule in no tuple may be applied on its own) or ``"strict"``.
     See ``docs/semantics.md``.
+
+    Parameters
+    ----------
+    components : sequence of Grammar
+        At least one; distinct names.
+    sync : sequence of tuples, default ()
+        M: one entry per component, a :class:`Rule` of it, its label, or ``"#"``/``None``.
+    mode : {"parallel", "single"}
+        How many occurrences of a left-hand side a rule rewrites.
+    unsynchronised : {"free", "strict"}
+        Whether a rule in no tuple may be applied on its own.
+    name : str, default "system"
+        The system's name (an identifier).
+
+    Raises
+    ------
+    ValidationError
+        For a tuple of the wrong arity, a label that is not a rule of its component, a tuple
+        that idles everywhere or repeats another, a component with query symbols, a name used
+        as two kinds of symbol, an unknown mode or policy.
+
+    Examples
+    --------
+    >>> S, T = Nonterminal("S"), Nonterminal("T")
+    >>> g = Grammar("G", S, (Rule("p", S, (Terminal("a"), S)), Rule("q", S, ())))
+    >>> h = Grammar("H", T, (Rule("u", T, (Terminal("b"), T)), Rule("v", T, ())))
+    >>> pair = PSGS((g, h), sync=[("p", "u"), ("q", "v")], unsynchronised="strict", name="Pair")
+    >>> pair.component_names, [[r.label for r in t] for t in pair.sync]
+    (('G', 'H'), [['p', 'u'], ['q', 'v']])
+    >>> PSGS((g, h), sync=[("p",)])
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: tuple 1 has 1 entries but the system has 2 components
     """
 
     components: tuple[Grammar, ...]
@@ -410,6 +584,32 @@ class PCGS(_Components):
     language is the set of terminal words of the ``master`` component (the
     first one unless named). ``centralised`` is derived: only the master holds
     query symbols.
+
+    Parameters
+    ----------
+    components : sequence of Grammar
+        At least one; distinct names; queries name components of the system.
+    returning : bool, default True
+        Whether a queried component restarts from its axiom.
+    master : str, default "" (the first component)
+        The component whose terminal words make the language.
+    name : str, default "system"
+        The system's name (an identifier).
+
+    Raises
+    ------
+    ValidationError
+        For a master or a query naming no component, ``returning`` that is not a bool, or any
+        malformed component.
+
+    Examples
+    --------
+    >>> S1, S2 = Nonterminal("S1"), Nonterminal("S2")
+    >>> master = Grammar("G1", S1, (Rule("ask", S1, (Terminal("a"), Query("G2"))),))
+    >>> helper = Grammar("G2", S2, (Rule("b", S2, (Terminal("b"),)),))
+    >>> system = PCGS((master, helper), returning=False)
+    >>> system.master, system.centralised
+    ('G1', True)
     """
 
     components: tuple[Grammar, ...]

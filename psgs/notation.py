@@ -13,7 +13,15 @@ __all__ = ["format_form", "format_configuration", "show_tuple", "spaced", "short
 
 
 def spaced(system) -> bool:
-    """True when some terminal of ``system`` is longer than one character (print with spaces)."""
+    """True when some terminal of ``system`` is longer than one character (print with spaces).
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> spaced(gamma)
+    False
+    """
     return any(len(t.name) > 1 for t in system.terminals)
 
 
@@ -24,6 +32,8 @@ def format_form(form: Form, system=None, *, spaced: bool | None = None) -> str:
     ``system`` has a name longer than one character (then they are
     separated by spaces).
 
+    Examples
+    --------
     >>> from psgs.model import Nonterminal as N, Terminal as T
     >>> format_form((N("N4"), N("N4"), T("b"))), format_form(())
     ('N4N4b', 'ε')
@@ -42,6 +52,8 @@ _spaced = spaced
 def format_configuration(configuration, system=None, *, spaced: bool | None = None) -> str:
     """``(x_1, …, x_n)`` with each form in the paper's notation.
 
+    Examples
+    --------
     >>> from psgs.model import Nonterminal as N, Terminal as T
     >>> format_configuration(((N("S1"),), (T("a"), T("b"))))
     '(S1, ab)'
@@ -52,10 +64,24 @@ def format_configuration(configuration, system=None, *, spaced: bool | None = No
 
 
 def show_tuple(sync_tuple) -> str:
-    """A tuple of rules by their labels, ``#`` for an idle component: ``(p1, #, q3)``."""
+    """A tuple of rules by their labels, ``#`` for an idle component: ``(p1, #, q3)``.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> show_tuple(gamma.sync[0]), show_tuple((None, gamma.sync[0][1]))
+    ('(S1a, S2a, S3a, S4a)', '(#, S2a)')
+    """
     return "(" + ", ".join("#" if r is IDLE else r.label for r in sync_tuple) + ")"
 
 
 def short(text: str, limit: int = 60) -> str:
-    """Long forms make unreadable messages: keep the start."""
+    """Long forms make unreadable messages: keep the start.
+
+    Examples
+    --------
+    >>> short("ab"), short("x" * 100, 10)
+    ('ab', 'xxxxxxxxxx… (100 characters)')
+    """
     return text if len(text) <= limit else text[:limit] + f"… ({len(text)} characters)"

@@ -29,6 +29,12 @@ class SearchResult:
 
     ``bound`` is the name of the budget that stopped the search or left
     configurations out (``None`` when complete); ``reason`` says it in words.
+
+    Examples
+    --------
+    >>> result = SearchResult(found=set(), explored=3, bound=None, reason=None)
+    >>> result.explored, result.bound
+    (3, None)
     """
 
     __slots__ = ("found", "explored", "bound", "reason")
@@ -141,7 +147,17 @@ class _Codes:
 
 def psgs_search(system: PSGS, max_length: int, max_configurations: int,
                 max_form_length: int, clock: Budget) -> SearchResult:
-    """The terminal tuples of total length ≤ ``max_length`` reachable in ``system``."""
+    """The terminal tuples of total length ≤ ``max_length`` reachable in ``system``.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> from psgs.budget import Budget
+    >>> result = psgs_search(gamma, 32, 10_000, 1_000, Budget())
+    >>> len(result.found), result.bound
+    (1, None)
+    """
     codes = _Codes(system)
     yields = [min_yields(rules) for rules in usable_rules(system)]
 
@@ -213,7 +229,17 @@ def _forced_rewrites(configuration, eager) -> list | None:
 
 def pcgs_search(system: PCGS, max_length: int, max_configurations: int,
                 max_form_length: int, clock: Budget) -> SearchResult:
-    """The master's terminal words of length ≤ ``max_length`` reachable in ``system``."""
+    """The master's terminal words of length ≤ ``max_length`` reachable in ``system``.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> copy = psgs.load("grammars/pcgs_copy.psgs")
+    >>> from psgs.budget import Budget
+    >>> result = pcgs_search(copy, 4, 10_000, 1_000, Budget())
+    >>> sorted("".join(map(str, w)) for w in result.found)
+    ['aa', 'aaaa', 'abab', 'baba', 'bb', 'bbbb']
+    """
     master = system.master_index
     master_queried = any(q.component == system.master for g in system.components
                          for q in g.queries)

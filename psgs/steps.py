@@ -59,6 +59,25 @@ class Step:
     For a PCGS, ``kind`` is ``"rewrite"`` (``tuple`` holds each component's
     rule, ``None`` for a terminal component) or ``"communicate"`` (``tuple``
     is all ``None``; ``positions`` are the query symbols that were replaced).
+
+    Attributes
+    ----------
+    tuple : tuple of Rule or None
+        Per component, the rule applied there or None (idle).
+    positions : tuple of tuple of int
+        Per component, the rewritten occurrences (or replaced queries) in ``before``.
+    before, after : Configuration
+        The configurations around the step.
+    kind : {"rewrite", "communicate"}
+        ``"communicate"`` only for a PCGS communication step.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> step = psgs.applicable_steps(gamma, psgs.initial_configuration(gamma))[0]
+    >>> step.kind, step.positions
+    ('rewrite', ((0,), (0,), (0,), (0,)))
     """
 
     tuple: tuple[Rule | None, ...]
@@ -72,29 +91,67 @@ class Step:
 
 
 def initial_configuration(system: _System) -> Configuration:
-    """The axioms ``(S_1, …, S_n)``, one one-symbol form per component."""
+    """The axioms ``(S_1, …, S_n)``, one one-symbol form per component.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> from psgs.notation import format_configuration
+    >>> format_configuration(initial_configuration(gamma))
+    '(S1, S2, S3, S4)'
+    """
     return tuple((g.start,) for g in system.components)
 
 
 def is_terminal_form(form: Form) -> bool:
-    """True when every symbol of ``form`` is a terminal."""
+    """True when every symbol of ``form`` is a terminal.
+
+    Examples
+    --------
+    >>> from psgs.model import Nonterminal as N, Terminal as T
+    >>> is_terminal_form((T("a"), T("b"))), is_terminal_form((T("a"), N("S")))
+    (True, False)
+    """
     return all(s.__class__ is Terminal for s in form)
 
 
 def is_terminal_configuration(system: _System, configuration: Configuration) -> bool:
-    """True when the derivation is finished: every form terminal (PSGS) or the master's (PCGS)."""
+    """True when the derivation is finished: every form terminal (PSGS) or the master's (PCGS).
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> is_terminal_configuration(gamma, psgs.initial_configuration(gamma))
+    False
+    """
     if isinstance(system, PCGS):
         return is_terminal_form(configuration[system.master_index])
     return all(is_terminal_form(f) for f in configuration)
 
 
 def has_query(form: Form) -> bool:
-    """True when ``form`` holds a query symbol."""
+    """True when ``form`` holds a query symbol.
+
+    Examples
+    --------
+    >>> from psgs.model import Query, Terminal as T
+    >>> has_query((T("a"), Query("G2"))), has_query((T("a"),))
+    (True, False)
+    """
     return any(s.__class__ is Query for s in form)
 
 
 def occurrences(form: Form, symbol: Nonterminal) -> tuple[int, ...]:
-    """The positions of ``symbol`` in ``form``, in order."""
+    """The positions of ``symbol`` in ``form``, in order.
+
+    Examples
+    --------
+    >>> from psgs.model import Nonterminal as N, Terminal as T
+    >>> occurrences((N("A"), T("b"), N("A")), N("A"))
+    (0, 2)
+    """
     # compares names rather than calling the dataclass __eq__ per symbol: forms get long
     name = symbol.name
     return tuple([k for k, s in enumerate(form) if s.__class__ is Nonterminal and s.name == name])
@@ -110,7 +167,14 @@ def positions_by_name(form: Form) -> dict[str, tuple[int, ...]]:
 
 
 def rewrite(form: Form, positions: Sequence[int], rhs: Form) -> Form:
-    """Replace the symbols at ``positions`` (sorted) by ``rhs``."""
+    """Replace the symbols at ``positions`` (sorted) by ``rhs``.
+
+    Examples
+    --------
+    >>> from psgs.model import Nonterminal as N, Terminal as T
+    >>> rewrite((N("A"), T("b"), N("A")), [0, 2], (T("c"),))
+    (Terminal(name='c'), Terminal(name='b'), Terminal(name='c'))
+    """
     out: list = []
     last = 0
     for k in positions:
@@ -122,7 +186,17 @@ def rewrite(form: Form, positions: Sequence[int], rhs: Form) -> Form:
 
 
 def rewritten(configuration: Configuration, rules, positions) -> Configuration:
-    """The configuration after rewriting, per component, ``positions`` with that ``rule``."""
+    """The configuration after rewriting, per component, ``positions`` with that ``rule``.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> from psgs.notation import format_configuration
+    >>> start = psgs.initial_configuration(gamma)
+    >>> format_configuration(rewritten(start, gamma.sync[0], [(0,)] * 4))
+    '(N13S1, N18S2, N7S3, N23S4)'
+    """
     return tuple(form if not pos else rewrite(form, pos, rule.rhs)
                  for form, rule, pos in zip(configuration, rules, positions))
 
@@ -136,6 +210,14 @@ def psgs_choices(system: PSGS, configuration: Configuration, sync_tuple: SyncTup
     ``where`` (per component :func:`positions_by_name` of its form) saves a
     scan of every form per tuple when many tuples are tried on one
     configuration.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> start = psgs.initial_configuration(gamma)
+    >>> psgs_choices(gamma, start, gamma.sync[0])
+    [[(0,)], [(0,)], [(0,)], [(0,)]]
     """
     per_component: list[list[tuple[int, ...]]] = []
     parallel = system.mode == "parallel"
@@ -158,6 +240,15 @@ def psgs_successors(system: PSGS, configuration: Configuration,
 
     ``moves`` are the system's moves (:func:`psgs.analysis.moves`); a search
     that calls this per configuration passes them in so they are built once.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> from psgs.notation import show_tuple
+    >>> start = psgs.initial_configuration(gamma)
+    >>> [show_tuple(entries) for entries, positions, after in psgs_successors(gamma, start)]
+    ['(S1a, S2a, S3a, S4a)', '(S1b, S2b, S3b, S4b)']
     """
     where = [positions_by_name(form) for form in configuration]
     for sync_tuple in (system_moves(system) if moves is None else moves):
@@ -172,7 +263,15 @@ def psgs_successors(system: PSGS, configuration: Configuration,
 
 # ---------------------------------------------------------------- PCGS
 def pcgs_communicate(system: PCGS, configuration: Configuration) -> Step | None:
-    """The communication step, or None when no query can be answered."""
+    """The communication step, or None when no query can be answered.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> copy = psgs.load("grammars/pcgs_copy.psgs")
+    >>> pcgs_communicate(copy, psgs.initial_configuration(copy)) is None     # no query yet
+    True
+    """
     n = len(configuration)
     after = list(configuration)
     positions: list[tuple[int, ...]] = [()] * n
@@ -220,7 +319,16 @@ def _pcgs_rewrite_step(configuration: Configuration, combo) -> Step:
 
 
 def pcgs_steps(system: PCGS, configuration: Configuration) -> Iterator[Step]:
-    """The communication step, if any form holds a query; otherwise every rewriting step."""
+    """The communication step, if any form holds a query; otherwise every rewriting step.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> copy = psgs.load("grammars/pcgs_copy.psgs")
+    >>> steps = list(pcgs_steps(copy, psgs.initial_configuration(copy)))
+    >>> {step.kind for step in steps}
+    {'rewrite'}
+    """
     if any(has_query(f) for f in configuration):
         step = pcgs_communicate(system, configuration)
         if step is not None:
@@ -245,6 +353,15 @@ def random_step(system: _System, configuration: Configuration,
     is cheap. The index drawn is the position the step would have in
     :func:`psgs.derivation.applicable_steps`, so a seed picks the same step
     either way.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> import random
+    >>> step = random_step(gamma, psgs.initial_configuration(gamma), random.Random(0))
+    >>> step in psgs.applicable_steps(gamma, psgs.initial_configuration(gamma))
+    True
     """
     if isinstance(system, PCGS):
         return _random_pcgs_step(system, configuration, rng)

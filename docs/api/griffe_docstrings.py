@@ -51,8 +51,9 @@ def _undocumented(module: griffe.Module):
             if not name.startswith("_") and name not in _NOT_API:
                 yield from _undocumented(member)
             continue
-        if not member.is_public or not (member.is_function or member.is_class):
-            continue
+        if name.startswith("_") or not member.is_public or not (member.is_function
+                                                                or member.is_class):
+            continue  # (module hooks such as __getattr__ and __dir__ are not API)
         if not member.docstring:
             yield member.path
         if member.is_class:

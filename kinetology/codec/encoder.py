@@ -33,6 +33,14 @@ class Compressed(bytes):
       their own units);
     * ``max_error``: the bound asked for (``None`` without rate control);
     * ``settings``: the settings used (as :data:`CODEC_DEFAULTS`).
+
+    Examples
+    --------
+    >>> import kinetology
+    >>> walk = kinetology.synthetic_motion(3, seed=0)
+    >>> data = kinetology.compress(walk)
+    >>> isinstance(data, bytes), data.max_error, data.mean_error < 1.0
+    (True, None, True)
     """
 
     def __new__(cls, data: bytes, mean_error: float, mean_error_all: float, settings,
@@ -203,6 +211,14 @@ def compress_with(motion: Motion, settings: dict, *, base=None,
 
     ``base``: an already computed ``(channels, quantum)`` from
     :func:`encode_segments` for these settings (rate control reuses it).
+
+    Examples
+    --------
+    >>> import kinetology
+    >>> walk = kinetology.synthetic_motion(3, seed=0)
+    >>> from kinetology.codec import CODEC_DEFAULTS
+    >>> compress_with(walk, dict(CODEC_DEFAULTS)) == kinetology.compress(walk)
+    True
     """
     p = _settings(settings)
     channels, quantum = base if base is not None else encode_segments(motion, **p)

@@ -49,7 +49,17 @@ _SIGNS = 3                # previous symbol's sign: -, 0, +
 
 
 class EntropyError(ValueError):
-    """The coded bytes are malformed (the caller turns it into a format error)."""
+    """The coded bytes are malformed (the caller turns it into a format error).
+
+    Examples
+    --------
+    >>> from kinetology.codec.residual import decode
+    >>> try:
+    ...     decode(bytes([0]), 3, 2)
+    ... except EntropyError as error:
+    ...     print("malformed:", error)
+    malformed: residual data ends inside a number
+    """
 
 
 # one flat table of probabilities per lane: slots for the zero bit (9 contexts),

@@ -34,7 +34,13 @@ PINNED = MappingProxyType({
 
 
 def is_rotation(channel: str) -> bool:
-    """Whether a channel is an angle (axis ``rx``, ``ry`` or ``rz``), so periodic."""
+    """Whether a channel is an angle (axis ``rx``, ``ry`` or ``rz``), so periodic.
+
+    Examples
+    --------
+    >>> is_rotation("ltibia.rx"), is_rotation("root.tx")
+    (True, False)
+    """
     return channel.rsplit(".", 1)[-1] in ("rx", "ry", "rz")
 
 

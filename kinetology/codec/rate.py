@@ -104,7 +104,16 @@ def _with_residual(motion: Motion, max_error: float, original: np.ndarray, smoot
 
 
 def compress_to(motion: Motion, max_error: float) -> Compressed:
-    """Compress ``motion`` with a mean rotation-channel error of at most ``max_error`` degrees."""
+    """Compress ``motion`` with a mean rotation-channel error of at most ``max_error`` degrees.
+
+    Examples
+    --------
+    >>> import kinetology
+    >>> walk = kinetology.synthetic_motion(3, seed=0)
+    >>> data = compress_to(walk, 0.3)
+    >>> data.max_error, data.mean_error <= 0.3
+    (0.3, True)
+    """
     if not (isinstance(max_error, (int, float, np.floating, np.integer))
             and np.isfinite(max_error) and max_error > 0):
         raise ValueError(f"max_error must be a positive number of degrees, not {max_error!r}")

@@ -57,10 +57,25 @@ def quantise(residual: np.ndarray, step: float, hysteresis: float) -> np.ndarray
 
 
 def encode(levels: np.ndarray) -> bytes:
-    """The layer's bytes for the integer residual levels (frames x channels)."""
+    """The layer's bytes for the integer residual levels (frames x channels).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> levels = np.array([[0, 1], [2, -1], [0, 0]])
+    >>> decode(encode(levels), 3, 2).tolist()
+    [[0, 1], [2, -1], [0, 0]]
+    """
     return entropy.encode(np.diff(levels, axis=0, prepend=0) if levels.size else levels)
 
 
 def decode(data: bytes, frames: int, channels: int) -> np.ndarray:
-    """Inverse of :func:`encode` (raises :class:`entropy.EntropyError` on bad data)."""
+    """Inverse of :func:`encode` (raises :class:`entropy.EntropyError` on bad data).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> decode(encode(np.zeros((2, 2), int)), 2, 2).tolist()
+    [[0, 0], [0, 0]]
+    """
     return np.cumsum(entropy.decode(data, frames, channels), axis=0)

@@ -72,6 +72,37 @@ def accepts(system: PSGS | PCGS, words, *, max_states: int = 200_000,
     most :data:`EAGER_REPLAY_LIMIT` symbols long in all, and leaves it to the
     first access of ``.witness`` otherwise.
 
+    Parameters
+    ----------
+    system : PSGS or PCGS
+        The system.
+    words : sequence of words, or a word
+        One word per component (PSGS) or the master's word (PCGS); a word is a ``str`` of
+        one-character terminals or a sequence of terminal names or Terminals.
+    max_states : int, default 200_000
+        Budget of search states.
+    max_seconds : float, default 30.0
+        Budget of wall-clock time.
+    max_symbols : int, default MAX_SYMBOLS
+        Budget of memory: states kept times their size in symbols.
+    max_steps : int, default 200
+        PCGS only: the longest derivation searched.
+    check_witness : bool or None, default None
+        Replay the witness before returning (None: only for short words).
+
+    Returns
+    -------
+    Acceptance
+        ``"yes"`` (with a witness), ``"no"`` or ``"unknown"`` (naming the budget).
+
+    Raises
+    ------
+    ValidationError
+        When ``words`` does not fit the system (a word per component), a word holds something
+        that is not a terminal, or a budget is not positive.
+
+    Examples
+    --------
     >>> from psgs.model import Grammar, Rule, PSGS, Nonterminal as N, Terminal as T
     >>> g = Grammar("G", N("S"), (Rule("p", N("S"), (T("a"), N("S"))), Rule("q", N("S"), (T("a"),))))
     >>> h = Grammar("H", N("R"), (Rule("u", N("R"), (T("b"), N("R"))), Rule("v", N("R"), (T("b"),))))

@@ -89,7 +89,18 @@ def accepts_pcgs(system: PCGS, word: Word, *, max_steps: int, max_states: int,
     """Breadth-first search for a derivation of ``word`` by the master (yes / no / unknown).
 
     ``budget`` was started by the caller; the search reads its clock per
-    generated step and counts every configuration it keeps (in symbols)."""
+    generated step and counts every configuration it keeps (in symbols).
+
+    Examples
+    --------
+    >>> import psgs
+    >>> copy = psgs.load("grammars/pcgs_copy.psgs")
+    >>> from psgs.model import as_word
+    >>> from psgs.budget import Budget
+    >>> accepts_pcgs(copy, as_word("abab"), max_steps=50, max_states=10_000,
+    ...              budget=Budget(seconds=10)).answer
+    'yes'
+    """
     try:
         return _search(system, word, max_steps, max_states, budget)
     except BoundReached as stop:

@@ -30,10 +30,38 @@ class Acceptance:
     first access (at once for short words, see
     :data:`psgs.membership.EAGER_REPLAY_LIMIT`).
 
+    Attributes
+    ----------
+    answer : {"yes", "no", "unknown"}
+        The answer.
+    reason : str or None, default None
+        Why not, for ``"no"`` and ``"unknown"``.
+    bound : str or None, default None
+        The budget that ran out (``"unknown"`` only).
+    states : int, default 0
+        Search states explored.
+    system : PSGS or PCGS, optional
+        The system asked about (to replay the witness).
+    schedule : tuple, default ()
+        The schedule found (what the witness is replayed from).
+
+    Examples
+    --------
     >>> Acceptance("unknown", reason="out of time", bound="max_seconds").answer
     'unknown'
     >>> bool(Acceptance("no", reason="too short"))
     False
+
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> result = psgs.accepts(gamma, ["abcdbcad", "bcadabcd", "cdabcdab", "abcdbcad"])
+    >>> result.answer, bool(result), result.bound
+    ('yes', True, None)
+    >>> str(result.witness).startswith("(S1, S2, S3, S4) ⇒")
+    True
+    >>> no = psgs.accepts(gamma, ["abcd", "bcad", "cdab", "abcd"])
+    >>> no.answer, no.reason is not None
+    ('no', True)
     """
 
     answer: Literal["yes", "no", "unknown"]

@@ -74,7 +74,18 @@ class _Substrings:
 
 def accepts_psgs(system: PSGS, words: tuple[Word, ...], max_states: int,
                  budget: Budget) -> Acceptance:
-    """Decide ``words ∈ L(system)``; ``budget`` was started by the caller, before any analysis."""
+    """Decide ``words ∈ L(system)``; ``budget`` was started by the caller, before any analysis.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> from psgs.model import as_word
+    >>> words = tuple(as_word(w) for w in ("abcdbcad", "bcadabcd", "cdabcdab", "abcdbcad"))
+    >>> from psgs.budget import Budget
+    >>> accepts_psgs(gamma, words, max_states=10_000, budget=Budget(seconds=10)).answer
+    'yes'
+    """
     terminal_ids: dict[Terminal, int] = {}
     for t in sorted(system.terminals):
         terminal_ids[t] = len(terminal_ids)

@@ -29,6 +29,17 @@ class Rewrite:
     ``symbol`` derives ``word[start:end]``; ``split`` gives the boundaries
     ``(start = m0 ≤ m1 ≤ … ≤ mr = end)`` of the spans of the rule's body
     symbols, one more boundary than the body has symbols.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> result = psgs.accepts(gamma, ["abcdbcad", "bcadabcd", "cdabcdab", "abcdbcad"])
+    >>> schedule = result.schedule
+    >>> move = schedule.moves[0]
+    >>> rule, rewrite = move.entries[0], move.rewrites[0][0]
+    >>> rewrite.symbol == rule.lhs, (rewrite.start, rewrite.end), len(rewrite.split) == len(rule.rhs) + 1
+    (True, (0, 8), True)
     """
 
     symbol: Nonterminal
@@ -39,7 +50,18 @@ class Rewrite:
 
 @dataclass(frozen=True, slots=True)
 class ScheduledMove:
-    """One step of a PSGS schedule: the tuple applied and, per component, what it rewrote."""
+    """One step of a PSGS schedule: the tuple applied and, per component, what it rewrote.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> result = psgs.accepts(gamma, ["abcdbcad", "bcadabcd", "cdabcdab", "abcdbcad"])
+    >>> schedule = result.schedule
+    >>> move = schedule.moves[0]
+    >>> [entry.label for entry in move.entries], len(move.rewrites)
+    (['S1b', 'S2b', 'S3b', 'S4b'], 4)
+    """
 
     entries: SyncTuple
     rewrites: tuple[tuple[Rewrite, ...], ...]
@@ -47,7 +69,17 @@ class ScheduledMove:
 
 @dataclass(frozen=True, slots=True)
 class PSGSSchedule:
-    """A PSGS schedule: the words it derives and its moves, in order."""
+    """A PSGS schedule: the words it derives and its moves, in order.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> result = psgs.accepts(gamma, ["abcdbcad", "bcadabcd", "cdabcdab", "abcdbcad"])
+    >>> schedule = result.schedule
+    >>> type(schedule).__name__, len(schedule.moves) == len(result.witness.steps)
+    ('PSGSSchedule', True)
+    """
 
     words: tuple[Word, ...]
     moves: tuple[ScheduledMove, ...]
@@ -55,7 +87,16 @@ class PSGSSchedule:
 
 @dataclass(frozen=True, slots=True)
 class PCGSSchedule:
-    """A PCGS derivation found by the search, as its steps."""
+    """A PCGS derivation found by the search, as its steps.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> copy = psgs.load("grammars/pcgs_copy.psgs")
+    >>> result = psgs.accepts(copy, "abab")
+    >>> type(result.schedule).__name__, len(result.schedule.steps) == len(result.witness.steps)
+    ('PCGSSchedule', True)
+    """
 
     steps: tuple[Step, ...]
 
@@ -66,7 +107,18 @@ Schedule = Union[PSGSSchedule, PCGSSchedule]
 
 
 def replay(system: PSGS | PCGS, schedule: Schedule) -> Derivation:
-    """Turn a schedule into a :class:`~psgs.derivation.Derivation`, checking each step."""
+    """Turn a schedule into a :class:`~psgs.derivation.Derivation`, checking each step.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> result = psgs.accepts(gamma, ["abcdbcad", "bcadabcd", "cdabcdab", "abcdbcad"])
+    >>> schedule = result.schedule
+    >>> derivation = replay(gamma, schedule)
+    >>> derivation.is_terminal, str(derivation) == str(result.witness)
+    (True, True)
+    """
     if isinstance(schedule, PCGSSchedule):
         return _replay_pcgs(system, schedule)
     if not isinstance(schedule, PSGSSchedule):

@@ -1,8 +1,8 @@
 """Every public function and class of psgs and kinetology has a numpydoc docstring that runs.
 
-Walks ``psgs.__all__`` and ``kinetology.__all__`` (constants such as ``psgs.IDLE`` have no
-docstring of their own and are skipped) and reads each docstring's numpydoc sections (a title line
-underlined with dashes). Required:
+Walks ``psgs.__all__``, ``psgs.induce.__all__`` and ``kinetology.__all__`` (constants such as
+``psgs.IDLE`` have no docstring of their own and are skipped) and reads each docstring's numpydoc
+sections (a title line underlined with dashes). Required, with no list of exceptions:
 
 * an ``Examples`` section with at least one ``>>>`` line (``--doctest-modules`` runs it);
 * for a function, or a class's constructor, a ``Parameters`` section naming every parameter
@@ -12,9 +12,9 @@ underlined with dashes). Required:
   section;
 * for a function whose own body has a ``raise`` statement, a ``Raises`` section.
 
-Beyond the two packages' ``__all__``, every function and class that a public module lists in its
+Beyond the packages' ``__all__``, every function and class that a public module lists in its
 own ``__all__`` (and defines) needs at least the ``Examples`` section: every public function
-and class has an example that runs (``EXAMPLES_NOT_YET`` lists those still without one).
+and class has an example that runs.
 
 The API pages in docs/api/ must name every public module, so that a new module appears in the
 site (whose strict build checks that its docstrings exist).
@@ -37,112 +37,12 @@ import psgs
 
 ROOT = Path(__file__).resolve().parents[2]
 
-# Public names whose docstring still lacks required sections (space-separated). This table only
-# shrinks; the test fails on a missing section not listed here and on a listed one now present.
-NOT_YET: dict[str, str] = {
-    "kinetology.Segmentation": "Parameters Examples",
-    "kinetology.compress": "Parameters Returns Examples",
-    "kinetology.decompress": "Parameters Returns Raises Examples",
-    "kinetology.reconstruct": "Parameters Returns Examples",
-    "kinetology.segment": "Parameters Examples",
-    "kinetology.segments": "Parameters Returns Examples",
-    "kinetology.states": "Parameters Returns Examples",
-    "psgs.Acceptance": "Parameters Examples",
-    "psgs.Actiongram": "Parameters Examples",
-    "psgs.BoundReached": "Examples",
-    "psgs.Derivation": "Parameters Examples",
-    "psgs.FormatError": "Parameters Examples",
-    "psgs.Grammar": "Parameters Examples",
-    "psgs.Language": "Parameters Examples",
-    "psgs.Nonterminal": "Parameters Examples",
-    "psgs.PCGS": "Parameters Examples",
-    "psgs.PSGS": "Parameters Examples",
-    "psgs.PSGSError": "Examples",
-    "psgs.Query": "Parameters Examples",
-    "psgs.Rule": "Parameters Examples",
-    "psgs.Step": "Parameters Examples",
-    "psgs.Terminal": "Parameters Examples",
-    "psgs.ValidationError": "Examples",
-    "psgs.accepts": "Parameters Returns Raises Examples",
-    "psgs.applicable_steps": "Parameters Returns Examples",
-    "psgs.apply_step": "Parameters Returns Raises Examples",
-    "psgs.as_word": "Parameters Returns Raises Examples",
-    "psgs.dump": "Parameters Examples",
-    "psgs.dumps": "Parameters Returns Raises Examples",
-    "psgs.from_lark_name": "Parameters Returns Raises Examples",
-    "psgs.initial_configuration": "Parameters Returns Examples",
-    "psgs.language": "Parameters Examples",
-    "psgs.load": "Parameters Returns Examples",
-    "psgs.load_actiongram": "Parameters Returns Raises Examples",
-    "psgs.loads": "Parameters Returns Raises Examples",
-    "psgs.random_derivation": "Parameters Returns Raises Examples",
-    "psgs.to_lark": "Parameters Returns Raises Examples",
-    "psgs.to_networkx": "Parameters Returns Raises Examples",
-    "psgs.word": "Parameters Returns Examples",
-}
-
-
-# Functions and classes of public modules' __all__ still without an example (only shrinks).
-EXAMPLES_NOT_YET: set[str] = {
-    "kinetology.codec.compress",
-    "kinetology.codec.decompress",
-    "kinetology.codec.encode_segments",
-    "kinetology.codec.reconstruct",
-    "kinetology.segmentation.Segmentation",
-    "kinetology.segmentation.derivatives",
-    "kinetology.segmentation.segment",
-    "kinetology.segmentation.segments",
-    "kinetology.segmentation.significant_sign",
-    "kinetology.segmentation.smooth",
-    "kinetology.segmentation.states",
-    "psgs.actiongram.Actiongram",
-    "psgs.actiongram.load_actiongram",
-    "psgs.derivation.Derivation",
-    "psgs.derivation.Step",
-    "psgs.derivation.applicable_steps",
-    "psgs.derivation.apply_step",
-    "psgs.derivation.apply_tuple",
-    "psgs.derivation.communication_step",
-    "psgs.derivation.format_configuration",
-    "psgs.derivation.format_form",
-    "psgs.derivation.initial_configuration",
-    "psgs.derivation.is_terminal_configuration",
-    "psgs.derivation.language",
-    "psgs.derivation.random_derivation",
-    "psgs.enumeration.Language",
-    "psgs.enumeration.context_free_words",
-    "psgs.enumeration.language",
-    "psgs.enumeration.min_yields",
-    "psgs.format.dump",
-    "psgs.format.dumps",
-    "psgs.format.load",
-    "psgs.format.loads",
-    "psgs.graph.nonterminal_node",
-    "psgs.graph.rule_node",
-    "psgs.graph.to_networkx",
-    "psgs.induce.pal.PAL",
-    "psgs.lark_export.from_lark_name",
-    "psgs.lark_export.grammar_to_lark",
-    "psgs.lark_export.lark_name",
-    "psgs.lark_export.to_lark",
-    "psgs.membership.Acceptance",
-    "psgs.membership.accepts",
-    "psgs.model.Grammar",
-    "psgs.model.Nonterminal",
-    "psgs.model.PCGS",
-    "psgs.model.PSGS",
-    "psgs.model.Query",
-    "psgs.model.Rule",
-    "psgs.model.Terminal",
-    "psgs.model.as_word",
-    "psgs.model.is_identifier",
-    "psgs.model.resolve_tuple_entries",
-    "psgs.model.word",
-}
 
 
 def _public_objects():
-    for package in (psgs, kinetology):
+    import psgs.induce
+
+    for package in (psgs, psgs.induce, kinetology):
         for name in package.__all__:
             obj = getattr(package, name)
             if inspect.isclass(obj) or inspect.isfunction(obj):
@@ -236,13 +136,9 @@ def missing_sections(obj) -> set[str]:
 
 
 def test_public_api_has_numpydoc_sections_with_examples():
-    actual = {(name, section) for name, obj in _public_objects()
-              for section in missing_sections(obj)}
-    allowed = {(name, section) for name, listed in NOT_YET.items() for section in listed.split()}
-    new = sorted(actual - allowed)
-    fixed = sorted(allowed - actual)
-    assert not new, f"public objects missing numpydoc sections: {new}"
-    assert not fixed, f"documented now, remove from NOT_YET: {fixed}"
+    missing = sorted((name, section) for name, obj in _public_objects()
+                     for section in missing_sections(obj))
+    assert not missing, f"public objects missing numpydoc sections: {missing}"
 
 
 def test_the_walk_finds_the_public_api():
@@ -303,11 +199,8 @@ def _module_objects():
 
 
 def test_every_public_function_and_class_has_an_example():
-    actual = {name for name, obj in _module_objects() if "Examples" in missing_sections(obj)}
-    new = sorted(actual - EXAMPLES_NOT_YET)
-    fixed = sorted(EXAMPLES_NOT_YET - actual)
-    assert not new, f"public functions and classes without an Examples section: {new}"
-    assert not fixed, f"have an example now, remove from EXAMPLES_NOT_YET: {fixed}"
+    missing = sorted(name for name, obj in _module_objects() if "Examples" in missing_sections(obj))
+    assert not missing, f"public functions and classes without an Examples section: {missing}"
 
 
 def test_api_pages_name_every_public_module():

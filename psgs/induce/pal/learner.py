@@ -21,36 +21,72 @@ _EVIDENCE = ("kinetemes", "path")
 class PAL(Inducer):
     """The parallel learning algorithm (see the module docstring and ``docs/pal.md``).
 
-    Parameters (all keyword):
+    Parameters
+    ----------
+    min_copies : int, default 3
+        Fewest copies of a motif that count as repetition.
+    conserve : float, default 0.6
+        Share of copies that must agree on a new column.
+    edge_share : float, default 0.5
+        An end column of a voted pattern whose plurality symbol holds no more than this
+        share of the copies is trimmed (it is not conserved).
+    match_fraction : float, default 0.5
+        Least share of positions a copy must match.
+    scan_alpha : float, default 0.05
+        Expected chance copies per string tolerated by the scan.
+    alpha : float, default 1e-2
+        Chance level a string's repetition must beat to be a candidate.
+    sync_fraction : float, default 0.5
+        Share of the merged copy clusters of two strings that must hold copies of both for
+        them to be synchronised.
+    window_support : float, default 0.34
+        Share of a group's members that must show a copy in a window.
+    max_pattern : int, default 64
+        Longest motif, in symbols.
+    seeds : int, default 3
+        How many of a string's most frequent digrams are grown into motifs.
+    rounds : int, default 2
+        Rounds of pooling; after each but the last, every member's copies are located again
+        with its voted pattern.
+    joins_copies : int, default 4
+        A string outside every group joins one when, read in the group's windows, at least
+        this many of its copies have the common length and half of their columns agree,
+        beyond chance, in a share ``conserve`` of them.
+    timing : str, default "auto"
+        How copies are located. ``"content"``: by content in each string, joined in time
+        (steps 1-6); ``"period"``: by time windows of the action's period pooled over all
+        strings (for real motion, where joints cycle through the same few states at
+        different rates and phases); ``"auto"``: content, and the period mode when content
+        finds no component.
+    period_quantile : float, default 0.9
+        The period mode's pooled excess self-agreement at each lag is this quantile over the
+        strings (the driving joints decide).
+    period_agreement : float, default 0.6
+        In the period mode, least share of times at which a string's symbol recurs one
+        (tracked) window later.
+    evidence : str, default "kinetemes"
+        For several performances of real motion, what a joint's repeated motion is measured
+        on: ``"kinetemes"`` (chance-corrected agreement of the kineteme states, with a
+        significance test) or ``"path"`` (plain angular path length, no test: the
+        benchmark's ablation).
+    joint_share : float, default 0.25
+        A significant joint carrying at least this share of the leader's repeated motion is
+        a component.
+    neighbour_share : float, default 0.03
+        A skeleton neighbour (one hop) of a component joins at this share of the leader's
+        repeated motion.
+    channel_share : float, default 0.25
+        A component joint keeps its channels carrying at least this share of its most
+        repeated channel's motion.
+    max_shift : float, default 0.1
+        Whole performances are aligned by a shift of at most this share of their length.
+    min_cycle : float, default 0.25
+        Shortest cycle within a performance, seconds.
+    min_cycle_score : float, default 0.05
+        A joint whose best cycle score is no higher does not cycle (no period).
 
-    - ``min_copies`` (3): fewest copies of a motif that count as repetition.
-    - ``conserve`` (0.6): share of copies that must agree on a new column.
-    - ``edge_share`` (0.5): an end column of a voted pattern whose plurality symbol
-      holds no more than this share of the copies is trimmed (it is not conserved).
-    - ``match_fraction`` (0.5): least share of positions a copy must match.
-    - ``scan_alpha`` (0.05): expected chance copies per string tolerated by the scan.
-    - ``alpha`` (1e-2): chance level a string's repetition must beat to be a candidate.
-    - ``sync_fraction`` (0.5): share of the merged copy clusters of two strings that
-      must hold copies of both for them to be synchronised.
-    - ``window_support`` (0.34): share of a group's members that must show a copy in a window.
-    - ``max_pattern`` (64): longest motif, in symbols.
-    - ``seeds`` (3): how many of a string's most frequent digrams are grown into motifs.
-    - ``rounds`` (2): rounds of pooling; after each but the last, every member's
-      copies are located again with its voted pattern.
-    - ``joins_copies`` (4): a string outside every group joins one when, read in
-      the group's windows, at least this many of its copies have the common
-      length and half of their columns agree, beyond chance, in a share
-      ``conserve`` of them.
-    - ``timing`` ("auto"): how copies are located. ``"content"``: by content in
-      each string, joined in time (steps 1-6); ``"period"``: by time windows of
-      the action's period pooled over all strings (for real motion, where joints
-      cycle through the same few states at different rates and phases);
-      ``"auto"``: content, and the period mode when content finds no component.
-    - ``period_quantile`` (0.9): the period mode's pooled excess self-agreement
-      at each lag is this quantile over the strings (the driving joints decide).
-    - ``period_agreement`` (0.6): in the period mode, least share of times at
-      which a string's symbol recurs one (tracked) window later.
-
+    Examples
+    --------
     >>> from psgs.induce.synthetic import generate
     >>> case = generate(seed=1, noise=0.1)
     >>> result = PAL().induce(case.actiongram)

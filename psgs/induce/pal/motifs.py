@@ -40,6 +40,10 @@ class Timed:
 
 @dataclass(frozen=True)
 class Motif:
+    """A repeated pattern found in one string: its symbol codes, where its copies start, and
+    how unlikely that many copies are by chance (``significance``: log10 of the chance, at
+    most 0; lower is stronger)."""
+
     motif: np.ndarray
     starts: np.ndarray
     significance: float
