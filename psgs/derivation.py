@@ -158,8 +158,36 @@ def apply_tuple(system: _System, configuration: Sequence[Form], sync_tuple,
     component's rule (``None`` for terminal ones), or is the string
     ``"communicate"`` for the communication step.
 
-    Raises :class:`ValidationError` naming the reason when the step does not
-    apply (this is how witnesses are replayed and checked).
+    Parameters
+    ----------
+    system : PSGS or PCGS
+        The system the step belongs to.
+    configuration : sequence of forms
+        One sentential form per component.
+    sync_tuple : sequence or str
+        Per component a :class:`~psgs.model.Rule`, a rule label, or ``"#"``/``None``;
+        for a PCGS also the string ``"communicate"``.
+    positions : sequence, optional
+        Per component an index, a sequence of indices, or ``None``.
+
+    Returns
+    -------
+    Step
+        The step, with the configurations before and after it.
+
+    Raises
+    ------
+    ValidationError
+        Naming the reason when the step does not apply (this is how witnesses
+        are replayed and checked).
+
+    Examples
+    --------
+    >>> from psgs.model import Grammar, Nonterminal as N, PSGS, Rule, Terminal as T
+    >>> g = Grammar("G", N("S"), [Rule("p", N("S"), (T("a"), N("S"))), Rule("q", N("S"), ())])
+    >>> step = apply_tuple(PSGS((g,), [("p",)]), ((N("S"),),), ("p",))
+    >>> format_configuration(step.after)
+    '(aS)'
     """
     _require_system(system)
     configuration = _check_configuration(system, configuration)

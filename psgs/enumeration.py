@@ -257,6 +257,19 @@ def language(system, max_length: int, *, max_configurations: int = 200_000,
     ``reason`` says it in words (``"stopped after 200000 configurations
     (max_configurations)"``).
 
+    Returns
+    -------
+    Language
+        The words found, sorted by size, with ``complete``, ``bound`` and ``reason``.
+
+    Raises
+    ------
+    ValidationError
+        For a bad ``max_length``, budget or ``method``, or an object that is
+        not a PSGS, a PCGS or a Grammar.
+
+    Examples
+    --------
     >>> from psgs import Grammar, Nonterminal, Rule, Terminal
     >>> S = Nonterminal("S")
     >>> g = Grammar("G", S, [Rule("r1", S, (Terminal("a"), S)), Rule("r2", S, ())])
