@@ -84,8 +84,7 @@ def _version() -> str:
     try:
         return metadata.version("psgs")  # kinetology ships in the psgs distribution
     except metadata.PackageNotFoundError:  # run from a checkout
-        import psgs
-        return psgs.__version__
+        return "(not installed)"  # kinetology reads psgs only for actiongrams, not its version
 
 
 def _read(args, path: str):

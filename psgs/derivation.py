@@ -477,13 +477,3 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
         configuration = step.after
     return Derivation(system, tuple(steps), bound=bound, reason=reason)
 
-
-def __getattr__(name: str):
-    # TEMPORARY thin alias (layers branch): psgs/cli/core.py, owned by another helper, still
-    # imports ``language`` from here. It is the one upward import the architecture test
-    # tolerates, by name; the lead removes it (and the exemption) once cli imports
-    # psgs.enumeration.language.
-    if name in ("language", "Language"):
-        from . import enumeration
-        return getattr(enumeration, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -23,7 +23,7 @@ from ..errors import ValidationError
 from ..format import load
 from ..model import IDLE, PCGS, PSGS
 from . import INCOMPLETE, NO
-from ._types import example_names, grammar_file, natural, positive_int
+from ._types import example_names, grammar_file, natural, positive_float, positive_int
 
 _FILE_HELP = "a .psgs file, or the name of an example (paper_example, counting, ...)"
 
@@ -81,6 +81,8 @@ def register(subparsers) -> None:
                         help="--enumerate: total length bound (needed)")
     derive.add_argument("--max-configurations", type=positive_int, default=200_000, metavar="N",
                         help="--enumerate: search budget (default 200000)")
+    derive.add_argument("--max-seconds", type=positive_float, default=60.0, metavar="S",
+                        help="--enumerate: time budget in seconds, analysis included (default 60)")
     derive.add_argument("--mode", choices=("parallel", "single"),
                         help="PSGS: override the file's rewriting mode")
     derive.add_argument("--returning", choices=("yes", "no"),
@@ -141,17 +143,18 @@ def _show_words(system: PSGS | PCGS, words) -> str:
 
 
 def _enumerate(system: PSGS | PCGS, args) -> int:
-    from ..derivation import language
+    from ..enumeration import language
     if args.max_length is None:
         raise ValidationError("--enumerate needs --max-length L")
-    found = language(system, args.max_length, max_configurations=args.max_configurations)
+    found = language(system, args.max_length, max_configurations=args.max_configurations,
+                     max_seconds=args.max_seconds)
     out = sys.stdout
     for words in found:
         print(_show_words(system, words), file=out)
         if args.trace:
             print("  " + _witness(system, words), file=out)
     if not found.complete:
-        print(f"psgs: the enumeration is incomplete: {found.bound}; the words above are those "
+        print(f"psgs: the enumeration is incomplete: {found.reason}; the words above are those "
               f"found up to length {args.max_length}", file=sys.stderr)
         return INCOMPLETE
     if not len(found):  # say so: an empty stdout with status 0 looked like success
@@ -168,7 +171,7 @@ def _witness(system: PSGS | PCGS, words) -> str:
         return f"(no derivation: {exc})"
     if answer.answer == "yes" and answer.witness is not None:
         return str(answer.witness)
-    return f"(no derivation found: {answer.bound or answer.reason or answer.answer})"
+    return f"(no derivation found: {answer.reason or answer.answer})"
 
 
 def _random(system: PSGS | PCGS, args) -> int:
@@ -183,7 +186,8 @@ def _random(system: PSGS | PCGS, args) -> int:
     if derivation.is_terminal:
         return 0
     if derivation.bound:
-        print(f"psgs: the derivation did not finish: {derivation.bound}", file=sys.stderr)
+        print(f"psgs: the derivation did not finish: {derivation.reason or derivation.bound}",
+              file=sys.stderr)
         return INCOMPLETE
     print("psgs: the derivation is blocked: no step applies to its last configuration",
           file=sys.stderr)
