@@ -20,7 +20,7 @@ _LAZY = {
     "segment": "segmentation", "states": "segmentation", "segments": "segmentation",
     "Segmentation": "segmentation", "STATES": "segmentation",
     "compress": "codec", "decompress": "codec", "reconstruct": "codec",
-    "synthetic_motion": "synthetic",
+    "synthetic_motion": "synthetic", "write_bvh": "bvh_writer",
 }
 
 __all__ = ["Motion", "MotionFormatError", "Joint", "Skeleton", "AXES", *_LAZY]

@@ -16,7 +16,23 @@ import sys
 _COMMAND_MODULES = ("core", "check", "induce")
 
 
-def build_parser() -> argparse.ArgumentParser:
+def _plugin_commands(given) -> dict:
+    """Subcommands of other packages (entry-point group ``psgs.commands``: name = register)."""
+    from importlib.metadata import entry_points
+
+    commands = dict(given or {})
+    for ep in sorted(entry_points(group="psgs.commands"), key=lambda e: e.name):
+        if ep.name not in commands:
+            try:
+                commands[ep.name] = ep.load()
+            except Exception as exc:  # a broken plug-in: say which in one line, go on
+                print(f"psgs: warning: command {ep.name!r} could not be loaded: "
+                      f"{type(exc).__name__}: {exc}", file=sys.stderr)
+    return commands
+
+
+def build_parser(commands=None) -> argparse.ArgumentParser:
+    """The parser; ``commands`` adds name -> register(subparsers) beside the plug-ins'."""
     parser = argparse.ArgumentParser(
         prog="psgs", description="Parallel grammar systems: derive, check, export, induce.")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
@@ -29,13 +45,15 @@ def build_parser() -> argparse.ArgumentParser:
                 raise
             continue
         module.register(sub)
+    for register in _plugin_commands(commands).values():
+        register(sub)
     return parser
 
 
-def main(argv: list[str] | None = None) -> int:
+def main(argv: list[str] | None = None, commands=None) -> int:
     from ..errors import PSGSError
 
-    parser = build_parser()
+    parser = build_parser(commands)
     args, unrecognized = parser.parse_known_args(argv)
     error_status = getattr(args, "error_status", None)
     error_status = 2 if error_status is None else error_status
