@@ -275,6 +275,8 @@ def _learn_into(record: dict, action: Action, settings: Settings) -> None:
         "inducer": induction.inducer or settings.inducer,
         "params": {k: v for k, v in sorted(dict(induction.params).items())},
         "system": dumps(induction.system) if induction.system is not None else None,
+        # channel -> component name in the system (names made identifiers: Hips.rx -> Hips_rx)
+        "component_names": {c: induction.component_names.get(c, c) for c in channels},
         "frame_rate": motions[0].frame_rate,
         "skeleton_source": action.performances[used[0]].file,
         "mean_pose": {c: round(float(v), 6) for c, v in
