@@ -13,7 +13,7 @@ import os
 import sys
 
 # modules that add subcommands; each defines register(subparsers)
-_COMMAND_MODULES = ("core", "check", "induce")
+_COMMAND_MODULES = ("core", "check", "induce", "draw")
 
 
 def _plugin_commands(given) -> dict:
