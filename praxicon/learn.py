@@ -279,6 +279,8 @@ def _learn_into(record: dict, action: Action, settings: Settings) -> None:
         "component_names": {c: induction.component_names.get(c, c) for c in channels},
         "frame_rate": motions[0].frame_rate,
         "skeleton_source": action.performances[used[0]].file,
+        # every joint of the motion in skeleton order (JSON objects are written sorted)
+        "all_joints": list(dict.fromkeys(c.rsplit(".", 1)[0] for c in motions[0].channels)),
         "mean_pose": {c: round(float(v), 6) for c, v in
                       zip(motions[0].channels, np.mean(np.vstack([m.values for m in motions]),
                                                        axis=0))},

@@ -89,6 +89,8 @@ def actuator_matrix(records: list[dict]) -> tuple[list[str], list[str], list[lis
 
 
 def _pose_joints(record: dict) -> list[str]:
+    if record.get("all_joints"):
+        return list(record["all_joints"])
     seen: list[str] = []
     for channel in record.get("mean_pose", {}):
         joint = channel.rsplit(".", 1)[0]

@@ -160,7 +160,7 @@ def _graphviz(system, forest: Forest | None):
     import graphviz
 
     graph = graphviz.Digraph(name=system.name or "system", graph_attr={
-        "rankdir": "TB", "fontname": "Helvetica", "newrank": "true", "compound": "true"},
+        "rankdir": "TB", "fontname": "Helvetica", "splines": "line"},
         node_attr={"fontname": "Helvetica", "fontsize": "10"})
     if forest is not None:
         with graph.subgraph(name="cluster_forest") as trees:
@@ -193,7 +193,7 @@ def _graphviz(system, forest: Forest | None):
             a = f"r{index[ca]}_{ra}"
             if rb:
                 sync.edge(a, f"r{index[cb]}_{rb}", dir="none", constraint="false",
-                          color=_PALETTE[t % len(_PALETTE)], label=f"M{t + 1}", fontsize="8")
+                          color=_PALETTE[t % len(_PALETTE)], tooltip=f"tuple {t + 1} of M")
             else:
                 first = system.components[index[cb]].rules[0].label
                 sync.edge(a, f"r{index[cb]}_{first}", style="dashed", label=f"?{cb}",
@@ -265,6 +265,32 @@ def _matplotlib(system, forest: Forest | None):
     return fig
 
 
+def _render(system, forest: Forest | None, fmt: str, engine: str) -> bytes:
+    """The picture's bytes: Graphviz when asked (or ``auto`` and available), else matplotlib.
+
+    Under ``auto``, a Graphviz failure (``dot`` gives up on some large layouts)
+    falls back to matplotlib instead of failing.
+    """
+    import io
+
+    if engine == "graphviz" or (engine == "auto" and graphviz_available()):
+        import graphviz
+
+        try:
+            return _graphviz(system, forest).pipe(format=fmt, quiet=True)
+        except (graphviz.CalledProcessError, graphviz.ExecutableNotFound) as exc:
+            if engine == "graphviz":
+                raise ValidationError(f"graphviz could not draw this system: "
+                                      f"{str(exc).splitlines()[0]}") from None
+    import matplotlib.pyplot as plt
+
+    fig = _matplotlib(system, forest)
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format=fmt, dpi=120, metadata={"Date": None} if fmt == "svg" else None)
+    plt.close(fig)
+    return buffer.getvalue()
+
+
 def _forest_or_none(system, seed: int, max_steps: int) -> Forest | None:
     return parse_forest(system, seed=seed, max_steps=max_steps) if isinstance(system, PSGS) \
         else None
@@ -273,18 +299,8 @@ def _forest_or_none(system, seed: int, max_steps: int) -> Forest | None:
 def to_svg(system: PSGS | PCGS, *, seed: int = 0, max_steps: int = 200,
            engine: str = "auto") -> str:
     """The picture of :func:`draw` as SVG text."""
-    import io
-
     forest = _forest_or_none(system, seed, max_steps)
-    if engine == "graphviz" or (engine == "auto" and graphviz_available()):
-        return _graphviz(system, forest).pipe(format="svg").decode("utf-8")
-    fig = _matplotlib(system, forest)
-    buffer = io.StringIO()
-    fig.savefig(buffer, format="svg")
-    import matplotlib.pyplot as plt
-
-    plt.close(fig)
-    return buffer.getvalue()
+    return _render(system, forest, "svg", engine).decode("utf-8")
 
 
 def draw(system: PSGS | PCGS, path: str | Path, *, seed: int = 0, max_steps: int = 200,
@@ -326,12 +342,5 @@ def draw(system: PSGS | PCGS, path: str | Path, *, seed: int = 0, max_steps: int
     if engine not in ("auto", "graphviz", "matplotlib"):
         raise ValidationError(f"engine must be auto, graphviz or matplotlib, not {engine!r}")
     forest = _forest_or_none(system, seed, max_steps)
-    if engine == "graphviz" or (engine == "auto" and graphviz_available()):
-        path.write_bytes(_graphviz(system, forest).pipe(format=fmt))
-        return path
-    fig = _matplotlib(system, forest)
-    import matplotlib.pyplot as plt
-
-    fig.savefig(path, format=fmt, dpi=120)
-    plt.close(fig)
+    path.write_bytes(_render(system, forest, fmt, engine))
     return path
