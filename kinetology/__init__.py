@@ -12,6 +12,9 @@ from __future__ import annotations
 import importlib
 
 from .motion import AXES, Joint, Motion, MotionFormatError, Skeleton
+# imported now: the function shares its module's name, and a later first import of the
+# module would otherwise make ``kinetology.performances`` the module
+from .performances import performances
 
 # public name -> module that defines it (imported on first use)
 _LAZY = {
@@ -20,10 +23,13 @@ _LAZY = {
     "segment": "segmentation", "states": "segmentation", "segments": "segmentation",
     "Segmentation": "segmentation", "STATES": "segmentation",
     "compress": "codec", "decompress": "codec", "reconstruct": "codec",
-    "synthetic_motion": "synthetic", "write_bvh": "bvh_writer",
+    "synthetic_motion": "synthetic", "unwrap": "segmentation", "write_bvh": "bvh_writer",
+    "cut": "performances",
+    "Span": "labels", "read_cmu_truelabels": "labels", "read_bandai_json": "labels",
+    "actuator_map": "joints", "skeleton_parents": "joints",
 }
 
-__all__ = ["Motion", "MotionFormatError", "Joint", "Skeleton", "AXES", *_LAZY]
+__all__ = ["Motion", "MotionFormatError", "Joint", "Skeleton", "AXES", "performances", *_LAZY]
 
 
 def __getattr__(name: str):

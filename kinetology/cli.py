@@ -20,6 +20,7 @@ _PARAM_HELP = {
     "velocity_deadband": "velocity dead band in deg/s",
     "acceleration_deadband": "acceleration dead band in deg/s^2",
     "min_range": "channels moving less than this many degrees are left out",
+    "unwrap": "period in degrees of rotation channels, unwrapped before smoothing (0: off)",
 }
 
 

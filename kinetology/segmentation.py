@@ -24,21 +24,34 @@ borders lie exactly at zero crossings of the smoothed derivatives (which the
 reconstruction in :mod:`kinetology.codec` relies on), and wiggles smaller than
 the dead band never split a segment.
 
+Rotation channels are **unwrapped** first (``unwrap``, a period of 360°): a joint
+whose Euler angle crosses ±180° jumps by ~360° in the file, which would read as a huge
+range and spurious kinetemes; after unwrapping it moves continuously. Translation channels
+(``tx ty tz``) are never unwrapped.
+
 Channels whose smoothed range is below ``min_range`` degrees are *still* and
 are left out of the actiongram.
+
+Each segment also has a **displacement**: the signed change of the smoothed, unwrapped
+angle over it (degrees; the channel's unit for translations), and each channel an
+**actuator** (the joint it moves, :mod:`kinetology.joints`), with the joints' parents.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from types import MappingProxyType
+from typing import Mapping
 
 import numpy as np
 
+from .joints import actuator_map, skeleton_parents
 from .motion import Motion
 
-__all__ = ["STATES", "DEFAULTS", "smooth", "derivatives", "significant_sign", "states",
-           "Segmentation", "segments", "segment"]
+__all__ = ["STATES", "DEFAULTS", "smooth", "unwrap", "derivatives", "significant_sign",
+           "states", "Segmentation", "segments", "segment"]
+
+_TRANSLATIONS = ("tx", "ty", "tz")
 
 #: State letters, indexed by code: code = 2 * (θ' < 0) + ((θ' >= 0) == (θ'' < 0)).
 STATES = ("B", "G", "R", "Y")
@@ -49,7 +62,29 @@ DEFAULTS = MappingProxyType({
     "velocity_deadband": 5.0,        # degrees per second
     "acceleration_deadband": 200.0,  # degrees per second squared
     "min_range": 2.0,                # degrees; channels that move less are still
+    "unwrap": 360.0,                 # period of rotation channels in degrees; 0: no unwrapping
 })
+
+
+def _is_rotation(channel: str) -> bool:
+    return channel.rsplit(".", 1)[-1] not in _TRANSLATIONS
+
+
+def unwrap(values: np.ndarray, period: float = DEFAULTS["unwrap"]) -> np.ndarray:
+    """Remove jumps of more than half a ``period`` between frames (along axis 0).
+
+    ``period <= 0`` returns a copy unchanged.
+
+    >>> unwrap(np.array([170.0, 179.0, -178.0, -170.0]))
+    array([170., 179., 182., 190.])
+    """
+    values = np.asarray(values, dtype=float)
+    if period <= 0 or values.shape[0] < 2:
+        return values.copy()
+    return np.unwrap(values, period=period, axis=0)
+
+
+_unwrap = unwrap  # for functions whose parameter of that name shadows it
 
 
 def smooth(values: np.ndarray, frame_rate: float, sigma: float) -> np.ndarray:
@@ -121,15 +156,18 @@ def _codes(velocity_sign: np.ndarray, acceleration_sign: np.ndarray) -> np.ndarr
 
 def states(values: np.ndarray, frame_rate: float, *, smoothing: float = DEFAULTS["smoothing"],
            velocity_deadband: float = DEFAULTS["velocity_deadband"],
-           acceleration_deadband: float = DEFAULTS["acceleration_deadband"]) -> np.ndarray:
+           acceleration_deadband: float = DEFAULTS["acceleration_deadband"],
+           unwrap: float = DEFAULTS["unwrap"]) -> np.ndarray:
     """State code (index into :data:`STATES`) of every frame, ``frames x channels``.
 
-    ``values`` is ``frames x channels`` (or 1-D, one channel) in degrees.
+    ``values`` is ``frames x channels`` (or 1-D, one channel) of angles in
+    degrees, unwrapped with period ``unwrap`` (0: not) before smoothing.
     """
     values = np.asarray(values, dtype=float)
     one_channel = values.ndim == 1
     if one_channel:
         values = values[:, None]
+    values = _unwrap(values, unwrap)
     smoothed = smooth(values, frame_rate, smoothing)
     velocity, acceleration = derivatives(smoothed, frame_rate)
     out = np.empty(values.shape, dtype=np.int8)
@@ -146,6 +184,10 @@ class Segmentation:
     For channel ``c``: ``borders[c]`` holds the first frame of each segment
     followed by the frame count, ``codes[c]`` the state code of each segment.
     ``still`` names the channels left out because they do not move.
+    ``displacements[c]`` holds each segment's signed change of the smoothed,
+    unwrapped angle; ``actuators`` maps every kept channel to its joint and
+    ``skeleton`` every such joint to its parent joint (None for a root; empty
+    when the file gives no hierarchy, see :mod:`kinetology.joints`).
     """
 
     channels: tuple[str, ...]
@@ -154,6 +196,13 @@ class Segmentation:
     borders: tuple[np.ndarray, ...]
     codes: tuple[np.ndarray, ...]
     still: tuple[str, ...] = ()
+    displacements: tuple[np.ndarray, ...] = ()
+    actuators: Mapping[str, str] = field(default_factory=dict)
+    skeleton: Mapping[str, str | None] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "actuators", MappingProxyType(dict(self.actuators)))
+        object.__setattr__(self, "skeleton", MappingProxyType(dict(self.skeleton)))
 
     def symbols(self, c: int) -> tuple[str, ...]:
         """State letters of channel ``c``'s segments, in time order."""
@@ -162,6 +211,13 @@ class Segmentation:
     def durations(self, c: int) -> np.ndarray:
         """Segment durations of channel ``c`` in seconds."""
         return np.diff(self.borders[c]) / self.frame_rate
+
+    def joint_channels(self) -> dict[str, tuple[str, ...]]:
+        """Joint -> its kept channels, joints in the order of their first channel."""
+        out: dict[str, list[str]] = {}
+        for name in self.channels:
+            out.setdefault(self.actuators.get(name, name.split(".", 1)[0]), []).append(name)
+        return {k: tuple(v) for k, v in out.items()}
 
     @property
     def segment_count(self) -> int:
@@ -198,32 +254,45 @@ def segments(motion: Motion, channels=None, **params) -> Segmentation:
     seconds; larger merges quick wiggles), ``velocity_deadband`` (deg/s) and
     ``acceleration_deadband`` (deg/s²) (larger: fewer, longer segments),
     ``min_range`` (deg; channels whose smoothed range is smaller are still and
-    left out; 0 keeps every channel).
+    left out; 0 keeps every channel), ``unwrap`` (period in degrees of the
+    rotation channels, unwrapped before smoothing; 0 turns it off).
     """
     p = _check(params)
     if channels is None:
-        channels = [c for c in motion.channels if c.rsplit(".", 1)[-1] not in ("tx", "ty", "tz")]
+        channels = [c for c in motion.channels if _is_rotation(c)]
     channels = list(channels)
     for name in channels:
         motion.index(name)  # KeyError naming the channel when it does not exist
     values = motion.values[:, [motion.index(c) for c in channels]] if channels else \
         np.zeros((motion.frames, 0))
+    rotation = np.array([_is_rotation(c) for c in channels], dtype=bool)
+    if p["unwrap"] > 0 and rotation.any():
+        values = values.copy()
+        values[:, rotation] = unwrap(values[:, rotation], p["unwrap"])
     smoothed = smooth(values, motion.frame_rate, p["smoothing"])
     moving = (np.ptp(smoothed, axis=0) >= p["min_range"]) if motion.frames else \
         np.zeros(len(channels), bool)
     code = states(values[:, moving], motion.frame_rate, smoothing=p["smoothing"],
                   velocity_deadband=p["velocity_deadband"],
-                  acceleration_deadband=p["acceleration_deadband"])
-    borders, codes = [], []
+                  acceleration_deadband=p["acceleration_deadband"], unwrap=0.0)
+    borders, codes, moves = [], [], []
+    kept_smooth = smoothed[:, moving]
     for c in range(code.shape[1]):
         column = code[:, c]
         starts = np.concatenate(([0], np.flatnonzero(column[1:] != column[:-1]) + 1))
-        borders.append(np.append(starts, motion.frames))
+        ends = np.append(starts, motion.frames)
+        borders.append(ends)
         codes.append(column[starts])
+        # change from a segment's first frame to the next one's (the last: to the last frame),
+        # so a channel's displacements add up to its whole change
+        at = kept_smooth[np.minimum(ends, motion.frames - 1), c]
+        moves.append(np.diff(at))
     kept = tuple(name for name, m in zip(channels, moving) if m)
     still = tuple(name for name, m in zip(channels, moving) if not m)
+    owners = actuator_map(motion, kept)
     return Segmentation(kept, motion.frame_rate, motion.frames, tuple(borders), tuple(codes),
-                        still)
+                        still, tuple(moves), owners,
+                        skeleton_parents(motion, dict.fromkeys(owners.values())))
 
 
 def segment(motion: Motion, channels=None, **params):

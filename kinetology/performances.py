@@ -1,0 +1,141 @@
+"""Performances: one :class:`~kinetology.motion.Motion` per performance of an action.
+
+An action is learned from several performances of it, each kept apart (never joined into
+one stream): takes in separate files, or labelled spans of one take. :func:`cut` takes a
+time span out of a motion; :func:`performances` gathers them from files or from spans.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Iterable
+
+from .labels import Span
+from .motion import Motion
+
+__all__ = ["cut", "performances", "from_files", "from_spans"]
+
+
+def cut(motion: Motion, start: float | None = None, stop: float | None = None) -> Motion:
+    """The frames of ``motion`` from ``start`` to ``stop`` seconds (a new motion).
+
+    Parameters
+    ----------
+    motion : Motion
+        The take.
+    start, stop : float, optional
+        Seconds from the first frame; default the start and the end of the take. Frame ``i``
+        is at ``i / frame_rate``; the cut keeps frames with ``start <= t < stop`` (rounded to
+        the nearest frame), so cuts at the borders of adjacent spans share no frame.
+
+    Returns
+    -------
+    Motion
+        Same channels, frame rate and skeleton; ``meta["cut"]`` holds ``(start, stop)``
+        in seconds of the original take.
+
+    Raises
+    ------
+    ValueError
+        ``start`` or ``stop`` outside the take, or ``stop <= start`` (the message gives the
+        take's length).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> m = Motion(np.arange(10.0)[:, None], ("knee.rx",), 10.0)
+    >>> cut(m, 0.2, 0.5).column("knee.rx")
+    array([2., 3., 4.])
+    """
+    length = motion.duration
+    begin = 0.0 if start is None else float(start)
+    end = length if stop is None else float(stop)
+    where = f"the take {motion.source} ({length:g} s, 0 to {length:g})"
+    tolerance = 0.5 / motion.frame_rate  # half a frame: label spans are rounded to frames
+    if not (begin == begin and end == end):  # NaN
+        raise ValueError(f"start and stop must be numbers, not {start!r}, {stop!r}")
+    if begin < 0 or begin >= length:
+        raise ValueError(f"start {begin:g} s is outside {where}")
+    if end > length + tolerance or end <= 0:
+        raise ValueError(f"stop {end:g} s is outside {where}")
+    if end <= begin:
+        raise ValueError(f"stop {end:g} s is not after start {begin:g} s")
+    first = int(round(begin * motion.frame_rate))
+    last = min(motion.frames, int(round(end * motion.frame_rate)))
+    if last <= first:
+        raise ValueError(f"{begin:g}..{end:g} s holds no frame at {motion.frame_rate:g} fps")
+    offset = motion.meta.get("cut", (0.0, length))[0]
+    meta = {**motion.meta, "cut": (offset + first / motion.frame_rate,
+                                   offset + last / motion.frame_rate)}
+    return Motion(motion.values[first:last], motion.channels, motion.frame_rate,
+                  motion.skeleton, motion.source, meta)
+
+
+def from_files(paths: Iterable[str | Path], **options) -> tuple[Motion, ...]:
+    """One performance per file (each file one take), read by :func:`kinetology.read`."""
+    from .readers import read
+
+    return tuple(read(p, **options) for p in paths)
+
+
+def from_spans(motion: Motion, spans: Iterable[Span], label: str | None = None, *,
+               min_seconds: float = 0.0) -> tuple[Motion, ...]:
+    """One performance per labelled span of one take.
+
+    Parameters
+    ----------
+    motion : Motion
+        The take the spans label.
+    spans : iterable of Span
+        From :func:`kinetology.labels.read_cmu_truelabels` or
+        :func:`~kinetology.labels.read_bandai_json`.
+    label : str, optional
+        Keep only spans with this label (default: all).
+    min_seconds : float
+        Leave out spans shorter than this.
+
+    Returns
+    -------
+    tuple of Motion
+        In time order; each ``meta`` has ``"label"`` and ``"cut"``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> m = Motion(np.zeros((30, 1)), ("knee.rx",), 10.0)
+    >>> spans = [Span("a", 0.0, 1.0), Span("b", 1.0, 2.0), Span("a", 2.0, 3.0)]
+    >>> [p.frames for p in from_spans(m, spans, "a")]
+    [10, 10]
+    """
+    out = []
+    for span in spans:
+        if (label is None or span.label == label) and span.duration >= min_seconds:
+            part = cut(motion, span.start, min(span.stop, motion.duration))
+            out.append(Motion(part.values, part.channels, part.frame_rate, part.skeleton,
+                              part.source, {**part.meta, "label": span.label}))
+    return tuple(out)
+
+
+def performances(*sources, spans: Iterable[Span] | None = None, label: str | None = None,
+                 min_seconds: float = 0.0) -> tuple[Motion, ...]:
+    """Performances from files (one take each) or from the labelled spans of one take.
+
+    ``performances("a.bvh", "b.bvh")`` reads each file as one performance (a
+    :class:`Motion` is taken as it is). ``performances("take.amc", spans=spans,
+    label="Squat")`` cuts the spans labelled ``Squat`` out of the one take.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> m = Motion(np.zeros((30, 1)), ("knee.rx",), 10.0)
+    >>> len(performances(m, m)), len(performances(m, spans=[Span("a", 0.5, 2.0)]))
+    (2, 1)
+    """
+    from .readers import read
+
+    motions = [s if isinstance(s, Motion) else read(s) for s in sources]
+    if spans is None:
+        return tuple(motions)
+    if len(motions) != 1:
+        raise ValueError(f"spans label one take; got {len(motions)} sources")
+    return from_spans(motions[0], spans, label, min_seconds=min_seconds)
