@@ -23,7 +23,7 @@ from types import MappingProxyType
 
 import numpy as np
 
-from .motion import Joint, Motion, MotionFormatError, Skeleton
+from .motion import Joint, Motion, MotionFormatError, Skeleton, build_motion
 from .textblocks import parse_rows
 
 __all__ = ["AsfSkeleton", "read_asf", "parse_asf", "read_amc", "parse_amc", "find_asf"]
@@ -49,7 +49,7 @@ def read_asf(path: str | Path) -> AsfSkeleton:
 
 def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
     """Parse ASF text into bone dofs and a :class:`Skeleton`."""
-    lines = text.splitlines()
+    lines = _without_bom(text).splitlines()
     section = None
     root = {"order": ("tx", "ty", "tz", "rx", "ry", "rz"), "axis": "XYZ",
             "position": (0.0, 0.0, 0.0), "orientation": (0.0, 0.0, 0.0)}
@@ -96,6 +96,8 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
                     fail(f"bad root order {' '.join(parts[1:])!r}", number)
                 root["order"] = order
             elif key == "axis":
+                if len(parts) < 2:
+                    fail("root axis needs an order such as XYZ", number)
                 root["axis"] = _axis_order(parts[1], fail, number)
             elif key in ("position", "orientation"):
                 root[key] = numbers(parts[1:], 3, number)
@@ -158,7 +160,11 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
         joints.append(Joint(bone, parent_index, offset,
                             tuple(f"{bone}.{d}" for d in info["dof"]), info["order"][::-1],
                             info["axis"]))
-        vector = tuple(float(info["length"]) * np.asarray(info["direction"]))
+        with np.errstate(over="ignore", invalid="ignore"):
+            vector = tuple(float(info["length"]) * np.asarray(info["direction"]))
+        if not np.isfinite(vector).all():
+            raise MotionFormatError(f"bone {bone!r}: length x direction overflows",
+                                    source=source, line=info["line"])
         kids = children.get(bone, [])
         for child in kids:
             place(child, index, vector)
@@ -176,6 +182,11 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
                                 source=source)
     return AsfSkeleton(MappingProxyType(dofs), Skeleton(tuple(joints), length_unit=f"ASF units (length {scale})"),
                        scale)
+
+
+def _without_bom(text: str) -> str:
+    """``text`` without a leading UTF-8 byte-order mark (it is not part of the first word)."""
+    return text[1:] if text.startswith("\ufeff") else text
 
 
 def _axis_order(text: str, fail, number) -> str:
@@ -214,7 +225,8 @@ def _key_file_dofs(path: Path) -> dict | None:
     if not path.is_file():
         return None
     dofs = {}
-    for number, line in enumerate(path.read_text().splitlines(), 1):
+    text = path.read_text(encoding="utf-8", errors="replace")
+    for number, line in enumerate(_without_bom(text).splitlines(), 1):
         parts = line.split()
         if parts:
             if not set(p.lower() for p in parts[1:]) <= _DOFS:
@@ -227,7 +239,7 @@ def _key_file_dofs(path: Path) -> dict | None:
 def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None = None,
               source: str = "<amc>", frame_rate: float = _DEFAULT_FRAME_RATE) -> Motion:
     """Parse AMC text. ``dofs`` (bone -> dof names) names the channels and checks counts."""
-    lines = text.splitlines()
+    lines = _without_bom(text).splitlines()
     start = 0
     degrees = True
     while start < len(lines) and (not lines[start].strip() or lines[start].lstrip()[0] in "#:"):
@@ -249,6 +261,10 @@ def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None 
     per_frame = 1
     while per_frame < len(data) and not data[per_frame].strip().isdigit():
         per_frame += 1
+    for i in range(1, per_frame):
+        if not data[i].strip():  # a blank line inside a frame (blank lines only lead or trail)
+            raise MotionFormatError("expected a bone line, found an empty line", source=source,
+                                    line=line_of(i), column=1)
     bones = [ln.split(None, 1)[0] for ln in data[1:per_frame]]
     if len(set(bones)) != len(bones):
         raise MotionFormatError("a bone appears twice in frame 1", source=source,
@@ -267,7 +283,7 @@ def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None 
                                 f"of {per_frame - 1} bone lines)", source=source,
                                 line=line_of(len(data) - 1))
     frames = len(data) // per_frame
-    columns, names = [], []
+    columns, names, slots = [], [], []  # slots: the frame line (1..) of each column
     for b, bone in enumerate(bones):
         slot = b + 1
         rows = [ln.split(None, 1)[1] if len(ln.split(None, 1)) > 1 else ""
@@ -285,10 +301,19 @@ def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None 
                            line_of=lambda i, s=slot: line_of(s + i * per_frame))
         columns.append(block)
         names.extend(f"{bone}.{d}" for d in bone_dofs)
+        slots.extend([slot] * len(bone_dofs))
     values = np.hstack(columns) if columns else np.zeros((frames, 0))
     if not degrees:
         # every column but a translation is an angle (also ``bone.1`` .. without a skeleton)
         rotation = [i for i, n in enumerate(names)
                     if n.rsplit(".", 1)[1] not in ("tx", "ty", "tz")]
-        values[:, rotation] = np.degrees(values[:, rotation])
-    return Motion(values, tuple(names), frame_rate, skeleton, source, {"format": "amc"})
+        with np.errstate(over="ignore"):
+            converted = np.degrees(values[:, rotation])
+        if not np.isfinite(converted).all():  # 1e307 radians is finite, its degrees are not
+            row, k = np.argwhere(~np.isfinite(converted))[0]
+            col = rotation[k]
+            raise MotionFormatError(f"{names[col]}: {values[row, col]:g} radians is too large "
+                                    f"to convert to degrees", source=source,
+                                    line=line_of(slots[col] + int(row) * per_frame))
+        values[:, rotation] = converted
+    return build_motion(values, tuple(names), frame_rate, skeleton, source, {"format": "amc"})

@@ -9,12 +9,14 @@ when it is malformed is it walked line by line to name the bad line.
 
 from __future__ import annotations
 
+import math
 import re
+from collections import deque
 from pathlib import Path
 
 import numpy as np
 
-from .motion import Joint, Motion, MotionFormatError, Skeleton
+from .motion import Joint, Motion, MotionFormatError, Skeleton, build_motion
 from .textblocks import parse_rows
 
 __all__ = ["read_bvh", "parse_bvh"]
@@ -32,6 +34,8 @@ def read_bvh(path: str | Path) -> Motion:
 
 def parse_bvh(text: str, source: str = "<bvh>") -> Motion:
     """Parse BVH text; see :func:`read_bvh`."""
+    if text.startswith("\ufeff"):  # a UTF-8 byte-order mark is not part of the first word
+        text = text[1:]
     lines = text.splitlines()
     tokens = _HierarchyTokens(lines, source)
     tokens.expect("HIERARCHY")
@@ -51,9 +55,10 @@ def parse_bvh(text: str, source: str = "<bvh>") -> Motion:
     frames = _read_header_number(lines, tokens, "Frames:", source, integer=True)
     frames_line = tokens.line_index
     frame_time = _read_header_number(lines, tokens, "Frame Time:", source, integer=False)
-    if frame_time <= 0:
-        raise MotionFormatError(f"frame time must be positive, not {frame_time}", source=source,
-                                line=tokens.line_index)
+    # nan, inf, 0 and a time so small that its rate overflows (1e-320) are all unreadable
+    if not (math.isfinite(frame_time) and frame_time > 0 and math.isfinite(1.0 / frame_time)):
+        raise MotionFormatError(f"frame time must be a positive finite number of seconds, "
+                                f"not {frame_time}", source=source, line=tokens.line_index)
     first_data = tokens.line_index + 1
     body = [ln for ln in lines[first_data - 1:]]
     # trailing blank lines are common; anything else beyond the frames is an error
@@ -66,10 +71,11 @@ def parse_bvh(text: str, source: str = "<bvh>") -> Motion:
             source=source, line=frames_line)
     skeleton = Skeleton(tuple(joints), length_unit="BVH file units")
     rate = 1.0 / frame_time
-    if abs(rate - round(rate)) < 0.01:  # "Frame Time: .0083333" means 120 fps
+    # "Frame Time: .0083333" means 120 fps; below 1 fps (a frame every 100 s) rounding would
+    # make the rate 0, so slow rates are kept as they are
+    if rate >= 1 and abs(rate - round(rate)) < 0.01:
         rate = float(round(rate))
-    return Motion(values, tuple(channels), rate, skeleton, source,
-                  {"format": "bvh"})
+    return build_motion(values, tuple(channels), rate, skeleton, source, {"format": "bvh"})
 
 
 def _read_header_number(lines, tokens, label: str, source: str, *, integer: bool):
@@ -98,6 +104,10 @@ def _read_header_number(lines, tokens, label: str, source: str, *, integer: bool
 def _read_joint(tokens, joints, channels, parent, end_site=False, name=None):
     if name is None:
         name = tokens.next("joint name")
+    if not end_site:
+        if name in tokens.joint_names:  # its channels would share names with the first one's
+            tokens.fail(f"two joints are named {name!r}")
+        tokens.joint_names.add(name)
     tokens.expect("{")
     offset = (0.0, 0.0, 0.0)
     own_channels: tuple[str, ...] = ()
@@ -157,8 +167,11 @@ class _HierarchyTokens:
         self.lines = lines
         self.source = source
         self.line_index = 0  # number of lines fully consumed
-        self.pending: list[tuple[str, int]] = []
+        # a deque: one line may hold the whole hierarchy (12,000 joints), and list.pop(0)
+        # per token made reading it quadratic
+        self.pending: deque[tuple[str, int]] = deque()
         self.last = (1, 1)
+        self.joint_names: set[str] = set()
 
     def _fill(self) -> bool:
         while not self.pending:
@@ -166,7 +179,7 @@ class _HierarchyTokens:
                 return False
             line = self.lines[self.line_index]
             self.line_index += 1
-            self.pending = [(m.group(), m.start() + 1) for m in _TOKEN.finditer(line)]
+            self.pending = deque((m.group(), m.start() + 1) for m in _TOKEN.finditer(line))
             self.current_line = self.line_index
         return True
 
@@ -177,7 +190,7 @@ class _HierarchyTokens:
         if not self._fill():
             raise MotionFormatError(f"file ends where {what} was expected", source=self.source,
                                     line=max(1, len(self.lines)))
-        token, column = self.pending.pop(0)
+        token, column = self.pending.popleft()
         self.last = (self.current_line, column)
         return token
 

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .motion import Motion
+from .motion import Motion, MotionFormatError
 
 __all__ = ["rotation_matrices", "forward_kinematics", "joint_angle"]
 
@@ -48,7 +48,9 @@ def forward_kinematics(motion: Motion) -> np.ndarray:
     """Global joint positions, shape ``frames x joints x 3`` (skeleton order).
 
     Raises ``ValueError`` when the motion has no skeleton (an AMC read
-    without its ASF).
+    without its ASF), and :class:`~kinetology.motion.MotionFormatError` (a
+    ``ValueError`` too) when finite but extreme offsets or translations make a
+    position overflow, instead of returning ``inf`` or ``nan``.
     """
     skeleton = motion.skeleton
     if skeleton is None:
@@ -80,8 +82,15 @@ def forward_kinematics(motion: Motion) -> np.ndarray:
         else:
             parent_rotation = rotations[joint.parent]
             rotations[j] = parent_rotation @ local
-            positions[:, j] = positions[:, joint.parent] + np.einsum(
-                "fij,fj->fi", parent_rotation, translation)
+            with np.errstate(over="ignore", invalid="ignore"):
+                positions[:, j] = positions[:, joint.parent] + np.einsum(
+                    "fij,fj->fi", parent_rotation, translation)
+        if not np.isfinite(positions[:, j]).all():
+            # finite offsets and angles can still add up past the largest float
+            frame = int(np.argwhere(~np.isfinite(positions[:, j]))[0][0])
+            raise MotionFormatError(f"forward kinematics overflows at joint {joint.name!r}, "
+                                    f"frame {frame}: its offsets or translations are too large",
+                                    source=motion.source)
     return positions
 
 

@@ -14,7 +14,7 @@ from types import MappingProxyType
 
 import numpy as np
 
-__all__ = ["MotionFormatError", "Joint", "Skeleton", "Motion", "AXES"]
+__all__ = ["MotionFormatError", "Joint", "Skeleton", "Motion", "AXES", "build_motion"]
 
 #: Channel axes, in the order a joint's channels are listed.
 AXES = ("tx", "ty", "tz", "rx", "ry", "rz")
@@ -167,3 +167,17 @@ class Motion:
     def __repr__(self) -> str:
         return (f"Motion({self.source!r}, {self.frames} frames x {len(self.channels)} channels "
                 f"at {self.frame_rate:g} fps)")
+
+
+def build_motion(values, channels, frame_rate, skeleton=None, source="<motion>",
+                 meta=None) -> Motion:
+    """A :class:`Motion` for a reader: what :class:`Motion` refuses becomes a :class:`MotionFormatError`.
+
+    Readers check their input as they go; this is the last line of that defence, so that a
+    file the checks missed still gives the documented error naming the file, never the plain
+    ``ValueError`` of the constructor.
+    """
+    try:
+        return Motion(values, channels, frame_rate, skeleton, source, meta or {})
+    except ValueError as exc:
+        raise MotionFormatError(str(exc), source=source) from None

@@ -229,8 +229,10 @@ class Segmentation:
         from psgs.actiongram import Actiongram
 
         strings = {name: self.symbols(c) for c, name in enumerate(self.channels)}
-        # rounded to the microsecond so the text form stays readable
-        durations = {name: tuple(round(float(d), 6) for d in self.durations(c))
+        # rounded to the microsecond so the text form stays readable; above 10 kHz to finer
+        # steps, at least 1/100 of a frame (at 2 MHz microseconds rounded frames to 0)
+        digits = 6 + max(0, int(np.ceil(np.log10(self.frame_rate))) - 4)
+        durations = {name: tuple(round(float(d), digits) for d in self.durations(c))
                      for c, name in enumerate(self.channels)}
         return Actiongram.from_strings(strings, durations)
 

@@ -19,6 +19,18 @@ The plain-text form, one actuator per line::
 ``@`` or ``:`` and not starting with ``#``; actuator names likewise, also
 without white space. Bad input raises :class:`~psgs.errors.FormatError`
 naming ``source:line:column``.
+
+Three optional extras describe real motion (all absent in older files, which
+still read):
+
+- a **displacement** per symbol, the signed change of the channel over the
+  segment (degrees for rotations), written ``sym@D~X``: ``B@0.5~12.25``;
+- an **actuator map**, string name -> actuator (joint); by default the part
+  of the name before the first dot (``lfemur.rx`` -> ``lfemur``), a name
+  without a dot its own actuator; other assignments are written
+  ``%actuator lfemur: lfemur.rx lfemur.ry``;
+- a **skeleton**, actuator -> parent actuator (none for a root), written
+  ``%parent lfemur: root`` and ``%parent root:`` for a root.
 """
 
 from __future__ import annotations
@@ -32,7 +44,7 @@ from pathlib import Path
 
 from .errors import FormatError
 
-__all__ = ["Actiongram", "load_actiongram"]
+__all__ = ["Actiongram", "default_actuator", "load_actiongram"]
 
 _JSON_FORMAT = "psgs-actiongram"
 _NUMBER = re.compile(r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?\Z")
@@ -44,10 +56,21 @@ def _shown(value: object, limit: int = 40) -> str:
     return text if len(text) <= limit else text[:limit - 5] + "...'" + f" ({len(str(value))} chars)"
 
 
+def _not_unicode(text: str) -> bool:
+    """True for text with a lone surrogate (JSON ``"\\ud800"``): it cannot be written as UTF-8."""
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError:
+        return True
+    return False
+
+
 def _bad_name(name: object) -> str | None:
     """Why ``name`` cannot name an actuator, or None when it can."""
     if not isinstance(name, str) or not name:
         return "an actuator name must be non-empty text"
+    if _not_unicode(name):
+        return f"actuator name {_shown(name)} is not valid Unicode (a lone surrogate)"
     if any(ch.isspace() for ch in name) or "@" in name or ":" in name or name.startswith("#"):
         return (f"actuator name {_shown(name)} must have no white space, '@' or ':' and not "
                 f"start with '#'")
@@ -57,6 +80,8 @@ def _bad_name(name: object) -> str | None:
 def _bad_symbol(symbol: object) -> str | None:
     if not isinstance(symbol, str) or not symbol:
         return f"a symbol must be non-empty text, not {_shown(symbol)}"
+    if _not_unicode(symbol):
+        return f"symbol {_shown(symbol)} is not valid Unicode (a lone surrogate)"
     if any(ch.isspace() for ch in symbol) or "@" in symbol or ":" in symbol or symbol.startswith("#"):
         return (f"symbol {_shown(symbol)} must have no white space, '@' or ':' and not start "
                 f"with '#'")
@@ -79,6 +104,24 @@ def _bad_duration(value: object) -> str | None:
     return None
 
 
+def _bad_displacement(value: object) -> str | None:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return f"a displacement must be a number, not {_shown(value)}"
+    if not _finite(value):
+        return f"a displacement must be finite, not {_shown(value)}"
+    return None
+
+
+def default_actuator(name: str) -> str:
+    """The actuator a string belongs to by default: its name before the first dot.
+
+    >>> default_actuator("lfemur.rx"), default_actuator("root"), default_actuator(".x")
+    ('lfemur', 'root', '.x')
+    """
+    head = name.split(".", 1)[0]
+    return head if head else name
+
+
 def _plain_durations(durations: tuple) -> bool:
     """Fast check that every duration is a positive finite int or float (not bool)."""
     if not durations:
@@ -86,6 +129,21 @@ def _plain_durations(durations: tuple) -> bool:
     if not set(map(type, durations)) <= {int, float}:
         return False
     return min(durations) > 0 and all(map(_finite, durations))
+
+
+def _check_times_advance(name: str, origin: float, durations: tuple[float, ...]) -> None:
+    """FormatError when a duration vanishes beside its start time (``T + D == T`` in floats).
+
+    ``s@1e15: a@1e-9`` is positive on paper but adds nothing to 1e15, so two symbols would
+    share one start time and every later computation on times (PAL's time grid) divides by 0.
+    """
+    t = origin
+    for j, d in enumerate(durations):
+        after = t + d
+        if after == t:
+            raise FormatError(f"string {_shown(name)}: duration {d!r} of symbol {j + 1} vanishes "
+                              f"beside its start time {t!r} (T + D == T in floating point)")
+        t = after
 
 
 def _format_number(value: float) -> str:
@@ -109,6 +167,20 @@ def _merge(symbols: Sequence[str], durations: Sequence[float]) -> tuple[tuple[st
     return tuple(out_symbols), tuple(out_durations)
 
 
+def _merge_displacements(symbols: Sequence[str],
+                         displacements: Sequence[float]) -> tuple[float, ...]:
+    """The displacements of :func:`_merge`'s segments: a merged run's changes add up."""
+    out: list[float] = []
+    previous = None
+    for sym, disp in zip(symbols, displacements):
+        if out and previous == sym:
+            out[-1] += disp
+        else:
+            out.append(float(disp))
+        previous = sym
+    return tuple(out)
+
+
 @dataclass(frozen=True)
 class Actiongram:
     """Named, timed symbol strings, one per actuator (immutable).
@@ -129,6 +201,12 @@ class Actiongram:
     symbols: tuple[tuple[str, ...], ...]
     segment_durations: tuple[tuple[float, ...], ...]
     origins: tuple[float, ...] = ()
+    #: per string, one signed displacement per symbol, or None (unknown); () = all unknown
+    segment_displacements: tuple[tuple[float, ...] | None, ...] = ()
+    #: per string, the actuator (joint) it belongs to; () = :func:`default_actuator` of each
+    string_actuators: tuple[str, ...] = ()
+    #: ``(actuator, parent or None)`` pairs, in the motion file's order; () = no skeleton known
+    skeleton_edges: tuple[tuple[str, str | None], ...] = ()
 
     def __post_init__(self) -> None:
         names = tuple(self.names)
@@ -170,29 +248,117 @@ class Actiongram:
             if not math.isfinite(float(origin) + sum(d)):
                 raise FormatError(f"string {_shown(name)}: its times overflow (the durations "
                                   f"add up to more than a float can hold)")
+            _check_times_advance(name, float(origin), d)
             merged_symbols.append(s)
             merged_durations.append(d)
         object.__setattr__(self, "names", names)
         object.__setattr__(self, "symbols", tuple(merged_symbols))
         object.__setattr__(self, "segment_durations", tuple(merged_durations))
         object.__setattr__(self, "origins", tuple(float(o) for o in origins))
+        self._set_extras(names, symbols)  # after the names are checked; needs unmerged symbols
+
+    def _set_extras(self, names: tuple[str, ...], symbols: tuple[tuple[str, ...], ...]) -> None:
+        """Validate and normalise displacements, actuator map and skeleton (before merging)."""
+        displacements = tuple(self.segment_displacements) or (None,) * len(names)
+        if len(displacements) != len(names):
+            raise ValueError("segment_displacements must have one entry per string")
+        rows: list[tuple[float, ...] | None] = []
+        for name, syms, disps in zip(names, symbols, displacements):
+            if disps is None:
+                rows.append(None)
+                continue
+            if isinstance(disps, (str, bytes)) or not isinstance(disps, Iterable):
+                raise FormatError(f"string {_shown(name)}: displacements must be a list of "
+                                  f"numbers or None, not {_shown(disps)}")
+            disps = tuple(disps)
+            if len(disps) != len(syms):
+                raise FormatError(f"string {_shown(name)} has {len(syms)} symbols but "
+                                  f"{len(disps)} displacements")
+            for disp in disps:
+                problem = _bad_displacement(disp)
+                if problem:
+                    raise FormatError(f"string {_shown(name)}: {problem}")
+            # an empty string has nothing to displace: unknown, as the text form reads it back
+            rows.append(_merge_displacements(syms, disps) if syms else None)
+        object.__setattr__(self, "segment_displacements", tuple(rows))
+
+        actuators = tuple(self.string_actuators)
+        if not actuators:
+            actuators = tuple(default_actuator(n) if isinstance(n, str) else n for n in names)
+        if len(actuators) != len(names):
+            raise ValueError("string_actuators must have one entry per string")
+        for name, actuator in zip(names, actuators):
+            problem = _bad_name(actuator)
+            if problem:
+                raise FormatError(f"string {_shown(name)}: actuator {_shown(actuator)}: {problem}")
+        object.__setattr__(self, "string_actuators", actuators)
+
+        edges: list[tuple[str, str | None]] = []
+        parent_of: dict[str, str | None] = {}
+        for edge in self.skeleton_edges:
+            if isinstance(edge, (str, bytes)) or len(tuple(edge)) != 2:
+                raise FormatError(f"a skeleton entry must be (actuator, parent), not {_shown(edge)}")
+            child, parent = tuple(edge)
+            for joint in (child,) if parent is None else (child, parent):
+                problem = _bad_name(joint)
+                if problem:
+                    raise FormatError(f"skeleton: {problem}")
+            if child in parent_of:
+                raise FormatError(f"skeleton: {_shown(child)} is given a parent twice")
+            if parent == child:
+                raise FormatError(f"skeleton: {_shown(child)} is its own parent")
+            parent_of[child] = parent
+            edges.append((child, parent))
+        rooted: set[str] = set()  # joints whose parent chain is known to end (linear time)
+        for start in parent_of:  # a parent chain that comes back is not a skeleton
+            chain, joint = [start], parent_of[start]
+            on_chain = {start}
+            while joint is not None and joint in parent_of and joint not in rooted:
+                if joint in on_chain:
+                    raise FormatError(f"skeleton: the parents of {_shown(start)} form a cycle")
+                chain.append(joint)
+                on_chain.add(joint)
+                joint = parent_of[joint]
+            rooted.update(chain)
+        object.__setattr__(self, "skeleton_edges", tuple(edges))
 
     # -- construction ------------------------------------------------------
     @classmethod
     def from_strings(cls, strings: Mapping[str, Iterable[str] | str],
                      durations: Mapping[str, Iterable[float]] | None = None,
-                     starts: Mapping[str, float] | None = None) -> "Actiongram":
+                     starts: Mapping[str, float] | None = None, *,
+                     displacements: Mapping[str, Iterable[float]] | None = None,
+                     actuators: Mapping[str, str] | None = None,
+                     skeleton: Mapping[str, str | None] | None = None) -> "Actiongram":
         """Build from ``{name: symbols}`` (a ``str`` is read one character per symbol).
 
         ``durations`` maps a name to one duration per symbol (default 1 each);
         ``starts`` maps a name to the start time of its string (default 0).
-        Adjacent equal symbols are merged, their durations added.
+        Adjacent equal symbols are merged, their durations added (and their
+        displacements). ``displacements`` maps a name to one signed change per
+        symbol (a string left out: unknown); ``actuators`` maps a name to its
+        actuator (default :func:`default_actuator`); ``skeleton`` maps an
+        actuator to its parent (None for a root).
+
+        >>> ag = Actiongram.from_strings({"lhumerus.rx": "BGG", "lhumerus.rz": "Y"},
+        ...                              displacements={"lhumerus.rx": [4, -1, -2.5]},
+        ...                              skeleton={"lhumerus": "lclavicle", "lclavicle": None})
+        >>> ag.displacements("lhumerus.rx"), ag.displacements("lhumerus.rz")
+        ((4.0, -3.5), None)
+        >>> ag.actuators, ag.channels("lhumerus"), ag.parent("lhumerus")
+        (('lhumerus',), ('lhumerus.rx', 'lhumerus.rz'), 'lclavicle')
         """
         durations = durations or {}
         starts = starts or {}
+        displacements = displacements or {}
+        actuators = actuators or {}
         for extra in (*durations, *starts):  # in the order given: the same error every run
             if extra not in strings:
                 raise FormatError(f"durations or starts given for unknown string "
+                                  f"{_shown(extra)}")
+        for extra in (*displacements, *actuators):
+            if extra not in strings:
+                raise FormatError(f"displacements or actuators given for unknown string "
                                   f"{_shown(extra)}")
         names, symbol_rows, duration_rows, origins = [], [], [], []
         for name, syms in strings.items():
@@ -202,16 +368,27 @@ class Actiongram:
             symbol_rows.append(syms)
             duration_rows.append(durs)
             origins.append(starts.get(name, 0.0))
-        return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins))
+        disp_rows = tuple(tuple(displacements[n]) if n in displacements else None for n in names)
+        owner = tuple(actuators[n] if n in actuators else default_actuator(n)
+                      if isinstance(n, str) else n for n in names)
+        edges = tuple((skeleton or {}).items())
+        return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins),
+                   disp_rows, owner, edges)
 
     @classmethod
     def from_text(cls, text: str, source: str = "<string>") -> "Actiongram":
         """Read the plain-text form (see the module docstring)."""
         names, symbol_rows, duration_rows, origins = [], [], [], []
+        disp_rows: list[tuple[float, ...] | None] = []
+        owner: dict[str, str] = {}
+        edges: list[tuple[str, str | None]] = []
         where: dict[str, int] = {}
         for line_no, raw in enumerate(text.splitlines(), start=1):
             line = _strip_comment(raw)
             if not line.strip():
+                continue
+            if _DIRECTIVE.match(line):
+                _read_directive(line, source, line_no, owner, edges)
                 continue
             head, colon, body = line.partition(":")
             if not colon:
@@ -235,7 +412,7 @@ class Actiongram:
                 raise FormatError(f"actuator {_shown(name)} already given on line {where[name]}",
                                   source=source, line=line_no, column=name_col)
             where[name] = line_no
-            syms, durs = [], []
+            syms, durs, disps = [], [], []
             offset = len(head) + 1
             for match in re.finditer(r"\S+", body):
                 token, col = match.group(), offset + match.start() + 1
@@ -248,6 +425,15 @@ class Actiongram:
                                       source=source,
                                       line=line_no, column=col)
                 dur = 1.0
+                if at and "~" in dur_text:  # sym@D~X: a duration, then a signed displacement
+                    dur_text, _, disp_text = dur_text.partition("~")
+                    disp = _read_number(disp_text, allow_nonpositive=True)
+                    if disp is None:
+                        raise FormatError(
+                            f"unknown displacement syntax {_shown('~' + disp_text)} (write "
+                            f"sym@D~X with X a number)", source=source, line=line_no,
+                            column=col + len(sym) + 1 + len(dur_text))
+                    disps.append(disp)
                 if at:
                     dur = _read_number(dur_text, allow_nonpositive=True)
                     if dur is not None and dur <= 0:
@@ -260,11 +446,25 @@ class Actiongram:
                             column=col + len(sym))
                 syms.append(sym)
                 durs.append(dur)
+                if len(disps) not in (0, len(syms)):
+                    raise FormatError("give a displacement (sym@D~X) for every symbol of a "
+                                      "string or for none", source=source, line=line_no,
+                                      column=col)
             names.append(name)
             symbol_rows.append(tuple(syms))
             duration_rows.append(tuple(durs))
             origins.append(origin)
-        return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins))
+            disp_rows.append(tuple(disps) if disps else None)
+        for name in owner:
+            if name not in where:
+                raise FormatError(f"%actuator names unknown string {_shown(name)}",
+                                  source=source)
+        actuators = tuple(owner.get(n, default_actuator(n)) for n in names)
+        try:
+            return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins),
+                       tuple(disp_rows), actuators, tuple(edges))
+        except FormatError as exc:  # a bad skeleton or actuator: name the file
+            raise FormatError(exc.message, source=source) from None
 
     @classmethod
     def from_json(cls, text: str, source: str = "<string>") -> "Actiongram":
@@ -274,9 +474,17 @@ class Actiongram:
         except json.JSONDecodeError as exc:
             raise FormatError(f"not JSON: {exc.msg}", source=source, line=exc.lineno,
                               column=exc.colno) from None
+        except RecursionError:  # '[' * 100000: the decoder recurses per nesting level
+            raise FormatError("not JSON that can be read: nested too deeply", source=source,
+                              line=1, column=1) from None
+        except ValueError as exc:  # an integer of thousands of digits (Python's int limit)
+            raise FormatError(f"not JSON that can be read: {str(exc).split(':')[0]}",
+                              source=source) from None
         if not isinstance(data, dict) or not isinstance(data.get("strings"), list):
             raise FormatError("expected a JSON object with a 'strings' list", source=source)
         names, symbol_rows, duration_rows, origins = [], [], [], []
+        disp_rows: list[tuple | None] = []
+        actuator_rows: list[object] = []
         for k, item in enumerate(data["strings"]):
             if not isinstance(item, dict) or not isinstance(item.get("symbols"), list):
                 raise FormatError(f"strings[{k}] must be an object with 'name' and 'symbols'",
@@ -285,12 +493,24 @@ class Actiongram:
             durs = item.get("durations", [1.0] * len(syms))
             if not isinstance(durs, list):
                 raise FormatError(f"strings[{k}].durations must be a list", source=source)
+            disps = item.get("displacements")
+            if disps is not None and not isinstance(disps, list):
+                raise FormatError(f"strings[{k}].displacements must be a list", source=source)
             names.append(item.get("name"))
             symbol_rows.append(tuple(syms))
             duration_rows.append(tuple(durs))
             origins.append(item.get("start", 0.0))
+            disp_rows.append(None if disps is None else tuple(disps))
+            name = item.get("name")
+            actuator_rows.append(item["actuator"] if "actuator" in item
+                                 else default_actuator(name) if isinstance(name, str) else name)
+        skeleton = data.get("skeleton", {})
+        if not isinstance(skeleton, dict):
+            raise FormatError("'skeleton' must be an object {actuator: parent or null}",
+                              source=source)
         try:
-            return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins))
+            return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins),
+                       tuple(disp_rows), tuple(actuator_rows), tuple(skeleton.items()))
         except FormatError as exc:
             raise FormatError(exc.message, source=source) from None
 
@@ -298,20 +518,42 @@ class Actiongram:
     def to_text(self) -> str:
         """The plain-text form; :meth:`from_text` reads it back to an equal value."""
         lines = []
-        for name, syms, durs, origin in zip(self.names, self.symbols, self.segment_durations,
-                                            self.origins):
+        for name, syms, durs, origin, disps in zip(self.names, self.symbols,
+                                                   self.segment_durations, self.origins,
+                                                   self.segment_displacements):
             head = name if origin == 0 else f"{name}@{_format_number(origin)}"
-            tokens = [s if d == 1 else f"{s}@{_format_number(d)}" for s, d in zip(syms, durs)]
+            if disps is None:
+                tokens = [s if d == 1 else f"{s}@{_format_number(d)}" for s, d in zip(syms, durs)]
+            else:
+                tokens = [f"{s}@{_format_number(d)}~{_format_number(x)}"
+                          for s, d, x in zip(syms, durs, disps)]
             lines.append(f"{head}: {' '.join(tokens)}".rstrip())
+        groups: dict[str, list[str]] = {}  # only assignments that differ from the default
+        for name, actuator in zip(self.names, self.string_actuators):
+            if actuator != default_actuator(name):
+                groups.setdefault(actuator, []).append(name)
+        lines.extend(f"%actuator {a}: {' '.join(ns)}" for a, ns in groups.items())
+        lines.extend(f"%parent {c}: {p}" if p is not None else f"%parent {c}:"
+                     for c, p in self.skeleton_edges)
         return "\n".join(lines) + "\n"
 
     def to_json(self) -> str:
         """A JSON document; :meth:`from_json` reads it back to an equal value."""
-        return json.dumps({
-            "format": _JSON_FORMAT, "version": 1,
-            "strings": [{"name": n, "start": o, "symbols": list(s), "durations": list(d)}
-                        for n, s, d, o in zip(self.names, self.symbols, self.segment_durations,
-                                              self.origins)]})
+        strings = []
+        for n, s, d, o, x, a in zip(self.names, self.symbols, self.segment_durations,
+                                    self.origins, self.segment_displacements,
+                                    self.string_actuators):
+            item: dict[str, object] = {"name": n, "start": o, "symbols": list(s),
+                                       "durations": list(d)}
+            if x is not None:
+                item["displacements"] = list(x)
+            if a != default_actuator(n):
+                item["actuator"] = a
+            strings.append(item)
+        data: dict[str, object] = {"format": _JSON_FORMAT, "version": 1, "strings": strings}
+        if self.skeleton_edges:
+            data["skeleton"] = dict(self.skeleton_edges)
+        return json.dumps(data)
 
     # -- accessors ---------------------------------------------------------
     def __len__(self) -> int:
@@ -357,15 +599,85 @@ class Actiongram:
         return self.symbols[self.index(name)]
 
     def subset(self, names: Iterable[str]) -> "Actiongram":
-        """The actiongram of the named strings only, in the order given."""
+        """The actiongram of the named strings only, in the order given (skeleton kept whole)."""
         picks = [self.index(n) for n in names]
         return Actiongram(tuple(self.names[i] for i in picks),
                           tuple(self.symbols[i] for i in picks),
                           tuple(self.segment_durations[i] for i in picks),
-                          tuple(self.origins[i] for i in picks))
+                          tuple(self.origins[i] for i in picks),
+                          tuple(self.segment_displacements[i] for i in picks) or (),
+                          tuple(self.string_actuators[i] for i in picks) or (),
+                          self.skeleton_edges)
+
+    def displacements(self, name: str) -> tuple[float, ...] | None:
+        """The signed displacement of each symbol of string ``name``, or None when unknown."""
+        return self.segment_displacements[self.index(name)]
+
+    def actuator(self, name: str) -> str:
+        """The actuator (joint) string ``name`` belongs to."""
+        return self.string_actuators[self.index(name)]
+
+    @property
+    def actuator_map(self) -> dict[str, str]:
+        """``{string name: actuator}`` in actiongram order."""
+        return dict(zip(self.names, self.string_actuators))
+
+    @property
+    def actuators(self) -> tuple[str, ...]:
+        """The distinct actuators, in the order of their first string."""
+        return tuple(dict.fromkeys(self.string_actuators))
+
+    def channels(self, actuator: str) -> tuple[str, ...]:
+        """The strings of ``actuator``, in actiongram order (empty if it has none)."""
+        return tuple(n for n, a in zip(self.names, self.string_actuators) if a == actuator)
+
+    @property
+    def skeleton(self) -> dict[str, str | None]:
+        """``{actuator: parent or None}``; empty when the skeleton is unknown."""
+        return dict(self.skeleton_edges)
+
+    def parent(self, actuator: str) -> str | None:
+        """The parent of ``actuator`` in the skeleton (None for a root or an unknown joint)."""
+        return self.skeleton.get(actuator)
+
+    def neighbours(self, actuator: str) -> tuple[str, ...]:
+        """The skeleton neighbours of ``actuator`` (its parent, then its children), one hop."""
+        edges = self.skeleton_edges
+        parent = [p for c, p in edges if c == actuator and p is not None]
+        return tuple(parent + [c for c, p in edges if p == actuator])
 
     def __repr__(self) -> str:
         return f"<Actiongram {len(self)} strings, {self.total_symbols} symbols>"
+
+
+_DIRECTIVE = re.compile(r"\s*%(?:actuator|parent)\s")
+
+
+def _read_directive(line: str, source: str, line_no: int, owner: dict[str, str],
+                    edges: list[tuple[str, str | None]]) -> None:
+    """Read ``%actuator JOINT: string …`` or ``%parent JOINT: PARENT`` (nothing: a root)."""
+    head, colon, body = line.partition(":")
+    keyword, _, joint = head.strip().partition(" ")
+    joint = joint.strip()
+    column = len(line) - len(line.lstrip()) + 1
+    if not colon:
+        raise FormatError(f"expected '{keyword} JOINT: …' (no ':' on this line)", source=source,
+                          line=line_no, column=column)
+    problem = _bad_name(joint)
+    if problem:
+        raise FormatError(f"{keyword}: {problem}", source=source, line=line_no, column=column)
+    words = body.split()
+    if keyword == "%actuator":
+        for name in words:
+            if name in owner:
+                raise FormatError(f"string {_shown(name)} is given an actuator twice",
+                                  source=source, line=line_no, column=column)
+            owner[name] = joint
+        return
+    if len(words) > 1:
+        raise FormatError(f"%parent {joint}: one parent, not {len(words)}", source=source,
+                          line=line_no, column=column)
+    edges.append((joint, words[0] if words else None))
 
 
 def _strip_comment(line: str) -> str:

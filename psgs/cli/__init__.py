@@ -13,7 +13,7 @@ import os
 import sys
 
 # modules that add subcommands; each defines register(subparsers)
-_COMMAND_MODULES = ("core", "check", "induce", "draw")
+_COMMAND_MODULES = ("core", "check", "induce", "bench", "draw")
 
 
 def _plugin_commands(given) -> dict:

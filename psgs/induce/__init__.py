@@ -1,49 +1,31 @@
-"""Inducers: learn a grammar system from an actiongram.
+"""Inducers: learn a grammar system from an actiongram, or from several performances.
 
 Every inducer is configured by keyword arguments and has one method,
-``induce(actiongram) -> Induction``. Built in: :class:`PAL` (``"pal"``) and
-the sequential baseline :class:`Sequential` (``"sequential"``). Other
-packages add inducers through the entry-point group ``psgs.inducers``
-(``name = "package.module:Class"``); :func:`get` and :func:`available` see them.
+``induce(performances) -> Induction``, taking one
+:class:`~psgs.actiongram.Actiongram` or a sequence of them (each one
+performance of the same action; see :mod:`psgs.induce.base` for the contract).
+Built in: :class:`PAL` (``"pal"``) and the sequential baseline
+:class:`Sequential` (``"sequential"``). Other packages add inducers through
+the entry-point group ``psgs.inducers`` (``name = "package.module:Class"``);
+:func:`get` and :func:`available` see them (:mod:`psgs.induce.registry`).
+
+Beside the inducers, their evaluation: :mod:`psgs.induce.synthetic` (the
+paper's synthetic protocol with ground truth, and ``success``) and
+:mod:`psgs.induce.sweep` (success against noise over many seeds, in worker
+processes).
+
+>>> from psgs import Actiongram
+>>> from psgs.induce import get
+>>> get("sequential").induce(Actiongram.from_strings({"a": "abab"})).components
+('a',)
 """
 
 from __future__ import annotations
 
-from importlib.metadata import entry_points
-
-from .base import Induction, Inducer, StringReport
+from .base import Inducer
 from .pal import PAL
+from .registry import available, get
+from .results import Induction, StringReport
 from .sequential import Sequential
 
 __all__ = ["Induction", "Inducer", "StringReport", "PAL", "Sequential", "get", "available"]
-
-_BUILT_IN = {"pal": PAL, "sequential": Sequential}
-
-
-def _plugins() -> dict[str, object]:
-    return {ep.name: ep for ep in entry_points(group="psgs.inducers")}
-
-
-def available() -> tuple[str, ...]:
-    """Names of the inducers that :func:`get` knows, built-in first, then plug-ins sorted."""
-    extra = sorted(n for n in _plugins() if n not in _BUILT_IN)
-    return (*_BUILT_IN, *extra)
-
-
-def get(name: str, **params) -> Inducer:
-    """A new inducer by name, built with ``params``; ValueError for an unknown name.
-
-    >>> get("pal", min_copies=4).min_copies
-    4
-    """
-    if name in _BUILT_IN:
-        return _BUILT_IN[name](**params)
-    plugins = _plugins()
-    if name in plugins:
-        try:
-            factory = plugins[name].load()
-        except Exception as exc:  # a broken plug-in: say which, in one line
-            raise ValueError(f"inducer {name!r} (a plug-in) could not be loaded: "
-                             f"{type(exc).__name__}: {exc}") from None
-        return factory(**params)
-    raise ValueError(f"unknown inducer {name!r}; available: {', '.join(available())}")

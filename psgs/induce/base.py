@@ -1,152 +1,433 @@
-"""What every inducer returns, and the pieces inducers share.
+"""The inducer contract, and the ending every built-in inducer shares.
 
-An inducer is an object configured by keyword arguments at construction
-(:meth:`Inducer.get_params` gives them back) with one method,
-``induce(actiongram) -> Induction``.
+An inducer follows scikit-learn's estimator contract: every parameter is a
+keyword argument of ``__init__``, validated there and stored as an attribute
+of the same name; :meth:`Inducer.get_params`, :meth:`Inducer.set_params` and
+:meth:`Inducer.clone` read, change and copy them (changes are validated again,
+by the same ``__init__``); the one learning method is ``induce``. It takes one
+:class:`~psgs.actiongram.Actiongram` or a sequence of them, each one
+performance of the same action (:func:`as_performances` checks and normalises
+that), and returns an :class:`~psgs.induce.results.Induction`.
+
+The ending is the same for every inducer -- identifiers for the components
+(:func:`component_name`), the grammar system (:func:`build_system`), the
+:class:`Induction` -- and lives once, in :meth:`Inducer.build_induction`.
 """
 
 from __future__ import annotations
 
+import copy
 import inspect
 import math
 import re
-from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
-from types import MappingProxyType
+from collections.abc import Iterable, Mapping, Sequence
 
+from ..actiongram import Actiongram
+from ..errors import ValidationError
 from ..model import PSGS, Grammar, Nonterminal, Rule, Terminal
+from .results import Induction, StringReport
 
-__all__ = ["Induction", "StringReport", "Inducer", "build_system", "component_name"]
-
-
-@dataclass(frozen=True)
-class StringReport:
-    """What an inducer found in one string, whether or not it became a component.
-
-    ``status`` is ``"component"`` or a short reason it was dropped
-    (``"no repetition"``, ``"not significant"``, ``"not synchronised"``).
-    ``significance`` is log10 of the chance that a random string of the same
-    length and symbol frequencies holds a motif this well repeated (more
-    negative is stronger evidence; 0 when no motif was found). ``motif`` is
-    the repeated block found in the string alone, ``copies`` how many times it
-    was located, ``synchronised_with`` the strings whose copies cover the same
-    time.
-    """
-
-    name: str
-    status: str
-    motif: tuple[str, ...] = ()
-    copies: int = 0
-    significance: float = 0.0
-    synchronised_with: tuple[str, ...] = ()
-
-
-@dataclass(frozen=True)
-class Induction:
-    """The result of ``inducer.induce(actiongram)``.
-
-    ``system``: a PSGS in ``parallel`` mode with one component per entry of
-    ``components`` (component names are the actuator names, made into
-    identifiers when they are not; ``component_names`` maps them).
-    ``components``: actuator names kept, in actiongram order.
-    ``patterns``: actuator name -> the motion pattern (terminal symbol names).
-    ``occurrences``: actuator name -> the (start, end) time of each located
-    copy of its pattern. ``reports``: one :class:`StringReport` per string of
-    the actiongram, in its order. ``params``: the inducer's parameters.
-    The mappings are read-only views (patterns and occurrences hold tuples):
-    an induction is a value, like the system it holds.
-    """
-
-    system: PSGS | None
-    components: tuple[str, ...]
-    patterns: Mapping[str, tuple[str, ...]]
-    occurrences: Mapping[str, tuple[tuple[float, float], ...]]
-    reports: tuple[StringReport, ...] = ()
-    component_names: Mapping[str, str] = field(default_factory=dict)
-    inducer: str = ""
-    params: Mapping[str, object] = field(default_factory=dict)
-
-    def __post_init__(self) -> None:
-        frozen = {
-            "components": tuple(self.components),
-            "patterns": MappingProxyType({k: tuple(v) for k, v in self.patterns.items()}),
-            "occurrences": MappingProxyType({k: tuple(tuple(span) for span in v)
-                                             for k, v in self.occurrences.items()}),
-            "reports": tuple(self.reports),
-            "component_names": MappingProxyType(dict(self.component_names)),
-            "params": MappingProxyType(dict(self.params)),
-        }
-        for key, value in frozen.items():
-            object.__setattr__(self, key, value)
-
-    def __reduce__(self):
-        # read-only views do not pickle; rebuild from plain dicts (e.g. across processes)
-        return (type(self), (self.system, self.components, dict(self.patterns),
-                             dict(self.occurrences), self.reports, dict(self.component_names),
-                             self.inducer, dict(self.params)))
-
-    def report(self, name: str) -> StringReport:
-        """The report of the string named ``name``."""
-        for r in self.reports:
-            if r.name == name:
-                return r
-        raise KeyError(f"no string named {name!r}")
-
-    def to_dict(self) -> dict:
-        """A JSON-ready summary (the system as text needs ``psgs.dumps``)."""
-        return {
-            "inducer": self.inducer,
-            "params": dict(self.params),
-            "components": list(self.components),
-            "patterns": {k: list(v) for k, v in self.patterns.items()},
-            "occurrences": {k: [list(p) for p in v] for k, v in self.occurrences.items()},
-            "reports": [{"name": r.name, "status": r.status, "motif": list(r.motif),
-                         "copies": r.copies, "significance": round(r.significance, 3),
-                         "synchronised_with": list(r.synchronised_with)}
-                        for r in self.reports],
-        }
+__all__ = ["Inducer", "as_performances", "build_system", "component_name", "check_number",
+           "check_choice"]
 
 
 class Inducer:
-    """Base class: keyword parameters in ``__init__``, one method :meth:`induce`."""
+    """Base class of inducers: keyword parameters in ``__init__``, one method :meth:`induce`.
+
+    A subclass defines ``name`` (what :func:`psgs.induce.get` knows it by), an
+    ``__init__`` with keyword-only parameters that validates them (raising
+    :class:`~psgs.errors.ValidationError`) and stores each as an attribute of
+    the same name, and ``induce``. It inherits the rest.
+
+    Examples
+    --------
+    >>> from psgs.induce import Sequential
+    >>> learner = Sequential(min_count=3)
+    >>> learner.get_params()
+    {'min_count': 3, 'max_rules': 100000}
+    >>> learner.set_params(max_rules=10).max_rules
+    10
+    >>> learner.clone(min_count=4)
+    Sequential(min_count=4, max_rules=10)
+    """
 
     name = ""
 
+    @classmethod
+    def _param_names(cls) -> tuple[str, ...]:
+        """The parameter names, read from ``__init__``'s signature."""
+        names = []
+        for p in inspect.signature(cls.__init__).parameters.values():
+            if p.name == "self":
+                continue
+            if p.kind in (p.VAR_POSITIONAL, p.VAR_KEYWORD):
+                raise TypeError(f"{cls.__name__}.__init__ takes *{p.name}: an inducer's "
+                                f"parameters must be named one by one")
+            names.append(p.name)
+        return tuple(names)
+
     def get_params(self) -> dict[str, object]:
-        """The parameters this inducer was built with, by name."""
-        sig = inspect.signature(type(self).__init__)
-        return {p: getattr(self, p) for p in sig.parameters if p != "self"}
+        """The parameters this inducer was built with, by name, in ``__init__``'s order.
+
+        Returns
+        -------
+        dict
+            Parameter name -> value.
+
+        Raises
+        ------
+        TypeError
+            When a subclass did not store a parameter under its own name (a
+            programming error in that subclass).
+
+        Examples
+        --------
+        >>> from psgs.induce import PAL
+        >>> PAL(min_copies=4).get_params()["min_copies"]
+        4
+        """
+        out = {}
+        for p in self._param_names():
+            try:
+                out[p] = getattr(self, p)
+            except AttributeError:
+                raise TypeError(f"{type(self).__name__} does not store its parameter {p!r} as "
+                                f"an attribute of that name") from None
+        return out
+
+    def set_params(self, **params) -> "Inducer":
+        """Change parameters in place, validated as at construction; returns ``self``.
+
+        Either every change is made or none: the new parameters are validated
+        by building a new inducer with them first.
+
+        Parameters
+        ----------
+        **params
+            Parameter name -> new value.
+
+        Returns
+        -------
+        Inducer
+            ``self``, so calls can be chained.
+
+        Raises
+        ------
+        ValidationError
+            For a name that is not a parameter, or a value ``__init__`` refuses.
+
+        Examples
+        --------
+        >>> from psgs.induce import Sequential
+        >>> learner = Sequential()
+        >>> learner.set_params(min_count=1)
+        Traceback (most recent call last):
+        ...
+        psgs.errors.ValidationError: parameter min_count must be >= 2, not 1
+        >>> learner.min_count
+        2
+        """
+        unknown = [k for k in params if k not in self._param_names()]
+        if unknown:
+            raise ValidationError(unknown_parameter(self.name or type(self).__name__,
+                                                    unknown[0], self._param_names()))
+        checked = type(self)(**{**self.get_params(), **params})
+        for key in params:
+            setattr(self, key, getattr(checked, key))
+        return self
+
+    def clone(self, **params) -> "Inducer":
+        """A new, independent inducer with the same parameters, changed by ``params``.
+
+        Parameters
+        ----------
+        **params
+            Parameters to change in the copy (validated as at construction).
+
+        Returns
+        -------
+        Inducer
+            A new inducer of the same class, its parameters deep copies of
+            ``self``'s: changing it never changes ``self``.
+
+        Raises
+        ------
+        ValidationError
+            For a name that is not a parameter, or a value ``__init__`` refuses.
+
+        Examples
+        --------
+        >>> from psgs.induce import PAL
+        >>> a = PAL()
+        >>> b = a.clone(min_copies=5)
+        >>> a.min_copies, b.min_copies
+        (3, 5)
+        """
+        unknown = [k for k in params if k not in self._param_names()]
+        if unknown:
+            raise ValidationError(unknown_parameter(self.name or type(self).__name__,
+                                                    unknown[0], self._param_names()))
+        return type(self)(**copy.deepcopy({**self.get_params(), **params}))
 
     def __repr__(self) -> str:
         args = ", ".join(f"{k}={v!r}" for k, v in self.get_params().items())
         return f"{type(self).__name__}({args})"
 
-    def induce(self, actiongram):  # pragma: no cover - interface
-        """Learn from an :class:`~psgs.actiongram.Actiongram`; returns an :class:`Induction`."""
+    def induce(self, performances):  # pragma: no cover - interface
+        """Learn a grammar system from one actiongram or a sequence of performances.
+
+        Parameters
+        ----------
+        performances : Actiongram or sequence of Actiongram
+            One actiongram, or several, each one performance of the same action
+            with the same actuators (they are never joined into one stream).
+
+        Returns
+        -------
+        Induction
+
+        Raises
+        ------
+        TypeError
+            When ``performances`` is not an actiongram or a sequence of them.
+        ValidationError
+            For an empty sequence, or performances whose actuators differ.
+        """
         raise NotImplementedError
+
+    def build_induction(self, actuators: Sequence[str], patterns: Mapping[str, tuple[str, ...]],
+                        occurrences: Mapping[str, Sequence[tuple[float, float]]],
+                        reports: Sequence[StringReport], *, synchronise: bool,
+                        performances: int = 1,
+                        occurrence_performance: Mapping[str, Sequence[int]] | None = None,
+                        ) -> Induction:
+        """The ending every inducer shares: component names, the system, the :class:`Induction`.
+
+        Parameters
+        ----------
+        actuators : sequence of str
+            Every actuator name, in actiongram order; the components are those
+            with a pattern, in this order.
+        patterns : mapping of str to tuple of str
+            Actuator name -> its pattern, for the components only.
+        occurrences : mapping of str to sequence of (float, float)
+            Actuator name -> the (start, end) time of each copy of its pattern.
+        reports : sequence of StringReport
+            One per actuator.
+        synchronise : bool
+            Whether the components repeat their patterns in step (PAL) or
+            independently (the sequential baseline); see :func:`build_system`.
+        performances : int, optional
+            How many performances were learnt from (default 1).
+        occurrence_performance : mapping of str to sequence of int, optional
+            Actuator name -> the performance of each occurrence (default: all 0).
+
+        Returns
+        -------
+        Induction
+            With the system named after the inducer, and its parameters.
+
+        Examples
+        --------
+        >>> from psgs.induce import Sequential
+        >>> result = Sequential().build_induction(
+        ...     ["l-knee", "hip"], {"l-knee": ("a", "b")}, {"l-knee": [(0.0, 2.0)]},
+        ...     [StringReport("l-knee", "component"), StringReport("hip", "no repetition")],
+        ...     synchronise=False)
+        >>> result.components, result.component_names["l-knee"], result.system.name
+        (('l-knee',), 'l_knee', 'sequential')
+        """
+        kept = tuple(n for n in actuators if n in patterns)
+        taken: set[str] = set()
+        comp_names = {n: component_name(n, taken) for n in kept}
+        system = (build_system([(comp_names[n], patterns[n]) for n in kept],
+                               synchronise=synchronise, name=self.name) if kept else None)
+        occurrence_performance = occurrence_performance or {}
+        return Induction(system=system, components=kept,
+                         patterns={n: patterns[n] for n in kept},
+                         occurrences={n: occurrences[n] for n in kept}, reports=tuple(reports),
+                         component_names=comp_names, inducer=self.name, params=self.get_params(),
+                         performances=performances,
+                         occurrence_performance={n: occurrence_performance[n] for n in kept
+                                                 if n in occurrence_performance})
+
+
+def as_performances(data: Actiongram | Iterable[Actiongram], inducer: str = "induce"
+                    ) -> tuple[Actiongram, ...]:
+    """``induce``'s input as a tuple of performances, checked; one actiongram gives a 1-tuple.
+
+    Every performance must have the same actuators as the first; one whose
+    strings come in another order is reordered to the first's order (so string
+    ``i`` is the same actuator in every performance). Performances are never
+    joined into one stream.
+
+    Parameters
+    ----------
+    data : Actiongram or iterable of Actiongram
+        One actiongram, or several performances of the same action.
+    inducer : str, optional
+        The name the errors give for the caller (e.g. ``"PAL.induce"``).
+
+    Returns
+    -------
+    tuple of Actiongram
+
+    Raises
+    ------
+    TypeError
+        When ``data`` is neither an actiongram nor an iterable of them (a
+        string or a mapping is refused: it is not a sequence of performances).
+    ValidationError
+        When the sequence is empty, or a performance's actuators differ from
+        the first performance's.
+
+    Examples
+    --------
+    >>> a = Actiongram.from_strings({"knee": "abab", "hip": "xy"})
+    >>> b = Actiongram.from_strings({"hip": "yx", "knee": "baba"})
+    >>> [p.names for p in as_performances([a, b])]
+    [('knee', 'hip'), ('knee', 'hip')]
+    >>> len(as_performances(a))
+    1
+    >>> as_performances([])
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: induce needs at least one performance, got an empty sequence
+    """
+    if isinstance(data, Actiongram):
+        return (data,)
+    if isinstance(data, (str, bytes, Mapping)) or not isinstance(data, Iterable):
+        raise TypeError(f"{inducer} needs an Actiongram or a sequence of them, not "
+                        f"{type(data).__name__}")
+    items = tuple(data)
+    if not items:
+        raise ValidationError(f"{inducer} needs at least one performance, got an empty sequence")
+    for k, item in enumerate(items):
+        if not isinstance(item, Actiongram):
+            raise TypeError(f"{inducer}: performance {k} is a {type(item).__name__}, not an "
+                            f"Actiongram")
+    first = items[0]
+    out = [first]
+    for k, item in enumerate(items[1:], start=1):
+        if item.names != first.names:
+            missing = [n for n in first.names if n not in item.names]
+            extra = [n for n in item.names if n not in first.names]
+            if missing or extra:
+                parts = ([f"lacks {', '.join(map(repr, missing))}"] if missing else []) + \
+                        ([f"has {', '.join(map(repr, extra))} too"] if extra else [])
+                raise ValidationError(f"{inducer}: performance {k} does not have the actuators "
+                                      f"of performance 0: it {' and '.join(parts)}")
+            item = item.subset(first.names)
+        out.append(item)
+    return tuple(out)
+
+
+def unknown_parameter(inducer: str, name: str, known: Sequence[str]) -> str:
+    """The message for a parameter an inducer does not have (one wording everywhere).
+
+    Examples
+    --------
+    >>> unknown_parameter("pal", "colour", ("alpha", "rounds"))
+    "inducer pal has no parameter 'colour' (its parameters: alpha, rounds)"
+    """
+    return f"inducer {inducer} has no parameter {name!r} (its parameters: {', '.join(known)})"
 
 
 def check_number(name: str, value: object, *, low: float | None = None, high: float | None = None,
                  integer: bool = False, low_open: bool = False) -> None:
-    """Validate one inducer parameter; ValueError naming it otherwise."""
+    """Validate one numeric inducer parameter.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, for the message.
+    value : object
+        Its value.
+    low, high : float, optional
+        Bounds (``high`` inclusive; ``low`` inclusive unless ``low_open``).
+    integer : bool, optional
+        Whether only an ``int`` will do (``bool`` never does).
+    low_open : bool, optional
+        Whether ``low`` itself is refused.
+
+    Raises
+    ------
+    ValidationError
+        Naming the parameter, what it must be, and the value given.
+
+    Examples
+    --------
+    >>> check_number("alpha", 0.5, low=0, high=1)
+    >>> check_number("alpha", float("nan"))
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: parameter alpha must be a finite number, not nan
+    """
     ok_type = (int,) if integer else (int, float)
     if isinstance(value, bool) or not isinstance(value, ok_type):
         kind = "an integer" if integer else "a number"
-        raise ValueError(f"parameter {name} must be {kind}, not {value!r}")
+        raise ValidationError(f"parameter {name} must be {kind}, not {value!r}")
     if not math.isfinite(value):  # NaN passes every comparison below
-        raise ValueError(f"parameter {name} must be a finite number, not {value!r}")
+        raise ValidationError(f"parameter {name} must be a finite number, not {value!r}")
     if low is not None and (value <= low if low_open else value < low):
-        raise ValueError(f"parameter {name} must be {'>' if low_open else '>='} {low}, "
-                         f"not {value!r}")
+        raise ValidationError(f"parameter {name} must be {'>' if low_open else '>='} {low}, "
+                              f"not {value!r}")
     if high is not None and value > high:
-        raise ValueError(f"parameter {name} must be <= {high}, not {value!r}")
+        raise ValidationError(f"parameter {name} must be <= {high}, not {value!r}")
+
+
+def check_choice(name: str, value: object, choices: Sequence[str]) -> None:
+    """Validate a parameter that takes one of a few words.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, for the message.
+    value : object
+        Its value.
+    choices : sequence of str
+        The allowed values.
+
+    Raises
+    ------
+    ValidationError
+        When ``value`` is not one of ``choices``.
+
+    Examples
+    --------
+    >>> check_choice("timing", "tempo", ("content", "period"))
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: timing must be one of content, period, not 'tempo'
+    """
+    if not isinstance(value, str) or value not in choices:
+        raise ValidationError(f"{name} must be one of {', '.join(choices)}, not {value!r}")
 
 
 _NOT_IDENT = re.compile(r"[^A-Za-z0-9_]")
 
 
 def component_name(actuator: str, taken: set[str]) -> str:
-    """An identifier for ``actuator``: itself when it is one, else a cleaned, unique form."""
+    """An identifier for ``actuator``: itself when it is one, else a cleaned, unique form.
+
+    Parameters
+    ----------
+    actuator : str
+        The actuator (string) name.
+    taken : set of str
+        Names already used; the result is added to it.
+
+    Returns
+    -------
+    str
+        Letters, digits and ``_`` only, not starting with a digit, not in ``taken``.
+
+    Examples
+    --------
+    >>> taken = set()
+    >>> [component_name(a, taken) for a in ("l-knee", "l_knee", "0hip")]
+    ['l_knee', 'l_knee_2', 'c_0hip']
+    """
     name = _NOT_IDENT.sub("_", actuator)
     if not name or name[0].isdigit():
         name = "c_" + name
@@ -162,14 +443,39 @@ def build_system(patterns: Sequence[tuple[str, tuple[str, ...]]], *, synchronise
                  name: str = "induced") -> PSGS:
     """The PSGS whose language is {(P_1^k, ..., P_n^k) : k >= 1} (synchronised) or products.
 
-    ``patterns`` is a sequence of (component name, pattern). Each pattern
-    becomes a left-branching chain of binary rules N_c_1 -> p1 p2,
-    N_c_2 -> N_c_1 p3, ..., the last one being the pattern's root N_c; the
-    axiom has S_c -> N_c S_c | N_c. When ``synchronise``, the two axiom rules
-    form one tuple each over all components (every component repeats its
-    pattern the same number of times), and the chain rules are paired level
-    by level from the root down (a shorter chain idles, ``#``). Without it
-    the system has no tuples and components repeat independently.
+    Each pattern becomes a left-branching chain of binary rules
+    N_c_1 -> p1 p2, N_c_2 -> N_c_1 p3, ..., the last one being the pattern's
+    root N_c; the axiom has S_c -> N_c S_c | N_c. When ``synchronise``, the two
+    axiom rules form one tuple each over all components (every component
+    repeats its pattern the same number of times), and the chain rules are
+    paired level by level from the root down (a shorter chain idles, ``#``).
+    Without it the system has no tuples and components repeat independently.
+
+    Parameters
+    ----------
+    patterns : sequence of (str, tuple of str)
+        (component name, pattern) pairs; names must be identifiers.
+    synchronise : bool, optional
+        Whether the components repeat in step (default True).
+    name : str, optional
+        The system's name.
+
+    Returns
+    -------
+    PSGS
+        In ``parallel`` mode.
+
+    Raises
+    ------
+    ValidationError
+        For an empty pattern (or names the model refuses).
+
+    Examples
+    --------
+    >>> import psgs
+    >>> system = build_system([("arm", ("a", "b")), ("leg", ("x",))])
+    >>> bool(psgs.accepts(system, ["abab", "xx"])), bool(psgs.accepts(system, ["abab", "x"]))
+    (True, False)
     """
     terminal_names = {s for _, p in patterns for s in p}
     prefix = "N"
@@ -179,7 +485,7 @@ def build_system(patterns: Sequence[tuple[str, tuple[str, ...]]], *, synchronise
     grammars, chains, axiom_rules = [], [], []
     for comp, pattern in patterns:
         if not pattern:
-            raise ValueError(f"component {comp}: empty pattern")
+            raise ValidationError(f"component {comp}: empty pattern")
         start = Nonterminal(f"S{prefix}_{comp}")
         rules: list[Rule] = []
         if len(pattern) == 1:

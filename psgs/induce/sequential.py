@@ -8,14 +8,23 @@ component, and its pattern is the expansion of its longest rule. Nothing
 checks the strings against each other, so random strings, which nearly
 always repeat some digram, become components too: this is the
 overgeneralisation the paper's PAL avoids.
+
+Several performances: an actuator's strings from all performances are
+compressed together -- digrams are counted over every performance, but no
+digram spans the end of one performance and the start of the next (each
+boundary is a separator that occurs once, so it can never be in a rule).
+Occurrences are times within their own performance; the induction's
+``occurrence_performance`` says which.
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
-from ..actiongram import Actiongram
-from .base import Induction, Inducer, StringReport, build_system, check_number, component_name
+from .base import Inducer, as_performances, check_number
+from .results import Induction, StringReport
 
 __all__ = ["Sequential"]
 
@@ -23,9 +32,29 @@ __all__ = ["Sequential"]
 class Sequential(Inducer):
     """Per-string digram grammar learning without synchronisation.
 
-    Parameters: ``min_count`` (2), the fewest occurrences of a digram that
-    make a rule; ``max_rules`` (100000), a bound on rules per string (the
-    string's report says ``"rule bound reached"`` when it stops there).
+    Parameters
+    ----------
+    min_count : int, optional
+        The fewest occurrences of a digram that make a rule (default 2, at least 2).
+    max_rules : int, optional
+        A bound on rules per string (default 100000); the string's report says
+        ``"rule bound reached"`` when it stops there.
+
+    Raises
+    ------
+    ValidationError
+        For a parameter that is not an integer in its range.
+
+    Examples
+    --------
+    >>> from psgs import Actiongram
+    >>> result = Sequential().induce(Actiongram.from_strings({"x": "abcabcabc", "y": "pq"}))
+    >>> result.components, result.report("y").status
+    (('x',), 'no repetition')
+    >>> two = [Actiongram.from_strings({"x": "abab"}), Actiongram.from_strings({"x": "cabx"})]
+    >>> result = Sequential().induce(two)
+    >>> result.patterns["x"], result.occurrence_performance["x"]
+    (('a', 'b'), (0, 0, 1))
     """
 
     name = "sequential"
@@ -36,50 +65,78 @@ class Sequential(Inducer):
         self.min_count = min_count
         self.max_rules = max_rules
 
-    def induce(self, actiongram: Actiongram) -> Induction:
-        """Learn each string alone; see the module docstring."""
-        if not isinstance(actiongram, Actiongram):
-            raise TypeError(f"Sequential.induce needs an Actiongram, not "
-                            f"{type(actiongram).__name__}")
-        patterns, occurrences, reports = {}, {}, []
-        for name, syms, durs, origin in zip(actiongram.names, actiongram.symbols,
-                                            actiongram.segment_durations, actiongram.origins):
-            found = _repair(syms, self.min_count, self.max_rules)
+    def induce(self, performances) -> Induction:
+        """Learn each string alone (an actuator's performances together); see the module docstring.
+
+        Parameters
+        ----------
+        performances : Actiongram or sequence of Actiongram
+            One actiongram, or several performances with the same actuators.
+
+        Returns
+        -------
+        Induction
+            Unsynchronised: the system has no tuples.
+
+        Raises
+        ------
+        TypeError
+            When the input is not an actiongram or a sequence of them.
+        ValidationError
+            For an empty sequence or performances whose actuators differ.
+        """
+        takes = as_performances(performances, "Sequential.induce")
+        first = takes[0]
+        patterns, occurrences, where, reports = {}, {}, {}, []
+        for i, name in enumerate(first.names):
+            found = _repair([take.symbols[i] for take in takes], self.min_count, self.max_rules)
             if found is None:
                 reports.append(StringReport(name=name, status="no repetition"))
                 continue
             pattern, positions, rules, bounded = found
-            ends = origin + np.cumsum(np.asarray(durs, dtype=np.float64))
-            starts = ends - np.asarray(durs, dtype=np.float64)
+            spans = []
+            for k, p in positions:
+                durs = np.asarray(takes[k].segment_durations[i], dtype=np.float64)
+                ends = takes[k].origins[i] + np.cumsum(durs)
+                starts = ends - durs
+                spans.append((float(starts[p]), float(ends[p + len(pattern) - 1])))
             patterns[name] = pattern
-            occurrences[name] = tuple((float(starts[p]), float(ends[p + len(pattern) - 1]))
-                                      for p in positions)
+            occurrences[name] = tuple(spans)
+            where[name] = tuple(k for k, _ in positions)
             reports.append(StringReport(
                 name=name, status="rule bound reached" if bounded else "component",
                 motif=pattern, copies=len(positions)))
-        kept = tuple(n for n in actiongram.names if n in patterns)
-        taken: set[str] = set()
-        comp_names = {n: component_name(n, taken) for n in kept}
-        system = (build_system([(comp_names[n], patterns[n]) for n in kept], synchronise=False,
-                               name="sequential") if kept else None)
-        return Induction(system=system, components=kept,
-                         patterns={n: patterns[n] for n in kept},
-                         occurrences={n: occurrences[n] for n in kept}, reports=tuple(reports),
-                         component_names=comp_names, inducer=self.name, params=self.get_params())
+        return self.build_induction(first.names, patterns, occurrences, reports,
+                                    synchronise=False, performances=len(takes),
+                                    occurrence_performance=where)
 
 
-def _repair(symbols: tuple[str, ...], min_count: int, max_rules: int):
-    """Re-Pair one string: (pattern, start positions of its occurrences, rules, bounded) or None."""
-    if len(symbols) < 2:
-        return None
+def _repair(strings: Sequence[tuple[str, ...]], min_count: int, max_rules: int):
+    """Re-Pair one actuator's strings (one per performance), no digram across two of them.
+
+    Returns (pattern, occurrences as (performance, start position), rules,
+    bounded), or None when no digram repeats.
+    """
     alphabet: dict[str, int] = {}
-    seq = np.fromiter((alphabet.setdefault(s, len(alphabet)) for s in symbols), dtype=np.int64,
-                      count=len(symbols))
+    for syms in strings:
+        for s in syms:
+            alphabet.setdefault(s, len(alphabet))
     names = list(alphabet)
+    # between two performances a separator code of its own: it occurs once, so never in a rule
+    codes: list[int] = []
+    offsets: list[int] = []
+    for k, syms in enumerate(strings):
+        if k:
+            codes.append(len(names) + k - 1)
+        offsets.append(len(codes))
+        codes.extend(alphabet[s] for s in syms)
+    if len(codes) < 2:
+        return None
+    seq = np.asarray(codes, dtype=np.int64)
     origin = np.arange(len(seq), dtype=np.int64)  # where each current symbol starts
     expansion: dict[int, tuple[int, int]] = {}
-    length_of = {c: 1 for c in range(len(names))}
-    next_code = len(names)
+    length_of = {c: 1 for c in range(len(names) + len(strings) - 1)}
+    next_code = len(names) + len(strings) - 1
     base = np.int64(1 << 31)
     bounded = False
     while len(seq) >= 2:
@@ -126,5 +183,9 @@ def _repair(symbols: tuple[str, ...], min_count: int, max_rules: int):
         return out
 
     pattern = tuple(names[c] for c in spell(longest))
-    positions = tuple(int(p) for p in origin[seq == longest])
-    return pattern, positions, len(expansion), bounded
+    bounds = np.asarray(offsets, dtype=np.int64)
+    positions = []
+    for p in origin[seq == longest].tolist():
+        k = int(np.searchsorted(bounds, p, side="right")) - 1
+        positions.append((k, int(p) - offsets[k]))
+    return pattern, tuple(positions), len(expansion), bounded

@@ -195,3 +195,164 @@ def test_unknown_names_in_durations_are_reported_in_the_order_given():
                            env={**__import__("os").environ, "PYTHONHASHSEED": str(seed)},
                            check=True).stdout for seed in range(4)}
     assert seen == {"durations or starts given for unknown string 'q1'\n"}
+
+
+# -- the real-motion extras: displacements, actuator map, skeleton (issue 9) ----------------
+
+def test_displacements_merge_with_their_segments_and_default_to_unknown():
+    ag = Actiongram.from_strings({"knee.rx": "abbc", "knee.ry": "xy"},
+                                 displacements={"knee.rx": [1.5, -2, 0.25, 3]})
+    assert ag.string("knee.rx") == ("a", "b", "c")
+    assert ag.displacements("knee.rx") == (1.5, -1.75, 3.0)
+    assert ag.displacements("knee.ry") is None
+    with pytest.raises(FormatError, match="3 symbols but 2 displacements"):
+        Actiongram.from_strings({"a": "xyz"}, displacements={"a": [1, 2]})
+    with pytest.raises(FormatError, match="finite"):
+        Actiongram.from_strings({"a": "x"}, displacements={"a": [float("nan")]})
+    with pytest.raises(FormatError, match="must be a number"):
+        Actiongram.from_strings({"a": "x"}, displacements={"a": [True]})
+
+
+def test_actuators_default_to_the_name_before_the_first_dot():
+    ag = Actiongram.from_strings({"lfemur.rx": "ab", "lfemur.rz": "b", "root": "a",
+                                  "rhand.x.y": "a"})
+    assert ag.actuator_map == {"lfemur.rx": "lfemur", "lfemur.rz": "lfemur", "root": "root",
+                               "rhand.x.y": "rhand"}
+    assert ag.actuators == ("lfemur", "root", "rhand")
+    assert ag.channels("lfemur") == ("lfemur.rx", "lfemur.rz")
+    assert ag.skeleton == {} and ag.parent("lfemur") is None
+    moved = Actiongram.from_strings({"a.x": "ab", "b": "a"}, actuators={"b": "arm"})
+    assert moved.actuator("b") == "arm" and moved.actuators == ("a", "arm")
+
+
+def test_skeleton_neighbours_and_validation():
+    ag = Actiongram.from_strings({"lhumerus.rx": "ab"}, skeleton={
+        "root": None, "lclavicle": "root", "lhumerus": "lclavicle", "lradius": "lhumerus"})
+    assert ag.parent("lhumerus") == "lclavicle" and ag.parent("root") is None
+    assert ag.neighbours("lhumerus") == ("lclavicle", "lradius")
+    assert ag.neighbours("root") == ("lclavicle",)
+    assert ag.subset(["lhumerus.rx"]).skeleton == ag.skeleton
+    with pytest.raises(FormatError, match="cycle"):
+        Actiongram.from_strings({"a": "x"}, skeleton={"a": "b", "b": "c", "c": "a"})
+    with pytest.raises(FormatError, match="its own parent"):
+        Actiongram.from_strings({"a": "x"}, skeleton={"a": "a"})
+    with pytest.raises(FormatError, match="white space"):
+        Actiongram.from_strings({"a": "x"}, skeleton={"a": "b c"})
+    long_chain = {f"j{i}": f"j{i + 1}" for i in range(20_000)}  # linear-time cycle check
+    assert len(Actiongram.from_strings({"a": "x"}, skeleton=long_chain).skeleton) == 20_000
+
+
+def test_text_form_of_the_extras_reads_and_round_trips():
+    text = ("lfemur.rx: B@0.5~12.25 G@1~-3\nlfemur.ry: Y B\nhand: B@2~1e-05\n"
+            "%actuator arm: hand\n%parent lfemur: root\n%parent root:\n%parent arm: lfemur\n")
+    ag = Actiongram.from_text(text)
+    assert ag.displacements("lfemur.rx") == (12.25, -3.0)
+    assert ag.displacements("lfemur.ry") is None
+    assert ag.actuator_map == {"lfemur.rx": "lfemur", "lfemur.ry": "lfemur", "hand": "arm"}
+    assert ag.skeleton == {"lfemur": "root", "root": None, "arm": "lfemur"}
+    assert ag.to_text() == text
+    assert Actiongram.from_json(ag.to_json()) == ag
+    old = Actiongram.from_text("lknee: B G@2\n")  # a file without extras reads as before
+    assert old.displacements("lknee") is None and old.skeleton == {}
+    assert "~" not in old.to_text() and "%" not in old.to_text()
+
+
+@pytest.mark.parametrize("text, words", [
+    ("a: B@1~x", "f.txt:1:7: unknown displacement syntax '~x'"),
+    ("a: B@1~2 G", "f.txt:1:10: give a displacement (sym@D~X) for every symbol"),
+    ("a: B@~2", "f.txt:1:5: unknown duration syntax"),
+    ("%parent a: b c", "f.txt:1:1: %parent a: one parent, not 2"),
+    ("%parent a: b\n%parent b: a", "f.txt: skeleton: the parents of 'a' form a cycle"),
+    ("%actuator j: zz\na: x", "f.txt: %actuator names unknown string 'zz'"),
+    ("%actuator j: a\n%actuator k: a\na: x", "f.txt:2:1: string 'a' is given an actuator twice"),
+    ("%parent a:\n%parent a: b", "f.txt: skeleton: 'a' is given a parent twice"),
+    ("%parent  : b", "f.txt:1:1: %parent: an actuator name must be non-empty text"),
+])
+def test_bad_extras_in_text_are_one_line_format_errors(text, words):
+    with pytest.raises(FormatError) as info:
+        Actiongram.from_text(text, source="f.txt")
+    assert str(info.value).startswith(words) and "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("doc, words", [
+    ('{"strings": [{"name": "a", "symbols": ["x"], "displacements": 3}]}', "must be a list"),
+    ('{"strings": [{"name": "a", "symbols": ["x"], "displacements": ["q"]}]}', "a number"),
+    ('{"strings": [{"name": "a", "symbols": ["x"], "actuator": ""}]}', "non-empty"),
+    ('{"strings": [{"name": "a", "symbols": ["x"]}], "skeleton": [1]}', "'skeleton' must be"),
+    ('{"strings": [{"name": "a", "symbols": ["x"]}], "skeleton": {"a": 3}}', "non-empty text"),
+])
+def test_bad_extras_in_json_are_format_errors(doc, words):
+    with pytest.raises(FormatError, match=words):
+        Actiongram.from_json(doc, source="f.json")
+
+
+joints = st.sampled_from(["root", "lfemur", "ltibia", "lhumerus", "arm"])
+
+
+@st.composite
+def actiongrams_with_extras(draw):
+    base = draw(actiongrams())
+    disps = draw(st.floats(-1e4, 1e4, allow_nan=False, allow_infinity=False))
+    rows = {n: [disps * (j % 3 - 1) for j in range(len(s))] for n, s in base.strings.items()
+            if draw(st.booleans())}
+    owners = {n: draw(joints) for n in base.names if draw(st.booleans())}
+    order = draw(st.permutations(["root", "lfemur", "ltibia", "lhumerus", "arm"]))
+    skeleton = {j: (order[k - 1] if k else None) for k, j in enumerate(order)
+                if draw(st.booleans())}
+    return Actiongram.from_strings(base.strings, base.durations,
+                                   {n: base.origins[base.index(n)] for n in base.names},
+                                   displacements=rows, actuators=owners, skeleton=skeleton)
+
+
+@settings(max_examples=150, deadline=None)
+@given(actiongrams_with_extras())
+def test_round_trip_text_and_json_with_extras(ag):
+    assert Actiongram.from_text(ag.to_text()) == ag
+    assert Actiongram.from_json(ag.to_json()) == ag
+
+
+# ---- issue 11: inputs that crashed with an undocumented exception
+def test_deeply_nested_json_is_a_format_error():
+    with pytest.raises(FormatError, match="nested too deeply"):
+        Actiongram.from_json("[" * 100_000, source="deep.json")
+
+
+def test_a_json_integer_of_thousands_of_digits_is_a_format_error():
+    text = '{"strings": [{"name": "a", "symbols": ["x"], "durations": [' + "9" * 5000 + "]}]}"
+    with pytest.raises(FormatError, match="not JSON that can be read") as err:
+        Actiongram.from_json(text, source="long.json")
+    assert err.value.source == "long.json"
+
+
+def test_induce_on_unreadable_json_is_one_line_not_a_traceback(tmp_path, capsys):
+    from psgs.cli import main
+    path = tmp_path / "deep.json"
+    path.write_text("[" * 100_000)
+    assert main(["induce", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "nested too deeply" in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("text", ["s@1e15: a@1e-9 b@1e-9", "s: a@1e20 b@1"])
+def test_durations_that_vanish_beside_the_start_time_are_rejected(text):
+    with pytest.raises(FormatError, match="vanishes beside its start time"):
+        Actiongram.from_text(text)
+
+
+def test_durations_that_vanish_are_rejected_from_python_too():
+    with pytest.raises(FormatError, match="T \\+ D == T"):
+        Actiongram.from_strings({"s": "ab"}, durations={"s": [1e-9, 1e-9]}, starts={"s": 1e15})
+    # small durations beside a small start are fine
+    assert Actiongram.from_strings({"s": "ab"}, durations={"s": [1e-9, 1e-9]}).starts["s"] == (
+        0.0, 1e-9)
+
+
+@pytest.mark.parametrize("where", ["name", "symbol"])
+def test_a_lone_surrogate_is_rejected_so_to_text_can_be_written(where):
+    name, symbol = ("\\ud800", "a") if where == "name" else ("a", "\\ud800")
+    text = '{"strings": [{"name": "%s", "symbols": ["%s"]}]}' % (name, symbol)
+    with pytest.raises(FormatError, match="lone surrogate"):
+        Actiongram.from_json(text)
+    with pytest.raises(FormatError, match="lone surrogate"):
+        Actiongram.from_strings({"\ud800" if where == "name" else "a":
+                                 ["a" if where == "name" else "\ud800"]})

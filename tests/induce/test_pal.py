@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 import psgs
 from psgs import Actiongram
 from psgs.induce import PAL, Induction, Sequential, get
-from psgs.synthetic import generate, success
+from psgs.induce.synthetic import generate, success
 
 GAMMA = ("abcdbcad", "bcadabcd", "cdabcdab", "abcdbcad")
 
@@ -149,7 +149,7 @@ def test_registry_and_entry_points(monkeypatch):
         def load(self):
             return Sequential
 
-    import psgs.induce as induce
+    import psgs.induce.registry as induce  # where the entry points are read
     monkeypatch.setattr(induce, "entry_points", lambda group: [FakeEntryPoint()])
     assert "mine" in induce.available()
     assert isinstance(induce.get("mine", min_count=3), Sequential)

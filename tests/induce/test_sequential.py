@@ -10,7 +10,7 @@ import psgs
 from psgs import Actiongram
 from psgs.induce import Sequential
 from psgs.induce.sequential import _repair
-from psgs.synthetic import generate, success
+from psgs.induce.synthetic import generate, success
 
 
 def test_learns_a_clean_repetition():
@@ -42,10 +42,12 @@ def test_fails_the_paper_protocol_by_keeping_random_strings():
 @settings(max_examples=60, deadline=None)
 @given(st.text(alphabet="abc", min_size=0, max_size=40))
 def test_pattern_occurs_where_reported(text):
-    found = _repair(tuple(text), 2, 1000)
+    found = _repair([tuple(text)], 2, 1000)
     if found is None:
         return
-    pattern, positions, rules, bounded = found
+    pattern, located, rules, bounded = found
+    assert {k for k, _ in located} == {0}
+    positions = [p for _, p in located]
     assert rules >= 1 and not bounded
     assert len(positions) >= 1
     for p in positions:
@@ -100,6 +102,7 @@ def test_non_finite_parameters_are_refused(params, words):
 
 def test_a_broken_plug_in_is_one_clear_error(monkeypatch, capsys):
     import psgs.induce as induce
+    import psgs.induce.registry as registry
     from psgs.cli import main
 
     class BrokenEntryPoint:
@@ -108,7 +111,7 @@ def test_a_broken_plug_in_is_one_clear_error(monkeypatch, capsys):
         def load(self):
             raise ImportError("No module named 'nowhere'")
 
-    monkeypatch.setattr(induce, "entry_points", lambda group: [BrokenEntryPoint()])
+    monkeypatch.setattr(registry, "entry_points", lambda group: [BrokenEntryPoint()])
     with pytest.raises(ValueError, match="'broken' \\(a plug-in\\) could not be loaded"):
         induce.get("broken")
     assert main(["induce", "--example", "--inducer", "broken"]) == 2

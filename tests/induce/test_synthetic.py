@@ -7,7 +7,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from psgs.induce import Induction
-from psgs.synthetic import PAPER_POINTS, generate, noise_sweep, success
+from psgs.induce.sweep import noise_sweep
+from psgs.induce.synthetic import PAPER_POINTS, generate, success
 
 
 @settings(max_examples=30, deadline=None)

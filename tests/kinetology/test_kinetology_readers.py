@@ -341,3 +341,91 @@ def test_binary_or_run_on_garbage_gives_one_short_line(tmp_path, name):
     text = str(info.value)
     assert text.startswith(f"{path}:1:") and "\n" not in text
     assert len(text) < len(str(path)) + 220, len(text)
+
+
+# ---- issue 11: inputs that crashed the readers with an undocumented exception
+@pytest.mark.parametrize("frame_time", ["1e-320", "nan", "inf", "-inf", "0", "-1"])
+def test_unreadable_frame_times_are_a_format_error(frame_time):
+    bad = SMALL_BVH.replace("Frame Time: 0.0333333", f"Frame Time: {frame_time}")
+    with pytest.raises(MotionFormatError, match="frame time must be a positive finite") as err:
+        parse_bvh(bad, "ft.bvh")
+    assert (err.value.source, err.value.line) == ("ft.bvh", 18)
+
+
+@pytest.mark.parametrize("frame_time, rate", [("200", 0.005), ("100", 0.01), ("1.5", 1 / 1.5)])
+def test_slow_frame_rates_are_kept_not_rounded_to_zero(frame_time, rate):
+    m = parse_bvh(SMALL_BVH.replace("Frame Time: 0.0333333", f"Frame Time: {frame_time}"))
+    assert m.frame_rate == pytest.approx(rate)
+
+
+def test_two_joints_of_one_name_are_located():
+    bad = SMALL_BVH.replace("JOINT Knee", "JOINT Hips")
+    with pytest.raises(MotionFormatError, match="two joints are named 'Hips'") as err:
+        parse_bvh(bad, "dup.bvh")
+    assert (err.value.line, err.value.column) == (6, 9)
+
+
+def test_a_blank_line_inside_an_amc_frame_is_located():
+    with pytest.raises(MotionFormatError, match="found an empty line") as err:
+        parse_amc("1\n\nroot 0 0 0 0 0 0\n", source="blank.amc")
+    assert (err.value.source, err.value.line) == ("blank.amc", 2)
+
+
+def test_radian_values_too_large_for_degrees_are_located():
+    with pytest.raises(MotionFormatError, match="too large to convert") as err:
+        parse_amc(":RADIANS\n1\nroot 0 0 0 0 0 0\n2\nroot 0 0 0 0 1e307 0\n", source="r.amc")
+    assert err.value.line == 5
+
+
+def test_a_bare_root_axis_line_is_located():
+    bad = SMALL_ASF.replace("axis XYZ", "axis", 1)
+    assert bad != SMALL_ASF
+    with pytest.raises(MotionFormatError, match="root axis needs an order") as err:
+        parse_asf(bad, "axis.asf")
+    assert err.value.line == bad.splitlines().index("   axis") + 1
+
+
+def test_a_byte_order_mark_is_skipped(tmp_path):
+    (tmp_path / "bom.bvh").write_bytes(b"\xef\xbb\xbf" + SMALL_BVH.encode())
+    assert kinetology.read(tmp_path / "bom.bvh").frames == 3
+    (tmp_path / "s.asf").write_bytes(b"\xef\xbb\xbf" + SMALL_ASF.encode())
+    (tmp_path / "s_1.amc").write_bytes(b"\xef\xbb\xbf" + SMALL_AMC.encode())
+    assert kinetology.read(tmp_path / "s_1.amc").channels[-1] == "tibia.rz"
+
+
+def test_forward_kinematics_that_overflows_is_an_error_not_inf():
+    huge = SMALL_BVH.replace("OFFSET 0 -10 0", "OFFSET 0 -1e308 0")
+    with pytest.raises(MotionFormatError, match="overflows at joint"):
+        forward_kinematics(parse_bvh(huge))
+
+
+def test_asf_bone_vector_that_overflows_is_located():
+    bad = SMALL_ASF.replace("length 10", "length 1e308", 1).replace("direction 0 -1 0",
+                                                                   "direction 0 -10 0", 1)
+    with pytest.raises(MotionFormatError, match="overflows") as err:
+        parse_asf(bad, "big.asf")
+    assert err.value.line is not None
+
+
+def test_segmenting_a_motion_sampled_at_megahertz_keeps_every_segment():
+    # one-frame segments at 3 MHz: durations rounded to the microsecond were 0 (a FormatError)
+    from kinetology.segmentation import segments
+    values = 30 * np.sin(np.arange(400) * 0.5)[:, None]
+    m = Motion(values, ("j.rx",), 3e6)
+    seg = segments(m, smoothing=0.0)
+    ag = kinetology.segment(m, smoothing=0.0)
+    assert len(ag.string("j.rx")) == seg.segment_count
+    assert sum(ag.durations["j.rx"]) == pytest.approx(m.duration, rel=1e-3)
+
+
+def test_one_long_hierarchy_line_reads_in_linear_time():
+    # 12,000 sibling joints on one line: list.pop(0) per token made this 7 s
+    n = 12_000
+    joints = " ".join(f"JOINT j{i} {{ OFFSET 0 0 0 CHANNELS 1 Xrotation End Site {{ OFFSET 0 0 0 }} }}"
+                      for i in range(1, n))
+    text = (f"HIERARCHY\nROOT j0 {{ OFFSET 0 0 0 CHANNELS 1 Xrotation {joints} }}\n"
+            f"MOTION\nFrames: 1\nFrame Time: 0.01\n{' '.join(['0'] * n)}\n")
+    start = time.perf_counter()
+    m = parse_bvh(text)
+    assert len(m.channels) == n
+    assert time.perf_counter() - start < 3.0

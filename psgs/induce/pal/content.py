@@ -1,0 +1,101 @@
+"""The content mode: copies found by content in each string, joined in time (steps 1-6)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from .motifs import Motif, Timed, find_motif
+from .pooling import (pooled_windows, relocate, repeats_in_windows, sync_groups, synchronised,
+                      trim, vote)
+
+if TYPE_CHECKING:
+    from .learner import PAL
+
+
+@dataclass
+class ContentResult:
+    """What the content mode found, per string index (a working record, not a public value)."""
+
+    motifs: list[Motif | None]
+    candidates: list[int]
+    intervals: dict[int, object]  # candidate -> (copies, 2) array of copy times
+    partners: dict[int, list[int]]
+    patterns: dict[int, tuple[int, ...]] = field(default_factory=dict)
+    occurrences: dict[int, tuple[tuple[float, float], ...]] = field(default_factory=dict)
+    joined: dict[int, list[int]] = field(default_factory=dict)
+
+
+def find_candidates(strings: list[Timed], params: PAL) -> ContentResult:
+    """Steps 1-3: a motif per string, the significance screen, synchronisation in time."""
+    motifs = [find_motif(s.codes, params) for s in strings]
+    candidates = [i for i, m in enumerate(motifs)
+                  if m is not None and m.significance <= math.log10(params.alpha)]
+    intervals = {i: strings[i].intervals(motifs[i].starts, len(motifs[i].motif))
+                 for i in candidates}
+    partners: dict[int, list[int]] = {i: [] for i in candidates}
+    for a_pos, i in enumerate(candidates):
+        for j in candidates[a_pos + 1:]:
+            if synchronised(intervals[i], intervals[j], params.sync_fraction, params.min_copies):
+                partners[i].append(j)
+                partners[j].append(i)
+    return ContentResult(motifs, candidates, intervals, partners)
+
+
+def pool_groups(strings: list[Timed], found: ContentResult, params: PAL) -> ContentResult:
+    """Steps 4-6 for every group of synchronised strings: pooled windows, vote, join, trim."""
+    intervals = found.intervals
+    groups = sync_groups(found.candidates, found.partners)
+    patterns, occurrences, joined = found.patterns, found.occurrences, found.joined
+    grouped = {i for g in groups for i in g}
+    for group in groups:
+        located = {i: intervals[i] for i in group}
+        members = list(group)
+        for round_ in range(params.rounds):
+            if round_ + 1 < params.rounds:
+                windows = pooled_windows([located[i] for i in members], params.window_support)
+                votes = {i: v for i in members if (v := vote(strings[i], windows)) is not None}
+                kept_columns = trim(votes, params.edge_share) if votes else {}
+                # locate each member's copies again with its voted pattern
+                for i, (first, last) in kept_columns.items():
+                    again = relocate(strings[i], votes[i].pattern[first:last], params)
+                    if again is not None:
+                        located[i] = again
+                continue
+            # every member must repeat in the shared windows itself, not only overlap
+            # them in time (a random string's chance motif can); windows are redrawn
+            # without the members that do not
+            for _ in range(len(group)):
+                windows = pooled_windows([located[i] for i in members], params.window_support)
+                votes = {i: v for i in members
+                         if (v := vote(strings[i], windows)) is not None
+                         and repeats_in_windows(strings[i], v, params, params.min_copies,
+                                                beyond_chance=False)}
+                if len(votes) == len(members) or len(votes) < 2:
+                    break
+                members = sorted(votes)
+            if len(votes) < 2:
+                votes = {}
+                break
+            # strings whose own motif search fell short, read in the group's windows
+            for i in range(len(strings)):
+                if i not in grouped and (v := vote(strings[i], windows)) is not None \
+                        and repeats_in_windows(strings[i], v, params, params.joins_copies):
+                    votes[i] = v
+                    joined[i] = group
+                    grouped.add(i)
+        kept_columns = trim(votes, params.edge_share) if votes else {}
+        for i, (first, last) in kept_columns.items():
+            if last <= first:
+                continue
+            v = votes[i]
+            length = len(v.pattern)
+            patterns[i] = v.pattern[first:last]
+            where = []
+            for a, b in v.spans:
+                if b - a == length:
+                    a, b = a + first, a + last
+                where.append((float(strings[i].starts[a]), float(strings[i].ends[b - 1])))
+            occurrences[i] = tuple(where)
+    return found

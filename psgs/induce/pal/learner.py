@@ -1,0 +1,191 @@
+"""PAL, the learner: its parameters and ``induce`` as a short sequence of named phases."""
+
+from __future__ import annotations
+
+from ...actiongram import Actiongram
+from ...errors import ValidationError
+from ..base import Inducer, as_performances, check_choice, check_number
+from ..results import Induction, StringReport
+from .content import ContentResult, find_candidates, pool_groups
+from .motifs import Timed
+from .period import period_mode
+
+__all__ = ["PAL"]
+
+_TIMINGS = ("content", "period", "auto")
+
+
+class PAL(Inducer):
+    """The parallel learning algorithm (see the module docstring and ``docs/pal.md``).
+
+    Parameters (all keyword):
+
+    - ``min_copies`` (3): fewest copies of a motif that count as repetition.
+    - ``conserve`` (0.6): share of copies that must agree on a new column.
+    - ``edge_share`` (0.5): an end column of a voted pattern whose plurality symbol
+      holds no more than this share of the copies is trimmed (it is not conserved).
+    - ``match_fraction`` (0.5): least share of positions a copy must match.
+    - ``scan_alpha`` (0.05): expected chance copies per string tolerated by the scan.
+    - ``alpha`` (1e-2): chance level a string's repetition must beat to be a candidate.
+    - ``sync_fraction`` (0.5): share of the merged copy clusters of two strings that
+      must hold copies of both for them to be synchronised.
+    - ``window_support`` (0.34): share of a group's members that must show a copy in a window.
+    - ``max_pattern`` (64): longest motif, in symbols.
+    - ``seeds`` (3): how many of a string's most frequent digrams are grown into motifs.
+    - ``rounds`` (2): rounds of pooling; after each but the last, every member's
+      copies are located again with its voted pattern.
+    - ``joins_copies`` (4): a string outside every group joins one when, read in
+      the group's windows, at least this many of its copies have the common
+      length and half of their columns agree, beyond chance, in a share
+      ``conserve`` of them.
+    - ``timing`` ("auto"): how copies are located. ``"content"``: by content in
+      each string, joined in time (steps 1-6); ``"period"``: by time windows of
+      the action's period pooled over all strings (for real motion, where joints
+      cycle through the same few states at different rates and phases);
+      ``"auto"``: content, and the period mode when content finds no component.
+    - ``period_quantile`` (0.9): the period mode's pooled excess self-agreement
+      at each lag is this quantile over the strings (the driving joints decide).
+    - ``period_agreement`` (0.6): in the period mode, least share of times at
+      which a string's symbol recurs one (tracked) window later.
+
+    >>> from psgs.induce.synthetic import generate
+    >>> case = generate(seed=1, noise=0.1)
+    >>> result = PAL().induce(case.actiongram)
+    >>> sorted(result.components) == sorted(case.components)
+    True
+    """
+
+    name = "pal"
+
+    def __init__(self, *, min_copies: int = 3, conserve: float = 0.6, edge_share: float = 0.5,
+                 match_fraction: float = 0.5, scan_alpha: float = 0.05, alpha: float = 1e-2,
+                 sync_fraction: float = 0.5, window_support: float = 0.34,
+                 max_pattern: int = 64, seeds: int = 3, rounds: int = 2,
+                 joins_copies: int = 4, timing: str = "auto",
+                 period_quantile: float = 0.9, period_agreement: float = 0.6) -> None:
+        check_number("min_copies", min_copies, low=2, integer=True)
+        check_number("conserve", conserve, low=0, high=1, low_open=True)
+        check_number("edge_share", edge_share, low=0, high=1)
+        check_number("match_fraction", match_fraction, low=0, high=1, low_open=True)
+        check_number("scan_alpha", scan_alpha, low=0, low_open=True)
+        check_number("alpha", alpha, low=0, high=1, low_open=True)
+        check_number("sync_fraction", sync_fraction, low=0, high=1, low_open=True)
+        check_number("window_support", window_support, low=0, high=1)
+        check_number("max_pattern", max_pattern, low=2, integer=True)
+        check_number("seeds", seeds, low=1, integer=True)
+        check_number("rounds", rounds, low=1, integer=True)
+        check_number("joins_copies", joins_copies, low=2, integer=True)
+        check_choice("timing", timing, _TIMINGS)
+        check_number("period_quantile", period_quantile, low=0, high=1)
+        check_number("period_agreement", period_agreement, low=0, high=1, low_open=True)
+        self.min_copies = min_copies
+        self.conserve = conserve
+        self.edge_share = edge_share
+        self.match_fraction = match_fraction
+        self.scan_alpha = scan_alpha
+        self.alpha = alpha
+        self.sync_fraction = sync_fraction
+        self.window_support = window_support
+        self.max_pattern = max_pattern
+        self.seeds = seeds
+        self.rounds = rounds
+        self.joins_copies = joins_copies
+        self.timing = timing
+        self.period_quantile = period_quantile
+        self.period_agreement = period_agreement
+
+    def induce(self, performances) -> Induction:
+        """Learn a PSGS from an actiongram; see :class:`~psgs.induce.Induction`.
+
+        Parameters
+        ----------
+        performances : Actiongram or sequence of Actiongram
+            One actiongram (a sequence holding one is the same). Several
+            performances are not learnt from yet (issue 9): they are refused
+            rather than joined into one stream.
+
+        Returns
+        -------
+        Induction
+            Synchronised: every component repeats its pattern the same number of times.
+
+        Raises
+        ------
+        TypeError
+            When the input is not an actiongram or a sequence of them.
+        ValidationError
+            For an empty sequence, performances whose actuators differ, or more
+            than one performance.
+        """
+        takes = as_performances(performances, "PAL.induce")
+        if len(takes) > 1:
+            raise ValidationError(f"PAL.induce learns from one performance for now, not "
+                                  f"{len(takes)} (several performances are issue 9)")
+        actiongram = takes[0]
+        strings, symbol_of = encode(actiongram)
+        found = pool_groups(strings, find_candidates(strings, self), self)
+        by_period = None
+        if self.timing == "period" or (self.timing == "auto" and not found.patterns):
+            by_period = self._period_phase(strings, len(symbol_of), found)
+        reports = _reports(actiongram, found, by_period is not None or self.timing == "period",
+                           symbol_of)
+        patterns = {i: tuple(symbol_of[c] for c in codes) for i, codes in found.patterns.items()}
+        return _result(self, actiongram, patterns, found.occurrences, reports)
+
+    def _period_phase(self, strings: list[Timed], size: int, found: ContentResult):
+        """Replace the content mode's findings by the period mode's (which may be none)."""
+        by_period = period_mode(strings, size, self)
+        found.patterns, found.occurrences, found.joined = {}, {}, {}
+        if by_period is not None:
+            for i, codes in by_period.patterns.items():
+                found.patterns[i] = codes
+                found.occurrences[i] = by_period.occurrences[i]
+                found.partners[i] = [j for j in by_period.patterns if j != i]
+        return by_period
+
+
+def encode(actiongram: Actiongram) -> tuple[list[Timed], list[str]]:
+    """Each string as integer codes over one alphabet (symbols in order of first appearance)."""
+    alphabet: dict[str, int] = {}
+    strings = [Timed.build(syms, durs, origin, alphabet)
+               for syms, durs, origin in zip(actiongram.symbols, actiongram.segment_durations,
+                                             actiongram.origins)]
+    return strings, list(alphabet)
+
+
+def _reports(actiongram: Actiongram, found: ContentResult, period_used: bool,
+             symbol_of: list[str]) -> tuple[StringReport, ...]:
+    """One report per string: component, or the stage that dropped it."""
+    reports = []
+    partners = found.partners
+    for i, name in enumerate(actiongram.names):
+        m = found.motifs[i]
+        if i in found.patterns:
+            status = "component"
+            if i in found.joined:
+                partners[i] = found.joined[i]
+        elif period_used:
+            status = "not in step with the period"
+        elif m is None:
+            status = "no repetition"
+        elif i not in partners:
+            status = "not significant"
+        else:
+            status = "not synchronised"
+        reports.append(StringReport(
+            name=name, status=status,
+            motif=tuple(symbol_of[c] for c in m.motif) if m else (),
+            copies=len(m.starts) if m else 0,
+            significance=m.significance if m else 0.0,
+            synchronised_with=tuple(actiongram.names[j] for j in partners.get(i, ()))))
+    return tuple(reports)
+
+
+def _result(inducer: PAL, actiongram: Actiongram, patterns: dict[int, tuple[str, ...]],
+            occurrences: dict, reports: tuple[StringReport, ...]) -> Induction:
+    """The Induction: components in actiongram order, their system and reports."""
+    kept = tuple(sorted(patterns))
+    names = actiongram.names
+    return inducer.build_induction(
+        names, {names[i]: patterns[i] for i in kept},
+        {names[i]: occurrences[i] for i in kept}, reports, synchronise=True)

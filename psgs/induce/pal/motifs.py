@@ -1,0 +1,188 @@
+"""One string as timed codes, and the motif search within it (step 1 of the content mode)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .statistics import log10_binom_sf, log10_poisson_sf, scan_threshold
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .learner import PAL
+
+
+@dataclass(frozen=True)
+class Timed:
+    """One string as integer codes with start and end times."""
+
+    codes: np.ndarray
+    starts: np.ndarray
+    ends: np.ndarray
+
+    @classmethod
+    def build(cls, symbols, durations, origin, alphabet: dict[str, int]) -> "Timed":
+        """Encode ``symbols``; new symbols join ``alphabet`` in order of first appearance."""
+        for sym in dict.fromkeys(symbols):  # distinct symbols, in order of first appearance
+            alphabet.setdefault(sym, len(alphabet))
+        codes = np.fromiter(map(alphabet.__getitem__, symbols), dtype=np.int64,
+                            count=len(symbols))
+        durs = np.asarray(durations, dtype=np.float64)
+        ends = origin + np.cumsum(durs)
+        return cls(codes, ends - durs, ends)
+
+    def intervals(self, copy_starts: np.ndarray, length: int) -> np.ndarray:
+        """(k, 2) array: the time span of each copy of a motif of ``length`` symbols."""
+        return np.column_stack((self.starts[copy_starts], self.ends[copy_starts + length - 1]))
+
+
+@dataclass(frozen=True)
+class Motif:
+    motif: np.ndarray
+    starts: np.ndarray
+    significance: float
+
+
+# -- motif finding in one string ---------------------------------------------------
+def locate_copies(codes: np.ndarray, motif: np.ndarray, threshold: int) -> np.ndarray:
+    """Non-overlapping windows agreeing with ``motif`` in >= threshold positions.
+
+    Best agreement first, earlier first among equals; returned in position order.
+    """
+    n, length = len(codes), len(motif)
+    width = n - length + 1
+    if width <= 0:
+        return np.zeros(0, dtype=np.int64)
+    score = np.zeros(width, dtype=np.int32)
+    for offset, sym in enumerate(motif):
+        score += codes[offset:offset + width] == sym
+    hits = np.flatnonzero(score >= threshold)
+    if len(hits) == 0:
+        return hits
+    order = hits[np.lexsort((hits, -score[hits]))]
+    if np.all(score[hits] == length) and (len(hits) < 2 or np.min(np.diff(hits)) >= length):
+        return hits  # exact, non-overlapping copies: nothing to choose
+    taken = np.zeros(n, dtype=bool)
+    chosen = []
+    for p in order:
+        if not taken[p:p + length].any():
+            taken[p:p + length] = True
+            chosen.append(p)
+    return np.sort(np.asarray(chosen, dtype=np.int64))
+
+
+def median_gap(starts: np.ndarray) -> int:
+    """The median distance between consecutive copies (the lower middle one)."""
+    gaps = np.sort(np.diff(starts))
+    return int(gaps[(len(gaps) - 1) // 2])
+
+
+def merge_copies(old: np.ndarray, new: np.ndarray, length: int) -> np.ndarray:
+    """Copies from both lists, earlier first, dropping any that overlaps one already kept.
+
+    Copies located while the motif grew keep their place even when the longer
+    motif no longer passes the scan (a damaged copy still shows the pattern).
+    """
+    both = np.unique(np.concatenate((old, new)))
+    if len(both) < 2 or np.min(np.diff(both)) >= length:
+        return both
+    kept, last = [], None
+    for p in both.tolist():
+        if last is None or p >= last + length:
+            kept.append(p)
+            last = p
+    return np.asarray(kept, dtype=np.int64)
+
+
+def find_motif(codes: np.ndarray, params: PAL) -> Motif | None:
+    """The best-supported repeated motif of one string, or None.
+
+    Up to ``params.seeds`` of the most frequent digrams are grown in turn (a
+    burst of noise can stop one seed early); the most significant motif wins,
+    the earlier seed among equals.
+    """
+    n = len(codes)
+    if n < 2 * params.min_copies:
+        return None
+    size = int(codes.max()) + 1
+    freq = np.bincount(codes, minlength=size) / n
+    distinct = int(np.count_nonzero(freq))
+    match_rate = float(np.sum(freq ** 2))
+    keys = codes[:-1] * size + codes[1:]
+    uniq, first, counts = np.unique(keys, return_index=True, return_counts=True)
+    order = np.lexsort((first, -counts))
+    best: Motif | None = None
+    covered: set[int] = set()
+    tried = 0
+    for index in order.tolist():
+        if tried >= params.seeds or counts[index] < params.min_copies:
+            break
+        if int(uniq[index]) in covered:
+            continue  # already inside a motif grown from an earlier seed
+        tried += 1
+        seed = np.array([uniq[index] // size, uniq[index] % size], dtype=np.int64)
+        found = grow(codes, seed, np.flatnonzero(keys == uniq[index]), match_rate, distinct,
+                      params)
+        if found is None:
+            continue
+        covered.update((found.motif[:-1] * size + found.motif[1:]).tolist())
+        if best is None or found.significance < best.significance:
+            best = found
+    return best
+
+
+def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: float,
+          distinct: int, params: PAL) -> Motif | None:
+    """Grow ``motif`` one conserved column at a time from its copies at ``starts``."""
+    n = len(codes)
+    size = int(codes.max()) + 1
+    while len(motif) < params.max_pattern:
+        length = len(motif)
+        spacing = median_gap(starts) if len(starts) > 1 else n
+        if length + 1 > spacing:
+            break
+        choice = None
+        for side in ("right", "left"):
+            pos = starts + length if side == "right" else starts - 1
+            pos = pos[(pos >= 0) & (pos < n)]
+            if len(pos) < params.min_copies:
+                continue
+            column = np.bincount(codes[pos], minlength=size)
+            sym = int(np.argmax(column))
+            k = int(column[sym])
+            if k < params.min_copies or k < params.conserve * len(pos):
+                continue
+            share = k / len(pos)
+            if choice is None or share > choice[0]:
+                choice = (share, side, sym)
+        if choice is None:
+            break
+        _, side, sym = choice
+        grown = np.append(motif, sym) if side == "right" else np.insert(motif, 0, sym)
+        kept = starts if side == "right" else starts - 1
+        kept = kept[(kept >= 0) & (kept + len(grown) <= n)]
+        threshold = scan_threshold(len(grown), n - len(grown) + 1, match_rate, params)
+        found = merge_copies(kept, locate_copies(codes, grown, threshold), len(grown))
+        if len(found) < params.min_copies:
+            break
+        motif, starts = grown, found
+
+    length = len(motif)
+    threshold = scan_threshold(length, n - length + 1, match_rate, params)
+    if len(starts) > 1 and median_gap(starts) == length and starts[0] % length:
+        # copies tile the string: put a copy boundary where the string starts
+        shift = int(starts[0] % length)
+        rotated = np.roll(motif, shift)
+        found = locate_copies(codes, rotated, threshold)
+        if len(found) >= len(starts):
+            motif, starts = rotated, found
+    starts = merge_copies(starts, locate_copies(codes, motif, threshold), length)
+    if len(starts) < params.min_copies:
+        return None
+    lam = (n - length + 1) * 10 ** log10_binom_sf(threshold, length, match_rate)
+    significance = length * math.log10(max(distinct, 2)) + log10_poisson_sf(len(starts), lam)
+    return Motif(motif, starts, min(significance, 0.0))
+
+

@@ -1,0 +1,261 @@
+"""Synchronisation in time and copies pooled over a group of strings (steps 3-6)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .motifs import Timed, grow, locate_copies
+from .statistics import log10_binom_sf, scan_threshold
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .learner import PAL
+
+
+def copy_clusters(parts: list[np.ndarray]) -> np.ndarray:
+    """Merge the intervals of several lists wherever they overlap.
+
+    Returns a (clusters, lists) boolean array: which lists each cluster holds.
+    """
+    spans = np.concatenate(parts)
+    tags = np.concatenate([np.full(len(iv), k) for k, iv in enumerate(parts)])
+    order = np.lexsort((spans[:, 1], spans[:, 0]))
+    spans, tags = spans[order], tags[order]
+    reach = np.maximum.accumulate(spans[:, 1])
+    opens = np.ones(len(spans), dtype=bool)
+    opens[1:] = spans[1:, 0] >= reach[:-1]
+    cluster = np.cumsum(opens) - 1
+    held = np.zeros((int(cluster[-1]) + 1, len(parts)), dtype=bool)
+    held[cluster, tags] = True
+    return held
+
+
+def synchronised(a: np.ndarray, b: np.ndarray, fraction: float, min_copies: int) -> bool:
+    """Whether two strings' copies cover the same time.
+
+    Overlapping copies of both strings are merged into clusters; the strings
+    are synchronised when at least ``min_copies`` clusters hold copies of both
+    and those are at least ``fraction`` of all clusters. (A string whose
+    period is half the other's has two copies in one cluster: still one
+    shared cluster, so the period is shared in time.)
+    """
+    if len(a) == 0 or len(b) == 0:
+        return False
+    held = copy_clusters([a, b])
+    both = int(np.count_nonzero(held.all(axis=1)))
+    return both >= min_copies and both >= fraction * len(held)
+
+
+def sync_groups(candidates: list[int], partners: dict[int, list[int]]) -> list[list[int]]:
+    """Connected components of the synchronisation graph, singletons left out."""
+    seen: set[int] = set()
+    out = []
+    for i in candidates:
+        if i in seen or not partners[i]:
+            continue
+        stack, group = [i], []
+        seen.add(i)
+        while stack:
+            v = stack.pop()
+            group.append(v)
+            for w in partners[v]:
+                if w not in seen:
+                    seen.add(w)
+                    stack.append(w)
+        out.append(sorted(group))
+    return out
+
+
+def pooled_windows(member_intervals: list[np.ndarray], support: float) -> np.ndarray:
+    """Shared copy windows of a group: the times enough members agree are in a copy.
+
+    Cores are the maximal time ranges covered by copies of at least a share
+    ``support`` of the members; each core then widens to the copies that
+    overlap it (so a copy one member located more completely still counts),
+    without reaching into the next core.
+    """
+    need = max(1, math.ceil(support * len(member_intervals) - 1e-9))
+    spans = np.concatenate(member_intervals)
+    times = np.concatenate((spans[:, 0], spans[:, 1]))
+    steps = np.concatenate((np.ones(len(spans), dtype=np.int64),
+                            -np.ones(len(spans), dtype=np.int64)))
+    order = np.lexsort((steps, times))  # at equal times, ends before starts
+    times, depth = times[order], np.cumsum(steps[order])
+    inside = depth >= need
+    before = np.concatenate(([False], inside[:-1]))
+    opened, closed = times[inside & ~before], times[~inside & before]
+    keep = closed > opened
+    core = np.column_stack((opened[keep], closed[keep]))
+    if len(core) == 0:
+        return np.zeros((0, 2))
+    core = _join_fragments(core, spans)
+    low, high = core[:, 0].copy(), core[:, 1].copy()
+    first = np.searchsorted(core[:, 1], spans[:, 0], side="right")  # first core ending after s
+    last = np.searchsorted(core[:, 0], spans[:, 1], side="left") - 1  # last core starting before e
+    hit = first <= last
+    np.minimum.at(low, first[hit], spans[hit, 0])
+    np.maximum.at(high, last[hit], spans[hit, 1])
+    low[1:] = np.maximum(low[1:], core[:-1, 1])
+    high[:-1] = np.minimum(high[:-1], core[1:, 0])
+    return np.column_stack((low, high))
+
+
+def _join_fragments(core: np.ndarray, spans: np.ndarray) -> np.ndarray:
+    """Join touching cores that copies run across more than they stop or start at.
+
+    Where one member repeats a shorter motif twice per copy of the others
+    (and another misses its copy), coverage dips at the short motif's copy
+    boundary; that instant is inside a copy for the members spanning it.
+    Where every member's copy ends and the next begins (no gap between
+    copies), nobody spans it and the cores stay apart.
+    """
+    if len(core) < 2:
+        return core
+    eps = 1e-9 * max(1.0, float(np.abs(core).max()))
+    touching = np.flatnonzero(np.abs(core[1:, 0] - core[:-1, 1]) <= eps)
+    if len(touching) == 0:
+        return core
+    t = core[touching, 1]
+    starts, ends = np.sort(spans[:, 0]), np.sort(spans[:, 1])
+    spanning = (np.searchsorted(starts, t - eps, side="left")
+                - np.searchsorted(ends, t + eps, side="right"))
+    # a member whose copy ends where its next begins counts once
+    stopping = np.maximum(np.searchsorted(starts, t + eps, side="right")
+                          - np.searchsorted(starts, t - eps, side="left"),
+                          np.searchsorted(ends, t + eps, side="right")
+                          - np.searchsorted(ends, t - eps, side="left"))
+    join = np.zeros(len(core), dtype=bool)  # join[k]: core k continues core k - 1
+    join[touching[(spanning >= 1) & (spanning >= stopping)] + 1] = True
+    group = np.cumsum(~join) - 1
+    low = np.full(group[-1] + 1, np.inf)
+    high = np.full(group[-1] + 1, -np.inf)
+    np.minimum.at(low, group, core[:, 0])
+    np.maximum.at(high, group, core[:, 1])
+    return np.column_stack((low, high))
+
+
+def relocate(string: Timed, pattern: tuple[int, ...], params: PAL) -> np.ndarray | None:
+    """Copy intervals of ``pattern`` found by scanning the string, or None if too few."""
+    if len(pattern) < 2:
+        return None
+    codes = string.codes
+    freq = np.bincount(codes) / len(codes)
+    motif = np.asarray(pattern, dtype=np.int64)
+    threshold = scan_threshold(len(motif), len(codes) - len(motif) + 1,
+                                float(np.sum(freq ** 2)), params)
+    found = locate_copies(codes, motif, threshold)
+    if len(found) < params.min_copies:
+        return None
+    # the pooled copies are many and reliable: let them grow the pattern further
+    grown = grow(codes, motif, found, float(np.sum(freq ** 2)), int(np.count_nonzero(freq)),
+                  params)
+    if grown is None:
+        return string.intervals(found, len(motif))
+    return string.intervals(grown.starts, len(grown.motif))
+
+
+@dataclass(frozen=True)
+class Vote:
+    """One member's copies in the shared windows and their column-wise plurality."""
+
+    pattern: tuple[int, ...]
+    shares: np.ndarray        # plurality share of each column
+    column_start: np.ndarray  # median time offset of each column from its window's start
+    column_end: np.ndarray
+    spans: tuple[tuple[int, int], ...]  # symbol index range of each copy
+    window_of: tuple[int, ...]          # which window each copy lies in
+
+
+def vote(string: Timed, windows: np.ndarray) -> Vote | None:
+    """The plurality pattern of a string's copies in the shared windows.
+
+    A copy is the run of symbols whose middle lies in a window. The pattern
+    length is the most common copy length (the longer among equals); each
+    position takes the symbol most copies of that length agree on (the one
+    seen first in time among equals).
+    """
+    middles = (string.starts + string.ends) / 2
+    lo = np.searchsorted(middles, windows[:, 0], side="left")
+    hi = np.searchsorted(middles, windows[:, 1], side="left")
+    sizes = hi - lo
+    picked = np.flatnonzero(sizes > 0)
+    if len(picked) == 0:
+        return None
+    counts = np.bincount(sizes[picked])
+    length = int(len(counts) - 1 - np.argmax(counts[::-1]))  # most common; longer among equals
+    full = picked[sizes[picked] == length]
+    index = lo[full][:, None] + np.arange(length)
+    same = string.codes[index]
+    offsets = string.starts[index] - windows[full, 0][:, None]
+    ends = string.ends[index] - windows[full, 0][:, None]
+    pattern, shares = [], []
+    for column in same.T:
+        tally = np.bincount(column)
+        top = tally.max()
+        # ties go to the symbol seen first in time
+        pattern.append(int(column[np.argmax(tally[column] == top)]))
+        shares.append(top / len(column))
+    return Vote(tuple(pattern), np.asarray(shares), np.median(offsets, axis=0),
+                 np.median(ends, axis=0),
+                 tuple(zip(lo[picked].tolist(), hi[picked].tolist())),
+                 tuple(picked.tolist()))
+
+
+def repeats_in_windows(string: Timed, vote: Vote, params: PAL, copies_needed: int,
+                        beyond_chance: bool = True) -> bool:
+    """Whether a string read in a group's windows repeats a pattern of its own.
+
+    It needs at least ``copies_needed`` copies of the common length, and at
+    least half of their columns (two or more) where the plurality symbol holds
+    a share ``conserve`` of the copies and, when ``beyond_chance``, is more
+    frequent than chance: the binomial tail of its count, at the symbol's
+    frequency in the whole string, times the number of distinct symbols (any
+    of them could have been the plurality), below 0.01.
+    """
+    length = len(vote.pattern)
+    same = [a for a, b in vote.spans if b - a == length]
+    if len(same) < copies_needed or length < 2:
+        return False
+    freq = np.bincount(string.codes) / len(string.codes)
+    penalty = math.log10(max(2, int(np.count_nonzero(freq))))
+    agreeing = 0
+    for column, (sym, share) in enumerate(zip(vote.pattern, vote.shares.tolist())):
+        k = round(share * len(same))
+        if share >= params.conserve and (not beyond_chance or log10_binom_sf(
+                k, len(same), float(freq[sym])) + penalty <= -2):
+            agreeing += 1
+    return agreeing >= max(2, math.ceil(length / 2))
+
+
+def trim(votes: dict[int, Vote], edge_share: float) -> dict[int, tuple[int, int]]:
+    """Per member, the range of columns kept: end columns not conserved across the group go.
+
+    A column's conservation is pooled in time: the mean, over the members, of
+    the plurality share of the member's column at that time offset (0 where
+    a member has no column). So one string's chance agreement at a column the
+    others do not share is trimmed, and a column damaged in one string but
+    conserved in the others is kept.
+    """
+    def pooled(t: float) -> float:
+        total = 0.0
+        for v in votes.values():
+            hit = np.flatnonzero((v.column_start <= t) & (t < v.column_end))
+            if len(hit):
+                total += float(v.shares[hit[0]])
+        return total / len(votes)
+
+    out = {}
+    for i, v in votes.items():
+        middles = (v.column_start + v.column_end) / 2
+        first, last = 0, len(v.pattern)
+        while first < last and pooled(middles[first]) <= edge_share:
+            first += 1
+        while last > first and pooled(middles[last - 1]) <= edge_share:
+            last -= 1
+        out[i] = (first, last)
+    return out
+
+

@@ -1,0 +1,63 @@
+"""Chance levels PAL tests against: binomial and Poisson tails, the scan threshold."""
+
+from __future__ import annotations
+
+import functools
+import math
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from .learner import PAL
+
+
+def log10_binom_sf(k: int, m: int, p: float) -> float:
+    """log10 P(X >= k) for X ~ Binomial(m, p)."""
+    if k <= 0:
+        return 0.0
+    if k > m or p <= 0:
+        return -math.inf
+    if p >= 1:
+        return 0.0
+    lp, lq = math.log(p), math.log1p(-p)
+    terms = []
+    for i in range(k, m + 1):
+        t = math.lgamma(m + 1) - math.lgamma(i + 1) - math.lgamma(m - i + 1) + i * lp + (m - i) * lq
+        terms.append(t)
+        if i > m * p and t < terms[0] - 30:
+            break
+    top = max(terms)
+    return (top + math.log(sum(math.exp(t - top) for t in terms))) / math.log(10)
+
+
+def log10_poisson_sf(k: int, lam: float) -> float:
+    """log10 P(Y >= k) for Y ~ Poisson(lam)."""
+    if k <= 0:
+        return 0.0
+    if lam <= 0:
+        return -math.inf
+    terms, i = [], k
+    while True:
+        t = -lam + i * math.log(lam) - math.lgamma(i + 1)
+        terms.append(t)
+        if (i > lam and t < terms[0] - 30) or i > k + 10_000:
+            break
+        i += 1
+    top = max(terms)
+    return (top + math.log(sum(math.exp(t - top) for t in terms))) / math.log(10)
+
+
+def scan_threshold(length: int, windows: int, match_rate: float, params: PAL) -> int:
+    """Fewest matching positions a window needs to count as a copy."""
+    return _threshold(length, windows, match_rate, params.match_fraction, params.scan_alpha)
+
+
+@functools.lru_cache(maxsize=4096)
+def _threshold(length: int, windows: int, match_rate: float, match_fraction: float,
+               scan_alpha: float) -> int:
+    low = max(2, math.ceil(match_fraction * length))
+    for t in range(low, length + 1):
+        if windows * 10 ** log10_binom_sf(t, length, match_rate) <= scan_alpha:
+            return t
+    return length
+
+

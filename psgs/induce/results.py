@@ -1,0 +1,216 @@
+"""What every inducer returns: an :class:`Induction`, with a :class:`StringReport` per string.
+
+Both are values (frozen, their mappings read-only views, picklable), like the
+grammar system an induction holds; nothing here learns anything.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+
+from ..errors import ValidationError
+from ..model import PSGS
+
+__all__ = ["Induction", "StringReport"]
+
+
+@dataclass(frozen=True)
+class StringReport:
+    """What an inducer found in one string, whether or not it became a component.
+
+    Parameters
+    ----------
+    name : str
+        The string's (actuator's) name.
+    status : str
+        ``"component"``, or a short reason the string was dropped (``"no
+        repetition"``, ``"not significant"``, ``"not synchronised"``, ...) or kept
+        with a caveat (``"rule bound reached"``).
+    motif : tuple of str, optional
+        The repeated block found in the string alone.
+    copies : int, optional
+        How many times ``motif`` was located.
+    significance : float, optional
+        log10 of the chance that a random string of the same length and symbol
+        frequencies holds a motif this well repeated (more negative is stronger
+        evidence; 0 when no motif was found).
+    synchronised_with : tuple of str, optional
+        The strings whose copies cover the same time.
+
+    Examples
+    --------
+    >>> StringReport("knee", "no repetition").copies
+    0
+    """
+
+    name: str
+    status: str
+    motif: tuple[str, ...] = ()
+    copies: int = 0
+    significance: float = 0.0
+    synchronised_with: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class Induction:
+    """The result of ``inducer.induce(performances)``.
+
+    Parameters
+    ----------
+    system : PSGS or None
+        A PSGS in ``parallel`` mode with one component per entry of
+        ``components``; None when no string became a component.
+    components : tuple of str
+        The actuator names kept, in actiongram order.
+    patterns : mapping of str to tuple of str
+        Actuator name -> its motion pattern (terminal symbol names).
+    occurrences : mapping of str to tuple of (float, float)
+        Actuator name -> the (start, end) time of each located copy of its
+        pattern, in the time of the performance it was found in.
+    reports : tuple of StringReport, optional
+        One report per string of the actiongram, in its order.
+    component_names : mapping of str to str, optional
+        Actuator name -> component name in ``system`` (actuator names made into
+        identifiers when they are not: ``l-knee`` -> ``l_knee``).
+    inducer : str, optional
+        The name of the inducer that made it.
+    params : mapping, optional
+        The inducer's parameters.
+    performances : int, optional
+        How many performances (actiongrams of the same action) it was learnt
+        from; 1 by default.
+    occurrence_performance : mapping of str to tuple of int, optional
+        Actuator name -> the index (from 0) of the performance each entry of
+        ``occurrences[name]`` lies in; filled with 0 for every actuator not
+        given (always right for one performance).
+
+    Raises
+    ------
+    ValidationError
+        When ``performances`` is not a positive integer, or an
+        ``occurrence_performance`` entry does not have one index per occurrence
+        or names a performance outside ``range(performances)``.
+
+    Notes
+    -----
+    The mappings are read-only views and patterns and occurrences hold tuples:
+    an induction is a value, like the system it holds.
+
+    Examples
+    --------
+    >>> result = Induction(None, ("knee",), {"knee": ["a", "b"]}, {"knee": [(0, 2), (2, 4)]})
+    >>> result.patterns["knee"], result.occurrence_performance["knee"]
+    (('a', 'b'), (0, 0))
+    """
+
+    system: PSGS | None
+    components: tuple[str, ...]
+    patterns: Mapping[str, tuple[str, ...]]
+    occurrences: Mapping[str, tuple[tuple[float, float], ...]]
+    reports: tuple[StringReport, ...] = ()
+    component_names: Mapping[str, str] = field(default_factory=dict)
+    inducer: str = ""
+    params: Mapping[str, object] = field(default_factory=dict)
+    performances: int = 1
+    occurrence_performance: Mapping[str, tuple[int, ...]] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        if isinstance(self.performances, bool) or not isinstance(self.performances, int) \
+                or self.performances < 1:
+            raise ValidationError(f"performances must be a positive integer, not "
+                                  f"{self.performances!r}")
+        occurrences = {k: tuple(tuple(span) for span in v) for k, v in self.occurrences.items()}
+        given = {k: tuple(v) for k, v in self.occurrence_performance.items()}
+        where = {}
+        for name, spans in occurrences.items():
+            indices = given.pop(name, (0,) * len(spans))
+            if len(indices) != len(spans):
+                raise ValidationError(f"occurrence_performance[{name!r}] has {len(indices)} "
+                                      f"entries for {len(spans)} occurrences")
+            if any(not 0 <= k < self.performances for k in indices):
+                raise ValidationError(f"occurrence_performance[{name!r}] names a performance "
+                                      f"outside 0..{self.performances - 1}")
+            where[name] = indices
+        if given:
+            raise ValidationError(f"occurrence_performance names {next(iter(given))!r}, "
+                                  f"which has no occurrences")
+        frozen = {
+            "components": tuple(self.components),
+            "patterns": MappingProxyType({k: tuple(v) for k, v in self.patterns.items()}),
+            "occurrences": MappingProxyType(occurrences),
+            "reports": tuple(self.reports),
+            "component_names": MappingProxyType(dict(self.component_names)),
+            "params": MappingProxyType(dict(self.params)),
+            "occurrence_performance": MappingProxyType(where),
+        }
+        for key, value in frozen.items():
+            object.__setattr__(self, key, value)
+
+    def __reduce__(self):
+        # read-only views do not pickle; rebuild from plain dicts (e.g. across processes)
+        return (type(self), (self.system, self.components, dict(self.patterns),
+                             dict(self.occurrences), self.reports, dict(self.component_names),
+                             self.inducer, dict(self.params), self.performances,
+                             dict(self.occurrence_performance)))
+
+    def report(self, name: str) -> StringReport:
+        """The report of the string named ``name``.
+
+        Parameters
+        ----------
+        name : str
+            A string (actuator) name of the actiongram.
+
+        Returns
+        -------
+        StringReport
+
+        Raises
+        ------
+        KeyError
+            When no report has that name.
+
+        Examples
+        --------
+        >>> Induction(None, (), {}, {}, (StringReport("hip", "no repetition"),)).report("hip")
+        StringReport(name='hip', status='no repetition', motif=(), copies=0, significance=0.0, \
+synchronised_with=())
+        """
+        for r in self.reports:
+            if r.name == name:
+                return r
+        raise KeyError(f"no string named {name!r}")
+
+    def to_dict(self) -> dict:
+        """A JSON-ready summary (the system as text needs ``psgs.dumps``).
+
+        Returns
+        -------
+        dict
+            Plain lists, numbers and strings only; ``occurrence_performance`` is
+            included only when there was more than one performance, so the
+            summary of one actiongram is what it always was.
+
+        Examples
+        --------
+        >>> Induction(None, ("k",), {"k": ("a", "b")}, {"k": ((0.0, 2.0),)}).to_dict()["patterns"]
+        {'k': ['a', 'b']}
+        """
+        out = {
+            "inducer": self.inducer,
+            "params": dict(self.params),
+            "components": list(self.components),
+            "patterns": {k: list(v) for k, v in self.patterns.items()},
+            "occurrences": {k: [list(p) for p in v] for k, v in self.occurrences.items()},
+            "reports": [{"name": r.name, "status": r.status, "motif": list(r.motif),
+                         "copies": r.copies, "significance": round(r.significance, 3),
+                         "synchronised_with": list(r.synchronised_with)}
+                        for r in self.reports],
+        }
+        if self.performances > 1:
+            out["performances"] = self.performances
+            out["occurrence_performance"] = {k: list(v)
+                                             for k, v in self.occurrence_performance.items()}
+        return out

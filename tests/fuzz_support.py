@@ -1,0 +1,202 @@
+"""Fuzzing the readers: mutate small real files, read them, allow only success or a documented error.
+
+Shared by the fuzz tests (``tests/*/test_fuzz_*.py``, a few hundred hypothesis examples per
+reader on every run) and by ``benchmarks/fuzz.py`` (10^4 inputs per reader, counts in
+docs/testing.md). A *mutation* is a small edit of the file's bytes, the kind that real files
+get from hand editing, truncation and bad exporters: delete a span, duplicate a span, insert
+a token that readers treat specially (numbers at the edges of a float, braces, keywords,
+byte-order marks, bytes that are not UTF-8, a lone surrogate), or overwrite one byte.
+
+A reader passes on an input when, within :data:`TIME_LIMIT` seconds, it either returns a
+value that survives its round-trip check, or raises one of its documented errors. Anything
+else (another exception, a hang) is a finding.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+import signal
+import tempfile
+from contextlib import contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+SEEDS = Path(__file__).resolve().parent / "data" / "fuzz"
+
+#: Seconds one input may take before it counts as a hang (generous: a loaded 2-core machine).
+TIME_LIMIT = 5.0
+
+# text that readers treat specially; inserted whole so that mutations reach deep code paths
+TOKENS = (
+    "0", "-1", "1e308", "-1e308", "1e-320", "nan", "inf", "-inf", "1e999", "9" * 5000, ".5",
+    "0x1F", "1_0", "{", "}", "[", "]", "(", ")", "{" * 50, "[" * 2000, ":", "@", "#", "->",
+    "|", ",", '"', "'", "\\", "\n", "\r\n", "\t", " ", "\n\n", "\ufeff", "\u00a0", "\ud800",
+    "ε", "\\ud800", "\\u0000", "ROOT", "JOINT", "End Site", "OFFSET", "CHANNELS 3", "CHANNELS 0", "MOTION",
+    "Frames: 0", "Frame Time: 0", "Xrotation", "Xposition", ":root", ":bonedata", "begin",
+    "end", "axis", "dof rx", "name", ":RADIANS", ":hierarchy", "root", "psgs", "pcgs",
+    "component", "start", "sync", "mode", "parallel", "single", "returning", "Q1", "S", "#",
+    '"strings"', '"symbols"', '"durations"', '"start"', "null", "true", "[]", "{}",
+)
+# bytes that are not UTF-8 text on their own
+RAW_BYTES = (b"\xff", b"\xc3", b"\xed\xa0\x80", b"\x00", b"\xef\xbb\xbf")
+
+#: One mutation: (kind, position, length, argument); positions wrap around the data's length.
+Mutation = tuple[str, int, int, int]
+KINDS = ("delete", "duplicate", "insert", "raw", "byte")
+
+
+def apply(data: bytes, mutations: list[Mutation]) -> bytes:
+    """``data`` with each mutation applied in turn (positions taken modulo the current length)."""
+    for kind, position, length, argument in mutations:
+        at = position % (len(data) + 1)
+        end = min(len(data), at + length)
+        if kind == "delete":
+            data = data[:at] + data[end:]
+        elif kind == "duplicate":
+            data = data[:end] + data[at:end] * (1 + argument % 3) + data[end:]
+        elif kind == "insert":
+            token = TOKENS[argument % len(TOKENS)].encode("utf-8", "surrogatepass")
+            data = data[:at] + token + data[at:]
+        elif kind == "raw":
+            data = data[:at] + RAW_BYTES[argument % len(RAW_BYTES)] + data[at:]
+        elif data:  # "byte": overwrite one byte with a printable character
+            at = min(at, len(data) - 1)
+            data = data[:at] + bytes([32 + argument % 95]) + data[at + 1:]
+    return data
+
+
+def random_mutations(rng: random.Random) -> list[Mutation]:
+    """One to four mutations drawn with ``rng`` (what the hypothesis strategy draws, for the
+    long benchmark run where hypothesis' bookkeeping per example would dominate)."""
+    return [(rng.choice(KINDS), rng.randrange(1 << 16), rng.choice((1, 1, 2, 5, 20, 200)),
+             rng.randrange(1 << 16)) for _ in range(rng.randint(1, 4))]
+
+
+def mutations_strategy():
+    """The hypothesis strategy of mutation lists (imported lazily: benchmarks need no hypothesis)."""
+    from hypothesis import strategies as st
+    one = st.tuples(st.sampled_from(KINDS), st.integers(0, 1 << 16),
+                    st.sampled_from((1, 2, 5, 20, 200)), st.integers(0, 1 << 16))
+    return st.lists(one, min_size=1, max_size=4)
+
+
+class Hang(Exception):
+    """An input took longer than the time limit."""
+
+
+@contextmanager
+def time_limit(seconds: float):
+    """Raise :class:`Hang` in the block after ``seconds`` of wall time (SIGALRM, main thread)."""
+    def on_alarm(signum, frame):
+        raise Hang(f"no answer within {seconds} s")
+    previous = signal.signal(signal.SIGALRM, on_alarm)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+
+
+# ---------------------------------------------------------------- the readers under test
+def _read_grammar(path: Path):
+    import psgs
+    system = psgs.load(path)
+    assert psgs.loads(psgs.dumps(system)) == system, "dumps/loads round trip changed the system"
+
+
+def _read_actiongram(path: Path):
+    import psgs
+    ag = psgs.load_actiongram(path)
+    text = ag.to_text()
+    text.encode("utf-8")  # a loaded actiongram can always be written
+    assert psgs.Actiongram.from_text(text) == ag, "to_text/from_text round trip changed it"
+    assert psgs.Actiongram.from_json(ag.to_json()) == ag, "to_json/from_json round trip changed it"
+    for name, starts in ag.starts.items():  # times strictly increase (PAL's time grid needs it)
+        assert all(a < b for a, b in zip(starts, starts[1:])), name
+
+
+def _check_motion(motion):
+    import numpy as np
+    from kinetology import MotionFormatError, forward_kinematics
+    assert np.isfinite(motion.values).all() and math.isfinite(motion.frame_rate)
+    if motion.skeleton is not None and motion.frames:
+        try:
+            positions = forward_kinematics(motion)
+        except MotionFormatError:  # documented: finite offsets that overflow
+            return
+        assert np.isfinite(positions).all()
+
+
+def _read_bvh(path: Path):
+    from kinetology.bvh import read_bvh
+    _check_motion(read_bvh(path))
+
+
+def _read_asf(path: Path):
+    from kinetology.asf import read_asf
+    skeleton = read_asf(path)
+    assert skeleton.skeleton.joints[0].name == "root"
+
+
+def _read_amc(path: Path):
+    from kinetology.asf import read_amc, read_asf
+    _check_motion(read_amc(path, asf=read_asf(SEEDS / "small.asf")))
+
+
+@dataclass(frozen=True)
+class Reader:
+    """A reader under test: its seed files, the suffix it reads, the errors it documents."""
+
+    name: str
+    seeds: tuple[str, ...]
+    suffix: str
+    run: Callable[[Path], None]
+    errors: Callable[[], tuple[type[BaseException], ...]]
+
+
+def _psgs_errors():
+    import psgs
+    return (psgs.FormatError, psgs.ValidationError)
+
+
+def _kinetology_errors():
+    from kinetology import MotionFormatError
+    return (MotionFormatError,)
+
+
+READERS = {r.name: r for r in (
+    Reader("grammar", ("counting.psgs", "idling.psgs", "pcgs_returning.psgs"), ".psgs",
+           _read_grammar, _psgs_errors),
+    Reader("actiongram-text", ("small.txt",), ".txt", _read_actiongram, lambda: _psgs_errors()[:1]),
+    Reader("actiongram-json", ("small.json",), ".json", _read_actiongram,
+           lambda: _psgs_errors()[:1]),
+    Reader("bvh", ("small.bvh",), ".bvh", _read_bvh, _kinetology_errors),
+    Reader("asf", ("small.asf",), ".asf", _read_asf, _kinetology_errors),
+    Reader("amc", ("small_1.amc",), ".amc", _read_amc, _kinetology_errors),
+)}
+
+
+def seed_bytes(reader: Reader, index: int) -> bytes:
+    """The bytes of one of ``reader``'s seed files (``index`` wraps around)."""
+    return (SEEDS / reader.seeds[index % len(reader.seeds)]).read_bytes()
+
+
+def outcome(reader: Reader, data: bytes, directory: Path | None = None,
+            limit: float = TIME_LIMIT) -> str:
+    """Run ``reader`` on ``data`` written to a file: ``"ok"``, ``"error"`` (documented) or raise.
+
+    Raises :class:`Hang` past ``limit`` seconds, and lets any other exception through: that
+    is the finding.
+    """
+    with tempfile.TemporaryDirectory(dir=directory) as tmp:
+        path = Path(tmp) / f"fuzz{reader.suffix}"
+        path.write_bytes(data)
+        try:
+            with time_limit(limit):
+                reader.run(path)
+        except reader.errors():
+            return "error"
+    return "ok"

@@ -1,0 +1,28 @@
+"""Fuzzing the motion readers: mutated BVH, ASF and AMC files either read (finite values, and
+forward kinematics finite or a MotionFormatError) or raise MotionFormatError, each within a
+time limit.
+
+Derandomised by the ``ci`` profile (tests/conftest.py); the long run is benchmarks/fuzz.py.
+"""
+
+from __future__ import annotations
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from fuzz_support import READERS, apply, mutations_strategy, outcome, seed_bytes
+
+
+@pytest.mark.parametrize("name", ["bvh", "asf", "amc"])
+@settings(max_examples=150)
+@given(seed=st.integers(0, 2), mutations=mutations_strategy())
+def test_mutated_files_read_or_give_a_documented_error(name, seed, mutations, tmp_path_factory):
+    reader = READERS[name]
+    data = apply(seed_bytes(reader, seed), mutations)
+    assert outcome(reader, data, tmp_path_factory.getbasetemp()) in ("ok", "error")
+
+
+@pytest.mark.parametrize("name", ["bvh", "asf", "amc"])
+def test_the_unmutated_seeds_read(name):
+    assert outcome(READERS[name], seed_bytes(READERS[name], 0)) == "ok"
