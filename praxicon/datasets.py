@@ -5,11 +5,12 @@ span of it or the whole take). Three layouts are read out of the box:
 
 * **Bandai Namco** (a folder with ``cfg/content_label.txt``, ``cfg/style_label.txt``
   and ``data/*.bvh`` with a ``.json`` beside each): one take per file, named
-  ``dataset-N_{content}_{style}_{id}``; the JSON's content and style indices
-  (0-based lines of the ``cfg`` files) must agree with the file name.
+  ``dataset-N_{content}_{style}_{id}``; the JSON's content and style (read by
+  :func:`kinetology.read_bandai_json`) must agree with the file name.
 * **cmu-mocap6** (a folder with ``amc/`` and ``truelabels/``): each
   ``truelabels/T.txt`` gives one label per 1/10 s (label ``t`` covers AMC frames
-  ``12t .. 12t+11``); each run of one label is one performance of that exercise.
+  ``12t .. 12t+11``, read by :func:`kinetology.read_cmu_truelabels`); each run of
+  one label lasting ``MIN_SPAN_SECONDS`` or more is one performance of that exercise.
 * a **manifest**, CSV (columns ``action,file,start,stop``; start/stop in seconds,
   optional, empty = the whole take) or TOML (``[[performance]]`` tables with the
   same keys), for any other database. Relative file paths are relative to the
@@ -30,14 +31,9 @@ from collections import defaultdict
 from dataclasses import dataclass, field
 from pathlib import Path
 
-__all__ = ["Performance", "Action", "read_dataset", "read_datasets", "CMU_MOCAP6_LABELS",
-           "DatasetError"]
+__all__ = ["Performance", "Action", "read_dataset", "read_datasets", "DatasetError"]
 
-#: Exercise names of the cmu-mocap6 truelabels, label k = entry k - 1 (the dataset's README).
-CMU_MOCAP6_LABELS = ("JumpJack", "Jog", "Squat", "KneeRaise", "ArmCircle", "Twist", "SideReach",
-                     "Box", "UpDown", "ToeTouchOneHand", "SideBend", "ToeTouchTwoHands")
-_CMU_FRAMES_PER_LABEL = 12  # labels are at 10 Hz, the AMC files at 120 fps
-_CMU_FRAME_RATE = 120.0
+_CMU_FRAME_RATE = 120.0  # the AMC files' rate; a label covers 12 frames (1/10 s)
 #: Shortest labelled run of cmu-mocap6 taken as a performance (shorter runs are transitions).
 MIN_SPAN_SECONDS = 2.0
 _BANDAI_NAME = re.compile(r"^dataset-\d+_(?P<content>.+?)_(?P<style>[^_]+)_(?P<take>\d+)$")
@@ -84,9 +80,8 @@ def _shown_path(path: Path) -> str:
 
 
 # -- Bandai Namco ------------------------------------------------------------------------------
-def _cfg_lines(path: Path, prefix: str) -> list[str]:
-    lines = [ln.strip() for ln in path.read_text(encoding="utf-8").splitlines() if ln.strip()]
-    return [ln[len(prefix):] if ln.startswith(prefix) else ln for ln in lines]
+def _unprefixed(name: str) -> str:
+    return re.sub(r"^dataset-\d+_", "", name)
 
 
 def _read_bandai(root: Path, group_by: tuple[str, ...] | None) -> list[Action]:
@@ -94,10 +89,6 @@ def _read_bandai(root: Path, group_by: tuple[str, ...] | None) -> list[Action]:
     files = sorted(data.glob("*.bvh"))
     if not files:
         raise DatasetError(f"{_shown_path(root)}: no data/*.bvh files")
-    prefix = files[0].name.split("_", 1)[0] + "_"
-    contents = _cfg_lines(root / "cfg" / "content_label.txt", prefix)
-    styles_file = root / "cfg" / "style_label.txt"
-    styles = _cfg_lines(styles_file, prefix) if styles_file.is_file() else []
     takes: list[tuple[str, str, Performance | None, str | None]] = []
     for path in files:
         match = _BANDAI_NAME.match(path.stem)
@@ -106,7 +97,7 @@ def _read_bandai(root: Path, group_by: tuple[str, ...] | None) -> list[Action]:
                           f"dataset-N_CONTENT_STYLE_ID"))
             continue
         content, style = match["content"], match["style"]
-        problem = _bandai_label_problem(path, content, style, contents, styles)
+        problem = _bandai_label_problem(path, content, style)
         takes.append((content, style, None if problem else Performance(_shown_path(path)),
                       problem))
     if group_by is None:  # content,style where most styles have several takes, else content
@@ -129,53 +120,43 @@ def _read_bandai(root: Path, group_by: tuple[str, ...] | None) -> list[Action]:
     return actions
 
 
-def _bandai_label_problem(path: Path, content: str, style: str, contents: list[str],
-                          styles: list[str]) -> str | None:
+def _bandai_label_problem(path: Path, content: str, style: str) -> str | None:
+    """Why the JSON beside a take does not label it as its name says (None when it does)."""
+    from kinetology.labels import read_bandai_json
+
     label = path.with_suffix(".json")
     try:
-        meta = json.loads(label.read_text(encoding="utf-8"))
-        c, s = int(meta["content"]), int(meta["style"])
+        (span,) = read_bandai_json(label)
     except FileNotFoundError:
         return f"{_shown_path(label)}: label file missing"
-    except (OSError, ValueError, KeyError, TypeError) as exc:
-        return f"{_shown_path(label)}: unreadable label file ({type(exc).__name__}: {exc})"
-    said_content = contents[c] if 0 <= c < len(contents) else f"#{c}"
-    said_style = styles[s] if 0 <= s < len(styles) else f"#{s}"
-    if said_content != content or (styles and said_style != style):
-        return (f"{_shown_path(label)}: label file says {said_content}/{said_style}, the file "
-                f"name {content}/{style}")
+    except (OSError, ValueError) as exc:  # MotionFormatError is a ValueError
+        return f"unreadable label file: {str(exc).splitlines()[0]}"
+    if span.label != content or (span.style is not None and span.style != style):
+        return (f"{_shown_path(label)}: label file says {span.label}/{span.style}, the file "
+                f"name {content}/{style}: the label file does not match its motion")
     return None
 
 
 # -- cmu-mocap6 --------------------------------------------------------------------------------
 def _read_cmu_mocap6(root: Path, group_by: tuple[str, ...] | None) -> list[Action]:
+    from kinetology.labels import read_cmu_truelabels
+
     groups: dict[str, list[Performance]] = defaultdict(list)
-    problems: dict[str, list[str]] = defaultdict(list)
     general: list[str] = []
     for label_path in sorted((root / "truelabels").glob("*.txt")):
         amc = root / "amc" / f"{label_path.stem}.amc"
-        shown_label = _shown_path(label_path)
         try:
-            labels = [int(x) for x in label_path.read_text(encoding="utf-8").split()]
+            spans = read_cmu_truelabels(label_path, _CMU_FRAME_RATE)
         except (OSError, ValueError) as exc:
-            general.append(f"{shown_label}: unreadable label file ({exc})")
+            general.append(f"unreadable label file: {str(exc).splitlines()[0]}")
             continue
-        start = 0
-        for i in range(1, len(labels) + 1):
-            if i < len(labels) and labels[i] == labels[start]:
-                continue
-            k = labels[start]
-            name = CMU_MOCAP6_LABELS[k - 1] if 1 <= k <= len(CMU_MOCAP6_LABELS) else f"label{k}"
-            seconds = _CMU_FRAMES_PER_LABEL / _CMU_FRAME_RATE
-            span = (round(start * seconds, 6), round(i * seconds, 6))
-            if span[1] - span[0] >= MIN_SPAN_SECONDS:
-                groups[name].append(Performance(_shown_path(amc), span[0], span[1], shown_label))
-            start = i
-    actions = []
-    for name in sorted(set(groups) | set(problems)):
-        actions.append(Action(f"{_name_part(root.name)}.{_name_part(name)}", root.name, name,
-                              None, tuple(groups[name]), tuple(general + problems[name])))
-    return actions
+        for span in spans:
+            if span.duration >= MIN_SPAN_SECONDS:
+                groups[span.label].append(Performance(_shown_path(amc), round(span.start, 6),
+                                                      round(span.stop, 6),
+                                                      _shown_path(label_path)))
+    return [Action(f"{_name_part(root.name)}.{_name_part(name)}", root.name, name, None,
+                   tuple(groups[name]), tuple(general)) for name in sorted(groups)]
 
 
 # -- manifests ---------------------------------------------------------------------------------

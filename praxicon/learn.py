@@ -89,21 +89,6 @@ def _read(path: str):
     return kinetology.read(path)
 
 
-def _cut(motion, start, stop):
-    import kinetology
-
-    cut = getattr(kinetology, "cut", None)
-    if cut is not None:  # kinetology.cut (issue 9) when it exists
-        return cut(motion, start=start, stop=stop)
-    rate = motion.frame_rate
-    first = 0 if start is None else int(round(start * rate))
-    last = motion.frames if stop is None else min(motion.frames, int(round(stop * rate)))
-    from kinetology import Motion
-
-    return Motion(motion.values[first:last], motion.channels, rate, motion.skeleton,
-                  motion.source, motion.meta)
-
-
 def _unwrapped(motion):
     """Rotation channels unwrapped (period 360°), so a crossing of ±180° is no jump."""
     from kinetology import Motion
@@ -124,6 +109,8 @@ def _one_line(exc: BaseException) -> str:
 
 def _load_performance(perf: Performance):
     """(motion cut and unwrapped, None) or (None, problem as one line)."""
+    import kinetology
+
     try:
         motion = _read(perf.file)
     except FileNotFoundError:
@@ -134,8 +121,11 @@ def _load_performance(perf: Performance):
         return None, (f"{perf.label or perf.file}: label span {perf.start:g}-{perf.stop:g} s ends "
                       f"after the motion ({motion.duration:g} s): the label file does not match "
                       f"its motion")
+    stop = perf.stop
+    if stop is not None and stop > motion.duration:
+        stop = None  # a label's last 1/10 s may reach past the last frame: to the end
     try:
-        motion = _cut(motion, perf.start, perf.stop)
+        motion = kinetology.cut(motion, perf.start, stop)
     except ValueError as exc:
         return None, f"{perf.file}: {_one_line(exc)}"
     if motion.frames < 3:
@@ -150,20 +140,31 @@ class _Segmented:
     symbols: dict = field(default_factory=dict)       # channel -> tuple of kinetemes
     durations: dict = field(default_factory=dict)     # channel -> seconds per segment
     displacements: dict = field(default_factory=dict)  # channel -> degrees per segment
+    actuators: dict = field(default_factory=dict)      # channel -> joint (kinetology.joints)
 
 
-def _segment(motion, segmentation: dict) -> _Segmented:
-    from kinetology.segmentation import segments, smooth, DEFAULTS
+def _segment_all(motions, segmentation: dict) -> list[_Segmented]:
+    """Segment every performance on the same channels: those that move in any of them.
 
-    seg = segments(motion, **segmentation)
-    sigma = segmentation.get("smoothing", DEFAULTS["smoothing"])
-    out = _Segmented(seg.to_actiongram())
-    for c, name in enumerate(seg.channels):
-        signal = smooth(np.asarray(motion.column(name)), motion.frame_rate, sigma)
-        borders = np.minimum(seg.borders[c], motion.frames - 1)
-        out.symbols[name] = seg.symbols(c)
-        out.durations[name] = seg.durations(c)
-        out.displacements[name] = np.diff(signal[borders])
+    Inducers want performances with the same actuators; a joint still in one take
+    and moving in another keeps its (short) string in both.
+    """
+    from kinetology.segmentation import segments
+
+    first = [segments(m, **segmentation) for m in motions]
+    moving = set().union(*(s.channels for s in first))
+    channels = [c for c in motions[0].channels if c in moving]
+    out = []
+    for motion, seg in zip(motions, first):
+        if tuple(seg.channels) != tuple(channels):
+            seg = segments(motion, channels=channels, **{**segmentation, "min_range": 0.0})
+        item = _Segmented(seg.to_actiongram())
+        for c, name in enumerate(seg.channels):
+            item.symbols[name] = seg.symbols(c)
+            item.durations[name] = seg.durations(c)
+            item.displacements[name] = np.asarray(seg.displacements[c])
+        item.actuators = dict(seg.actuators)
+        out.append(item)
     return out
 
 
@@ -182,28 +183,25 @@ def _typical(pattern: tuple[str, ...], name: str, performances: list[_Segmented]
     return (np.median(durations, axis=0), np.median(displacements, axis=0), len(durations))
 
 
-def _actuator_of(channel: str, actiongram) -> str:
-    mapping = getattr(actiongram, "actuator", None)
-    if callable(mapping):  # the actuator map of issue 9, when the actiongram has one
-        try:
-            return mapping(channel)
-        except (KeyError, TypeError):
-            pass
-    return channel.split(".", 1)[0]
+def _actuator_of(channel: str, segmented: _Segmented) -> str:
+    return segmented.actuators.get(channel) or channel.split(".", 1)[0]
 
 
 def _induce(inducer, segmented: list[_Segmented]):
     """(induction, performances learnt from, note)."""
+    from psgs.errors import ValidationError
+
     actiongrams = [s.actiongram for s in segmented]
     try:
         return inducer.induce(tuple(actiongrams)), list(range(len(segmented))), None
-    except (TypeError, AttributeError):
-        # an inducer that takes one actiongram (before issue 9): learn from the longest
-        # performance, say so in the record, and still read morphemes from all of them
+    except (TypeError, AttributeError, ValidationError) as exc:
+        # an inducer that takes one actiongram (PAL until issue 9 lands): learn from the
+        # longest performance, say so in the record, and still read morphemes from all
         lengths = [sum(map(sum, ag.segment_durations)) for ag in actiongrams]
         longest = int(np.argmax(lengths))
-        note = (f"inducer {type(inducer).__name__} takes one actiongram: learnt from "
-                f"performance {longest + 1} of {len(segmented)} (the longest)")
+        why = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        note = (f"learnt from performance {longest + 1} of {len(segmented)} (the longest): "
+                f"the inducer refused several ({why})")
         return inducer.induce(actiongrams[longest]), [longest], note
 
 
@@ -250,16 +248,15 @@ def _learn_into(record: dict, action: Action, settings: Settings) -> None:
                             f"{settings.min_performances} to show what repeats across them")
         return
     segmentation = dict(settings.segmentation)
-    segmented = [_segment(m, segmentation) for m in motions]
+    segmented = _segment_all(motions, segmentation)
     inducer = get(settings.inducer, **dict(settings.params))
     induction, learnt, note = _induce(inducer, segmented)
     record["learnt_from"] = [used[i] for i in learnt]
     record["note"] = note
-    first = segmented[0].actiongram
     channels = _component_channels(induction)
     joints: dict[str, dict] = {}
     for channel in channels:
-        joint = _actuator_of(channel, first)
+        joint = _actuator_of(channel, segmented[0])
         pattern = tuple(induction.patterns.get(channel, ()))
         morpheme = _morpheme(induction, channel, pattern, segmented)
         joints.setdefault(joint, {"channels": [], "morphemes": {}})
