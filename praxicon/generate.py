@@ -30,9 +30,30 @@ import numpy as np
 
 from .store import load_record
 
-__all__ = ["Generated", "generate", "generate_motion", "derive_copies"]
+__all__ = ["Generated", "generate", "generate_motion", "derive_copies", "is_smooth_cycle"]
 
 _RISING = {"B": 1.0, "G": 1.0, "R": -1.0, "Y": -1.0}
+# kineteme changes a smooth angle can make: one sign flips, and a velocity sign flips only
+# where the acceleration pushes it that way (a maximum is G -> R, a minimum Y -> B)
+_SMOOTH_STEPS = {("B", "G"), ("G", "B"), ("G", "R"), ("R", "Y"), ("Y", "R"), ("Y", "B")}
+
+
+def is_smooth_cycle(kinetemes) -> bool:
+    """True when the morpheme, repeated, only makes kineteme changes a smooth angle can make.
+
+    ``B G R Y`` is one (and ``Y B G R Y``: its repeated ends merge); ``R Y B`` is
+    not (``B -> R`` would need the velocity and the acceleration to flip at once).
+    Only such morphemes can come back unchanged from segmenting their motion.
+
+    >>> is_smooth_cycle("BGRY"), is_smooth_cycle("YBGRY"), is_smooth_cycle("RYB")
+    (True, True, False)
+    """
+    k = list(kinetemes)
+    if len(k) > 1 and k[0] == k[-1]:
+        k = k[:-1]
+    if len(k) < 2:
+        return False
+    return all((a, b) in _SMOOTH_STEPS for a, b in zip(k, k[1:] + k[:1]))
 
 
 def derive_copies(system, copies: int, max_steps: int = 100_000):
@@ -80,13 +101,31 @@ class Generated:
     words: dict
     segmentation: dict
 
-    def round_trip(self) -> dict[str, bool]:
-        """Per generated channel: does re-segmenting give the morpheme repeated K times?"""
+    def resegmented(self) -> dict[str, tuple[str, ...]]:
+        """Per generated channel, its kineteme string when the motion is segmented again."""
         import kinetology
 
         again = kinetology.segment(self.motion, channels=list(self.channels), **self.segmentation)
-        return {c: (again.string(c) if c in again.names else ()) == _merged(self.words[c])
-                for c in self.channels}
+        return {c: (again.string(c) if c in again.names else ()) for c in self.channels}
+
+    def round_trip(self, interior: bool = False) -> dict[str, bool]:
+        """Per generated channel: does re-segmenting give the morpheme repeated K times?
+
+        With ``interior``, the first and last kineteme may differ (the segmentation's
+        smoothing flattens a turning point at the very start or end of a recording,
+        and its dead band may then absorb that first or last segment): the rest must
+        appear, unbroken, in the re-segmented string.
+        """
+        out = {}
+        for channel, got in self.resegmented().items():
+            want = _merged(self.words[channel])
+            if not interior:
+                out[channel] = got == want
+            else:
+                core = want[1:-1]
+                out[channel] = any(got[i:i + len(core)] == core
+                                   for i in range(len(got) - len(core) + 1))
+        return out
 
 
 def _merged(word) -> tuple[str, ...]:
@@ -95,6 +134,20 @@ def _merged(word) -> tuple[str, ...]:
         if not out or out[-1] != symbol:
             out.append(symbol)
     return tuple(out)
+
+
+def _merge_runs(kinetemes, durations, steps):
+    """Adjacent equal kinetemes (the ends of two copies of ``G R Y B G``) as one segment."""
+    out_k, out_d, out_s = [], [], []
+    for k, d, x in zip(kinetemes, durations, steps):
+        if out_k and out_k[-1] == k:
+            out_d[-1] += d
+            out_s[-1] += x
+        else:
+            out_k.append(k)
+            out_d.append(float(d))
+            out_s.append(float(x))
+    return tuple(out_k), np.array(out_d), np.array(out_s)
 
 
 def _balanced(kinetemes, displacements) -> np.ndarray:
@@ -155,16 +208,17 @@ def generate_motion(record: dict, repeat: int, source_motion=None):
         durations = np.asarray(morpheme["durations"], float)
         durations = np.tile(durations * period / durations.sum(), repeat)
         steps = np.tile(_balanced(kinetemes, morpheme["displacements"]), repeat)
+        sequence, durations, steps = _merge_runs(kinetemes * repeat, durations, steps)
         knots = np.round(np.concatenate(([0.0], np.cumsum(durations))) * rate).astype(int)
         knots = np.maximum.accumulate(np.maximum(knots, np.arange(knots.size)))
         knots[-1] = max(knots[-1], frames - 1)
         knot_values = np.concatenate(([0.0], np.cumsum(steps)))
-        codes = np.array([STATES.index(k) for k in kinetemes * repeat], dtype=np.int8)
+        codes = np.array([STATES.index(k) for k in sequence], dtype=np.int8)
         curve = reconstruct(knots, codes, knot_values)
         curve = curve[:frames] if curve.size >= frames else \
             np.pad(curve, (0, frames - curve.size), mode="edge")
         values[:, channels.index(channel)] = curve - curve.mean() + pose.get(channel, 0.0)
-        derived[channel] = kinetemes * repeat
+        derived[channel] = sequence
     motion = kinetology.Motion(values, channels, rate, skeleton,
                                f"generated:{record['name']}", {"format": "generated"})
     return motion, derived
