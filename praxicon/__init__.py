@@ -18,10 +18,10 @@ _LAZY = {
     "Performance": "datasets", "Action": "datasets", "read_dataset": "datasets",
     "read_datasets": "datasets", "DatasetError": "datasets",
     "Settings": "learn", "learn_action": "learn",
-    "build": "build", "BuildResult": "build", "executor_for": "build",
+    "build": "builder", "BuildResult": "builder", "executor_for": "builder",
     "load_index": "store", "load_record": "store", "actuator_matrix": "store",
     "shared_patterns": "shared",
-    "generate": "generate", "generate_motion": "generate",
+    "generate": "generation", "generate_motion": "generation",
     "draw_actuator_matrix": "pictures", "draw_morphemes": "pictures",
     "draw_shared_patterns": "pictures", "draw_praxicon": "pictures",
 }

@@ -44,7 +44,7 @@ def _key_values(items: list[str], option: str) -> dict:
 def run_build(args) -> int:
     from psgs.cli.induce import _make_inducer
 
-    from .build import build, executor_for
+    from .builder import build, executor_for
     from .datasets import DatasetError, read_datasets
     from .learn import Settings
 
@@ -90,7 +90,7 @@ def run_draw(args) -> int:
 
 
 def run_generate(args) -> int:
-    from .generate import generate
+    from .generation import generate
 
     try:
         result = generate(args.praxicon, args.action, repeat=args.repeat, output=args.output,

@@ -45,8 +45,11 @@ def _save(fig, path) -> Path:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     # no date in the metadata: the same praxicon gives the same picture bytes
+    import matplotlib
+
     metadata = {"Date": None} if path.suffix.lower() == ".svg" else {}
-    fig.savefig(path, dpi=110, metadata=metadata or None)
+    with matplotlib.rc_context({"svg.hashsalt": "praxicon"}):
+        fig.savefig(path, dpi=110, metadata=metadata or None)
     plt.close(fig)
     return path
 

@@ -282,11 +282,14 @@ def _render(system, forest: Forest | None, fmt: str, engine: str) -> bytes:
             if engine == "graphviz":
                 raise ValidationError(f"graphviz could not draw this system: "
                                       f"{str(exc).splitlines()[0]}") from None
+    import matplotlib
     import matplotlib.pyplot as plt
 
     fig = _matplotlib(system, forest)
     buffer = io.BytesIO()
-    fig.savefig(buffer, format=fmt, dpi=120, metadata={"Date": None} if fmt == "svg" else None)
+    with matplotlib.rc_context({"svg.hashsalt": "psgs"}):  # the same ids in every run
+        fig.savefig(buffer, format=fmt, dpi=120,
+                    metadata={"Date": None} if fmt == "svg" else None)
     plt.close(fig)
     return buffer.getvalue()
 
