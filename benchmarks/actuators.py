@@ -264,7 +264,7 @@ def excursions(motion) -> dict[str, float]:
     out = {}
     for joint, columns in rotation_joints(motion).items():
         values = smooth(unwrap(motion.values[:, columns]), motion.frame_rate,
-                        max(DEFAULTS["smoothing"], 1.0 / motion.frame_rate))
+                        DEFAULTS["smoothing"])
         spread = np.percentile(values, 95, axis=0) - np.percentile(values, 5, axis=0)
         out[joint] = float(spread.max())
     return out
@@ -296,7 +296,8 @@ def pal_joints(perfs, **options):
     except (TypeError, AttributeError, ValueError):
         induction = None
     if induction is not None and hasattr(induction, "actuators"):
-        return list(induction.actuators), "performances"
+        verdict = getattr(induction, "verdict", "") or ""
+        return list(induction.actuators), ("performances" + (f": {verdict}" if verdict else ""))
     # a PAL of one actiongram: join the performances, as a user had to
     joined = kinetology.Motion(np.vstack([m.values for m in perfs]), perfs[0].channels,
                                perfs[0].frame_rate, perfs[0].skeleton, "joined")
@@ -430,7 +431,7 @@ def main(argv=None) -> int:
             named_rows.append((series, medians))
             print(" | ".join(line), flush=True)
     print(f"total {time.perf_counter() - started:.1f} s", flush=True)
-    summary = summarise(rows, args)
+    summary = summarise(rows, args) + "\n\n" + threshold_sweep(named_rows, args.excursion)
     print(summary)
     if not args.no_write and not args.quick and not args.dataset and not args.series:
         write_outputs(rows, summary)
@@ -471,6 +472,34 @@ def summarise(rows, args) -> str:
                                                        for m, s in seconds.items())]
     if "stumpy" in seconds and seconds.get("PAL"):
         lines[-1] += f" (stumpy / PAL = {seconds['stumpy'] / seconds['PAL']:.1f})"
+    return "\n".join(lines)
+
+
+THRESHOLDS = (2, 5, 10, 15, 20, 30, 45, 60)
+
+
+def threshold_sweep(named_rows, default) -> str:
+    """The excursion rule at other thresholds: mean F1 (positive series), joints named
+    (negative series). The best threshold in hindsight bounds any fixed threshold."""
+    cells = []
+    for threshold in THRESHOLDS:
+        f1, named = [], 0
+        for series, medians in named_rows:
+            chosen = [j for j, v in medians.items() if v > threshold]
+            if series.negative:
+                named += len(chosen)
+            else:
+                f1.append(score(chosen, list(medians), series.truth)[2])
+        cells.append((threshold, float(np.mean(f1)) if f1 else float("nan"), named))
+    best = max(cells, key=lambda c: (c[1], -c[2]))
+    lines = ["Excursion rule by threshold (deg): mean F1 over the positive series; joints named "
+             "over the negative series (truth: none)", "",
+             "| threshold | " + " | ".join(f"{t:g}" + (" (default)" if t == default else "")
+                                         for t, _, _ in cells) + " |",
+             "|---|" + "---:|" * len(cells),
+             "| mean F1 | " + " | ".join(f"{f:.3f}" for _, f, _ in cells) + " |",
+             "| joints named, negatives | " + " | ".join(str(n) for _, _, n in cells) + " |",
+             "", f"Best threshold in hindsight: {best[0]:g} deg (mean F1 {best[1]:.3f})."]
     return "\n".join(lines)
 
 

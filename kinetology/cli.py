@@ -20,6 +20,8 @@ _PARAM_HELP = {
     "velocity_deadband": "velocity dead band in deg/s",
     "acceleration_deadband": "acceleration dead band in deg/s^2",
     "min_range": "channels moving less than this many degrees are left out",
+    "relative_deadband": "dead bands at least this share of a channel's own 95th-percentile "
+                         "speed and acceleration",
     "unwrap": "period in degrees of rotation channels, unwrapped before smoothing (0: off)",
 }
 
@@ -49,18 +51,75 @@ def _write(text: str, out: str | None) -> None:
 
 
 def _cmd_segment(args) -> int:
+    from .performances import cut
     from .readers import read
     from .segmentation import segment
 
-    motion = read(args.file)
     channels = None
     if args.channels:
         channels = [c for item in args.channels for c in item.split(",") if c]
-    ag = segment(motion, channels, **_params(args, DEFAULTS))
-    header = (f"# kinetology segment {Path(args.file).name}: {motion.frames} frames at "
-              f"{motion.frame_rate:g} fps; states B(+,+) G(+,-) R(-,-) Y(-,+) of "
-              f"(velocity, acceleration); durations in seconds\n")
-    _write(header + ag.to_text(), args.output)
+    several = len(args.files) > 1
+    out_dir = None
+    if several or (args.output and (args.output.endswith("/") or Path(args.output).is_dir())):
+        if not args.output or args.output == "-":
+            raise ValueError("several files make one actiongram each: give -o DIR/")
+        out_dir = Path(args.output)
+        out_dir.mkdir(parents=True, exist_ok=True)
+    names = [Path(f).stem for f in args.files]
+    if out_dir is not None and len(set(names)) != len(names):
+        raise ValueError("two files share a name; their actiongrams would overwrite each other")
+    if args.labels:
+        return _segment_spans(args, channels)
+    for name in args.files:
+        motion = read(name)
+        span = ""
+        if args.start is not None or args.stop is not None:
+            motion = cut(motion, args.start, args.stop)
+            first, last = motion.meta["cut"]
+            span = f" from {first:g} s to {last:g} s"
+        ag = segment(motion, channels, **_params(args, DEFAULTS))
+        header = (f"# kinetology segment {Path(name).name}{span}: {motion.frames} frames at "
+                  f"{motion.frame_rate:g} fps; states B(+,+) G(+,-) R(-,-) Y(-,+) of "
+                  f"(velocity, acceleration); durations in seconds\n")
+        if out_dir is None:
+            _write(header + ag.to_text(), args.output)
+        else:
+            target = out_dir / f"{Path(name).stem}.actiongram"
+            target.write_text(header + ag.to_text())
+            print(f"{target}: {len(ag)} strings, {ag.total_symbols} kinetemes")
+    return 0
+
+
+def _segment_spans(args, channels) -> int:
+    """One actiongram per labelled span of one take: DIR/TAKE-LABEL-K.actiongram."""
+    from .labels import spans_of
+    from .performances import from_spans
+    from .readers import read
+    from .segmentation import segment
+
+    if len(args.files) != 1 or not args.output or args.output == "-":
+        raise ValueError("--labels cuts one take into performances: give one FILE and -o DIR/")
+    if args.start is not None or args.stop is not None:
+        raise ValueError("--labels and --start/--stop do not go together")
+    motion = read(args.files[0])
+    spans = spans_of(args.labels, motion.frame_rate)
+    parts = from_spans(motion, spans, args.label, min_seconds=args.min_seconds)
+    if not parts:
+        raise ValueError(f"no span{' labelled ' + repr(args.label) if args.label else ''} of "
+                         f"at least {args.min_seconds:g} s in {args.labels}")
+    out_dir = Path(args.output)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    count: dict[str, int] = {}
+    for part in parts:
+        label = part.meta["label"]
+        count[label] = count.get(label, 0) + 1
+        first, last = part.meta["cut"]
+        ag = segment(part, channels, **_params(args, DEFAULTS))
+        target = out_dir / f"{Path(args.files[0]).stem}-{label}-{count[label]}.actiongram"
+        target.write_text(f"# kinetology segment {Path(args.files[0]).name} from {first:g} s "
+                          f"to {last:g} s ({label}): {part.frames} frames at "
+                          f"{part.frame_rate:g} fps; durations in seconds\n" + ag.to_text())
+        print(f"{target}: {label} {first:g}-{last:g} s, {len(ag)} strings")
     return 0
 
 
@@ -188,10 +247,20 @@ def build_parser() -> argparse.ArgumentParser:
                     "segments; the paper's kinetological principles measured.")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
 
-    p = sub.add_parser("segment", help="segment a motion file into an actiongram (text form)")
-    p.add_argument("file")
+    p = sub.add_parser("segment", help="segment motion files into actiongrams (text form), "
+                                       "one per file (one performance each)")
+    p.add_argument("files", nargs="+", metavar="FILE")
     p.add_argument("--channels", nargs="+", help="channels to keep (names or comma lists)")
-    p.add_argument("-o", "--output", help="output file (default: stdout)")
+    p.add_argument("--start", type=float, default=None,
+                   help="seconds: segment only from here (a performance within a take)")
+    p.add_argument("--stop", type=float, default=None, help="seconds: segment only up to here")
+    p.add_argument("--labels", help="label file of the take (CMU mocap6 truelabels .txt or "
+                                    "Bandai Namco .json): one actiongram per labelled span")
+    p.add_argument("--label", help="with --labels: only spans with this label")
+    p.add_argument("--min-seconds", type=float, default=0.0,
+                   help="with --labels: leave out spans shorter than this (default 0)")
+    p.add_argument("-o", "--output", help="output file (default: stdout); with several files "
+                                          "a folder, DIR/, holding NAME.actiongram per file")
     _add_params(p)
     p.set_defaults(run=_cmd_segment)
 

@@ -13,7 +13,7 @@ from types import MappingProxyType
 from ..errors import ValidationError
 from ..model import PSGS
 
-__all__ = ["Induction", "StringReport"]
+__all__ = ["ActuatorReport", "Induction", "Morpheme", "StringReport"]
 
 
 @dataclass(frozen=True)
@@ -54,6 +54,79 @@ class StringReport:
 
 
 @dataclass(frozen=True)
+class Morpheme:
+    """A component channel's motion pattern as a generator needs it.
+
+    Parameters
+    ----------
+    kinetemes : tuple of str
+        The pattern's symbols, in order.
+    durations : tuple of float
+        The typical duration of each (seconds: the median over the copies).
+    displacements : tuple of float or None
+        The typical signed angular change of each (the channel's unit; the
+        median over the copies), None when the actiongrams carry none.
+
+    Examples
+    --------
+    >>> Morpheme(("B", "G"), (0.2, 0.3), (10.0, 2.5)).kinetemes
+    ('B', 'G')
+    """
+
+    kinetemes: tuple[str, ...]
+    durations: tuple[float, ...]
+    displacements: tuple[float, ...] | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "kinetemes", tuple(self.kinetemes))
+        object.__setattr__(self, "durations", tuple(float(d) for d in self.durations))
+        if self.displacements is not None:
+            object.__setattr__(self, "displacements",
+                               tuple(float(d) for d in self.displacements))
+        if len(self.durations) != len(self.kinetemes) or (
+                self.displacements is not None
+                and len(self.displacements) != len(self.kinetemes)):
+            raise ValidationError("a morpheme needs one duration (and displacement) per kineteme")
+
+
+@dataclass(frozen=True)
+class ActuatorReport:
+    """What an inducer found for one actuator (joint), whether or not it takes part.
+
+    Parameters
+    ----------
+    name : str
+        The actuator.
+    status : str
+        ``"component"``, ``"component (skeleton neighbour)"``, or the stage
+        that dropped it (``"not significant"``, ``"below the share of the
+        leader"``, ...).
+    share : float, optional
+        Its repeated motion relative to the leader's (1 for the leader).
+    significance : float, optional
+        log10 of the chance of agreement this strong between copies (more
+        negative is stronger), corrected for the channels tested.
+    repeated : float, optional
+        Its repeated motion: angular path length times chance-corrected
+        agreement, summed over its channels.
+    path : float, optional
+        Its angular path length per performance.
+
+    Examples
+    --------
+    >>> ActuatorReport("lfemur", "component", share=1.0).share
+    1.0
+    """
+
+    name: str
+    status: str
+    share: float = 0.0
+    significance: float = 0.0
+    repeated: float = 0.0
+    path: float = 0.0
+
+
+@dataclass(frozen=True)
 class Induction:
     """The result of ``inducer.induce(performances)``.
 
@@ -85,6 +158,18 @@ class Induction:
         Actuator name -> the index (from 0) of the performance each entry of
         ``occurrences[name]`` lies in; filled with 0 for every actuator not
         given (always right for one performance).
+    actuators : tuple of str, optional
+        The joints that take part (in actiongram order); empty when the
+        inducer does not group strings by joint.
+    actuator_channels : mapping of str to tuple of str, optional
+        Per joint of ``actuators``, the channels (strings) that carry the pattern.
+    morphemes : mapping of str to Morpheme, optional
+        Per component channel, its pattern with typical durations and displacements.
+    verdict : str, optional
+        A plain sentence when nothing was learnt, such as ``"no synchronised
+        repetition"``; empty otherwise.
+    actuator_reports : tuple of ActuatorReport, optional
+        One per joint, with the stage that dropped it.
 
     Raises
     ------
@@ -115,6 +200,11 @@ class Induction:
     params: Mapping[str, object] = field(default_factory=dict)
     performances: int = 1
     occurrence_performance: Mapping[str, tuple[int, ...]] = field(default_factory=dict)
+    actuators: tuple[str, ...] = ()
+    actuator_channels: Mapping[str, tuple[str, ...]] = field(default_factory=dict)
+    morphemes: Mapping[str, Morpheme] = field(default_factory=dict)
+    verdict: str = ""
+    actuator_reports: tuple[ActuatorReport, ...] = ()
 
     def __post_init__(self) -> None:
         if isinstance(self.performances, bool) or not isinstance(self.performances, int) \
@@ -144,6 +234,11 @@ class Induction:
             "component_names": MappingProxyType(dict(self.component_names)),
             "params": MappingProxyType(dict(self.params)),
             "occurrence_performance": MappingProxyType(where),
+            "actuators": tuple(self.actuators),
+            "actuator_channels": MappingProxyType({k: tuple(v) for k, v in
+                                                   self.actuator_channels.items()}),
+            "morphemes": MappingProxyType(dict(self.morphemes)),
+            "actuator_reports": tuple(self.actuator_reports),
         }
         for key, value in frozen.items():
             object.__setattr__(self, key, value)
@@ -153,7 +248,9 @@ class Induction:
         return (type(self), (self.system, self.components, dict(self.patterns),
                              dict(self.occurrences), self.reports, dict(self.component_names),
                              self.inducer, dict(self.params), self.performances,
-                             dict(self.occurrence_performance)))
+                             dict(self.occurrence_performance), self.actuators,
+                             dict(self.actuator_channels), dict(self.morphemes), self.verdict,
+                             self.actuator_reports))
 
     def report(self, name: str) -> StringReport:
         """The report of the string named ``name``.
@@ -209,6 +306,19 @@ synchronised_with=())
                          "synchronised_with": list(r.synchronised_with)}
                         for r in self.reports],
         }
+        if self.actuators or self.actuator_reports or self.verdict:
+            out["actuators"] = list(self.actuators)
+            out["actuator_channels"] = {k: list(v) for k, v in self.actuator_channels.items()}
+            out["morphemes"] = {k: {"kinetemes": list(m.kinetemes),
+                                    "durations": [round(d, 4) for d in m.durations],
+                                    "displacements": None if m.displacements is None else
+                                    [round(d, 3) for d in m.displacements]}
+                                for k, m in self.morphemes.items()}
+            out["verdict"] = self.verdict
+            out["actuator_reports"] = [{"name": r.name, "status": r.status,
+                                        "share": round(r.share, 4),
+                                        "significance": round(r.significance, 3)}
+                                       for r in self.actuator_reports]
         if self.performances > 1:
             out["performances"] = self.performances
             out["occurrence_performance"] = {k: list(v)

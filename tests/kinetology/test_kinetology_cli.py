@@ -119,3 +119,57 @@ def test_view_invariance_needs_at_least_one_view():
 
     with pytest.raises(ValueError, match="views must be a positive"):
         view_invariance(_planar_leg(), ("Thigh", "Shin", "Shin.end"), views=0)
+
+
+def test_segment_several_files_writes_one_actiongram_each_named_after_it(small_bvh, tmp_path,
+                                                                         capsys):
+    other = tmp_path / "other.bvh"
+    other.write_text(small_bvh.read_text())
+    out = tmp_path / "grams"
+    assert main(["segment", str(small_bvh), str(other), "-o", f"{out}/"]) == 0
+    assert sorted(p.name for p in out.iterdir()) == ["other.actiongram", "small.actiongram"]
+    ag = psgs.load_actiongram(out / "other.actiongram")
+    assert ag.actuator("Knee.rz") == "Knee"
+    assert "other.actiongram: 2 strings" in capsys.readouterr().out
+    # several files and no folder: refused, one line
+    assert main(["segment", str(small_bvh), str(other)]) == 2
+    assert "give -o DIR/" in capsys.readouterr().err
+
+
+def test_segment_start_stop_cuts_the_take(small_bvh, tmp_path, capsys):
+    out = tmp_path / "part.actiongram"
+    assert main(["segment", str(small_bvh), "--start", "0.5", "--stop", "1.5", "-o",
+                 str(out)]) == 0
+    text = out.read_text()
+    assert "from 0.5 s to 1.5 s: 120 frames" in text.splitlines()[0]
+    ag = psgs.load_actiongram(out)
+    assert sum(ag.durations["Knee.rz"]) == pytest.approx(1.0)
+    assert main(["segment", str(small_bvh), "--start", "3"]) == 2
+    assert "start 3 s is outside the take" in capsys.readouterr().err
+
+
+def test_segment_labels_writes_one_actiongram_per_labelled_span(small_bvh, tmp_path, capsys):
+    labels = tmp_path / "small.txt"  # CMU truelabels: one label per 12 frames (1/10 s)
+    labels.write_text(" ".join(["5"] * 5 + ["1"] * 10 + ["5"] * 5))
+    out = tmp_path / "spans"
+    assert main(["segment", str(small_bvh), "--labels", str(labels), "--label", "ArmCircle",
+                 "-o", f"{out}/"]) == 0
+    assert sorted(p.name for p in out.iterdir()) == ["small-ArmCircle-1.actiongram",
+                                                      "small-ArmCircle-2.actiongram"]
+    second = psgs.load_actiongram(out / "small-ArmCircle-2.actiongram")
+    assert sum(second.durations["Knee.rz"]) == pytest.approx(0.5)
+    assert main(["segment", str(small_bvh), "--labels", str(labels), "--label", "Squat",
+                 "-o", str(out)]) == 2
+    assert "no span labelled 'Squat'" in capsys.readouterr().err
+
+
+@needs_mocap
+def test_segment_labels_of_a_real_mocap6_take(tmp_path, capsys):
+    folder = MOCAP / "cmu-mocap6"
+    assert main(["segment", str(folder / "amc" / "13_29.amc"), "--labels",
+                 str(folder / "truelabels" / "13_29.txt"), "--label", "Squat",
+                 "--min-seconds", "2", "--channels", "ltibia.rx", "-o", str(tmp_path)]) == 0
+    grams = sorted(tmp_path.glob("13_29-Squat-*.actiongram"))
+    assert len(grams) == 1
+    ag = psgs.load_actiongram(grams[0])
+    assert len(ag.string("ltibia.rx")) >= 8  # several squats: several knee cycles

@@ -52,7 +52,8 @@ def test_states_match_analytic_derivative_signs(components):
     x = sum(a * np.sin(2 * np.pi * f * t + p) for f, a, p in components)
     v = sum(a * 2 * np.pi * f * np.cos(2 * np.pi * f * t + p) for f, a, p in components)
     acc = sum(-a * (2 * np.pi * f) ** 2 * np.sin(2 * np.pi * f * t + p) for f, a, p in components)
-    code = states(x, rate, smoothing=0, velocity_deadband=0, acceleration_deadband=0)
+    code = states(x, rate, smoothing=0, velocity_deadband=0, acceleration_deadband=0,
+                  relative_deadband=0)
     truth = _analytic_states(v, acc)
     # a frame may differ only where v or a changes sign within 2 frames of it
     near = np.zeros(t.size, bool)
@@ -136,9 +137,16 @@ def test_same_motion_at_30_and_120_fps_gives_the_same_string():
         t = np.arange(int(4 * rate)) / rate
         x = 25 * np.sin(2 * np.pi * 0.8 * t) + 10 * np.sin(2 * np.pi * 1.6 * t + 1)
         strings.append(segment(Motion(x[:, None], ("k.rx",), rate)))
-    assert strings[0].string("k.rx") == strings[1].string("k.rx")
-    np.testing.assert_allclose(strings[0].durations["k.rx"][1:-1],
-                               strings[1].durations["k.rx"][1:-1], atol=2 / 30)
+    coarse, fine = strings[0].string("k.rx"), strings[1].string("k.rx")
+    # the same string, but for a last segment shorter than 3 frames at 30 fps (0.1 s), which
+    # the 120 fps recording resolves and the 30 fps one cannot
+    if len(fine) == len(coarse) + 1:
+        assert strings[1].durations["k.rx"][-1] < 0.1
+        fine = fine[:-1]
+    assert coarse == fine
+    n = len(coarse) - 1
+    np.testing.assert_allclose(strings[0].durations["k.rx"][1:n],
+                               strings[1].durations["k.rx"][1:n], atol=2 / 30)
 
 
 def test_bad_parameters_are_errors():

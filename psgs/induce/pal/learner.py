@@ -2,17 +2,20 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from ...actiongram import Actiongram
-from ...errors import ValidationError
 from ..base import Inducer, as_performances, check_choice, check_number
-from ..results import Induction, StringReport
+from ..results import ActuatorReport, Induction, Morpheme, StringReport
 from .content import ContentResult, find_candidates, pool_groups
 from .motifs import Timed
+from .performances import NO_REPETITION, learn_motion
 from .period import period_mode
 
 __all__ = ["PAL"]
 
-_TIMINGS = ("content", "period", "auto")
+_TIMINGS = ("content", "period", "auto", "performances")
+_EVIDENCE = ("kinetemes", "path")
 
 
 class PAL(Inducer):
@@ -62,7 +65,11 @@ class PAL(Inducer):
                  sync_fraction: float = 0.5, window_support: float = 0.34,
                  max_pattern: int = 64, seeds: int = 3, rounds: int = 2,
                  joins_copies: int = 4, timing: str = "auto",
-                 period_quantile: float = 0.9, period_agreement: float = 0.6) -> None:
+                 period_quantile: float = 0.9, period_agreement: float = 0.6,
+                 evidence: str = "kinetemes", joint_share: float = 0.25,
+                 neighbour_share: float = 0.03, channel_share: float = 0.25,
+                 max_shift: float = 0.1, min_cycle: float = 0.25,
+                 min_cycle_score: float = 0.05) -> None:
         check_number("min_copies", min_copies, low=2, integer=True)
         check_number("conserve", conserve, low=0, high=1, low_open=True)
         check_number("edge_share", edge_share, low=0, high=1)
@@ -93,6 +100,20 @@ class PAL(Inducer):
         self.timing = timing
         self.period_quantile = period_quantile
         self.period_agreement = period_agreement
+        check_choice("evidence", evidence, _EVIDENCE)
+        check_number("joint_share", joint_share, low=0, high=1, low_open=True)
+        check_number("neighbour_share", neighbour_share, low=0, high=1)
+        check_number("channel_share", channel_share, low=0, high=1)
+        check_number("max_shift", max_shift, low=0, high=0.5)
+        check_number("min_cycle", min_cycle, low=0)
+        check_number("min_cycle_score", min_cycle_score, low=0, high=1)
+        self.evidence = evidence
+        self.joint_share = joint_share
+        self.neighbour_share = neighbour_share
+        self.channel_share = channel_share
+        self.max_shift = max_shift
+        self.min_cycle = min_cycle
+        self.min_cycle_score = min_cycle_score
 
     def induce(self, performances) -> Induction:
         """Learn a PSGS from an actiongram; see :class:`~psgs.induce.Induction`.
@@ -100,9 +121,10 @@ class PAL(Inducer):
         Parameters
         ----------
         performances : Actiongram or sequence of Actiongram
-            One actiongram (a sequence holding one is the same). Several
-            performances are not learnt from yet (issue 9): they are refused
-            rather than joined into one stream.
+            One actiongram (a sequence holding one is the same), or several
+            performances of one action (never joined into one stream): then
+            the real-motion learner of :mod:`psgs.induce.pal.performances`
+            runs (also for one with ``timing="performances"``).
 
         Returns
         -------
@@ -114,13 +136,11 @@ class PAL(Inducer):
         TypeError
             When the input is not an actiongram or a sequence of them.
         ValidationError
-            For an empty sequence, performances whose actuators differ, or more
-            than one performance.
+            For an empty sequence, or performances whose actuators differ.
         """
         takes = as_performances(performances, "PAL.induce")
-        if len(takes) > 1:
-            raise ValidationError(f"PAL.induce learns from one performance for now, not "
-                                  f"{len(takes)} (several performances are issue 9)")
+        if len(takes) > 1 or self.timing == "performances":
+            return _from_performances(self, takes)
         actiongram = takes[0]
         strings, symbol_of = encode(actiongram)
         found = pool_groups(strings, find_candidates(strings, self), self)
@@ -181,11 +201,60 @@ def _reports(actiongram: Actiongram, found: ContentResult, period_used: bool,
     return tuple(reports)
 
 
+def _from_performances(inducer: PAL, takes: tuple[Actiongram, ...]) -> Induction:
+    """The real-motion learner's findings as an Induction (see ``performances.py``)."""
+    found = learn_motion(takes, inducer)
+    first = takes[0]
+    names = first.names
+    symbols = found.symbols
+    kept = sorted(row for row in found.patterns)
+    chosen = {j.name: j for j in found.joints}
+    reports = []
+    for row, name in enumerate(names):
+        joint = chosen[first.actuator(name)]
+        if row in found.patterns:
+            status = "component"
+        elif joint.status.startswith("component"):
+            status = "carries little of its joint's repeated motion"
+        else:
+            status = f"{joint.status} (joint {joint.name})" if found.verdict == "" \
+                else f"{found.verdict} ({joint.status}, joint {joint.name})"
+        reports.append(StringReport(name=name, status=status, copies=len(
+            found.occurrences.get(row, ())), significance=joint.log10_p,
+            synchronised_with=tuple(names[k] for k in kept if k != row) if row in kept else ()))
+    patterns = {names[i]: tuple(symbols[c] for c in found.patterns[i]) for i in kept}
+    result = inducer.build_induction(
+        names, patterns, {names[i]: found.occurrences[i] for i in kept}, reports,
+        synchronise=True, performances=len(takes),
+        occurrence_performance={names[i]: found.occurrence_performance[i] for i in kept})
+    actuators = tuple(a for a in first.actuators
+                      if any(first.actuator(names[i]) == a for i in kept))
+    morphemes = {names[i]: Morpheme(patterns[names[i]], found.durations[i],
+                                    None if all(d is None for d in first.segment_displacements)
+                                    else found.displacements[i]) for i in kept}
+    joint_reports = tuple(ActuatorReport(j.name, j.status, share=j.share,
+                                         significance=j.log10_p,
+                                         repeated=j.repeated, path=j.path)
+                          for j in found.joints)
+    return replace(result, actuators=actuators,
+                   actuator_channels={a: tuple(names[i] for i in kept
+                                               if first.actuator(names[i]) == a)
+                                      for a in actuators},
+                   morphemes=morphemes, verdict=found.verdict or ("" if kept else NO_REPETITION),
+                   actuator_reports=joint_reports)
+
+
 def _result(inducer: PAL, actiongram: Actiongram, patterns: dict[int, tuple[str, ...]],
             occurrences: dict, reports: tuple[StringReport, ...]) -> Induction:
     """The Induction: components in actiongram order, their system and reports."""
     kept = tuple(sorted(patterns))
     names = actiongram.names
-    return inducer.build_induction(
+    result = inducer.build_induction(
         names, {names[i]: patterns[i] for i in kept},
         {names[i]: occurrences[i] for i in kept}, reports, synchronise=True)
+    if not kept:
+        return replace(result, verdict=NO_REPETITION)
+    actuators = tuple(dict.fromkeys(actiongram.actuator(names[i]) for i in kept))
+    return replace(result, actuators=actuators, actuator_channels={
+        a: tuple(names[i] for i in kept if actiongram.actuator(names[i]) == a)
+        for a in actuators})

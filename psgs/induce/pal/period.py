@@ -121,7 +121,7 @@ def _window_agreement(grid: np.ndarray, a: int, b: int, length: int) -> float:
     return float(share[counts > 0].mean()) if np.any(counts > 0) else 0.0
 
 
-def _track_windows(grid: np.ndarray, lag: int) -> np.ndarray:
+def track_windows(grid: np.ndarray, lag: int) -> np.ndarray:
     """Start points of consecutive copy windows of ``lag`` points, following tempo changes.
 
     The phase is where the fewest segments of the given rows run across a
@@ -188,7 +188,7 @@ def _read_period(strings, size, times, step, grid, agreement, chance, lag, tried
     drivers = np.flatnonzero(agreement[:, lag] >= params.period_agreement)
     if len(drivers) < 2:
         return None
-    starts = _track_windows(grid[drivers], lag)
+    starts = track_windows(grid[drivers], lag)
     if len(starts) < params.min_copies:
         return None
     windows = grid[:, starts[:, None] + np.arange(lag)]   # (strings, copies, lag)

@@ -1,0 +1,108 @@
+"""The motion pattern of each component channel, and its morphemes (kinetemes, times, angles).
+
+Copies are the leader's cycles in every performance when the action cycles,
+else the whole performances (time-normalised and aligned). Every copy is
+stretched to a common number of points; each point takes the state most
+copies agree on; runs of one state are the pattern's kinetemes (runs under
+two points dropped, as noise). A kineteme's typical duration and angular
+displacement are the medians over the copies of its run's duration and of
+the angle the channel turns through in it.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .grids import Grid, resample
+from .period import track_windows
+
+if TYPE_CHECKING:
+    from .performances import MotionResult
+
+
+def copy_windows(grids: list[Grid], periods: list[int | None] | None, shifts: list[int],
+                 leader_rows: tuple[int, ...]) -> list[tuple[int, int, int]]:
+    """``(performance, first point, points)`` of every copy."""
+    out = []
+    if periods:
+        for k, (grid, lag) in enumerate(zip(grids, periods)):
+            if not lag:
+                continue
+            for a in track_windows(grid.states[list(leader_rows)], lag).tolist():
+                out.append((k, a, lag))
+        if out:
+            return out
+    length = int(np.median([g.points for g in grids]))
+    for k, grid in enumerate(grids):
+        # undo the alignment shift (measured on the time-normalised copies)
+        start = int(round((shifts[k] if k < len(shifts) else 0) * grid.points / length))
+        start = min(max(start, 0), grid.points - 1)
+        out.append((k, start, grid.points - start))
+    return out
+
+
+def read_patterns(result: MotionResult, grids: list[Grid], periods, shifts) -> None:
+    """Fill the result's patterns, occurrences, typical durations and displacements."""
+    leader = next(j for j in result.joints if j.name == result.leader)
+    windows = copy_windows(grids, periods, shifts, leader.channels)
+    width = int(np.median([n for _, _, n in windows]))
+    for rows in result.channels.values():
+        for row in rows:
+            stretched, turned, seconds = [], [], []
+            for k, a, n in windows:
+                g = grids[k]
+                stretched.append(resample(g.states[row:row + 1, a:a + n], width)[0])
+                # the angle turned through at each stretched point: velocity x its time
+                turned.append(resample(g.velocity[row:row + 1, a:a + n], width)[0]
+                              * (n * g.step / width))
+                seconds.append(n * g.step / width)
+            copies = np.array(stretched)
+            column = _plurality(copies)
+            runs = _runs(column)
+            if len(runs) < 2:
+                continue
+            result.patterns[row] = tuple(sym for sym, _, _ in runs)
+            result.durations[row] = tuple(float(np.median([(b - a) * s for s in seconds]))
+                                          for _, a, b in runs)
+            angles = np.array(turned)
+            result.displacements[row] = tuple(float(np.median(angles[:, a:b].sum(axis=1)))
+                                              for _, a, b in runs)
+            result.occurrences[row] = [(grids[k].t0 + a * grids[k].step,
+                                        grids[k].t0 + (a + n) * grids[k].step)
+                                       for k, a, n in windows]
+            result.occurrence_performance[row] = [k for k, _, _ in windows]
+
+
+def _plurality(copies: np.ndarray) -> np.ndarray:
+    """Per column the most common state over the copies (-1 where every copy is absent)."""
+    out = np.full(copies.shape[1], -1, dtype=np.int64)
+    for c in range(copies.shape[1]):
+        values = copies[:, c]
+        values = values[values >= 0]
+        if len(values):
+            tally = np.bincount(values)
+            out[c] = int(np.argmax(tally))
+    return out
+
+
+def _runs(column: np.ndarray) -> list[tuple[int, int, int]]:
+    """``(state, first, end)`` of each run of one state, runs under two points merged away."""
+    runs: list[list[int]] = []
+    for k, sym in enumerate(column.tolist()):
+        if runs and runs[-1][0] == sym:
+            runs[-1][2] = k + 1
+        else:
+            runs.append([sym, k, k + 1])
+    kept = [r for r in runs if r[0] >= 0 and r[2] - r[1] >= 2] or [r for r in runs if r[0] >= 0]
+    out: list[list[int]] = []
+    for sym, a, b in kept:
+        if out and out[-1][0] == sym:
+            out[-1][2] = b
+        else:
+            out.append([sym, a, b])
+    # the dropped short runs' points go to the run before them, so times add up
+    for k in range(len(out) - 1):
+        out[k][2] = out[k + 1][1]
+    return [(s, a, b) for s, a, b in out]

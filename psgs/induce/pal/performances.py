@@ -1,0 +1,323 @@
+"""Real motion: which joints perform an action, from several performances of it.
+
+The recipe of SPEC §5 (third round), on kineteme strings grouped by joint:
+
+1. **copies at two levels.** Whole performances, time-normalised and aligned
+   by a small shift; and cycles within each performance, timed on the leader's
+   period in that performance.
+2. **agreement corrected for chance.** Where two copies are in the same state,
+   weighted by the speed of the motion there, minus what the two copies' own
+   state shares give by chance (Cohen's kappa). A large limb doing something
+   different in each performance agrees by chance, and scores nothing.
+   For cycles the null is the agreement at half the period (an oscillation is
+   in anti-phase there, mere stillness or a slow drift is not).
+3. **repeated motion.** Per channel, its angular path length times that
+   corrected agreement; per joint, the sum over its channels.
+4. **a significance test per joint.** Binomial tail of the agreeing segments
+   at the chance level, Bonferroni over channels and joints.
+5. **the leader**: the significant joint that carries the most repeated motion
+   across performances; the cycles are timed on its period (median over
+   performances: most must be in step).
+6. **shares relative to the leader.** A significant joint at ``joint_share``
+   of the leader's repeated motion is a component; a skeleton neighbour (one
+   hop) of a component joins at ``neighbour_share``.
+
+With ``evidence="path"`` the same selection runs on plain angular path length
+(no kinetemes, no test): the ablation the benchmark reports.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ...actiongram import Actiongram
+from .grids import Grid, agreement, grid_step, kappa, resample, sample
+from .morphemes import read_patterns
+from .statistics import log10_binom_sf
+
+if TYPE_CHECKING:
+    from .learner import PAL
+
+NO_REPETITION = "no synchronised repetition"
+
+
+@dataclass
+class JointEvidence:
+    """What the learner measured for one joint (a working record)."""
+
+    name: str
+    channels: tuple[int, ...]
+    path: float = 0.0          # mean angular path length per performance
+    repeated: float = 0.0      # repeated motion (path x corrected agreement), summed
+    log10_p: float = 0.0       # significance of its best channel, corrected
+    share: float = 0.0         # repeated / the leader's
+    status: str = "not significant"
+
+
+@dataclass
+class MotionResult:
+    """The real-motion learner's findings (channel indices; codes over ``symbols``)."""
+
+    verdict: str
+    joints: list[JointEvidence]
+    leader: str | None
+    symbols: list[str]
+    period: float | None = None
+    channels: dict[str, tuple[int, ...]] = field(default_factory=dict)
+    patterns: dict[int, tuple[int, ...]] = field(default_factory=dict)
+    occurrences: dict[int, list[tuple[float, float]]] = field(default_factory=dict)
+    occurrence_performance: dict[int, list[int]] = field(default_factory=dict)
+    durations: dict[int, tuple[float, ...]] = field(default_factory=dict)
+    displacements: dict[int, tuple[float, ...] | None] = field(default_factory=dict)
+
+
+def learn_motion(takes: tuple[Actiongram, ...], params: PAL) -> MotionResult:
+    """Steps 1-6 of the module docstring on ``takes`` (same strings, same order)."""
+    codes: dict[str, int] = {}
+    step = grid_step(takes)
+    grids = [sample(ag, codes, step) for ag in takes]
+    size = max(len(codes), 1)
+    first = takes[0]
+    joints = [JointEvidence(a, tuple(first.index(c) for c in first.channels(a)))
+              for a in first.actuators]
+    segments = np.array([[len(s) for s in ag.symbols] for ag in takes], dtype=float)
+    paths = np.array([(g.speed.sum(axis=1) * g.step) for g in grids])  # (takes, channels)
+    for j in joints:
+        j.path = float(paths[:, list(j.channels)].sum(axis=1).mean())
+    symbols = list(codes)
+    if params.evidence == "path":
+        return _select(joints, paths.mean(axis=0), np.zeros(len(first)), first, params,
+                       symbols, tested=False)
+
+    repeated = np.zeros(len(first))
+    log_p = np.zeros(len(first))
+    shifts: list[int] = []
+    if len(takes) >= 2:
+        shifts, cross, cross_p = _across(grids, size, paths, segments, params)
+        repeated, log_p = cross, cross_p
+    scored = [lag_scores(g, size, params) for g in grids]
+    leader = _first_leader(joints, repeated, log_p, grids, scored, size, paths, segments, params)
+    periods = None
+    if leader is not None:
+        periods = [_period(sc, leader.channels, params) for sc in scored]
+        found = [p for p in periods if p]
+        if len(found) * 2 > len(grids):  # most performances cycle on the leader's period
+            cyc, cyc_p = _cycles(grids, periods, size, paths, segments)
+            repeated = np.maximum(repeated, cyc)
+            log_p = np.minimum(log_p, cyc_p)
+        else:
+            periods = None
+    result = _select(joints, repeated, log_p, first, params, symbols, tested=True)
+    if result.verdict == "":
+        read_patterns(result, grids, periods, shifts)
+        if periods:
+            result.period = float(np.median([p for p in periods if p])) * step
+    return result
+
+
+# -- evidence across performances ----------------------------------------------------------
+def _across(grids: list[Grid], size: int, paths: np.ndarray, segments: np.ndarray,
+            params: PAL) -> tuple[list[int], np.ndarray, np.ndarray]:
+    """Per channel: repeated motion and log10 p across aligned, time-normalised performances."""
+    length = int(np.median([g.points for g in grids]))
+    states = [resample(g.states, length) for g in grids]
+    speeds = [resample(g.speed, length) for g in grids]
+    reach = int(round(params.max_shift * length))
+    reference = states[0]
+    shifts = [0] + [_best_shift(reference, s, reach, size) for s in states[1:]]
+    channels = reference.shape[0]
+    repeated = np.zeros(channels)
+    agreeing = np.zeros(channels)
+    trials = np.zeros(channels)
+    chance_sum = np.zeros(channels)
+    pairs = 0
+    for p in range(len(grids)):
+        for q in range(p + 1, len(grids)):
+            a, b = _overlap(states[p], states[q], shifts[q] - shifts[p])
+            wa, wb = _overlap(speeds[p], speeds[q], shifts[q] - shifts[p])
+            obs_w, chance_w, _ = agreement(a, b, (wa + wb) / 2, size)
+            corrected = np.clip(kappa(obs_w, chance_w), 0, None)
+            repeated += corrected * (paths[p] + paths[q]) / 2
+            obs, chance, _ = agreement(a, b, np.ones_like(wa), size)
+            n = (segments[p] + segments[q]) / 2
+            agreeing += np.round(obs * n)
+            trials += n
+            chance_sum += chance
+            pairs += 1
+    repeated /= max(pairs, 1)
+    chance_mean = chance_sum / max(pairs, 1)
+    log_p = np.array([log10_binom_sf(int(k), int(n), float(c)) if n > 0 else 0.0
+                      for k, n, c in zip(agreeing, trials, chance_mean)])
+    # every performance's segments are in m - 1 pairs: count them once (the tail's log
+    # scales about linearly with the trials)
+    log_p = log_p * 2 / len(grids)
+    return shifts, repeated, log_p
+
+
+def _overlap(a: np.ndarray, b: np.ndarray, shift: int) -> tuple[np.ndarray, np.ndarray]:
+    """The parts of ``a`` and of ``b`` shifted by ``shift`` points that cover the same times."""
+    n = a.shape[1]
+    if shift >= 0:
+        return a[:, shift:], b[:, :n - shift]
+    return a[:, :n + shift], b[:, -shift:]
+
+
+def _best_shift(a: np.ndarray, b: np.ndarray, reach: int, size: int) -> int:
+    """The shift (|shift| <= reach) at which the channels of ``b`` agree best with ``a``."""
+    best, best_score = 0, -math.inf
+    for shift in sorted(range(-reach, reach + 1), key=abs):
+        x, y = _overlap(a, b, shift)
+        obs, chance, _ = agreement(x, y, np.ones(x.shape), size)
+        score = float((obs - chance).sum())
+        if score > best_score + 1e-12:
+            best, best_score = shift, score
+    return best
+
+
+# -- evidence within performances: cycles ----------------------------------------------------
+def _self_scores(grid: Grid, rows: tuple[int, ...] | list[int], lag: int, size: int
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Speed-weighted kappa at ``lag`` minus that at half the lag, and the unweighted parts."""
+    rows = list(rows)
+    s, w = grid.states[rows], grid.speed[rows]
+
+    def at(l: int, weighted: bool):
+        a, b = s[:, :-l], s[:, l:]
+        weight = (w[:, :-l] + w[:, l:]) / 2 if weighted else np.ones(a.shape)
+        return agreement(a, b, weight, size)
+
+    obs, chance, _ = at(lag, True)
+    half_obs, half_chance, _ = at(max(1, lag // 2), True)
+    score = kappa(obs, chance) - np.clip(kappa(half_obs, half_chance), 0, None)
+    raw, raw_chance, _ = at(lag, False)
+    half_raw, _, _ = at(max(1, lag // 2), False)
+    return score, raw, np.maximum(raw_chance, half_raw)
+
+
+def _lags(grid: Grid, params: PAL) -> range:
+    low = max(2, int(params.min_cycle / grid.step))
+    return range(low, grid.points // params.min_copies + 1)
+
+
+def lag_scores(grid: Grid, size: int, params: PAL) -> tuple[range, np.ndarray]:
+    """Every channel's cycle score (see :func:`_self_scores`) at every candidate lag."""
+    lags = _lags(grid, params)
+    every = range(grid.states.shape[0])
+    table = np.array([_self_scores(grid, every, lag, size)[0] for lag in lags]) if len(lags) \
+        else np.zeros((0, grid.states.shape[0]))
+    return lags, table
+
+
+def _period(scored: tuple[range, np.ndarray], rows: tuple[int, ...], params: PAL) -> int | None:
+    """A joint's period in one performance (grid points), or None when it does not cycle.
+
+    ``scored`` is :func:`lag_scores` of the performance; the joint's score at
+    a lag is the mean over its channels. The period is the shortest peak
+    within 15% of the highest (a peak at twice the period is as high).
+    """
+    lags, table = scored
+    if len(lags) < 2:
+        return None
+    scores = table[:, list(rows)].mean(axis=1)
+    top = float(scores.max())
+    if top <= params.min_cycle_score:
+        return None
+    peaks = [k for k in range(len(scores)) if scores[k] >= 0.85 * top
+             and (k == 0 or scores[k] >= scores[k - 1])
+             and (k + 1 == len(scores) or scores[k] >= scores[k + 1])]
+    return lags[peaks[0]] if peaks else None
+
+
+def _cycles(grids: list[Grid], periods: list[int | None], size: int, paths: np.ndarray,
+            segments: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per channel: median over performances of repeated motion and log10 p at the leader's period."""
+    channels = grids[0].states.shape[0]
+    repeated = np.zeros((len(grids), channels))
+    agreeing, trials, nulls = np.zeros(channels), np.zeros(channels), np.zeros(channels)
+    for k, (grid, lag) in enumerate(zip(grids, periods)):
+        if not lag:
+            continue
+        score, raw, null = _self_scores(grid, range(channels), lag, size)
+        repeated[k] = np.clip(score, 0, None) * paths[k]
+        agreeing += np.round(raw * segments[k])
+        trials += segments[k]
+        nulls += null * segments[k]
+    # the share is the median over performances (most must be in step); the test pools the
+    # segments of every performance (the null: chance, or the agreement at half the period)
+    null = nulls / np.maximum(trials, 1)
+    log_p = np.array([log10_binom_sf(int(k), int(n), float(c)) if n > 0 and c < 1 else 0.0
+                      for k, n, c in zip(agreeing, trials, null)])
+    return np.median(repeated, axis=0), log_p
+
+
+# -- the leader and the selection ------------------------------------------------------------
+def _significant(joint: JointEvidence, log_p: np.ndarray, joints: int, params: PAL) -> bool:
+    best = float(min(log_p[list(joint.channels)])) if joint.channels else 0.0
+    joint.log10_p = best + math.log10(max(len(joint.channels), 1))
+    return joint.log10_p + math.log10(max(joints, 1)) <= math.log10(params.alpha)
+
+
+def _first_leader(joints, repeated, log_p, grids, scored, size, paths, segments, params):
+    """The joint the cycles are timed on: most repeated motion across performances, else within."""
+    across = [(float(repeated[list(j.channels)].sum()), j) for j in joints
+              if _significant(j, log_p, len(joints), params)]
+    if across and max(s for s, _ in across) > 0:
+        return max(across, key=lambda sj: sj[0])[1]
+    # one performance, or nothing repeats across them: the best cycling joint of each
+    best, best_score = None, 0.0
+    for j in joints:
+        periods = [_period(sc, j.channels, params) for sc in scored]
+        if sum(1 for p in periods if p) * 2 <= len(grids):
+            continue
+        cyc, cyc_p = _cycles(grids, periods, size, paths, segments)
+        probe = JointEvidence(j.name, j.channels)
+        if not _significant(probe, cyc_p, len(joints), params):
+            continue
+        score = float(cyc[list(j.channels)].sum())
+        if score > best_score:
+            best, best_score = j, score
+    return best
+
+
+def _select(joints: list[JointEvidence], repeated: np.ndarray, log_p: np.ndarray,
+            first: Actiongram, params: PAL, symbols: list[str], *, tested: bool
+            ) -> MotionResult:
+    """Leader, shares, components and their skeleton neighbours; the verdict."""
+    for j in joints:
+        j.repeated = float(repeated[list(j.channels)].sum())
+        passed = _significant(j, log_p, len(joints), params) if tested else j.repeated > 0
+        j.status = "candidate" if passed else "not significant"
+    candidates = [j for j in joints if j.status == "candidate" and j.repeated > 0]
+    if not candidates:
+        return MotionResult(NO_REPETITION, joints, None, symbols)
+    leader = max(candidates, key=lambda j: (j.repeated, -joints.index(j)))
+    for j in joints:
+        j.share = j.repeated / leader.repeated
+    core = {j.name for j in candidates if j.share >= params.joint_share}
+    for j in joints:
+        if j.name in core:
+            j.status = "component"
+        elif j.status == "candidate":
+            j.status = "below the share of the leader"
+    near = set()
+    for name in core:
+        near.update(first.neighbours(name))
+    for j in joints:
+        if j.name in near and j.name not in core and j.share >= params.neighbour_share:
+            j.status = "component (skeleton neighbour)"
+    chosen = [j for j in joints if j.status.startswith("component")]
+    if len(chosen) < 2:  # synchronisation needs two joints
+        for j in chosen:
+            j.status = "alone: no other joint in step"
+        return MotionResult(NO_REPETITION, joints, leader.name, symbols)
+    result = MotionResult("", joints, leader.name, symbols)
+    for j in chosen:
+        values = repeated[list(j.channels)]
+        keep = [c for c, v in zip(j.channels, values)
+                if v > 0 and v >= params.channel_share * float(values.max())]
+        result.channels[j.name] = tuple(keep)
+    return result
