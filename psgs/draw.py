@@ -347,3 +347,68 @@ def draw(system: PSGS | PCGS, path: str | Path, *, seed: int = 0, max_steps: int
     forest = _forest_or_none(system, seed, max_steps)
     path.write_bytes(_render(system, forest, fmt, engine))
     return path
+
+
+# -- notebook views (``_repr_svg_`` / ``_repr_html_`` of systems, actiongrams, inductions) -------
+_HTML_SYMBOLS = 60  # symbols shown per string; the rest is counted
+
+
+def _escape(text: object) -> str:
+    import html
+
+    return html.escape(str(text), quote=True)
+
+
+def system_svg(system) -> str | None:
+    """A system's picture as SVG for a notebook, or None when it cannot be drawn here."""
+    try:
+        return to_svg(system, max_steps=60)
+    except Exception:  # no matplotlib, a system too large for dot: the notebook shows text
+        return None
+
+
+def _colour(symbol: str, alphabet: list[str]) -> str:
+    fixed = {"B": "#1f5fbf", "G": "#2ca02c", "R": "#d62728", "Y": "#f2c80f"}
+    return fixed.get(symbol) or _PALETTE[alphabet.index(symbol) % len(_PALETTE)]
+
+
+def actiongram_html(actiongram) -> str:
+    """An actiongram as an HTML table: per string its symbols as coloured runs (width = time).
+
+    >>> from psgs import Actiongram
+    >>> "<table" in actiongram_html(Actiongram.from_strings({"knee": "BGRY"}))
+    True
+    """
+    alphabet = sorted({s for row in actiongram.symbols for s in row})
+    total = max((sum(d) for d in actiongram.segment_durations), default=0.0) or 1.0
+    rows = []
+    for name, symbols, durations in zip(actiongram.names, actiongram.symbols,
+                                        actiongram.segment_durations):
+        cells = "".join(
+            f'<span title="{_escape(s)} {d:g}" style="display:inline-block;height:1.1em;'
+            f'width:{max(0.15, 100 * d / total):.2f}%;background:{_colour(s, alphabet)};'
+            f'color:white;font-size:0.7em;overflow:hidden">{_escape(s)}</span>'
+            for s, d in list(zip(symbols, durations))[:_HTML_SYMBOLS])
+        more = f" … (+{len(symbols) - _HTML_SYMBOLS})" if len(symbols) > _HTML_SYMBOLS else ""
+        rows.append(f"<tr><td><code>{_escape(name)}</code></td><td style='width:100%'>"
+                    f"{cells}{more}</td><td>{len(symbols)}</td></tr>")
+    return ("<table><tr><th>string</th><th>symbols (width: duration)</th><th>n</th></tr>"
+            + "".join(rows) + "</table>")
+
+
+def induction_html(induction) -> str:
+    """An induction as HTML: verdict, actuators, each component's pattern, the system's picture."""
+    head = (f"<p><b>{_escape(induction.inducer or 'induction')}</b>: "
+            f"{len(induction.components)} component(s)")
+    actuators = getattr(induction, "actuators", ())
+    if actuators:
+        head += f", actuators {_escape(', '.join(actuators))}"
+    verdict = getattr(induction, "verdict", "")
+    if verdict:
+        head += f" — {_escape(verdict)}"
+    rows = "".join(f"<tr><td><code>{_escape(c)}</code></td><td><code>"
+                   f"{_escape(' '.join(induction.patterns.get(c, ())))}</code></td></tr>"
+                   for c in induction.components)
+    table = f"<table><tr><th>component</th><th>pattern</th></tr>{rows}</table>" if rows else ""
+    picture = system_svg(induction.system) if induction.system is not None else None
+    return head + "</p>" + table + (picture or "")

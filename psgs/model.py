@@ -384,6 +384,12 @@ class PSGS:
         """The position of a component given by name or position."""
         return _component_index(self.components, component)
 
+    def _repr_svg_(self) -> str | None:
+        """The forest of a derived word and the synchronisation graph (notebooks)."""
+        from .draw import system_svg
+
+        return system_svg(self)
+
 
 def _component_index(components: tuple[Grammar, ...], component: str | int) -> int:
     if isinstance(component, int) and not isinstance(component, bool):
@@ -463,6 +469,12 @@ class PCGS:
     def index(self, component: str | int) -> int:
         """The position of a component given by name or position."""
         return _component_index(self.components, component)
+
+    def _repr_svg_(self) -> str | None:
+        """The forest of a derived word and the synchronisation graph (notebooks)."""
+        from .draw import system_svg
+
+        return system_svg(self)
 
 
 System = Union[PSGS, PCGS]
