@@ -24,7 +24,6 @@ unreadable label file) never stops the reading: it is kept in the action's
 from __future__ import annotations
 
 import csv
-import json
 import re
 import tomllib
 from collections import defaultdict

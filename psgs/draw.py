@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .errors import ValidationError
-from .model import PCGS, PSGS, Nonterminal, Query
+from .model import PCGS, PSGS, Query
 
 __all__ = ["Forest", "parse_forest", "sync_edges", "draw", "to_svg", "graphviz_available"]
 
