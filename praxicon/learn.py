@@ -60,8 +60,17 @@ class Settings:
 
 
 # -- inputs ------------------------------------------------------------------------------------
-@functools.lru_cache(maxsize=64)
 def _file_digest(path: str) -> str:
+    try:
+        stat = Path(path).stat()
+    except OSError as exc:
+        return f"unreadable: {exc.strerror or exc}"
+    # cached by size and modification time too: a file changed in place is hashed again
+    return _digest(path, stat.st_size, stat.st_mtime_ns)
+
+
+@functools.lru_cache(maxsize=64)
+def _digest(path: str, size: int, mtime_ns: int) -> str:
     try:
         return hashlib.sha256(Path(path).read_bytes()).hexdigest()
     except OSError as exc:

@@ -52,6 +52,14 @@ def test_same_inputs_same_bytes_and_resume(manifest, tmp_path):
     assert again.learnt == () and again.skipped == tuple(a.name for a in actions)
     assert _files(tmp_path / "a") == _files(tmp_path / "b")
     assert first.learnt == ("moves.step", "moves.wave")
+    # a file changed in place is another input: its action is learnt again
+    from kinetology import write_bvh
+    from praxicon_fixtures import take
+
+    wave_take = next(p.file for a in actions if a.name == "moves.wave" for p in a.performances)
+    write_bvh(take(9), wave_take)
+    touched = build(actions, tmp_path / "a", progress=False, log=lambda s: None)
+    assert touched.learnt == ("moves.wave",)
     # other parameters are other inputs: learnt again
     changed = build(actions, tmp_path / "a", settings=Settings.make(params={"min_copies": 4}),
                     progress=False, log=lambda s: None)
