@@ -144,12 +144,13 @@ def draw_shared_patterns(folder, path, *, most: int = 30, **options) -> Path:
 
 
 def draw_generated(record: dict, generated, path, channel: str | None = None) -> Path:
-    """One actuator channel: the first performance used beside the generated motion."""
+    """One actuator channel beside a performance (default: the one that moves the most)."""
     from .learn import _load_performance
     from .datasets import Performance
 
     plt = _pyplot()
-    channel = channel or generated.channels[0]
+    if channel is None:  # the generated channel with the largest range
+        channel = max(generated.channels, key=lambda c: float(np.ptp(generated.motion.column(c))))
     used = [p for p in record["performances"] if p.get("used")]
     perf = Performance(used[0]["file"], used[0]["start"], used[0]["stop"], used[0]["label"])
     original, problem = _load_performance(perf)
