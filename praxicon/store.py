@@ -5,6 +5,7 @@ Layout of a praxicon folder ``DIR`` (schema in ``docs/praxicon.md``)::
     DIR/index.json            every action's record, sorted by name (deterministic bytes)
     DIR/actuators.csv         the actuator-set matrix: one row per learnt action, one
                               column per joint, 1 where the joint takes part
+    DIR/shared.json           kineteme sub-patterns several actions share, per joint
     DIR/ACTION.psgs           the grammar system learnt for ACTION
     DIR/records/ACTION.json   one record per action with its input key (what resume reads)
     DIR/timings.json          wall seconds per action (kept out of index.json, whose
@@ -121,6 +122,9 @@ def write_index(out: Path, records: list[dict], settings: dict, datasets: list[s
         writer.writerow([name, *row])
     write_atomic(out / "actuators.csv", buffer.getvalue())
     write_atomic(out / "index.json", dump_json(index))
+    from .shared import shared_patterns  # the patterns that recur across actions (Fig. 13)
+
+    write_atomic(out / "shared.json", dump_json([p.to_dict() for p in shared_patterns(index)]))
     if timings is not None:
         write_atomic(out / "timings.json", dump_json({k: round(v, 3) for k, v in
                                                      sorted(timings.items())}))

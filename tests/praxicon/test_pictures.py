@@ -69,3 +69,7 @@ def test_praxicon_pictures_and_shared_patterns(manifest, tmp_path):
     arm = [p for p in shared if p.joint == "arm" and p.kinetemes == ("B", "G", "R", "Y")]
     assert arm and arm[0].actions == ("moves.step", "moves.wave")
     assert all(len(p.actions) >= 2 and len(p.kinetemes) >= 4 for p in shared)
+    import json
+
+    listed = json.loads((tmp_path / "px" / "shared.json").read_text())
+    assert listed == [p.to_dict() for p in shared]
