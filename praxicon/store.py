@@ -102,7 +102,8 @@ def _pose_joints(record: dict) -> list[str]:
 
 def write_index(out: Path, records: list[dict], settings: dict, datasets: list[str],
                 timings: dict[str, float] | None = None) -> dict:
-    """Write ``index.json``, ``actuators.csv`` (and ``timings.json``); returns the index."""
+    """Write ``index.json``, ``actuators.csv``; with ``timings`` (the build's last write) also
+    ``timings.json`` and ``shared.json``. Returns the index."""
     records = sorted(records, key=lambda r: r["name"])
     index = {
         "format": INDEX_FORMAT,
@@ -122,9 +123,11 @@ def write_index(out: Path, records: list[dict], settings: dict, datasets: list[s
         writer.writerow([name, *row])
     write_atomic(out / "actuators.csv", buffer.getvalue())
     write_atomic(out / "index.json", dump_json(index))
-    from .shared import shared_patterns  # the patterns that recur across actions (Fig. 13)
+    if timings is not None:  # the build's last write: the patterns that recur (Fig. 13)
+        from .shared import shared_patterns
 
-    write_atomic(out / "shared.json", dump_json([p.to_dict() for p in shared_patterns(index)]))
+        write_atomic(out / "shared.json",
+                     dump_json([p.to_dict() for p in shared_patterns(index)]))
     if timings is not None:
         write_atomic(out / "timings.json", dump_json({k: round(v, 3) for k, v in
                                                      sorted(timings.items())}))
