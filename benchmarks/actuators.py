@@ -66,7 +66,7 @@ sys.path.insert(0, str(REPO))
 
 import kinetology  # noqa: E402
 from kinetology.labels import read_cmu_truelabels  # noqa: E402
-from kinetology.performances import from_spans  # noqa: E402
+from kinetology.performances import from_spans, segment_performances  # noqa: E402
 from kinetology.segmentation import DEFAULTS, segment, smooth, unwrap  # noqa: E402
 
 MOCAP = REPO.parent / "shared" / "data" / "mocap"
@@ -290,7 +290,7 @@ def pal_joints(perfs, **options):
     """Joints PAL names; ``(joints, how)`` where ``how`` says which PAL interface was used."""
     PAL = _pal_class()
     inducer = PAL(**options)
-    grams = [segment(m) for m in perfs]
+    grams = segment_performances(perfs)
     try:
         induction = inducer.induce(grams if len(grams) > 1 else grams[0])
     except (TypeError, AttributeError, ValueError):
@@ -503,6 +503,20 @@ def threshold_sweep(named_rows, default) -> str:
     return "\n".join(lines)
 
 
+def truth_table(actions) -> str:
+    """The truth of the series run, as a table (the rule is in the module docstring)."""
+    lines = ["| action | active (upper arm + forearm, thigh + shank) | don't-care limbs | why |",
+             "|---|---|---|---|"]
+    for action in actions:
+        truth = TRUTH.get(action)
+        if truth is not None:
+            lines.append(f"| {action} | {', '.join(truth.active) or 'none'} | "
+                         f"{', '.join(truth.free) or '-'} | {truth.why} |")
+    lines.append("| negative series | none | - | nothing repeats across or within the "
+                 "performances |")
+    return "\n".join(lines)
+
+
 def write_outputs(rows, summary) -> None:
     data = DOCS / "data" / "actuators.csv"
     with data.open("w", newline="") as handle:
@@ -510,8 +524,13 @@ def write_outputs(rows, summary) -> None:
         writer.writeheader()
         writer.writerows(rows)
     picture(rows, DOCS / "img" / "pal_actuators.png")
+    actions = list(dict.fromkeys(r["action"] for r in rows if not r["negative"]))
     text = ("Measured by `python benchmarks/actuators.py` (per-series rows in "
             "[data/actuators.csv](data/actuators.csv)).\n\n" + summary +
+            "\n\nThe truth, by the rule in `benchmarks/actuators.py` (the major joints of "
+            "the performing limbs active, of the other limbs inactive; distal, girdle and "
+            "axial joints, and limbs left to the performer, don't-care):\n\n" +
+            truth_table(actions) +
             "\n\n![F1 per dataset and method](img/pal_actuators.png)")
     page = DOCS / "pal.md"
     content = page.read_text()

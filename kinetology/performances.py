@@ -13,7 +13,7 @@ from typing import Iterable
 from .labels import Span
 from .motion import Motion
 
-__all__ = ["cut", "performances", "from_files", "from_spans"]
+__all__ = ["cut", "performances", "from_files", "from_spans", "segment_performances"]
 
 
 def cut(motion: Motion, start: float | None = None, stop: float | None = None) -> Motion:
@@ -139,3 +139,51 @@ def performances(*sources, spans: Iterable[Span] | None = None, label: str | Non
     if len(motions) != 1:
         raise ValueError(f"spans label one take; got {len(motions)} sources")
     return from_spans(motions[0], spans, label, min_seconds=min_seconds)
+
+
+def segment_performances(motions, channels=None, **params) -> tuple:
+    """One :class:`psgs.Actiongram` per performance, all with the same strings.
+
+    A channel still in one take may move in another; a learner compares the performances
+    string by string, so every actiongram gets every channel that moves (at least
+    ``min_range``) in *any* of the performances, in the first motion's channel order.
+
+    Parameters
+    ----------
+    motions : sequence of Motion
+        The performances (same channel names; a channel missing from one is an error).
+    channels : sequence of str, optional
+        Channels to consider (default: every angle channel).
+    **params
+        Segmentation parameters, as for :func:`kinetology.segment`.
+
+    Returns
+    -------
+    tuple of psgs.Actiongram
+
+    Raises
+    ------
+    KeyError
+        A channel of the union is missing from one of the motions (named).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.arange(120) / 30
+    >>> a = Motion(np.stack([20 * np.sin(2 * np.pi * t), 0 * t], 1), ("arm.rx", "leg.rx"), 30)
+    >>> b = Motion(np.stack([20 * np.sin(2 * np.pi * t), 5 * t], 1), ("arm.rx", "leg.rx"), 30)
+    >>> [ag.names for ag in segment_performances([a, b])]
+    [('arm.rx', 'leg.rx'), ('arm.rx', 'leg.rx')]
+    """
+    from .segmentation import segments
+
+    motions = tuple(motions)
+    if not motions:
+        return ()
+    moving: set[str] = set()
+    for motion in motions:
+        moving.update(segments(motion, channels, **params).channels)
+    order = list(motions[0].channels if channels is None else channels)
+    union = [c for c in order if c in moving]
+    still_too = {**params, "min_range": 0.0}
+    return tuple(segments(m, union, **still_too).to_actiongram() for m in motions)

@@ -96,7 +96,7 @@ def get(name: str, **params) -> Inducer:
     --------
     >>> get("pal", min_copies=4).min_copies
     4
-    >>> get("pal", colour="red")
+    >>> get("pal", colour="red")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
     psgs.errors.ValidationError: inducer pal has no parameter 'colour' (its parameters: ...)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import ast
 import importlib
+import importlib.util
 import os
 import subprocess
 import sys
@@ -346,3 +347,62 @@ def test_bench_and_synth_live_in_their_own_cli_module():
 
     assert hasattr(bench, "run_bench_noise") and hasattr(bench, "run_synth")
     assert not hasattr(induce, "run_bench_noise") and not hasattr(induce, "run_synth")
+
+
+# -- the examples in the docstrings run ------------------------------------------------------------
+@pytest.mark.parametrize("module", ["psgs.induce", "psgs.induce.base", "psgs.induce.results",
+                                    "psgs.induce.registry", "psgs.induce.sequential",
+                                    "psgs.induce.synthetic", "psgs.induce.sweep", "psgs.synthetic",
+                                    "psgs.cli.bench", "psgs.cli.induce"])
+def test_docstring_examples_run(module):
+    import doctest
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)  # psgs.synthetic's, on purpose
+        result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
+    assert result.attempted > 0 and result.failed == 0
+
+
+# -- the benchmarks share one helper and measure the installed package ------------------------------
+def _load_common():
+    spec = importlib.util.spec_from_file_location("_common", ROOT / "benchmarks" / "_common.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_benchmarks_share_one_helper_and_never_edit_sys_path():
+    shared = {"replace_section", "write_csv", "best_of", "slope", "loglog_slope"}
+    scripts = sorted((ROOT / "benchmarks").glob("*.py"))
+    assert len(scripts) >= 7
+    for path in scripts:
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        touches_path = [node.lineno for node in ast.walk(tree) if isinstance(node, ast.Attribute)
+                        and node.attr == "path" and isinstance(node.value, ast.Name)
+                        and node.value.id == "sys"]
+        assert not touches_path, f"{path.name} uses sys.path (line {touches_path[0]})"
+        if path.name == "_common.py":
+            assert not any(isinstance(n, (ast.Import, ast.ImportFrom)) and "psgs" in ast.dump(n)
+                           for n in ast.walk(tree))
+            continue
+        copies = {n.name for n in ast.walk(tree) if isinstance(n, ast.FunctionDef)} & shared
+        assert not copies, f"{path.name} has its own {copies}"
+        assert any(isinstance(n, ast.ImportFrom) and n.module == "_common" for n in tree.body)
+
+
+def test_replace_section_keeps_the_rest_of_the_page(tmp_path):
+    common = _load_common()
+    page = tmp_path / "page.md"
+    page.write_text("# Title\n\n<!-- x:start -->\nold\n<!-- x:end -->\ntail ü\n", encoding="utf-8")
+    common.replace_section(page, "x", "\nnew table\n\n")
+    assert page.read_text(encoding="utf-8") == ("# Title\n\n<!-- x:start -->\nnew table\n"
+                                                "<!-- x:end -->\ntail ü\n")
+    with pytest.raises(SystemExit, match="no <!-- y:start --> ... <!-- y:end --> markers"):
+        common.replace_section(page, "y", "text")
+    seconds, value = common.best_of(3, lambda: 7)
+    assert value == 7 and 0 <= seconds < 1
+    assert abs(common.loglog_slope([1, 10, 100], [2, 200, 20000]) - 2.0) < 1e-9
+    out = tmp_path / "sub" / "t.csv"
+    common.write_csv(out, ["a", "b"], [[1, "x"]])
+    assert out.read_text(encoding="utf-8").splitlines() == ["a,b", "1,x"]

@@ -182,3 +182,29 @@ def test_parents_come_from_the_bvh_and_asf_hierarchies():
     assert bare.skeleton is None
     seg = kinetology.segments(bare)
     assert seg.skeleton["ltibia"] == "lfemur" and seg.skeleton["root"] is None
+
+
+def test_segment_performances_gives_every_take_the_same_strings():
+    from kinetology.performances import segment_performances
+
+    t = np.arange(90) / 30
+    still_in_a = Motion(np.stack([20 * np.sin(2 * np.pi * t), 0 * t + 1.0, 0 * t], 1),
+                        ("arm.rx", "leg.rx", "toe.rx"), 30)
+    moving_in_b = Motion(np.stack([20 * np.sin(2 * np.pi * t), 10 * np.sin(np.pi * t), 0 * t], 1),
+                         ("arm.rx", "leg.rx", "toe.rx"), 30)
+    a, b = segment_performances([still_in_a, moving_in_b])
+    assert a.names == b.names == ("arm.rx", "leg.rx")  # toe still everywhere: left out
+    assert a.string("leg.rx") != b.string("leg.rx")
+    assert segment_performances([]) == ()
+
+
+@needs_mocap
+def test_segment_performances_of_real_takes_are_accepted_by_pal_together():
+    from psgs.induce.pal import PAL
+    from kinetology.performances import segment_performances
+
+    paths = sorted((MOCAP / "bandai-namco-2-subset" / "data").glob("dataset-2_walk_normal_*.bvh"))
+    grams = segment_performances(performances(*paths[:2]))
+    assert grams[0].names == grams[1].names
+    assert grams[0].skeleton["LowerLeg_L"] == "UpperLeg_L"
+    PAL().induce(list(grams))  # one actuator set: accepted as performances of one action
