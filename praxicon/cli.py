@@ -109,16 +109,18 @@ def _add_commands(sub) -> None:
                                        "folder (docs/praxicon.md).")
     build.add_argument("datasets", nargs="+", metavar="DATASET",
                        help="a Bandai folder, a cmu-mocap6 folder, or a .csv/.toml manifest")
-    build.add_argument("-o", "--output", required=True, metavar="DIR")
+    build.add_argument("-o", "--output", required=True, metavar="DIR",
+                       help="the praxicon folder (made when missing; a build there resumes)")
     build.add_argument("--group-by", choices=("content", "content,style"), default=None,
                        help="one action per content, or per content and style (default: "
                             "content,style where most styles have several takes)")
-    build.add_argument("--inducer", default="pal")
+    build.add_argument("--inducer", default="pal", help="the inducer by name (default pal)")
     build.add_argument("--param", action="append", default=[], metavar="K=V",
                        help="an inducer parameter (repeatable)")
     build.add_argument("--segment", action="append", default=[], metavar="K=V",
                        help="a kinetology segmentation parameter (repeatable)")
-    build.add_argument("--min-performances", type=_workers, default=2, metavar="N")
+    build.add_argument("--min-performances", type=_workers, default=2, metavar="N",
+                       help="fewest usable performances an action needs (default 2)")
     where = build.add_mutually_exclusive_group()
     where.add_argument("--workers", type=_workers, default=None, metavar="N",
                        help="learn in N processes")
@@ -130,18 +132,22 @@ def _add_commands(sub) -> None:
     draw = sub.add_parser("draw", help="draw a praxicon's pictures",
                           description="Actuator matrix (Fig. 10), morphemes (Fig. 11), shared "
                                       "sub-patterns (Fig. 13).")
-    draw.add_argument("praxicon", metavar="DIR")
-    draw.add_argument("-o", "--output", required=True, metavar="IMGDIR")
-    draw.add_argument("--format", choices=("png", "svg"), default="png")
+    draw.add_argument("praxicon", metavar="DIR", help="a praxicon folder")
+    draw.add_argument("-o", "--output", required=True, metavar="IMGDIR",
+                      help="folder for the pictures")
+    draw.add_argument("--format", choices=("png", "svg"), default="png",
+                      help="picture format (default png)")
     draw.set_defaults(run=run_draw)
 
     gen = sub.add_parser("generate", help="generate an action's motion as BVH",
                          description="Derive K synchronised copies of an action and write "
                                      "them as a BVH file on the source skeleton.")
-    gen.add_argument("praxicon", metavar="DIR")
-    gen.add_argument("action", metavar="ACTION")
-    gen.add_argument("--repeat", type=_workers, default=3, metavar="K")
-    gen.add_argument("-o", "--output", required=True, metavar="OUT.bvh")
+    gen.add_argument("praxicon", metavar="DIR", help="a praxicon folder")
+    gen.add_argument("action", metavar="ACTION", help="an action name of its index")
+    gen.add_argument("--repeat", type=_workers, default=3, metavar="K",
+                     help="how many synchronised copies (default 3)")
+    gen.add_argument("-o", "--output", required=True, metavar="OUT.bvh",
+                     help="the BVH file to write")
     gen.add_argument("--plot", default=None, metavar="PNG",
                      help="also plot one joint, original performance beside generated")
     gen.set_defaults(run=run_generate)
@@ -151,7 +157,8 @@ def register(subparsers) -> None:
     """Add ``praxicon`` (with ``build``, ``draw``, ``generate``) to psgs's subcommands."""
     parser = subparsers.add_parser("praxicon", help="every action's morphology, at scale",
                                    description="Build, draw and generate from a praxicon.")
-    sub = parser.add_subparsers(dest="praxicon_command", metavar="COMMAND")
+    sub = parser.add_subparsers(dest="praxicon_command", metavar="COMMAND",
+                                help="build, draw or generate (COMMAND --help for its options)")
     sub.required = True
     _add_commands(sub)
 

@@ -31,5 +31,6 @@ def register(subparsers) -> None:
     draw.add_argument("--seed", type=natural, default=0, help="seed of the derivation drawn")
     draw.add_argument("--max-steps", type=positive_int, default=200, metavar="K",
                       help="longest derivation drawn (default 200)")
-    draw.add_argument("--engine", choices=("auto", "graphviz", "matplotlib"), default="auto")
+    draw.add_argument("--engine", choices=("auto", "graphviz", "matplotlib"), default="auto",
+                      help="auto: Graphviz where dot is installed, else matplotlib")
     draw.set_defaults(run=run_draw)
