@@ -23,7 +23,7 @@ _LAZY = {
     "segment": "segmentation", "states": "segmentation", "segments": "segmentation",
     "Segmentation": "segmentation", "STATES": "segmentation",
     "compress": "codec", "decompress": "codec", "reconstruct": "codec",
-    "synthetic_motion": "synthetic", "unwrap": "segmentation",
+    "synthetic_motion": "synthetic", "unwrap": "segmentation", "write_bvh": "bvh_writer",
     "cut": "performances", "segment_performances": "performances",
     "Span": "labels", "read_cmu_truelabels": "labels", "read_bandai_json": "labels",
     "actuator_map": "joints", "skeleton_parents": "joints",

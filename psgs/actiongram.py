@@ -352,6 +352,12 @@ class Actiongram:
             rooted.update(chain)
         object.__setattr__(self, "skeleton_edges", tuple(edges))
 
+    def _repr_html_(self) -> str:
+        """Each string as coloured runs of its symbols, widths by duration (notebooks)."""
+        from .draw import actiongram_html
+
+        return actiongram_html(self)
+
     # -- construction ------------------------------------------------------
     @classmethod
     def from_strings(cls, strings: Mapping[str, Iterable[str] | str],

@@ -15,7 +15,7 @@ import os
 import sys
 
 # modules that add subcommands; each defines register(subparsers)
-_COMMAND_MODULES = ("core", "check", "induce", "bench")
+_COMMAND_MODULES = ("core", "check", "induce", "bench", "draw")
 
 #: Exit statuses of every psgs and kinetology subcommand.
 OK, NO, ERROR, INCOMPLETE = 0, 1, 2, 3
@@ -66,8 +66,23 @@ def with_exit_status_help(parser: argparse.ArgumentParser, table: str) -> None:
                 with_exit_status_help(sub, table)
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The argument parser of the ``psgs`` command (one subparser per subcommand)."""
+def _plugin_commands(given) -> dict:
+    """Subcommands of other packages (entry-point group ``psgs.commands``: name = register)."""
+    from importlib.metadata import entry_points
+
+    commands = dict(given or {})
+    for ep in sorted(entry_points(group="psgs.commands"), key=lambda e: e.name):
+        if ep.name not in commands:
+            try:
+                commands[ep.name] = ep.load()
+            except Exception as exc:  # a broken plug-in: say which in one line, go on
+                print(f"psgs: warning: command {ep.name!r} could not be loaded: "
+                      f"{type(exc).__name__}: {exc}", file=sys.stderr)
+    return commands
+
+
+def build_parser(commands=None) -> argparse.ArgumentParser:
+    """The parser; ``commands`` adds name -> register(subparsers) beside the plug-ins'."""
     parser = argparse.ArgumentParser(
         prog="psgs", description="Parallel grammar systems: derive, check, export, induce.")
     parser.add_argument("--version", action="version", version=f"%(prog)s {version()}",
@@ -83,15 +98,20 @@ def build_parser() -> argparse.ArgumentParser:
                 raise
             continue
         module.register(sub)
+    for register in _plugin_commands(commands).values():
+        register(sub)
     with_exit_status_help(parser, EXIT_STATUS_HELP)
     return parser
 
 
-def main(argv: list[str] | None = None) -> int:
-    """Run the ``psgs`` command; returns the exit status (see :data:`EXIT_STATUS_HELP`)."""
+def main(argv: list[str] | None = None, commands=None) -> int:
+    """Run the ``psgs`` command; returns the exit status (see :data:`EXIT_STATUS_HELP`).
+
+    ``commands`` adds subcommands (name -> register) beside the ``psgs.commands`` plug-ins.
+    """
     from ..errors import PSGSError
 
-    parser = build_parser()
+    parser = build_parser(commands)
     args = parser.parse_args(argv)  # a usage error exits 2, as every input error does
     try:
         status = args.run(args)

@@ -252,6 +252,12 @@ class Induction:
                              dict(self.actuator_channels), dict(self.morphemes), self.verdict,
                              self.actuator_reports))
 
+    def _repr_html_(self) -> str:
+        """Verdict, actuators, patterns and the system's picture (notebooks)."""
+        from ..draw import induction_html
+
+        return induction_html(self)
+
     def report(self, name: str) -> StringReport:
         """The report of the string named ``name``.
 

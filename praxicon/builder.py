@@ -1,0 +1,218 @@
+"""Building a praxicon: every action learnt, on any executor, resumable.
+
+:func:`build` hands one :func:`~praxicon.learn.learn_action` per action to a
+``concurrent.futures.Executor`` (processes, threads, or a Dask cluster through
+``dask.distributed.Client.get_executor()``; serial when none is given), and
+writes each record as it arrives. What is already in the folder with the same
+input key (same files' bytes, spans and settings) is not learnt again. After
+every finished action the index is written anew (atomically), so an
+interrupted build (Ctrl-C) leaves a valid praxicon of what was done, and the
+next build picks up from there.
+"""
+
+from __future__ import annotations
+
+import sys
+from concurrent.futures import Executor, Future, ProcessPoolExecutor, as_completed
+from dataclasses import dataclass
+from pathlib import Path
+
+from .datasets import Action
+from .learn import Settings, input_key, learn_action
+from .store import read_records, write_index, write_record
+
+__all__ = ["build", "BuildResult", "executor_for"]
+
+
+@dataclass(frozen=True)
+class BuildResult:
+    """What a build did: the index written, and which actions were learnt, skipped, failed."""
+
+    index: dict
+    learnt: tuple[str, ...]
+    skipped: tuple[str, ...]
+    failed: tuple[str, ...]
+
+
+def executor_for(workers: int | None = None, scheduler=None):
+    """An executor: a Dask client's (``scheduler`` an address or a Client), N processes, or None.
+
+    Returns ``(executor, close)``; call ``close()`` when done (it shuts down only
+    what this function started).
+    """
+    if scheduler is not None:
+        try:
+            from dask.distributed import Client
+        except ImportError:  # pragma: no cover - the dask extra is not installed
+            raise ValueError("--scheduler needs dask.distributed (pip install "
+                             "'psgs[dask]')") from None
+        client = scheduler if isinstance(scheduler, Client) else Client(scheduler)
+        executor = client.get_executor()
+        return executor, (lambda: None) if client is scheduler else client.close
+    if workers is not None and workers > 1:
+        pool = ProcessPoolExecutor(max_workers=workers)
+        return pool, lambda: pool.shutdown(cancel_futures=True)
+    return None, lambda: None
+
+
+def _as_executor(executor):
+    """A Dask client given where an executor is expected becomes its executor."""
+    get = getattr(executor, "get_executor", None)
+    return get() if callable(get) and not isinstance(executor, Executor) else executor
+
+
+def build(actions: list[Action], out: str | Path, *, settings: Settings | None = None,
+          executor=None, progress: bool = True, datasets: list[str] | None = None,
+          log=None) -> BuildResult:
+    """Learn every action into the praxicon folder ``out``.
+
+    Parameters
+    ----------
+    actions : list of Action
+        From :func:`praxicon.read_datasets`.
+    out : str or Path
+        The praxicon folder (made when missing).
+    settings : Settings, optional
+        Inducer, parameters and segmentation (default: PAL with its defaults).
+    executor : concurrent.futures.Executor or dask.distributed.Client, optional
+        Where to learn; serially in this process when None.
+    progress : bool
+        Show a tqdm progress bar on stderr.
+    datasets : list of str, optional
+        The dataset paths, recorded in the index.
+    log : callable, optional
+        Called with each one-line problem or failure (default: print to stderr).
+
+    Returns
+    -------
+    BuildResult
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from praxicon import read_dataset
+    >>> out = pathlib.Path(tempfile.mkdtemp())
+    >>> _ = (out / "m.csv").write_text("action,file\\nwave,missing.bvh\\n")
+    >>> r = build(read_dataset(out / "m.csv"), out / "px", progress=False, log=lambda s: None)
+    >>> r.failed, r.index["actions"][0]["problems"][0].endswith("unreadable file (no such file)")
+    (('m.wave',), True)
+    """
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    settings = settings or Settings.make()
+    executor = _as_executor(executor)
+    done = read_records(out)
+    records: dict[str, dict] = {}
+    timings: dict[str, float] = {}
+    keys = {a.name: input_key(a, settings) for a in actions}
+    todo, skipped = [], []
+    for action in actions:
+        previous = done.get(action.name)
+        if previous is not None and previous[0] == keys[action.name]:
+            records[action.name] = previous[1]
+            skipped.append(action.name)
+        else:
+            todo.append(action)
+    learnt, failed = [], [n for n in skipped if records[n]["status"] != "ok"]
+    setting_dict = settings.to_dict()
+    dataset_list = [str(d) for d in (datasets or sorted({a.dataset for a in actions}))]
+
+    def finish(action: Action, record: dict, seconds: float) -> None:
+        write_record(out, record, keys[action.name])
+        records[action.name] = record
+        timings[action.name] = seconds
+        (failed if record["status"] != "ok" else learnt).append(action.name)
+        for problem in record["problems"]:
+            log(f"{action.name}: {problem}")
+        if record["status"] != "ok":
+            log(f"{action.name}: failed: {record['reason']}")
+        write_index(out, list(records.values()), setting_dict, dataset_list)
+
+    bar = _bar(len(todo), progress)
+    log = log or (lambda line: bar.write(f"praxicon: {line}"))
+    try:
+        if executor is None:
+            for action in todo:
+                finish(action, *learn_action(action, settings))
+                bar.update(1)
+        else:
+            # the biggest first, so that no long action starts last and runs alone
+            futures: dict[Future, Action] = {executor.submit(learn_action, a, settings): a
+                                             for a in sorted(todo, key=_cost, reverse=True)}
+            try:
+                for future in as_completed(futures):
+                    action = futures[future]
+                    try:
+                        record, seconds = future.result()
+                    except Exception as exc:  # a worker died: record it, go on
+                        record, seconds = _crashed(action, exc), 0.0
+                    finish(action, record, seconds)
+                    bar.update(1)
+            finally:
+                for future in futures:
+                    future.cancel()
+    finally:
+        bar.close()
+        # always leave a consistent index of what is done (also after Ctrl-C)
+        index = write_index(out, list(records.values()), setting_dict, dataset_list,
+                            timings={**_old_timings(out), **timings})
+    return BuildResult(index, tuple(sorted(learnt)), tuple(sorted(skipped)),
+                       tuple(sorted(failed)))
+
+
+def _cost(action: Action) -> float:
+    """A guess at an action's work: the bytes of motion it reads (a span: its share of the file)."""
+    ends: dict[str, float] = {}
+    for p in action.performances:
+        if p.stop is not None:
+            ends[p.file] = max(ends.get(p.file, 0.0), p.stop)
+    total = 0.0
+    for p in action.performances:
+        try:
+            size = Path(p.file).stat().st_size
+        except OSError:
+            continue
+        if p.stop is not None and ends[p.file] > 0:
+            size *= (p.stop - (p.start or 0.0)) / ends[p.file]
+        total += size
+    return total
+
+
+def _crashed(action: Action, exc: BaseException) -> dict:
+    return {"name": action.name, "dataset": action.dataset, "content": action.content,
+            "style": action.style, "status": "failed",
+            "reason": f"worker failed: {type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}",
+            "problems": list(action.problems),
+            "performances": [p.to_dict() for p in action.performances]}
+
+
+def _old_timings(out: Path) -> dict[str, float]:
+    import json
+
+    try:
+        return json.loads((out / "timings.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return {}
+
+
+class _NoBar:
+    def update(self, n: int) -> None:
+        pass
+
+    def write(self, line: str) -> None:
+        print(line, file=sys.stderr)
+
+    def close(self) -> None:
+        pass
+
+
+def _bar(total: int, show: bool):
+    if not show:
+        return _NoBar()
+    try:
+        from tqdm import tqdm
+    except ImportError:  # tqdm is in the praxicon extra; without it, no bar
+        return _NoBar()
+    bar = tqdm(total=total, unit="action", desc="praxicon", file=sys.stderr)
+    bar.write = lambda line: tqdm.write(line, file=sys.stderr)  # above the bar, not through it
+    return bar

@@ -1,0 +1,171 @@
+"""``psgs praxicon build|draw|generate``: the praxicon's command line.
+
+Reached from ``psgs`` through the entry-point group ``psgs.commands``
+(``praxicon = "praxicon.cli:register"``), and without an install as
+``python -m praxicon``. Bad input is one line on stderr, never a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+__all__ = ["register", "main"]
+
+
+def _bad(message: str):
+    from psgs.errors import ValidationError
+
+    raise ValidationError(message)
+
+
+def _workers(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a whole number, not {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1, not {value}")
+    return value
+
+
+def _key_values(items: list[str], option: str) -> dict:
+    from psgs.cli.induce import _parse_value
+
+    out = {}
+    for item in items:
+        key, eq, value = item.partition("=")
+        if not eq or not key.strip():
+            _bad(f"{option} {item!r}: write KEY=VALUE")
+        out[key.strip()] = _parse_value(value.strip())
+    return out
+
+
+def run_build(args) -> int:
+    from psgs.cli.induce import _make_inducer
+
+    from .builder import build, executor_for
+    from .datasets import DatasetError, read_datasets
+    from .learn import Settings
+
+    params = _key_values(args.param, "--param")
+    segmentation = _key_values(args.segment, "--segment")
+    _make_inducer(args.inducer, params)  # an unknown inducer or parameter: one line, now
+    from kinetology.segmentation import DEFAULTS
+
+    unknown = sorted(set(segmentation) - set(DEFAULTS))
+    if unknown:
+        _bad(f"--segment {unknown[0]}: unknown (known: {', '.join(DEFAULTS)})")
+    try:
+        actions = read_datasets(args.datasets, args.group_by)
+    except DatasetError as exc:
+        _bad(str(exc))
+    settings = Settings.make(args.inducer, params, segmentation, args.min_performances)
+    try:
+        executor, close = executor_for(args.workers, args.scheduler)
+    except (ValueError, OSError) as exc:
+        _bad(f"--scheduler {args.scheduler}: {exc}")
+    try:
+        result = build(actions, args.output, settings=settings, executor=executor,
+                       progress=not args.no_progress, datasets=args.datasets)
+    finally:
+        close()
+    counts = result.index["counts"]
+    print(f"praxicon: {counts['actions']} actions, {counts['learnt']} learnt, "
+          f"{counts['failed']} failed ({len(result.skipped)} already done) -> "
+          f"{args.output}/index.json")
+    return 0
+
+
+def run_draw(args) -> int:
+    from .pictures import draw_praxicon
+
+    try:
+        written = draw_praxicon(args.praxicon, args.output, fmt=args.format)
+    except ValueError as exc:
+        _bad(str(exc))
+    for path in written:
+        print(path)
+    return 0
+
+
+def run_generate(args) -> int:
+    from .generation import generate
+
+    try:
+        result = generate(args.praxicon, args.action, repeat=args.repeat, output=args.output,
+                          plot=args.plot)
+    except ValueError as exc:
+        _bad(str(exc))
+    print(f"{args.output}: {result.motion.frames} frames at {result.motion.frame_rate:g} fps, "
+          f"{len(result.channels)} generated channels of {len(result.actuators)} actuators, "
+          f"{args.repeat} copies")
+    return 0
+
+
+def _add_commands(sub) -> None:
+    build = sub.add_parser("build", help="learn every action of one or more datasets",
+                           description="Learn every action of the datasets into a praxicon "
+                                       "folder (docs/praxicon.md).")
+    build.add_argument("datasets", nargs="+", metavar="DATASET",
+                       help="a Bandai folder, a cmu-mocap6 folder, or a .csv/.toml manifest")
+    build.add_argument("-o", "--output", required=True, metavar="DIR",
+                       help="the praxicon folder (made when missing; a build there resumes)")
+    build.add_argument("--group-by", choices=("content", "content,style"), default=None,
+                       help="one action per content, or per content and style (default: "
+                            "content,style where most styles have several takes)")
+    build.add_argument("--inducer", default="pal", help="the inducer by name (default pal)")
+    build.add_argument("--param", action="append", default=[], metavar="K=V",
+                       help="an inducer parameter (repeatable)")
+    build.add_argument("--segment", action="append", default=[], metavar="K=V",
+                       help="a kinetology segmentation parameter (repeatable)")
+    build.add_argument("--min-performances", type=_workers, default=2, metavar="N",
+                       help="fewest usable performances an action needs (default 2)")
+    where = build.add_mutually_exclusive_group()
+    where.add_argument("--workers", type=_workers, default=None, metavar="N",
+                       help="learn in N processes")
+    where.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                       help="learn on a Dask cluster (e.g. tcp://host:8786)")
+    build.add_argument("--no-progress", action="store_true", help="no progress bar")
+    build.set_defaults(run=run_build)
+
+    draw = sub.add_parser("draw", help="draw a praxicon's pictures",
+                          description="Actuator matrix (Fig. 10), morphemes (Fig. 11), shared "
+                                      "sub-patterns (Fig. 13).")
+    draw.add_argument("praxicon", metavar="DIR", help="a praxicon folder")
+    draw.add_argument("-o", "--output", required=True, metavar="IMGDIR",
+                      help="folder for the pictures")
+    draw.add_argument("--format", choices=("png", "svg"), default="png",
+                      help="picture format (default png)")
+    draw.set_defaults(run=run_draw)
+
+    gen = sub.add_parser("generate", help="generate an action's motion as BVH",
+                         description="Derive K synchronised copies of an action and write "
+                                     "them as a BVH file on the source skeleton.")
+    gen.add_argument("praxicon", metavar="DIR", help="a praxicon folder")
+    gen.add_argument("action", metavar="ACTION", help="an action name of its index")
+    gen.add_argument("--repeat", type=_workers, default=3, metavar="K",
+                     help="how many synchronised copies (default 3)")
+    gen.add_argument("-o", "--output", required=True, metavar="OUT.bvh",
+                     help="the BVH file to write")
+    gen.add_argument("--plot", default=None, metavar="PNG",
+                     help="also plot one joint, original performance beside generated")
+    gen.set_defaults(run=run_generate)
+
+
+def register(subparsers) -> None:
+    """Add ``praxicon`` (with ``build``, ``draw``, ``generate``) to psgs's subcommands."""
+    parser = subparsers.add_parser("praxicon", help="every action's morphology, at scale",
+                                   description="Build, draw and generate from a praxicon.")
+    sub = parser.add_subparsers(dest="praxicon_command", metavar="COMMAND",
+                                help="build, draw or generate (COMMAND --help for its options)")
+    sub.required = True
+    _add_commands(sub)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``python -m praxicon``: the ``psgs praxicon`` commands without an install."""
+    from psgs.cli import main as psgs_main
+
+    return psgs_main(["praxicon", *(sys.argv[1:] if argv is None else argv)],
+                     commands={"praxicon": register})

@@ -1,0 +1,275 @@
+"""Motion databases in, actions out: which performances make up each action.
+
+An :class:`Action` is a name and its :class:`Performance` s (a file, and a time
+span of it or the whole take). Three layouts are read out of the box:
+
+* **Bandai Namco** (a folder with ``cfg/content_label.txt``, ``cfg/style_label.txt``
+  and ``data/*.bvh`` with a ``.json`` beside each): one take per file, named
+  ``dataset-N_{content}_{style}_{id}``; the JSON's content and style (read by
+  :func:`kinetology.read_bandai_json`) must agree with the file name.
+* **cmu-mocap6** (a folder with ``amc/`` and ``truelabels/``): each
+  ``truelabels/T.txt`` gives one label per 1/10 s (label ``t`` covers AMC frames
+  ``12t .. 12t+11``, read by :func:`kinetology.read_cmu_truelabels`); each run of
+  one label lasting ``MIN_SPAN_SECONDS`` or more is one performance of that exercise.
+* a **manifest**, CSV (columns ``action,file,start,stop``; start/stop in seconds,
+  optional, empty = the whole take) or TOML (``[[performance]]`` tables with the
+  same keys), for any other database. Relative file paths are relative to the
+  manifest's folder.
+
+A problem found while reading (a label file that disagrees with its motion, an
+unreadable label file) never stops the reading: it is kept in the action's
+``problems`` and the performance is left out.
+"""
+
+from __future__ import annotations
+
+import csv
+import re
+import tomllib
+from collections import defaultdict
+from dataclasses import dataclass, field
+from pathlib import Path
+
+__all__ = ["Performance", "Action", "read_dataset", "read_datasets", "DatasetError"]
+
+_CMU_FRAME_RATE = 120.0  # the AMC files' rate; a label covers 12 frames (1/10 s)
+#: Shortest labelled run of cmu-mocap6 taken as a performance (shorter runs are transitions).
+MIN_SPAN_SECONDS = 2.0
+_BANDAI_NAME = re.compile(r"^dataset-\d+_(?P<content>.+?)_(?P<style>[^_]+)_(?P<take>\d+)$")
+
+
+class DatasetError(ValueError):
+    """A dataset path that is not one of the known layouts, or a malformed manifest."""
+
+
+@dataclass(frozen=True)
+class Performance:
+    """One performance of an action: ``file``, optionally cut to ``start``..``stop`` seconds.
+
+    ``label`` says where the cut came from (e.g. ``truelabels/13_29.txt``), for the index.
+    """
+
+    file: str
+    start: float | None = None
+    stop: float | None = None
+    label: str | None = None
+
+    def to_dict(self) -> dict:
+        return {"file": self.file, "start": self.start, "stop": self.stop, "label": self.label}
+
+
+@dataclass(frozen=True)
+class Action:
+    """An action: its name, where it comes from, its performances and reading problems."""
+
+    name: str
+    dataset: str
+    content: str
+    style: str | None = None
+    performances: tuple[Performance, ...] = ()
+    problems: tuple[str, ...] = field(default=())
+
+
+def _name_part(text: str) -> str:
+    return re.sub(r"[^A-Za-z0-9_.-]+", "-", text).strip("-") or "x"
+
+
+def _shown_path(path: Path) -> str:
+    return path.as_posix()
+
+
+# -- Bandai Namco ------------------------------------------------------------------------------
+def _unprefixed(name: str) -> str:
+    return re.sub(r"^dataset-\d+_", "", name)
+
+
+def _read_bandai(root: Path, group_by: tuple[str, ...] | None) -> list[Action]:
+    data = root / "data"
+    files = sorted(data.glob("*.bvh"))
+    if not files:
+        raise DatasetError(f"{_shown_path(root)}: no data/*.bvh files")
+    takes: list[tuple[str, str, Performance | None, str | None]] = []
+    for path in files:
+        match = _BANDAI_NAME.match(path.stem)
+        if not match:
+            takes.append(("unnamed", "", None, f"{_shown_path(path)}: file name is not "
+                          f"dataset-N_CONTENT_STYLE_ID"))
+            continue
+        content, style = match["content"], match["style"]
+        problem = _bandai_label_problem(path, content, style)
+        takes.append((content, style, None if problem else Performance(_shown_path(path)),
+                      problem))
+    if group_by is None:  # content,style where most styles have several takes, else content
+        per_pair: dict[tuple[str, str], int] = defaultdict(int)
+        for content, style, _, _ in takes:
+            per_pair[content, style] += 1
+        several = sum(n >= 2 for n in per_pair.values())
+        group_by = ("content", "style") if 2 * several > len(per_pair) else ("content",)
+    groups: dict[tuple[str, str | None], list] = defaultdict(list)
+    for content, style, perf, problem in takes:
+        key = (content, style if "style" in group_by else None)
+        groups[key].append((perf, problem))
+    actions = []
+    for (content, style), members in sorted(groups.items(), key=lambda kv: (kv[0][0],
+                                                                             kv[0][1] or "")):
+        name = ".".join(_name_part(p) for p in (root.name, content, style) if p)
+        actions.append(Action(name, root.name, content, style,
+                              tuple(p for p, _ in members if p is not None),
+                              tuple(q for _, q in members if q)))
+    return actions
+
+
+def _bandai_label_problem(path: Path, content: str, style: str) -> str | None:
+    """Why the JSON beside a take does not label it as its name says (None when it does)."""
+    from kinetology.labels import read_bandai_json
+
+    label = path.with_suffix(".json")
+    try:
+        (span,) = read_bandai_json(label)
+    except FileNotFoundError:
+        return f"{_shown_path(label)}: label file missing"
+    except (OSError, ValueError) as exc:  # MotionFormatError is a ValueError
+        return f"unreadable label file: {str(exc).splitlines()[0]}"
+    if span.label != content or (span.style is not None and span.style != style):
+        return (f"{_shown_path(label)}: label file says {span.label}/{span.style}, the file "
+                f"name {content}/{style}: the label file does not match its motion")
+    return None
+
+
+# -- cmu-mocap6 --------------------------------------------------------------------------------
+def _read_cmu_mocap6(root: Path, group_by: tuple[str, ...] | None) -> list[Action]:
+    from kinetology.labels import read_cmu_truelabels
+
+    groups: dict[str, list[Performance]] = defaultdict(list)
+    general: list[str] = []
+    for label_path in sorted((root / "truelabels").glob("*.txt")):
+        amc = root / "amc" / f"{label_path.stem}.amc"
+        try:
+            spans = read_cmu_truelabels(label_path, _CMU_FRAME_RATE)
+        except (OSError, ValueError) as exc:
+            general.append(f"unreadable label file: {str(exc).splitlines()[0]}")
+            continue
+        for span in spans:
+            if span.duration >= MIN_SPAN_SECONDS:
+                groups[span.label].append(Performance(_shown_path(amc), round(span.start, 6),
+                                                      round(span.stop, 6),
+                                                      _shown_path(label_path)))
+    return [Action(f"{_name_part(root.name)}.{_name_part(name)}", root.name, name, None,
+                   tuple(groups[name]), tuple(general)) for name in sorted(groups)]
+
+
+# -- manifests ---------------------------------------------------------------------------------
+def _optional_seconds(value, where: str) -> float | None:
+    if value is None or (isinstance(value, str) and not value.strip()):
+        return None
+    try:
+        seconds = float(value)
+    except (TypeError, ValueError):
+        raise DatasetError(f"{where}: start/stop must be seconds, not {value!r}") from None
+    if not seconds >= 0:
+        raise DatasetError(f"{where}: start/stop must be >= 0, not {value!r}")
+    return seconds
+
+
+def _read_manifest(path: Path) -> list[Action]:
+    rows: list[tuple[str, dict]] = []
+    if path.suffix.lower() == ".toml":
+        try:
+            table = tomllib.loads(path.read_text(encoding="utf-8"))
+        except tomllib.TOMLDecodeError as exc:
+            raise DatasetError(f"{_shown_path(path)}: {exc}") from None
+        entries = table.get("performance", [])
+        if not isinstance(entries, list):
+            raise DatasetError(f"{_shown_path(path)}: [[performance]] tables expected")
+        rows = [(f"{_shown_path(path)}: performance {i + 1}", e) for i, e in enumerate(entries)]
+    else:
+        with path.open(newline="", encoding="utf-8") as handle:
+            reader = csv.DictReader(handle)
+            missing = {"action", "file"} - set(reader.fieldnames or ())
+            if missing:
+                raise DatasetError(f"{_shown_path(path)}:1: manifest needs columns action,file "
+                                   f"(missing {', '.join(sorted(missing))})")
+            rows = [(f"{_shown_path(path)}:{n}", row) for n, row in enumerate(reader, 2)]
+    groups: dict[str, list[Performance]] = defaultdict(list)
+    for where, row in rows:
+        action, file = row.get("action"), row.get("file")
+        if not action or not file:
+            raise DatasetError(f"{where}: action and file are required")
+        file_path = Path(file) if Path(file).is_absolute() else path.parent / file
+        start = _optional_seconds(row.get("start"), where)
+        stop = _optional_seconds(row.get("stop"), where)
+        if start is not None and stop is not None and stop <= start:
+            raise DatasetError(f"{where}: stop {stop} is not after start {start}")
+        groups[str(action)].append(Performance(_shown_path(file_path), start, stop,
+                                               _shown_path(path)))
+    dataset = path.stem
+    return [Action(f"{_name_part(dataset)}.{_name_part(a)}", dataset, a, None, tuple(p))
+            for a, p in sorted(groups.items())]
+
+
+# -- entry points ------------------------------------------------------------------------------
+def _parse_group_by(group_by: str | None) -> tuple[str, ...] | None:
+    if group_by is None:
+        return None
+    parts = tuple(p.strip() for p in group_by.split(","))
+    if parts not in (("content",), ("content", "style")):
+        raise DatasetError(f"--group-by must be 'content' or 'content,style', not {group_by!r}")
+    return parts
+
+
+def read_dataset(path: str | Path, group_by: str | None = None) -> list[Action]:
+    """The actions of one dataset (layout recognised from what is in ``path``).
+
+    Parameters
+    ----------
+    path : str or Path
+        A Bandai-style folder, a cmu-mocap6 folder, or a ``.csv``/``.toml`` manifest.
+    group_by : {"content", "content,style"}, optional
+        For datasets with styles: one action per content, or per content and style.
+        Default: ``"content,style"`` when most (content, style) pairs have several
+        takes (Bandai dataset 2), else ``"content"`` (Bandai dataset 1 has one take
+        of most pairs, so a (content, style) action would be a single performance).
+
+    Returns
+    -------
+    list of Action
+        Sorted by name.
+
+    Raises
+    ------
+    DatasetError
+        When ``path`` is none of the layouts, or a manifest is malformed.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> d = pathlib.Path(tempfile.mkdtemp())
+    >>> _ = (d / "m.csv").write_text("action,file,start,stop\\nwave,a.bvh,0,2\\nwave,b.bvh,,\\n")
+    >>> [(a.name, len(a.performances)) for a in read_dataset(d / "m.csv")]
+    [('m.wave', 2)]
+    """
+    path = Path(path)
+    parts = _parse_group_by(group_by)
+    if path.is_dir() and (path / "cfg" / "content_label.txt").is_file():
+        return _read_bandai(path, parts)
+    if path.is_dir() and (path / "amc").is_dir() and (path / "truelabels").is_dir():
+        return _read_cmu_mocap6(path, parts)
+    if path.is_file() and path.suffix.lower() in (".csv", ".toml"):
+        return _read_manifest(path)
+    if not path.exists():
+        raise DatasetError(f"{_shown_path(path)}: no such file or folder")
+    raise DatasetError(f"{_shown_path(path)}: not a known dataset layout (a Bandai folder with "
+                       f"cfg/content_label.txt, a cmu-mocap6 folder with amc/ and truelabels/, "
+                       f"or a .csv/.toml manifest)")
+
+
+def read_datasets(paths, group_by: str | None = None) -> list[Action]:
+    """The actions of several datasets, sorted by name (a name used twice is an error)."""
+    actions: list[Action] = []
+    for path in paths:
+        actions.extend(read_dataset(path, group_by))
+    names = [a.name for a in actions]
+    twice = sorted({n for n in names if names.count(n) > 1})
+    if twice:
+        raise DatasetError(f"action names given by two datasets: {', '.join(twice[:5])}")
+    return sorted(actions, key=lambda a: a.name)

@@ -1,0 +1,316 @@
+"""Learning one action: its performances through kinetology and an inducer, to one record.
+
+:func:`learn_action` is the unit of work the build hands to an executor: a
+plain, picklable function of an :class:`~praxicon.datasets.Action` and a
+:class:`Settings`, returning a JSON-ready record (never raising for bad input:
+a failure is a record with ``"status": "failed"`` and its reason).
+
+What a record holds (the schema is in ``docs/praxicon.md``): the performances
+used and the problems met, the joints that take part (``actuators``), per
+joint its channels and per channel the morpheme (kinetemes with typical
+durations in seconds and angular displacements in degrees, medians over every
+exact occurrence of the pattern in every performance), the grammar system as
+text, the mean pose of every channel (what generation holds still joints at),
+and the inducer and its parameters.
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+import json
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .datasets import Action, Performance
+
+__all__ = ["Settings", "learn_action", "input_key", "FORMAT_VERSION"]
+
+#: Bumped when what a record holds changes: an old record is then learnt again on resume.
+FORMAT_VERSION = 1
+_LABEL_SLACK = 0.1  # seconds a label span may overrun its motion (cmu labels are 1/10 s)
+
+
+@dataclass(frozen=True)
+class Settings:
+    """How every action is learnt: the inducer by name and its parameters, segmentation.
+
+    ``min_performances`` (2): an action with fewer usable performances fails
+    with that reason (one performance cannot show what repeats across them).
+    """
+
+    inducer: str = "pal"
+    params: tuple[tuple[str, object], ...] = ()
+    segmentation: tuple[tuple[str, object], ...] = ()
+    min_performances: int = 2
+
+    @classmethod
+    def make(cls, inducer: str = "pal", params: dict | None = None,
+             segmentation: dict | None = None, min_performances: int = 2) -> "Settings":
+        return cls(inducer, tuple(sorted((params or {}).items())),
+                   tuple(sorted((segmentation or {}).items())), min_performances)
+
+    def to_dict(self) -> dict:
+        return {"inducer": self.inducer, "params": dict(self.params),
+                "segmentation": dict(self.segmentation),
+                "min_performances": self.min_performances}
+
+
+# -- inputs ------------------------------------------------------------------------------------
+def _file_digest(path: str) -> str:
+    try:
+        stat = Path(path).stat()
+    except OSError as exc:
+        return f"unreadable: {exc.strerror or exc}"
+    # cached by size and modification time too: a file changed in place is hashed again
+    return _digest(path, stat.st_size, stat.st_mtime_ns)
+
+
+@functools.lru_cache(maxsize=64)
+def _digest(path: str, size: int, mtime_ns: int) -> str:
+    try:
+        return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+    except OSError as exc:
+        return f"unreadable: {exc.strerror or exc}"
+
+
+def input_key(action: Action, settings: Settings) -> str:
+    """A digest of everything an action's record depends on (files' bytes, spans, settings)."""
+    described = {
+        "format": FORMAT_VERSION,
+        "action": [action.name, action.dataset, action.content, action.style],
+        "performances": [[p.file, _file_digest(p.file), p.start, p.stop, p.label]
+                         for p in action.performances],
+        "problems": list(action.problems),
+        "settings": settings.to_dict(),
+    }
+    text = json.dumps(described, sort_keys=True, default=repr)
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+@functools.lru_cache(maxsize=8)  # one file holds several labelled performances (cmu-mocap6)
+def _read(path: str):
+    import kinetology
+
+    return kinetology.read(path)
+
+
+def _unwrapped(motion):
+    """Rotation channels unwrapped (period 360°), so a crossing of ±180° is no jump."""
+    from kinetology import Motion
+
+    values = np.array(motion.values)
+    for c, name in enumerate(motion.channels):
+        if name.rsplit(".", 1)[-1] in ("rx", "ry", "rz") and len(values):
+            values[:, c] = np.unwrap(values[:, c], period=360.0)
+    return Motion(values, motion.channels, motion.frame_rate, motion.skeleton, motion.source,
+                  motion.meta)
+
+
+def _one_line(exc: BaseException) -> str:
+    text = str(exc).splitlines()[0] if str(exc) else ""
+    return f"{type(exc).__name__}: {text}" if not isinstance(exc, (OSError, ValueError)) \
+        else (text or type(exc).__name__)
+
+
+def _load_performance(perf: Performance):
+    """(motion cut and unwrapped, None) or (None, problem as one line)."""
+    import kinetology
+
+    try:
+        motion = _read(perf.file)
+    except FileNotFoundError:
+        return None, f"{perf.file}: unreadable file (no such file)"
+    except (OSError, ValueError) as exc:
+        return None, f"{perf.file}: unreadable file ({_one_line(exc)})"
+    if perf.stop is not None and perf.stop > motion.duration + _LABEL_SLACK:
+        return None, (f"{perf.label or perf.file}: label span {perf.start:g}-{perf.stop:g} s ends "
+                      f"after the motion ({motion.duration:g} s): the label file does not match "
+                      f"its motion")
+    stop = perf.stop
+    if stop is not None and stop > motion.duration:
+        stop = None  # a label's last 1/10 s may reach past the last frame: to the end
+    try:
+        motion = kinetology.cut(motion, perf.start, stop)
+    except ValueError as exc:
+        return None, f"{perf.file}: {_one_line(exc)}"
+    if motion.frames < 3:
+        return None, f"{perf.file}: span {perf.start}-{perf.stop} s holds {motion.frames} frames"
+    return _unwrapped(motion), None
+
+
+# -- morphemes ---------------------------------------------------------------------------------
+@dataclass
+class _Segmented:
+    actiongram: object
+    symbols: dict = field(default_factory=dict)       # channel -> tuple of kinetemes
+    durations: dict = field(default_factory=dict)     # channel -> seconds per segment
+    displacements: dict = field(default_factory=dict)  # channel -> degrees per segment
+    actuators: dict = field(default_factory=dict)      # channel -> joint (kinetology.joints)
+
+
+def _segment_all(motions, segmentation: dict) -> list[_Segmented]:
+    """Segment every performance on the same channels: those that move in any of them.
+
+    Inducers want performances with the same actuators; a joint still in one take
+    and moving in another keeps its (short) string in both.
+    """
+    from kinetology.segmentation import segments
+
+    first = [segments(m, **segmentation) for m in motions]
+    moving = set().union(*(s.channels for s in first))
+    channels = [c for c in motions[0].channels if c in moving]
+    out = []
+    for motion, seg in zip(motions, first):
+        if tuple(seg.channels) != tuple(channels):
+            seg = segments(motion, channels=channels, **{**segmentation, "min_range": 0.0})
+        item = _Segmented(seg.to_actiongram())
+        for c, name in enumerate(seg.channels):
+            item.symbols[name] = seg.symbols(c)
+            item.durations[name] = seg.durations(c)
+            item.displacements[name] = np.asarray(seg.displacements[c])
+        item.actuators = dict(seg.actuators)
+        out.append(item)
+    return out
+
+
+def _typical(pattern: tuple[str, ...], name: str, performances: list[_Segmented]):
+    """Median duration and displacement per pattern position over its exact occurrences."""
+    k = len(pattern)
+    durations, displacements = [], []
+    for perf in performances:
+        symbols = perf.symbols.get(name, ())
+        for i in range(len(symbols) - k + 1):
+            if tuple(symbols[i:i + k]) == pattern:
+                durations.append(perf.durations[name][i:i + k])
+                displacements.append(perf.displacements[name][i:i + k])
+    if not durations:
+        return None, None, 0
+    return (np.median(durations, axis=0), np.median(displacements, axis=0), len(durations))
+
+
+def _actuator_of(channel: str, segmented: _Segmented) -> str:
+    return segmented.actuators.get(channel) or channel.split(".", 1)[0]
+
+
+def _induce(inducer, segmented: list[_Segmented]):
+    """(induction, performances learnt from, note)."""
+    from psgs.errors import ValidationError
+
+    actiongrams = [s.actiongram for s in segmented]
+    try:
+        return inducer.induce(tuple(actiongrams)), list(range(len(segmented))), None
+    except (TypeError, AttributeError, ValidationError) as exc:
+        # an inducer that takes one actiongram (PAL until issue 9 lands): learn from the
+        # longest performance, say so in the record, and still read morphemes from all
+        lengths = [sum(map(sum, ag.segment_durations)) for ag in actiongrams]
+        longest = int(np.argmax(lengths))
+        why = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        note = (f"learnt from performance {longest + 1} of {len(segmented)} (the longest): "
+                f"the inducer refused several ({why})")
+        return inducer.induce(actiongrams[longest]), [longest], note
+
+
+def _round(values) -> list[float]:
+    return [round(float(v), 6) for v in values]
+
+
+def learn_action(action: Action, settings: Settings) -> tuple[dict, float]:
+    """Learn one action; returns ``(record, seconds)`` (see the module docstring).
+
+    Never raises for bad input: unreadable files and labels that do not match
+    their motion are listed in ``record["problems"]``; with fewer than
+    ``settings.min_performances`` usable performances, or when the inducer
+    fails, ``record["status"]`` is ``"failed"`` and ``record["reason"]`` says why.
+    """
+    began = time.perf_counter()
+    record = {"name": action.name, "dataset": action.dataset, "content": action.content,
+              "style": action.style, "status": "failed", "reason": None,
+              "problems": list(action.problems),
+              "performances": [p.to_dict() for p in action.performances]}
+    try:
+        _learn_into(record, action, settings)
+    except Exception as exc:  # a failure of one action is recorded; the build goes on
+        record["status"], record["reason"] = "failed", _one_line(exc)
+    return record, time.perf_counter() - began
+
+
+def _learn_into(record: dict, action: Action, settings: Settings) -> None:
+    from psgs import dumps
+    from psgs.induce import get
+
+    motions, used = [], []
+    for i, perf in enumerate(action.performances):
+        motion, problem = _load_performance(perf)
+        if problem:
+            record["problems"].append(problem)
+        else:
+            motions.append(motion)
+            used.append(i)
+    for i, perf in enumerate(record["performances"]):
+        perf["used"] = i in used
+    if len(motions) < settings.min_performances:
+        record["reason"] = (f"{len(motions)} usable performance(s); an action needs at least "
+                            f"{settings.min_performances} to show what repeats across them")
+        return
+    segmentation = dict(settings.segmentation)
+    segmented = _segment_all(motions, segmentation)
+    inducer = get(settings.inducer, **dict(settings.params))
+    induction, learnt, note = _induce(inducer, segmented)
+    record["learnt_from"] = [used[i] for i in learnt]
+    record["note"] = note
+    channels = _component_channels(induction)
+    joints: dict[str, dict] = {}
+    for channel in channels:
+        joint = _actuator_of(channel, segmented[0])
+        pattern = tuple(induction.patterns.get(channel, ()))
+        morpheme = _morpheme(induction, channel, pattern, segmented)
+        joints.setdefault(joint, {"channels": [], "morphemes": {}})
+        joints[joint]["channels"].append(channel)
+        joints[joint]["morphemes"][channel] = morpheme
+    actuators = tuple(getattr(induction, "actuators", None) or joints)
+    record.update({
+        "status": "ok",
+        "actuators": list(actuators),
+        "joints": {j: joints[j] for j in actuators if j in joints},
+        "verdict": getattr(induction, "verdict", None) or
+        ("" if actuators else "no synchronised repetition"),
+        "inducer": induction.inducer or settings.inducer,
+        "params": {k: v for k, v in sorted(dict(induction.params).items())},
+        "system": dumps(induction.system) if induction.system is not None else None,
+        # channel -> component name in the system (names made identifiers: Hips.rx -> Hips_rx)
+        "component_names": {c: induction.component_names.get(c, c) for c in channels},
+        "frame_rate": motions[0].frame_rate,
+        "skeleton_source": action.performances[used[0]].file,
+        # every joint of the motion in skeleton order (JSON objects are written sorted)
+        "all_joints": list(dict.fromkeys(c.rsplit(".", 1)[0] for c in motions[0].channels)),
+        "mean_pose": {c: round(float(v), 6) for c, v in
+                      zip(motions[0].channels, np.mean(np.vstack([m.values for m in motions]),
+                                                       axis=0))},
+        "segmentation": segmentation,
+    })
+
+
+def _component_channels(induction) -> list[str]:
+    per_joint = getattr(induction, "actuator_channels", None)
+    if per_joint:  # issue 9: per joint, the channels that carry the pattern
+        return [c for j in induction.actuators for c in per_joint[j]]
+    return list(induction.components)
+
+
+def _morpheme(induction, channel: str, pattern: tuple[str, ...], segmented) -> dict:
+    learnt = getattr(induction, "morphemes", None) or {}
+    given = learnt.get(channel)
+    if given is not None:  # the inducer's own morpheme (issue 9), displacements filled in
+        pattern = tuple(getattr(given, "kinetemes", pattern))
+    durations, displacements, count = _typical(pattern, channel, segmented)
+    if given is not None:
+        durations = getattr(given, "durations", None) or durations
+        displacements = getattr(given, "displacements", None) or displacements
+    return {"kinetemes": list(pattern),
+            "durations": _round(durations) if durations is not None else None,
+            "displacements": _round(displacements) if displacements is not None else None,
+            "occurrences": count}

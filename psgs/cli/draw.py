@@ -1,0 +1,36 @@
+"""``psgs draw FILE -o out.svg|png``: a grammar system's parse-tree forest and synchronisation graph."""
+
+from __future__ import annotations
+
+from ._types import natural, positive_int
+
+
+def run_draw(args) -> int:
+    from ..draw import draw, graphviz_available
+    from ..format import load
+
+    system = load(args.file)
+    engine = args.engine
+    path = draw(system, args.output, seed=args.seed, max_steps=args.max_steps, engine=engine)
+    used = "graphviz" if engine == "graphviz" or (engine == "auto" and graphviz_available()) \
+        else "matplotlib"
+    print(f"{path} ({used})")
+    return 0
+
+
+def register(subparsers) -> None:
+    """Add ``draw`` to the ``psgs`` command."""
+    draw = subparsers.add_parser(
+        "draw", help="draw a grammar system: parse trees of a derived word, synchronisation",
+        description="Draw the component grammars as a forest of parse trees of a derived word "
+                    "(a random derivation, --seed) beside the synchronisation graph; through "
+                    "Graphviz when 'dot' is installed, matplotlib otherwise.")
+    draw.add_argument("file", metavar="FILE", help="a .psgs file")
+    draw.add_argument("-o", "--output", required=True, metavar="OUT",
+                      help="the picture, .svg or .png")
+    draw.add_argument("--seed", type=natural, default=0, help="seed of the derivation drawn")
+    draw.add_argument("--max-steps", type=positive_int, default=200, metavar="K",
+                      help="longest derivation drawn (default 200)")
+    draw.add_argument("--engine", choices=("auto", "graphviz", "matplotlib"), default="auto",
+                      help="auto: Graphviz where dot is installed, else matplotlib")
+    draw.set_defaults(run=run_draw)

@@ -1,0 +1,60 @@
+"""Synthetic datasets for the praxicon tests: small BVH takes of a waving arm and a stepping leg."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+SHARED = Path(__file__).resolve().parents[2] / ".." / "shared" / "data" / "mocap"
+CHANNELS = ("hips.rz", "arm.rx", "arm.rz", "leg.rx", "head.ry")
+
+
+def take(seed: int, seconds: float = 6.0, rate: float = 30.0, period: float = 1.0):
+    """A take: the arm (two channels) and the leg swing in step; hips and head barely move."""
+    from kinetology import Motion
+    from kinetology.bvh_writer import star_skeleton
+
+    rng = np.random.default_rng(seed)
+    t = np.arange(int(seconds * rate)) / rate
+    phase = 2 * np.pi * t / (period * (1 + 0.03 * seed))
+    values = np.column_stack([
+        0.2 * rng.standard_normal(t.size),          # hips: still
+        40 * np.sin(phase) + 10,                     # arm.rx: waves
+        25 * np.sin(phase + 0.7),                    # arm.rz: waves, another phase
+        30 * np.sin(phase + 2.0),                    # leg.rx: steps in time with the arm
+        0.2 * rng.standard_normal(t.size),          # head: still
+    ])
+    return Motion(values, CHANNELS, rate, star_skeleton(CHANNELS), f"take{seed}")
+
+
+def write_manifest(folder: Path, actions: dict[str, list[int]], missing: bool = False) -> Path:
+    """BVH takes and a CSV manifest: ``actions`` maps an action to its takes' seeds."""
+    from kinetology import write_bvh
+
+    lines = ["action,file,start,stop"]
+    for action, seeds in actions.items():
+        for seed in seeds:
+            name = f"{action}_{seed}.bvh"
+            write_bvh(take(seed), folder / name)
+            lines.append(f"{action},{name},,")
+    if missing:
+        lines.append("ghost,nowhere.bvh,,")
+        lines.append("ghost,nowhere_either.bvh,0,1")
+    path = folder / "moves.csv"
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+@pytest.fixture
+def manifest(tmp_path) -> Path:
+    """Two actions of three takes each, one of a single take, one whose files are missing."""
+    data = tmp_path / "data"
+    data.mkdir()
+    return write_manifest(data, {"wave": [1, 2, 3], "step": [4, 5, 6], "alone": [7]},
+                          missing=True)
+
+
+def needs_mocap():
+    return pytest.mark.skipif(not SHARED.is_dir(), reason="../shared/data/mocap is absent")

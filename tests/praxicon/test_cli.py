@@ -1,0 +1,65 @@
+"""The praxicon's command line: python -m praxicon, and psgs praxicon through the entry point."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from importlib.metadata import entry_points
+from pathlib import Path
+
+import pytest
+
+from praxicon.cli import main
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def test_build_draw_generate(manifest, tmp_path, capsys):
+    out = tmp_path / "px"
+    assert main(["build", str(manifest), "-o", str(out), "--no-progress",
+                 "--param", "min_copies=3"]) == 0
+    captured = capsys.readouterr()
+    assert captured.out.strip() == (f"praxicon: 4 actions, 2 learnt, 2 failed (0 already done) "
+                                    f"-> {out}/index.json")
+    assert "moves.alone: failed: 1 usable performance(s)" in captured.err
+    index = json.loads((out / "index.json").read_text())
+    assert index["settings"]["params"] == {"min_copies": 3}
+    assert main(["build", str(manifest), "-o", str(out), "--no-progress",
+                 "--param", "min_copies=3"]) == 0
+    assert "(4 already done)" in capsys.readouterr().out
+    assert main(["draw", str(out), "-o", str(out / "img"), "--format", "svg"]) == 0
+    assert (out / "img" / "actuators.svg").is_file()
+    capsys.readouterr()
+    assert main(["generate", str(out), "moves.wave", "--repeat", "2",
+                 "-o", str(tmp_path / "w.bvh")]) == 0
+    assert "2 copies" in capsys.readouterr().out and (tmp_path / "w.bvh").is_file()
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["build", "nowhere", "-o", "x"], "nowhere: no such file or folder"),
+    (["build", ".", "-o", "x", "--inducer", "nope"], "unknown inducer 'nope'"),
+    (["build", ".", "-o", "x", "--param", "nope=1"], "has no parameter 'nope'"),
+    (["build", ".", "-o", "x", "--segment", "nope=1"], "--segment nope: unknown"),
+    (["draw", "nowhere", "-o", "x"], "no praxicon index"),
+    (["generate", "nowhere", "a", "-o", "x.bvh"], "no praxicon index"),
+])
+def test_bad_input_is_one_line(argv, message, capsys):
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("psgs: error: ") and message in err[0]
+
+
+def test_python_dash_m_praxicon_runs():
+    done = subprocess.run([sys.executable, "-m", "praxicon", "build", "--help"], cwd=REPO,
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0 and "--workers N" in done.stdout and "--scheduler" in done.stdout
+
+
+def test_installed_entry_point_adds_psgs_praxicon():
+    # relies on the install CI does (pip install '.[test]'): the entry point is package metadata
+    (ep,) = [ep for ep in entry_points(group="psgs.commands") if ep.name == "praxicon"]
+    assert ep.value == "praxicon.cli:register"
+    from psgs.cli import build_parser
+
+    assert "praxicon" in build_parser().format_help()

@@ -1,0 +1,75 @@
+"""Pictures: psgs draw (Graphviz and matplotlib), the praxicon's figures, shared sub-patterns."""
+
+from __future__ import annotations
+
+import pytest
+
+import psgs
+from praxicon import build, read_dataset, shared_patterns
+from praxicon.pictures import draw_praxicon
+from psgs.cli import main as psgs_main
+from psgs.draw import draw, graphviz_available, parse_forest, sync_edges, to_svg
+
+GAMMA = "grammars/paper_example.psgs"
+
+
+def test_forest_leaves_are_the_derived_words():
+    gamma = psgs.load(GAMMA)
+    forest = parse_forest(gamma, seed=3)
+    words = ["".join(forest.leaves(c)) for c in range(4)]
+    k = len(words[0]) // 8
+    assert forest.complete and k >= 1
+    assert words == [w * k for w in ("abcdbcad", "bcadabcd", "cdabcdab", "abcdbcad")]
+
+
+def test_sync_edges_follow_the_tuples():
+    gamma = psgs.load(GAMMA)
+    edges = sync_edges(gamma)
+    assert (("G1", "N13"), ("G2", "N18"), 2) in edges or \
+        any(a == ("G1", "N13") and b[0] == "G2" for a, b, _ in edges)
+    assert all(t >= 0 for _, _, t in edges)
+
+
+@pytest.mark.parametrize("engine", ["matplotlib", "graphviz"])
+@pytest.mark.parametrize("suffix", ["svg", "png"])
+def test_draw_both_engines(tmp_path, engine, suffix):
+    if engine == "graphviz" and not graphviz_available():
+        pytest.skip("Graphviz's dot is not installed (apt-get install graphviz)")
+    out = draw(psgs.load(GAMMA), tmp_path / f"g.{suffix}", engine=engine)
+    data = out.read_bytes()
+    assert data.startswith(b"\x89PNG" if suffix == "png" else b"<?xml")
+    if suffix == "svg":
+        text = data.decode()
+        assert "N13" in text and "G4" in text
+
+
+def test_svg_is_deterministic():
+    gamma = psgs.load(GAMMA)
+    assert to_svg(gamma, engine="matplotlib") == to_svg(gamma, engine="matplotlib")
+
+
+def test_psgs_draw_cli(tmp_path, capsys):
+    assert psgs_main(["draw", GAMMA, "-o", str(tmp_path / "g.png"), "--seed", "2"]) == 0
+    assert (tmp_path / "g.png").stat().st_size > 1000
+    assert psgs_main(["draw", "grammars/pcgs_abc.psgs", "-o", str(tmp_path / "p.svg")]) == 0
+    assert psgs_main(["draw", GAMMA, "-o", str(tmp_path / "g.txt")]) != 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [f"psgs: error: {tmp_path / 'g.txt'}: draw writes .svg or .png, not '.txt'"]
+
+
+def test_praxicon_pictures_and_shared_patterns(manifest, tmp_path):
+    build(read_dataset(manifest), tmp_path / "px", progress=False, log=lambda s: None)
+    written = draw_praxicon(tmp_path / "px", tmp_path / "img")
+    names = sorted(p.relative_to(tmp_path / "img").as_posix() for p in written)
+    assert names == ["actuators.png", "morphemes/moves.step.png", "morphemes/moves.wave.png",
+                     "shared.png", "systems/moves.step.png", "systems/moves.wave.png"]
+    assert all(p.read_bytes().startswith(b"\x89PNG") for p in written)
+    shared = shared_patterns(tmp_path / "px")
+    # both actions swing the arm through the same whole cycle
+    arm = [p for p in shared if p.joint == "arm" and p.kinetemes == ("B", "G", "R", "Y")]
+    assert arm and arm[0].actions == ("moves.step", "moves.wave")
+    assert all(len(p.actions) >= 2 and len(p.kinetemes) >= 4 for p in shared)
+    import json
+
+    listed = json.loads((tmp_path / "px" / "shared.json").read_text())
+    assert listed == [p.to_dict() for p in shared]
