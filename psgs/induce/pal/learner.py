@@ -255,8 +255,9 @@ def _from_performances(inducer: PAL, takes: tuple[Actiongram, ...]) -> Induction
         names, patterns, {names[i]: found.occurrences[i] for i in kept}, reports,
         synchronise=True, performances=len(takes),
         occurrence_performance={names[i]: found.occurrence_performance[i] for i in kept})
-    actuators = tuple(a for a in first.actuators
-                      if any(first.actuator(names[i]) == a for i in kept))
+    # the joints chosen take part even when a channel's copies agree on too little to
+    # give it a pattern of two kinetemes (then it has no component of its own)
+    actuators = tuple(a for a in first.actuators if a in found.channels)
     morphemes = {names[i]: Morpheme(patterns[names[i]], found.durations[i],
                                     None if all(d is None for d in first.segment_displacements)
                                     else found.displacements[i]) for i in kept}
@@ -265,8 +266,7 @@ def _from_performances(inducer: PAL, takes: tuple[Actiongram, ...]) -> Induction
                                          repeated=j.repeated, path=j.path)
                           for j in found.joints)
     return replace(result, actuators=actuators,
-                   actuator_channels={a: tuple(names[i] for i in kept
-                                               if first.actuator(names[i]) == a)
+                   actuator_channels={a: tuple(names[i] for i in found.channels[a])
                                       for a in actuators},
                    morphemes=morphemes, verdict=found.verdict or ("" if kept else NO_REPETITION),
                    actuator_reports=joint_reports)

@@ -89,9 +89,12 @@ def learn_motion(takes: tuple[Actiongram, ...], params: PAL) -> MotionResult:
     for j in joints:
         j.path = float(paths[:, list(j.channels)].sum(axis=1).mean())
     symbols = list(codes)
-    if params.evidence == "path":
-        return _select(joints, paths.mean(axis=0), np.zeros(len(first)), first, params,
-                       symbols, tested=False)
+    if params.evidence == "path":  # the ablation: magnitude only, whole performances
+        result = _select(joints, paths.mean(axis=0), np.zeros(len(first)), first, params,
+                         symbols, tested=False)
+        if result.verdict == "":
+            read_patterns(result, grids, None, [0] * len(grids))
+        return result
 
     repeated = np.zeros(len(first))
     log_p = np.zeros(len(first))
