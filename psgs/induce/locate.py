@@ -44,7 +44,9 @@ class Located:
 
 
 def locate(learned: Induction | PSGS, actiongram: Actiongram, *, threshold: float = 0.4,
-           scales: tuple[float, ...] = SCALES) -> tuple[Located, ...]:
+           scales: tuple[float, ...] = SCALES, repeats: int | None = None,
+           min_speed: float = 0.5, method: str = "auto",
+           min_share: float | None = None) -> tuple[Located, ...]:
     """The time spans of ``actiongram`` where the learned action occurs.
 
     Parameters
@@ -60,6 +62,25 @@ def locate(learned: Induction | PSGS, actiongram: Actiongram, *, threshold: floa
         channels, for a place to count (default 0.4).
     scales : tuple of float, optional
         Tempos tried, relative to the learned durations.
+    repeats : int, optional
+        Copies of the pattern in a row that a place must hold: by default 2
+        for an action learnt as cycles (several copies per performance), else 1.
+    min_speed : float, optional
+        Where a channel moves slower than this share of its learned typical
+        speed (from the morpheme's displacements), its agreement counts
+        proportionally less: the same states drawn small are not the action.
+    method : {"auto", "joints", "pattern"}, optional
+        ``"joints"``: the evidence PAL learns by, read in the new motion: its
+        cycles timed on the learned leader, each joint's repeated motion, and
+        the share of it that the learned joints carry (the score; found at
+        ``min_share``, default 0.4, one of them carrying at least PAL's
+        ``joint_share`` of the most any joint carries, and the learned
+        channels' repetition significant at PAL's ``alpha``). ``"pattern"``: the learned patterns slid over the
+        new motion (``threshold``). ``"auto"`` (default): joints for an action
+        learnt as cycles by joint, else pattern.
+    min_share : float, optional
+        For ``method="joints"``: least share of the new motion's repeated
+        motion the learned joints must carry (default 0.4).
 
     Returns
     -------
@@ -80,33 +101,46 @@ def locate(learned: Induction | PSGS, actiongram: Actiongram, *, threshold: floa
     >>> from psgs.induce import Induction
     >>> learned = Induction(None, ("a", "b"), {"a": ("x", "y"), "b": ("u", "v")},
     ...                     {"a": ((0, 2),), "b": ((0, 2),)})
-    >>> noise = "xxyxyyxyxxxyyyxyxxyx"
-    >>> new = Actiongram.from_strings({"a": "xy" * 6 + noise[:12], "b": "uv" * 6 + "u" * 12})
-    >>> [(round(s.start), round(s.stop)) for s in locate(learned, new)]
+    >>> new = Actiongram.from_strings({"a": "xy" * 6 + "xxxxyyyyxxxx", "b": "uv" * 6 + "u" * 12})
+    >>> [(round(s.start), round(s.stop)) for s in locate(learned, new, threshold=0.6)]
     [(0, 12)]
     """
     if not isinstance(actiongram, Actiongram):
         raise TypeError(f"locate needs an Actiongram, not {type(actiongram).__name__}")
+    if method not in ("auto", "joints", "pattern"):
+        raise ValidationError(f"method must be auto, joints or pattern, not {method!r}")
+    if method == "joints" or (method == "auto" and isinstance(learned, Induction)
+                              and learned.actuators and _cyclic(learned)):
+        return _by_joints(learned, actiongram, min_share if min_share is not None else 0.4)
     templates = _templates(learned, actiongram)
+    if repeats is None:
+        repeats = 2 if _cyclic(learned) else 1
+    templates = {n: (syms * repeats, durs * repeats, speed)
+                 for n, (syms, durs, speed) in templates.items()}
     if not templates:
         raise ValidationError("none of the learned components is a string of this actiongram")
     codes: dict[str, int] = {}
     step = grid_step((actiongram,))
     grid = sample(actiongram, codes, step)
-    size = len(codes) + len({s for syms, _ in templates.values() for s in syms})
+    size = len(codes) + len({s for syms, _, _ in templates.values() for s in syms})
     rows = {name: actiongram.index(name) for name in templates}
     best = np.full(grid.points, -np.inf)
     width = np.zeros(grid.points, dtype=np.int64)
     for scale in scales:
         states = {name: _template_states(syms, durs, scale, step, codes)
-                  for name, (syms, durs) in templates.items()}
+                  for name, (syms, durs, _) in templates.items()}
         length = max(len(s) for s in states.values())
         if length < 2 or length > grid.points:
             continue
         total = np.zeros(grid.points - length + 1)
         for name, template in states.items():
             template = np.pad(template, (0, length - len(template)), constant_values=-1)
-            total += _kappa_curve(grid.states[rows[name]], template, size)
+            curve = _kappa_curve(grid.states[rows[name]], template, size)
+            typical = templates[name][2]
+            if typical and min_speed > 0:  # drawn small: count in proportion
+                moving = _window_sums(grid.speed[rows[name]], length) / length
+                curve = curve * np.minimum(1.0, moving / (min_speed * typical * scale ** -1))
+            total += curve
         score = total / len(learned_names(learned))
         better = score > best[:len(score)]
         best[:len(score)][better] = score[better]
@@ -121,8 +155,15 @@ def learned_names(learned: Induction | PSGS) -> tuple[str, ...]:
     return tuple(c.name for c in learned.components)
 
 
-def _templates(learned, actiongram: Actiongram) -> dict[str, tuple[tuple[str, ...], tuple]]:
-    """Per component string of ``actiongram``: (kinetemes, durations or None)."""
+def _cyclic(learned) -> bool:
+    """Whether the action was learnt as cycles (more copies than performances)."""
+    if not isinstance(learned, Induction) or not learned.components:
+        return False
+    return len(learned.occurrences[learned.components[0]]) > learned.performances
+
+
+def _templates(learned, actiongram: Actiongram) -> dict[str, tuple]:
+    """Per component string of ``actiongram``: (kinetemes, durations, typical speed or None)."""
     if isinstance(learned, Induction):
         if not learned.components:
             raise ValidationError("the induction has no component: nothing to locate")
@@ -132,12 +173,15 @@ def _templates(learned, actiongram: Actiongram) -> dict[str, tuple[tuple[str, ..
                 continue
             morpheme = learned.morphemes.get(name)
             if morpheme is not None:
-                out[name] = (morpheme.kinetemes, morpheme.durations)
+                speed = None
+                if morpheme.displacements is not None:
+                    speed = sum(abs(d) for d in morpheme.displacements) / sum(morpheme.durations)
+                out[name] = (morpheme.kinetemes, morpheme.durations, speed)
                 continue
             pattern = learned.patterns[name]
             spans = learned.occurrences.get(name, ())
             length = float(np.median([b - a for a, b in spans])) if spans else len(pattern)
-            out[name] = (pattern, (length / len(pattern),) * len(pattern))
+            out[name] = (pattern, (length / len(pattern),) * len(pattern), None)
         return out
     if isinstance(learned, PSGS):
         if not learned.components:
@@ -151,7 +195,7 @@ def _templates(learned, actiongram: Actiongram) -> dict[str, tuple[tuple[str, ..
             pattern = _pattern_of(grammar)
             durs = actiongram.durations[name]
             typical = float(np.median(durs)) if durs else 1.0
-            out[name] = (pattern, (typical,) * len(pattern))
+            out[name] = (pattern, (typical,) * len(pattern), None)
         return out
     raise TypeError(f"locate needs an Induction or a PSGS, not {type(learned).__name__}")
 
@@ -230,3 +274,48 @@ def _spans(score: np.ndarray, width: np.ndarray, threshold: float, t0: float,
         else:
             out.append([a, b, float(score[a])])
     return tuple(Located(t0 + a * step, t0 + b * step, round(s, 6)) for a, b, s in out)
+
+
+def _by_joints(learned: Induction, actiongram: Actiongram, min_share: float
+               ) -> tuple[Located, ...]:
+    """One span over the cycles of the learned leader, when the learned joints carry the
+    repetition of the new motion (see :func:`locate`, ``method="joints"``)."""
+    from .pal import performances as perf
+    from .pal.learner import PAL
+
+    params = PAL(**{k: v for k, v in learned.params.items()
+                    if k in PAL().get_params()}) if learned.inducer == "pal" else PAL()
+    codes: dict[str, int] = {}
+    grid = sample(actiongram, codes, grid_step((actiongram,)))
+    size = max(len(codes), 1)
+    rows = {a: tuple(actiongram.index(c) for c in actiongram.channels(a))
+            for a in actiongram.actuators}
+    mine = tuple(r for a in learned.actuators for r in rows.get(a, ()))
+    if not mine:
+        return ()
+    scored = perf.lag_scores(grid, size, params)
+    lag = perf._period(scored, mine, params)  # the learned joints' period in this motion
+    if not lag or grid.points < params.min_copies * lag:
+        return ()
+    segments = np.array([[len(x) for x in actiongram.symbols]], dtype=float)
+    paths = np.array([grid.speed.sum(axis=1) * grid.step])
+    repeated, log_p = perf._cycles([grid], [lag], size, paths, segments)
+    carried = {a: float(repeated[list(r)].sum()) for a, r in rows.items() if r}
+    total = sum(carried.values())
+    if total <= 0:
+        return ()
+    share = sum(carried.get(a, 0.0) for a in learned.actuators) / total
+    top = max(carried.values())
+    ours = max(carried.get(a, 0.0) for a in learned.actuators)
+    # the action: its joints carry much of the repetition, one of them as a leader would
+    # (at joint_share of the most), beyond chance (Bonferroni over the learned channels)
+    significant = float(min(log_p[list(mine)])) + np.log10(len(mine)) <= np.log10(params.alpha)
+    if share < min_share or ours < params.joint_share * top or not significant:
+        return ()
+    from .pal.period import track_windows
+    starts = track_windows(grid.states[list(mine)], lag)
+    if len(starts) == 0:
+        return ()
+    t0, step = grid.t0, grid.step
+    return (Located(t0 + float(starts[0]) * step, t0 + float(starts[-1] + lag) * step,
+                    round(share, 6)),)
