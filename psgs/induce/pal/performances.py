@@ -257,6 +257,38 @@ def _cycles(grids: list[Grid], periods: list[int | None], size: int, paths: np.n
     return np.median(repeated, axis=0), log_p
 
 
+def _cycles_alike(grids: list[Grid], periods: list[int | None], rows: tuple[int, ...],
+                  size: int, width: int = 24) -> float:
+    """Chance-corrected agreement of a joint's mean cycle between performances.
+
+    Per performance, each channel's cycle is the plurality state at each of
+    ``width`` points over its cycles (of that performance's period); pairs of
+    performances are compared at the circular shift, common to the joint's
+    channels, that agrees best; the mean kappa over pairs.
+    """
+    from .morphemes import _plurality
+
+    means = []
+    for grid, lag in zip(grids, periods):
+        if not lag:
+            continue
+        count = grid.points // lag
+        cycles = grid.states[list(rows), :count * lag].reshape(len(rows), count, lag)
+        means.append(np.array([_plurality(resample(c, width)) for c in cycles]))
+    if len(means) < 2:
+        return 0.0
+    scores = []
+    for p in range(len(means)):
+        for q in range(p + 1, len(means)):
+            best = -1.0
+            for shift in range(width):
+                obs, chance, _ = agreement(means[p], np.roll(means[q], shift, axis=1),
+                                           np.ones(means[p].shape), size)
+                best = max(best, float(kappa(obs, chance).mean()))
+            scores.append(best)
+    return float(np.mean(scores))
+
+
 # -- the leader and the selection ------------------------------------------------------------
 def _significant(joint: JointEvidence, log_p: np.ndarray, joints: int, params: PAL) -> bool:
     best = float(min(log_p[list(joint.channels)])) if joint.channels else 0.0
@@ -280,7 +312,10 @@ def _first_leader(joints, repeated, log_p, grids, scored, size, paths, segments,
         probe = JointEvidence(j.name, j.channels)
         if not _significant(probe, cyc_p, len(joints), params):
             continue
-        score = float(cyc[list(j.channels)].sum())
+        # a leader repeats across performances: its cycles must look alike from one
+        # performance to the next (a limb doing another thing in each take does not)
+        alike = _cycles_alike(grids, periods, j.channels, size) if len(grids) > 1 else 1.0
+        score = float(cyc[list(j.channels)].sum()) * max(alike, 0.0)
         if score > best_score:
             best, best_score = j, score
     return best
@@ -290,14 +325,26 @@ def _select(joints: list[JointEvidence], repeated: np.ndarray, log_p: np.ndarray
             first: Actiongram, params: PAL, symbols: list[str], *, tested: bool
             ) -> MotionResult:
     """Leader, shares, components and their skeleton neighbours; the verdict."""
+    strict = set()
     for j in joints:
         j.repeated = float(repeated[list(j.channels)].sum())
-        passed = _significant(j, log_p, len(joints), params) if tested else j.repeated > 0
+        if tested:
+            if _significant(j, log_p, len(joints), params):
+                strict.add(j.name)
+            # beside a significant leader, a joint is tested on its own (Bonferroni over its
+            # channels only): the share of the leader's repeated motion is the second gate
+            passed = _significant(j, log_p, 1, params)
+        else:
+            passed = j.repeated > 0
+            strict.add(j.name)
         j.status = "candidate" if passed else "not significant"
     candidates = [j for j in joints if j.status == "candidate" and j.repeated > 0]
-    if not candidates:
+    leaders = [j for j in candidates if j.name in strict]
+    if not leaders:
+        for j in joints:
+            j.status = "not significant"
         return MotionResult(NO_REPETITION, joints, None, symbols)
-    leader = max(candidates, key=lambda j: (j.repeated, -joints.index(j)))
+    leader = max(leaders, key=lambda j: (j.repeated, -joints.index(j)))
     for j in joints:
         j.share = j.repeated / leader.repeated
     core = {j.name for j in candidates if j.share >= params.joint_share}
