@@ -103,7 +103,28 @@ def learn_motion(takes: tuple[Actiongram, ...], params: PAL) -> MotionResult:
         shifts, cross, cross_p = _across(grids, size, paths, segments, params)
         repeated, log_p = cross, cross_p
     scored = [lag_scores(g, size, params) for g in grids]
-    leader = _first_leader(joints, repeated, log_p, grids, scored, size, paths, segments, params)
+    leaders = _first_leaders(joints, repeated, log_p, grids, scored, size, paths, segments,
+                             params) or [None]
+    result = None
+    for k, leader in enumerate(leaders[:3]):  # a leader alone (none in step) gives way
+        # each further try is held to a 100 times stricter test (it is one more look)
+        tried = _with_cycles(leader, joints, repeated, log_p, grids, scored, size, paths,
+                             segments, first, params, symbols, extra=2.0 * k)
+        if result is None or (result[0].verdict and not tried[0].verdict):
+            result = tried
+        if not tried[0].verdict:
+            break
+    found, periods = result
+    if found.verdict == "":
+        read_patterns(found, grids, periods, shifts)
+        if periods:
+            found.period = float(np.median([p for p in periods if p])) * step
+    return found
+
+
+def _with_cycles(leader, joints, repeated, log_p, grids, scored, size, paths, segments, first,
+                 params, symbols, extra: float = 0.0):
+    """The selection with the cycles timed on ``leader`` (when most performances cycle)."""
     periods = None
     if leader is not None:
         periods = [_period(sc, leader.channels, params) for sc in scored]
@@ -114,12 +135,10 @@ def learn_motion(takes: tuple[Actiongram, ...], params: PAL) -> MotionResult:
             log_p = np.minimum(log_p, cyc_p)
         else:
             periods = None
-    result = _select(joints, repeated, log_p, first, params, symbols, tested=True)
-    if result.verdict == "":
-        read_patterns(result, grids, periods, shifts)
-        if periods:
-            result.period = float(np.median([p for p in periods if p])) * step
-    return result
+    for j in joints:
+        j.status, j.share = "not significant", 0.0
+    return _select(joints, repeated, log_p, first, params, symbols, tested=True,
+                   extra=extra), periods
 
 
 # -- evidence across performances ----------------------------------------------------------
@@ -290,21 +309,25 @@ def _cycles_alike(grids: list[Grid], periods: list[int | None], rows: tuple[int,
 
 
 # -- the leader and the selection ------------------------------------------------------------
-def _significant(joint: JointEvidence, log_p: np.ndarray, joints: int, params: PAL) -> bool:
+def _significant(joint: JointEvidence, log_p: np.ndarray, joints: int, params: PAL,
+                 extra: float = 0.0) -> bool:
+    """Whether the joint's best channel beats chance at ``alpha`` (Bonferroni over its
+    channels and ``joints``; ``extra`` orders of magnitude stricter)."""
     best = float(min(log_p[list(joint.channels)])) if joint.channels else 0.0
     joint.log10_p = best + math.log10(max(len(joint.channels), 1))
-    return joint.log10_p + math.log10(max(joints, 1)) <= math.log10(params.alpha)
+    return joint.log10_p + math.log10(max(joints, 1)) + extra <= math.log10(params.alpha)
 
 
-def _first_leader(joints, repeated, log_p, grids, scored, size, paths, segments, params):
-    """The joint the cycles are timed on: most repeated motion across performances, else within."""
-    across = [(float(repeated[list(j.channels)].sum()), j) for j in joints
+def _first_leaders(joints, repeated, log_p, grids, scored, size, paths, segments, params):
+    """Joints the cycles may be timed on, best first: most repeated motion across
+    performances, else (one performance, or nothing repeats across them) within."""
+    across = [(float(repeated[list(j.channels)].sum()), -k, j) for k, j in enumerate(joints)
               if _significant(j, log_p, len(joints), params)]
-    if across and max(s for s, _ in across) > 0:
-        return max(across, key=lambda sj: sj[0])[1]
-    # one performance, or nothing repeats across them: the best cycling joint of each
-    best, best_score = None, 0.0
-    for j in joints:
+    across = [x for x in across if x[0] > 0]
+    if across:
+        return [j for _, _, j in sorted(across, key=lambda x: x[:2], reverse=True)]
+    ranked = []
+    for k, j in enumerate(joints):
         periods = [_period(sc, j.channels, params) for sc in scored]
         if sum(1 for p in periods if p) * 2 <= len(grids):
             continue
@@ -316,20 +339,20 @@ def _first_leader(joints, repeated, log_p, grids, scored, size, paths, segments,
         # performance to the next (a limb doing another thing in each take does not)
         alike = _cycles_alike(grids, periods, j.channels, size) if len(grids) > 1 else 1.0
         score = float(cyc[list(j.channels)].sum()) * max(alike, 0.0)
-        if score > best_score:
-            best, best_score = j, score
-    return best
+        if score > 0:
+            ranked.append((score, -k, j))
+    return [j for _, _, j in sorted(ranked, key=lambda x: x[:2], reverse=True)]
 
 
 def _select(joints: list[JointEvidence], repeated: np.ndarray, log_p: np.ndarray,
-            first: Actiongram, params: PAL, symbols: list[str], *, tested: bool
-            ) -> MotionResult:
+            first: Actiongram, params: PAL, symbols: list[str], *, tested: bool,
+            extra: float = 0.0) -> MotionResult:
     """Leader, shares, components and their skeleton neighbours; the verdict."""
     strict = set()
     for j in joints:
         j.repeated = float(repeated[list(j.channels)].sum())
         if tested:
-            if _significant(j, log_p, len(joints), params):
+            if _significant(j, log_p, len(joints), params, extra):
                 strict.add(j.name)
             # beside a significant leader, a joint is tested on its own (Bonferroni over its
             # channels only): the share of the leader's repeated motion is the second gate
