@@ -44,6 +44,10 @@ if TYPE_CHECKING:
 
 NO_REPETITION = "no synchronised repetition"
 
+#: A joint may lead from its cycles when they are at least this share of the strongest
+#: joint's (measured: the waving arm of the benchmark's composite has 0.16 of its foreign arm's).
+LEADER_SHARE = 0.1
+
 
 @dataclass
 class JointEvidence:
@@ -327,6 +331,8 @@ def _first_leaders(joints, repeated, log_p, grids, scored, size, paths, segments
     if across:
         return [j for _, _, j in sorted(across, key=lambda x: x[:2], reverse=True)]
     ranked = []
+    typical = paths.mean(axis=0)
+    moving = tuple(int(c) for c in np.flatnonzero(typical >= 0.05 * typical.max()))
     for k, j in enumerate(joints):
         periods = [_period(sc, j.channels, params) for sc in scored]
         if sum(1 for p in periods if p) * 2 <= len(grids):
@@ -337,11 +343,19 @@ def _first_leaders(joints, repeated, log_p, grids, scored, size, paths, segments
             continue
         # a leader repeats across performances: its cycles must look alike from one
         # performance to the next (a limb doing another thing in each take does not)
-        alike = _cycles_alike(grids, periods, j.channels, size) if len(grids) > 1 else 1.0
-        score = float(cyc[list(j.channels)].sum()) * max(alike, 0.0)
-        if score > 0:
-            ranked.append((score, -k, j))
-    return [j for _, _, j in sorted(ranked, key=lambda x: x[:2], reverse=True)]
+        # timed on this joint, the whole moving body's cycle: the action's joints come out
+        # the same in every performance, a limb doing its own thing blurs
+        alike = _cycles_alike(grids, periods, moving, size) if len(grids) > 1 else 1.0
+        strength = float(cyc[list(j.channels)].sum())
+        if strength > 0:
+            ranked.append((max(alike, 0.0) if len(grids) > 1 else strength, -k, strength, j))
+    if not ranked:
+        return []
+    # among the joints that cycle with at least LEADER_SHARE of the strongest, the one whose
+    # cycles are most alike across performances leads (a foreign limb may cycle more)
+    strongest = max(r[2] for r in ranked)
+    ranked = [r for r in ranked if r[2] >= LEADER_SHARE * strongest]
+    return [r[3] for r in sorted(ranked, key=lambda x: x[:2], reverse=True)]
 
 
 def _select(joints: list[JointEvidence], repeated: np.ndarray, log_p: np.ndarray,
