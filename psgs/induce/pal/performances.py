@@ -178,9 +178,9 @@ def _across(grids: list[Grid], size: int, paths: np.ndarray, segments: np.ndarra
     chance_mean = chance_sum / max(pairs, 1)
     log_p = np.array([log10_binom_sf(int(k), int(n), float(c)) if n > 0 else 0.0
                       for k, n, c in zip(agreeing, trials, chance_mean)])
-    # every performance's segments are in m - 1 pairs: count them once (the tail's log
-    # scales about linearly with the trials)
-    log_p = log_p * 2 / len(grids)
+    # the pairs count every performance's segments (m - 1) / 2 times: count them once (the
+    # tail's log scales about linearly with the trials)
+    log_p = log_p * 2 / max(len(grids) - 1, 1)
     return shifts, repeated, log_p
 
 
