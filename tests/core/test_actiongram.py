@@ -124,8 +124,9 @@ def test_documentation_examples_run(page):
     assert result.attempted > 0 and result.failed == 0
 
 
-@pytest.mark.parametrize("module", ["psgs.actiongram", "psgs.induce", "psgs.induce.pal",
-                                    "psgs.induce.base"])
+@pytest.mark.parametrize("module", ["psgs.actiongram", "psgs._actiongram_extras", "psgs.induce",
+                                    "psgs.induce.pal", "psgs.induce.base", "psgs.induce.locate",
+                                    "psgs.induce.results"])
 def test_docstring_examples_run(module):
     import doctest
     import importlib
