@@ -16,6 +16,7 @@ each kineteme lasts the channel's median segment duration in the new motion.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -24,7 +25,6 @@ import numpy as np
 from ..actiongram import Actiongram
 from ..errors import ValidationError
 from ..model import PSGS, Nonterminal
-from .base import component_name
 from .pal.grids import grid_step, sample
 from .results import Induction
 
@@ -186,7 +186,7 @@ def _templates(learned, actiongram: Actiongram) -> dict[str, tuple]:
     if isinstance(learned, PSGS):
         if not learned.components:
             raise ValidationError("the system has no component: nothing to locate")
-        by_identifier = {component_name(n, set()): n for n in actiongram.names}
+        by_identifier = {_identifier(n): n for n in actiongram.names}
         out = {}
         for grammar in learned.components:
             name = by_identifier.get(grammar.name, grammar.name)
@@ -198,6 +198,13 @@ def _templates(learned, actiongram: Actiongram) -> dict[str, tuple]:
             out[name] = (pattern, (typical,) * len(pattern), None)
         return out
     raise TypeError(f"locate needs an Induction or a PSGS, not {type(learned).__name__}")
+
+
+def _identifier(name: str) -> str:
+    """A string name as inducers name its component (before any suffix that keeps names
+    unique): characters outside letters, digits and ``_`` become ``_``; ``c_`` before a digit."""
+    ident = re.sub(r"[^A-Za-z0-9_]", "_", name)
+    return "c_" + ident if not ident or ident[0].isdigit() else ident
 
 
 def _pattern_of(grammar) -> tuple[str, ...]:
