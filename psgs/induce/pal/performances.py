@@ -157,9 +157,6 @@ def _across(grids: list[Grid], size: int, paths: np.ndarray, segments: np.ndarra
     shifts = [0] + [_best_shift(reference, s, reach, size) for s in states[1:]]
     channels = reference.shape[0]
     repeated = np.zeros(channels)
-    agreeing = np.zeros(channels)
-    trials = np.zeros(channels)
-    chance_sum = np.zeros(channels)
     pairs = 0
     for p in range(len(grids)):
         for q in range(p + 1, len(grids)):
@@ -168,20 +165,71 @@ def _across(grids: list[Grid], size: int, paths: np.ndarray, segments: np.ndarra
             obs_w, chance_w, _ = agreement(a, b, (wa + wb) / 2, size)
             corrected = np.clip(kappa(obs_w, chance_w), 0, None)
             repeated += corrected * (paths[p] + paths[q]) / 2
-            obs, chance, _ = agreement(a, b, np.ones_like(wa), size)
+            pairs += 1
+    repeated /= max(pairs, 1)
+    pairwise = _pairwise_test(states, shifts, segments, size)
+    consensus = _consensus_test(states, shifts, segments, size)
+    # both must hold: the leave-one-out consensus (powerful where copies are few) and the
+    # pairs (a limb that agrees with a noisy consensus but with no single other take fails)
+    return shifts, repeated, np.maximum(pairwise, consensus)
+
+
+def _pairwise_test(states, shifts, segments, size) -> np.ndarray:
+    """Per channel, log10 p of the agreement between every pair of aligned performances,
+    each pair's segments as trials (liberal: the pairs share performances)."""
+    channels = states[0].shape[0]
+    agreeing, trials, chance_sum, pairs = np.zeros(channels), np.zeros(channels), \
+        np.zeros(channels), 0
+    for p in range(len(states)):
+        for q in range(p + 1, len(states)):
+            a, b = _overlap(states[p], states[q], shifts[q] - shifts[p])
+            obs, chance, _ = agreement(a, b, np.ones(a.shape), size)
             n = (segments[p] + segments[q]) / 2
             agreeing += np.round(obs * n)
             trials += n
             chance_sum += chance
             pairs += 1
-    repeated /= max(pairs, 1)
     chance_mean = chance_sum / max(pairs, 1)
-    log_p = np.array([log10_binom_sf(int(k), int(n), float(c)) if n > 0 else 0.0
-                      for k, n, c in zip(agreeing, trials, chance_mean)])
-    # the pairs count every performance's segments (m - 1) / 2 times: count them once (the
-    # tail's log scales about linearly with the trials)
-    log_p = log_p * 2 / max(len(grids) - 1, 1)
-    return shifts, repeated, log_p
+    return np.array([log10_binom_sf(int(k), int(n), float(c)) if n > 0 else 0.0
+                     for k, n, c in zip(agreeing, trials, chance_mean)])
+
+
+def _consensus_test(states: list[np.ndarray], shifts: list[int], segments: np.ndarray,
+                    size: int) -> np.ndarray:
+    """Per channel, log10 p that the performances agree with each other only by chance.
+
+    Each performance is compared with the plurality of the others (leave one
+    out, on the reference's time axis); its segments are the trials, each
+    counted once; the binomial tail of the agreeing ones at the chance level.
+    """
+    placed = []
+    for s, shift in zip(states, shifts):
+        row = np.full(s.shape, -1, dtype=np.int64)
+        n = s.shape[1]
+        if shift >= 0:
+            row[:, shift:] = s[:, :n - shift]
+        else:
+            row[:, :n + shift] = s[:, -shift:]
+        placed.append(row)
+    counts = np.zeros((size,) + placed[0].shape)
+    for row in placed:
+        for sym in range(size):
+            counts[sym] += row == sym
+    agreeing = np.zeros(placed[0].shape[0])
+    trials = np.zeros(placed[0].shape[0])
+    chance_sum = np.zeros(placed[0].shape[0])
+    for k, row in enumerate(placed):
+        others = counts.copy()
+        for sym in range(size):
+            others[sym] -= row == sym
+        consensus = np.where(others.max(axis=0) > 0, others.argmax(axis=0), -1)
+        obs, chance, _ = agreement(row, consensus, np.ones(row.shape), size)
+        agreeing += np.round(obs * segments[k])
+        trials += segments[k]
+        chance_sum += chance * segments[k]
+    chance_mean = chance_sum / np.maximum(trials, 1)
+    return np.array([log10_binom_sf(int(k), int(n), float(c)) if n > 0 and c < 1 else 0.0
+                     for k, n, c in zip(agreeing, trials, chance_mean)])
 
 
 def _overlap(a: np.ndarray, b: np.ndarray, shift: int) -> tuple[np.ndarray, np.ndarray]:
@@ -230,11 +278,31 @@ def _lags(grid: Grid, params: PAL) -> range:
 
 
 def lag_scores(grid: Grid, size: int, params: PAL) -> tuple[range, np.ndarray]:
-    """Every channel's cycle score (see :func:`_self_scores`) at every candidate lag."""
+    """Every channel's cycle score (see :func:`_self_scores`) at every candidate lag.
+
+    The speed-weighted kappa is computed once per lag (the half lags are lags
+    too) and only for channels that move (path at least 1% of the most
+    moving channel's); the others score 0.
+    """
     lags = _lags(grid, params)
-    every = range(grid.states.shape[0])
-    table = np.array([_self_scores(grid, every, lag, size)[0] for lag in lags]) if len(lags) \
-        else np.zeros((0, grid.states.shape[0]))
+    channels = grid.states.shape[0]
+    if not len(lags):
+        return lags, np.zeros((0, channels))
+    path = grid.speed.sum(axis=1)
+    rows = np.flatnonzero(path >= 0.01 * max(float(path.max()), 1e-300))
+    s, w = grid.states[rows], grid.speed[rows]
+    cache: dict[int, np.ndarray] = {}
+
+    def weighted_kappa(lag: int) -> np.ndarray:
+        if lag not in cache:
+            obs, chance, _ = agreement(s[:, :-lag], s[:, lag:], (w[:, :-lag] + w[:, lag:]) / 2,
+                                       size)
+            cache[lag] = kappa(obs, chance)
+        return cache[lag]
+
+    table = np.zeros((len(lags), channels))
+    for k, lag in enumerate(lags):
+        table[k, rows] = weighted_kappa(lag) - np.clip(weighted_kappa(max(1, lag // 2)), 0, None)
     return lags, table
 
 
