@@ -236,10 +236,11 @@ def test_bad_performances_are_clear_errors():
     for inducer in (PAL(), Sequential(), Echo()):
         with pytest.raises(ValidationError, match="needs at least one performance"):
             inducer.induce([])
-        with pytest.raises(ValidationError, match="performance 1 does not have the actuators of "
-                                                  "performance 0: it lacks 'hip' and has "
-                                                  "'elbow' too"):
-            inducer.induce([a, b])
+        if not isinstance(inducer, PAL):  # PAL gives a string a take lacks as empty (issue 9)
+            with pytest.raises(ValidationError, match="performance 1 does not have the actuators "
+                                                      "of performance 0: it lacks 'hip' and has "
+                                                      "'elbow' too"):
+                inducer.induce([a, b])
         with pytest.raises(TypeError, match="performance 1 is a str"):
             inducer.induce([a, "abab"])
         for wrong in ("abab", {"knee": "abab"}, 3):
@@ -255,10 +256,13 @@ def test_performances_in_another_string_order_are_reordered():
     assert takes[1].string("knee") == ("c", "d", "c")
 
 
-def test_pal_refuses_several_performances_rather_than_joining_them():
+def test_pal_learns_from_several_performances_without_joining_them():
+    # (issue 9: PAL's real-motion learner; it refused several performances before)
     ag = generate(seed=1).actiongram
-    with pytest.raises(ValidationError, match="PAL.induce learns from one performance for now"):
-        PAL().induce([ag, ag])
+    result = PAL().induce([ag, ag])
+    assert result.performances == 2
+    for name in result.components:
+        assert set(result.occurrence_performance[name]) <= {0, 1}
 
 
 def test_sequential_counts_digrams_over_performances_but_never_across_them():
