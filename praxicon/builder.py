@@ -19,7 +19,8 @@ from pathlib import Path
 
 from .datasets import Action
 from .learn import Settings, input_key, learn_action
-from .store import read_records, write_index, write_record
+from .shared import shared_patterns
+from .store import dump_json, read_records, write_atomic, write_index, write_record
 
 __all__ = ["build", "BuildResult", "executor_for"]
 
@@ -156,6 +157,9 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
         # always leave a consistent index of what is done (also after Ctrl-C)
         index = write_index(out, list(records.values()), setting_dict, dataset_list,
                             timings={**_old_timings(out), **timings})
+        # the build's last write: the patterns that recur across actions (Fig. 13)
+        write_atomic(out / "shared.json",
+                     dump_json([p.to_dict() for p in shared_patterns(index)]))
     return BuildResult(index, tuple(sorted(learnt)), tuple(sorted(skipped)),
                        tuple(sorted(failed)))
 

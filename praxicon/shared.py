@@ -20,6 +20,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
+from .store import load_index
+
 __all__ = ["SharedPattern", "shared_patterns"]
 
 
@@ -89,8 +91,6 @@ def shared_patterns(praxicon, *, min_length: int = 4, min_actions: int = 2) -> l
     [('arm', 'B G R Y', ('a', 'b'))]
     """
     if not isinstance(praxicon, dict):
-        from .store import load_index
-
         praxicon = load_index(Path(praxicon))
     holders: dict[str, dict[tuple[str, ...], set[tuple[str, str]]]] = {}
     wholes: set[tuple[str, ...]] = set()  # patterns that are a whole cycle (read cyclically)

@@ -123,11 +123,6 @@ def write_index(out: Path, records: list[dict], settings: dict, datasets: list[s
         writer.writerow([name, *row])
     write_atomic(out / "actuators.csv", buffer.getvalue())
     write_atomic(out / "index.json", dump_json(index))
-    if timings is not None:  # the build's last write: the patterns that recur (Fig. 13)
-        from .shared import shared_patterns
-
-        write_atomic(out / "shared.json",
-                     dump_json([p.to_dict() for p in shared_patterns(index)]))
     if timings is not None:
         write_atomic(out / "timings.json", dump_json({k: round(v, 3) for k, v in
                                                      sorted(timings.items())}))

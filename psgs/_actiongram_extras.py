@@ -9,23 +9,8 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Sequence
 
+from ._actiongram_checks import _bad_name, _finite, _shown
 from .errors import FormatError
-
-
-# the name and number checks of psgs.actiongram, imported late (it imports this module)
-def _shown(value: object, limit: int = 40) -> str:
-    from .actiongram import _shown as shown
-    return shown(value, limit)
-
-
-def _bad_name(name: object) -> str | None:
-    from .actiongram import _bad_name as bad_name
-    return bad_name(name)
-
-
-def _finite(value) -> bool:
-    from .actiongram import _finite as finite
-    return finite(value)
 
 
 def _bad_displacement(value: object) -> str | None:

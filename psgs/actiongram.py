@@ -42,6 +42,7 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from ._actiongram_checks import _bad_name, _finite, _not_unicode, _shown
 from ._actiongram_extras import DIRECTIVE as _DIRECTIVE
 from ._actiongram_extras import default_actuator, normalise_extras
 from ._actiongram_extras import read_directive as _read_directive
@@ -53,31 +54,7 @@ _JSON_FORMAT = "psgs-actiongram"
 _NUMBER = re.compile(r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?\Z")
 
 
-def _shown(value: object, limit: int = 40) -> str:
-    """``repr(value)``, cut to about ``limit`` characters so one bad token keeps errors one line."""
-    text = repr(value)
-    return text if len(text) <= limit else text[:limit - 5] + "...'" + f" ({len(str(value))} chars)"
 
-
-def _not_unicode(text: str) -> bool:
-    """True for text with a lone surrogate (JSON ``"\\ud800"``): it cannot be written as UTF-8."""
-    try:
-        text.encode("utf-8")
-    except UnicodeEncodeError:
-        return True
-    return False
-
-
-def _bad_name(name: object) -> str | None:
-    """Why ``name`` cannot name an actuator, or None when it can."""
-    if not isinstance(name, str) or not name:
-        return "an actuator name must be non-empty text"
-    if _not_unicode(name):
-        return f"actuator name {_shown(name)} is not valid Unicode (a lone surrogate)"
-    if any(ch.isspace() for ch in name) or "@" in name or ":" in name or name.startswith("#"):
-        return (f"actuator name {_shown(name)} must have no white space, '@' or ':' and not "
-                f"start with '#'")
-    return None
 
 
 def _bad_symbol(symbol: object) -> str | None:
@@ -90,13 +67,6 @@ def _bad_symbol(symbol: object) -> str | None:
                 f"with '#'")
     return None
 
-
-def _finite(value: int | float) -> bool:
-    """``math.isfinite``, False for an int too large for a float (instead of OverflowError)."""
-    try:
-        return math.isfinite(value)
-    except OverflowError:
-        return False
 
 
 def _bad_duration(value: object) -> str | None:

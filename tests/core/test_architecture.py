@@ -53,12 +53,47 @@ def module_files() -> dict[str, Path]:
     return out
 
 
+#: Methods a notebook calls by name to show a value (IPython's rich display protocol). They
+#: import the drawing layer late, on display only: the one sanctioned way a low value reaches
+#: up, so that systems, actiongrams and inductions draw themselves without the core depending on
+#: the drawing code. Nothing else in them may import upwards (only psgs.draw is exempted).
+DISPLAY_HOOKS = {"_repr_svg_", "_repr_html_", "_repr_png_"}
+DISPLAY_MODULE = "psgs.draw"
+
+
+def _type_checking_only(tree: ast.AST) -> set[int]:
+    """ids of the import nodes that are not a dependency of the running code.
+
+    Imports inside ``if TYPE_CHECKING:`` blocks name a type for annotations and never run (PAL's
+    phase modules annotate their parameter with the learner's class). Imports of
+    :data:`DISPLAY_MODULE` inside a :data:`DISPLAY_HOOKS` method run only when a notebook shows
+    the value. Every other import counts, top-level or inside a function.
+    """
+    skipped = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.FunctionDef) and node.name in DISPLAY_HOOKS:
+            for inner in ast.walk(node):
+                if isinstance(inner, ast.ImportFrom) and (inner.module or "").endswith("draw"):
+                    skipped.add(id(inner))
+        if isinstance(node, ast.If):
+            test = node.test
+            flag = test.id if isinstance(test, ast.Name) else getattr(test, "attr", None)
+            if flag == "TYPE_CHECKING":
+                for statement in node.body:
+                    skipped.update(id(inner) for inner in ast.walk(statement))
+    return skipped
+
+
 def _imports(name: str, path: Path, known: set[str]) -> set[tuple[str, str]]:
     """(module imported, name taken from it or '') for every import statement in the file."""
     is_package = path.name == "__init__.py"
     package = name if is_package else name.rpartition(".")[0]
     found = set()
-    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), str(path))):
+    tree = ast.parse(path.read_text(encoding="utf-8"), str(path))
+    annotations_only = _type_checking_only(tree)
+    for node in ast.walk(tree):
+        if id(node) in annotations_only:
+            continue
         if isinstance(node, ast.Import):
             found.update((alias.name, "") for alias in node.names)
         elif isinstance(node, ast.ImportFrom):
