@@ -63,9 +63,6 @@ def loads(text: str | bytes, source: str = "<string>") -> PSGS | PCGS:
     """Read a PSGS or a PCGS from text in the psgs format.
 
     ``source`` names the text in error messages. Bytes are decoded as UTF-8.
-    Raises :class:`~psgs.errors.FormatError` (``source:line:col: message``)
-    for any malformed input.
-
     Parameters
     ----------
     text : str or bytes
