@@ -42,6 +42,9 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from ._actiongram_extras import DIRECTIVE as _DIRECTIVE
+from ._actiongram_extras import default_actuator, normalise_extras
+from ._actiongram_extras import read_directive as _read_directive
 from .errors import FormatError
 
 __all__ = ["Actiongram", "default_actuator", "load_actiongram"]
@@ -104,24 +107,6 @@ def _bad_duration(value: object) -> str | None:
     return None
 
 
-def _bad_displacement(value: object) -> str | None:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        return f"a displacement must be a number, not {_shown(value)}"
-    if not _finite(value):
-        return f"a displacement must be finite, not {_shown(value)}"
-    return None
-
-
-def default_actuator(name: str) -> str:
-    """The actuator a string belongs to by default: its name before the first dot.
-
-    >>> default_actuator("lfemur.rx"), default_actuator("root"), default_actuator(".x")
-    ('lfemur', 'root', '.x')
-    """
-    head = name.split(".", 1)[0]
-    return head if head else name
-
-
 def _plain_durations(durations: tuple) -> bool:
     """Fast check that every duration is a positive finite int or float (not bool)."""
     if not durations:
@@ -165,20 +150,6 @@ def _merge(symbols: Sequence[str], durations: Sequence[float]) -> tuple[tuple[st
             out_symbols.append(sym)
             out_durations.append(float(dur))
     return tuple(out_symbols), tuple(out_durations)
-
-
-def _merge_displacements(symbols: Sequence[str],
-                         displacements: Sequence[float]) -> tuple[float, ...]:
-    """The displacements of :func:`_merge`'s segments: a merged run's changes add up."""
-    out: list[float] = []
-    previous = None
-    for sym, disp in zip(symbols, displacements):
-        if out and previous == sym:
-            out[-1] += disp
-        else:
-            out.append(float(disp))
-        previous = sym
-    return tuple(out)
 
 
 @dataclass(frozen=True)
@@ -258,69 +229,7 @@ class Actiongram:
         self._set_extras(names, symbols)  # after the names are checked; needs unmerged symbols
 
     def _set_extras(self, names: tuple[str, ...], symbols: tuple[tuple[str, ...], ...]) -> None:
-        """Validate and normalise displacements, actuator map and skeleton (before merging)."""
-        displacements = tuple(self.segment_displacements) or (None,) * len(names)
-        if len(displacements) != len(names):
-            raise ValueError("segment_displacements must have one entry per string")
-        rows: list[tuple[float, ...] | None] = []
-        for name, syms, disps in zip(names, symbols, displacements):
-            if disps is None:
-                rows.append(None)
-                continue
-            if isinstance(disps, (str, bytes)) or not isinstance(disps, Iterable):
-                raise FormatError(f"string {_shown(name)}: displacements must be a list of "
-                                  f"numbers or None, not {_shown(disps)}")
-            disps = tuple(disps)
-            if len(disps) != len(syms):
-                raise FormatError(f"string {_shown(name)} has {len(syms)} symbols but "
-                                  f"{len(disps)} displacements")
-            for disp in disps:
-                problem = _bad_displacement(disp)
-                if problem:
-                    raise FormatError(f"string {_shown(name)}: {problem}")
-            # an empty string has nothing to displace: unknown, as the text form reads it back
-            rows.append(_merge_displacements(syms, disps) if syms else None)
-        object.__setattr__(self, "segment_displacements", tuple(rows))
-
-        actuators = tuple(self.string_actuators)
-        if not actuators:
-            actuators = tuple(default_actuator(n) if isinstance(n, str) else n for n in names)
-        if len(actuators) != len(names):
-            raise ValueError("string_actuators must have one entry per string")
-        for name, actuator in zip(names, actuators):
-            problem = _bad_name(actuator)
-            if problem:
-                raise FormatError(f"string {_shown(name)}: actuator {_shown(actuator)}: {problem}")
-        object.__setattr__(self, "string_actuators", actuators)
-
-        edges: list[tuple[str, str | None]] = []
-        parent_of: dict[str, str | None] = {}
-        for edge in self.skeleton_edges:
-            if isinstance(edge, (str, bytes)) or len(tuple(edge)) != 2:
-                raise FormatError(f"a skeleton entry must be (actuator, parent), not {_shown(edge)}")
-            child, parent = tuple(edge)
-            for joint in (child,) if parent is None else (child, parent):
-                problem = _bad_name(joint)
-                if problem:
-                    raise FormatError(f"skeleton: {problem}")
-            if child in parent_of:
-                raise FormatError(f"skeleton: {_shown(child)} is given a parent twice")
-            if parent == child:
-                raise FormatError(f"skeleton: {_shown(child)} is its own parent")
-            parent_of[child] = parent
-            edges.append((child, parent))
-        rooted: set[str] = set()  # joints whose parent chain is known to end (linear time)
-        for start in parent_of:  # a parent chain that comes back is not a skeleton
-            chain, joint = [start], parent_of[start]
-            on_chain = {start}
-            while joint is not None and joint in parent_of and joint not in rooted:
-                if joint in on_chain:
-                    raise FormatError(f"skeleton: the parents of {_shown(start)} form a cycle")
-                chain.append(joint)
-                on_chain.add(joint)
-                joint = parent_of[joint]
-            rooted.update(chain)
-        object.__setattr__(self, "skeleton_edges", tuple(edges))
+        normalise_extras(self, names, symbols)
 
     # -- construction ------------------------------------------------------
     @classmethod
@@ -648,36 +557,6 @@ class Actiongram:
 
     def __repr__(self) -> str:
         return f"<Actiongram {len(self)} strings, {self.total_symbols} symbols>"
-
-
-_DIRECTIVE = re.compile(r"\s*%(?:actuator|parent)\s")
-
-
-def _read_directive(line: str, source: str, line_no: int, owner: dict[str, str],
-                    edges: list[tuple[str, str | None]]) -> None:
-    """Read ``%actuator JOINT: string …`` or ``%parent JOINT: PARENT`` (nothing: a root)."""
-    head, colon, body = line.partition(":")
-    keyword, _, joint = head.strip().partition(" ")
-    joint = joint.strip()
-    column = len(line) - len(line.lstrip()) + 1
-    if not colon:
-        raise FormatError(f"expected '{keyword} JOINT: …' (no ':' on this line)", source=source,
-                          line=line_no, column=column)
-    problem = _bad_name(joint)
-    if problem:
-        raise FormatError(f"{keyword}: {problem}", source=source, line=line_no, column=column)
-    words = body.split()
-    if keyword == "%actuator":
-        for name in words:
-            if name in owner:
-                raise FormatError(f"string {_shown(name)} is given an actuator twice",
-                                  source=source, line=line_no, column=column)
-            owner[name] = joint
-        return
-    if len(words) > 1:
-        raise FormatError(f"%parent {joint}: one parent, not {len(words)}", source=source,
-                          line=line_no, column=column)
-    edges.append((joint, words[0] if words else None))
 
 
 def _strip_comment(line: str) -> str:

@@ -22,7 +22,9 @@ def register(subparsers) -> None:
                     "(text form 'name: sym sym@D ...', or .json). Without FILE (or with "
                     "--example) it learns from a built-in synthetic actiongram and explains "
                     "what it found.")
-    induce.add_argument("file", metavar="FILE", nargs="?", help="an actiongram file")
+    induce.add_argument("file", metavar="FILE", nargs="*",
+                        help="an actiongram file; several files are performances of one action "
+                             "(learnt from together, never joined)")
     induce.add_argument("--example", action="store_true",
                         help="use the built-in synthetic example (20 strings, 4 patterned)")
     induce.add_argument("--inducer", default="pal", help="pal (default), sequential, or a "
@@ -34,6 +36,36 @@ def register(subparsers) -> None:
     induce.add_argument("-o", "--output", metavar="OUT.psgs",
                         help="also write the grammar system to this file")
     induce.set_defaults(run=run_induce)
+    locate = subparsers.add_parser(
+        "locate", help="find a learned action in new motion",
+        description="Learn an action from the performances given with --learn (actiongram "
+                    "files), then print the time spans of each FILE where it occurs, with a "
+                    "score (chance-corrected agreement with the learned patterns).")
+    locate.add_argument("file", metavar="FILE", nargs="+", help="actiongram files to search")
+    locate.add_argument("--learn", metavar="PERF", action="append", required=True,
+                        help="an actiongram file of one performance to learn from (repeatable)")
+    locate.add_argument("--threshold", type=float, default=0.4,
+                        help="least score of a place (default 0.4)")
+    locate.add_argument("--param", action="append", default=[], metavar="K=V",
+                        help="a PAL parameter (repeatable)")
+    locate.add_argument("--json", action="store_true", help="print one JSON object")
+    locate.set_defaults(run=run_locate)
+
+
+MOTION_SUFFIXES = (".bvh", ".amc", ".asf", ".c3d", ".fbx", ".trc")
+
+
+def _load_performances(files: list[str]):
+    """Actiongram files; a motion-capture file gets a one-line hint (psgs never reads motion)."""
+    from ..actiongram import load_actiongram
+
+    for name in files:
+        if Path(name).suffix.lower() in MOTION_SUFFIXES:
+            stem = Path(name).with_suffix(".actiongram").name
+            raise ValidationError(f"{name} is motion capture, not an actiongram: run "
+                                  f"'kinetology segment {name} -o {stem}' first, then "
+                                  f"'psgs induce {stem}'")
+    return [load_actiongram(name) for name in files]
 
 
 # -- argument types -------------------------------------------------------------------
@@ -73,7 +105,6 @@ EXAMPLE_NOISE = 0.1
 
 def run_induce(args) -> int:
     """``psgs induce``: learn from FILE (or the built-in example) and print or write the result."""
-    from ..actiongram import load_actiongram
     from ..format import dumps
     from ..induce.synthetic import generate
 
@@ -81,13 +112,16 @@ def run_induce(args) -> int:
     truth = None
     if args.file and args.example:
         raise ValidationError("give FILE or --example, not both")
+    performances = None
     if args.file:
-        actiongram = load_actiongram(args.file)
+        performances = _load_performances(args.file)
+        actiongram = performances[0]
     else:
         truth = generate(seed=EXAMPLE_SEED, noise=EXAMPLE_NOISE)
         actiongram = truth.actiongram
     began = time.perf_counter()
-    result = inducer.induce(actiongram)
+    result = inducer.induce(performances if performances and len(performances) > 1
+                            else actiongram)
     seconds = time.perf_counter() - began
     system_text = dumps(result.system) if result.system is not None else None
     if args.output:
@@ -112,9 +146,14 @@ def run_induce(args) -> int:
                    f"{args.inducer} find them?")
         out.append("(Try: psgs synth --noise 0.2 --seed 3 -o ag.txt && psgs induce ag.txt)")
         out.append("")
+    takes = f" ({len(performances)} performances)" if performances and len(performances) > 1 \
+        else ""
     out.append(f"{result.inducer}: {len(result.components)} component(s) of "
-               f"{len(actiongram)} strings, {actiongram.total_symbols} symbols, "
+               f"{len(actiongram)} strings, {actiongram.total_symbols} symbols{takes}, "
                f"in {seconds * 1000:.0f} ms")
+    if result.actuators:
+        out.append("  joints: " + ", ".join(
+            f"{a} ({', '.join(result.actuator_channels.get(a, ()))})" for a in result.actuators))
     for name in result.components:
         pattern = " ".join(result.patterns[name])
         where = result.occurrences[name]
@@ -147,10 +186,39 @@ def run_induce(args) -> int:
                        f"string that repeats a digram")
     out.append("")
     if system_text is None:
-        out.append("No grammar system: no string repeats in step with another.")
+        out.append("No grammar system: " + (result.verdict or "no string repeats in step with "
+                                             "another") + ".")
     else:
         out.append("Grammar system (each component repeats its pattern, all the same number of "
                    "times):")
         out.append(system_text.rstrip("\n"))
     print("\n".join(out))
+    return 0
+
+
+def run_locate(args) -> int:
+    """``psgs locate``: learn from --learn performances, print where each FILE holds the action."""
+    from ..induce import PAL
+    from ..induce.locate import locate
+
+    learned = PAL(**_params(args.param)).induce(_load_performances(args.learn))
+    if not learned.components:
+        raise ValidationError(f"nothing learnt from the --learn performances: "
+                              f"{learned.verdict or 'no component'}")
+    found = {name: locate(learned, ag, threshold=args.threshold)
+             for name, ag in zip(args.file, _load_performances(args.file))}
+    if args.json:
+        print(json.dumps({"components": list(learned.components),
+                          "actuators": list(learned.actuators),
+                          "found": {n: [[s.start, s.stop, s.score] for s in spans]
+                                    for n, spans in found.items()}}, indent=2))
+        return 0
+    print(f"learnt from {len(args.learn)} performance(s): joints "
+          f"{', '.join(learned.actuators) or ', '.join(learned.components)}")
+    for name, spans in found.items():
+        if not spans:
+            print(f"{name}: not found")
+            continue
+        print(f"{name}: " + ", ".join(f"{s.start:.2f}-{s.stop:.2f} s (score {s.score:.2f})"
+                                      for s in spans))
     return 0

@@ -25,7 +25,9 @@ from __future__ import annotations
 from .base import Inducer
 from .pal import PAL
 from .registry import available, get
-from .results import Induction, StringReport
+from .results import ActuatorReport, Induction, Morpheme, StringReport
 from .sequential import Sequential
+from .locate import Located, locate  # noqa: E402  (after PAL: locate reads PAL's modules)
 
-__all__ = ["Induction", "Inducer", "StringReport", "PAL", "Sequential", "get", "available"]
+__all__ = ["Induction", "Inducer", "StringReport", "ActuatorReport", "Morpheme", "PAL",
+           "Sequential", "get", "available", "locate", "Located"]

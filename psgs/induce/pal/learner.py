@@ -138,7 +138,7 @@ class PAL(Inducer):
         ValidationError
             For an empty sequence, or performances whose actuators differ.
         """
-        takes = as_performances(performances, "PAL.induce")
+        takes = as_performances(_same_strings(performances), "PAL.induce")
         if len(takes) > 1 or self.timing == "performances":
             return _from_performances(self, takes)
         actiongram = takes[0]
@@ -162,6 +162,34 @@ class PAL(Inducer):
                 found.occurrences[i] = by_period.occurrences[i]
                 found.partners[i] = [j for j in by_period.patterns if j != i]
         return by_period
+
+
+def _same_strings(performances):
+    """Performances given with different strings get every string (a missing one empty).
+
+    Segmentation leaves out the channels that hardly move in a take, so takes
+    of one action can name different strings; a string a performance lacks is
+    empty there (no information, no motion), in the order of first appearance.
+    """
+    if isinstance(performances, Actiongram) or not isinstance(performances, (list, tuple)) \
+            or not all(isinstance(p, Actiongram) for p in performances):
+        return performances
+    union = list(dict.fromkeys(n for p in performances for n in p.names))
+    if all(p.names == tuple(union) for p in performances):
+        return performances
+    owner = {n: p.actuator(n) for p in reversed(performances) for n in p.names}
+    out = []
+    for p in performances:
+        have = set(p.names)
+        skeleton = p.skeleton_edges or next((q.skeleton_edges for q in performances
+                                             if q.skeleton_edges), ())
+        out.append(Actiongram(
+            tuple(union), tuple(p.string(n) if n in have else () for n in union),
+            tuple(p.durations[n] if n in have else () for n in union),
+            tuple(p.origins[p.index(n)] if n in have else 0.0 for n in union),
+            tuple(p.displacements(n) if n in have else None for n in union),
+            tuple(owner[n] for n in union), skeleton))
+    return out
 
 
 def encode(actiongram: Actiongram) -> tuple[list[Timed], list[str]]:
@@ -227,8 +255,9 @@ def _from_performances(inducer: PAL, takes: tuple[Actiongram, ...]) -> Induction
         names, patterns, {names[i]: found.occurrences[i] for i in kept}, reports,
         synchronise=True, performances=len(takes),
         occurrence_performance={names[i]: found.occurrence_performance[i] for i in kept})
-    actuators = tuple(a for a in first.actuators
-                      if any(first.actuator(names[i]) == a for i in kept))
+    # the joints chosen take part even when a channel's copies agree on too little to
+    # give it a pattern of two kinetemes (then it has no component of its own)
+    actuators = tuple(a for a in first.actuators if a in found.channels)
     morphemes = {names[i]: Morpheme(patterns[names[i]], found.durations[i],
                                     None if all(d is None for d in first.segment_displacements)
                                     else found.displacements[i]) for i in kept}
@@ -237,8 +266,7 @@ def _from_performances(inducer: PAL, takes: tuple[Actiongram, ...]) -> Induction
                                          repeated=j.repeated, path=j.path)
                           for j in found.joints)
     return replace(result, actuators=actuators,
-                   actuator_channels={a: tuple(names[i] for i in kept
-                                               if first.actuator(names[i]) == a)
+                   actuator_channels={a: tuple(names[i] for i in found.channels[a])
                                       for a in actuators},
                    morphemes=morphemes, verdict=found.verdict or ("" if kept else NO_REPETITION),
                    actuator_reports=joint_reports)

@@ -48,17 +48,25 @@ def read_patterns(result: MotionResult, grids: list[Grid], periods, shifts) -> N
     leader = next(j for j in result.joints if j.name == result.leader)
     windows = copy_windows(grids, periods, shifts, leader.channels)
     width = int(np.median([n for _, _, n in windows]))
+    rows_all = [row for rows in result.channels.values() for row in rows]
+    stretched = {row: np.array([resample(grids[k].states[row:row + 1, a:a + n], width)[0]
+                                for k, a, n in windows]) for row in rows_all}
+    # the angle turned through at each stretched point: velocity x the time it stands for
+    turned_all = {row: np.array([resample(grids[k].velocity[row:row + 1, a:a + n], width)[0]
+                                 * (n * grids[k].step / width) for k, a, n in windows])
+                  for row in rows_all}
+    seconds = [n * grids[k].step / width for k, _, n in windows]
+    if periods and rows_all:
+        # cycles start at an arbitrary phase of the action: turn each copy (all its channels
+        # together) to agree best with the plurality of the copies
+        roll = _cycle_phases([stretched[r] for r in rows_all])
+        for row in rows_all:
+            stretched[row] = _rolled(stretched[row], roll)
+            turned_all[row] = _rolled(turned_all[row], roll)
     for rows in result.channels.values():
         for row in rows:
-            stretched, turned, seconds = [], [], []
-            for k, a, n in windows:
-                g = grids[k]
-                stretched.append(resample(g.states[row:row + 1, a:a + n], width)[0])
-                # the angle turned through at each stretched point: velocity x its time
-                turned.append(resample(g.velocity[row:row + 1, a:a + n], width)[0]
-                              * (n * g.step / width))
-                seconds.append(n * g.step / width)
-            copies = np.array(stretched)
+            copies = stretched[row]
+            turned = turned_all[row]
             column = _plurality(copies)
             runs = _runs(column)
             if len(runs) < 2:
@@ -106,3 +114,27 @@ def _runs(column: np.ndarray) -> list[tuple[int, int, int]]:
     for k in range(len(out) - 1):
         out[k][2] = out[k + 1][1]
     return [(s, a, b) for s, a, b in out]
+
+
+def _cycle_phases(channels: list[np.ndarray]) -> np.ndarray:
+    """Per copy, the circular shift that best matches the channels' plurality (two passes)."""
+    copies, width = channels[0].shape
+    roll = np.zeros(copies, dtype=np.int64)
+    for _ in range(2):
+        reference = [_plurality(_rolled(c, roll)) for c in channels]
+        best = np.full(copies, -1.0)
+        chosen = roll.copy()
+        for shift in range(width):
+            score = sum(((np.roll(c, -shift, axis=1) == ref[None, :]) & (c >= 0)).sum(axis=1)
+                        for c, ref in zip(channels, reference))
+            better = score > best
+            best[better] = score[better]
+            chosen[better] = shift
+        roll = chosen
+    return roll
+
+
+def _rolled(values: np.ndarray, roll: np.ndarray) -> np.ndarray:
+    """Each row of ``values`` turned left by its ``roll``."""
+    index = (np.arange(values.shape[1])[None, :] + roll[:, None]) % values.shape[1]
+    return np.take_along_axis(values, index, axis=1)

@@ -1,0 +1,321 @@
+"""Find a learned action in new motion: the time spans where its pattern recurs.
+
+:func:`locate` slides the learned pattern of every component channel over a
+new actiongram, in time, at a few tempos, and scores each place by the
+agreement of the kineteme states with the pattern, corrected for chance
+(Cohen's kappa, per channel, then the mean over the component channels, a
+channel the new actiongram lacks counting 0). Places scoring at least
+``threshold`` are occurrences; overlapping ones (the cycles of a repeated
+action) merge into one span.
+
+The pattern of a channel is its morpheme (kinetemes with typical durations)
+when the induction has one; otherwise the pattern's kinetemes share the
+median copy duration equally, and for a bare grammar system (no times at all)
+each kineteme lasts the channel's median segment duration in the new motion.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..actiongram import Actiongram
+from ..errors import ValidationError
+from ..model import PSGS, Nonterminal
+from .base import component_name
+from .pal.grids import grid_step, sample
+from .results import Induction
+
+__all__ = ["Located", "locate"]
+
+#: Tempos tried, relative to the learned one (slower and quicker performances).
+SCALES = (0.67, 0.8, 0.9, 1.0, 1.12, 1.25, 1.5)
+
+
+@dataclass(frozen=True)
+class Located:
+    """One span of time where the action was found; ``score`` in [-1, 1] (1: every state agrees)."""
+
+    start: float
+    stop: float
+    score: float
+
+
+def locate(learned: Induction | PSGS, actiongram: Actiongram, *, threshold: float = 0.4,
+           scales: tuple[float, ...] = SCALES, repeats: int | None = None,
+           min_speed: float = 0.5, method: str = "auto",
+           min_share: float | None = None) -> tuple[Located, ...]:
+    """The time spans of ``actiongram`` where the learned action occurs.
+
+    Parameters
+    ----------
+    learned : Induction or PSGS
+        What an inducer learnt (its components' patterns), or a grammar system
+        whose component names are the actiongram's string names made into
+        identifiers (as inducers name them).
+    actiongram : Actiongram
+        New motion (a take not used for learning).
+    threshold : float, optional
+        Least chance-corrected agreement, averaged over the component
+        channels, for a place to count (default 0.4).
+    scales : tuple of float, optional
+        Tempos tried, relative to the learned durations.
+    repeats : int, optional
+        Copies of the pattern in a row that a place must hold: by default 2
+        for an action learnt as cycles (several copies per performance), else 1.
+    min_speed : float, optional
+        Where a channel moves slower than this share of its learned typical
+        speed (from the morpheme's displacements), its agreement counts
+        proportionally less: the same states drawn small are not the action.
+    method : {"auto", "joints", "pattern"}, optional
+        ``"joints"``: the evidence PAL learns by, read in the new motion: its
+        cycles timed on the learned leader, each joint's repeated motion, and
+        the share of it that the learned joints carry (the score; found at
+        ``min_share``, default 0.4, one of them carrying at least PAL's
+        ``joint_share`` of the most any joint carries, and the learned
+        channels' repetition significant at PAL's ``alpha``). ``"pattern"``: the learned patterns slid over the
+        new motion (``threshold``). ``"auto"`` (default): joints for an action
+        learnt as cycles by joint, else pattern.
+    min_share : float, optional
+        For ``method="joints"``: least share of the new motion's repeated
+        motion the learned joints must carry (default 0.4).
+
+    Returns
+    -------
+    tuple of Located
+        In time order; empty when the action is not found.
+
+    Raises
+    ------
+    ValidationError
+        When ``learned`` has no component, or none of its components is a
+        string of ``actiongram``.
+    TypeError
+        When the arguments are not of these types.
+
+    Examples
+    --------
+    >>> from psgs import Actiongram
+    >>> from psgs.induce import Induction
+    >>> learned = Induction(None, ("a", "b"), {"a": ("x", "y"), "b": ("u", "v")},
+    ...                     {"a": ((0, 2),), "b": ((0, 2),)})
+    >>> new = Actiongram.from_strings({"a": "xy" * 6 + "xxxxyyyyxxxx", "b": "uv" * 6 + "u" * 12})
+    >>> [(round(s.start), round(s.stop)) for s in locate(learned, new, threshold=0.6)]
+    [(0, 12)]
+    """
+    if not isinstance(actiongram, Actiongram):
+        raise TypeError(f"locate needs an Actiongram, not {type(actiongram).__name__}")
+    if method not in ("auto", "joints", "pattern"):
+        raise ValidationError(f"method must be auto, joints or pattern, not {method!r}")
+    if method == "joints" or (method == "auto" and isinstance(learned, Induction)
+                              and learned.actuators and _cyclic(learned)):
+        return _by_joints(learned, actiongram, min_share if min_share is not None else 0.4)
+    templates = _templates(learned, actiongram)
+    if repeats is None:
+        repeats = 2 if _cyclic(learned) else 1
+    templates = {n: (syms * repeats, durs * repeats, speed)
+                 for n, (syms, durs, speed) in templates.items()}
+    if not templates:
+        raise ValidationError("none of the learned components is a string of this actiongram")
+    codes: dict[str, int] = {}
+    step = grid_step((actiongram,))
+    grid = sample(actiongram, codes, step)
+    size = len(codes) + len({s for syms, _, _ in templates.values() for s in syms})
+    rows = {name: actiongram.index(name) for name in templates}
+    best = np.full(grid.points, -np.inf)
+    width = np.zeros(grid.points, dtype=np.int64)
+    for scale in scales:
+        states = {name: _template_states(syms, durs, scale, step, codes)
+                  for name, (syms, durs, _) in templates.items()}
+        length = max(len(s) for s in states.values())
+        if length < 2 or length > grid.points:
+            continue
+        total = np.zeros(grid.points - length + 1)
+        for name, template in states.items():
+            template = np.pad(template, (0, length - len(template)), constant_values=-1)
+            curve = _kappa_curve(grid.states[rows[name]], template, size)
+            typical = templates[name][2]
+            if typical and min_speed > 0:  # drawn small: count in proportion
+                moving = _window_sums(grid.speed[rows[name]], length) / length
+                curve = curve * np.minimum(1.0, moving / (min_speed * typical * scale ** -1))
+            total += curve
+        score = total / len(learned_names(learned))
+        better = score > best[:len(score)]
+        best[:len(score)][better] = score[better]
+        width[:len(score)][better] = length
+    return _spans(best, width, threshold, grid.t0, step)
+
+
+def learned_names(learned: Induction | PSGS) -> tuple[str, ...]:
+    """The component names of ``learned`` (string names for an Induction)."""
+    if isinstance(learned, Induction):
+        return tuple(learned.components)
+    return tuple(c.name for c in learned.components)
+
+
+def _cyclic(learned) -> bool:
+    """Whether the action was learnt as cycles (more copies than performances)."""
+    if not isinstance(learned, Induction) or not learned.components:
+        return False
+    return len(learned.occurrences[learned.components[0]]) > learned.performances
+
+
+def _templates(learned, actiongram: Actiongram) -> dict[str, tuple]:
+    """Per component string of ``actiongram``: (kinetemes, durations, typical speed or None)."""
+    if isinstance(learned, Induction):
+        if not learned.components:
+            raise ValidationError("the induction has no component: nothing to locate")
+        out = {}
+        for name in learned.components:
+            if name not in actiongram.names:
+                continue
+            morpheme = learned.morphemes.get(name)
+            if morpheme is not None:
+                speed = None
+                if morpheme.displacements is not None:
+                    speed = sum(abs(d) for d in morpheme.displacements) / sum(morpheme.durations)
+                out[name] = (morpheme.kinetemes, morpheme.durations, speed)
+                continue
+            pattern = learned.patterns[name]
+            spans = learned.occurrences.get(name, ())
+            length = float(np.median([b - a for a, b in spans])) if spans else len(pattern)
+            out[name] = (pattern, (length / len(pattern),) * len(pattern), None)
+        return out
+    if isinstance(learned, PSGS):
+        if not learned.components:
+            raise ValidationError("the system has no component: nothing to locate")
+        by_identifier = {component_name(n, set()): n for n in actiongram.names}
+        out = {}
+        for grammar in learned.components:
+            name = by_identifier.get(grammar.name, grammar.name)
+            if name not in actiongram.names:
+                continue
+            pattern = _pattern_of(grammar)
+            durs = actiongram.durations[name]
+            typical = float(np.median(durs)) if durs else 1.0
+            out[name] = (pattern, (typical,) * len(pattern), None)
+        return out
+    raise TypeError(f"locate needs an Induction or a PSGS, not {type(learned).__name__}")
+
+
+def _pattern_of(grammar) -> tuple[str, ...]:
+    """The terminal string of a component's pattern: S -> N (the 'last' rule), N expanded."""
+    by_lhs: Mapping = grammar.rules_by_lhs
+    start = grammar.start
+    for rule in by_lhs.get(start, ()):
+        if len(rule.rhs) == 1 and isinstance(rule.rhs[0], Nonterminal):
+            return tuple(_expand(rule.rhs[0], by_lhs, 0))
+    raise ValidationError(f"component {grammar.name!r} has no pattern rule S -> N")
+
+
+def _expand(symbol, by_lhs, depth: int) -> list[str]:
+    if not isinstance(symbol, Nonterminal):
+        return [symbol.name]
+    if depth > 200:
+        raise ValidationError("a pattern rule nests more than 200 deep")
+    rules = by_lhs.get(symbol, ())
+    if not rules:
+        return []
+    return [t for s in rules[0].rhs for t in _expand(s, by_lhs, depth + 1)]
+
+
+def _template_states(symbols, durations, scale: float, step: float,
+                     codes: dict[str, int]) -> np.ndarray:
+    """The pattern sampled every ``step`` seconds at tempo ``scale`` (state codes)."""
+    ends = np.cumsum(np.asarray(durations, dtype=float) * scale)
+    count = max(1, int(round(ends[-1] / step)))
+    times = step * (np.arange(count) + 0.5)
+    index = np.minimum(np.searchsorted(ends, times, side="right"), len(symbols) - 1)
+    symbol_codes = np.array([codes.setdefault(s, len(codes)) for s in symbols], dtype=np.int64)
+    return symbol_codes[index]
+
+
+def _kappa_curve(row: np.ndarray, template: np.ndarray, size: int) -> np.ndarray:
+    """Chance-corrected agreement of ``template`` with ``row`` at every offset (FFT)."""
+    n, m = len(row), len(template)
+    places = n - m + 1
+    valid_t = template >= 0
+    agree = np.zeros(places)
+    chance = np.zeros(places)
+    counted = np.maximum(_window_sums((row >= 0).astype(float), m), 1.0)
+    for sym in np.unique(template[valid_t]).tolist():
+        indicator = (row == sym).astype(float)
+        mask = (template == sym).astype(float)
+        agree += _correlate(indicator, mask)[:places]
+        chance += (mask.sum() / max(valid_t.sum(), 1)) * _window_sums(indicator, m) / counted
+    observed = agree / max(valid_t.sum(), 1)
+    room = 1 - chance
+    return np.where(room > 1e-9, (observed - chance) / np.maximum(room, 1e-9), 0.0)
+
+
+def _correlate(signal: np.ndarray, kernel: np.ndarray) -> np.ndarray:
+    size = 1 << int(len(signal) + len(kernel)).bit_length()
+    out = np.fft.irfft(np.fft.rfft(signal, size) * np.conj(np.fft.rfft(kernel, size)), size)
+    return np.round(out[:len(signal)], 9)
+
+
+def _window_sums(values: np.ndarray, m: int) -> np.ndarray:
+    total = np.concatenate(([0.0], np.cumsum(values)))
+    return total[m:] - total[:-m]
+
+
+def _spans(score: np.ndarray, width: np.ndarray, threshold: float, t0: float,
+           step: float) -> tuple[Located, ...]:
+    """Places at or above ``threshold``, overlapping ones merged, in seconds."""
+    hits = np.flatnonzero(score >= threshold)
+    out: list[list[float]] = []
+    for a in hits.tolist():
+        b = a + int(width[a])
+        if out and a <= out[-1][1]:
+            out[-1][1] = max(out[-1][1], b)
+            out[-1][2] = max(out[-1][2], float(score[a]))
+        else:
+            out.append([a, b, float(score[a])])
+    return tuple(Located(t0 + a * step, t0 + b * step, round(s, 6)) for a, b, s in out)
+
+
+def _by_joints(learned: Induction, actiongram: Actiongram, min_share: float
+               ) -> tuple[Located, ...]:
+    """One span over the cycles of the learned leader, when the learned joints carry the
+    repetition of the new motion (see :func:`locate`, ``method="joints"``)."""
+    from .pal import performances as perf
+    from .pal.learner import PAL
+
+    params = PAL(**{k: v for k, v in learned.params.items()
+                    if k in PAL().get_params()}) if learned.inducer == "pal" else PAL()
+    codes: dict[str, int] = {}
+    grid = sample(actiongram, codes, grid_step((actiongram,)))
+    size = max(len(codes), 1)
+    rows = {a: tuple(actiongram.index(c) for c in actiongram.channels(a))
+            for a in actiongram.actuators}
+    mine = tuple(r for a in learned.actuators for r in rows.get(a, ()))
+    if not mine:
+        return ()
+    scored = perf.lag_scores(grid, size, params)
+    lag = perf._period(scored, mine, params)  # the learned joints' period in this motion
+    if not lag or grid.points < params.min_copies * lag:
+        return ()
+    segments = np.array([[len(x) for x in actiongram.symbols]], dtype=float)
+    paths = np.array([grid.speed.sum(axis=1) * grid.step])
+    repeated, log_p = perf._cycles([grid], [lag], size, paths, segments)
+    carried = {a: float(repeated[list(r)].sum()) for a, r in rows.items() if r}
+    total = sum(carried.values())
+    if total <= 0:
+        return ()
+    share = sum(carried.get(a, 0.0) for a in learned.actuators) / total
+    top = max(carried.values())
+    ours = max(carried.get(a, 0.0) for a in learned.actuators)
+    # the action: its joints carry much of the repetition, one of them as a leader would
+    # (at joint_share of the most), beyond chance (Bonferroni over the learned channels)
+    significant = float(min(log_p[list(mine)])) + np.log10(len(mine)) <= np.log10(params.alpha)
+    if share < min_share or ours < params.joint_share * top or not significant:
+        return ()
+    from .pal.period import track_windows
+    starts = track_windows(grid.states[list(mine)], lag)
+    if len(starts) == 0:
+        return ()
+    t0, step = grid.t0, grid.step
+    return (Located(t0 + float(starts[0]) * step, t0 + float(starts[-1] + lag) * step,
+                    round(share, 6)),)

@@ -1,0 +1,58 @@
+"""psgs induce with several performances, the motion-file hint, and psgs locate."""
+
+from __future__ import annotations
+
+import json
+
+from psgs.cli import main
+from test_pal_performances import performance  # the synthetic waving takes
+
+
+def write_takes(tmp_path, seeds, **kw):
+    paths = []
+    for seed in seeds:
+        path = tmp_path / f"take{seed}.actiongram"
+        path.write_text(performance(seed, **kw).to_text(), encoding="utf-8")
+        paths.append(str(path))
+    return paths
+
+
+def test_induce_several_files_names_the_joints(tmp_path, capsys):
+    paths = write_takes(tmp_path, range(5))
+    assert main(["induce", *paths]) == 0
+    out = capsys.readouterr().out
+    assert "(5 performances)" in out
+    assert "joints: arm (" in out and "hand (" in out and "other (" not in out
+    assert main(["induce", *paths, "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["performances"] == 5 and data["actuators"][:2] == ["arm", "hand"]
+    assert data["verdict"] == ""
+
+
+def test_induce_says_plainly_when_nothing_repeats(tmp_path, capsys):
+    paths = write_takes(tmp_path, range(4), wave=False)
+    assert main(["induce", *paths]) == 0
+    assert "No grammar system: no synchronised repetition." in capsys.readouterr().out
+
+
+def test_induce_given_motion_capture_says_to_segment_it(tmp_path, capsys):
+    bvh = tmp_path / "wave.bvh"
+    bvh.write_text("HIERARCHY\n", encoding="utf-8")
+    assert main(["induce", str(bvh)]) != 0
+    err = capsys.readouterr().err
+    assert "is motion capture, not an actiongram" in err and "kinetology segment" in err
+    assert err.count("\n") == 1
+
+
+def test_locate_command(tmp_path, capsys):
+    learn = write_takes(tmp_path, range(5))
+    search = write_takes(tmp_path, (11, 12)) + write_takes(tmp_path, (21,), wave=False)
+    args = ["locate", *search]
+    for path in learn:
+        args += ["--learn", path]
+    assert main(args) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].startswith("learnt from 5 performance(s): joints arm, hand")
+    found = {line.split(":")[0]: line for line in lines[1:]}
+    assert "score" in found[search[0]] and "score" in found[search[1]]
+    assert found[search[2]].endswith("not found")

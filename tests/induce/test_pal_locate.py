@@ -1,0 +1,89 @@
+"""locate: a learned action found in held-apart takes, not in takes of other actions.
+
+Real takes from ../shared/data/mocap (Bandai Namco dataset 1, segmented by
+kinetology); skips only when the shared data is absent. A synthetic case
+checks the pattern method and the errors.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from psgs import Actiongram
+from psgs.errors import ValidationError
+from psgs.induce import Induction, PAL
+from psgs.induce.locate import Located, locate
+
+MOCAP = Path(__file__).resolve().parents[2] / ".." / "shared" / "data" / "mocap"
+BANDAI = MOCAP / "bandai-namco-1" / "data"
+needs_data = pytest.mark.skipif(not BANDAI.is_dir(),
+                                reason=f"shared motion-capture data not found at {BANDAI}")
+
+
+def takes(content: str, limit: int | None = None):
+    kinetology = pytest.importorskip("kinetology")
+    files = sorted(BANDAI.glob(f"dataset-1_{content}_*.bvh"))[:limit]
+    return [kinetology.segment(kinetology.read(f)) for f in files]
+
+
+@pytest.fixture(scope="module")
+def wave():
+    """The right-hand wave learnt from every other style's take, and the takes held apart."""
+    if not BANDAI.is_dir():
+        pytest.skip(f"shared motion-capture data not found at {BANDAI}")
+    every = takes("bye")
+    return PAL().induce(every[::2]), every[1::2]
+
+
+@needs_data
+def test_the_learned_wave_is_the_right_arm(wave):
+    learned, _ = wave
+    assert set(learned.actuators) == {"UpperArm_R", "LowerArm_R", "Hand_R"}
+
+
+@needs_data
+def test_locate_finds_the_wave_in_held_apart_takes(wave):
+    learned, held = wave
+    found = [locate(learned, ag) for ag in held]
+    assert sum(bool(spans) for spans in found) >= 0.9 * len(held)
+    for ag, spans in zip(held, found):
+        for span in spans:
+            assert isinstance(span, Located) and 0 <= span.start < span.stop
+            assert span.stop <= max(o + sum(d) for o, d in zip(ag.origins,
+                                                                 ag.segment_durations)) + 0.1
+
+
+@needs_data
+def test_locate_does_not_find_the_wave_in_other_actions(wave):
+    learned, _ = wave
+    others = takes("walk", 4) + takes("run", 4) + takes("bow", 4) + takes("guide", 4)
+    hits = sum(bool(locate(learned, ag)) for ag in others)
+    assert hits <= 0.1 * len(others)
+
+
+def test_pattern_method_on_a_synthetic_case_and_errors():
+    learned = Induction(None, ("a", "b"), {"a": ("x", "y"), "b": ("u", "v")},
+                        {"a": ((0, 2),), "b": ((0, 2),)})
+    new = Actiongram.from_strings({"a": "xy" * 6 + "xxxxyyyyxxxx", "b": "uv" * 6 + "u" * 12})
+    spans = locate(learned, new, threshold=0.6)  # one channel of two agreeing scores 0.5
+    assert [(round(s.start), round(s.stop)) for s in spans] == [(0, 12)]
+    assert locate(learned, Actiongram.from_strings({"a": "x" * 20, "b": "u" * 20})) == ()
+    with pytest.raises(ValidationError, match="none of the learned components"):
+        locate(learned, Actiongram.from_strings({"q": "xy"}))
+    with pytest.raises(ValidationError, match="no component"):
+        locate(Induction(None, (), {}, {}), new)
+    with pytest.raises(TypeError):
+        locate(learned, "a: x y")
+    with pytest.raises(ValidationError, match="method"):
+        locate(learned, new, method="guess")
+
+
+def test_locate_with_a_grammar_system_reads_its_patterns():
+    learned = PAL().induce(Actiongram.from_strings(
+        {"a": "xyzw" * 8, "b": "pqrs" * 8, "c": "mnmnnmmnmnmnnnmnmmmnnmnmnnmmmnmn"}))
+    assert learned.system is not None
+    new = Actiongram.from_strings({"a": "wwxx" + "xyzw" * 5, "b": "ssrr" + "pqrs" * 5})
+    spans = locate(learned.system, new)
+    assert spans and spans[0].start >= 2
