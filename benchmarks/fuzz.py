@@ -19,14 +19,15 @@ import random
 import sys
 import time
 import traceback
-from pathlib import Path
 
-REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO))
-sys.path.insert(0, str(REPO / "tests"))
+from _common import REPO, load_file, require
 
-from fuzz_support import READERS, TIME_LIMIT, Hang, apply, outcome, random_mutations  # noqa: E402
-from fuzz_support import seed_bytes  # noqa: E402
+require("psgs")
+require("kinetology")
+# the suite's mutation helpers, loaded by path (the tests are not a package)
+_fuzz = load_file(REPO / "tests" / "fuzz_support.py", "fuzz_support")
+READERS, TIME_LIMIT, Hang, apply = _fuzz.READERS, _fuzz.TIME_LIMIT, _fuzz.Hang, _fuzz.apply
+outcome, random_mutations, seed_bytes = _fuzz.outcome, _fuzz.random_mutations, _fuzz.seed_bytes
 
 
 def run(name: str, inputs: int, seed: int, limit: float) -> dict:

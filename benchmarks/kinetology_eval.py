@@ -14,44 +14,21 @@ kin-reproducibility, kin-selectivity).
 from __future__ import annotations
 
 import argparse
-import csv
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
+from _common import DATA, IMG, MOCAP, REPO, replace_section, require, write_csv
 
-REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO))
-
-import kinetology  # noqa: E402
+kinetology = require("kinetology")
 from kinetology import plotting  # noqa: E402
 from kinetology.evaluation import (CMU_ANGLES, angle_table,  # noqa: E402
                                    mocap6_performances, reproducibility, selectivity,
                                    view_invariance)
 
-MOCAP = REPO.parent / "shared" / "data" / "mocap"
-IMG = REPO / "docs" / "img"
-DATA = REPO / "docs" / "data"
 # flexion-extension angles and other channels whose role in the exercises is obvious
 KEY_CHANNELS = ["lfemur.rx", "rfemur.rx", "ltibia.rx", "rtibia.rx", "lhumerus.rx",
                 "rhumerus.rx", "lradius.rx", "rradius.rx", "lowerback.rx", "lowerback.ry"]
-
-
-def replace_section(path: Path, name: str, text: str) -> None:
-    """Rewrite the text between ``<!-- name:start -->`` and ``<!-- name:end -->``."""
-    start, end = f"<!-- {name}:start -->", f"<!-- {name}:end -->"
-    page = path.read_text()
-    head, rest = page.split(start, 1)
-    _, tail = rest.split(end, 1)
-    path.write_text(f"{head}{start}\n{text.strip()}\n{end}{tail}")
-
-
-def write_csv(path: Path, header, rows) -> None:
-    with path.open("w", newline="") as handle:
-        writer = csv.writer(handle)
-        writer.writerow(header)
-        writer.writerows(rows)
 
 
 def main(argv=None) -> int:

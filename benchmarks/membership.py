@@ -21,16 +21,12 @@ import dataclasses
 import math
 import os
 import platform
-import re
-import sys
 import time
-from pathlib import Path
 
 import lark
+from _common import BENCHMARKS_PAGE, REPO, loglog_slope, replace_section, require
 
-REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO))
-
+require("psgs")
 from psgs import to_lark  # noqa: E402
 from psgs.format import load  # noqa: E402
 from psgs.membership import accepts  # noqa: E402
@@ -75,13 +71,6 @@ def time_lark(system, words) -> float:
     return total
 
 
-def slope(points: list[tuple[int, float]]) -> float:
-    xs = [math.log(x) for x, _ in points]
-    ys = [math.log(max(y, 1e-9)) for _, y in points]
-    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
-    return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
-
-
 def run(quick: bool) -> str:
     rows = []
     groups: dict[tuple[str, str], list[tuple[int, float, float]]] = {}
@@ -110,15 +99,14 @@ def run(quick: bool) -> str:
     lines += ["", "Growth exponent (log-log slope of time against n):", "",
               "| system | mode | accepts | Lark Earley |", "|---|---|---:|---:|"]
     for (label, mode), points in groups.items():
-        ours_slope = slope([(n, t) for n, t, _ in points])
-        lark_slope = slope([(n, t) for n, _, t in points])
+        sizes = [n for n, _, _ in points]
+        ours_slope = loglog_slope(sizes, [t for _, t, _ in points])
+        lark_slope = loglog_slope(sizes, [t for _, _, t in points])
         lines.append(f"| {label} | {mode} | {ours_slope:.2f} | {lark_slope:.2f} |")
     return "\n".join(lines)
 
 
 def write_section(table: str, command: str) -> None:
-    page = REPO / "docs" / "benchmarks.md"
-    text = page.read_text(encoding="utf-8")
     cpu = platform.processor() or platform.machine()
     body = (f"## Membership (`psgs.accepts`)\n\nMeasured with `{command}` on {cpu}, Python "
             f"{platform.python_version()}, lark {lark.__version__}, "
@@ -128,9 +116,7 @@ def write_section(table: str, command: str) -> None:
             f"(not the witness replay, done on first access); Lark is the parse of the same "
             f"component words alone, with the exported grammars, parser construction excluded, "
             f"measured once per word tuple (it has no modes).\n\n{table}\n")
-    new = re.sub(r"(<!-- membership:start -->\n).*?(<!-- membership:end -->)",
-                 lambda m: m.group(1) + body + m.group(2), text, flags=re.S)
-    page.write_text(new, encoding="utf-8")
+    replace_section(BENCHMARKS_PAGE, "membership", body)
 
 
 def main() -> None:

@@ -16,21 +16,19 @@ section of docs/benchmarks.md. The same sweep is available as
 from __future__ import annotations
 
 import argparse
-import csv
 import datetime
 import json
 import sys
 import time
-from pathlib import Path
 
-REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO))
-sys.path.insert(0, str(REPO / "benchmarks"))
+from _common import DATA, IMG, require, write_csv
+
+require("psgs")
+from pal_speed import write_section  # noqa: E402 (a sibling script, found the same way)
 
 from psgs.induce import PAL, Sequential  # noqa: E402
-from psgs.synthetic import PAPER_POINTS, generate, noise_sweep  # noqa: E402
-
-DATA, IMG = REPO / "docs" / "data", REPO / "docs" / "img"
+from psgs.induce.sweep import noise_sweep  # noqa: E402
+from psgs.induce.synthetic import PAPER_POINTS, generate  # noqa: E402
 PAPER_LEVELS = tuple(round(0.02 * k, 2) for k in range(21))
 VARIANT_LEVELS = tuple(round(0.04 * k, 2) for k in range(11))
 VARIANTS = {"random durations": {"durations": "random"},
@@ -50,13 +48,13 @@ def progress(label):
     return report
 
 
-def write_csv(path, rows, variant_of):
-    with open(path, "w", newline="") as handle:
-        writer = csv.writer(handle)
-        writer.writerow(["inducer", "variant", "noise", "trials", "successes", "rate", "seconds"])
-        for variant, r in ((variant_of(r), r) for r in rows):
-            writer.writerow([r.inducer, variant, f"{r.noise:.2f}", r.trials, r.successes,
-                             f"{r.rate:.4f}", f"{r.seconds:.3f}"])
+HEADER = ["inducer", "variant", "noise", "trials", "successes", "rate", "seconds"]
+
+
+def sweep_rows(rows, variant):
+    """CSV rows of a sweep's results, all of one protocol variant."""
+    return [[r.inducer, variant, f"{r.noise:.2f}", r.trials, r.successes, f"{r.rate:.4f}",
+             f"{r.seconds:.3f}"] for r in rows]
 
 
 def main(argv=None) -> int:
@@ -75,20 +73,15 @@ def main(argv=None) -> int:
     seq_rows = noise_sweep(PAPER_LEVELS, args.trials, inducers=("sequential",), jobs=args.jobs,
                            progress=progress("paper protocol, Sequential"))
     paper_rows = pal_rows + seq_rows
-    write_csv(DATA / "noise.csv", paper_rows, lambda r: "paper")
+    write_csv(DATA / "noise.csv", HEADER, sweep_rows(paper_rows, "paper"))
 
     variant_rows = {}
     for name, variant in VARIANTS.items():
         variant_rows[name] = noise_sweep(VARIANT_LEVELS, args.trials, inducers=("pal",),
                                          variant=variant, jobs=args.jobs,
                                          progress=progress(f"variant {name}"))
-    with open(DATA / "noise_variants.csv", "w", newline="") as handle:
-        writer = csv.writer(handle)
-        writer.writerow(["inducer", "variant", "noise", "trials", "successes", "rate", "seconds"])
-        for name, rows in variant_rows.items():
-            for r in rows:
-                writer.writerow([r.inducer, name, f"{r.noise:.2f}", r.trials, r.successes,
-                                 f"{r.rate:.4f}", f"{r.seconds:.3f}"])
+    write_csv(DATA / "noise_variants.csv", HEADER,
+              [row for name, rows in variant_rows.items() for row in sweep_rows(rows, name)])
 
     with_components = {"pal": 0, "sequential": 0}
     pal, seq = PAL(), Sequential()
@@ -120,7 +113,7 @@ def main(argv=None) -> int:
           f"{summary['pal_sweep_cpu_seconds']:.1f} s CPU in the workers")
 
     try:
-        from psgs.cli.induce import plot_noise
+        from psgs.cli.bench import plot_noise
         plot_noise(paper_rows, str(IMG / "noise_paper.png"),
                    title=f"Paper protocol, {args.trials} actiongrams per level")
         plot_variants(variant_rows, pal_rows, IMG / "noise_variants.png", args.trials)
@@ -128,7 +121,6 @@ def main(argv=None) -> int:
         print("matplotlib is not installed: no figures (pip install 'psgs[plot]')",
               file=sys.stderr)
 
-    from pal_speed import write_section
     write_section()
     return 0
 

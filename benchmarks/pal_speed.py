@@ -23,21 +23,14 @@ from __future__ import annotations
 import argparse
 import csv
 import json
-import math
 import subprocess
 import sys
-import time
-from pathlib import Path
 
-REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO))
+from _common import BENCHMARKS_PAGE, DATA, best_of, loglog_slope, replace_section, require
 
+require("psgs")
 from psgs.induce import PAL, Sequential  # noqa: E402
-from psgs.synthetic import generate  # noqa: E402
-
-DATA = REPO / "docs" / "data"
-PAGE = REPO / "docs" / "benchmarks.md"
-START, END = "<!-- pal:start -->", "<!-- pal:end -->"
+from psgs.induce.synthetic import generate  # noqa: E402
 
 
 def actiongram(copies: int):
@@ -45,12 +38,7 @@ def actiongram(copies: int):
 
 
 def best_time(func, repeat: int) -> float:
-    times = []
-    for _ in range(repeat):
-        began = time.perf_counter()
-        func()
-        times.append(time.perf_counter() - began)
-    return min(times)
+    return best_of(repeat, func)[0]
 
 
 def peer():
@@ -62,22 +50,16 @@ def peer():
     return "scikit-sequitur", lambda symbols: parse(list(symbols))
 
 
-def slope(xs, ys) -> float:
-    lx, ly = [math.log(x) for x in xs], [math.log(y) for y in ys]
-    mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
-    return (sum((a - mx) * (b - my) for a, b in zip(lx, ly))
-            / sum((a - mx) ** 2 for a in lx))
-
-
 def peak_rss_mb(copies: int) -> dict:
-    code = ("import resource, sys; sys.path.insert(0, %r);"
-            "from psgs.synthetic import generate; from psgs.induce import PAL;"
+    # the child imports the same installed psgs as this process (same interpreter)
+    code = ("import resource;"
+            "from psgs.induce.synthetic import generate; from psgs.induce import PAL;"
             "c = generate(seed=0, noise=0.1, strings=100, patterned=8, copies=%d);"
             "before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss;"
             "r = PAL().induce(c.actiongram);"
             "after = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss;"
             "print(before, after, c.actiongram.total_symbols, len(r.components))"
-            % (str(REPO), copies))
+            % copies)
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout.split()
     before, after, symbols, comps = (int(v) for v in out)
@@ -123,9 +105,9 @@ def main(argv=None) -> int:
         print(f"{n:>9,} symbols  PAL {pal_s:7.3f} s ({r['pal_symbols_per_s']:>12,.0f}/s, "
               f"correct={correct})  {peer_name} {peer_s:7.3f} s  ratio {r['speed_ratio']:.1f}",
               flush=True)
-    pal_exp = slope([r["symbols"] for r in rows], [r["pal_seconds"] for r in rows])
+    pal_exp = loglog_slope([r["symbols"] for r in rows], [r["pal_seconds"] for r in rows])
     peer_rows = [r for r in rows if r["peer_seconds"] == r["peer_seconds"]]
-    peer_exp = slope([r["symbols"] for r in peer_rows], [r["peer_seconds"] for r in peer_rows])
+    peer_exp = loglog_slope([r["symbols"] for r in peer_rows], [r["peer_seconds"] for r in peer_rows])
     print(f"growth exponent: PAL {pal_exp:.2f}, {peer_name} {peer_exp:.2f}")
     summary = {"pal_exponent": pal_exp, "peer_exponent": peer_exp, "peer": peer_name,
                "command": "python benchmarks/pal_speed.py"}
@@ -195,10 +177,7 @@ def write_section() -> None:
             lines.append(f"Peak RSS on {m['symbols']:,} symbols: {m['peak_rss_mb']:.0f} MB "
                          f"({m['rss_after_building_mb']:.0f} MB after building the actiongram, "
                          f"before PAL).")
-    text = PAGE.read_text()
-    head, rest = text.split(START, 1)
-    _, tail = rest.split(END, 1)
-    PAGE.write_text(head + START + "\n" + "\n".join(lines).rstrip() + "\n" + END + tail)
+    replace_section(BENCHMARKS_PAGE, "pal", "\n".join(lines))
 
 
 if __name__ == "__main__":

@@ -16,36 +16,12 @@ from __future__ import annotations
 import argparse
 import platform
 import sys
-import time
-from pathlib import Path
 
 import numpy as np
+from _common import BENCHMARKS_PAGE, MOCAP, best_of, replace_section, require
 
-REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO))
-
-import kinetology  # noqa: E402
+kinetology = require("kinetology")
 from kinetology.segmentation import segments  # noqa: E402
-
-MOCAP = REPO.parent / "shared" / "data" / "mocap"
-
-
-def replace_section(path: Path, name: str, text: str) -> None:
-    """Rewrite the text between ``<!-- name:start -->`` and ``<!-- name:end -->``."""
-    start, end = f"<!-- {name}:start -->", f"<!-- {name}:end -->"
-    page = path.read_text()
-    head, rest = page.split(start, 1)
-    _, tail = rest.split(end, 1)
-    path.write_text(f"{head}{start}\n{text.strip()}\n{end}{tail}")
-
-
-def best_of(repeat, function):
-    times = []
-    for _ in range(repeat):
-        started = time.perf_counter()
-        result = function()
-        times.append(time.perf_counter() - started)
-    return min(times), result
 
 
 def main(argv=None) -> int:
@@ -83,7 +59,7 @@ def main(argv=None) -> int:
     text = "\n".join(lines)
     print(text)
     if not args.no_write:
-        replace_section(REPO / "docs" / "benchmarks.md", "kin-segmentation", text)
+        replace_section(BENCHMARKS_PAGE, "kin-segmentation", text)
     return 0
 
 

@@ -34,7 +34,42 @@ _DEFAULT_FRAME_RATE = 120.0  # the CMU database's capture rate; AMC files do not
 
 @dataclass(frozen=True)
 class AsfSkeleton:
-    """What an ASF file says: bone dofs and the skeleton in joint form."""
+    """What an ASF file says: bone dofs and the skeleton in joint form.
+
+    Parameters
+    ----------
+    dofs : types.MappingProxyType
+        Bone name to its dof names (``"rx"``, ...) in AMC value order, ``"root"`` included.
+    skeleton : Skeleton
+        The bones as joints (each bone a joint at its start, its end an end site).
+    length_scale : float
+        The ``:units length`` value.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> folder = Path(tempfile.mkdtemp())
+    >>> _ = (folder / "07.asf").write_text(''':root
+    ...   order TX TY TZ RX RY RZ
+    ...   axis XYZ
+    ... :bonedata
+    ...   begin
+    ...     name femur
+    ...     direction 0 -1 0
+    ...     length 10
+    ...     axis 0 0 0 XYZ
+    ...     dof rx
+    ...   end
+    ... :hierarchy
+    ...   begin
+    ...     root femur
+    ...   end
+    ... ''')
+    >>> bones = read_asf(folder / "07.asf")
+    >>> dict(bones.dofs)
+    {'root': ('tx', 'ty', 'tz', 'rx', 'ry', 'rz'), 'femur': ('rx',)}
+    """
 
     dofs: MappingProxyType  # read-only: bone name -> tuple of dof names, in AMC value order ("root" included)
     skeleton: Skeleton
@@ -42,13 +77,78 @@ class AsfSkeleton:
 
 
 def read_asf(path: str | Path) -> AsfSkeleton:
-    """Read an ASF skeleton file (errors name ``file:line:col``); see :func:`parse_asf`."""
+    """Read an ASF skeleton file (errors name ``file:line:col``); see :func:`parse_asf`.
+
+    Parameters
+    ----------
+    path : str or Path
+        The ``.asf`` file.
+
+    Returns
+    -------
+    AsfSkeleton
+
+    Raises
+    ------
+    MotionFormatError
+        For malformed text, naming ``file:line:col``.
+    FileNotFoundError
+        When the file does not exist.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> folder = Path(tempfile.mkdtemp())
+    >>> _ = (folder / "07.asf").write_text(''':root
+    ...   order TX TY TZ RX RY RZ
+    ...   axis XYZ
+    ... :bonedata
+    ...   begin
+    ...     name femur
+    ...     direction 0 -1 0
+    ...     length 10
+    ...     axis 0 0 0 XYZ
+    ...     dof rx
+    ...   end
+    ... :hierarchy
+    ...   begin
+    ...     root femur
+    ...   end
+    ... ''')
+    >>> read_asf(folder / "07.asf").skeleton.names
+    ('root', 'femur', 'femur.end')
+    """
     path = Path(path)
     return parse_asf(path.read_text(encoding="utf-8", errors="replace"), source=str(path))
 
 
 def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
-    """Parse ASF text into bone dofs and a :class:`Skeleton`."""
+    """Parse ASF text into bone dofs and a :class:`Skeleton`.
+
+    Parameters
+    ----------
+    text : str
+        The contents of an ASF file.
+    source : str, default "<asf>"
+        The name errors give.
+
+    Returns
+    -------
+    AsfSkeleton
+
+    Raises
+    ------
+    MotionFormatError
+        For malformed text, naming ``source:line:col``.
+
+    Examples
+    --------
+    >>> parse_asf(":root\\n  order TX TY TZ RX RY RZ\\n", source="empty.asf")
+    Traceback (most recent call last):
+    ...
+    kinetology.motion.MotionFormatError: empty.asf: no :bonedata bones
+    """
     lines = _without_bom(text).splitlines()
     section = None
     root = {"order": ("tx", "ty", "tz", "rx", "ry", "rz"), "axis": "XYZ",
@@ -197,7 +297,29 @@ def _axis_order(text: str, fail, number) -> str:
 
 
 def find_asf(amc_path: Path) -> Path | None:
-    """The ASF for ``SS_TT.amc``: ``SS.asf`` beside it, else the only ``.asf`` there."""
+    """The ASF for ``SS_TT.amc``: ``SS.asf`` beside it, else the only ``.asf`` there.
+
+    Parameters
+    ----------
+    amc_path : Path
+        The AMC file.
+
+    Returns
+    -------
+    Path or None
+        None when there is no ``SS.asf`` and not exactly one ``.asf`` in the folder.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> folder = Path(tempfile.mkdtemp())
+    >>> find_asf(folder / "07_01.amc") is None
+    True
+    >>> _ = (folder / "skeleton.asf").write_text("")
+    >>> find_asf(folder / "07_01.amc").name
+    'skeleton.asf'
+    """
     stem = amc_path.stem.split("_")[0]
     candidate = amc_path.with_name(f"{stem}.asf")
     if candidate.is_file():
@@ -208,7 +330,68 @@ def find_asf(amc_path: Path) -> Path | None:
 
 def read_amc(path: str | Path, asf: str | Path | AsfSkeleton | None = "auto",
              frame_rate: float = _DEFAULT_FRAME_RATE) -> Motion:
-    """Read an AMC motion; ``asf="auto"`` looks for its skeleton beside it."""
+    """Read an AMC motion; ``asf="auto"`` looks for its skeleton beside it.
+
+    Without an ASF the channels are named from a ``SkeletonJoints.key`` beside the file
+    (as in cmu-mocap6), else ``bone.1``, ``bone.2``, ...; the motion then has no skeleton.
+
+    Parameters
+    ----------
+    path : str or Path
+        The ``.amc`` file.
+    asf : "auto", str, Path, AsfSkeleton or None, default "auto"
+        The skeleton: found by :func:`find_asf` (``"auto"``), read from a path, given, or
+        none.
+    frame_rate : float, default 120.0
+        AMC files do not state their rate; 120 fps is the CMU database's.
+
+    Returns
+    -------
+    Motion
+        Channels ``bone.dof`` in the ASF's dof order, degrees (``:RADIANS`` files converted).
+
+    Raises
+    ------
+    MotionFormatError
+        For a malformed AMC, ASF or key file, naming ``file:line:col``.
+    FileNotFoundError
+        When a file does not exist.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> folder = Path(tempfile.mkdtemp())
+    >>> _ = (folder / "07.asf").write_text(''':root
+    ...   order TX TY TZ RX RY RZ
+    ...   axis XYZ
+    ... :bonedata
+    ...   begin
+    ...     name femur
+    ...     direction 0 -1 0
+    ...     length 10
+    ...     axis 0 0 0 XYZ
+    ...     dof rx
+    ...   end
+    ... :hierarchy
+    ...   begin
+    ...     root femur
+    ...   end
+    ... ''')
+    >>> _ = (folder / "07_01.amc").write_text(''':DEGREES
+    ... 1
+    ... root 0 0 0 0 0 0
+    ... femur 10
+    ... 2
+    ... root 0 0 0 0 0 0
+    ... femur 20
+    ... ''')
+    >>> walk = read_amc(folder / "07_01.amc")             # finds 07.asf beside it
+    >>> walk
+    Motion('...07_01.amc', 2 frames x 7 channels at 120 fps)
+    >>> walk.column("femur.rx").tolist(), walk.skeleton.names
+    ([10.0, 20.0], ('root', 'femur', 'femur.end'))
+    """
     path = Path(path)
     if isinstance(asf, str) and asf == "auto":
         found = find_asf(path)
@@ -238,7 +421,41 @@ def _key_file_dofs(path: Path) -> dict | None:
 
 def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None = None,
               source: str = "<amc>", frame_rate: float = _DEFAULT_FRAME_RATE) -> Motion:
-    """Parse AMC text. ``dofs`` (bone -> dof names) names the channels and checks counts."""
+    """Parse AMC text. ``dofs`` (bone -> dof names) names the channels and checks counts.
+
+    Parameters
+    ----------
+    text : str
+        The contents of an AMC file.
+    dofs : dict, optional
+        Bone name to its dof names (from an ASF); without it the root's channels are its six
+        standard dofs and another bone's ``bone.1``, ``bone.2``, ...
+    skeleton : Skeleton, optional
+        Attached to the motion.
+    source : str, default "<amc>"
+        The name errors give.
+    frame_rate : float, default 120.0
+        Frames per second.
+
+    Returns
+    -------
+    Motion
+
+    Raises
+    ------
+    MotionFormatError
+        For malformed text, naming ``source:line:col``.
+
+    Examples
+    --------
+    >>> motion = parse_amc(":DEGREES\\n1\\nroot 1 2 3 0 0 0\\n2\\nroot 1 2 4 0 0 0\\n")
+    >>> motion.channels, motion.column("root.tz").tolist()
+    (('root.tx', 'root.ty', 'root.tz', 'root.rx', 'root.ry', 'root.rz'), [3.0, 4.0])
+    >>> parse_amc("1\\nroot 1 2\\n2\\nroot 1\\n", source="bad.amc")
+    Traceback (most recent call last):
+    ...
+    kinetology.motion.MotionFormatError: bad.amc:4:...
+    """
     lines = _without_bom(text).splitlines()
     start = 0
     degrees = True

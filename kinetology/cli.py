@@ -1,7 +1,9 @@
 """The ``kinetology`` command: segment, compress, decompress, evaluate, plot.
 
 Every error a user can cause (a bad file, an unknown channel, a bad number)
-is one line on stderr and exit status 2, never a traceback.
+is one line on stderr and exit status 2, never a traceback. The exit statuses
+are the table of the ``psgs`` command (:data:`EXIT_STATUS_HELP`), printed at
+the end of every ``--help``.
 """
 
 from __future__ import annotations
@@ -15,6 +17,24 @@ import numpy as np
 from .motion import MotionFormatError
 from .segmentation import DEFAULTS
 
+#: The exit-status table of every psgs and kinetology command (equal to
+#: ``psgs.cli.EXIT_STATUS_HELP``, a test checks: kinetology does not import the psgs CLI).
+EXIT_STATUS_HELP = """\
+exit status (the same for every psgs and kinetology command):
+  0    yes / done
+  1    no: check: the words are not in the language; derive: the random derivation is
+       blocked, or --enumerate found no word up to --max-length
+  2    usage or input error: a bad option, a file that cannot be read or is malformed
+       (one line on stderr, never a traceback)
+  3    a bound was hit or the answer is unknown: a search or derivation stopped at a
+       budget (what was found is still printed; the bound is named on stderr)
+  130  interrupted (Ctrl-C)
+  141  the reader of the output went away (e.g. | head)"""
+
+_FILE_HELP = "a motion file: .bvh, or .amc (its .asf skeleton is found beside it)"
+_FRAME_RATE_HELP = ("frames per second of an AMC file (AMC files do not say; default 120, the "
+                    "CMU rate); a BVH file states its own")
+
 _PARAM_HELP = {
     "smoothing": "Gaussian smoothing sigma in seconds",
     "velocity_deadband": "velocity dead band in deg/s",
@@ -26,17 +46,68 @@ _PARAM_HELP = {
 }
 
 
+class _TableHelpFormatter(argparse.HelpFormatter):
+    """Wraps descriptions as argparse does, but keeps text with line breaks (the exit-status
+    table) as written."""
+
+    def _fill_text(self, text, width, indent):
+        if "\n" in text:
+            return "".join(indent + line for line in text.splitlines(keepends=True))
+        return super()._fill_text(text, width, indent)
+
+
+_CODEC_HELP = {
+    "quantum": "knot value step in degrees",
+    "residual_step": "residual layer grid step in degrees (0: no residual layer)",
+    "hysteresis": "residual grid hysteresis, a fraction of the step (>= 0.5)",
+}
+
+
 def _add_params(parser, *, codec: bool = False) -> None:
+    if codec:  # the codec pins its own settings: its defaults, not the segmentation's
+        from .codec import CODEC_DEFAULTS
+        for name, default in CODEC_DEFAULTS.items():
+            text = _PARAM_HELP.get(name, _CODEC_HELP.get(name))
+            parser.add_argument(f"--{name.replace('_', '-')}", dest=name, type=float,
+                                default=None, help=f"{text} (default {default:g})")
+        parser.add_argument("--max-error", dest="max_error", type=float, default=None,
+                            help="rate control: mean angle error bound in degrees; the codec "
+                                 "then chooses every setting itself")
+        return
     for name, default in DEFAULTS.items():
-        if codec and name == "min_range":
-            continue
         parser.add_argument(f"--{name.replace('_', '-')}", dest=name, type=float, default=None,
                             help=f"{_PARAM_HELP[name]} (default {default:g})")
-    if codec:
-        from .codec import CODEC_DEFAULTS
-        parser.add_argument("--quantum", type=float, default=None,
-                            help=f"knot value step in degrees (default "
-                                 f"{CODEC_DEFAULTS['quantum']:g})")
+
+
+def _version() -> str:
+    from importlib import metadata
+    try:
+        return metadata.version("psgs")  # kinetology ships in the psgs distribution
+    except metadata.PackageNotFoundError:  # run from a checkout
+        import psgs
+        return psgs.__version__
+
+
+def _read(args, path: str):
+    """Read a motion file, with ``--frame-rate`` for AMC (a BVH file states its own rate)."""
+    from .readers import read
+    rate = getattr(args, "frame_rate", None)
+    if rate is None:
+        return read(path)
+    if Path(path).suffix.lower() != ".amc":
+        raise MotionFormatError("--frame-rate applies to AMC files; a BVH file states its own "
+                                "frame time", source=path)
+    return read(path, frame_rate=rate)
+
+
+def _positive_rate(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not (np.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"{text!r} is not a positive finite number")
+    return value
 
 
 def _params(args, names) -> dict:
@@ -52,7 +123,6 @@ def _write(text: str, out: str | None) -> None:
 
 def _cmd_segment(args) -> int:
     from .performances import cut, segment_performances
-    from .readers import read
     from .segmentation import segment
 
     channels = None
@@ -72,7 +142,7 @@ def _cmd_segment(args) -> int:
         return _segment_spans(args, channels)
     motions, spans = [], []
     for name in args.files:
-        motion = read(name)
+        motion = _read(args, name)
         span = ""
         if args.start is not None or args.stop is not None:
             motion = cut(motion, args.start, args.stop)
@@ -101,13 +171,12 @@ def _segment_spans(args, channels) -> int:
     """One actiongram per labelled span of one take: DIR/TAKE-LABEL-K.actiongram."""
     from .labels import spans_of
     from .performances import from_spans, segment_performances
-    from .readers import read
 
     if len(args.files) != 1 or not args.output or args.output == "-":
         raise ValueError("--labels cuts one take into performances: give one FILE and -o DIR/")
     if args.start is not None or args.stop is not None:
         raise ValueError("--labels and --start/--stop do not go together")
-    motion = read(args.files[0])
+    motion = _read(args, args.files[0])
     spans = spans_of(args.labels, motion.frame_rate)
     parts = from_spans(motion, spans, args.label, min_seconds=args.min_seconds)
     if not parts:
@@ -131,14 +200,18 @@ def _segment_spans(args, channels) -> int:
 
 def _cmd_compress(args) -> int:
     from .codec import CODEC_DEFAULTS, compress
-    from .readers import read
 
-    motion = read(args.file)
-    data = compress(motion, **_params(args, CODEC_DEFAULTS))
+    motion = _read(args, args.file)
+    params = _params(args, CODEC_DEFAULTS)
+    if args.max_error is not None and params:
+        raise ValueError(f"--max-error chooses the settings itself; drop "
+                         f"{', '.join('--' + n.replace('_', '-') for n in sorted(params))}")
+    data = compress(motion, max_error=args.max_error, **params)
     out = args.output or str(Path(args.file).with_suffix(".kin"))
     Path(out).write_bytes(data)
     size = Path(args.file).stat().st_size
-    print(f"{out}: {len(data)} bytes, {100 * len(data) / size:.3f}% of {args.file}")
+    print(f"{out}: {len(data)} bytes, {100 * len(data) / size:.3f}% of {args.file}; mean "
+          f"angle error {data.mean_error:.4f} deg (all channels {data.mean_error_all:.4f})")
     return 0
 
 
@@ -152,25 +225,26 @@ def _cmd_decompress(args) -> int:
         lines.append(f"{time:.6g}," + ",".join(f"{v:.4f}" for v in row))
     _write("\n".join(lines) + "\n", args.output)
     if args.against:
-        from .readers import read
-        original = read(args.against)
+        original = _read(args, args.against)
         if original.values.shape != motion.values.shape:
             raise MotionFormatError(f"{args.against} has shape {original.values.shape}, the "
                                     f"decoded motion {motion.values.shape}", source=args.file)
-        error = np.abs(original.values - motion.values)
-        print(f"mean absolute error {error.mean():.4f}, max {error.max():.3f}", file=sys.stderr)
+        from .codec import mean_errors
+        angles, every = mean_errors(original.select(motion.channels) if
+                                    original.channels != motion.channels else original, motion)
+        print(f"mean absolute error {every:.4f} over all channels, {angles:.4f} deg over "
+              f"angles (rotation channels compared modulo 360)", file=sys.stderr)
     return 0
 
 
 def _cmd_evaluate(args) -> int:
     from .evaluation import (angle_table, codec_point, mocap6_performances, reproducibility,
                              selectivity, view_invariance)
-    from .readers import read
     from .segmentation import segments
 
     params = _params(args, DEFAULTS)
     for name in args.files:
-        motion = read(name)
+        motion = _read(args, name)
         seg = segments(motion, **params)
         point = codec_point(motion, Path(name).stat().st_size,
                             **{k: v for k, v in params.items() if k != "min_range"})
@@ -216,9 +290,8 @@ def _cmd_evaluate(args) -> int:
 
 def _cmd_plot(args) -> int:
     from . import plotting
-    from .readers import read
 
-    motion = read(args.file)
+    motion = _read(args, args.file)
     params = _params(args, DEFAULTS)
     params.pop("min_range", None)
     if args.kind == "states":
@@ -251,11 +324,16 @@ def build_parser() -> argparse.ArgumentParser:
         prog="kinetology",
         description="Motion capture (BVH, ASF/AMC) in, actiongrams out; compression by "
                     "segments; the paper's kinetological principles measured.")
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
+    parser.add_argument("--version", action="version", version=f"%(prog)s {_version()}",
+                        help="print the version and exit")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True,
+                                help="the subcommand (COMMAND --help for its options)")
 
     p = sub.add_parser("segment", help="segment motion files into actiongrams (text form), "
                                        "one per file (one performance each)")
-    p.add_argument("files", nargs="+", metavar="FILE")
+    p.add_argument("files", nargs="+", metavar="FILE", help=_FILE_HELP + "; several files are "
+                   "performances of one action")
+    p.add_argument("--frame-rate", type=_positive_rate, metavar="FPS", help=_FRAME_RATE_HELP)
     p.add_argument("--channels", nargs="+", help="channels to keep (names or comma lists)")
     p.add_argument("--start", type=float, default=None,
                    help="seconds: segment only from here (a performance within a take)")
@@ -271,19 +349,23 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(run=_cmd_segment)
 
     p = sub.add_parser("compress", help="compress a motion file by segments")
-    p.add_argument("file")
+    p.add_argument("file", help=_FILE_HELP)
+    p.add_argument("--frame-rate", type=_positive_rate, metavar="FPS", help=_FRAME_RATE_HELP)
     p.add_argument("-o", "--output", help="output file (default: FILE with suffix .kin)")
     _add_params(p, codec=True)
     p.set_defaults(run=_cmd_compress)
 
     p = sub.add_parser("decompress", help="reconstruct a compressed motion as CSV")
-    p.add_argument("file")
+    p.add_argument("file", help="a .kin file written by kinetology compress")
     p.add_argument("-o", "--output", help="CSV output (default: stdout)")
     p.add_argument("--against", help="original motion file: print the mean absolute error")
+    p.add_argument("--frame-rate", type=_positive_rate, metavar="FPS",
+                   help="--against: " + _FRAME_RATE_HELP)
     p.set_defaults(run=_cmd_decompress)
 
     p = sub.add_parser("evaluate", help="measure the five kinetological principles")
-    p.add_argument("files", nargs="*")
+    p.add_argument("files", nargs="*", metavar="FILE", help=_FILE_HELP + " (any number)")
+    p.add_argument("--frame-rate", type=_positive_rate, metavar="FPS", help=_FRAME_RATE_HELP)
     p.add_argument("--mocap6", help="cmu-mocap6 folder: reproducibility and selectivity")
     p.add_argument("--views", type=int, default=36, help="viewpoints on the circle")
     _add_params(p)
@@ -291,15 +373,22 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("plot", help="draw a joint angle by state, its reconstruction, or "
                                     "the view-invariance picture")
-    p.add_argument("file")
+    p.add_argument("file", help=_FILE_HELP)
+    p.add_argument("--frame-rate", type=_positive_rate, metavar="FPS", help=_FRAME_RATE_HELP)
     p.add_argument("--channel", required=True,
                    help="channel (states, reconstruction) or angle name such as lknee (view)")
-    p.add_argument("--kind", choices=("states", "reconstruction", "view"), default="states")
+    p.add_argument("--kind", choices=("states", "reconstruction", "view"), default="states",
+                   help="states: the angle coloured by state (default); reconstruction: the "
+                        "angle and its decoded copy; view: 2D against 3D states around a circle")
     p.add_argument("--start", type=float, default=0.0, help="seconds")
     p.add_argument("--stop", type=float, default=None, help="seconds")
     p.add_argument("-o", "--output", required=True, help="image file (.png, .svg, .pdf)")
     _add_params(p)
     p.set_defaults(run=_cmd_plot)
+    parser.epilog = EXIT_STATUS_HELP
+    for command in (parser, *sub.choices.values()):
+        command.epilog = EXIT_STATUS_HELP
+        command.formatter_class = _TableHelpFormatter
     return parser
 
 
@@ -317,6 +406,14 @@ def main(argv: list[str] | None = None) -> int:
         where = f"{exc.filename}: " if getattr(exc, "filename", None) else ""
         print(f"kinetology: error: {where}{exc.strerror or exc}", file=sys.stderr)
         return 2
+    except RecursionError:  # the last line of defence: a limit of Python, not a traceback
+        print("kinetology: error: the input nests too deeply (Python's recursion limit)",
+              file=sys.stderr)
+        return 2
+    except MemoryError:
+        print("kinetology: out of memory: the file needs more memory than there is",
+              file=sys.stderr)
+        return 3
     except KeyboardInterrupt:
         print("kinetology: interrupted", file=sys.stderr)
         return 130

@@ -44,7 +44,31 @@ def codec_point(motion: Motion, original_size: int, **params) -> dict:
 
     ``mae`` is the mean absolute error over all channels and frames (root
     translations included, in file units), ``mae_angles`` over angle
-    channels only, ``segments`` the number of segments stored.
+    channels only, ``max_error`` the largest absolute error.
+
+    Parameters
+    ----------
+    motion : Motion
+        The motion to compress.
+    original_size : int
+        Size of the file it was read from, bytes (the denominator of ``percent``).
+    **params
+        Passed to :func:`kinetology.compress`.
+
+    Returns
+    -------
+    dict
+        ``bytes``, ``percent``, ``mae``, ``mae_angles`` and ``max_error``.
+
+    Examples
+    --------
+    >>> import kinetology
+    >>> walk = kinetology.synthetic_motion(3, seed=0)
+    >>> point = codec_point(walk, original_size=walk.values.nbytes)
+    >>> sorted(point)
+    ['bytes', 'mae', 'mae_angles', 'max_error', 'percent']
+    >>> point["percent"] < 100 and point["mae"] <= point["max_error"]
+    True
     """
     data = compress(motion, **params)
     decoded = decompress(data)
@@ -97,6 +121,26 @@ def angle_table(skeleton) -> MappingProxyType:
     """The first of CMU_ANGLES, CMU_BVH_ANGLES, BANDAI_ANGLES whose joints the skeleton has.
 
     Empty when there is no skeleton or none fits.
+
+    Parameters
+    ----------
+    skeleton : Skeleton or None
+        The skeleton of a motion.
+
+    Returns
+    -------
+    types.MappingProxyType
+        Angle name (``"lknee"``, ...) to the (end, vertex, end) joint names.
+
+    Examples
+    --------
+    >>> dict(angle_table(None))
+    {}
+    >>> from kinetology import Joint, Skeleton
+    >>> names = sorted({j for triple in CMU_ANGLES.values() for j in triple})
+    >>> cmu_like = Skeleton(tuple(Joint(n, None, (0, 0, 0)) for n in names))
+    >>> angle_table(cmu_like)["lknee"]
+    ('lfemur', 'ltibia', 'lfoot')
     """
     if skeleton is None:
         return MappingProxyType({})
@@ -109,7 +153,30 @@ def angle_table(skeleton) -> MappingProxyType:
 
 @dataclass(frozen=True, eq=False)
 class ViewInvariance:
-    """States of one joint angle in 3D and seen from ``azimuths`` (degrees)."""
+    """States of one joint angle in 3D and seen from ``azimuths`` (degrees).
+
+    What :func:`view_invariance` returns. State codes index
+    :data:`kinetology.STATES` (``0`` is ``B``, ...).
+
+    Parameters
+    ----------
+    azimuths : numpy.ndarray
+        The viewpoints, degrees.
+    states_3d : numpy.ndarray
+        The state code of the 3D angle per frame.
+    states_2d : numpy.ndarray
+        The state code of the 2D angle, views x frames.
+    angle_3d : numpy.ndarray
+        The 3D angle, degrees, per frame.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> result = ViewInvariance(np.array([0.0, 90.0]), np.array([0, 1]),
+    ...                         np.array([[0, 1], [0, 0]]), np.array([10.0, 20.0]))
+    >>> result.agreement_per_view, result.agreement
+    (array([1. , 0.5]), 0.75)
+    """
 
     azimuths: np.ndarray
     states_3d: np.ndarray   # frames
@@ -135,6 +202,52 @@ def view_invariance(motion: Motion, triple: tuple[str, str, str], *, views: int 
     ``y`` in CMU data), ``views`` of them evenly spaced, looking at the body
     from ``elevation`` degrees above the horizon. The 2D angle is the angle
     between the projected bones. ``params`` are segmentation parameters.
+
+    Parameters
+    ----------
+    motion : Motion
+        A motion with a skeleton.
+    triple : tuple of str
+        Joint names (end, vertex, end): the angle is at the middle joint.
+    views : int, default 36
+        Number of viewpoints, evenly spaced around the vertical axis.
+    elevation : float, default 0.0
+        Height of the cameras above the horizon, degrees.
+    up_axis : int, default 1
+        Index of the vertical axis in the skeleton's coordinates (1: ``y``).
+    **params
+        Segmentation parameters (:data:`kinetology.segmentation.DEFAULTS`); ``min_range`` is
+        ignored.
+
+    Returns
+    -------
+    ViewInvariance
+
+    Raises
+    ------
+    ValueError
+        When ``views`` is not a positive whole number or the motion has no skeleton.
+    KeyError
+        When a joint of ``triple`` is not in the skeleton.
+
+    Examples
+    --------
+    A knee bending in the body's y-z plane is seen fully from the front and the back and
+    edge-on from the sides:
+
+    >>> import numpy as np
+    >>> from kinetology import Joint, Motion, Skeleton
+    >>> leg = Skeleton((Joint("hip", None, (0, 0, 0), ("hip.rx",)),
+    ...                 Joint("knee", 0, (0, -10, 0), ("knee.rx",)),
+    ...                 Joint("foot", 1, (0, -10, 0), end_site=True)))
+    >>> t = np.arange(240) / 120
+    >>> knee = 45 + 40 * np.sin(2 * np.pi * t)          # two knee bends in two seconds
+    >>> bend = Motion(np.column_stack([0 * t, knee]), ("hip.rx", "knee.rx"), 120.0, leg)
+    >>> result = view_invariance(bend, ("hip", "knee", "foot"), views=4)
+    >>> result.azimuths
+    array([  0.,  90., 180., 270.])
+    >>> result.agreement_per_view.round(2)
+    array([1.  , 0.26, 1.  , 0.26])
     """
     if int(views) != views or views < 1:
         raise ValueError(f"views must be a positive whole number, not {views!r}")
@@ -166,7 +279,25 @@ MOCAP6_ACTIONS = ("JumpJack", "Jog", "Squat", "KneeRaise", "ArmCircle", "Twist",
 
 @dataclass(frozen=True, eq=False)
 class Performance:
-    """One labelled stretch of one take: an action done (usually many times over)."""
+    """One labelled stretch of one take: an action done (usually many times over).
+
+    Parameters
+    ----------
+    take : str
+        The take's name (a key of the motions given with it).
+    action : str
+        The action's label.
+    start : int
+        First frame.
+    stop : int
+        One past the last frame.
+
+    Examples
+    --------
+    >>> p = Performance("86_01", "Jog", 240, 960)
+    >>> p.stop - p.start
+    720
+    """
 
     take: str
     action: str
@@ -180,6 +311,33 @@ def mocap6_performances(folder: str | Path, *, min_seconds: float = 2.0):
     ``truelabels/T.txt`` holds one label per 1/10 s (label ``t`` covers AMC
     frames ``12t .. 12t+11``); a performance is a run of one label lasting at
     least ``min_seconds``. Takes without an AMC file are skipped.
+
+    Parameters
+    ----------
+    folder : str or Path
+        The cmu-mocap6 folder (with ``amc/`` and ``truelabels/``).
+    min_seconds : float, default 2.0
+        Shorter runs of one label are not performances.
+
+    Returns
+    -------
+    motions : dict of str to Motion
+        Each take's motion, by take name.
+    performances : list of Performance
+        In take order, then time order.
+
+    Raises
+    ------
+    MotionFormatError
+        When an AMC file is malformed.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> folder = Path("../shared/data/mocap/cmu-mocap6")
+    >>> motions, performances = mocap6_performances(folder) if folder.is_dir() else ({}, [])
+    >>> all(p.action in MOCAP6_ACTIONS and p.take in motions for p in performances)
+    True
     """
     from .readers import read
 
@@ -207,6 +365,32 @@ def describe(codes: np.ndarray, signal: np.ndarray, *, min_range: float = 5.0) -
 
     ``codes`` are the per-frame state codes and ``signal`` the (smoothed)
     angle over the performance's frames.
+
+    Parameters
+    ----------
+    codes : numpy.ndarray
+        State codes per frame (indices into :data:`kinetology.STATES`).
+    signal : numpy.ndarray
+        The angle per frame, degrees.
+    min_range : float, default 5.0
+        A channel moving less than this (degrees) is ``still``.
+
+    Returns
+    -------
+    str
+        ``"still"``, ``"irregular"`` or the most frequent cycle, e.g. ``"BGRY"``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> swing = 30 * np.sin(np.linspace(0, 6 * np.pi, 300))
+    >>> codes = np.array([0, 1, 2, 3] * 3).repeat(25)     # B G R Y, three times over
+    >>> describe(codes, swing)
+    'BGRY'
+    >>> describe(codes, 0.05 * swing)                   # a 3° range: below min_range
+    'still'
+    >>> describe(codes[:75], swing[:75])
+    'irregular'
     """
     if signal.size == 0 or np.ptp(signal) < min_range:
         return "still"
@@ -240,8 +424,36 @@ def _descriptions(motions, performances, channels, min_range, params):
 def reproducibility(motions, performances, channels, *, min_range: float = 5.0, **params):
     """Per action and channel: (share of performances with the modal description, it).
 
-    Returns ``{action: {channel: (fraction, description, count)}}`` for actions
-    with at least two performances.
+    Parameters
+    ----------
+    motions : dict of str to Motion
+        The takes, by name.
+    performances : list of Performance
+        Labelled stretches of the takes.
+    channels : sequence of str
+        The channels to describe.
+    min_range : float, default 5.0
+        Passed to :func:`describe`.
+    **params
+        Segmentation parameters (:data:`kinetology.segmentation.DEFAULTS`).
+
+    Returns
+    -------
+    dict
+        ``{action: {channel: (fraction, description, count)}}`` for actions with at least
+        two performances; ``count`` is the number of performances.
+
+    Examples
+    --------
+    >>> import kinetology
+    >>> from kinetology.evaluation import Performance
+    >>> takes = {"a": kinetology.synthetic_motion(3, (0, 1), seed=0),
+    ...          "b": kinetology.synthetic_motion(3, (0, 1), seed=1)}
+    >>> performances = [Performance("a", "swing", 0, 480), Performance("a", "swing", 480, 960),
+    ...                 Performance("b", "wave", 0, 480), Performance("b", "wave", 480, 960)]
+    >>> table = reproducibility(takes, performances, ["j0.rx", "j1.rx"])
+    >>> table["swing"]["j0.rx"]
+    (1.0, 'BGRY', 2)
     """
     p = {k: v for k, v in {**DEFAULTS, **params}.items() if k != "min_range"}
     described = _descriptions(motions, performances, channels, min_range, p)
@@ -267,6 +479,41 @@ def selectivity(motions, performances, channels, *, min_range: float = 5.0, **pa
     performances whose nearest other performance (Hamming distance between
     description vectors, ties to the earlier one) is of the same action,
     with ``chance`` the accuracy of always guessing the commonest action.
+
+    Parameters
+    ----------
+    motions : dict of str to Motion
+        The takes, by name.
+    performances : list of Performance
+        Labelled stretches of the takes.
+    channels : sequence of str
+        The channels to describe.
+    min_range : float, default 5.0
+        Passed to :func:`describe`.
+    **params
+        Segmentation parameters (:data:`kinetology.segmentation.DEFAULTS`).
+
+    Returns
+    -------
+    dict
+        ``pairwise``, ``modal`` (action to its modal description per channel),
+        ``nearest_neighbour_accuracy``, ``chance`` and ``performances`` (their number).
+
+    Examples
+    --------
+    >>> import kinetology
+    >>> from kinetology.evaluation import Performance
+    >>> takes = {"a": kinetology.synthetic_motion(3, (0, 1), seed=0),
+    ...          "b": kinetology.synthetic_motion(3, (0, 1), seed=1)}
+    >>> performances = [Performance("a", "swing", 0, 480), Performance("a", "swing", 480, 960),
+    ...                 Performance("b", "wave", 0, 480), Performance("b", "wave", 480, 960)]
+    >>> result = selectivity(takes, performances, ["j0.rx", "j1.rx", "j2.rx"])
+    >>> sorted(result)
+    ['chance', 'modal', 'nearest_neighbour_accuracy', 'pairwise', 'performances']
+    >>> result["chance"], result["performances"]
+    (0.5, 4)
+    >>> 0 <= result["pairwise"]["swing", "wave"] <= 1
+    True
     """
     p = {k: v for k, v in {**DEFAULTS, **params}.items() if k != "min_range"}
     described = _descriptions(motions, performances, channels, min_range, p)

@@ -26,6 +26,25 @@ class MotionFormatError(ValueError):
 
     ``str(error)`` is one line, ``file:line:col: message`` (line and column
     left out when they do not apply); the parts are kept as attributes.
+    A ``ValueError``, so code that catches bad values catches it too.
+
+    Parameters
+    ----------
+    message : str
+        What is wrong, in words (cut to 200 characters: garbage input stays one line).
+    source : str, default "<data>"
+        The file (or a description of the data).
+    line, column : int, optional
+        Where in the file, counting from 1.
+
+    Examples
+    --------
+    >>> error = MotionFormatError("expected 6 numbers, found 5", source="walk.amc", line=12,
+    ...                           column=1)
+    >>> str(error)
+    'walk.amc:12:1: expected 6 numbers, found 5'
+    >>> error.line, isinstance(error, ValueError)
+    (12, True)
     """
 
     def __init__(self, message: str, *, source: str = "<data>", line: int | None = None,
@@ -59,6 +78,29 @@ class Joint:
     zero for BVH, the ASF ``axis`` for ASF bones). ``channels`` names the
     motion columns that move it (``joint.tx`` .. ``joint.rz``); an end site
     has none.
+
+    Parameters
+    ----------
+    name : str
+        The joint's name.
+    parent : int or None
+        Index of the parent joint in the skeleton; None for the root.
+    offset : tuple of float
+        Position relative to the parent, in the parent's frame (file units).
+    channels : tuple of str, default ()
+        The motion channels that move this joint.
+    rotation_order : str, default "ZYX"
+        Order of the elementary rotations in the product.
+    axis : tuple of float, default (0, 0, 0)
+        The fixed pre-rotation (degrees; ASF ``axis``).
+    end_site : bool, default False
+        Whether this is a BVH ``End Site`` (or an ASF bone's end).
+
+    Examples
+    --------
+    >>> knee = Joint("knee", 0, (0.0, -10.0, 0.0), ("knee.rx",))
+    >>> knee.rotation_order, knee.end_site
+    ('ZYX', False)
     """
 
     name: str
@@ -72,7 +114,30 @@ class Joint:
 
 @dataclass(frozen=True, slots=True)
 class Skeleton:
-    """Joints in depth-first order (a parent always comes before its children)."""
+    """Joints in depth-first order (a parent always comes before its children).
+
+    Parameters
+    ----------
+    joints : tuple of Joint
+        Depth-first: every joint's parent index is smaller than its own.
+    length_unit : str, default "file units"
+        What the offsets are measured in (said in plots and docs).
+
+    Raises
+    ------
+    ValueError
+        When a joint's parent does not come before it.
+
+    Examples
+    --------
+    >>> leg = Skeleton((Joint("hip", None, (0, 0, 0)), Joint("knee", 0, (0, -10, 0))))
+    >>> leg.names, leg.index("knee")
+    (('hip', 'knee'), 1)
+    >>> Skeleton((Joint("knee", 1, (0, -10, 0)), Joint("hip", None, (0, 0, 0))))
+    Traceback (most recent call last):
+    ...
+    ValueError: joint 'knee' has parent 1, which does not come before it
+    """
 
     joints: tuple[Joint, ...]
     length_unit: str = "file units"
@@ -100,9 +165,41 @@ class Skeleton:
 class Motion:
     """Joint-angle motion: ``values[frame, channel]`` in degrees, read-only.
 
+    Frozen: ``values`` is a read-only copy and ``meta`` a read-only mapping.
+
+    Parameters
+    ----------
+    values : array_like
+        Frames x channels, finite numbers (degrees for rotations, file units for
+        translations).
+    channels : tuple of str
+        Distinct channel names, ``joint.axis`` with axis one of :data:`AXES`.
+    frame_rate : float
+        Frames per second, positive.
+    skeleton : Skeleton, optional
+        The joints the channels move (for forward kinematics); None when unknown.
+    source : str, default "<motion>"
+        Where the motion came from (named in errors and in ``repr``).
+    meta : dict, optional
+        Anything else: the file format, the truth of a synthetic motion, ...
+
+    Raises
+    ------
+    ValueError
+        When ``values`` is not two-dimensional, its columns and ``channels`` disagree, names
+        repeat, a value is not finite or the frame rate is not positive.
+
+    Examples
+    --------
     >>> m = Motion(np.zeros((3, 2)), ("knee.rx", "hip.rx"), 120.0)
     >>> m.frames, m.duration, m.column("hip.rx").shape
     (3, 0.025, (3,))
+    >>> m
+    Motion('<motion>', 3 frames x 2 channels at 120 fps)
+    >>> Motion(np.zeros((3, 2)), ("knee.rx",), 120.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: 1 channel names for 2 columns
     """
 
     values: np.ndarray
@@ -144,11 +241,16 @@ class Motion:
         return self.frames / self.frame_rate
 
     def index(self, channel: str) -> int:
-        """Column of ``channel`` (``KeyError`` naming it when there is none)."""
+        """Column of ``channel``; ``KeyError`` naming it, the closest names and every channel
+        of the motion when there is none (a misspelt name is found by reading the message)."""
         try:
             return self.channels.index(channel)
         except ValueError:
-            raise KeyError(f"no channel {channel!r} in {self.source}") from None
+            import difflib
+            close = difflib.get_close_matches(str(channel), self.channels, n=3)
+            hint = f" (did you mean {', '.join(close)}?)" if close else ""
+            raise KeyError(f"no channel {channel!r} in {self.source}{hint}; its "
+                           f"{len(self.channels)} channels: {', '.join(self.channels)}") from None
 
     def column(self, channel: str) -> np.ndarray:
         """The read-only column of one channel."""

@@ -60,7 +60,45 @@ def _window(frames: int, frame_rate: float, start: float, stop: float | None) ->
 
 def plot_states(motion: Motion, channel: str, *, start: float = 0.0, stop: float | None = None,
                 **params):
-    """Fig. 1 style: one joint angle over time, each segment coloured by its state."""
+    """Fig. 1 style: one joint angle over time, each segment coloured by its state.
+
+    Parameters
+    ----------
+    motion : Motion
+        The motion.
+    channel : str
+        The channel to draw.
+    start : float, default 0.0
+        Start of the time window drawn, seconds.
+    stop : float, optional
+        End of the time window drawn, seconds (default: the end of the motion).
+    **params
+        Segmentation parameters (:data:`kinetology.segmentation.DEFAULTS`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    ImportError
+        When matplotlib is not installed.
+    ValueError
+        When no frame falls between ``start`` and ``stop``.
+    KeyError
+        When the motion has no channel ``channel``.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import kinetology
+    >>> walk = kinetology.synthetic_motion(2, (0,), seed=0)
+    >>> fig = plot_states(walk, "j0.rx", stop=2.0)
+    >>> fig.axes[0].get_xlabel()
+    'time (s)'
+    >>> save(fig, Path(tempfile.mkdtemp()) / "figure.png")
+    """
     plt = _pyplot()
     p = {k: v for k, v in {**DEFAULTS, **params}.items() if k != "min_range"}
     signal = motion.column(channel)
@@ -83,7 +121,42 @@ def plot_states(motion: Motion, channel: str, *, start: float = 0.0, stop: float
 
 def plot_reconstruction(original: Motion, decoded: Motion, channel: str, *, start: float = 0.0,
                         stop: float | None = None):
-    """Fig. 9 style: a joint angle and its reconstruction from segments."""
+    """Fig. 9 style: a joint angle and its reconstruction from segments.
+
+    Parameters
+    ----------
+    original, decoded : Motion
+        The motion and its reconstruction (e.g. ``kinetology.decompress(kinetology.compress(m))``).
+    channel : str
+        The channel to draw (the title gives its mean absolute error in the window).
+    start : float, default 0.0
+        Start of the time window drawn, seconds.
+    stop : float, optional
+        End of the time window drawn, seconds (default: the end of the motion).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    ImportError
+        When matplotlib is not installed.
+    ValueError
+        When no frame falls between ``start`` and ``stop``.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import kinetology
+    >>> walk = kinetology.synthetic_motion(2, (0,), seed=0)
+    >>> decoded = kinetology.decompress(kinetology.compress(walk))
+    >>> fig = plot_reconstruction(walk, decoded, "j0.rx", stop=2.0)
+    >>> fig.axes[0].get_title().startswith("j0.rx: mean |error|")
+    True
+    >>> save(fig, Path(tempfile.mkdtemp()) / "figure.png")
+    """
     plt = _pyplot()
     t, window = _window(original.frames, original.frame_rate, start, stop)
     a, b = original.column(channel), decoded.column(channel)
@@ -99,7 +172,39 @@ def plot_reconstruction(original: Motion, decoded: Motion, channel: str, *, star
 
 
 def plot_view_invariance(result, title: str = "", frame_rate: float = 120.0):
-    """Fig. 6 style: viewpoint (rows) x time (columns), coloured by state; 3D on top."""
+    """Fig. 6 style: viewpoint (rows) x time (columns), coloured by state; 3D on top.
+
+    Parameters
+    ----------
+    result : ViewInvariance
+        What :func:`kinetology.evaluation.view_invariance` returned.
+    title : str, default ""
+        Put before the agreement in the figure's title.
+    frame_rate : float, default 120.0
+        Frames per second of the motion measured (for the time axis).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    ImportError
+        When matplotlib is not installed.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import numpy as np
+    >>> from kinetology.evaluation import ViewInvariance
+    >>> result = ViewInvariance(np.array([0.0, 180.0]), np.array([0, 1, 2, 3]),
+    ...                         np.array([[0, 1, 2, 3], [0, 1, 1, 3]]), np.zeros(4))
+    >>> fig = plot_view_invariance(result, "knee", frame_rate=4)
+    >>> fig.axes[0].get_title()
+    'knee  agreement with 3D: 87.5%'
+    >>> save(fig, Path(tempfile.mkdtemp()) / "figure.png")
+    """
     plt = _pyplot()
     image = np.vstack([result.states_3d[None, :].repeat(2, axis=0), result.states_2d])
     fig, ax = plt.subplots(figsize=(9, 4.6))
@@ -119,7 +224,37 @@ def plot_view_invariance(result, title: str = "", frame_rate: float = 120.0):
 
 
 def plot_reproducibility(table: dict, channels, title: str = "Reproducibility"):
-    """Actions (rows) x channels (columns): share of performances with the modal description."""
+    """Actions (rows) x channels (columns): share of performances with the modal description.
+
+    Parameters
+    ----------
+    table : dict
+        What :func:`kinetology.evaluation.reproducibility` returned.
+    channels : sequence of str
+        The columns, in order (each in every action's row).
+    title : str, default "Reproducibility"
+        The figure's title.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    ImportError
+        When matplotlib is not installed.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> table = {"Jog": {"lknee": (1.0, "BGRY", 4), "rknee": (0.75, "BGRY", 4)},
+    ...          "Squat": {"lknee": (0.5, "BGBGRY", 2), "rknee": (1.0, "BGRY", 2)}}
+    >>> fig = plot_reproducibility(table, ["lknee", "rknee"])
+    >>> [label.get_text() for label in fig.axes[0].get_yticklabels()]
+    ['Jog (4)', 'Squat (2)']
+    >>> save(fig, Path(tempfile.mkdtemp()) / "figure.png")
+    """
     plt = _pyplot()
     actions = list(table)
     grid = np.array([[table[a][c][0] for c in channels] for a in actions])
@@ -135,7 +270,44 @@ def plot_reproducibility(table: dict, channels, title: str = "Reproducibility"):
 
 
 def plot_selectivity(motions, performances, channels, *, seconds: float = 3.0, **params):
-    """Fig. 8 style: for each action, a few seconds of each channel's states (rows)."""
+    """Fig. 8 style: for each action, a few seconds of each channel's states (rows).
+
+    Parameters
+    ----------
+    motions : dict of str to Motion
+        The takes, by name.
+    performances : list of Performance
+        Labelled stretches of the takes; the first of each action is drawn.
+    channels : sequence of str
+        The rows of each action's panel.
+    seconds : float, default 3.0
+        How much of each performance is drawn.
+    **params
+        Segmentation parameters (:data:`kinetology.segmentation.DEFAULTS`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        One panel per action, sorted by name.
+
+    Raises
+    ------
+    ImportError
+        When matplotlib is not installed.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import kinetology
+    >>> from kinetology.evaluation import Performance
+    >>> takes = {"a": kinetology.synthetic_motion(3, seed=0)}
+    >>> performances = [Performance("a", "swing", 0, 480), Performance("a", "wave", 480, 960)]
+    >>> fig = plot_selectivity(takes, performances, ["j0.rx", "j1.rx", "j2.rx"], seconds=2)
+    >>> [ax.get_ylabel() for ax in fig.axes[:2]]
+    ['swing', 'wave']
+    >>> save(fig, Path(tempfile.mkdtemp()) / "figure.png")
+    """
     plt = _pyplot()
     p = {k: v for k, v in {**DEFAULTS, **params}.items() if k != "min_range"}
     first = {}
@@ -159,7 +331,34 @@ def plot_selectivity(motions, performances, channels, *, seconds: float = 3.0, *
 
 
 def plot_rate_distortion(curves: dict, paper=(3.698, 0.823)):
-    """Size (% of the original) against mean absolute error, one line per codec."""
+    """Size (% of the original) against mean absolute error, one line per codec.
+
+    Parameters
+    ----------
+    curves : dict of str to list of (float, float)
+        Codec name to its ``(percent, mean absolute error)`` points.
+    paper : (float, float), default (3.698, 0.823)
+        The paper's point, drawn as a star.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    ImportError
+        When matplotlib is not installed.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> fig = plot_rate_distortion({"ours": [(2.0, 0.5), (4.0, 0.2)],
+    ...                             "peer": [(3.0, 0.5), (6.0, 0.2)]})
+    >>> [line.get_label() for line in fig.axes[0].get_lines()]
+    ['ours', 'peer', 'paper (3.698%, 0.823°)']
+    >>> save(fig, Path(tempfile.mkdtemp()) / "figure.png")
+    """
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(6, 4))
     markers = iter("osd^v<>")
@@ -177,7 +376,25 @@ def plot_rate_distortion(curves: dict, paper=(3.698, 0.823)):
 
 
 def save(fig, path) -> None:
-    """Write a figure (format by suffix) and close it."""
+    """Write a figure (format by suffix) and close it.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure (closed afterwards, so pyplot does not keep it).
+    path : str or Path
+        Where to write; the suffix chooses the format (``.png``, ``.svg``, ``.pdf``, ...).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> fig = plot_rate_distortion({"ours": [(2.0, 0.5)]})
+    >>> path = Path(tempfile.mkdtemp()) / "front.svg"
+    >>> save(fig, path)
+    >>> path.read_text().count("<svg") >= 1
+    True
+    """
     fig.savefig(path, dpi=110)
     import matplotlib.pyplot as plt
     plt.close(fig)

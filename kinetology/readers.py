@@ -22,6 +22,51 @@ def read(path: str | Path, **options) -> Motion:
     AMC, whose files do not state their rate: 120 fps, the CMU rate, by
     default). A missing file raises ``FileNotFoundError``; a malformed one
     :class:`MotionFormatError` naming ``file:line:col``.
+
+    Parameters
+    ----------
+    path : str or Path
+        A ``.bvh`` or ``.amc`` file (the suffix in any case).
+    **options
+        Passed to :func:`kinetology.read_amc` (``asf=``, ``frame_rate=``) or
+        :func:`kinetology.read_bvh`.
+
+    Returns
+    -------
+    Motion
+
+    Raises
+    ------
+    MotionFormatError
+        For another suffix, or a malformed file (naming ``file:line:col``).
+    FileNotFoundError
+        When the file does not exist.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> path = Path(tempfile.mkdtemp()) / "knee.bvh"
+    >>> _ = path.write_text('''HIERARCHY
+    ... ROOT knee
+    ... { OFFSET 0 0 0
+    ...   CHANNELS 1 Xrotation
+    ...   End Site
+    ...   { OFFSET 0 -10 0 } }
+    ... MOTION
+    ... Frames: 3
+    ... Frame Time: 0.0083333
+    ... 0
+    ... 45
+    ... 90
+    ... ''')
+    >>> knee = read(path)
+    >>> knee.channels, knee.frame_rate, knee.column("knee.rx").tolist()
+    (('knee.rx',), 120.0, [0.0, 45.0, 90.0])
+    >>> read(path.with_suffix(".c3d"))
+    Traceback (most recent call last):
+    ...
+    kinetology.motion.MotionFormatError: ...knee.c3d: unknown motion format '.c3d'; expected one of .bvh, .amc
     """
     path = Path(path)
     suffix = path.suffix.lower()

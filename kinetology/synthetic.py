@@ -25,11 +25,48 @@ def synthetic_motion(joints: int = 6, patterned=(0, 1, 2), *, repetitions: int =
     factor in ``1 ± jitter`` (real repetitions are not evenly spaced). The
     other joints follow smoothed random walks of the same amplitude. Gaussian
     sensor noise of ``noise`` degrees is added everywhere.
-    ``motion.meta["patterned"]`` names the patterned channels.
+    ``motion.meta["patterned"]`` names the patterned channels and
+    ``motion.meta["repetition_starts"]`` the start of each repetition (seconds).
 
+    Parameters
+    ----------
+    joints : int, default 6
+        Number of channels (one rotation channel per joint).
+    patterned : iterable of int, default (0, 1, 2)
+        Indices of the joints that repeat a movement; the others do not.
+    repetitions : int, default 8
+        How many times the patterned joints repeat their movement.
+    period : float, default 1.0
+        Mean length of one repetition, seconds.
+    jitter : float, default 0.15
+        Each repetition's length is ``period`` times a factor drawn in ``1 ± jitter``.
+    amplitude : float, default 30.0
+        Peak-to-peak range of every joint, degrees.
+    noise : float, default 0.2
+        Standard deviation of the Gaussian sensor noise, degrees.
+    frame_rate : float, default 120.0
+        Frames per second.
+    seed : int, default 0
+        Seed of ``numpy.random.default_rng``: the same seed gives the same motion.
+
+    Returns
+    -------
+    Motion
+        ``repetitions * period * frame_rate`` frames (about) of ``joints`` channels, no skeleton.
+
+    Raises
+    ------
+    ValueError
+        When ``joints``, ``repetitions``, ``period`` or ``frame_rate`` is not positive,
+        ``jitter`` is outside ``[0, 1)`` or a patterned index is not a joint.
+
+    Examples
+    --------
     >>> m = synthetic_motion(4, (0, 2), seed=1)
     >>> m.channels, m.meta["patterned"]
     (('j0.rx', 'j1.rx', 'j2.rx', 'j3.rx'), ('j0.rx', 'j2.rx'))
+    >>> m.frames == synthetic_motion(4, (0, 2), seed=1).frames and len(m.meta["repetition_starts"])
+    8
     """
     if joints < 1 or repetitions < 1 or period <= 0 or frame_rate <= 0:
         raise ValueError("joints, repetitions, period and frame_rate must be positive")

@@ -20,6 +20,42 @@ def parse_rows(lines: list[str], width: int, *, source: str, first_line: int = 1
     the error names the first bad one (``first_line`` is the file line number
     of ``lines[0]``, or ``line_of(i)`` gives the file line of ``lines[i]``). Values that
     are not finite (``nan``, ``inf``) are errors too.
+
+    Parameters
+    ----------
+    lines : list of str
+        The lines of the block, numbers separated by white space.
+    width : int
+        How many numbers each line must hold.
+    source : str
+        The file name that errors name.
+    first_line : int, default 1
+        The file line number of ``lines[0]``.
+    line_of : callable, optional
+        ``line_of(i)`` is the file line number of ``lines[i]`` (for blocks whose lines are not
+        consecutive in the file); overrides ``first_line``.
+
+    Returns
+    -------
+    numpy.ndarray
+        Floats, shape ``(len(lines), width)``.
+
+    Raises
+    ------
+    MotionFormatError
+        Naming the file, the first bad line and (for a value that is not a number) its column:
+        a line with the wrong count of numbers, a value that is not a number, or one that is
+        not finite.
+
+    Examples
+    --------
+    >>> parse_rows(["1 2", "3 4.5"], 2, source="walk.amc", first_line=10)
+    array([[1. , 2. ],
+           [3. , 4.5]])
+    >>> parse_rows(["1 2", "3 x"], 2, source="walk.amc", first_line=10)
+    Traceback (most recent call last):
+    ...
+    kinetology.motion.MotionFormatError: walk.amc:11:3: not a number: 'x'
     """
     def where(i: int) -> int:
         return line_of(i) if line_of is not None else first_line + i

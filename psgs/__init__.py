@@ -4,7 +4,8 @@ The formal core (``psgs.model``) holds immutable values: symbols, rules,
 component grammars, :class:`PSGS` and :class:`PCGS`. Around it, plain
 functions: reading and writing the text format, deriving, enumerating,
 checking membership, exporting to Lark and networkx. Inducers
-(``psgs.induce``) learn a PSGS from an :class:`Actiongram`.
+(``psgs.induce``) learn a PSGS from an :class:`Actiongram`. How the modules
+are layered is pictured in ``docs/index.md``.
 
 Names are imported on first use, so ``import psgs`` stays cheap.
 """
@@ -14,30 +15,32 @@ from __future__ import annotations
 import importlib
 
 from .errors import BoundReached, FormatError, PSGSError, ValidationError
-from .model import (IDLE, PCGS, PSGS, Grammar, Nonterminal, Query, Rule, Terminal, as_word,
-                    word)
+from .model import IDLE, PCGS, PSGS, Grammar, Nonterminal, Query, Rule, Terminal, as_word
 
 __version__ = "0.1.0"
 
-# public name -> module that defines it (imported lazily)
-_LAZY = {
-    "loads": "format", "load": "format", "dumps": "format", "dump": "format",
-    "to_lark": "lark_export", "from_lark_name": "lark_export",
-    "to_networkx": "graph",
-    "Configuration": "derivation", "Step": "derivation", "Derivation": "derivation",
-    "initial_configuration": "derivation", "applicable_steps": "derivation",
-    "apply_step": "derivation", "random_derivation": "derivation", "language": "derivation",
-    "Language": "derivation",
-    "accepts": "membership", "Acceptance": "membership",
-    "Actiongram": "actiongram", "load_actiongram": "actiongram",
+# module -> the public names it defines (or re-exports); each is in that module's __all__
+# (tests/core/test_architecture.py checks it), and is imported on first use
+_PUBLIC = {
+    "format": ("loads", "load", "dumps", "dump"),
+    "lark_export": ("to_lark", "from_lark_name"),
+    "graph": ("to_networkx",),
+    "derivation": ("Configuration", "Step", "Derivation", "initial_configuration",
+                   "applicable_steps", "apply_tuple", "random_derivation"),
+    "enumeration": ("language", "Language"),
+    "membership": ("accepts", "Acceptance"),
+    "actiongram": ("Actiongram", "load_actiongram"),
 }
+_LAZY = {name: module for module, names in _PUBLIC.items() for name in names}
+# modules reachable as attributes (``psgs.strategies`` needs hypothesis, the test extra)
 _SUBMODULES = {"induce", "synthetic", "strategies", "model", "errors", "format", "derivation",
-               "membership", "actiongram", "lark_export", "graph"}
+               "membership", "actiongram", "lark_export", "graph", "analysis", "steps",
+               "enumeration", "notation", "search", "budget"}
 
 __all__ = [
     "PSGSError", "ValidationError", "FormatError", "BoundReached",
-    "Terminal", "Nonterminal", "Query", "Rule", "Grammar", "PSGS", "PCGS", "IDLE", "word",
-    "as_word", *_LAZY,
+    "Terminal", "Nonterminal", "Query", "Rule", "Grammar", "PSGS", "PCGS", "IDLE", "as_word",
+    *_LAZY,
 ]
 
 
@@ -52,4 +55,6 @@ def __getattr__(name: str):
 
 
 def __dir__():
-    return sorted(set(__all__) | _SUBMODULES | {"__version__"})
+    # the public names only: help(psgs) and tab completion look at every name listed here,
+    # and listing the submodules would import them all (strategies needs hypothesis)
+    return sorted(set(__all__) | {"__version__"})

@@ -6,32 +6,33 @@ A *configuration* holds one sentential form per component. For a
 step is either a communication step (which has priority) or a rewriting
 step in which every non-terminal component rewrites once.
 
-Everything here is a pure function of immutable values; randomness comes
-only from an explicit seed. Language enumeration lives in
-:mod:`psgs.enumeration` and is re-exported here.
+This module is the checked front of the step kernel (:mod:`psgs.steps`):
+it validates what a caller hands in, lists and applies steps, and builds
+:class:`Derivation` values. Everything here is a pure function of
+immutable values; randomness comes only from an explicit seed. Languages
+are enumerated by :mod:`psgs.enumeration`.
 """
 
 from __future__ import annotations
 
-import itertools
-import math
 import random
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import Literal, Union
+from typing import Union
 
+from .analysis import moves
 from .errors import ValidationError
-from .model import (IDLE, PCGS, PSGS, Form, Nonterminal, Query, Rule, Terminal,
-                    resolve_tuple_entries)
+from .model import IDLE, PCGS, PSGS, Form, Nonterminal, Query, Terminal, resolve_tuple
+from .notation import format_configuration, format_form, short, show_tuple, spaced
+from .steps import (Configuration, Step, has_query, initial_configuration as _initial,
+                    is_terminal_configuration, is_terminal_form, occurrences, pcgs_communicate,
+                    pcgs_steps, psgs_successors, random_step, rewritten)
 
 __all__ = [
     "Configuration", "Step", "Derivation", "initial_configuration", "applicable_steps",
-    "apply_step", "apply_tuple", "communication_step", "is_terminal_configuration",
-    "random_derivation", "language", "Language", "format_form", "format_configuration",
+    "apply_tuple", "communication_step", "is_terminal_configuration",
+    "random_derivation", "format_form", "format_configuration",
 ]
-
-#: One sentential form per component.
-Configuration = tuple[Form, ...]
 
 _System = Union[PSGS, PCGS]
 
@@ -40,23 +41,12 @@ _System = Union[PSGS, PCGS]
 def initial_configuration(system: _System) -> Configuration:
     """The axioms ``(S_1, …, S_n)``, one one-symbol form per component."""
     _require_system(system)
-    return tuple((g.start,) for g in system.components)
+    return _initial(system)
 
 
 def _require_system(system: object) -> None:
     if not isinstance(system, (PSGS, PCGS)):
         raise ValidationError(f"expected a PSGS or a PCGS, not {type(system).__name__}")
-
-
-def _is_terminal_form(form: Form) -> bool:
-    return all(s.__class__ is Terminal for s in form)
-
-
-def is_terminal_configuration(system: _System, configuration: Configuration) -> bool:
-    """True when the derivation is finished: every form terminal (PSGS) or the master's (PCGS)."""
-    if isinstance(system, PCGS):
-        return _is_terminal_form(configuration[system.master_index])
-    return all(_is_terminal_form(f) for f in configuration)
 
 
 def _check_configuration(system: _System, configuration: Sequence[Form]) -> Configuration:
@@ -81,34 +71,6 @@ _PCGS_SYMBOLS = frozenset({Terminal, Nonterminal, Query})
 
 
 # ---------------------------------------------------------------- steps
-@dataclass(frozen=True)
-class Step:
-    """One step of a derivation: what was applied, where, and the configurations around it.
-
-    ``tuple`` holds, per component, the rule applied there or ``None``
-    (:data:`~psgs.model.IDLE`, ``#``). For a PSGS it is the synchronisation
-    tuple of M that was applied (an unsynchronised rule applied alone under
-    ``free`` appears as ``(#, …, p, …, #)``); a component whose form was
-    already terminal keeps its entry but gets no positions. ``positions``
-    gives, per component, the indices in ``before`` of the occurrences that
-    were rewritten: all occurrences of the left-hand side in ``parallel``
-    mode, one in ``single`` mode, none for idle or terminal components.
-
-    For a PCGS, ``kind`` is ``"rewrite"`` (``tuple`` holds each component's
-    rule, ``None`` for a terminal component) or ``"communicate"`` (``tuple``
-    is all ``None``; ``positions`` are the query symbols that were replaced).
-    """
-
-    tuple: tuple[Rule | None, ...]
-    positions: tuple[tuple[int, ...], ...]
-    before: Configuration
-    after: Configuration
-    kind: Literal["rewrite", "communicate"] = "rewrite"
-
-    def __str__(self) -> str:
-        return "communicate" if self.kind == "communicate" else _show_tuple(self.tuple)
-
-
 def applicable_steps(system: _System, configuration: Sequence[Form]) -> tuple[Step, ...]:
     """Every step that applies to ``configuration``, in a deterministic order.
 
@@ -130,149 +92,18 @@ def applicable_steps(system: _System, configuration: Sequence[Form]) -> tuple[St
     _require_system(system)
     configuration = _check_configuration(system, configuration)
     if isinstance(system, PCGS):
-        return tuple(_pcgs_steps(system, configuration))
+        return tuple(pcgs_steps(system, configuration))
     return tuple(_psgs_steps(system, configuration))
 
 
-# ---- PSGS
-def _candidate_tuples(system: PSGS) -> Iterator[tuple[Rule | None, ...]]:
-    yield from system.sync
-    if system.unsynchronised == "free":
-        n = len(system.components)
-        for i, rules in enumerate(system.unsynchronised_rules):
-            for rule in rules:
-                yield tuple(rule if j == i else IDLE for j in range(n))
-
-
-def _is_allowed_tuple(system: PSGS, entries: tuple[Rule | None, ...]) -> bool:
-    """In M, or (under free) an unsynchronised rule alone."""
-    if entries in system.sync:
-        return True
-    if system.unsynchronised != "free":
-        return False
-    used = [(i, r) for i, r in enumerate(entries) if r is not IDLE]
-    return len(used) == 1 and used[0][1] in system.unsynchronised_rules[used[0][0]]
-
-
-def _occurrences(form: Form, symbol: Nonterminal) -> tuple[int, ...]:
-    # compares names rather than calling the dataclass __eq__ per symbol: forms get long
-    name = symbol.name
-    return tuple([k for k, s in enumerate(form) if s.__class__ is Nonterminal and s.name == name])
-
-
-def _rewrite(form: Form, positions: Sequence[int], rhs: Form) -> Form:
-    """Replace the symbols at ``positions`` (sorted) by ``rhs``."""
-    out: list = []
-    last = 0
-    for k in positions:
-        out.extend(form[last:k])
-        out.extend(rhs)
-        last = k + 1
-    out.extend(form[last:])
-    return tuple(out)
-
-
-def _psgs_choices(system: PSGS, configuration: Configuration,
-                  sync_tuple: tuple[Rule | None, ...]) -> list[tuple[tuple[int, ...], ...]] | None:
-    """Per component the possible position choices, or None when the tuple does not apply."""
-    per_component: list[list[tuple[int, ...]]] = []
-    for rule, form in zip(sync_tuple, configuration):
-        if rule is IDLE or _is_terminal_form(form):
-            per_component.append([()])
-            continue
-        occ = _occurrences(form, rule.lhs)
-        if not occ:
-            return None
-        if system.mode == "parallel":
-            per_component.append([occ])
-        else:
-            per_component.append([(k,) for k in occ])
-    return per_component
-
-
-def _psgs_after(configuration: Configuration, sync_tuple, positions) -> Configuration:
-    return tuple(form if not pos else _rewrite(form, pos, rule.rhs)
-                 for form, rule, pos in zip(configuration, sync_tuple, positions))
-
-
-def _psgs_successors(system: PSGS, configuration: Configuration):
-    """Yield (tuple, positions, after) for every applicable step."""
-    for sync_tuple in _candidate_tuples(system):
-        choices = _psgs_choices(system, configuration, sync_tuple)
-        if choices is None:
-            continue
-        for positions in itertools.product(*choices):
-            after = _psgs_after(configuration, sync_tuple, positions)
-            if after != configuration:
-                yield sync_tuple, positions, after
-
-
-def _psgs_steps(system: PSGS, configuration: Configuration) -> Iterator[Step]:
-    for sync_tuple, positions, after in _psgs_successors(system, configuration):
+def _psgs_steps(system: PSGS, configuration: Configuration):
+    for sync_tuple, positions, after in psgs_successors(system, configuration):
         yield Step(sync_tuple, positions, configuration, after)
 
 
-# ---- PCGS
-def _has_query(form: Form) -> bool:
-    return any(isinstance(s, Query) for s in form)
-
-
-def _pcgs_communicate(system: PCGS, configuration: Configuration) -> Step | None:
-    """The communication step, or None when no query can be answered."""
-    n = len(configuration)
-    after = list(configuration)
-    positions: list[tuple[int, ...]] = [()] * n
-    sent: set[int] = set()
-    for i, form in enumerate(configuration):
-        where = tuple(k for k, s in enumerate(form) if isinstance(s, Query))
-        if not where:
-            continue
-        targets = [system.index(form[k].component) for k in where]
-        if any(_has_query(configuration[j]) for j in targets):
-            continue  # this component waits until every form it asks for is query-free
-        out: list = []
-        for s in form:
-            out.extend(configuration[system.index(s.component)] if isinstance(s, Query) else (s,))
-        after[i] = tuple(out)
-        positions[i] = where
-        sent.update(targets)
-    if not sent:
-        return None
-    if system.returning:
-        for j in sent:
-            after[j] = (system.components[j].start,)
-    return Step((IDLE,) * n, tuple(positions), configuration, tuple(after), kind="communicate")
-
-
-def _pcgs_rewrite_choices(system: PCGS, configuration: Configuration):
-    per_component = []
-    for g, form in zip(system.components, configuration):
-        if _is_terminal_form(form):
-            per_component.append([(IDLE, ())])
-            continue
-        options = [(rule, (k,)) for rule in g.rules for k in _occurrences(form, rule.lhs)]
-        if not options:
-            return None  # a component that must rewrite but cannot blocks the system
-        per_component.append(options)
-    return per_component
-
-
-def _pcgs_steps(system: PCGS, configuration: Configuration) -> Iterator[Step]:
-    if any(_has_query(f) for f in configuration):
-        step = _pcgs_communicate(system, configuration)
-        if step is not None:
-            yield step
-        return
-    choices = _pcgs_rewrite_choices(system, configuration)
-    if choices is None:
-        return
-    for combo in itertools.product(*choices):
-        rules = tuple(r for r, _ in combo)
-        positions = tuple(p for _, p in combo)
-        after = tuple(form if not pos else _rewrite(form, pos, rule.rhs)
-                      for form, rule, pos in zip(configuration, rules, positions))
-        if after != configuration:
-            yield Step(rules, positions, configuration, after)
+def _is_allowed_tuple(system: PSGS, entries: tuple) -> bool:
+    """In M, or (under free) an unsynchronised rule alone: one of the system's moves."""
+    return entries in moves(system)
 
 
 def communication_step(system: PCGS, configuration: Sequence[Form]) -> Step:
@@ -280,9 +111,9 @@ def communication_step(system: PCGS, configuration: Sequence[Form]) -> Step:
     if not isinstance(system, PCGS):
         raise ValidationError("communication steps exist only in a PCGS")
     configuration = _check_configuration(system, configuration)
-    if not any(_has_query(f) for f in configuration):
+    if not any(has_query(f) for f in configuration):
         raise ValidationError("no communication step: no form holds a query symbol")
-    step = _pcgs_communicate(system, configuration)
+    step = pcgs_communicate(system, configuration)
     if step is None:
         raise ValidationError("no communication step: every query asks for a form that holds a "
                               "query symbol itself (the system is blocked)")
@@ -290,22 +121,6 @@ def communication_step(system: PCGS, configuration: Sequence[Form]) -> Step:
 
 
 # ---- one validated step
-def _resolve_tuple(system: _System, sync_tuple) -> tuple[Rule | None, ...]:
-    if isinstance(sync_tuple, (str, bytes)) or not isinstance(sync_tuple, Iterable):
-        raise ValidationError(f"a tuple is a sequence of rules (or labels, or '#'), "
-                              f"not {sync_tuple!r}")
-    raw = tuple(sync_tuple)
-    n = len(system.components)
-    if len(raw) != n:
-        raise ValidationError(f"the tuple has {len(raw)} entries but the system has {n} "
-                              f"components")
-    return resolve_tuple_entries(system.components, raw)
-
-
-def _show_tuple(sync_tuple) -> str:
-    return "(" + ", ".join("#" if r is IDLE else r.label for r in sync_tuple) + ")"
-
-
 def _normalise_positions(positions, n: int) -> tuple[tuple[int, ...], ...]:
     if isinstance(positions, (str, bytes)) or not isinstance(positions, Iterable):
         raise ValidationError(f"positions must give one entry per component, not {positions!r}")
@@ -330,11 +145,6 @@ def _normalise_positions(positions, n: int) -> tuple[tuple[int, ...], ...]:
     return tuple(out)
 
 
-def _short(text: str, limit: int = 60) -> str:
-    """Long forms make unreadable messages: keep the start."""
-    return text if len(text) <= limit else text[:limit] + f"… ({len(text)} characters)"
-
-
 def apply_tuple(system: _System, configuration: Sequence[Form], sync_tuple,
                 positions=None) -> Step:
     """Apply one tuple to ``configuration`` and return the :class:`Step`, checked.
@@ -355,8 +165,8 @@ def apply_tuple(system: _System, configuration: Sequence[Form], sync_tuple,
     configuration = _check_configuration(system, configuration)
     if isinstance(system, PCGS) and sync_tuple == "communicate":
         return communication_step(system, configuration)
-    entries = _resolve_tuple(system, sync_tuple)
-    shown = _show_tuple(entries)
+    entries = resolve_tuple(system.components, sync_tuple)
+    shown = show_tuple(entries)
     n = len(system.components)
     if isinstance(system, PSGS):
         if not _is_allowed_tuple(system, entries):
@@ -366,13 +176,13 @@ def apply_tuple(system: _System, configuration: Sequence[Form], sync_tuple,
                                       f"may not be applied alone (unsynchronised strict)")
             raise ValidationError(f"tuple {shown} is not in M")
     else:
-        if any(_has_query(f) for f in configuration):
+        if any(has_query(f) for f in configuration):
             raise ValidationError("a form holds a query symbol: only a communication step may "
                                   "follow (communication has priority)")
     given = None if positions is None else _normalise_positions(positions, n)
     chosen = []
     for i, (g, rule, form) in enumerate(zip(system.components, entries, configuration)):
-        terminal = _is_terminal_form(form)
+        terminal = is_terminal_form(form)
         if rule is IDLE:
             if isinstance(system, PCGS) and not terminal:
                 raise ValidationError(f"component {g.name} is not terminal and must rewrite")
@@ -388,10 +198,10 @@ def apply_tuple(system: _System, configuration: Sequence[Form], sync_tuple,
                 entries = entries[:i] + (IDLE,) + entries[i + 1:]  # as applicable_steps lists it
             chosen.append(())
             continue
-        occ = _occurrences(form, rule.lhs)
+        occ = occurrences(form, rule.lhs)
         if not occ:
             raise ValidationError(f"tuple {shown} does not apply: {rule.lhs} does not occur in "
-                                  f"component {g.name}'s form {_short(format_form(form, system))}")
+                                  f"component {g.name}'s form {short(format_form(form, system))}")
         parallel = isinstance(system, PSGS) and system.mode == "parallel"
         if given is None:
             chosen.append(occ if parallel else occ[:1])
@@ -407,42 +217,10 @@ def apply_tuple(system: _System, configuration: Sequence[Form], sync_tuple,
                                       f"occurrence of {rule.lhs} (they are at {list(occ)})")
         chosen.append(pos)
     chosen_t = tuple(chosen)
-    after = _psgs_after(configuration, entries, chosen_t)
+    after = rewritten(configuration, entries, chosen_t)
     if after == configuration:
         raise ValidationError(f"tuple {shown} changes nothing, so it does not apply")
     return Step(entries, chosen_t, configuration, after)
-
-
-#: The name the public API table uses for :func:`apply_tuple`.
-apply_step = apply_tuple
-
-
-# ---------------------------------------------------------------- printing
-def _spaced(system) -> bool:
-    return any(len(t.name) > 1 for t in system.terminals)
-
-
-def format_form(form: Form, system=None, *, spaced: bool | None = None) -> str:
-    """A sentential form in the paper's notation: ``N12d``, ``N4N4``; ``ε`` when empty.
-
-    Symbols are concatenated, as in the paper, unless some terminal of
-    ``system`` has a name longer than one character (then they are
-    separated by spaces).
-    """
-    if spaced is None:
-        spaced = _spaced(system) if system is not None else any(
-            isinstance(s, Terminal) and len(s.name) > 1 for s in form)
-    if not form:
-        return "ε"
-    return (" " if spaced else "").join(str(s) for s in form)
-
-
-def format_configuration(configuration: Configuration, system=None, *,
-                         spaced: bool | None = None) -> str:
-    """``(x_1, …, x_n)`` with each form in the paper's notation."""
-    if spaced is None and system is not None:
-        spaced = _spaced(system)
-    return "(" + ", ".join(format_form(f, system, spaced=spaced) for f in configuration) + ")"
 
 
 # ---------------------------------------------------------------- derivations
@@ -451,8 +229,9 @@ class Derivation:
     """A sequence of steps and the configurations it passes through.
 
     ``configurations[k]`` is ``steps[k].before`` and ``configurations[k+1]``
-    is ``steps[k].after``. ``bound`` is ``None``, or a sentence naming the
-    bound a bounded producer (e.g. :func:`random_derivation`) stopped at.
+    is ``steps[k].after``. ``bound`` is ``None``, or the name of the bound a
+    bounded producer (e.g. :func:`random_derivation`) stopped at, e.g.
+    ``"max_steps"``; ``reason`` says it in words.
     ``str(d)`` prints the paper's notation ``(S1, S2) ⇒ (N13, N18) ⇒ …``.
     """
 
@@ -460,6 +239,7 @@ class Derivation:
     steps: tuple[Step, ...]
     configurations: tuple[Configuration, ...] = ()
     bound: str | None = None
+    reason: str | None = None
 
     def __post_init__(self) -> None:
         steps = tuple(self.steps)
@@ -509,8 +289,8 @@ class Derivation:
         return len(self.steps)
 
     def __str__(self) -> str:
-        spaced = _spaced(self.system)
-        return " ⇒ ".join(format_configuration(c, spaced=spaced) for c in self.configurations)
+        spaced_ = spaced(self.system)
+        return " ⇒ ".join(format_configuration(c, spaced=spaced_) for c in self.configurations)
 
 
 def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
@@ -525,7 +305,8 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
     when no step applies (``"blocked"``), or at a bound: ``max_steps`` steps,
     or a form longer than ``max_form_length`` symbols (parallel rewriting
     can double a form at every step). The bound hit is named in
-    ``Derivation.bound``. The same seed always gives the same derivation.
+    ``Derivation.bound`` (``"max_steps"`` or ``"max_form_length"``) and
+    described in ``Derivation.reason``. The same seed always gives the same derivation.
     """
     _require_system(system)
     if max_steps < 0:
@@ -533,104 +314,30 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
     rng = random.Random(seed)
     configuration = initial_configuration(system)
     steps: list[Step] = []
-    bound = None
+    bound = reason = None
     while not is_terminal_configuration(system, configuration):
         if len(steps) >= max_steps:
-            bound = f"stopped after {max_steps} steps (max_steps)"
+            bound, reason = "max_steps", f"stopped after {max_steps} steps (max_steps)"
             break
         if max(len(f) for f in configuration) > max_form_length:
-            bound = (f"stopped when a form grew beyond {max_form_length} symbols "
+            bound = "max_form_length"
+            reason = (f"stopped when a form grew beyond {max_form_length} symbols "
                      f"(max_form_length)")
             break
-        step = _random_step(system, configuration, rng)
+        step = random_step(system, configuration, rng)
         if step is None:
             break
         steps.append(step)
         configuration = step.after
-    return Derivation(system, tuple(steps), bound=bound)
-
-
-def _random_step(system: _System, configuration: Configuration, rng: random.Random):
-    """A uniformly random applicable step, or None; never lists all of them.
-
-    In single mode the steps of one tuple are every choice of occurrences, a
-    product that grows like the forms' lengths to the power n; counting them
-    is cheap. The index drawn is the position the step would have in
-    :func:`applicable_steps`, so a seed picks the same step either way.
-    """
-    if isinstance(system, PCGS):
-        return _random_pcgs_step(system, configuration, rng)
-    candidates = []
-    total = 0
-    for sync_tuple in _candidate_tuples(system):
-        choices = _psgs_choices(system, configuration, sync_tuple)
-        if choices is None:
-            continue
-        first = tuple(c[0] for c in choices)
-        # whether a tuple changes something does not depend on the occurrences chosen
-        if _psgs_after(configuration, sync_tuple, first) == configuration:
-            continue
-        count = math.prod(len(c) for c in choices)
-        candidates.append((sync_tuple, choices, count))
-        total += count
-    if not total:
-        return None
-    index = rng.randrange(total)
-    for sync_tuple, choices, count in candidates:
-        if index < count:
-            break
-        index -= count
-    positions = _unrank(choices, index)
-    return Step(sync_tuple, positions, configuration,
-                _psgs_after(configuration, sync_tuple, positions))
-
-
-def _unrank(choices, index: int) -> tuple:
-    """The ``index``-th element of ``itertools.product(*choices)``."""
-    picked = []
-    for options in reversed(choices):
-        index, r = divmod(index, len(options))
-        picked.append(options[r])
-    return tuple(reversed(picked))
-
-
-def _random_pcgs_step(system: PCGS, configuration: Configuration, rng: random.Random):
-    if any(_has_query(f) for f in configuration):
-        step = _pcgs_communicate(system, configuration)
-        if step is not None:
-            rng.randrange(1)  # as if drawn from a list of one, so seeds match applicable_steps
-        return step
-    choices = _pcgs_rewrite_choices(system, configuration)
-    if choices is None:
-        return None
-    unchanged = [sum(1 for rule, _ in options if rule is IDLE or rule.rhs == (rule.lhs,))
-                 for options in choices]
-    total = math.prod(len(options) for options in choices)
-    void = math.prod(unchanged)  # combinations in which every component keeps its form
-    if total == void:
-        return None
-    if void == 0:
-        combo = _unrank(choices, rng.randrange(total))
-    else:  # rare (rules A → A): draw until the step changes something, still uniform
-        while True:
-            combo = _unrank(choices, rng.randrange(total))
-            if any(rule is not IDLE and rule.rhs != (rule.lhs,) for rule, _ in combo):
-                break
-    rules = tuple(r for r, _ in combo)
-    positions = tuple(p for _, p in combo)
-    after = tuple(form if not pos else _rewrite(form, pos, rule.rhs)
-                  for form, rule, pos in zip(configuration, rules, positions))
-    return Step(rules, positions, configuration, after)
-
-
-def language(system, max_length: int, **options):
-    """Enumerate L(system) up to a size bound; see :func:`psgs.enumeration.language`."""
-    from .enumeration import language as _language
-    return _language(system, max_length, **options)
+    return Derivation(system, tuple(steps), bound=bound, reason=reason)
 
 
 def __getattr__(name: str):
-    if name == "Language":
-        from .enumeration import Language
-        return Language
+    # TEMPORARY thin alias (layers branch): psgs/cli/core.py, owned by another helper, still
+    # imports ``language`` from here. It is the one upward import the architecture test
+    # tolerates, by name; the lead removes it (and the exemption) once cli imports
+    # psgs.enumeration.language.
+    if name in ("language", "Language"):
+        from . import enumeration
+        return getattr(enumeration, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

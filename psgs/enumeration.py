@@ -22,15 +22,18 @@ Two methods for a PSGS (see ``docs/derivation.md``):
 from __future__ import annotations
 
 import math
-import time
-from collections import deque
+import re
 from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 
-from .errors import ValidationError
+from .analysis import min_yields, usable_rules
+from .budget import Budget, check_count, check_seconds
+from .errors import BoundReached, ValidationError
+from .membership import MAX_SYMBOLS, accepts
 from .model import PCGS, PSGS, Grammar, Nonterminal, Query, Rule, Terminal, Word, as_word
+from .search import budget_sentence, pcgs_search, psgs_search
 
-__all__ = ["Language", "language", "min_yields", "context_free_words"]
+__all__ = ["Language", "language", "context_free_words"]
 
 INFINITE = math.inf
 
@@ -43,10 +46,11 @@ class Language:
     component) for a PSGS, master words for a PCGS, words for a
     :class:`~psgs.model.Grammar`. They are sorted by size (total length),
     then by the names of their terminals. ``complete`` is ``True`` when every
-    word up to ``max_length`` is listed; otherwise ``bound`` is a sentence
-    naming the budget that stopped the search, and ``words`` holds what was
-    found (for context-free enumeration: every word shorter than the length
-    at which it stopped). ``explored`` counts the configurations (search),
+    word up to ``max_length`` is listed; otherwise ``bound`` is the name of
+    the budget that stopped the search (or left words out), e.g.
+    ``"max_configurations"``, ``reason`` says it in words, and ``words``
+    holds what was found (for context-free enumeration: every word shorter
+    than the length at which it stopped). ``explored`` counts the configurations (search),
     candidate tuples (filter) or words (context-free) that were examined;
     ``kind`` is ``"tuples"`` (PSGS) or ``"words"``. ``item in language``
     accepts words written as strings, e.g. ``("ab", "ba") in lang``.
@@ -59,6 +63,7 @@ class Language:
     method: str
     explored: int = 0
     kind: str = "words"
+    reason: str | None = None
 
     def __iter__(self) -> Iterator:
         return iter(self.words)
@@ -104,63 +109,31 @@ def _tuple_key(ws: tuple[Word, ...]):
 
 
 # ---------------------------------------------------------------- context-free facts
-def min_yields(rules: Iterable[Rule], *, query_yield: float = INFINITE) -> dict:
-    """Each nonterminal's minimum terminal yield under ``rules`` (``math.inf`` if unproductive).
-
-    A query symbol yields ``query_yield``: infinite for a grammar taken alone
-    (it derives no word on its own), 0 as a sound lower bound inside a PCGS.
-    """
-    rules = tuple(rules)
-    best: dict[Nonterminal, float] = {}
-    for r in rules:
-        best.setdefault(r.lhs, INFINITE)
-        for s in r.rhs:
-            if isinstance(s, Nonterminal):
-                best.setdefault(s, INFINITE)
-
-    def cost(sym) -> float:
-        if isinstance(sym, Terminal):
-            return 1
-        if isinstance(sym, Query):
-            return query_yield
-        return best[sym]
-
-    changed = True
-    while changed:  # Bellman-Ford style: at most |N| rounds improve anything
-        changed = False
-        for r in rules:
-            value = sum((cost(s) for s in r.rhs), 0)
-            if value < best[r.lhs]:
-                best[r.lhs] = value
-                changed = True
-    return best
-
-
-def _form_lower_bound(form, yields) -> float:
-    total = 0
-    for s in form:
-        if isinstance(s, Terminal):
-            total += 1
-        elif isinstance(s, Nonterminal):
-            total += yields.get(s, INFINITE)
-    return total
-
-
 def context_free_words(grammar: Grammar, max_length: int, *, rules: Iterable[Rule] | None = None,
-                       start: Nonterminal | None = None, max_words: int = 1_000_000):
+                       start: Nonterminal | None = None, max_words: int = 1_000_000,
+                       max_seconds: float | None = None):
     """The context-free words of ``grammar`` up to ``max_length``, by length.
 
     Returns ``(words_by_length, bound)``: a list whose entry ``n`` is the
     frozenset of words of length ``n`` derivable from ``start`` (the axiom
     unless given) with ``rules`` (all the grammar's rules unless given), and
-    ``None`` or a sentence naming ``max_words`` when the table grew past it;
-    then the list stops before the length at which it was hit, and every
-    shorter length is complete. ε-rules, unit cycles and left recursion are
+    ``None`` or a sentence naming ``max_words`` when the table grew past it
+    (or ``max_seconds``, default no limit, when time ran out); then the list
+    stops before the length at which it was hit, and every shorter length is
+    complete. ε-rules, unit cycles and left recursion are
     fine: each length is a fixpoint over finitely many words. Query symbols
     derive nothing here.
     """
+    check_seconds(max_seconds, optional=True)
     rules = tuple(grammar.rules if rules is None else rules)
     start = grammar.start if start is None else start
+    return _words_by_length(grammar, max_length, rules, start, max_words,
+                            Budget(max_seconds, every=32))
+
+
+def _words_by_length(grammar: Grammar, max_length: int, rules, start, max_words: int,
+                     clock: Budget):
+    """:func:`context_free_words` on a running budget; a time-out keeps the complete lengths."""
     yields = min_yields(rules)
     lhs_order = sorted({r.lhs for r in rules}, key=lambda n: n.name)
     table: dict[Nonterminal, list[set]] = {a: [] for a in lhs_order}
@@ -185,7 +158,14 @@ def context_free_words(grammar: Grammar, max_length: int, *, rules: Iterable[Rul
             for r in rules:
                 if yields[r.lhs] > n:
                     continue
-                found = _sequence_words(r.rhs, n, words_of, yields)
+                try:
+                    found = _sequence_words(r.rhs, n, words_of, yields, clock)
+                except BoundReached:
+                    for a in lhs_order:
+                        table[a].pop()
+                    return _rows_of(table, start, n), (
+                        f"stopped at length {n} after {clock.seconds:g} seconds (max_seconds); "
+                        f"shorter words are complete")
                 row = table[r.lhs][n]
                 before = len(row)
                 row.update(found)
@@ -208,8 +188,12 @@ def _rows_of(table, start, count: int) -> list[frozenset]:
     return [frozenset(rows[n]) for n in range(count)]
 
 
-def _sequence_words(rhs, n: int, words_of, yields) -> set:
-    """Words of length exactly ``n`` derivable from the symbol sequence ``rhs``."""
+def _sequence_words(rhs, n: int, words_of, yields, clock: Budget) -> set:
+    """Words of length exactly ``n`` derivable from the symbol sequence ``rhs``.
+
+    Built from the end of ``rhs`` backwards, one position at a time (no
+    recursion, so a body of thousands of symbols is fine).
+    """
     k = len(rhs)
     suffix_min = [0] * (k + 1)
     for i in range(k - 1, -1, -1):
@@ -219,35 +203,32 @@ def _sequence_words(rhs, n: int, words_of, yields) -> set:
         suffix_min[i] = suffix_min[i + 1] + one
     if suffix_min[0] > n:
         return set()
-    memo: dict[tuple[int, int], set] = {}
-
-    def from_position(i: int, m: int) -> set:
-        if i == k:
-            return {()} if m == 0 else set()
-        key = (i, m)
-        if key in memo:
-            return memo[key]
-        out: set = set()
-        low = suffix_min[i] - suffix_min[i + 1]
-        for n1 in range(int(low), m - int(suffix_min[i + 1]) + 1):
-            heads = words_of(rhs[i], n1)
-            if not heads:
-                continue
-            tails = from_position(i + 1, m - n1)
-            for h in heads:
-                for t in tails:
-                    out.add(h + t)
-        memo[key] = out
-        return out
-
-    return from_position(0, n)
+    # tails[m]: the words of length m derivable from rhs[i + 1:]
+    tails: dict[int, set] = {0: {()}}
+    for i in range(k - 1, -1, -1):
+        clock.tick()
+        here: dict[int, set] = {}
+        low, rest = int(suffix_min[i] - suffix_min[i + 1]), int(suffix_min[i + 1])
+        # rhs[:i] takes at least suffix_min[0] - suffix_min[i] symbols of the n
+        for m in range(int(suffix_min[i]), n - int(suffix_min[0] - suffix_min[i]) + 1):
+            out: set = set()
+            for n1 in range(low, m - rest + 1):
+                heads = words_of(rhs[i], n1)
+                after = tails.get(m - n1) if heads else None
+                if after:
+                    out.update(h + t for h in heads for t in after)
+            if out:
+                here[m] = out
+        tails = here
+    return tails.get(n, set())
 
 
 # ---------------------------------------------------------------- entry point
 def language(system, max_length: int, *, max_configurations: int = 200_000,
              max_form_length: int = 1_000, max_candidates: int = 100_000,
-             max_words: int = 1_000_000, max_seconds: float | None = None,
-             method: str | None = None, **membership_options) -> Language:
+             max_words: int = 1_000_000, max_seconds: float | None = 60.0,
+             max_symbols: int = MAX_SYMBOLS, method: str | None = None,
+             **membership_options) -> Language:
     """Enumerate the language of ``system`` up to size ``max_length``, in order of size.
 
     * :class:`~psgs.model.PSGS`: the terminal tuples whose total length is at
@@ -264,13 +245,17 @@ def language(system, max_length: int, *, max_configurations: int = 200_000,
     * :class:`~psgs.model.Grammar`: its context-free words up to
       ``max_length`` (the component taken alone; query symbols derive nothing).
 
-    ``max_seconds`` (default ``None``: no limit) bounds the wall-clock time of
-    the search or of the filter loop (each ``accepts`` call then gets the time
-    left as its own ``max_seconds``); the other budgets are deterministic.
+    ``max_seconds`` (default 60; ``None``: no limit) bounds the wall-clock
+    time of the whole call, grammar analysis included (in the filter each
+    ``accepts`` call gets the time left as its own ``max_seconds``).
+    ``max_symbols`` bounds memory: the configurations the search keeps,
+    counted as configurations × form size in symbols (default
+    :data:`psgs.membership.MAX_SYMBOLS`). The other budgets are deterministic.
 
-    Always terminates. When a budget stops it, ``complete`` is ``False`` and
-    ``bound`` names the budget, e.g. ``"stopped after 200000 configurations
-    (max_configurations)"``.
+    Always terminates. When a budget stops it, ``complete`` is ``False``,
+    ``bound`` is the budget's name, e.g. ``"max_configurations"``, and
+    ``reason`` says it in words (``"stopped after 200000 configurations
+    (max_configurations)"``).
 
     >>> from psgs import Grammar, Nonterminal, Rule, Terminal
     >>> S = Nonterminal("S")
@@ -285,228 +270,67 @@ def language(system, max_length: int, *, max_configurations: int = 200_000,
                         ("max_candidates", max_candidates), ("max_words", max_words)):
         if isinstance(value, bool) or not isinstance(value, int) or value < 1:
             raise ValidationError(f"{name} must be a whole number ≥ 1, not {value!r}")
-    if max_seconds is not None and not (isinstance(max_seconds, (int, float))
-                                        and max_seconds > 0):
-        raise ValidationError(f"max_seconds must be a positive number or None, not "
-                              f"{max_seconds!r}")
-    clock = _Clock(max_seconds)
+    check_seconds(max_seconds, optional=True)
+    check_count(max_symbols, "max_symbols")
+    clock = Budget(max_seconds, max_symbols, every=32)
     if method not in (None, "search", "filter"):
         raise ValidationError(f"method must be 'search' or 'filter', not {method!r}")
     if isinstance(system, Grammar):
-        return _grammar_language(system, max_length, max_words)
+        return _grammar_language(system, max_length, max_words, clock)
     if isinstance(system, PCGS):
         if method == "filter":
             raise ValidationError("method 'filter' needs a PSGS; a PCGS is enumerated by search")
-        return _pcgs_search(system, max_length, max_configurations, max_form_length, clock)
+        found = pcgs_search(system, max_length, max_configurations, max_form_length, clock)
+        words = sorted(found.found, key=_word_key)
+        return Language(tuple(words), found.bound is None, found.bound, max_length, "search",
+                        found.explored, reason=found.reason)
     if isinstance(system, PSGS):
         if method is None:
-            method = "search" if system.mode == "parallel" else _filter_if_available()
+            method = "search" if system.mode == "parallel" else "filter"
         if method == "search":
-            return _psgs_search(system, max_length, max_configurations, max_form_length, clock)
+            found = psgs_search(system, max_length, max_configurations, max_form_length, clock)
+            words = sorted(found.found, key=_tuple_key)
+            return Language(tuple(words), found.bound is None, found.bound, max_length,
+                            "search", found.explored, "tuples", found.reason)
         return _psgs_filter(system, max_length, max_words, max_candidates, membership_options,
                             clock)
     raise ValidationError(f"expected a PSGS, a PCGS or a Grammar, not {type(system).__name__}")
 
 
-class _Clock:
-    """A wall-clock budget; ``expired()`` is always False without one."""
-
-    def __init__(self, seconds: float | None) -> None:
-        self.seconds = seconds
-        self.deadline = None if seconds is None else time.monotonic() + seconds
-
-    def expired(self) -> bool:
-        return self.deadline is not None and time.monotonic() > self.deadline
-
-    def bound(self) -> str:
-        return f"stopped after {self.seconds:g} seconds (max_seconds)"
-
-
-def _filter_if_available() -> str:
-    try:
-        from .membership import accepts  # noqa: F401
-    except ImportError:
-        return "search"
-    return "filter"
-
-
-def _grammar_language(grammar: Grammar, max_length: int, max_words: int) -> Language:
-    rows, bound = context_free_words(grammar, max_length, max_words=max_words)
+def _grammar_language(grammar: Grammar, max_length: int, max_words: int,
+                      clock: Budget) -> Language:
+    rows, reason = _words_by_length(grammar, max_length, grammar.rules, grammar.start,
+                                    max_words, clock)
     words = sorted((w for row in rows for w in row), key=_word_key)
-    return Language(tuple(words), bound is None, bound, max_length, "context-free",
-                    sum(len(r) for r in rows))
+    return Language(tuple(words), reason is None, _bound_name(reason), max_length,
+                    "context-free", sum(len(r) for r in rows), reason=reason)
+
+
+def _bound_name(sentence: str | None) -> str | None:
+    """The budget a sentence names: the last ``max_…`` in it."""
+    if sentence is None:
+        return None
+    found = re.findall(r"\b(max_[a-z_]+)\b", sentence)
+    return found[-1] if found else None
 
 
 # ---------------------------------------------------------------- PSGS
-def _usable_rules(system: PSGS) -> list[tuple[Rule, ...]]:
-    if system.unsynchronised == "free":
-        return [g.rules for g in system.components]
-    return [tuple(r for r in g.rules if r in synced)
-            for g, synced in zip(system.components, system.synchronised_rules)]
-
-
-def _too_long(configuration, max_form_length: int) -> bool:
-    return any(len(f) > max_form_length for f in configuration)
-
-
-def _form_bound(max_form_length: int) -> str:
-    return (f"left out configurations with a form longer than {max_form_length} symbols "
-            f"(max_form_length)")
-
-
-class _Codes:
-    """Small integers for a system's symbols, looked up by object identity.
-
-    Hashing a configuration of dataclass symbols calls Python code per
-    symbol; keying the visited set by integer codes keeps that in C. Equal
-    symbols get equal codes (the table is built by equality once), so the
-    keys identify configurations exactly.
-    """
-
-    def __init__(self, system) -> None:
-        by_value: dict = {}
-        self.by_id: dict[int, int] = {}
-        self.objects: list = []
-        for g in system.components:
-            self.note(g.start, by_value)
-            for r in g.rules:
-                self.note(r.lhs, by_value)
-                for sym in r.rhs:
-                    self.note(sym, by_value)
-        self._by_value = by_value
-
-    def note(self, sym, by_value=None) -> None:
-        by_value = self._by_value if by_value is None else by_value
-        code = by_value.setdefault(sym, len(by_value))
-        if code == len(self.objects):
-            self.objects.append(sym)
-        self.by_id[id(sym)] = code
-
-    def key(self, configuration) -> tuple:
-        get = self.by_id.__getitem__
-        try:
-            return tuple(tuple(map(get, map(id, f))) for f in configuration)
-        except KeyError:  # a symbol object not from the system's rules: learn it
-            for f in configuration:
-                for sym in f:
-                    self.note(sym)
-            return self.key(configuration)
-
-
-def _psgs_search(system: PSGS, max_length: int, max_configurations: int,
-                 max_form_length: int, clock: _Clock) -> Language:
-    from .derivation import _psgs_successors, initial_configuration
-
-    codes = _Codes(system)
-    yields = [min_yields(rules) for rules in _usable_rules(system)]
-
-    def lower_bound(key) -> float:
-        total = 0
-        for codes_of_form, weight in zip(key, weights):
-            total += sum(map(weight.__getitem__, codes_of_form))
-        return total
-
-    def weight_table(y) -> list:
-        return [1 if isinstance(sym, Terminal) else y.get(sym, INFINITE) for sym in codes.objects]
-
-    eager = _eager_rules(system)
-
-    def successors(configuration):
-        if eager:
-            forced = _forced_rewrites(configuration, eager)
-            if forced is not None:
-                return forced
-        return (after for _, _, after in _psgs_successors(system, configuration))
-
-    start = initial_configuration(system)
-    start_key = codes.key(start)
-    weights = [weight_table(y) for y in yields]
-    found: set = set()
-    bound = None
-    too_long = False
-    seen = {start_key}
-    queue = deque([start] if lower_bound(start_key) <= max_length else [])
-    while queue:
-        if clock.expired():
-            bound = clock.bound()
-            break
-        configuration = queue.popleft()
-        if all(isinstance(s, Terminal) for f in configuration for s in f):
-            found.add(configuration)
-            continue
-        for after in successors(configuration):
-            key = codes.key(after)
-            if len(weights[0]) != len(codes.objects):  # new symbols were learnt
-                weights = [weight_table(y) for y in yields]
-            if key in seen or lower_bound(key) > max_length:
-                continue
-            if _too_long(after, max_form_length):
-                too_long = True
-                continue
-            if len(seen) >= max_configurations:
-                bound = f"stopped after {len(seen)} configurations (max_configurations)"
-                queue.clear()
-                break
-            seen.add(key)
-            queue.append(after)
-    if too_long:
-        bound = "; ".join(filter(None, [bound, _form_bound(max_form_length)]))
-    words = sorted(found, key=_tuple_key)
-    return Language(tuple(words), bound is None, bound, max_length, "search", len(seen),
-                    "tuples")
-
-
-def _eager_rules(system: PSGS) -> list[dict] | None:
-    """Per component, the nonterminals all of whose rules are unsynchronised, with those rules.
-
-    Only in ``single`` mode under ``free``. Such an occurrence must be
-    rewritten some time by one of these rules applied alone, and that step
-    commutes with every other step (no tuple touches the occurrence, and
-    making a component terminal sooner only lets tuples skip it), so the
-    search may rewrite it first: one branch per rule instead of every
-    interleaving. Not sound in ``parallel`` mode, where a step rewrites
-    occurrences that later steps create.
-    """
-    if system.mode != "single" or system.unsynchronised != "free":
-        return None
-    out = []
-    for g, synced in zip(system.components, system.synchronised_rules):
-        synced_lhs = {r.lhs for r in synced}
-        table = {a: rules for a, rules in g.rules_by_lhs.items() if a not in synced_lhs}
-        out.append(table)
-    return out if any(out) else None
-
-
-def _forced_rewrites(configuration, eager) -> list | None:
-    for i, (form, table) in enumerate(zip(configuration, eager)):
-        for k, sym in enumerate(form):
-            rules = table.get(sym)
-            if rules:
-                head, tail = form[:k], form[k + 1:]
-                return [configuration[:i] + (head + r.rhs + tail,) + configuration[i + 1:]
-                        for r in rules if r.rhs != (sym,)]
-    return None
-
-
 def _psgs_filter(system: PSGS, max_length: int, max_words: int, max_candidates: int,
-                 membership_options: dict, clock: _Clock) -> Language:
-    try:
-        from .membership import accepts
-    except ImportError as exc:
-        raise ValidationError("method 'filter' needs psgs.membership, which is not "
-                              f"available ({exc})") from None
-    usable = _usable_rules(system)
+                 membership_options: dict, clock: Budget) -> Language:
+    usable = usable_rules(system)
     yields = [min_yields(rules) for rules in usable]
     floors = [y.get(g.start, INFINITE) for g, y in zip(system.components, yields)]
     if sum(floors) > max_length:
         return Language((), True, None, max_length, "filter", 0, "tuples")
     per_component: list[list[Word]] = []
     bounds: list[str] = []
+    names: list[str] = []
     for g, rules, floor in zip(system.components, usable, floors):
         room = max_length - (sum(floors) - floor)
-        rows, bound = context_free_words(g, int(room), rules=rules, max_words=max_words)
+        rows, bound = _words_by_length(g, int(room), rules, g.start, max_words, clock)
         if bound:
             bounds.append(f"component {g.name}: {bound}")
+            names.append(_bound_name(bound))
         per_component.append(sorted((w for row in rows for w in row), key=_word_key))
 
     candidates = 0
@@ -518,13 +342,13 @@ def _psgs_filter(system: PSGS, max_length: int, max_words: int, max_candidates: 
             stopped = f"stopped after {candidates} candidate tuples (max_candidates)"
             break
         if clock.expired():
-            stopped = clock.bound() + f" ({candidates} candidate tuples checked)"
+            stopped = (budget_sentence("max_seconds", clock)
+                       + f" ({candidates} candidate tuples checked)")
             break
         candidates += 1
         options = membership_options
         if clock.deadline is not None:  # one accepts call may not outlive language's budget
-            left = max(clock.deadline - time.monotonic(), 1e-3)
-            options = {**membership_options, "max_seconds": left}
+            options = {**membership_options, "max_seconds": clock.left()}
         answer = accepts(system, words, **options)
         verdict = getattr(answer, "answer", "yes" if answer else "no")
         if verdict == "yes":
@@ -532,15 +356,17 @@ def _psgs_filter(system: PSGS, max_length: int, max_words: int, max_candidates: 
         elif verdict != "no":
             unknown.append(answer)
     if unknown:
-        first = getattr(unknown[0], "bound", None) or getattr(unknown[0], "reason", None)
+        first = unknown[0]
         bounds.append(f"membership answered unknown for {len(unknown)} candidate tuples"
-                      + (f" ({first})" if first else ""))
+                      + (f" ({first.reason})" if first.reason else ""))
+        names.append(first.bound)
     if stopped:
         bounds.append(stopped)
+        names.insert(0, _bound_name(stopped))  # what stopped the loop comes first
     accepted.sort(key=_tuple_key)
-    bound = "; ".join(bounds) if bounds else None
-    return Language(tuple(accepted), bound is None, bound, max_length, "filter", candidates,
-                    "tuples")
+    reason = "; ".join(bounds) if bounds else None
+    return Language(tuple(accepted), reason is None, names[0] if names else None, max_length,
+                    "filter", candidates, "tuples", reason)
 
 
 def _tuples_within(per_component: Sequence[Sequence[Word]], max_length: int) -> Iterator:
@@ -563,54 +389,4 @@ def _tuples_within(per_component: Sequence[Sequence[Word]], max_length: int) -> 
 
     yield from extend(0, max_length, ())
 
-
-# ---------------------------------------------------------------- PCGS
-def _pcgs_search(system: PCGS, max_length: int, max_configurations: int,
-                 max_form_length: int, clock: _Clock) -> Language:
-    from .derivation import _pcgs_steps, initial_configuration
-
-    master = system.master_index
-    master_queried = any(q.component == system.master for g in system.components
-                         for q in g.queries)
-    # Terminals never leave a form except when it is sent away in returning mode.
-    can_prune = not (system.returning and master_queried)
-    yields = min_yields(system.components[master].rules, query_yield=0)
-
-    def hopeless(configuration) -> bool:
-        return can_prune and _form_lower_bound(configuration[master], yields) > max_length
-
-    start = initial_configuration(system)
-    found: set = set()
-    bound = None
-    too_long = False
-    seen = {start}
-    queue = deque([] if hopeless(start) else [start])
-    while queue:
-        if clock.expired():
-            bound = clock.bound()
-            break
-        configuration = queue.popleft()
-        form = configuration[master]
-        if all(isinstance(s, Terminal) for s in form):
-            if len(form) <= max_length:
-                found.add(form)
-            if can_prune:
-                continue  # nobody can reset the master, so its word never changes again
-        for step in _pcgs_steps(system, configuration):
-            after = step.after
-            if after in seen or hopeless(after):
-                continue
-            if _too_long(after, max_form_length):
-                too_long = True
-                continue
-            if len(seen) >= max_configurations:
-                bound = f"stopped after {len(seen)} configurations (max_configurations)"
-                queue.clear()
-                break
-            seen.add(after)
-            queue.append(after)
-    if too_long:
-        bound = "; ".join(filter(None, [bound, _form_bound(max_form_length)]))
-    words = sorted(found, key=_word_key)
-    return Language(tuple(words), bound is None, bound, max_length, "search", len(seen))
 

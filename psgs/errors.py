@@ -48,5 +48,11 @@ class BoundReached(PSGSError):
 
     Raised only where a caller asked for an exception; the functions that can
     stop at a bound normally report it in their result (``complete=False`` and
-    the name of the bound).
+    the name of the bound). ``bound`` is the name of the budget parameter
+    that ran out, e.g. ``"max_seconds"``.
     """
+
+    @property
+    def bound(self) -> str:
+        """The name of the budget that ran out (the first argument)."""
+        return str(self.args[0]) if self.args else ""

@@ -188,6 +188,9 @@ class _Builder:
         self.header_at = (1, 1)
         self.settings: dict[str, tuple[str, tuple[int, int]]] = {}
         self.components: list[_Component] = []
+        # name -> component, so a repeated name is found in O(1), not by a scan of all earlier
+        # components (16,000 components took 6 s that way)
+        self.component_named: dict[str, _Component] = {}
         self.sync_at: tuple[int, int] | None = None
         self.tuples: list[tuple[list[lark.Token], tuple[int, int]]] = []
         # symbol name -> (kind, position of first use), to report a name used as two kinds
@@ -265,13 +268,15 @@ class _Builder:
         if len(words) != 4 or str(words[2]) != "start":
             raise self.error("write a component as 'component NAME start SYMBOL'", at)
         name = str(words[1])
-        for other in self.components:
-            if other.name == name:
-                raise self.error(f"a second component named {name} (the first is on line "
-                                 f"{other.at[0]})", _at(words[1]))
+        other = self.component_named.get(name)
+        if other is not None:
+            raise self.error(f"a second component named {name} (the first is on line "
+                             f"{other.at[0]})", _at(words[1]))
         start = Nonterminal(str(words[3]))
         self.note_kind(start.name, "nonterminal", _at(words[3]))
-        self.components.append(_Component(name, start, at))
+        component = _Component(name, start, at)
+        self.components.append(component)
+        self.component_named[name] = component
 
     def sync_line(self, at: tuple[int, int]) -> None:
         if self.kind == "pcgs":
@@ -395,6 +400,7 @@ class _Builder:
             raise self.error(str(exc), component.at) from None
 
     def check_queries(self, names: list[str]) -> None:
+        names = set(names)  # a query is checked in O(1), not against a list of every component
         for component in self.components:
             for rule in component.rules:
                 for sym in rule.rhs:

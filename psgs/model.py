@@ -22,7 +22,7 @@ from .errors import ValidationError
 
 __all__ = [
     "Terminal", "Nonterminal", "Query", "Symbol", "Word", "Form", "Rule", "Grammar",
-    "SyncTuple", "resolve_tuple_entries", "PSGS", "PCGS", "System", "IDLE", "word", "as_word", "is_identifier",
+    "SyncTuple", "resolve_tuple", "PSGS", "PCGS", "System", "IDLE", "as_word", "is_identifier",
 ]
 
 _IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
@@ -91,19 +91,16 @@ Word = tuple[Terminal, ...]
 Form = tuple[Symbol, ...]
 
 
-def word(text: str | Iterable[str | Terminal]) -> Word:
-    """Make a word. A ``str`` is read as a sequence of one-character terminals.
+def as_word(value: str | Iterable[str | Terminal]) -> Word:
+    """Make a word: a ``str`` is read as a sequence of one-character terminals.
 
-    >>> word("ab") == (Terminal("a"), Terminal("b"))
+    A sequence of names or of :class:`Terminal` gives one terminal per item.
+
+    >>> as_word("ab") == (Terminal("a"), Terminal("b"))
     True
-    >>> word(["up", "down"]) == (Terminal("up"), Terminal("down"))
+    >>> as_word(["up", "down"]) == (Terminal("up"), Terminal("down"))
     True
     """
-    return as_word(text)
-
-
-def as_word(value: str | Iterable[str | Terminal]) -> Word:
-    """Coerce a word given as ``str``, a sequence of names, or of :class:`Terminal`."""
     if isinstance(value, str):
         return tuple(Terminal(ch) for ch in value)
     out = []
@@ -252,13 +249,21 @@ def _check_kinds(where: str, rules: Iterable[Rule], extra: Iterable[Symbol] = ()
 SyncTuple = tuple[Union[Rule, None], ...]
 
 
-def resolve_tuple_entries(components: Sequence[Grammar], raw: Sequence[object],
-                          where: str = "") -> SyncTuple:
-    """Read one tuple's entries (rule labels, :class:`Rule` values, ``"#"`` or ``None``) as rules.
+def resolve_tuple(components: Sequence[Grammar], raw: object, name: str = "the tuple") -> SyncTuple:
+    """Read one tuple (rule labels, :class:`Rule` values, ``"#"`` or ``None``) as rules.
 
-    ``raw`` has one entry per component (the caller checks the arity); ``where``
-    prefixes every error message, e.g. ``"tuple 3: "``.
+    The one place that checks a tuple: that it is a sequence, that it has one
+    entry per component, and that each entry is ``#`` or a rule of its
+    component. ``name`` names the tuple in error messages, e.g. ``"tuple 3"``.
     """
+    if isinstance(raw, (str, bytes)) or not isinstance(raw, Iterable):
+        raise ValidationError(f"{name} must be a sequence of rules (or labels, or '#'), "
+                              f"not {raw!r}")
+    raw = tuple(raw)
+    if len(raw) != len(components):
+        raise ValidationError(f"{name} has {len(raw)} entries but the system has "
+                              f"{len(components)} components")
+    where = f"{name}: "
     entries: list[Rule | None] = []
     for g, item in zip(components, raw):
         if item is None or item == "#":
@@ -293,8 +298,38 @@ def _check_components(kind: str, components: Sequence[Grammar]) -> tuple[Grammar
     return components
 
 
+class _Components:
+    """What a PSGS and a PCGS both answer about their components (a mixin, no fields)."""
+
+    components: tuple[Grammar, ...]
+
+    @property
+    def axioms(self) -> tuple[Nonterminal, ...]:
+        """The start symbols, in component order."""
+        return tuple(g.start for g in self.components)
+
+    @property
+    def component_names(self) -> tuple[str, ...]:
+        """The component names, in component order."""
+        return tuple(g.name for g in self.components)
+
+    @cached_property
+    def nonterminals(self) -> frozenset[Nonterminal]:
+        """Every nonterminal of every component."""
+        return frozenset().union(*(g.nonterminals for g in self.components))
+
+    @cached_property
+    def terminals(self) -> frozenset[Terminal]:
+        """Every terminal of every component."""
+        return frozenset().union(*(g.terminals for g in self.components))
+
+    def index(self, component: str | int) -> int:
+        """The position of a component given by name or position."""
+        return _component_index(self.components, component)
+
+
 @dataclass(frozen=True)
-class PSGS:
+class PSGS(_Components):
     """A Parallel Synchronous Grammar System Γ = (N, T, G_1..G_n, M).
 
     ``sync`` is M: each tuple holds, per component, a :class:`Rule` of that
@@ -327,17 +362,10 @@ class PSGS:
             if g.queries:
                 raise ValidationError(f"component {g.name}: a PSGS has no query symbols "
                                       f"(found {min(g.queries, key=str)})")
-        n = len(components)
         tuples = []
         seen = set()
         for t_index, raw in enumerate(self.sync, start=1):
-            if isinstance(raw, (str, bytes)) or not isinstance(raw, Iterable):
-                raise ValidationError(f"tuple {t_index} must be a sequence of rules, not {raw!r}")
-            raw = tuple(raw)
-            if len(raw) != n:
-                raise ValidationError(f"tuple {t_index} has {len(raw)} entries but the system "
-                                      f"has {n} components")
-            entries = resolve_tuple_entries(components, raw, f"tuple {t_index}: ")
+            entries = resolve_tuple(components, raw, f"tuple {t_index}")
             if all(e is None for e in entries):
                 raise ValidationError(f"tuple {t_index} idles in every component")
             key = tuple(entries)
@@ -346,27 +374,6 @@ class PSGS:
             seen.add(key)
             tuples.append(key)
         object.__setattr__(self, "sync", tuple(tuples))
-
-    # -- derived views ----------------------------------------------------
-    @property
-    def axioms(self) -> tuple[Nonterminal, ...]:
-        """The start symbols, in component order."""
-        return tuple(g.start for g in self.components)
-
-    @property
-    def component_names(self) -> tuple[str, ...]:
-        """The component names, in component order."""
-        return tuple(g.name for g in self.components)
-
-    @cached_property
-    def nonterminals(self) -> frozenset[Nonterminal]:
-        """Every nonterminal of every component."""
-        return frozenset().union(*(g.nonterminals for g in self.components))
-
-    @cached_property
-    def terminals(self) -> frozenset[Terminal]:
-        """Every terminal of every component."""
-        return frozenset().union(*(g.terminals for g in self.components))
 
     @cached_property
     def synchronised_rules(self) -> tuple[frozenset[Rule], ...]:
@@ -380,9 +387,6 @@ class PSGS:
         return tuple(tuple(r for r in g.rules if r not in synced)
                      for g, synced in zip(self.components, self.synchronised_rules))
 
-    def index(self, component: str | int) -> int:
-        """The position of a component given by name or position."""
-        return _component_index(self.components, component)
 
 
 def _component_index(components: tuple[Grammar, ...], component: str | int) -> int:
@@ -397,7 +401,7 @@ def _component_index(components: tuple[Grammar, ...], component: str | int) -> i
 
 
 @dataclass(frozen=True)
-class PCGS:
+class PCGS(_Components):
     """A Parallel Communicating Grammar System (Păun and Sântean).
 
     Components may hold :class:`Query` symbols ``?name``. In a communication
@@ -431,16 +435,6 @@ class PCGS:
                                           f"component")
 
     @property
-    def axioms(self) -> tuple[Nonterminal, ...]:
-        """The start symbols, in component order."""
-        return tuple(g.start for g in self.components)
-
-    @property
-    def component_names(self) -> tuple[str, ...]:
-        """The component names, in component order."""
-        return tuple(g.name for g in self.components)
-
-    @property
     def master_index(self) -> int:
         """The position of the master among the components."""
         return self.component_names.index(self.master)
@@ -450,19 +444,6 @@ class PCGS:
         """True when no component but the master holds a query symbol."""
         return all(not g.queries for g in self.components if g.name != self.master)
 
-    @cached_property
-    def nonterminals(self) -> frozenset[Nonterminal]:
-        """Every nonterminal of every component."""
-        return frozenset().union(*(g.nonterminals for g in self.components))
-
-    @cached_property
-    def terminals(self) -> frozenset[Terminal]:
-        """Every terminal of every component."""
-        return frozenset().union(*(g.terminals for g in self.components))
-
-    def index(self, component: str | int) -> int:
-        """The position of a component given by name or position."""
-        return _component_index(self.components, component)
 
 
 System = Union[PSGS, PCGS]

@@ -10,9 +10,10 @@ sizes are drawn first, the alphabet is ``a``, ``b``, ... and nonterminals are
 ``S1``, ``A1``, ``S2``...). Every nonterminal of a drawn grammar is productive:
 its first rule uses only terminals and later nonterminals.
 
->>> from hypothesis import given
+>>> from hypothesis import given, settings
 >>> import psgs.strategies as pst
->>> @given(pst.psgs_systems(max_components=2))
+>>> @settings(max_examples=25)
+... @given(pst.psgs_systems(max_components=2))
 ... def test_has_axioms(system):
 ...     assert len(system.axioms) == len(system.components)
 >>> test_has_axioms()
@@ -36,18 +37,72 @@ DEFAULT_NAMES = ("S", "A", "B", "C", "D", "E")
 
 
 def terminals(alphabet: Sequence[str] = DEFAULT_ALPHABET) -> st.SearchStrategy[Terminal]:
-    """One :class:`Terminal` from ``alphabet`` (shrinks towards the first letter)."""
+    """One :class:`Terminal` from ``alphabet`` (shrinks towards the first letter).
+
+    Parameters
+    ----------
+    alphabet : sequence of str, default ("a", "b", "c")
+        The names to draw from.
+
+    Returns
+    -------
+    hypothesis.strategies.SearchStrategy of Terminal
+
+    Examples
+    --------
+    >>> from hypothesis import find
+    >>> find(terminals(), lambda t: True)
+    Terminal(name='a')
+    >>> find(terminals(["x", "y"]), lambda t: t.name != "x")
+    Terminal(name='y')
+    """
     return st.sampled_from(tuple(alphabet)).map(Terminal)
 
 
 def nonterminals(names: Sequence[str] = DEFAULT_NAMES) -> st.SearchStrategy[Nonterminal]:
-    """One :class:`Nonterminal` from ``names`` (shrinks towards the first name)."""
+    """One :class:`Nonterminal` from ``names`` (shrinks towards the first name).
+
+    Parameters
+    ----------
+    names : sequence of str, default ("S", "A", "B", "C", "D", "E")
+        The names to draw from.
+
+    Returns
+    -------
+    hypothesis.strategies.SearchStrategy of Nonterminal
+
+    Examples
+    --------
+    >>> from hypothesis import find
+    >>> find(nonterminals(), lambda n: True)
+    Nonterminal(name='S')
+    """
     return st.sampled_from(tuple(names)).map(Nonterminal)
 
 
 def symbols(alphabet: Sequence[str] = DEFAULT_ALPHABET,
             names: Sequence[str] = DEFAULT_NAMES) -> st.SearchStrategy:
-    """A terminal or a nonterminal (terminals first, so examples shrink to words)."""
+    """A terminal or a nonterminal (terminals first, so examples shrink to words).
+
+    Parameters
+    ----------
+    alphabet : sequence of str, default ("a", "b", "c")
+        Names of the terminals.
+    names : sequence of str, default ("S", "A", "B", "C", "D", "E")
+        Names of the nonterminals.
+
+    Returns
+    -------
+    hypothesis.strategies.SearchStrategy of Terminal or Nonterminal
+
+    Examples
+    --------
+    >>> from hypothesis import find
+    >>> find(symbols(), lambda s: True)
+    Terminal(name='a')
+    >>> find(symbols(), lambda s: isinstance(s, Nonterminal))
+    Nonterminal(name='S')
+    """
     return st.one_of(terminals(alphabet), nonterminals(names))
 
 
@@ -64,6 +119,40 @@ def grammars(draw, *, name: str = "G", max_nonterminals: int = 3, max_rules: int
     ``allow_epsilon`` / ``allow_unit`` allow ε-rules and rules ``A → B``.
     ``queries`` names components whose query symbols (``?name``) may appear in
     the extra rules (PCGS components); the productive rules never hold one.
+
+    Parameters
+    ----------
+    name : str, default "G"
+        The grammar's name.
+    max_nonterminals : int, default 3
+        At most this many nonterminals (at most 6: ``S, A, ..., E``).
+    max_rules : int, default 5
+        At most this many rules (at least one per nonterminal).
+    max_rhs : int, default 3
+        At most this many symbols on a right side.
+    alphabet : sequence of str, default ("a", "b")
+        Names of the terminals.
+    allow_epsilon : bool, default True
+        Whether a right side may be empty.
+    allow_unit : bool, default True
+        Whether a right side may be a single nonterminal.
+    suffix : str, default ""
+        Appended to every nonterminal name and rule label (``S1``, ``r11``).
+    queries : sequence of str, default ()
+        Names of components that the extra rules may query.
+
+    Returns
+    -------
+    hypothesis.strategies.SearchStrategy of Grammar
+
+    Examples
+    --------
+    >>> from hypothesis import find
+    >>> g = find(grammars(allow_epsilon=False), lambda g: len(g.rules) >= 2)
+    >>> print(g.name, g.start.name, len(g.rules))
+    G S 2
+    >>> all(rule.rhs for rule in g.rules)
+    True
     """
     count = draw(st.integers(1, max(1, min(max_nonterminals, len(DEFAULT_NAMES)))))
     names = [Nonterminal(n + suffix) for n in DEFAULT_NAMES[:count]]
@@ -126,6 +215,38 @@ def psgs_systems(draw, *, min_components: int = 1, max_components: int = 3,
     Component ``i`` is named ``G<i>`` with axiom ``S<i>``; up to ``max_tuples``
     synchronisation tuples pair random rules (or ``#``). ``mode`` and
     ``unsynchronised`` are drawn when left ``None``.
+
+    Parameters
+    ----------
+    min_components : int, default 1
+        Fewest components.
+    max_components : int, default 3
+        Most components.
+    mode : {None, "parallel", "single"}
+        The derivation mode; drawn when None.
+    unsynchronised : {None, "free", "strict"}
+        What a rule in no tuple may do; drawn when None.
+    max_nonterminals : int, default 3
+        Passed to :func:`grammars` for every component, like the next four.
+    max_rules : int, default 4
+    max_rhs : int, default 3
+    alphabet : sequence of str, default ("a", "b")
+    allow_epsilon : bool, default True
+    allow_unit : bool, default True
+        Passed to :func:`grammars` (with the five above).
+    max_tuples : int, default 4
+        At most this many synchronisation tuples.
+
+    Returns
+    -------
+    hypothesis.strategies.SearchStrategy of PSGS
+
+    Examples
+    --------
+    >>> from hypothesis import find
+    >>> system = find(psgs_systems(mode="single"), lambda s: len(s.components) == 2)
+    >>> [g.name for g in system.components], system.mode
+    (['G1', 'G2'], 'single')
     """
     n = draw(st.integers(min_components, max_components))
     components = tuple(
@@ -149,6 +270,34 @@ def pcgs_systems(draw, *, min_components: int = 1, max_components: int = 3,
     When ``centralised`` is true only the master's rules hold query symbols;
     when false (or drawn false) any component may query any other one. A
     component never queries itself.
+
+    Parameters
+    ----------
+    min_components : int, default 1
+        Fewest components.
+    max_components : int, default 3
+        Most components.
+    returning : bool or None, default None
+        Returning (a queried component restarts from its axiom) or not; drawn when None.
+    centralised : bool or None, default None
+        Whether only the master may query; drawn when None.
+    max_nonterminals : int, default 3
+        Passed to :func:`grammars` for every component, like the next four.
+    max_rules : int, default 4
+    max_rhs : int, default 3
+    alphabet : sequence of str, default ("a", "b")
+    allow_epsilon : bool, default True
+
+    Returns
+    -------
+    hypothesis.strategies.SearchStrategy of PCGS
+
+    Examples
+    --------
+    >>> from hypothesis import find
+    >>> system = find(pcgs_systems(returning=True), lambda s: len(s.components) == 2)
+    >>> system.master, system.returning
+    ('G1', True)
     """
     n = draw(st.integers(min_components, max_components))
     central = draw(st.booleans()) if centralised is None else centralised
@@ -175,6 +324,29 @@ def derivations(draw, system, *, max_steps: int = 30, max_form_length: int = 40,
     steps or when a form exceeds ``max_form_length`` symbols. With
     ``terminal=True`` only terminal derivations are drawn (others are
     rejected, so use it with systems that terminate easily).
+
+    Parameters
+    ----------
+    system : PSGS or PCGS
+        The system to derive in.
+    max_steps : int, default 30
+        At most this many steps.
+    max_form_length : int, default 40
+        Stop once a sentential form is longer than this.
+    terminal : bool, default False
+        Draw only derivations that end in terminal words.
+
+    Returns
+    -------
+    hypothesis.strategies.SearchStrategy of psgs.Derivation
+
+    Examples
+    --------
+    >>> import psgs
+    >>> from hypothesis import find
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> print(find(derivations(gamma), lambda d: len(d.steps) >= 1))
+    (S1, S2, S3, S4) ⇒ (N13S1, N18S2, N7S3, N23S4)
     """
     from hypothesis import assume
 
@@ -203,6 +375,31 @@ def derivable_words(system, *, max_steps: int = 30, max_form_length: int = 40):
     """``(words, derivation)`` pairs: terminal results of :func:`derivations` of ``system``.
 
     ``words`` is the tuple of words (PSGS) or the master's word (PCGS).
+
+    Parameters
+    ----------
+    system : PSGS or PCGS
+        The system to derive in (it should terminate easily: non-terminal
+        derivations are rejected).
+    max_steps : int, default 30
+        Passed to :func:`derivations`.
+    max_form_length : int, default 40
+        Passed to :func:`derivations`.
+
+    Returns
+    -------
+    hypothesis.strategies.SearchStrategy of (tuple, psgs.Derivation)
+
+    Examples
+    --------
+    >>> import psgs
+    >>> from hypothesis import find
+    >>> counting = psgs.load("grammars/counting.psgs")           # (aⁿ, bⁿ), n ≥ 1
+    >>> words, derivation = find(derivable_words(counting), lambda pair: len(pair[0][0]) >= 2)
+    >>> ["".join(t.name for t in w) for w in words]
+    ['aa', 'bb']
+    >>> bool(psgs.accepts(counting, words)), derivation.is_terminal
+    (True, True)
     """
     return derivations(system, max_steps=max_steps, max_form_length=max_form_length,
                        terminal=True).map(lambda d: (d.words, d))
@@ -217,6 +414,31 @@ def near_misses(draw, system, words):
     :func:`psgs.accepts`). Inserted and substituted symbols come from the
     system's terminals. ``words`` is one word per component (PSGS) or one
     word (PCGS).
+
+    Parameters
+    ----------
+    system : PSGS or PCGS
+        The system whose terminals are inserted or substituted.
+    words : tuple of words, or a word
+        One word per component (PSGS) or the master's word (PCGS); each word a
+        string or a sequence of terminals.
+
+    Returns
+    -------
+    hypothesis.strategies.SearchStrategy
+        Of the edited words, in the shape of ``words`` (a word is a tuple of terminals).
+
+    Examples
+    --------
+    >>> import psgs
+    >>> from hypothesis import find
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> words = ("abcdbcad", "bcadabcd", "cdabcdab", "abcdbcad")
+    >>> edited = find(near_misses(gamma, words), lambda w: True)
+    >>> sum(len(w) for w in edited) - sum(len(w) for w in words) in (-1, 0, 1)
+    True
+    >>> bool(psgs.accepts(gamma, edited))
+    False
     """
     from .model import as_word
 
@@ -249,6 +471,32 @@ def actiongrams(draw, *, min_strings: int = 1, max_strings: int = 4, max_length:
 
     Strings are named ``s1``, ``s2``, ...; lengths are drawn in
     ``1..max_length``; with ``durations`` each symbol gets a duration in 1..5.
+
+    Parameters
+    ----------
+    min_strings : int, default 1
+        Fewest strings.
+    max_strings : int, default 4
+        Most strings.
+    max_length : int, default 12
+        At most this many symbols in a string.
+    alphabet : sequence of str, default ("B", "G", "R", "Y")
+        The symbols (at least two for strings longer than one).
+    durations : bool, default True
+        Draw a whole-number duration per symbol; otherwise every duration is 1.
+
+    Returns
+    -------
+    hypothesis.strategies.SearchStrategy of psgs.Actiongram
+
+    Examples
+    --------
+    >>> from hypothesis import find
+    >>> ag = find(actiongrams(min_strings=2), lambda ag: ag.total_symbols >= 3)
+    >>> ag.names
+    ('s1', 's2')
+    >>> all(a != b for string in ag.symbols for a, b in zip(string, string[1:]))
+    True
     """
     from .actiongram import Actiongram
 

@@ -3,8 +3,9 @@
 Shared by the fuzz tests (``tests/*/test_fuzz_*.py``, a few hundred hypothesis examples per
 reader on every run) and by ``benchmarks/fuzz.py`` (10^4 inputs per reader, counts in
 docs/testing.md). A *mutation* is a small edit of the file's bytes, the kind that real files
-get from hand editing, truncation and bad exporters: delete a span, duplicate a span, insert
-a token that readers treat specially (numbers at the edges of a float, braces, keywords,
+get from hand editing, truncation and bad exporters: delete a span, duplicate a span, put an
+edge-case number (``nan``, ``1e-320``, ``1e308`` ..) in place of one of the file's numbers,
+insert a token that readers treat specially (numbers at the edges of a float, braces, keywords,
 byte-order marks, bytes that are not UTF-8, a lone surrogate), or overwrite one byte.
 
 A reader passes on an input when, within :data:`TIME_LIMIT` seconds, it either returns a
@@ -16,6 +17,7 @@ from __future__ import annotations
 
 import math
 import random
+import re
 import signal
 import tempfile
 from contextlib import contextmanager
@@ -39,12 +41,16 @@ TOKENS = (
     "component", "start", "sync", "mode", "parallel", "single", "returning", "Q1", "S", "#",
     '"strings"', '"symbols"', '"durations"', '"start"', "null", "true", "[]", "{}",
 )
+# numbers at the edges of what a float (or a reader) takes, put in place of a number of the file
+NUMBERS = ("0", "-0", "1", "-1", "0.5", "1e308", "-1e308", "1e-320", "5e-324", "1e15", "1e-9",
+           "nan", "inf", "-inf", "1e999", "9" * 400, "12345678901234567890", "2.5e-7", "1e300")
+_NUMBER = re.compile(rb"[-+]?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?")
 # bytes that are not UTF-8 text on their own
 RAW_BYTES = (b"\xff", b"\xc3", b"\xed\xa0\x80", b"\x00", b"\xef\xbb\xbf")
 
 #: One mutation: (kind, position, length, argument); positions wrap around the data's length.
 Mutation = tuple[str, int, int, int]
-KINDS = ("delete", "duplicate", "insert", "raw", "byte")
+KINDS = ("delete", "duplicate", "insert", "raw", "byte", "number")
 
 
 def apply(data: bytes, mutations: list[Mutation]) -> bytes:
@@ -61,6 +67,12 @@ def apply(data: bytes, mutations: list[Mutation]) -> bytes:
             data = data[:at] + token + data[at:]
         elif kind == "raw":
             data = data[:at] + RAW_BYTES[argument % len(RAW_BYTES)] + data[at:]
+        elif kind == "number":  # the file's (position mod count)-th number becomes an edge case
+            found = list(_NUMBER.finditer(data))
+            if found:
+                match = found[position % len(found)]
+                data = (data[:match.start()] + NUMBERS[argument % len(NUMBERS)].encode()
+                        + data[match.end():])
         elif data:  # "byte": overwrite one byte with a printable character
             at = min(at, len(data) - 1)
             data = data[:at] + bytes([32 + argument % 95]) + data[at + 1:]

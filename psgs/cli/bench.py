@@ -18,7 +18,19 @@ from ._types import natural, positive_int, share
 
 
 def register(subparsers) -> None:
-    """Add ``synth`` and ``bench`` to the ``psgs`` command."""
+    """Add ``synth`` and ``bench`` to the ``psgs`` command.
+
+    Parameters
+    ----------
+    subparsers : argparse._SubParsersAction
+        The ``psgs`` parser's subcommands.
+
+    Examples
+    --------
+    >>> from psgs.cli import build_parser
+    >>> build_parser().parse_args(["bench", "noise", "--levels", "0:0.1:0.05"]).levels
+    (0.0, 0.05, 0.1)
+    """
     synth = subparsers.add_parser(
         "synth", help="write a synthetic actiongram (the paper's protocol)",
         description="Write a seeded synthetic actiongram in the text form: 20 strings of 100 "
@@ -30,7 +42,8 @@ def register(subparsers) -> None:
     synth.add_argument("--seed", type=natural, default=0, help="random seed (default 0)")
     synth.add_argument("--patterned", type=int, default=4,
                        help="patterned strings (default 4; 0 = all random)")
-    synth.add_argument("--durations", choices=("unit", "random"), default="unit")
+    synth.add_argument("--durations", choices=("unit", "random"), default="unit",
+                       help="every symbol lasts 1 (unit, the default) or 0.5 to 1.5 (random)")
     synth.add_argument("--irregular-gaps", action="store_true",
                        help="1 to 4 random symbols between copies instead of 2")
     synth.add_argument("--unequal-lengths", action="store_true",
@@ -39,7 +52,8 @@ def register(subparsers) -> None:
     synth.set_defaults(run=run_synth)
 
     bench = subparsers.add_parser("bench", help="benchmarks (noise)")
-    bench_sub = bench.add_subparsers(dest="bench", metavar="BENCHMARK")
+    bench_sub = bench.add_subparsers(dest="bench", metavar="BENCHMARK",
+                                     help="the benchmark to run (noise)")
     bench_sub.required = True
     noise = bench_sub.add_parser(
         "noise", help="success rate against noise on the paper's synthetic protocol",
@@ -86,7 +100,31 @@ def _levels(text: str) -> tuple[float, ...]:
 
 # -- psgs synth -------------------------------------------------------------------------
 def run_synth(args) -> int:
-    """``psgs synth``: write one seeded synthetic actiongram, its ground truth as comments."""
+    """``psgs synth``: write one seeded synthetic actiongram, its ground truth as comments.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed ``psgs synth`` arguments.
+
+    Returns
+    -------
+    int
+        0.
+
+    Raises
+    ------
+    ValidationError
+        For ``--patterned`` outside 0..8.
+
+    Examples
+    --------
+    >>> from psgs.cli import main
+    >>> main(["synth", "--seed", "3"])  # doctest: +ELLIPSIS
+    # psgs synth --seed 3 --noise 0
+    # truth s...
+    0
+    """
     from ..induce.synthetic import generate
 
     if not 0 <= args.patterned <= 8:
@@ -131,7 +169,36 @@ def _progress_bar(done: int, total: int, began: float) -> None:
 
 
 def run_bench_noise(args) -> int:
-    """``psgs bench noise``: the success-against-noise sweep, as a table, a CSV and a plot."""
+    """``psgs bench noise``: the success-against-noise sweep, as a table, a CSV and a plot.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed ``psgs bench noise`` arguments.
+
+    Returns
+    -------
+    int
+        0.
+
+    Raises
+    ------
+    ValidationError
+        For an unknown inducer, or a ``--csv``/``--plot`` path that cannot be
+        written (checked before the sweep runs).
+    PSGSError
+        For ``--plot`` without matplotlib.
+
+    Examples
+    --------
+    >>> from psgs.cli import main
+    >>> main(["bench", "noise", "--trials", "1", "--levels", "0", "--jobs", "1"])
+    ... # doctest: +ELLIPSIS, +NORMALIZE_WHITESPACE
+     noise         pal  sequential
+      0.00     100.00%       0.00%
+    1 levels x 1 trials x 2 inducer(s), variant paper: ... s wall, 1 job(s)
+    0
+    """
     from ..induce import get
     from ..induce.sweep import noise_sweep
 
@@ -172,7 +239,31 @@ def run_bench_noise(args) -> int:
 
 
 def plot_noise(rows, path: str, title: str = "") -> None:
-    """Success-rate curves per inducer beside the paper's reported points."""
+    """Success-rate curves per inducer beside the paper's reported points, saved to ``path``.
+
+    Parameters
+    ----------
+    rows : sequence of SweepRow
+        What :func:`psgs.induce.sweep.noise_sweep` returned.
+    path : str
+        The image file to write (its format from the extension).
+    title : str, optional
+        A title above the plot.
+
+    Raises
+    ------
+    ImportError
+        When matplotlib is not installed (the ``plot`` extra).
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from psgs.induce.sweep import SweepRow
+    >>> path = os.path.join(tempfile.mkdtemp(), "noise.png")
+    >>> plot_noise([SweepRow("pal", 0.0, 1, 1, 0.1), SweepRow("pal", 0.1, 1, 1, 0.1)], path)
+    >>> open(path, "rb").read(4)[1:]
+    b'PNG'
+    """
     import matplotlib
 
     matplotlib.use("Agg")

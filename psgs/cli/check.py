@@ -1,20 +1,20 @@
 """``psgs check FILE WORD…``: is this word tuple in the system's language?
 
-Exit status: 0 yes, 1 no (the reason is printed), 2 unknown (the budget that
-ran out is printed), 3 an error (a bad file or bad words: one line on
-stderr).
+Exit status: 0 yes, 1 no (the reason is printed), 2 an error (a bad file or
+bad words: one line on stderr), 3 unknown (the budget that ran out is
+printed); the table of every command is ``psgs.cli.EXIT_STATUS_HELP``.
 """
 
 from __future__ import annotations
 
 import dataclasses
-import sys
 
 from ..errors import ValidationError
 from ..model import PCGS, PSGS, Terminal
-from ._types import positive_float, positive_int
+from . import INCOMPLETE, NO, OK
+from ._types import grammar_file, positive_float, positive_int
 
-YES, NO, UNKNOWN, ERROR = 0, 1, 2, 3
+YES, UNKNOWN = OK, INCOMPLETE
 
 
 def register(subparsers) -> None:
@@ -24,9 +24,10 @@ def register(subparsers) -> None:
         description="Decide membership. A PSGS takes one WORD per component, a PCGS one word "
                     "for its master. A WORD is symbols separated by spaces inside one argument "
                     "(\"up down up\"), or a plain string of one-character symbols (\"abcd\"); "
-                    "'' is the empty word. Exit status: 0 yes, 1 no, 2 unknown (a budget ran "
-                    "out), 3 error.")
-    check.add_argument("file", metavar="FILE", help="a .psgs file")
+                    "'' is the empty word. Exit status: 0 yes, 1 no, 2 error, 3 unknown (a "
+                    "budget ran out).")
+    check.add_argument("file", metavar="FILE", type=grammar_file,
+                       help="a .psgs file, or the name of an example (paper_example, ...)")
     check.add_argument("words", metavar="WORD", nargs="*", help="one word per component")
     check.add_argument("--trace", action="store_true",
                        help="print the witness derivation when the answer is yes")
@@ -38,14 +39,7 @@ def register(subparsers) -> None:
                        help="search budget in seconds (default 30)")
     check.add_argument("--max-steps", type=positive_int, default=200, metavar="K",
                        help="PCGS: longest derivation searched (default 200)")
-    check.set_defaults(run=run_check, error_status=ERROR)
-
-    def usage_error(message: str):
-        # argparse exits 2 on a usage error, which for check would read as "unknown"
-        check.print_usage(sys.stderr)
-        check.exit(ERROR, f"{check.prog}: error: {message}\n")
-
-    check.error = usage_error
+    check.set_defaults(run=run_check)
 
 
 def read_word(text: str, system) -> tuple[Terminal, ...]:
@@ -64,14 +58,10 @@ def read_word(text: str, system) -> tuple[Terminal, ...]:
 
 
 def run_check(args) -> int:
-    from ..format import load
     from ..membership import accepts
+    from .core import load_system
 
-    try:
-        system = load(args.file)
-    except OSError as exc:
-        print(f"psgs: error: {args.file}: {exc.strerror or exc}", file=sys.stderr)
-        return ERROR
+    system = load_system(args.file)
     if args.mode is not None:
         if not isinstance(system, PSGS):
             raise ValidationError("--mode applies to a PSGS only")

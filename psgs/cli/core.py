@@ -2,8 +2,14 @@
 
 Output on stdout is only the result (tuples, words, grammars, the summary),
 so it can be piped; notes about bounds go to stderr. Exit status: 0 done,
+1 no word (a blocked random derivation, an enumeration that found none),
 2 an error (one line on stderr), 3 a bound stopped the work before it was
-complete (what was found is still printed).
+complete (what was found is still printed); see ``psgs.cli.EXIT_STATUS_HELP``.
+
+FILE is a path or the name of an example shipped in the package
+(``psgs show paper_example``). A nonterminal that has no rule (in its component; in a PCGS,
+in any component, since forms travel) is a warning on stderr at load: the file is valid,
+but a form holding it can never become terminal.
 """
 
 from __future__ import annotations
@@ -16,10 +22,40 @@ from pathlib import Path
 from ..errors import ValidationError
 from ..format import load
 from ..model import IDLE, PCGS, PSGS
-from ._types import natural, positive_int
+from . import INCOMPLETE, NO
+from ._types import example_names, grammar_file, natural, positive_int
 
-#: Exit status when a search or a derivation stopped at a bound.
-INCOMPLETE = 3
+_FILE_HELP = "a .psgs file, or the name of an example (paper_example, counting, ...)"
+
+
+def rule_less_nonterminals(system: PSGS | PCGS) -> list[tuple[str, str]]:
+    """``(component, nonterminal)`` for each nonterminal that no rule can rewrite.
+
+    In a PSGS each component rewrites only its own form, so a nonterminal needs a rule in its
+    own component; in a PCGS a form can be sent to another component, so a rule in any
+    component will do.
+    """
+    if isinstance(system, PCGS):
+        anywhere = {r.lhs for g in system.components for r in g.rules}
+        rewritten = [anywhere] * len(system.components)
+    else:
+        rewritten = [set(g.rules_by_lhs) for g in system.components]
+    return [(g.name, n.name) for g, have in zip(system.components, rewritten)
+            for n in sorted(g.nonterminals, key=lambda n: n.name) if n not in have]
+
+
+def load_system(path: str) -> PSGS | PCGS:
+    """``psgs.load`` for the commands: a missing file names the shipped examples, and
+    nonterminals without rules are a warning on stderr."""
+    try:
+        system = load(path)
+    except FileNotFoundError as exc:
+        raise ValidationError(f"{path}: no such file (the shipped examples, usable by name: "
+                              f"{', '.join(example_names())})") from exc
+    for component, name in rule_less_nonterminals(system):
+        print(f"psgs: warning: {path}: nonterminal {name} of component {component} has no "
+              f"rule, so a form holding it never becomes terminal", file=sys.stderr)
+    return system
 
 
 def register(subparsers) -> None:
@@ -30,8 +66,9 @@ def register(subparsers) -> None:
         description="Derive from a grammar system file. --random (the default) prints one "
                     "seeded random derivation in the paper's notation; --enumerate prints every "
                     "word tuple (PSGS) or master word (PCGS) up to --max-length, one per line, "
-                    "in order of size. Exit status 3 when a bound stopped the work.")
-    derive.add_argument("file", metavar="FILE", help="a .psgs file")
+                    "in order of size. Exit status 1 when no word came out (a blocked derivation, "
+                    "nothing up to the length), 3 when a bound stopped the work.")
+    derive.add_argument("file", metavar="FILE", type=grammar_file, help=_FILE_HELP)
     how = derive.add_mutually_exclusive_group()
     how.add_argument("--random", action="store_true",
                      help="one random derivation (the default)")
@@ -57,7 +94,7 @@ def register(subparsers) -> None:
         "export", help="export each component's grammar (to Lark)",
         description="Write each component's context-free grammar as a Lark grammar: one "
                     "COMPONENT.lark file per component in DIR, or all of them to stdout.")
-    export.add_argument("file", metavar="FILE", help="a .psgs file")
+    export.add_argument("file", metavar="FILE", type=grammar_file, help=_FILE_HELP)
     export.add_argument("--to", choices=("lark",), default="lark", help="target (lark)")
     export.add_argument("-o", "--output", metavar="DIR", default=None,
                         help="directory for the .lark files (created if needed)")
@@ -67,13 +104,13 @@ def register(subparsers) -> None:
         "show", help="a readable summary of a grammar system",
         description="Print the kind, settings, N, T, components with their rules, and the "
                     "tuples (PSGS) or the communication settings (PCGS).")
-    show.add_argument("file", metavar="FILE", help="a .psgs file")
+    show.add_argument("file", metavar="FILE", type=grammar_file, help=_FILE_HELP)
     show.set_defaults(run=run_show)
 
 
 # ---------------------------------------------------------------- derive
 def _system_for(args) -> PSGS | PCGS:
-    system = load(args.file)
+    system = load_system(args.file)
     if args.mode is not None:
         if not isinstance(system, PSGS):
             raise ValidationError("--mode applies to a PSGS; this file is a pcgs "
@@ -117,6 +154,9 @@ def _enumerate(system: PSGS | PCGS, args) -> int:
         print(f"psgs: the enumeration is incomplete: {found.bound}; the words above are those "
               f"found up to length {args.max_length}", file=sys.stderr)
         return INCOMPLETE
+    if not len(found):  # say so: an empty stdout with status 0 looked like success
+        print(f"psgs: no word up to length {args.max_length}", file=sys.stderr)
+        return NO
     return 0
 
 
@@ -144,16 +184,16 @@ def _random(system: PSGS | PCGS, args) -> int:
         return 0
     if derivation.bound:
         print(f"psgs: the derivation did not finish: {derivation.bound}", file=sys.stderr)
-    else:
-        print("psgs: the derivation is blocked: no step applies to its last configuration",
-              file=sys.stderr)
-    return INCOMPLETE
+        return INCOMPLETE
+    print("psgs: the derivation is blocked: no step applies to its last configuration",
+          file=sys.stderr)
+    return NO
 
 
 # ---------------------------------------------------------------- export
 def run_export(args) -> int:
     from ..lark_export import to_lark
-    system = load(args.file)
+    system = load_system(args.file)
     grammars = to_lark(system)
     if args.output is None:
         for k, (name, text) in enumerate(grammars.items()):
@@ -173,7 +213,7 @@ def run_export(args) -> int:
 
 # ---------------------------------------------------------------- show
 def run_show(args) -> int:
-    system = load(args.file)
+    system = load_system(args.file)
     print(summary(system), end="")
     return 0
 

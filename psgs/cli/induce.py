@@ -15,7 +15,19 @@ from ..errors import ValidationError
 
 
 def register(subparsers) -> None:
-    """Add ``induce`` to the ``psgs`` command."""
+    """Add ``induce`` to the ``psgs`` command.
+
+    Parameters
+    ----------
+    subparsers : argparse._SubParsersAction
+        The ``psgs`` parser's subcommands.
+
+    Examples
+    --------
+    >>> from psgs.cli import build_parser
+    >>> build_parser().parse_args(["induce", "--inducer", "sequential"]).inducer
+    'sequential'
+    """
     induce = subparsers.add_parser(
         "induce", help="learn a grammar system from an actiongram",
         description="Learn a parallel synchronous grammar system from an actiongram file "
@@ -104,7 +116,34 @@ EXAMPLE_NOISE = 0.1
 
 
 def run_induce(args) -> int:
-    """``psgs induce``: learn from FILE (or the built-in example) and print or write the result."""
+    """``psgs induce``: learn from FILE (or the built-in example) and print or write the result.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed ``psgs induce`` arguments.
+
+    Returns
+    -------
+    int
+        0.
+
+    Raises
+    ------
+    ValidationError
+        For a bad ``--param``, an unknown inducer or parameter, or FILE with ``--example``.
+    FormatError
+        For an actiongram file that cannot be read (naming file, line and column).
+
+    Examples
+    --------
+    >>> from psgs.cli import main
+    >>> main(["induce", "--example", "--json"])  # doctest: +ELLIPSIS
+    {
+      "inducer": "pal",
+    ...
+    0
+    """
     from ..format import dumps
     from ..induce.synthetic import generate
 

@@ -192,6 +192,13 @@ class Inducer:
             When ``performances`` is not an actiongram or a sequence of them.
         ValidationError
             For an empty sequence, or performances whose actuators differ.
+
+        Examples
+        --------
+        >>> from psgs.induce import Sequential
+        >>> takes = [Actiongram.from_strings({"arm": s}) for s in ("abab", "ab")]
+        >>> Sequential().induce(takes).performances
+        2
         """
         raise NotImplementedError
 

@@ -37,6 +37,11 @@ def _describe(ep) -> str:
     return f"{ep.name!r} (a plug-in{', ' + where if where else ''})"
 
 
+def _a(noun: str) -> str:
+    """``noun`` with its indefinite article (``an int``, ``a str``)."""
+    return f"{'an' if noun[:1].lower() in 'aeiou' else 'a'} {noun}"
+
+
 def _plugins() -> dict[str, list]:
     """Plug-in name -> its entry points (more than one is an error, reported on use)."""
     found: dict[str, list] = {}
@@ -91,7 +96,7 @@ def get(name: str, **params) -> Inducer:
     --------
     >>> get("pal", min_copies=4).min_copies
     4
-    >>> get("pal", colour="red")
+    >>> get("pal", colour="red")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
     psgs.errors.ValidationError: inducer pal has no parameter 'colour' (its parameters: ...)
@@ -118,7 +123,7 @@ def get(name: str, **params) -> Inducer:
     except Exception as exc:  # a broken plug-in: say which, in one line
         raise ValidationError(f"{who} could not be loaded: {type(exc).__name__}: {exc}") from None
     if not callable(factory):
-        raise ValidationError(f"{who} is a {type(factory).__name__}, not a class or function "
+        raise ValidationError(f"{who} is {_a(type(factory).__name__)}, not a class or function "
                               f"that builds an inducer")
     _check_names(name, factory, params)
     try:
@@ -128,7 +133,7 @@ def get(name: str, **params) -> Inducer:
     except Exception as exc:  # its own errors, in one line that says whose they are
         raise ValidationError(f"{who} could not be built: {type(exc).__name__}: {exc}") from None
     if not callable(getattr(inducer, "induce", None)):
-        raise ValidationError(f"{who} gave a {type(inducer).__name__}, which has no induce "
+        raise ValidationError(f"{who} gave {_a(type(inducer).__name__)}, which has no induce "
                               f"method (an inducer subclasses psgs.induce.Inducer or has one)")
     return inducer
 

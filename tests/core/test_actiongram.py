@@ -124,16 +124,6 @@ def test_documentation_examples_run(page):
     assert result.attempted > 0 and result.failed == 0
 
 
-@pytest.mark.parametrize("module", ["psgs.actiongram", "psgs.induce", "psgs.induce.pal",
-                                    "psgs.induce.base"])
-def test_docstring_examples_run(module):
-    import doctest
-    import importlib
-
-    result = doctest.testmod(importlib.import_module(module))
-    assert result.failed == 0
-
-
 @pytest.mark.parametrize("name, content, words", [
     ("junk.txt", b"a: x\n\xff\xfe\x00garbage", "junk.txt:2:1: not UTF-8 text"),
     ("junk.json", b"\x89PNG\r\n", "junk.json:1:1: not UTF-8 text"),

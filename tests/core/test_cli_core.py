@@ -106,7 +106,7 @@ def test_a_blocked_derivation_says_so(capsys, tmp_path):
     path.write_text('psgs B\nunsynchronised strict\ncomponent G start S\n  p: S -> A\n'
                     '  q: A -> "a"\nsync\n  (p)\n', encoding="utf-8")
     status, out, err = run(capsys, "derive", str(path))
-    assert status == 3 and "blocked" in err and out.strip() == "(S) ⇒ (A)"
+    assert status == 1 and "blocked" in err and out.strip() == "(S) ⇒ (A)"
 
 
 def test_mode_and_returning_overrides_check_the_kind(capsys):
@@ -215,3 +215,131 @@ def test_a_reader_that_goes_away_ends_the_command_quietly():
     assert done.stdout.strip() == "(bb)"
     assert done.stderr == ""
     assert done.returncode == 141
+
+
+# ---------------------------------------------------------------- issue 11: usability
+def _parsers(parser):
+    """``parser`` and every subcommand parser under it."""
+    import argparse
+    yield parser
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for sub in dict.fromkeys(action.choices.values()):
+                yield from _parsers(sub)
+
+
+def _all_parsers():
+    from kinetology.cli import build_parser as kinetology_parser
+    from psgs.cli import build_parser as psgs_parser
+    return [*_parsers(psgs_parser()), *_parsers(kinetology_parser())]
+
+
+def test_one_exit_status_table_for_both_commands_in_every_help():
+    from kinetology.cli import EXIT_STATUS_HELP as KINETOLOGY_TABLE
+    from psgs.cli import EXIT_STATUS_HELP
+    assert KINETOLOGY_TABLE == EXIT_STATUS_HELP
+    parsers = _all_parsers()
+    assert len(parsers) >= 12  # psgs: 7 commands + bench noise; kinetology: 5 commands
+    for parser in parsers:
+        assert parser.format_help().rstrip().endswith(EXIT_STATUS_HELP.splitlines()[-1]), \
+            parser.prog
+    # and the docs page holds the same statuses
+    page = (REPO / "docs" / "cli.md").read_text(encoding="utf-8")
+    for line in EXIT_STATUS_HELP.splitlines()[1:]:
+        code = line.split()[0]
+        if code.isdigit():
+            assert f"| {code} |" in page, code
+
+
+def test_every_option_of_every_subcommand_has_a_line_of_help():
+    for parser in _all_parsers():
+        for action in parser._actions:
+            if action.help is None or not action.help.strip():
+                raise AssertionError(f"{parser.prog}: {action.option_strings or action.dest} "
+                                     f"has no help")
+
+
+@pytest.mark.parametrize("module", ["psgs", "kinetology"])
+def test_version_and_python_m(module):
+    done = subprocess.run([sys.executable, "-m", module, "--version"], capture_output=True,
+                          text=True, timeout=60)
+    assert done.returncode == 0 and done.stdout.strip() == f"{module} {psgs.__version__}"
+    helped = subprocess.run([sys.executable, "-m", module, "--help"], capture_output=True,
+                            text=True, timeout=60)
+    assert helped.returncode == 0 and "exit status" in helped.stdout and helped.stderr == ""
+
+
+def test_examples_are_shipped_in_the_package_and_found_by_name(capsys, tmp_path, monkeypatch):
+    from psgs.cli._types import example_names
+    package = Path(psgs.__file__).parent / "grammars"
+    assert "paper_example" in example_names()
+    assert (REPO / "grammars").resolve() == package.resolve()  # one copy, grammars/ links it
+    monkeypatch.chdir(tmp_path)  # no grammars/ here: the name finds the package's copy
+    status, out, err = run(capsys, "show", "paper_example")
+    assert status == 0 and "a PSGS with 4 components" in out.splitlines()[0], out
+    assert run(capsys, "check", "counting.psgs", "aa", "bb")[0] == 0
+    status, _, err = run(capsys, "show", "no_such_example")
+    assert status == 2 and "paper_example" in err and len(err.splitlines()) == 1
+
+
+def test_a_nonterminal_without_rules_is_a_warning_and_enumerate_says_no(capsys, tmp_path):
+    path = tmp_path / "dead.psgs"
+    path.write_text('psgs D\ncomponent G start S\n  p: S -> "a" A\n', encoding="utf-8")
+    status, out, err = run(capsys, "derive", str(path), "--enumerate", "--max-length", "4")
+    assert (status, out) == (1, "")
+    lines = err.splitlines()
+    assert "nonterminal A of component G has no rule" in lines[0]
+    assert lines[1] == "psgs: no word up to length 4"
+    status, out, err = run(capsys, "show", str(path))
+    assert status == 0 and "has no rule" in err
+
+
+def test_in_a_pcgs_a_rule_in_any_component_rewrites_a_nonterminal():
+    from psgs.cli.core import rule_less_nonterminals
+    text = ('pcgs P\nreturning no\nmaster G2\ncomponent G1 start S1\n  p1: S1 -> "a" A\n'
+            'component G2 start S2\n  q1: S2 -> ?G1\n  q2: A -> "b"{extra}\n')
+    assert rule_less_nonterminals(psgs.loads(text.format(extra=""))) == []
+    dead = psgs.loads(text.format(extra=' B'))
+    assert rule_less_nonterminals(dead) == [("G2", "B")]
+
+
+def test_a_built_wheel_ships_the_example_grammars_and_the_metadata(tmp_path):
+    import zipfile
+    # the backend installed with the test extra, so no download at test time; the build
+    # writes only into tmp_path (a copy of the sources), never into the checkout
+    source = tmp_path / "src"
+    import shutil
+    shutil.copytree(REPO, source, symlinks=True,
+                    ignore=shutil.ignore_patterns(".git", ".venv*", "__pycache__", "build",
+                                                  "*.egg-info", ".hypothesis", "out"))
+    done = subprocess.run([sys.executable, "-m", "pip", "wheel", str(source), "--no-deps",
+                           "--no-build-isolation", "-q", "-w", str(tmp_path / "dist")],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr[-2000:]
+    (wheel,) = (tmp_path / "dist").glob("psgs-*.whl")
+    with zipfile.ZipFile(wheel) as archive:
+        names = set(archive.namelist())
+        metadata = archive.read(f"psgs-{psgs.__version__}.dist-info/METADATA").decode()
+    shipped = {n.rsplit("/", 1)[1] for n in names if n.startswith("psgs/grammars/")}
+    assert shipped == {p.name for p in (REPO / "psgs" / "grammars").glob("*.psgs")}
+    assert "paper_example.psgs" in shipped and "psgs/format.lark" in names
+    assert "kinetology/__main__.py" in names
+    assert "License-Expression: MIT" in metadata and "Project-URL: Homepage" in metadata
+
+
+@pytest.mark.parametrize("error, status, words", [(RecursionError, 2, "nests too deeply"),
+                                                 (MemoryError, 3, "out of memory")])
+def test_resource_limits_are_one_line_not_a_traceback(capsys, monkeypatch, error, status, words):
+    import psgs.cli.core as core
+    from kinetology import cli as kinetology_cli
+
+    def fail(*args, **kwargs):
+        raise error()
+    monkeypatch.setattr(core, "run_show", fail)  # registered when main() builds the parser
+    assert main(["show", "counting"]) == status
+    err = capsys.readouterr().err
+    assert words in err and len(err.splitlines()) == 1
+    monkeypatch.setattr(kinetology_cli, "_read", fail)
+    assert kinetology_cli.main(["segment", "x.bvh"]) == status
+    err = capsys.readouterr().err
+    assert words in err and len(err.splitlines()) == 1

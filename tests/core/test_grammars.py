@@ -20,7 +20,7 @@ from hypothesis.extra.lark import from_lark
 
 import psgs
 from psgs import PCGS, PSGS, as_word
-from psgs.derivation import language
+from psgs.enumeration import language
 from psgs.lark_export import LARK_OPTIONS, from_lark_name, to_lark
 
 REPO = Path(__file__).resolve().parents[2]

@@ -9,8 +9,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from psgs import PCGS, PSGS, Grammar, Nonterminal, Rule, Terminal, ValidationError
-from psgs.derivation import Language, language
-from psgs.enumeration import context_free_words, min_yields
+from psgs.analysis import min_yields
+from psgs.enumeration import Language, context_free_words, language
 
 S, A, B = Nonterminal("S"), Nonterminal("A"), Nonterminal("B")
 a, b = Terminal("a"), Terminal("b")
@@ -74,7 +74,7 @@ def test_max_words_stops_honestly_and_keeps_shorter_lengths_complete():
     assert bound and "max_words=40" in bound and "stopped at length" in bound
     assert [len(r) for r in rows] == [2 ** n for n in range(len(rows))]
     lang = language(g, 10, max_words=40)
-    assert not lang.complete and lang.bound == bound
+    assert not lang.complete and lang.reason == bound and lang.bound == "max_words"
     assert len(lang) == sum(2 ** n for n in range(len(rows)))
 
 
@@ -154,7 +154,8 @@ def test_filter_stops_at_max_candidates_and_says_so():
     system = PSGS((g, dataclasses.replace(g, name="H")), mode="single")
     lang = language(system, 4, method="filter", max_candidates=10)
     assert not lang.complete
-    assert lang.bound == "stopped after 10 candidate tuples (max_candidates)"
+    assert lang.bound == "max_candidates"
+    assert lang.reason == "stopped after 10 candidate tuples (max_candidates)"
     assert lang.explored == 10
 
 
@@ -162,6 +163,7 @@ def test_max_seconds_stops_a_long_search_and_says_so():
     g = Grammar("G", S, [Rule("r1", S, (S, S)), Rule("r2", S, ())])
     lang = language(PSGS((g,), mode="single"), 3, method="search", max_seconds=0.05,
                     max_configurations=10**9, max_form_length=10**6)
-    assert not lang.complete and lang.bound == "stopped after 0.05 seconds (max_seconds)"
+    assert not lang.complete and lang.bound == "max_seconds"
+    assert lang.reason == "stopped after 0.05 seconds (max_seconds)"
     with pytest.raises(ValidationError, match="max_seconds must be"):
         language(PSGS((g,)), 3, max_seconds=0)

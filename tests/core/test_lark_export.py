@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 import psgs
 import psgs.strategies as pst
 from psgs import PCGS, Grammar, Nonterminal, Query, Rule, Terminal, ValidationError
-from psgs.derivation import language
+from psgs.enumeration import language
 from psgs.lark_export import (EMPTY_TERMINAL, LARK_OPTIONS, START_RULE, from_lark_name,
                               lark_name, to_lark)
 

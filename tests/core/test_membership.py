@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from psgs import PSGS, Grammar, Nonterminal as N, Rule, Terminal as T, ValidationError, as_word
-from psgs.derivation import language
+from psgs.enumeration import language
 from psgs.membership import Acceptance, accepts
 
 REPO = Path(__file__).resolve().parents[2]
@@ -148,7 +148,7 @@ def test_epsilon_occurrences_that_pile_up_are_searched_beyond_the_first_cap():
     assert result.witness.words == (as_word("a"), as_word("c" * 9 + "d"))
     # a small state budget names itself
     small = accepts(system, ["a", "c" * 9 + "d"], max_states=5)
-    assert small.answer == "unknown" and small.bound == "max_states=5"
+    assert small.answer == "unknown" and small.bound == "max_states"
     assert not small
 
 
@@ -168,7 +168,7 @@ def test_unit_and_epsilon_rules_agree_with_enumeration():
 def test_budget_of_seconds_is_named():
     result = accepts(gamma("single"), gamma_words(300), max_seconds=1e-6)
     assert result.answer == "unknown"
-    assert result.bound == "max_seconds=1e-06"
+    assert result.bound == "max_seconds"
     assert "time" in result.reason
 
 
@@ -221,19 +221,19 @@ def test_cli_check_exit_statuses():
     assert no.returncode == 1
     assert no.stdout.startswith("no: every component parses but no schedule of the tuples fits")
     unknown = run_cli(PAPER, *K2, "--max-states", "2")
-    assert unknown.returncode == 2 and "max_states=2" in unknown.stdout
+    assert unknown.returncode == 3 and "max_states=2" in unknown.stdout
     traced = run_cli("--trace", PAPER, "a b c d b c a d", "bcadabcd", "cdabcdab", "abcdbcad")
     assert traced.returncode == 0
     assert traced.stdout.splitlines()[1].startswith("(S1, S2, S3, S4) ⇒ (N13, N18, N7, N23)")
     assert traced.stdout.rstrip().endswith("(abcdbcad, bcadabcd, cdabcdab, abcdbcad)")
 
 
-def test_cli_check_usage_errors_exit_3_not_the_unknown_status():
-    # argparse's own status 2 would read as "unknown"
+def test_cli_check_usage_errors_exit_2_not_the_unknown_status():
+    # one table for every command: 2 usage or input error, 3 unknown
     for argv in [(), ("--max-seconds", "0", PAPER, "a"), ("--max-states", "x", PAPER, "a"),
                  ("--bogus", PAPER, "a")]:
         result = run_cli(*argv)
-        assert result.returncode == 3, (argv, result.returncode, result.stderr)
+        assert result.returncode == 2, (argv, result.returncode, result.stderr)
         assert "error" in result.stderr and "Traceback" not in result.stderr
 
 
@@ -242,12 +242,12 @@ def test_cli_check_errors_are_one_line_and_non_zero(tmp_path):
     bad.write_text("psgs X\ncomponent\n")
     for argv in ([str(bad), "a"], [str(tmp_path / "missing.psgs"), "a"]):
         result = run_cli(*argv)
-        assert result.returncode == 3
+        assert result.returncode == 2
         assert len(result.stderr.strip().splitlines()) == 1
         assert result.stderr.startswith("psgs: error: ")
     if (REPO / PAPER).exists():
         wrong = run_cli(PAPER, "abcd")
-        assert wrong.returncode == 3 and "give 4 words" in wrong.stderr
+        assert wrong.returncode == 2 and "give 4 words" in wrong.stderr
 
 
 def test_cli_reads_words_with_spaces_or_one_character_symbols():
@@ -264,4 +264,22 @@ def test_cli_reads_words_with_spaces_or_one_character_symbols():
 def test_docs_membership_page_runs():
     from test_strategies import run_markdown_python
     namespace = run_markdown_python("docs/membership.md")
-    assert namespace["short"].answer == "no" and namespace["hard"].bound == "max_states=3"
+    assert namespace["short"].answer == "no" and namespace["hard"].bound == "max_states"
+
+
+def test_a_yes_carries_a_typed_schedule_that_replays():
+    from psgs.membership.witness import PSGSSchedule, Rewrite, ScheduledMove, replay
+    system = gamma()
+    result = accepts(system, BLOCKS)
+    schedule = result.schedule
+    assert isinstance(schedule, PSGSSchedule) and schedule.words == tuple(map(as_word, BLOCKS))
+    assert all(isinstance(m, ScheduledMove) and len(m.rewrites) == 4 for m in schedule.moves)
+    first = schedule.moves[0]
+    assert first.entries in system.sync
+    assert all(isinstance(r, Rewrite) and r.split[0] == r.start and r.split[-1] == r.end
+               for rw in first.rewrites for r in rw)
+    assert replay(system, schedule).words == schedule.words
+    # a schedule that does not fit the system is refused by the derivation engine
+    broken = PSGSSchedule(schedule.words, schedule.moves[1:])
+    with pytest.raises(ValidationError):
+        replay(system, broken)

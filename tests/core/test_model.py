@@ -4,7 +4,7 @@ import dataclasses
 
 import pytest
 
-from psgs import IDLE, PCGS, PSGS, Grammar, Nonterminal, Query, Rule, Terminal, ValidationError, word
+from psgs import IDLE, PCGS, PSGS, Grammar, Nonterminal, Query, Rule, Terminal, ValidationError, as_word
 
 S, A = Nonterminal("S"), Nonterminal("A")
 a, b = Terminal("a"), Terminal("b")
@@ -118,10 +118,10 @@ def test_pcgs_master_queries_and_centralised():
 
 
 def test_word_reads_a_str_as_one_character_symbols():
-    assert word("ab") == (a, b)
-    assert word(["up", "down"]) == (Terminal("up"), Terminal("down"))
+    assert as_word("ab") == (a, b)
+    assert as_word(["up", "down"]) == (Terminal("up"), Terminal("down"))
     with pytest.raises(ValidationError):
-        word([S])  # type: ignore[list-item]
+        as_word([S])  # type: ignore[list-item]
 
 
 def test_grammar_lookup_tables_are_read_only_and_pickle():

@@ -9,7 +9,6 @@ from hypothesis import strategies as st
 import psgs
 from psgs import Actiongram
 from psgs.induce import Sequential
-from psgs.induce.sequential import _repair
 from psgs.induce.synthetic import generate, success
 
 
@@ -42,18 +41,34 @@ def test_fails_the_paper_protocol_by_keeping_random_strings():
 @settings(max_examples=60, deadline=None)
 @given(st.text(alphabet="abc", min_size=0, max_size=40))
 def test_pattern_occurs_where_reported(text):
-    found = _repair([tuple(text)], 2, 1000)
-    if found is None:
+    ag = Actiongram.from_strings({"x": text})
+    result = Sequential(max_rules=1000).induce(ag)
+    if "x" not in result.patterns:
+        assert result.report("x").status == "no repetition"
         return
-    pattern, located, rules, bounded = found
-    assert {k for k, _ in located} == {0}
-    positions = [p for _, p in located]
-    assert rules >= 1 and not bounded
-    assert len(positions) >= 1
+    pattern = result.patterns["x"]
+    assert result.report("x").status == "component" and result.report("x").copies >= 1
+    starts = ag.starts["x"]
+    positions = [starts.index(a) for a, _ in result.occurrences["x"]]
     for p in positions:
-        assert tuple(text[p:p + len(pattern)]) == pattern
+        assert ag.string("x")[p:p + len(pattern)] == pattern
     # occurrences never overlap
     assert all(b - a >= len(pattern) for a, b in zip(positions, positions[1:]))
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.text(alphabet="abc", max_size=12), min_size=2, max_size=4))
+def test_performances_learn_like_one_string_cut_by_symbols_that_occur_once(texts):
+    # a symbol that occurs once can never be in a rule, which is what a performance boundary is
+    takes = [Actiongram.from_strings({"x": t}) for t in texts]
+    joined = []
+    for k, t in enumerate(texts):
+        joined += ([f"cut{k}"] if k else []) + list(t)
+    one = Sequential().induce(Actiongram.from_strings({"x": joined}))
+    several = Sequential().induce(takes)
+    assert several.report("x") == one.report("x")
+    assert dict(several.patterns) == dict(one.patterns)
+    assert len(several.occurrences.get("x", ())) == len(one.occurrences.get("x", ()))
 
 
 def test_rule_bound_is_reported():

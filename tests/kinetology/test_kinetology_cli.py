@@ -121,6 +121,45 @@ def test_view_invariance_needs_at_least_one_view():
         view_invariance(_planar_leg(), ("Thigh", "Shin", "Shin.end"), views=0)
 
 
+# ---- issue 11: --frame-rate for AMC, misspelt channels listed
+def _small_amc(tmp_path):
+    from test_kinetology_readers import SMALL_AMC, SMALL_ASF
+    (tmp_path / "s.asf").write_text(SMALL_ASF)
+    rows = "".join(f"{k}\nroot 0 0 0 0 0 0\nfemur {40 * np.sin(k / 8):.3f}\ntibia 0 0\n"
+                   for k in range(1, 121))
+    path = tmp_path / "s_1.amc"
+    path.write_text(":FULLY-SPECIFIED\n:DEGREES\n" + rows)
+    return path
+
+
+def test_frame_rate_sets_an_amc_files_rate(tmp_path, capsys):
+    path = _small_amc(tmp_path)
+    assert main(["segment", str(path), "--frame-rate", "30"]) == 0
+    out = capsys.readouterr().out
+    assert "120 frames at 30 fps" in out
+    ag = psgs.Actiongram.from_text(out)
+    assert sum(ag.durations["femur.rx"]) == pytest.approx(120 / 30)
+
+
+def test_frame_rate_with_a_bvh_file_is_an_error(small_bvh, capsys):
+    assert main(["segment", str(small_bvh), "--frame-rate", "30"]) == 2
+    assert "applies to AMC files" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("rate", ["0", "-5", "nan", "x"])
+def test_a_bad_frame_rate_is_a_usage_error(tmp_path, rate, capsys):
+    with pytest.raises(SystemExit) as info:
+        main(["segment", str(_small_amc(tmp_path)), "--frame-rate", rate])
+    assert info.value.code == 2
+
+
+def test_a_misspelt_channel_lists_the_files_channels(small_bvh, capsys):
+    assert main(["segment", str(small_bvh), "--channels", "Kne.rz"]) == 2
+    err = capsys.readouterr().err
+    assert len(err.splitlines()) == 1
+    assert "did you mean Knee.rz" in err and "Hips.tx" in err and "9 channels" in err
+
+
 def test_segment_several_files_writes_one_actiongram_each_named_after_it(small_bvh, tmp_path,
                                                                          capsys):
     other = tmp_path / "other.bvh"

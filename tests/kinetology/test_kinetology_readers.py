@@ -210,10 +210,25 @@ def test_large_file_reads_in_seconds(tmp_path):
     assert elapsed < 10, f"reading 1e5 frames took {elapsed:.1f} s"
 
 
+def _motion_files(folder):
+    return sorted(p for p in folder.rglob("*") if p.suffix.lower() in (".bvh", ".amc"))
+
+
+# one test per data folder, so that no single test runs long on a loaded machine
+_FOLDERS = sorted(p.name for p in MOCAP.iterdir() if _motion_files(p)) if MOCAP.is_dir() \
+    else ["(no data)"]
+
+
 @needs_mocap
-def test_every_real_file_reads():
-    files = sorted(p for p in MOCAP.rglob("*") if p.suffix.lower() in (".bvh", ".amc"))
-    assert len(files) >= 190
+def test_the_real_data_is_all_there():
+    assert len(_motion_files(MOCAP)) >= 190
+
+
+@needs_mocap
+@pytest.mark.parametrize("folder", _FOLDERS)
+def test_every_real_file_reads(folder):
+    files = _motion_files(MOCAP / folder)
+    assert files
     for path in files:
         m = kinetology.read(path)
         assert m.frames > 0 and len(m.channels) > 0

@@ -23,12 +23,17 @@ when queried, and they may block the system).
 from __future__ import annotations
 
 import math
-import time
 from collections import deque
 
-from .derivation import applicable_steps, initial_configuration
-from .enumeration import min_yields
-from .model import PCGS, Nonterminal, Query, Terminal, Word
+from ..analysis import min_yields
+from ..budget import Budget
+from ..errors import BoundReached
+from ..model import PCGS, Nonterminal, Query, Terminal, Word
+from ..steps import initial_configuration, pcgs_steps
+from .result import Acceptance
+from .witness import PCGSSchedule
+
+__all__ = ["accepts_pcgs"]
 
 
 def _master_can_reset(system: PCGS) -> bool:
@@ -80,16 +85,29 @@ def _find(word: Word, run: list, start: int, end: int) -> int:
 
 
 def accepts_pcgs(system: PCGS, word: Word, *, max_steps: int, max_states: int,
-                 max_seconds: float):
-    """Breadth-first search for a derivation of ``word`` by the master (yes / no / unknown)."""
-    from .membership import Acceptance
+                 budget: Budget) -> Acceptance:
+    """Breadth-first search for a derivation of ``word`` by the master (yes / no / unknown).
 
+    ``budget`` was started by the caller; the search reads its clock per
+    generated step and counts every configuration it keeps (in symbols)."""
+    try:
+        return _search(system, word, max_steps, max_states, budget)
+    except BoundReached as stop:
+        if stop.bound == "max_symbols":
+            reason = (f"the search kept {budget.held} symbols in its configurations, more than "
+                      f"max_symbols={budget.max_symbols}")
+        else:
+            reason = f"the search ran out of time after {budget.seconds:g} s"
+        return Acceptance("unknown", reason=reason, bound=stop.bound, system=system)
+
+
+def _search(system: PCGS, word: Word, max_steps: int, max_states: int,
+            budget: Budget) -> Acceptance:
     # every terminal of the master's word comes from some component's rules
     foreign = next((t for t in word if t not in system.terminals), None)
     if foreign is not None:
         return Acceptance("no", reason=f"{foreign} is a terminal of no component",
                           states=0, system=system)
-    deadline = time.monotonic() + max_seconds
     m = system.master_index
     prune = not _master_can_reset(system)
     yields = min_yields(system.components[m].rules, query_yield=0)
@@ -104,14 +122,11 @@ def accepts_pcgs(system: PCGS, word: Word, *, max_steps: int, max_states: int,
     while queue:
         configuration, depth = queue.popleft()
         explored += 1
-        if explored % 512 == 0 and time.monotonic() > deadline:
-            return Acceptance("unknown", reason=f"the search ran out of time after {max_seconds} s "
-                              f"({explored} configurations)", bound=f"max_seconds={max_seconds}",
-                              states=explored, system=system)
         if depth >= max_steps:
             cut_by_steps = True
             continue
-        for step in applicable_steps(system, configuration):
+        for step in pcgs_steps(system, configuration):
+            budget.tick()
             after = step.after
             if after in parent:
                 continue
@@ -119,6 +134,7 @@ def accepts_pcgs(system: PCGS, word: Word, *, max_steps: int, max_states: int,
             if prune and not _fits(master, word, yields):
                 continue
             parent[after] = step
+            budget.hold(1 + sum(map(len, after)))
             if all(isinstance(s, Terminal) for s in master):
                 if master == word:
                     return Acceptance("yes", states=explored, system=system,
@@ -128,23 +144,24 @@ def accepts_pcgs(system: PCGS, word: Word, *, max_steps: int, max_states: int,
                 # otherwise a query may send the master's word away and restart it
             if len(parent) >= max_states:
                 return Acceptance(
-                    "unknown", reason=f"the search stopped after {len(parent)} configurations",
-                    bound=f"max_states={max_states}", states=explored, system=system)
+                    "unknown", reason=f"the search stopped after {len(parent)} configurations "
+                    f"(max_states={max_states})", bound="max_states", states=explored,
+                    system=system)
             queue.append((after, depth + 1))
     if cut_by_steps:
         return Acceptance("unknown", reason=f"derivations longer than {max_steps} steps were not "
-                          f"explored", bound=f"max_steps={max_steps}", states=explored,
+                          f"explored (max_steps={max_steps})", bound="max_steps", states=explored,
                           system=system)
     reason = ("every configuration from which the master could still derive the word was "
               "explored" if prune else "every reachable configuration was explored")
     return Acceptance("no", reason=reason, states=explored, system=system)
 
 
-def _path(parent: dict, end) -> tuple:
+def _path(parent: dict, end) -> PCGSSchedule:
     steps = []
     node = end
     while parent[node] is not None:
         step = parent[node]
         steps.append(step)
         node = step.before
-    return ("pcgs", tuple(reversed(steps)))
+    return PCGSSchedule(tuple(reversed(steps)))

@@ -1,0 +1,77 @@
+"""A griffe extension for the API reference: a public object without a docstring is a warning.
+
+mkdocstrings shows an undocumented function as a bare signature and says nothing; with this
+extension loaded (``mkdocs.yml``) every public module, function, class, method and property of a
+package that has no docstring is logged as a warning, and ``mkdocs build --strict`` fails on it.
+"Public" is griffe's reading: listed in the module's ``__all__`` where there is one, otherwise a
+name without a leading underscore that is defined (not imported) in the module; methods and
+properties of a public class are public unless their name starts with an underscore. Names
+imported from elsewhere are checked where they are defined, not where they are re-exported.
+It also turns the Sphinx roles the docstrings use (``:func:`name```, ``:class:`~a.b.C```) into
+inline code, which is how they read in ``help()`` too; mkdocstrings would print them verbatim.
+
+The command-line modules (``psgs.cli``, ``kinetology.cli``) are not API: a command's documentation
+is its ``--help``, so they are not checked here.
+"""
+
+from __future__ import annotations
+
+import re
+from typing import Any
+
+import griffe
+
+_ROLE = re.compile(r":(?:func|class|meth|attr|data|mod|exc|obj|const):`(~?)([^`]+)`")
+
+_NOT_API = {"cli"}  # submodules whose documentation lives elsewhere (see above)
+_checked: set[str] = set()  # each package once per build, however many pages render it
+
+
+class PublicDocstrings(griffe.Extension):
+    """Warn, once per object, about public API without a docstring."""
+
+    def on_package(self, *, pkg: griffe.Module, **kwargs: Any) -> None:
+        if pkg.path in _checked:
+            return
+        _checked.add(pkg.path)
+        _plain_roles(pkg)
+        for path in sorted(_undocumented(pkg)):
+            griffe.logger.warning(f"{path}: public, but has no docstring")
+
+
+def _undocumented(module: griffe.Module):
+    if module.name in _NOT_API:
+        return
+    if not module.docstring:
+        yield module.path
+    for name, member in module.members.items():
+        if member.is_alias:
+            continue
+        if member.is_module:
+            if not name.startswith("_") and name not in _NOT_API:
+                yield from _undocumented(member)
+            continue
+        if not member.is_public or not (member.is_function or member.is_class):
+            continue
+        if not member.docstring:
+            yield member.path
+        if member.is_class:
+            yield from _undocumented_methods(member)
+
+
+def _undocumented_methods(cls: griffe.Class):
+    for name, member in cls.members.items():
+        if name.startswith("_") or member.is_alias or not member.is_function:
+            continue
+        if not member.docstring:
+            yield member.path
+
+
+def _plain_roles(obj) -> None:
+    if obj.docstring:
+        obj.docstring.value = _ROLE.sub(
+            lambda m: f"`{m.group(2).rsplit('.', 1)[-1] if m.group(1) else m.group(2)}`",
+            obj.docstring.value)
+    for member in obj.members.values():
+        if not member.is_alias:
+            _plain_roles(member)

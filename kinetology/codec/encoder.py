@@ -1,0 +1,281 @@
+"""Encoding a motion to bytes and back (the base layer, the residual layer, the report)."""
+
+from __future__ import annotations
+
+from types import MappingProxyType
+
+import numpy as np
+
+from ..motion import Motion, MotionFormatError
+from . import entropy, residual, stream
+from .knots import PINNED, channel_knots, is_rotation, unwrap
+from .quartic import fit_knots, reconstruct
+
+__all__ = ["CODEC_DEFAULTS", "Compressed", "compress_with", "decompress", "encode_segments",
+           "mean_errors"]
+
+#: Settings of :func:`kinetology.codec.compress` without ``max_error``: the pinned
+#: segmentation, the knot quantum (degrees), and no residual layer
+#: (``residual_step`` 0; ``hysteresis`` applies when there is one).
+CODEC_DEFAULTS = MappingProxyType({**PINNED, "quantum": 0.5, "residual_step": 0.0,
+                                   "hysteresis": 0.7})
+
+
+class Compressed(bytes):
+    """The bytes of a compressed motion, with what the encoder reached.
+
+    A :class:`bytes` (write it to a file as it is) carrying a report:
+
+    * ``mean_error``: mean absolute error of the decoded rotation channels, in
+      degrees, each difference taken modulo 360 (the decoded angles are the
+      unwrapped ones); over all channels when there are no rotation channels;
+    * ``mean_error_all``: the same over every channel (root translations in
+      their own units);
+    * ``max_error``: the bound asked for (``None`` without rate control);
+    * ``settings``: the settings used (as :data:`CODEC_DEFAULTS`).
+    """
+
+    def __new__(cls, data: bytes, mean_error: float, mean_error_all: float, settings,
+                max_error: float | None = None):
+        self = super().__new__(cls, data)
+        report = (float(mean_error), float(mean_error_all), MappingProxyType(dict(settings)),
+                  None if max_error is None else float(max_error))
+        object.__setattr__(self, "_report", report)
+        return self
+
+    def __setattr__(self, name, value):
+        raise AttributeError("a Compressed value is read-only")
+
+    def __reduce__(self):
+        m, a, s, b = self._report
+        return (Compressed, (bytes(self), m, a, dict(s), b))
+
+    @property
+    def mean_error(self) -> float:
+        return self._report[0]
+
+    @property
+    def mean_error_all(self) -> float:
+        return self._report[1]
+
+    @property
+    def settings(self):
+        return self._report[2]
+
+    @property
+    def max_error(self) -> float | None:
+        return self._report[3]
+
+
+def _errors(original: np.ndarray, decoded: np.ndarray, channels) -> tuple[float, float]:
+    if original.size == 0:
+        return 0.0, 0.0
+    difference = decoded - original
+    rotation = [c for c, name in enumerate(channels) if is_rotation(name)]
+    if rotation:  # an angle 360° off is the same angle
+        difference[:, rotation] = (difference[:, rotation] + 180.0) % 360.0 - 180.0
+    error = np.abs(difference)
+    angles = error[:, rotation] if rotation else error
+    return float(angles.mean()), float(error.mean())
+
+
+def mean_errors(original: Motion, decoded: Motion) -> tuple[float, float]:
+    """Mean absolute error ``(rotation channels, all channels)`` of a decoded motion.
+
+    Rotation channels (``rx``, ``ry``, ``rz``) are compared modulo 360°; with
+    none, the first number is over all channels.
+
+    Parameters
+    ----------
+    original, decoded : Motion
+        Two motions with the same channels and frame count.
+
+    Returns
+    -------
+    tuple of float
+        The mean over the rotation channels (degrees) and over every channel.
+
+    Raises
+    ------
+    ValueError
+        When the channels or frame counts differ.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from kinetology import Motion
+    >>> a = Motion(np.array([[179.0, 1.0]]), ("neck.rz", "root.tx"), 120)
+    >>> b = Motion(np.array([[-180.5, 1.5]]), ("neck.rz", "root.tx"), 120)
+    >>> mean_errors(a, b)
+    (0.5, 0.5)
+    """
+    if original.channels != decoded.channels or original.frames != decoded.frames:
+        raise ValueError("the two motions differ in channels or frame count")
+    return _errors(np.array(original.values), np.array(decoded.values), original.channels)
+
+
+def _settings(params: dict) -> dict:
+    unknown = set(params) - set(CODEC_DEFAULTS)
+    if unknown:
+        raise TypeError(f"unknown codec setting(s): {', '.join(sorted(unknown))} "
+                        f"(known: {', '.join(CODEC_DEFAULTS)}, max_error)")
+    p = {**CODEC_DEFAULTS, **params}
+    for name, value in p.items():
+        if not (isinstance(value, (int, float, np.floating, np.integer))
+                and np.isfinite(value) and value >= 0):
+            raise ValueError(f"{name} must be a non-negative number, not {value!r}")
+    if not p["quantum"] > 0:
+        raise ValueError(f"quantum must be positive, not {p['quantum']!r}")
+    if p["residual_step"] and p["hysteresis"] < 0.5:
+        raise ValueError(f"hysteresis must be at least 0.5, not {p['hysteresis']!r}")
+    return {k: float(v) for k, v in p.items()}
+
+
+def encode_segments(motion: Motion, **params):
+    """Per channel: knot frames, segment state codes, and quantised knot values (ints).
+
+    Rotation channels are unwrapped first.
+
+    Parameters
+    ----------
+    motion : Motion
+    **params
+        Settings of :data:`CODEC_DEFAULTS` (only the segmentation ones and
+        ``quantum`` matter here).
+
+    Returns
+    -------
+    (list of (knots, codes, values), float)
+        Per channel the knot frames, the state code of each segment and the
+        knot values in quanta; and the quantum in degrees.
+
+    Raises
+    ------
+    TypeError, ValueError
+        For unknown or out-of-range settings (a quantum too small for 62 bits).
+
+    Examples
+    --------
+    >>> from kinetology.synthetic import synthetic_motion
+    >>> channels, quantum = encode_segments(synthetic_motion(2, (0,), seed=1))
+    >>> knots, codes, values = channels[0]
+    >>> quantum, int(knots[0]), len(values) == len(codes) + 1
+    (0.5, 0, True)
+    """
+    p = _settings(params)
+    quantum = p["quantum"]
+    values = unwrap(motion.values, motion.channels)
+    out = []
+    for c, name in enumerate(motion.channels):
+        signal = values[:, c]
+        if motion.frames <= 1:
+            knots, codes = np.zeros(1, int), np.zeros(0, np.int8)
+            knot_values = signal[:1].astype(float) if motion.frames else np.zeros(1)
+        else:
+            knots, codes = channel_knots(signal, motion.frame_rate, p["smoothing"],
+                                         p["velocity_deadband"], p["acceleration_deadband"])
+            knot_values = fit_knots(knots, codes, signal)
+        steps = np.round(knot_values / quantum)
+        if not np.all(np.abs(steps) < 2.0 ** 62):
+            # beyond this the int64 cast (and the zigzag varints) would silently wrap
+            raise ValueError(f"quantum {quantum!r} is too small for channel {name!r}: knot "
+                             f"values would need more than 62 bits")
+        out.append((knots, codes, steps.astype(np.int64)))
+    return out, quantum
+
+
+def _base_values(frames: int, channels) -> np.ndarray:
+    """The decoded base curves from ``(knots, codes, quantised values, quantum)`` per channel."""
+    out = np.empty((frames, len(channels)))
+    for c, (knots, codes, steps, quantum) in enumerate(channels):
+        if frames == 0:
+            continue
+        if codes.size == 0:
+            out[:, c] = steps[0] * quantum
+        else:
+            out[:, c] = reconstruct(knots, codes, steps * quantum)
+    return out
+
+
+def compress_with(motion: Motion, settings: dict, *, base=None,
+                  max_error: float | None = None) -> Compressed:
+    """Encode ``motion`` with ``settings`` (see :data:`CODEC_DEFAULTS`), report attached.
+
+    ``base``: an already computed ``(channels, quantum)`` from
+    :func:`encode_segments` for these settings (rate control reuses it).
+    """
+    p = _settings(settings)
+    channels, quantum = base if base is not None else encode_segments(motion, **p)
+    decoded = _base_values(motion.frames, [(*ch, quantum) for ch in channels])
+    original = unwrap(motion.values, motion.channels)
+    layer = b""
+    if p["residual_step"] > 0 and motion.frames:
+        levels = residual.quantise(original - decoded, p["residual_step"], p["hysteresis"])
+        decoded = decoded + levels * p["residual_step"]
+        layer = residual.encode(levels)
+    layout = stream.Layout(
+        motion.frame_rate, motion.frames, quantum, motion.channels,
+        tuple(codes for _, codes, _ in channels),
+        tuple(np.diff(knots)[: codes.size] for knots, codes, _ in channels),
+        tuple(int(steps[0]) for _, _, steps in channels),
+        tuple(np.diff(steps)[: codes.size] for _, codes, steps in channels),
+        p["residual_step"] if layer else 0.0, layer)
+    angles, every = _errors(np.array(motion.values), decoded, motion.channels)
+    return Compressed(stream.write(layout), angles, every, p, max_error)
+
+
+def decompress(data: bytes, source: str = "<compressed motion>") -> Motion:
+    """Decode :func:`kinetology.codec.compress` output to a :class:`Motion`.
+
+    Same channels, frames and frame rate as the original; rotation channels
+    come back unwrapped (equal to the original modulo 360°).
+
+    Parameters
+    ----------
+    data : bytes
+        ``KIN2`` bytes (``KIN1`` from earlier versions decode too).
+    source : str
+        Name used in error messages.
+
+    Returns
+    -------
+    Motion
+
+    Raises
+    ------
+    MotionFormatError
+        When ``data`` is not a compressed motion or is damaged.
+
+    Examples
+    --------
+    >>> from kinetology.synthetic import synthetic_motion
+    >>> from kinetology.codec import compress
+    >>> m = synthetic_motion(2, (0,), seed=1)
+    >>> back = decompress(compress(m))
+    >>> back.frames == m.frames and back.channels == m.channels
+    True
+    """
+    layout = stream.read(data, source)
+    count, frames = len(layout.names), layout.frames
+    try:
+        channels = []
+        for c in range(count):
+            knots = np.concatenate(([0], np.cumsum(layout.durations[c])))
+            steps = layout.firsts[c] + np.concatenate(([0], np.cumsum(layout.displacements[c])))
+            channels.append((knots, layout.codes[c], steps, layout.quantum))
+        values = _base_values(frames, channels)
+        if layout.residual_step > 0 and frames:
+            try:
+                levels = residual.decode(layout.residual, frames, count)
+            except entropy.EntropyError as exc:
+                raise MotionFormatError(str(exc), source=source) from None
+            values = values + levels * layout.residual_step
+    except MemoryError:
+        # a header can claim any frame count; say so instead of a traceback
+        raise MotionFormatError(f"{frames} frames x {count} channels do not fit in memory",
+                                source=source) from None
+    try:
+        return Motion(values, layout.names, layout.frame_rate, None, source,
+                      {"format": "kinetology-compressed"})
+    except ValueError as exc:  # repeated channel names, values that overflow
+        raise MotionFormatError(str(exc), source=source) from None

@@ -1,0 +1,214 @@
+"""The per-segment quartic of SPEC §7: decoding knots to a curve, and fitting knots to one.
+
+Segment ``i`` of a channel runs from knot ``i`` to knot ``i + 1``; on it the
+angle is a polynomial of degree 4 in ``s`` (0 to 1 across the segment) with
+
+* the knot values at both ends (2 equations);
+* at each border with a neighbour segment, the conditions its state change
+  implies: the sign of the velocity changes -> ``θ' = 0`` there; the sign of
+  the acceleration changes -> ``θ'' = 0`` there (the paper's "two equations
+  for the particular sequence of kinetemes"; a border where both signs change
+  gives both, and when that over-determines the quartic the acceleration
+  conditions are dropped);
+* the last free coefficient(s) chosen to minimise the jerk ``∫ θ'''² ds``
+  (with a 1e-6 weight on ``∫ θ''² ds`` so the answer is unique when fewer
+  conditions apply).
+
+At the two ends of a recording there is no neighbour: the first segment is
+treated as entered from its predecessor in the cycle ``B G R Y B`` and the
+last as left towards its successor (``Y -> B`` changes the sign of the
+velocity, so a first segment in state ``B`` starts with ``θ' = 0``).
+
+The decoded curve is linear in the knot values, so the best knot values for a
+signal are a least-squares problem with a tridiagonal matrix
+(:func:`fit_knots`).
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+from itertools import product
+
+import numpy as np
+
+__all__ = ["basis", "reconstruct", "fit_knots"]
+
+
+def _gram(derivative: int) -> np.ndarray:
+    """``G[i, j] = ∫_0^1 (d^k s^i)(d^k s^j) ds`` for monomials s^0..s^4."""
+    gram = np.zeros((5, 5))
+    for i, j in product(range(5), repeat=2):
+        if i >= derivative and j >= derivative:
+            ci = np.prod(np.arange(i - derivative + 1, i + 1))
+            cj = np.prod(np.arange(j - derivative + 1, j + 1))
+            power = i + j - 2 * derivative
+            gram[i, j] = ci * cj / (power + 1)
+    return gram
+
+
+def _row(at: float, derivative: int) -> np.ndarray:
+    row = np.zeros(5)
+    for i in range(derivative, 5):
+        row[i] = np.prod(np.arange(i - derivative + 1, i + 1)) * at ** (i - derivative)
+    return row
+
+
+@lru_cache(maxsize=None)
+def basis(left_velocity: bool, left_acceleration: bool, right_velocity: bool,
+          right_acceleration: bool) -> tuple[np.ndarray, np.ndarray]:
+    """Coefficients ``(U, W)`` of ``θ(s) = y0 U(s) + y1 W(s)`` for one border pattern.
+
+    Parameters
+    ----------
+    left_velocity, left_acceleration, right_velocity, right_acceleration : bool
+        Which derivatives vanish at the left (s=0) and right (s=1) border.
+
+    Returns
+    -------
+    (numpy.ndarray, numpy.ndarray)
+        Coefficients of ``s^0 .. s^4`` (read-only: cached and shared).
+
+    Examples
+    --------
+    Velocity zero at both ends: the least-jerk quartic from 0 to 1 is the
+    cubic ``3 s² - 2 s³``:
+
+    >>> u, w = basis(True, False, True, False)
+    >>> [round(float(c), 6) + 0.0 for c in w]
+    [0.0, 0.0, 3.0, -2.0, 0.0]
+    """
+    rows, kinds = [_row(0, 0), _row(1, 0)], []
+    wanted = [(left_velocity, 0, 1), (right_velocity, 1, 1), (left_acceleration, 0, 2),
+              (right_acceleration, 1, 2)]
+    for flag, at, derivative in wanted:
+        if flag and len(rows) < 5:
+            rows.append(_row(at, derivative))
+            kinds.append(derivative)
+    constraints = np.array(rows)
+    cost = _gram(3) + 1e-6 * _gram(2)
+    m = len(rows)
+    kkt = np.zeros((5 + m, 5 + m))
+    kkt[:5, :5] = 2 * cost
+    kkt[:5, 5:] = constraints.T
+    kkt[5:, :5] = constraints
+    out = []
+    for y0, y1 in ((1.0, 0.0), (0.0, 1.0)):
+        rhs = np.zeros(5 + m)
+        rhs[5], rhs[6] = y0, y1
+        coefficients = np.linalg.lstsq(kkt, rhs, rcond=None)[0][:5]
+        coefficients.setflags(write=False)  # cached: shared by every caller
+        out.append(coefficients)
+    return out[0], out[1]
+
+
+def _border_flags(codes: np.ndarray) -> np.ndarray:
+    """Per segment, its flag pattern index 0..15 (bits: lv, la, rv, ra)."""
+    falling = codes >> 1
+    braking = (codes == 1) | (codes == 2)  # acceleration negative in G and R
+    velocity_flip = falling[1:] != falling[:-1]
+    acceleration_flip = braking[1:] != braking[:-1]
+    n = codes.size
+    lv = np.zeros(n, bool)
+    la = np.zeros(n, bool)
+    rv = np.zeros(n, bool)
+    ra = np.zeros(n, bool)
+    lv[1:], la[1:] = velocity_flip, acceleration_flip
+    rv[:-1], ra[:-1] = velocity_flip, acceleration_flip
+    if n:
+        # the recording's ends: as if the cycle B -> G -> R -> Y -> B went on, so the
+        # first segment enters as its predecessor leaves, the last leaves towards its
+        # successor (B->G and R->Y flip the acceleration, G->R and Y->B the velocity)
+        first, last = int(codes[0]), int(codes[-1])
+        lv[0], la[0] = first in (0, 2), first in (1, 3)
+        rv[-1], ra[-1] = last in (1, 3), last in (0, 2)
+    return lv * 8 + la * 4 + rv * 2 + ra
+
+
+_TABLE_U = np.array([basis(*(bool(k >> b & 1) for b in (3, 2, 1, 0)))[0] for k in range(16)])
+_TABLE_W = np.array([basis(*(bool(k >> b & 1) for b in (3, 2, 1, 0)))[1] for k in range(16)])
+
+
+def _design(knots: np.ndarray, codes: np.ndarray):
+    """For every frame: its segment, and the weights of its left and right knot."""
+    lengths = np.diff(knots)
+    frames = knots[-1] + 1
+    seg = np.repeat(np.arange(lengths.size), lengths)
+    seg = np.append(seg, lengths.size - 1)  # the last frame ends the last segment
+    offset = np.arange(frames) - knots[seg]
+    s = offset / lengths[seg]
+    powers = s[:, None] ** np.arange(5)
+    pattern = _border_flags(codes)[seg]
+    u = np.einsum("fk,fk->f", powers, _TABLE_U[pattern])
+    w = np.einsum("fk,fk->f", powers, _TABLE_W[pattern])
+    return seg, u, w
+
+
+def reconstruct(knots: np.ndarray, codes: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """The decoded curve of one channel from its knots, segment states and knot values.
+
+    Parameters
+    ----------
+    knots : array_like of int
+        Knot frames: 0, the first frame of every later segment, the last frame.
+    codes : array_like of int
+        State code (0..3 for ``B G R Y``) of each of the ``len(knots) - 1`` segments.
+    values : array_like of float
+        The angle at every knot.
+
+    Returns
+    -------
+    numpy.ndarray
+        One value per frame (``knots[-1] + 1`` of them).
+
+    Examples
+    --------
+    A rise (``B``, speeding up) then a slowing rise (``G``) from 0 to 10 degrees:
+
+    >>> curve = reconstruct([0, 5, 10], [0, 1], [0.0, 4.0, 10.0])
+    >>> curve.shape, [round(float(curve[f]), 9) for f in (0, 5, 10)]
+    ((11,), [0.0, 4.0, 10.0])
+    """
+    knots = np.asarray(knots)
+    if knots.size == 1:
+        return np.full(1, float(values[0]))
+    seg, u, w = _design(knots, np.asarray(codes))
+    values = np.asarray(values, dtype=float)
+    return values[seg] * u + values[seg + 1] * w
+
+
+def fit_knots(knots, codes, signal) -> np.ndarray:
+    """Knot values minimising the squared error of :func:`reconstruct` against ``signal``.
+
+    A tridiagonal solve (each frame depends on the two knots of its segment).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> signal = 10 * np.sin(np.linspace(0, np.pi, 21))   # one hump: rise, then fall
+    >>> values = fit_knots(np.array([0, 10, 20]), np.array([1, 2]), signal)
+    >>> bool(np.abs(reconstruct([0, 10, 20], [1, 2], values) - signal).max() < 0.5)
+    True
+    """
+    n = knots.size
+    if n == 1:
+        return np.array([signal[0]], dtype=float)
+    seg, u, w = _design(knots, codes)
+    diag = np.bincount(seg, u * u, n) + np.bincount(seg + 1, w * w, n)
+    off = np.bincount(seg, u * w, n - 1)[: n - 1]
+    rhs = np.bincount(seg, u * signal, n) + np.bincount(seg + 1, w * signal, n)
+    # Thomas algorithm (the matrix is symmetric positive definite: every knot has
+    # a frame where it alone sets the value)
+    c_prev, d_prev = 0.0, 0.0
+    diag_l, off_l, rhs_l = diag.tolist(), off.tolist() + [0.0], rhs.tolist()
+    cl, dl = [0.0] * n, [0.0] * n
+    for i in range(n):
+        lower = off_l[i - 1] if i else 0.0
+        denominator = diag_l[i] - lower * c_prev
+        c_prev = off_l[i] / denominator
+        d_prev = (rhs_l[i] - lower * d_prev) / denominator
+        cl[i], dl[i] = c_prev, d_prev
+    x = [0.0] * n
+    x[-1] = dl[-1]
+    for i in range(n - 2, -1, -1):
+        x[i] = dl[i] - cl[i] * x[i + 1]
+    return np.array(x)

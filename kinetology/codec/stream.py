@@ -1,0 +1,213 @@
+"""The codec's bytes: writing and reading the ``KIN2`` layout (``KIN1`` still read).
+
+All integers are unsigned LEB128 varints, signed ones zigzag encoded first;
+floats are little-endian IEEE 754 doubles::
+
+    b"KIN2"                               magic
+    varint  byte length L of the base part
+    L bytes one raw LZMA2 stream (the base part) of:
+      varint  version (2)
+      f64     frame rate
+      varint  frames
+      f64     quantum (degrees per unit of knot value)
+      varint  channels C
+      C x     varint byte length, UTF-8 channel name
+      C x     varint segment count n_c
+      C x     zigzag first knot value (quanta)
+      for each channel: first state code, then (state - previous state) mod 4
+                        per later segment, one byte each
+      for each channel: n_c durations in frames (varints; they sum to frames - 1,
+                        the last segment including the last frame)
+      for each channel: n_c zigzag displacements (quanta)
+      f64     residual step (0: no residual layer)
+    rest    the residual layer when its step is not 0
+            (:mod:`kinetology.codec.entropy` bytes of frames x C levels' frame deltas)
+
+``KIN1`` (the first version) is ``b"KIN1"`` and the LZMA2 stream alone, with
+version 1 and no residual step. Grouping like fields lets LZMA find their
+regularities (the state deltas are almost all 1: ``B G R Y B ...``).
+"""
+
+from __future__ import annotations
+
+import lzma
+import struct
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..motion import MotionFormatError
+
+__all__ = ["Layout", "write", "read"]
+
+MAGIC = b"KIN2"
+OLD_MAGIC = b"KIN1"
+VERSION = 2
+FILTERS = [{"id": lzma.FILTER_LZMA2, "preset": 9 | lzma.PRESET_EXTREME}]
+
+
+@dataclass(frozen=True, eq=False)
+class Layout:
+    """Everything a compressed motion stores, before decoding to values."""
+
+    frame_rate: float
+    frames: int
+    quantum: float
+    names: tuple[str, ...]
+    codes: tuple[np.ndarray, ...]          # per channel: segment state codes
+    durations: tuple[np.ndarray, ...]      # per channel: segment lengths in frames
+    firsts: tuple[int, ...]                # per channel: first knot value (quanta)
+    displacements: tuple[np.ndarray, ...]  # per channel: knot value steps (quanta)
+    residual_step: float = 0.0
+    residual: bytes = b""
+
+
+def varints(numbers) -> bytes:
+    out = bytearray()
+    for n in numbers:
+        n = int(n)
+        if n < 0:
+            raise ValueError("varints are unsigned")
+        while n >= 0x80:
+            out.append((n & 0x7F) | 0x80)
+            n >>= 7
+        out.append(n)
+    return bytes(out)
+
+
+def zigzag(numbers) -> list[int]:
+    return [(2 * int(n)) if n >= 0 else (-2 * int(n) - 1) for n in numbers]
+
+
+def write(layout: Layout) -> bytes:
+    """The ``KIN2`` bytes of ``layout``."""
+    body = bytearray()
+    body += varints([VERSION])
+    body += struct.pack("<d", layout.frame_rate)
+    body += varints([layout.frames])
+    body += struct.pack("<d", layout.quantum)
+    body += varints([len(layout.names)])
+    for name in layout.names:
+        encoded = name.encode("utf-8")
+        body += varints([len(encoded)]) + encoded
+    body += varints([codes.size for codes in layout.codes])
+    body += varints(zigzag(layout.firsts))
+    for codes in layout.codes:
+        if codes.size:
+            body += bytes([int(codes[0])]) + bytes((np.diff(codes.astype(int)) % 4).tolist())
+    for durations in layout.durations:
+        body += varints(durations)
+    for steps in layout.displacements:
+        body += varints(zigzag(steps))
+    body += struct.pack("<d", layout.residual_step)
+    base = lzma.compress(bytes(body), format=lzma.FORMAT_RAW, filters=FILTERS)
+    return MAGIC + varints([len(base)]) + base + layout.residual
+
+
+class _Reader:
+    def __init__(self, data: bytes, source: str, where: str) -> None:
+        self.data, self.pos, self.source, self.where = data, 0, source, where
+
+    def fail(self, message: str):
+        raise MotionFormatError(f"{message} (at byte {self.pos} of {self.where})",
+                                source=self.source)
+
+    def varint(self) -> int:
+        shift = result = 0
+        while True:
+            if self.pos >= len(self.data):
+                self.fail("data ends inside a number")
+            byte = self.data[self.pos]
+            self.pos += 1
+            result |= (byte & 0x7F) << shift
+            if byte < 0x80:
+                return result
+            shift += 7
+            if shift > 63:
+                self.fail("number too long")
+
+    def signed(self) -> int:
+        n = self.varint()
+        return (n >> 1) if not n & 1 else -((n + 1) >> 1)
+
+    def double(self) -> float:
+        if self.pos + 8 > len(self.data):
+            self.fail("data ends inside a float")
+        (value,) = struct.unpack_from("<d", self.data, self.pos)
+        self.pos += 8
+        return value
+
+    def raw(self, count: int) -> bytes:
+        if self.pos + count > len(self.data):
+            self.fail("data ends early")
+        chunk = self.data[self.pos:self.pos + count]
+        self.pos += count
+        return chunk
+
+
+def read(data: bytes, source: str) -> Layout:
+    """Parse and check ``KIN2`` (or ``KIN1``) bytes; malformed ones raise MotionFormatError."""
+    if not isinstance(data, (bytes, bytearray)) or data[:4] not in (MAGIC, OLD_MAGIC):
+        raise MotionFormatError("not a kinetology compressed motion (bad magic bytes)",
+                                source=source)
+    data = bytes(data)
+    if data[:4] == MAGIC:
+        head = _Reader(data, source, "the file")
+        head.pos = 4
+        length = head.varint()
+        packed = head.raw(length)
+        residual = data[head.pos:]
+    else:
+        packed, residual = data[4:], b""
+    try:
+        body = lzma.decompress(packed, format=lzma.FORMAT_RAW, filters=FILTERS)
+    except lzma.LZMAError as exc:
+        raise MotionFormatError(f"corrupt compressed data ({exc})", source=source) from None
+    r = _Reader(body, source, "the decompressed base part")
+    version = r.varint()
+    if version != (VERSION if data[:4] == MAGIC else 1):
+        r.fail(f"unsupported version {version}")
+    rate = r.double()
+    frames = r.varint()
+    quantum = r.double()
+    count = r.varint()
+    if not (rate > 0 and quantum > 0 and np.isfinite(rate) and np.isfinite(quantum)):
+        r.fail("bad frame rate or quantum")
+    if count > len(body):
+        r.fail(f"{count} channels cannot fit in {len(body)} bytes")
+    names = []
+    for _ in range(count):
+        length = r.varint()
+        try:
+            names.append(r.raw(length).decode("utf-8"))
+        except UnicodeDecodeError:
+            r.fail("channel name is not UTF-8")
+    seg_counts = [r.varint() for _ in range(count)]
+    if sum(seg_counts) > len(body):
+        r.fail("more segments than bytes")
+    firsts = [r.signed() for _ in range(count)]
+    codes_list = []
+    for n in seg_counts:
+        raw = np.frombuffer(r.raw(n), dtype=np.uint8).astype(int)
+        if n and (raw > 3).any():
+            r.fail("bad state code")
+        codes_list.append((np.cumsum(raw) % 4).astype(np.int8))
+    durations = [np.array([r.varint() for _ in range(n)], dtype=np.int64) for n in seg_counts]
+    displacements = [np.array([r.signed() for _ in range(n)], dtype=np.int64)
+                     for n in seg_counts]
+    step = r.double() if version >= 2 else 0.0
+    if r.pos != len(body):
+        r.fail("trailing bytes")
+    if not (np.isfinite(step) and step >= 0):
+        r.fail(f"bad residual step {step!r}")
+    if step == 0 and residual:
+        raise MotionFormatError("trailing bytes after the base part (no residual layer)",
+                                source=source)
+    for c in range(count):  # check the layout before allocating frames x channels
+        n = seg_counts[c]
+        if frames and n == 0 and frames != 1:
+            r.fail(f"channel {names[c]!r} has no segments for {frames} frames")
+        if frames and n and (int(durations[c].sum()) != frames - 1 or durations[c].min() <= 0):
+            r.fail(f"channel {names[c]!r}: durations do not add up to {frames - 1} frames")
+    return Layout(rate, frames, quantum, tuple(names), tuple(codes_list), tuple(durations),
+                  tuple(firsts), tuple(displacements), step, residual)

@@ -1,0 +1,470 @@
+"""PSGS membership: parse each word, then search for a synchronised schedule.
+
+Each component's word is parsed by a goal-directed chart
+(:mod:`psgs.membership.chart`); then a depth-first search looks for a
+synchronised schedule over *span-annotated frontiers*: per component, the
+multiset of nonterminal occurrences still in the sentential form, each tagged
+with the span ``(i, j)`` of the word it must derive. A tuple rewrites, per
+component, one occurrence (``single``) or every occurrence of its left-hand
+side (``parallel``), choosing for each a split of its span that the chart
+allows. States are memoised up to equal substrings: occurrences ``(A, i, j)``
+and ``(A, i', j')`` with ``w[i:j] == w[i':j']`` have the same futures, so a
+state is keyed by its multiset of (nonterminal, substring class). Substring
+classes are found with a polynomial rolling hash and confirmed by comparing
+the substrings, so a hash collision can cost time but never a wrong answer.
+See ``docs/membership.md``.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Sequence
+
+from ..analysis import moves as system_moves, reachable, strongly_connected, usable_rules
+from ..budget import Budget
+from ..errors import BoundReached
+from ..model import IDLE, PSGS, Terminal, Word
+from .chart import Chart, CompiledGrammar
+from .result import Acceptance
+from .witness import PSGSSchedule, Rewrite, ScheduledMove
+
+__all__ = ["accepts_psgs"]
+
+
+class _Substrings:
+    """Exact equality classes of the substrings of one word, in O(1) expected per query."""
+
+    _MOD = (1 << 61) - 1
+    _BASE = 1_000_003
+
+    def __init__(self, word: Sequence[int]) -> None:
+        self.word = list(word)
+        prefix = [0]
+        power = [1]
+        h = 0
+        for x in self.word:
+            h = (h * self._BASE + x + 1) % self._MOD
+            prefix.append(h)
+            power.append(power[-1] * self._BASE % self._MOD)
+        self.prefix = prefix
+        self.power = power
+        self.classes: dict[tuple[int, int], list[tuple[int, int]]] = {}
+        self.cache: dict[tuple[int, int], int] = {}
+        self.next_class = 0
+
+    def of(self, i: int, j: int) -> int:
+        key = (i, j)
+        found = self.cache.get(key)
+        if found is not None:
+            return found
+        length = j - i
+        h = (self.prefix[j] - self.prefix[i] * self.power[length]) % self._MOD
+        bucket = self.classes.setdefault((length, h), [])
+        for start, cls in bucket:
+            # the hash only proposes; equal substrings are confirmed
+            if self.word[start:start + length] == self.word[i:j]:
+                self.cache[key] = cls
+                return cls
+        cls = self.next_class
+        self.next_class += 1
+        bucket.append((i, cls))
+        self.cache[key] = cls
+        return cls
+
+
+def accepts_psgs(system: PSGS, words: tuple[Word, ...], max_states: int,
+                 budget: Budget) -> Acceptance:
+    """Decide ``words ∈ L(system)``; ``budget`` was started by the caller, before any analysis."""
+    terminal_ids: dict[Terminal, int] = {}
+    for t in sorted(system.terminals):
+        terminal_ids[t] = len(terminal_ids)
+    for g, w in zip(system.components, words):
+        for k, t in enumerate(w):
+            if t not in g.terminals:
+                return Acceptance("no", reason=(
+                    f"component {g.name}'s word is not in its context-free language "
+                    f"({t} at position {k + 1} is not one of its terminals)"), system=system)
+    search = None
+    try:
+        compiled, charts = [], []
+        usable = usable_rules(system)
+        for c, (g, w) in enumerate(zip(system.components, words)):
+            # a rule in no tuple can never apply under 'strict': parse without it, so a word
+            # that needs it is refused by the chart instead of by an endless schedule search
+            cg = CompiledGrammar(g, terminal_ids, usable[c], budget)
+            compiled.append(cg)
+            charts.append(Chart(cg, [terminal_ids[t] for t in w], budget))
+        for g, cg, chart, w in zip(system.components, compiled, charts, words):
+            if not chart.derives(cg.index[g.start], 0, len(w)):
+                scope = (" (under 'strict', taking only the rules that are in some tuple)"
+                         if system.unsynchronised == "strict" else "")
+                return Acceptance("no", reason=(
+                    f"component {g.name}'s word is not in its context-free language{scope}"),
+                    system=system)
+        spine = _spine_check(system, compiled, charts, max_states, budget)
+        if spine is not None:
+            return spine
+        search = _ScheduleSearch(system, compiled, charts, max_states, budget)
+        return search.run()
+    except BoundReached as stop:
+        explored = search.explored if search is not None else 0
+        if stop.bound == "max_symbols":
+            reason = (f"the search kept {budget.held} symbols in its states, more than "
+                      f"max_symbols={budget.max_symbols} ({explored} states)")
+        else:
+            reason = (f"the search ran out of time after {budget.seconds:g} s "
+                      f"({explored} states)")
+        return Acceptance("unknown", reason=reason, bound=stop.bound, states=explored,
+                          system=system)
+
+
+def _spine(cg: CompiledGrammar) -> frozenset[int]:
+    """Nonterminals that lie on a cycle of the grammar, or can reach one (upward closed)."""
+    n = len(cg.nonterminals)
+    edges = [set() for _ in range(n)]
+    reverse = [set() for _ in range(n)]
+    for k, a in enumerate(cg.lhs):
+        for s in cg.body[k]:
+            if s >= 0:
+                edges[a].add(s)
+                reverse[s].add(a)
+    cyclic = [a for component in strongly_connected(range(n), edges) for a in component
+              if len(component) > 1 or a in edges[a]]
+    return frozenset(reachable(reverse, cyclic))
+
+
+def _spine_check(system, compiled, charts, max_states, budget) -> Acceptance | None:
+    """A fast necessary condition: can the recursive parts (the spines) be scheduled alone?
+
+    Tracking only the occurrences of spine nonterminals (an upward-closed set:
+    a spine occurrence is only ever created by rewriting a spine occurrence)
+    relaxes the system: a tuple asks nothing of a component whose entry
+    rewrites a non-spine symbol, and a component with no spine occurrence
+    left skips its entry. Every derivation projects onto a schedule of this
+    relaxation, so when the relaxation has none the answer is a proved no.
+    Its states are few (spines are short frontiers), whereas the full search
+    would wander through the interleavings of the independent blocks.
+    """
+    focus = [_spine(cg) for cg in compiled]
+    if all(len(f) == len(cg.nonterminals) for f, cg in zip(focus, compiled)) or \
+            not any(focus):
+        return None
+    relaxed = _ScheduleSearch(system, compiled, charts, max(1, max_states // 4), budget,
+                              focus=focus)
+    result = relaxed.run()
+    if result.answer == "no":
+        return Acceptance("no", reason="every component parses but no schedule of the tuples "
+                          "fits (even their recursive parts cannot be synchronised)",
+                          states=result.states, system=system)
+    return None
+
+
+class _ScheduleSearch:
+    """Depth-first search for a synchronised schedule over span-annotated frontiers."""
+
+    def __init__(self, system: PSGS, compiled: list[CompiledGrammar], charts: list[Chart],
+                 max_states: int, budget: Budget, focus=None) -> None:
+        self.system = system
+        # focus: per component the nonterminals tracked (None: all); see _spine_check
+        self.focus = focus
+        self.explored = 0
+        self.compiled = compiled
+        self.charts = charts
+        self.max_states = max_states
+        self.budget = budget
+        self.parallel = system.mode == "parallel"
+        self.substrings = [_Substrings(c.word) for c in charts]
+        moves = system_moves(system)
+        self.moves = moves
+        self.move_rule_ids = [
+            tuple(None if r is IDLE else cg.rule_id[r] for r, cg in zip(m, compiled))
+            for m in moves]
+        # moves by (component, left-hand side) of each non-idle entry: a state looks only at
+        # the moves that rewrite a nonterminal it holds, not at every move of the system
+        self.moves_needing: dict[tuple[int, int], list[int]] = {}
+        for m, rule_ids in enumerate(self.move_rule_ids):
+            for c, rule in enumerate(rule_ids):
+                if rule is not None:
+                    self.moves_needing.setdefault((c, compiled[c].lhs[rule]), []).append(m)
+
+    # ---- states
+    def key(self, state):
+        out = []
+        for c, front in enumerate(state):
+            classes = self.substrings[c]
+            out.append(tuple(sorted((a, classes.of(i, j)) for a, i, j in front)))
+        return tuple(out)
+
+    def _children(self, c: int, rule: int, split: tuple[int, ...]):
+        body = self.compiled[c].body[rule]
+        if self.focus is not None:
+            keep = self.focus[c]
+            return [(s, split[t], split[t + 1]) for t, s in enumerate(body) if s in keep]
+        return [(s, split[t], split[t + 1]) for t, s in enumerate(body) if s >= 0]
+
+    def _component_options(self, c: int, front, rule: int):
+        """Ways component ``c`` can apply ``rule``: (new frontier, rewrites), lazily; None if none.
+
+        A generator, so a step with a huge number of ways (parallel mode, many
+        equal occurrences) costs only the ways the search actually tries, and
+        each way counts against the budget.
+        """
+        cg = self.compiled[c]
+        a = cg.lhs[rule]
+        if self.focus is not None and a not in self.focus[c]:
+            return iter([(front, ())])  # an untracked occurrence: the relaxation asks nothing
+        targets = [it for it in front if it[0] == a]
+        if not targets:
+            return None
+        if not self.parallel:
+            return self._single_options(c, front, rule, targets)
+        return self._parallel_options(c, front, rule, a, targets)
+
+    def _single_options(self, c: int, front, rule: int, targets):
+        chart = self.charts[c]
+        classes = self.substrings[c]
+        tick = self.budget.tick
+        seen = set()
+        for it in targets:
+            cls = classes.of(it[1], it[2])
+            if cls in seen:
+                continue  # an equal occurrence has the same futures
+            seen.add(cls)
+            rest = list(front)
+            rest.remove(it)
+            for split in chart.splits(rule, it[1], it[2]):
+                tick()
+                new = sorted(rest + self._children(c, rule, split), key=_item_order)
+                yield tuple(new), ((it, split),)
+
+    def _parallel_options(self, c: int, front, rule: int, a: int, targets):
+        chart = self.charts[c]
+        classes = self.substrings[c]
+        tick = self.budget.tick
+        rest = [it for it in front if it[0] != a]
+        groups: dict[int, list] = {}
+        for it in targets:
+            groups.setdefault(classes.of(it[1], it[2]), []).append(it)
+        per_group = []
+        for items in groups.values():
+            splits = [chart.splits(rule, it[1], it[2]) for it in items]
+            if not splits[0]:
+                return  # an occurrence the rule cannot cover kills the step
+            per_group.append((items, splits))
+
+        def group_choices(items, splits):
+            # equal occurrences have the same splits (shifted): choose a multiset of them
+            for combo in itertools.combinations_with_replacement(range(len(splits[0])),
+                                                                 len(items)):
+                yield tuple((it, sp[k]) for it, sp, k in zip(items, splits, combo))
+
+        # the product of lazy factors: itertools.product would list every factor first
+        factors = []
+        for items, splits in per_group:
+            choices = group_choices(items, splits)
+            factors.append(_Replayable(next(choices), choices))
+        for combo in _lazy_product(factors):
+            tick()
+            rewrites = tuple(rw for group in combo for rw in group)
+            new = list(rest)
+            for it, split in rewrites:
+                new.extend(self._children(c, rule, split))
+            new.sort(key=_item_order)
+            yield tuple(new), rewrites
+
+    def successors(self, state):
+        """Successor states, lazily, moves whose leftmost target comes first.
+
+        The order is only a heuristic (it finds block-by-block schedules
+        without backtracking); every applicable move is still generated.
+        """
+        leftmost_of = []
+        for front in state:
+            table: dict[int, int] = {}
+            for a, i, _ in front:
+                if a not in table or i < table[a]:
+                    table[a] = i
+            leftmost_of.append(table)
+        candidates = []
+        relevant = set()
+        for c, table in enumerate(leftmost_of):
+            for a in table:
+                relevant.update(self.moves_needing.get((c, a), ()))
+        for m in sorted(relevant):
+            rule_ids = self.move_rule_ids[m]
+            key = None
+            for c, rule in enumerate(rule_ids):
+                if rule is None or not state[c]:
+                    continue
+                a = self.compiled[c].lhs[rule]
+                if self.focus is not None and a not in self.focus[c]:
+                    continue
+                at = leftmost_of[c].get(a)
+                if at is None:
+                    key = None
+                    break
+                key = at if key is None or at < key else key
+            else:
+                if key is not None:
+                    candidates.append((key, m))
+        candidates.sort()
+        for _, m in candidates:
+            yield from self._move_successors(state, m)
+
+    def _move_successors(self, state, m: int):
+        per_component = []
+        rewrites_somewhere = False
+        for c, rule in enumerate(self.move_rule_ids[m]):
+            front = state[c]
+            if rule is None or not front:
+                per_component.append(((front, ()),))
+                continue
+            options = self._component_options(c, front, rule)
+            first = None if options is None else next(options, None)
+            if first is None:
+                return
+            if first[1]:
+                rewrites_somewhere = True
+            per_component.append(_Replayable(first, options))
+        if not rewrites_somewhere:
+            return
+        for combo in _lazy_product(per_component):
+            new_state = tuple(f for f, _ in combo)
+            if new_state != state:
+                yield (0, m, new_state, (m, tuple(rw for _, rw in combo)))
+
+    def _readable(self, path) -> PSGSSchedule:
+        """The schedule with symbols instead of ints, and the words, for the replay."""
+        moves = []
+        for m, rewrites in path:
+            per_component = []
+            for c, rw in enumerate(rewrites):
+                nts = self.compiled[c].nonterminals
+                per_component.append(tuple(Rewrite(nts[a], i, j, split)
+                                           for (a, i, j), split in rw))
+            moves.append(ScheduledMove(self.moves[m], tuple(per_component)))
+        words = tuple(tuple(self.compiled[c].terminal_of[x] for x in chart.word)
+                      for c, chart in enumerate(self.charts))
+        return PSGSSchedule(words, tuple(moves))
+
+    def run(self) -> Acceptance:
+        """Search with a cap on ε-occurrences per component, doubled until it does not bind.
+
+        Occurrences with non-empty spans are disjoint, so at most ``len(w)``
+        per component; only occurrences that must derive ε can pile up (e.g.
+        ``S → S B``, ``B → ε``). Capping them makes each round finite; a round
+        that never met the cap has explored everything, so its "no" is proved.
+        """
+        cap = 4
+        explored = 0
+        while True:
+            self.budget.held = 0  # the previous round's visited set is gone
+            result, explored, capped = self._run_capped(cap, explored)
+            if result is not None:
+                return result
+            if not capped:
+                return Acceptance(
+                    "no", reason="every component parses but no schedule of the tuples fits",
+                    states=explored, system=self.system)
+            cap *= 2
+
+    def _run_capped(self, cap: int, explored: int):
+        initial = tuple(((cg.index[g.start], 0, chart.n),)
+                        if self.focus is None or cg.index[g.start] in self.focus[c] else ()
+                        for c, (g, cg, chart) in enumerate(zip(self.system.components,
+                                                               self.compiled, self.charts)))
+        if all(not front for front in initial):  # only in a relaxation with nothing to track
+            return (Acceptance("yes", states=explored + 1, system=self.system,
+                               schedule=self._readable([])), explored + 1, False)
+        visited = {self.key(initial)}
+        stack = [iter(self.successors(initial))]
+        path: list = []
+        explored += 1
+        self.explored = explored
+        capped = False
+        budget = self.budget
+        while stack:
+            nxt = next(stack[-1], None)
+            # the clock is read per generated successor, not per new state: successors that
+            # are already visited or over the ε cap cost time without adding a state
+            budget.tick()
+            if nxt is None:
+                stack.pop()
+                if path:
+                    path.pop()
+                continue
+            _, _, state, move = nxt
+            if any(sum(1 for _, i, j in front if i == j) > cap for front in state):
+                capped = True
+                continue
+            k = self.key(state)
+            if k in visited:
+                continue
+            visited.add(k)
+            explored += 1
+            self.explored = explored
+            # memory: a state keeps one entry per tracked occurrence (states × form size)
+            budget.hold(1 + sum(len(front) for front in state))
+            path.append(move)
+            if all(not front for front in state):
+                return (Acceptance("yes", states=explored, system=self.system,
+                                   schedule=self._readable(path)), explored, capped)
+            if explored >= self.max_states:
+                reason = f"the schedule search stopped after {explored} states"
+                if capped:
+                    reason += " (occurrences that derive ε can pile up without end here)"
+                return (Acceptance("unknown", reason=reason + f" (max_states={self.max_states})",
+                                   bound="max_states", states=explored, system=self.system),
+                        explored, capped)
+            stack.append(iter(self.successors(state)))
+        return None, explored, capped
+
+
+def _item_order(item):
+    return (item[1], item[2], item[0])
+
+
+
+
+class _Replayable:
+    """A lazy sequence of options that can be walked again (for the product of several)."""
+
+    __slots__ = ("seen", "rest")
+
+    def __init__(self, first, rest) -> None:
+        self.seen = [first]
+        self.rest = rest
+
+    def __iter__(self):
+        k = 0
+        while True:
+            if k < len(self.seen):
+                yield self.seen[k]
+                k += 1
+                continue
+            nxt = next(self.rest, None) if self.rest is not None else None
+            if nxt is None:
+                self.rest = None
+                return
+            self.seen.append(nxt)
+
+
+def _lazy_product(factors):
+    """``itertools.product(*factors)`` without listing the factors first, same order."""
+    if not factors:
+        yield ()
+        return
+    stack = [iter(factors[0])]
+    picked: list = []
+    while stack:
+        item = next(stack[-1], None)
+        if item is None:
+            stack.pop()
+            if picked:
+                picked.pop()
+            continue
+        if len(stack) == len(factors):
+            yield (*picked, item)
+            continue
+        picked.append(item)
+        stack.append(iter(factors[len(stack)]))

@@ -1,0 +1,307 @@
+"""The step kernel: what one step of a PSGS or a PCGS does to a configuration.
+
+Derivation, membership and enumeration all take their steps from here, so
+the semantics (SPEC D1-D3 for a PSGS, the classical communication and
+rewriting steps for a PCGS, see ``docs/semantics.md``) is written once:
+
+* :func:`occurrences` and :func:`rewrite` -- where a nonterminal occurs in a
+  form, and replacing occurrences by a right-hand side;
+* :func:`psgs_successors` -- every applicable tuple of a PSGS with its
+  positions and the configuration after it;
+* :func:`pcgs_steps` -- the communication step (which has priority) or every
+  rewriting step of a PCGS;
+* :func:`random_step` -- one uniformly random applicable step, drawn without
+  listing them (in ``single`` mode their number is a product of occurrence
+  counts), at the index :func:`psgs.derivation.applicable_steps` would give it.
+
+These functions trust their input (a configuration of the system's own
+symbols); :mod:`psgs.derivation` checks what a caller hands in.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import random
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+from typing import Literal, Union
+
+from .analysis import moves as system_moves
+from .model import IDLE, PCGS, PSGS, Form, Nonterminal, Query, Rule, SyncTuple, Terminal
+from .notation import show_tuple
+
+__all__ = [
+    "Configuration", "Step", "initial_configuration", "is_terminal_form",
+    "is_terminal_configuration", "has_query", "occurrences", "rewrite", "psgs_choices",
+    "rewritten", "psgs_successors", "pcgs_communicate", "pcgs_steps", "random_step",
+]
+
+#: One sentential form per component.
+Configuration = tuple[Form, ...]
+
+_System = Union[PSGS, PCGS]
+
+
+@dataclass(frozen=True)
+class Step:
+    """One step of a derivation: what was applied, where, and the configurations around it.
+
+    ``tuple`` holds, per component, the rule applied there or ``None``
+    (:data:`~psgs.model.IDLE`, ``#``). For a PSGS it is the synchronisation
+    tuple of M that was applied (an unsynchronised rule applied alone under
+    ``free`` appears as ``(#, …, p, …, #)``); a component whose form was
+    already terminal keeps its entry but gets no positions. ``positions``
+    gives, per component, the indices in ``before`` of the occurrences that
+    were rewritten: all occurrences of the left-hand side in ``parallel``
+    mode, one in ``single`` mode, none for idle or terminal components.
+
+    For a PCGS, ``kind`` is ``"rewrite"`` (``tuple`` holds each component's
+    rule, ``None`` for a terminal component) or ``"communicate"`` (``tuple``
+    is all ``None``; ``positions`` are the query symbols that were replaced).
+    """
+
+    tuple: tuple[Rule | None, ...]
+    positions: tuple[tuple[int, ...], ...]
+    before: Configuration
+    after: Configuration
+    kind: Literal["rewrite", "communicate"] = "rewrite"
+
+    def __str__(self) -> str:
+        return "communicate" if self.kind == "communicate" else show_tuple(self.tuple)
+
+
+def initial_configuration(system: _System) -> Configuration:
+    """The axioms ``(S_1, …, S_n)``, one one-symbol form per component."""
+    return tuple((g.start,) for g in system.components)
+
+
+def is_terminal_form(form: Form) -> bool:
+    """True when every symbol of ``form`` is a terminal."""
+    return all(s.__class__ is Terminal for s in form)
+
+
+def is_terminal_configuration(system: _System, configuration: Configuration) -> bool:
+    """True when the derivation is finished: every form terminal (PSGS) or the master's (PCGS)."""
+    if isinstance(system, PCGS):
+        return is_terminal_form(configuration[system.master_index])
+    return all(is_terminal_form(f) for f in configuration)
+
+
+def has_query(form: Form) -> bool:
+    """True when ``form`` holds a query symbol."""
+    return any(s.__class__ is Query for s in form)
+
+
+def occurrences(form: Form, symbol: Nonterminal) -> tuple[int, ...]:
+    """The positions of ``symbol`` in ``form``, in order."""
+    # compares names rather than calling the dataclass __eq__ per symbol: forms get long
+    name = symbol.name
+    return tuple([k for k, s in enumerate(form) if s.__class__ is Nonterminal and s.name == name])
+
+
+def positions_by_name(form: Form) -> dict[str, tuple[int, ...]]:
+    """Every nonterminal of ``form`` by name, with its positions in order (one scan)."""
+    table: dict[str, list[int]] = {}
+    for k, s in enumerate(form):
+        if s.__class__ is Nonterminal:
+            table.setdefault(s.name, []).append(k)
+    return {name: tuple(where) for name, where in table.items()}
+
+
+def rewrite(form: Form, positions: Sequence[int], rhs: Form) -> Form:
+    """Replace the symbols at ``positions`` (sorted) by ``rhs``."""
+    out: list = []
+    last = 0
+    for k in positions:
+        out.extend(form[last:k])
+        out.extend(rhs)
+        last = k + 1
+    out.extend(form[last:])
+    return tuple(out)
+
+
+def rewritten(configuration: Configuration, rules, positions) -> Configuration:
+    """The configuration after rewriting, per component, ``positions`` with that ``rule``."""
+    return tuple(form if not pos else rewrite(form, pos, rule.rhs)
+                 for form, rule, pos in zip(configuration, rules, positions))
+
+
+# ---------------------------------------------------------------- PSGS
+def psgs_choices(system: PSGS, configuration: Configuration, sync_tuple: SyncTuple,
+                 where: Sequence[dict[str, tuple[int, ...]]] | None = None
+                 ) -> list[list[tuple[int, ...]]] | None:
+    """Per component the possible position choices, or None when the tuple does not apply.
+
+    ``where`` (per component :func:`positions_by_name` of its form) saves a
+    scan of every form per tuple when many tuples are tried on one
+    configuration.
+    """
+    per_component: list[list[tuple[int, ...]]] = []
+    parallel = system.mode == "parallel"
+    for c, (rule, form) in enumerate(zip(sync_tuple, configuration)):
+        # a PSGS form holds terminals and nonterminals only: no nonterminal means terminal
+        if rule is IDLE or (not where[c] if where is not None else is_terminal_form(form)):
+            per_component.append([()])
+            continue
+        occ = (occurrences(form, rule.lhs) if where is None
+               else where[c].get(rule.lhs.name, ()))
+        if not occ:
+            return None
+        per_component.append([occ] if parallel else [(k,) for k in occ])
+    return per_component
+
+
+def psgs_successors(system: PSGS, configuration: Configuration,
+                    moves: Sequence[SyncTuple] | None = None):
+    """Yield ``(tuple, positions, after)`` for every applicable step, in listing order.
+
+    ``moves`` are the system's moves (:func:`psgs.analysis.moves`); a search
+    that calls this per configuration passes them in so they are built once.
+    """
+    where = [positions_by_name(form) for form in configuration]
+    for sync_tuple in (system_moves(system) if moves is None else moves):
+        choices = psgs_choices(system, configuration, sync_tuple, where)
+        if choices is None:
+            continue
+        for positions in itertools.product(*choices):
+            after = rewritten(configuration, sync_tuple, positions)
+            if after != configuration:
+                yield sync_tuple, positions, after
+
+
+# ---------------------------------------------------------------- PCGS
+def pcgs_communicate(system: PCGS, configuration: Configuration) -> Step | None:
+    """The communication step, or None when no query can be answered."""
+    n = len(configuration)
+    after = list(configuration)
+    positions: list[tuple[int, ...]] = [()] * n
+    sent: set[int] = set()
+    for i, form in enumerate(configuration):
+        where = tuple(k for k, s in enumerate(form) if s.__class__ is Query)
+        if not where:
+            continue
+        targets = [system.index(form[k].component) for k in where]
+        if any(has_query(configuration[j]) for j in targets):
+            continue  # this component waits until every form it asks for is query-free
+        out: list = []
+        for s in form:
+            out.extend(configuration[system.index(s.component)] if s.__class__ is Query else (s,))
+        after[i] = tuple(out)
+        positions[i] = where
+        sent.update(targets)
+    if not sent:
+        return None
+    if system.returning:
+        for j in sent:
+            after[j] = (system.components[j].start,)
+    return Step((IDLE,) * n, tuple(positions), configuration, tuple(after), kind="communicate")
+
+
+def _pcgs_rewrite_choices(system: PCGS, configuration: Configuration):
+    """Per component its (rule, positions) options, or None when a component is stuck."""
+    per_component = []
+    for g, form in zip(system.components, configuration):
+        if is_terminal_form(form):
+            per_component.append([(IDLE, ())])
+            continue
+        where = positions_by_name(form)
+        options = [(rule, (k,)) for rule in g.rules for k in where.get(rule.lhs.name, ())]
+        if not options:
+            return None  # a component that must rewrite but cannot blocks the system
+        per_component.append(options)
+    return per_component
+
+
+def _pcgs_rewrite_step(configuration: Configuration, combo) -> Step:
+    rules = tuple(r for r, _ in combo)
+    positions = tuple(p for _, p in combo)
+    return Step(rules, positions, configuration, rewritten(configuration, rules, positions))
+
+
+def pcgs_steps(system: PCGS, configuration: Configuration) -> Iterator[Step]:
+    """The communication step, if any form holds a query; otherwise every rewriting step."""
+    if any(has_query(f) for f in configuration):
+        step = pcgs_communicate(system, configuration)
+        if step is not None:
+            yield step
+        return
+    choices = _pcgs_rewrite_choices(system, configuration)
+    if choices is None:
+        return
+    for combo in itertools.product(*choices):
+        step = _pcgs_rewrite_step(configuration, combo)
+        if step.after != configuration:
+            yield step
+
+
+# ---------------------------------------------------------------- random steps
+def random_step(system: _System, configuration: Configuration,
+                rng: random.Random) -> Step | None:
+    """A uniformly random applicable step, or None; never lists all of them.
+
+    In single mode the steps of one tuple are every choice of occurrences, a
+    product that grows like the forms' lengths to the power n; counting them
+    is cheap. The index drawn is the position the step would have in
+    :func:`psgs.derivation.applicable_steps`, so a seed picks the same step
+    either way.
+    """
+    if isinstance(system, PCGS):
+        return _random_pcgs_step(system, configuration, rng)
+    candidates = []
+    total = 0
+    where = [positions_by_name(form) for form in configuration]
+    for sync_tuple in system_moves(system):
+        choices = psgs_choices(system, configuration, sync_tuple, where)
+        if choices is None:
+            continue
+        first = tuple(c[0] for c in choices)
+        # whether a tuple changes something does not depend on the occurrences chosen
+        if rewritten(configuration, sync_tuple, first) == configuration:
+            continue
+        count = math.prod(len(c) for c in choices)
+        candidates.append((sync_tuple, choices, count))
+        total += count
+    if not total:
+        return None
+    index = rng.randrange(total)
+    for sync_tuple, choices, count in candidates:
+        if index < count:
+            break
+        index -= count
+    positions = _unrank(choices, index)
+    return Step(sync_tuple, positions, configuration, rewritten(configuration, sync_tuple, positions))
+
+
+def _unrank(choices, index: int) -> tuple:
+    """The ``index``-th element of ``itertools.product(*choices)``."""
+    picked = []
+    for options in reversed(choices):
+        index, r = divmod(index, len(options))
+        picked.append(options[r])
+    return tuple(reversed(picked))
+
+
+def _random_pcgs_step(system: PCGS, configuration: Configuration, rng: random.Random):
+    if any(has_query(f) for f in configuration):
+        step = pcgs_communicate(system, configuration)
+        if step is not None:
+            rng.randrange(1)  # as if drawn from a list of one, so seeds match applicable_steps
+        return step
+    choices = _pcgs_rewrite_choices(system, configuration)
+    if choices is None:
+        return None
+    unchanged = [sum(1 for rule, _ in options if rule is IDLE or rule.rhs == (rule.lhs,))
+                 for options in choices]
+    total = math.prod(len(options) for options in choices)
+    void = math.prod(unchanged)  # combinations in which every component keeps its form
+    if total == void:
+        return None
+    if void == 0:
+        combo = _unrank(choices, rng.randrange(total))
+    else:  # rare (rules A → A): draw until the step changes something, still uniform
+        while True:
+            combo = _unrank(choices, rng.randrange(total))
+            if any(rule is not IDLE and rule.rhs != (rule.lhs,) for rule, _ in combo):
+                break
+    return _pcgs_rewrite_step(configuration, combo)

@@ -1,0 +1,221 @@
+"""The import graph of psgs, kinetology (and praxicon, when present) keeps its layers.
+
+The graph is built from the source with ``ast``: every ``import`` and ``from … import``
+anywhere in a module (inside functions too), relative imports resolved, ``from pkg import
+sub`` counted as an import of the submodule ``pkg.sub``. Nothing is imported to build it.
+"""
+
+from __future__ import annotations
+
+import ast
+import importlib
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[2]
+PACKAGES = ("psgs", "kinetology", "praxicon")  # praxicon: a package another branch may add
+
+# The formal core, bottom-up: a module may import its own tier and the tiers below, never above.
+CORE_TIERS = (
+    ("psgs.errors", "psgs.budget"),
+    ("psgs.model",),
+    ("psgs.analysis", "psgs.notation"),
+    ("psgs.steps",),
+    ("psgs.derivation",),
+    ("psgs.membership", "psgs.membership.*"),
+    ("psgs.search", "psgs.enumeration"),
+)
+# Beside the core: readers, writers and exporters of the model, needing nothing above it.
+BESIDE = ("psgs.format", "psgs.lark_export", "psgs.graph")
+BESIDE_MAY_IMPORT = ("psgs.errors", "psgs.model")
+# Core modules over ~600 lines are a smell (psgs/induce is restructured on another branch).
+MAX_LINES = 600
+
+# TEMPORARY, to be removed by the lead after merging: psgs/cli/core.py (another helper's file)
+# still imports ``language`` from psgs.derivation, which keeps a thin lazy alias for it.
+TEMPORARY_EDGES = {("psgs.derivation", "psgs.enumeration")}
+
+
+def module_files() -> dict[str, Path]:
+    out = {}
+    for package in PACKAGES:
+        root = REPO / package
+        if not root.is_dir():
+            continue
+        for path in sorted(root.rglob("*.py")):
+            parts = list(path.relative_to(REPO).with_suffix("").parts)
+            if parts[-1] == "__init__":
+                parts.pop()
+            out[".".join(parts)] = path
+    return out
+
+
+def _imports(name: str, path: Path, known: set[str]) -> set[tuple[str, str]]:
+    """(module imported, name taken from it or '') for every import statement in the file."""
+    is_package = path.name == "__init__.py"
+    package = name if is_package else name.rpartition(".")[0]
+    found = set()
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), str(path))):
+        if isinstance(node, ast.Import):
+            found.update((alias.name, "") for alias in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package.split(".")
+                if node.level > 1:
+                    base = base[:-(node.level - 1)]
+                target = ".".join(base + ([node.module] if node.module else []))
+            else:
+                target = node.module
+            for alias in node.names:
+                sub = f"{target}.{alias.name}"
+                found.add((sub, "") if sub in known else (target, alias.name))
+    return found
+
+
+def _owner(target: str, known: set[str]) -> str | None:
+    """The known module ``target`` names (the longest known prefix), or None if foreign."""
+    while target:
+        if target in known:
+            return target
+        target = target.rpartition(".")[0]
+    return None
+
+
+def import_graph() -> tuple[dict[str, set[str]], dict[str, set[tuple[str, str]]]]:
+    files = module_files()
+    known = set(files)
+    edges: dict[str, set[str]] = {m: set() for m in files}
+    names: dict[str, set[tuple[str, str]]] = {m: set() for m in files}
+    for module, path in files.items():
+        for target, taken in _imports(module, path, known):
+            owner = _owner(target, known)
+            if owner is not None and owner != module and (module, owner) not in TEMPORARY_EDGES:
+                edges[module].add(owner)
+                names[module].add((owner, taken))
+    return edges, names
+
+
+def tier_of(module: str) -> int | None:
+    for k, tier in enumerate(CORE_TIERS):
+        for pattern in tier:
+            if module == pattern or (pattern.endswith(".*") and
+                                     module.startswith(pattern[:-1])):
+                return k
+    return None
+
+
+EDGES, NAMES = import_graph()
+
+
+def _cycle(edges: dict[str, set[str]]) -> list[str] | None:
+    colour: dict[str, int] = {}
+    for root in sorted(edges):
+        if root in colour:
+            continue
+        colour[root] = 1
+        stack = [(root, iter(sorted(edges[root])))]
+        path = [root]
+        while stack:
+            node, it = stack[-1]
+            for nxt in it:
+                if colour.get(nxt) == 1:
+                    return path[path.index(nxt):] + [nxt]
+                if nxt not in colour:
+                    colour[nxt] = 1
+                    stack.append((nxt, iter(sorted(edges.get(nxt, ())))))
+                    path.append(nxt)
+                    break
+            else:
+                colour[node] = 2
+                stack.pop()
+                path.pop()
+    return None
+
+
+def test_the_graph_is_read_from_every_module_with_function_level_imports():
+    assert {"psgs.derivation", "psgs.membership", "psgs.enumeration",
+            "kinetology.segmentation"} <= set(EDGES)
+    # a function-level import is an edge: kinetology's one use of psgs sits inside a method
+    assert "psgs.actiongram" in EDGES["kinetology.segmentation"]
+    # relative imports are resolved, `from . import x` names the submodule
+    assert "psgs.membership.chart" in EDGES["psgs.membership.schedule_search"]
+
+
+def test_no_import_cycle():
+    assert _cycle(EDGES) is None, " -> ".join(_cycle(EDGES))
+
+
+def test_the_core_layers_point_down_only():
+    upward = []
+    for module, targets in EDGES.items():
+        mine = tier_of(module)
+        if mine is None:
+            continue
+        for target in targets:
+            theirs = tier_of(target)
+            if theirs is None or theirs > mine:
+                upward.append(f"{module} -> {target}")
+    assert not upward, "imports pointing up (or out of the core): " + ", ".join(sorted(upward))
+
+
+def test_format_lark_export_and_graph_stand_beside_the_core():
+    for module in BESIDE:
+        assert EDGES[module] <= set(BESIDE_MAY_IMPORT), (module, EDGES[module])
+    for module, targets in EDGES.items():
+        if tier_of(module) is not None:
+            assert not targets & set(BESIDE), (module, targets & set(BESIDE))
+
+
+def test_psgs_never_imports_kinetology_or_praxicon():
+    bad = [f"{m} -> {t}" for m, ts in EDGES.items() if m.split(".")[0] == "psgs"
+           for t in ts if t.split(".")[0] in ("kinetology", "praxicon")]
+    assert not bad, bad
+
+
+def test_kinetology_uses_psgs_only_for_the_actiongram_type():
+    uses = {(m, owner, taken) for m, pairs in NAMES.items() if m.split(".")[0] == "kinetology"
+            for owner, taken in pairs if owner.split(".")[0] in ("psgs", "praxicon")}
+    allowed = {("psgs.actiongram", ""), ("psgs.actiongram", "Actiongram"),
+               ("psgs", "Actiongram"), ("psgs", "actiongram")}
+    bad = [u for u in uses if (u[1], u[2]) not in allowed]
+    assert not bad, bad
+    assert uses, "kinetology makes actiongrams, so it imports the type somewhere"
+
+
+@pytest.mark.parametrize("module", sorted(m for m in EDGES if tier_of(m) is not None
+                                          or m in BESIDE or m == "psgs"))
+def test_core_modules_are_small(module):
+    path = module_files()[module]
+    lines = len(path.read_text(encoding="utf-8").splitlines())
+    assert lines <= MAX_LINES, f"{path.relative_to(REPO)} has {lines} lines"
+
+
+def test_the_lazy_table_agrees_with_the_submodules():
+    import psgs
+    for name, module_name in psgs._LAZY.items():
+        module = importlib.import_module(f"psgs.{module_name}")
+        assert name in module.__all__, (name, module_name)
+        assert getattr(psgs, name) is getattr(module, name)
+    for name in psgs.__all__:
+        assert hasattr(psgs, name), name
+    for module_name in psgs._PUBLIC:
+        module = importlib.import_module(f"psgs.{module_name}")
+        missing = [name for name in module.__all__ if not hasattr(module, name)]
+        assert not missing, (module_name, missing)
+    # one name per function: no public alias of another public name
+    values = [id(getattr(psgs, name)) for name in psgs.__all__ if name != "IDLE"]
+    assert len(values) == len(set(values))
+
+
+def test_help_of_psgs_needs_no_hypothesis():
+    script = ("import sys; sys.modules['hypothesis'] = None\n"
+              "import pydoc, psgs\n"
+              "text = pydoc.render_doc(psgs, renderer=pydoc.plaintext)\n"
+              "assert 'accepts' in text and 'loads' in text, text[:400]\n"
+              "print('ok')\n")
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          cwd=REPO, timeout=60)
+    assert done.returncode == 0 and done.stdout.strip() == "ok", done.stderr[-2000:]
