@@ -61,16 +61,14 @@ from pathlib import Path
 
 import numpy as np
 
-REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO))
+from _common import DOCS, MOCAP, require
 
+require("kinetology")
 import kinetology  # noqa: E402
 from kinetology.labels import read_cmu_truelabels  # noqa: E402
 from kinetology.performances import from_spans, segment_performances  # noqa: E402
 from kinetology.segmentation import DEFAULTS, segment, smooth, unwrap  # noqa: E402
 
-MOCAP = REPO.parent / "shared" / "data" / "mocap"
-DOCS = REPO / "docs"
 
 # -- the truth ---------------------------------------------------------------------------
 

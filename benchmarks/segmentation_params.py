@@ -28,13 +28,12 @@ from pathlib import Path
 
 import numpy as np
 
-REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO))
+from _common import DOCS, MOCAP, REPO, require
 
+require("kinetology")
 import kinetology  # noqa: E402
 from kinetology.segmentation import DEFAULTS, states, unwrap  # noqa: E402
 
-MOCAP = REPO.parent / "shared" / "data" / "mocap"
 # (from, to) state codes B=0 G=1 R=2 Y=3 that a smooth signal cannot make
 ILLEGAL = {(0, 2), (0, 3), (1, 3), (2, 0), (2, 1), (3, 1)}
 def _setting(smoothing, velocity, acceleration, relative):

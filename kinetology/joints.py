@@ -38,6 +38,18 @@ CMU_PARENTS = MappingProxyType({
 def dot_actuator(channel: str) -> str:
     """The actuator of a channel by the dot rule: the name before the first dot.
 
+    Parameters
+    ----------
+    channel : str
+        A channel name such as ``lfemur.rx``.
+
+    Returns
+    -------
+    str
+        The part before the first dot (the whole name when there is none).
+
+    Examples
+    --------
     >>> dot_actuator("lfemur.rx"), dot_actuator("knee")
     ('lfemur', 'knee')
     """
@@ -49,6 +61,20 @@ def actuator_map(motion: Motion, channels: Iterable[str] | None = None) -> dict[
 
     The skeleton joint that lists the channel, else the dot rule.
 
+    Parameters
+    ----------
+    motion : Motion
+        The motion (its skeleton, when it has one, names the joints).
+    channels : iterable of str, optional
+        The channels to map (default: all of the motion's).
+
+    Returns
+    -------
+    dict
+        ``{channel: joint}`` in the order given.
+
+    Examples
+    --------
     >>> import numpy as np
     >>> m = Motion(np.zeros((2, 2)), ("lfemur.rx", "lfemur.ry"), 120)
     >>> actuator_map(m)
@@ -70,6 +96,20 @@ def skeleton_parents(motion: Motion, actuators: Iterable[str]) -> dict[str, str 
     that is). Without a skeleton: the CMU standard hierarchy when every actuator is a CMU
     bone, else ``{}`` (unknown).
 
+    Parameters
+    ----------
+    motion : Motion
+        The motion whose skeleton gives the hierarchy (or None: the fallback above).
+    actuators : iterable of str
+        The joints to give parents to.
+
+    Returns
+    -------
+    dict
+        ``{joint: parent or None}``, empty when the hierarchy is unknown.
+
+    Examples
+    --------
     >>> import numpy as np
     >>> m = Motion(np.zeros((2, 2)), ("lfemur.rx", "ltibia.rx"), 120)
     >>> skeleton_parents(m, ["lfemur", "ltibia"])

@@ -72,7 +72,29 @@ def cut(motion: Motion, start: float | None = None, stop: float | None = None) -
 
 
 def from_files(paths: Iterable[str | Path], **options) -> tuple[Motion, ...]:
-    """One performance per file (each file one take), read by :func:`kinetology.read`."""
+    """One performance per file (each file one take), read by :func:`kinetology.read`.
+
+    Parameters
+    ----------
+    paths : iterable of str or Path
+        Motion files (``.bvh``, ``.amc``).
+    **options
+        Passed to the reader (``frame_rate=`` for AMC, ...).
+
+    Returns
+    -------
+    tuple of Motion
+
+    Raises
+    ------
+    MotionFormatError, FileNotFoundError
+        As :func:`kinetology.read`.
+
+    Examples
+    --------
+    >>> from_files([])
+    ()
+    """
     from .readers import read
 
     return tuple(read(p, **options) for p in paths)
@@ -123,6 +145,26 @@ def performances(*sources, spans: Iterable[Span] | None = None, label: str | Non
     ``performances("a.bvh", "b.bvh")`` reads each file as one performance (a
     :class:`Motion` is taken as it is). ``performances("take.amc", spans=spans,
     label="Squat")`` cuts the spans labelled ``Squat`` out of the one take.
+
+    Parameters
+    ----------
+    *sources : str, Path or Motion
+        The takes.
+    spans : iterable of Span, optional
+        Labelled spans of the one take (see :func:`from_spans`).
+    label : str, optional
+        With ``spans``: only spans with this label.
+    min_seconds : float
+        With ``spans``: leave out shorter spans.
+
+    Returns
+    -------
+    tuple of Motion
+
+    Raises
+    ------
+    ValueError
+        ``spans`` with more than one source, or a span outside the take.
 
     Examples
     --------
