@@ -247,7 +247,7 @@ def view_invariance(motion: Motion, triple: tuple[str, str, str], *, views: int 
     >>> result.azimuths
     array([  0.,  90., 180., 270.])
     >>> result.agreement_per_view.round(2)
-    array([1.  , 0.26, 1.  , 0.26])
+    array([1.  , 0.25, 1.  , 0.25])
     """
     if int(views) != views or views < 1:
         raise ValueError(f"views must be a positive whole number, not {views!r}")
