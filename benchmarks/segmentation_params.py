@@ -28,7 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
-from _common import DOCS, MOCAP, REPO, require
+from _common import MOCAP, REPO, replace_section, require
 
 require("kinetology")
 import kinetology  # noqa: E402
@@ -100,14 +100,6 @@ def measure(cmu, bandai, params):
             "tempo_agreement": float(np.mean(tempo_agree)),
             "tempo_count_ratio": float(np.mean(tempo_ratio)),
             "illegal": bad / max(1, total)}
-
-
-def replace_section(path: Path, name: str, text: str) -> None:
-    start, end = f"<!-- {name}:start -->", f"<!-- {name}:end -->"
-    page = path.read_text()
-    head, rest = page.split(start, 1)
-    _, tail = rest.split(end, 1)
-    path.write_text(f"{head}{start}\n{text.strip()}\n{end}{tail}")
 
 
 def main(argv=None) -> int:
