@@ -61,16 +61,14 @@ from pathlib import Path
 
 import numpy as np
 
-REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO))
+from _common import DOCS, MOCAP, require
 
+require("kinetology")
 import kinetology  # noqa: E402
 from kinetology.labels import read_cmu_truelabels  # noqa: E402
 from kinetology.performances import from_spans, segment_performances  # noqa: E402
 from kinetology.segmentation import DEFAULTS, segment, smooth, unwrap  # noqa: E402
 
-MOCAP = REPO.parent / "shared" / "data" / "mocap"
-DOCS = REPO / "docs"
 
 # -- the truth ---------------------------------------------------------------------------
 
@@ -382,7 +380,15 @@ def main(argv=None) -> int:
                         help="shortest cmu-mocap6 span taken as a performance (default 3)")
     parser.add_argument("--no-stumpy", action="store_true", help="leave the stumpy peer out")
     parser.add_argument("--no-write", action="store_true", help="print only")
+    parser.add_argument("--picture-only", action="store_true",
+                        help="redraw docs/img/pal_actuators.png from docs/data/actuators.csv")
     args = parser.parse_args(argv)
+    if args.picture_only:
+        with (DOCS / "data" / "actuators.csv").open() as handle:
+            rows = [{**r, "f1": float(r["f1"]), "negative": r["negative"] == "True"}
+                    for r in csv.DictReader(handle)]
+        picture(rows, DOCS / "img" / "pal_actuators.png")
+        return 0
     if not MOCAP.is_dir():
         print(f"no motion data at {MOCAP}", file=sys.stderr)
         return 1
@@ -550,7 +556,7 @@ def picture(rows, path: Path) -> None:
     methods = [m for m in METHODS if any(r["method"] == m for r in rows)]
     positive = [r for r in rows if not r["negative"] or r["action"] == "bye+foreign-left-arm"]
     datasets = list(dict.fromkeys(r["dataset"] for r in positive))
-    fig, ax = plt.subplots(figsize=(8, 3.6))
+    fig, ax = plt.subplots(figsize=(8, 3.9))
     width = 0.8 / len(methods)
     for k, m in enumerate(methods):
         means = [np.mean([r["f1"] for r in positive if r["dataset"] == d and r["method"] == m]
@@ -559,7 +565,8 @@ def picture(rows, path: Path) -> None:
     ax.set_xticks(np.arange(len(datasets)) + 0.4 - width / 2, datasets)
     ax.set_ylabel("mean F1 (joints)")
     ax.set_ylim(0, 1.05)
-    ax.legend(ncol=len(methods), fontsize=8, loc="lower right")
+    ax.legend(ncol=len(methods), fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.1),
+              frameon=False)
     ax.set_title("Which joints take part: F1 against the truth table, per dataset")
     fig.tight_layout()
     fig.savefig(path, dpi=110)

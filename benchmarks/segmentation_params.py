@@ -28,13 +28,12 @@ from pathlib import Path
 
 import numpy as np
 
-REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO))
+from _common import MOCAP, REPO, replace_section, require
 
+require("kinetology")
 import kinetology  # noqa: E402
 from kinetology.segmentation import DEFAULTS, states, unwrap  # noqa: E402
 
-MOCAP = REPO.parent / "shared" / "data" / "mocap"
 # (from, to) state codes B=0 G=1 R=2 Y=3 that a smooth signal cannot make
 ILLEGAL = {(0, 2), (0, 3), (1, 3), (2, 0), (2, 1), (3, 1)}
 def _setting(smoothing, velocity, acceleration, relative):
@@ -101,14 +100,6 @@ def measure(cmu, bandai, params):
             "tempo_agreement": float(np.mean(tempo_agree)),
             "tempo_count_ratio": float(np.mean(tempo_ratio)),
             "illegal": bad / max(1, total)}
-
-
-def replace_section(path: Path, name: str, text: str) -> None:
-    start, end = f"<!-- {name}:start -->", f"<!-- {name}:end -->"
-    page = path.read_text()
-    head, rest = page.split(start, 1)
-    _, tail = rest.split(end, 1)
-    path.write_text(f"{head}{start}\n{text.strip()}\n{end}{tail}")
 
 
 def main(argv=None) -> int:

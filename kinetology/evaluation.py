@@ -246,9 +246,8 @@ def view_invariance(motion: Motion, triple: tuple[str, str, str], *, views: int 
     >>> result = view_invariance(bend, ("hip", "knee", "foot"), views=4)
     >>> result.azimuths
     array([  0.,  90., 180., 270.])
-    >>> agreement = result.agreement_per_view
-    >>> bool(agreement[0] == agreement[2] == 1.0), bool(agreement[1] < 0.5 and agreement[3] < 0.5)
-    (True, True)
+    >>> result.agreement_per_view.round(2)
+    array([1.  , 0.25, 1.  , 0.25])
     """
     if int(views) != views or views < 1:
         raise ValueError(f"views must be a positive whole number, not {views!r}")

@@ -38,6 +38,16 @@ CMU_PARENTS = MappingProxyType({
 def dot_actuator(channel: str) -> str:
     """The actuator of a channel by the dot rule: the name before the first dot.
 
+    Parameters
+    ----------
+    channel : str
+        A channel name such as ``lfemur.rx``.
+
+    Returns
+    -------
+    str
+        The part before the first dot (the whole name when there is none).
+
     Examples
     --------
     >>> dot_actuator("lfemur.rx"), dot_actuator("knee")
@@ -54,14 +64,14 @@ def actuator_map(motion: Motion, channels: Iterable[str] | None = None) -> dict[
     Parameters
     ----------
     motion : Motion
-        The motion (its skeleton, where it has one, names the joints).
+        The motion (its skeleton, when it has one, names the joints).
     channels : iterable of str, optional
-        The channels to map (default: all of them).
+        The channels to map (default: all of the motion's).
 
     Returns
     -------
-    dict of str to str
-        Channel name to joint name.
+    dict
+        ``{channel: joint}`` in the order given.
 
     Examples
     --------
@@ -89,15 +99,14 @@ def skeleton_parents(motion: Motion, actuators: Iterable[str]) -> dict[str, str 
     Parameters
     ----------
     motion : Motion
-        The motion (its skeleton, where it has one, gives the hierarchy).
+        The motion whose skeleton gives the hierarchy (or None: the fallback above).
     actuators : iterable of str
-        The joints to relate.
+        The joints to give parents to.
 
     Returns
     -------
-    dict of str to str or None
-        Joint to its nearest ancestor among ``actuators`` (None for a root); empty when the
-        hierarchy is unknown.
+    dict
+        ``{joint: parent or None}``, empty when the hierarchy is unknown.
 
     Examples
     --------

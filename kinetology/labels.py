@@ -38,29 +38,19 @@ FRAMES_PER_LABEL = 12
 class Span:
     """One labelled stretch of a take: ``label`` from ``start`` to ``stop`` seconds.
 
-    ``style`` is the performer's style where the labels give one (Bandai Namco), else None.
-
     Parameters
     ----------
     label : str
-        The action's label.
-    start : float
-        Seconds from the start of the take.
-    stop : float
-        Seconds from the start of the take, after ``start``.
+        The action.
+    start, stop : float
+        Seconds from the take's first frame, ``0 <= start < stop`` (else ``ValueError``).
     style : str, optional
-        The performer's style (Bandai Namco labels), else None.
-
-    Raises
-    ------
-    ValueError
-        Unless ``0 <= start < stop``.
+        The performer's style where the labels give one (Bandai Namco), else None.
 
     Examples
     --------
-    >>> span = Span("Squat", 1.5, 4.0)
-    >>> span.duration, span.style
-    (2.5, None)
+    >>> Span("Squat", 2.0, 5.5).duration
+    3.5
     """
 
     label: str
@@ -222,18 +212,28 @@ def read_bandai_json(path: str | Path, duration: float | None = None) -> tuple[S
 def spans_of(path: str | Path, frame_rate: float = 120.0) -> tuple[Span, ...]:
     """The spans of a label file of either format, chosen by suffix (``.txt`` / ``.json``).
 
+    Parameters
+    ----------
+    path : str or Path
+        A CMU mocap6 ``truelabels`` ``.txt`` or a Bandai Namco ``.json`` file.
+    frame_rate : float
+        For ``.txt``: the AMC frame rate (see :func:`read_cmu_truelabels`).
+
+    Returns
+    -------
+    tuple of Span
+
+    Raises
+    ------
+    MotionFormatError
+        Another suffix, or a malformed file.
+
     Examples
     --------
-    >>> import tempfile
-    >>> from pathlib import Path
-    >>> path = Path(tempfile.mkdtemp()) / "86_01.txt"
-    >>> _ = path.write_text("2 2 2 2\\n")
-    >>> spans_of(path)
-    (Span(label='Jog', start=0.0, stop=0.4, style=None),)
-    >>> spans_of(path.with_suffix(".csv"))
+    >>> spans_of("labels.csv")
     Traceback (most recent call last):
     ...
-    kinetology.motion.MotionFormatError: ...86_01.csv: unknown label format '.csv'; expected .txt (CMU mocap6 truelabels) or .json (Bandai Namco)
+    kinetology.motion.MotionFormatError: labels.csv: unknown label format '.csv'; expected .txt (CMU mocap6 truelabels) or .json (Bandai Namco)
     """
     path = Path(path)
     if path.suffix.lower() == ".json":

@@ -74,17 +74,26 @@ def cut(motion: Motion, start: float | None = None, stop: float | None = None) -
 def from_files(paths: Iterable[str | Path], **options) -> tuple[Motion, ...]:
     """One performance per file (each file one take), read by :func:`kinetology.read`.
 
+    Parameters
+    ----------
+    paths : iterable of str or Path
+        Motion files (``.bvh``, ``.amc``).
+    **options
+        Passed to the reader (``frame_rate=`` for AMC, ...).
+
+    Returns
+    -------
+    tuple of Motion
+
+    Raises
+    ------
+    MotionFormatError, FileNotFoundError
+        As :func:`kinetology.read`.
+
     Examples
     --------
-    >>> import tempfile
-    >>> from pathlib import Path
-    >>> folder = Path(tempfile.mkdtemp())
-    >>> for name in ("a.bvh", "b.bvh"):
-    ...     _ = (folder / name).write_text("HIERARCHY\\nROOT knee\\n{ OFFSET 0 0 0\\n"
-    ...                                    "  CHANNELS 1 Xrotation\\n  End Site\\n  { OFFSET 0 -1 0 } }\\n"
-    ...                                    "MOTION\\nFrames: 2\\nFrame Time: 0.1\\n0\\n10\\n")
-    >>> [m.frames for m in from_files([folder / "a.bvh", folder / "b.bvh"])]
-    [2, 2]
+    >>> from_files([])
+    ()
     """
     from .readers import read
 
@@ -140,25 +149,22 @@ def performances(*sources, spans: Iterable[Span] | None = None, label: str | Non
     Parameters
     ----------
     *sources : str, Path or Motion
-        Files (each read by :func:`kinetology.read`) or motions; with ``spans``, exactly one.
+        The takes.
     spans : iterable of Span, optional
-        Labelled stretches of the one take to cut out.
+        Labelled spans of the one take (see :func:`from_spans`).
     label : str, optional
-        Only the spans with this label (default: every span).
-    min_seconds : float, default 0.0
-        Spans shorter than this are left out.
+        With ``spans``: only spans with this label.
+    min_seconds : float
+        With ``spans``: leave out shorter spans.
 
     Returns
     -------
     tuple of Motion
-        One motion per performance, in the order given (files) or in time order (spans).
 
     Raises
     ------
     ValueError
-        When ``spans`` come with more than one source, or a span lies outside the take.
-    MotionFormatError
-        When a file is malformed.
+        ``spans`` with more than one source, or a span outside the take.
 
     Examples
     --------

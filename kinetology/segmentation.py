@@ -74,19 +74,17 @@ def _is_rotation(channel: str) -> bool:
 def unwrap(values: np.ndarray, period: float = DEFAULTS["unwrap"]) -> np.ndarray:
     """Remove jumps of more than half a ``period`` between frames (along axis 0).
 
-    ``period <= 0`` returns a copy unchanged.
-
     Parameters
     ----------
-    values : numpy.ndarray
-        Angles, degrees, frames along axis 0.
-    period : float, default 360.0
-        The period; 0 or less: no unwrapping.
+    values : array_like
+        Angles, frames along axis 0 (degrees for the default period).
+    period : float
+        The period (360 for degrees); ``period <= 0`` returns a copy unchanged.
 
     Returns
     -------
     numpy.ndarray
-        A new array of the shape of ``values``.
+        The angles with every jump of more than ``period / 2`` removed.
 
     Examples
     --------
@@ -220,12 +218,24 @@ def channel_deadbands(signals: np.ndarray, absolute: float, relative: float) -> 
     accelerations by ``k²``, a fixed dead band does not follow); the absolute floor keeps a
     nearly still channel from turning its noise into kinetemes.
 
+    Parameters
+    ----------
+    signals : numpy.ndarray
+        ``frames x channels`` velocities (or accelerations).
+    absolute : float
+        The floor of every band.
+    relative : float
+        Share of the channel's 95th-percentile ``|signal|``; 0 gives the floor everywhere.
+
+    Returns
+    -------
+    numpy.ndarray
+        One band per channel.
+
     Examples
     --------
-    >>> import numpy as np
-    >>> brisk = np.linspace(-100, 100, 201)[:, None]
-    >>> channel_deadbands(np.hstack([brisk, brisk / 100]), 2.0, 0.05)
-    array([4.75, 2.  ])
+    >>> channel_deadbands(np.array([[0.0, 1.0], [100.0, 2.0]]), 2.0, 0.1).tolist()
+    [9.5, 2.0]
     """
     if relative <= 0 or signals.shape[0] == 0:
         return np.full(signals.shape[1], float(absolute))

@@ -116,7 +116,8 @@ EXAMPLE_NOISE = 0.1
 
 
 def run_induce(args) -> int:
-    """``psgs induce``: learn from FILE... (one performance each; or the built-in example) and print or write the result.
+    """``psgs induce``: learn from FILE... (one performance each)
+    or the built-in example, and print or write the result.
 
     Parameters
     ----------
