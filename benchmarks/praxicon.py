@@ -34,9 +34,9 @@ import tempfile
 import time
 from pathlib import Path
 
-REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO))
+from _common import REPO, require
 
+require("praxicon")
 from praxicon import Settings, build, executor_for, load_record, read_datasets  # noqa: E402
 from praxicon.generation import generate, is_smooth_cycle  # noqa: E402
 

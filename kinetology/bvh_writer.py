@@ -30,6 +30,8 @@ _AXIS_NAMES = {"tx": "Xposition", "ty": "Yposition", "tz": "Zposition",
 def star_skeleton(channels) -> Skeleton:
     """A skeleton carrying ``channels`` (``joint.axis`` names): every joint on the first one.
 
+    Examples
+    --------
     >>> star_skeleton(["root.tx", "root.rz", "knee.rx"]).names
     ('root', 'knee')
     """
@@ -115,6 +117,23 @@ def write_bvh(motion: Motion, path: str | Path) -> Path:
 
     Read back by :func:`kinetology.read` to the same values within 1e-6 (the
     values are written with six decimals); see :func:`format_bvh` for errors.
+
+    Parameters
+    ----------
+    motion : Motion
+        The motion (without a skeleton, every joint is put on the first one).
+    path : str or Path
+        The file to write (overwritten).
+
+    Returns
+    -------
+    Path
+        ``path``.
+
+    Raises
+    ------
+    ValueError
+        See :func:`format_bvh`.
 
     Examples
     --------

@@ -55,6 +55,7 @@ class Performance:
     label: str | None = None
 
     def to_dict(self) -> dict:
+        """The performance as plain JSON values (for index.json)."""
         return {"file": self.file, "start": self.start, "stop": self.stop, "label": self.label}
 
 

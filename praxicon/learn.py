@@ -50,10 +50,12 @@ class Settings:
     @classmethod
     def make(cls, inducer: str = "pal", params: dict | None = None,
              segmentation: dict | None = None, min_performances: int = 2) -> "Settings":
+        """Settings from plain dicts (sorted, so equal settings compare and hash equal)."""
         return cls(inducer, tuple(sorted((params or {}).items())),
                    tuple(sorted((segmentation or {}).items())), min_performances)
 
     def to_dict(self) -> dict:
+        """The settings as plain JSON values (for index.json)."""
         return {"inducer": self.inducer, "params": dict(self.params),
                 "segmentation": dict(self.segmentation),
                 "min_performances": self.min_performances}

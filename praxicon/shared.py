@@ -35,6 +35,7 @@ class SharedPattern:
     channels: tuple[tuple[str, str], ...]
 
     def to_dict(self) -> dict:
+        """The pattern as plain JSON values (for shared.json)."""
         return {"joint": self.joint, "kinetemes": list(self.kinetemes),
                 "actions": list(self.actions), "channels": [list(c) for c in self.channels]}
 

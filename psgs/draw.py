@@ -38,6 +38,14 @@ class Forest:
     ``roots[c]`` is the root node of component ``c``; ``rules[i]`` the label of
     the rule that rewrote node ``i`` (``None`` for a leaf); ``complete`` is
     False when the derivation stopped before a terminal configuration.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> counting = psgs.load("grammars/counting.psgs")
+    >>> forest = parse_forest(counting, seed=0)
+    >>> forest.components, forest.roots, forest.complete
+    (('G1', 'G2'), (0, 1), True)
     """
 
     components: tuple[str, ...]
@@ -126,6 +134,13 @@ def sync_edges(system: PSGS | PCGS) -> tuple[tuple[tuple[str, str], tuple[str, s
 
     PSGS: consecutive non-idle entries of each tuple of M. PCGS: from each rule
     holding a query ``?G`` to ``(G, "")`` (the queried component), index -1.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> counting = psgs.load("grammars/counting.psgs")
+    >>> sync_edges(counting)
+    ((('G1', 'p1'), ('G2', 'q1'), 0), (('G1', 'p2'), ('G2', 'q2'), 1))
     """
     names = system.component_names
     edges = []
@@ -143,7 +158,13 @@ def sync_edges(system: PSGS | PCGS) -> tuple[tuple[tuple[str, str], tuple[str, s
 
 
 def graphviz_available() -> bool:
-    """True when the ``graphviz`` package imports and the ``dot`` program is on the PATH."""
+    """True when the ``graphviz`` package imports and the ``dot`` program is on the PATH.
+
+    Examples
+    --------
+    >>> isinstance(graphviz_available(), bool)
+    True
+    """
     try:
         import graphviz  # noqa: F401
     except ImportError:
@@ -301,7 +322,16 @@ def _forest_or_none(system, seed: int, max_steps: int) -> Forest | None:
 
 def to_svg(system: PSGS | PCGS, *, seed: int = 0, max_steps: int = 200,
            engine: str = "auto") -> str:
-    """The picture of :func:`draw` as SVG text."""
+    """The picture of :func:`draw` as SVG text.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> counting = psgs.load("grammars/counting.psgs")
+    >>> svg = to_svg(counting, engine="matplotlib")
+    >>> svg.startswith("<?xml"), "<svg" in svg
+    (True, True)
+    """
     forest = _forest_or_none(system, seed, max_steps)
     return _render(system, forest, "svg", engine).decode("utf-8")
 

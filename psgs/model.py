@@ -11,7 +11,6 @@ used as two kinds within one system is an error.
 
 from __future__ import annotations
 
-import re
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -19,34 +18,15 @@ from types import MappingProxyType
 from typing import Literal, Union
 
 from .errors import ValidationError
+from .names import _BAD_TERMINAL, _require_identifier, is_identifier
 
 __all__ = [
     "Terminal", "Nonterminal", "Query", "Symbol", "Word", "Form", "Rule", "Grammar",
     "SyncTuple", "resolve_tuple", "PSGS", "PCGS", "System", "IDLE", "as_word", "is_identifier",
 ]
 
-_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
-_BAD_TERMINAL = re.compile(r"[\s\x00-\x1f\x7f]")
-
 #: What ``#`` (this component idles) is in a synchronisation tuple.
 IDLE = None
-
-
-def is_identifier(name: object) -> bool:
-    """True when ``name`` can name a nonterminal, component, rule or system.
-
-    Examples
-    --------
-    >>> is_identifier("S1"), is_identifier("1S"), is_identifier(None)
-    (True, False, False)
-    """
-    return isinstance(name, str) and bool(_IDENTIFIER.match(name))
-
-
-def _require_identifier(name: object, what: str) -> None:
-    if not is_identifier(name):
-        raise ValidationError(
-            f"{what} {name!r} is not a valid name (letters, digits and _, not starting with a digit)")
 
 
 @dataclass(frozen=True, slots=True, order=True)

@@ -36,7 +36,21 @@ SCALES = (0.67, 0.8, 0.9, 1.0, 1.12, 1.25, 1.5)
 
 @dataclass(frozen=True)
 class Located:
-    """One span of time where the action was found; ``score`` in [-1, 1] (1: every state agrees)."""
+    """One span of time where the action was found.
+
+    Parameters
+    ----------
+    start, stop : float
+        The span, in the actiongram's time unit (seconds for kinetology's actiongrams).
+    score : float
+        In [-1, 1]: how well the span agrees with what was learned (1: every state agrees).
+
+    Examples
+    --------
+    >>> found = Located(1.5, 3.0, 0.8)
+    >>> found.stop - found.start, found.score
+    (1.5, 0.8)
+    """
 
     start: float
     stop: float

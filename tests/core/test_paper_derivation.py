@@ -8,8 +8,8 @@ from pathlib import Path
 import pytest
 
 from psgs import PSGS, Grammar, Nonterminal, Rule, Terminal
-from psgs.derivation import (Derivation, applicable_steps, apply_tuple, initial_configuration,
-                             language)
+from psgs.derivation import Derivation, applicable_steps, apply_tuple, initial_configuration
+from psgs.enumeration import language
 
 REPO = Path(__file__).resolve().parents[2]
 

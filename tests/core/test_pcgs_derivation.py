@@ -10,7 +10,8 @@ from hypothesis import strategies as st
 
 from psgs import PCGS, Grammar, Nonterminal, Query, Rule, Terminal, ValidationError
 from psgs.derivation import (Derivation, applicable_steps, apply_tuple, communication_step,
-                             initial_configuration, language, random_derivation)
+                             initial_configuration, random_derivation)
+from psgs.enumeration import language
 
 S1, S2, S3 = Nonterminal("S1"), Nonterminal("S2"), Nonterminal("S3")
 X, Y, Z, B = Nonterminal("X"), Nonterminal("Y"), Nonterminal("Z"), Nonterminal("B")

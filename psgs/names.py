@@ -1,0 +1,33 @@
+"""Which text can name a nonterminal, component, rule or system, and which can be a terminal.
+
+The one place these character rules are written, below :mod:`psgs.model` (which builds the values)
+and the text format (which reads them).
+"""
+
+from __future__ import annotations
+
+import re
+
+from .errors import ValidationError
+
+__all__ = ["is_identifier"]
+
+_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
+_BAD_TERMINAL = re.compile(r"[\s\x00-\x1f\x7f]")
+
+
+def is_identifier(name: object) -> bool:
+    """True when ``name`` can name a nonterminal, component, rule or system.
+
+    Examples
+    --------
+    >>> is_identifier("S1"), is_identifier("1S"), is_identifier(None)
+    (True, False, False)
+    """
+    return isinstance(name, str) and bool(_IDENTIFIER.match(name))
+
+
+def _require_identifier(name: object, what: str) -> None:
+    if not is_identifier(name):
+        raise ValidationError(
+            f"{what} {name!r} is not a valid name (letters, digits and _, not starting with a digit)")
