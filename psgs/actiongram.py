@@ -42,7 +42,8 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from ._actiongram_checks import _bad_name, _finite, _not_unicode, _shown
+from ._actiongram_checks import (_bad_duration, _bad_name, _bad_symbol, _check_times_advance,
+                                 _finite, _plain_durations, _shown)
 from ._actiongram_extras import DIRECTIVE as _DIRECTIVE
 from ._actiongram_extras import default_actuator, normalise_extras
 from ._actiongram_extras import read_directive as _read_directive
@@ -52,53 +53,6 @@ __all__ = ["Actiongram", "default_actuator", "load_actiongram"]
 
 _JSON_FORMAT = "psgs-actiongram"
 _NUMBER = re.compile(r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?\Z")
-
-
-
-
-
-def _bad_symbol(symbol: object) -> str | None:
-    if not isinstance(symbol, str) or not symbol:
-        return f"a symbol must be non-empty text, not {_shown(symbol)}"
-    if _not_unicode(symbol):
-        return f"symbol {_shown(symbol)} is not valid Unicode (a lone surrogate)"
-    if any(ch.isspace() for ch in symbol) or "@" in symbol or ":" in symbol or symbol.startswith("#"):
-        return (f"symbol {_shown(symbol)} must have no white space, '@' or ':' and not start "
-                f"with '#'")
-    return None
-
-
-
-def _bad_duration(value: object) -> str | None:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        return f"a duration must be a number, not {_shown(value)}"
-    if not _finite(value) or value <= 0:
-        return f"a duration must be positive and finite, not {_shown(value)}"
-    return None
-
-
-def _plain_durations(durations: tuple) -> bool:
-    """Fast check that every duration is a positive finite int or float (not bool)."""
-    if not durations:
-        return True
-    if not set(map(type, durations)) <= {int, float}:
-        return False
-    return min(durations) > 0 and all(map(_finite, durations))
-
-
-def _check_times_advance(name: str, origin: float, durations: tuple[float, ...]) -> None:
-    """FormatError when a duration vanishes beside its start time (``T + D == T`` in floats).
-
-    ``s@1e15: a@1e-9`` is positive on paper but adds nothing to 1e15, so two symbols would
-    share one start time and every later computation on times (PAL's time grid) divides by 0.
-    """
-    t = origin
-    for j, d in enumerate(durations):
-        after = t + d
-        if after == t:
-            raise FormatError(f"string {_shown(name)}: duration {d!r} of symbol {j + 1} vanishes "
-                              f"beside its start time {t!r} (T + D == T in floating point)")
-        t = after
 
 
 def _format_number(value: float) -> str:

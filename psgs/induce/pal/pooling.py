@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...analysis import reachable
 from .motifs import Timed, grow, locate_copies
 from .statistics import log10_binom_sf, scan_threshold
 from typing import TYPE_CHECKING
@@ -56,15 +57,8 @@ def sync_groups(candidates: list[int], partners: dict[int, list[int]]) -> list[l
     for i in candidates:
         if i in seen or not partners[i]:
             continue
-        stack, group = [i], []
-        seen.add(i)
-        while stack:
-            v = stack.pop()
-            group.append(v)
-            for w in partners[v]:
-                if w not in seen:
-                    seen.add(w)
-                    stack.append(w)
+        group = reachable(partners, [i])  # the core's one graph walk (psgs.analysis)
+        seen |= group
         out.append(sorted(group))
     return out
 
