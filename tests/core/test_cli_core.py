@@ -214,7 +214,10 @@ def test_a_reader_that_goes_away_ends_the_command_quietly():
                           text=True, cwd=Path(__file__).resolve().parents[2], timeout=60)
     assert done.stdout.strip() == "(bb)"
     assert done.stderr == ""
-    assert done.returncode == 141
+    # 141 when head closed the pipe while psgs was still writing; 0 when psgs had written all of
+    # its output into the pipe's buffer before head exited (a race the command does not control:
+    # no pipe broke, and nothing may be printed either way)
+    assert done.returncode in (141, 0)
 
 
 # ---------------------------------------------------------------- issue 11: usability
