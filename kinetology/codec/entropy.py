@@ -32,6 +32,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from . import varint
+
 __all__ = ["encode", "decode", "ESCAPE", "EntropyError"]
 
 PRECISION = 12            # probabilities are integers out of 2**12
@@ -107,15 +109,6 @@ def _check(symbols):
     return symbols
 
 
-def _varints(numbers) -> bytes:
-    out = bytearray()
-    for n in numbers:
-        n = int(n)
-        while n >= 0x80:
-            out.append((n & 0x7F) | 0x80)
-            n >>= 7
-        out.append(n)
-    return bytes(out)
 
 
 def encode(symbols) -> bytes:
@@ -190,8 +183,8 @@ def encode(symbols) -> bytes:
     for where, word in reversed(words):
         for lane, w in zip(where.tolist(), word.tolist()):
             per_lane[lane].append(w)
-    out = bytearray(_varints([len(escapes)]) + _varints(escapes))
-    out += _varints([len(w) for w in per_lane])
+    out = bytearray(varint.encode([len(escapes)]) + varint.encode(escapes))
+    out += varint.encode([len(w) for w in per_lane])
     for lane in range(lanes):
         out += int(state[lane]).to_bytes(4, "little")
         out += np.array(per_lane[lane], dtype="<u2").tobytes()
@@ -203,18 +196,12 @@ class _Bytes:
         self.data, self.pos = data, 0
 
     def varint(self) -> int:
-        shift = result = 0
-        while True:
-            if self.pos >= len(self.data):
-                raise EntropyError("residual data ends inside a number")
-            byte = self.data[self.pos]
-            self.pos += 1
-            result |= (byte & 0x7F) << shift
-            if byte < 0x80:
-                return result
-            shift += 7
-            if shift > 63:
-                raise EntropyError("residual number too long")
+        try:
+            value, self.pos = varint.decode(self.data, self.pos)
+        except varint.VarintError as exc:
+            self.pos = exc.pos
+            raise EntropyError(f"residual {exc}") from None
+        return value
 
     def take(self, count: int) -> bytes:
         if count < 0 or self.pos + count > len(self.data):

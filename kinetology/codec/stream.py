@@ -37,6 +37,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..motion import MotionFormatError
+from .varint import VarintError, decode
+from .varint import encode as varints
 
 __all__ = ["Layout", "write", "read"]
 
@@ -71,17 +73,6 @@ class Layout:
     residual: bytes = b""
 
 
-def varints(numbers) -> bytes:
-    out = bytearray()
-    for n in numbers:
-        n = int(n)
-        if n < 0:
-            raise ValueError("varints are unsigned")
-        while n >= 0x80:
-            out.append((n & 0x7F) | 0x80)
-            n >>= 7
-        out.append(n)
-    return bytes(out)
 
 
 def zigzag(numbers) -> list[int]:
@@ -131,18 +122,12 @@ class _Reader:
                                 source=self.source)
 
     def varint(self) -> int:
-        shift = result = 0
-        while True:
-            if self.pos >= len(self.data):
-                self.fail("data ends inside a number")
-            byte = self.data[self.pos]
-            self.pos += 1
-            result |= (byte & 0x7F) << shift
-            if byte < 0x80:
-                return result
-            shift += 7
-            if shift > 63:
-                self.fail("number too long")
+        try:
+            value, self.pos = decode(self.data, self.pos)
+        except VarintError as exc:
+            self.pos = exc.pos
+            self.fail(str(exc))
+        return value
 
     def signed(self) -> int:
         n = self.varint()
