@@ -301,7 +301,7 @@ def _by_joints(learned: Induction, actiongram: Actiongram, min_share: float
                ) -> tuple[Located, ...]:
     """One span over the cycles of the learned leader, when the learned joints carry the
     repetition of the new motion (see :func:`locate`, ``method="joints"``)."""
-    from .pal import performances as perf
+    from .pal.cycles import cycle_evidence, joint_period, lag_scores
     from .pal.learner import PAL
 
     params = PAL(**{k: v for k, v in learned.params.items()
@@ -314,13 +314,13 @@ def _by_joints(learned: Induction, actiongram: Actiongram, min_share: float
     mine = tuple(r for a in learned.actuators for r in rows.get(a, ()))
     if not mine:
         return ()
-    scored = perf.lag_scores(grid, size, params)
-    lag = perf._period(scored, mine, params)  # the learned joints' period in this motion
+    scored = lag_scores(grid, size, params)
+    lag = joint_period(scored, mine, params)  # the learned joints' period in this motion
     if not lag or grid.points < params.min_copies * lag:
         return ()
     segments = np.array([[len(x) for x in actiongram.symbols]], dtype=float)
     paths = np.array([grid.speed.sum(axis=1) * grid.step])
-    repeated, log_p = perf._cycles([grid], [lag], size, paths, segments)
+    repeated, log_p = cycle_evidence([grid], [scored], [lag], size, paths, segments)
     carried = {a: float(repeated[list(r)].sum()) for a, r in rows.items() if r}
     total = sum(carried.values())
     if total <= 0:

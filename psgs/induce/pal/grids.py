@@ -96,13 +96,62 @@ def agreement(a: np.ndarray, b: np.ndarray, weight: np.ndarray, size: int
     w = np.where(valid, weight, 0.0)
     total = w.sum(axis=1)
     same = ((a == b) & valid) * w
-    observed = same.sum(axis=1) / np.maximum(total, 1e-300)
+    div = np.maximum(total, 1e-300)
+    observed = same.sum(axis=1) / div
+    # every state's weighted share in one array (state, row, point): each (state, row) is
+    # summed along its points exactly as a per-state loop would, so the numbers are the same
+    syms = np.arange(size)[:, None, None]
+    share_a = ((a[None] == syms) * w[None]).sum(axis=2) / div
+    share_b = ((b[None] == syms) * w[None]).sum(axis=2) / div
     chance = np.zeros(a.shape[0])
     for sym in range(size):
-        share_a = ((a == sym) * w).sum(axis=1) / np.maximum(total, 1e-300)
-        share_b = ((b == sym) * w).sum(axis=1) / np.maximum(total, 1e-300)
-        chance += share_a * share_b
+        chance += share_a[sym] * share_b[sym]
     return observed, chance, total
+
+
+def agreement_counts(a: np.ndarray, b: np.ndarray, size: int
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`agreement` with every weight 1, from integer counts (the same numbers).
+
+    The last axis is time; any leading axes (rows, shifts, pairs) are kept, so
+    many comparisons are one call. Counts are exact, so the shares, and the
+    chance level summed over the states in the same order, are bit for bit
+    those of ``agreement(a, b, np.ones(a.shape), size)``. States are below ``size``.
+    """
+    a, b = np.broadcast_arrays(np.asarray(a), np.asarray(b))
+    lead, points = a.shape[:-1], a.shape[-1]
+    rows = int(np.prod(lead, dtype=np.int64))
+    a2, b2 = a.reshape(rows, points), b.reshape(rows, points)
+    valid = (a2 >= 0) & (b2 >= 0)
+    total = valid.sum(axis=1).astype(float)
+    same = ((a2 == b2) & valid).sum(axis=1)
+    base = np.arange(rows, dtype=np.int64)[:, None] * size
+    div = np.maximum(total, 1e-300)
+    share_a = np.bincount((base + a2)[valid], minlength=rows * size).reshape(rows, size) \
+        / div[:, None]
+    share_b = np.bincount((base + b2)[valid], minlength=rows * size).reshape(rows, size) \
+        / div[:, None]
+    chance = np.zeros(rows)
+    for sym in range(size):  # in the order agreement sums them
+        chance += share_a[:, sym] * share_b[:, sym]
+    return (same / div).reshape(lead), chance.reshape(lead), total.reshape(lead)
+
+
+def plurality(copies: np.ndarray) -> np.ndarray:
+    """Per column of ``copies`` (copies, columns) the most common state, the lowest among
+    equals; -1 where every copy is absent (-1). Leading axes before the copies are kept."""
+    copies = np.asarray(copies)
+    lead, count, columns = copies.shape[:-2], copies.shape[-2], copies.shape[-1]
+    flat = np.moveaxis(copies.reshape((-1, count, columns)), 1, 2).reshape(-1, count)
+    top = int(flat.max(initial=-1)) + 1
+    if top == 0:
+        return np.full(lead + (columns,), -1, dtype=np.int64)
+    valid = flat >= 0
+    base = np.arange(flat.shape[0], dtype=np.int64)[:, None] * top
+    tally = np.bincount((base + flat)[valid], minlength=flat.shape[0] * top) \
+        .reshape(flat.shape[0], top)
+    out = np.where(valid.any(axis=1), tally.argmax(axis=1), -1).astype(np.int64)
+    return out.reshape(lead + (columns,))
 
 
 def kappa(observed: np.ndarray, chance: np.ndarray) -> np.ndarray:

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .grids import Grid, resample
+from .grids import Grid, plurality, resample
 from .period import track_windows
 
 if TYPE_CHECKING:
@@ -49,50 +49,35 @@ def read_patterns(result: MotionResult, grids: list[Grid], periods, shifts) -> N
     windows = copy_windows(grids, periods, shifts, leader.channels)
     width = int(np.median([n for _, _, n in windows]))
     rows_all = [row for rows in result.channels.values() for row in rows]
-    stretched = {row: np.array([resample(grids[k].states[row:row + 1, a:a + n], width)[0]
-                                for k, a, n in windows]) for row in rows_all}
+    # every copy of every component channel stretched to ``width`` points, one gather per copy
+    states = np.array([resample(grids[k].states[rows_all, a:a + n], width)
+                       for k, a, n in windows]).reshape(len(windows), len(rows_all), width)
     # the angle turned through at each stretched point: velocity x the time it stands for
-    turned_all = {row: np.array([resample(grids[k].velocity[row:row + 1, a:a + n], width)[0]
-                                 * (n * grids[k].step / width) for k, a, n in windows])
-                  for row in rows_all}
-    seconds = [n * grids[k].step / width for k, _, n in windows]
+    turned = np.array([resample(grids[k].velocity[rows_all, a:a + n], width)
+                       * (n * grids[k].step / width) for k, a, n in windows]
+                      ).reshape(len(windows), len(rows_all), width)
+    seconds = np.array([n * grids[k].step / width for k, _, n in windows])
     if periods and rows_all:
         # cycles start at an arbitrary phase of the action: turn each copy (all its channels
         # together) to agree best with the plurality of the copies
-        roll = _cycle_phases([stretched[r] for r in rows_all])
-        for row in rows_all:
-            stretched[row] = _rolled(stretched[row], roll)
-            turned_all[row] = _rolled(turned_all[row], roll)
-    for rows in result.channels.values():
-        for row in rows:
-            copies = stretched[row]
-            turned = turned_all[row]
-            column = _plurality(copies)
-            runs = _runs(column)
-            if len(runs) < 2:
-                continue
-            result.patterns[row] = tuple(sym for sym, _, _ in runs)
-            result.durations[row] = tuple(float(np.median([(b - a) * s for s in seconds]))
-                                          for _, a, b in runs)
-            angles = np.array(turned)
-            result.displacements[row] = tuple(float(np.median(angles[:, a:b].sum(axis=1)))
-                                              for _, a, b in runs)
-            result.occurrences[row] = [(grids[k].t0 + a * grids[k].step,
-                                        grids[k].t0 + (a + n) * grids[k].step)
-                                       for k, a, n in windows]
-            result.occurrence_performance[row] = [k for k, _, _ in windows]
-
-
-def _plurality(copies: np.ndarray) -> np.ndarray:
-    """Per column the most common state over the copies (-1 where every copy is absent)."""
-    out = np.full(copies.shape[1], -1, dtype=np.int64)
-    for c in range(copies.shape[1]):
-        values = copies[:, c]
-        values = values[values >= 0]
-        if len(values):
-            tally = np.bincount(values)
-            out[c] = int(np.argmax(tally))
-    return out
+        roll = _cycle_phases([states[:, i] for i in range(len(rows_all))])
+        states = np.stack([_rolled(states[:, i], roll) for i in range(len(rows_all))], axis=1)
+        turned = np.stack([_rolled(turned[:, i], roll) for i in range(len(rows_all))], axis=1)
+    columns = plurality(np.moveaxis(states, 1, 0)) if rows_all else None  # (rows, width)
+    for i, row in enumerate(rows_all):
+        runs = _runs(columns[i])
+        if len(runs) < 2:
+            continue
+        result.patterns[row] = tuple(sym for sym, _, _ in runs)
+        lengths = np.array([b - a for _, a, b in runs])
+        result.durations[row] = tuple(
+            float(x) for x in np.median(lengths[:, None] * seconds[None, :], axis=1))
+        angles = np.array([turned[:, i, a:b].sum(axis=1) for _, a, b in runs])
+        result.displacements[row] = tuple(float(x) for x in np.median(angles, axis=1))
+        result.occurrences[row] = [(grids[k].t0 + a * grids[k].step,
+                                    grids[k].t0 + (a + n) * grids[k].step)
+                                   for k, a, n in windows]
+        result.occurrence_performance[row] = [k for k, _, _ in windows]
 
 
 def _runs(column: np.ndarray) -> list[tuple[int, int, int]]:
@@ -117,20 +102,18 @@ def _runs(column: np.ndarray) -> list[tuple[int, int, int]]:
 
 
 def _cycle_phases(channels: list[np.ndarray]) -> np.ndarray:
-    """Per copy, the circular shift that best matches the channels' plurality (two passes)."""
+    """Per copy, the circular shift that best matches the channels' plurality (two passes);
+    the first best shift when several match as well."""
     copies, width = channels[0].shape
     roll = np.zeros(copies, dtype=np.int64)
+    # turns[s, j] = (j + s) % width: np.roll(c, -s, axis=1)[:, j] = c[:, turns[s, j]]
+    turns = (np.arange(width)[None, :] + np.arange(width)[:, None]) % width
     for _ in range(2):
-        reference = [_plurality(_rolled(c, roll)) for c in channels]
-        best = np.full(copies, -1.0)
-        chosen = roll.copy()
-        for shift in range(width):
-            score = sum(((np.roll(c, -shift, axis=1) == ref[None, :]) & (c >= 0)).sum(axis=1)
-                        for c, ref in zip(channels, reference))
-            better = score > best
-            best[better] = score[better]
-            chosen[better] = shift
-        roll = chosen
+        score = np.zeros((copies, width), dtype=np.int64)
+        for c in channels:
+            reference = plurality(_rolled(c, roll))
+            score += ((c[:, turns] == reference) & (c >= 0)[:, None, :]).sum(axis=2)
+        roll = score.argmax(axis=1)
     return roll
 
 

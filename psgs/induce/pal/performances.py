@@ -35,7 +35,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ...actiongram import Actiongram
-from .grids import Grid, agreement, grid_step, kappa, resample, sample
+from .cycles import CycleEvidence, joint_period, lag_scores
+from .grids import Grid, agreement, agreement_counts, grid_step, kappa, resample, sample
 from .morphemes import read_patterns
 from .statistics import log10_binom_sf
 
@@ -107,13 +108,13 @@ def learn_motion(takes: tuple[Actiongram, ...], params: PAL) -> MotionResult:
         shifts, cross, cross_p = _across(grids, size, paths, segments, params)
         repeated, log_p = cross, cross_p
     scored = [lag_scores(g, size, params) for g in grids]
-    leaders = _first_leaders(joints, repeated, log_p, grids, scored, size, paths, segments,
-                             params) or [None]
+    evidence = CycleEvidence(grids, scored, size, paths, segments)
+    leaders = _first_leaders(joints, repeated, log_p, evidence, params) or [None]
     result = None
     for k, leader in enumerate(leaders[:3]):  # a leader alone (none in step) gives way
         # each further try is held to a 100 times stricter test (it is one more look)
-        tried = _with_cycles(leader, joints, repeated, log_p, grids, scored, size, paths,
-                             segments, first, params, symbols, extra=2.0 * k)
+        tried = _with_cycles(leader, joints, repeated, log_p, evidence, first, params,
+                             symbols, extra=2.0 * k)
         if result is None or (result[0].verdict and not tried[0].verdict):
             result = tried
         if not tried[0].verdict:
@@ -126,15 +127,15 @@ def learn_motion(takes: tuple[Actiongram, ...], params: PAL) -> MotionResult:
     return found
 
 
-def _with_cycles(leader, joints, repeated, log_p, grids, scored, size, paths, segments, first,
-                 params, symbols, extra: float = 0.0):
+def _with_cycles(leader, joints, repeated, log_p, evidence: CycleEvidence, first, params,
+                 symbols, extra: float = 0.0):
     """The selection with the cycles timed on ``leader`` (when most performances cycle)."""
     periods = None
     if leader is not None:
-        periods = [_period(sc, leader.channels, params) for sc in scored]
+        periods = [joint_period(sc, leader.channels, params) for sc in evidence.scored]
         found = [p for p in periods if p]
-        if len(found) * 2 > len(grids):  # most performances cycle on the leader's period
-            cyc, cyc_p = _cycles(grids, periods, size, paths, segments)
+        if len(found) * 2 > len(evidence.grids):  # most performances cycle on that period
+            cyc, cyc_p = evidence.cycles(periods)
             repeated = np.maximum(repeated, cyc)
             log_p = np.minimum(log_p, cyc_p)
         else:
@@ -252,134 +253,6 @@ def _best_shift(a: np.ndarray, b: np.ndarray, reach: int, size: int) -> int:
     return best
 
 
-# -- evidence within performances: cycles ----------------------------------------------------
-def _self_scores(grid: Grid, rows: tuple[int, ...] | list[int], lag: int, size: int
-                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Speed-weighted kappa at ``lag`` minus that at half the lag, and the unweighted parts."""
-    rows = list(rows)
-    s, w = grid.states[rows], grid.speed[rows]
-
-    def at(l: int, weighted: bool):
-        a, b = s[:, :-l], s[:, l:]
-        weight = (w[:, :-l] + w[:, l:]) / 2 if weighted else np.ones(a.shape)
-        return agreement(a, b, weight, size)
-
-    obs, chance, _ = at(lag, True)
-    half_obs, half_chance, _ = at(max(1, lag // 2), True)
-    score = kappa(obs, chance) - np.clip(kappa(half_obs, half_chance), 0, None)
-    raw, raw_chance, _ = at(lag, False)
-    half_raw, _, _ = at(max(1, lag // 2), False)
-    return score, raw, np.maximum(raw_chance, half_raw)
-
-
-def _lags(grid: Grid, params: PAL) -> range:
-    low = max(2, int(params.min_cycle / grid.step))
-    return range(low, grid.points // params.min_copies + 1)
-
-
-def lag_scores(grid: Grid, size: int, params: PAL) -> tuple[range, np.ndarray]:
-    """Every channel's cycle score (see :func:`_self_scores`) at every candidate lag.
-
-    The speed-weighted kappa is computed once per lag (the half lags are lags
-    too) and only for channels that move (path at least 1% of the most
-    moving channel's); the others score 0.
-    """
-    lags = _lags(grid, params)
-    channels = grid.states.shape[0]
-    if not len(lags):
-        return lags, np.zeros((0, channels))
-    path = grid.speed.sum(axis=1)
-    rows = np.flatnonzero(path >= 0.01 * max(float(path.max()), 1e-300))
-    s, w = grid.states[rows], grid.speed[rows]
-    cache: dict[int, np.ndarray] = {}
-
-    def weighted_kappa(lag: int) -> np.ndarray:
-        if lag not in cache:
-            obs, chance, _ = agreement(s[:, :-lag], s[:, lag:], (w[:, :-lag] + w[:, lag:]) / 2,
-                                       size)
-            cache[lag] = kappa(obs, chance)
-        return cache[lag]
-
-    table = np.zeros((len(lags), channels))
-    for k, lag in enumerate(lags):
-        table[k, rows] = weighted_kappa(lag) - np.clip(weighted_kappa(max(1, lag // 2)), 0, None)
-    return lags, table
-
-
-def _period(scored: tuple[range, np.ndarray], rows: tuple[int, ...], params: PAL) -> int | None:
-    """A joint's period in one performance (grid points), or None when it does not cycle.
-
-    ``scored`` is :func:`lag_scores` of the performance; the joint's score at
-    a lag is the mean over its channels. The period is the shortest peak
-    within 15% of the highest (a peak at twice the period is as high).
-    """
-    lags, table = scored
-    if len(lags) < 2:
-        return None
-    scores = table[:, list(rows)].mean(axis=1)
-    top = float(scores.max())
-    if top <= params.min_cycle_score:
-        return None
-    peaks = [k for k in range(len(scores)) if scores[k] >= 0.85 * top
-             and (k == 0 or scores[k] >= scores[k - 1])
-             and (k + 1 == len(scores) or scores[k] >= scores[k + 1])]
-    return lags[peaks[0]] if peaks else None
-
-
-def _cycles(grids: list[Grid], periods: list[int | None], size: int, paths: np.ndarray,
-            segments: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Per channel: median over performances of repeated motion and log10 p at the leader's period."""
-    channels = grids[0].states.shape[0]
-    repeated = np.zeros((len(grids), channels))
-    agreeing, trials, nulls = np.zeros(channels), np.zeros(channels), np.zeros(channels)
-    for k, (grid, lag) in enumerate(zip(grids, periods)):
-        if not lag:
-            continue
-        score, raw, null = _self_scores(grid, range(channels), lag, size)
-        repeated[k] = np.clip(score, 0, None) * paths[k]
-        agreeing += np.round(raw * segments[k])
-        trials += segments[k]
-        nulls += null * segments[k]
-    # the share is the median over performances (most must be in step); the test pools the
-    # segments of every performance (the null: chance, or the agreement at half the period)
-    null = nulls / np.maximum(trials, 1)
-    log_p = np.array([log10_binom_sf(int(k), int(n), float(c)) if n > 0 and c < 1 else 0.0
-                      for k, n, c in zip(agreeing, trials, null)])
-    return np.median(repeated, axis=0), log_p
-
-
-def _cycles_alike(grids: list[Grid], periods: list[int | None], rows: tuple[int, ...],
-                  size: int, width: int = 24) -> float:
-    """Chance-corrected agreement of a joint's mean cycle between performances.
-
-    Per performance, each channel's cycle is the plurality state at each of
-    ``width`` points over its cycles (of that performance's period); pairs of
-    performances are compared at the circular shift, common to the joint's
-    channels, that agrees best; the mean kappa over pairs.
-    """
-    from .morphemes import _plurality
-
-    means = []
-    for grid, lag in zip(grids, periods):
-        if not lag:
-            continue
-        count = grid.points // lag
-        cycles = grid.states[list(rows), :count * lag].reshape(len(rows), count, lag)
-        means.append(np.array([_plurality(resample(c, width)) for c in cycles]))
-    if len(means) < 2:
-        return 0.0
-    scores = []
-    for p in range(len(means)):
-        for q in range(p + 1, len(means)):
-            best = -1.0
-            for shift in range(width):
-                obs, chance, _ = agreement(means[p], np.roll(means[q], shift, axis=1),
-                                           np.ones(means[p].shape), size)
-                best = max(best, float(kappa(obs, chance).mean()))
-            scores.append(best)
-    return float(np.mean(scores))
-
-
 # -- the leader and the selection ------------------------------------------------------------
 def _significant(joint: JointEvidence, log_p: np.ndarray, joints: int, params: PAL,
                  extra: float = 0.0) -> bool:
@@ -390,7 +263,7 @@ def _significant(joint: JointEvidence, log_p: np.ndarray, joints: int, params: P
     return joint.log10_p + math.log10(max(joints, 1)) + extra <= math.log10(params.alpha)
 
 
-def _first_leaders(joints, repeated, log_p, grids, scored, size, paths, segments, params):
+def _first_leaders(joints, repeated, log_p, evidence: CycleEvidence, params):
     """Joints the cycles may be timed on, best first: most repeated motion across
     performances, else (one performance, or nothing repeats across them) within."""
     across = [(float(repeated[list(j.channels)].sum()), -k, j) for k, j in enumerate(joints)
@@ -399,13 +272,14 @@ def _first_leaders(joints, repeated, log_p, grids, scored, size, paths, segments
     if across:
         return [j for _, _, j in sorted(across, key=lambda x: x[:2], reverse=True)]
     ranked = []
-    typical = paths.mean(axis=0)
+    grids = evidence.grids
+    typical = evidence.paths.mean(axis=0)
     moving = tuple(int(c) for c in np.flatnonzero(typical >= 0.05 * typical.max()))
     for k, j in enumerate(joints):
-        periods = [_period(sc, j.channels, params) for sc in scored]
+        periods = [joint_period(sc, j.channels, params) for sc in evidence.scored]
         if sum(1 for p in periods if p) * 2 <= len(grids):
             continue
-        cyc, cyc_p = _cycles(grids, periods, size, paths, segments)
+        cyc, cyc_p = evidence.cycles(periods)
         probe = JointEvidence(j.name, j.channels)
         if not _significant(probe, cyc_p, len(joints), params):
             continue
@@ -413,7 +287,7 @@ def _first_leaders(joints, repeated, log_p, grids, scored, size, paths, segments
         # performance to the next (a limb doing another thing in each take does not)
         # timed on this joint, the whole moving body's cycle: the action's joints come out
         # the same in every performance, a limb doing its own thing blurs
-        alike = _cycles_alike(grids, periods, moving, size) if len(grids) > 1 else 1.0
+        alike = evidence.alike(periods, moving) if len(grids) > 1 else 1.0
         strength = float(cyc[list(j.channels)].sum())
         if strength > 0:
             ranked.append((max(alike, 0.0) if len(grids) > 1 else strength, -k, strength, j))
