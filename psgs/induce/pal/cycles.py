@@ -42,12 +42,24 @@ def _lags(grid: Grid, params: PAL) -> range:
     return range(low, grid.points // params.min_copies + 1)
 
 
-def _weighted_kappa(states: np.ndarray, weight: np.ndarray, lag: int, size: int) -> np.ndarray:
+def _weighted_kappa(states: np.ndarray, weight: np.ndarray, lag: int, size: int,
+                    onehot: np.ndarray | None = None) -> np.ndarray:
     """Per row, the kappa of the states with themselves ``lag`` points later, weighted by
-    the mean of the two points' speeds."""
-    obs, chance, _ = agreement(states[:, :-lag], states[:, lag:],
-                               (weight[:, :-lag] + weight[:, lag:]) / 2, size)
-    return kappa(obs, chance)
+    the mean of the two points' speeds: :func:`~psgs.induce.pal.grids.agreement` on the
+    two slices, with the states' indicator ``onehot`` (state, row, point) made once."""
+    if onehot is None:
+        onehot = states[None] == np.arange(size)[:, None, None]
+    valid = states >= 0
+    w = np.where(valid[:, :-lag] & valid[:, lag:], (weight[:, :-lag] + weight[:, lag:]) / 2,
+                 0.0)
+    div = np.maximum(w.sum(axis=1), 1e-300)
+    observed = ((states[:, :-lag] == states[:, lag:]) * w).sum(axis=1) / div
+    share_a = (onehot[:, :, :-lag] * w).sum(axis=2) / div
+    share_b = (onehot[:, :, lag:] * w).sum(axis=2) / div
+    chance = np.zeros(states.shape[0])
+    for sym in range(size):  # in the order agreement sums them
+        chance += share_a[sym] * share_b[sym]
+    return kappa(observed, chance)
 
 
 def lag_scores(grid: Grid, size: int, params: PAL) -> LagScores:
@@ -66,9 +78,10 @@ def lag_scores(grid: Grid, size: int, params: PAL) -> LagScores:
     path = speed.sum(axis=1)
     rows = np.flatnonzero(path >= 0.01 * max(float(path.max()), 1e-300))
     kappas: dict[int, np.ndarray] = {}
+    onehot = grid.states[None] == np.arange(size)[:, None, None]
     for lag in sorted(set(lags) | {max(1, lag // 2) for lag in lags}):
         if lag < grid.points:
-            kappas[lag] = _weighted_kappa(grid.states, speed, lag, size)
+            kappas[lag] = _weighted_kappa(grid.states, speed, lag, size, onehot)
     table = np.zeros((len(lags), channels))
     for k, lag in enumerate(lags):
         table[k, rows] = kappas[lag][rows] - np.clip(kappas[max(1, lag // 2)][rows], 0, None)

@@ -70,7 +70,9 @@ def sample(ag: Actiongram, codes: dict[str, int], step: float) -> Grid:
         ends = origin + np.cumsum(durs_a)
         index = np.searchsorted(ends, times, side="right")
         inside = (times >= origin) & (index < len(syms))
-        symbol_codes = np.array([codes.setdefault(s, len(codes)) for s in syms], dtype=np.int64)
+        for s in dict.fromkeys(syms):  # new symbols coded in order of first appearance
+            codes.setdefault(s, len(codes))
+        symbol_codes = np.fromiter(map(codes.__getitem__, syms), np.int64, len(syms))
         states[row, inside] = symbol_codes[index[inside]]
         rate = np.ones(len(syms)) if disps is None else np.asarray(disps) / durs_a
         velocity[row, inside] = rate[index[inside]]

@@ -157,16 +157,26 @@ def _across(grids: list[Grid], size: int, paths: np.ndarray, segments: np.ndarra
     reference = states[0]
     shifts = [0] + [_best_shift(reference, s, reach, size) for s in states[1:]]
     channels = reference.shape[0]
+    pairs = [(p, q) for p in range(len(grids)) for q in range(p + 1, len(grids))]
+    # pairs at one relative shift overlap over the same length: one agreement call for them
+    # all (rows stacked; each row's sums are the ones a call per pair makes)
+    kappas: dict[tuple[int, int], np.ndarray] = {}
+    by_shift: dict[int, list[tuple[int, int]]] = {}
+    for p, q in pairs:
+        by_shift.setdefault(shifts[q] - shifts[p], []).append((p, q))
+    for shift, group in by_shift.items():
+        parts = [(_overlap(states[p], states[q], shift), _overlap(speeds[p], speeds[q], shift))
+                 for p, q in group]
+        obs_w, chance_w, _ = agreement(np.vstack([a for (a, _), _ in parts]),
+                                       np.vstack([b for (_, b), _ in parts]),
+                                       np.vstack([(wa + wb) / 2 for _, (wa, wb) in parts]), size)
+        for k, pair in enumerate(group):
+            rows = slice(k * channels, (k + 1) * channels)
+            kappas[pair] = kappa(obs_w[rows], chance_w[rows])
     repeated = np.zeros(channels)
-    pairs = 0
-    for p in range(len(grids)):
-        for q in range(p + 1, len(grids)):
-            a, b = _overlap(states[p], states[q], shifts[q] - shifts[p])
-            wa, wb = _overlap(speeds[p], speeds[q], shifts[q] - shifts[p])
-            obs_w, chance_w, _ = agreement(a, b, (wa + wb) / 2, size)
-            corrected = np.clip(kappa(obs_w, chance_w), 0, None)
-            repeated += corrected * (paths[p] + paths[q]) / 2
-            pairs += 1
+    for p, q in pairs:  # summed in the order of the pairs
+        repeated += np.clip(kappas[p, q], 0, None) * (paths[p] + paths[q]) / 2
+    pairs = len(pairs)
     repeated /= max(pairs, 1)
     pairwise = _pairwise_test(states, shifts, segments, size)
     consensus = _consensus_test(states, shifts, segments, size)
@@ -181,15 +191,17 @@ def _pairwise_test(states, shifts, segments, size) -> np.ndarray:
     channels = states[0].shape[0]
     agreeing, trials, chance_sum, pairs = np.zeros(channels), np.zeros(channels), \
         np.zeros(channels), 0
-    for p in range(len(states)):
-        for q in range(p + 1, len(states)):
-            a, b = _overlap(states[p], states[q], shifts[q] - shifts[p])
-            obs, chance, _ = agreement(a, b, np.ones(a.shape), size)
-            n = (segments[p] + segments[q]) / 2
-            agreeing += np.round(obs * n)
-            trials += n
-            chance_sum += chance
-            pairs += 1
+    index = [(p, q) for p in range(len(states)) for q in range(p + 1, len(states))]
+    if index:  # every pair in one call: counts over the overlap, the rest absent
+        obs_all, chance_all, _ = agreement_counts(
+            np.array([states[p] for p, _ in index]),
+            np.array([_placed(states[q], shifts[q] - shifts[p]) for p, q in index]), size)
+    for k, (p, q) in enumerate(index):
+        n = (segments[p] + segments[q]) / 2
+        agreeing += np.round(obs_all[k] * n)
+        trials += n
+        chance_sum += chance_all[k]
+        pairs += 1
     chance_mean = chance_sum / max(pairs, 1)
     return np.array([log10_binom_sf(int(k), int(n), float(c)) if n > 0 else 0.0
                      for k, n, c in zip(agreeing, trials, chance_mean)])
@@ -203,31 +215,18 @@ def _consensus_test(states: list[np.ndarray], shifts: list[int], segments: np.nd
     out, on the reference's time axis); its segments are the trials, each
     counted once; the binomial tail of the agreeing ones at the chance level.
     """
-    placed = []
-    for s, shift in zip(states, shifts):
-        row = np.full(s.shape, -1, dtype=np.int64)
-        n = s.shape[1]
-        if shift >= 0:
-            row[:, shift:] = s[:, :n - shift]
-        else:
-            row[:, :n + shift] = s[:, -shift:]
-        placed.append(row)
-    counts = np.zeros((size,) + placed[0].shape)
-    for row in placed:
-        for sym in range(size):
-            counts[sym] += row == sym
-    agreeing = np.zeros(placed[0].shape[0])
-    trials = np.zeros(placed[0].shape[0])
-    chance_sum = np.zeros(placed[0].shape[0])
-    for k, row in enumerate(placed):
-        others = counts.copy()
-        for sym in range(size):
-            others[sym] -= row == sym
-        consensus = np.where(others.max(axis=0) > 0, others.argmax(axis=0), -1)
-        obs, chance, _ = agreement(row, consensus, np.ones(row.shape), size)
-        agreeing += np.round(obs * segments[k])
+    placed = np.array([_placed(s, shift) for s, shift in zip(states, shifts)])
+    # per performance, the state counts of all the others: every leave-one-out at once
+    mine = (placed[:, None] == np.arange(size)[None, :, None, None]).astype(np.int64)
+    others = mine.sum(axis=0)[None] - mine                  # (performance, state, row, point)
+    consensus = np.where(others.max(axis=1) > 0, others.argmax(axis=1), -1)
+    obs_all, chance_all, _ = agreement_counts(placed, consensus, size)
+    channels = placed.shape[1]
+    agreeing, trials, chance_sum = np.zeros(channels), np.zeros(channels), np.zeros(channels)
+    for k in range(len(placed)):
+        agreeing += np.round(obs_all[k] * segments[k])
         trials += segments[k]
-        chance_sum += chance * segments[k]
+        chance_sum += chance_all[k] * segments[k]
     chance_mean = chance_sum / np.maximum(trials, 1)
     return np.array([log10_binom_sf(int(k), int(n), float(c)) if n > 0 and c < 1 else 0.0
                      for k, n, c in zip(agreeing, trials, chance_mean)])
@@ -241,13 +240,35 @@ def _overlap(a: np.ndarray, b: np.ndarray, shift: int) -> tuple[np.ndarray, np.n
     return a[:, :n + shift], b[:, -shift:]
 
 
-def _best_shift(a: np.ndarray, b: np.ndarray, reach: int, size: int) -> int:
-    """The shift (|shift| <= reach) at which the channels of ``b`` agree best with ``a``."""
+def _placed(b: np.ndarray, shift: int) -> np.ndarray:
+    """``b`` on the time axis of ``a``: column ``t`` holds ``b[:, t - shift]``, -1 where
+    there is none. Compared with ``a`` it counts the points of ``_overlap(a, b, shift)``."""
+    out = np.full(b.shape, -1, dtype=np.int64)
+    n = b.shape[1]
+    if abs(shift) >= n:
+        return out
+    if shift >= 0:
+        out[:, shift:] = b[:, :n - shift]
+    else:
+        out[:, :n + shift] = b[:, -shift:]
+    return out
+
+
+def _best_shift(a: np.ndarray, b: np.ndarray, reach: int, size: int,
+                budget: int = 1 << 21) -> int:
+    """The shift (|shift| <= reach) at which the channels of ``b`` agree best with ``a``
+    (the smallest shift among equals; shifts compared in batches of at most ``budget``
+    points)."""
+    order = sorted(range(-reach, reach + 1), key=abs)
+    batch = max(1, budget // max(a.size, 1))
+    scores: list[float] = []
+    for start in range(0, len(order), batch):
+        chunk = order[start:start + batch]
+        obs, chance, _ = agreement_counts(a[None], np.array([_placed(b, s) for s in chunk]),
+                                          size)
+        scores.extend((obs - chance).sum(axis=1).tolist())
     best, best_score = 0, -math.inf
-    for shift in sorted(range(-reach, reach + 1), key=abs):
-        x, y = _overlap(a, b, shift)
-        obs, chance, _ = agreement(x, y, np.ones(x.shape), size)
-        score = float((obs - chance).sum())
+    for shift, score in zip(order, scores):
         if score > best_score + 1e-12:
             best, best_score = shift, score
     return best
