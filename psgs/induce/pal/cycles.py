@@ -17,24 +17,15 @@ leader search asks again for the periods of joints that share them.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, NamedTuple
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .grids import Grid, agreement, agreement_counts, kappa, plurality
+from .grids import Grid, agreement, agreement_counts, from_tallies, kappa, plurality
 from .statistics import log10_binom_sf
 
 if TYPE_CHECKING:
     from .learner import PAL
-
-
-class LagScores(NamedTuple):
-    """One performance's cycle scores: ``table[k, c]`` is channel ``c``'s at ``lags[k]``;
-    ``kappas[lag]`` the speed-weighted kappa of every channel at ``lag`` (or half a lag)."""
-
-    lags: range
-    table: np.ndarray
-    kappas: dict
 
 
 def _lags(grid: Grid, params: PAL) -> range:
@@ -62,30 +53,64 @@ def _weighted_kappa(states: np.ndarray, weight: np.ndarray, lag: int, size: int,
     return kappa(observed, chance)
 
 
-def lag_scores(grid: Grid, size: int, params: PAL) -> LagScores:
-    """Every channel's cycle score at every candidate lag.
+@dataclass(eq=False)
+class LagScores:
+    """One performance's cycle scores at every candidate lag, computed channel by channel
+    as they are asked for (a working record of one learning run).
 
-    The score is the speed-weighted kappa at the lag minus that at half the
-    lag (clipped at 0); it is computed once per lag (the half lags are lags
-    too) and kept in ``kappas`` for every channel. In the table, channels that
-    hardly move (path under 1% of the most moving channel's) score 0.
+    A channel's score at a lag is its speed-weighted kappa there minus that at
+    half the lag (clipped at 0); 0 for channels that hardly move (path under 1%
+    of the most moving channel's). Each channel's row of kappas is computed once,
+    over every lag and half lag, when a joint of it is first timed: a run that
+    times only the leader's channels never pays for the others. Rows are
+    independent, so a channel's numbers do not depend on which others were asked.
     """
-    lags = _lags(grid, params)
-    channels = grid.states.shape[0]
-    if not len(lags):
-        return LagScores(lags, np.zeros((0, channels)), {})
-    speed = grid.speed
-    path = speed.sum(axis=1)
-    rows = np.flatnonzero(path >= 0.01 * max(float(path.max()), 1e-300))
-    kappas: dict[int, np.ndarray] = {}
-    onehot = grid.states[None] == np.arange(size)[:, None, None]
-    for lag in sorted(set(lags) | {max(1, lag // 2) for lag in lags}):
-        if lag < grid.points:
-            kappas[lag] = _weighted_kappa(grid.states, speed, lag, size, onehot)
-    table = np.zeros((len(lags), channels))
-    for k, lag in enumerate(lags):
-        table[k, rows] = kappas[lag][rows] - np.clip(kappas[max(1, lag // 2)][rows], 0, None)
-    return LagScores(lags, table, kappas)
+
+    grid: Grid
+    size: int
+    lags: range
+    _union: dict = field(default_factory=dict)     # lag or half lag -> row of _kappa
+    _kappa: np.ndarray | None = None               # (lag or half lag, channel)
+    _done: np.ndarray | None = None                # channels computed
+    _moving: np.ndarray | None = None
+    _full: dict = field(default_factory=dict)      # lag -> every channel's kappa
+
+    def __post_init__(self):
+        channels = self.grid.states.shape[0]
+        wanted = sorted(set(self.lags) | {max(1, lag // 2) for lag in self.lags})
+        self._union = {lag: k for k, lag in enumerate(wanted)}
+        self._kappa = np.zeros((len(wanted), channels))
+        self._done = np.zeros(channels, dtype=bool)
+        path = self.grid.speed.sum(axis=1)
+        self._moving = path >= 0.01 * max(float(path.max(initial=0.0)), 1e-300)
+
+    def table(self, rows) -> np.ndarray:
+        """Scores ``(lag, channel)`` of the channels ``rows``, in that order."""
+        rows = list(rows)
+        todo = [r for r in dict.fromkeys(rows) if not self._done[r]]
+        if todo and self._union:
+            states, speed = self.grid.states[todo], self.grid.speed[todo]
+            onehot = states[None] == np.arange(self.size)[:, None, None]
+            for lag, k in self._union.items():
+                self._kappa[k, todo] = _weighted_kappa(states, speed, lag, self.size, onehot)
+        self._done[todo] = True
+        at = [self._union[lag] for lag in self.lags]
+        half = [self._union[max(1, lag // 2)] for lag in self.lags]
+        out = self._kappa[at][:, rows] - np.clip(self._kappa[half][:, rows], 0, None)
+        out[:, ~self._moving[rows]] = 0.0
+        return out
+
+    def kappa_at(self, lag: int) -> np.ndarray:
+        """Every channel's speed-weighted kappa at ``lag``."""
+        if lag not in self._full:
+            grid = self.grid
+            self._full[lag] = _weighted_kappa(grid.states, grid.speed, lag, self.size)
+        return self._full[lag]
+
+
+def lag_scores(grid: Grid, size: int, params: PAL) -> LagScores:
+    """The cycle scores of one performance at every candidate lag (see :class:`LagScores`)."""
+    return LagScores(grid, size, _lags(grid, params))
 
 
 def joint_period(scored: LagScores, rows: tuple[int, ...], params: PAL) -> int | None:
@@ -95,10 +120,10 @@ def joint_period(scored: LagScores, rows: tuple[int, ...], params: PAL) -> int |
     a lag is the mean over its channels. The period is the shortest peak
     within 15% of the highest (a peak at twice the period is as high).
     """
-    lags, table = scored.lags, scored.table
+    lags = scored.lags
     if len(lags) < 2:
         return None
-    scores = table[:, list(rows)].mean(axis=1)
+    scores = scored.table(rows).mean(axis=1)
     top = float(scores.max())
     if top <= params.min_cycle_score:
         return None
@@ -124,12 +149,7 @@ def self_scores(grid: Grid, scored: LagScores, lag: int, size: int
     at 0), its unweighted agreement at ``lag``, and the null: the larger of chance and
     the unweighted agreement at half the lag."""
     half = max(1, lag // 2)
-    weighted = scored.kappas.get(lag)
-    if weighted is None:
-        weighted = _weighted_kappa(grid.states, grid.speed, lag, size)
-    half_weighted = scored.kappas.get(half)
-    if half_weighted is None:
-        half_weighted = _weighted_kappa(grid.states, grid.speed, half, size)
+    weighted, half_weighted = scored.kappa_at(lag), scored.kappa_at(half)
     score = weighted - np.clip(half_weighted, 0, None)
     s = grid.states
     obs, chance, _ = agreement_counts(np.stack([s, s]),
@@ -138,9 +158,18 @@ def self_scores(grid: Grid, scored: LagScores, lag: int, size: int
 
 
 def cycle_evidence(grids: list[Grid], scored: list[LagScores], periods: list[int | None],
-                   size: int, paths: np.ndarray, segments: np.ndarray,
-                   tails: dict | None = None) -> tuple[np.ndarray, np.ndarray]:
+                   size: int, paths: np.ndarray, segments: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray]:
     """Per channel: median over performances of repeated motion and log10 p at the periods."""
+    repeated, counts = cycle_counts(grids, scored, periods, size, paths, segments)
+    return repeated, np.array([tail(*c) for c in counts])
+
+
+def cycle_counts(grids: list[Grid], scored: list[LagScores], periods: list[int | None],
+                 size: int, paths: np.ndarray, segments: np.ndarray
+                 ) -> tuple[np.ndarray, list[tuple[int, int, float]]]:
+    """Per channel: the median repeated motion, and the (agreeing, trials, null) that its
+    test takes (:func:`tail`)."""
     channels = grids[0].states.shape[0]
     repeated = np.zeros((len(grids), channels))
     agreeing, trials, nulls = np.zeros(channels), np.zeros(channels), np.zeros(channels)
@@ -155,20 +184,13 @@ def cycle_evidence(grids: list[Grid], scored: list[LagScores], periods: list[int
     # the share is the median over performances (most must be in step); the test pools the
     # segments of every performance (the null: chance, or the agreement at half the period)
     null = nulls / np.maximum(trials, 1)
-    log_p = np.array([_tail(int(k), int(n), float(c), tails) if n > 0 and c < 1 else 0.0
-                      for k, n, c in zip(agreeing, trials, null)])
-    return np.median(repeated, axis=0), log_p
+    counts = [(int(k), int(n), float(c)) for k, n, c in zip(agreeing, trials, null)]
+    return np.median(repeated, axis=0), counts
 
 
-def _tail(k: int, n: int, c: float, tails: dict | None) -> float:
-    """:func:`log10_binom_sf`, remembered in ``tails`` when given (a pure function that
-    every joint sharing a period asks again for the same counts)."""
-    if tails is None:
-        return log10_binom_sf(k, n, c)
-    key = (k, n, c)
-    if key not in tails:
-        tails[key] = log10_binom_sf(k, n, c)
-    return tails[key]
+def tail(k: int, n: int, c: float) -> float:
+    """log10 p of ``k`` agreeing of ``n`` trials at the null level ``c`` (0 when untestable)."""
+    return log10_binom_sf(k, n, c) if n > 0 and c < 1 else 0.0
 
 
 def mean_cycles(grids: list[Grid], periods: list[int | None], rows: tuple[int, ...],
@@ -200,15 +222,22 @@ def cycles_alike(grids: list[Grid], periods: list[int | None], rows: tuple[int, 
     means = mean_cycles(grids, periods, rows, width)
     if len(means) < 2:
         return 0.0
-    m = np.array(means)                                       # (performances, rows, width)
-    # rolled[..., s, :, j] = np.roll(m, s, axis=-1)[..., j] = m[..., (j - s) % width]
-    turn = (np.arange(width)[None, :] - np.arange(width)[:, None]) % width
-    rolled = np.moveaxis(m[:, :, turn], 2, 1)                 # (performances, shift, rows, width)
-    p, q = np.triu_indices(len(means), 1)                     # the pairs in the loop's order
-    obs, chance, _ = agreement_counts(m[p][:, None], rolled[q], size)
-    per_shift = kappa(obs, chance).mean(axis=-1)              # (pairs, shifts)
-    scores = np.maximum(per_shift.max(axis=1), -1.0)
-    return float(np.mean(scores.tolist()))
+    # indicators (performance, row, state, point); for every circular shift k the other
+    # copy's indicators at point j - k: the joint tallies of a pair at every shift are one
+    # matrix product of zeros and ones (exact)
+    states = np.arange(size)[:, None]
+    mine = (np.array(means)[:, :, None, :] == states).astype(float)
+    turn = (np.arange(width)[None, :] - np.arange(width)[:, None]) % width  # (shift, point)
+    others = mine[..., turn].reshape(len(means), len(rows), size * width, width)
+    others = np.swapaxes(others, 2, 3)                 # (performance, row, point, b x shift)
+    scores: list[float] = []
+    for p in range(len(means) - 1):                    # the pairs in the loop's order
+        joint = mine[p][None] @ others[p + 1:]        # whole numbers, exactly
+        joint = joint.reshape(-1, len(rows), size, size, width)        # (q, row, a, b, shift)
+        obs, chance, _ = from_tallies(np.ascontiguousarray(np.moveaxis(joint, 4, 1)))
+        per_shift = kappa(obs, chance).mean(axis=-1)   # (q, shift): mean over the rows
+        scores.extend(np.maximum(per_shift.max(axis=1), -1.0).tolist())
+    return float(np.mean(scores))
 
 
 @dataclass
@@ -221,17 +250,25 @@ class CycleEvidence:
     size: int
     paths: np.ndarray
     segments: np.ndarray
-    _evidence: dict = field(default_factory=dict)
+    _counts: dict = field(default_factory=dict)
     _alike: dict = field(default_factory=dict)
     _tails: dict = field(default_factory=dict)
 
-    def cycles(self, periods: list[int | None]) -> tuple[np.ndarray, np.ndarray]:
-        """:func:`cycle_evidence` at ``periods``."""
+    def cycles(self, periods: list[int | None], rows: tuple[int, ...] | None = None
+               ) -> tuple[np.ndarray, np.ndarray]:
+        """:func:`cycle_evidence` at ``periods``; with ``rows``, log10 p is computed for
+        those channels only (0 elsewhere: a joint's test looks at its own channels)."""
         key = tuple(periods)
-        if key not in self._evidence:
-            self._evidence[key] = cycle_evidence(self.grids, self.scored, periods, self.size,
-                                                 self.paths, self.segments, self._tails)
-        return self._evidence[key]
+        if key not in self._counts:
+            self._counts[key] = cycle_counts(self.grids, self.scored, periods, self.size,
+                                             self.paths, self.segments)
+        repeated, counts = self._counts[key]
+        log_p = np.zeros(len(counts))
+        for c in range(len(counts)) if rows is None else rows:
+            if (key, c) not in self._tails:
+                self._tails[key, c] = tail(*counts[c])
+            log_p[c] = self._tails[key, c]
+        return repeated, log_p
 
     def alike(self, periods: list[int | None], rows: tuple[int, ...]) -> float:
         """:func:`cycles_alike` at ``periods`` on ``rows``."""

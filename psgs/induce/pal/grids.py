@@ -56,27 +56,65 @@ def _span(ag: Actiongram) -> tuple[float, float]:
 
 
 def sample(ag: Actiongram, codes: dict[str, int], step: float) -> Grid:
-    """The states and velocities of every string of ``ag`` at the grid points."""
+    """The states and velocities of every string of ``ag`` at the grid points.
+
+    All strings at once: segment ends padded into one array (row, segment),
+    each grid time looked up in its own row by one sorted search over
+    (row, end) pairs; the same ends, comparisons and rates as string by string.
+    """
     t0, t1 = _span(ag)
     count = max(1, int((t1 - t0) / step + 1e-9))
     times = t0 + step * (np.arange(count) + 0.5)
     states = np.full((len(ag), count), -1, dtype=np.int64)
     velocity = np.zeros((len(ag), count))
-    for row, (syms, durs, origin, disps) in enumerate(zip(
-            ag.symbols, ag.segment_durations, ag.origins, ag.segment_displacements)):
-        if not syms:
-            continue
-        durs_a = np.asarray(durs, dtype=float)
-        ends = origin + np.cumsum(durs_a)
-        index = np.searchsorted(ends, times, side="right")
-        inside = (times >= origin) & (index < len(syms))
-        for s in dict.fromkeys(syms):  # new symbols coded in order of first appearance
-            codes.setdefault(s, len(codes))
-        symbol_codes = np.fromiter(map(codes.__getitem__, syms), np.int64, len(syms))
-        states[row, inside] = symbol_codes[index[inside]]
-        rate = np.ones(len(syms)) if disps is None else np.asarray(disps) / durs_a
-        velocity[row, inside] = rate[index[inside]]
+    present = [r for r, syms in enumerate(ag.symbols) if syms]
+    if not present:
+        return Grid(states, velocity, step, t0)
+    for r in present:  # new symbols coded in order of first appearance
+        for sym in dict.fromkeys(ag.symbols[r]):
+            codes.setdefault(sym, len(codes))
+    lengths = np.array([len(ag.symbols[r]) for r in present])
+    width = int(lengths.max())
+    filled = np.arange(width)[None, :] < lengths[:, None]
+    durations = np.zeros((len(present), width))
+    durations[filled] = np.concatenate([np.asarray(ag.segment_durations[r], dtype=float)
+                                        for r in present])
+    origins = np.array([float(ag.origins[r]) for r in present])
+    ends = origins[:, None] + np.cumsum(durations, axis=1)   # a running sum: as per string
+    ends[~filled] = np.inf
+    # (row, time) pairs ordered row first: complex numbers compare that way
+    keys = np.empty(ends.shape, dtype=complex)
+    keys.real, keys.imag = np.arange(len(present))[:, None], ends
+    probes = np.empty((len(present), count), dtype=complex)
+    probes.real, probes.imag = np.arange(len(present))[:, None], times[None, :]
+    index = np.searchsorted(keys.ravel(), probes.ravel(), side="right").reshape(probes.shape) \
+        - (np.arange(len(present)) * width)[:, None]
+    inside = (times[None, :] >= origins[:, None]) & (index < lengths[:, None])
+    symbol_codes = np.zeros((len(present), width), dtype=np.int64)
+    symbol_codes[filled] = _coded([ag.symbols[r] for r in present], codes)
+    rates = np.ones((len(present), width))
+    for i, r in enumerate(present):
+        disps = ag.segment_displacements[r]
+        if disps is not None:
+            rates[i, :lengths[i]] = np.asarray(disps) / durations[i, :lengths[i]]
+    at = np.minimum(index, width - 1)
+    rows = np.array(present)
+    states[rows] = np.where(inside, np.take_along_axis(symbol_codes, at, axis=1), -1)
+    velocity[rows] = np.where(inside, np.take_along_axis(rates, at, axis=1), 0.0)
     return Grid(states, velocity, step, t0)
+
+
+def _coded(strings: list[tuple[str, ...]], codes: dict[str, int]) -> np.ndarray:
+    """The codes of every symbol of ``strings``, one after another. Symbols of one ASCII
+    character each (kinetemes are) go through a lookup table, the others through the dict."""
+    if all(len(sym) == 1 and sym.isascii() for sym in codes):
+        text = "".join("".join(syms) for syms in strings).encode("ascii")
+        table = np.zeros(128, dtype=np.int64)
+        for sym, code in codes.items():
+            table[ord(sym)] = code
+        return table[np.frombuffer(text, dtype=np.uint8)]
+    return np.fromiter(map(codes.__getitem__, (sym for syms in strings for sym in syms)),
+                       np.int64, sum(len(syms) for syms in strings))
 
 
 def resample(values: np.ndarray, length: int) -> np.ndarray:
@@ -120,23 +158,41 @@ def agreement_counts(a: np.ndarray, b: np.ndarray, size: int
     chance level summed over the states in the same order, are bit for bit
     those of ``agreement(a, b, np.ones(a.shape), size)``. States are below ``size``.
     """
-    a, b = np.broadcast_arrays(np.asarray(a), np.asarray(b))
-    lead, points = a.shape[:-1], a.shape[-1]
+    a, b = np.asarray(a), np.asarray(b)
+    lead = np.broadcast_shapes(a.shape, b.shape)[:-1]
     rows = int(np.prod(lead, dtype=np.int64))
-    a2, b2 = a.reshape(rows, points), b.reshape(rows, points)
-    valid = (a2 >= 0) & (b2 >= 0)
-    total = valid.sum(axis=1).astype(float)
-    same = ((a2 == b2) & valid).sum(axis=1)
-    base = np.arange(rows, dtype=np.int64)[:, None] * size
+    # one joint tally per row: bin a * size + b of the pairs where both are present, one
+    # more bin for the rest; its trace, row and column sums are every count needed
+    cells = size * size + 1
+    pair = np.where((a >= 0) & (b >= 0), a * size + b, size * size)
+    pair = pair.reshape(rows, -1) + (np.arange(rows, dtype=np.int64) * cells)[:, None]
+    tally = np.bincount(pair.ravel(), minlength=rows * cells).reshape(rows, cells)
+    observed, chance, total = from_tallies(tally[:, :-1].reshape(rows, size, size))
+    return observed.reshape(lead), chance.reshape(lead), total.reshape(lead)
+
+
+def from_tallies(joint: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`agreement_counts` from joint tallies ``(..., state of a, state of b)``."""
+    size = joint.shape[-1]
+    lead = joint.shape[:-2]
+    # the margins, the diagonal and the total of every tally as one product with a 0/1
+    # matrix (sums of whole numbers: exact, whatever order the product adds them in)
+    cells = np.arange(size * size)
+    margins = np.zeros((size * size, 2 * size + 2))
+    margins[cells, cells // size] = 1                   # state of a
+    margins[cells, size + cells % size] = 1             # state of b
+    margins[cells[cells // size == cells % size], 2 * size] = 1
+    margins[:, 2 * size + 1] = 1
+    sums = joint.reshape(-1, size * size).astype(float) @ margins
+    total = sums[:, 2 * size + 1]
     div = np.maximum(total, 1e-300)
-    share_a = np.bincount((base + a2)[valid], minlength=rows * size).reshape(rows, size) \
-        / div[:, None]
-    share_b = np.bincount((base + b2)[valid], minlength=rows * size).reshape(rows, size) \
-        / div[:, None]
-    chance = np.zeros(rows)
+    share_a = sums[:, :size] / div[:, None]
+    share_b = sums[:, size:2 * size] / div[:, None]
+    chance = np.zeros(len(total))
     for sym in range(size):  # in the order agreement sums them
         chance += share_a[:, sym] * share_b[:, sym]
-    return (same / div).reshape(lead), chance.reshape(lead), total.reshape(lead)
+    return ((sums[:, 2 * size] / div).reshape(lead), chance.reshape(lead),
+            total.reshape(lead))
 
 
 def plurality(copies: np.ndarray) -> np.ndarray:

@@ -296,11 +296,14 @@ def _first_leaders(joints, repeated, log_p, evidence: CycleEvidence, params):
     grids = evidence.grids
     typical = evidence.paths.mean(axis=0)
     moving = tuple(int(c) for c in np.flatnonzero(typical >= 0.05 * typical.max()))
+    every = [c for j in joints for c in j.channels]
+    for sc in evidence.scored:  # every joint is timed: every channel's scores in one pass
+        sc.table(every)
     for k, j in enumerate(joints):
         periods = [joint_period(sc, j.channels, params) for sc in evidence.scored]
         if sum(1 for p in periods if p) * 2 <= len(grids):
             continue
-        cyc, cyc_p = evidence.cycles(periods)
+        cyc, cyc_p = evidence.cycles(periods, j.channels)  # the joint's own test only
         probe = JointEvidence(j.name, j.channels)
         if not _significant(probe, cyc_p, len(joints), params):
             continue
