@@ -233,3 +233,75 @@ def test_tests_across_performances_equal_their_loops(data):
     expected = [log10_binom_sf(int(k), int(n), float(c)) if n > 0 and c < 1 else 0.0
                 for k, n, c in zip(agreeing, trials, chance_mean)]
     assert _consensus_test(states, shifts, segments, size).tolist() == expected
+
+
+def plain_sample(ag, codes, step):
+    from psgs.induce.pal.grids import _span
+
+    t0, t1 = _span(ag)
+    count = max(1, int((t1 - t0) / step + 1e-9))
+    times = t0 + step * (np.arange(count) + 0.5)
+    states = np.full((len(ag), count), -1, dtype=np.int64)
+    velocity = np.zeros((len(ag), count))
+    for row, (syms, durs, origin, disps) in enumerate(zip(
+            ag.symbols, ag.segment_durations, ag.origins, ag.segment_displacements)):
+        if not syms:
+            continue
+        durs_a = np.asarray(durs, dtype=float)
+        ends = origin + np.cumsum(durs_a)
+        index = np.searchsorted(ends, times, side="right")
+        inside = (times >= origin) & (index < len(syms))
+        symbol_codes = np.array([codes.setdefault(s, len(codes)) for s in syms], dtype=np.int64)
+        states[row, inside] = symbol_codes[index[inside]]
+        rate = np.ones(len(syms)) if disps is None else np.asarray(disps) / durs_a
+        velocity[row, inside] = rate[index[inside]]
+    return states, velocity
+
+
+@settings(max_examples=60)
+@given(st.data())
+def test_sampling_all_strings_at_once_equals_string_by_string(data):
+    from psgs import Actiongram
+    from psgs.induce.pal.grids import sample
+
+    alphabet = data.draw(st.sampled_from(["YBGR", "ab", ["up", "down", "hold"]]))
+    strings, durations, starts, displacements = {}, {}, {}, {}
+    for k in range(data.draw(st.integers(1, 4))):
+        n = data.draw(st.integers(0, 8))
+        strings[f"j{k}.rx"] = [data.draw(st.sampled_from(list(alphabet))) for _ in range(n)]
+        durations[f"j{k}.rx"] = [data.draw(st.floats(0.01, 2.0)) for _ in range(n)]
+        starts[f"j{k}.rx"] = data.draw(st.floats(0, 1.0))
+        if data.draw(st.booleans()):
+            displacements[f"j{k}.rx"] = [data.draw(st.floats(-90, 90)) for _ in range(n)]
+    ag = Actiongram.from_strings(strings, durations, starts, displacements=displacements)
+    step = data.draw(st.floats(0.005, 0.5))
+    known = {"Y": 0} if alphabet == "YBGR" else {}  # codes of earlier performances go on
+    codes, plain_codes = dict(known), dict(known)
+    grid = sample(ag, codes, step)
+    states, velocity = plain_sample(ag, plain_codes, step)
+    assert np.array_equal(grid.states, states) and np.array_equal(grid.velocity, velocity)
+    assert list(codes.items()) == list(plain_codes.items())
+
+
+@settings(max_examples=40)
+@given(state_pairs(), st.data())
+def test_lag_scores_asked_channel_by_channel_equal_the_whole_table(case, data):
+    from psgs.induce import PAL
+    from psgs.induce.pal.cycles import lag_scores
+
+    size, states, _, speed = case
+    grid = Grid(states, speed, 0.05, 0.0)
+    params = PAL(min_cycle=0.1)
+    whole = lag_scores(grid, size, params)
+    rows = data.draw(st.lists(st.integers(0, states.shape[0] - 1), max_size=6))
+    piecewise = lag_scores(grid, size, params)
+    # the plain table: every lag's kappa minus that at half the lag, 0 where still
+    path = speed.sum(axis=1)
+    moving = path >= 0.01 * max(float(path.max()), 1e-300)
+    plain = np.zeros((len(whole.lags), states.shape[0]))
+    for k, lag in enumerate(whole.lags):
+        at = _weighted_kappa(states, speed, lag, size)
+        half = _weighted_kappa(states, speed, max(1, lag // 2), size)
+        plain[k] = np.where(moving, at - np.clip(half, 0, None), 0.0)
+    assert np.array_equal(piecewise.table(rows), plain[:, rows])
+    assert np.array_equal(whole.table(range(states.shape[0])), plain)
