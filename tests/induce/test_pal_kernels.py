@@ -305,3 +305,20 @@ def test_lag_scores_asked_channel_by_channel_equal_the_whole_table(case, data):
         plain[k] = np.where(moving, at - np.clip(half, 0, None), 0.0)
     assert np.array_equal(piecewise.table(rows), plain[:, rows])
     assert np.array_equal(whole.table(range(states.shape[0])), plain)
+
+
+@given(state_pairs(), st.integers(1, 39))
+def test_kappa_at_a_lag_is_the_same_before_and_after_the_table(case, lag):
+    from psgs.induce import PAL
+    from psgs.induce.pal.cycles import lag_scores
+
+    size, states, _, speed = case
+    lag = min(lag, states.shape[1] - 1)
+    if lag < 1:
+        return
+    grid = Grid(states, speed, 0.05, 0.0)
+    fresh = lag_scores(grid, size, PAL(min_cycle=0.1)).kappa_at(lag)
+    scored = lag_scores(grid, size, PAL(min_cycle=0.1))
+    scored.table(range(states.shape[0]))  # every channel scored first: its kappas reused
+    assert np.array_equal(scored.kappa_at(lag), fresh)
+    assert np.array_equal(fresh, _weighted_kappa(states, speed, lag, size))

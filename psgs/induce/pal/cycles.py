@@ -104,7 +104,10 @@ class LagScores:
         """Every channel's speed-weighted kappa at ``lag``."""
         if lag not in self._full:
             grid = self.grid
-            self._full[lag] = _weighted_kappa(grid.states, grid.speed, lag, self.size)
+            if lag in self._union and self._done.all():  # rows are independent: the same
+                self._full[lag] = self._kappa[self._union[lag]].copy()
+            else:
+                self._full[lag] = _weighted_kappa(grid.states, grid.speed, lag, self.size)
         return self._full[lag]
 
 

@@ -44,7 +44,7 @@ def grid_step(performances: tuple[Actiongram, ...], max_points: int = 4096) -> f
     durations = np.concatenate([np.asarray(d, dtype=float) for ag in performances
                                 for d in ag.segment_durations if len(d)] or [np.ones(1)])
     step = float(np.quantile(durations, 0.25)) / 2
-    longest = max(_span(ag)[1] - _span(ag)[0] for ag in performances)
+    longest = max(b - a for a, b in map(_span, performances))
     return max(step, longest / max_points, 1e-12)
 
 
