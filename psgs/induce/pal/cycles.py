@@ -3,9 +3,10 @@
 A performance that cycles agrees with itself one period later, and less at
 half the period (an oscillation is in anti-phase there, stillness or a slow
 drift is not). Everything here is read from the performance's grid
-(:mod:`psgs.induce.pal.grids`): the speed-weighted kappa at every candidate
-lag is computed once per performance (:func:`lag_scores`) and reused by the
-period search, the cycle evidence and the leader's choice.
+(:mod:`psgs.induce.pal.grids`): a channel's speed-weighted kappa at every
+candidate lag is computed once, when a joint of it is first timed
+(:class:`LagScores`), and reused by the period search, the cycle evidence and
+the leader's choice.
 
 Speed without changing answers: comparisons that share a length are batched
 into one array operation (the sums along time are then the very sums the
@@ -21,7 +22,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .grids import Grid, agreement, agreement_counts, from_tallies, kappa, plurality
+from .grids import Grid, agreement_counts, from_tallies, kappa, plurality
 from .statistics import log10_binom_sf
 
 if TYPE_CHECKING:
