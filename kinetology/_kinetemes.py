@@ -218,9 +218,10 @@ def round_half_even(values: np.ndarray, digits: int) -> np.ndarray:
     if not 0 <= digits <= 22:  # 10**digits is not an exact float: Python's round for all
         return np.array([round(float(x), digits) for x in values.tolist()], dtype=float)
     scale = 10.0 ** digits
-    scaled = values * scale
-    out = np.rint(scaled) / scale
-    half_way = np.abs(scaled - np.floor(scaled) - 0.5) <= 4 * np.spacing(np.abs(scaled))
+    with np.errstate(invalid="ignore", over="ignore"):  # inf and nan: Python's round below
+        scaled = values * scale
+        out = np.rint(scaled) / scale
+        half_way = np.abs(scaled - np.floor(scaled) - 0.5) <= 4 * np.spacing(np.abs(scaled))
     doubtful = np.flatnonzero(half_way | ~(np.abs(scaled) < 2.0 ** 50))
     for i in doubtful.tolist():
         out[i] = round(float(values[i]), digits)

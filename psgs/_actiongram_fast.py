@@ -23,10 +23,15 @@ from .errors import FormatError
 __all__: list[str] = []  # private: Actiongram.from_codes is the interface
 
 
-def _plain_rows(rows: Mapping, names, kind) -> dict[str, np.ndarray] | None:
-    """Each row as a 1-D float64 array of finite values, or None when one is not that."""
+def _plain_rows(rows: Mapping, kind: str) -> dict[str, np.ndarray] | None:
+    """Each row as a 1-D float64 array of finite values, or None when one is not that (an
+    array of another kind, a list holding anything but Python ints and floats)."""
     out = {}
     for name, row in rows.items():
+        if not isinstance(row, np.ndarray):  # a list: Python numbers only (no bool)
+            row = tuple(row)
+            if not set(map(type, row)) <= {int, float}:
+                return None
         try:
             array = np.asarray(row)
         except Exception:  # noqa: BLE001 - any oddity: the public path says what is wrong
@@ -36,6 +41,12 @@ def _plain_rows(rows: Mapping, names, kind) -> dict[str, np.ndarray] | None:
             return None
         out[name] = array.astype(float, copy=False)
     return out
+
+
+def _lists(rows: Mapping | None) -> Mapping | None:
+    if not rows:
+        return rows
+    return {n: r.tolist() if isinstance(r, np.ndarray) else r for n, r in rows.items()}
 
 
 def build(cls, codes: Mapping, alphabet: Sequence[str], durations: Mapping | None,
@@ -58,15 +69,15 @@ def build(cls, codes: Mapping, alphabet: Sequence[str], durations: Mapping | Non
     lookup = np.array(alphabet + ("",), dtype=object)  # "" keeps it 1-D of str
     distinct = len(set(alphabet)) == len(alphabet)  # else equal codes are not equal symbols
 
-    def public():
+    def public():  # arrays as lists: the errors show numbers as Python writes them
         strings = {n: tuple(lookup[r]) for n, r in rows.items()}
-        return cls.from_strings(strings, durations, displacements=displacements,
+        return cls.from_strings(strings, _lists(durations), displacements=_lists(displacements),
                                 actuators=actuators, skeleton=skeleton)
 
     durations = {} if durations is None else durations
     displacements = {} if displacements is None else displacements
-    spans = _plain_rows(durations, rows, "iuf")
-    moves = _plain_rows(displacements, rows, "iuf")
+    spans = _plain_rows(durations, "iuf")
+    moves = _plain_rows(displacements, "iuf")
     if not distinct or spans is None or moves is None or not set(spans) <= set(rows) \
             or not set(moves) <= set(rows) or not set(actuators or {}) <= set(rows):
         return public()
