@@ -21,7 +21,7 @@ __all__: list[str] = []  # private: kinetology.segmentation is the interface
 #: kernel half-widths up to this are summed directly (shifted copies), longer ones by blocks
 DIRECT_RADIUS = 8
 _BLOCK = 16              # frames per block of the banded matrix product (measured: 16 is best)
-_GROUP_SAMPLES = 1 << 17  # samples per group of channels: ~1 MB of doubles per array
+_GROUP_SAMPLES = 1 << 19  # samples per group of channels: ~4 MB of doubles per array
 _PERCENTILE_SAMPLES = 8192
 
 
@@ -125,10 +125,13 @@ def _bands(signal: np.ndarray, absolute: float, relative: float) -> np.ndarray:
 
 
 def _sign_changes(signal: np.ndarray, band: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Where each row's dead-band sign changes, and that sign (True: >= 0) after each change.
+    """Where each row's dead-band sign flips (flat positions), and each row's first sign.
 
-    Returns the flat positions of the raw-sign runs and, per run, the resolved sign (the
-    rules of :func:`kinetology.segmentation.significant_sign`, for all rows at once).
+    The rules of :func:`kinetology.segmentation.significant_sign`, for all rows at once: a
+    run of one raw sign counts when some ``|x|`` in it exceeds the row's band (its peak does);
+    other runs take the sign of the last counting run (before the first: the first's; +1 in
+    a row without one). Returns the positions (never a row's first frame) where the resolved
+    sign differs from the frame before, and per row whether it starts >= 0.
     """
     rows, frames = signal.shape
     raw = signal >= 0
@@ -137,8 +140,8 @@ def _sign_changes(signal: np.ndarray, band: np.ndarray) -> tuple[np.ndarray, np.
     np.not_equal(raw[:, 1:], raw[:, :-1], out=start[:, 1:])
     starts = np.flatnonzero(start)
     row = starts // frames
-    peak = np.maximum.reduceat(np.abs(signal).ravel(), starts)
-    counting = peak > band[row]
+    above = np.abs(signal) > band[:, None]
+    counting = np.logical_or.reduceat(above.ravel(), starts)
     runs = np.arange(starts.size)
     first = np.searchsorted(starts, np.arange(rows + 1) * frames)  # each row's first run
     # the last counting run so far, or (before the first) the row's first counting run
@@ -147,31 +150,39 @@ def _sign_changes(signal: np.ndarray, band: np.ndarray) -> tuple[np.ndarray, np.
     pick = np.where(last >= first[row], last, np.where(ahead < first[row + 1], ahead, -1))
     positive = raw.ravel()[starts]
     resolved = np.where(pick >= 0, positive[np.maximum(pick, 0)], True)  # none counts: +1
-    return starts, resolved
+    flips = np.flatnonzero((resolved[1:] != resolved[:-1]) & (row[1:] == row[:-1])) + 1
+    return starts[flips], resolved[first[:-1]]
 
 
 def _group(smoothed, frame_rate, velocity_deadband, acceleration_deadband, relative_deadband):
     """Segment starts (flat), state codes and displacements of a group of channels."""
     rows, frames = smoothed.shape
-    flags = np.zeros(rows * frames, dtype=bool)
-    flags[::frames] = True
+    # bit 4: a row's first frame; bits 1 and 2: the velocity's, the acceleration's sign flips
+    marks = np.zeros(rows * frames, dtype=np.int8)
+    marks[::frames] = 4
     if frames < 3:  # no derivative: every channel is one rising, speeding-up segment
+        seg = np.flatnonzero(marks)
         falling = braking = np.zeros(rows, dtype=bool)
-        seg = np.flatnonzero(flags)
     else:
         velocity = _gradient(smoothed, frame_rate)
         acceleration = _gradient(velocity, frame_rate)
+        firsts = []
+        for bit, signal, floor in ((1, velocity, velocity_deadband),
+                                   (2, acceleration, acceleration_deadband)):
+            flips, up = _sign_changes(signal, _bands(signal, floor, relative_deadband))
+            marks[flips] |= bit
+            firsts.append(up)
+        seg = np.flatnonzero(marks)
+        kind = marks[seg]
+        row_start = np.flatnonzero(kind & 4)
+        row = np.cumsum(kind >= 4) - 1
         signs = []
-        for signal, floor in ((velocity, velocity_deadband),
-                              (acceleration, acceleration_deadband)):
-            starts, resolved = _sign_changes(signal, _bands(signal, floor, relative_deadband))
-            changed = np.flatnonzero(resolved[1:] != resolved[:-1]) + 1
-            flags[starts[changed]] = True  # at a row's first run the flag is set already
-            signs.append((starts, resolved))
-        seg = np.flatnonzero(flags)
-        (v_starts, v_up), (a_starts, a_up) = signs
-        falling = ~v_up[np.searchsorted(v_starts, seg, side="right") - 1]
-        braking = falling ^ ~a_up[np.searchsorted(a_starts, seg, side="right") - 1]
+        for bit, up in zip((1, 2), firsts):
+            flipped = np.cumsum(kind & bit, dtype=np.int64)  # bit > 1: parity still counts
+            flipped //= bit
+            signs.append((~up)[row] ^ ((flipped - flipped[row_start][row]) & 1).astype(bool))
+        falling = signs[0]
+        braking = falling ^ signs[1]
     codes = (2 * falling + braking).astype(np.int8)
     # each segment's change: from its first frame to the next segment's (the last: to the end)
     flat = smoothed.ravel()
