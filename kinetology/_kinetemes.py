@@ -208,12 +208,15 @@ def segment_columns(smoothed: np.ndarray, frame_rate: float, velocity_deadband: 
         part = smoothed[first:first + size]
         seg, code, move = _group(part, frame_rate, velocity_deadband, acceleration_deadband,
                                  relative_deadband)
-        cuts = np.searchsorted(seg, np.arange(1, part.shape[0]) * frames)
-        for r, (s, k, m) in enumerate(zip(np.split(seg, cuts), np.split(code, cuts),
-                                          np.split(move, cuts))):
-            borders.append(np.append(s - r * frames, frames))
-            codes.append(k)
-            moves.append(m)
+        cuts = np.searchsorted(seg, np.arange(part.shape[0] + 1) * frames).tolist()
+        local = seg - (seg // frames) * frames
+        for a, b in zip(cuts[:-1], cuts[1:]):
+            ends = np.empty(b - a + 1, dtype=local.dtype)
+            ends[:-1] = local[a:b]
+            ends[-1] = frames
+            borders.append(ends)
+            codes.append(code[a:b])
+            moves.append(move[a:b])
     return borders, codes, moves
 
 

@@ -395,8 +395,9 @@ def _rounded(rows, digits: int, divisor: float = 1.0) -> list[np.ndarray]:
     """``[round(float(x) / divisor, digits) ...]`` of every row, as arrays."""
     if not len(rows):
         return []
-    ends = np.cumsum([len(r) for r in rows])[:-1]
-    return np.split(round_half_even(np.concatenate(rows) / divisor, digits), ends)
+    ends = np.cumsum([len(r) for r in rows]).tolist()
+    flat = round_half_even(np.concatenate(rows) / divisor, digits)
+    return [flat[a:b] for a, b in zip([0] + ends[:-1], ends)]
 
 
 def _check(params: dict) -> dict:

@@ -31,8 +31,14 @@ def _not_unicode(text: str) -> bool:
     return False
 
 
+_PLAIN_NAME = re.compile(r"[!-~]+")  # printable ASCII without white space: the common case
+
+
 def _bad_name(name: object) -> str | None:
     """Why ``name`` cannot name an actuator, or None when it can."""
+    if isinstance(name, str) and _PLAIN_NAME.fullmatch(name) and "@" not in name \
+            and ":" not in name and name[0] != "#":
+        return None  # a quick yes for the usual names; anything else takes the checks below
     if not isinstance(name, str) or not name:
         return "an actuator name must be non-empty text"
     if _not_unicode(name):

@@ -24,8 +24,9 @@ __all__: list[str] = []  # private: Actiongram.from_codes is the interface
 
 
 def _plain_rows(rows: Mapping, kind: str) -> dict[str, np.ndarray] | None:
-    """Each row as a 1-D float64 array of finite values, or None when one is not that (an
-    array of another kind, a list holding anything but Python ints and floats)."""
+    """Each row as a 1-D float64 array, or None when one is not that (an array of another
+    kind, a list holding anything but Python ints and floats). Finiteness is checked later,
+    on all rows at once."""
     out = {}
     for name, row in rows.items():
         if not isinstance(row, np.ndarray):  # a list: Python numbers only (no bool)
@@ -36,10 +37,18 @@ def _plain_rows(rows: Mapping, kind: str) -> dict[str, np.ndarray] | None:
             array = np.asarray(row)
         except Exception:  # noqa: BLE001 - any oddity: the public path says what is wrong
             return None
-        if array.ndim != 1 or array.dtype.kind not in kind or (array.size and not
-                                                                np.isfinite(array).all()):
+        if array.ndim != 1 or (array.size and array.dtype.kind not in kind):
             return None
         out[name] = array.astype(float, copy=False)
+    return out
+
+
+def _pieces(values: list, ends: np.ndarray) -> list[tuple]:
+    """``values`` cut into tuples ending at ``ends``."""
+    out, start = [], 0
+    for end in ends.tolist():
+        out.append(tuple(values[start:end]))
+        start = end
     return out
 
 
@@ -82,34 +91,43 @@ def build(cls, codes: Mapping, alphabet: Sequence[str], durations: Mapping | Non
             or not set(moves) <= set(rows) or not set(actuators or {}) <= set(rows):
         return public()
     names = tuple(rows)
-    seen = set()
-    for name in names:
-        if _bad_name(name) or name in seen:
+    if len(set(names)) != len(names) or any(_bad_name(n) for n in names):
+        return public()
+    sizes = [rows[n].size for n in names]
+    if any(spans[n].size != rows[n].size for n in spans) or \
+            any(moves[n].size != rows[n].size for n in moves):
+        return public()
+    ends = np.cumsum(sizes, dtype=np.intp)
+    starts = ends - np.asarray(sizes, dtype=np.intp)
+    flat = np.concatenate([rows[n] for n in names]) if names else np.zeros(0, np.intp)
+    span = np.concatenate([spans[n] if n in spans else np.ones(rows[n].size) for n in names]) \
+        if names else np.zeros(0)
+    same = flat[1:] == flat[:-1]
+    same[ends[:-1][(ends[:-1] > 0) & (ends[:-1] < flat.size)] - 1] = False  # across strings
+    if same.any() or (span.size and not (span.min() > 0 and np.isfinite(span).all())):
+        return public()  # an error, or equal neighbours to merge: the public rules
+    # every start time advances (T + D != T): a duration above 2^-50 of its string's total
+    # cannot vanish; strings with a smaller one (or a total near overflow) take the checks
+    occupied = np.flatnonzero(np.asarray(sizes) > 0)
+    if occupied.size:
+        totals = np.add.reduceat(span, starts[occupied])
+        if not (totals < 1e300).all() or not (span > np.repeat(totals, np.asarray(sizes)[
+                occupied]) * 2.0 ** -50).all():
             return public()
-        seen.add(name)
-    symbol_rows, duration_rows, move_rows = [], [], []
-    for name in names:
-        row = rows[name]
-        span = spans.get(name)
-        if span is None:
-            span = np.ones(row.size)
-        move = moves.get(name)
-        if span.size != row.size or (move is not None and move.size != row.size) or \
-                (row.size > 1 and not (row[1:] != row[:-1]).all()) or \
-                (row.size and not span.min() > 0):
-            return public()  # an error, or equal neighbours to merge: the public rules
-        ends = np.cumsum(span)  # the start times, added one by one as the checks add them
-        if row.size and (not np.isfinite(ends[-1]) or not (ends[1:] != ends[:-1]).all()
-                         or ends[0] == 0.0):
+    move_rows: list = [None] * len(names)
+    if moves:
+        present = [i for i, n in enumerate(names) if n in moves and sizes[i]]
+        values = np.concatenate([moves[names[i]] for i in present]) if present else np.zeros(0)
+        if not np.isfinite(values).all():
             return public()
-        symbol_rows.append(tuple(lookup[row]))
-        duration_rows.append(tuple(span.tolist()))
-        move_rows.append(tuple(move.tolist()) if move is not None and row.size else None)
+        for i, piece in zip(present, _pieces(values.tolist(),
+                                             np.cumsum([sizes[i] for i in present]))):
+            move_rows[i] = piece
     value = object.__new__(cls)
     setattr_ = object.__setattr__
     setattr_(value, "names", names)
-    setattr_(value, "symbols", tuple(symbol_rows))
-    setattr_(value, "segment_durations", tuple(duration_rows))
+    setattr_(value, "symbols", tuple(_pieces(lookup[flat].tolist(), ends)))
+    setattr_(value, "segment_durations", tuple(_pieces(span.tolist(), ends)))
     setattr_(value, "origins", (0.0,) * len(names))
     setattr_(value, "segment_displacements", tuple(move_rows))
     owner = actuators or {}
