@@ -10,6 +10,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Iterable
 
+import numpy as np
+
 from .labels import Span
 from .motion import Motion
 
@@ -217,15 +219,28 @@ def segment_performances(motions, channels=None, **params) -> tuple:
     >>> [ag.names for ag in segment_performances([a, b])]
     [('arm.rx', 'leg.rx'), ('arm.rx', 'leg.rx')]
     """
-    from .segmentation import segments
+    from .segmentation import _check, _segmentation, _smoothed
 
     motions = tuple(motions)
     if not motions:
         return ()
+    p = _check(params)
+    # each take smoothed once: the channels that move anywhere are then segmented from the
+    # same smoothed values (a channel's segments do not depend on the other channels)
+    smoothed = [_smoothed(motion, channels, p) for motion in motions]
     moving: set[str] = set()
-    for motion in motions:
-        moving.update(segments(motion, channels, **params).channels)
+    for motion, (names, values) in zip(motions, smoothed):
+        if motion.frames:
+            moving.update(n for n, r in zip(names, np.ptp(values, axis=1)) if r >= p["min_range"])
     order = list(motions[0].channels if channels is None else channels)
     union = [c for c in order if c in moving]
-    still_too = {**params, "min_range": 0.0}
-    return tuple(segments(m, union, **still_too).to_actiongram() for m in motions)
+    out = []
+    for motion, (names, values) in zip(motions, smoothed):
+        for name in union:
+            motion.index(name)  # KeyError naming a channel this take lacks
+        rows = {n: i for i, n in enumerate(names)}
+        picked = values[[rows[n] for n in union]] if all(n in rows for n in union) else \
+            _smoothed(motion, union, p)[1]
+        kept = np.full(len(union), motion.frames > 0)  # an empty take keeps none, as before
+        out.append(_segmentation(motion, union, picked, kept, p).to_actiongram())
+    return tuple(out)

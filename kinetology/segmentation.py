@@ -45,6 +45,7 @@ from typing import Mapping
 
 import numpy as np
 
+from ._kinetemes import round_half_even, segment_columns, smooth_channels
 from .joints import actuator_map, skeleton_parents
 from .motion import Motion
 
@@ -100,16 +101,30 @@ def unwrap(values: np.ndarray, period: float = DEFAULTS["unwrap"]) -> np.ndarray
 _unwrap = unwrap  # for functions whose parameter of that name shadows it
 
 
-_DIRECT_RADIUS = 8  # kernel half-widths up to this are summed directly, longer ones by FFT
-
-
 def smooth(values: np.ndarray, frame_rate: float, sigma: float) -> np.ndarray:
     """Gaussian smoothing along time (axis 0), ``sigma`` in seconds.
 
     The edges are padded by odd reflection (``2 x[0] - x[k]``), which keeps the
-    slope at the ends instead of inventing a turning point there.
+    slope at the ends instead of inventing a turning point there. The kernel reaches three
+    sigma each side; up to 8 frames each side it is summed directly, longer kernels (120 fps:
+    18 frames) as blocks of a banded matrix product (the same sums, rounded in the last bits
+    only; see :mod:`kinetology._kinetemes`).
 
     ``sigma <= 0`` returns a copy unchanged.
+
+    Parameters
+    ----------
+    values : array_like
+        Frames along axis 0 (any further axes are channels).
+    frame_rate : float
+        Frames per second.
+    sigma : float
+        The Gaussian's standard deviation, seconds.
+
+    Returns
+    -------
+    numpy.ndarray
+        The smoothed values, the shape of ``values``.
 
     Examples
     --------
@@ -122,33 +137,11 @@ def smooth(values: np.ndarray, frame_rate: float, sigma: float) -> np.ndarray:
     True
     """
     values = np.asarray(values, dtype=float)
-    sigma_frames = sigma * frame_rate
-    if sigma_frames <= 0 or values.shape[0] < 2:
+    if sigma * frame_rate <= 0 or values.shape[0] < 2:
         return values.copy()
-    radius = max(1, int(np.ceil(3 * sigma_frames)))
-    radius = min(radius, values.shape[0] - 1)
-    offsets = np.arange(-radius, radius + 1)
-    kernel = np.exp(-0.5 * (offsets / sigma_frames) ** 2)
-    kernel /= kernel.sum()
-    padded = np.pad(values, [(radius, radius)] + [(0, 0)] * (values.ndim - 1), mode="reflect",
-                    reflect_type="odd")
-    frames = values.shape[0]
-    if radius <= _DIRECT_RADIUS:
-        # a few taps (30 fps): shifted copies, two taps at a time (the kernel is symmetric)
-        out = kernel[radius] * padded[radius:radius + frames]
-        pair = np.empty_like(out)
-        for k in range(radius):
-            np.add(padded[k:k + frames], padded[2 * radius - k:2 * radius - k + frames], out=pair)
-            pair *= kernel[k]
-            out += pair
-        return out
-    # many taps (120 fps: 37): one convolution by FFT along time for every channel, faster
-    # than the shifted copies and equal to them within 1e-12 of the values' scale
-    size = 1 << int(np.ceil(np.log2(padded.shape[0] + 2 * radius)))
-    spectrum = np.fft.rfft(padded, size, axis=0)
-    spectrum *= np.fft.rfft(kernel, size).reshape((-1,) + (1,) * (values.ndim - 1))
-    full = np.fft.irfft(spectrum, size, axis=0)
-    return np.ascontiguousarray(full[2 * radius:2 * radius + values.shape[0]])
+    columns = values.reshape(values.shape[0], -1)
+    return np.ascontiguousarray(smooth_channels(columns, frame_rate, sigma).T).reshape(
+        values.shape)
 
 
 def derivatives(values: np.ndarray, frame_rate: float) -> tuple[np.ndarray, np.ndarray]:
@@ -199,12 +192,6 @@ def significant_sign(signal: np.ndarray, deadband: float) -> np.ndarray:
     last = np.maximum.accumulate(last)
     last[last < 0] = np.flatnonzero(counting)[0]
     return np.repeat(run_sign[last], lengths).astype(np.int8)
-
-
-def _codes(velocity_sign: np.ndarray, acceleration_sign: np.ndarray) -> np.ndarray:
-    falling = velocity_sign < 0
-    braking = (velocity_sign > 0) == (acceleration_sign < 0)
-    return (2 * falling + braking).astype(np.int8)
 
 
 _PERCENTILE_SAMPLES = 8192
@@ -295,22 +282,14 @@ def states(values: np.ndarray, frame_rate: float, *, smoothing: float = DEFAULTS
     if one_channel:
         values = values[:, None]
     values = _unwrap(values, unwrap)
-    code = _smoothed_states(smooth(values, frame_rate, smoothing), frame_rate,
-                            velocity_deadband, acceleration_deadband, relative_deadband)
-    return code[:, 0] if one_channel else code
-
-
-def _smoothed_states(smoothed, frame_rate, velocity_deadband, acceleration_deadband,
-                     relative_deadband):
-    velocity, acceleration = derivatives(smoothed, frame_rate)
-    speed_band = channel_deadbands(velocity, velocity_deadband, relative_deadband)
-    turn_band = channel_deadbands(acceleration, acceleration_deadband, relative_deadband)
-    out = np.empty(smoothed.shape, dtype=np.int8)
-    velocity, acceleration = velocity.T.copy(), acceleration.T.copy()  # rows: contiguous
-    for c in range(smoothed.shape[1]):  # per channel: run lengths differ between channels
-        out[:, c] = _codes(significant_sign(velocity[c], speed_band[c]),
-                           significant_sign(acceleration[c], turn_band[c]))
-    return out
+    out = np.empty(values.shape, dtype=np.int8)
+    if values.shape[0]:
+        borders, codes, _ = segment_columns(smooth_channels(values, frame_rate, smoothing),
+                                            frame_rate, velocity_deadband,
+                                            acceleration_deadband, relative_deadband)
+        for c, (ends, code) in enumerate(zip(borders, codes)):
+            out[:, c] = np.repeat(code, np.diff(ends))
+    return out[:, 0] if one_channel else out
 
 
 @dataclass(frozen=True, eq=False)
@@ -398,18 +377,27 @@ class Segmentation:
         """The segments as a :class:`psgs.Actiongram` (times in seconds)."""
         from psgs.actiongram import Actiongram
 
-        strings = {name: self.symbols(c) for c, name in enumerate(self.channels)}
         # rounded to the microsecond so the text form stays readable; above 10 kHz to finer
         # steps, at least 1/100 of a frame (at 2 MHz microseconds rounded frames to 0)
         digits = 6 + max(0, int(np.ceil(np.log10(self.frame_rate))) - 4)
-        durations = {name: tuple(round(float(d), digits) for d in self.durations(c))
-                     for c, name in enumerate(self.channels)}
+        # every channel rounded at once (split where each channel's rows end)
+        spans = [np.diff(b) for b in self.borders]
+        durations = dict(zip(self.channels, _rounded(spans, digits, self.frame_rate)))
         # displacements to 1/1000 degree: finer than any sensor, and short in the text form
-        moves = {name: tuple(round(float(x), 3) for x in self.displacements[c])
-                 for c, name in enumerate(self.channels)} if self.displacements else None
-        return Actiongram.from_strings(strings, durations, displacements=moves,
-                                       actuators=dict(self.actuators) or None,
-                                       skeleton=dict(self.skeleton) or None)
+        moves = dict(zip(self.channels, _rounded(self.displacements, 3))) \
+            if self.displacements else None
+        return Actiongram.from_codes(dict(zip(self.channels, self.codes)), STATES, durations,
+                                     displacements=moves, actuators=dict(self.actuators) or None,
+                                     skeleton=dict(self.skeleton) or None)
+
+
+def _rounded(rows, digits: int, divisor: float = 1.0) -> list[np.ndarray]:
+    """``[round(float(x) / divisor, digits) ...]`` of every row, as arrays."""
+    if not len(rows):
+        return []
+    ends = np.cumsum([len(r) for r in rows]).tolist()
+    flat = round_half_even(np.concatenate(rows) / divisor, digits)
+    return [flat[a:b] for a, b in zip([0] + ends[:-1], ends)]
 
 
 def _check(params: dict) -> dict:
@@ -472,37 +460,48 @@ def segments(motion: Motion, channels=None, **params) -> Segmentation:
     (('G', 'R', 'Y', 'B'), 2.0)
     """
     p = _check(params)
+    names, smoothed = _smoothed(motion, channels, p)
+    moving = (np.ptp(smoothed, axis=1) >= p["min_range"]) if motion.frames else \
+        np.zeros(len(names), bool)
+    return _segmentation(motion, names, smoothed, moving, p)
+
+
+def _largest_step(values: np.ndarray) -> np.ndarray:
+    """Per column, the largest ``|x[t + 1] - x[t]|`` (in blocks of frames that stay in cache)."""
+    out = np.zeros(values.shape[1])
+    for first in range(0, values.shape[0] - 1, 4096):
+        part = values[first:first + 4097]
+        np.maximum(out, np.abs(np.diff(part, axis=0)).max(axis=0), out=out)
+    return out
+
+
+def _smoothed(motion: Motion, channels, p: dict) -> tuple[list[str], np.ndarray]:
+    """The channels to segment and their unwrapped, smoothed values, channels x frames."""
     if channels is None:
         channels = [c for c in motion.channels if _is_rotation(c)]
     channels = list(channels)
-    for name in channels:
-        motion.index(name)  # KeyError naming the channel when it does not exist
-    values = motion.values[:, [motion.index(c) for c in channels]] if channels else \
-        np.zeros((motion.frames, 0))
+    columns = [motion.index(name) for name in channels]  # KeyError naming a missing channel
+    if columns == list(range(motion.values.shape[1])):
+        values = motion.values  # every channel in order: no copy
+    else:
+        values = motion.values[:, columns] if channels else np.zeros((motion.frames, 0))
     rotation = np.array([_is_rotation(c) for c in channels], dtype=bool)
     if p["unwrap"] > 0 and rotation.any() and motion.frames > 1:
         # only the columns that jump by more than half a turn somewhere need it
-        jumps = rotation & (np.abs(np.diff(values, axis=0)).max(axis=0) > p["unwrap"] / 2)
+        jumps = rotation & (_largest_step(values) > p["unwrap"] / 2)
         if jumps.any():
             values = values.copy()
             values[:, jumps] = unwrap(values[:, jumps], p["unwrap"])
-    smoothed = smooth(values, motion.frame_rate, p["smoothing"])
-    moving = (np.ptp(smoothed, axis=0) >= p["min_range"]) if motion.frames else \
-        np.zeros(len(channels), bool)
-    kept_smooth = smoothed[:, moving]
-    code = _smoothed_states(kept_smooth, motion.frame_rate, p["velocity_deadband"],
-                            p["acceleration_deadband"], p["relative_deadband"])
-    borders, codes, moves = [], [], []
-    for c in range(code.shape[1]):
-        column = code[:, c]
-        starts = np.concatenate(([0], np.flatnonzero(column[1:] != column[:-1]) + 1))
-        ends = np.append(starts, motion.frames)
-        borders.append(ends)
-        codes.append(column[starts])
-        # change from a segment's first frame to the next one's (the last: to the last frame),
-        # so a channel's displacements add up to its whole change
-        at = kept_smooth[np.minimum(ends, motion.frames - 1), c]
-        moves.append(np.diff(at))
+    return channels, smooth_channels(values, motion.frame_rate, p["smoothing"])
+
+
+def _segmentation(motion: Motion, channels: list[str], smoothed: np.ndarray,
+                  moving: np.ndarray, p: dict) -> Segmentation:
+    """The segments of the ``moving`` rows of ``smoothed`` (channels x frames)."""
+    kept_smooth = smoothed if moving.all() else smoothed[moving]
+    borders, codes, moves = segment_columns(kept_smooth, motion.frame_rate,
+                                            p["velocity_deadband"], p["acceleration_deadband"],
+                                            p["relative_deadband"])
     kept = tuple(name for name, m in zip(channels, moving) if m)
     still = tuple(name for name, m in zip(channels, moving) if not m)
     owners = actuator_map(motion, kept)

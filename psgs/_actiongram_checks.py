@@ -7,10 +7,13 @@ import the other for them.
 from __future__ import annotations
 
 import math
+import re
 
 from .errors import FormatError
 
 __all__: list[str] = []  # private helpers
+
+_NUMBER = re.compile(r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?\Z")
 
 
 def _shown(value: object, limit: int = 40) -> str:
@@ -28,8 +31,14 @@ def _not_unicode(text: str) -> bool:
     return False
 
 
+_PLAIN_NAME = re.compile(r"[!-~]+")  # printable ASCII without white space: the common case
+
+
 def _bad_name(name: object) -> str | None:
     """Why ``name`` cannot name an actuator, or None when it can."""
+    if isinstance(name, str) and _PLAIN_NAME.fullmatch(name) and "@" not in name \
+            and ":" not in name and name[0] != "#":
+        return None  # a quick yes for the usual names; anything else takes the checks below
     if not isinstance(name, str) or not name:
         return "an actuator name must be non-empty text"
     if _not_unicode(name):
@@ -89,3 +98,25 @@ def _check_times_advance(name: str, origin: float, durations: tuple[float, ...])
             raise FormatError(f"string {_shown(name)}: duration {d!r} of symbol {j + 1} vanishes "
                               f"beside its start time {t!r} (T + D == T in floating point)")
         t = after
+
+
+def _format_number(value: float) -> str:
+    """Shortest text that reads back as the same float (integers without '.0')."""
+    if float(value).is_integer() and abs(value) < 1e15:
+        return str(int(value))
+    return repr(float(value))
+
+
+def _strip_comment(line: str) -> str:
+    """Drop a '#' comment: at line start or after white space."""
+    match = re.search(r"(?:^|\s)#", line)
+    return line if match is None else line[:match.start()]
+
+
+def _read_number(text: str, *, allow_nonpositive: bool) -> float | None:
+    if not _NUMBER.match(text):
+        return None
+    value = float(text)
+    if not math.isfinite(value) or (not allow_nonpositive and value <= 0):
+        return None
+    return value

@@ -1,6 +1,6 @@
 """The real-motion extras of an actiongram: displacements, actuator map, skeleton (issue 9).
 
-Validation and the text directives live here so that :mod:`psgs.actiongram`
+Validation, merging and the text directives live here so that :mod:`psgs.actiongram`
 stays one module of reasonable size; :class:`psgs.Actiongram` is the only user.
 """
 
@@ -42,6 +42,20 @@ def default_actuator(name: str) -> str:
     """
     head = name.split(".", 1)[0]
     return head if head else name
+
+
+def _merge(symbols: Sequence[str], durations: Sequence[float]) -> tuple[tuple[str, ...],
+                                                                       tuple[float, ...]]:
+    """Merge runs of equal neighbours into one segment, adding their durations."""
+    out_symbols: list[str] = []
+    out_durations: list[float] = []
+    for sym, dur in zip(symbols, durations):
+        if out_symbols and out_symbols[-1] == sym:
+            out_durations[-1] += dur
+        else:
+            out_symbols.append(sym)
+            out_durations.append(float(dur))
+    return tuple(out_symbols), tuple(out_durations)
 
 
 def _merge_displacements(symbols: Sequence[str],
@@ -116,7 +130,12 @@ def normalise_extras(value, names: tuple[str, ...], symbols: tuple[tuple[str, ..
         # an empty string has nothing to displace: unknown, as the text form reads it back
         rows.append(_merge_displacements(syms, disps) if syms else None)
     object.__setattr__(value, "segment_displacements", tuple(rows))
+    normalise_actuators(value, names)
+    normalise_skeleton(value)
 
+
+def normalise_actuators(value, names: tuple[str, ...]) -> None:
+    """Validate ``value.string_actuators`` (one valid name per string; () the defaults)."""
     actuators = tuple(value.string_actuators)
     if not actuators:
         actuators = tuple(default_actuator(n) if isinstance(n, str) else n for n in names)
@@ -128,6 +147,9 @@ def normalise_extras(value, names: tuple[str, ...], symbols: tuple[tuple[str, ..
             raise FormatError(f"string {_shown(name)}: actuator {_shown(actuator)}: {problem}")
     object.__setattr__(value, "string_actuators", actuators)
 
+
+def normalise_skeleton(value) -> None:
+    """Validate ``value.skeleton_edges``: (actuator, parent or None) pairs, no cycle."""
     edges: list[tuple[str, str | None]] = []
     parent_of: dict[str, str | None] = {}
     for edge in value.skeleton_edges:

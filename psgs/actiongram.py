@@ -43,37 +43,16 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ._actiongram_checks import (_bad_duration, _bad_name, _bad_symbol, _check_times_advance,
-                                 _finite, _plain_durations, _shown)
+                                 _finite, _format_number, _plain_durations, _read_number,
+                                 _shown, _strip_comment)
 from ._actiongram_extras import DIRECTIVE as _DIRECTIVE
-from ._actiongram_extras import default_actuator, normalise_extras
+from ._actiongram_extras import _merge, default_actuator, normalise_extras
 from ._actiongram_extras import read_directive as _read_directive
 from .errors import FormatError
 
 __all__ = ["Actiongram", "default_actuator", "load_actiongram"]
 
 _JSON_FORMAT = "psgs-actiongram"
-_NUMBER = re.compile(r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?\Z")
-
-
-def _format_number(value: float) -> str:
-    """Shortest text that reads back as the same float (integers without '.0')."""
-    if float(value).is_integer() and abs(value) < 1e15:
-        return str(int(value))
-    return repr(float(value))
-
-
-def _merge(symbols: Sequence[str], durations: Sequence[float]) -> tuple[tuple[str, ...],
-                                                                       tuple[float, ...]]:
-    """Merge runs of equal neighbours into one segment, adding their durations."""
-    out_symbols: list[str] = []
-    out_durations: list[float] = []
-    for sym, dur in zip(symbols, durations):
-        if out_symbols and out_symbols[-1] == sym:
-            out_durations[-1] += dur
-        else:
-            out_symbols.append(sym)
-            out_durations.append(float(dur))
-    return tuple(out_symbols), tuple(out_durations)
 
 
 @dataclass(frozen=True)
@@ -241,6 +220,49 @@ class Actiongram:
         edges = tuple((skeleton or {}).items())
         return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins),
                    disp_rows, owner, edges)
+
+    @classmethod
+    def from_codes(cls, codes: Mapping[str, Sequence[int]], alphabet: Sequence[str],
+                   durations: Mapping[str, Sequence[float]] | None = None, *,
+                   displacements: Mapping[str, Sequence[float]] | None = None,
+                   actuators: Mapping[str, str] | None = None,
+                   skeleton: Mapping[str, str | None] | None = None) -> "Actiongram":
+        """Build from integer codes into ``alphabet`` and arrays, fast: equal to
+        ``from_strings({n: [alphabet[k] for k in codes[n]]}, durations, ...)``.
+
+        The checks run on whole arrays (what a segmentation of long takes needs); input that
+        fails one, or has equal neighbours to merge, takes :meth:`from_strings`, so the errors
+        and results are its own. Every string starts at 0.
+
+        Parameters
+        ----------
+        codes : mapping of str to array_like of int
+            Each string's symbols as indices into ``alphabet``.
+        alphabet : sequence of str
+            The symbols.
+        durations, displacements, actuators, skeleton : mapping, optional
+            As for :meth:`from_strings` (arrays welcome).
+
+        Returns
+        -------
+        Actiongram
+
+        Raises
+        ------
+        ValueError
+            For codes that are not 1-D integers within the alphabet.
+        FormatError
+            As :meth:`from_strings` (and for a symbol of the alphabet that cannot be one).
+
+        Examples
+        --------
+        >>> ag = Actiongram.from_codes({"knee.rx": [0, 1, 0]}, "BG", {"knee.rx": [0.5, 1, 2]})
+        >>> ag == Actiongram.from_strings({"knee.rx": "BGB"}, {"knee.rx": [0.5, 1, 2]})
+        True
+        """
+        from ._actiongram_fast import build
+
+        return build(cls, codes, alphabet, durations, displacements, actuators, skeleton)
 
     @classmethod
     def from_text(cls, text: str, source: str = "<string>") -> "Actiongram":
@@ -515,21 +537,6 @@ class Actiongram:
 
     def __repr__(self) -> str:
         return f"<Actiongram {len(self)} strings, {self.total_symbols} symbols>"
-
-
-def _strip_comment(line: str) -> str:
-    """Drop a '#' comment: at line start or after white space."""
-    match = re.search(r"(?:^|\s)#", line)
-    return line if match is None else line[:match.start()]
-
-
-def _read_number(text: str, *, allow_nonpositive: bool) -> float | None:
-    if not _NUMBER.match(text):
-        return None
-    value = float(text)
-    if not math.isfinite(value) or (not allow_nonpositive and value <= 0):
-        return None
-    return value
 
 
 def load_actiongram(path: str | Path) -> Actiongram:
