@@ -14,6 +14,13 @@ if TYPE_CHECKING:
     from .learner import PAL
 
 
+#: log10 of the chance level below which a column's plurality, many copies strong, is
+#: conserved even under the ``conserve`` share (noise damages a share of every column)
+_STRONG = -3.0
+#: farthest column looked at beyond a damaged one while growing
+_BRIDGE = 2
+
+
 @dataclass(frozen=True)
 class Timed:
     """One string as integer codes with start and end times."""
@@ -142,6 +149,8 @@ def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: f
     """Grow ``motif`` one conserved column at a time from its copies at ``starts``."""
     n = len(codes)
     size = int(codes.max()) + 1
+    freq = np.bincount(codes, minlength=size) / n
+    penalty = math.log10(max(distinct, 2))
     while len(motif) < params.max_pattern:
         length = len(motif)
         spacing = median_gap(starts) if len(starts) > 1 else n
@@ -149,23 +158,34 @@ def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: f
             break
         choice = None
         for side in ("right", "left"):
-            pos = starts + length if side == "right" else starts - 1
-            pos = pos[(pos >= 0) & (pos < n)]
-            if len(pos) < params.min_copies:
-                continue
-            column = np.bincount(codes[pos], minlength=size)
-            sym = int(np.argmax(column))
-            k = int(column[sym])
-            if k < params.min_copies or k < params.conserve * len(pos):
-                continue
-            share = k / len(pos)
-            if choice is None or share > choice[0]:
-                choice = (share, side, sym)
+            # a column that noise damaged in many copies can be bridged when the
+            # column beyond it is conserved (its plurality still held by min_copies)
+            added: list[int] = []
+            for d in range(1, min(_BRIDGE, spacing - length, params.max_pattern - length) + 1):
+                pos = starts + length + d - 1 if side == "right" else starts - d
+                pos = pos[(pos >= 0) & (pos < n)]
+                if len(pos) < params.min_copies:
+                    break
+                column = np.bincount(codes[pos], minlength=size)
+                sym = int(np.argmax(column))
+                k = int(column[sym])
+                if k < params.min_copies:
+                    break
+                added.append(sym)
+                if k >= params.conserve * len(pos) or log10_binom_sf(
+                        k, len(pos), float(freq[sym])) + penalty <= _STRONG:
+                    rank = (d, -k / len(pos))
+                    if choice is None or rank < choice[0]:
+                        choice = (rank, side, added)
+                    break
         if choice is None:
             break
-        _, side, sym = choice
-        grown = np.append(motif, sym) if side == "right" else np.insert(motif, 0, sym)
-        kept = starts if side == "right" else starts - 1
+        (d, _), side, added = choice
+        if side == "right":
+            grown, kept = np.concatenate((motif, added)), starts
+        else:
+            grown, kept = np.concatenate((added[::-1], motif)), starts - d
+        grown = grown.astype(np.int64)
         kept = kept[(kept >= 0) & (kept + len(grown) <= n)]
         threshold = scan_threshold(len(grown), n - len(grown) + 1, match_rate, params)
         found = merge_copies(kept, locate_copies(codes, grown, threshold), len(grown))
