@@ -14,9 +14,6 @@ if TYPE_CHECKING:
     from .learner import PAL
 
 
-#: log10 of the chance level below which a column's plurality, many copies strong, is
-#: conserved even under the ``conserve`` share (noise damages a share of every column)
-_STRONG = -3.0
 #: farthest column looked at beyond a damaged one while growing
 _BRIDGE = 2
 
@@ -149,8 +146,6 @@ def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: f
     """Grow ``motif`` one conserved column at a time from its copies at ``starts``."""
     n = len(codes)
     size = int(codes.max()) + 1
-    freq = np.bincount(codes, minlength=size) / n
-    penalty = math.log10(max(distinct, 2))
     while len(motif) < params.max_pattern:
         length = len(motif)
         spacing = median_gap(starts) if len(starts) > 1 else n
@@ -161,7 +156,8 @@ def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: f
             # a column that noise damaged in many copies can be bridged when the
             # column beyond it is conserved (its plurality still held by min_copies)
             added: list[int] = []
-            for d in range(1, min(_BRIDGE, spacing - length, params.max_pattern - length) + 1):
+            for d in range(1, min(_BRIDGE, spacing - length, params.max_pattern - length)
+                           + 1):
                 pos = starts + length + d - 1 if side == "right" else starts - d
                 pos = pos[(pos >= 0) & (pos < n)]
                 if len(pos) < params.min_copies:
@@ -172,8 +168,7 @@ def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: f
                 if k < params.min_copies:
                     break
                 added.append(sym)
-                if k >= params.conserve * len(pos) or log10_binom_sf(
-                        k, len(pos), float(freq[sym])) + penalty <= _STRONG:
+                if k >= params.conserve * len(pos):
                     rank = (d, -k / len(pos))
                     if choice is None or rank < choice[0]:
                         choice = (rank, side, added)

@@ -185,17 +185,56 @@ def vote(string: Timed, windows: np.ndarray) -> Vote | None:
     same = string.codes[index]
     offsets = string.starts[index] - windows[full, 0][:, None]
     ends = string.ends[index] - windows[full, 0][:, None]
-    pattern, shares = [], []
-    for column in same.T:
-        tally = np.bincount(column)
-        top = tally.max()
-        # ties go to the symbol seen first in time
-        pattern.append(int(column[np.argmax(tally[column] == top)]))
-        shares.append(top / len(column))
+    shares = [np.bincount(column).max() / len(column) for column in same.T]
+    rows = np.concatenate((full, picked[sizes[picked] != length]))
+    voters = np.concatenate((same, _aligned(string.codes, lo[rows[len(full):]],
+                                            hi[rows[len(full):]], _plurality(same))))
+    voters = voters[np.argsort(rows, kind="stable")]  # in time order, for the ties
+    pattern = _plurality(voters[voters[:, 0] >= 0])
     return Vote(tuple(pattern), np.asarray(shares), np.median(offsets, axis=0),
                  np.median(ends, axis=0),
                  tuple(zip(lo[picked].tolist(), hi[picked].tolist())),
                  tuple(picked.tolist()))
+
+
+def _plurality(copies: np.ndarray) -> list[int]:
+    """Column-wise plurality symbol of ``copies`` (rows in time order; ties: first seen)."""
+    pattern = []
+    for column in copies.T:
+        tally = np.bincount(column)
+        pattern.append(int(column[np.argmax(tally[column] == tally.max())]))
+    return pattern
+
+
+def _aligned(codes: np.ndarray, lo: np.ndarray, hi: np.ndarray, pattern: list[int]) -> np.ndarray:
+    """Copies of another length than the pattern's, read at the pattern's length.
+
+    A window a little too short or too long for a copy (its boundary set by
+    damaged copies) still holds that copy: it is read at the pattern's length
+    from the start, within ``length // 4`` symbols (one at least) of the
+    window's own, that covers the window's symbols and agrees best with
+    ``pattern``, when that start is unique and agrees in half the columns.
+    Rows of -1 stand for copies left out (so rows match ``lo``).
+    """
+    length = len(pattern)
+    out = np.full((len(lo), length), -1, dtype=np.int64)
+    reach = max(1, length // 4)
+    near = np.abs((hi - lo) - length) <= reach
+    shifts = np.arange(-reach, reach + 1)
+    starts = lo[:, None] + shifts[None, :]
+    size = (hi - lo)[:, None]
+    # the read covers the window (short copies) or lies within it (long ones)
+    fits = np.where(size < length, (starts <= lo[:, None]) & (starts + length >= hi[:, None]),
+                    (starts >= lo[:, None]) & (starts + length <= hi[:, None]))
+    fits &= (starts >= 0) & (starts + length <= len(codes)) & near[:, None]
+    index = np.clip(starts, 0, max(0, len(codes) - length))[:, :, None] + np.arange(length)
+    score = np.where(fits, (codes[index] == np.asarray(pattern)).sum(axis=2), -1)
+    best = score.max(axis=1)
+    unique = (score == best[:, None]).sum(axis=1) == 1
+    ok = unique & (2 * best >= length)
+    choice = np.argmax(score, axis=1)
+    out[ok] = codes[index[np.flatnonzero(ok), choice[ok]]]
+    return out
 
 
 def repeats_in_windows(string: Timed, vote: Vote, params: PAL, copies_needed: int,
