@@ -3,6 +3,9 @@
 from __future__ import annotations
 
 from dataclasses import replace
+from itertools import chain
+
+import numpy as np
 
 from ...actiongram import Actiongram
 from ..base import Inducer, as_performances, check_choice, check_number
@@ -230,10 +233,15 @@ def _same_strings(performances):
 
 def encode(actiongram: Actiongram) -> tuple[list[Timed], list[str]]:
     """Each string as integer codes over one alphabet (symbols in order of first appearance)."""
-    alphabet: dict[str, int] = {}
-    strings = [Timed.build(syms, durs, origin, alphabet)
-               for syms, durs, origin in zip(actiongram.symbols, actiongram.segment_durations,
-                                             actiongram.origins)]
+    # one pass over the whole actiongram: per-symbol work is the floor of PAL's cost
+    flat = list(chain.from_iterable(actiongram.symbols))
+    alphabet = {sym: k for k, sym in enumerate(dict.fromkeys(flat))}
+    codes = np.fromiter(map(alphabet.__getitem__, flat), dtype=np.int64, count=len(flat))
+    durations = np.fromiter(chain.from_iterable(actiongram.segment_durations),
+                            dtype=np.float64, count=len(flat))
+    bounds = np.cumsum([0] + [len(syms) for syms in actiongram.symbols]).tolist()
+    strings = [Timed.from_codes(codes[a:b], durations[a:b], origin)
+               for a, b, origin in zip(bounds[:-1], bounds[1:], actiongram.origins)]
     return strings, list(alphabet)
 
 

@@ -33,9 +33,13 @@ class Timed:
             alphabet.setdefault(sym, len(alphabet))
         codes = np.fromiter(map(alphabet.__getitem__, symbols), dtype=np.int64,
                             count=len(symbols))
-        durs = np.asarray(durations, dtype=np.float64)
-        ends = origin + np.cumsum(durs)
-        return cls(codes, ends - durs, ends)
+        return cls.from_codes(codes, np.asarray(durations, dtype=np.float64), origin)
+
+    @classmethod
+    def from_codes(cls, codes: np.ndarray, durations: np.ndarray, origin: float) -> "Timed":
+        """A string of integer ``codes`` whose segments last ``durations``, from ``origin``."""
+        ends = origin + np.cumsum(durations)
+        return cls(codes, ends - durations, ends)
 
     def intervals(self, copy_starts: np.ndarray, length: int) -> np.ndarray:
         """(k, 2) array: the time span of each copy of a motif of ``length`` symbols."""
@@ -69,16 +73,32 @@ def locate_copies(codes: np.ndarray, motif: np.ndarray, threshold: int) -> np.nd
     hits = np.flatnonzero(score >= threshold)
     if len(hits) == 0:
         return hits
-    order = hits[np.lexsort((hits, -score[hits]))]
     if np.all(score[hits] == length) and (len(hits) < 2 or np.min(np.diff(hits)) >= length):
         return hits  # exact, non-overlapping copies: nothing to choose
-    taken = np.zeros(n, dtype=bool)
-    chosen = []
-    for p in order:
-        if not taken[p:p + length].any():
-            taken[p:p + length] = True
-            chosen.append(p)
-    return np.sort(np.asarray(chosen, dtype=np.int64))
+    # best first, earlier first among equals: level by level, a window is kept when it
+    # overlaps no window kept at a higher level nor the one kept just before it
+    levels = score[hits]
+    chosen = np.zeros(0, dtype=np.int64)
+    for level in range(int(levels.max()), threshold - 1, -1):
+        here = hits[levels == level]
+        if len(here) == 0:
+            continue
+        if len(chosen):
+            at = np.searchsorted(chosen, here)
+            right = chosen[np.minimum(at, len(chosen) - 1)]
+            left = chosen[np.maximum(at - 1, 0)]
+            free = ((at >= len(chosen)) | (right - here >= length)) \
+                & ((at == 0) | (here - left >= length))
+            here = here[free]
+        if len(here) > 1 and np.min(np.diff(here)) < length:
+            kept, last = [], None
+            for p in here.tolist():
+                if last is None or p - last >= length:
+                    kept.append(p)
+                    last = p
+            here = np.asarray(kept, dtype=np.int64)
+        chosen = np.sort(np.concatenate((chosen, here)))
+    return chosen
 
 
 def median_gap(starts: np.ndarray) -> int:
@@ -93,7 +113,9 @@ def merge_copies(old: np.ndarray, new: np.ndarray, length: int) -> np.ndarray:
     Copies located while the motif grew keep their place even when the longer
     motif no longer passes the scan (a damaged copy still shows the pattern).
     """
-    both = np.unique(np.concatenate((old, new)))
+    both = np.sort(np.concatenate((old, new)))
+    if len(both) > 1:
+        both = both[np.concatenate(([True], both[1:] != both[:-1]))]
     if len(both) < 2 or np.min(np.diff(both)) >= length:
         return both
     kept, last = [], None
@@ -119,7 +141,7 @@ def find_motif(codes: np.ndarray, params: PAL) -> Motif | None:
     distinct = int(np.count_nonzero(freq))
     match_rate = float(np.sum(freq ** 2))
     keys = codes[:-1] * size + codes[1:]
-    uniq, first, counts = np.unique(keys, return_index=True, return_counts=True)
+    uniq, first, counts = _digram_counts(keys, size * size)
     order = np.lexsort((first, -counts))
     best: Motif | None = None
     covered: set[int] = set()
@@ -139,6 +161,17 @@ def find_motif(codes: np.ndarray, params: PAL) -> Motif | None:
         if best is None or found.significance < best.significance:
             best = found
     return best
+
+
+def _digram_counts(keys: np.ndarray, bins: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The distinct digram keys, where each first occurs, and how often (as ``np.unique``)."""
+    if bins > 4 * len(keys) + 4096:  # a large alphabet: sorting is cheaper than counting
+        return np.unique(keys, return_index=True, return_counts=True)
+    counts = np.bincount(keys, minlength=bins)
+    uniq = np.flatnonzero(counts)
+    first = np.full(bins, len(keys), dtype=np.int64)
+    np.minimum.at(first, keys, np.arange(len(keys)))
+    return uniq, first[uniq], counts[uniq]
 
 
 def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: float,

@@ -185,7 +185,9 @@ def vote(string: Timed, windows: np.ndarray) -> Vote | None:
     same = string.codes[index]
     offsets = string.starts[index] - windows[full, 0][:, None]
     ends = string.ends[index] - windows[full, 0][:, None]
-    shares = [np.bincount(column).max() / len(column) for column in same.T]
+    size = int(same.max()) + 1
+    shares = np.bincount((np.arange(length) * size + same).ravel(), minlength=length * size
+                         ).reshape(length, size).max(axis=1) / len(same)
     rows = np.concatenate((full, picked[sizes[picked] != length]))
     voters = np.concatenate((same, _aligned(string.codes, lo[rows[len(full):]],
                                             hi[rows[len(full):]], _plurality(same))))
@@ -199,11 +201,14 @@ def vote(string: Timed, windows: np.ndarray) -> Vote | None:
 
 def _plurality(copies: np.ndarray) -> list[int]:
     """Column-wise plurality symbol of ``copies`` (rows in time order; ties: first seen)."""
-    pattern = []
-    for column in copies.T:
-        tally = np.bincount(column)
-        pattern.append(int(column[np.argmax(tally[column] == tally.max())]))
-    return pattern
+    rows, length = copies.shape
+    size = int(copies.max()) + 1
+    tally = np.bincount((np.arange(length) * size + copies).ravel(),
+                        minlength=length * size).reshape(length, size)
+    top = tally.max(axis=1)
+    # per column, the first row whose symbol has the top count
+    first = np.argmax(tally[np.arange(length), copies] == top, axis=0)
+    return copies[first, np.arange(length)].tolist()
 
 
 def _aligned(codes: np.ndarray, lo: np.ndarray, hi: np.ndarray, pattern: list[int]) -> np.ndarray:
