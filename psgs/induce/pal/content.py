@@ -9,8 +9,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .motifs import Motif, Timed, find_motif
-from .pooling import (pooled_windows, relocate, repeats_in_windows, sync_groups, synchronised,
-                      trim, vote)
+from .pooling import (pooled_pattern, pooled_windows, relocate, repeats_in_windows, sync_groups,
+                      synchronised, trim, vote)
 
 if TYPE_CHECKING:
     from .learner import PAL
@@ -63,7 +63,8 @@ def pool_groups(strings: list[Timed], found: ContentResult, params: PAL) -> Cont
                 kept_columns = trim(votes, params.edge_share) if votes else {}
                 # locate each member's copies again with its voted pattern
                 for i, (first, last) in kept_columns.items():
-                    again = relocate(strings[i], votes[i].pattern[first:last], params)
+                    pattern = pooled_pattern(strings[i], votes[i])
+                    again = relocate(strings[i], pattern[first:last], params)
                     if again is not None:
                         located[i] = again
                 continue
@@ -96,7 +97,7 @@ def pool_groups(strings: list[Timed], found: ContentResult, params: PAL) -> Cont
                 continue
             v = votes[i]
             length = len(v.pattern)
-            patterns[i] = v.pattern[first:last]
+            patterns[i] = pooled_pattern(strings[i], v)[first:last]
             where = []
             for a, b in v.spans:
                 if b - a == length:

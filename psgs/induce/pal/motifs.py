@@ -91,12 +91,7 @@ def locate_copies(codes: np.ndarray, motif: np.ndarray, threshold: int) -> np.nd
                 & ((at == 0) | (here - left >= length))
             here = here[free]
         if len(here) > 1 and np.min(np.diff(here)) < length:
-            kept, last = [], None
-            for p in here.tolist():
-                if last is None or p - last >= length:
-                    kept.append(p)
-                    last = p
-            here = np.asarray(kept, dtype=np.int64)
+            here = here[_chain(here, length)]
         chosen = np.sort(np.concatenate((chosen, here)))
     return chosen
 
@@ -118,12 +113,17 @@ def merge_copies(old: np.ndarray, new: np.ndarray, length: int) -> np.ndarray:
         both = both[np.concatenate(([True], both[1:] != both[:-1]))]
     if len(both) < 2 or np.min(np.diff(both)) >= length:
         return both
-    kept, last = [], None
-    for p in both.tolist():
-        if last is None or p >= last + length:
-            kept.append(p)
-            last = p
-    return np.asarray(kept, dtype=np.int64)
+    return both[_chain(both, length)]
+
+
+def _chain(positions: np.ndarray, length: int) -> list[int]:
+    """Indices of the sorted ``positions`` kept left to right, each ``length`` after the last."""
+    following = np.searchsorted(positions, positions + length).tolist()
+    kept, at, end = [], 0, len(positions)
+    while at < end:
+        kept.append(at)
+        at = following[at]
+    return kept
 
 
 def find_motif(codes: np.ndarray, params: PAL) -> Motif | None:

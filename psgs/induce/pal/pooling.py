@@ -185,22 +185,39 @@ def vote(string: Timed, windows: np.ndarray) -> Vote | None:
     same = string.codes[index]
     offsets = string.starts[index] - windows[full, 0][:, None]
     ends = string.ends[index] - windows[full, 0][:, None]
-    size = int(same.max()) + 1
-    shares = np.bincount((np.arange(length) * size + same).ravel(), minlength=length * size
-                         ).reshape(length, size).max(axis=1) / len(same)
-    rows = np.concatenate((full, picked[sizes[picked] != length]))
-    voters = np.concatenate((same, _aligned(string.codes, lo[rows[len(full):]],
-                                            hi[rows[len(full):]], _plurality(same))))
-    voters = voters[np.argsort(rows, kind="stable")]  # in time order, for the ties
-    pattern = _plurality(voters[voters[:, 0] >= 0])
-    return Vote(tuple(pattern), np.asarray(shares), np.median(offsets, axis=0),
+    pattern, shares = _plurality(same)
+    return Vote(tuple(pattern), shares, np.median(offsets, axis=0),
                  np.median(ends, axis=0),
                  tuple(zip(lo[picked].tolist(), hi[picked].tolist())),
                  tuple(picked.tolist()))
 
 
-def _plurality(copies: np.ndarray) -> list[int]:
-    """Column-wise plurality symbol of ``copies`` (rows in time order; ties: first seen)."""
+def pooled_pattern(string: Timed, vote: Vote) -> tuple[int, ...]:
+    """The plurality pattern over all of a member's copies, damaged boundaries included.
+
+    ``vote.pattern`` reads only the copies of the common length; a window a
+    little too short or long for a copy (its boundary set by copies that noise
+    damaged) still holds that copy, and it votes here too (see
+    :func:`_aligned`), ties going to the symbol seen first in time.
+    """
+    spans = np.asarray(vote.spans, dtype=np.int64).reshape(-1, 2)
+    length = len(vote.pattern)
+    odd = spans[spans[:, 1] - spans[:, 0] != length]
+    if len(odd) == 0:
+        return vote.pattern
+    full = spans[spans[:, 1] - spans[:, 0] == length]
+    same = string.codes[full[:, 0][:, None] + np.arange(length)]
+    rows = np.concatenate((np.flatnonzero(spans[:, 1] - spans[:, 0] == length),
+                           np.flatnonzero(spans[:, 1] - spans[:, 0] != length)))
+    voters = np.concatenate((same, _aligned(string.codes, odd[:, 0], odd[:, 1],
+                                            list(vote.pattern))))
+    voters = voters[np.argsort(rows, kind="stable")]  # in time order, for the ties
+    return tuple(_plurality(voters[voters[:, 0] >= 0])[0])
+
+
+def _plurality(copies: np.ndarray) -> tuple[list[int], np.ndarray]:
+    """Column-wise plurality symbol of ``copies`` and its share (rows in time order; ties:
+    first seen)."""
     rows, length = copies.shape
     size = int(copies.max()) + 1
     tally = np.bincount((np.arange(length) * size + copies).ravel(),
@@ -208,7 +225,7 @@ def _plurality(copies: np.ndarray) -> list[int]:
     top = tally.max(axis=1)
     # per column, the first row whose symbol has the top count
     first = np.argmax(tally[np.arange(length), copies] == top, axis=0)
-    return copies[first, np.arange(length)].tolist()
+    return copies[first, np.arange(length)].tolist(), top / rows
 
 
 def _aligned(codes: np.ndarray, lo: np.ndarray, hi: np.ndarray, pattern: list[int]) -> np.ndarray:
