@@ -253,7 +253,12 @@ def _codes(flat: list[str]) -> tuple[np.ndarray, list[str]]:
         # one-character symbols: their code points, read in C, then renumbered
         points = np.frombuffer("".join(flat).encode("utf-32-le"), dtype=np.uint32)
         ordinals = np.asarray(sorted(map(ord, distinct)), dtype=np.uint32)
-        index = np.searchsorted(ordinals, points)
+        if int(ordinals[-1]) < 1 << 16:  # a table lookup is quicker than a search
+            table = np.zeros(int(ordinals[-1]) + 1, dtype=np.int64)
+            table[ordinals] = np.arange(len(ordinals))
+            index = table[points]
+        else:
+            index = np.searchsorted(ordinals, points)
         symbols = [chr(o) for o in ordinals.tolist()]
     else:
         symbols = sorted(distinct)

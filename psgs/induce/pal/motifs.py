@@ -154,7 +154,7 @@ def find_motif(codes: np.ndarray, params: PAL) -> Motif | None:
         tried += 1
         seed = np.array([uniq[index] // size, uniq[index] % size], dtype=np.int64)
         found = grow(codes, seed, np.flatnonzero(keys == uniq[index]), match_rate, distinct,
-                      params)
+                     params, seed_only=True)
         if found is None:
             continue
         covered.update((found.motif[:-1] * size + found.motif[1:]).tolist())
@@ -175,10 +175,14 @@ def _digram_counts(keys: np.ndarray, bins: int) -> tuple[np.ndarray, np.ndarray,
 
 
 def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: float,
-          distinct: int, params: PAL) -> Motif | None:
-    """Grow ``motif`` one conserved column at a time from its copies at ``starts``."""
+          distinct: int, params: PAL, seed_only: bool = False) -> Motif | None:
+    """Grow ``motif`` one conserved column at a time from its copies at ``starts``.
+
+    ``seed_only``: ``motif`` is a digram and ``starts`` all its occurrences.
+    """
     n = len(codes)
     size = int(codes.max()) + 1
+    grown_from = motif
     while len(motif) < params.max_pattern:
         length = len(motif)
         spacing = median_gap(starts) if len(starts) > 1 else n
@@ -230,7 +234,10 @@ def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: f
         found = locate_copies(codes, rotated, threshold)
         if len(found) >= len(starts):
             motif, starts = rotated, found
-    starts = merge_copies(starts, locate_copies(codes, motif, threshold), length)
+    if not (seed_only and len(motif) == 2 and motif[0] != motif[1] and threshold >= 2
+            and motif is grown_from):
+        # (a digram that did not grow: its exact occurrences are ``starts`` already)
+        starts = merge_copies(starts, locate_copies(codes, motif, threshold), length)
     if len(starts) < params.min_copies:
         return None
     lam = (n - length + 1) * 10 ** log10_binom_sf(threshold, length, match_rate)

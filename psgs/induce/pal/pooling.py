@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -157,10 +158,25 @@ class Vote:
 
     pattern: tuple[int, ...]
     shares: np.ndarray        # plurality share of each column
-    column_start: np.ndarray  # median time offset of each column from its window's start
-    column_end: np.ndarray
+    offsets: np.ndarray       # (copies, columns): start and end time of each full copy's
+    end_offsets: np.ndarray   # symbols from its window's start
     spans: tuple[tuple[int, int], ...]  # symbol index range of each copy
     window_of: tuple[int, ...]          # which window each copy lies in
+
+    @property
+    def full_copies(self) -> int:
+        """How many copies have the pattern's length (those the columns are read from)."""
+        return len(self.offsets)
+
+    @functools.cached_property
+    def column_start(self) -> np.ndarray:
+        """The median time offset of each column from its window's start."""
+        return np.median(self.offsets, axis=0)
+
+    @functools.cached_property
+    def column_end(self) -> np.ndarray:
+        """The median time offset of each column's end from its window's start."""
+        return np.median(self.end_offsets, axis=0)
 
 
 def vote(string: Timed, windows: np.ndarray) -> Vote | None:
@@ -186,8 +202,7 @@ def vote(string: Timed, windows: np.ndarray) -> Vote | None:
     offsets = string.starts[index] - windows[full, 0][:, None]
     ends = string.ends[index] - windows[full, 0][:, None]
     pattern, shares = _plurality(same)
-    return Vote(tuple(pattern), shares, np.median(offsets, axis=0),
-                 np.median(ends, axis=0),
+    return Vote(tuple(pattern), shares, offsets, ends,
                  tuple(zip(lo[picked].tolist(), hi[picked].tolist())),
                  tuple(picked.tolist()))
 
@@ -271,16 +286,17 @@ def repeats_in_windows(string: Timed, vote: Vote, params: PAL, copies_needed: in
     of them could have been the plurality), below 0.01.
     """
     length = len(vote.pattern)
-    same = [a for a, b in vote.spans if b - a == length]
-    if len(same) < copies_needed or length < 2:
+    copies = vote.full_copies
+    if copies < copies_needed or length < 2 or np.count_nonzero(
+            vote.shares >= params.conserve) < max(2, math.ceil(length / 2)):
         return False
     freq = np.bincount(string.codes) / len(string.codes)
     penalty = math.log10(max(2, int(np.count_nonzero(freq))))
     agreeing = 0
     for column, (sym, share) in enumerate(zip(vote.pattern, vote.shares.tolist())):
-        k = round(share * len(same))
+        k = round(share * copies)
         if share >= params.conserve and (not beyond_chance or log10_binom_sf(
-                k, len(same), float(freq[sym])) + penalty <= -2):
+                k, copies, float(freq[sym])) + penalty <= -2):
             agreeing += 1
     return agreeing >= max(2, math.ceil(length / 2))
 
