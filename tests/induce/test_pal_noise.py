@@ -159,3 +159,41 @@ def test_thirty_percent_noise_mostly_succeeds_and_variants_keep_up():
     hard = sum(success(PAL().induce((c := generate(seed=s, noise=0.28, **everything))
                                     .actiongram), c) for s in range(30))
     assert hard >= 27
+
+
+def _trim_reference(votes, edge_share):
+    def pooled(t):
+        total = 0.0
+        for v in votes.values():
+            hit = np.flatnonzero((v.column_start <= t) & (t < v.column_end))
+            if len(hit):
+                total += float(v.shares[hit[0]])
+        return total / len(votes)
+
+    out = {}
+    for i, v in votes.items():
+        middles = (v.column_start + v.column_end) / 2
+        first, last = 0, len(v.pattern)
+        while first < last and pooled(middles[first]) <= edge_share:
+            first += 1
+        while last > first and pooled(middles[last - 1]) <= edge_share:
+            last -= 1
+        out[i] = (first, last)
+    return out
+
+
+@settings(max_examples=150, deadline=None)
+@given(members=st.lists(st.tuples(st.integers(1, 7), st.integers(0, 10**6)), min_size=1,
+                        max_size=5),
+       edge_share=st.sampled_from([0.3, 0.5, 0.7]))
+def test_trim_equals_the_member_by_member_reference(members, edge_share):
+    from psgs.induce.pal.pooling import Vote, trim
+    votes = {}
+    for k, (length, seed) in enumerate(members):
+        rng = np.random.default_rng(seed)
+        copies = int(rng.integers(1, 5))
+        durations = rng.choice([0.5, 1.0, 1.5], size=(copies, length))
+        ends = np.cumsum(durations, axis=1) + rng.choice([0.0, 0.5], size=(copies, 1))
+        votes[k] = Vote(tuple(range(length)), rng.choice([0.2, 0.5, 0.6, 1.0], size=length),
+                        ends - durations, ends, ((0, length),) * copies, tuple(range(copies)))
+    assert trim(votes, edge_share) == _trim_reference(votes, edge_share)

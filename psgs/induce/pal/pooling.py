@@ -310,13 +310,24 @@ def trim(votes: dict[int, Vote], edge_share: float) -> dict[int, tuple[int, int]
     others do not share is trimmed, and a column damaged in one string but
     conserved in the others is kept.
     """
+    # every member's columns side by side (padding never holds a time); column times
+    # rise along a pattern (medians of rising offsets), so the first column ending after
+    # t is the only one that can hold it first
+    width = max(len(v.pattern) for v in votes.values())
+    starts = np.full((len(votes), width), np.inf)
+    ends = np.full((len(votes), width), np.inf)
+    shares = np.zeros((len(votes), width))
+    for row, v in enumerate(votes.values()):
+        starts[row, :len(v.pattern)] = v.column_start
+        ends[row, :len(v.pattern)] = v.column_end
+        shares[row, :len(v.pattern)] = v.shares
+    rows = np.arange(len(votes))
+
     def pooled(t: float) -> float:
-        total = 0.0
-        for v in votes.values():
-            hit = np.flatnonzero((v.column_start <= t) & (t < v.column_end))
-            if len(hit):
-                total += float(v.shares[hit[0]])
-        return total / len(votes)
+        count = np.count_nonzero(ends <= t, axis=1)
+        column = np.minimum(count, width - 1)
+        held = (count < width) & (starts[rows, column] <= t)
+        return sum(shares[rows[held], column[held]].tolist()) / len(votes)
 
     out = {}
     for i, v in votes.items():
