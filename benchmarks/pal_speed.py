@@ -221,8 +221,8 @@ def write_section() -> None:
         for r in table:
             if r["sweep"] != "length":
                 continue
-            lines.append(f"| {int(r['symbols']):,} | {r['strings']} x {r.get('string_length', '')} | "
-                         f"{float(r['pal_seconds']):.3f} | "
+            lines.append(f"| {int(r['symbols']):,} | {r['strings']} x "
+                         f"{r.get('string_length', '')} | {float(r['pal_seconds']):.3f} | "
                          f"{float(r['pal_symbols_per_s']):,.0f} | "
                          f"{float(r['peer_seconds']):.3f} | "
                          f"{float(r['peer_symbols_per_s']):,.0f} | "
