@@ -197,3 +197,20 @@ def test_trim_equals_the_member_by_member_reference(members, edge_share):
         votes[k] = Vote(tuple(range(length)), rng.choice([0.2, 0.5, 0.6, 1.0], size=length),
                         ends - durations, ends, ((0, length),) * copies, tuple(range(copies)))
     assert trim(votes, edge_share) == _trim_reference(votes, edge_share)
+
+
+@settings(max_examples=300, deadline=None)
+@given(parts=st.lists(st.lists(st.tuples(st.integers(0, 3), st.integers(1, 4)), min_size=1,
+                               max_size=12), min_size=2, max_size=2))
+def test_shared_clusters_count_what_merging_the_intervals_counts(parts):
+    from psgs.induce.pal.pooling import _shared_clusters, copy_clusters
+    lists = []
+    for steps in parts:  # disjoint intervals in time order: gaps (maybe 0) then widths
+        t, spans = 0.0, []
+        for gap, width in steps:
+            t += gap
+            spans.append((t, t + width))
+            t += width
+        lists.append(np.asarray(spans, dtype=float))
+    held = copy_clusters(lists)
+    assert _shared_clusters(*lists) == (int(np.count_nonzero(held.all(axis=1))), len(held))
