@@ -214,3 +214,15 @@ def test_shared_clusters_count_what_merging_the_intervals_counts(parts):
         lists.append(np.asarray(spans, dtype=float))
     held = copy_clusters(lists)
     assert _shared_clusters(*lists) == (int(np.count_nonzero(held.all(axis=1))), len(held))
+
+
+def test_windows_join_across_a_gap_one_member_runs_across():
+    from psgs.induce.pal.pooling import pooled_windows
+    # copies at 0-8, 10-18, ...: one member saw their start, one their end, one all of them
+    front = np.array([[10.0 * k, 10.0 * k + 3] for k in range(5)])
+    back = np.array([[10.0 * k + 5, 10.0 * k + 8] for k in range(5)])
+    whole = np.array([[10.0 * k, 10.0 * k + 8] for k in range(5)])
+    windows = pooled_windows([front, back, whole], 0.5)
+    assert windows.tolist() == [[10.0 * k, 10.0 * k + 8] for k in range(5)]
+    # copies that merely follow each other are never joined
+    assert pooled_windows([whole, whole + 0.0], 0.5).tolist() == whole.tolist()

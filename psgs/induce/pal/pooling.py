@@ -124,31 +124,39 @@ def pooled_windows(member_intervals: list[np.ndarray], support: float) -> np.nda
 
 
 def _join_fragments(core: np.ndarray, spans: np.ndarray) -> np.ndarray:
-    """Join touching cores that copies run across more than they stop or start at.
+    """Join consecutive cores that copies run across more than they stop or start between.
 
     Where one member repeats a shorter motif twice per copy of the others
     (and another misses its copy), coverage dips at the short motif's copy
     boundary; that instant is inside a copy for the members spanning it.
-    Where every member's copy ends and the next begins (no gap between
-    copies), nobody spans it and the cores stay apart.
+    Likewise where members' motifs cover different parts of a copy (one its
+    start, another its end) and one member's copy runs across the gap between
+    them. Where every member's copy ends and the next begins, nobody runs
+    across and the cores stay apart.
     """
     if len(core) < 2:
         return core
     eps = 1e-9 * max(1.0, float(np.abs(core).max()))
-    touching = np.flatnonzero(np.abs(core[1:, 0] - core[:-1, 1]) <= eps)
-    if len(touching) == 0:
-        return core
-    t = core[touching, 1]
+    # the gap between consecutive cores (an instant when they touch)
+    gap_start, gap_end = core[:-1, 1], core[1:, 0]
+    by_start = np.argsort(spans[:, 0], kind="stable")
+    first_times, last_times = spans[by_start, 0], spans[by_start, 1]
+    # copies running across a whole gap start before it, at most the longest copy before
+    lo = np.searchsorted(first_times, gap_start - float(np.max(spans[:, 1] - spans[:, 0]))
+                         - eps, side="left")
+    hi = np.searchsorted(first_times, gap_start - eps, side="left")
+    width = int(np.max(hi - lo)) if len(lo) else 0
+    index = np.minimum(lo[:, None] + np.arange(width), len(spans) - 1)
+    spanning = np.count_nonzero((index < hi[:, None])
+                                & (last_times[index] > gap_end[:, None] + eps), axis=1)
     starts, ends = np.sort(spans[:, 0]), np.sort(spans[:, 1])
-    spanning = (np.searchsorted(starts, t - eps, side="left")
-                - np.searchsorted(ends, t + eps, side="right"))
     # a member whose copy ends where its next begins counts once
-    stopping = np.maximum(np.searchsorted(starts, t + eps, side="right")
-                          - np.searchsorted(starts, t - eps, side="left"),
-                          np.searchsorted(ends, t + eps, side="right")
-                          - np.searchsorted(ends, t - eps, side="left"))
+    stopping = np.maximum(np.searchsorted(starts, gap_end + eps, side="right")
+                          - np.searchsorted(starts, gap_start - eps, side="left"),
+                          np.searchsorted(ends, gap_end + eps, side="right")
+                          - np.searchsorted(ends, gap_start - eps, side="left"))
     join = np.zeros(len(core), dtype=bool)  # join[k]: core k continues core k - 1
-    join[touching[(spanning >= 1) & (spanning >= stopping)] + 1] = True
+    join[np.flatnonzero((spanning >= 1) & (spanning >= stopping)) + 1] = True
     group = np.cumsum(~join) - 1
     low = np.full(group[-1] + 1, np.inf)
     high = np.full(group[-1] + 1, -np.inf)
