@@ -119,7 +119,7 @@ def exponents(rows: list[dict], key: str = "pal_seconds") -> tuple[float, float]
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="10^4 to 10^5 only, no files")
-    parser.add_argument("--repeat", type=int, default=5)
+    parser.add_argument("--repeat", type=int, default=9)
     args = parser.parse_args(argv)
     length_sweep = LENGTH_SWEEP[:3] if args.quick else LENGTH_SWEEP
     strings_sweep = tuple((s, 100, max(2, s * 8 // 100)) for s in (10, 30, 100)) \

@@ -195,7 +195,8 @@ def test_trim_equals_the_member_by_member_reference(members, edge_share):
         durations = rng.choice([0.5, 1.0, 1.5], size=(copies, length))
         ends = np.cumsum(durations, axis=1) + rng.choice([0.0, 0.5], size=(copies, 1))
         votes[k] = Vote(tuple(range(length)), rng.choice([0.2, 0.5, 0.6, 1.0], size=length),
-                        ends - durations, ends, ((0, length),) * copies, tuple(range(copies)))
+                        ends - durations, ends, np.tile([0, length], (copies, 1)),
+                        np.arange(copies))
     assert trim(votes, edge_share) == _trim_reference(votes, edge_share)
 
 

@@ -193,8 +193,13 @@ class Vote:
     shares: np.ndarray        # plurality share of each column
     offsets: np.ndarray       # (copies, columns): start and end time of each full copy's
     end_offsets: np.ndarray   # symbols from its window's start
-    spans: tuple[tuple[int, int], ...]  # symbol index range of each copy
-    window_of: tuple[int, ...]          # which window each copy lies in
+    bounds: np.ndarray        # (copies, 2): the symbol index range of each copy
+    windows_held: np.ndarray  # which window each copy lies in
+
+    @property
+    def spans(self) -> tuple[tuple[int, int], ...]:
+        """The symbol index range of each copy, as pairs."""
+        return tuple(map(tuple, self.bounds.tolist()))
 
     @property
     def full_copies(self) -> int:
@@ -236,8 +241,7 @@ def vote(string: Timed, windows: np.ndarray) -> Vote | None:
     ends = string.ends[index] - windows[full, 0][:, None]
     pattern, shares = _plurality(same)
     return Vote(tuple(pattern), shares, offsets, ends,
-                 tuple(zip(lo[picked].tolist(), hi[picked].tolist())),
-                 tuple(picked.tolist()))
+                 np.column_stack((lo[picked], hi[picked])), picked)
 
 
 def pooled_pattern(string: Timed, vote: Vote) -> tuple[int, ...]:
@@ -248,7 +252,7 @@ def pooled_pattern(string: Timed, vote: Vote) -> tuple[int, ...]:
     damaged) still holds that copy, and it votes here too (see
     :func:`_aligned`), ties going to the symbol seen first in time.
     """
-    spans = np.asarray(vote.spans, dtype=np.int64).reshape(-1, 2)
+    spans = vote.bounds
     length = len(vote.pattern)
     odd = spans[spans[:, 1] - spans[:, 0] != length]
     if len(odd) == 0:
