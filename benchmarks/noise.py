@@ -5,12 +5,19 @@ Run from the repository root (about 3 minutes on 2 cores):
     python benchmarks/noise.py [--trials 100] [--jobs 2]
 
 Writes docs/data/noise.csv (paper protocol, PAL and Sequential, 0 to 40% in
-steps of 2%), docs/data/noise_variants.csv (PAL on random durations,
+steps of 2%, and 25%), docs/data/noise_variants.csv (PAL on random durations,
 irregular gaps, unequal lengths and all three, 0 to 40% in steps of 4%),
-docs/data/noise_summary.json, the figures docs/img/noise_paper.png and
-docs/img/noise_variants.png (when matplotlib is installed), and the pal
+docs/data/noise_ceiling.csv (the information ceiling of the same actiongrams,
+see below), docs/data/noise_summary.json, the figures docs/img/noise_paper.png
+and docs/img/noise_variants.png (when matplotlib is installed), and the pal
 section of docs/benchmarks.md. The same sweep is available as
 ``psgs bench noise``.
+
+The information ceiling of a level is the share of its actiongrams where, at
+no template position of any patterned string, a wrong symbol outnumbers the
+true one across the true copies (``psgs.induce.synthetic.vote_margin`` >= 0),
+computed on exactly the actiongrams PAL is run on; "no tie" is the share where
+the true symbol leads everywhere (margin > 0), what a vote reaches without luck.
 """
 
 from __future__ import annotations
@@ -28,8 +35,10 @@ from pal_speed import write_section  # noqa: E402 (a sibling script, found the s
 
 from psgs.induce import PAL, Sequential  # noqa: E402
 from psgs.induce.sweep import noise_sweep  # noqa: E402
-from psgs.induce.synthetic import PAPER_POINTS, generate  # noqa: E402
-PAPER_LEVELS = tuple(round(0.02 * k, 2) for k in range(21))
+from psgs.induce.synthetic import PAPER_POINTS, generate, vote_margin  # noqa: E402
+
+# every 2%, and 25% itself (the issue's "100% through 25%")
+PAPER_LEVELS = tuple(sorted({round(0.02 * k, 2) for k in range(21)} | {0.25}))
 VARIANT_LEVELS = tuple(round(0.04 * k, 2) for k in range(11))
 VARIANTS = {"random durations": {"durations": "random"},
             "irregular gaps": {"irregular_gaps": True},
@@ -83,6 +92,13 @@ def main(argv=None) -> int:
     write_csv(DATA / "noise_variants.csv", HEADER,
               [row for name, rows in variant_rows.items() for row in sweep_rows(rows, name)])
 
+    ceiling = {"paper": ceiling_rows(PAPER_LEVELS, args.trials, {})}
+    for name, variant in VARIANTS.items():
+        ceiling[name] = ceiling_rows(VARIANT_LEVELS, args.trials, variant)
+    write_csv(DATA / "noise_ceiling.csv", ["variant", "noise", "trials", "ceiling", "no_tie"],
+              [[name, f"{lv:.2f}", args.trials, f"{c:.4f}", f"{t:.4f}"]
+               for name, rows in ceiling.items() for lv, c, t in rows])
+
     with_components = {"pal": 0, "sequential": 0}
     pal, seq = PAL(), Sequential()
     for t in range(args.random_trials):
@@ -92,6 +108,7 @@ def main(argv=None) -> int:
     print(f"all-random actiongrams with components: {with_components} of {args.random_trials}")
 
     by = {(r.inducer, r.noise): r.rate for r in paper_rows}
+    paper_ceiling = {lv: (c, t) for lv, c, t in ceiling["paper"]}
     summary = {
         "command": "python benchmarks/noise.py" + (f" --trials {args.trials}"
                                                    if args.trials != 100 else ""),
@@ -100,22 +117,26 @@ def main(argv=None) -> int:
         "pal_sweep_seconds": pal_wall,
         "pal_sweep_cpu_seconds": sum(r.cpu_seconds for r in pal_rows),
         "paper_table": [{"noise": lv, "pal": by["pal", lv], "sequential": by["sequential", lv],
-                         "paper": (f"{PAPER_POINTS[lv]:.0%}" if lv in PAPER_POINTS else "")}
+                         "paper": (f"{PAPER_POINTS[lv]:.0%}" if lv in PAPER_POINTS else ""),
+                         "ceiling": paper_ceiling[lv][0], "no_tie": paper_ceiling[lv][1]}
                         for lv in PAPER_LEVELS],
         "random_trials": args.random_trials, "random_with_components": with_components,
         "variants": {name: {f"{r.noise:.2f}": r.rate for r in rows}
                      for name, rows in variant_rows.items()},
+        "variant_ceiling": {name: {f"{lv:.2f}": c for lv, c, _ in rows}
+                            for name, rows in ceiling.items() if name != "paper"},
     }
     (DATA / "noise_summary.json").write_text(json.dumps(summary, indent=2) + "\n")
     for row in summary["paper_table"]:
-        print(f"{row['noise']:.2f}  PAL {row['pal']:.0%}  Sequential {row['sequential']:.0%}")
+        print(f"{row['noise']:.2f}  PAL {row['pal']:.0%}  Sequential {row['sequential']:.0%}  "
+              f"ceiling {row['ceiling']:.0%} (no tie {row['no_tie']:.0%})")
+    for name, rows in variant_rows.items():
+        print(f"{name}: " + ", ".join(f"{r.noise:.2f} {r.rate:.0%}" for r in rows))
     print(f"PAL sweep: {pal_wall:.1f} s wall ({args.jobs} jobs), "
           f"{summary['pal_sweep_cpu_seconds']:.1f} s CPU in the workers")
 
     try:
-        from psgs.cli.bench import plot_noise
-        plot_noise(paper_rows, str(IMG / "noise_paper.png"),
-                   title=f"Paper protocol, {args.trials} actiongrams per level")
+        plot_paper(paper_rows, ceiling["paper"], IMG / "noise_paper.png", args.trials)
         plot_variants(variant_rows, pal_rows, IMG / "noise_variants.png", args.trials)
     except ImportError:
         print("matplotlib is not installed: no figures (pip install 'psgs[plot]')",
@@ -123,6 +144,48 @@ def main(argv=None) -> int:
 
     write_section()
     return 0
+
+
+def ceiling_rows(levels, trials, variant):
+    """(level, share with margin >= 0, share with margin > 0) on the sweep's own actiongrams."""
+    out = []
+    for level in levels:
+        margins = [vote_margin(generate(seed=t, noise=float(level), **variant))
+                   for t in range(trials)]
+        out.append((float(level), sum(m >= 0 for m in margins) / trials,
+                    sum(m > 0 for m in margins) / trials))
+    return out
+
+
+def plot_paper(rows, ceiling, path, trials) -> None:
+    """PAL and Sequential beside the paper's points and the information ceiling."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(6.4, 4.0), dpi=120)
+    ax.fill_between([lv * 100 for lv, _, _ in ceiling], [c * 100 for _, c, _ in ceiling], 103,
+                    color="0.9", label="above the information ceiling")
+    ax.plot([lv * 100 for lv, _, _ in ceiling], [c * 100 for _, c, _ in ceiling], color="0.4",
+            lw=1.2, ls="--", label="ceiling: no wrong symbol outnumbers the true one")
+    styles = {"pal": ("tab:blue", "o", "PAL"), "sequential": ("tab:orange", "s", "Sequential")}
+    for name in dict.fromkeys(r.inducer for r in rows):
+        mine = sorted((r.noise, r.rate) for r in rows if r.inducer == name)
+        color, marker, label = styles.get(name, (None, "^", name))
+        ax.plot([x * 100 for x, _ in mine], [y * 100 for _, y in mine], marker=marker,
+                markersize=3.5, color=color, label=label)
+    ax.plot([x * 100 for x in PAPER_POINTS], [y * 100 for y in PAPER_POINTS.values()], "k*",
+            markersize=10, label="the paper (Fig. 4)")
+    ax.set_xlabel("noise (% of symbols replaced in each patterned string)")
+    ax.set_ylabel("success (% of actiongrams)")
+    ax.set_ylim(-3, 103)
+    ax.grid(alpha=0.3)
+    ax.legend(loc="center left", fontsize=8)
+    ax.set_title(f"Paper protocol, {trials} actiongrams per level", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
 
 
 def plot_variants(variant_rows, paper_rows, path, trials) -> None:

@@ -11,14 +11,16 @@ Ours (the paper's algorithm figure is lost), built to survive noise and
 irregular repetition -- ``docs/pal.md`` gives the details and every parameter:
 
 1. a motif per string, seeded by its most frequent digrams and grown one
-   conserved column at a time, its copies located again by a tolerant scan
-   after every step (damaged copies keep voting);
+   conserved column at a time (past a column noise damaged when the one
+   beyond is conserved), its copies located again by a tolerant scan after
+   every step (damaged copies keep voting);
 2. a significance screen against random strings of the same length and
    symbol frequencies;
 3. synchronisation in time: two strings are in step when most clusters of
    their overlapping copies hold copies of both;
 4. copies pooled over each group of synchronised strings: shared time
-   windows, one copy per member and window, the pattern by plurality vote,
+   windows, one copy per member and window, the pattern by plurality vote
+   over every copy (one a symbol too short or long for its window included),
    copies located again with the voted pattern (not a fixed period);
 5. strings too damaged to be significant alone join a group when, read in
    its windows, they repeat beyond chance; members that do not are dropped;

@@ -6,9 +6,11 @@ import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+import numpy as np
+
 from .motifs import Motif, Timed, find_motif
-from .pooling import (pooled_windows, relocate, repeats_in_windows, sync_groups, synchronised,
-                      trim, vote)
+from .pooling import (pooled_pattern, pooled_windows, relocate, repeats_in_windows, sync_groups,
+                      synchronised, trim, vote)
 
 if TYPE_CHECKING:
     from .learner import PAL
@@ -51,15 +53,18 @@ def pool_groups(strings: list[Timed], found: ContentResult, params: PAL) -> Cont
     grouped = {i for g in groups for i in g}
     for group in groups:
         located = {i: intervals[i] for i in group}
+        earlier = np.zeros((0, 2))
         members = list(group)
         for round_ in range(params.rounds):
             if round_ + 1 < params.rounds:
                 windows = pooled_windows([located[i] for i in members], params.window_support)
+                earlier = windows
                 votes = {i: v for i in members if (v := vote(strings[i], windows)) is not None}
                 kept_columns = trim(votes, params.edge_share) if votes else {}
                 # locate each member's copies again with its voted pattern
                 for i, (first, last) in kept_columns.items():
-                    again = relocate(strings[i], votes[i].pattern[first:last], params)
+                    pattern = pooled_pattern(strings[i], votes[i])
+                    again = relocate(strings[i], pattern[first:last], params)
                     if again is not None:
                         located[i] = again
                 continue
@@ -67,7 +72,8 @@ def pool_groups(strings: list[Timed], found: ContentResult, params: PAL) -> Cont
             # them in time (a random string's chance motif can); windows are redrawn
             # without the members that do not
             for _ in range(len(group)):
-                windows = pooled_windows([located[i] for i in members], params.window_support)
+                windows = with_earlier(pooled_windows([located[i] for i in members],
+                                                      params.window_support), earlier)
                 votes = {i: v for i in members
                          if (v := vote(strings[i], windows)) is not None
                          and repeats_in_windows(strings[i], v, params, params.min_copies,
@@ -91,7 +97,7 @@ def pool_groups(strings: list[Timed], found: ContentResult, params: PAL) -> Cont
                 continue
             v = votes[i]
             length = len(v.pattern)
-            patterns[i] = v.pattern[first:last]
+            patterns[i] = pooled_pattern(strings[i], v)[first:last]
             where = []
             for a, b in v.spans:
                 if b - a == length:
@@ -99,3 +105,22 @@ def pool_groups(strings: list[Timed], found: ContentResult, params: PAL) -> Cont
                 where.append((float(strings[i].starts[a]), float(strings[i].ends[b - 1])))
             occurrences[i] = tuple(where)
     return found
+
+
+def with_earlier(windows: np.ndarray, earlier: np.ndarray) -> np.ndarray:
+    """``windows`` and every earlier window that overlaps none of them, in time order.
+
+    Copies located again with a voted pattern miss the copies that noise
+    damaged in most members (the scan needs most positions to match); the
+    window the first round's copies found there still holds that copy, and
+    its damaged symbols still count in the vote.
+    """
+    if len(earlier) == 0 or len(windows) == 0:
+        return windows
+    first = np.searchsorted(windows[:, 1], earlier[:, 0], side="right")
+    last = np.searchsorted(windows[:, 0], earlier[:, 1], side="left")
+    alone = earlier[first >= last]
+    if len(alone) == 0:
+        return windows
+    both = np.concatenate((windows, alone))
+    return both[np.argsort(both[:, 0], kind="stable")]

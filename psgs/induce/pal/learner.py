@@ -3,6 +3,9 @@
 from __future__ import annotations
 
 from dataclasses import replace
+from itertools import chain
+
+import numpy as np
 
 from ...actiongram import Actiongram
 from ..base import Inducer, as_performances, check_choice, check_number
@@ -230,11 +233,43 @@ def _same_strings(performances):
 
 def encode(actiongram: Actiongram) -> tuple[list[Timed], list[str]]:
     """Each string as integer codes over one alphabet (symbols in order of first appearance)."""
-    alphabet: dict[str, int] = {}
-    strings = [Timed.build(syms, durs, origin, alphabet)
-               for syms, durs, origin in zip(actiongram.symbols, actiongram.segment_durations,
-                                             actiongram.origins)]
+    # one pass over the whole actiongram: per-symbol work is the floor of PAL's cost
+    flat = list(chain.from_iterable(actiongram.symbols))
+    codes, alphabet = _codes(flat)
+    durations = np.fromiter(chain.from_iterable(actiongram.segment_durations),
+                            dtype=np.float64, count=len(flat))
+    bounds = np.cumsum([0] + [len(syms) for syms in actiongram.symbols]).tolist()
+    strings = [Timed.from_codes(codes[a:b], durations[a:b], origin)
+               for a, b, origin in zip(bounds[:-1], bounds[1:], actiongram.origins)]
     return strings, list(alphabet)
+
+
+def _codes(flat: list[str]) -> tuple[np.ndarray, list[str]]:
+    """Integer codes of ``flat``'s symbols, numbered in order of first appearance."""
+    distinct = set(flat)
+    if not distinct:
+        return np.zeros(0, dtype=np.int64), []
+    if all(len(sym) == 1 for sym in distinct):
+        # one-character symbols: their code points, read in C, then renumbered
+        points = np.frombuffer("".join(flat).encode("utf-32-le"), dtype=np.uint32)
+        ordinals = np.asarray(sorted(map(ord, distinct)), dtype=np.uint32)
+        if int(ordinals[-1]) < 1 << 16:  # a table lookup is quicker than a search
+            table = np.zeros(int(ordinals[-1]) + 1, dtype=np.int64)
+            table[ordinals] = np.arange(len(ordinals))
+            index = table[points]
+        else:
+            index = np.searchsorted(ordinals, points)
+        symbols = [chr(o) for o in ordinals.tolist()]
+    else:
+        symbols = sorted(distinct)
+        lookup = {sym: k for k, sym in enumerate(symbols)}
+        index = np.fromiter(map(lookup.__getitem__, flat), dtype=np.int64, count=len(flat))
+    first = np.full(len(symbols), len(flat), dtype=np.int64)
+    np.minimum.at(first, index, np.arange(len(flat)))
+    order = np.argsort(first, kind="stable")
+    rank = np.empty(len(symbols), dtype=np.int64)
+    rank[order] = np.arange(len(symbols))
+    return rank[index], [symbols[k] for k in order.tolist()]
 
 
 def _reports(actiongram: Actiongram, found: ContentResult, period_used: bool,

@@ -14,6 +14,10 @@ if TYPE_CHECKING:
     from .learner import PAL
 
 
+#: farthest column looked at beyond a damaged one while growing
+_BRIDGE = 2
+
+
 @dataclass(frozen=True)
 class Timed:
     """One string as integer codes with start and end times."""
@@ -29,9 +33,13 @@ class Timed:
             alphabet.setdefault(sym, len(alphabet))
         codes = np.fromiter(map(alphabet.__getitem__, symbols), dtype=np.int64,
                             count=len(symbols))
-        durs = np.asarray(durations, dtype=np.float64)
-        ends = origin + np.cumsum(durs)
-        return cls(codes, ends - durs, ends)
+        return cls.from_codes(codes, np.asarray(durations, dtype=np.float64), origin)
+
+    @classmethod
+    def from_codes(cls, codes: np.ndarray, durations: np.ndarray, origin: float) -> "Timed":
+        """A string of integer ``codes`` whose segments last ``durations``, from ``origin``."""
+        ends = origin + np.cumsum(durations)
+        return cls(codes, ends - durations, ends)
 
     def intervals(self, copy_starts: np.ndarray, length: int) -> np.ndarray:
         """(k, 2) array: the time span of each copy of a motif of ``length`` symbols."""
@@ -65,16 +73,27 @@ def locate_copies(codes: np.ndarray, motif: np.ndarray, threshold: int) -> np.nd
     hits = np.flatnonzero(score >= threshold)
     if len(hits) == 0:
         return hits
-    order = hits[np.lexsort((hits, -score[hits]))]
     if np.all(score[hits] == length) and (len(hits) < 2 or np.min(np.diff(hits)) >= length):
         return hits  # exact, non-overlapping copies: nothing to choose
-    taken = np.zeros(n, dtype=bool)
-    chosen = []
-    for p in order:
-        if not taken[p:p + length].any():
-            taken[p:p + length] = True
-            chosen.append(p)
-    return np.sort(np.asarray(chosen, dtype=np.int64))
+    # best first, earlier first among equals: level by level, a window is kept when it
+    # overlaps no window kept at a higher level nor the one kept just before it
+    levels = score[hits]
+    chosen = np.zeros(0, dtype=np.int64)
+    for level in range(int(levels.max()), threshold - 1, -1):
+        here = hits[levels == level]
+        if len(here) == 0:
+            continue
+        if len(chosen):
+            at = np.searchsorted(chosen, here)
+            right = chosen[np.minimum(at, len(chosen) - 1)]
+            left = chosen[np.maximum(at - 1, 0)]
+            free = ((at >= len(chosen)) | (right - here >= length)) \
+                & ((at == 0) | (here - left >= length))
+            here = here[free]
+        if len(here) > 1 and np.min(np.diff(here)) < length:
+            here = here[_chain(here, length)]
+        chosen = np.sort(np.concatenate((chosen, here)))
+    return chosen
 
 
 def median_gap(starts: np.ndarray) -> int:
@@ -89,15 +108,22 @@ def merge_copies(old: np.ndarray, new: np.ndarray, length: int) -> np.ndarray:
     Copies located while the motif grew keep their place even when the longer
     motif no longer passes the scan (a damaged copy still shows the pattern).
     """
-    both = np.unique(np.concatenate((old, new)))
+    both = np.sort(np.concatenate((old, new)))
+    if len(both) > 1:
+        both = both[np.concatenate(([True], both[1:] != both[:-1]))]
     if len(both) < 2 or np.min(np.diff(both)) >= length:
         return both
-    kept, last = [], None
-    for p in both.tolist():
-        if last is None or p >= last + length:
-            kept.append(p)
-            last = p
-    return np.asarray(kept, dtype=np.int64)
+    return both[_chain(both, length)]
+
+
+def _chain(positions: np.ndarray, length: int) -> list[int]:
+    """Indices of the sorted ``positions`` kept left to right, each ``length`` after the last."""
+    following = np.searchsorted(positions, positions + length).tolist()
+    kept, at, end = [], 0, len(positions)
+    while at < end:
+        kept.append(at)
+        at = following[at]
+    return kept
 
 
 def find_motif(codes: np.ndarray, params: PAL) -> Motif | None:
@@ -115,7 +141,7 @@ def find_motif(codes: np.ndarray, params: PAL) -> Motif | None:
     distinct = int(np.count_nonzero(freq))
     match_rate = float(np.sum(freq ** 2))
     keys = codes[:-1] * size + codes[1:]
-    uniq, first, counts = np.unique(keys, return_index=True, return_counts=True)
+    uniq, first, counts = _digram_counts(keys, size * size)
     order = np.lexsort((first, -counts))
     best: Motif | None = None
     covered: set[int] = set()
@@ -128,7 +154,7 @@ def find_motif(codes: np.ndarray, params: PAL) -> Motif | None:
         tried += 1
         seed = np.array([uniq[index] // size, uniq[index] % size], dtype=np.int64)
         found = grow(codes, seed, np.flatnonzero(keys == uniq[index]), match_rate, distinct,
-                      params)
+                     params, seed_only=True)
         if found is None:
             continue
         covered.update((found.motif[:-1] * size + found.motif[1:]).tolist())
@@ -137,11 +163,26 @@ def find_motif(codes: np.ndarray, params: PAL) -> Motif | None:
     return best
 
 
+def _digram_counts(keys: np.ndarray, bins: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The distinct digram keys, where each first occurs, and how often (as ``np.unique``)."""
+    if bins > 4 * len(keys) + 4096:  # a large alphabet: sorting is cheaper than counting
+        return np.unique(keys, return_index=True, return_counts=True)
+    counts = np.bincount(keys, minlength=bins)
+    uniq = np.flatnonzero(counts)
+    first = np.full(bins, len(keys), dtype=np.int64)
+    np.minimum.at(first, keys, np.arange(len(keys)))
+    return uniq, first[uniq], counts[uniq]
+
+
 def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: float,
-          distinct: int, params: PAL) -> Motif | None:
-    """Grow ``motif`` one conserved column at a time from its copies at ``starts``."""
+          distinct: int, params: PAL, seed_only: bool = False) -> Motif | None:
+    """Grow ``motif`` one conserved column at a time from its copies at ``starts``.
+
+    ``seed_only``: ``motif`` is a digram and ``starts`` all its occurrences.
+    """
     n = len(codes)
     size = int(codes.max()) + 1
+    grown_from = motif
     while len(motif) < params.max_pattern:
         length = len(motif)
         spacing = median_gap(starts) if len(starts) > 1 else n
@@ -149,23 +190,34 @@ def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: f
             break
         choice = None
         for side in ("right", "left"):
-            pos = starts + length if side == "right" else starts - 1
-            pos = pos[(pos >= 0) & (pos < n)]
-            if len(pos) < params.min_copies:
-                continue
-            column = np.bincount(codes[pos], minlength=size)
-            sym = int(np.argmax(column))
-            k = int(column[sym])
-            if k < params.min_copies or k < params.conserve * len(pos):
-                continue
-            share = k / len(pos)
-            if choice is None or share > choice[0]:
-                choice = (share, side, sym)
+            # a column that noise damaged in many copies can be bridged when the
+            # column beyond it is conserved (its plurality still held by min_copies)
+            added: list[int] = []
+            for d in range(1, min(_BRIDGE, spacing - length, params.max_pattern - length)
+                           + 1):
+                pos = starts + length + d - 1 if side == "right" else starts - d
+                pos = pos[(pos >= 0) & (pos < n)]
+                if len(pos) < params.min_copies:
+                    break
+                column = np.bincount(codes[pos], minlength=size)
+                sym = int(np.argmax(column))
+                k = int(column[sym])
+                if k < params.min_copies:
+                    break
+                added.append(sym)
+                if k >= params.conserve * len(pos):
+                    rank = (d, -k / len(pos))
+                    if choice is None or rank < choice[0]:
+                        choice = (rank, side, added)
+                    break
         if choice is None:
             break
-        _, side, sym = choice
-        grown = np.append(motif, sym) if side == "right" else np.insert(motif, 0, sym)
-        kept = starts if side == "right" else starts - 1
+        (d, _), side, added = choice
+        if side == "right":
+            grown, kept = np.concatenate((motif, added)), starts
+        else:
+            grown, kept = np.concatenate((added[::-1], motif)), starts - d
+        grown = grown.astype(np.int64)
         kept = kept[(kept >= 0) & (kept + len(grown) <= n)]
         threshold = scan_threshold(len(grown), n - len(grown) + 1, match_rate, params)
         found = merge_copies(kept, locate_copies(codes, grown, threshold), len(grown))
@@ -182,7 +234,10 @@ def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: f
         found = locate_copies(codes, rotated, threshold)
         if len(found) >= len(starts):
             motif, starts = rotated, found
-    starts = merge_copies(starts, locate_copies(codes, motif, threshold), length)
+    if not (seed_only and len(motif) == 2 and motif[0] != motif[1] and threshold >= 2
+            and motif is grown_from):
+        # (a digram that did not grow: its exact occurrences are ``starts`` already)
+        starts = merge_copies(starts, locate_copies(codes, motif, threshold), length)
     if len(starts) < params.min_copies:
         return None
     lam = (n - length + 1) * 10 ** log10_binom_sf(threshold, length, match_rate)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -45,9 +46,34 @@ def synchronised(a: np.ndarray, b: np.ndarray, fraction: float, min_copies: int)
     """
     if len(a) == 0 or len(b) == 0:
         return False
-    held = copy_clusters([a, b])
-    both = int(np.count_nonzero(held.all(axis=1)))
-    return both >= min_copies and both >= fraction * len(held)
+    if _disjoint(a) and _disjoint(b):
+        both, clusters = _shared_clusters(a, b)
+    else:
+        held = copy_clusters([a, b])
+        both, clusters = int(np.count_nonzero(held.all(axis=1))), len(held)
+    return both >= min_copies and both >= fraction * clusters
+
+
+def _disjoint(spans: np.ndarray) -> bool:
+    """Whether intervals, in time order, neither overlap nor come out of order."""
+    return bool(np.all(spans[1:, 0] >= spans[:-1, 1]))
+
+
+def _shared_clusters(a: np.ndarray, b: np.ndarray) -> tuple[int, int]:
+    """What :func:`copy_clusters` finds for two lists of disjoint intervals, without sorting.
+
+    Each interval overlaps a run of the other list's; overlaps only join the
+    two lists, and on a line they form paths, so a cluster of k intervals has
+    k - 1 overlaps: clusters = intervals - overlaps, and the clusters holding
+    both lists = intervals that overlap something - overlaps.
+    """
+    runs_a = (np.searchsorted(b[:, 0], a[:, 1], side="left")
+              - np.searchsorted(b[:, 1], a[:, 0], side="right"))
+    runs_b = (np.searchsorted(a[:, 0], b[:, 1], side="left")
+              - np.searchsorted(a[:, 1], b[:, 0], side="right"))
+    overlaps = int(np.maximum(runs_a, 0).sum())
+    touching = int(np.count_nonzero(runs_a > 0) + np.count_nonzero(runs_b > 0))
+    return touching - overlaps, len(a) + len(b) - overlaps
 
 
 def sync_groups(candidates: list[int], partners: dict[int, list[int]]) -> list[list[int]]:
@@ -98,31 +124,39 @@ def pooled_windows(member_intervals: list[np.ndarray], support: float) -> np.nda
 
 
 def _join_fragments(core: np.ndarray, spans: np.ndarray) -> np.ndarray:
-    """Join touching cores that copies run across more than they stop or start at.
+    """Join consecutive cores that copies run across more than they stop or start between.
 
     Where one member repeats a shorter motif twice per copy of the others
     (and another misses its copy), coverage dips at the short motif's copy
     boundary; that instant is inside a copy for the members spanning it.
-    Where every member's copy ends and the next begins (no gap between
-    copies), nobody spans it and the cores stay apart.
+    Likewise where members' motifs cover different parts of a copy (one its
+    start, another its end) and one member's copy runs across the gap between
+    them. Where every member's copy ends and the next begins, nobody runs
+    across and the cores stay apart.
     """
     if len(core) < 2:
         return core
     eps = 1e-9 * max(1.0, float(np.abs(core).max()))
-    touching = np.flatnonzero(np.abs(core[1:, 0] - core[:-1, 1]) <= eps)
-    if len(touching) == 0:
-        return core
-    t = core[touching, 1]
+    # the gap between consecutive cores (an instant when they touch)
+    gap_start, gap_end = core[:-1, 1], core[1:, 0]
+    by_start = np.argsort(spans[:, 0], kind="stable")
+    first_times, last_times = spans[by_start, 0], spans[by_start, 1]
+    # copies running across a whole gap start before it, at most the longest copy before
+    lo = np.searchsorted(first_times, gap_start - float(np.max(spans[:, 1] - spans[:, 0]))
+                         - eps, side="left")
+    hi = np.searchsorted(first_times, gap_start - eps, side="left")
+    width = int(np.max(hi - lo)) if len(lo) else 0
+    index = np.minimum(lo[:, None] + np.arange(width), len(spans) - 1)
+    spanning = np.count_nonzero((index < hi[:, None])
+                                & (last_times[index] > gap_end[:, None] + eps), axis=1)
     starts, ends = np.sort(spans[:, 0]), np.sort(spans[:, 1])
-    spanning = (np.searchsorted(starts, t - eps, side="left")
-                - np.searchsorted(ends, t + eps, side="right"))
     # a member whose copy ends where its next begins counts once
-    stopping = np.maximum(np.searchsorted(starts, t + eps, side="right")
-                          - np.searchsorted(starts, t - eps, side="left"),
-                          np.searchsorted(ends, t + eps, side="right")
-                          - np.searchsorted(ends, t - eps, side="left"))
+    stopping = np.maximum(np.searchsorted(starts, gap_end + eps, side="right")
+                          - np.searchsorted(starts, gap_start - eps, side="left"),
+                          np.searchsorted(ends, gap_end + eps, side="right")
+                          - np.searchsorted(ends, gap_start - eps, side="left"))
     join = np.zeros(len(core), dtype=bool)  # join[k]: core k continues core k - 1
-    join[touching[(spanning >= 1) & (spanning >= stopping)] + 1] = True
+    join[np.flatnonzero((spanning >= 1) & (spanning >= stopping)) + 1] = True
     group = np.cumsum(~join) - 1
     low = np.full(group[-1] + 1, np.inf)
     high = np.full(group[-1] + 1, -np.inf)
@@ -157,10 +191,30 @@ class Vote:
 
     pattern: tuple[int, ...]
     shares: np.ndarray        # plurality share of each column
-    column_start: np.ndarray  # median time offset of each column from its window's start
-    column_end: np.ndarray
-    spans: tuple[tuple[int, int], ...]  # symbol index range of each copy
-    window_of: tuple[int, ...]          # which window each copy lies in
+    offsets: np.ndarray       # (copies, columns): start and end time of each full copy's
+    end_offsets: np.ndarray   # symbols from its window's start
+    bounds: np.ndarray        # (copies, 2): the symbol index range of each copy
+    windows_held: np.ndarray  # which window each copy lies in
+
+    @property
+    def spans(self) -> tuple[tuple[int, int], ...]:
+        """The symbol index range of each copy, as pairs."""
+        return tuple(map(tuple, self.bounds.tolist()))
+
+    @property
+    def full_copies(self) -> int:
+        """How many copies have the pattern's length (those the columns are read from)."""
+        return len(self.offsets)
+
+    @functools.cached_property
+    def column_start(self) -> np.ndarray:
+        """The median time offset of each column from its window's start."""
+        return np.median(self.offsets, axis=0)
+
+    @functools.cached_property
+    def column_end(self) -> np.ndarray:
+        """The median time offset of each column's end from its window's start."""
+        return np.median(self.end_offsets, axis=0)
 
 
 def vote(string: Timed, windows: np.ndarray) -> Vote | None:
@@ -185,17 +239,76 @@ def vote(string: Timed, windows: np.ndarray) -> Vote | None:
     same = string.codes[index]
     offsets = string.starts[index] - windows[full, 0][:, None]
     ends = string.ends[index] - windows[full, 0][:, None]
-    pattern, shares = [], []
-    for column in same.T:
-        tally = np.bincount(column)
-        top = tally.max()
-        # ties go to the symbol seen first in time
-        pattern.append(int(column[np.argmax(tally[column] == top)]))
-        shares.append(top / len(column))
-    return Vote(tuple(pattern), np.asarray(shares), np.median(offsets, axis=0),
-                 np.median(ends, axis=0),
-                 tuple(zip(lo[picked].tolist(), hi[picked].tolist())),
-                 tuple(picked.tolist()))
+    pattern, shares = _plurality(same)
+    return Vote(tuple(pattern), shares, offsets, ends,
+                 np.column_stack((lo[picked], hi[picked])), picked)
+
+
+def pooled_pattern(string: Timed, vote: Vote) -> tuple[int, ...]:
+    """The plurality pattern over all of a member's copies, damaged boundaries included.
+
+    ``vote.pattern`` reads only the copies of the common length; a window a
+    little too short or long for a copy (its boundary set by copies that noise
+    damaged) still holds that copy, and it votes here too (see
+    :func:`_aligned`), ties going to the symbol seen first in time.
+    """
+    spans = vote.bounds
+    length = len(vote.pattern)
+    odd = spans[spans[:, 1] - spans[:, 0] != length]
+    if len(odd) == 0:
+        return vote.pattern
+    full = spans[spans[:, 1] - spans[:, 0] == length]
+    same = string.codes[full[:, 0][:, None] + np.arange(length)]
+    rows = np.concatenate((np.flatnonzero(spans[:, 1] - spans[:, 0] == length),
+                           np.flatnonzero(spans[:, 1] - spans[:, 0] != length)))
+    voters = np.concatenate((same, _aligned(string.codes, odd[:, 0], odd[:, 1],
+                                            list(vote.pattern))))
+    voters = voters[np.argsort(rows, kind="stable")]  # in time order, for the ties
+    return tuple(_plurality(voters[voters[:, 0] >= 0])[0])
+
+
+def _plurality(copies: np.ndarray) -> tuple[list[int], np.ndarray]:
+    """Column-wise plurality symbol of ``copies`` and its share (rows in time order; ties:
+    first seen)."""
+    rows, length = copies.shape
+    size = int(copies.max()) + 1
+    tally = np.bincount((np.arange(length) * size + copies).ravel(),
+                        minlength=length * size).reshape(length, size)
+    top = tally.max(axis=1)
+    # per column, the first row whose symbol has the top count
+    first = np.argmax(tally[np.arange(length), copies] == top, axis=0)
+    return copies[first, np.arange(length)].tolist(), top / rows
+
+
+def _aligned(codes: np.ndarray, lo: np.ndarray, hi: np.ndarray, pattern: list[int]) -> np.ndarray:
+    """Copies of another length than the pattern's, read at the pattern's length.
+
+    A window a little too short or too long for a copy (its boundary set by
+    damaged copies) still holds that copy: it is read at the pattern's length
+    from the start, within ``length // 4`` symbols (one at least) of the
+    window's own, that covers the window's symbols and agrees best with
+    ``pattern``, when that start is unique and agrees in half the columns.
+    Rows of -1 stand for copies left out (so rows match ``lo``).
+    """
+    length = len(pattern)
+    out = np.full((len(lo), length), -1, dtype=np.int64)
+    reach = max(1, length // 4)
+    near = np.abs((hi - lo) - length) <= reach
+    shifts = np.arange(-reach, reach + 1)
+    starts = lo[:, None] + shifts[None, :]
+    size = (hi - lo)[:, None]
+    # the read covers the window (short copies) or lies within it (long ones)
+    fits = np.where(size < length, (starts <= lo[:, None]) & (starts + length >= hi[:, None]),
+                    (starts >= lo[:, None]) & (starts + length <= hi[:, None]))
+    fits &= (starts >= 0) & (starts + length <= len(codes)) & near[:, None]
+    index = np.clip(starts, 0, max(0, len(codes) - length))[:, :, None] + np.arange(length)
+    score = np.where(fits, (codes[index] == np.asarray(pattern)).sum(axis=2), -1)
+    best = score.max(axis=1)
+    unique = (score == best[:, None]).sum(axis=1) == 1
+    ok = unique & (2 * best >= length)
+    choice = np.argmax(score, axis=1)
+    out[ok] = codes[index[np.flatnonzero(ok), choice[ok]]]
+    return out
 
 
 def repeats_in_windows(string: Timed, vote: Vote, params: PAL, copies_needed: int,
@@ -210,16 +323,17 @@ def repeats_in_windows(string: Timed, vote: Vote, params: PAL, copies_needed: in
     of them could have been the plurality), below 0.01.
     """
     length = len(vote.pattern)
-    same = [a for a, b in vote.spans if b - a == length]
-    if len(same) < copies_needed or length < 2:
+    copies = vote.full_copies
+    if copies < copies_needed or length < 2 or np.count_nonzero(
+            vote.shares >= params.conserve) < max(2, math.ceil(length / 2)):
         return False
     freq = np.bincount(string.codes) / len(string.codes)
     penalty = math.log10(max(2, int(np.count_nonzero(freq))))
     agreeing = 0
     for column, (sym, share) in enumerate(zip(vote.pattern, vote.shares.tolist())):
-        k = round(share * len(same))
+        k = round(share * copies)
         if share >= params.conserve and (not beyond_chance or log10_binom_sf(
-                k, len(same), float(freq[sym])) + penalty <= -2):
+                k, copies, float(freq[sym])) + penalty <= -2):
             agreeing += 1
     return agreeing >= max(2, math.ceil(length / 2))
 
@@ -233,13 +347,24 @@ def trim(votes: dict[int, Vote], edge_share: float) -> dict[int, tuple[int, int]
     others do not share is trimmed, and a column damaged in one string but
     conserved in the others is kept.
     """
+    # every member's columns side by side (padding never holds a time); column times
+    # rise along a pattern (medians of rising offsets), so the first column ending after
+    # t is the only one that can hold it first
+    width = max(len(v.pattern) for v in votes.values())
+    starts = np.full((len(votes), width), np.inf)
+    ends = np.full((len(votes), width), np.inf)
+    shares = np.zeros((len(votes), width))
+    for row, v in enumerate(votes.values()):
+        starts[row, :len(v.pattern)] = v.column_start
+        ends[row, :len(v.pattern)] = v.column_end
+        shares[row, :len(v.pattern)] = v.shares
+    rows = np.arange(len(votes))
+
     def pooled(t: float) -> float:
-        total = 0.0
-        for v in votes.values():
-            hit = np.flatnonzero((v.column_start <= t) & (t < v.column_end))
-            if len(hit):
-                total += float(v.shares[hit[0]])
-        return total / len(votes)
+        count = np.count_nonzero(ends <= t, axis=1)
+        column = np.minimum(count, width - 1)
+        held = (count < width) & (starts[rows, column] <= t)
+        return sum(shares[rows[held], column[held]].tolist()) / len(votes)
 
     out = {}
     for i, v in votes.items():

@@ -35,6 +35,11 @@ def log10_poisson_sf(k: int, lam: float) -> float:
         return 0.0
     if lam <= 0:
         return -math.inf
+    if k <= lam:  # the tail is at least about a half: one minus the few terms below k
+        log_lam = math.log(lam)
+        below = math.fsum(math.exp(-lam + i * log_lam - math.lgamma(i + 1)) for i in range(k))
+        if below < 0.9:
+            return math.log10(1.0 - below)
     terms, i = [], k
     while True:
         t = -lam + i * math.log(lam) - math.lgamma(i + 1)
