@@ -23,7 +23,7 @@ channel, whether its kineteme string is the morpheme repeated ``K`` times.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -100,6 +100,7 @@ class Generated:
     channels: tuple[str, ...]
     words: dict
     segmentation: dict
+    methods: dict = field(default_factory=dict)
 
     def resegmented(self) -> dict[str, tuple[str, ...]]:
         """Per generated channel, its kineteme string when the motion is segmented again."""
@@ -160,6 +161,104 @@ def _balanced(kinetemes, displacements) -> np.ndarray:
     return d
 
 
+def _resegment(curve, rate, params, channel) -> tuple[str, ...]:
+    """The kineteme string the segmentation reads from one generated channel."""
+    import kinetology
+
+    found = kinetology.segments(kinetology.Motion(curve[:, None], (channel,), rate), **params)
+    return found.symbols(0) if found.channels else ()
+
+
+def _fit_lengths(knots, frames: int) -> np.ndarray:
+    """Segment lengths >= 1 frame adding up to ``frames - 1`` (the last frame ends the last)."""
+    lengths = np.maximum(np.diff(knots), 1)
+    while lengths.sum() > frames - 1 and lengths.max() > 1:  # rounding: from the longest
+        lengths[int(np.argmax(lengths))] -= 1
+    lengths[-1] += max(0, frames - 1 - int(lengths.sum()))
+    return lengths
+
+
+# minimum segment lengths (frames) tried when the learnt durations are too short for the
+# changes a morpheme makes: a quiet return to zero speed before a change of both signs
+# takes a few frames at any amplitude
+_MINIMUM_FRAMES = (4, 8, 12)
+_REACH = 1.25  # a generated channel's smoothed range is at least this many times min_range
+
+
+def _channel_curve(knots, sequence, steps, frames, rate, params, channel):
+    """One channel's curve and how it was made: the quartic alone, or with a correction.
+
+    The quartic, jerk-minimising reconstruction of the knots is the base. When
+    segmenting it again does not give ``sequence``, the correction layer
+    (:func:`praxicon.shaping.shape`) moves it, as little as it can, until it does; when
+    that has no answer at the learnt durations, segments shorter than a few frames
+    are lengthened (frames taken from the longest segments, so the channel keeps the
+    action's period) and the correction tried again.
+    """
+    from kinetology.codec import reconstruct
+    from kinetology.segmentation import DEFAULTS, STATES, smooth
+
+    from .shaping import lengthened, shape
+
+    settings = {**DEFAULTS, **params}
+
+    codes = np.array([STATES.index(k) for k in sequence], dtype=np.int8)
+    knot_values = np.concatenate(([0.0], np.cumsum(steps)))
+    lengths = _fit_lengths(knots, frames)
+    bounds = np.concatenate(([0], np.cumsum(lengths)))
+    base = reconstruct(bounds, codes, knot_values)
+    # a channel whose smoothed range is under the segmentation's min_range is "still" and has
+    # no kinetemes at all: such a morpheme's displacements are scaled up to 1.25 times it
+    reach = float(np.ptp(smooth(base, rate, settings["smoothing"])))
+    scale = 1.0
+    if reach < _REACH * settings["min_range"]:
+        scale = _REACH * settings["min_range"] / max(reach, 1e-9)
+        knot_values = knot_values * scale
+        base = reconstruct(bounds, codes, knot_values)
+    want = tuple(sequence)
+    if _resegment(base, rate, params, channel) == want:
+        return base, Method("quartic", 0.0, 0, scale)
+    status = "no answer"
+    for minimum in (1,) + _MINIMUM_FRAMES:
+        if minimum > 1:
+            longer = lengthened(lengths, minimum)
+            if longer is None or np.array_equal(longer, lengths):
+                continue
+            bounds = np.concatenate(([0], np.cumsum(longer)))
+            base = reconstruct(bounds, codes, knot_values)
+        shaped = shape(base, bounds, sequence, rate, params)
+        if shaped.status == "solved" and _resegment(shaped.curve, rate, params, channel) == want:
+            return shaped.curve, Method("corrected", shaped.change,
+                                        minimum if minimum > 1 else 0, scale)
+        status = shaped.status if shaped.status != "solved" else "re-segments otherwise"
+    return reconstruct(np.concatenate(([0], np.cumsum(lengths))), codes, knot_values), \
+        Method(f"failed: {status}", 0.0, 0, scale)
+
+
+@dataclass(frozen=True)
+class Method:
+    """How one generated channel was made.
+
+    Attributes
+    ----------
+    kind : str
+        ``"quartic"`` (the reconstruction alone re-segments exactly), ``"corrected"``
+        (the correction layer was needed) or ``"failed: REASON"``.
+    change : float
+        Largest change of the correction, degrees (0 for the quartic alone).
+    minimum_frames : int
+        When segments had to be lengthened to at least this many frames; 0 otherwise.
+    scale : float
+        The factor the learnt displacements were multiplied by (1: as learnt), when
+        the channel would otherwise move less than the segmentation's ``min_range``.
+    """
+
+    kind: str
+    change: float
+    minimum_frames: int
+    scale: float = 1.0
+
+
 def generate_motion(record: dict, repeat: int, source_motion=None):
     """The generated :class:`kinetology.Motion` of one action record, and its words.
 
@@ -167,8 +266,6 @@ def generate_motion(record: dict, repeat: int, source_motion=None):
     record's ``skeleton_source`` file, read).
     """
     import kinetology
-    from kinetology.codec import reconstruct
-    from kinetology.segmentation import STATES
     from psgs import loads
 
     if record.get("status") != "ok":
@@ -197,7 +294,8 @@ def generate_motion(record: dict, repeat: int, source_motion=None):
     channels = source_motion.channels
     pose = record["mean_pose"]
     values = np.tile([pose.get(c, 0.0) for c in channels], (frames, 1))
-    derived = {}
+    derived, methods = {}, {}
+    params = dict(record.get("segmentation") or {})
     for channel, morpheme in usable.items():
         word = words.get(record["component_names"].get(channel, channel))
         kinetemes = tuple(morpheme["kinetemes"])
@@ -210,18 +308,13 @@ def generate_motion(record: dict, repeat: int, source_motion=None):
         steps = np.tile(_balanced(kinetemes, morpheme["displacements"]), repeat)
         sequence, durations, steps = _merge_runs(kinetemes * repeat, durations, steps)
         knots = np.round(np.concatenate(([0.0], np.cumsum(durations))) * rate).astype(int)
-        knots = np.maximum.accumulate(np.maximum(knots, np.arange(knots.size)))
-        knots[-1] = max(knots[-1], frames - 1)
-        knot_values = np.concatenate(([0.0], np.cumsum(steps)))
-        codes = np.array([STATES.index(k) for k in sequence], dtype=np.int8)
-        curve = reconstruct(knots, codes, knot_values)
-        curve = curve[:frames] if curve.size >= frames else \
-            np.pad(curve, (0, frames - curve.size), mode="edge")
+        curve, method = _channel_curve(knots, sequence, steps, frames, rate, params, channel)
         values[:, channels.index(channel)] = curve - curve.mean() + pose.get(channel, 0.0)
         derived[channel] = sequence
+        methods[channel] = method
     motion = kinetology.Motion(values, channels, rate, skeleton,
                                f"generated:{record['name']}", {"format": "generated"})
-    return motion, derived
+    return motion, derived, methods
 
 
 def generate(folder: str | Path, action: str, *, repeat: int = 3, output: str | Path | None = None,
@@ -260,11 +353,11 @@ def generate(folder: str | Path, action: str, *, repeat: int = 3, output: str | 
     import kinetology
 
     record = load_record(folder, action)
-    motion, words = generate_motion(record, repeat)
+    motion, words, methods = generate_motion(record, repeat)
     if output is not None:
         kinetology.write_bvh(motion, output)
     result = Generated(motion, action, repeat, tuple(record["actuators"]), tuple(words), words,
-                       dict(record.get("segmentation") or {}))
+                       dict(record.get("segmentation") or {}), methods)
     if plot is not None:
         from .pictures import draw_generated
 

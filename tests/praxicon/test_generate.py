@@ -44,8 +44,8 @@ def test_a_smooth_morpheme_comes_back_from_segmentation(start, repeat, durations
     pattern = ("BGRY" * 2)[start:start + 4]
     signs = [1 if k in "BG" else -1 for k in pattern]
     record = _record(pattern, durations, [s * x for s, x in zip(signs, sizes)])
-    motion, words = generate_motion(record, repeat, source_motion=take(1))
-    generated = Generated(motion, "t", repeat, ("arm", "leg"), tuple(words), words, {})
+    motion, words, methods = generate_motion(record, repeat, source_motion=take(1))
+    generated = Generated(motion, "t", repeat, ("arm", "leg"), tuple(words), words, {}, methods)
     assert words["arm.rx"] == tuple(pattern) * repeat
     assert generated.round_trip() == {"arm.rx": True, "leg.rx": True}
     # the still channels stay at the mean pose; the arm swings around its mean
