@@ -30,7 +30,7 @@ import numpy as np
 
 from .store import load_record
 
-__all__ = ["Generated", "generate", "generate_motion", "derive_copies", "is_smooth_cycle"]
+__all__ = ["Generated", "Method", "generate", "generate_motion", "derive_copies", "is_smooth_cycle"]
 
 _RISING = {"B": 1.0, "G": 1.0, "R": -1.0, "Y": -1.0}
 # kineteme changes a smooth angle can make: one sign flips, and a velocity sign flips only
@@ -91,7 +91,14 @@ def derive_copies(system, copies: int, max_steps: int = 100_000):
 
 @dataclass(frozen=True, eq=False)
 class Generated:
-    """A generated motion, the channels it drives, and what they were made from."""
+    """A generated motion, the channels it drives, and what they were made from.
+
+    Built by :func:`generate` (or from :func:`generate_motion`'s results).
+
+    ``methods`` says per channel how its curve was made (:class:`Method`: the
+    quartic alone, or with the correction layer, with segments lengthened or
+    displacements scaled up), ``owners`` each channel's joint.
+    """
 
     motion: object
     action: str
@@ -101,6 +108,7 @@ class Generated:
     words: dict
     segmentation: dict
     methods: dict = field(default_factory=dict)
+    owners: dict = field(default_factory=dict)
 
     def resegmented(self) -> dict[str, tuple[str, ...]]:
         """Per generated channel, its kineteme string when the motion is segmented again."""
@@ -109,14 +117,38 @@ class Generated:
         again = kinetology.segment(self.motion, channels=list(self.channels), **self.segmentation)
         return {c: (again.string(c) if c in again.names else ()) for c in self.channels}
 
-    def round_trip(self, interior: bool = False) -> dict[str, bool]:
-        """Per generated channel: does re-segmenting give the morpheme repeated K times?
+    def round_trip(self, interior: bool = False, by: str = "channel") -> dict[str, bool]:
+        """Does re-segmenting give the morpheme repeated K times, per channel or per actuator?
 
-        With ``interior``, the first and last kineteme may differ (the segmentation's
-        smoothing flattens a turning point at the very start or end of a recording,
-        and its dead band may then absorb that first or last segment): the rest must
-        appear, unbroken, in the re-segmented string.
+        Parameters
+        ----------
+        interior : bool
+            Let the first and last kineteme differ: the rest must appear, unbroken, in
+            the re-segmented string (a looser check; the correction layer makes the
+            exact one hold).
+        by : {"channel", "actuator"}
+            Per generated channel, or per actuator (joint): True when every one of its
+            generated channels comes back.
+
+        Returns
+        -------
+        dict
+            Channel (or joint) name -> bool.
+
+        Raises
+        ------
+        ValueError
+            For another ``by``.
+
+        Examples
+        --------
+        >>> from praxicon.generation import generate
+        >>> generated = generate("out/px", "bye.byebye", repeat=3)  # doctest: +SKIP
+        >>> generated.round_trip(by="actuator")                     # doctest: +SKIP
+        {'UpperArm_L': True, 'LowerArm_L': True, ...}
         """
+        if by not in ("channel", "actuator"):
+            raise ValueError(f"by must be 'channel' or 'actuator', not {by!r}")
         out = {}
         for channel, got in self.resegmented().items():
             want = _merged(self.words[channel])
@@ -126,7 +158,13 @@ class Generated:
                 core = want[1:-1]
                 out[channel] = any(got[i:i + len(core)] == core
                                    for i in range(len(got) - len(core) + 1))
-        return out
+        if by == "channel":
+            return out
+        joints: dict[str, bool] = {}
+        for channel, ok in out.items():
+            joint = self.owners.get(channel, channel.split(".", 1)[0])
+            joints[joint] = joints.get(joint, True) and ok
+        return joints
 
 
 def _merged(word) -> tuple[str, ...]:
@@ -181,7 +219,8 @@ def _fit_lengths(knots, frames: int) -> np.ndarray:
 # minimum segment lengths (frames) tried when the learnt durations are too short for the
 # changes a morpheme makes: a quiet return to zero speed before a change of both signs
 # takes a few frames at any amplitude
-_MINIMUM_FRAMES = (4, 8, 12)
+_MINIMUM_FRAMES = (4, 8)
+_HARD_FRAMES = (10, 16, 24)  # likewise for the segments beside a change of both signs
 _REACH = 1.25  # a generated channel's smoothed range is at least this many times min_range
 
 
@@ -219,9 +258,18 @@ def _channel_curve(knots, sequence, steps, frames, rate, params, channel):
     if _resegment(base, rate, params, channel) == want:
         return base, Method("quartic", 0.0, 0, scale)
     status = "no answer"
-    for minimum in (1,) + _MINIMUM_FRAMES:
+    # the segments beside a change a smooth angle cannot make (_SMOOTH_STEPS) are where the
+    # correction needs time: lengthened first, then every segment
+    steps_made = list(zip(sequence, sequence[1:]))
+    hard = np.zeros(len(sequence), bool)
+    for i, step in enumerate(steps_made):
+        if step not in _SMOOTH_STEPS:
+            hard[i] = hard[i + 1] = True
+    tries = [(1, None)] + [(m, hard) for m in _HARD_FRAMES if hard.any()] + \
+        [(m, None) for m in _MINIMUM_FRAMES]
+    for minimum, which in tries:
         if minimum > 1:
-            longer = lengthened(lengths, minimum)
+            longer = lengthened(lengths, minimum, which)
             if longer is None or np.array_equal(longer, lengths):
                 continue
             bounds = np.concatenate(([0], np.cumsum(longer)))
@@ -251,6 +299,11 @@ class Method:
     scale : float
         The factor the learnt displacements were multiplied by (1: as learnt), when
         the channel would otherwise move less than the segmentation's ``min_range``.
+
+    Examples
+    --------
+    >>> Method("corrected", 0.4, 10)
+    Method(kind='corrected', change=0.4, minimum_frames=10, scale=1.0)
     """
 
     kind: str
@@ -356,8 +409,9 @@ def generate(folder: str | Path, action: str, *, repeat: int = 3, output: str | 
     motion, words, methods = generate_motion(record, repeat)
     if output is not None:
         kinetology.write_bvh(motion, output)
+    owners = {c: j for j in record["actuators"] for c in record["joints"][j]["morphemes"]}
     result = Generated(motion, action, repeat, tuple(record["actuators"]), tuple(words), words,
-                       dict(record.get("segmentation") or {}), methods)
+                       dict(record.get("segmentation") or {}), methods, owners)
     if plot is not None:
         from .pictures import draw_generated
 

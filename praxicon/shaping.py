@@ -47,6 +47,7 @@ _PEAK_MARGIN = 1.02   # a peak exceeds the dead band by 2 %
 _QUIET_MARGIN = 0.98  # a frame of the other sign stays under 98 % of the band's floor
 _ROUNDS = 3           # attempts at the relative dead band
 _ITERATIONS = 40      # simplex iterations per frame a programme may take
+_REACH = 1.1          # the smoothed range asked, in units of the segmentation's min_range
 
 
 @dataclass(frozen=True)
@@ -258,12 +259,25 @@ def shape(base, knots, symbols, frame_rate: float, segmentation: dict, *,
     b_abs = np.concatenate((base, -base, step @ base, -(step @ base)))
     dv, da = sparse.diags(v_signs.astype(float)), sparse.diags(a_signs.astype(float))
     zeros = sparse.csr_matrix((n, 2 * n - 1))
-    signs = sparse.vstack([-(dv @ mv), -(da @ ma)], format="csc")
-    rows = sparse.vstack([a_abs, sparse.hstack([signs, sparse.vstack([zeros, zeros])])],
+    # the channel must still move (a smoothed range under min_range is "still", no kinetemes):
+    # the smoothed curve rises by 1.1 min_range from where the base's is lowest to highest
+    from kinetology.segmentation import smooth
+
+    smoothed = smooth(np.eye(n), frame_rate, p["smoothing"])
+    low, high = int(np.argmin(smoothed @ base)), int(np.argmax(smoothed @ base))
+    if high < low:
+        low, high = high, low  # the order in time does not matter, only the two frames
+    reach = smoothed[high] - smoothed[low]
+    if (smoothed @ base)[high] < (smoothed @ base)[low]:
+        reach = -reach
+    signs = sparse.vstack([-(dv @ mv), -(da @ ma), sparse.csr_matrix(-reach[None, :])],
+                          format="csc")
+    rows = sparse.vstack([a_abs, sparse.hstack([signs, sparse.csr_matrix((2 * n + 1,
+                                                                              2 * n - 1))])],
                          format="csc")
     bounds = [(b - max_change, b + max_change) for b in base] + [(0, None)] * (2 * n - 1)
-    status = "infeasible"
-    for v_rule, a_rule in _STRATEGIES:
+    status, best = "infeasible", None
+    for v_rule, a_rule in _STRATEGIES:  # every placement of the peaks; the nearest answer wins
         peaks_v = _peaks(v_signs, mv @ base, v_first, v_rule)
         peaks_a = _peaks(a_signs, ma @ base, a_first, a_rule)
         # the dead band the answer will have is not known before it is found: it is assumed
@@ -274,7 +288,7 @@ def shape(base, knots, symbols, frame_rate: float, segmentation: dict, *,
         for _ in range(_ROUNDS):
             lower_v = _conditions(v_signs, peaks_v, bands["v"], bands["v"], eps_v)
             lower_a = _conditions(a_signs, peaks_a, bands["a"], bands["a"], eps_a)
-            lower = np.concatenate((lower_v, lower_a))
+            lower = np.concatenate((lower_v, lower_a, [_REACH * p["min_range"]]))
             # first only whether the conditions can hold (no objective: several times faster
             # to refute), then the nearest such curve, its simplex iterations capped (not its
             # time: the answer must not depend on the machine's load); at the cap the
@@ -290,17 +304,38 @@ def shape(base, knots, symbols, frame_rate: float, segmentation: dict, *,
             x = answer.x[:n] if answer.status == 0 else first.x
             got = {name: _band(m @ x, floors[name], relative) for name, m in (("v", mv), ("a", ma))}
             if all(_QUIET_MARGIN * bands[k] < got[k] < _PEAK_MARGIN * bands[k] for k in got):
-                return Shaped(x, "solved", float(np.abs(x - base).max()))
+                distance = float(np.abs(x - base).sum() + np.abs(np.diff(x - base)).sum())
+                if best is None or distance < best[0]:
+                    best = (distance, x)
+                break
             bands, status = got, "band"
+    if best is not None:
+        return Shaped(best[1], "solved", float(np.abs(best[1] - base).max()))
     return Shaped(base.copy(), status, 0.0)
 
 
-def lengthened(lengths, minimum: int) -> np.ndarray | None:
-    """Segment lengths (frames) with none under ``minimum``, the total kept.
+def lengthened(lengths, minimum: int, which=None, keep: int = 3) -> np.ndarray | None:
+    """Segment lengths (frames) with none of ``which`` under ``minimum``, the total kept.
 
-    The frames a short segment gains are taken from the longest ones, so the
-    channel stays in step with the others. None when the total cannot hold
-    ``minimum`` frames a segment.
+    The frames a short segment gains are taken from the longest of the others, none
+    of which is cut under ``keep`` frames (nor under ``minimum`` when ``which`` is
+    every segment), so the channel stays in step with the others. None when the
+    total cannot hold that.
+
+    Parameters
+    ----------
+    lengths : array_like of int
+        The segments' lengths in frames.
+    minimum : int
+        The least length of a segment in ``which``.
+    which : array_like of bool, optional
+        The segments to lengthen (default: all).
+    keep : int
+        The least length of a segment that gives frames away.
+
+    Returns
+    -------
+    numpy.ndarray or None
 
     Examples
     --------
@@ -308,14 +343,24 @@ def lengthened(lengths, minimum: int) -> np.ndarray | None:
     [3, 3, 7, 3]
     >>> lengthened([1, 2], 3) is None
     True
+    >>> lengthened([6, 13, 6, 13], 10, which=[True, False, True, False]).tolist()
+    [10, 9, 10, 9]
     """
     out = np.asarray(lengths, dtype=int).copy()
-    if out.sum() < minimum * out.size:
-        return None
-    need = int(np.maximum(minimum - out, 0).sum())
-    out = np.maximum(out, minimum)
-    while need > 0:  # one frame at a time from the longest (the first of equals): deterministic
-        longest = int(np.argmax(out))
-        out[longest] -= 1
+    every = which is None or bool(np.all(which))
+    which = np.ones(out.size, bool) if which is None else np.asarray(which, bool)
+    floor = np.full(out.size, minimum) if every else np.where(which, minimum,
+                                                              np.minimum(out, keep))
+    target = np.where(which, np.maximum(out, minimum), out)
+    need = int((target - out).sum())
+    out = target
+    while need > 0:  # one frame at a time from the longest donor (the first of equals)
+        room = out - floor
+        if not every:
+            room[which] = -1  # the segments lengthened give nothing away
+        donor = int(np.argmax(room))
+        if room[donor] <= 0:
+            return None
+        out[donor] -= 1
         need -= 1
     return out
