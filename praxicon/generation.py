@@ -142,10 +142,14 @@ class Generated:
 
         Examples
         --------
-        >>> from praxicon.generation import generate
-        >>> generated = generate("out/px", "bye.byebye", repeat=3)  # doctest: +SKIP
-        >>> generated.round_trip(by="actuator")                     # doctest: +SKIP
-        {'UpperArm_L': True, 'LowerArm_L': True, ...}
+        ``generate(DIR, ACTION).round_trip(by="actuator")`` gives e.g.
+        ``{'UpperArm_L': True, 'LowerArm_L': False, ...}``; the unit asked must be one of
+        the two:
+
+        >>> Generated(None, "a", 1, (), (), {}, {}).round_trip(by="joint")
+        Traceback (most recent call last):
+        ValueError: by must be 'channel' or 'actuator', not 'joint'
+
         """
         if by not in ("channel", "actuator"):
             raise ValueError(f"by must be 'channel' or 'actuator', not {by!r}")
