@@ -14,11 +14,16 @@ For an action of a praxicon, :func:`generate`:
 3. reconstructs each joint angle from those knots with kinetology's quartic,
    jerk-minimising decoder (:func:`kinetology.codec.reconstruct`), around the
    performances' mean angle;
-4. holds every other channel at the performances' mean pose, and writes a BVH
+4. segments each channel again at once, and where the quartic alone does not
+   give back its morpheme ``K`` times, corrects it with the frame-domain layer of
+   :mod:`praxicon.shaping` (segments lengthened within the period, or
+   displacements scaled up past ``min_range``, where that is what it takes);
+5. holds every other channel at the performances' mean pose, and writes a BVH
    file on the source skeleton (:func:`kinetology.write_bvh`).
 
 :meth:`Generated.round_trip` segments the generated motion again and says, per
-channel, whether its kineteme string is the morpheme repeated ``K`` times.
+channel (or per actuator), whether its kineteme string is the morpheme repeated
+``K`` times; :attr:`Generated.methods` says how each channel was made.
 """
 
 from __future__ import annotations
@@ -317,7 +322,10 @@ class Method:
 
 
 def generate_motion(record: dict, repeat: int, source_motion=None):
-    """The generated :class:`kinetology.Motion` of one action record, and its words.
+    """The generated :class:`kinetology.Motion` of one action record, its words, its methods.
+
+    Returns ``(motion, words, methods)``: the motion, per generated channel its merged
+    kineteme sequence, and per channel the :class:`Method` that made it.
 
     ``source_motion`` gives the skeleton and the channel order (default: the
     record's ``skeleton_source`` file, read).
