@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import importlib.machinery
 import importlib.util
 import io
 import os
@@ -39,9 +40,12 @@ from pathlib import Path
 
 from _common import REPO, require
 
-# this script's folder is first on sys.path, and this script is called praxicon.py: without
-# its folder there, "import praxicon" finds the package instead of this file
-sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != Path(__file__).resolve().parent]
+# this script is called praxicon.py and its folder comes first on the import path, so a plain
+# "import praxicon" would import this very file: the package is loaded from the repository
+_SPEC = importlib.machinery.PathFinder.find_spec("praxicon", [str(REPO)])
+if _SPEC is not None and "praxicon" not in sys.modules:
+    sys.modules["praxicon"] = importlib.util.module_from_spec(_SPEC)
+    _SPEC.loader.exec_module(sys.modules["praxicon"])
 require("praxicon")
 from praxicon import Settings, build, executor_for, load_record, read_datasets  # noqa: E402
 from praxicon.generation import generate, is_smooth_cycle  # noqa: E402
