@@ -22,14 +22,18 @@ the segmentation read exactly that run:
   BVH file's six decimals cannot undo), so the raw run that starts at ``s`` is the
   one that reaches the peak, and the next run starts at ``e``, not before;
 * at ``p`` the magnitude exceeds the dead band (by 2 %);
-* frames between may take the other sign, but only inside the dead band's
-  absolute floor (so they never count, whatever the relative band).
+* frames between may take the other sign, but only under 98 % of the dead band
+  (so they never count);
+* and the smoothed range is at least 1.1 times ``min_range`` (else the channel
+  is "still").
 
-The raw curve closest to the base in the L1 sense under these conditions is a
-linear programme (:func:`scipy.optimize.linprog`, HiGHS). The relative dead band
-(a share of the channel's own 95th-percentile speed) depends on the answer, so the
-band is assumed, checked on the answer and raised when it was too low (a few
-rounds). The result is always checked by segmenting it again.
+The raw curve closest to the base (L1, plus L1 of the correction's steps) under
+these conditions is a linear programme (:func:`scipy.optimize.linprog`, HiGHS dual
+simplex, its iterations capped). The relative dead band (a share of the channel's
+own 95th-percentile speed) depends on the answer, so the band is assumed, checked
+on the answer and the programme solved again with the answer's band when it moved
+(a few rounds). The peaks are placed three ways and the nearest answer kept. The
+caller checks every answer by segmenting it again.
 """
 
 from __future__ import annotations
@@ -38,13 +42,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Shaped", "derivative_matrices", "frame_signs", "shape"]
+__all__ = ["Shaped", "derivative_matrices", "frame_signs", "shape", "lengthened"]
 
 # effective signs of velocity and acceleration per state (B G R Y)
 _VELOCITY = {"B": 1, "G": 1, "R": -1, "Y": -1}
 _ACCELERATION = {"B": 1, "G": -1, "R": -1, "Y": 1}
 _PEAK_MARGIN = 1.02   # a peak exceeds the dead band by 2 %
-_QUIET_MARGIN = 0.98  # a frame of the other sign stays under 98 % of the band's floor
+_QUIET_MARGIN = 0.98  # a frame of the other sign stays under 98 % of the band
 _ROUNDS = 3           # attempts at the relative dead band
 _ITERATIONS = 40      # simplex iterations per frame a programme may take
 _REACH = 1.1          # the smoothed range asked, in units of the segmentation's min_range
