@@ -12,10 +12,13 @@ and reports both wall times and their ratio (the same praxicon bytes both times,
 * **actuators against the truth**: each learnt action's joints scored with the truth table and
   the scoring of ``benchmarks/actuators.py`` (active and inactive major joints; distal, girdle
   and axial joints don't-care), per dataset;
-* **generation round trip**: every learnt action generated with ``--repeat`` copies and
-  segmented again; per actuator channel, whether its kineteme string is the morpheme repeated
-  K times (exactly, and in its interior), over all channels and over those whose morpheme is a
-  smooth cycle (:func:`praxicon.generation.is_smooth_cycle`).
+* **generation round trip**: every learnt action generated with each ``--repeat`` K (3 and 1
+  by default, on 2 processes) and segmented again; per actuator channel, whether its kineteme
+  string is the morpheme repeated K times, how it was made (the quartic alone, or with the
+  correction layer, segments lengthened), per actuator whether all its channels came back, and
+  over the channels whose morpheme is a smooth cycle (:func:`praxicon.generation.is_smooth_cycle`).
+  The channels that do not come back, with generation's reason, go to
+  ``docs/data/praxicon_generation.csv``.
 
 Writes ``docs/data/praxicon.csv`` (one row per action) and the summary into
 ``docs/benchmarks.md`` between ``<!-- praxicon:start -->`` and ``<!-- praxicon:end -->``.
@@ -25,6 +28,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import importlib.machinery
 import importlib.util
 import io
 import os
@@ -36,6 +40,12 @@ from pathlib import Path
 
 from _common import REPO, require
 
+# this script is called praxicon.py and its folder comes first on the import path, so a plain
+# "import praxicon" would import this very file: the package is loaded from the repository
+_SPEC = importlib.machinery.PathFinder.find_spec("praxicon", [str(REPO)])
+if _SPEC is not None and "praxicon" not in sys.modules:
+    sys.modules["praxicon"] = importlib.util.module_from_spec(_SPEC)
+    _SPEC.loader.exec_module(sys.modules["praxicon"])
 require("praxicon")
 from praxicon import Settings, build, executor_for, load_record, read_datasets  # noqa: E402
 from praxicon.generation import generate, is_smooth_cycle  # noqa: E402
@@ -93,23 +103,43 @@ def score_actions(folder: Path, index: dict) -> list[dict]:
     return rows
 
 
-def round_trips(folder: Path, index: dict, repeat: int) -> dict:
-    counts = {"all": [0, 0, 0], "smooth": [0, 0, 0]}
-    for action in index["actions"]:
-        if action["status"] != "ok" or not action.get("actuators"):
-            continue
-        try:
-            generated = generate(folder, action["name"], repeat=repeat)
-        except ValueError:
-            continue
-        exact, interior = generated.round_trip(), generated.round_trip(interior=True)
-        for channel in generated.channels:
-            kinds = ["all"] + (["smooth"] if is_smooth_cycle(generated.words[channel]) else [])
-            for kind in kinds:
-                counts[kind][0] += 1
-                counts[kind][1] += exact[channel]
-                counts[kind][2] += interior[channel]
-    return counts
+def _action_trip(folder: str, name: str, repeat: int):
+    """One action generated and segmented again: per channel and per actuator, what came back."""
+    try:
+        generated = generate(folder, name, repeat=repeat)
+    except ValueError:
+        return None
+    exact, interior = generated.round_trip(), generated.round_trip(interior=True)
+    channels = [{"exact": exact[c], "interior": interior[c],
+                 "smooth": is_smooth_cycle(generated.words[c]),
+                 "method": generated.methods[c].kind.split(":")[0],
+                 "lengthened": generated.methods[c].minimum_frames > 0,
+                 "scaled": generated.methods[c].scale > 1.0,
+                 "channel": c, "reason": generated.methods[c].kind}
+                for c in generated.channels]
+    return name, channels, generated.round_trip(by="actuator")
+
+
+def round_trips(folder: Path, index: dict, repeat: int, workers: int = 2) -> dict:
+    """Every learnt action generated with ``repeat`` copies, on ``workers`` processes."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    learnt = [a for a in index["actions"] if a["status"] == "ok" and a.get("actuators")]
+    # the 120 fps actions (the longest programmes) first, so that none of them starts last
+    names = [a["name"] for a in sorted(learnt, key=lambda a: (-a.get("frame_rate", 0),
+                                                               a["name"]))]
+    with ProcessPoolExecutor(workers) as pool:
+        results = [r for r in pool.map(_action_trip, [str(folder)] * len(names), names,
+                                       [repeat] * len(names)) if r is not None]
+    channels = [c for _, cs, _ in results for c in cs]
+    actuators = [ok for _, _, joints in results for ok in joints.values()]
+    failed = [(name, c["channel"], c["reason"]) for name, cs, _ in results for c in cs
+              if not c["exact"]]
+    return {"channels": channels, "actuators": actuators, "failed": failed}
+
+
+def _share(count: int, total: int) -> str:
+    return f"{count} ({count / total:.0%})" if total else "0"
 
 
 def summarise(times, rows, trips, repeat, same_bytes, index) -> str:
@@ -136,14 +166,31 @@ def summarise(times, rows, trips, repeat, same_bytes, index) -> str:
                     ("precision", "recall", "f1")}
             out.write(f"| {dataset} | {len(scored)} | {mean['precision']:.2f} | "
                       f"{mean['recall']:.2f} | {mean['f1']:.2f} |\n")
-    out.write(f"\nGeneration round trip ({repeat} copies, re-segmented with the same "
-              f"parameters), per actuator channel:\n\n| channels | count | exactly the morpheme "
-              f"x {repeat} | in the interior |\n|---|---|---|---|\n")
-    for kind, label in (("all", "all"), ("smooth", "morpheme a smooth cycle")):
-        n, exact, inner = trips[kind]
-        if n:
-            out.write(f"| {label} | {n} | {exact} ({exact / n:.0%}) | {inner} "
-                      f"({inner / n:.0%}) |\n")
+    out.write("\nGeneration round trip (every learnt action generated with K copies and "
+              "re-segmented with the same parameters; `Generated.round_trip`):\n\n"
+              "| K | actuator channels | exactly the morpheme x K | of them by the quartic alone "
+              "| by the correction layer (segments lengthened) | actuators, every channel "
+              "exact | channels whose morpheme is a smooth cycle: exact |\n"
+              "|---|---|---|---|---|---|---|\n")
+    for k in repeat:
+        got = trips[k]
+        chans = got["channels"]
+        exact = [c for c in chans if c["exact"]]
+        smooth = [c for c in chans if c["smooth"]]
+        out.write(f"| {k} | {len(chans)} | **{_share(len(exact), len(chans))}** | "
+                  f"{sum(c['method'] == 'quartic' for c in exact)} | "
+                  f"{sum(c['method'] == 'corrected' for c in exact)} "
+                  f"({sum(c['lengthened'] for c in exact)}) | "
+                  f"{_share(sum(got['actuators']), len(got['actuators']))} | "
+                  f"{_share(sum(c['exact'] for c in smooth), len(smooth))} |\n")
+    first = trips[repeat[0]]
+    reasons: dict[str, int] = {}
+    for _, _, reason in first["failed"]:
+        reasons[reason] = reasons.get(reason, 0) + 1
+    if reasons:
+        out.write(f"\nThe channels that do not come back at K = {repeat[0]}, by the reason "
+                  f"generation gives: " + ", ".join(f"{n} `{r}`" for r, n in
+                                                    sorted(reasons.items())) + ".\n")
     return out.getvalue()
 
 
@@ -168,7 +215,8 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=None,
                         help="keep the 2-worker praxicon here (default: a temporary folder)")
-    parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--repeat", default="3,1",
+                        help="copies generated for the round trip, comma-separated")
     parser.add_argument("--runs", type=int, default=2,
                         help="builds of each kind, alternating; the best of each is reported")
     parser.add_argument("--no-docs", action="store_true")
@@ -192,11 +240,21 @@ def main(argv=None) -> int:
         t1, t2 = min(one), min(two)
         same = _files(scratch / "one") == _files(out)
         rows = score_actions(out, index)
-        trips = round_trips(out, index, args.repeat)
-        summary = summarise(((t1, t2), args.runs), rows, trips, args.repeat, same, index)
+        repeat = [int(k) for k in args.repeat.split(",")]
+        trips = {}
+        for k in repeat:
+            began = time.perf_counter()
+            trips[k] = round_trips(out, index, k)
+            print(f"round trip K={k}: {time.perf_counter() - began:.0f} s", file=sys.stderr)
+        summary = summarise(((t1, t2), args.runs), rows, trips, repeat, same, index)
         print(summary)
         if not args.no_docs:
             write_docs(summary, rows)
+            with (DOCS / "data" / "praxicon_generation.csv").open("w", newline="") as handle:
+                writer = csv.writer(handle, lineterminator="\n")
+                writer.writerow(["repeat", "action", "channel", "reason"])
+                for k in repeat:
+                    writer.writerows([k, *row] for row in sorted(trips[k]["failed"]))
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
     return 0

@@ -14,23 +14,28 @@ For an action of a praxicon, :func:`generate`:
 3. reconstructs each joint angle from those knots with kinetology's quartic,
    jerk-minimising decoder (:func:`kinetology.codec.reconstruct`), around the
    performances' mean angle;
-4. holds every other channel at the performances' mean pose, and writes a BVH
+4. segments each channel again at once, and where the quartic alone does not
+   give back its morpheme ``K`` times, corrects it with the frame-domain layer of
+   :mod:`praxicon.shaping` (segments lengthened within the period, or
+   displacements scaled up past ``min_range``, where that is what it takes);
+5. holds every other channel at the performances' mean pose, and writes a BVH
    file on the source skeleton (:func:`kinetology.write_bvh`).
 
 :meth:`Generated.round_trip` segments the generated motion again and says, per
-channel, whether its kineteme string is the morpheme repeated ``K`` times.
+channel (or per actuator), whether its kineteme string is the morpheme repeated
+``K`` times; :attr:`Generated.methods` says how each channel was made.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from .store import load_record
 
-__all__ = ["Generated", "generate", "generate_motion", "derive_copies", "is_smooth_cycle"]
+__all__ = ["Generated", "Method", "generate", "generate_motion", "derive_copies", "is_smooth_cycle"]
 
 _RISING = {"B": 1.0, "G": 1.0, "R": -1.0, "Y": -1.0}
 # kineteme changes a smooth angle can make: one sign flips, and a velocity sign flips only
@@ -91,7 +96,14 @@ def derive_copies(system, copies: int, max_steps: int = 100_000):
 
 @dataclass(frozen=True, eq=False)
 class Generated:
-    """A generated motion, the channels it drives, and what they were made from."""
+    """A generated motion, the channels it drives, and what they were made from.
+
+    Built by :func:`generate` (or from :func:`generate_motion`'s results).
+
+    ``methods`` says per channel how its curve was made (:class:`Method`: the
+    quartic alone, or with the correction layer, with segments lengthened or
+    displacements scaled up), ``owners`` each channel's joint.
+    """
 
     motion: object
     action: str
@@ -100,6 +112,8 @@ class Generated:
     channels: tuple[str, ...]
     words: dict
     segmentation: dict
+    methods: dict = field(default_factory=dict)
+    owners: dict = field(default_factory=dict)
 
     def resegmented(self) -> dict[str, tuple[str, ...]]:
         """Per generated channel, its kineteme string when the motion is segmented again."""
@@ -108,14 +122,42 @@ class Generated:
         again = kinetology.segment(self.motion, channels=list(self.channels), **self.segmentation)
         return {c: (again.string(c) if c in again.names else ()) for c in self.channels}
 
-    def round_trip(self, interior: bool = False) -> dict[str, bool]:
-        """Per generated channel: does re-segmenting give the morpheme repeated K times?
+    def round_trip(self, interior: bool = False, by: str = "channel") -> dict[str, bool]:
+        """Does re-segmenting give the morpheme repeated K times, per channel or per actuator?
 
-        With ``interior``, the first and last kineteme may differ (the segmentation's
-        smoothing flattens a turning point at the very start or end of a recording,
-        and its dead band may then absorb that first or last segment): the rest must
-        appear, unbroken, in the re-segmented string.
+        Parameters
+        ----------
+        interior : bool
+            Let the first and last kineteme differ: the rest must appear, unbroken, in
+            the re-segmented string (a looser check; the correction layer makes the
+            exact one hold).
+        by : {"channel", "actuator"}
+            Per generated channel, or per actuator (joint): True when every one of its
+            generated channels comes back.
+
+        Returns
+        -------
+        dict
+            Channel (or joint) name -> bool.
+
+        Raises
+        ------
+        ValueError
+            For another ``by``.
+
+        Examples
+        --------
+        ``generate(DIR, ACTION).round_trip(by="actuator")`` gives e.g.
+        ``{'UpperArm_L': True, 'LowerArm_L': False, ...}``; the unit asked must be one of
+        the two:
+
+        >>> Generated(None, "a", 1, (), (), {}, {}).round_trip(by="joint")
+        Traceback (most recent call last):
+        ValueError: by must be 'channel' or 'actuator', not 'joint'
+
         """
+        if by not in ("channel", "actuator"):
+            raise ValueError(f"by must be 'channel' or 'actuator', not {by!r}")
         out = {}
         for channel, got in self.resegmented().items():
             want = _merged(self.words[channel])
@@ -125,7 +167,13 @@ class Generated:
                 core = want[1:-1]
                 out[channel] = any(got[i:i + len(core)] == core
                                    for i in range(len(got) - len(core) + 1))
-        return out
+        if by == "channel":
+            return out
+        joints: dict[str, bool] = {}
+        for channel, ok in out.items():
+            joint = self.owners.get(channel, channel.split(".", 1)[0])
+            joints[joint] = joints.get(joint, True) and ok
+        return joints
 
 
 def _merged(word) -> tuple[str, ...]:
@@ -160,15 +208,129 @@ def _balanced(kinetemes, displacements) -> np.ndarray:
     return d
 
 
+def _resegment(curve, rate, params, channel) -> tuple[str, ...]:
+    """The kineteme string the segmentation reads from one generated channel."""
+    import kinetology
+
+    found = kinetology.segments(kinetology.Motion(curve[:, None], (channel,), rate), **params)
+    return found.symbols(0) if found.channels else ()
+
+
+def _fit_lengths(knots, frames: int) -> np.ndarray:
+    """Segment lengths >= 1 frame adding up to ``frames - 1`` (the last frame ends the last)."""
+    lengths = np.maximum(np.diff(knots), 1)
+    while lengths.sum() > frames - 1 and lengths.max() > 1:  # rounding: from the longest
+        lengths[int(np.argmax(lengths))] -= 1
+    lengths[-1] += max(0, frames - 1 - int(lengths.sum()))
+    return lengths
+
+
+# minimum segment lengths (frames) tried when the learnt durations are too short for the
+# changes a morpheme makes: a quiet return to zero speed before a change of both signs
+# takes a few frames at any amplitude
+_MINIMUM_FRAMES = (4, 8)
+_HARD_FRAMES = (10, 16, 24)  # likewise for the segments beside a change of both signs
+_REACH = 1.25  # a generated channel's smoothed range is at least this many times min_range
+
+
+def _channel_curve(knots, sequence, steps, frames, rate, params, channel):
+    """One channel's curve and how it was made: the quartic alone, or with a correction.
+
+    The quartic, jerk-minimising reconstruction of the knots is the base. When
+    segmenting it again does not give ``sequence``, the correction layer
+    (:func:`praxicon.shaping.shape`) moves it, as little as it can, until it does; when
+    that has no answer at the learnt durations, segments shorter than a few frames
+    are lengthened (frames taken from the longest segments, so the channel keeps the
+    action's period) and the correction tried again.
+    """
+    from kinetology.codec import reconstruct
+    from kinetology.segmentation import DEFAULTS, STATES, smooth
+
+    from .shaping import lengthened, shape
+
+    settings = {**DEFAULTS, **params}
+
+    codes = np.array([STATES.index(k) for k in sequence], dtype=np.int8)
+    knot_values = np.concatenate(([0.0], np.cumsum(steps)))
+    lengths = _fit_lengths(knots, frames)
+    bounds = np.concatenate(([0], np.cumsum(lengths)))
+    base = reconstruct(bounds, codes, knot_values)
+    # a channel whose smoothed range is under the segmentation's min_range is "still" and has
+    # no kinetemes at all: such a morpheme's displacements are scaled up to 1.25 times it
+    reach = float(np.ptp(smooth(base, rate, settings["smoothing"])))
+    scale = 1.0
+    if reach < _REACH * settings["min_range"]:
+        scale = _REACH * settings["min_range"] / max(reach, 1e-9)
+        knot_values = knot_values * scale
+        base = reconstruct(bounds, codes, knot_values)
+    want = tuple(sequence)
+    if _resegment(base, rate, params, channel) == want:
+        return base, Method("quartic", 0.0, 0, scale)
+    status = "no answer"
+    # the segments beside a change a smooth angle cannot make (_SMOOTH_STEPS) are where the
+    # correction needs time: lengthened first, then every segment
+    steps_made = list(zip(sequence, sequence[1:]))
+    hard = np.zeros(len(sequence), bool)
+    for i, step in enumerate(steps_made):
+        if step not in _SMOOTH_STEPS:
+            hard[i] = hard[i + 1] = True
+    tries = [(1, None)] + [(m, hard) for m in _HARD_FRAMES if hard.any()] + \
+        [(m, None) for m in _MINIMUM_FRAMES]
+    for minimum, which in tries:
+        if minimum > 1:
+            longer = lengthened(lengths, minimum, which)
+            if longer is None or np.array_equal(longer, lengths):
+                continue
+            bounds = np.concatenate(([0], np.cumsum(longer)))
+            base = reconstruct(bounds, codes, knot_values)
+        shaped = shape(base, bounds, sequence, rate, params)
+        if shaped.status == "solved" and _resegment(shaped.curve, rate, params, channel) == want:
+            return shaped.curve, Method("corrected", shaped.change,
+                                        minimum if minimum > 1 else 0, scale)
+        status = shaped.status if shaped.status != "solved" else "re-segments otherwise"
+    return reconstruct(np.concatenate(([0], np.cumsum(lengths))), codes, knot_values), \
+        Method(f"failed: {status}", 0.0, 0, scale)
+
+
+@dataclass(frozen=True)
+class Method:
+    """How one generated channel was made.
+
+    Attributes
+    ----------
+    kind : str
+        ``"quartic"`` (the reconstruction alone re-segments exactly), ``"corrected"``
+        (the correction layer was needed) or ``"failed: REASON"``.
+    change : float
+        Largest change of the correction, degrees (0 for the quartic alone).
+    minimum_frames : int
+        When segments had to be lengthened to at least this many frames; 0 otherwise.
+    scale : float
+        The factor the learnt displacements were multiplied by (1: as learnt), when
+        the channel would otherwise move less than the segmentation's ``min_range``.
+
+    Examples
+    --------
+    >>> Method("corrected", 0.4, 10)
+    Method(kind='corrected', change=0.4, minimum_frames=10, scale=1.0)
+    """
+
+    kind: str
+    change: float
+    minimum_frames: int
+    scale: float = 1.0
+
+
 def generate_motion(record: dict, repeat: int, source_motion=None):
-    """The generated :class:`kinetology.Motion` of one action record, and its words.
+    """The generated :class:`kinetology.Motion` of one action record, its words, its methods.
+
+    Returns ``(motion, words, methods)``: the motion, per generated channel its merged
+    kineteme sequence, and per channel the :class:`Method` that made it.
 
     ``source_motion`` gives the skeleton and the channel order (default: the
     record's ``skeleton_source`` file, read).
     """
     import kinetology
-    from kinetology.codec import reconstruct
-    from kinetology.segmentation import STATES
     from psgs import loads
 
     if record.get("status") != "ok":
@@ -197,7 +359,8 @@ def generate_motion(record: dict, repeat: int, source_motion=None):
     channels = source_motion.channels
     pose = record["mean_pose"]
     values = np.tile([pose.get(c, 0.0) for c in channels], (frames, 1))
-    derived = {}
+    derived, methods = {}, {}
+    params = dict(record.get("segmentation") or {})
     for channel, morpheme in usable.items():
         word = words.get(record["component_names"].get(channel, channel))
         kinetemes = tuple(morpheme["kinetemes"])
@@ -210,18 +373,13 @@ def generate_motion(record: dict, repeat: int, source_motion=None):
         steps = np.tile(_balanced(kinetemes, morpheme["displacements"]), repeat)
         sequence, durations, steps = _merge_runs(kinetemes * repeat, durations, steps)
         knots = np.round(np.concatenate(([0.0], np.cumsum(durations))) * rate).astype(int)
-        knots = np.maximum.accumulate(np.maximum(knots, np.arange(knots.size)))
-        knots[-1] = max(knots[-1], frames - 1)
-        knot_values = np.concatenate(([0.0], np.cumsum(steps)))
-        codes = np.array([STATES.index(k) for k in sequence], dtype=np.int8)
-        curve = reconstruct(knots, codes, knot_values)
-        curve = curve[:frames] if curve.size >= frames else \
-            np.pad(curve, (0, frames - curve.size), mode="edge")
+        curve, method = _channel_curve(knots, sequence, steps, frames, rate, params, channel)
         values[:, channels.index(channel)] = curve - curve.mean() + pose.get(channel, 0.0)
         derived[channel] = sequence
+        methods[channel] = method
     motion = kinetology.Motion(values, channels, rate, skeleton,
                                f"generated:{record['name']}", {"format": "generated"})
-    return motion, derived
+    return motion, derived, methods
 
 
 def generate(folder: str | Path, action: str, *, repeat: int = 3, output: str | Path | None = None,
@@ -260,11 +418,12 @@ def generate(folder: str | Path, action: str, *, repeat: int = 3, output: str | 
     import kinetology
 
     record = load_record(folder, action)
-    motion, words = generate_motion(record, repeat)
+    motion, words, methods = generate_motion(record, repeat)
     if output is not None:
         kinetology.write_bvh(motion, output)
+    owners = {c: j for j in record["actuators"] for c in record["joints"][j]["morphemes"]}
     result = Generated(motion, action, repeat, tuple(record["actuators"]), tuple(words), words,
-                       dict(record.get("segmentation") or {}))
+                       dict(record.get("segmentation") or {}), methods, owners)
     if plot is not None:
         from .pictures import draw_generated
 

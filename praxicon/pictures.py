@@ -144,18 +144,18 @@ def draw_shared_patterns(folder, path, *, most: int = 30, **options) -> Path:
 
 
 def draw_generated(record: dict, generated, path, channel: str | None = None) -> Path:
-    """One actuator channel beside a performance (default: the one that moves the most)."""
+    """One actuator channel beside a performance (default: the one that moves the most in it)."""
     from .learn import _load_performance
     from .datasets import Performance
 
     plt = _pyplot()
-    if channel is None:  # the generated channel with the largest range
-        channel = max(generated.channels, key=lambda c: float(np.ptp(generated.motion.column(c))))
     used = [p for p in record["performances"] if p.get("used")]
     perf = Performance(used[0]["file"], used[0]["start"], used[0]["stop"], used[0]["label"])
     original, problem = _load_performance(perf)
     if problem:
         raise ValueError(problem)
+    if channel is None:  # the generated channel that moves the most in the performance
+        channel = max(generated.channels, key=lambda c: float(np.ptp(original.column(c))))
     fig, axes = plt.subplots(1, 2, figsize=(10, 3), sharey=True)
     t = np.arange(original.frames) / original.frame_rate
     axes[0].plot(t, original.column(channel), color="#444444", lw=1)

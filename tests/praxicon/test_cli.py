@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 import subprocess
 import sys
 from importlib.metadata import entry_points
@@ -33,7 +34,11 @@ def test_build_draw_generate(manifest, tmp_path, capsys):
     capsys.readouterr()
     assert main(["generate", str(out), "moves.wave", "--repeat", "2",
                  "-o", str(tmp_path / "w.bvh")]) == 0
-    assert "2 copies" in capsys.readouterr().out and (tmp_path / "w.bvh").is_file()
+    printed = capsys.readouterr().out
+    assert "2 copies" in printed and (tmp_path / "w.bvh").is_file()
+    # the round trip: the synthetic waves are smooth cycles, every channel comes back
+    assert re.search(r"segmented again: (\d+) of \1 channels give back their morpheme x 2",
+                     printed), printed
 
 
 @pytest.mark.parametrize("argv, message", [
