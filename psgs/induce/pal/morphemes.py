@@ -2,11 +2,14 @@
 
 Copies are the leader's cycles in every performance when the action cycles,
 else the whole performances (time-normalised and aligned). Every copy is
-stretched to a common number of points; each point takes the state most
-copies agree on; runs of one state are the pattern's kinetemes (runs under
-two points dropped, as noise). A kineteme's typical duration and angular
-displacement are the medians over the copies of its run's duration and of
-the angle the channel turns through in it.
+stretched to a common number of points (cycles turned to a common phase);
+each point's plurality (the state most copies agree on) picks the medoid
+copy, the copy agreeing with it at most points, and the medoid's runs of
+one state are the pattern's kinetemes. The pattern is thus a kineteme
+string a real copy made, never a splice of transitions no copy shows (a
+point-wise plurality can splice them). A kineteme's typical duration and
+angular displacement are the medians over the copies of the duration of
+its span on the medoid and of the angle the channel turns through in it.
 """
 
 from __future__ import annotations
@@ -65,10 +68,12 @@ def read_patterns(result: MotionResult, grids: list[Grid], periods, shifts) -> N
         turned = np.stack([_rolled(turned[:, i], roll) for i in range(len(rows_all))], axis=1)
     columns = plurality(np.moveaxis(states, 1, 0)) if rows_all else None  # (rows, width)
     for i, row in enumerate(rows_all):
-        runs = _runs(columns[i])
+        medoid = medoid_copy(states[:, i], columns[i])
+        runs = copy_runs(states[medoid, i])
         if len(runs) < 2:
             continue
         result.patterns[row] = tuple(sym for sym, _, _ in runs)
+        # each kineteme's span on the medoid copy, read on every copy (they are aligned)
         lengths = np.array([b - a for _, a, b in runs])
         result.durations[row] = tuple(
             float(x) for x in np.median(lengths[:, None] * seconds[None, :], axis=1))
@@ -80,25 +85,47 @@ def read_patterns(result: MotionResult, grids: list[Grid], periods, shifts) -> N
         result.occurrence_performance[row] = [k for k, _, _ in windows]
 
 
-def _runs(column: np.ndarray) -> list[tuple[int, int, int]]:
-    """``(state, first, end)`` of each run of one state, runs under two points merged away."""
+def medoid_copy(copies: np.ndarray, column: np.ndarray) -> int:
+    """The copy (row of ``copies``, copies x points) agreeing with ``column`` at most points.
+
+    Points where the column is absent (-1) do not count; among equals the first copy
+    (earliest performance, then earliest cycle) wins, so the choice is deterministic.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> copies = np.array([[0, 0, 1, 1], [0, 1, 1, 2], [0, 0, 1, 2]])
+    >>> medoid_copy(copies, np.array([0, 0, 1, 2]))
+    2
+    """
+    agree = ((copies == column[None, :]) & (column >= 0)[None, :]).sum(axis=1)
+    return int(np.argmax(agree))
+
+
+def copy_runs(states: np.ndarray) -> list[tuple[int, int, int]]:
+    """``(state, first, end)`` of each run of one copy's states, every run kept.
+
+    Absent points (-1) join the run before them (the first run when they lead), so the
+    spans tile the copy and times add up. No run is dropped, however short: dropping one
+    would join its neighbours by a transition the copy never made (the fault of the
+    plurality pattern this replaces), so the kineteme string is exactly the copy's.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> copy_runs(np.array([-1, 0, 0, 2, -1, 1, 1]))
+    [(0, 0, 3), (2, 3, 5), (1, 5, 7)]
+    """
     runs: list[list[int]] = []
-    for k, sym in enumerate(column.tolist()):
-        if runs and runs[-1][0] == sym:
-            runs[-1][2] = k + 1
-        else:
-            runs.append([sym, k, k + 1])
-    kept = [r for r in runs if r[0] >= 0 and r[2] - r[1] >= 2] or [r for r in runs if r[0] >= 0]
-    out: list[list[int]] = []
-    for sym, a, b in kept:
-        if out and out[-1][0] == sym:
-            out[-1][2] = b
-        else:
-            out.append([sym, a, b])
-    # the dropped short runs' points go to the run before them, so times add up
-    for k in range(len(out) - 1):
-        out[k][2] = out[k + 1][1]
-    return [(s, a, b) for s, a, b in out]
+    for k, sym in enumerate(states.tolist()):
+        if sym < 0 or (runs and runs[-1][0] == sym):
+            if runs:
+                runs[-1][2] = k + 1
+            continue
+        runs.append([sym, k, k + 1])
+    if runs:
+        runs[0][1] = 0
+    return [(s, a, b) for s, a, b in runs]
 
 
 def _cycle_phases(channels: list[np.ndarray]) -> np.ndarray:
