@@ -19,7 +19,7 @@ from hypothesis.extra.numpy import arrays
 
 from psgs.induce import PAL
 from psgs.induce.pal.grids import plurality
-from psgs.induce.pal.morphemes import copy_runs, medoid_copy
+from psgs.induce.pal.morphemes import copy_runs, medoid_copy, ordinary_copies
 
 MOCAP = Path(__file__).resolve().parents[2] / ".." / "shared" / "data" / "mocap"
 BANDAI = MOCAP / "bandai-namco-1" / "data"
@@ -53,6 +53,32 @@ def test_the_pattern_is_the_run_string_of_a_copy(copies):
     # the medoid agrees with the plurality at least as often as any copy, the first among equals
     agree = [int(((c == column) & (column >= 0)).sum()) for c in copies]
     assert agree[medoid] == max(agree) and medoid == agree.index(max(agree))
+
+
+def changes(states, cyclic) -> set:
+    runs = list(run_string(states))
+    if cyclic and len(runs) > 1 and runs[-1] != runs[0]:
+        runs.append(runs[0])
+    return set(zip(runs, runs[1:]))
+
+
+@given(copies_strategy, st.booleans())
+def test_the_medoid_of_ordinary_copies_makes_only_changes_others_make(copies, cyclic):
+    ordinary = ordinary_copies(copies, cyclic)
+    made = [changes(c, cyclic) for c in copies]
+    enough = max(2, -(-len(copies) // 10))
+    for k, mine in enumerate(made):
+        expected = len(copies) < 2 or all(sum(ch in m for m in made) >= enough for ch in mine)
+        assert bool(ordinary[k]) == expected
+    column = plurality(copies)
+    medoid = medoid_copy(copies, column, ordinary)
+    if ordinary.any():
+        assert ordinary[medoid]
+        agree = [int(((c == column) & (column >= 0)).sum()) if ordinary[k] else -1
+                 for k, c in enumerate(copies)]
+        assert medoid == agree.index(max(agree))
+    else:
+        assert medoid == medoid_copy(copies, column)
 
 
 def test_a_splice_of_the_plurality_is_not_the_pattern():
