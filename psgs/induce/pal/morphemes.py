@@ -2,11 +2,14 @@
 
 Copies are the leader's cycles in every performance when the action cycles,
 else the whole performances (time-normalised and aligned). Every copy is
-stretched to a common number of points; each point takes the state most
-copies agree on; runs of one state are the pattern's kinetemes (runs under
-two points dropped, as noise). A kineteme's typical duration and angular
-displacement are the medians over the copies of its run's duration and of
-the angle the channel turns through in it.
+stretched to a common number of points (cycles turned to a common phase);
+each point's plurality (the state most copies agree on) picks the medoid
+copy, the copy agreeing with it at most points, and the medoid's runs of
+one state are the pattern's kinetemes. The pattern is thus a kineteme
+string a real copy made, never a splice of transitions no copy shows (a
+point-wise plurality can splice them). A kineteme's typical duration and
+angular displacement are the medians over the copies of the duration of
+its span on the medoid and of the angle the channel turns through in it.
 """
 
 from __future__ import annotations
@@ -65,40 +68,142 @@ def read_patterns(result: MotionResult, grids: list[Grid], periods, shifts) -> N
         turned = np.stack([_rolled(turned[:, i], roll) for i in range(len(rows_all))], axis=1)
     columns = plurality(np.moveaxis(states, 1, 0)) if rows_all else None  # (rows, width)
     for i, row in enumerate(rows_all):
-        runs = _runs(columns[i])
+        ordinary = ordinary_copies(states[:, i], cyclic=bool(periods))
+        medoid = medoid_copy(states[:, i], columns[i], ordinary)
+        runs = copy_runs(states[medoid, i])
         if len(runs) < 2:
             continue
         result.patterns[row] = tuple(sym for sym, _, _ in runs)
+        # each kineteme's span on the medoid copy, read on every copy (they are aligned)
         lengths = np.array([b - a for _, a, b in runs])
+        # durations: the medoid's proportions at the median tempo (the median over the copies
+        # of each span's seconds); angles: the medoid's own, so that the kinetemes, their
+        # times and their angles are one real motion's (medians of angles over copies of other
+        # strings need not fit the string: measured in docs/praxicon.md)
         result.durations[row] = tuple(
             float(x) for x in np.median(lengths[:, None] * seconds[None, :], axis=1))
-        angles = np.array([turned[:, i, a:b].sum(axis=1) for _, a, b in runs])
-        result.displacements[row] = tuple(float(x) for x in np.median(angles, axis=1))
+        result.displacements[row] = tuple(float(turned[medoid, i, a:b].sum())
+                                          for _, a, b in runs)
         result.occurrences[row] = [(grids[k].t0 + a * grids[k].step,
                                     grids[k].t0 + (a + n) * grids[k].step)
                                    for k, a, n in windows]
         result.occurrence_performance[row] = [k for k, _, _ in windows]
 
 
-def _runs(column: np.ndarray) -> list[tuple[int, int, int]]:
-    """``(state, first, end)`` of each run of one state, runs under two points merged away."""
+def ordinary_copies(copies: np.ndarray, cyclic: bool = True) -> np.ndarray:
+    """Which copies make only changes of state that other copies make too.
+
+    A change (one state's run followed by another's; for cycles, the last run into the
+    first as well) is ordinary when at least two copies and a tenth of them make it.
+    A copy with a change no other copy makes carries a rare event of its take (a
+    segmentation's ~1 in 1,000 change across a dead band), not the action.
+
+    Parameters
+    ----------
+    copies : numpy.ndarray
+        One channel's stretched copies, ``(copies, points)`` state codes, -1 absent.
+    cyclic : bool, optional
+        Whether the copies are cycles (their end runs into their start).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(copies,)`` booleans; every copy when there is only one.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> ordinary_copies(np.array([[0, 1, 2], [0, 1, 2], [0, 2, 2]])).tolist()
+    [True, True, False]
+    """
+    changes = [_changes(c, cyclic) for c in copies]
+    counts: dict[tuple[int, int], int] = {}
+    for made in changes:
+        for change in made:
+            counts[change] = counts.get(change, 0) + 1
+    enough = max(2, -(-len(copies) // 10))
+    if len(copies) < 2:
+        return np.ones(len(copies), dtype=bool)
+    return np.array([all(counts[c] >= enough for c in made) for made in changes], dtype=bool)
+
+
+def _changes(states: np.ndarray, cyclic: bool) -> set[tuple[int, int]]:
+    """The changes of state of one copy, a cycle's wrap (last state into first) included."""
+    runs = [s for s, _, _ in copy_runs(states)]
+    if cyclic and len(runs) > 1 and runs[-1] != runs[0]:
+        runs.append(runs[0])
+    return set(zip(runs, runs[1:]))
+
+
+def medoid_copy(copies: np.ndarray, column: np.ndarray, allowed: np.ndarray | None = None
+                ) -> int:
+    """The copy (row of ``copies``, copies x points) agreeing with ``column`` at most points.
+
+    Points where the column is absent (-1) do not count; among equals the first copy
+    (earliest performance, then earliest cycle) wins, so the choice is deterministic. With
+    ``allowed``, only those copies compete (all of them when none is allowed).
+
+    Parameters
+    ----------
+    copies : numpy.ndarray
+        One channel's stretched copies, ``(copies, points)`` state codes, -1 absent.
+    column : numpy.ndarray
+        Their plurality, ``(points,)`` (:func:`psgs.induce.pal.grids.plurality`).
+    allowed : numpy.ndarray, optional
+        ``(copies,)`` booleans, e.g. :func:`ordinary_copies`.
+
+    Returns
+    -------
+    int
+        The index of the medoid copy.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> copies = np.array([[0, 0, 1, 1], [0, 1, 1, 2], [0, 0, 1, 2]])
+    >>> medoid_copy(copies, np.array([0, 0, 1, 2]))
+    2
+    """
+    agree = ((copies == column[None, :]) & (column >= 0)[None, :]).sum(axis=1)
+    if allowed is not None and allowed.any():
+        agree = np.where(allowed, agree, -1)
+    return int(np.argmax(agree))
+
+
+def copy_runs(states: np.ndarray) -> list[tuple[int, int, int]]:
+    """``(state, first, end)`` of each run of one copy's states, every run kept.
+
+    Absent points (-1) join the run before them (the first run when they lead), so the
+    spans tile the copy and times add up. No run is dropped, however short: dropping one
+    would join its neighbours by a transition the copy never made (the fault of the
+    plurality pattern this replaces), so the kineteme string is exactly the copy's.
+
+    Parameters
+    ----------
+    states : numpy.ndarray
+        One copy's state codes, ``(points,)``, -1 absent.
+
+    Returns
+    -------
+    list of tuple of int
+        ``(state, first point, end point)`` per run; empty when every point is absent.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> copy_runs(np.array([-1, 0, 0, 2, -1, 1, 1]))
+    [(0, 0, 3), (2, 3, 5), (1, 5, 7)]
+    """
     runs: list[list[int]] = []
-    for k, sym in enumerate(column.tolist()):
-        if runs and runs[-1][0] == sym:
-            runs[-1][2] = k + 1
-        else:
-            runs.append([sym, k, k + 1])
-    kept = [r for r in runs if r[0] >= 0 and r[2] - r[1] >= 2] or [r for r in runs if r[0] >= 0]
-    out: list[list[int]] = []
-    for sym, a, b in kept:
-        if out and out[-1][0] == sym:
-            out[-1][2] = b
-        else:
-            out.append([sym, a, b])
-    # the dropped short runs' points go to the run before them, so times add up
-    for k in range(len(out) - 1):
-        out[k][2] = out[k + 1][1]
-    return [(s, a, b) for s, a, b in out]
+    for k, sym in enumerate(states.tolist()):
+        if sym < 0 or (runs and runs[-1][0] == sym):
+            if runs:
+                runs[-1][2] = k + 1
+            continue
+        runs.append([sym, k, k + 1])
+    if runs:
+        runs[0][1] = 0
+    return [(s, a, b) for s, a, b in runs]
 
 
 def _cycle_phases(channels: list[np.ndarray]) -> np.ndarray:

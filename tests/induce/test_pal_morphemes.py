@@ -1,0 +1,125 @@
+"""Morphemes are kineteme strings a real copy made: the medoid copy's runs, not a splice.
+
+The plurality of stretched copies, read point by point, can join two states by a transition
+that no copy shows (``R -> G`` where every copy passes through ``B``); such a morpheme is a bad
+description of the action and cannot be generated at its tempo. The pattern is the medoid
+copy's own runs, so it is always a string some copy shows: checked by hypothesis over random
+copies and on real motion (every transition of every learnt morpheme occurs in a take).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+from hypothesis.extra.numpy import arrays
+
+from psgs.induce import PAL
+from psgs.induce.pal.grids import plurality
+from psgs.induce.pal.morphemes import copy_runs, medoid_copy, ordinary_copies
+
+MOCAP = Path(__file__).resolve().parents[2] / ".." / "shared" / "data" / "mocap"
+BANDAI = MOCAP / "bandai-namco-1" / "data"
+
+
+def run_string(states) -> tuple[int, ...]:
+    """The states of one copy, absent points left out, one symbol per run."""
+    out: list[int] = []
+    for s in np.asarray(states).tolist():
+        if s >= 0 and (not out or out[-1] != s):
+            out.append(s)
+    return tuple(out)
+
+
+copies_strategy = st.integers(1, 6).flatmap(lambda n: st.integers(1, 12).flatmap(
+    lambda w: arrays(np.int64, (n, w), elements=st.integers(-1, 3))))
+
+
+@given(copies_strategy)
+def test_the_pattern_is_the_run_string_of_a_copy(copies):
+    column = plurality(copies)
+    medoid = medoid_copy(copies, column)
+    runs = copy_runs(copies[medoid])
+    assert tuple(s for s, _, _ in runs) == run_string(copies[medoid])
+    assert tuple(s for s, _, _ in runs) in {run_string(c) for c in copies}
+    # the spans tile the copy, so durations add up to the copy's time
+    if runs:
+        assert runs[0][1] == 0 and runs[-1][2] == copies.shape[1]
+        assert all(a < b for _, a, b in runs)
+        assert all(runs[k][2] == runs[k + 1][1] for k in range(len(runs) - 1))
+    # the medoid agrees with the plurality at least as often as any copy, the first among equals
+    agree = [int(((c == column) & (column >= 0)).sum()) for c in copies]
+    assert agree[medoid] == max(agree) and medoid == agree.index(max(agree))
+
+
+def changes(states, cyclic) -> set:
+    runs = list(run_string(states))
+    if cyclic and len(runs) > 1 and runs[-1] != runs[0]:
+        runs.append(runs[0])
+    return set(zip(runs, runs[1:]))
+
+
+@given(copies_strategy, st.booleans())
+def test_the_medoid_of_ordinary_copies_makes_only_changes_others_make(copies, cyclic):
+    ordinary = ordinary_copies(copies, cyclic)
+    made = [changes(c, cyclic) for c in copies]
+    enough = max(2, -(-len(copies) // 10))
+    for k, mine in enumerate(made):
+        expected = len(copies) < 2 or all(sum(ch in m for m in made) >= enough for ch in mine)
+        assert bool(ordinary[k]) == expected
+    column = plurality(copies)
+    medoid = medoid_copy(copies, column, ordinary)
+    if ordinary.any():
+        assert ordinary[medoid]
+        agree = [int(((c == column) & (column >= 0)).sum()) if ordinary[k] else -1
+                 for k, c in enumerate(copies)]
+        assert medoid == agree.index(max(agree))
+    else:
+        assert medoid == medoid_copy(copies, column)
+
+
+def test_a_splice_of_the_plurality_is_not_the_pattern():
+    # every copy goes 0 -> 1 -> 2, at different times: the plurality jumps 0 -> 2
+    copies = np.array([[0, 0, 0, 1, 2, 2],
+                       [0, 1, 2, 2, 2, 2],
+                       [0, 0, 1, 2, 2, 2]])
+    column = plurality(copies)
+    assert run_string(column) == (0, 2)
+    assert all(run_string(c) == (0, 1, 2) for c in copies)
+    medoid = medoid_copy(copies, column)
+    assert medoid == 0  # 5 points agree, as for copy 2: the first wins
+    assert copy_runs(copies[medoid]) == [(0, 0, 3), (1, 3, 4), (2, 4, 6)]
+
+
+def test_learnt_morphemes_of_synthetic_waves_are_strings_of_a_take():
+    from test_pal_performances import performance
+
+    takes = [performance(seed) for seed in range(6)]
+    result = PAL().induce(takes)
+    assert result.components
+    for name in result.components:
+        pattern = "".join(result.patterns[name])
+        strings = ["".join(t.string(name)) for t in takes]
+        # a cycle's copy starts at any phase: the pattern is a stretch of some take
+        assert any(pattern in s for s in strings), name
+        morpheme = result.morphemes[name]
+        assert all(d > 0 for d in morpheme.durations)
+
+
+@pytest.mark.skipif(not BANDAI.is_dir(), reason=f"shared motion-capture data not found at {BANDAI}")
+def test_real_morphemes_make_only_transitions_a_take_shows():
+    kinetology = pytest.importorskip("kinetology")
+    files = sorted(BANDAI.glob("dataset-1_bye_*.bvh"))
+    takes = [kinetology.segment(kinetology.read(f)) for f in files][::2]
+    result = PAL().induce(takes)
+    assert result.components
+    for name in result.components:
+        shown = {pair for t in takes for pair in zip(t.string(name), t.string(name)[1:])}
+        pattern = result.patterns[name]
+        # the cycle closes on itself: its last kineteme runs into its first
+        pairs = list(zip(pattern, pattern[1:] + pattern[:1]))
+        unseen = [p for p in pairs if p[0] != p[1] and p not in shown]
+        assert not unseen, (name, pattern, unseen)
