@@ -5,8 +5,19 @@ capture in, actiongrams out); ``psgs`` itself never imports either of them.
 A praxicon is a folder (``docs/praxicon.md``): per action the joints that take
 part, their morphemes, the grammar system, and the actuator-set matrix.
 
->>> from praxicon import read_dataset, build, Settings  # doctest: +SKIP
->>> build(read_dataset("../shared/data/mocap/cmu-mocap6"), "out/px")  # doctest: +SKIP
+A praxicon of one action (the wave, two takes of the shared data named in a manifest);
+``build(read_dataset("../shared/data/mocap/cmu-mocap6"), "out/px")`` learns a whole dataset:
+
+>>> import pathlib, tempfile
+>>> from praxicon import read_dataset, build
+>>> data = pathlib.Path("../shared/data/mocap/bandai-namco-1/data").resolve()
+>>> work = pathlib.Path(tempfile.mkdtemp())
+>>> _ = (work / "m.csv").write_text("action,file\\n" + "".join(
+...     f"bye,{data / f'dataset-1_bye_{style}_001.bvh'}\\n" for style in ("normal", "active")))
+>>> result = build(read_dataset(work / "m.csv"), work / "px", progress=False)
+>>> entry = result.index["actions"][0]
+>>> entry["name"], entry["status"], "LowerArm_R" in entry["actuators"]
+('m.bye', 'ok', True)
 """
 
 from __future__ import annotations

@@ -411,9 +411,21 @@ def generate(folder: str | Path, action: str, *, repeat: int = 3, output: str | 
 
     Examples
     --------
-    >>> generate("out/px", "cmu-mocap6.Nope")  # doctest: +SKIP
+    A praxicon of the wave from two takes of the shared data, then one copy of it:
+
+    >>> import pathlib, tempfile
+    >>> from praxicon import read_dataset, build
+    >>> data = pathlib.Path("../shared/data/mocap/bandai-namco-1/data").resolve()
+    >>> work = pathlib.Path(tempfile.mkdtemp())
+    >>> _ = (work / "m.csv").write_text("action,file\\n" + "".join(
+    ...     f"bye,{data / f'dataset-1_bye_{style}_001.bvh'}\\n" for style in ("normal", "active")))
+    >>> _ = build(read_dataset(work / "m.csv"), work / "px", progress=False)
+    >>> generated = generate(work / "px", "m.bye", repeat=1, output=work / "bye.bvh")
+    >>> generated.motion.frames > 0, (work / "bye.bvh").exists()
+    (True, True)
+    >>> generate(work / "px", "m.Nope")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
-    ValueError: no action 'cmu-mocap6.Nope' in out/px (actions: ...)
+    ValueError: no action 'm.Nope' in ... (actions: m.bye)
     """
     import kinetology
 

@@ -65,7 +65,15 @@ def draw_actuator_matrix(folder, path) -> Path:
 
     Examples
     --------
-    >>> draw_actuator_matrix("out/px", "out/px/img/actuators.png")  # doctest: +SKIP
+    >>> import pathlib, tempfile
+    >>> from praxicon import read_dataset, build
+    >>> data = pathlib.Path("../shared/data/mocap/bandai-namco-1/data").resolve()
+    >>> work = pathlib.Path(tempfile.mkdtemp())
+    >>> _ = (work / "m.csv").write_text("action,file\\n" + "".join(
+    ...     f"bye,{data / f'dataset-1_bye_{style}_001.bvh'}\\n" for style in ("normal", "active")))
+    >>> _ = build(read_dataset(work / "m.csv"), work / "px", progress=False)
+    >>> draw_actuator_matrix(work / "px", work / "px" / "img" / "actuators.png").stat().st_size > 0
+    True
     """
     plt = _pyplot()
     names, joints, rows = actuator_matrix(_records(folder))
