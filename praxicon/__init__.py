@@ -15,7 +15,7 @@ A praxicon of one action (the wave, two takes of the shared data named in a mani
 >>> _ = (work / "m.csv").write_text("action,file\\n" + "".join(
 ...     f"bye,{data / f'dataset-1_bye_{style}_001.bvh'}\\n" for style in ("normal", "active")))
 >>> result = build(read_dataset(work / "m.csv"), work / "px", progress=False)
->>> entry = result.index["actions"][0]
+>>> (entry,) = result.index["actions"]
 >>> entry["name"], entry["status"], "LowerArm_R" in entry["actuators"]
 ('m.bye', 'ok', True)
 """
