@@ -119,9 +119,10 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
     setting_dict = settings.to_dict()
     dataset_list = [str(d) for d in (datasets or sorted({a.dataset for a in actions}))]
 
-    last_index = [time.monotonic()]
+    index_written = time.monotonic()
 
     def finish(action: Action, record: dict, seconds: float) -> None:
+        nonlocal index_written
         write_record(out, record, keys[action.name])
         records[action.name] = record
         timings[action.name] = seconds
@@ -134,9 +135,9 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
         # the process that should leave the cores to the workers), so during the build at most
         # once a second: the records are on disk at once, resuming reads them, and the index is
         # written whole at the end, also after Ctrl-C
-        if time.monotonic() - last_index[0] >= 1.0:
+        if time.monotonic() - index_written >= 1.0:
             write_index(out, list(records.values()), setting_dict, dataset_list)
-            last_index[0] = time.monotonic()
+            index_written = time.monotonic()
 
     bar = _bar(len(todo), progress)
     log = log or (lambda line: bar.write(f"praxicon: {line}"))
