@@ -41,11 +41,15 @@ def _bad_name(name: object) -> str | None:
         return None  # a quick yes for the usual names; anything else takes the checks below
     if not isinstance(name, str) or not name:
         return "an actuator name must be non-empty text"
-    if _not_unicode(name):
-        return f"actuator name {_shown(name)} is not valid Unicode (a lone surrogate)"
-    if any(ch.isspace() for ch in name) or "@" in name or ":" in name or name.startswith("#"):
-        return (f"actuator name {_shown(name)} must have no white space, '@' or ':' and not "
-                f"start with '#'")
+    return _bad_token(name, "actuator name")
+
+
+def _bad_token(text: str, what: str) -> str | None:
+    """Why non-empty ``text`` cannot be a token of the text format (a ``what``), or None."""
+    if _not_unicode(text):
+        return f"{what} {_shown(text)} is not valid Unicode (a lone surrogate)"
+    if any(ch.isspace() for ch in text) or "@" in text or ":" in text or text.startswith("#"):
+        return f"{what} {_shown(text)} must have no white space, '@' or ':' and not start with '#'"
     return None
 
 
@@ -60,12 +64,7 @@ def _finite(value: int | float) -> bool:
 def _bad_symbol(symbol: object) -> str | None:
     if not isinstance(symbol, str) or not symbol:
         return f"a symbol must be non-empty text, not {_shown(symbol)}"
-    if _not_unicode(symbol):
-        return f"symbol {_shown(symbol)} is not valid Unicode (a lone surrogate)"
-    if any(ch.isspace() for ch in symbol) or "@" in symbol or ":" in symbol or symbol.startswith("#"):
-        return (f"symbol {_shown(symbol)} must have no white space, '@' or ':' and not start "
-                f"with '#'")
-    return None
+    return _bad_token(symbol, "symbol")
 
 
 def _bad_duration(value: object) -> str | None:
