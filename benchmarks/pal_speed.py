@@ -195,6 +195,14 @@ def write_section() -> None:
                   f"{s['random_with_components']['pal']} of {s['random_trials']}; "
                   f"Sequential in {s['random_with_components']['sequential']} of "
                   f"{s['random_trials']}."]
+        for c in s.get("ceiling_check", []):
+            lines.append(
+                f"- At the ceiling, {c['noise']:.0%} noise, {c['trials']:,} further actiongrams "
+                f"(seeds from {s['check_seed']:,}): PAL {c['pal_successes']:,} "
+                f"({c['pal_successes'] / c['trials']:.1%}); {c['above_ceiling']} are above "
+                f"the ceiling (no vote recovers them), PAL fails {c['pal_failures_above']} of "
+                f"those and **{c['pal_failures_below']}** of the {c['trials'] - c['above_ceiling']:,} "
+                f"below it.")
         paper = {f"{row['noise']:.2f}": row["pal"] for row in s["paper_table"]}
         for name, table in s.get("variants", {}).items():
             cells = ", ".join(f"{k}: {v:.0%}" for k, v in table.items())
