@@ -1,10 +1,11 @@
-"""Morphemes are kineteme strings a real copy made: the medoid copy's runs, not a splice.
+"""Morphemes are kineteme strings a real copy made: the medoid copy's segments, not a splice.
 
 The plurality of stretched copies, read point by point, can join two states by a transition
 that no copy shows (``R -> G`` where every copy passes through ``B``); such a morpheme is a bad
 description of the action and cannot be generated at its tempo. The pattern is the medoid
-copy's own runs, so it is always a string some copy shows: checked by hypothesis over random
-copies and on real motion (every transition of every learnt morpheme occurs in a take).
+copy's own segments in its take, so it is always a string some take shows, and it ends where its
+first kineteme begins again, so that repeated it makes only changes a take makes: checked by
+hypothesis over random copies and takes, and on real motion.
 """
 
 from __future__ import annotations
@@ -19,7 +20,8 @@ from hypothesis.extra.numpy import arrays
 
 from psgs.induce import PAL
 from psgs.induce.pal.grids import plurality
-from psgs.induce.pal.morphemes import copy_runs, medoid_copy, ordinary_copies
+from psgs.actiongram import Actiongram
+from psgs.induce.pal.morphemes import copy_runs, copy_segments, medoid_copy, ordinary_copies
 
 MOCAP = Path(__file__).resolve().parents[2] / ".." / "shared" / "data" / "mocap"
 BANDAI = MOCAP / "bandai-namco-1" / "data"
@@ -94,6 +96,47 @@ def test_a_splice_of_the_plurality_is_not_the_pattern():
     assert copy_runs(copies[medoid]) == [(0, 0, 3), (1, 3, 4), (2, 4, 6)]
 
 
+take_strategy = st.lists(st.sampled_from("BGRY"), min_size=2, max_size=30).map(
+    lambda syms: [s for k, s in enumerate(syms) if k == 0 or s != syms[k - 1]]).filter(
+    lambda syms: len(syms) >= 2).flatmap(lambda syms: st.tuples(
+        st.just(tuple(syms)),
+        st.lists(st.integers(1, 8), min_size=len(syms), max_size=len(syms)),
+        st.floats(0, 40), st.floats(0.5, 20)))
+
+
+@given(take_strategy)
+def test_a_copy_is_whole_segments_of_its_take_that_close_on_themselves(case):
+    symbols, frames, start, length = case
+    durations = tuple(f / 10 for f in frames)
+    take = Actiongram(("x",), (symbols,), (durations,),
+                      segment_displacements=(tuple(float(f) for f in frames),))
+    found = copy_segments(take, 0, start, length)
+    borders = np.concatenate(([0.0], np.cumsum(durations)))
+    first = int(np.argmin(np.abs(borders[:-1] - start)))
+    assert found is not None
+    kinetemes, spans, moves = found
+    n = len(kinetemes)
+    # a run of whole segments of the take, with their own durations and angles
+    at = [i for i in range(len(symbols) - n + 1) if symbols[i:i + n] == kinetemes and
+          np.allclose(durations[i:i + n], spans) and np.allclose(frames[i:i + n], moves)]
+    assert at
+    again = [j for j in range(len(symbols)) if j != first and symbols[j] == symbols[first] and
+             length / 2 <= abs(borders[j] - borders[first]) <= 3 * length]
+    if again:  # it begins at the border nearest start and ends where its first kineteme
+        # begins again: repeated, it makes only changes the take makes
+        i = next((i for i in at if first in (i, i + n)), None)  # forwards or backwards
+        assert i is not None
+        assert i + n < len(symbols) and symbols[i + n] == kinetemes[0]
+        span = borders[i + n] - borders[i]
+        assert all(abs(span - length) <= abs(abs(borders[j] - borders[first]) - length) + 1e-9
+                   for j in again)
+    else:  # the border nearest its end
+        assert first in at
+        ends = borders[first + 1:]
+        assert np.isclose(abs(ends[n - 1] - borders[first] - length),
+                          np.abs(ends - borders[first] - length).min())
+
+
 def test_learnt_morphemes_of_synthetic_waves_are_strings_of_a_take():
     from test_pal_performances import performance
 
@@ -117,9 +160,10 @@ def test_real_morphemes_make_only_transitions_a_take_shows():
     result = PAL().induce(takes)
     assert result.components
     for name in result.components:
-        shown = {pair for t in takes for pair in zip(t.string(name), t.string(name)[1:])}
-        pattern = result.patterns[name]
-        # the cycle closes on itself: its last kineteme runs into its first
-        pairs = list(zip(pattern, pattern[1:] + pattern[:1]))
-        unseen = [p for p in pairs if p[0] != p[1] and p not in shown]
-        assert not unseen, (name, pattern, unseen)
+        pattern = "".join(result.patterns[name])
+        strings = ["".join(t.string(name)) for t in takes]
+        # a stretch of a take that closes on itself there: its last kineteme runs into its
+        # first, so the pattern repeated makes only changes the take makes
+        assert any(pattern + pattern[0] in s for s in strings), (name, pattern)
+        morpheme = result.morphemes[name]
+        assert len(morpheme.durations) == len(pattern) and min(morpheme.durations) > 0

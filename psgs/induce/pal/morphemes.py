@@ -4,12 +4,16 @@ Copies are the leader's cycles in every performance when the action cycles,
 else the whole performances (time-normalised and aligned). Every copy is
 stretched to a common number of points (cycles turned to a common phase);
 each point's plurality (the state most copies agree on) picks the medoid
-copy, the copy agreeing with it at most points, and the medoid's runs of
-one state are the pattern's kinetemes. The pattern is thus a kineteme
-string a real copy made, never a splice of transitions no copy shows (a
-point-wise plurality can splice them). A kineteme's typical duration and
-angular displacement are the medians over the copies of the duration of
-its span on the medoid and of the angle the channel turns through in it.
+copy, the copy agreeing with it at most points (among copies whose changes
+other copies make too and whose length is within a quarter of the median).
+The pattern is the medoid's own segments in its performance
+(:func:`copy_segments`): from the segment border where the copy begins to
+where its first kineteme begins again, about a copy later, so that the
+pattern repeated makes only changes a performance makes, never a splice no
+copy shows (a point-wise plurality, or the grid itself, which can step over a
+one-frame segment, can splice them). A kineteme's typical duration is its
+segment's, brought to the median copy's tempo; its angular displacement is its
+segment's own.
 """
 
 from __future__ import annotations
@@ -18,6 +22,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ...actiongram import Actiongram
 from .grids import Grid, plurality, resample
 from .period import track_windows
 
@@ -46,8 +51,13 @@ def copy_windows(grids: list[Grid], periods: list[int | None] | None, shifts: li
     return out
 
 
-def read_patterns(result: MotionResult, grids: list[Grid], periods, shifts) -> None:
-    """Fill the result's patterns, occurrences, typical durations and displacements."""
+def read_patterns(result: MotionResult, grids: list[Grid], periods, shifts,
+                  takes: tuple[Actiongram, ...] | None = None) -> None:
+    """Fill the result's patterns, occurrences, typical durations and displacements.
+
+    With ``takes`` (the performances the grids sample), each pattern is read from the
+    medoid copy's own segments (:func:`copy_segments`), else from its grid points.
+    """
     leader = next(j for j in result.joints if j.name == result.leader)
     windows = copy_windows(grids, periods, shifts, leader.channels)
     width = int(np.median([n for _, _, n in windows]))
@@ -67,27 +77,113 @@ def read_patterns(result: MotionResult, grids: list[Grid], periods, shifts) -> N
         states = np.stack([_rolled(states[:, i], roll) for i in range(len(rows_all))], axis=1)
         turned = np.stack([_rolled(turned[:, i], roll) for i in range(len(rows_all))], axis=1)
     columns = plurality(np.moveaxis(states, 1, 0)) if rows_all else None  # (rows, width)
+    typical = float(np.median(seconds)) * width  # the median copy's length, seconds
+    code = {sym: c for c, sym in enumerate(result.symbols)}
+    # copies within a quarter of the median length: the medoid is one of them when it can
+    # be, so that its own segments, brought to the median tempo, keep their proportions
+    # at a tempo the action is performed at (a slow performance's kineteme of one frame,
+    # at a faster tempo, lasts less than a frame)
+    usual = np.abs(np.log(seconds * width / typical)) <= np.log(1.25)
     for i, row in enumerate(rows_all):
         ordinary = ordinary_copies(states[:, i], cyclic=bool(periods))
-        medoid = medoid_copy(states[:, i], columns[i], ordinary)
-        runs = copy_runs(states[medoid, i])
-        if len(runs) < 2:
-            continue
-        result.patterns[row] = tuple(sym for sym, _, _ in runs)
-        # each kineteme's span on the medoid copy, read on every copy (they are aligned)
-        lengths = np.array([b - a for _, a, b in runs])
-        # durations: the medoid's proportions at the median tempo (the median over the copies
-        # of each span's seconds); angles: the medoid's own, so that the kinetemes, their
-        # times and their angles are one real motion's (medians of angles over copies of other
-        # strings need not fit the string: measured in docs/praxicon.md)
-        result.durations[row] = tuple(
-            float(x) for x in np.median(lengths[:, None] * seconds[None, :], axis=1))
-        result.displacements[row] = tuple(float(turned[medoid, i, a:b].sum())
-                                          for _, a, b in runs)
+        medoid = medoid_copy(states[:, i], columns[i],
+                             ordinary & usual if (ordinary & usual).any() else ordinary)
+        k, a, n = windows[medoid]
+        phase = (roll[medoid] * n / width) if periods else 0.0
+        start = grids[k].t0 + (a + phase) * grids[k].step
+        exact = None
+        if takes is not None:
+            exact = copy_segments(takes[k], row, start, n * grids[k].step)
+            if exact is None or len(exact[0]) < 2:  # one kineteme from the phase on: the window
+                exact = copy_segments(takes[k], row, grids[k].t0 + a * grids[k].step,
+                                      n * grids[k].step)
+        if exact is not None and len(exact[0]) >= 2:
+            # the medoid's own segments, whole, as the segmentation found them (the grid can
+            # step over a one-frame segment and join its neighbours by a change never made)
+            symbols, spans, turns = exact
+            result.patterns[row] = tuple(code[s] for s in symbols)
+            result.durations[row] = tuple(float(x) for x in spans * (typical / spans.sum()))
+            result.displacements[row] = tuple(float(x) for x in turns)
+        else:
+            runs = copy_runs(states[medoid, i])
+            if len(runs) < 2:
+                continue
+            result.patterns[row] = tuple(sym for sym, _, _ in runs)
+            # each kineteme's span on the medoid copy, read on every copy (they are aligned)
+            lengths = np.array([b - a for _, a, b in runs])
+            # durations: the medoid's proportions at the median tempo (the median over the
+            # copies of each span's seconds); angles: the medoid's own, so that the kinetemes,
+            # their times and their angles are one real motion's (medians of angles over
+            # copies of other strings need not fit the string: measured in docs/praxicon.md)
+            result.durations[row] = tuple(
+                float(x) for x in np.median(lengths[:, None] * seconds[None, :], axis=1))
+            result.displacements[row] = tuple(float(turned[medoid, i, a:b].sum())
+                                              for _, a, b in runs)
         result.occurrences[row] = [(grids[k].t0 + a * grids[k].step,
                                     grids[k].t0 + (a + n) * grids[k].step)
                                    for k, a, n in windows]
         result.occurrence_performance[row] = [k for k, _, _ in windows]
+
+
+def copy_segments(take: Actiongram, row: int, start: float, length: float):
+    """One channel's whole segments over one copy: ``(symbols, durations, displacements)``.
+
+    The copy begins at the segment border nearest ``start`` and ends at the border where
+    the same kineteme begins again, about ``length`` seconds away (before or after; the
+    nearest to ``length`` between half and three times it), so that the string repeated
+    makes only changes the take makes: its last kineteme runs into its first there.
+    Without such a border it ends at the border nearest ``start + length``.
+
+    Parameters
+    ----------
+    take : Actiongram
+        The performance the copy is in.
+    row : int
+        The channel's string in ``take``.
+    start, length : float
+        Where the copy begins and how long it is, seconds.
+    Returns
+    -------
+    tuple or None
+        The kinetemes, and per kineteme its duration and angle (the duration again
+        when the take has no displacements: the grid's velocity is then 1); None for a
+        string of fewer than two kinetemes.
+
+    Examples
+    --------
+    >>> from psgs.actiongram import Actiongram
+    >>> take = Actiongram(("x",), (tuple("BGRYBGRYB"),), ((1.0,) * 9,))
+    >>> copy_segments(take, 0, 1.2, 4.0)[0]
+    ('G', 'R', 'Y', 'B')
+    >>> copy_segments(take, 0, 0.0, 2.9)[0]  # B begins again 4 s on
+    ('B', 'G', 'R', 'Y')
+    >>> once = Actiongram(("x",), (tuple("BGRY"),), ((1.0,) * 4,))
+    >>> copy_segments(once, 0, 0.0, 2.9)[0]  # no B again: to the border nearest 2.9 s
+    ('B', 'G', 'R')
+    """
+    symbols = take.symbols[row]
+    durations = np.asarray(take.segment_durations[row], dtype=float)
+    if len(symbols) < 2:
+        return None
+    moves = take.segment_displacements[row] if take.segment_displacements else None
+    moves = durations if moves is None else np.asarray(moves, dtype=float)
+    borders = take.origins[row] + np.concatenate(([0.0], np.cumsum(durations)))
+    first = int(np.argmin(np.abs(borders[:-1] - start)))
+    # where the first kineteme begins again, before or after, between half and three times
+    # the length away (a joint may cycle once in two of the leader's cycles): the copy
+    # repeated then makes only changes the take makes
+    again = np.array([j for j in range(len(symbols)) if j != first and symbols[j] == symbols[first]],
+                     dtype=np.int64)
+    spans = np.abs(borders[again] - borders[first])
+    fits = (spans >= length / 2) & (spans <= 3 * length)
+    if fits.any():
+        other = int(again[fits][np.argmin(np.abs(spans[fits] - length))])
+        first, last = min(first, other), max(first, other)
+    else:  # none: to the border nearest ``start + length`` (changes made, but the last
+        # kineteme need not run into the first)
+        later = borders[first + 1:]
+        last = first + 1 + int(np.argmin(np.abs(later - (borders[first] + length))))
+    return tuple(symbols[first:last]), durations[first:last], moves[first:last]
 
 
 def ordinary_copies(copies: np.ndarray, cyclic: bool = True) -> np.ndarray:

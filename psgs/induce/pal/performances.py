@@ -98,7 +98,7 @@ def learn_motion(takes: tuple[Actiongram, ...], params: PAL) -> MotionResult:
         result = _select(joints, paths.mean(axis=0), np.zeros(len(first)), first, params,
                          symbols, tested=False)
         if result.verdict == "":
-            read_patterns(result, grids, None, [0] * len(grids))
+            read_patterns(result, grids, None, [0] * len(grids), takes)
         return result
 
     repeated = np.zeros(len(first))
@@ -121,7 +121,7 @@ def learn_motion(takes: tuple[Actiongram, ...], params: PAL) -> MotionResult:
             break
     found, periods = result
     if found.verdict == "":
-        read_patterns(found, grids, periods, shifts)
+        read_patterns(found, grids, periods, shifts, takes)
         if periods:
             found.period = float(np.median([p for p in periods if p])) * step
     return found
