@@ -32,7 +32,7 @@ these conditions is a linear programme (:func:`scipy.optimize.linprog`, HiGHS du
 simplex, its iterations capped). The relative dead band (a share of the channel's
 own 95th-percentile speed) depends on the answer, so the band is assumed, checked
 on the answer and the programme solved again with the answer's band when it moved
-(a few rounds). The peaks are placed three ways and the nearest answer kept. The
+(up to ten rounds). The peaks are placed three ways and the nearest answer kept. The
 caller checks every answer by segmenting it again.
 """
 
@@ -49,7 +49,7 @@ _VELOCITY = {"B": 1, "G": 1, "R": -1, "Y": -1}
 _ACCELERATION = {"B": 1, "G": -1, "R": -1, "Y": 1}
 _PEAK_MARGIN = 1.02   # a peak exceeds the dead band by 2 %
 _QUIET_MARGIN = 0.98  # a frame of the other sign stays under 98 % of the band
-_ROUNDS = 3           # attempts at the relative dead band
+_ROUNDS = 10          # attempts at the relative dead band (most settle in one or two)
 _ITERATIONS = 40      # simplex iterations per frame a programme may take
 _REACH = 1.1          # the smoothed range asked, in units of the segmentation's min_range
 
