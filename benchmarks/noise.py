@@ -21,9 +21,12 @@ the true symbol leads everywhere (margin > 0), what a vote reaches without luck.
 
 At the ceiling: on ``--check-trials`` further actiongrams a level (seeds from
 1,000,000 on, not the sweep's) at 22, 24, 25, 26 and 28%, every actiongram is
-run and its margin computed, so that PAL's failures are split into those above
-the ceiling (a wrong symbol outnumbers the true one: no vote recovers them) and
-those below it (PAL's own); written to docs/data/noise_ceiling_check.csv.
+run and its margin computed, so that PAL's failures are split three ways: above
+the ceiling (margin < 0: a wrong symbol outnumbers the true one, no vote
+recovers it), at a tie (margin 0: a wrong symbol as frequent as the true one
+somewhere, a coin flip for any vote, as the noise treats both alike) and with
+the true symbol leading everywhere (margin > 0: PAL's own failures); written to
+docs/data/noise_ceiling_check.csv.
 """
 
 from __future__ import annotations
@@ -110,10 +113,11 @@ def main(argv=None) -> int:
 
     check = ceiling_check(CHECK_LEVELS, args.check_trials, args.jobs)
     write_csv(DATA / "noise_ceiling_check.csv",
-              ["noise", "trials", "pal_successes", "above_ceiling", "pal_failures_above",
-               "pal_failures_below"],
+              ["noise", "trials", "pal_successes", "above_ceiling", "ties", "pal_failures_above",
+               "pal_failures_tie", "pal_failures_leading"],
               [[f"{c['noise']:.2f}", c["trials"], c["pal_successes"], c["above_ceiling"],
-                c["pal_failures_above"], c["pal_failures_below"]] for c in check])
+                c["ties"], c["pal_failures_above"], c["pal_failures_tie"],
+                c["pal_failures_leading"]] for c in check])
 
     with_components = {"pal": 0, "sequential": 0}
     pal, seq = PAL(), Sequential()
@@ -150,9 +154,11 @@ def main(argv=None) -> int:
     for name, rows in variant_rows.items():
         print(f"{name}: " + ", ".join(f"{r.noise:.2f} {r.rate:.0%}" for r in rows))
     for c in check:
-        print(f"at the ceiling, {c['noise']:.2f}: PAL {c['pal_successes']}/{c['trials']}, "
-              f"{c['above_ceiling']} above the ceiling; PAL failures above it "
-              f"{c['pal_failures_above']}, below it {c['pal_failures_below']}")
+        print(f"at the ceiling, {c['noise']:.2f}: PAL {c['pal_successes']}/{c['trials']}; "
+              f"{c['above_ceiling']} above the ceiling, {c['ties']} ties; PAL fails "
+              f"{c['pal_failures_above']} above, {c['pal_failures_tie']} at a tie, "
+              f"{c['pal_failures_leading']} where the true symbol leads "
+              f"(seeds {c['failed_seeds']})")
     print(f"PAL sweep: {pal_wall:.1f} s wall ({args.jobs} jobs), "
           f"{summary['pal_sweep_cpu_seconds']:.1f} s CPU in the workers")
 
@@ -197,8 +203,11 @@ def ceiling_check(levels, trials, jobs):
         rows.append({"noise": level, "trials": len(out),
                      "pal_successes": sum(ok for _, ok in out),
                      "above_ceiling": sum(m < 0 for m, _ in out),
+                     "ties": sum(m == 0 for m, _ in out),
                      "pal_failures_above": sum(m < 0 and not ok for m, ok in out),
-                     "pal_failures_below": sum(m >= 0 and not ok for m, ok in out)})
+                     "pal_failures_tie": sum(m == 0 and not ok for m, ok in out),
+                     "pal_failures_leading": sum(m > 0 and not ok for m, ok in out),
+                     "failed_seeds": [CHECK_SEED + i for i, (_, ok) in enumerate(out) if not ok]})
     return rows
 
 

@@ -199,10 +199,11 @@ def write_section() -> None:
             lines.append(
                 f"- At the ceiling, {c['noise']:.0%} noise, {c['trials']:,} further actiongrams "
                 f"(seeds from {s['check_seed']:,}): PAL {c['pal_successes']:,} "
-                f"({c['pal_successes'] / c['trials']:.1%}); {c['above_ceiling']} are above "
-                f"the ceiling (no vote recovers them), PAL fails {c['pal_failures_above']} of "
-                f"those and **{c['pal_failures_below']}** of the {c['trials'] - c['above_ceiling']:,} "
-                f"below it.")
+                f"({c['pal_successes'] / c['trials']:.1%}). {c['above_ceiling']} are above the "
+                f"ceiling (PAL fails {c['pal_failures_above']}), {c['ties']} have a tie (a wrong "
+                f"symbol as frequent as the true one: a coin flip for any vote; PAL fails "
+                f"{c['pal_failures_tie']}); where the true symbol leads everywhere PAL fails "
+                f"**{c['pal_failures_leading']}** of {c['trials'] - c['above_ceiling'] - c['ties']:,}.")
         paper = {f"{row['noise']:.2f}": row["pal"] for row in s["paper_table"]}
         for name, table in s.get("variants", {}).items():
             cells = ", ".join(f"{k}: {v:.0%}" for k, v in table.items())
