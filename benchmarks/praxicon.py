@@ -107,14 +107,15 @@ def _action_trip(folder: str, name: str, repeat: int):
     """One action generated and segmented again: per channel and per actuator, what came back."""
     try:
         generated = generate(folder, name, repeat=repeat)
-    except ValueError:
-        return None
+    except ValueError as exc:  # counted and listed, never dropped silently
+        return name, str(exc)
     exact, interior = generated.round_trip(), generated.round_trip(interior=True)
     channels = [{"exact": exact[c], "interior": interior[c],
                  "smooth": is_smooth_cycle(generated.words[c]),
                  "method": generated.methods[c].kind.split(":")[0],
                  "lengthened": generated.methods[c].minimum_frames > 0,
                  "scaled": generated.methods[c].scale > 1.0,
+                 "change": generated.methods[c].change,
                  "channel": c, "reason": generated.methods[c].kind}
                 for c in generated.channels]
     return name, channels, generated.round_trip(by="actuator")
@@ -129,13 +130,16 @@ def round_trips(folder: Path, index: dict, repeat: int, workers: int = 2) -> dic
     names = [a["name"] for a in sorted(learnt, key=lambda a: (-a.get("frame_rate", 0),
                                                                a["name"]))]
     with ProcessPoolExecutor(workers) as pool:
-        results = [r for r in pool.map(_action_trip, [str(folder)] * len(names), names,
-                                       [repeat] * len(names)) if r is not None]
+        everything = list(pool.map(_action_trip, [str(folder)] * len(names), names,
+                                   [repeat] * len(names)))
+    results = [r for r in everything if len(r) == 3]
+    refused = [r for r in everything if len(r) == 2]  # (name, why generation refused)
     channels = [c for _, cs, _ in results for c in cs]
     actuators = [ok for _, _, joints in results for ok in joints.values()]
     failed = [(name, c["channel"], c["reason"]) for name, cs, _ in results for c in cs
               if not c["exact"]]
-    return {"channels": channels, "actuators": actuators, "failed": failed}
+    return {"channels": channels, "actuators": actuators, "failed": failed, "refused": refused,
+            "actions": len(names)}
 
 
 def _share(count: int, total: int) -> str:
@@ -143,7 +147,11 @@ def _share(count: int, total: int) -> str:
 
 
 def summarise(times, rows, trips, repeat, same_bytes, index) -> str:
-    (t1, t2), runs = times
+    (one, two), runs = times
+    t1, t2 = min(one), min(two)
+    pairs = sorted(a / b for a, b in zip(one, two))
+    median_pair = pairs[len(pairs) // 2] if len(pairs) % 2 else \
+        (pairs[len(pairs) // 2 - 1] + pairs[len(pairs) // 2]) / 2
     counts = index["counts"]
     out = io.StringIO()
     out.write(f"Command: `flock /tmp/heavy.lock python benchmarks/praxicon.py` (one run: "
@@ -152,6 +160,9 @@ def summarise(times, rows, trips, repeat, same_bytes, index) -> str:
     out.write(f"| build of {', '.join(DATASETS)} | wall seconds |\n|---|---|\n")
     out.write(f"| `--workers 1` | {t1:.1f} |\n| `--workers 2` | {t2:.1f} |\n")
     out.write(f"| ratio (1 worker / 2 workers) | **{t1 / t2:.2f}x** |\n\n")
+    out.write("Each pair (1 worker, then 2, one after the other): " + "; ".join(
+        f"{a:.1f} s / {b:.1f} s = {a / b:.2f}x" for a, b in zip(one, two)) +
+        f"; median pair ratio **{median_pair:.2f}x**.\n\n")
     out.write(f"{counts['actions']} actions, {counts['learnt']} learnt, {counts['failed']} "
               f"failed (each with its one-line reason in `index.json`); the two praxicons are "
               f"{'byte-identical' if same_bytes else 'DIFFERENT'}.\n\n")
@@ -183,6 +194,18 @@ def summarise(times, rows, trips, repeat, same_bytes, index) -> str:
                   f"({sum(c['lengthened'] for c in exact)}) | "
                   f"{_share(sum(got['actuators']), len(got['actuators']))} | "
                   f"{_share(sum(c['exact'] for c in smooth), len(smooth))} |\n")
+    for k in repeat:
+        got = trips[k]
+        corrected = [c["change"] for c in got["channels"] if c["method"] == "corrected"]
+        if corrected:
+            corrected.sort()
+            out.write(f"\nK = {k}: {got['actions']} actions generated, "
+                      f"{len(got['refused'])} refused"
+                      + "".join(f" ({name}: {why})" for name, why in got["refused"])
+                      + f"; the correction layer's largest change per corrected channel: median "
+                      f"{corrected[len(corrected) // 2]:.2f} deg, 90th percentile "
+                      f"{corrected[int(0.9 * (len(corrected) - 1))]:.2f} deg, largest "
+                      f"{corrected[-1]:.2f} deg.\n")
     first = trips[repeat[0]]
     reasons: dict[str, int] = {}
     for _, _, reason in first["failed"]:
@@ -237,7 +260,6 @@ def main(argv=None) -> int:
             two.append(seconds)
             print(f"build: {one[-1]:.1f} s with 1 worker, {two[-1]:.1f} s with 2",
                   file=sys.stderr)
-        t1, t2 = min(one), min(two)
         same = _files(scratch / "one") == _files(out)
         rows = score_actions(out, index)
         repeat = [int(k) for k in args.repeat.split(",")]
@@ -246,7 +268,7 @@ def main(argv=None) -> int:
             began = time.perf_counter()
             trips[k] = round_trips(out, index, k)
             print(f"round trip K={k}: {time.perf_counter() - began:.0f} s", file=sys.stderr)
-        summary = summarise(((t1, t2), args.runs), rows, trips, repeat, same, index)
+        summary = summarise(((one, two), args.runs), rows, trips, repeat, same, index)
         print(summary)
         if not args.no_docs:
             write_docs(summary, rows)

@@ -62,10 +62,11 @@ class Morpheme:
     kinetemes : tuple of str
         The pattern's symbols, in order.
     durations : tuple of float
-        The typical duration of each (seconds: the median over the copies).
+        The typical duration of each, seconds (PAL: its segment's in the medoid copy,
+        the whole pattern brought to the median copy's length).
     displacements : tuple of float or None
-        The typical signed angular change of each (the channel's unit; the
-        median over the copies), None when the actiongrams carry none.
+        The typical signed angular change of each, in the channel's unit (PAL: its
+        segment's own in the medoid copy), None when the actiongrams carry none.
 
     Examples
     --------

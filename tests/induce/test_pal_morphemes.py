@@ -101,17 +101,18 @@ take_strategy = st.lists(st.sampled_from("BGRY"), min_size=2, max_size=30).map(
     lambda syms: len(syms) >= 2).flatmap(lambda syms: st.tuples(
         st.just(tuple(syms)),
         st.lists(st.integers(1, 8), min_size=len(syms), max_size=len(syms)),
-        st.floats(0, 40), st.floats(0.5, 20)))
+        st.floats(0, 40), st.floats(0.5, 20), st.floats(-5, 5)))
 
 
 @given(take_strategy)
 def test_a_copy_is_whole_segments_of_its_take_that_close_on_themselves(case):
-    symbols, frames, start, length = case
+    symbols, frames, start, length, origin = case
     durations = tuple(f / 10 for f in frames)
-    take = Actiongram(("x",), (symbols,), (durations,),
+    take = Actiongram(("x",), (symbols,), (durations,), origins=(origin,),
                       segment_displacements=(tuple(float(f) for f in frames),))
+    start += origin  # times are the take's, its string starting at its origin
     found = copy_segments(take, 0, start, length)
-    borders = np.concatenate(([0.0], np.cumsum(durations)))
+    borders = origin + np.concatenate(([0.0], np.cumsum(durations)))
     first = int(np.argmin(np.abs(borders[:-1] - start)))
     assert found is not None
     kinetemes, spans, moves = found

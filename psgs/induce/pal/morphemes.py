@@ -12,8 +12,8 @@ where its first kineteme begins again, about a copy later, so that the
 pattern repeated makes only changes a performance makes, never a splice no
 copy shows (a point-wise plurality, or the grid itself, which can step over a
 one-frame segment, can splice them). A kineteme's typical duration is its
-segment's, brought to the median copy's tempo; its angular displacement is its
-segment's own.
+segment's, the stretch brought to the median copy's length; its angular
+displacement is its segment's own.
 """
 
 from __future__ import annotations
@@ -84,6 +84,10 @@ def read_patterns(result: MotionResult, grids: list[Grid], periods, shifts,
     # at a tempo the action is performed at (a slow performance's kineteme of one frame,
     # at a faster tempo, lasts less than a frame)
     usual = np.abs(np.log(seconds * width / typical)) <= np.log(1.25)
+    # a cycle may close anywhere from half to three copies on (a joint can cycle once in two
+    # of the leader's cycles); a whole performance likewise: asking it to keep most of itself
+    # (0.8 to 1.25) gave one shared-data channel a change generation cannot make at K = 3
+    closing = (0.5, 3.0)
     for i, row in enumerate(rows_all):
         ordinary = ordinary_copies(states[:, i], cyclic=bool(periods))
         medoid = medoid_copy(states[:, i], columns[i],
@@ -93,15 +97,19 @@ def read_patterns(result: MotionResult, grids: list[Grid], periods, shifts,
         start = grids[k].t0 + (a + phase) * grids[k].step
         exact = None
         if takes is not None:
-            exact = copy_segments(takes[k], row, start, n * grids[k].step)
+            exact = copy_segments(takes[k], row, start, n * grids[k].step, closing)
             if exact is None or len(exact[0]) < 2:  # one kineteme from the phase on: the window
                 exact = copy_segments(takes[k], row, grids[k].t0 + a * grids[k].step,
-                                      n * grids[k].step)
+                                      n * grids[k].step, closing)
         if exact is not None and len(exact[0]) >= 2:
             # the medoid's own segments, whole, as the segmentation found them (the grid can
             # step over a one-frame segment and join its neighbours by a change never made)
             symbols, spans, turns = exact
             result.patterns[row] = tuple(code[s] for s in symbols)
+            # the stretch brought to the median copy's length: generation gives every channel's
+            # morpheme one period of the action (scaling by the copy's tempo instead, a stretch
+            # of three copies kept three times the length and squeezed the action's period:
+            # four shared-data channels then could not be made at K = 3)
             result.durations[row] = tuple(float(x) for x in spans * (typical / spans.sum()))
             result.displacements[row] = tuple(float(x) for x in turns)
         else:
@@ -125,12 +133,14 @@ def read_patterns(result: MotionResult, grids: list[Grid], periods, shifts,
         result.occurrence_performance[row] = [k for k, _, _ in windows]
 
 
-def copy_segments(take: Actiongram, row: int, start: float, length: float):
+def copy_segments(take: Actiongram, row: int, start: float, length: float,
+                  closing: tuple[float, float] = (0.5, 3.0)
+                  ) -> tuple[tuple[str, ...], np.ndarray, np.ndarray] | None:
     """One channel's whole segments over one copy: ``(symbols, durations, displacements)``.
 
     The copy begins at the segment border nearest ``start`` and ends at the border where
     the same kineteme begins again, about ``length`` seconds away (before or after; the
-    nearest to ``length`` between half and three times it), so that the string repeated
+    nearest to ``length`` within ``closing`` times it), so that the string repeated
     makes only changes the take makes: its last kineteme runs into its first there.
     Without such a border it ends at the border nearest ``start + length``.
 
@@ -142,6 +152,10 @@ def copy_segments(take: Actiongram, row: int, start: float, length: float):
         The channel's string in ``take``.
     start, length : float
         Where the copy begins and how long it is, seconds.
+    closing : (float, float)
+        How far, in copy lengths, the border where the first kineteme begins again may be
+        (default half to three).
+
     Returns
     -------
     tuple or None
@@ -169,13 +183,12 @@ def copy_segments(take: Actiongram, row: int, start: float, length: float):
     moves = durations if moves is None else np.asarray(moves, dtype=float)
     borders = take.origins[row] + np.concatenate(([0.0], np.cumsum(durations)))
     first = int(np.argmin(np.abs(borders[:-1] - start)))
-    # where the first kineteme begins again, before or after, between half and three times
-    # the length away (a joint may cycle once in two of the leader's cycles): the copy
-    # repeated then makes only changes the take makes
+    # where the first kineteme begins again, before or after, within ``closing`` lengths
+    # away: the copy repeated then makes only changes the take makes
     again = np.array([j for j in range(len(symbols)) if j != first and symbols[j] == symbols[first]],
                      dtype=np.int64)
     spans = np.abs(borders[again] - borders[first])
-    fits = (spans >= length / 2) & (spans <= 3 * length)
+    fits = (spans >= closing[0] * length) & (spans <= closing[1] * length)
     if fits.any():
         other = int(again[fits][np.argmin(np.abs(spans[fits] - length))])
         first, last = min(first, other), max(first, other)
