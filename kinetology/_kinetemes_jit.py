@@ -1,0 +1,383 @@
+"""The compiled segmentation engine: one fused loop per channel (numba), channels in threads.
+
+:mod:`kinetology._kinetemes` segments in numpy array passes, each a trip through memory over
+every sample; here the work of a channel after its smoothing is one compiled function, run
+while the channel's frames are in the processor's cache: both derivatives, the dead bands, the
+sign runs of both, the segment borders, codes and displacements. The arithmetic is the numpy
+engine's, operation for operation and in the same order (``(x[t+1] - x[t-1]) * 0.5 * rate``;
+numba without ``fastmath`` neither reorders nor fuses multiply-adds), and the dead band's 95th
+percentile is numpy's linear interpolation between the same two order statistics, so the
+output is the same to the bit (``tests/kinetology/test_kinetology_jit_engine.py`` checks it
+against the numpy engine, and every file of ``../shared/data/mocap`` was compared).
+
+The 120 fps smoothing stays numpy's banded matrix product (a BLAS kernel whose rounding a loop
+cannot reproduce); short kernels are summed here in one loop, in the numpy engine's order.
+Large takes are cut into groups of channels (two at least: a channel's BLAS result is then
+independent of the others) that threads smooth and segment side by side: BLAS and the
+compiled functions (``nogil``) release the GIL, and no numba threading layer is involved.
+
+Without numba this module still imports (the functions are then plain Python, which
+:mod:`kinetology._engines` never offers), so that the doctests collect everywhere.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+
+from ._kinetemes import _BLOCK, _PERCENTILE_SAMPLES, DIRECT_RADIUS, banded_product, \
+    gaussian_kernel, pad_odd
+
+try:
+    import numba
+except ImportError:  # pragma: no cover - kinetology._engines then offers the numpy engine
+    numba = None
+
+__all__: list[str] = []  # private: kinetology.segmentation is the interface
+
+#: below this many samples a call stays in one thread (starting threads costs ~0.1 ms)
+_THREADED_SAMPLES = 1 << 19
+
+
+def _jit(function):
+    """Compiled on first use, once per installed copy (``cache=True``); no ``fastmath``, so
+    IEEE arithmetic in the written order; ``nogil`` so that threads run side by side."""
+    if numba is None:
+        return function
+    return numba.njit(cache=True, nogil=True)(function)
+
+
+@_jit
+def _largest_steps(values):
+    """Per column of ``values`` (frames x channels), the largest ``|x[t + 1] - x[t]|``."""
+    frames, channels = values.shape
+    out = np.zeros(channels)
+    for t in range(frames - 1):
+        for c in range(channels):
+            step = abs(values[t + 1, c] - values[t, c])
+            if step > out[c]:
+                out[c] = step
+    return out
+
+
+@_jit
+def _direct_sum(padded, kernel, frames):
+    """:func:`kinetology._kinetemes.direct_sum` of each column, returned channels x frames.
+
+    Per output: the centre tap, then the pairs ``(x[k] + x[2r - k]) * kernel[k]`` added in
+    the order ``k = 0, 1, ...``, each rounded as numpy rounds its array passes.
+    """
+    radius = kernel.size // 2
+    channels = padded.shape[1]
+    out = np.empty((channels, frames))
+    acc = np.empty(channels)
+    for t in range(frames):
+        for c in range(channels):
+            acc[c] = kernel[radius] * padded[radius + t, c]
+        for k in range(radius):
+            weight = kernel[k]
+            for c in range(channels):
+                acc[c] += (padded[k + t, c] + padded[2 * radius - k + t, c]) * weight
+        for c in range(channels):
+            out[c, t] = acc[c]
+    return out
+
+
+@_jit
+def _derivative(signal, rate, out):
+    """``np.gradient(signal) * rate`` as :func:`kinetology._kinetemes._gradient` computes it:
+    ``(x[t + 1] - x[t - 1]) * 0.5``, then ``* rate``; one-sided at the ends."""
+    n = signal.size
+    for t in range(1, n - 1):
+        out[t] = ((signal[t + 1] - signal[t - 1]) * 0.5) * rate
+    out[0] = (signal[1] - signal[0]) * rate
+    out[n - 1] = (signal[n - 1] - signal[n - 2]) * rate
+
+
+@_jit
+def _select(values, k):
+    """Reorder ``values`` so that ``values[k]`` is its k-th smallest, none after it smaller
+    and none before it larger (Hoare's quickselect, median-of-three pivots; no NaN)."""
+    low, high = 0, values.size - 1
+    while high > low:
+        middle = (low + high) // 2
+        if values[middle] < values[low]:
+            values[middle], values[low] = values[low], values[middle]
+        if values[high] < values[low]:
+            values[high], values[low] = values[low], values[high]
+        if values[high] < values[middle]:
+            values[high], values[middle] = values[middle], values[high]
+        pivot = values[middle]
+        i, j = low, high
+        while i <= j:
+            while values[i] < pivot:
+                i += 1
+            while pivot < values[j]:
+                j -= 1
+            if i <= j:
+                values[i], values[j] = values[j], values[i]
+                i += 1
+                j -= 1
+        if k <= j:
+            high = j
+        elif k >= i:
+            low = i
+        else:
+            return
+
+
+@_jit
+def _percentile(sample, lower, gamma):
+    """``np.percentile(sample, 95)`` from its plan (:func:`_percentile_plan`), bit for bit.
+
+    numpy's linear method: the order statistics ``lower`` and ``lower + 1`` (the last one
+    twice when ``lower`` is the last), interpolated as ``numpy.lib``'s ``_lerp`` does (from
+    the upper one when ``gamma >= 0.5``); a sample with a NaN gives NaN. ``sample`` is
+    reordered.
+    """
+    for x in sample:
+        if x != x:
+            return math.nan
+    _select(sample, lower)
+    a = sample[lower]
+    b = a
+    if lower + 1 < sample.size:
+        b = sample[lower + 1]
+        for x in sample[lower + 2:]:
+            if x < b:
+                b = x
+    diff = b - a
+    if gamma >= 0.5:
+        return b - diff * (1.0 - gamma)
+    return a + diff * gamma
+
+
+@_jit
+def _band(signal, floor, relative, step, lower, gamma, sample):
+    """:func:`kinetology._kinetemes._bands` of one signal: ``np.maximum(floor, relative *``
+    the 95th percentile of every ``step``-th ``|x|``) (NaN propagates, as there)."""
+    if relative <= 0:
+        return floor
+    for j in range(sample.size):
+        sample[j] = abs(signal[j * step])
+    scale = relative * _percentile(sample, lower, gamma)
+    return scale if scale != scale or scale > floor else floor
+
+
+@_jit
+def _flips(v, a, v_band, a_band, v_flips, a_flips):
+    """The dead-band sign flips of a velocity and an acceleration, in one pass over both.
+
+    :func:`kinetology._kinetemes._sign_changes`: a run of one raw sign (``x >= 0``) counts
+    once some ``|x|`` in it exceeds the band; the resolved sign changes exactly at the start
+    of a counting run whose sign differs from the counting run before it. Writes those starts
+    into ``v_flips`` and ``a_flips``; returns their counts and whether each signal starts
+    >= 0 (its first counting run's sign; True without one). The bookkeeping of the two
+    signals is written out twice, straight-line, so that it stays in registers (a shared
+    helper returning a state tuple measured ten times slower).
+    """
+    v_sign = v[0] >= 0
+    v_start = 0
+    v_counted = abs(v[0]) > v_band
+    v_seen = v_counted
+    v_last = v_sign
+    v_first = v_sign if v_counted else True
+    nv = 0
+    a_sign = a[0] >= 0
+    a_start = 0
+    a_counted = abs(a[0]) > a_band
+    a_seen = a_counted
+    a_last = a_sign
+    a_first = a_sign if a_counted else True
+    na = 0
+    for t in range(1, v.size):
+        x = v[t]
+        sign = x >= 0
+        changed = sign != v_sign
+        v_sign = sign
+        v_start = t if changed else v_start  # a select, not a branch: runs are short in noise
+        v_counted = v_counted and not changed
+        if not v_counted and abs(x) > v_band:
+            v_counted = True
+            if not v_seen:
+                v_seen = True
+                v_first = sign
+            elif sign != v_last:
+                v_flips[nv] = v_start
+                nv += 1
+            v_last = sign
+        x = a[t]
+        sign = x >= 0
+        changed = sign != a_sign
+        a_sign = sign
+        a_start = t if changed else a_start
+        a_counted = a_counted and not changed
+        if not a_counted and abs(x) > a_band:
+            a_counted = True
+            if not a_seen:
+                a_seen = True
+                a_first = sign
+            elif sign != a_last:
+                a_flips[na] = a_start
+                na += 1
+            a_last = sign
+    return nv, v_first, na, a_first
+
+
+@_jit
+def _merge(s, v_flips, nv, v_up, a_flips, na, a_up, borders, codes, moves):
+    """Segment starts (frame 0 and the union of both flip lists), codes and displacements
+    (to the next start; the last to the last frame); returns the number of segments."""
+    n = s.size
+    falling = not v_up
+    a_negative = not a_up
+    i = 0
+    j = 0
+    count = 0
+    at = 0
+    following = 0
+    while following < n:
+        following = n
+        if i < nv:
+            following = v_flips[i]
+        if j < na and a_flips[j] < following:
+            following = a_flips[j]
+        borders[count] = at
+        codes[count] = 2 * falling + (falling != a_negative)
+        moves[count] = s[min(following, n - 1)] - s[at]
+        count += 1
+        if i < nv and v_flips[i] == following:
+            falling = not falling
+            i += 1
+        if j < na and a_flips[j] == following:
+            a_negative = not a_negative
+            j += 1
+        at = following
+    borders[count] = n
+    return count
+
+
+@_jit
+def _segment_rows(flat, row_stride, rows, frames, rate, v_floor, a_floor, relative, step,
+                  lower, gamma, samples, borders, codes, moves, counts, first, stride):
+    """Rows ``first, first + stride, ...`` (row ``r`` is ``flat[r * row_stride:][:frames]``,
+    >= 3 frames) into their own regions (``frames + 1`` wide) of the outputs."""
+    velocity = np.empty(frames)
+    acceleration = np.empty(frames)
+    v_flips = np.empty(frames, dtype=np.int64)
+    a_flips = np.empty(frames, dtype=np.int64)
+    sample = np.empty(samples)
+    for r in range(first, rows, stride):
+        s = flat[r * row_stride:r * row_stride + frames]
+        _derivative(s, rate, velocity)
+        _derivative(velocity, rate, acceleration)
+        v_band = _band(velocity, v_floor, relative, step, lower, gamma, sample)
+        a_band = _band(acceleration, a_floor, relative, step, lower, gamma, sample)
+        nv, v_up, na, a_up = _flips(velocity, acceleration, v_band, a_band, v_flips, a_flips)
+        at = r * (frames + 1)
+        counts[r] = _merge(s, v_flips, nv, v_up, a_flips, na, a_up,
+                           borders[at:at + frames + 1], codes[at:at + frames],
+                           moves[at:at + frames])
+
+
+def _percentile_plan(m: int) -> tuple[int, float]:
+    """``(lower, gamma)`` of numpy's 95th percentile of ``m`` values (method "linear").
+
+    numpy: the virtual index ``(m - 1) * q`` with ``q = 95 / 100``, the order statistic at its
+    floor and ``gamma = virtual - floor``; at or past the last value (``m == 1``) numpy takes
+    the last value twice with the index -1, so that ``gamma = virtual + 1``.
+    """
+    virtual = (m - 1) * (95 / 100)
+    if virtual >= m - 1:
+        return m - 1, virtual + 1.0
+    lower = math.floor(virtual)
+    return lower, virtual - lower
+
+
+def thread_count(channels: int, frames: int) -> int:
+    """Threads for a take: the cores this process may use (and at most numba's
+    ``NUMBA_NUM_THREADS``), one for small takes, and at least two channels a thread."""
+    if channels * frames < _THREADED_SAMPLES:
+        return 1
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else \
+        (os.cpu_count() or 1)
+    return max(1, min(cores, numba.config.NUMBA_NUM_THREADS, channels // 2))
+
+
+def _in_threads(threads: int, job) -> None:
+    """``job(k)`` for ``k`` in ``range(threads)``, side by side; the first error is raised."""
+    if threads == 1:
+        job(0)
+        return
+    with ThreadPoolExecutor(threads) as pool:
+        for done in [pool.submit(job, k) for k in range(threads)]:
+            done.result()
+
+
+def largest_step(values: np.ndarray) -> np.ndarray:
+    """:func:`kinetology._kinetemes.largest_step`, one pass."""
+    return _largest_steps(np.ascontiguousarray(values, dtype=float))
+
+
+def smooth_channels(values: np.ndarray, frame_rate: float, sigma: float) -> np.ndarray:
+    """:func:`kinetology._kinetemes.smooth_channels`: short kernels summed in one loop, long
+    ones as the banded product of groups of channels in threads (the same numbers)."""
+    frames, channels = values.shape
+    if sigma * frame_rate <= 0 or frames < 2 or channels == 0:
+        return np.ascontiguousarray(values.T, dtype=float)
+    radius, kernel = gaussian_kernel(frame_rate, sigma, frames)
+    if radius <= DIRECT_RADIUS:
+        return _direct_sum(pad_odd(values, radius), kernel, frames)
+    if channels == 1:
+        return banded_product(np.column_stack([values, values]), kernel)[:1]
+    threads = thread_count(channels, frames)
+    if threads == 1:
+        return banded_product(values, kernel)
+    out = np.empty((channels, -(-frames // _BLOCK), _BLOCK))
+    cuts = np.linspace(0, channels, threads + 1).astype(int).tolist()  # >= 2 channels each
+    _in_threads(threads, lambda k: banded_product(values[:, cuts[k]:cuts[k + 1]], kernel,
+                                                  out=out[cuts[k]:cuts[k + 1]]))
+    return out.reshape(channels, -1)[:, :frames]
+
+
+def segment_columns(smoothed: np.ndarray, frame_rate: float, velocity_deadband: float,
+                    acceleration_deadband: float, relative_deadband: float):
+    """:func:`kinetology._kinetemes.segment_columns`, one compiled pass per channel."""
+    channels, frames = smoothed.shape
+    if channels == 0:
+        return [], [], []
+    if frames < 3:  # no derivative: every channel is one rising, speeding-up segment
+        return ([np.array([0, frames], dtype=np.int64) for _ in range(channels)],
+                [np.zeros(1, dtype=np.int8) for _ in range(channels)],
+                [np.asarray(smoothed[c, -1:] - smoothed[c, :1], dtype=float)
+                 for c in range(channels)])
+    if smoothed.dtype != np.float64 or smoothed.strides[1] != 8 or smoothed.strides[0] % 8:
+        smoothed = np.ascontiguousarray(smoothed, dtype=float)
+    # the rows as one flat buffer and a row stride (the smoothing's rows may be padded)
+    row_stride = smoothed.strides[0] // 8
+    flat = np.lib.stride_tricks.as_strided(smoothed, ((channels - 1) * row_stride + frames,),
+                                           (8,), writeable=False)
+    step = max(1, frames // _PERCENTILE_SAMPLES)
+    samples = (frames - 1) // step + 1
+    lower, gamma = _percentile_plan(samples)
+    width = frames + 1
+    # a region per channel: only the pages that a channel's segments reach are touched
+    borders = np.empty(channels * width, dtype=np.int64)
+    codes = np.empty(channels * width, dtype=np.int8)
+    moves = np.empty(channels * width)
+    counts = np.empty(channels, dtype=np.int64)
+    threads = thread_count(channels, frames)
+    _in_threads(threads, lambda k: _segment_rows(
+        flat, row_stride, channels, frames, float(frame_rate), float(velocity_deadband),
+        float(acceleration_deadband), float(relative_deadband), step, lower, gamma, samples,
+        borders, codes, moves, counts, k, threads))
+    out_borders, out_codes, out_moves = [], [], []
+    for c, count in enumerate(counts.tolist()):
+        at = c * width
+        out_borders.append(borders[at:at + count + 1].copy())
+        out_codes.append(codes[at:at + count].copy())
+        out_moves.append(moves[at:at + count].copy())
+    return out_borders, out_codes, out_moves
