@@ -38,8 +38,9 @@ except ImportError:  # pragma: no cover - kinetology._engines then offers the nu
 
 __all__: list[str] = []  # private: kinetology.segmentation is the interface
 
-#: below this many samples a call stays in one thread (starting threads costs ~0.1 ms)
-_THREADED_SAMPLES = 1 << 19
+#: below this many samples a call stays in one thread (starting threads costs ~0.2 ms, and
+#: the shortest CMU takes, ~100,000 samples, take ~4 ms)
+_THREADED_SAMPLES = 1 << 16
 
 
 def _jit(function):
@@ -283,6 +284,24 @@ def _segment_rows(flat, row_stride, rows, frames, rate, v_floor, a_floor, relati
                            moves[at:at + frames])
 
 
+@_jit
+def _compact(borders, codes, moves, counts, width):
+    """The channels' regions of :func:`_segment_rows`'s outputs, one after the other."""
+    total = counts.sum()
+    out_borders = np.empty(total + counts.size, dtype=np.int64)
+    out_codes = np.empty(total, dtype=np.int8)
+    out_moves = np.empty(total)
+    at = 0
+    for c in range(counts.size):
+        count = counts[c]
+        region = c * width
+        out_borders[at + c:at + c + count + 1] = borders[region:region + count + 1]
+        out_codes[at:at + count] = codes[region:region + count]
+        out_moves[at:at + count] = moves[region:region + count]
+        at += count
+    return out_borders, out_codes, out_moves
+
+
 def _percentile_plan(m: int) -> tuple[int, float]:
     """``(lower, gamma)`` of numpy's 95th percentile of ``m`` values (method "linear").
 
@@ -374,10 +393,11 @@ def segment_columns(smoothed: np.ndarray, frame_rate: float, velocity_deadband: 
         flat, row_stride, channels, frames, float(frame_rate), float(velocity_deadband),
         float(acceleration_deadband), float(relative_deadband), step, lower, gamma, samples,
         borders, codes, moves, counts, k, threads))
-    out_borders, out_codes, out_moves = [], [], []
-    for c, count in enumerate(counts.tolist()):
-        at = c * width
-        out_borders.append(borders[at:at + count + 1].copy())
-        out_codes.append(codes[at:at + count].copy())
-        out_moves.append(moves[at:at + count].copy())
-    return out_borders, out_codes, out_moves
+    counts_list = counts.tolist()
+    firsts = np.cumsum([0] + counts_list[:-1]).tolist()
+    flat_borders, flat_codes, flat_moves = _compact(borders, codes, moves, counts, width)
+    # each channel's slice of the compact arrays; its borders have one entry more (the end)
+    return ([flat_borders[a + c:a + c + count + 1]
+             for c, (a, count) in enumerate(zip(firsts, counts_list))],
+            [flat_codes[a:a + count] for a, count in zip(firsts, counts_list)],
+            [flat_moves[a:a + count] for a, count in zip(firsts, counts_list)])

@@ -488,15 +488,19 @@ def segments(motion: Motion, channels=None, *, engine: str = "auto", **params) -
 
 def _smoothed(motion: Motion, channels, p: dict, use) -> tuple[list[str], np.ndarray]:
     """The channels to segment and their unwrapped, smoothed values, channels x frames."""
-    if channels is None:
-        channels = [c for c in motion.channels if _is_rotation(c)]
-    channels = list(channels)
-    columns = [motion.index(name) for name in channels]  # KeyError naming a missing channel
+    if channels is None:  # the rotations, found in one pass (short takes: this is per take)
+        rotation = [_is_rotation(c) for c in motion.channels]
+        columns = [i for i, r in enumerate(rotation) if r]
+        channels = [motion.channels[i] for i in columns]
+        rotation = np.ones(len(channels), dtype=bool)
+    else:
+        channels = list(channels)
+        columns = [motion.index(name) for name in channels]  # KeyError naming a missing one
+        rotation = np.array([_is_rotation(c) for c in channels], dtype=bool)
     if columns == list(range(motion.values.shape[1])):
         values = motion.values  # every channel in order: no copy
     else:
         values = motion.values[:, columns] if channels else np.zeros((motion.frames, 0))
-    rotation = np.array([_is_rotation(c) for c in channels], dtype=bool)
     if p["unwrap"] > 0 and rotation.any() and motion.frames > 1:
         # only the columns that jump by more than half a turn somewhere need it
         jumps = rotation & (use.largest_step(values) > p["unwrap"] / 2)
