@@ -293,23 +293,24 @@ def _segment_rows(flat, row_stride, rows, frames, rate, v_floor, a_floor, relati
         need = used + done + nv + na + 2  # at most nv + na + 1 segments
         if need > capacity:  # grow (rarely: the first guess is a segment per 8 frames)
             capacity = max(2 * capacity, need)
-            borders = _grown(borders, used + done, capacity)
-            codes = _grown(codes, used, capacity)
-            moves = _grown(moves, used, capacity)
+            # element loops: numba compiles slice assignment ten times slower
+            grown_borders = np.empty(capacity, dtype=np.int64)
+            for i in range(used + done):
+                grown_borders[i] = borders[i]
+            borders = grown_borders
+            grown_codes = np.empty(capacity, dtype=np.int8)
+            grown_moves = np.empty(capacity)
+            for i in range(used):
+                grown_codes[i] = codes[i]
+                grown_moves[i] = moves[i]
+            codes = grown_codes
+            moves = grown_moves
         count = _merge(s, v_flips, nv, v_up, a_flips, na, a_up, borders[used + done:],
                        codes[used:], moves[used:])
         counts[r] = count
         used += count
         done += 1
     return borders, codes, moves
-
-
-@_jit
-def _grown(values, kept, capacity):
-    """A ``capacity``-long copy of ``values`` keeping its first ``kept`` entries."""
-    out = np.empty(capacity, dtype=values.dtype)
-    out[:kept] = values[:kept]
-    return out
 
 
 def _percentile_plan(m: int) -> tuple[int, float]:
