@@ -143,17 +143,38 @@ def _order_statistics(sample, lower, heap):
 
 
 @_jit
-def _percentile(sample, lower, gamma, heap):
+def _percentile(sample, lower, gamma, heap, kept):
     """``np.percentile(sample, 95)`` from its plan (:func:`_percentile_plan`), bit for bit.
 
     numpy's linear method: the order statistics ``lower`` and ``lower + 1`` (the last one
     twice when ``lower`` is the last), interpolated as ``numpy.lib``'s ``_lerp`` does (from
-    the upper one when ``gamma >= 0.5``); a sample with a NaN gives NaN.
+    the upper one when ``gamma >= 0.5``); a sample with a NaN gives NaN. The order statistics
+    come from the values at or above a threshold that about twice as many as needed pass (the
+    matching value of every 16th one): when enough pass, they hold the top values exactly;
+    otherwise (rarely) the whole sample is searched. ``heap`` and ``kept`` are scratch.
     """
     for x in sample:
         if x != x:
             return math.nan
-    a, b = _order_statistics(sample, lower, heap)
+    m = sample.size
+    size = m - lower  # the values from the order statistic ``lower`` up
+    found = False
+    a = b = 0.0
+    probes = (m + 15) // 16
+    top = (2 * size) // 16
+    if 1 <= top < probes:
+        for j in range(probes):
+            kept[j] = sample[16 * j]
+        threshold, _ = _order_statistics(kept[:probes], probes - top, heap)
+        count = 0
+        for x in sample:  # a branch-free append: most values do not pass
+            kept[count] = x
+            count += x >= threshold
+        if count >= size:
+            a, b = _order_statistics(kept[:count], count - size, heap)
+            found = True
+    if not found:
+        a, b = _order_statistics(sample, lower, heap)
     diff = b - a
     if gamma >= 0.5:
         return b - diff * (1.0 - gamma)
@@ -161,14 +182,14 @@ def _percentile(sample, lower, gamma, heap):
 
 
 @_jit
-def _band(signal, floor, relative, step, lower, gamma, sample, heap):
+def _band(signal, floor, relative, step, lower, gamma, sample, heap, kept):
     """:func:`kinetology._kinetemes._bands` of one signal: ``np.maximum(floor, relative *``
     the 95th percentile of every ``step``-th ``|x|``) (NaN propagates, as there)."""
     if relative <= 0:
         return floor
     for j in range(sample.size):
         sample[j] = abs(signal[j * step])
-    scale = relative * _percentile(sample, lower, gamma, heap)
+    scale = relative * _percentile(sample, lower, gamma, heap, kept)
     return scale if scale != scale or scale > floor else floor
 
 
@@ -277,6 +298,7 @@ def _segment_rows(flat, row_stride, rows, frames, rate, v_floor, a_floor, relati
     a_flips = np.empty(frames, dtype=np.int64)
     sample = np.empty(samples)
     heap = np.empty(samples - lower)
+    kept = np.empty(samples)
     capacity = ((rows - first + stride - 1) // stride) * (frames // 8 + 2)
     borders = np.empty(capacity, dtype=np.int64)
     codes = np.empty(capacity, dtype=np.int8)
@@ -287,8 +309,8 @@ def _segment_rows(flat, row_stride, rows, frames, rate, v_floor, a_floor, relati
         s = flat[r * row_stride:r * row_stride + frames]
         _derivative(s, rate, velocity)
         _derivative(velocity, rate, acceleration)
-        v_band = _band(velocity, v_floor, relative, step, lower, gamma, sample, heap)
-        a_band = _band(acceleration, a_floor, relative, step, lower, gamma, sample, heap)
+        v_band = _band(velocity, v_floor, relative, step, lower, gamma, sample, heap, kept)
+        a_band = _band(acceleration, a_floor, relative, step, lower, gamma, sample, heap, kept)
         nv, v_up, na, a_up = _flips(velocity, acceleration, v_band, a_band, v_flips, a_flips)
         need = used + done + nv + na + 2  # at most nv + na + 1 segments
         if need > capacity:  # grow (rarely: the first guess is a segment per 8 frames)

@@ -139,11 +139,36 @@ def test_threads_do_not_change_the_result(monkeypatch):
 def test_the_percentile_is_numpys_bit_for_bit(values, repeat):
     sample = np.array(values * (1 + 50 * repeat))  # ties; samples of up to 9,060 values
     lower, gamma = _kinetemes_jit._percentile_plan(sample.size)
-    got = _kinetemes_jit._percentile(sample, lower, gamma, np.empty(sample.size - lower))
+    got = _kinetemes_jit._percentile(sample, lower, gamma, np.empty(sample.size - lower),
+                                     np.empty(sample.size))
     with np.errstate(invalid="ignore"):  # inf - inf in numpy's interpolation, as in ours
         expected = np.percentile(sample, 95)
     assert np.array_equal(np.float64(got), expected, equal_nan=True)
     assert np.float64(got).tobytes() == np.float64(expected).tobytes() or np.isnan(expected)
+
+
+@pytest.mark.parametrize("layout", ["probes hold the largest", "probes hold the smallest",
+                                    "sorted", "reversed", "all equal"])
+def test_the_percentile_is_numpys_whichever_values_the_probes_see(layout):
+    """Every 16th value sets the threshold of the search: the answer must not depend on it
+    (too high a threshold falls back to searching every value)."""
+    rng = np.random.default_rng(7)
+    for m in (160, 161, 1000, 8192, 9001):
+        sample = rng.random(m)
+        if layout == "probes hold the largest":
+            sample[::16] += 10.0
+        elif layout == "probes hold the smallest":
+            sample[::16] -= 10.0
+        elif layout == "sorted":
+            sample.sort()
+        elif layout == "reversed":
+            sample = np.sort(sample)[::-1].copy()
+        else:
+            sample[:] = 0.25
+        lower, gamma = _kinetemes_jit._percentile_plan(m)
+        got = _kinetemes_jit._percentile(sample.copy(), lower, gamma,
+                                         np.empty(m - lower), np.empty(m))
+        assert np.float64(got).tobytes() == np.percentile(sample, 95).tobytes(), (layout, m)
 
 
 def test_the_engine_choice_validates():
