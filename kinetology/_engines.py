@@ -11,6 +11,8 @@ from dataclasses import dataclass
 from functools import lru_cache
 from typing import Callable
 
+import numpy as np
+
 from . import _kinetemes
 
 __all__: list[str] = []  # private: kinetology.segmentation is the interface
@@ -25,10 +27,15 @@ class Engine:
     name: str
     largest_step: Callable
     smooth_channels: Callable
+    row_ranges: Callable
     segment_columns: Callable
 
 
-NUMPY = Engine("numpy", _kinetemes.largest_step, _kinetemes.smooth_channels,
+def _ranges(rows):
+    return np.ptp(rows, axis=1)
+
+
+NUMPY = Engine("numpy", _kinetemes.largest_step, _kinetemes.smooth_channels, _ranges,
                _kinetemes.segment_columns)
 
 
@@ -40,7 +47,8 @@ def _compiled() -> Engine | str:
     except ImportError as error:
         return str(error)
     from . import _kinetemes_jit as jit
-    return Engine("numba", jit.largest_step, jit.smooth_channels, jit.segment_columns)
+    return Engine("numba", jit.largest_step, jit.smooth_channels, jit.row_ranges,
+                  jit.segment_columns)
 
 
 def select(engine: str = "auto") -> Engine:

@@ -78,20 +78,33 @@ def banded_product(values: np.ndarray, kernel: np.ndarray, out: np.ndarray | Non
     frames, channels = values.shape
     radius = kernel.size // 2
     blocks = -(-frames // _BLOCK)
-    window = _BLOCK + 2 * radius
     padded = pad_odd(values, radius, blocks * _BLOCK - frames)
-    band = np.zeros((_BLOCK, window))
-    for a in range(_BLOCK):
-        band[a, a:a + kernel.size] = kernel
-    step = padded.strides[0]
-    windows = np.lib.stride_tricks.as_strided(
-        padded, shape=(blocks, window, channels), strides=(_BLOCK * step, step, padded.strides[1]),
-        writeable=False)
     if out is None:
         out = np.empty((channels, blocks, _BLOCK))
-    # (channels x window) @ (window x block) per block, written straight into channel-major order
-    np.matmul(windows.transpose(0, 2, 1), band.T, out=out.transpose(1, 0, 2))
+    block_product(block_windows(padded, blocks, kernel.size), band_matrix(kernel), out)
     return out.reshape(channels, blocks * _BLOCK)[:, :frames]
+
+
+def band_matrix(kernel: np.ndarray) -> np.ndarray:
+    """The ``_BLOCK x window`` matrix of :func:`banded_product`: the kernel on its diagonals."""
+    band = np.zeros((_BLOCK, _BLOCK + kernel.size - 1))
+    for a in range(_BLOCK):
+        band[a, a:a + kernel.size] = kernel
+    return band
+
+
+def block_windows(padded: np.ndarray, blocks: int, taps: int) -> np.ndarray:
+    """``blocks x window x channels``: block ``b``'s window is rows ``16 b ..`` of ``padded``."""
+    step = padded.strides[0]
+    return np.lib.stride_tricks.as_strided(
+        padded, shape=(blocks, _BLOCK + taps - 1, padded.shape[1]),
+        strides=(_BLOCK * step, step, padded.strides[1]), writeable=False)
+
+
+def block_product(windows: np.ndarray, band: np.ndarray, out: np.ndarray) -> None:
+    """(channels x window) @ (window x block) per block, written straight into ``out``
+    (channels x blocks x ``_BLOCK``): one BLAS product a block."""
+    np.matmul(windows.transpose(0, 2, 1), band.T, out=out.transpose(1, 0, 2))
 
 
 def smooth_channels(values: np.ndarray, frame_rate: float, sigma: float) -> np.ndarray:

@@ -28,8 +28,8 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
-from ._kinetemes import _BLOCK, _PERCENTILE_SAMPLES, DIRECT_RADIUS, banded_product, \
-    gaussian_kernel, pad_odd
+from ._kinetemes import _BLOCK, _PERCENTILE_SAMPLES, DIRECT_RADIUS, band_matrix, \
+    banded_product, block_product, block_windows, gaussian_kernel, pad_odd
 
 try:
     import numba
@@ -368,8 +368,61 @@ def _in_threads(threads: int, job) -> list:
 
 
 def largest_step(values: np.ndarray) -> np.ndarray:
-    """:func:`kinetology._kinetemes.largest_step`, one pass."""
-    return _largest_steps(np.ascontiguousarray(values, dtype=float))
+    """:func:`kinetology._kinetemes.largest_step`, one pass (blocks of frames in threads)."""
+    values = np.ascontiguousarray(values, dtype=float)
+    frames, channels = values.shape
+    threads = thread_count(frames, channels)  # the frames are cut, not the channels
+    if threads == 1:
+        return _largest_steps(values)
+    cuts = np.linspace(0, frames - 1, threads + 1).astype(int).tolist()
+    parts = _in_threads(threads, lambda k: _largest_steps(values[cuts[k]:cuts[k + 1] + 1]))
+    return np.maximum.reduce(parts)
+
+
+def row_ranges(rows: np.ndarray) -> np.ndarray:
+    """``np.ptp(rows, axis=1)``, groups of rows in threads (numpy's reductions let go of
+    the GIL)."""
+    channels, frames = rows.shape
+    threads = thread_count(channels, frames)
+    if threads == 1 or frames == 0:
+        return np.ptp(rows, axis=1)
+    cuts = np.linspace(0, channels, threads + 1).astype(int).tolist()
+    return np.concatenate(_in_threads(threads, lambda k: np.ptp(rows[cuts[k]:cuts[k + 1]],
+                                                                axis=1)))
+
+
+def _banded_unpadded(values: np.ndarray, kernel: np.ndarray, out: np.ndarray) -> None:
+    """:func:`kinetology._kinetemes.banded_product` into ``out`` without the padded copy of
+    the take (at 100,000 frames its allocation and copy took as long as a third of the
+    products): the blocks whose window lies inside the take read it where it is, only the
+    first and last few blocks a padded head and tail (made as ``pad_odd`` makes them). Each
+    block is the same BLAS product of the same numbers."""
+    frames, channels = values.shape
+    radius = kernel.size // 2
+    blocks = -(-frames // _BLOCK)
+    window = _BLOCK + 2 * radius
+    first = -(-radius // _BLOCK)                 # the first block whose window is inside
+    last = (frames + radius - window) // _BLOCK  # the last one
+    if last < first or values.strides[1] != values.itemsize or \
+            values.strides[0] < channels * values.itemsize:
+        # short, or not frames-major (a column selection can be channels-major): BLAS would
+        # take the windows the other way round and add in another order
+        banded_product(values, kernel, out=out)
+        return
+    band = band_matrix(kernel)
+    head = np.empty(((first - 1) * _BLOCK + window, channels))
+    head[radius:] = values[:head.shape[0] - radius]
+    np.subtract(2 * values[0], values[radius:0:-1], out=head[:radius])
+    start = (last + 1) * _BLOCK                  # the tail's first row of the padded take
+    tail = np.zeros(((blocks - 1) * _BLOCK + window - start, channels))
+    inside = radius + frames - start
+    tail[:inside] = values[start - radius:]
+    np.subtract(2 * values[-1], values[-2:-radius - 2:-1], out=tail[inside:inside + radius])
+    middle = values[first * _BLOCK - radius:]
+    block_product(block_windows(head, first, kernel.size), band, out[:, :first])
+    block_product(block_windows(middle, last + 1 - first, kernel.size), band,
+                  out[:, first:last + 1])
+    block_product(block_windows(tail, blocks - last - 1, kernel.size), band, out[:, last + 1:])
 
 
 def smooth_channels(values: np.ndarray, frame_rate: float, sigma: float) -> np.ndarray:
@@ -384,12 +437,10 @@ def smooth_channels(values: np.ndarray, frame_rate: float, sigma: float) -> np.n
     if channels == 1:
         return banded_product(np.column_stack([values, values]), kernel)[:1]
     threads = thread_count(channels, frames)
-    if threads == 1:
-        return banded_product(values, kernel)
     out = np.empty((channels, -(-frames // _BLOCK), _BLOCK))
     cuts = np.linspace(0, channels, threads + 1).astype(int).tolist()  # >= 2 channels each
-    _in_threads(threads, lambda k: banded_product(values[:, cuts[k]:cuts[k + 1]], kernel,
-                                                  out=out[cuts[k]:cuts[k + 1]]))
+    _in_threads(threads, lambda k: _banded_unpadded(values[:, cuts[k]:cuts[k + 1]], kernel,
+                                                    out[cuts[k]:cuts[k + 1]]))
     return out.reshape(channels, -1)[:, :frames]
 
 

@@ -237,7 +237,8 @@ def segment_performances(motions, channels=None, *, engine: str = "auto", **para
     moving: set[str] = set()
     for motion, (names, values) in zip(motions, smoothed):
         if motion.frames:
-            moving.update(n for n, r in zip(names, np.ptp(values, axis=1)) if r >= p["min_range"])
+            moving.update(n for n, r in zip(names, use.row_ranges(values))
+                          if r >= p["min_range"])
     order = list(motions[0].channels if channels is None else channels)
     union = [c for c in order if c in moving]
     out = []
