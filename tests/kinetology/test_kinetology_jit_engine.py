@@ -18,6 +18,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from kinetology import Motion, _kinetemes_jit
+from kinetology._kinetemes import banded_product, gaussian_kernel
 from kinetology._engines import ENGINES, select
 from kinetology.performances import segment_performances
 from kinetology.segmentation import segment, segments, states
@@ -119,6 +120,23 @@ def test_long_takes_alike(frames, channels, rate):
     values[:, 2] = 7.0                                     # still
     motion = Motion(values, tuple(f"j{i}.rx" for i in range(channels)), rate)
     assert_same(segments(motion, engine="numba"), segments(motion, engine="numpy"))
+
+
+@settings(max_examples=60)
+@given(st.integers(2, 700), st.integers(2, 9), st.sampled_from([0.05, 0.1, 0.2]),
+       st.sampled_from(["whole", "group", "channels-major"]), st.integers(0, 1000))
+def test_the_unpadded_banded_product_is_the_padded_one(frames, count, sigma, layout, seed):
+    """The compiled engine's smoothing reads the inner windows from the take itself; a group
+    of channels (a view into wider rows) and a channels-major selection give the same bits."""
+    values = np.cumsum(np.random.default_rng(seed).normal(size=(frames, count + 3)), axis=0)
+    part = {"whole": values[:, :count].copy(), "group": values[:, 1:1 + count],
+            "channels-major": values[:, list(range(count))]}[layout]
+    radius, kernel = gaussian_kernel(120.0, sigma, frames)
+    expected = banded_product(np.ascontiguousarray(part), kernel)
+    out = np.empty((count, -(-frames // 16), 16))
+    _kinetemes_jit._banded_unpadded(part, kernel, out)
+    assert out.reshape(count, -1)[:, :frames].tobytes() == \
+        np.ascontiguousarray(expected).tobytes()
 
 
 def test_threads_do_not_change_the_result(monkeypatch):
