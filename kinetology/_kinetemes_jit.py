@@ -38,9 +38,10 @@ except ImportError:  # pragma: no cover - kinetology._engines then offers the nu
 
 __all__: list[str] = []  # private: kinetology.segmentation is the interface
 
-#: below this many samples a call stays in one thread (starting threads costs ~0.2 ms, and
-#: the shortest CMU takes, ~100,000 samples, take ~4 ms)
-_THREADED_SAMPLES = 1 << 16
+#: below this many samples a call stays in one thread: starting a pool of threads for each
+#: step costs more than it saves on the CMU takes (10,000 to 290,000 samples: 45 ms in one
+#: thread for all 16, 68 ms with threads from 65,536 samples up)
+_THREADED_SAMPLES = 1 << 19
 
 
 def _jit(function):
