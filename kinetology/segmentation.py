@@ -436,9 +436,9 @@ def segments(motion: Motion, channels=None, *, engine: str = "auto", **params) -
     engine : {"auto", "numpy", "numba"}, default "auto"
         Which implementation computes the segments; the output is the same to the bit.
         ``"numba"`` runs one compiled loop per channel (channels of a large take in threads,
-        one per core; about twice as fast as ``"numpy"``'s array passes on long takes; needs
-        ``pip install psgs[fast]``), ``"numpy"`` needs nothing more, ``"auto"`` takes numba
-        when it imports.
+        one per core; 1.6 to 5 times as fast as ``"numpy"``'s array passes, docs/kinetology.md
+        "Speed"; needs ``pip install psgs[fast]``), ``"numpy"`` needs nothing more, ``"auto"``
+        takes numba when it imports.
     **params
         ``smoothing``, ``velocity_deadband``, ``acceleration_deadband``, ``min_range``
         (defaults in :data:`DEFAULTS`).
