@@ -1,7 +1,7 @@
 """Which engine segments: numpy's array passes or numba's compiled loops (the same output).
 
 ``engine="auto"`` (the default of every function that segments) takes the compiled engine
-when numba can be imported (``pip install psgs[fast]``) and numpy's otherwise; ``"numpy"``
+when numba can be imported (``pip install 'psgs[fast]'``) and numpy's otherwise; ``"numpy"``
 and ``"numba"`` ask for one. The choice is an argument, never a setting held anywhere.
 """
 
@@ -67,6 +67,6 @@ def select(engine: str = "auto") -> Engine:
         return compiled
     if engine == "numba":
         raise ImportError(f"engine='numba' needs numba, which does not import here "
-                          f"({compiled}); install it with `pip install psgs[fast]`, or use "
+                          f"({compiled}); install it with `pip install 'psgs[fast]'`, or use "
                           f"engine='numpy'")
     return NUMPY

@@ -437,7 +437,7 @@ def segments(motion: Motion, channels=None, *, engine: str = "auto", **params) -
         Which implementation computes the segments; the output is the same to the bit.
         ``"numba"`` runs one compiled loop per channel (channels of a large take in threads,
         one per core; 1.6 to 5 times as fast as ``"numpy"``'s array passes, docs/kinetology.md
-        "Speed"; needs ``pip install psgs[fast]``), ``"numpy"`` needs nothing more, ``"auto"``
+        "Speed"; needs ``pip install 'psgs[fast]'``), ``"numpy"`` needs nothing more, ``"auto"``
         takes numba when it imports.
     **params
         ``smoothing``, ``velocity_deadband``, ``acceleration_deadband``, ``min_range``

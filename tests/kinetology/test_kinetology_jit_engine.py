@@ -221,4 +221,4 @@ def test_without_numba_auto_is_numpy_and_numba_is_a_clear_error():
     lines = done.stdout.splitlines()
     assert done.returncode == 0, done.stderr[-2000:]
     assert lines[0] == "True"
-    assert "engine='numba' needs numba" in lines[1] and "pip install psgs[fast]" in lines[1]
+    assert "engine='numba' needs numba" in lines[1] and "pip install 'psgs[fast]'" in lines[1]
