@@ -195,63 +195,39 @@ def _band(signal, floor, relative, step, lower, gamma, sample, heap, kept):
 
 
 @_jit
-def _flips(v, a, v_band, a_band, v_flips, a_flips):
-    """The dead-band sign flips of a velocity and an acceleration, in one pass over both.
+def _flips(x, band, flips):
+    """The dead-band sign flips of one signal (:func:`kinetology._kinetemes._sign_changes`).
 
-    :func:`kinetology._kinetemes._sign_changes`: a run of one raw sign (``x >= 0``) counts
-    once some ``|x|`` in it exceeds the band; the resolved sign changes exactly at the start
-    of a counting run whose sign differs from the counting run before it. Writes those starts
-    into ``v_flips`` and ``a_flips``; returns their counts and whether each signal starts
-    >= 0 (its first counting run's sign; True without one). The bookkeeping of the two
-    signals is written out twice, straight-line, so that it stays in registers (a shared
-    helper returning a state tuple measured ten times slower).
+    A run of one raw sign (``x >= 0``) counts once some ``|x|`` in it exceeds ``band``; the
+    resolved sign changes exactly at the start of a counting run whose sign differs from the
+    counting run before it. Writes those starts into ``flips``; returns their count and
+    whether the signal starts >= 0 (its first counting run's sign; True without one). (The
+    velocity and the acceleration in one loop measured no faster than one after the other.)
     """
-    v_sign = v[0] >= 0
-    v_start = 0
-    v_counted = abs(v[0]) > v_band
-    v_seen = v_counted
-    v_last = v_sign
-    v_first = v_sign if v_counted else True
-    nv = 0
-    a_sign = a[0] >= 0
-    a_start = 0
-    a_counted = abs(a[0]) > a_band
-    a_seen = a_counted
-    a_last = a_sign
-    a_first = a_sign if a_counted else True
-    na = 0
-    for t in range(1, v.size):
-        x = v[t]
-        sign = x >= 0
-        changed = sign != v_sign
-        v_sign = sign
-        v_start = t if changed else v_start  # a select, not a branch: runs are short in noise
-        v_counted = v_counted and not changed
-        if not v_counted and abs(x) > v_band:
-            v_counted = True
-            if not v_seen:
-                v_seen = True
-                v_first = sign
-            elif sign != v_last:
-                v_flips[nv] = v_start
-                nv += 1
-            v_last = sign
-        x = a[t]
-        sign = x >= 0
-        changed = sign != a_sign
-        a_sign = sign
-        a_start = t if changed else a_start
-        a_counted = a_counted and not changed
-        if not a_counted and abs(x) > a_band:
-            a_counted = True
-            if not a_seen:
-                a_seen = True
-                a_first = sign
-            elif sign != a_last:
-                a_flips[na] = a_start
-                na += 1
-            a_last = sign
-    return nv, v_first, na, a_first
+    sign = x[0] >= 0
+    start = 0
+    counted = abs(x[0]) > band
+    seen = counted
+    last = sign
+    first = sign if counted else True
+    count = 0
+    for t in range(1, x.size):
+        value = x[t]
+        now = value >= 0
+        changed = now != sign
+        sign = now
+        start = t if changed else start  # a select, not a branch: runs are short in noise
+        counted = counted and not changed
+        if not counted and abs(value) > band:
+            counted = True
+            if not seen:
+                seen = True
+                first = sign
+            elif sign != last:
+                flips[count] = start
+                count += 1
+            last = sign
+    return count, first
 
 
 @_jit
@@ -312,7 +288,8 @@ def _segment_rows(flat, row_stride, rows, frames, rate, v_floor, a_floor, relati
         _derivative(velocity, rate, acceleration)
         v_band = _band(velocity, v_floor, relative, step, lower, gamma, sample, heap, kept)
         a_band = _band(acceleration, a_floor, relative, step, lower, gamma, sample, heap, kept)
-        nv, v_up, na, a_up = _flips(velocity, acceleration, v_band, a_band, v_flips, a_flips)
+        nv, v_up = _flips(velocity, v_band, v_flips)
+        na, a_up = _flips(acceleration, a_band, a_flips)
         need = used + done + nv + na + 2  # at most nv + na + 1 segments
         if need > capacity:  # grow (rarely: the first guess is a segment per 8 frames)
             capacity = max(2 * capacity, need)
