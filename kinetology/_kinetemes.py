@@ -61,7 +61,8 @@ def direct_sum(padded: np.ndarray, kernel: np.ndarray, frames: int) -> np.ndarra
     return out
 
 
-def banded_product(values: np.ndarray, kernel: np.ndarray) -> np.ndarray:
+def banded_product(values: np.ndarray, kernel: np.ndarray, out: np.ndarray | None = None
+                   ) -> np.ndarray:
     """The convolution of every column of ``values`` (frames x channels, >= 2 channels) as
     blocks of a banded matrix product, returned channels x frames.
 
@@ -71,23 +72,39 @@ def banded_product(values: np.ndarray, kernel: np.ndarray) -> np.ndarray:
     product of the kernel with its window, rounding only in the last bits). A channel's
     result does not depend on the other channels with two channels or more (a single column
     would take BLAS's matrix-vector path, which adds in another order); the caller pads one.
+    ``out``, when given, is the ``channels x blocks x _BLOCK`` array to write into (a group of
+    channels' slice of a larger one: :mod:`kinetology._kinetemes_jit` smooths groups in threads).
     """
     frames, channels = values.shape
     radius = kernel.size // 2
     blocks = -(-frames // _BLOCK)
-    window = _BLOCK + 2 * radius
     padded = pad_odd(values, radius, blocks * _BLOCK - frames)
-    band = np.zeros((_BLOCK, window))
+    if out is None:
+        out = np.empty((channels, blocks, _BLOCK))
+    block_product(block_windows(padded, blocks, kernel.size), band_matrix(kernel), out)
+    return out.reshape(channels, blocks * _BLOCK)[:, :frames]
+
+
+def band_matrix(kernel: np.ndarray) -> np.ndarray:
+    """The ``_BLOCK x window`` matrix of :func:`banded_product`: the kernel on its diagonals."""
+    band = np.zeros((_BLOCK, _BLOCK + kernel.size - 1))
     for a in range(_BLOCK):
         band[a, a:a + kernel.size] = kernel
+    return band
+
+
+def block_windows(padded: np.ndarray, blocks: int, taps: int) -> np.ndarray:
+    """``blocks x window x channels``: block ``b``'s window is rows ``16 b ..`` of ``padded``."""
     step = padded.strides[0]
-    windows = np.lib.stride_tricks.as_strided(
-        padded, shape=(blocks, window, channels), strides=(_BLOCK * step, step, padded.strides[1]),
-        writeable=False)
-    out = np.empty((channels, blocks, _BLOCK))
-    # (channels x window) @ (window x block) per block, written straight into channel-major order
+    return np.lib.stride_tricks.as_strided(
+        padded, shape=(blocks, _BLOCK + taps - 1, padded.shape[1]),
+        strides=(_BLOCK * step, step, padded.strides[1]), writeable=False)
+
+
+def block_product(windows: np.ndarray, band: np.ndarray, out: np.ndarray) -> None:
+    """(channels x window) @ (window x block) per block, written straight into ``out``
+    (channels x blocks x ``_BLOCK``): one BLAS product a block."""
     np.matmul(windows.transpose(0, 2, 1), band.T, out=out.transpose(1, 0, 2))
-    return out.reshape(channels, blocks * _BLOCK)[:, :frames]
 
 
 def smooth_channels(values: np.ndarray, frame_rate: float, sigma: float) -> np.ndarray:
@@ -101,6 +118,15 @@ def smooth_channels(values: np.ndarray, frame_rate: float, sigma: float) -> np.n
     if channels == 1:
         return banded_product(np.column_stack([values, values]), kernel)[:1]
     return banded_product(values, kernel)
+
+
+def largest_step(values: np.ndarray) -> np.ndarray:
+    """Per column, the largest ``|x[t + 1] - x[t]|`` (in blocks of frames that stay in cache)."""
+    out = np.zeros(values.shape[1])
+    for first in range(0, values.shape[0] - 1, 4096):
+        part = values[first:first + 4097]
+        np.maximum(out, np.abs(np.diff(part, axis=0)).max(axis=0), out=out)
+    return out
 
 
 def _gradient(signal: np.ndarray, frame_rate: float) -> np.ndarray:

@@ -185,7 +185,7 @@ def performances(*sources, spans: Iterable[Span] | None = None, label: str | Non
     return from_spans(motions[0], spans, label, min_seconds=min_seconds)
 
 
-def segment_performances(motions, channels=None, **params) -> tuple:
+def segment_performances(motions, channels=None, *, engine: str = "auto", **params) -> tuple:
     """One :class:`psgs.Actiongram` per performance, all with the same strings.
 
     A channel still in one take may move in another; a learner compares the performances
@@ -198,6 +198,8 @@ def segment_performances(motions, channels=None, **params) -> tuple:
         The performances (same channel names; a channel missing from one is an error).
     channels : sequence of str, optional
         Channels to consider (default: every angle channel).
+    engine : {"auto", "numpy", "numba"}, default "auto"
+        The implementation, as for :func:`kinetology.segments` (the same output with each).
     **params
         Segmentation parameters, as for :func:`kinetology.segment`.
 
@@ -209,6 +211,8 @@ def segment_performances(motions, channels=None, **params) -> tuple:
     ------
     KeyError
         A channel of the union is missing from one of the motions (named).
+    ValueError
+        An unknown ``engine`` (or a bad segmentation parameter, as for ``segment``).
 
     Examples
     --------
@@ -219,19 +223,22 @@ def segment_performances(motions, channels=None, **params) -> tuple:
     >>> [ag.names for ag in segment_performances([a, b])]
     [('arm.rx', 'leg.rx'), ('arm.rx', 'leg.rx')]
     """
+    from ._engines import select
     from .segmentation import _check, _segmentation, _smoothed
 
     motions = tuple(motions)
     if not motions:
         return ()
+    use = select(engine)
     p = _check(params)
     # each take smoothed once: the channels that move anywhere are then segmented from the
     # same smoothed values (a channel's segments do not depend on the other channels)
-    smoothed = [_smoothed(motion, channels, p) for motion in motions]
+    smoothed = [_smoothed(motion, channels, p, use) for motion in motions]
     moving: set[str] = set()
     for motion, (names, values) in zip(motions, smoothed):
         if motion.frames:
-            moving.update(n for n, r in zip(names, np.ptp(values, axis=1)) if r >= p["min_range"])
+            moving.update(n for n, r in zip(names, use.row_ranges(values))
+                          if r >= p["min_range"])
     order = list(motions[0].channels if channels is None else channels)
     union = [c for c in order if c in moving]
     out = []
@@ -240,7 +247,7 @@ def segment_performances(motions, channels=None, **params) -> tuple:
             motion.index(name)  # KeyError naming a channel this take lacks
         rows = {n: i for i, n in enumerate(names)}
         picked = values[[rows[n] for n in union]] if all(n in rows for n in union) else \
-            _smoothed(motion, union, p)[1]
+            _smoothed(motion, union, p, use)[1]
         kept = np.full(len(union), motion.frames > 0)  # an empty take keeps none, as before
-        out.append(_segmentation(motion, union, picked, kept, p).to_actiongram())
+        out.append(_segmentation(motion, union, picked, kept, p, use).to_actiongram())
     return tuple(out)
