@@ -26,3 +26,24 @@ settings.register_profile(
     suppress_health_check=[HealthCheck.too_slow],
 )
 settings.load_profile("ci")
+
+
+def pytest_sessionstart(session):
+    """Build kinetology's compiled segmentation engine before any test is timed.
+
+    numba compiles it on first use: 4-6 s with an empty cache (a fresh install, as in CI),
+    which would otherwise land on whichever test segments first and push it towards the
+    suite's 15 s a test. Here it is built once per process before the tests (or found in
+    numba's cache); without numba there is nothing to build.
+    """
+    try:
+        import numpy as np
+
+        import kinetology
+    except ImportError:
+        return
+    walk = np.cumsum(np.random.default_rng(0).normal(size=(64, 2)), axis=0)
+    try:
+        kinetology.segments(kinetology.Motion(walk, ("a.rx", "b.rx"), 120.0), engine="numba")
+    except ImportError:
+        pass
