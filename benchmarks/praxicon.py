@@ -38,7 +38,12 @@ import tempfile
 import time
 from pathlib import Path
 
-from _common import REPO, require
+# one thread per worker for kinetology's compiled segmentation (it threads takes of 2^19
+# samples and more over the cores): "--workers 1" then uses one core and "--workers 2" two, so
+# the ratio measures the build's own scaling. Set before numba is imported (it reads it then).
+os.environ.setdefault("NUMBA_NUM_THREADS", "1")
+
+from _common import REPO, require  # noqa: E402
 
 # this script is called praxicon.py and its folder comes first on the import path, so a plain
 # "import praxicon" would import this very file: the package is loaded from the repository
@@ -156,7 +161,9 @@ def summarise(times, rows, trips, repeat, same_bytes, index) -> str:
     out = io.StringIO()
     out.write(f"Command: `flock /tmp/heavy.lock python benchmarks/praxicon.py` (one run: "
               f"{runs} builds of each kind from nothing, alternating, the best of each; the "
-              f"machine has 2 cores shared with other sessions).\n\n")
+              f"machine has 2 cores shared with other sessions; segmentation on "
+              f"{os.environ.get('NUMBA_NUM_THREADS', 'all')} thread(s) per worker, "
+              f"NUMBA_NUM_THREADS).\n\n")
     out.write(f"| build of {', '.join(DATASETS)} | wall seconds |\n|---|---|\n")
     out.write(f"| `--workers 1` | {t1:.1f} |\n| `--workers 2` | {t2:.1f} |\n")
     out.write(f"| ratio (1 worker / 2 workers) | **{t1 / t2:.2f}x** |\n\n")
