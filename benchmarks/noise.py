@@ -6,7 +6,7 @@ Run from the repository root (about 4 minutes on 2 cores):
 
 Writes docs/data/noise.csv (paper protocol, PAL and Sequential, 0 to 40% in
 steps of 2%, and 25%), docs/data/noise_variants.csv (PAL on random durations,
-irregular gaps, unequal lengths and all three, 0 to 40% in steps of 4%),
+irregular gaps, unequal lengths and all three, 0 to 40% in steps of 4%, and 25% and 30%),
 docs/data/noise_ceiling.csv (the information ceiling of the same actiongrams,
 see below), docs/data/noise_summary.json, the figures docs/img/noise_paper.png
 and docs/img/noise_variants.png (when matplotlib is installed), and the pal
@@ -48,7 +48,8 @@ from psgs.induce.synthetic import PAPER_POINTS, generate, vote_margin  # noqa: E
 
 # every 2%, and 25% itself (the issue's "100% through 25%")
 PAPER_LEVELS = tuple(sorted({round(0.02 * k, 2) for k in range(21)} | {0.25}))
-VARIANT_LEVELS = tuple(round(0.04 * k, 2) for k in range(11))
+# every 4%, and 25% and 30% themselves (the levels item 1 of issue 13 names)
+VARIANT_LEVELS = tuple(sorted({round(0.04 * k, 2) for k in range(11)} | {0.25, 0.30}))
 CHECK_LEVELS = (0.22, 0.24, 0.25, 0.26, 0.28)
 CHECK_SEED = 1_000_000  # the ceiling check's actiongrams are not the sweep's
 VARIANTS = {"random durations": {"durations": "random"},
