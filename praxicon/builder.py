@@ -206,22 +206,23 @@ def schedule(actions: list[Action]) -> list[Action]:
     """
     import os
 
-    parent = list(range(len(actions)))
+    from psgs.analysis import reachable
 
-    def root(i: int) -> int:
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    first_reader: dict[str, int] = {}
+    readers: dict[str, list[int]] = {}
     for i, action in enumerate(actions):
         for perf in action.performances:
-            j = first_reader.setdefault(perf.file, i)
-            parent[root(i)] = root(j)
-    blocks: dict[int, list[int]] = {}
+            readers.setdefault(perf.file, []).append(i)
+
+    def sharing(i: int) -> set[int]:  # the actions reading a file action i reads
+        return {j for perf in actions[i].performances for j in readers[perf.file]}
+
+    blocks: list[list[int]] = []  # connected by shared files, in listing order
+    seen: set[int] = set()
     for i in range(len(actions)):
-        blocks.setdefault(root(i), []).append(i)
+        if i not in seen:
+            block = sorted(reachable(sharing, [i]))  # the core's one graph walk
+            seen.update(block)
+            blocks.append(block)
 
     def size(path: str) -> int:
         try:
@@ -229,11 +230,10 @@ def schedule(actions: list[Action]) -> list[Action]:
         except OSError:
             return 0
 
-    weight = {r: sum(size(f) for f in {p.file for i in members
-                                       for p in actions[i].performances})
-              for r, members in blocks.items()}
-    order = sorted(blocks, key=lambda r: (-weight[r], blocks[r][0]))
-    return [actions[i] for r in order for i in blocks[r]]
+    weight = [sum(size(f) for f in {p.file for i in block for p in actions[i].performances})
+              for block in blocks]
+    order = sorted(range(len(blocks)), key=lambda b: (-weight[b], blocks[b][0]))
+    return [actions[i] for b in order for i in blocks[b]]
 
 
 def _crashed(action: Action, exc: BaseException) -> dict:
