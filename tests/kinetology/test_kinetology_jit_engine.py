@@ -22,6 +22,9 @@ from kinetology._kinetemes import banded_product, gaussian_kernel
 from kinetology._engines import ENGINES, select
 from kinetology.performances import segment_performances
 from kinetology.segmentation import segment, segments, states
+# every dead band and smoothing the numpy engine is checked with against plain loops (at 120
+# fps: 0.05 s is 18 frames each side, the banded product; 0.01 s is 4, the direct sum)
+from test_kinetology_fast_segmentation import deadbands
 
 REPO = Path(__file__).resolve().parents[2]
 
@@ -65,26 +68,15 @@ def motions(draw, max_frames=400):
     return Motion(np.column_stack(columns), tuple(f"j{i}.{a}" for i, a in enumerate(axes)), rate)
 
 
-parameters = st.fixed_dictionaries({
-    # at 120 fps: 0.05 s is 18 frames each side (the banded product), 0.01 s is 4 (direct)
-    "smoothing": st.sampled_from([0.0, 0.01, 0.05, 0.2]),
-    "velocity_deadband": st.sampled_from([0.0, 0.5, 2.0, 50.0, 1e9]),
-    "acceleration_deadband": st.sampled_from([0.0, 10.0, 500.0, 1e9]),
-    "relative_deadband": st.sampled_from([0.0, 0.05, 0.5, 1.0]),
-    "min_range": st.sampled_from([0.0, 2.0]),
-    "unwrap": st.sampled_from([0.0, 360.0]),
-})
-
-
 @settings(max_examples=300)
-@given(motions(), parameters)
+@given(motions(), deadbands)
 def test_the_engines_segment_alike(motion, params):
     assert_same(segments(motion, engine="numba", **params),
                 segments(motion, engine="numpy", **params))
 
 
 @settings(max_examples=40)
-@given(motions(max_frames=120), parameters)
+@given(motions(max_frames=120), deadbands)
 def test_the_engines_give_the_same_actiongram_and_states(motion, params):
     fast, plain = segment(motion, engine="numba", **params), segment(motion, engine="numpy",
                                                                      **params)
@@ -98,7 +90,7 @@ def test_the_engines_give_the_same_actiongram_and_states(motion, params):
 
 
 @settings(max_examples=30)
-@given(motions(max_frames=300), parameters, st.lists(st.integers(1, 200), min_size=1, max_size=3))
+@given(motions(max_frames=300), deadbands, st.lists(st.integers(1, 200), min_size=1, max_size=3))
 def test_segment_performances_alike(motion, params, lengths):
     cuts = np.cumsum([0] + lengths)
     takes = [Motion(motion.values[a:b], motion.channels, motion.frame_rate)
