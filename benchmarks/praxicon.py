@@ -33,6 +33,7 @@ import importlib.util
 import io
 import os
 import shutil
+import statistics
 import sys
 import tempfile
 import time
@@ -155,9 +156,7 @@ def _share(count: int, total: int) -> str:
 def summarise(times, rows, trips, repeat, same_bytes, index) -> str:
     (one, two), runs = times
     t1, t2 = min(one), min(two)
-    pairs = sorted(a / b for a, b in zip(one, two))
-    median_pair = pairs[len(pairs) // 2] if len(pairs) % 2 else \
-        (pairs[len(pairs) // 2 - 1] + pairs[len(pairs) // 2]) / 2
+    median_pair = statistics.median(a / b for a, b in zip(one, two))
     counts = index["counts"]
     out = io.StringIO()
     out.write(f"Command: `flock /tmp/heavy.lock python benchmarks/praxicon.py` (one run: "
