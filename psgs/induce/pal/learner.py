@@ -10,6 +10,7 @@ import numpy as np
 from ...actiongram import Actiongram
 from ..base import Inducer, as_performances, check_choice, check_number
 from ..results import ActuatorReport, Induction, Morpheme, StringReport
+from ._engines import ENGINES, select
 from .content import ContentResult, find_candidates, pool_groups
 from .motifs import Timed
 from .performances import NO_REPETITION, learn_motion
@@ -87,6 +88,11 @@ class PAL(Inducer):
         Shortest cycle within a performance, seconds.
     min_cycle_score : float, default 0.05
         A joint whose best cycle score is no higher does not cycle (no period).
+    engine : {"auto", "numpy", "numba"}, default "auto"
+        What runs the content mode's motif search and synchronisation: numba's compiled
+        loops (``"numba"``, all strings in one call; ``pip install 'psgs[fast]'``), numpy's
+        array passes (``"numpy"``), or numba when it imports and numpy otherwise
+        (``"auto"``). Every engine gives the same result, to the bit.
 
     Examples
     --------
@@ -95,6 +101,12 @@ class PAL(Inducer):
     >>> result = PAL().induce(case.actiongram)
     >>> sorted(result.components) == sorted(case.components)
     True
+    >>> PAL(engine="numpy").induce(case.actiongram) == result
+    True
+    >>> PAL(engine="fortran")
+    Traceback (most recent call last):
+    ...
+    ValueError: engine must be one of 'auto', 'numpy', 'numba', not 'fortran'
     """
 
     name = "pal"
@@ -108,7 +120,7 @@ class PAL(Inducer):
                  evidence: str = "kinetemes", joint_share: float = 0.25,
                  neighbour_share: float = 0.03, channel_share: float = 0.25,
                  max_shift: float = 0.1, min_cycle: float = 0.25,
-                 min_cycle_score: float = 0.05) -> None:
+                 min_cycle_score: float = 0.05, engine: str = "auto") -> None:
         check_number("min_copies", min_copies, low=2, integer=True)
         check_number("conserve", conserve, low=0, high=1, low_open=True)
         check_number("edge_share", edge_share, low=0, high=1)
@@ -153,6 +165,9 @@ class PAL(Inducer):
         self.max_shift = max_shift
         self.min_cycle = min_cycle
         self.min_cycle_score = min_cycle_score
+        if not isinstance(engine, str) or engine not in ENGINES:
+            select(engine)  # raises the ValueError naming the engines
+        self.engine = engine
 
     def induce(self, performances) -> Induction:
         """Learn a PSGS from an actiongram; see :class:`~psgs.induce.Induction`.
@@ -336,7 +351,7 @@ def _from_performances(inducer: PAL, takes: tuple[Actiongram, ...]) -> Induction
                                          significance=j.log10_p,
                                          repeated=j.repeated, path=j.path)
                           for j in found.joints)
-    return replace(result, actuators=actuators,
+    return replace(result, params=_recorded(inducer), actuators=actuators,
                    actuator_channels={a: tuple(names[i] for i in found.channels[a])
                                       for a in actuators},
                    morphemes=morphemes, verdict=found.verdict or ("" if kept else NO_REPETITION),
@@ -352,8 +367,16 @@ def _result(inducer: PAL, actiongram: Actiongram, patterns: dict[int, tuple[str,
         names, {names[i]: patterns[i] for i in kept},
         {names[i]: occurrences[i] for i in kept}, reports, synchronise=True)
     if not kept:
-        return replace(result, verdict=NO_REPETITION)
-    actuators = tuple(dict.fromkeys(actiongram.actuator(names[i]) for i in kept))
-    return replace(result, actuators=actuators, actuator_channels={
-        a: tuple(names[i] for i in kept if actiongram.actuator(names[i]) == a)
-        for a in actuators})
+        return replace(result, params=_recorded(inducer), verdict=NO_REPETITION)
+    owner = actiongram.string_actuators  # by index: a name lookup per string adds up
+    channels: dict[str, list[str]] = {}
+    for i in kept:
+        channels.setdefault(owner[i], []).append(names[i])
+    return replace(result, params=_recorded(inducer), actuators=tuple(channels),
+                   actuator_channels={a: tuple(c) for a, c in channels.items()})
+
+
+def _recorded(inducer: PAL) -> dict[str, object]:
+    """The parameters an Induction records: all but ``engine``, which changes how PAL
+    computes and never what it finds (so that every engine's Induction is equal)."""
+    return {k: v for k, v in inducer.get_params().items() if k != "engine"}

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._engines import select
 from .statistics import log10_binom_sf, log10_poisson_sf, scan_threshold
 from typing import TYPE_CHECKING
 
@@ -126,6 +127,54 @@ def _chain(positions: np.ndarray, length: int) -> list[int]:
     return kept
 
 
+def find_motifs(strings: list[np.ndarray], params: PAL) -> list[Motif | None]:
+    """:func:`find_motif` of every string, by the engine ``params.engine`` chooses.
+
+    The compiled engine searches every string in one call; a string where it
+    meets a chance level too close to a boundary to decide in its own floats
+    (see :mod:`psgs.induce.pal._motifs_jit`) is searched here again.
+    """
+    if select(params.engine) == "numpy":
+        return [find_motif(codes, params) for codes in strings]
+    from . import _motifs_jit as jit
+
+    count = len(strings)
+    stats = np.zeros((4, count))  # match rate, its log and log1p(-), log10 distinct
+    sizes = np.ones(count, dtype=np.int64)
+    distinct = [0] * count
+    for i, codes in enumerate(strings):
+        n = len(codes)
+        if n < 2 * params.min_copies:
+            continue  # no motif: the kernel returns at once
+        size = int(codes.max()) + 1
+        freq = np.bincount(codes, minlength=size) / n
+        distinct[i] = int(np.count_nonzero(freq))
+        rate = float(np.sum(freq ** 2))
+        sizes[i] = size
+        stats[:, i] = (rate, math.log(rate), math.log1p(-rate) if rate < 1 else -math.inf,
+                       math.log10(max(distinct[i], 2)))
+    bounds = np.zeros(count + 1, dtype=np.int64)
+    np.cumsum([len(c) for c in strings], out=bounds[1:])
+    flat = np.concatenate(strings) if count else np.zeros(0, dtype=np.int64)
+    status, lengths, copies, thresholds, motifs, starts = jit.find_motifs(
+        flat.astype(np.int64, copy=False), bounds, sizes, stats[0], stats[1], stats[2],
+        stats[3], params.min_copies, params.seeds, float(params.conserve),
+        float(params.match_fraction), float(params.scan_alpha), params.max_pattern)
+    out: list[Motif | None] = []
+    for i, (state, length, k, threshold, start) in enumerate(zip(
+            status.tolist(), lengths.tolist(), copies.tolist(), thresholds.tolist(),
+            bounds[:-1].tolist())):
+        if state == jit.UNCERTAIN:
+            out.append(find_motif(strings[i], params))
+        elif state == jit.FOUND:
+            out.append(Motif(motifs[i, :length].copy(), starts[start:start + k].copy(),
+                             significance(len(strings[i]), length, threshold, k,
+                                          float(stats[0, i]), distinct[i])))
+        else:
+            out.append(None)
+    return out
+
+
 def find_motif(codes: np.ndarray, params: PAL) -> Motif | None:
     """The best-supported repeated motif of one string, or None.
 
@@ -240,8 +289,21 @@ def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: f
         starts = merge_copies(starts, locate_copies(codes, motif, threshold), length)
     if len(starts) < params.min_copies:
         return None
+    return Motif(motif, starts, significance(n, length, threshold, len(starts), match_rate,
+                                             distinct))
+
+
+def significance(n: int, length: int, threshold: int, copies: int, match_rate: float,
+                 distinct: int) -> float:
+    """log10 of the chance of ``copies`` copies of a motif of ``length`` symbols (at most 0).
+
+    The expected chance copies of any motif of that length among a string's
+    ``distinct`` symbols (each window matching ``threshold`` positions or more,
+    a position by chance with probability ``match_rate``), and the Poisson tail
+    of that many copies. Both engines call this, so that motifs are the same to the bit.
+    """
     lam = (n - length + 1) * 10 ** log10_binom_sf(threshold, length, match_rate)
-    significance = length * math.log10(max(distinct, 2)) + log10_poisson_sf(len(starts), lam)
-    return Motif(motif, starts, min(significance, 0.0))
+    value = length * math.log10(max(distinct, 2)) + log10_poisson_sf(copies, lam)
+    return min(value, 0.0)
 
 

@@ -1,0 +1,536 @@
+"""The compiled motif search: :func:`~psgs.induce.pal.motifs.find_motif` for every string in
+one numba call, and the synchronisation test for every pair of candidates in another.
+
+The search is the numpy engine's step for step (the same seeds in the same order, the same
+columns added, the same copies kept), in integer arithmetic and exact float comparisons
+(``k >= conserve * len(pos)``, ``-k / len(pos)``: one IEEE operation each, numba without
+``fastmath`` neither reorders nor fuses). Only the chance levels are floats that could come
+out differently: numba's ``lgamma`` is the C library's, CPython's ``math.lgamma`` its own.
+So nothing float computed here is ever returned. Where a scan threshold is decided (a
+binomial tail against ``scan_alpha``) or two seeds' significances are compared, a result
+within a relative 1e-6 of the boundary marks the string *uncertain* (then the numpy engine
+searches it); the two implementations differ by some 1e-12, so every other decision is the
+numpy engine's. The significance kept is computed in Python from the integers returned
+(:func:`~psgs.induce.pal.motifs.significance`), so every ``Motif`` is the same to the bit.
+
+Without numba this module still imports (the functions are then plain Python, which
+:mod:`psgs.induce.pal._engines` never offers), so that the doctests collect everywhere.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+try:
+    import numba
+except ImportError:  # pragma: no cover - psgs.induce.pal._engines then offers numpy's
+    numba = None
+
+__all__: list[str] = []  # private: the PAL parameter ``engine`` is the interface
+
+#: status of a string after the search
+NONE, FOUND, UNCERTAIN = 0, 1, 2
+#: a chance level this close (relative) to a boundary is left to the numpy engine
+_MARGIN = 1e-6
+#: farthest column looked at beyond a damaged one while growing (motifs._BRIDGE)
+_BRIDGE = 2
+
+
+def _jit(function):
+    """Compiled on first use, once per installed copy (``cache=True``); no ``fastmath``."""
+    if numba is None:
+        return function
+    return numba.njit(cache=True, nogil=True)(function)
+
+
+# -- chance levels, approximately (only ever compared, with a margin) ------------------
+@_jit
+def _log10_binom_sf(k, m, p, lp, lq):
+    """About log10 P(X >= k), X ~ Binomial(m, p) (statistics.log10_binom_sf's sum)."""
+    if k <= 0:
+        return 0.0
+    if k > m or p <= 0:
+        return -math.inf
+    if p >= 1:
+        return 0.0
+    first = top = -math.inf
+    total = 0.0
+    for i in range(k, m + 1):
+        t = math.lgamma(m + 1) - math.lgamma(i + 1) - math.lgamma(m - i + 1) \
+            + i * lp + (m - i) * lq
+        if i == k:
+            first = t
+        if t > top:  # a running log-sum-exp: the same sum up to rounding
+            total = total * math.exp(top - t) + 1.0 if top > -math.inf else 1.0
+            top = t
+        else:
+            total += math.exp(t - top)
+        if i > m * p and t < first - 30:
+            break
+    return (top + math.log(total)) / math.log(10.0)
+
+
+@_jit
+def _log10_poisson_sf(k, lam):
+    """About log10 P(Y >= k), Y ~ Poisson(lam) (statistics.log10_poisson_sf's sums)."""
+    if k <= 0:
+        return 0.0
+    if lam <= 0:
+        return -math.inf
+    log_lam = math.log(lam)
+    if k <= lam:
+        below = 0.0
+        for i in range(k):
+            below += math.exp(-lam + i * log_lam - math.lgamma(i + 1))
+        if below < 0.9:
+            return math.log10(1.0 - below)
+    first = top = -math.inf
+    total = 0.0
+    i = k
+    while True:
+        t = -lam + i * log_lam - math.lgamma(i + 1)
+        if i == k:
+            first = t
+        if t > top:
+            total = total * math.exp(top - t) + 1.0 if top > -math.inf else 1.0
+            top = t
+        else:
+            total += math.exp(t - top)
+        if (i > lam and t < first - 30) or i > k + 10_000:
+            break
+        i += 1
+    return (top + math.log(total)) / math.log(10.0)
+
+
+@_jit
+def _threshold(length, windows, p, lp, lq, match_fraction, scan_alpha):
+    """statistics.scan_threshold, or -1 when a tail lies within the margin of ``scan_alpha``."""
+    low = max(2, math.ceil(match_fraction * length))
+    for t in range(low, length + 1):
+        x = _log10_binom_sf(t, length, p, lp, lq)
+        chance = windows * 10.0 ** x
+        if abs(chance - scan_alpha) <= _MARGIN * scan_alpha:
+            return -1
+        if chance <= scan_alpha:
+            return t
+    return length
+
+
+# -- copies ------------------------------------------------------------------------------
+@_jit
+def _chain(positions, count, length):
+    """Sorted ``positions[:count]`` kept left to right, each ``length`` after the last
+    (duplicates dropped): motifs.merge_copies and motifs._chain."""
+    out = np.empty(count, dtype=np.int64)
+    kept = 0
+    for j in range(count):
+        p = positions[j]
+        if kept == 0 or p >= out[kept - 1] + length:
+            out[kept] = p
+            kept += 1
+    return out[:kept]
+
+
+@_jit
+def _merge(old, new, length):
+    """motifs.merge_copies: both lists, earlier first, none overlapping one kept before."""
+    both = np.sort(np.concatenate((old, new)))
+    return _chain(both, len(both), length)
+
+
+@_jit
+def _locate(codes, motif, threshold):
+    """motifs.locate_copies: the best-agreeing non-overlapping windows, in position order."""
+    n, length = len(codes), len(motif)
+    width = n - length + 1
+    if width <= 0:
+        return np.zeros(0, dtype=np.int64)
+    score = np.zeros(width, dtype=np.int64)
+    for w in range(width):
+        s = 0
+        for o in range(length):
+            if codes[w + o] == motif[o]:
+                s += 1
+        score[w] = s
+    top = -1
+    hits = 0
+    for w in range(width):
+        if score[w] >= threshold:
+            hits += 1
+            if score[w] > top:
+                top = score[w]
+    if hits == 0:
+        return np.zeros(0, dtype=np.int64)
+    where = np.empty(hits, dtype=np.int64)
+    h = 0
+    for w in range(width):
+        if score[w] >= threshold:
+            where[h] = w
+            h += 1
+    # level by level, best first: a window is kept when no kept window lies within
+    # ``length`` of it (windows of one level left to right, as the numpy engine chains them)
+    blocked = np.zeros(width, dtype=np.bool_)
+    chosen = np.zeros(width, dtype=np.bool_)
+    for level in range(top, threshold - 1, -1):
+        for j in range(hits):
+            w = where[j]
+            if score[w] != level or blocked[w]:
+                continue
+            chosen[w] = True
+            for b in range(max(0, w - length + 1), min(width, w + length)):
+                blocked[b] = True
+    out = np.empty(hits, dtype=np.int64)
+    kept = 0
+    for j in range(hits):
+        if chosen[where[j]]:
+            out[kept] = where[j]
+            kept += 1
+    return out[:kept]
+
+
+@_jit
+def _median_gap(starts):
+    gaps = np.sort(np.diff(starts))
+    return gaps[(len(gaps) - 1) // 2]
+
+
+# -- growing one seed -----------------------------------------------------------------------
+@_jit
+def _grow(codes, seed, starts, size, thresholds, p, lp, lq, min_copies, conserve,
+          match_fraction, scan_alpha, max_pattern, column):
+    """motifs.grow with ``seed_only``: (status, motif, starts, threshold)."""
+    n = len(codes)
+    motif = seed.copy()
+    grown_any = False
+    added = np.empty(_BRIDGE, dtype=np.int64)
+    best_added = np.empty(_BRIDGE, dtype=np.int64)
+    while len(motif) < max_pattern:
+        length = len(motif)
+        spacing = _median_gap(starts) if len(starts) > 1 else n
+        if length + 1 > spacing:
+            break
+        have = False
+        best_d, best_ratio, best_right = 0, 0.0, True
+        for right in (True, False):
+            reach = min(_BRIDGE, spacing - length, max_pattern - length)
+            for d in range(1, reach + 1):
+                valid = 0
+                for s in starts:
+                    q = s + length + d - 1 if right else s - d
+                    if 0 <= q < n:
+                        valid += 1
+                        column[codes[q]] += 1
+                sym, k = -1, 0
+                for s in starts:  # the most frequent symbol, the lowest code among equals
+                    q = s + length + d - 1 if right else s - d
+                    if 0 <= q < n:
+                        c = codes[q]
+                        if column[c] > k or (column[c] == k and c < sym):
+                            sym, k = c, column[c]
+                for s in starts:
+                    q = s + length + d - 1 if right else s - d
+                    if 0 <= q < n:
+                        column[codes[q]] = 0
+                if valid < min_copies or k < min_copies:
+                    break
+                added[d - 1] = sym
+                if k >= conserve * valid:
+                    ratio = -k / valid
+                    if not have or d < best_d or (d == best_d and ratio < best_ratio):
+                        have, best_d, best_ratio, best_right = True, d, ratio, right
+                        best_added[:d] = added[:d]
+                    break
+        if not have:
+            break
+        d = best_d
+        grown = np.empty(length + d, dtype=np.int64)
+        if best_right:
+            grown[:length] = motif
+            grown[length:] = best_added[:d]
+            kept = starts
+        else:
+            for j in range(d):
+                grown[j] = best_added[d - 1 - j]
+            grown[d:] = motif
+            kept = starts - d
+        glen = length + d
+        kept = kept[(kept >= 0) & (kept + glen <= n)]
+        threshold = _threshold_of(thresholds, glen, n, p, lp, lq, match_fraction, scan_alpha)
+        if threshold < 0:
+            return UNCERTAIN, motif, starts, -1
+        found = _merge(kept, _locate(codes, grown, threshold), glen)
+        if len(found) < min_copies:
+            break
+        motif, starts, grown_any = grown, found, True
+    length = len(motif)
+    threshold = _threshold_of(thresholds, length, n, p, lp, lq, match_fraction, scan_alpha)
+    if threshold < 0:
+        return UNCERTAIN, motif, starts, -1
+    rotated_any = False
+    if len(starts) > 1 and _median_gap(starts) == length and starts[0] % length:
+        shift = starts[0] % length
+        rotated = np.empty(length, dtype=np.int64)
+        for j in range(length):
+            rotated[j] = motif[(j - shift) % length]
+        found = _locate(codes, rotated, threshold)
+        if len(found) >= len(starts):
+            motif, starts, rotated_any = rotated, found, True
+    if not (length == 2 and motif[0] != motif[1] and threshold >= 2
+            and not grown_any and not rotated_any):
+        starts = _merge(starts, _locate(codes, motif, threshold), length)
+    if len(starts) < min_copies:
+        return NONE, motif, starts, threshold
+    return FOUND, motif, starts, threshold
+
+
+@_jit
+def _threshold_of(cache, length, n, p, lp, lq, match_fraction, scan_alpha):
+    """The scan threshold of ``length`` in this string, computed once (-2: not yet)."""
+    if cache[length] == -2:
+        cache[length] = _threshold(length, n - length + 1, p, lp, lq, match_fraction,
+                                   scan_alpha)
+    return cache[length]
+
+
+@_jit
+def _significance(n, length, threshold, copies, p, lp, lq, log_distinct):
+    """About motifs.significance (only compared between seeds)."""
+    lam = (n - length + 1) * 10.0 ** _log10_binom_sf(threshold, length, p, lp, lq)
+    return min(length * log_distinct + _log10_poisson_sf(copies, lam), 0.0)
+
+
+@_jit
+def _digrams(keys, bins):
+    """The digram keys grouped: positions by key (in position order within a key), where
+    each key's group begins (one bound past the last) and its count."""
+    m = len(keys)
+    if bins <= 4 * m + 4096:  # counting: a small alphabet
+        order = np.empty(m, dtype=np.int64)
+        count = np.zeros(bins, dtype=np.int64)
+        for j in range(m):
+            count[keys[j]] += 1
+        groups = 0
+        for k in range(bins):
+            if count[k]:
+                groups += 1
+        begin = np.empty(groups + 1, dtype=np.int64)
+        at = np.empty(bins, dtype=np.int64)
+        g, total = 0, 0
+        for k in range(bins):
+            if count[k]:
+                begin[g] = total
+                at[k] = total
+                total += count[k]
+                g += 1
+        begin[groups] = m
+        for j in range(m):
+            order[at[keys[j]]] = j
+            at[keys[j]] += 1
+        return order, begin, begin[1:] - begin[:-1]
+    # sorting, a large alphabet: each key with its position, so that equal keys keep their
+    # order (a stable sort of the keys alone where that could overflow)
+    if bins < (1 << 62) // max(m, 1):
+        order = np.sort(keys * m + np.arange(m)) % m
+    else:
+        order = np.argsort(keys, kind="mergesort")
+    groups = 0
+    for j in range(m):
+        if j == 0 or keys[order[j]] != keys[order[j - 1]]:
+            groups += 1
+    begin = np.empty(groups + 1, dtype=np.int64)
+    g = 0
+    for j in range(m):
+        if j == 0 or keys[order[j]] != keys[order[j - 1]]:
+            begin[g] = j
+            g += 1
+    begin[groups] = m
+    return order, begin, begin[1:] - begin[:-1]
+
+
+@_jit
+def _search(codes, size, p, lp, lq, log_distinct, min_copies, seeds, conserve,
+            match_fraction, scan_alpha, max_pattern, motif_out, starts_out):
+    """motifs.find_motif on one string: (status, length, copies, threshold)."""
+    n = len(codes)
+    if n < 2 * min_copies:
+        return NONE, 0, 0, 0
+    keys = codes[:-1] * size + codes[1:]
+    order, begin, counts = _digrams(keys, size * size)
+    first = order[begin[:-1]]
+    taken = np.zeros(len(counts), dtype=np.bool_)
+    thresholds = np.full(max_pattern + 1, -2, dtype=np.int64)
+    column = np.zeros(size, dtype=np.int64)
+    covered = np.empty(seeds * max_pattern, dtype=np.int64)
+    n_covered = 0
+    tried = 0
+    status = NONE
+    best_len, best_copies, best_threshold, best_sig = 0, 0, 0, 0.0
+    while True:
+        # the next seed: most frequent first, the earlier first occurrence among equals
+        gi = -1
+        for g in range(len(counts)):
+            if not taken[g] and (gi < 0 or counts[g] > counts[gi]
+                                 or (counts[g] == counts[gi] and first[g] < first[gi])):
+                gi = g
+        if gi < 0 or tried >= seeds or counts[gi] < min_copies:
+            break
+        taken[gi] = True
+        key = keys[order[begin[gi]]]
+        inside = False
+        for c in range(n_covered):
+            if covered[c] == key:
+                inside = True
+                break
+        if inside:
+            continue
+        tried += 1
+        seed = np.empty(2, dtype=np.int64)
+        seed[0], seed[1] = key // size, key % size
+        starts = order[begin[gi]:begin[gi + 1]].copy()  # in position order
+        got, motif, where, threshold = _grow(codes, seed, starts, size, thresholds, p, lp, lq,
+                                             min_copies, conserve, match_fraction, scan_alpha,
+                                             max_pattern, column)
+        if got == UNCERTAIN:
+            return UNCERTAIN, 0, 0, 0
+        if got == NONE:
+            continue
+        for j in range(len(motif) - 1):
+            covered[n_covered] = motif[j] * size + motif[j + 1]
+            n_covered += 1
+        length, copies = len(motif), len(where)
+        if status == FOUND and length == best_len and copies == best_copies \
+                and threshold == best_threshold:
+            continue  # the same significance exactly: the earlier seed stays
+        sig = _significance(n, length, threshold, copies, p, lp, lq, log_distinct)
+        if status == FOUND:
+            if abs(sig - best_sig) <= _MARGIN * (1.0 + abs(sig) + abs(best_sig)):
+                if not (sig == 0.0 and best_sig == 0.0 and _clear(n, length, threshold,
+                                                                  copies, p, lp, lq,
+                                                                  log_distinct)):
+                    return UNCERTAIN, 0, 0, 0
+                continue  # both clearly insignificant (0): the earlier seed stays
+            if sig >= best_sig:
+                continue
+        status = FOUND
+        best_len, best_copies, best_threshold, best_sig = length, copies, threshold, sig
+        motif_out[:length] = motif
+        starts_out[:copies] = where
+    return status, best_len, best_copies, best_threshold
+
+
+@_jit
+def _clear(n, length, threshold, copies, p, lp, lq, log_distinct):
+    """Whether a significance is clearly at least 0 (so that it is exactly 0 once clipped)."""
+    lam = (n - length + 1) * 10.0 ** _log10_binom_sf(threshold, length, p, lp, lq)
+    return length * log_distinct + _log10_poisson_sf(copies, lam) > _MARGIN
+
+
+@_jit
+def find_motifs(codes, bounds, sizes, p, lp, lq, log_distinct, min_copies, seeds, conserve,
+                match_fraction, scan_alpha, max_pattern):
+    """The motif search of every string ``codes[bounds[i]:bounds[i + 1]]``.
+
+    Returns ``status`` (NONE, FOUND, UNCERTAIN), the motif's ``length``, its number of
+    ``copies`` and the ``threshold`` of each string, the motifs as rows of ``motifs`` and the
+    copy starts of string i from ``bounds[i]`` in ``starts``.
+    """
+    strings = len(bounds) - 1
+    status = np.zeros(strings, dtype=np.int64)
+    length = np.zeros(strings, dtype=np.int64)
+    copies = np.zeros(strings, dtype=np.int64)
+    threshold = np.zeros(strings, dtype=np.int64)
+    motifs = np.zeros((strings, max_pattern), dtype=np.int64)
+    starts = np.zeros(len(codes), dtype=np.int64)
+    for i in range(strings):
+        a, b = bounds[i], bounds[i + 1]
+        status[i], length[i], copies[i], threshold[i] = _search(
+            codes[a:b], sizes[i], p[i], lp[i], lq[i], log_distinct[i], min_copies, seeds,
+            conserve, match_fraction, scan_alpha, max_pattern, motifs[i], starts[a:b])
+    return status, length, copies, threshold, motifs, starts
+
+
+# -- synchronisation of every pair of candidates ------------------------------------------
+@_jit
+def _disjoint(lo, hi):
+    """pooling._disjoint, and each interval's end at or after its start: then starts and
+    ends both only grow (what the pointers of :func:`_pair` need; otherwise the general
+    clustering runs, which gives the same answer)."""
+    for j in range(len(lo)):
+        if not hi[j] >= lo[j] or (j and not lo[j] >= hi[j - 1]):
+            return False
+    return True
+
+
+@_jit
+def _pair(a_lo, a_hi, b_lo, b_hi, a_disjoint, b_disjoint, fraction, min_copies):
+    """pooling.synchronised on copies ``(a_lo, a_hi)`` and ``(b_lo, b_hi)``."""
+    if len(a_lo) == 0 or len(b_lo) == 0:
+        return False
+    if a_disjoint and b_disjoint:
+        # pooling._shared_clusters: clusters = intervals - overlaps; each interval's run of
+        # the other list's is two searchsorted counts, here read off by pointers moving
+        # forward (the lists are in time order, so the counts only grow)
+        overlaps, touching = 0, 0
+        before_end = ended = 0
+        for j in range(len(a_lo)):
+            while before_end < len(b_lo) and b_lo[before_end] < a_hi[j]:
+                before_end += 1
+            while ended < len(b_hi) and b_hi[ended] <= a_lo[j]:
+                ended += 1
+            run = before_end - ended
+            if run > 0:
+                overlaps += run
+                touching += 1
+        before_end = ended = 0
+        for j in range(len(b_lo)):
+            while before_end < len(a_lo) and a_lo[before_end] < b_hi[j]:
+                before_end += 1
+            while ended < len(a_hi) and a_hi[ended] <= b_lo[j]:
+                ended += 1
+            if before_end - ended > 0:
+                touching += 1
+        both, clusters = touching - overlaps, len(a_lo) + len(b_lo) - overlaps
+    else:
+        # pooling.copy_clusters: sorted by start, then end; a cluster opens past the reach
+        lo = np.concatenate((a_lo, b_lo))
+        hi = np.concatenate((a_hi, b_hi))
+        by_end = np.argsort(hi, kind="mergesort")
+        order = by_end[np.argsort(lo[by_end], kind="mergesort")]
+        both, clusters = 0, 0
+        reach = -math.inf
+        has_a = has_b = False
+        for j in range(len(order)):
+            k = order[j]
+            if j == 0 or lo[k] >= reach:
+                if has_a and has_b:
+                    both += 1
+                clusters += 1
+                has_a = has_b = False
+            if k < len(a_lo):
+                has_a = True
+            else:
+                has_b = True
+            reach = hi[k] if j == 0 else max(reach, hi[k])
+        if has_a and has_b:
+            both += 1
+    return both >= min_copies and both >= fraction * clusters
+
+
+@_jit
+def synchronised_pairs(lo, hi, bounds, fraction, min_copies):
+    """Which pairs (i < j) of the copy lists ``(lo, hi)[bounds[i]:bounds[i + 1]]`` (start
+    and end times) are synchronised, as an (n, n) boolean array filled above its diagonal."""
+    count = len(bounds) - 1
+    disjoint = np.zeros(count, dtype=np.bool_)
+    for i in range(count):
+        disjoint[i] = _disjoint(lo[bounds[i]:bounds[i + 1]], hi[bounds[i]:bounds[i + 1]])
+    out = np.zeros((count, count), dtype=np.bool_)
+    for i in range(count):
+        a, b = bounds[i], bounds[i + 1]
+        for j in range(i + 1, count):
+            c, d = bounds[j], bounds[j + 1]
+            out[i, j] = _pair(lo[a:b], hi[a:b], lo[c:d], hi[c:d], disjoint[i], disjoint[j],
+                              fraction, min_copies)
+    return out
