@@ -19,7 +19,7 @@ from psgs.induce import PAL
 from psgs.induce.pal import _engines, _motifs_jit
 from psgs.induce.pal.content import find_candidates
 from psgs.induce.pal.learner import encode
-from psgs.induce.pal.motifs import find_motif, find_motifs
+from psgs.induce.pal.motifs import _symbol_statistics, find_motif, find_motifs
 from psgs.induce.pal.pooling import synchronised, synchronised_pairs
 from psgs.induce.synthetic import generate
 
@@ -194,3 +194,20 @@ def test_the_engine_is_a_parameter_like_any_other():
     assert PAL().engine == "auto"
     # it changes how PAL computes, never what it finds: the Induction does not record it
     assert "engine" not in pal.induce(generate(seed=1).actiongram).params
+
+
+@settings(max_examples=200)
+@given(st.lists(st.one_of(tiny, one_symbol, noisy_repeats(), long_alphabets(),
+                          st.lists(st.integers(0, 300), max_size=300).map(_as_codes)),
+                min_size=1, max_size=12))
+def test_symbol_statistics_are_each_strings_own(strings):
+    # the match rates summed row by row of one array are those of each string alone
+    bounds = np.concatenate(([0], np.cumsum([len(c) for c in strings]))).astype(np.int64)
+    sizes, distinct, rates = _symbol_statistics(np.concatenate(strings), bounds, 3)
+    for i, codes in enumerate(strings):
+        if len(codes) < 6:
+            assert sizes[i] == distinct[i] == rates[i] == 0
+            continue
+        freq = np.bincount(codes) / len(codes)
+        assert sizes[i] == len(freq) and distinct[i] == np.count_nonzero(freq)
+        assert rates[i] == float(np.sum(freq ** 2))

@@ -139,23 +139,15 @@ def find_motifs(strings: list[np.ndarray], params: PAL) -> list[Motif | None]:
     from . import _motifs_jit as jit
 
     count = len(strings)
-    stats = np.zeros((4, count))  # match rate, its log and log1p(-), log10 distinct
-    sizes = np.ones(count, dtype=np.int64)
-    distinct = [0] * count
-    for i, codes in enumerate(strings):
-        n = len(codes)
-        if n < 2 * params.min_copies:
-            continue  # no motif: the kernel returns at once
-        size = int(codes.max()) + 1
-        freq = np.bincount(codes, minlength=size) / n
-        distinct[i] = int(np.count_nonzero(freq))
-        rate = float(np.sum(freq ** 2))
-        sizes[i] = size
-        stats[:, i] = (rate, math.log(rate), math.log1p(-rate) if rate < 1 else -math.inf,
-                       math.log10(max(distinct[i], 2)))
     bounds = np.zeros(count + 1, dtype=np.int64)
     np.cumsum([len(c) for c in strings], out=bounds[1:])
     flat = np.concatenate(strings) if count else np.zeros(0, dtype=np.int64)
+    sizes, distinct, rates = _symbol_statistics(flat, bounds, params.min_copies)
+    stats = np.zeros((4, count))  # match rate, its log and log1p(-), log10 distinct
+    for i in np.flatnonzero(distinct).tolist():
+        rate = float(rates[i])
+        stats[:, i] = (rate, math.log(rate), math.log1p(-rate) if rate < 1 else -math.inf,
+                       math.log10(max(int(distinct[i]), 2)))
     status, lengths, copies, thresholds, motifs, starts = jit.find_motifs(
         flat.astype(np.int64, copy=False), bounds, sizes, stats[0], stats[1], stats[2],
         stats[3], params.min_copies, params.seeds, float(params.conserve),
@@ -169,10 +161,49 @@ def find_motifs(strings: list[np.ndarray], params: PAL) -> list[Motif | None]:
         elif state == jit.FOUND:
             out.append(Motif(motifs[i, :length].copy(), starts[start:start + k].copy(),
                              significance(len(strings[i]), length, threshold, k,
-                                          float(stats[0, i]), distinct[i])))
+                                          float(stats[0, i]), int(distinct[i]))))
         else:
             out.append(None)
     return out
+
+
+def _symbol_statistics(flat: np.ndarray, bounds: np.ndarray, min_copies: int
+                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per string, what :func:`find_motif` reads off its symbol counts: the alphabet size
+    (largest code + 1), the distinct symbols and the match rate (the sum of squared symbol
+    shares); zeros for a string too short to search.
+
+    The match rates are summed as numpy sums each string's shares, row by row of one
+    array per (length, size) (a sum along a row is the sum of the row alone, in the same
+    pairwise order); tests/induce/test_pal_engines.py checks it against the string's own.
+    """
+    count = len(bounds) - 1
+    lengths = np.diff(bounds)
+    sizes = np.zeros(count, dtype=np.int64)
+    distinct = np.zeros(count, dtype=np.int64)
+    rates = np.zeros(count)
+    searched = np.flatnonzero(lengths >= 2 * min_copies)
+    if len(searched) == 0:
+        return sizes, distinct, rates
+    width = int(flat.max()) + 1
+    if count * width > 4 * len(flat) + 4096:  # a long alphabet: string by string
+        for i in searched.tolist():
+            codes = flat[bounds[i]:bounds[i + 1]]
+            size = int(codes.max()) + 1
+            freq = np.bincount(codes, minlength=size) / len(codes)
+            sizes[i], distinct[i] = size, np.count_nonzero(freq)
+            rates[i] = np.sum(freq ** 2)
+        return sizes, distinct, rates
+    owner = np.repeat(np.arange(count), lengths)
+    counts = np.bincount(owner * width + flat, minlength=count * width).reshape(count, width)
+    sizes[searched] = width - np.argmax(counts[searched, ::-1] > 0, axis=1)
+    distinct[searched] = np.count_nonzero(counts[searched], axis=1)
+    keys = lengths[searched] * (width + 1) + sizes[searched]
+    for key in np.unique(keys).tolist():
+        rows = searched[keys == key]
+        n, size = int(lengths[rows[0]]), int(sizes[rows[0]])
+        rates[rows] = np.sum((counts[rows, :size] / n) ** 2, axis=1)
+    return sizes, distinct, rates
 
 
 def find_motif(codes: np.ndarray, params: PAL) -> Motif | None:
