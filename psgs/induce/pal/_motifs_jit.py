@@ -136,8 +136,28 @@ def _chain(positions, count, length):
 @_jit
 def _merge(old, new, length):
     """motifs.merge_copies: both lists, earlier first, none overlapping one kept before."""
-    both = np.sort(np.concatenate((old, new)))
+    if not (_ascending(old) and _ascending(new)):
+        both = np.sort(np.concatenate((old, new)))
+        return _chain(both, len(both), length)
+    # both in position order already (as they always are here): merged in one pass
+    both = np.empty(len(old) + len(new), dtype=np.int64)
+    i = j = 0
+    for k in range(len(both)):
+        if j >= len(new) or (i < len(old) and old[i] <= new[j]):
+            both[k] = old[i]
+            i += 1
+        else:
+            both[k] = new[j]
+            j += 1
     return _chain(both, len(both), length)
+
+
+@_jit
+def _ascending(values):
+    for j in range(1, len(values)):
+        if values[j] < values[j - 1]:
+            return False
+    return True
 
 
 @_jit
@@ -148,44 +168,42 @@ def _locate(codes, motif, threshold):
     if width <= 0:
         return np.zeros(0, dtype=np.int64)
     score = np.zeros(width, dtype=np.int64)
-    for w in range(width):
-        s = 0
-        for o in range(length):
-            if codes[w + o] == motif[o]:
-                s += 1
-        score[w] = s
-    top = -1
+    for o in range(length):  # column by column: a loop over the windows that vectorises
+        sym = motif[o]
+        for w in range(width):
+            score[w] += codes[w + o] == sym
+    # the windows that pass, grouped by level (best first), in position order within one
+    per_level = np.zeros(length + 2, dtype=np.int64)
     hits = 0
     for w in range(width):
         if score[w] >= threshold:
+            per_level[length - score[w] + 1] += 1
             hits += 1
-            if score[w] > top:
-                top = score[w]
     if hits == 0:
         return np.zeros(0, dtype=np.int64)
-    where = np.empty(hits, dtype=np.int64)
-    h = 0
+    for level in range(1, length + 2):
+        per_level[level] += per_level[level - 1]
+    ranked = np.empty(hits, dtype=np.int64)
     for w in range(width):
         if score[w] >= threshold:
-            where[h] = w
-            h += 1
-    # level by level, best first: a window is kept when no kept window lies within
-    # ``length`` of it (windows of one level left to right, as the numpy engine chains them)
+            slot = length - score[w]
+            ranked[per_level[slot]] = w
+            per_level[slot] += 1
+    # best first, windows of one level left to right (as the numpy engine chains them): a
+    # window is kept when no kept window lies within ``length`` of it
     blocked = np.zeros(width, dtype=np.bool_)
     chosen = np.zeros(width, dtype=np.bool_)
-    for level in range(top, threshold - 1, -1):
-        for j in range(hits):
-            w = where[j]
-            if score[w] != level or blocked[w]:
-                continue
-            chosen[w] = True
-            for b in range(max(0, w - length + 1), min(width, w + length)):
-                blocked[b] = True
+    for j in range(hits):
+        w = ranked[j]
+        if blocked[w]:
+            continue
+        chosen[w] = True
+        blocked[max(0, w - length + 1):min(width, w + length)] = True
     out = np.empty(hits, dtype=np.int64)
     kept = 0
-    for j in range(hits):
-        if chosen[where[j]]:
-            out[kept] = where[j]
+    for w in range(width):
+        if chosen[w]:
+            out[kept] = w
             kept += 1
     return out[:kept]
 
