@@ -19,7 +19,7 @@ from psgs.induce import PAL
 from psgs.induce.pal import _engines, _motifs_jit
 from psgs.induce.pal.content import find_candidates
 from psgs.induce.pal.learner import encode
-from psgs.induce.pal.motifs import _symbol_statistics, find_motif, find_motifs
+from psgs.induce.pal.motifs import _symbol_statistics, find_motif, find_motifs, grow, locate_copies
 from psgs.induce.pal.pooling import synchronised, synchronised_pairs
 from psgs.induce.synthetic import generate
 
@@ -211,3 +211,19 @@ def test_symbol_statistics_are_each_strings_own(strings):
         freq = np.bincount(codes) / len(codes)
         assert sizes[i] == len(freq) and distinct[i] == np.count_nonzero(freq)
         assert rates[i] == float(np.sum(freq ** 2))
+
+
+@settings(max_examples=200)
+@given(noisy_repeats(), st.integers(0, 2**32 - 1), st.booleans())
+def test_both_engines_grow_a_motif_the_same(codes, seed, from_a_copy):
+    # as pooling.relocate grows a voted pattern from the copies the scan located
+    rng = np.random.default_rng(seed)
+    length = int(rng.integers(2, min(8, len(codes)) + 1))
+    at = int(rng.integers(0, len(codes) - length + 1))
+    motif = codes[at:at + length].copy() if from_a_copy \
+        else rng.integers(0, int(codes.max()) + 1, length)
+    freq = np.bincount(codes) / len(codes)
+    rate, distinct = float(np.sum(freq ** 2)), int(np.count_nonzero(freq))
+    starts = locate_copies(codes, motif, max(2, length // 2))
+    expected = grow(codes, motif, starts, rate, distinct, NUMPY)
+    assert same_motif(grow(codes, motif, starts, rate, distinct, NUMBA), expected)

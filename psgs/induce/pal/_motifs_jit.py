@@ -216,9 +216,19 @@ def _median_gap(starts):
 
 # -- growing one seed -----------------------------------------------------------------------
 @_jit
+def grow_motif(codes, motif, starts, size, p, lp, lq, min_copies, conserve, match_fraction,
+               scan_alpha, max_pattern, seed_only):
+    """motifs.grow of one motif: (status, motif, starts, threshold)."""
+    thresholds = np.full(max(max_pattern, len(motif)) + 1, -2, dtype=np.int64)
+    column = np.zeros(size, dtype=np.int64)
+    return _grow(codes, motif, starts, size, thresholds, p, lp, lq, min_copies, conserve,
+                 match_fraction, scan_alpha, max_pattern, column, seed_only)
+
+
+@_jit
 def _grow(codes, seed, starts, size, thresholds, p, lp, lq, min_copies, conserve,
-          match_fraction, scan_alpha, max_pattern, column):
-    """motifs.grow with ``seed_only``: (status, motif, starts, threshold)."""
+          match_fraction, scan_alpha, max_pattern, column, seed_only):
+    """motifs.grow: (status, motif, starts, threshold)."""
     n = len(codes)
     motif = seed.copy()
     grown_any = False
@@ -295,7 +305,7 @@ def _grow(codes, seed, starts, size, thresholds, p, lp, lq, min_copies, conserve
         found = _locate(codes, rotated, threshold)
         if len(found) >= len(starts):
             motif, starts, rotated_any = rotated, found, True
-    if not (length == 2 and motif[0] != motif[1] and threshold >= 2
+    if not (seed_only and length == 2 and motif[0] != motif[1] and threshold >= 2
             and not grown_any and not rotated_any):
         starts = _merge(starts, _locate(codes, motif, threshold), length)
     if len(starts) < min_copies:
@@ -409,7 +419,7 @@ def _search(codes, size, p, lp, lq, log_distinct, min_copies, seeds, conserve,
         starts = order[begin[gi]:begin[gi + 1]].copy()  # in position order
         got, motif, where, threshold = _grow(codes, seed, starts, size, thresholds, p, lp, lq,
                                              min_copies, conserve, match_fraction, scan_alpha,
-                                             max_pattern, column)
+                                             max_pattern, column, True)
         if got == UNCERTAIN:
             return UNCERTAIN, 0, 0, 0
         if got == NONE:

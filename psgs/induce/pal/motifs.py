@@ -259,8 +259,24 @@ def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: f
     """Grow ``motif`` one conserved column at a time from its copies at ``starts``.
 
     ``seed_only``: ``motif`` is a digram and ``starts`` all its occurrences.
+    With ``params.engine`` compiled, the compiled loop grows it (the same motif).
     """
     n = len(codes)
+    if n and match_rate > 0 and select(params.engine) == "numba":
+        from . import _motifs_jit as jit
+
+        state, grown, found, threshold = jit.grow_motif(
+            codes.astype(np.int64, copy=False), np.asarray(motif, dtype=np.int64),
+            np.asarray(starts, dtype=np.int64), int(codes.max()) + 1, match_rate,
+            math.log(match_rate), math.log1p(-match_rate) if match_rate < 1 else -math.inf,
+            params.min_copies, float(params.conserve), float(params.match_fraction),
+            float(params.scan_alpha), params.max_pattern, seed_only)
+        if state == jit.FOUND:
+            return Motif(grown, found, significance(n, len(grown), threshold, len(found),
+                                                    match_rate, distinct))
+        if state == jit.NONE:
+            return None
+        # a chance level too close to call in the compiled floats: numpy's loop decides
     size = int(codes.max()) + 1
     grown_from = motif
     while len(motif) < params.max_pattern:
