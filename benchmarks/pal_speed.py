@@ -73,14 +73,28 @@ def peer():
     return "scikit-sequitur", lambda symbols: parse(list(symbols))
 
 
+#: the child's own peak resident set, in kB: Linux's VmHWM belongs to the new process image
+#: (``ru_maxrss`` keeps the parent's peak across the exec, this script's own hundreds of MB);
+#: ``ru_maxrss`` elsewhere
+_PEAK = ("def peak():\n"
+         "    try:\n"
+         "        for line in open('/proc/self/status'):\n"
+         "            if line.startswith('VmHWM:'):\n"
+         "                return int(line.split()[1])\n"
+         "    except OSError:\n"
+         "        pass\n"
+         "    import resource\n"
+         "    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss\n")
+
+
 def peak_rss_mb(strings: int, copies: int, patterned: int) -> dict:
     # the child imports the same installed psgs as this process (same interpreter)
-    code = ("import resource;"
-            "from psgs.induce.synthetic import generate; from psgs.induce import PAL;"
-            "c = generate(seed=0, noise=0.1, strings=%d, patterned=%d, templates=%d, copies=%d);"
-            "before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss;"
-            "r = PAL().induce(c.actiongram);"
-            "after = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss;"
+    code = (_PEAK +
+            "from psgs.induce.synthetic import generate; from psgs.induce import PAL\n"
+            "c = generate(seed=0, noise=0.1, strings=%d, patterned=%d, templates=%d, copies=%d)\n"
+            "before = peak()\n"
+            "r = PAL().induce(c.actiongram)\n"
+            "after = peak()\n"
             "print(before, after, c.actiongram.total_symbols, len(r.components))"
             % (strings, patterned, max(8, patterned), copies))
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,

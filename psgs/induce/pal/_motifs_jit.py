@@ -479,6 +479,17 @@ def find_motifs(codes, bounds, sizes, p, lp, lq, log_distinct, min_copies, seeds
     return status, length, copies, threshold, motifs, starts
 
 
+@_jit
+def symbol_counts(codes, bounds, width):
+    """How often each code occurs in each string ``codes[bounds[i]:bounds[i + 1]]``:
+    a (strings, width) array."""
+    counts = np.zeros((len(bounds) - 1, width), dtype=np.int64)
+    for i in range(len(bounds) - 1):
+        for j in range(bounds[i], bounds[i + 1]):
+            counts[i, codes[j]] += 1
+    return counts
+
+
 # -- synchronisation of every pair of candidates ------------------------------------------
 @_jit
 def _disjoint(lo, hi):

@@ -322,7 +322,8 @@ def _reports(actiongram: Actiongram, found: ContentResult, period_used: bool,
     """One report per string: component, or the stage that dropped it."""
     reports = []
     partners = found.partners
-    for i, name in enumerate(actiongram.names):
+    names = actiongram.names
+    for i, name in enumerate(names):
         m = found.motifs[i]
         if i in found.patterns:
             status = "component"
@@ -338,10 +339,10 @@ def _reports(actiongram: Actiongram, found: ContentResult, period_used: bool,
             status = "not synchronised"
         reports.append(StringReport(
             name=name, status=status,
-            motif=tuple(symbol_of[c] for c in m.motif) if m else (),
+            motif=tuple([symbol_of[c] for c in m.motif.tolist()]) if m else (),
             copies=len(m.starts) if m else 0,
             significance=m.significance if m else 0.0,
-            synchronised_with=tuple(actiongram.names[j] for j in partners.get(i, ()))))
+            synchronised_with=tuple([names[j] for j in partners.get(i, ())])))
     return tuple(reports)
 
 

@@ -194,8 +194,9 @@ def _symbol_statistics(flat: np.ndarray, bounds: np.ndarray, min_copies: int
             sizes[i], distinct[i] = size, np.count_nonzero(freq)
             rates[i] = np.sum(freq ** 2)
         return sizes, distinct, rates
-    owner = np.repeat(np.arange(count), lengths)
-    counts = np.bincount(owner * width + flat, minlength=count * width).reshape(count, width)
+    from ._motifs_jit import symbol_counts  # (only the compiled engine comes here)
+
+    counts = symbol_counts(flat, bounds, width)
     sizes[searched] = width - np.argmax(counts[searched, ::-1] > 0, axis=1)
     distinct[searched] = np.count_nonzero(counts[searched], axis=1)
     keys = lengths[searched] * (width + 1) + sizes[searched]
