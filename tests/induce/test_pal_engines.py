@@ -15,11 +15,13 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from psgs import Actiongram
 from psgs.induce import PAL
 from psgs.induce.pal import _engines, _motifs_jit
 from psgs.induce.pal.content import find_candidates
 from psgs.induce.pal.learner import encode
-from psgs.induce.pal.motifs import _symbol_statistics, find_motif, find_motifs, grow, locate_copies
+from psgs.induce.pal.motifs import (Timed, _symbol_statistics, find_motif, find_motifs, grow,
+                                    locate_copies)
 from psgs.induce.pal.pooling import synchronised, synchronised_pairs
 from psgs.induce.synthetic import generate
 
@@ -227,3 +229,41 @@ def test_both_engines_grow_a_motif_the_same(codes, seed, from_a_copy):
     starts = locate_copies(codes, motif, max(2, length // 2))
     expected = grow(codes, motif, starts, rate, distinct, NUMPY)
     assert same_motif(grow(codes, motif, starts, rate, distinct, NUMBA), expected)
+
+
+@st.composite
+def actiongrams(draw):
+    """Strings of 0 to 60 symbols from a pool of one-character (some beyond the BMP, some
+    of many) or longer symbols, positive durations, any origins."""
+    pool = draw(st.sampled_from([list("abcde"), [chr(0x4E00 + k) for k in range(300)],
+                                 ["a", "\U0001F600", "b"], ["ab", "c", "dd", "e"]]))
+    count = draw(st.integers(1, 6))
+    rng = np.random.default_rng(draw(st.integers(0, 2**32 - 1)))
+    same = draw(st.booleans())  # strings of one length take encode's array path
+    length = int(rng.integers(0, 60))
+    symbols = [tuple(pool[k] for k in rng.integers(0, len(pool),
+                                                    length if same else int(rng.integers(0, 60))))
+               for _ in range(count)]
+    durations = [tuple(float(d) for d in rng.exponential(1.0, len(s)) + 1e-3) for s in symbols]
+    origins = [float(o) for o in rng.normal(0, 10, count)]
+    return Actiongram(tuple(f"s{i}" for i in range(count)), tuple(symbols), tuple(durations),
+                      tuple(origins))
+
+
+@settings(max_examples=150)
+@given(actiongrams())
+def test_encode_is_each_strings_own_coding(ag):
+    # codes numbered in order of first appearance, times summed string by string
+    alphabet: dict[str, int] = {}
+    for syms in ag.symbols:
+        for sym in syms:
+            alphabet.setdefault(sym, len(alphabet))
+    strings, symbols = encode(ag)
+    assert symbols == list(alphabet)
+    for timed, syms, durations, origin in zip(strings, ag.symbols, ag.segment_durations,
+                                              ag.origins):
+        own = Timed.from_codes(np.asarray([alphabet[s] for s in syms], dtype=np.int64),
+                               np.asarray(durations, dtype=np.float64), origin)
+        assert timed.codes.dtype == own.codes.dtype and timed.codes.tolist() == own.codes.tolist()
+        assert timed.starts.tobytes() == own.starts.tobytes()
+        assert timed.ends.tobytes() == own.ends.tobytes()

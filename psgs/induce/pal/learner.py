@@ -274,7 +274,9 @@ def _times(durations: np.ndarray, bounds: list[int], origins) -> tuple[np.ndarra
             continue
         origin = np.asarray([float(origins[i]) for i in rows])[:, None]
         if len(by_length) == 1:  # one length: the strings are the rows as they lie
-            ends[:] = (origin + np.cumsum(durations.reshape(len(rows), length), axis=1)).ravel()
+            block = ends.reshape(len(rows), length)
+            np.cumsum(durations.reshape(len(rows), length), axis=1, out=block)
+            block += origin  # (x + origin is origin + x: IEEE addition commutes)
             break
         index = np.asarray([bounds[i] for i in rows])[:, None] + np.arange(length)
         ends[index] = origin + np.cumsum(durations[index], axis=1)
@@ -293,6 +295,13 @@ def _codes(symbols: tuple[tuple[str, ...], ...], total: int) -> tuple[np.ndarray
         if int(points.max()) < 1 << 16:  # a table lookup is quicker than a search
             present = np.bincount(points)
             ordinals = np.flatnonzero(present)
+            if len(ordinals) <= 256:  # first appearances by a few scans in C; one lookup
+                symbols_sorted = [chr(o) for o in ordinals.tolist()]
+                first = [joined.find(sym) for sym in symbols_sorted]
+                order = sorted(range(len(first)), key=first.__getitem__)
+                table = np.zeros(len(present), dtype=np.int64)
+                table[ordinals[order]] = np.arange(len(order))
+                return table[points], [symbols_sorted[k] for k in order]
             table = np.zeros(len(present), dtype=np.int64)
             table[ordinals] = np.arange(len(ordinals))
             index = table[points]
@@ -305,12 +314,8 @@ def _codes(symbols: tuple[tuple[str, ...], ...], total: int) -> tuple[np.ndarray
         symbols_sorted = sorted(set(flat))
         lookup = {sym: k for k, sym in enumerate(symbols_sorted)}
         index = np.fromiter(map(lookup.__getitem__, flat), dtype=np.int64, count=total)
-    if len(joined) == total and len(symbols_sorted) <= 256:
-        # where each character first appears: a few scans in C, cheaper than a pass in numpy
-        first = np.asarray([joined.find(sym) for sym in symbols_sorted], dtype=np.int64)
-    else:
-        first = np.full(len(symbols_sorted), total, dtype=np.int64)
-        np.minimum.at(first, index, np.arange(total))
+    first = np.full(len(symbols_sorted), total, dtype=np.int64)
+    np.minimum.at(first, index, np.arange(total))
     order = np.argsort(first, kind="stable")
     rank = np.empty(len(symbols_sorted), dtype=np.int64)
     rank[order] = np.arange(len(symbols_sorted))
