@@ -1,5 +1,6 @@
 """The compiled motif search: :func:`~psgs.induce.pal.motifs.find_motif` for every string in
-one numba call, and the synchronisation test for every pair of candidates in another.
+one numba call (the synchronisation of candidates is in :mod:`._pairs_jit`, the chance
+levels in :mod:`._chance_jit`).
 
 The search is the numpy engine's step for step (the same seeds in the same order, the same
 columns added, the same copies kept), in integer arithmetic and exact float comparisons
@@ -19,103 +20,16 @@ Without numba this module still imports (the functions are then plain Python, wh
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
-try:
-    import numba
-except ImportError:  # pragma: no cover - psgs.induce.pal._engines then offers numpy's
-    numba = None
+from ._chance_jit import _MARGIN, _jit, _log10_binom_sf, _log10_poisson_sf, _threshold
 
 __all__: list[str] = []  # private: the PAL parameter ``engine`` is the interface
 
 #: status of a string after the search
 NONE, FOUND, UNCERTAIN = 0, 1, 2
-#: a chance level this close (relative) to a boundary is left to the numpy engine
-_MARGIN = 1e-6
 #: farthest column looked at beyond a damaged one while growing (motifs._BRIDGE)
 _BRIDGE = 2
-
-
-def _jit(function):
-    """Compiled on first use, once per installed copy (``cache=True``); no ``fastmath``."""
-    if numba is None:
-        return function
-    return numba.njit(cache=True, nogil=True)(function)
-
-
-# -- chance levels, approximately (only ever compared, with a margin) ------------------
-@_jit
-def _log10_binom_sf(k, m, p, lp, lq):
-    """About log10 P(X >= k), X ~ Binomial(m, p) (statistics.log10_binom_sf's sum)."""
-    if k <= 0:
-        return 0.0
-    if k > m or p <= 0:
-        return -math.inf
-    if p >= 1:
-        return 0.0
-    first = top = -math.inf
-    total = 0.0
-    for i in range(k, m + 1):
-        t = math.lgamma(m + 1) - math.lgamma(i + 1) - math.lgamma(m - i + 1) \
-            + i * lp + (m - i) * lq
-        if i == k:
-            first = t
-        if t > top:  # a running log-sum-exp: the same sum up to rounding
-            total = total * math.exp(top - t) + 1.0 if top > -math.inf else 1.0
-            top = t
-        else:
-            total += math.exp(t - top)
-        if i > m * p and t < first - 30:
-            break
-    return (top + math.log(total)) / math.log(10.0)
-
-
-@_jit
-def _log10_poisson_sf(k, lam):
-    """About log10 P(Y >= k), Y ~ Poisson(lam) (statistics.log10_poisson_sf's sums)."""
-    if k <= 0:
-        return 0.0
-    if lam <= 0:
-        return -math.inf
-    log_lam = math.log(lam)
-    if k <= lam:
-        below = 0.0
-        for i in range(k):
-            below += math.exp(-lam + i * log_lam - math.lgamma(i + 1))
-        if below < 0.9:
-            return math.log10(1.0 - below)
-    first = top = -math.inf
-    total = 0.0
-    i = k
-    while True:
-        t = -lam + i * log_lam - math.lgamma(i + 1)
-        if i == k:
-            first = t
-        if t > top:
-            total = total * math.exp(top - t) + 1.0 if top > -math.inf else 1.0
-            top = t
-        else:
-            total += math.exp(t - top)
-        if (i > lam and t < first - 30) or i > k + 10_000:
-            break
-        i += 1
-    return (top + math.log(total)) / math.log(10.0)
-
-
-@_jit
-def _threshold(length, windows, p, lp, lq, match_fraction, scan_alpha):
-    """statistics.scan_threshold, or -1 when a tail lies within the margin of ``scan_alpha``."""
-    low = max(2, math.ceil(match_fraction * length))
-    for t in range(low, length + 1):
-        x = _log10_binom_sf(t, length, p, lp, lq)
-        chance = windows * 10.0 ** x
-        if abs(chance - scan_alpha) <= _MARGIN * scan_alpha:
-            return -1
-        if chance <= scan_alpha:
-            return t
-    return length
 
 
 # -- copies ------------------------------------------------------------------------------
@@ -488,88 +402,3 @@ def symbol_counts(codes, bounds, width):
         for j in range(bounds[i], bounds[i + 1]):
             counts[i, codes[j]] += 1
     return counts
-
-
-# -- synchronisation of every pair of candidates ------------------------------------------
-@_jit
-def _disjoint(lo, hi):
-    """pooling._disjoint, and each interval's end at or after its start: then starts and
-    ends both only grow (what the pointers of :func:`_pair` need; otherwise the general
-    clustering runs, which gives the same answer)."""
-    for j in range(len(lo)):
-        if not hi[j] >= lo[j] or (j and not lo[j] >= hi[j - 1]):
-            return False
-    return True
-
-
-@_jit
-def _pair(a_lo, a_hi, b_lo, b_hi, a_disjoint, b_disjoint, fraction, min_copies):
-    """pooling.synchronised on copies ``(a_lo, a_hi)`` and ``(b_lo, b_hi)``."""
-    if len(a_lo) == 0 or len(b_lo) == 0:
-        return False
-    if a_disjoint and b_disjoint:
-        # pooling._shared_clusters: clusters = intervals - overlaps; each interval's run of
-        # the other list's is two searchsorted counts, here read off by pointers moving
-        # forward (the lists are in time order, so the counts only grow)
-        overlaps, touching = 0, 0
-        before_end = ended = 0
-        for j in range(len(a_lo)):
-            while before_end < len(b_lo) and b_lo[before_end] < a_hi[j]:
-                before_end += 1
-            while ended < len(b_hi) and b_hi[ended] <= a_lo[j]:
-                ended += 1
-            run = before_end - ended
-            if run > 0:
-                overlaps += run
-                touching += 1
-        before_end = ended = 0
-        for j in range(len(b_lo)):
-            while before_end < len(a_lo) and a_lo[before_end] < b_hi[j]:
-                before_end += 1
-            while ended < len(a_hi) and a_hi[ended] <= b_lo[j]:
-                ended += 1
-            if before_end - ended > 0:
-                touching += 1
-        both, clusters = touching - overlaps, len(a_lo) + len(b_lo) - overlaps
-    else:
-        # pooling.copy_clusters: sorted by start, then end; a cluster opens past the reach
-        lo = np.concatenate((a_lo, b_lo))
-        hi = np.concatenate((a_hi, b_hi))
-        by_end = np.argsort(hi, kind="mergesort")
-        order = by_end[np.argsort(lo[by_end], kind="mergesort")]
-        both, clusters = 0, 0
-        reach = -math.inf
-        has_a = has_b = False
-        for j in range(len(order)):
-            k = order[j]
-            if j == 0 or lo[k] >= reach:
-                if has_a and has_b:
-                    both += 1
-                clusters += 1
-                has_a = has_b = False
-            if k < len(a_lo):
-                has_a = True
-            else:
-                has_b = True
-            reach = hi[k] if j == 0 else max(reach, hi[k])
-        if has_a and has_b:
-            both += 1
-    return both >= min_copies and both >= fraction * clusters
-
-
-@_jit
-def synchronised_pairs(lo, hi, bounds, fraction, min_copies):
-    """Which pairs (i < j) of the copy lists ``(lo, hi)[bounds[i]:bounds[i + 1]]`` (start
-    and end times) are synchronised, as an (n, n) boolean array filled above its diagonal."""
-    count = len(bounds) - 1
-    disjoint = np.zeros(count, dtype=np.bool_)
-    for i in range(count):
-        disjoint[i] = _disjoint(lo[bounds[i]:bounds[i + 1]], hi[bounds[i]:bounds[i + 1]])
-    out = np.zeros((count, count), dtype=np.bool_)
-    for i in range(count):
-        a, b = bounds[i], bounds[i + 1]
-        for j in range(i + 1, count):
-            c, d = bounds[j], bounds[j + 1]
-            out[i, j] = _pair(lo[a:b], hi[a:b], lo[c:d], hi[c:d], disjoint[i], disjoint[j],
-                              fraction, min_copies)
-    return out

@@ -62,7 +62,7 @@ def synchronised_pairs(lists: list[np.ndarray], params: PAL) -> list[tuple[int, 
     if select(params.engine) == "numpy":
         return [(i, j) for i in range(len(lists)) for j in range(i + 1, len(lists))
                 if synchronised(lists[i], lists[j], fraction, copies)]
-    from ._motifs_jit import synchronised_pairs as compiled
+    from ._pairs_jit import synchronised_pairs as compiled
 
     bounds = np.zeros(len(lists) + 1, dtype=np.int64)
     np.cumsum([len(iv) for iv in lists], out=bounds[1:])
