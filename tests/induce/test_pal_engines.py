@@ -267,3 +267,16 @@ def test_encode_is_each_strings_own_coding(ag):
         assert timed.codes.dtype == own.codes.dtype and timed.codes.tolist() == own.codes.tolist()
         assert timed.starts.tobytes() == own.starts.tobytes()
         assert timed.ends.tobytes() == own.ends.tobytes()
+
+
+def test_the_threaded_search_is_the_single_threaded_one(monkeypatch):
+    # from _THREADED_SYMBOLS on, two threads search two runs of strings into shared arrays
+    from psgs.induce.pal import motifs
+    case = generate(seed=5, noise=0.2, strings=200, patterned=16, templates=16, copies=12)
+    strings = [s.codes for s in encode(case.actiongram)[0]]
+    monkeypatch.setattr(motifs, "_THREADED_SYMBOLS", 1 << 62)
+    alone = find_motifs(strings, NUMBA)
+    monkeypatch.setattr(motifs, "_THREADED_SYMBOLS", 1000)
+    threaded = find_motifs(strings, NUMBA)
+    assert all(same_motif(a, b) for a, b in zip(alone, threaded))
+    assert all(same_motif(a, find_motif(c, NUMPY)) for a, c in zip(alone, strings))

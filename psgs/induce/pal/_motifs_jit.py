@@ -379,18 +379,26 @@ def find_motifs(codes, bounds, sizes, p, lp, lq, log_distinct, min_copies, seeds
     copy starts of string i from ``bounds[i]`` in ``starts``.
     """
     strings = len(bounds) - 1
-    status = np.zeros(strings, dtype=np.int64)
-    length = np.zeros(strings, dtype=np.int64)
-    copies = np.zeros(strings, dtype=np.int64)
-    threshold = np.zeros(strings, dtype=np.int64)
-    motifs = np.zeros((strings, max_pattern), dtype=np.int64)
-    starts = np.zeros(len(codes), dtype=np.int64)
-    for i in range(strings):
+    out = (np.zeros(strings, dtype=np.int64), np.zeros(strings, dtype=np.int64),
+           np.zeros(strings, dtype=np.int64), np.zeros(strings, dtype=np.int64),
+           np.zeros((strings, max_pattern), dtype=np.int64),
+           np.zeros(len(codes), dtype=np.int64))
+    search_strings(codes, bounds, 0, strings, sizes, p, lp, lq, log_distinct, min_copies,
+                   seeds, conserve, match_fraction, scan_alpha, max_pattern, *out)
+    return out
+
+
+@_jit
+def search_strings(codes, bounds, first, last, sizes, p, lp, lq, log_distinct, min_copies,
+                   seeds, conserve, match_fraction, scan_alpha, max_pattern, status, length,
+                   copies, threshold, motifs, starts):
+    """:func:`find_motifs` of strings ``first`` to ``last - 1``, written into the arrays
+    given (so that threads can search disjoint runs of strings side by side)."""
+    for i in range(first, last):
         a, b = bounds[i], bounds[i + 1]
         status[i], length[i], copies[i], threshold[i] = _search(
             codes[a:b], sizes[i], p[i], lp[i], lq[i], log_distinct[i], min_copies, seeds,
             conserve, match_fraction, scan_alpha, max_pattern, motifs[i], starts[a:b])
-    return status, length, copies, threshold, motifs, starts
 
 
 @_jit

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+import os
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -148,10 +150,8 @@ def find_motifs(strings: list[np.ndarray], params: PAL) -> list[Motif | None]:
         rate = float(rates[i])
         stats[:, i] = (rate, math.log(rate), math.log1p(-rate) if rate < 1 else -math.inf,
                        math.log10(max(int(distinct[i]), 2)))
-    status, lengths, copies, thresholds, motifs, starts = jit.find_motifs(
-        flat.astype(np.int64, copy=False), bounds, sizes, stats[0], stats[1], stats[2],
-        stats[3], params.min_copies, params.seeds, float(params.conserve),
-        float(params.match_fraction), float(params.scan_alpha), params.max_pattern)
+    found = _search_all(jit, flat.astype(np.int64, copy=False), bounds, sizes, stats, params)
+    status, lengths, copies, thresholds, motifs, starts = found
     out: list[Motif | None] = []
     for i, (state, length, k, threshold, start) in enumerate(zip(
             status.tolist(), lengths.tolist(), copies.tolist(), thresholds.tolist(),
@@ -164,6 +164,33 @@ def find_motifs(strings: list[np.ndarray], params: PAL) -> list[Motif | None]:
                                           float(stats[0, i]), int(distinct[i]))))
         else:
             out.append(None)
+    return out
+
+
+#: from this many symbols on, the compiled search runs in two threads (two runs of strings
+#: of about equal size; each string's search is the same wherever it runs); below, one
+_THREADED_SYMBOLS = 1 << 18
+
+
+def _search_all(jit, flat, bounds, sizes, stats, params):
+    """The compiled search of every string, in one thread or two (the same arrays out)."""
+    count = len(bounds) - 1
+    out = (np.zeros(count, dtype=np.int64), np.zeros(count, dtype=np.int64),
+           np.zeros(count, dtype=np.int64), np.zeros(count, dtype=np.int64),
+           np.zeros((count, params.max_pattern), dtype=np.int64),
+           np.zeros(len(flat), dtype=np.int64))
+    args = (sizes, stats[0], stats[1], stats[2], stats[3], params.min_copies, params.seeds,
+            float(params.conserve), float(params.match_fraction), float(params.scan_alpha),
+            params.max_pattern) + out
+    middle = int(np.searchsorted(bounds, len(flat) / 2))
+    if len(flat) < _THREADED_SYMBOLS or (os.cpu_count() or 1) < 2 or not 0 < middle < count:
+        jit.search_strings(flat, bounds, 0, count, *args)
+        return out
+    with ThreadPoolExecutor(2) as pool:  # the kernel releases the GIL (nogil)
+        runs = [pool.submit(jit.search_strings, flat, bounds, a, b, *args)
+                for a, b in ((0, middle), (middle, count))]
+        for run in runs:
+            run.result()
     return out
 
 
