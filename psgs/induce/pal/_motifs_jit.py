@@ -22,7 +22,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._chance_jit import _MARGIN, _jit, _log10_binom_sf, _log10_poisson_sf, _threshold
+from ._chance_jit import (_MARGIN, _jit, _log10_binom_sf, _log10_poisson_sf, _sorted,
+                          _stable_argsort, _threshold)
 
 __all__: list[str] = []  # private: the PAL parameter ``engine`` is the interface
 
@@ -51,7 +52,7 @@ def _chain(positions, count, length):
 def _merge(old, new, length):
     """motifs.merge_copies: both lists, earlier first, none overlapping one kept before."""
     if not (_ascending(old) and _ascending(new)):
-        both = np.sort(np.concatenate((old, new)))
+        both = _sorted(np.concatenate((old, new)))
         return _chain(both, len(both), length)
     # both in position order already (as they always are here): merged in one pass
     both = np.empty(len(old) + len(new), dtype=np.int64)
@@ -124,7 +125,10 @@ def _locate(codes, motif, threshold):
 
 @_jit
 def _median_gap(starts):
-    gaps = np.sort(np.diff(starts))
+    gaps = np.empty(len(starts) - 1, dtype=np.int64)
+    for j in range(len(gaps)):
+        gaps[j] = starts[j + 1] - starts[j]
+    gaps = _sorted(gaps)
     return gaps[(len(gaps) - 1) // 2]
 
 
@@ -182,23 +186,29 @@ def _grow(codes, seed, starts, size, thresholds, p, lp, lq, min_copies, conserve
                     ratio = -k / valid
                     if not have or d < best_d or (d == best_d and ratio < best_ratio):
                         have, best_d, best_ratio, best_right = True, d, ratio, right
-                        best_added[:d] = added[:d]
+                        for j in range(d):
+                            best_added[j] = added[j]
                     break
         if not have:
             break
         d = best_d
         grown = np.empty(length + d, dtype=np.int64)
-        if best_right:
-            grown[:length] = motif
-            grown[length:] = best_added[:d]
-            kept = starts
-        else:
-            for j in range(d):
+        shift = 0 if best_right else d  # (plain loops: array expressions are slow to compile)
+        for j in range(d):
+            if best_right:
+                grown[length + j] = best_added[j]
+            else:
                 grown[j] = best_added[d - 1 - j]
-            grown[d:] = motif
-            kept = starts - d
+        for j in range(length):
+            grown[shift + j] = motif[j]
         glen = length + d
-        kept = kept[(kept >= 0) & (kept + glen <= n)]
+        kept = np.empty(len(starts), dtype=np.int64)
+        count = 0
+        for s in starts:
+            if s - shift >= 0 and s - shift + glen <= n:
+                kept[count] = s - shift
+                count += 1
+        kept = kept[:count]
         threshold = _threshold_of(thresholds, glen, n, p, lp, lq, match_fraction, scan_alpha)
         if threshold < 0:
             return UNCERTAIN, motif, starts, -1
@@ -270,13 +280,9 @@ def _digrams(keys, bins):
         for j in range(m):
             order[at[keys[j]]] = j
             at[keys[j]] += 1
-        return order, begin, begin[1:] - begin[:-1]
-    # sorting, a large alphabet: each key with its position, so that equal keys keep their
-    # order (a stable sort of the keys alone where that could overflow)
-    if bins < (1 << 62) // max(m, 1):
-        order = np.sort(keys * m + np.arange(m)) % m
-    else:
-        order = np.argsort(keys, kind="mergesort")
+        return order, begin, _runs(begin)
+    # sorting, a large alphabet: equal keys keep their order (position order)
+    order = _stable_argsort(keys)
     groups = 0
     for j in range(m):
         if j == 0 or keys[order[j]] != keys[order[j - 1]]:
@@ -288,7 +294,15 @@ def _digrams(keys, bins):
             begin[g] = j
             g += 1
     begin[groups] = m
-    return order, begin, begin[1:] - begin[:-1]
+    return order, begin, _runs(begin)
+
+
+@_jit
+def _runs(begin):
+    counts = np.empty(len(begin) - 1, dtype=np.int64)
+    for g in range(len(counts)):
+        counts[g] = begin[g + 1] - begin[g]
+    return counts
 
 
 @_jit
@@ -298,12 +312,18 @@ def _search(codes, size, p, lp, lq, log_distinct, min_copies, seeds, conserve,
     n = len(codes)
     if n < 2 * min_copies:
         return NONE, 0, 0, 0
-    keys = codes[:-1] * size + codes[1:]
+    keys = np.empty(n - 1, dtype=np.int64)
+    for j in range(n - 1):
+        keys[j] = codes[j] * size + codes[j + 1]
     order, begin, counts = _digrams(keys, size * size)
-    first = order[begin[:-1]]
+    first = np.empty(len(counts), dtype=np.int64)
+    for g in range(len(counts)):
+        first[g] = order[begin[g]]
     taken = np.zeros(len(counts), dtype=np.bool_)
     thresholds = np.full(max_pattern + 1, -2, dtype=np.int64)
     column = np.zeros(size, dtype=np.int64)
+    # (a run-time True: a literal one would compile _grow a second time)
+    as_seed = seeds > 0
     covered = np.empty(seeds * max_pattern, dtype=np.int64)
     n_covered = 0
     tried = 0
@@ -333,7 +353,7 @@ def _search(codes, size, p, lp, lq, log_distinct, min_copies, seeds, conserve,
         starts = order[begin[gi]:begin[gi + 1]].copy()  # in position order
         got, motif, where, threshold = _grow(codes, seed, starts, size, thresholds, p, lp, lq,
                                              min_copies, conserve, match_fraction, scan_alpha,
-                                             max_pattern, column, True)
+                                             max_pattern, column, as_seed)
         if got == UNCERTAIN:
             return UNCERTAIN, 0, 0, 0
         if got == NONE:

@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from ._chance_jit import _jit
+from ._chance_jit import _jit, _stable_argsort
 
 __all__: list[str] = []  # private: the PAL parameter ``engine`` is the interface
 
@@ -61,8 +61,8 @@ def _pair(a_lo, a_hi, b_lo, b_hi, a_disjoint, b_disjoint, fraction, min_copies):
         # pooling.copy_clusters: sorted by start, then end; a cluster opens past the reach
         lo = np.concatenate((a_lo, b_lo))
         hi = np.concatenate((a_hi, b_hi))
-        by_end = np.argsort(hi, kind="mergesort")
-        order = by_end[np.argsort(lo[by_end], kind="mergesort")]
+        by_end = _stable_argsort(hi)
+        order = by_end[_stable_argsort(lo[by_end])]
         both, clusters = 0, 0
         reach = -math.inf
         has_a = has_b = False
