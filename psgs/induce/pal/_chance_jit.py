@@ -11,8 +11,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 try:
     import numba
 except ImportError:  # pragma: no cover - psgs.induce.pal._engines then offers numpy's
@@ -101,34 +99,3 @@ def _threshold(length, windows, p, lp, lq, match_fraction, scan_alpha):
         if chance <= scan_alpha:
             return t
     return length
-
-
-# -- sorting, by hand: numba's np.sort / np.argsort take seconds each to compile ------------
-@_jit
-def _stable_argsort(keys):
-    """The order of ``keys`` (ascending, equal keys in index order), as
-    ``np.argsort(keys, kind="stable")``: a bottom-up merge sort of the indices."""
-    n = len(keys)
-    order = np.arange(n)
-    spare = np.empty(n, dtype=np.int64)
-    width = 1
-    while width < n:
-        for lo in range(0, n, 2 * width):
-            mid, hi = min(lo + width, n), min(lo + 2 * width, n)
-            i, j = lo, mid
-            for k in range(lo, hi):
-                if j >= hi or (i < mid and keys[order[i]] <= keys[order[j]]):
-                    spare[k] = order[i]
-                    i += 1
-                else:
-                    spare[k] = order[j]
-                    j += 1
-        order, spare = spare, order
-        width *= 2
-    return order
-
-
-@_jit
-def _sorted(values):
-    """``np.sort(values)`` (of integers: any correct sort gives the same array)."""
-    return values[_stable_argsort(values)]

@@ -1,6 +1,6 @@
 """The compiled motif search: :func:`~psgs.induce.pal.motifs.find_motif` for every string in
 one numba call (the synchronisation of candidates is in :mod:`._pairs_jit`, the chance
-levels in :mod:`._chance_jit`).
+levels in :mod:`._chance_jit`, counting and sorting in :mod:`._counting_jit`).
 
 The search is the numpy engine's step for step (the same seeds in the same order, the same
 columns added, the same copies kept), in integer arithmetic and exact float comparisons
@@ -22,8 +22,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._chance_jit import (_MARGIN, _jit, _log10_binom_sf, _log10_poisson_sf, _sorted,
-                          _stable_argsort, _threshold)
+from ._chance_jit import _MARGIN, _jit, _log10_binom_sf, _log10_poisson_sf, _threshold
+from ._counting_jit import _digrams, _sorted
 
 __all__: list[str] = []  # private: the PAL parameter ``engine`` is the interface
 
@@ -254,58 +254,6 @@ def _significance(n, length, threshold, copies, p, lp, lq, log_distinct):
 
 
 @_jit
-def _digrams(keys, bins):
-    """The digram keys grouped: positions by key (in position order within a key), where
-    each key's group begins (one bound past the last) and its count."""
-    m = len(keys)
-    if bins <= 4 * m + 4096:  # counting: a small alphabet
-        order = np.empty(m, dtype=np.int64)
-        count = np.zeros(bins, dtype=np.int64)
-        for j in range(m):
-            count[keys[j]] += 1
-        groups = 0
-        for k in range(bins):
-            if count[k]:
-                groups += 1
-        begin = np.empty(groups + 1, dtype=np.int64)
-        at = np.empty(bins, dtype=np.int64)
-        g, total = 0, 0
-        for k in range(bins):
-            if count[k]:
-                begin[g] = total
-                at[k] = total
-                total += count[k]
-                g += 1
-        begin[groups] = m
-        for j in range(m):
-            order[at[keys[j]]] = j
-            at[keys[j]] += 1
-        return order, begin, _runs(begin)
-    # sorting, a large alphabet: equal keys keep their order (position order)
-    order = _stable_argsort(keys)
-    groups = 0
-    for j in range(m):
-        if j == 0 or keys[order[j]] != keys[order[j - 1]]:
-            groups += 1
-    begin = np.empty(groups + 1, dtype=np.int64)
-    g = 0
-    for j in range(m):
-        if j == 0 or keys[order[j]] != keys[order[j - 1]]:
-            begin[g] = j
-            g += 1
-    begin[groups] = m
-    return order, begin, _runs(begin)
-
-
-@_jit
-def _runs(begin):
-    counts = np.empty(len(begin) - 1, dtype=np.int64)
-    for g in range(len(counts)):
-        counts[g] = begin[g + 1] - begin[g]
-    return counts
-
-
-@_jit
 def _search(codes, size, p, lp, lq, log_distinct, min_copies, seeds, conserve,
             match_fraction, scan_alpha, max_pattern, motif_out, starts_out):
     """motifs.find_motif on one string: (status, length, copies, threshold)."""
@@ -419,14 +367,3 @@ def search_strings(codes, bounds, first, last, sizes, p, lp, lq, log_distinct, m
         status[i], length[i], copies[i], threshold[i] = _search(
             codes[a:b], sizes[i], p[i], lp[i], lq[i], log_distinct[i], min_copies, seeds,
             conserve, match_fraction, scan_alpha, max_pattern, motifs[i], starts[a:b])
-
-
-@_jit
-def symbol_counts(codes, bounds, width):
-    """How often each code occurs in each string ``codes[bounds[i]:bounds[i + 1]]``:
-    a (strings, width) array."""
-    counts = np.zeros((len(bounds) - 1, width), dtype=np.int64)
-    for i in range(len(bounds) - 1):
-        for j in range(bounds[i], bounds[i + 1]):
-            counts[i, codes[j]] += 1
-    return counts

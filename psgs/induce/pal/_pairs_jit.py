@@ -12,7 +12,8 @@ import math
 
 import numpy as np
 
-from ._chance_jit import _jit, _stable_argsort
+from ._chance_jit import _jit
+from ._counting_jit import _stable_argsort
 
 __all__: list[str] = []  # private: the PAL parameter ``engine`` is the interface
 

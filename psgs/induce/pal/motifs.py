@@ -221,7 +221,7 @@ def _symbol_statistics(flat: np.ndarray, bounds: np.ndarray, min_copies: int
             sizes[i], distinct[i] = size, np.count_nonzero(freq)
             rates[i] = np.sum(freq ** 2)
         return sizes, distinct, rates
-    from ._motifs_jit import symbol_counts  # (only the compiled engine comes here)
+    from ._counting_jit import symbol_counts  # (only the compiled engine comes here)
 
     counts = symbol_counts(flat, bounds, width)
     sizes[searched] = width - np.argmax(counts[searched, ::-1] > 0, axis=1)
