@@ -10,7 +10,7 @@ import numpy as np
 
 from ...analysis import reachable
 from .motifs import Timed, grow, locate_copies
-from .statistics import log10_binom_sf, scan_threshold
+from .statistics import log10_binom_sf, log10_fisher, scan_threshold
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
@@ -406,17 +406,3 @@ def trim(votes: dict[int, Vote], edge_share: float,
         out[i] = (first, last)
     return out
 
-
-def log10_fisher(log10_p: list[float], tests: int) -> float:
-    """log10 of Fisher's combined p-value of ``tests`` tests, those not listed at p = 1.
-
-    The statistic -2 sum ln p has a chi-squared law of 2 ``tests`` degrees of
-    freedom; for an even count its tail is exp(-y) sum_{j < tests} y^j / j!,
-    with y = -sum ln p.
-    """
-    y = -math.log(10) * sum(log10_p)
-    if y <= 0:
-        return 0.0
-    terms = [j * math.log(y) - math.lgamma(j + 1) for j in range(tests)]
-    top = max(terms)
-    return min(0.0, (-y + top + math.log(sum(math.exp(t - top) for t in terms))) / math.log(10))
