@@ -35,9 +35,10 @@ class PAL(Inducer):
         share of the copies is trimmed (it is not conserved), unless the group's members
         agree there beyond chance at level ``column_alpha``.
     column_alpha : float, default 1e-3
-        Chance level (Fisher's combination over a group's members) below which an end
-        column is kept, and a column beyond the shared windows added, however low its
-        plurality share (heavy noise lowers every member's share at once); 0 turns it off.
+        Chance level (the members' plurality counts added over all their copies) below
+        which an end column is kept, and a column beyond the shared windows added, however
+        low its plurality share (heavy noise lowers every member's share at once); 0 turns
+        it off.
     match_fraction : float, default 0.5
         Least share of positions a copy must match.
     scan_alpha : float, default 0.05

@@ -10,7 +10,7 @@ import numpy as np
 
 from ...analysis import reachable
 from .motifs import Timed, grow, locate_copies
-from .statistics import log10_binom_sf, log10_fisher, scan_threshold
+from .statistics import log10_binom_sf, scan_threshold
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
@@ -362,11 +362,11 @@ def trim(votes: dict[int, Vote], edge_share: float,
     a member has no column). So one string's chance agreement at a column the
     others do not share is trimmed, and a column damaged in one string but
     conserved in the others is kept. With ``alpha`` > 0, a column at or below
-    ``edge_share`` is still kept when the members' agreement there, taken
-    together, is beyond chance at level ``alpha``: Fisher's combination of each
-    member's :meth:`Vote.log10_chance` at that time (p = 1 for a member without
-    a column there). Heavy noise lowers every member's share at once; a
-    column every member shows beyond chance is not cut for it.
+    ``edge_share`` is still kept when the members' agreement there, counted
+    together, is beyond chance at level ``alpha`` (:func:`pooled_log10_chance`,
+    a member without a column there agreeing in none of its copies). Heavy
+    noise lowers every member's share at once; a column the members show
+    together far more often than chance is not cut for it.
     """
     # every member's columns side by side (padding never holds a time); column times
     # rise along a pattern (medians of rising offsets), so the first column ending after
@@ -391,9 +391,9 @@ def trim(votes: dict[int, Vote], edge_share: float,
             return True
         if alpha <= 0:
             return False
-        chance = [members[r].log10_chance(c) for r, c in zip(rows[held].tolist(),
-                                                             column[held].tolist())]
-        return log10_fisher(chance, len(votes)) <= log10_alpha
+        at = dict(zip(rows[held].tolist(), column[held].tolist()))
+        return pooled_log10_chance(members, [at.get(r) for r in range(len(members))]) \
+            <= log10_alpha
 
     out = {}
     for i, v in votes.items():
@@ -406,3 +406,30 @@ def trim(votes: dict[int, Vote], edge_share: float,
         out[i] = (first, last)
     return out
 
+
+
+def pooled_log10_chance(votes: list[Vote], columns: list[int | None]) -> float:
+    """log10 of the chance that members agree, counted together, as often as they do.
+
+    Member ``k`` is read at ``columns[k]`` (None: it agrees in none of its
+    copies); the plurality counts of all members are added and compared with
+    the binomial tail over all their copies at the mean chance of the
+    plurality symbols, times the number of distinct symbols of every member
+    (each chose its own plurality); at most 0. A sum, not a product of
+    tails: one member's chance agreement cannot carry the others. A symbol's
+    chance is its frequency in the string but no less than one over the
+    string's distinct symbols: the symbols between copies are drawn from
+    all of them, and a string whose pattern takes most of its length makes
+    every other symbol rare overall, though not rare between copies.
+    """
+    agree = copies = 0
+    chance, penalty = [], 0.0
+    for v, column in zip(votes, columns):
+        copies += v.full_copies
+        penalty += math.log10(max(2, v.symbols))
+        if column is not None and v.chance is not None:
+            agree += round(float(v.shares[column]) * v.full_copies)
+            chance.append(max(float(v.chance[column]), 1 / max(1, v.symbols)))
+    if agree == 0 or not chance:
+        return 0.0
+    return min(0.0, log10_binom_sf(agree, copies, sum(chance) / len(chance)) + penalty)

@@ -51,21 +51,6 @@ def log10_poisson_sf(k: int, lam: float) -> float:
     return (top + math.log(sum(math.exp(t - top) for t in terms))) / math.log(10)
 
 
-def log10_fisher(log10_p: list[float], tests: int) -> float:
-    """log10 of Fisher's combined p-value of ``tests`` tests, those not listed at p = 1.
-
-    The statistic -2 sum ln p has a chi-squared law of 2 ``tests`` degrees of
-    freedom; for an even count its tail is exp(-y) sum_{j < tests} y^j / j!,
-    with y = -sum ln p.
-    """
-    y = -math.log(10) * sum(log10_p)
-    if y <= 0:
-        return 0.0
-    terms = [j * math.log(y) - math.lgamma(j + 1) for j in range(tests)]
-    top = max(terms)
-    return min(0.0, (-y + top + math.log(sum(math.exp(t - top) for t in terms))) / math.log(10))
-
-
 def scan_threshold(length: int, windows: int, match_rate: float, params: PAL) -> int:
     """Fewest matching positions a window needs to count as a copy."""
     return _threshold(length, windows, match_rate, params.match_fraction, params.scan_alpha)
