@@ -9,6 +9,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .motifs import Motif, Timed, find_motifs
+from .together import locate_together
+from .widening import widen
 from .pooling import (pooled_pattern, pooled_windows, relocate, repeats_in_windows, sync_groups,
                       synchronised_pairs, trim, vote)
 
@@ -59,7 +61,7 @@ def pool_groups(strings: list[Timed], found: ContentResult, params: PAL) -> Cont
                 windows = pooled_windows([located[i] for i in members], params.window_support)
                 earlier = windows
                 votes = {i: v for i in members if (v := vote(strings[i], windows)) is not None}
-                kept_columns = trim(votes, params.edge_share) if votes else {}
+                kept_columns = trim(votes, params.edge_share, params.column_alpha) if votes else {}
                 # locate each member's copies again with its voted pattern
                 for i, (first, last) in kept_columns.items():
                     pattern = pooled_pattern(strings[i], votes[i])
@@ -83,6 +85,15 @@ def pool_groups(strings: list[Timed], found: ContentResult, params: PAL) -> Cont
             if len(votes) < 2:
                 votes = {}
                 break
+            together = locate_together(strings, votes, params)
+            if together is not None:
+                # a copy damaged in most members passes no joint scan; its window stays
+                together = with_earlier(together, windows)
+                again = {i: vote(strings[i], together) for i in votes}
+                if all(v is not None for v in again.values()):
+                    windows, votes = together, again
+            windows, votes = widen(strings, votes, windows, params.edge_share,
+                                   params.column_alpha, params.max_pattern)
             # strings whose own motif search fell short, read in the group's windows
             for i in range(len(strings)):
                 if i not in grouped and (v := vote(strings[i], windows)) is not None \
@@ -90,7 +101,7 @@ def pool_groups(strings: list[Timed], found: ContentResult, params: PAL) -> Cont
                     votes[i] = v
                     joined[i] = group
                     grouped.add(i)
-        kept_columns = trim(votes, params.edge_share) if votes else {}
+        kept_columns = trim(votes, params.edge_share, params.column_alpha) if votes else {}
         for i, (first, last) in kept_columns.items():
             if last <= first:
                 continue

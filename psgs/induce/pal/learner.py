@@ -31,7 +31,13 @@ class PAL(Inducer):
         Share of copies that must agree on a new column.
     edge_share : float, default 0.5
         An end column of a voted pattern whose plurality symbol holds no more than this
-        share of the copies is trimmed (it is not conserved).
+        share of the copies is trimmed (it is not conserved), unless the group's members
+        agree there beyond chance at level ``column_alpha``.
+    column_alpha : float, default 1e-3
+        Chance level (the members' plurality counts added over all their copies) below
+        which an end column is kept, and a column beyond the shared windows added, however
+        low its plurality share (heavy noise lowers every member's share at once); 0 turns
+        it off.
     match_fraction : float, default 0.5
         Least share of positions a copy must match.
     scan_alpha : float, default 0.05
@@ -110,6 +116,7 @@ class PAL(Inducer):
     name = "pal"
 
     def __init__(self, *, min_copies: int = 3, conserve: float = 0.6, edge_share: float = 0.5,
+                 column_alpha: float = 1e-3,
                  match_fraction: float = 0.5, scan_alpha: float = 0.05, alpha: float = 1e-2,
                  sync_fraction: float = 0.5, window_support: float = 0.34,
                  max_pattern: int = 64, seeds: int = 3, rounds: int = 2,
@@ -122,6 +129,7 @@ class PAL(Inducer):
         check_number("min_copies", min_copies, low=2, integer=True)
         check_number("conserve", conserve, low=0, high=1, low_open=True)
         check_number("edge_share", edge_share, low=0, high=1)
+        check_number("column_alpha", column_alpha, low=0, high=1)
         check_number("match_fraction", match_fraction, low=0, high=1, low_open=True)
         check_number("scan_alpha", scan_alpha, low=0, low_open=True)
         check_number("alpha", alpha, low=0, high=1, low_open=True)
@@ -137,6 +145,7 @@ class PAL(Inducer):
         self.min_copies = min_copies
         self.conserve = conserve
         self.edge_share = edge_share
+        self.column_alpha = column_alpha
         self.match_fraction = match_fraction
         self.scan_alpha = scan_alpha
         self.alpha = alpha

@@ -67,6 +67,15 @@ def scan_threshold(length: int, windows: int, match_rate: float, params: PAL) ->
     return _threshold(length, windows, match_rate, params.match_fraction, params.scan_alpha)
 
 
+def chance_threshold(length: int, windows: int, match_rate: float, params: PAL) -> int:
+    """Fewest matching positions a window needs to pass as beyond chance alone.
+
+    As :func:`scan_threshold` without its floor of ``match_fraction`` of the
+    positions (two at least).
+    """
+    return _threshold(length, windows, match_rate, 0.0, params.scan_alpha)
+
+
 @functools.lru_cache(maxsize=4096)
 def _threshold(length: int, windows: int, match_rate: float, match_fraction: float,
                scan_alpha: float) -> int:
