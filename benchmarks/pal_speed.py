@@ -5,23 +5,31 @@ Run from the repository root:
     python benchmarks/pal_speed.py            # writes docs/data/pal_speed*.csv, the pal section
     python benchmarks/pal_speed.py --quick    # smaller sizes, no files written
 
-Two sweeps, so that both ways an actiongram grows are measured. *Length*:
+Three sweeps, so that every way an actiongram grows is measured. *Length*:
 100 strings whose length grows from 100 to 10,000 symbols (10^4 to 10^6
 symbols in all), 8 of them repeating an 8-symbol template (2 random symbols
 after each copy, 10% noise), the others random; the peer runs beside PAL on
 these. *Strings*: strings of 10,000 symbols, their number growing from 10 to
-100 (10^5 to 10^6 symbols), 8% of them patterned (2 at least). A last row
-gives the other extreme at 10^6 symbols: 1,000 strings of 1,000 symbols (80
-patterned), where PAL's per-string costs decide. The peer is scikit-sequitur
+100 (10^5 to 10^6 symbols), 8% of them patterned (2 at least). *Short*: many
+short strings, 1,000 symbols each, their number growing from 100 to 1,000
+(10^5 to 10^6 symbols), 8% patterned; its last row, 1,000 strings of 1,000,
+is where PAL's per-string costs decide. PAL runs with its default engine
+(``engine="auto"``: the compiled one when numba imports, ``pip install
+'psgs[fast]'``); at 10^6 symbols each sweep also times ``engine="numpy"``, so
+that the compiled engine's gain shows side by side (both give the same
+Induction; the script checks it). The peer is scikit-sequitur
 (``pip install scikit-sequitur``, the ``bench`` extra), which learns the same
 strings one by one; when it is missing, the script says so and times psgs's
 own Sequential baseline instead (up to 10^5 symbols, as it re-counts digrams
 after every rule). Times are wall-clock seconds, the best of ``--repeat``
-runs, on an otherwise shared 2-core machine. The growth exponent is the
-least-squares slope of log(time) against log(symbols), over each whole sweep
-and over its upper decade (10^5 to 10^6 symbols, where fixed costs matter
-least). Peak memory is the maximum resident set size of a fresh process that
-builds the 10^6-symbol actiongram and runs PAL on it.
+runs, on an otherwise shared 2-core machine; PAL's first run on each
+actiongram (no cache warm, numba's compiled code loaded) is given too. The
+growth exponent is the least-squares slope of log(time) against log(symbols),
+over each whole sweep and over its upper decade (10^5 to 10^6 symbols, where
+fixed costs matter least). Peak memory is the maximum resident set size of a
+fresh process that builds the 10^6-symbol actiongram and runs PAL on it.
+Targets (issue 13): at least 3 M symbols/s at 10^6 symbols and an exponent of
+at most 1.05 in every sweep.
 """
 
 from __future__ import annotations
@@ -43,7 +51,12 @@ from psgs.induce.synthetic import generate  # noqa: E402
 LENGTH_SWEEP = tuple((100, copies, 8) for copies in (10, 30, 100, 300, 1000))
 STRINGS_SWEEP = tuple((strings, 1000, max(2, strings * 8 // 100))
                       for strings in (10, 20, 30, 50, 100))
-MANY_SHORT = (1000, 100, 80)
+SHORT_SWEEP = tuple((strings, 100, max(2, strings * 8 // 100))
+                    for strings in (100, 200, 300, 500, 1000))
+MANY_SHORT = SHORT_SWEEP[-1]  # 1,000 strings of 1,000 symbols, 80 patterned
+SWEEPS = ("length", "strings", "short")
+#: issue 13's targets
+TARGET_RATE, TARGET_EXPONENT = 3e6, 1.05
 
 
 def actiongram(strings: int, copies: int, patterned: int):
@@ -60,14 +73,28 @@ def peer():
     return "scikit-sequitur", lambda symbols: parse(list(symbols))
 
 
+#: the child's own peak resident set, in kB: Linux's VmHWM belongs to the new process image
+#: (``ru_maxrss`` keeps the parent's peak across the exec, this script's own hundreds of MB);
+#: ``ru_maxrss`` elsewhere
+_PEAK = ("def peak():\n"
+         "    try:\n"
+         "        for line in open('/proc/self/status'):\n"
+         "            if line.startswith('VmHWM:'):\n"
+         "                return int(line.split()[1])\n"
+         "    except OSError:\n"
+         "        pass\n"
+         "    import resource\n"
+         "    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss\n")
+
+
 def peak_rss_mb(strings: int, copies: int, patterned: int) -> dict:
     # the child imports the same installed psgs as this process (same interpreter)
-    code = ("import resource;"
-            "from psgs.induce.synthetic import generate; from psgs.induce import PAL;"
-            "c = generate(seed=0, noise=0.1, strings=%d, patterned=%d, templates=%d, copies=%d);"
-            "before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss;"
-            "r = PAL().induce(c.actiongram);"
-            "after = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss;"
+    code = (_PEAK +
+            "from psgs.induce.synthetic import generate; from psgs.induce import PAL\n"
+            "c = generate(seed=0, noise=0.1, strings=%d, patterned=%d, templates=%d, copies=%d)\n"
+            "before = peak()\n"
+            "r = PAL().induce(c.actiongram)\n"
+            "after = peak()\n"
             "print(before, after, c.actiongram.total_symbols, len(r.components))"
             % (strings, patterned, max(8, patterned), copies))
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
@@ -78,15 +105,17 @@ def peak_rss_mb(strings: int, copies: int, patterned: int) -> dict:
 
 
 def measure(sweep: str, shape, repeat: int, peer_learn=None, peer_name: str = "",
-            sequential=None) -> dict:
+            sequential=None, engine: str = "auto", expected=None) -> dict:
     """One row: PAL's best time on one actiongram (and the peer's, when given)."""
     case = actiongram(*shape)
     ag = case.actiongram
     n = ag.total_symbols
-    pal = PAL()
-    result = pal.induce(ag)
+    pal = PAL(engine=engine)
+    first_s, result = best_of(1, lambda: pal.induce(ag))
     correct = (set(result.components) == set(case.components)
                and all(result.patterns[c] == case.patterns[c] for c in case.components))
+    if expected is not None and result != expected:
+        raise SystemExit(f"engine={engine!r} gave another Induction on {shape}")
     pal_s = best_of(repeat, lambda: pal.induce(ag))[0]
     peer_s = float("nan")
     if peer_learn is not None:
@@ -94,16 +123,39 @@ def measure(sweep: str, shape, repeat: int, peer_learn=None, peer_name: str = ""
                          lambda: [peer_learn(s) for s in ag.symbols])[0]
     elif sequential is not None and n <= 10**5:
         peer_s = best_of(1, lambda: sequential.induce(ag))[0]
-    row = {"sweep": sweep, "symbols": n, "strings": len(ag), "string_length": n // len(ag),
+    row = {"sweep": sweep, "engine": engine_name(engine), "symbols": n, "strings": len(ag),
+           "string_length": n // len(ag), "pal_first_seconds": first_s,
            "pal_seconds": pal_s, "pal_symbols_per_s": n / pal_s, "pal_correct": correct,
            "peer": peer_name, "peer_seconds": peer_s,
            "peer_symbols_per_s": n / peer_s if peer_s == peer_s else float("nan"),
            "speed_ratio": peer_s / pal_s if peer_s == peer_s else float("nan")}
-    print(f"{sweep:>8} {len(ag):>5} x {n // len(ag):>6} = {n:>9,} symbols  PAL {pal_s:7.3f} s "
-          f"({row['pal_symbols_per_s']:>12,.0f}/s, correct={correct})"
+    print(f"{sweep:>8} {len(ag):>5} x {n // len(ag):>6} = {n:>9,} symbols  PAL[{row['engine']}] "
+          f"{pal_s:7.3f} s ({row['pal_symbols_per_s']:>12,.0f}/s, first run {first_s:.3f} s, "
+          f"correct={correct})"
           + (f"  {peer_name} {peer_s:7.3f} s  ratio {row['speed_ratio']:.1f}"
              if peer_s == peer_s else ""), flush=True)
+    row["_result"] = result
     return row
+
+
+def one_thread(sweep: str, shape, repeat: int, expected) -> dict:
+    """The compiled engine's row with its motif search kept in one thread (it takes two
+    from ``motifs._THREADED_SYMBOLS`` symbols on)."""
+    from psgs.induce.pal import motifs
+    threaded = motifs._THREADED_SYMBOLS
+    motifs._THREADED_SYMBOLS = 1 << 62
+    try:
+        row = measure(sweep, shape, repeat, expected=expected)
+    finally:
+        motifs._THREADED_SYMBOLS = threaded
+    row["engine"] += " (one thread)"
+    return row
+
+
+def engine_name(engine: str) -> str:
+    """The engine ``engine`` runs here ("auto" is numba's when it imports)."""
+    from psgs.induce.pal._engines import select
+    return select(engine)
 
 
 def exponents(rows: list[dict], key: str = "pal_seconds") -> tuple[float, float]:
@@ -131,18 +183,37 @@ def main(argv=None) -> int:
               "psgs's Sequential baseline instead", file=sys.stderr)
         peer_name = "psgs Sequential"
         sequential = Sequential()
+    short_sweep = SHORT_SWEEP[:2] if args.quick else SHORT_SWEEP
+    print(f"PAL engine: {engine_name('auto')} (engine='auto'); numpy's engine too at the "
+          f"largest size of each sweep", flush=True)
     rows = [measure("length", shape, args.repeat, peer_learn, peer_name, sequential)
             for shape in length_sweep]
     rows += [measure("strings", shape, args.repeat) for shape in strings_sweep]
-    if not args.quick:
-        rows.append(measure("short", MANY_SHORT, args.repeat))
-    summary = {"peer": peer_name, "repeat": args.repeat,
+    rows += [measure("short", shape, args.repeat) for shape in short_sweep]
+    for sweep, sweep_rows in (("length", length_sweep), ("strings", strings_sweep),
+                              ("short", short_sweep)):
+        if engine_name("auto") != "numpy":  # numpy's engine beside it, on the largest
+            last = [r for r in rows if r["sweep"] == sweep][-1]
+            rows.append(measure(sweep, sweep_rows[-1], min(args.repeat, 3), engine="numpy",
+                                expected=last["_result"]))
+            rows.append(one_thread(sweep, sweep_rows[-1], args.repeat, last["_result"]))
+    for r in rows:
+        del r["_result"]
+    main_engine = engine_name("auto")
+    summary = {"peer": peer_name, "repeat": args.repeat, "engine": main_engine,
                "command": "python benchmarks/pal_speed.py"}
-    for sweep in ("length", "strings"):
-        whole, top = exponents([r for r in rows if r["sweep"] == sweep])
+    for sweep in SWEEPS:
+        own = [r for r in rows if r["sweep"] == sweep and r["engine"] == main_engine]
+        whole, top = exponents(own)
         summary[f"{sweep}_exponent"], summary[f"{sweep}_exponent_upper"] = whole, top
-        print(f"growth exponent, {sweep} sweep: PAL {whole:.2f} (from 10^5 up: {top:.2f})")
-    whole, top = exponents([r for r in rows if r["sweep"] == "length"], "peer_seconds")
+        largest = own[-1]
+        summary[f"{sweep}_rate_at_largest"] = largest["pal_symbols_per_s"]
+        print(f"growth exponent, {sweep} sweep: PAL {whole:.2f} (from 10^5 up: {top:.2f}); "
+              f"{largest['pal_symbols_per_s'] / 1e6:.2f} M symbols/s at "
+              f"{largest['symbols']:,} symbols (targets: >= {TARGET_RATE / 1e6:.0f} M/s, "
+              f"exponent <= {TARGET_EXPONENT})")
+    whole, top = exponents([r for r in rows if r["sweep"] == "length"
+                            and r["engine"] == main_engine], "peer_seconds")
     summary["peer_exponent"], summary["peer_exponent_upper"] = whole, top
     print(f"growth exponent, length sweep: {peer_name} {whole:.2f} (from 10^5 up: {top:.2f})")
     if not args.quick:
@@ -217,53 +288,88 @@ def write_section() -> None:
         lines.append("")
     speed = DATA / "pal_speed.csv"
     if speed.exists():
-        summary = json.loads((DATA / "pal_speed.json").read_text())
-        table = _table(speed)
-        if "sweep" not in table[0]:  # written by the previous version of this script
-            table = [dict(r, sweep="length") for r in table]
-        lines += [f"Speed, measured with `{summary['command']}` (wall clock, the best of "
-                  f"{summary.get('repeat', 3)} runs for PAL, one run for the peer from 10⁵ "
-                  f"symbols up; shared 2-core machine); peer: {summary['peer']} learning the "
-                  "same strings one by one. Growing the strings' length (100 strings):", "",
-                  "| symbols | strings x length | PAL s | PAL symbols/s | peer s | "
-                  "peer symbols/s | peer/PAL |", "|---|---|---|---|---|---|---|"]
-        for r in table:
-            if r["sweep"] != "length":
-                continue
+        lines += _speed_lines(json.loads((DATA / "pal_speed.json").read_text()), _table(speed))
+    replace_section(BENCHMARKS_PAGE, "pal", "\n".join(lines))
+
+
+def _speed_lines(summary: dict, table: list[dict]) -> list[str]:
+    """The speed part of the pal section: a table per sweep, the engines side by side."""
+    for r in table:
+        r.setdefault("sweep", "length")  # written by an earlier version of this script
+        r.setdefault("engine", summary.get("engine", "numpy"))
+    engine = summary.get("engine", "numpy")
+    own = [r for r in table if r["engine"] == engine]
+    lines = [f"Speed, measured with `{summary['command']}` (wall clock, the best of "
+             f"{summary.get('repeat', 3)} runs for PAL, its first run on each actiongram "
+             f"beside it, one run for the peer from 10⁵ symbols up; shared 2-core machine); "
+             f"PAL's engine: **{engine}** (`engine=\"auto\"`); peer: {summary['peer']} "
+             "learning the same strings one by one. Growing the strings' length (100 "
+             "strings):", "",
+             "| symbols | strings x length | PAL s | PAL symbols/s | PAL first run s | peer s | "
+             "peer symbols/s | peer/PAL |", "|---|---|---|---|---|---|---|---|"]
+    for r in own:
+        if r["sweep"] == "length":
             lines.append(f"| {int(r['symbols']):,} | {r['strings']} x "
                          f"{r.get('string_length', '')} | {float(r['pal_seconds']):.3f} | "
                          f"{float(r['pal_symbols_per_s']):,.0f} | "
+                         f"{_seconds(r.get('pal_first_seconds'))} | "
                          f"{float(r['peer_seconds']):.3f} | "
                          f"{float(r['peer_symbols_per_s']):,.0f} | "
                          f"{float(r['speed_ratio']):.1f} |")
-        others = [r for r in table if r["sweep"] != "length"]
-        if others:
-            lines += ["", "Growing the number of strings (10,000 symbols each), and last the "
-                          "other extreme at 10⁶ symbols, 1,000 strings of 1,000:", "",
-                      "| symbols | strings x length | PAL s | PAL symbols/s |",
-                      "|---|---|---|---|"]
-            for r in others:
-                lines.append(f"| {int(r['symbols']):,} | {r['strings']} x "
-                             f"{r['string_length']} | {float(r['pal_seconds']):.3f} | "
-                             f"{float(r['pal_symbols_per_s']):,.0f} |")
-        if "length_exponent" in summary:
-            lines += ["", "Growth exponent (slope of log time on log symbols), whole sweep / "
-                          f"from 10⁵ symbols up: PAL growing the length "
-                          f"{summary['length_exponent']:.2f} / "
-                          f"{summary['length_exponent_upper']:.2f}, growing the number of "
-                          f"strings {summary['strings_exponent']:.2f} / "
-                          f"{summary['strings_exponent_upper']:.2f}; the peer growing the "
-                          f"length {summary['peer_exponent']:.2f} / "
-                          f"{summary['peer_exponent_upper']:.2f}."]
-        else:
-            lines += ["", f"Growth exponent (slope of log time on log symbols): PAL "
-                          f"{summary['pal_exponent']:.2f}, peer {summary['peer_exponent']:.2f}."]
-        if "memory" in summary:
-            m = summary["memory"]
-            lines.append(f"Peak RSS on {m['symbols']:,} symbols: {m['peak_rss_mb']:.0f} MB "
-                         f"({m['rss_after_building_mb']:.0f} MB after building the actiongram, "
-                         f"before PAL).")
-    replace_section(BENCHMARKS_PAGE, "pal", "\n".join(lines))
+    titles = {"strings": "Growing the number of strings (10,000 symbols each):",
+              "short": "Many short strings (1,000 symbols each), their number growing:"}
+    for sweep, title in titles.items():
+        rows = [r for r in own if r["sweep"] == sweep]
+        if not rows:
+            continue
+        lines += ["", title, "", "| symbols | strings x length | PAL s | PAL symbols/s | "
+                  "PAL first run s |", "|---|---|---|---|---|"]
+        for r in rows:
+            lines.append(f"| {int(r['symbols']):,} | {r['strings']} x "
+                         f"{r['string_length']} | {float(r['pal_seconds']):.3f} | "
+                         f"{float(r['pal_symbols_per_s']):,.0f} | "
+                         f"{_seconds(r.get('pal_first_seconds'))} |")
+    others = [r for r in table if r["engine"] != engine]
+    if others:
+        lines += ["", f"The engines side by side at the largest size of each sweep (the same "
+                      f"Induction from each, checked by the script; {engine} in one thread: "
+                      "its motif search not split over the two cores):", "",
+                  "| sweep | strings x length | engine | PAL s | PAL symbols/s | "
+                  f"time / {engine}'s |", "|---|---|---|---|---|---|"]
+        for sweep in dict.fromkeys(r["sweep"] for r in others):
+            rivals = [r for r in others if r["sweep"] == sweep]
+            mine = [q for q in own if q["sweep"] == sweep
+                    and q["symbols"] == rivals[0]["symbols"]][-1]
+            for q in [mine] + rivals:
+                lines.append(f"| {q['sweep']} | {q['strings']} x {q['string_length']} | "
+                             f"{q['engine']} | {float(q['pal_seconds']):.3f} | "
+                             f"{float(q['pal_symbols_per_s']):,.0f} | "
+                             f"{float(q['pal_seconds']) / float(mine['pal_seconds']):.2f} |")
+    if "length_exponent" in summary:
+        parts = [f"{name} {summary[f'{key}_exponent']:.2f} / "
+                 f"{summary[f'{key}_exponent_upper']:.2f}"
+                 for key, name in (("length", "growing the length"),
+                                   ("strings", "growing the number of strings"),
+                                   ("short", "many short strings"))
+                 if f"{key}_exponent" in summary]
+        lines += ["", "Growth exponent (slope of log time on log symbols), whole sweep / "
+                      "from 10⁵ symbols up: PAL " + ", ".join(parts)
+                  + f"; the peer growing the length {summary['peer_exponent']:.2f} / "
+                    f"{summary['peer_exponent_upper']:.2f}. Targets (issue 13): at least "
+                    f"3 M symbols/s at 10⁶ symbols, exponent at most {TARGET_EXPONENT}."]
+    else:
+        lines += ["", f"Growth exponent (slope of log time on log symbols): PAL "
+                      f"{summary['pal_exponent']:.2f}, peer {summary['peer_exponent']:.2f}."]
+    if "memory" in summary:
+        m = summary["memory"]
+        lines.append(f"Peak RSS on {m['symbols']:,} symbols: {m['peak_rss_mb']:.0f} MB "
+                     f"({m['rss_after_building_mb']:.0f} MB after building the actiongram, "
+                     f"before PAL).")
+    return lines
+
+
+def _seconds(value) -> str:
+    return "" if value in (None, "") else f"{float(value):.3f}"
 
 
 if __name__ == "__main__":

@@ -29,13 +29,19 @@ settings.load_profile("ci")
 
 
 def pytest_sessionstart(session):
-    """Build kinetology's compiled segmentation engine before any test is timed.
+    """Build the compiled engines (kinetology's segmentation, PAL's motif search) before any
+    test is timed.
 
-    numba compiles it on first use: 4-6 s with an empty cache (a fresh install, as in CI),
-    which would otherwise land on whichever test segments first and push it towards the
-    suite's 15 s a test. Here it is built once per process before the tests (or found in
-    numba's cache); without numba there is nothing to build.
+    numba compiles them on first use: 4-6 s for kinetology's and about 20 s for PAL's with an
+    empty cache (a fresh install, as in CI), which would otherwise land on whichever test uses
+    them first and push it past the suite's 15 s a test. Here each is built once per process
+    before the tests (or found in numba's cache); without numba there is nothing to build.
     """
+    _warm_kinetology()
+    _warm_pal()
+
+
+def _warm_kinetology():
     try:
         import numpy as np
 
@@ -45,5 +51,17 @@ def pytest_sessionstart(session):
     walk = np.cumsum(np.random.default_rng(0).normal(size=(64, 2)), axis=0)
     try:
         kinetology.segments(kinetology.Motion(walk, ("a.rx", "b.rx"), 120.0), engine="numba")
+    except ImportError:
+        pass
+
+
+def _warm_pal():
+    try:
+        from psgs.induce import PAL
+        from psgs.induce.synthetic import generate
+    except ImportError:
+        return
+    try:  # four patterned strings: both kernels run (motifs, then pairs of candidates)
+        PAL(engine="numba").induce(generate(seed=1, noise=0.1).actiongram)
     except ImportError:
         pass

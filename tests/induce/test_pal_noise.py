@@ -10,7 +10,8 @@ from hypothesis import strategies as st
 from psgs import Actiongram
 from psgs.induce import PAL
 from psgs.induce.pal.content import with_earlier
-from psgs.induce.pal.learner import _codes, encode
+from psgs.induce.pal._encoding import _codes
+from psgs.induce.pal.learner import encode
 from psgs.induce.pal.motifs import Timed, find_motif, locate_copies, merge_copies
 from psgs.induce.pal.pooling import pooled_pattern, vote
 from psgs.induce.synthetic import generate, success, vote_margin
@@ -60,7 +61,7 @@ def test_merged_copies_keep_the_earlier_of_overlapping_ones(old, new, length):
                                max_size=12), min_size=1, max_size=4))
 def test_codes_number_symbols_in_order_of_first_appearance(words):
     flat = [w for word in words for w in word]
-    codes, alphabet = _codes(flat)
+    codes, alphabet = _codes(words, len(flat))  # every string's symbols, coded at once
     assert alphabet == list(dict.fromkeys(flat))
     assert [alphabet[c] for c in codes.tolist()] == flat
 

@@ -8,11 +8,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .motifs import Motif, Timed, find_motif
+from .motifs import Motif, Timed, find_motifs
 from .together import locate_together
 from .widening import widen
 from .pooling import (pooled_pattern, pooled_windows, relocate, repeats_in_windows, sync_groups,
-                      synchronised, trim, vote)
+                      synchronised_pairs, trim, vote)
 
 if TYPE_CHECKING:
     from .learner import PAL
@@ -33,17 +33,16 @@ class ContentResult:
 
 def find_candidates(strings: list[Timed], params: PAL) -> ContentResult:
     """Steps 1-3: a motif per string, the significance screen, synchronisation in time."""
-    motifs = [find_motif(s.codes, params) for s in strings]
+    motifs = find_motifs([s.codes for s in strings], params)
     candidates = [i for i, m in enumerate(motifs)
                   if m is not None and m.significance <= math.log10(params.alpha)]
     intervals = {i: strings[i].intervals(motifs[i].starts, len(motifs[i].motif))
                  for i in candidates}
     partners: dict[int, list[int]] = {i: [] for i in candidates}
-    for a_pos, i in enumerate(candidates):
-        for j in candidates[a_pos + 1:]:
-            if synchronised(intervals[i], intervals[j], params.sync_fraction, params.min_copies):
-                partners[i].append(j)
-                partners[j].append(i)
+    for i, j in synchronised_pairs([intervals[i] for i in candidates], params):
+        a, b = candidates[i], candidates[j]
+        partners[a].append(b)
+        partners[b].append(a)
     return ContentResult(motifs, candidates, intervals, partners)
 
 

@@ -3,13 +3,12 @@
 from __future__ import annotations
 
 from dataclasses import replace
-from itertools import chain
-
-import numpy as np
 
 from ...actiongram import Actiongram
 from ..base import Inducer, as_performances, check_choice, check_number
 from ..results import ActuatorReport, Induction, Morpheme, StringReport
+from ._encoding import encode
+from ._engines import ENGINES, select
 from .content import ContentResult, find_candidates, pool_groups
 from .motifs import Timed
 from .performances import NO_REPETITION, learn_motion
@@ -93,6 +92,11 @@ class PAL(Inducer):
         Shortest cycle within a performance, seconds.
     min_cycle_score : float, default 0.05
         A joint whose best cycle score is no higher does not cycle (no period).
+    engine : {"auto", "numpy", "numba"}, default "auto"
+        What runs the content mode's motif search and synchronisation: numba's compiled
+        loops (``"numba"``, all strings in one call; ``pip install 'psgs[fast]'``), numpy's
+        array passes (``"numpy"``), or numba when it imports and numpy otherwise
+        (``"auto"``). Every engine gives the same result, to the bit.
 
     Examples
     --------
@@ -101,6 +105,12 @@ class PAL(Inducer):
     >>> result = PAL().induce(case.actiongram)
     >>> sorted(result.components) == sorted(case.components)
     True
+    >>> PAL(engine="numpy").induce(case.actiongram) == result
+    True
+    >>> PAL(engine="fortran")
+    Traceback (most recent call last):
+    ...
+    ValueError: engine must be one of 'auto', 'numpy', 'numba', not 'fortran'
     """
 
     name = "pal"
@@ -115,7 +125,7 @@ class PAL(Inducer):
                  evidence: str = "kinetemes", joint_share: float = 0.25,
                  neighbour_share: float = 0.03, channel_share: float = 0.25,
                  max_shift: float = 0.1, min_cycle: float = 0.25,
-                 min_cycle_score: float = 0.05) -> None:
+                 min_cycle_score: float = 0.05, engine: str = "auto") -> None:
         check_number("min_copies", min_copies, low=2, integer=True)
         check_number("conserve", conserve, low=0, high=1, low_open=True)
         check_number("edge_share", edge_share, low=0, high=1)
@@ -162,6 +172,9 @@ class PAL(Inducer):
         self.max_shift = max_shift
         self.min_cycle = min_cycle
         self.min_cycle_score = min_cycle_score
+        if not isinstance(engine, str) or engine not in ENGINES:
+            select(engine)  # raises the ValueError naming the engines
+        self.engine = engine
 
     def induce(self, performances) -> Induction:
         """Learn a PSGS from an actiongram; see :class:`~psgs.induce.Induction`.
@@ -240,53 +253,13 @@ def _same_strings(performances):
     return out
 
 
-def encode(actiongram: Actiongram) -> tuple[list[Timed], list[str]]:
-    """Each string as integer codes over one alphabet (symbols in order of first appearance)."""
-    # one pass over the whole actiongram: per-symbol work is the floor of PAL's cost
-    flat = list(chain.from_iterable(actiongram.symbols))
-    codes, alphabet = _codes(flat)
-    durations = np.fromiter(chain.from_iterable(actiongram.segment_durations),
-                            dtype=np.float64, count=len(flat))
-    bounds = np.cumsum([0] + [len(syms) for syms in actiongram.symbols]).tolist()
-    strings = [Timed.from_codes(codes[a:b], durations[a:b], origin)
-               for a, b, origin in zip(bounds[:-1], bounds[1:], actiongram.origins)]
-    return strings, list(alphabet)
-
-
-def _codes(flat: list[str]) -> tuple[np.ndarray, list[str]]:
-    """Integer codes of ``flat``'s symbols, numbered in order of first appearance."""
-    distinct = set(flat)
-    if not distinct:
-        return np.zeros(0, dtype=np.int64), []
-    if all(len(sym) == 1 for sym in distinct):
-        # one-character symbols: their code points, read in C, then renumbered
-        points = np.frombuffer("".join(flat).encode("utf-32-le"), dtype=np.uint32)
-        ordinals = np.asarray(sorted(map(ord, distinct)), dtype=np.uint32)
-        if int(ordinals[-1]) < 1 << 16:  # a table lookup is quicker than a search
-            table = np.zeros(int(ordinals[-1]) + 1, dtype=np.int64)
-            table[ordinals] = np.arange(len(ordinals))
-            index = table[points]
-        else:
-            index = np.searchsorted(ordinals, points)
-        symbols = [chr(o) for o in ordinals.tolist()]
-    else:
-        symbols = sorted(distinct)
-        lookup = {sym: k for k, sym in enumerate(symbols)}
-        index = np.fromiter(map(lookup.__getitem__, flat), dtype=np.int64, count=len(flat))
-    first = np.full(len(symbols), len(flat), dtype=np.int64)
-    np.minimum.at(first, index, np.arange(len(flat)))
-    order = np.argsort(first, kind="stable")
-    rank = np.empty(len(symbols), dtype=np.int64)
-    rank[order] = np.arange(len(symbols))
-    return rank[index], [symbols[k] for k in order.tolist()]
-
-
 def _reports(actiongram: Actiongram, found: ContentResult, period_used: bool,
              symbol_of: list[str]) -> tuple[StringReport, ...]:
     """One report per string: component, or the stage that dropped it."""
     reports = []
     partners = found.partners
-    for i, name in enumerate(actiongram.names):
+    names = actiongram.names
+    for i, name in enumerate(names):
         m = found.motifs[i]
         if i in found.patterns:
             status = "component"
@@ -302,10 +275,10 @@ def _reports(actiongram: Actiongram, found: ContentResult, period_used: bool,
             status = "not synchronised"
         reports.append(StringReport(
             name=name, status=status,
-            motif=tuple(symbol_of[c] for c in m.motif) if m else (),
+            motif=tuple([symbol_of[c] for c in m.motif.tolist()]) if m else (),
             copies=len(m.starts) if m else 0,
             significance=m.significance if m else 0.0,
-            synchronised_with=tuple(actiongram.names[j] for j in partners.get(i, ()))))
+            synchronised_with=tuple([names[j] for j in partners.get(i, ())])))
     return tuple(reports)
 
 
@@ -345,7 +318,7 @@ def _from_performances(inducer: PAL, takes: tuple[Actiongram, ...]) -> Induction
                                          significance=j.log10_p,
                                          repeated=j.repeated, path=j.path)
                           for j in found.joints)
-    return replace(result, actuators=actuators,
+    return replace(result, params=_recorded(inducer), actuators=actuators,
                    actuator_channels={a: tuple(names[i] for i in found.channels[a])
                                       for a in actuators},
                    morphemes=morphemes, verdict=found.verdict or ("" if kept else NO_REPETITION),
@@ -361,8 +334,16 @@ def _result(inducer: PAL, actiongram: Actiongram, patterns: dict[int, tuple[str,
         names, {names[i]: patterns[i] for i in kept},
         {names[i]: occurrences[i] for i in kept}, reports, synchronise=True)
     if not kept:
-        return replace(result, verdict=NO_REPETITION)
-    actuators = tuple(dict.fromkeys(actiongram.actuator(names[i]) for i in kept))
-    return replace(result, actuators=actuators, actuator_channels={
-        a: tuple(names[i] for i in kept if actiongram.actuator(names[i]) == a)
-        for a in actuators})
+        return replace(result, params=_recorded(inducer), verdict=NO_REPETITION)
+    owner = actiongram.string_actuators  # by index: a name lookup per string adds up
+    channels: dict[str, list[str]] = {}
+    for i in kept:
+        channels.setdefault(owner[i], []).append(names[i])
+    return replace(result, params=_recorded(inducer), actuators=tuple(channels),
+                   actuator_channels={a: tuple(c) for a, c in channels.items()})
+
+
+def _recorded(inducer: PAL) -> dict[str, object]:
+    """The parameters an Induction records: all but ``engine``, which changes how PAL
+    computes and never what it finds (so that every engine's Induction is equal)."""
+    return {k: v for k, v in inducer.get_params().items() if k != "engine"}

@@ -3,10 +3,13 @@
 from __future__ import annotations
 
 import math
+import os
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
 
+from ._engines import select
 from .statistics import log10_binom_sf, log10_poisson_sf, scan_threshold
 from typing import TYPE_CHECKING
 
@@ -126,6 +129,111 @@ def _chain(positions: np.ndarray, length: int) -> list[int]:
     return kept
 
 
+def find_motifs(strings: list[np.ndarray], params: PAL) -> list[Motif | None]:
+    """:func:`find_motif` of every string, by the engine ``params.engine`` chooses.
+
+    The compiled engine searches every string in one call; a string where it
+    meets a chance level too close to a boundary to decide in its own floats
+    (see :mod:`psgs.induce.pal._motifs_jit`) is searched here again.
+    """
+    if select(params.engine) == "numpy":
+        return [find_motif(codes, params) for codes in strings]
+    from . import _motifs_jit as jit
+
+    count = len(strings)
+    bounds = np.zeros(count + 1, dtype=np.int64)
+    np.cumsum([len(c) for c in strings], out=bounds[1:])
+    flat = np.concatenate(strings) if count else np.zeros(0, dtype=np.int64)
+    sizes, distinct, rates = _symbol_statistics(flat, bounds, params.min_copies)
+    stats = np.zeros((4, count))  # match rate, its log and log1p(-), log10 distinct
+    for i in np.flatnonzero(distinct).tolist():
+        rate = float(rates[i])
+        stats[:, i] = (rate, math.log(rate), math.log1p(-rate) if rate < 1 else -math.inf,
+                       math.log10(max(int(distinct[i]), 2)))
+    found = _search_all(jit, flat.astype(np.int64, copy=False), bounds, sizes, stats, params)
+    status, lengths, copies, thresholds, motifs, starts = found
+    out: list[Motif | None] = []
+    for i, (state, length, k, threshold, start) in enumerate(zip(
+            status.tolist(), lengths.tolist(), copies.tolist(), thresholds.tolist(),
+            bounds[:-1].tolist())):
+        if state == jit.UNCERTAIN:
+            out.append(find_motif(strings[i], params))
+        elif state == jit.FOUND:
+            out.append(Motif(motifs[i, :length].copy(), starts[start:start + k].copy(),
+                             significance(len(strings[i]), length, threshold, k,
+                                          float(stats[0, i]), int(distinct[i]))))
+        else:
+            out.append(None)
+    return out
+
+
+#: from this many symbols on, the compiled search runs in two threads (two runs of strings
+#: of about equal size; each string's search is the same wherever it runs); below, one
+_THREADED_SYMBOLS = 1 << 18
+
+
+def _search_all(jit, flat, bounds, sizes, stats, params):
+    """The compiled search of every string, in one thread or two (the same arrays out)."""
+    count = len(bounds) - 1
+    out = (np.zeros(count, dtype=np.int64), np.zeros(count, dtype=np.int64),
+           np.zeros(count, dtype=np.int64), np.zeros(count, dtype=np.int64),
+           np.zeros((count, params.max_pattern), dtype=np.int64),
+           np.zeros(len(flat), dtype=np.int64))
+    args = (sizes, stats[0], stats[1], stats[2], stats[3], params.min_copies, params.seeds,
+            float(params.conserve), float(params.match_fraction), float(params.scan_alpha),
+            params.max_pattern) + out
+    middle = int(np.searchsorted(bounds, len(flat) / 2))
+    if len(flat) < _THREADED_SYMBOLS or (os.cpu_count() or 1) < 2 or not 0 < middle < count:
+        jit.search_strings(flat, bounds, 0, count, *args)
+        return out
+    with ThreadPoolExecutor(2) as pool:  # the kernel releases the GIL (nogil)
+        runs = [pool.submit(jit.search_strings, flat, bounds, a, b, *args)
+                for a, b in ((0, middle), (middle, count))]
+        for run in runs:
+            run.result()
+    return out
+
+
+def _symbol_statistics(flat: np.ndarray, bounds: np.ndarray, min_copies: int
+                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per string, what :func:`find_motif` reads off its symbol counts: the alphabet size
+    (largest code + 1), the distinct symbols and the match rate (the sum of squared symbol
+    shares); zeros for a string too short to search.
+
+    The match rates are summed as numpy sums each string's shares, row by row of one
+    array per (length, size) (a sum along a row is the sum of the row alone, in the same
+    pairwise order); tests/induce/test_pal_engines.py checks it against the string's own.
+    """
+    count = len(bounds) - 1
+    lengths = np.diff(bounds)
+    sizes = np.zeros(count, dtype=np.int64)
+    distinct = np.zeros(count, dtype=np.int64)
+    rates = np.zeros(count)
+    searched = np.flatnonzero(lengths >= 2 * min_copies)
+    if len(searched) == 0:
+        return sizes, distinct, rates
+    width = int(flat.max()) + 1
+    if count * width > 4 * len(flat) + 4096:  # a long alphabet: string by string
+        for i in searched.tolist():
+            codes = flat[bounds[i]:bounds[i + 1]]
+            size = int(codes.max()) + 1
+            freq = np.bincount(codes, minlength=size) / len(codes)
+            sizes[i], distinct[i] = size, np.count_nonzero(freq)
+            rates[i] = np.sum(freq ** 2)
+        return sizes, distinct, rates
+    from ._counting_jit import symbol_counts  # (only the compiled engine comes here)
+
+    counts = symbol_counts(flat, bounds, width)
+    sizes[searched] = width - np.argmax(counts[searched, ::-1] > 0, axis=1)
+    distinct[searched] = np.count_nonzero(counts[searched], axis=1)
+    keys = lengths[searched] * (width + 1) + sizes[searched]
+    for key in np.unique(keys).tolist():
+        rows = searched[keys == key]
+        n, size = int(lengths[rows[0]]), int(sizes[rows[0]])
+        rates[rows] = np.sum((counts[rows, :size] / n) ** 2, axis=1)
+    return sizes, distinct, rates
+
+
 def find_motif(codes: np.ndarray, params: PAL) -> Motif | None:
     """The best-supported repeated motif of one string, or None.
 
@@ -179,8 +287,24 @@ def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: f
     """Grow ``motif`` one conserved column at a time from its copies at ``starts``.
 
     ``seed_only``: ``motif`` is a digram and ``starts`` all its occurrences.
+    With ``params.engine`` compiled, the compiled loop grows it (the same motif).
     """
     n = len(codes)
+    if n and match_rate > 0 and select(params.engine) == "numba":
+        from . import _motifs_jit as jit
+
+        state, grown, found, threshold = jit.grow_motif(
+            codes.astype(np.int64, copy=False), np.asarray(motif, dtype=np.int64),
+            np.asarray(starts, dtype=np.int64), int(codes.max()) + 1, match_rate,
+            math.log(match_rate), math.log1p(-match_rate) if match_rate < 1 else -math.inf,
+            params.min_copies, float(params.conserve), float(params.match_fraction),
+            float(params.scan_alpha), params.max_pattern, seed_only)
+        if state == jit.FOUND:
+            return Motif(grown, found, significance(n, len(grown), threshold, len(found),
+                                                    match_rate, distinct))
+        if state == jit.NONE:
+            return None
+        # a chance level too close to call in the compiled floats: numpy's loop decides
     size = int(codes.max()) + 1
     grown_from = motif
     while len(motif) < params.max_pattern:
@@ -240,8 +364,21 @@ def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: f
         starts = merge_copies(starts, locate_copies(codes, motif, threshold), length)
     if len(starts) < params.min_copies:
         return None
+    return Motif(motif, starts, significance(n, length, threshold, len(starts), match_rate,
+                                             distinct))
+
+
+def significance(n: int, length: int, threshold: int, copies: int, match_rate: float,
+                 distinct: int) -> float:
+    """log10 of the chance of ``copies`` copies of a motif of ``length`` symbols (at most 0).
+
+    The expected chance copies of any motif of that length among a string's
+    ``distinct`` symbols (each window matching ``threshold`` positions or more,
+    a position by chance with probability ``match_rate``), and the Poisson tail
+    of that many copies. Both engines call this, so that motifs are the same to the bit.
+    """
     lam = (n - length + 1) * 10 ** log10_binom_sf(threshold, length, match_rate)
-    significance = length * math.log10(max(distinct, 2)) + log10_poisson_sf(len(starts), lam)
-    return Motif(motif, starts, min(significance, 0.0))
+    value = length * math.log10(max(distinct, 2)) + log10_poisson_sf(copies, lam)
+    return min(value, 0.0)
 
 

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...analysis import reachable
+from ._engines import select
 from .motifs import Timed, grow, locate_copies
 from .statistics import log10_binom_sf, scan_threshold
 from typing import TYPE_CHECKING
@@ -52,6 +53,24 @@ def synchronised(a: np.ndarray, b: np.ndarray, fraction: float, min_copies: int)
         held = copy_clusters([a, b])
         both, clusters = int(np.count_nonzero(held.all(axis=1))), len(held)
     return both >= min_copies and both >= fraction * clusters
+
+
+def synchronised_pairs(lists: list[np.ndarray], params: PAL) -> list[tuple[int, int]]:
+    """The pairs ``(i, j)``, ``i < j`` in order, of copy interval lists that are
+    :func:`synchronised`, by the engine ``params.engine`` chooses (the same pairs)."""
+    fraction, copies = params.sync_fraction, params.min_copies
+    if select(params.engine) == "numpy":
+        return [(i, j) for i in range(len(lists)) for j in range(i + 1, len(lists))
+                if synchronised(lists[i], lists[j], fraction, copies)]
+    from ._pairs_jit import synchronised_pairs as compiled
+
+    bounds = np.zeros(len(lists) + 1, dtype=np.int64)
+    np.cumsum([len(iv) for iv in lists], out=bounds[1:])
+    spans = np.concatenate(lists).astype(np.float64).reshape(-1, 2) if lists \
+        else np.zeros((0, 2))
+    found = compiled(np.ascontiguousarray(spans[:, 0]), np.ascontiguousarray(spans[:, 1]),
+                     bounds, float(fraction), int(copies))
+    return list(zip(*(k.tolist() for k in np.nonzero(found))))
 
 
 def _disjoint(spans: np.ndarray) -> bool:

@@ -10,6 +10,10 @@ if TYPE_CHECKING:
     from .learner import PAL
 
 
+#: log(10), once
+_LN10 = math.log(10)
+
+
 def log10_binom_sf(k: int, m: int, p: float) -> float:
     """log10 P(X >= k) for X ~ Binomial(m, p)."""
     if k <= 0:
@@ -18,15 +22,22 @@ def log10_binom_sf(k: int, m: int, p: float) -> float:
         return -math.inf
     if p >= 1:
         return 0.0
-    lp, lq = math.log(p), math.log1p(-p)
+    # (the sums run in a fixed order: the compiled motif search's results are checked
+    # against these, to the bit; names bound locally only for speed)
+    lgamma, lp, lq = math.lgamma, math.log(p), math.log1p(-p)
+    whole, mp = lgamma(m + 1), m * p
     terms = []
+    floor = None
     for i in range(k, m + 1):
-        t = math.lgamma(m + 1) - math.lgamma(i + 1) - math.lgamma(m - i + 1) + i * lp + (m - i) * lq
+        t = whole - lgamma(i + 1) - lgamma(m - i + 1) + i * lp + (m - i) * lq
         terms.append(t)
-        if i > m * p and t < terms[0] - 30:
+        if floor is None:
+            floor = t - 30
+        if i > mp and t < floor:
             break
     top = max(terms)
-    return (top + math.log(sum(math.exp(t - top) for t in terms))) / math.log(10)
+    exp = math.exp
+    return (top + math.log(sum([exp(t - top) for t in terms]))) / _LN10
 
 
 def log10_poisson_sf(k: int, lam: float) -> float:
@@ -35,20 +46,20 @@ def log10_poisson_sf(k: int, lam: float) -> float:
         return 0.0
     if lam <= 0:
         return -math.inf
+    lgamma, exp, log_lam = math.lgamma, math.exp, math.log(lam)
     if k <= lam:  # the tail is at least about a half: one minus the few terms below k
-        log_lam = math.log(lam)
-        below = math.fsum(math.exp(-lam + i * log_lam - math.lgamma(i + 1)) for i in range(k))
+        below = math.fsum([exp(-lam + i * log_lam - lgamma(i + 1)) for i in range(k)])
         if below < 0.9:
             return math.log10(1.0 - below)
-    terms, i = [], k
-    while True:
-        t = -lam + i * math.log(lam) - math.lgamma(i + 1)
-        terms.append(t)
-        if (i > lam and t < terms[0] - 30) or i > k + 10_000:
-            break
+    first = -lam + k * log_lam - lgamma(k + 1)
+    terms, i, floor, last = [first], k, first - 30, k + 10_000
+    t = first
+    while not ((i > lam and t < floor) or i > last):
         i += 1
+        t = -lam + i * log_lam - lgamma(i + 1)
+        terms.append(t)
     top = max(terms)
-    return (top + math.log(sum(math.exp(t - top) for t in terms))) / math.log(10)
+    return (top + math.log(sum([exp(t - top) for t in terms]))) / _LN10
 
 
 def scan_threshold(length: int, windows: int, match_rate: float, params: PAL) -> int:

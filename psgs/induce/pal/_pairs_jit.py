@@ -1,0 +1,102 @@
+"""The compiled synchronisation test: :func:`psgs.induce.pal.pooling.synchronised` for every
+pair of candidates in one numba call.
+
+Only comparisons of the copies' times and integer counts, in the numpy engine's terms, so
+the pairs are the same (tests/induce/test_pal_engines.py draws touching, overlapping and
+out-of-order copy lists). Without numba this module still imports (plain Python functions).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ._chance_jit import _jit
+from ._counting_jit import _stable_argsort
+
+__all__: list[str] = []  # private: the PAL parameter ``engine`` is the interface
+
+
+@_jit
+def _disjoint(lo, hi):
+    """pooling._disjoint, and each interval's end at or after its start: then starts and
+    ends both only grow (what the pointers of :func:`_pair` need; otherwise the general
+    clustering runs, which gives the same answer)."""
+    for j in range(len(lo)):
+        if not hi[j] >= lo[j] or (j and not lo[j] >= hi[j - 1]):
+            return False
+    return True
+
+
+@_jit
+def _pair(a_lo, a_hi, b_lo, b_hi, a_disjoint, b_disjoint, fraction, min_copies):
+    """pooling.synchronised on copies ``(a_lo, a_hi)`` and ``(b_lo, b_hi)``."""
+    if len(a_lo) == 0 or len(b_lo) == 0:
+        return False
+    if a_disjoint and b_disjoint:
+        # pooling._shared_clusters: clusters = intervals - overlaps; each interval's run of
+        # the other list's is two searchsorted counts, here read off by pointers moving
+        # forward (the lists are in time order, so the counts only grow)
+        overlaps, touching = 0, 0
+        before_end = ended = 0
+        for j in range(len(a_lo)):
+            while before_end < len(b_lo) and b_lo[before_end] < a_hi[j]:
+                before_end += 1
+            while ended < len(b_hi) and b_hi[ended] <= a_lo[j]:
+                ended += 1
+            run = before_end - ended
+            if run > 0:
+                overlaps += run
+                touching += 1
+        before_end = ended = 0
+        for j in range(len(b_lo)):
+            while before_end < len(a_lo) and a_lo[before_end] < b_hi[j]:
+                before_end += 1
+            while ended < len(a_hi) and a_hi[ended] <= b_lo[j]:
+                ended += 1
+            if before_end - ended > 0:
+                touching += 1
+        both, clusters = touching - overlaps, len(a_lo) + len(b_lo) - overlaps
+    else:
+        # pooling.copy_clusters: sorted by start, then end; a cluster opens past the reach
+        lo = np.concatenate((a_lo, b_lo))
+        hi = np.concatenate((a_hi, b_hi))
+        by_end = _stable_argsort(hi)
+        order = by_end[_stable_argsort(lo[by_end])]
+        both, clusters = 0, 0
+        reach = -math.inf
+        has_a = has_b = False
+        for j in range(len(order)):
+            k = order[j]
+            if j == 0 or lo[k] >= reach:
+                if has_a and has_b:
+                    both += 1
+                clusters += 1
+                has_a = has_b = False
+            if k < len(a_lo):
+                has_a = True
+            else:
+                has_b = True
+            reach = hi[k] if j == 0 else max(reach, hi[k])
+        if has_a and has_b:
+            both += 1
+    return both >= min_copies and both >= fraction * clusters
+
+
+@_jit
+def synchronised_pairs(lo, hi, bounds, fraction, min_copies):
+    """Which pairs (i < j) of the copy lists ``(lo, hi)[bounds[i]:bounds[i + 1]]`` (start
+    and end times) are synchronised, as an (n, n) boolean array filled above its diagonal."""
+    count = len(bounds) - 1
+    disjoint = np.zeros(count, dtype=np.bool_)
+    for i in range(count):
+        disjoint[i] = _disjoint(lo[bounds[i]:bounds[i + 1]], hi[bounds[i]:bounds[i + 1]])
+    out = np.zeros((count, count), dtype=np.bool_)
+    for i in range(count):
+        a, b = bounds[i], bounds[i + 1]
+        for j in range(i + 1, count):
+            c, d = bounds[j], bounds[j + 1]
+            out[i, j] = _pair(lo[a:b], hi[a:b], lo[c:d], hi[c:d], disjoint[i], disjoint[j],
+                              fraction, min_copies)
+    return out
