@@ -188,7 +188,8 @@ def _trim_reference(votes, edge_share):
                         max_size=5),
        edge_share=st.sampled_from([0.3, 0.5, 0.7]))
 def test_trim_equals_the_member_by_member_reference(members, edge_share):
-    from psgs.induce.pal.pooling import Vote, trim
+    from psgs.induce.pal.edges import trim
+    from psgs.induce.pal.pooling import Vote
     votes = {}
     for k, (length, seed) in enumerate(members):
         rng = np.random.default_rng(seed)

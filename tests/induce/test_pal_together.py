@@ -13,7 +13,8 @@ from hypothesis import strategies as st
 
 from psgs.induce import PAL
 from psgs.induce.pal.learner import encode
-from psgs.induce.pal.pooling import pooled_log10_chance, trim, vote
+from psgs.induce.pal.edges import pooled_log10_chance, trim
+from psgs.induce.pal.pooling import vote
 from psgs.induce.pal.statistics import log10_binom_sf
 from psgs.induce.pal.together import locate_together
 from psgs.induce.pal.widening import widen

@@ -9,10 +9,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .motifs import Motif, Timed, find_motifs
+from .edges import trim
+from .pooling import (pooled_pattern, pooled_windows, relocate, repeats_in_windows, sync_groups,
+                      synchronised_pairs, vote)
 from .together import locate_together
 from .widening import widen
-from .pooling import (pooled_pattern, pooled_windows, relocate, repeats_in_windows, sync_groups,
-                      synchronised_pairs, trim, vote)
 
 if TYPE_CHECKING:
     from .learner import PAL

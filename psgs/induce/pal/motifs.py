@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 import os
 from concurrent.futures import ThreadPoolExecutor
@@ -43,6 +44,16 @@ class Timed:
         """A string of integer ``codes`` whose segments last ``durations``, from ``origin``."""
         ends = origin + np.cumsum(durations)
         return cls(codes, ends - durations, ends)
+
+    @functools.cached_property
+    def middles(self) -> np.ndarray:
+        """The middle time of each segment (read by every vote in a group's windows)."""
+        return (self.starts + self.ends) / 2
+
+    @functools.cached_property
+    def symbol_counts(self) -> np.ndarray:
+        """How often each code occurs (``np.bincount`` of the codes)."""
+        return np.bincount(self.codes)
 
     def intervals(self, copy_starts: np.ndarray, length: int) -> np.ndarray:
         """(k, 2) array: the time span of each copy of a motif of ``length`` symbols."""

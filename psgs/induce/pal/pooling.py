@@ -261,7 +261,7 @@ def vote(string: Timed, windows: np.ndarray) -> Vote | None:
     position takes the symbol most copies of that length agree on (the one
     seen first in time among equals).
     """
-    middles = (string.starts + string.ends) / 2
+    middles = string.middles
     lo = np.searchsorted(middles, windows[:, 0], side="left")
     hi = np.searchsorted(middles, windows[:, 1], side="left")
     sizes = hi - lo
@@ -276,7 +276,7 @@ def vote(string: Timed, windows: np.ndarray) -> Vote | None:
     offsets = string.starts[index] - windows[full, 0][:, None]
     ends = string.ends[index] - windows[full, 0][:, None]
     pattern, shares = _plurality(same)
-    counts = np.bincount(string.codes)
+    counts = string.symbol_counts
     return Vote(tuple(pattern), shares, offsets, ends,
                  np.column_stack((lo[picked], hi[picked])), picked,
                  counts[pattern] / len(string.codes), int(np.count_nonzero(counts)))
@@ -370,85 +370,3 @@ def repeats_in_windows(string: Timed, vote: Vote, params: PAL, copies_needed: in
         if share >= params.conserve and (not beyond_chance or vote.log10_chance(column) <= -2):
             agreeing += 1
     return agreeing >= max(2, math.ceil(length / 2))
-
-
-def trim(votes: dict[int, Vote], edge_share: float,
-         alpha: float = 0.0) -> dict[int, tuple[int, int]]:
-    """Per member, the range of columns kept: end columns not conserved across the group go.
-
-    A column's conservation is pooled in time: the mean, over the members, of
-    the plurality share of the member's column at that time offset (0 where
-    a member has no column). So one string's chance agreement at a column the
-    others do not share is trimmed, and a column damaged in one string but
-    conserved in the others is kept. With ``alpha`` > 0, a column at or below
-    ``edge_share`` is still kept when the members' agreement there, counted
-    together, is beyond chance at level ``alpha`` (:func:`pooled_log10_chance`,
-    a member without a column there agreeing in none of its copies). Heavy
-    noise lowers every member's share at once; a column the members show
-    together far more often than chance is not cut for it.
-    """
-    # every member's columns side by side (padding never holds a time); column times
-    # rise along a pattern (medians of rising offsets), so the first column ending after
-    # t is the only one that can hold it first
-    width = max(len(v.pattern) for v in votes.values())
-    starts = np.full((len(votes), width), np.inf)
-    ends = np.full((len(votes), width), np.inf)
-    shares = np.zeros((len(votes), width))
-    members = list(votes.values())
-    for row, v in enumerate(members):
-        starts[row, :len(v.pattern)] = v.column_start
-        ends[row, :len(v.pattern)] = v.column_end
-        shares[row, :len(v.pattern)] = v.shares
-    rows = np.arange(len(votes))
-    log10_alpha = math.log10(alpha) if alpha > 0 else -math.inf
-
-    def conserved(t: float) -> bool:
-        count = np.count_nonzero(ends <= t, axis=1)
-        column = np.minimum(count, width - 1)
-        held = (count < width) & (starts[rows, column] <= t)
-        if sum(shares[rows[held], column[held]].tolist()) / len(votes) > edge_share:
-            return True
-        if alpha <= 0:
-            return False
-        at = dict(zip(rows[held].tolist(), column[held].tolist()))
-        return pooled_log10_chance(members, [at.get(r) for r in range(len(members))]) \
-            <= log10_alpha
-
-    out = {}
-    for i, v in votes.items():
-        middles = (v.column_start + v.column_end) / 2
-        first, last = 0, len(v.pattern)
-        while first < last and not conserved(middles[first]):
-            first += 1
-        while last > first and not conserved(middles[last - 1]):
-            last -= 1
-        out[i] = (first, last)
-    return out
-
-
-
-def pooled_log10_chance(votes: list[Vote], columns: list[int | None]) -> float:
-    """log10 of the chance that members agree, counted together, as often as they do.
-
-    Member ``k`` is read at ``columns[k]`` (None: it agrees in none of its
-    copies); the plurality counts of all members are added and compared with
-    the binomial tail over all their copies at the mean chance of the
-    plurality symbols, times the number of distinct symbols of every member
-    (each chose its own plurality); at most 0. A sum, not a product of
-    tails: one member's chance agreement cannot carry the others. A symbol's
-    chance is its frequency in the string but no less than one over the
-    string's distinct symbols: the symbols between copies are drawn from
-    all of them, and a string whose pattern takes most of its length makes
-    every other symbol rare overall, though not rare between copies.
-    """
-    agree = copies = 0
-    chance, penalty = [], 0.0
-    for v, column in zip(votes, columns):
-        copies += v.full_copies
-        penalty += math.log10(max(2, v.symbols))
-        if column is not None and v.chance is not None:
-            agree += round(float(v.shares[column]) * v.full_copies)
-            chance.append(max(float(v.chance[column]), 1 / max(1, v.symbols)))
-    if agree == 0 or not chance:
-        return 0.0
-    return min(0.0, log10_binom_sf(agree, copies, sum(chance) / len(chance)) + penalty)

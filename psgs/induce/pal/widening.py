@@ -19,7 +19,8 @@ from __future__ import annotations
 import numpy as np
 
 from .motifs import Timed
-from .pooling import Vote, trim, vote
+from .edges import trim
+from .pooling import Vote, vote
 
 __all__: list[str] = []  # private: content.py is the caller
 
@@ -73,7 +74,7 @@ def _one_column(strings: list[Timed], members: list[int], windows: np.ndarray,
     blocked = np.zeros(count, dtype=bool)
     for i in members:
         s = strings[i]
-        middles = (s.starts + s.ends) / 2
+        middles = s.middles
         last = len(middles) - 1
         if side == "start":
             at = np.searchsorted(middles, windows[:, 0], side="left") - 1  # the symbol before
