@@ -189,7 +189,7 @@ def _trim_reference(votes, edge_share):
        edge_share=st.sampled_from([0.3, 0.5, 0.7]))
 def test_trim_equals_the_member_by_member_reference(members, edge_share):
     from psgs.induce.pal.edges import trim
-    from psgs.induce.pal.pooling import Vote
+    from psgs.induce.pal.pooling import CopyTimes, Vote
     votes = {}
     for k, (length, seed) in enumerate(members):
         rng = np.random.default_rng(seed)
@@ -197,7 +197,7 @@ def test_trim_equals_the_member_by_member_reference(members, edge_share):
         durations = rng.choice([0.5, 1.0, 1.5], size=(copies, length))
         ends = np.cumsum(durations, axis=1) + rng.choice([0.0, 0.5], size=(copies, 1))
         votes[k] = Vote(tuple(range(length)), rng.choice([0.2, 0.5, 0.6, 1.0], size=length),
-                        ends - durations, ends, np.tile([0, length], (copies, 1)),
+                        CopyTimes(ends - durations, ends), np.tile([0, length], (copies, 1)),
                         np.arange(copies))
     assert trim(votes, edge_share) == _trim_reference(votes, edge_share)
 

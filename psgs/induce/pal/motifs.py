@@ -55,6 +55,11 @@ class Timed:
         """How often each code occurs (``np.bincount`` of the codes)."""
         return np.bincount(self.codes)
 
+    @functools.cached_property
+    def distinct(self) -> int:
+        """How many distinct codes the string has."""
+        return int(np.count_nonzero(self.symbol_counts))
+
     def intervals(self, copy_starts: np.ndarray, length: int) -> np.ndarray:
         """(k, 2) array: the time span of each copy of a motif of ``length`` symbols."""
         return np.column_stack((self.starts[copy_starts], self.ends[copy_starts + length - 1]))

@@ -210,8 +210,8 @@ class Vote:
 
     pattern: tuple[int, ...]
     shares: np.ndarray        # plurality share of each column
-    offsets: np.ndarray       # (copies, columns): start and end time of each full copy's
-    end_offsets: np.ndarray   # symbols from its window's start
+    times: object             # (copies, columns) each full copy's symbols' start and end
+                              # times from its window's start: ``starts()``, ``ends()``
     bounds: np.ndarray        # (copies, 2): the symbol index range of each copy
     windows_held: np.ndarray  # which window each copy lies in
     chance: np.ndarray | None = None  # each column's plurality symbol's frequency in
@@ -225,7 +225,7 @@ class Vote:
     @property
     def full_copies(self) -> int:
         """How many copies have the pattern's length (those the columns are read from)."""
-        return len(self.offsets)
+        return len(self.times)
 
     def log10_chance(self, column: int) -> float:
         """log10 of the chance that the copies agree at ``column`` as much as they do.
@@ -245,12 +245,12 @@ class Vote:
     @functools.cached_property
     def column_start(self) -> np.ndarray:
         """The median time offset of each column from its window's start."""
-        return np.median(self.offsets, axis=0)
+        return np.median(self.times.starts(), axis=0)
 
     @functools.cached_property
     def column_end(self) -> np.ndarray:
         """The median time offset of each column's end from its window's start."""
-        return np.median(self.end_offsets, axis=0)
+        return np.median(self.times.ends(), axis=0)
 
 
 def vote(string: Timed, windows: np.ndarray) -> Vote | None:
@@ -272,14 +272,49 @@ def vote(string: Timed, windows: np.ndarray) -> Vote | None:
     length = int(len(counts) - 1 - np.argmax(counts[::-1]))  # most common; longer among equals
     full = picked[sizes[picked] == length]
     index = lo[full][:, None] + np.arange(length)
-    same = string.codes[index]
-    offsets = string.starts[index] - windows[full, 0][:, None]
-    ends = string.ends[index] - windows[full, 0][:, None]
-    pattern, shares = _plurality(same)
-    counts = string.symbol_counts
-    return Vote(tuple(pattern), shares, offsets, ends,
-                 np.column_stack((lo[picked], hi[picked])), picked,
-                 counts[pattern] / len(string.codes), int(np.count_nonzero(counts)))
+    pattern, shares = _plurality(string.codes[index])
+    return Vote(tuple(pattern), shares, _Offsets(string, index, windows[full, 0][:, None]),
+                np.column_stack((lo[picked], hi[picked])), picked,
+                string.symbol_counts[pattern] / len(string.codes), string.distinct)
+
+
+class CopyTimes:
+    """Full copies' symbol start and end times from their windows' starts, given as arrays
+    ((copies, columns) each); :class:`Vote` reads them through ``starts()`` and ``ends()``."""
+
+    __slots__ = ("_starts", "_ends")
+
+    def __init__(self, starts: np.ndarray, ends: np.ndarray) -> None:
+        self._starts, self._ends = starts, ends
+
+    def __len__(self) -> int:
+        return len(self._starts)
+
+    def starts(self) -> np.ndarray:
+        return self._starts
+
+    def ends(self) -> np.ndarray:
+        return self._ends
+
+
+class _Offsets:
+    """Where each full copy's symbols start and end from its window's start, read when asked:
+    most votes (every string read in a group's windows to see whether it joins) are never
+    trimmed, and only trimming reads the times."""
+
+    __slots__ = ("string", "index", "origin")
+
+    def __init__(self, string: Timed, index: np.ndarray, origin: np.ndarray) -> None:
+        self.string, self.index, self.origin = string, index, origin
+
+    def __len__(self) -> int:
+        return len(self.index)
+
+    def starts(self) -> np.ndarray:
+        return self.string.starts[self.index] - self.origin
+
+    def ends(self) -> np.ndarray:
+        return self.string.ends[self.index] - self.origin
 
 
 def pooled_pattern(string: Timed, vote: Vote) -> tuple[int, ...]:
