@@ -117,3 +117,27 @@ def test_high_noise_cases_earlier_pal_failed_with_the_true_symbol_leading(seed, 
     # the group steps are what mends them: with the share alone the first fails again
     if seed == 1_000_582:
         assert not success(PAL(column_alpha=0).induce(case.actiongram), case)
+
+
+@settings(max_examples=25, deadline=None)
+@given(seed=st.integers(0, 10_000), noise=st.sampled_from([0.0, 0.2, 0.35]),
+       variant=st.sampled_from([{}, {"durations": "random"}, {"unequal_lengths": True}]),
+       shift=st.sampled_from([0.0, 0.5, 3.0]), needed=st.integers(2, 6))
+def test_the_joining_precheck_drops_only_strings_that_would_fail(seed, noise, variant, shift,
+                                                                 needed):
+    # every string of the actiongram read in the true windows (shifted: windows that fit
+    # the copies badly), the pre-check against the whole test string by string
+    from psgs.induce.pal.joining import may_join
+    from psgs.induce.pal.pooling import repeats_in_windows
+    case = generate(seed=seed, noise=noise, **variant)
+    strings, _ = encode(case.actiongram)
+    windows = np.asarray(case.windows, dtype=float) + shift
+    params = PAL(joins_copies=needed)
+    passing = [i for i in range(len(strings))
+               if (v := vote(strings[i], windows)) is not None
+               and repeats_in_windows(strings[i], v, params, needed)]
+    kept = may_join(strings, list(range(len(strings))), windows, needed, params.conserve)
+    assert set(passing) <= set(kept)
+    assert kept == sorted(kept)
+    # and it leaves out most of the random strings (what it is for)
+    assert len(kept) <= len(case.components) + len(strings) // 2

@@ -10,6 +10,7 @@ import numpy as np
 
 from .motifs import Motif, Timed, find_motifs
 from .edges import trim
+from .joining import may_join
 from .pooling import (pooled_pattern, pooled_windows, relocate, repeats_in_windows, sync_groups,
                       synchronised_pairs, vote)
 from .together import locate_together
@@ -96,8 +97,9 @@ def pool_groups(strings: list[Timed], found: ContentResult, params: PAL) -> Cont
             windows, votes = widen(strings, votes, windows, params.edge_share,
                                    params.column_alpha, params.max_pattern)
             # strings whose own motif search fell short, read in the group's windows
-            for i in range(len(strings)):
-                if i not in grouped and (v := vote(strings[i], windows)) is not None \
+            outside = [i for i in range(len(strings)) if i not in grouped]
+            for i in may_join(strings, outside, windows, params.joins_copies, params.conserve):
+                if (v := vote(strings[i], windows)) is not None \
                         and repeats_in_windows(strings[i], v, params, params.joins_copies):
                     votes[i] = v
                     joined[i] = group
