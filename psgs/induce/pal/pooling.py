@@ -291,9 +291,11 @@ class CopyTimes:
         return len(self._starts)
 
     def starts(self) -> np.ndarray:
+        """Each full copy's symbols' start times from its window's start."""
         return self._starts
 
     def ends(self) -> np.ndarray:
+        """Each full copy's symbols' end times from its window's start."""
         return self._ends
 
 
