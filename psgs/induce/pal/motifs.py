@@ -60,6 +60,12 @@ class Timed:
         """How many distinct codes the string has."""
         return int(np.count_nonzero(self.symbol_counts))
 
+    @functools.cached_property
+    def match_rate(self) -> float:
+        """The chance that two of its symbols drawn at random agree (sum of squared
+        frequencies), the rate the scan threshold is set at."""
+        return float(np.sum((self.symbol_counts / len(self.codes)) ** 2))
+
     def intervals(self, copy_starts: np.ndarray, length: int) -> np.ndarray:
         """(k, 2) array: the time span of each copy of a motif of ``length`` symbols."""
         return np.column_stack((self.starts[copy_starts], self.ends[copy_starts + length - 1]))
@@ -77,6 +83,16 @@ class Motif:
 
 
 # -- motif finding in one string ---------------------------------------------------
+def match_scores(codes: np.ndarray, motif) -> np.ndarray:
+    """How many positions of ``motif`` the window starting at each index agrees with
+    (``len(codes) - len(motif) + 1`` windows, at least one symbol long)."""
+    width = len(codes) - len(motif) + 1
+    score = np.zeros(width, dtype=np.int32)
+    for offset, sym in enumerate(motif):
+        score += codes[offset:offset + width] == sym
+    return score
+
+
 def locate_copies(codes: np.ndarray, motif: np.ndarray, threshold: int) -> np.ndarray:
     """Non-overlapping windows agreeing with ``motif`` in >= threshold positions.
 
@@ -86,9 +102,7 @@ def locate_copies(codes: np.ndarray, motif: np.ndarray, threshold: int) -> np.nd
     width = n - length + 1
     if width <= 0:
         return np.zeros(0, dtype=np.int64)
-    score = np.zeros(width, dtype=np.int32)
-    for offset, sym in enumerate(motif):
-        score += codes[offset:offset + width] == sym
+    score = match_scores(codes, motif)
     hits = np.flatnonzero(score >= threshold)
     if len(hits) == 0:
         return hits

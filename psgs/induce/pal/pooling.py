@@ -189,16 +189,14 @@ def relocate(string: Timed, pattern: tuple[int, ...], params: PAL) -> np.ndarray
     if len(pattern) < 2:
         return None
     codes = string.codes
-    freq = np.bincount(codes) / len(codes)
     motif = np.asarray(pattern, dtype=np.int64)
-    threshold = scan_threshold(len(motif), len(codes) - len(motif) + 1,
-                                float(np.sum(freq ** 2)), params)
+    threshold = scan_threshold(len(motif), len(codes) - len(motif) + 1, string.match_rate,
+                               params)
     found = locate_copies(codes, motif, threshold)
     if len(found) < params.min_copies:
         return None
     # the pooled copies are many and reliable: let them grow the pattern further
-    grown = grow(codes, motif, found, float(np.sum(freq ** 2)), int(np.count_nonzero(freq)),
-                  params)
+    grown = grow(codes, motif, found, string.match_rate, string.distinct, params)
     if grown is None:
         return string.intervals(found, len(motif))
     return string.intervals(grown.starts, len(grown.motif))

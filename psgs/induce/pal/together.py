@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .motifs import Timed
+from .motifs import Timed, match_scores
 from .pooling import Vote
 from .statistics import chance_threshold
 
@@ -55,9 +55,7 @@ def locate_together(strings: list[Timed], votes: dict[int, Vote],
         width = n - length + 1
         if width <= 0:
             return None
-        score = np.zeros(width, dtype=np.int64)
-        for offset, sym in enumerate(pattern.tolist()):
-            score += s.codes[offset:offset + width] == sym
+        score = match_scores(s.codes, pattern.tolist())
         # the member's start nearest each reference start
         at = np.clip(np.searchsorted(s.starts, times), 1, n - 1)
         nearer = np.where(np.abs(s.starts[at - 1] - times) <= np.abs(s.starts[at] - times),
@@ -69,8 +67,7 @@ def locate_together(strings: list[Timed], votes: dict[int, Vote],
         first = np.minimum(first, s.starts[j])
         last = np.maximum(last, s.ends[np.minimum(j + length - 1, n - 1)])
         positions += length
-        freq = np.bincount(s.codes) / n
-        rates.append(float(np.sum(freq ** 2)))
+        rates.append(s.match_rate)
     # the joint copy needs only to be beyond chance: with every member's positions
     # together, a copy half damaged in each is still far beyond it
     threshold = chance_threshold(positions, int(np.count_nonzero(valid)) or 1,
