@@ -17,6 +17,7 @@ import math
 import numpy as np
 
 from .motifs import Timed
+from .pooling import copies_in
 
 __all__: list[str] = []  # private: content.py is the caller
 
@@ -33,18 +34,13 @@ def may_join(strings: list[Timed], rows: list[int], windows: np.ndarray, copies_
     kept: list[int] = []
     reads: list[np.ndarray] = []   # per row still in question: its full copies' codes
     for i in rows:
-        s = strings[i]
-        lo = np.searchsorted(s.middles, windows[:, 0], side="left")
-        sizes = np.searchsorted(s.middles, windows[:, 1], side="left") - lo
-        held = sizes[sizes > 0]
-        if len(held) == 0:
+        found = copies_in(strings[i], windows)  # the copies vote() reads
+        if found is None:
             continue
-        counts = np.bincount(held)
-        length = int(len(counts) - 1 - np.argmax(counts[::-1]))  # as vote() chooses it
-        if counts[length] < copies_needed or length < 2:
+        lo, _, _, full, length = found
+        if len(full) < copies_needed or length < 2:
             continue
-        starts = lo[sizes == length]
-        reads.append(s.codes[starts[:, None] + np.arange(length)])
+        reads.append(strings[i].codes[lo[full][:, None] + np.arange(length)])
         kept.append(i)
     if not kept:
         return []

@@ -251,13 +251,13 @@ class Vote:
         return np.median(self.times.ends(), axis=0)
 
 
-def vote(string: Timed, windows: np.ndarray) -> Vote | None:
-    """The plurality pattern of a string's copies in the shared windows.
+def copies_in(string: Timed, windows: np.ndarray):
+    """Where a string's copies lie in ``windows``, or None when no window holds a symbol.
 
-    A copy is the run of symbols whose middle lies in a window. The pattern
-    length is the most common copy length (the longer among equals); each
-    position takes the symbol most copies of that length agree on (the one
-    seen first in time among equals).
+    A copy is the run of symbols whose middle lies in a window. Returns
+    ``(lo, hi, picked, full, length)``: each window's symbol index range, the
+    windows holding a symbol, those holding a copy of the common length, and
+    that length (the most common; the longer among equals).
     """
     middles = string.middles
     lo = np.searchsorted(middles, windows[:, 0], side="left")
@@ -268,7 +268,21 @@ def vote(string: Timed, windows: np.ndarray) -> Vote | None:
         return None
     counts = np.bincount(sizes[picked])
     length = int(len(counts) - 1 - np.argmax(counts[::-1]))  # most common; longer among equals
-    full = picked[sizes[picked] == length]
+    return lo, hi, picked, picked[sizes[picked] == length], length
+
+
+def vote(string: Timed, windows: np.ndarray) -> Vote | None:
+    """The plurality pattern of a string's copies in the shared windows.
+
+    A copy is the run of symbols whose middle lies in a window. The pattern
+    length is the most common copy length (the longer among equals); each
+    position takes the symbol most copies of that length agree on (the one
+    seen first in time among equals).
+    """
+    found = copies_in(string, windows)
+    if found is None:
+        return None
+    lo, hi, picked, full, length = found
     index = lo[full][:, None] + np.arange(length)
     pattern, shares = _plurality(string.codes[index])
     return Vote(tuple(pattern), shares, _Offsets(string, index, windows[full, 0][:, None]),
