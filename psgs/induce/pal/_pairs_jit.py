@@ -30,6 +30,24 @@ def _disjoint(lo, hi):
 
 
 @_jit
+def _overlap_runs(lo, hi, other_lo, other_hi):
+    """For intervals ``(lo, hi)`` against ``(other_lo, other_hi)`` (both disjoint, in time
+    order): how many of the other's each overlaps, summed, and how many overlap any."""
+    overlaps, touching = 0, 0
+    before_end = ended = 0
+    for j in range(len(lo)):
+        while before_end < len(other_lo) and other_lo[before_end] < hi[j]:
+            before_end += 1
+        while ended < len(other_hi) and other_hi[ended] <= lo[j]:
+            ended += 1
+        run = before_end - ended
+        if run > 0:
+            overlaps += run
+            touching += 1
+    return overlaps, touching
+
+
+@_jit
 def _pair(a_lo, a_hi, b_lo, b_hi, a_disjoint, b_disjoint, fraction, min_copies):
     """pooling.synchronised on copies ``(a_lo, a_hi)`` and ``(b_lo, b_hi)``."""
     if len(a_lo) == 0 or len(b_lo) == 0:
@@ -38,26 +56,10 @@ def _pair(a_lo, a_hi, b_lo, b_hi, a_disjoint, b_disjoint, fraction, min_copies):
         # pooling._shared_clusters: clusters = intervals - overlaps; each interval's run of
         # the other list's is two searchsorted counts, here read off by pointers moving
         # forward (the lists are in time order, so the counts only grow)
-        overlaps, touching = 0, 0
-        before_end = ended = 0
-        for j in range(len(a_lo)):
-            while before_end < len(b_lo) and b_lo[before_end] < a_hi[j]:
-                before_end += 1
-            while ended < len(b_hi) and b_hi[ended] <= a_lo[j]:
-                ended += 1
-            run = before_end - ended
-            if run > 0:
-                overlaps += run
-                touching += 1
-        before_end = ended = 0
-        for j in range(len(b_lo)):
-            while before_end < len(a_lo) and a_lo[before_end] < b_hi[j]:
-                before_end += 1
-            while ended < len(a_hi) and a_hi[ended] <= b_lo[j]:
-                ended += 1
-            if before_end - ended > 0:
-                touching += 1
-        both, clusters = touching - overlaps, len(a_lo) + len(b_lo) - overlaps
+        overlaps, touching_a = _overlap_runs(a_lo, a_hi, b_lo, b_hi)
+        _, touching_b = _overlap_runs(b_lo, b_hi, a_lo, a_hi)
+        both = touching_a + touching_b - overlaps
+        clusters = len(a_lo) + len(b_lo) - overlaps
     else:
         # pooling.copy_clusters: sorted by start, then end; a cluster opens past the reach
         lo = np.concatenate((a_lo, b_lo))
