@@ -239,7 +239,7 @@ def run_induce(args) -> int:
 def run_locate(args) -> int:
     """``psgs locate``: learn from --learn performances, print where each FILE holds the action."""
     from ..induce import PAL
-    from ..induce.locate import locate
+    from ..induce import locate
 
     learned = PAL(**_params(args.param)).induce(_load_performances(args.learn))
     if not learned.components:

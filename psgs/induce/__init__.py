@@ -4,8 +4,14 @@ Every inducer is configured by keyword arguments and has one method,
 ``induce(performances) -> Induction``, taking one
 :class:`~psgs.actiongram.Actiongram` or a sequence of them (each one
 performance of the same action; see :mod:`psgs.induce.base` for the contract).
-Built in: :class:`PAL` (``"pal"``) and the sequential baseline
-:class:`Sequential` (``"sequential"``). Other packages add inducers through
+Built in: :class:`PAL` (``"pal"``), which hands one actiongram to the
+paper's learner :class:`~psgs.induce.pal.ContentPAL` (``"pal_content"``) and
+several performances to the real-motion learner
+:class:`~psgs.induce.pal.MotionPAL` (``"pal_motion"``), and the sequential
+baseline :class:`Sequential` (``"sequential"``). Each declares its parameters
+once, in a frozen table (:mod:`psgs.induce.conf`);
+:func:`psgs.induce.testing.check_inducer` checks that an inducer keeps the
+contract (the suite runs it on every registered one). Other packages add inducers through
 the entry-point group ``psgs.inducers`` (``name = "package.module:Class"``);
 :func:`get` and :func:`available` see them (:mod:`psgs.induce.registry`).
 
@@ -23,11 +29,12 @@ processes).
 from __future__ import annotations
 
 from .base import Inducer
-from .pal import PAL
+from .conf import Conf
+from .pal import PAL, ContentPAL, MotionPAL
+from .pal.motion import ActuatorReport, Located, Morpheme, locate
 from .registry import available, get
-from .results import ActuatorReport, Induction, Morpheme, StringReport
+from .results import Induction, StringReport
 from .sequential import Sequential
-from .locate import Located, locate  # noqa: E402  (after PAL: locate reads PAL's modules)
 
-__all__ = ["Induction", "Inducer", "StringReport", "ActuatorReport", "Morpheme", "PAL",
-           "Sequential", "get", "available", "locate", "Located"]
+__all__ = ["Induction", "Inducer", "Conf", "StringReport", "ActuatorReport", "Morpheme", "PAL",
+           "ContentPAL", "MotionPAL", "Sequential", "get", "available", "locate", "Located"]

@@ -1,10 +1,15 @@
 """The inducer contract, and the ending every built-in inducer shares.
 
 An inducer follows scikit-learn's estimator contract: every parameter is a
-keyword argument of ``__init__``, validated there and stored as an attribute
-of the same name; :meth:`Inducer.get_params`, :meth:`Inducer.set_params` and
+keyword argument of ``__init__``, stored as an attribute of the same name;
+:meth:`Inducer.get_params`, :meth:`Inducer.set_params` and
 :meth:`Inducer.clone` read, change and copy them (changes are validated again,
-by the same ``__init__``); the one learning method is ``induce``. It takes one
+by the same ``__init__``); the one learning method is ``induce``. An inducer
+declares its parameters once, in a frozen table (:class:`~psgs.induce.conf.Conf`,
+the class attribute ``Conf``): ``__init__`` is then made from the table (it
+stores the values as given and builds the table's value, which validates
+them), and :meth:`Inducer.conf` gives the frozen value ``induce`` hands to its
+phases. It takes one
 :class:`~psgs.actiongram.Actiongram` or a sequence of them, each one
 performance of the same action (:func:`as_performances` checks and normalises
 that), and returns an :class:`~psgs.induce.results.Induction`.
@@ -17,27 +22,31 @@ The ending is the same for every inducer -- identifiers for the components
 from __future__ import annotations
 
 import copy
+import dataclasses
 import inspect
-import math
 import re
 from collections.abc import Iterable, Mapping, Sequence
+from typing import ClassVar
 
 from ..actiongram import Actiongram
 from ..errors import ValidationError
 from ..model import PSGS, Grammar, Nonterminal, Rule, Terminal
+from .conf import Conf
 from .results import Induction, StringReport
 
-__all__ = ["Inducer", "as_performances", "build_system", "component_name", "check_number",
-           "check_choice"]
+__all__ = ["Inducer", "as_performances", "build_system", "component_name"]
 
 
 class Inducer:
     """Base class of inducers: keyword parameters in ``__init__``, one method :meth:`induce`.
 
-    A subclass defines ``name`` (what :func:`psgs.induce.get` knows it by), an
-    ``__init__`` with keyword-only parameters that validates them (raising
-    :class:`~psgs.errors.ValidationError`) and stores each as an attribute of
-    the same name, and ``induce``. It inherits the rest.
+    A subclass defines ``name`` (what :func:`psgs.induce.get` knows it by), its
+    parameters, and ``induce``; it inherits the rest. The parameters are best
+    declared as a table, ``Conf = MyConf`` (a frozen :class:`~psgs.induce.conf.Conf`
+    dataclass): the base class then makes ``__init__`` from it. A subclass may
+    instead write an ``__init__`` with keyword-only parameters that validates
+    them (raising :class:`~psgs.errors.ValidationError`) and stores each as an
+    attribute of the same name.
 
     Examples
     --------
@@ -52,6 +61,15 @@ class Inducer:
     """
 
     name = ""
+    #: The parameter table (a frozen :class:`~psgs.induce.conf.Conf` subclass), or None for an
+    #: inducer that writes its own ``__init__``.
+    Conf: ClassVar[type[Conf] | None] = None
+
+    def __init_subclass__(cls, **kwargs) -> None:
+        super().__init_subclass__(**kwargs)
+        table = cls.__dict__.get("Conf")
+        if table is not None and "__init__" not in cls.__dict__:
+            cls.__init__ = _init_from(table)
 
     @classmethod
     def _param_names(cls) -> tuple[str, ...]:
@@ -94,6 +112,45 @@ class Inducer:
                 raise TypeError(f"{type(self).__name__} does not store its parameter {p!r} as "
                                 f"an attribute of that name") from None
         return out
+
+    def conf(self) -> Conf:
+        """The parameters as the frozen value of the inducer's table, validated.
+
+        Returns
+        -------
+        Conf
+            What ``induce`` hands to its phases.
+
+        Raises
+        ------
+        TypeError
+            When the inducer declares no table (it wrote its own ``__init__``).
+
+        Examples
+        --------
+        >>> from psgs.induce import Sequential
+        >>> Sequential(min_count=3).conf().min_count
+        3
+        """
+        if self.Conf is None:
+            raise TypeError(f"{type(self).__name__} declares no parameter table (Conf)")
+        return self.Conf(**self.get_params())
+
+    def recorded_params(self) -> dict[str, object]:
+        """The parameters an :class:`Induction` records: all but those the table declares
+        ``recorded=False`` (they change how the inducer computes, never what it finds).
+
+        Examples
+        --------
+        >>> from psgs.induce import PAL
+        >>> "engine" in PAL().get_params(), "engine" in PAL().recorded_params()
+        (True, False)
+        """
+        params = self.get_params()
+        if self.Conf is None:
+            return params
+        kept = set(self.Conf.recorded_names())
+        return {k: v for k, v in params.items() if k in kept}
 
     def set_params(self, **params) -> "Inducer":
         """Change parameters in place, validated as at construction; returns ``self``.
@@ -232,7 +289,7 @@ class Inducer:
         Returns
         -------
         Induction
-            With the system named after the inducer, and its parameters.
+            With the system named after the inducer, and its recorded parameters.
 
         Examples
         --------
@@ -253,10 +310,40 @@ class Inducer:
         return Induction(system=system, components=kept,
                          patterns={n: patterns[n] for n in kept},
                          occurrences={n: occurrences[n] for n in kept}, reports=tuple(reports),
-                         component_names=comp_names, inducer=self.name, params=self.get_params(),
+                         component_names=comp_names, inducer=self.name,
+                         params=self.recorded_params(),
                          performances=performances,
                          occurrence_performance={n: occurrence_performance[n] for n in kept
                                                  if n in occurrence_performance})
+
+
+def _init_from(table: type[Conf]):
+    """The ``__init__`` of an inducer whose parameters are ``table``'s fields.
+
+    It takes the fields as keyword-only arguments with their defaults, stores
+    each value as given (``get_params`` and ``clone`` give back what was
+    passed) and builds the table's value, which validates them.
+    """
+    fields = dataclasses.fields(table)
+    known = {f.name for f in fields}
+
+    def __init__(self, **params) -> None:
+        for key in params:
+            if key not in known:
+                raise TypeError(f"{type(self).__name__}.__init__() got an unexpected keyword "
+                                f"argument {key!r}")
+        values = {f.name: params.get(f.name, f.default) for f in fields}
+        table(**values)
+        for key, value in values.items():
+            setattr(self, key, value)
+
+    __init__.__signature__ = inspect.Signature(
+        [inspect.Parameter("self", inspect.Parameter.POSITIONAL_ONLY)] +
+        [inspect.Parameter(f.name, inspect.Parameter.KEYWORD_ONLY, default=f.default,
+                           annotation=f.type) for f in fields],
+        return_annotation=None)
+    __init__.__doc__ = f"Store the parameters of {table.__name__}, validated by it."
+    return __init__
 
 
 def as_performances(data: Actiongram | Iterable[Actiongram], inducer: str = "induce"
@@ -338,77 +425,6 @@ def unknown_parameter(inducer: str, name: str, known: Sequence[str]) -> str:
     "inducer pal has no parameter 'colour' (its parameters: alpha, rounds)"
     """
     return f"inducer {inducer} has no parameter {name!r} (its parameters: {', '.join(known)})"
-
-
-def check_number(name: str, value: object, *, low: float | None = None, high: float | None = None,
-                 integer: bool = False, low_open: bool = False) -> None:
-    """Validate one numeric inducer parameter.
-
-    Parameters
-    ----------
-    name : str
-        The parameter's name, for the message.
-    value : object
-        Its value.
-    low, high : float, optional
-        Bounds (``high`` inclusive; ``low`` inclusive unless ``low_open``).
-    integer : bool, optional
-        Whether only an ``int`` will do (``bool`` never does).
-    low_open : bool, optional
-        Whether ``low`` itself is refused.
-
-    Raises
-    ------
-    ValidationError
-        Naming the parameter, what it must be, and the value given.
-
-    Examples
-    --------
-    >>> check_number("alpha", 0.5, low=0, high=1)
-    >>> check_number("alpha", float("nan"))
-    Traceback (most recent call last):
-    ...
-    psgs.errors.ValidationError: parameter alpha must be a finite number, not nan
-    """
-    ok_type = (int,) if integer else (int, float)
-    if isinstance(value, bool) or not isinstance(value, ok_type):
-        kind = "an integer" if integer else "a number"
-        raise ValidationError(f"parameter {name} must be {kind}, not {value!r}")
-    if not math.isfinite(value):  # NaN passes every comparison below
-        raise ValidationError(f"parameter {name} must be a finite number, not {value!r}")
-    if low is not None and (value <= low if low_open else value < low):
-        raise ValidationError(f"parameter {name} must be {'>' if low_open else '>='} {low}, "
-                              f"not {value!r}")
-    if high is not None and value > high:
-        raise ValidationError(f"parameter {name} must be <= {high}, not {value!r}")
-
-
-def check_choice(name: str, value: object, choices: Sequence[str]) -> None:
-    """Validate a parameter that takes one of a few words.
-
-    Parameters
-    ----------
-    name : str
-        The parameter's name, for the message.
-    value : object
-        Its value.
-    choices : sequence of str
-        The allowed values.
-
-    Raises
-    ------
-    ValidationError
-        When ``value`` is not one of ``choices``.
-
-    Examples
-    --------
-    >>> check_choice("timing", "tempo", ("content", "period"))
-    Traceback (most recent call last):
-    ...
-    psgs.errors.ValidationError: timing must be one of content, period, not 'tempo'
-    """
-    if not isinstance(value, str) or value not in choices:
-        raise ValidationError(f"{name} must be one of {', '.join(choices)}, not {value!r}")
 
 
 _NOT_IDENT = re.compile(r"[^A-Za-z0-9_]")

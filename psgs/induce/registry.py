@@ -18,7 +18,7 @@ from importlib.metadata import entry_points
 
 from ..errors import ValidationError
 from .base import Inducer, unknown_parameter
-from .pal import PAL
+from .pal import PAL, ContentPAL, MotionPAL
 from .sequential import Sequential
 
 __all__ = ["get", "available", "GROUP"]
@@ -26,7 +26,8 @@ __all__ = ["get", "available", "GROUP"]
 #: The entry-point group other packages add inducers to.
 GROUP = "psgs.inducers"
 
-_BUILT_IN: dict[str, type[Inducer]] = {"pal": PAL, "sequential": Sequential}
+_BUILT_IN: dict[str, type[Inducer]] = {"pal": PAL, "sequential": Sequential,
+                                        "pal_content": ContentPAL, "pal_motion": MotionPAL}
 
 
 def _describe(ep) -> str:
@@ -75,7 +76,8 @@ def get(name: str, **params) -> Inducer:
     Parameters
     ----------
     name : str
-        ``"pal"``, ``"sequential"`` or a plug-in's name (see :func:`available`).
+        ``"pal"``, ``"sequential"``, ``"pal_content"``, ``"pal_motion"`` or a
+        plug-in's name (see :func:`available`).
     **params
         The inducer's keyword parameters.
 

@@ -1,7 +1,9 @@
 """What every inducer returns: an :class:`Induction`, with a :class:`StringReport` per string.
 
 Both are values (frozen, their mappings read-only views, picklable), like the
-grammar system an induction holds; nothing here learns anything.
+grammar system an induction holds; nothing here learns anything. What only
+the real-motion learner fills in (per-joint reports, morphemes) has its types
+beside that learner (:mod:`psgs.induce.pal.motion.results`).
 """
 
 from __future__ import annotations
@@ -9,11 +11,18 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
+from typing import TYPE_CHECKING
 
 from ..errors import ValidationError
 from ..model import PSGS
 
-__all__ = ["ActuatorReport", "Induction", "Morpheme", "StringReport"]
+if TYPE_CHECKING:
+    from .pal.motion.results import ActuatorReport, Morpheme
+
+__all__ = ["Induction", "StringReport", "NO_REPETITION"]
+
+#: The verdict of an Induction in which nothing repeats in step.
+NO_REPETITION = "no synchronised repetition"
 
 
 @dataclass(frozen=True)
@@ -51,80 +60,6 @@ class StringReport:
     copies: int = 0
     significance: float = 0.0
     synchronised_with: tuple[str, ...] = ()
-
-
-@dataclass(frozen=True)
-class Morpheme:
-    """A component channel's motion pattern as a generator needs it.
-
-    Parameters
-    ----------
-    kinetemes : tuple of str
-        The pattern's symbols, in order.
-    durations : tuple of float
-        The typical duration of each, seconds (PAL: its segment's in the medoid copy,
-        the whole pattern brought to the median copy's length).
-    displacements : tuple of float or None
-        The typical signed angular change of each, in the channel's unit (PAL: its
-        segment's own in the medoid copy), None when the actiongrams carry none.
-
-    Examples
-    --------
-    >>> Morpheme(("B", "G"), (0.2, 0.3), (10.0, 2.5)).kinetemes
-    ('B', 'G')
-    """
-
-    kinetemes: tuple[str, ...]
-    durations: tuple[float, ...]
-    displacements: tuple[float, ...] | None = None
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "kinetemes", tuple(self.kinetemes))
-        object.__setattr__(self, "durations", tuple(float(d) for d in self.durations))
-        if self.displacements is not None:
-            object.__setattr__(self, "displacements",
-                               tuple(float(d) for d in self.displacements))
-        if len(self.durations) != len(self.kinetemes) or (
-                self.displacements is not None
-                and len(self.displacements) != len(self.kinetemes)):
-            raise ValidationError("a morpheme needs one duration (and displacement) per kineteme")
-
-
-@dataclass(frozen=True)
-class ActuatorReport:
-    """What an inducer found for one actuator (joint), whether or not it takes part.
-
-    Parameters
-    ----------
-    name : str
-        The actuator.
-    status : str
-        ``"component"``, ``"component (skeleton neighbour)"``, or the stage
-        that dropped it (``"not significant"``, ``"below the share of the
-        leader"``, ...).
-    share : float, optional
-        Its repeated motion relative to the leader's (1 for the leader).
-    significance : float, optional
-        log10 of the chance of agreement this strong between copies (more
-        negative is stronger), corrected for the channels tested.
-    repeated : float, optional
-        Its repeated motion: angular path length times chance-corrected
-        agreement, summed over its channels.
-    path : float, optional
-        Its angular path length per performance.
-
-    Examples
-    --------
-    >>> ActuatorReport("lfemur", "component", share=1.0).share
-    1.0
-    """
-
-    name: str
-    status: str
-    share: float = 0.0
-    significance: float = 0.0
-    repeated: float = 0.0
-    path: float = 0.0
 
 
 @dataclass(frozen=True)

@@ -20,13 +20,29 @@ Occurrences are times within their own performance; the induction's
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 
-from .base import Inducer, as_performances, check_number
+from .base import Inducer, as_performances
+from .conf import Conf, Number, parameter
 from .results import Induction, StringReport
 
-__all__ = ["Sequential"]
+__all__ = ["Sequential", "SequentialConf"]
+
+
+@dataclass(frozen=True)
+class SequentialConf(Conf):
+    """The sequential baseline's parameters (see :class:`Sequential`).
+
+    Examples
+    --------
+    >>> SequentialConf(min_count=3).max_rules
+    100000
+    """
+
+    min_count: int = parameter(2, Number(low=2, integer=True))
+    max_rules: int = parameter(100_000, Number(low=1, integer=True))
 
 
 class Sequential(Inducer):
@@ -58,12 +74,7 @@ class Sequential(Inducer):
     """
 
     name = "sequential"
-
-    def __init__(self, *, min_count: int = 2, max_rules: int = 100_000) -> None:
-        check_number("min_count", min_count, low=2, integer=True)
-        check_number("max_rules", max_rules, low=1, integer=True)
-        self.min_count = min_count
-        self.max_rules = max_rules
+    Conf = SequentialConf
 
     def induce(self, performances) -> Induction:
         """Learn each string alone (an actuator's performances together); see the module docstring.
@@ -86,10 +97,11 @@ class Sequential(Inducer):
             For an empty sequence or performances whose actuators differ.
         """
         takes = as_performances(performances, "Sequential.induce")
+        conf = self.conf()
         first = takes[0]
         patterns, occurrences, where, reports = {}, {}, {}, []
         for i, name in enumerate(first.names):
-            found = _repair([take.symbols[i] for take in takes], self.min_count, self.max_rules)
+            found = _repair([take.symbols[i] for take in takes], conf.min_count, conf.max_rules)
             if found is None:
                 reports.append(StringReport(name=name, status="no repetition"))
                 continue

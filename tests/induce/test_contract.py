@@ -148,7 +148,7 @@ def test_an_inducer_must_name_its_parameters():
 # -- the registry and plug-ins ------------------------------------------------------------------
 def test_a_plug_in_is_built_like_a_built_in(monkeypatch, tmp_path, capsys):
     plug_in(monkeypatch, FakeEntryPoint("echo", Echo))
-    assert available() == ("pal", "sequential", "echo")
+    assert available() == ("pal", "sequential", "pal_content", "pal_motion", "echo")
     echo = get("echo", least=3)
     assert isinstance(echo, Echo) and echo.least == 3
     with pytest.raises(ValidationError, match="inducer echo has no parameter 'most' "
@@ -177,7 +177,7 @@ def test_a_plug_in_named_like_a_built_in_is_refused_loudly(monkeypatch, capsys):
                                               "'pal' \\(a plug-in, impostor.mod:PAL\\) has the "
                                               "same name: rename the plug-in"):
         get("pal")
-    assert available() == ("pal", "sequential")  # listed once
+    assert available() == ("pal", "sequential", "pal_content", "pal_motion")  # listed once
     assert isinstance(get("sequential"), Sequential)  # other names are unaffected
     assert main(["induce", "--example"]) == 2
     err = capsys.readouterr().err
@@ -217,7 +217,7 @@ def test_a_bad_plug_in_is_one_error_naming_it(monkeypatch, capsys, entry, words)
 def test_an_unknown_name_lists_what_there_is(monkeypatch):
     plug_in(monkeypatch, FakeEntryPoint("echo", Echo))
     with pytest.raises(ValidationError, match="unknown inducer 'nope'; available: pal, "
-                                              "sequential, echo"):
+                                              "sequential, pal_content, pal_motion, echo"):
         get("nope")
 
 
@@ -236,7 +236,7 @@ def test_bad_performances_are_clear_errors():
     for inducer in (PAL(), Sequential(), Echo()):
         with pytest.raises(ValidationError, match="needs at least one performance"):
             inducer.induce([])
-        if not isinstance(inducer, PAL):  # PAL gives a string a take lacks as empty (issue 9)
+        if not isinstance(inducer, PAL):  # PAL gives a string a take lacks as empty
             with pytest.raises(ValidationError, match="performance 1 does not have the actuators "
                                                       "of performance 0: it lacks 'hip' and has "
                                                       "'elbow' too"):
@@ -257,7 +257,7 @@ def test_performances_in_another_string_order_are_reordered():
 
 
 def test_pal_learns_from_several_performances_without_joining_them():
-    # (issue 9: PAL's real-motion learner; it refused several performances before)
+    # several performances go to PAL's real-motion learner, each kept apart
     ag = generate(seed=1).actiongram
     result = PAL().induce([ag, ag])
     assert result.performances == 2

@@ -15,10 +15,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from psgs.induce.pal.cycles import _weighted_kappa, cycles_alike
-from psgs.induce.pal.grids import Grid, agreement, agreement_counts, kappa, plurality, resample
-from psgs.induce.pal.morphemes import _cycle_phases, _rolled
-from psgs.induce.pal.performances import _best_shift, _consensus_test, _overlap, _pairwise_test
+from psgs.induce.pal.motion.cycles import _weighted_kappa, cycles_alike
+from psgs.induce.pal.motion.grids import Grid, agreement, agreement_counts, kappa, plurality, resample
+from psgs.induce.pal.motion.morphemes import _cycle_phases, _rolled
+from psgs.induce.pal.motion.performances import _best_shift, _consensus_test, _overlap, _pairwise_test
 
 
 # -- the plain forms -----------------------------------------------------------------------
@@ -236,7 +236,7 @@ def test_tests_across_performances_equal_their_loops(data):
 
 
 def plain_sample(ag, codes, step):
-    from psgs.induce.pal.grids import _span
+    from psgs.induce.pal.motion.grids import _span
 
     t0, t1 = _span(ag)
     count = max(1, int((t1 - t0) / step + 1e-9))
@@ -262,7 +262,7 @@ def plain_sample(ag, codes, step):
 @given(st.data())
 def test_sampling_all_strings_at_once_equals_string_by_string(data):
     from psgs import Actiongram
-    from psgs.induce.pal.grids import sample
+    from psgs.induce.pal.motion.grids import sample
 
     alphabet = data.draw(st.sampled_from(["YBGR", "ab", ["up", "down", "hold"]]))
     strings, durations, starts, displacements = {}, {}, {}, {}
@@ -287,7 +287,7 @@ def test_sampling_all_strings_at_once_equals_string_by_string(data):
 @given(state_pairs(), st.data())
 def test_lag_scores_asked_channel_by_channel_equal_the_whole_table(case, data):
     from psgs.induce import PAL
-    from psgs.induce.pal.cycles import lag_scores
+    from psgs.induce.pal.motion.cycles import lag_scores
 
     size, states, _, speed = case
     grid = Grid(states, speed, 0.05, 0.0)
@@ -310,7 +310,7 @@ def test_lag_scores_asked_channel_by_channel_equal_the_whole_table(case, data):
 @given(state_pairs(), st.integers(1, 39))
 def test_kappa_at_a_lag_is_the_same_before_and_after_the_table(case, lag):
     from psgs.induce import PAL
-    from psgs.induce.pal.cycles import lag_scores
+    from psgs.induce.pal.motion.cycles import lag_scores
 
     size, states, _, speed = case
     lag = min(lag, states.shape[1] - 1)

@@ -14,7 +14,7 @@ import pytest
 from psgs import Actiongram
 from psgs.errors import ValidationError
 from psgs.induce import Induction, PAL
-from psgs.induce.locate import Located, locate
+from psgs.induce import Located, locate
 
 MOCAP = Path(__file__).resolve().parents[2] / ".." / "shared" / "data" / "mocap"
 BANDAI = MOCAP / "bandai-namco-1" / "data"

@@ -19,9 +19,9 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
 from psgs.induce import PAL
-from psgs.induce.pal.grids import plurality
+from psgs.induce.pal.motion.grids import plurality
 from psgs.actiongram import Actiongram
-from psgs.induce.pal.morphemes import copy_runs, copy_segments, medoid_copy, ordinary_copies
+from psgs.induce.pal.motion.morphemes import copy_runs, copy_segments, medoid_copy, ordinary_copies
 
 MOCAP = Path(__file__).resolve().parents[2] / ".." / "shared" / "data" / "mocap"
 BANDAI = MOCAP / "bandai-namco-1" / "data"

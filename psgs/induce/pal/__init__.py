@@ -1,6 +1,6 @@
 """PAL: learn a parallel synchronous grammar system from an actiongram.
 
-From the paper (SPEC §5): each string is learnt on its own from its digram
+From the paper: each string is learnt on its own from its digram
 frequencies, growing rules N -> X Y; a string's structure is kept only when it
 is synchronised with the structure of other strings (a string with nothing
 synchronised is spurious and is not a component); the highest synchronised
@@ -30,8 +30,22 @@ When content finds nothing (``timing="auto"``, the default) or on request
 (``timing="period"``), copies are instead time windows of the action's period,
 pooled over all strings and tracked through tempo changes; a string is a
 component when its symbols recur window after window (for real motion capture).
+
+Two learners, each an inducer with its own frozen parameter table handed to
+its phases: the paper's learner above, :class:`~psgs.induce.pal.learner.ContentPAL`
+(``"pal_content"``, :class:`~psgs.induce.pal.conf.ContentConf`, the modules of
+this package), and the real-motion learner for several performances,
+:class:`~psgs.induce.pal.motion.MotionPAL` (``"pal_motion"``,
+:class:`~psgs.induce.pal.motion.MotionConf`, the subpackage
+:mod:`psgs.induce.pal.motion`, with :func:`~psgs.induce.pal.motion.locate`).
+:class:`PAL` (``"pal"``, :mod:`psgs.induce.pal.entry`) is the name users know:
+it hands one actiongram to the first and several performances to the second.
+No phase module imports a learner: each reads the frozen table it is handed.
 """
 
-from .learner import PAL
+from .conf import ContentConf
+from .entry import PAL, PALConf
+from .learner import ContentPAL
+from .motion import MotionConf, MotionPAL
 
-__all__ = ["PAL"]
+__all__ = ["PAL", "PALConf", "ContentPAL", "ContentConf", "MotionPAL", "MotionConf"]

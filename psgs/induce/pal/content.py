@@ -17,7 +17,7 @@ from .together import locate_together
 from .widening import widen
 
 if TYPE_CHECKING:
-    from .learner import PAL
+    from .conf import ContentConf
 
 
 @dataclass
@@ -33,22 +33,22 @@ class ContentResult:
     joined: dict[int, list[int]] = field(default_factory=dict)
 
 
-def find_candidates(strings: list[Timed], params: PAL) -> ContentResult:
+def find_candidates(strings: list[Timed], conf: ContentConf) -> ContentResult:
     """Steps 1-3: a motif per string, the significance screen, synchronisation in time."""
-    motifs = find_motifs([s.codes for s in strings], params)
+    motifs = find_motifs([s.codes for s in strings], conf)
     candidates = [i for i, m in enumerate(motifs)
-                  if m is not None and m.significance <= math.log10(params.alpha)]
+                  if m is not None and m.significance <= math.log10(conf.alpha)]
     intervals = {i: strings[i].intervals(motifs[i].starts, len(motifs[i].motif))
                  for i in candidates}
     partners: dict[int, list[int]] = {i: [] for i in candidates}
-    for i, j in synchronised_pairs([intervals[i] for i in candidates], params):
+    for i, j in synchronised_pairs([intervals[i] for i in candidates], conf):
         a, b = candidates[i], candidates[j]
         partners[a].append(b)
         partners[b].append(a)
     return ContentResult(motifs, candidates, intervals, partners)
 
 
-def pool_groups(strings: list[Timed], found: ContentResult, params: PAL) -> ContentResult:
+def pool_groups(strings: list[Timed], found: ContentResult, conf: ContentConf) -> ContentResult:
     """Steps 4-6 for every group of synchronised strings: pooled windows, vote, join, trim."""
     intervals = found.intervals
     groups = sync_groups(found.candidates, found.partners)
@@ -58,16 +58,16 @@ def pool_groups(strings: list[Timed], found: ContentResult, params: PAL) -> Cont
         located = {i: intervals[i] for i in group}
         earlier = np.zeros((0, 2))
         members = list(group)
-        for round_ in range(params.rounds):
-            if round_ + 1 < params.rounds:
-                windows = pooled_windows([located[i] for i in members], params.window_support)
+        for round_ in range(conf.rounds):
+            if round_ + 1 < conf.rounds:
+                windows = pooled_windows([located[i] for i in members], conf.window_support)
                 earlier = windows
                 votes = {i: v for i in members if (v := vote(strings[i], windows)) is not None}
-                kept_columns = trim(votes, params.edge_share, params.column_alpha) if votes else {}
+                kept_columns = trim(votes, conf.edge_share, conf.column_alpha) if votes else {}
                 # locate each member's copies again with its voted pattern
                 for i, (first, last) in kept_columns.items():
                     pattern = pooled_pattern(strings[i], votes[i])
-                    again = relocate(strings[i], pattern[first:last], params)
+                    again = relocate(strings[i], pattern[first:last], conf)
                     if again is not None:
                         located[i] = again
                 continue
@@ -76,10 +76,10 @@ def pool_groups(strings: list[Timed], found: ContentResult, params: PAL) -> Cont
             # without the members that do not
             for _ in range(len(group)):
                 windows = with_earlier(pooled_windows([located[i] for i in members],
-                                                      params.window_support), earlier)
+                                                      conf.window_support), earlier)
                 votes = {i: v for i in members
                          if (v := vote(strings[i], windows)) is not None
-                         and repeats_in_windows(strings[i], v, params, params.min_copies,
+                         and repeats_in_windows(strings[i], v, conf, conf.min_copies,
                                                 beyond_chance=False)}
                 if len(votes) == len(members) or len(votes) < 2:
                     break
@@ -87,24 +87,24 @@ def pool_groups(strings: list[Timed], found: ContentResult, params: PAL) -> Cont
             if len(votes) < 2:
                 votes = {}
                 break
-            together = locate_together(strings, votes, params)
+            together = locate_together(strings, votes, conf)
             if together is not None:
                 # a copy damaged in most members passes no joint scan; its window stays
                 together = with_earlier(together, windows)
                 again = {i: vote(strings[i], together) for i in votes}
                 if all(v is not None for v in again.values()):
                     windows, votes = together, again
-            windows, votes = widen(strings, votes, windows, params.edge_share,
-                                   params.column_alpha, params.max_pattern)
+            windows, votes = widen(strings, votes, windows, conf.edge_share,
+                                   conf.column_alpha, conf.max_pattern)
             # strings whose own motif search fell short, read in the group's windows
             outside = [i for i in range(len(strings)) if i not in grouped]
-            for i in may_join(strings, outside, windows, params.joins_copies, params.conserve):
+            for i in may_join(strings, outside, windows, conf.joins_copies, conf.conserve):
                 if (v := vote(strings[i], windows)) is not None \
-                        and repeats_in_windows(strings[i], v, params, params.joins_copies):
+                        and repeats_in_windows(strings[i], v, conf, conf.joins_copies):
                     votes[i] = v
                     joined[i] = group
                     grouped.add(i)
-        kept_columns = trim(votes, params.edge_share, params.column_alpha) if votes else {}
+        kept_columns = trim(votes, conf.edge_share, conf.column_alpha) if votes else {}
         for i, (first, last) in kept_columns.items():
             if last <= first:
                 continue

@@ -15,7 +15,7 @@ from .statistics import log10_binom_sf, log10_poisson_sf, scan_threshold
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from .learner import PAL
+    from .conf import ContentConf
 
 
 #: farthest column looked at beyond a damaged one while growing
@@ -159,35 +159,35 @@ def _chain(positions: np.ndarray, length: int) -> list[int]:
     return kept
 
 
-def find_motifs(strings: list[np.ndarray], params: PAL) -> list[Motif | None]:
-    """:func:`find_motif` of every string, by the engine ``params.engine`` chooses.
+def find_motifs(strings: list[np.ndarray], conf: ContentConf) -> list[Motif | None]:
+    """:func:`find_motif` of every string, by the engine ``conf.engine`` chooses.
 
     The compiled engine searches every string in one call; a string where it
     meets a chance level too close to a boundary to decide in its own floats
     (see :mod:`psgs.induce.pal._motifs_jit`) is searched here again.
     """
-    if select(params.engine) == "numpy":
-        return [find_motif(codes, params) for codes in strings]
+    if select(conf.engine) == "numpy":
+        return [find_motif(codes, conf) for codes in strings]
     from . import _motifs_jit as jit
 
     count = len(strings)
     bounds = np.zeros(count + 1, dtype=np.int64)
     np.cumsum([len(c) for c in strings], out=bounds[1:])
     flat = np.concatenate(strings) if count else np.zeros(0, dtype=np.int64)
-    sizes, distinct, rates = _symbol_statistics(flat, bounds, params.min_copies)
+    sizes, distinct, rates = _symbol_statistics(flat, bounds, conf.min_copies)
     stats = np.zeros((4, count))  # match rate, its log and log1p(-), log10 distinct
     for i in np.flatnonzero(distinct).tolist():
         rate = float(rates[i])
         stats[:, i] = (rate, math.log(rate), math.log1p(-rate) if rate < 1 else -math.inf,
                        math.log10(max(int(distinct[i]), 2)))
-    found = _search_all(jit, flat.astype(np.int64, copy=False), bounds, sizes, stats, params)
+    found = _search_all(jit, flat.astype(np.int64, copy=False), bounds, sizes, stats, conf)
     status, lengths, copies, thresholds, motifs, starts = found
     out: list[Motif | None] = []
     for i, (state, length, k, threshold, start) in enumerate(zip(
             status.tolist(), lengths.tolist(), copies.tolist(), thresholds.tolist(),
             bounds[:-1].tolist())):
         if state == jit.UNCERTAIN:
-            out.append(find_motif(strings[i], params))
+            out.append(find_motif(strings[i], conf))
         elif state == jit.FOUND:
             out.append(Motif(motifs[i, :length].copy(), starts[start:start + k].copy(),
                              significance(len(strings[i]), length, threshold, k,
@@ -202,16 +202,16 @@ def find_motifs(strings: list[np.ndarray], params: PAL) -> list[Motif | None]:
 _THREADED_SYMBOLS = 1 << 18
 
 
-def _search_all(jit, flat, bounds, sizes, stats, params):
+def _search_all(jit, flat, bounds, sizes, stats, conf):
     """The compiled search of every string, in one thread or two (the same arrays out)."""
     count = len(bounds) - 1
     out = (np.zeros(count, dtype=np.int64), np.zeros(count, dtype=np.int64),
            np.zeros(count, dtype=np.int64), np.zeros(count, dtype=np.int64),
-           np.zeros((count, params.max_pattern), dtype=np.int64),
+           np.zeros((count, conf.max_pattern), dtype=np.int64),
            np.zeros(len(flat), dtype=np.int64))
-    args = (sizes, stats[0], stats[1], stats[2], stats[3], params.min_copies, params.seeds,
-            float(params.conserve), float(params.match_fraction), float(params.scan_alpha),
-            params.max_pattern) + out
+    args = (sizes, stats[0], stats[1], stats[2], stats[3], conf.min_copies, conf.seeds,
+            float(conf.conserve), float(conf.match_fraction), float(conf.scan_alpha),
+            conf.max_pattern) + out
     middle = int(np.searchsorted(bounds, len(flat) / 2))
     if len(flat) < _THREADED_SYMBOLS or (os.cpu_count() or 1) < 2 or not 0 < middle < count:
         jit.search_strings(flat, bounds, 0, count, *args)
@@ -264,15 +264,15 @@ def _symbol_statistics(flat: np.ndarray, bounds: np.ndarray, min_copies: int
     return sizes, distinct, rates
 
 
-def find_motif(codes: np.ndarray, params: PAL) -> Motif | None:
+def find_motif(codes: np.ndarray, conf: ContentConf) -> Motif | None:
     """The best-supported repeated motif of one string, or None.
 
-    Up to ``params.seeds`` of the most frequent digrams are grown in turn (a
+    Up to ``conf.seeds`` of the most frequent digrams are grown in turn (a
     burst of noise can stop one seed early); the most significant motif wins,
     the earlier seed among equals.
     """
     n = len(codes)
-    if n < 2 * params.min_copies:
+    if n < 2 * conf.min_copies:
         return None
     size = int(codes.max()) + 1
     freq = np.bincount(codes, minlength=size) / n
@@ -285,14 +285,14 @@ def find_motif(codes: np.ndarray, params: PAL) -> Motif | None:
     covered: set[int] = set()
     tried = 0
     for index in order.tolist():
-        if tried >= params.seeds or counts[index] < params.min_copies:
+        if tried >= conf.seeds or counts[index] < conf.min_copies:
             break
         if int(uniq[index]) in covered:
             continue  # already inside a motif grown from an earlier seed
         tried += 1
         seed = np.array([uniq[index] // size, uniq[index] % size], dtype=np.int64)
         found = grow(codes, seed, np.flatnonzero(keys == uniq[index]), match_rate, distinct,
-                     params, seed_only=True)
+                     conf, seed_only=True)
         if found is None:
             continue
         covered.update((found.motif[:-1] * size + found.motif[1:]).tolist())
@@ -313,22 +313,22 @@ def _digram_counts(keys: np.ndarray, bins: int) -> tuple[np.ndarray, np.ndarray,
 
 
 def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: float,
-          distinct: int, params: PAL, seed_only: bool = False) -> Motif | None:
+          distinct: int, conf: ContentConf, seed_only: bool = False) -> Motif | None:
     """Grow ``motif`` one conserved column at a time from its copies at ``starts``.
 
     ``seed_only``: ``motif`` is a digram and ``starts`` all its occurrences.
-    With ``params.engine`` compiled, the compiled loop grows it (the same motif).
+    With ``conf.engine`` compiled, the compiled loop grows it (the same motif).
     """
     n = len(codes)
-    if n and match_rate > 0 and select(params.engine) == "numba":
+    if n and match_rate > 0 and select(conf.engine) == "numba":
         from . import _motifs_jit as jit
 
         state, grown, found, threshold = jit.grow_motif(
             codes.astype(np.int64, copy=False), np.asarray(motif, dtype=np.int64),
             np.asarray(starts, dtype=np.int64), int(codes.max()) + 1, match_rate,
             math.log(match_rate), math.log1p(-match_rate) if match_rate < 1 else -math.inf,
-            params.min_copies, float(params.conserve), float(params.match_fraction),
-            float(params.scan_alpha), params.max_pattern, seed_only)
+            conf.min_copies, float(conf.conserve), float(conf.match_fraction),
+            float(conf.scan_alpha), conf.max_pattern, seed_only)
         if state == jit.FOUND:
             return Motif(grown, found, significance(n, len(grown), threshold, len(found),
                                                     match_rate, distinct))
@@ -337,7 +337,7 @@ def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: f
         # a chance level too close to call in the compiled floats: numpy's loop decides
     size = int(codes.max()) + 1
     grown_from = motif
-    while len(motif) < params.max_pattern:
+    while len(motif) < conf.max_pattern:
         length = len(motif)
         spacing = median_gap(starts) if len(starts) > 1 else n
         if length + 1 > spacing:
@@ -347,19 +347,19 @@ def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: f
             # a column that noise damaged in many copies can be bridged when the
             # column beyond it is conserved (its plurality still held by min_copies)
             added: list[int] = []
-            for d in range(1, min(_BRIDGE, spacing - length, params.max_pattern - length)
+            for d in range(1, min(_BRIDGE, spacing - length, conf.max_pattern - length)
                            + 1):
                 pos = starts + length + d - 1 if side == "right" else starts - d
                 pos = pos[(pos >= 0) & (pos < n)]
-                if len(pos) < params.min_copies:
+                if len(pos) < conf.min_copies:
                     break
                 column = np.bincount(codes[pos], minlength=size)
                 sym = int(np.argmax(column))
                 k = int(column[sym])
-                if k < params.min_copies:
+                if k < conf.min_copies:
                     break
                 added.append(sym)
-                if k >= params.conserve * len(pos):
+                if k >= conf.conserve * len(pos):
                     rank = (d, -k / len(pos))
                     if choice is None or rank < choice[0]:
                         choice = (rank, side, added)
@@ -373,14 +373,14 @@ def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: f
             grown, kept = np.concatenate((added[::-1], motif)), starts - d
         grown = grown.astype(np.int64)
         kept = kept[(kept >= 0) & (kept + len(grown) <= n)]
-        threshold = scan_threshold(len(grown), n - len(grown) + 1, match_rate, params)
+        threshold = scan_threshold(len(grown), n - len(grown) + 1, match_rate, conf)
         found = merge_copies(kept, locate_copies(codes, grown, threshold), len(grown))
-        if len(found) < params.min_copies:
+        if len(found) < conf.min_copies:
             break
         motif, starts = grown, found
 
     length = len(motif)
-    threshold = scan_threshold(length, n - length + 1, match_rate, params)
+    threshold = scan_threshold(length, n - length + 1, match_rate, conf)
     if len(starts) > 1 and median_gap(starts) == length and starts[0] % length:
         # copies tile the string: put a copy boundary where the string starts
         shift = int(starts[0] % length)
@@ -392,7 +392,7 @@ def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: f
             and motif is grown_from):
         # (a digram that did not grow: its exact occurrences are ``starts`` already)
         starts = merge_copies(starts, locate_copies(codes, motif, threshold), length)
-    if len(starts) < params.min_copies:
+    if len(starts) < conf.min_copies:
         return None
     return Motif(motif, starts, significance(n, length, threshold, len(starts), match_rate,
                                              distinct))

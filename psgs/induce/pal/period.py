@@ -12,7 +12,7 @@ from .statistics import log10_binom_sf
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from .learner import PAL
+    from .conf import ContentConf
 
 
 @dataclass(frozen=True)
@@ -76,7 +76,7 @@ def _self_agreement(grid: np.ndarray, size: int) -> tuple[np.ndarray, np.ndarray
     return same / np.maximum(pairs, 1), chance
 
 
-def _candidate_periods(excess: np.ndarray, params: PAL, most: int = 4) -> list[int]:
+def _candidate_periods(excess: np.ndarray, conf: ContentConf, most: int = 4) -> list[int]:
     """Lags (grid points) at which the strings that repeat recur: candidates for the action's period.
 
     Pooled over the strings as the upper ``period_quantile`` of their excess
@@ -89,10 +89,10 @@ def _candidate_periods(excess: np.ndarray, params: PAL, most: int = 4) -> list[i
     high), then the others, highest first, at most ``most``.
     """
     n = excess.shape[1]
-    longest = n // params.min_copies + 1
+    longest = n // conf.min_copies + 1
     if longest < 3:
         return []
-    pooled = np.quantile(excess[:, :longest], params.period_quantile, axis=0)
+    pooled = np.quantile(excess[:, :longest], conf.period_quantile, axis=0)
     rises = np.flatnonzero(np.diff(pooled) > 0)
     if len(rises) == 0:
         return []
@@ -153,7 +153,7 @@ def track_windows(grid: np.ndarray, lag: int) -> np.ndarray:
     return np.asarray(starts, dtype=np.int64)
 
 
-def period_mode(strings: list[Timed], size: int, params: PAL) -> PeriodResult | None:
+def period_mode(strings: list[Timed], size: int, conf: ContentConf) -> PeriodResult | None:
     """Components whose symbols recur with the action's period, read in tracked windows.
 
     For real motion: joints cycle through the same few states at different
@@ -169,27 +169,27 @@ def period_mode(strings: list[Timed], size: int, params: PAL) -> PeriodResult | 
     if sum(len(s.codes) > 0 for s in strings) < 2:
         return None
     times, step, grid = time_grid(strings)
-    if grid.shape[1] < 2 * params.min_copies:
+    if grid.shape[1] < 2 * conf.min_copies:
         return None
     agreement, chance = _self_agreement(grid, size)
-    lags = _candidate_periods(agreement - chance[:, None], params)
+    lags = _candidate_periods(agreement - chance[:, None], conf)
     best = None
     for lag in lags:
         found = _read_period(strings, size, times, step, grid, agreement, chance, lag,
-                             len(lags), params)
+                             len(lags), conf)
         if found is not None and (best is None or len(found.patterns) > len(best.patterns)):
             best = found
     return best
 
 
 def _read_period(strings, size, times, step, grid, agreement, chance, lag, tried,
-                 params: PAL) -> PeriodResult | None:
+                 conf: ContentConf) -> PeriodResult | None:
     """The components of one candidate period (see :func:`period_mode`)."""
-    drivers = np.flatnonzero(agreement[:, lag] >= params.period_agreement)
+    drivers = np.flatnonzero(agreement[:, lag] >= conf.period_agreement)
     if len(drivers) < 2:
         return None
     starts = track_windows(grid[drivers], lag)
-    if len(starts) < params.min_copies:
+    if len(starts) < conf.min_copies:
         return None
     windows = grid[:, starts[:, None] + np.arange(lag)]   # (strings, copies, lag)
     penalty = math.log10(len(strings) * tried)
@@ -200,13 +200,13 @@ def _read_period(strings, size, times, step, grid, agreement, chance, lag, tried
         if valid.sum() == 0:
             continue
         share = float(((copies[:-1] == copies[1:]) & valid).sum() / valid.sum())
-        if share < params.period_agreement:
+        if share < conf.period_agreement:
             continue
         low = times[starts[0]] - step / 2
         high = times[starts[-1] + lag - 1] + step / 2
         segments = int(np.count_nonzero((s.ends > low) & (s.starts < high)))
         if log10_binom_sf(round(share * segments), segments, float(chance[row])) + penalty \
-                > math.log10(params.alpha):
+                > math.log10(conf.alpha):
             continue
         pattern = _plurality_runs(copies, size)
         if len(pattern) < 2:

@@ -15,7 +15,7 @@ from .statistics import log10_binom_sf, scan_threshold
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from .learner import PAL
+    from .conf import ContentConf
 
 
 def copy_clusters(parts: list[np.ndarray]) -> np.ndarray:
@@ -55,11 +55,11 @@ def synchronised(a: np.ndarray, b: np.ndarray, fraction: float, min_copies: int)
     return both >= min_copies and both >= fraction * clusters
 
 
-def synchronised_pairs(lists: list[np.ndarray], params: PAL) -> list[tuple[int, int]]:
+def synchronised_pairs(lists: list[np.ndarray], conf: ContentConf) -> list[tuple[int, int]]:
     """The pairs ``(i, j)``, ``i < j`` in order, of copy interval lists that are
-    :func:`synchronised`, by the engine ``params.engine`` chooses (the same pairs)."""
-    fraction, copies = params.sync_fraction, params.min_copies
-    if select(params.engine) == "numpy":
+    :func:`synchronised`, by the engine ``conf.engine`` chooses (the same pairs)."""
+    fraction, copies = conf.sync_fraction, conf.min_copies
+    if select(conf.engine) == "numpy":
         return [(i, j) for i in range(len(lists)) for j in range(i + 1, len(lists))
                 if synchronised(lists[i], lists[j], fraction, copies)]
     from ._pairs_jit import synchronised_pairs as compiled
@@ -184,19 +184,19 @@ def _join_fragments(core: np.ndarray, spans: np.ndarray) -> np.ndarray:
     return np.column_stack((low, high))
 
 
-def relocate(string: Timed, pattern: tuple[int, ...], params: PAL) -> np.ndarray | None:
+def relocate(string: Timed, pattern: tuple[int, ...], conf: ContentConf) -> np.ndarray | None:
     """Copy intervals of ``pattern`` found by scanning the string, or None if too few."""
     if len(pattern) < 2:
         return None
     codes = string.codes
     motif = np.asarray(pattern, dtype=np.int64)
     threshold = scan_threshold(len(motif), len(codes) - len(motif) + 1, string.match_rate,
-                               params)
+                               conf)
     found = locate_copies(codes, motif, threshold)
-    if len(found) < params.min_copies:
+    if len(found) < conf.min_copies:
         return None
     # the pooled copies are many and reliable: let them grow the pattern further
-    grown = grow(codes, motif, found, string.match_rate, string.distinct, params)
+    grown = grow(codes, motif, found, string.match_rate, string.distinct, conf)
     if grown is None:
         return string.intervals(found, len(motif))
     return string.intervals(grown.starts, len(grown.motif))
@@ -398,7 +398,7 @@ def _aligned(codes: np.ndarray, lo: np.ndarray, hi: np.ndarray, pattern: list[in
     return out
 
 
-def repeats_in_windows(string: Timed, vote: Vote, params: PAL, copies_needed: int,
+def repeats_in_windows(string: Timed, vote: Vote, conf: ContentConf, copies_needed: int,
                         beyond_chance: bool = True) -> bool:
     """Whether a string read in a group's windows repeats a pattern of its own.
 
@@ -412,10 +412,10 @@ def repeats_in_windows(string: Timed, vote: Vote, params: PAL, copies_needed: in
     length = len(vote.pattern)
     copies = vote.full_copies
     if copies < copies_needed or length < 2 or np.count_nonzero(
-            vote.shares >= params.conserve) < max(2, math.ceil(length / 2)):
+            vote.shares >= conf.conserve) < max(2, math.ceil(length / 2)):
         return False
     agreeing = 0
     for column, share in enumerate(vote.shares.tolist()):
-        if share >= params.conserve and (not beyond_chance or vote.log10_chance(column) <= -2):
+        if share >= conf.conserve and (not beyond_chance or vote.log10_chance(column) <= -2):
             agreeing += 1
     return agreeing >= max(2, math.ceil(length / 2))

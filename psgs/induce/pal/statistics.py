@@ -7,7 +7,7 @@ import math
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from .learner import PAL
+    from .conf import ContentConf
 
 
 #: log(10), once
@@ -62,18 +62,18 @@ def log10_poisson_sf(k: int, lam: float) -> float:
     return (top + math.log(sum([exp(t - top) for t in terms]))) / _LN10
 
 
-def scan_threshold(length: int, windows: int, match_rate: float, params: PAL) -> int:
+def scan_threshold(length: int, windows: int, match_rate: float, conf: ContentConf) -> int:
     """Fewest matching positions a window needs to count as a copy."""
-    return _threshold(length, windows, match_rate, params.match_fraction, params.scan_alpha)
+    return _threshold(length, windows, match_rate, conf.match_fraction, conf.scan_alpha)
 
 
-def chance_threshold(length: int, windows: int, match_rate: float, params: PAL) -> int:
+def chance_threshold(length: int, windows: int, match_rate: float, conf: ContentConf) -> int:
     """Fewest matching positions a window needs to pass as beyond chance alone.
 
     As :func:`scan_threshold` without its floor of ``match_fraction`` of the
     positions (two at least).
     """
-    return _threshold(length, windows, match_rate, 0.0, params.scan_alpha)
+    return _threshold(length, windows, match_rate, 0.0, conf.scan_alpha)
 
 
 @functools.lru_cache(maxsize=4096)

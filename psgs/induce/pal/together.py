@@ -27,13 +27,13 @@ from .pooling import Vote
 from .statistics import chance_threshold
 
 if TYPE_CHECKING:
-    from .learner import PAL
+    from .conf import ContentConf
 
 __all__: list[str] = []  # private: content.py is the caller
 
 
 def locate_together(strings: list[Timed], votes: dict[int, Vote],
-                    params: PAL) -> np.ndarray | None:
+                    conf: ContentConf) -> np.ndarray | None:
     """The group's copy windows found by scanning all members at once, or None if too few.
 
     Returns a (copies, 2) array of time windows in time order: each from the
@@ -71,7 +71,7 @@ def locate_together(strings: list[Timed], votes: dict[int, Vote],
     # the joint copy needs only to be beyond chance: with every member's positions
     # together, a copy half damaged in each is still far beyond it
     threshold = chance_threshold(positions, int(np.count_nonzero(valid)) or 1,
-                                 float(np.mean(rates)), params)
+                                 float(np.mean(rates)), conf)
     hits = np.flatnonzero(valid & (total >= threshold))
     # best first, earlier first among equals; a copy overlapping one kept is left out
     order = hits[np.lexsort((hits, -total[hits]))]
@@ -84,6 +84,6 @@ def locate_together(strings: list[Timed], votes: dict[int, Vote],
             continue
         kept_starts.insert(k, a)
         kept_ends.insert(k, b)
-    if len(kept_starts) < params.min_copies:
+    if len(kept_starts) < conf.min_copies:
         return None
     return np.column_stack((kept_starts, kept_ends))

@@ -22,12 +22,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ...actiongram import Actiongram
+from ....actiongram import Actiongram
 from .grids import Grid, plurality, resample
-from .period import track_windows
+from ..period import track_windows
 
 if TYPE_CHECKING:
-    from .performances import MotionResult
+    from .results import MotionResult
 
 
 def copy_windows(grids: list[Grid], periods: list[int | None] | None, shifts: list[int],
@@ -257,7 +257,7 @@ def medoid_copy(copies: np.ndarray, column: np.ndarray, allowed: np.ndarray | No
     copies : numpy.ndarray
         One channel's stretched copies, ``(copies, points)`` state codes, -1 absent.
     column : numpy.ndarray
-        Their plurality, ``(points,)`` (:func:`psgs.induce.pal.grids.plurality`).
+        Their plurality, ``(points,)`` (:func:`psgs.induce.pal.motion.grids.plurality`).
     allowed : numpy.ndarray, optional
         ``(copies,)`` booleans, e.g. :func:`ordinary_copies`.
 

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...actiongram import Actiongram
+from ....actiongram import Actiongram
 
 
 @dataclass(frozen=True, eq=False)

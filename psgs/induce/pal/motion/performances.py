@@ -29,58 +29,28 @@ With ``evidence="path"`` the same selection runs on plain angular path length
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ...actiongram import Actiongram
+from ....actiongram import Actiongram
+from ...results import NO_REPETITION
 from .cycles import CycleEvidence, joint_period, lag_scores
 from .grids import Grid, agreement, agreement_counts, grid_step, kappa, resample, sample
 from .morphemes import read_patterns
-from .statistics import log10_binom_sf
+from .results import JointEvidence, MotionResult
+from ..statistics import log10_binom_sf
 
 if TYPE_CHECKING:
-    from .learner import PAL
+    from .conf import MotionConf
 
-NO_REPETITION = "no synchronised repetition"
 
 #: A joint may lead from its cycles when they are at least this share of the strongest
 #: joint's (measured: the waving arm of the benchmark's composite has 0.16 of its foreign arm's).
 LEADER_SHARE = 0.1
 
 
-@dataclass
-class JointEvidence:
-    """What the learner measured for one joint (a working record)."""
-
-    name: str
-    channels: tuple[int, ...]
-    path: float = 0.0          # mean angular path length per performance
-    repeated: float = 0.0      # repeated motion (path x corrected agreement), summed
-    log10_p: float = 0.0       # significance of its best channel, corrected
-    share: float = 0.0         # repeated / the leader's
-    status: str = "not significant"
-
-
-@dataclass
-class MotionResult:
-    """The real-motion learner's findings (channel indices; codes over ``symbols``)."""
-
-    verdict: str
-    joints: list[JointEvidence]
-    leader: str | None
-    symbols: list[str]
-    period: float | None = None
-    channels: dict[str, tuple[int, ...]] = field(default_factory=dict)
-    patterns: dict[int, tuple[int, ...]] = field(default_factory=dict)
-    occurrences: dict[int, list[tuple[float, float]]] = field(default_factory=dict)
-    occurrence_performance: dict[int, list[int]] = field(default_factory=dict)
-    durations: dict[int, tuple[float, ...]] = field(default_factory=dict)
-    displacements: dict[int, tuple[float, ...] | None] = field(default_factory=dict)
-
-
-def learn_motion(takes: tuple[Actiongram, ...], params: PAL) -> MotionResult:
+def learn_motion(takes: tuple[Actiongram, ...], conf: MotionConf) -> MotionResult:
     """Steps 1-6 of the module docstring on ``takes`` (same strings, same order)."""
     codes: dict[str, int] = {}
     step = grid_step(takes)
@@ -94,8 +64,8 @@ def learn_motion(takes: tuple[Actiongram, ...], params: PAL) -> MotionResult:
     for j in joints:
         j.path = float(paths[:, list(j.channels)].sum(axis=1).mean())
     symbols = list(codes)
-    if params.evidence == "path":  # the ablation: magnitude only, whole performances
-        result = _select(joints, paths.mean(axis=0), np.zeros(len(first)), first, params,
+    if conf.evidence == "path":  # the ablation: magnitude only, whole performances
+        result = _select(joints, paths.mean(axis=0), np.zeros(len(first)), first, conf,
                          symbols, tested=False)
         if result.verdict == "":
             read_patterns(result, grids, None, [0] * len(grids), takes)
@@ -105,15 +75,15 @@ def learn_motion(takes: tuple[Actiongram, ...], params: PAL) -> MotionResult:
     log_p = np.zeros(len(first))
     shifts: list[int] = []
     if len(takes) >= 2:
-        shifts, cross, cross_p = _across(grids, size, paths, segments, params)
+        shifts, cross, cross_p = _across(grids, size, paths, segments, conf)
         repeated, log_p = cross, cross_p
-    scored = [lag_scores(g, size, params) for g in grids]
+    scored = [lag_scores(g, size, conf) for g in grids]
     evidence = CycleEvidence(grids, scored, size, paths, segments)
-    leaders = _first_leaders(joints, repeated, log_p, evidence, params) or [None]
+    leaders = _first_leaders(joints, repeated, log_p, evidence, conf) or [None]
     result = None
     for k, leader in enumerate(leaders[:3]):  # a leader alone (none in step) gives way
         # each further try is held to a 100 times stricter test (it is one more look)
-        tried = _with_cycles(leader, joints, repeated, log_p, evidence, first, params,
+        tried = _with_cycles(leader, joints, repeated, log_p, evidence, first, conf,
                              symbols, extra=2.0 * k)
         if result is None or (result[0].verdict and not tried[0].verdict):
             result = tried
@@ -127,12 +97,12 @@ def learn_motion(takes: tuple[Actiongram, ...], params: PAL) -> MotionResult:
     return found
 
 
-def _with_cycles(leader, joints, repeated, log_p, evidence: CycleEvidence, first, params,
+def _with_cycles(leader, joints, repeated, log_p, evidence: CycleEvidence, first, conf,
                  symbols, extra: float = 0.0):
     """The selection with the cycles timed on ``leader`` (when most performances cycle)."""
     periods = None
     if leader is not None:
-        periods = [joint_period(sc, leader.channels, params) for sc in evidence.scored]
+        periods = [joint_period(sc, leader.channels, conf) for sc in evidence.scored]
         found = [p for p in periods if p]
         if len(found) * 2 > len(evidence.grids):  # most performances cycle on that period
             cyc, cyc_p = evidence.cycles(periods)
@@ -142,18 +112,18 @@ def _with_cycles(leader, joints, repeated, log_p, evidence: CycleEvidence, first
             periods = None
     for j in joints:
         j.status, j.share = "not significant", 0.0
-    return _select(joints, repeated, log_p, first, params, symbols, tested=True,
+    return _select(joints, repeated, log_p, first, conf, symbols, tested=True,
                    extra=extra), periods
 
 
 # -- evidence across performances ----------------------------------------------------------
 def _across(grids: list[Grid], size: int, paths: np.ndarray, segments: np.ndarray,
-            params: PAL) -> tuple[list[int], np.ndarray, np.ndarray]:
+            conf: MotionConf) -> tuple[list[int], np.ndarray, np.ndarray]:
     """Per channel: repeated motion and log10 p across aligned, time-normalised performances."""
     length = int(np.median([g.points for g in grids]))
     states = [resample(g.states, length) for g in grids]
     speeds = [resample(g.speed, length) for g in grids]
-    reach = int(round(params.max_shift * length))
+    reach = int(round(conf.max_shift * length))
     reference = states[0]
     shifts = [0] + [_best_shift(reference, s, reach, size) for s in states[1:]]
     channels = reference.shape[0]
@@ -275,20 +245,20 @@ def _best_shift(a: np.ndarray, b: np.ndarray, reach: int, size: int,
 
 
 # -- the leader and the selection ------------------------------------------------------------
-def _significant(joint: JointEvidence, log_p: np.ndarray, joints: int, params: PAL,
+def _significant(joint: JointEvidence, log_p: np.ndarray, joints: int, conf: MotionConf,
                  extra: float = 0.0) -> bool:
     """Whether the joint's best channel beats chance at ``alpha`` (Bonferroni over its
     channels and ``joints``; ``extra`` orders of magnitude stricter)."""
     best = float(min(log_p[list(joint.channels)])) if joint.channels else 0.0
     joint.log10_p = best + math.log10(max(len(joint.channels), 1))
-    return joint.log10_p + math.log10(max(joints, 1)) + extra <= math.log10(params.alpha)
+    return joint.log10_p + math.log10(max(joints, 1)) + extra <= math.log10(conf.alpha)
 
 
-def _first_leaders(joints, repeated, log_p, evidence: CycleEvidence, params):
+def _first_leaders(joints, repeated, log_p, evidence: CycleEvidence, conf):
     """Joints the cycles may be timed on, best first: most repeated motion across
     performances, else (one performance, or nothing repeats across them) within."""
     across = [(float(repeated[list(j.channels)].sum()), -k, j) for k, j in enumerate(joints)
-              if _significant(j, log_p, len(joints), params)]
+              if _significant(j, log_p, len(joints), conf)]
     across = [x for x in across if x[0] > 0]
     if across:
         return [j for _, _, j in sorted(across, key=lambda x: x[:2], reverse=True)]
@@ -300,12 +270,12 @@ def _first_leaders(joints, repeated, log_p, evidence: CycleEvidence, params):
     for sc in evidence.scored:  # every joint is timed: every channel's scores in one pass
         sc.table(every)
     for k, j in enumerate(joints):
-        periods = [joint_period(sc, j.channels, params) for sc in evidence.scored]
+        periods = [joint_period(sc, j.channels, conf) for sc in evidence.scored]
         if sum(1 for p in periods if p) * 2 <= len(grids):
             continue
         cyc, cyc_p = evidence.cycles(periods, j.channels)  # the joint's own test only
         probe = JointEvidence(j.name, j.channels)
-        if not _significant(probe, cyc_p, len(joints), params):
+        if not _significant(probe, cyc_p, len(joints), conf):
             continue
         # a leader repeats across performances: its cycles must look alike from one
         # performance to the next (a limb doing another thing in each take does not)
@@ -325,18 +295,18 @@ def _first_leaders(joints, repeated, log_p, evidence: CycleEvidence, params):
 
 
 def _select(joints: list[JointEvidence], repeated: np.ndarray, log_p: np.ndarray,
-            first: Actiongram, params: PAL, symbols: list[str], *, tested: bool,
+            first: Actiongram, conf: MotionConf, symbols: list[str], *, tested: bool,
             extra: float = 0.0) -> MotionResult:
     """Leader, shares, components and their skeleton neighbours; the verdict."""
     strict = set()
     for j in joints:
         j.repeated = float(repeated[list(j.channels)].sum())
         if tested:
-            if _significant(j, log_p, len(joints), params, extra):
+            if _significant(j, log_p, len(joints), conf, extra):
                 strict.add(j.name)
             # beside a significant leader, a joint is tested on its own (Bonferroni over its
             # channels only): the share of the leader's repeated motion is the second gate
-            passed = _significant(j, log_p, 1, params)
+            passed = _significant(j, log_p, 1, conf)
         else:
             passed = j.repeated > 0
             strict.add(j.name)
@@ -350,7 +320,7 @@ def _select(joints: list[JointEvidence], repeated: np.ndarray, log_p: np.ndarray
     leader = max(leaders, key=lambda j: (j.repeated, -joints.index(j)))
     for j in joints:
         j.share = j.repeated / leader.repeated
-    core = {j.name for j in candidates if j.share >= params.joint_share}
+    core = {j.name for j in candidates if j.share >= conf.joint_share}
     for j in joints:
         if j.name in core:
             j.status = "component"
@@ -360,7 +330,7 @@ def _select(joints: list[JointEvidence], repeated: np.ndarray, log_p: np.ndarray
     for name in core:
         near.update(first.neighbours(name))
     for j in joints:
-        if j.name in near and j.name not in core and j.share >= params.neighbour_share:
+        if j.name in near and j.name not in core and j.share >= conf.neighbour_share:
             j.status = "component (skeleton neighbour)"
     chosen = [j for j in joints if j.status.startswith("component")]
     if len(chosen) < 2:  # synchronisation needs two joints
@@ -371,6 +341,6 @@ def _select(joints: list[JointEvidence], repeated: np.ndarray, log_p: np.ndarray
     for j in chosen:
         values = repeated[list(j.channels)]
         keep = [c for c, v in zip(j.channels, values)
-                if v > 0 and v >= params.channel_share * float(values.max())]
+                if v > 0 and v >= conf.channel_share * float(values.max())]
         result.channels[j.name] = tuple(keep)
     return result

@@ -3,7 +3,7 @@
 A performance that cycles agrees with itself one period later, and less at
 half the period (an oscillation is in anti-phase there, stillness or a slow
 drift is not). Everything here is read from the performance's grid
-(:mod:`psgs.induce.pal.grids`): a channel's speed-weighted kappa at every
+(:mod:`psgs.induce.pal.motion.grids`): a channel's speed-weighted kappa at every
 candidate lag is computed once, when a joint of it is first timed
 (:class:`LagScores`), and reused by the period search, the cycle evidence and
 the leader's choice.
@@ -23,21 +23,21 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .grids import Grid, agreement_counts, from_tallies, kappa, plurality
-from .statistics import log10_binom_sf
+from ..statistics import log10_binom_sf
 
 if TYPE_CHECKING:
-    from .learner import PAL
+    from .conf import MotionConf
 
 
-def _lags(grid: Grid, params: PAL) -> range:
-    low = max(2, int(params.min_cycle / grid.step))
-    return range(low, grid.points // params.min_copies + 1)
+def _lags(grid: Grid, conf: MotionConf) -> range:
+    low = max(2, int(conf.min_cycle / grid.step))
+    return range(low, grid.points // conf.min_copies + 1)
 
 
 def _weighted_kappa(states: np.ndarray, weight: np.ndarray, lag: int, size: int,
                     onehot: np.ndarray | None = None) -> np.ndarray:
     """Per row, the kappa of the states with themselves ``lag`` points later, weighted by
-    the mean of the two points' speeds: :func:`~psgs.induce.pal.grids.agreement` on the
+    the mean of the two points' speeds: :func:`~psgs.induce.pal.motion.grids.agreement` on the
     two slices, with the states' indicator ``onehot`` (state, row, point) made once."""
     if onehot is None:
         onehot = states[None] == np.arange(size)[:, None, None]
@@ -112,12 +112,12 @@ class LagScores:
         return self._full[lag]
 
 
-def lag_scores(grid: Grid, size: int, params: PAL) -> LagScores:
+def lag_scores(grid: Grid, size: int, conf: MotionConf) -> LagScores:
     """The cycle scores of one performance at every candidate lag (see :class:`LagScores`)."""
-    return LagScores(grid, size, _lags(grid, params))
+    return LagScores(grid, size, _lags(grid, conf))
 
 
-def joint_period(scored: LagScores, rows: tuple[int, ...], params: PAL) -> int | None:
+def joint_period(scored: LagScores, rows: tuple[int, ...], conf: MotionConf) -> int | None:
     """A joint's period in one performance (grid points), or None when it does not cycle.
 
     ``scored`` is :func:`lag_scores` of the performance; the joint's score at
@@ -129,7 +129,7 @@ def joint_period(scored: LagScores, rows: tuple[int, ...], params: PAL) -> int |
         return None
     scores = scored.table(rows).mean(axis=1)
     top = float(scores.max())
-    if top <= params.min_cycle_score:
+    if top <= conf.min_cycle_score:
         return None
     high = scores >= 0.85 * top
     rising = np.concatenate([[True], scores[1:] >= scores[:-1]])

@@ -22,11 +22,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..actiongram import Actiongram
-from ..errors import ValidationError
-from ..model import PSGS, Nonterminal
-from .pal.grids import grid_step, sample
-from .results import Induction
+from ....actiongram import Actiongram
+from ....errors import ValidationError
+from ....model import PSGS, Nonterminal
+from ...results import Induction
+from ..period import track_windows
+from .conf import MotionConf
+from .cycles import cycle_evidence, joint_period, lag_scores
+from .grids import grid_step, sample
 
 __all__ = ["Located", "locate"]
 
@@ -301,11 +304,8 @@ def _by_joints(learned: Induction, actiongram: Actiongram, min_share: float
                ) -> tuple[Located, ...]:
     """One span over the cycles of the learned leader, when the learned joints carry the
     repetition of the new motion (see :func:`locate`, ``method="joints"``)."""
-    from .pal.cycles import cycle_evidence, joint_period, lag_scores
-    from .pal.learner import PAL
-
-    params = PAL(**{k: v for k, v in learned.params.items()
-                    if k in PAL().get_params()}) if learned.inducer == "pal" else PAL()
+    # the parameters the action was learnt with: its cycles are timed the same way here
+    conf = MotionConf.of(learned.inducer, learned.params)
     codes: dict[str, int] = {}
     grid = sample(actiongram, codes, grid_step((actiongram,)))
     size = max(len(codes), 1)
@@ -314,9 +314,9 @@ def _by_joints(learned: Induction, actiongram: Actiongram, min_share: float
     mine = tuple(r for a in learned.actuators for r in rows.get(a, ()))
     if not mine:
         return ()
-    scored = lag_scores(grid, size, params)
-    lag = joint_period(scored, mine, params)  # the learned joints' period in this motion
-    if not lag or grid.points < params.min_copies * lag:
+    scored = lag_scores(grid, size, conf)
+    lag = joint_period(scored, mine, conf)  # the learned joints' period in this motion
+    if not lag or grid.points < conf.min_copies * lag:
         return ()
     segments = np.array([[len(x) for x in actiongram.symbols]], dtype=float)
     paths = np.array([grid.speed.sum(axis=1) * grid.step])
@@ -330,10 +330,9 @@ def _by_joints(learned: Induction, actiongram: Actiongram, min_share: float
     ours = max(carried.get(a, 0.0) for a in learned.actuators)
     # the action: its joints carry much of the repetition, one of them as a leader would
     # (at joint_share of the most), beyond chance (Bonferroni over the learned channels)
-    significant = float(min(log_p[list(mine)])) + np.log10(len(mine)) <= np.log10(params.alpha)
-    if share < min_share or ours < params.joint_share * top or not significant:
+    significant = float(min(log_p[list(mine)])) + np.log10(len(mine)) <= np.log10(conf.alpha)
+    if share < min_share or ours < conf.joint_share * top or not significant:
         return ()
-    from .pal.period import track_windows
     starts = track_windows(grid.states[list(mine)], lag)
     if len(starts) == 0:
         return ()

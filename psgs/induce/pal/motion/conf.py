@@ -1,0 +1,97 @@
+"""The real-motion learner's parameters, as one frozen value handed to each of its phases.
+
+:class:`MotionConf` is the table of :class:`~psgs.induce.pal.motion.learner.MotionPAL`;
+:func:`~psgs.induce.pal.motion.locate.locate` reads it back from what an
+Induction recorded (:meth:`MotionConf.of`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+from ...conf import Choice, Conf, Number, parameter
+from ..conf import ALPHA, MIN_COPIES
+
+__all__ = ["MotionConf", "LEARNERS"]
+
+#: The inducers whose Inductions record the real-motion learner's parameters: PAL
+#: (which hands several performances to it) and the learner itself.
+LEARNERS = ("pal", "pal_motion")
+
+
+@dataclass(frozen=True)
+class MotionConf(Conf):
+    """The parameters of the real-motion learner (several performances; see ``docs/pal.md``).
+
+    Parameters
+    ----------
+    min_copies : int, default 3
+        Fewest cycles within a performance that count as repetition.
+    alpha : float, default 1e-2
+        Chance level a joint's repetition must beat (Bonferroni over channels and joints).
+    evidence : {"kinetemes", "path"}, default "kinetemes"
+        What a joint's repeated motion is measured on: ``"kinetemes"`` (chance-corrected
+        agreement of the kineteme states, with a significance test) or ``"path"`` (plain
+        angular path length, no test: the benchmark's ablation).
+    joint_share : float, default 0.25
+        A significant joint carrying at least this share of the leader's repeated motion is
+        a component.
+    neighbour_share : float, default 0.03
+        A skeleton neighbour (one hop) of a component joins at this share of the leader's
+        repeated motion.
+    channel_share : float, default 0.25
+        A component joint keeps its channels carrying at least this share of its most
+        repeated channel's motion.
+    max_shift : float, default 0.1
+        Whole performances are aligned by a shift of at most this share of their length.
+    min_cycle : float, default 0.25
+        Shortest cycle within a performance, seconds.
+    min_cycle_score : float, default 0.05
+        A joint whose best cycle score is no higher does not cycle (no period).
+
+    Examples
+    --------
+    >>> MotionConf(joint_share=0.3).evidence
+    'kinetemes'
+    >>> MotionConf(max_shift=0.7)
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: parameter max_shift must be <= 0.5, not 0.7
+    """
+
+    min_copies: int = MIN_COPIES.field()
+    alpha: float = ALPHA.field()
+    evidence: str = parameter("kinetemes", Choice(("kinetemes", "path")))
+    joint_share: float = parameter(0.25, Number(low=0, high=1, low_open=True))
+    neighbour_share: float = parameter(0.03, Number(low=0, high=1))
+    channel_share: float = parameter(0.25, Number(low=0, high=1))
+    max_shift: float = parameter(0.1, Number(low=0, high=0.5))
+    min_cycle: float = parameter(0.25, Number(low=0))
+    min_cycle_score: float = parameter(0.05, Number(low=0, high=1))
+
+    @classmethod
+    def of(cls, inducer: str, params: Mapping[str, object]) -> MotionConf:
+        """The parameters an Induction of ``inducer`` was learnt with (defaults otherwise).
+
+        Parameters
+        ----------
+        inducer : str
+            ``Induction.inducer``.
+        params : mapping
+            ``Induction.params``.
+
+        Returns
+        -------
+        MotionConf
+            Read from ``params`` when ``inducer`` is one of :data:`LEARNERS`;
+            the defaults for any other inducer (whose parameters mean other things).
+
+        Examples
+        --------
+        >>> MotionConf.of("pal", {"joint_share": 0.4, "rounds": 2}).joint_share
+        0.4
+        >>> MotionConf.of("sequential", {"alpha": 0.5}).alpha
+        0.01
+        """
+        return cls.pick(params) if inducer in LEARNERS else cls()
