@@ -1,4 +1,4 @@
-"""The paper's synthetic evaluation (SPEC §6), with ground truth, and harder variants.
+"""The paper's synthetic evaluation, with ground truth, and harder variants.
 
 :func:`generate` builds one seeded actiongram: ``strings`` strings over an
 ``alphabet`` of letters; ``patterned`` of them each repeat a different
@@ -142,7 +142,7 @@ def generate(seed: int, noise: float = 0.0, *, strings: int = 20, alphabet: int 
              unequal_lengths: bool = False) -> Synthetic:
     """One synthetic actiongram with ground truth; the same arguments give the same value.
 
-    The defaults are the paper's protocol (SPEC §6): 20 strings of 100 unit
+    The defaults are the paper's protocol: 20 strings of 100 unit
     segments, 20 letters, 4 patterned strings from 4 of 8 templates of 8
     symbols repeated 10 times, each copy followed by 2 random symbols. The
     module docstring describes the variants.

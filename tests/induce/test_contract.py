@@ -53,7 +53,10 @@ class Echo(Inducer):
         self.tags = [] if tags is None else tags
 
     def induce(self, performances):
-        ag = as_performances(performances, "Echo.induce")[0]
+        takes = as_performances(performances, "Echo.induce")
+        if len(takes) > 1:
+            raise ValidationError("Echo.induce learns from one actiongram")
+        ag = takes[0]
         patterns = {n: s for n, s in ag.strings.items() if len(s) >= self.least}
         reports = [StringReport(n, "component" if n in patterns else "too short")
                    for n in ag.names]

@@ -1,4 +1,4 @@
-"""PAL at high noise (issue 13): growth past damaged columns, the vote over damaged copies,
+"""PAL at high noise: growth past damaged columns, the vote over damaged copies,
 the information ceiling, and the faster paths checked against plain reference versions."""
 
 from __future__ import annotations
@@ -135,7 +135,7 @@ def test_vote_margin_counts_the_worst_position():
     assert vote_margin(case) == worst
 
 
-def test_levels_that_failed_before_issue_13_succeed():
+def test_levels_that_once_failed_succeed():
     # each of these failed before the damaged-column bridge and the pooled vote
     for seed, noise in ((34, 0.22), (68, 0.22), (91, 0.22), (22, 0.24), (85, 0.24),
                         (16, 0.26), (26, 0.26), (76, 0.26)):

@@ -1,4 +1,4 @@
-"""PAL's group steps at the noise ceiling (issue 13): copies located in all members at once,
+"""PAL's group steps at the noise ceiling: copies located in all members at once,
 windows widened by the conserved columns beyond them, and the members' agreement counted
 together that keeps an end column every member shows beyond chance."""
 

@@ -1,6 +1,6 @@
 """Real motion: which joints perform an action, from several performances of it.
 
-The recipe of SPEC §5 (third round), on kineteme strings grouped by joint:
+The recipe, on kineteme strings grouped by joint:
 
 1. **copies at two levels.** Whole performances, time-normalised and aligned
    by a small shift; and cycles within each performance, timed on the leader's
