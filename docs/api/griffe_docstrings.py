@@ -76,3 +76,35 @@ def _plain_roles(obj) -> None:
     for member in obj.members.values():
         if not member.is_alias:
             _plain_roles(member)
+
+
+class TableSignatures(griffe.Extension):
+    """Give an inducer whose ``__init__`` is made from its parameter table that signature.
+
+    ``psgs.induce.Inducer`` makes the constructor of a subclass that declares ``Conf = ...``
+    (a frozen table) when the class is created, so the source holds no ``__init__`` for griffe
+    to read: the class would be shown without parameters, and its Parameters section would be
+    reported as naming parameters the signature lacks. The signature is read from the class
+    itself (imported: it is the one ``help()`` shows) and written as the class's ``__init__``.
+    """
+
+    def on_class_members(self, *, cls: griffe.Class, **kwargs: Any) -> None:
+        if "__init__" in cls.members or "Conf" not in cls.members:
+            return
+        try:
+            import importlib
+            import inspect
+
+            runtime = getattr(importlib.import_module(cls.module.path), cls.name)
+            signature = inspect.signature(runtime)
+        except (ImportError, AttributeError, TypeError, ValueError):
+            return
+        parameters = [griffe.Parameter("self", kind=griffe.ParameterKind.positional_only)]
+        for p in signature.parameters.values():
+            parameters.append(griffe.Parameter(
+                p.name, kind=griffe.ParameterKind.keyword_only,
+                annotation=None if p.annotation is p.empty else str(p.annotation),
+                default=None if p.default is p.empty else repr(p.default)))
+        init = griffe.Function("__init__", lineno=cls.lineno, endlineno=cls.lineno,
+                               parameters=griffe.Parameters(*parameters), parent=cls)
+        cls.set_member("__init__", init)

@@ -114,3 +114,12 @@ def test_the_default_examples_hold_repetition_and_none():
     assert repeated.names == other.names
     assert Sequential().induce(repeated).components
     assert get("pal").induce(plain).components == ()
+
+
+def test_the_plug_in_guide_runs():
+    import doctest
+    from pathlib import Path
+
+    page = Path(__file__).resolve().parents[2] / "docs" / "inducers.md"
+    result = doctest.testfile(str(page), module_relative=False, optionflags=doctest.ELLIPSIS)
+    assert result.attempted > 5 and result.failed == 0

@@ -6,25 +6,53 @@ The two learners are inducers of their own (:class:`~psgs.induce.pal.learner.Con
 parameter table. PAL's table is their union (:data:`PALConf`, every rule still
 declared once, in the learner's table), with ``timing`` taking one more value,
 ``"performances"``, that sends one actiongram to the real-motion learner.
+PAL's docstring lists the learners' parameters, read from their docstrings.
 """
 
 from __future__ import annotations
+
+import re
 
 from ..base import Inducer, as_performances
 from ..conf import Choice, parameter, union
 from ..results import Induction
 from .conf import TIMINGS, ContentConf
-from .learner import learn_content
+from .learner import ContentPAL, learn_content
 from .motion.conf import MotionConf
-from .motion.learner import learn_performances, same_strings
+from .motion.learner import MotionPAL, learn_performances, same_strings
 
 __all__ = ["PAL", "PALConf"]
 
 #: PAL's parameters: the paper's learner's, then the real-motion learner's, ``engine`` last.
 PALConf = union("PALConf", (ContentConf, MotionConf), last=("engine",), module=__name__,
                 replace={"timing": parameter("auto", Choice((*TIMINGS, "performances")))},
-                doc="PAL's parameters: those of ContentConf and of MotionConf (a row both "
-                    "declare is one parameter), ``timing`` also taking ``\"performances\"``.")
+                doc="""PAL's parameters: those of ContentConf and of MotionConf (a row both
+    declare is one parameter), ``timing`` also taking ``"performances"``.
+
+    Examples
+    --------
+    >>> PALConf(timing="performances").joint_share
+    0.25
+    """)
+
+#: PAL's own words for the one parameter that means more for PAL than for a learner.
+_TIMING = """    timing : {"auto", "content", "period", "performances"}, default "auto"
+        As for :class:`~psgs.induce.pal.learner.ContentPAL`, and ``"performances"``: the
+        real-motion learner, for one actiongram too.
+"""
+
+
+def _parameters_section(*classes: type, own: dict[str, str]) -> str:
+    """The Parameters sections of ``classes``' docstrings joined (a name seen before is
+    skipped, ``own`` replaces an entry), so that each parameter's text is written once."""
+    entries: dict[str, str] = {}
+    for cls in classes:
+        body = (cls.__doc__ or "").split("    Parameters\n    ----------\n", 1)[1]
+        body = re.split(r"\n\n    \w[\w ]*\n    -{3,}\n", body, maxsplit=1)[0]
+        for entry in re.split(r"\n(?=    \w)", body.rstrip("\n")):
+            name = entry.split(":", 1)[0].strip()
+            entries.setdefault(name, own.get(name, entry.rstrip("\n") + "\n"))
+    return "    Parameters\n    ----------\n" + "".join(entries.values())
 
 
 class PAL(Inducer):
@@ -34,24 +62,9 @@ class PAL(Inducer):
     (:func:`~psgs.induce.pal.learner.learn_content`); several performances of one
     action, or one with ``timing="performances"``, go to the real-motion learner
     (:func:`~psgs.induce.pal.motion.learner.learn_performances`). The Induction
-    is PAL's either way (``inducer="pal"``, PAL's parameters recorded).
-
-    Parameters
-    ----------
-    **params
-        Keyword parameters. The paper's learner reads those of
-        :class:`~psgs.induce.pal.conf.ContentConf`: ``min_copies`` (3),
-        ``conserve`` (0.6), ``edge_share`` (0.5), ``column_alpha`` (1e-3),
-        ``match_fraction`` (0.5), ``scan_alpha`` (0.05), ``alpha`` (1e-2),
-        ``sync_fraction`` (0.5), ``window_support`` (0.34), ``max_pattern`` (64),
-        ``seeds`` (3), ``rounds`` (2), ``joins_copies`` (4), ``timing``
-        ("auto"), ``period_quantile`` (0.9), ``period_agreement`` (0.6) and
-        ``engine`` ("auto"). The real-motion learner reads those of
-        :class:`~psgs.induce.pal.motion.conf.MotionConf`: ``min_copies``,
-        ``alpha``, ``evidence`` ("kinetemes"), ``joint_share`` (0.25),
-        ``neighbour_share`` (0.03), ``channel_share`` (0.25), ``max_shift``
-        (0.1), ``min_cycle`` (0.25) and ``min_cycle_score`` (0.05). ``timing``
-        takes ``"content"``, ``"period"``, ``"auto"`` or ``"performances"``.
+    is PAL's either way (``inducer="pal"``, PAL's parameters recorded). The
+    parameters are the two learners' (each documented on its learner, and
+    listed here from there), ``timing`` also taking ``"performances"``.
 
     Examples
     --------
@@ -99,3 +112,9 @@ class PAL(Inducer):
         if len(takes) > 1 or conf.timing == "performances":
             return learn_performances(self, MotionConf.pick(conf), takes)
         return learn_content(self, ContentConf.pick(conf), takes[0])
+
+
+PAL.__doc__ = PAL.__doc__.replace(
+    "    Examples\n    --------\n",
+    _parameters_section(ContentPAL, MotionPAL, own={"timing": _TIMING}) +
+    "\n    Examples\n    --------\n", 1)

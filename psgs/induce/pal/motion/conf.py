@@ -22,33 +22,8 @@ LEARNERS = ("pal", "pal_motion")
 
 @dataclass(frozen=True)
 class MotionConf(Conf):
-    """The parameters of the real-motion learner (several performances; see ``docs/pal.md``).
-
-    Parameters
-    ----------
-    min_copies : int, default 3
-        Fewest cycles within a performance that count as repetition.
-    alpha : float, default 1e-2
-        Chance level a joint's repetition must beat (Bonferroni over channels and joints).
-    evidence : {"kinetemes", "path"}, default "kinetemes"
-        What a joint's repeated motion is measured on: ``"kinetemes"`` (chance-corrected
-        agreement of the kineteme states, with a significance test) or ``"path"`` (plain
-        angular path length, no test: the benchmark's ablation).
-    joint_share : float, default 0.25
-        A significant joint carrying at least this share of the leader's repeated motion is
-        a component.
-    neighbour_share : float, default 0.03
-        A skeleton neighbour (one hop) of a component joins at this share of the leader's
-        repeated motion.
-    channel_share : float, default 0.25
-        A component joint keeps its channels carrying at least this share of its most
-        repeated channel's motion.
-    max_shift : float, default 0.1
-        Whole performances are aligned by a shift of at most this share of their length.
-    min_cycle : float, default 0.25
-        Shortest cycle within a performance, seconds.
-    min_cycle_score : float, default 0.05
-        A joint whose best cycle score is no higher does not cycle (no period).
+    """The parameters of the real-motion learner, each with its rule (their meaning:
+    :class:`~psgs.induce.pal.motion.learner.MotionPAL`; ``docs/pal.md``).
 
     Examples
     --------
