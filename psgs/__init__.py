@@ -12,8 +12,7 @@ Names are imported on first use, so ``import psgs`` stays cheap.
 
 from __future__ import annotations
 
-import importlib
-
+from ._foundation.lazy import lazy_names
 from .errors import BoundReached, FormatError, PSGSError, ValidationError
 from .model import IDLE, PCGS, PSGS, Grammar, Nonterminal, Query, Rule, Terminal, as_word
 
@@ -44,17 +43,7 @@ __all__ = [
 ]
 
 
-def __getattr__(name: str):
-    if name in _LAZY:
-        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
-        globals()[name] = value
-        return value
-    if name in _SUBMODULES:
-        return importlib.import_module(f".{name}", __name__)
-    raise AttributeError(f"module 'psgs' has no attribute {name!r}")
-
-
-def __dir__():
-    # the public names only: help(psgs) and tab completion look at every name listed here,
-    # and listing the submodules would import them all (strategies needs hypothesis)
-    return sorted(set(__all__) | {"__version__"})
+# help(psgs) and tab completion look at every name dir() lists, and listing the submodules
+# would import them all (strategies needs hypothesis): the public names only
+__getattr__, __dir__ = lazy_names(__name__, _LAZY, submodules=_SUBMODULES,
+                                  listed=[*__all__, "__version__"])

@@ -11,6 +11,7 @@ import sys
 import time
 from pathlib import Path
 
+from .._foundation.shell import key_values
 from ..errors import ValidationError
 
 
@@ -80,36 +81,6 @@ def _load_performances(files: list[str]):
     return [load_actiongram(name) for name in files]
 
 
-# -- argument types -------------------------------------------------------------------
-def _parse_value(text: str):
-    lowered = text.lower()
-    if lowered in ("true", "false"):
-        return lowered == "true"
-    for kind in (int, float):
-        try:
-            return kind(text)
-        except ValueError:
-            pass
-    return text
-
-
-def _params(items: list[str]) -> dict:
-    out = {}
-    for item in items:
-        key, eq, value = item.partition("=")
-        if not eq or not key:
-            raise ValidationError(f"--param {item!r}: write KEY=VALUE")
-        out[key.strip()] = _parse_value(value.strip())
-    return out
-
-
-def _make_inducer(name: str, params: dict):
-    """The inducer ``name`` built with ``params`` (``get`` says what is wrong in one line)."""
-    from ..induce import get
-
-    return get(name, **params)
-
-
 # -- psgs induce -------------------------------------------------------------------------
 EXAMPLE_SEED = 1
 EXAMPLE_NOISE = 0.1
@@ -146,9 +117,10 @@ def run_induce(args) -> int:
     0
     """
     from ..format import dumps
+    from ..induce import get
     from ..induce.synthetic import generate
 
-    inducer = _make_inducer(args.inducer, _params(args.param))
+    inducer = get(args.inducer, **key_values(args.param))
     truth = None
     if args.file and args.example:
         raise ValidationError("give FILE or --example, not both")
@@ -241,7 +213,7 @@ def run_locate(args) -> int:
     from ..induce import PAL
     from ..induce.locate import locate
 
-    learned = PAL(**_params(args.param)).induce(_load_performances(args.learn))
+    learned = PAL(**key_values(args.param)).induce(_load_performances(args.learn))
     if not learned.components:
         raise ValidationError(f"nothing learnt from the --learn performances: "
                               f"{learned.verdict or 'no component'}")
