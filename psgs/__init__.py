@@ -16,6 +16,8 @@ from ._foundation.lazy import lazy_names
 from .errors import BoundReached, FormatError, PSGSError, ValidationError
 from .model import IDLE, PCGS, PSGS, Grammar, Nonterminal, Query, Rule, Terminal, as_word
 
+from . import _display  # noqa: F401  (gives the systems their notebook picture)
+
 __version__ = "0.1.0"
 
 # module -> the public names it defines (or re-exports); each is in that module's __all__
