@@ -28,10 +28,11 @@ from .steps import (Configuration, Step, has_query, initial_configuration as _in
                     is_terminal_configuration, is_terminal_form, occurrences, pcgs_communicate,
                     pcgs_steps, psgs_successors, random_step, rewritten)
 
+# Configuration and Step are psgs.steps', the notation psgs.notation's: used here, not
+# offered again from here (one home per name)
 __all__ = [
-    "Configuration", "Step", "Derivation", "initial_configuration", "applicable_steps",
-    "apply_tuple", "communication_step", "is_terminal_configuration",
-    "random_derivation", "format_form", "format_configuration",
+    "Derivation", "initial_configuration", "applicable_steps", "apply_tuple",
+    "communication_step", "random_derivation",
 ]
 
 _System = Union[PSGS, PCGS]
@@ -243,10 +244,11 @@ def apply_tuple(system: _System, configuration: Sequence[Form], sync_tuple,
     >>> import psgs
     >>> gamma = psgs.load("grammars/paper_example.psgs")
     >>> start = psgs.initial_configuration(gamma)
-    >>> step = psgs.apply_tuple(gamma, start, ("S1a", "S2a", "S3a", "S4a"))
+    >>> from psgs.derivation import apply_tuple
+    >>> step = apply_tuple(gamma, start, ("S1a", "S2a", "S3a", "S4a"))
     >>> [" ".join(map(str, form)) for form in step.after]
     ['N13 S1', 'N18 S2', 'N7 S3', 'N23 S4']
-    >>> psgs.apply_tuple(gamma, start, ("#", "#", "#", "#"))
+    >>> apply_tuple(gamma, start, ("#", "#", "#", "#"))
     Traceback (most recent call last):
     ...
     psgs.errors.ValidationError: tuple (#, #, #, #) is not in M

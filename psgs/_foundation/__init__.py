@@ -14,3 +14,6 @@ nothing of psgs but :mod:`psgs.errors`, so any layer may use them; kinetology an
 may import them although they are private (tests/core/test_architecture.py lists what
 kinetology may import).
 """
+
+# the one place the version is written (pyproject.toml reads it; ``psgs.__version__`` is it)
+__version__ = "0.1.0"

@@ -58,7 +58,7 @@ def version() -> str:
     try:
         return metadata.version("psgs")
     except metadata.PackageNotFoundError:
-        from .. import __version__
+        from . import __version__
         return __version__
 
 

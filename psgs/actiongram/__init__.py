@@ -51,7 +51,7 @@ from ._extras import DIRECTIVE as _DIRECTIVE
 from ._extras import _merge, default_actuator, normalise_extras
 from ._extras import read_directive as _read_directive
 
-__all__ = ["Actiongram", "default_actuator", "load_actiongram"]
+__all__ = ["Actiongram", "default_actuator"]
 
 _JSON_FORMAT = "psgs-actiongram"
 
@@ -540,37 +540,19 @@ class Actiongram:
         return f"<Actiongram {len(self)} strings, {self.total_symbols} symbols>"
 
 
-def load_actiongram(path: str | Path) -> Actiongram:
-    """Read an actiongram file: JSON when the name ends in ``.json``, else the text form.
+def _read_file(path: str | Path) -> Actiongram:
+    """Read an actiongram file (``psgs.load``'s reader of them): JSON when the name ends in
+    ``.json``, else the text form.
 
     A file that is not UTF-8 text, or that holds no string at all, is a
     :class:`~psgs.errors.FormatError` (an empty actiongram is almost always
     the wrong file; build one in Python with ``Actiongram.from_strings({})``).
 
-    Parameters
-    ----------
-    path : str or Path
-        A ``.json`` file, or a file in the text form.
-
-    Returns
-    -------
-    Actiongram
-
-    Raises
-    ------
-    FormatError
-        For malformed text, naming ``path:line:col``; for a file that is not UTF-8 or holds
-        no string.
-    FileNotFoundError
-        When the file does not exist.
-
-    Examples
-    --------
     >>> import tempfile
     >>> from pathlib import Path
     >>> path = Path(tempfile.mkdtemp()) / "walk.actiongram"
     >>> _ = path.write_text("lknee: B G R@2.5 Y\\nrknee: Y B\\n")
-    >>> ag = load_actiongram(path)
+    >>> ag = _read_file(path)
     >>> ag.names, ag.durations["lknee"]
     (('lknee', 'rknee'), (1.0, 1.0, 2.5, 1.0))
     """

@@ -136,7 +136,7 @@ def run_derive(args) -> int:
 
 
 def _show_words(system: PSGS | PCGS, words) -> str:
-    from ..derivation import format_configuration, format_form
+    from ..notation import format_configuration, format_form
     if isinstance(system, PCGS):
         return format_form(words, system)
     return format_configuration(words, system)
@@ -175,7 +175,8 @@ def _witness(system: PSGS | PCGS, words) -> str:
 
 
 def _random(system: PSGS | PCGS, args) -> int:
-    from ..derivation import format_configuration, random_derivation
+    from ..derivation import random_derivation
+    from ..notation import format_configuration
     derivation = random_derivation(system, args.seed, max_steps=args.max_steps)
     if args.trace:
         print(format_configuration(derivation.configurations[0], system))

@@ -70,7 +70,7 @@ MOTION_SUFFIXES = (".bvh", ".amc", ".asf", ".c3d", ".fbx", ".trc")
 
 def _load_performances(files: list[str]):
     """Actiongram files; a motion-capture file gets a one-line hint (psgs never reads motion)."""
-    from ..actiongram import load_actiongram
+    from ..format import load
 
     for name in files:
         if Path(name).suffix.lower() in MOTION_SUFFIXES:
@@ -78,7 +78,7 @@ def _load_performances(files: list[str]):
             raise ValidationError(f"{name} is motion capture, not an actiongram: run "
                                   f"'kinetology segment {name} -o {stem}' first, then "
                                   f"'psgs induce {stem}'")
-    return [load_actiongram(name) for name in files]
+    return [load(name, kind="actiongram") for name in files]
 
 
 # -- psgs induce -------------------------------------------------------------------------
@@ -116,7 +116,7 @@ def run_induce(args) -> int:
     ...
     0
     """
-    from ..format import dumps
+    from ..writing import dumps
     from ..induce import get
     from ..induce.synthetic import generate
 
