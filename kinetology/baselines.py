@@ -1,4 +1,4 @@
-"""The codecs ours is compared with: quantise-and-delta (SPEC §7's peer).
+"""The codecs ours is compared with: quantise-and-delta (the usual peer of a segment codec).
 
 Quantise-and-delta is what a user would pick without kinetology: round each
 channel to multiples of ``step`` degrees, take frame-to-frame differences

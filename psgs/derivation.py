@@ -2,7 +2,7 @@
 
 A *configuration* holds one sentential form per component. For a
 :class:`~psgs.model.PSGS`, a step applies one synchronisation tuple
-(SPEC D1-D3, see ``docs/semantics.md``); for a :class:`~psgs.model.PCGS` a
+(the decisions D1-D3 of ``docs/semantics.md``); for a :class:`~psgs.model.PCGS` a
 step is either a communication step (which has priority) or a rewriting
 step in which every non-terminal component rewrites once.
 
@@ -93,7 +93,7 @@ _PCGS_SYMBOLS = frozenset({Terminal, Nonterminal, Query})
 def applicable_steps(system: _System, configuration: Sequence[Form]) -> tuple[Step, ...]:
     """Every step that applies to ``configuration``, in a deterministic order.
 
-    PSGS (SPEC D3): a tuple ``(p_1, …, p_n)`` applies iff for every component
+    PSGS (decision D3 of docs/semantics.md): a tuple ``(p_1, …, p_n)`` applies iff for every component
     ``i`` with ``p_i ≠ #`` whose form is not terminal, the left-hand side of
     ``p_i`` occurs in it; idle and terminal components stay unchanged, and a
     tuple that would change nothing does not apply. Tuples come in the order

@@ -187,7 +187,7 @@ def test_unknown_names_in_durations_are_reported_in_the_order_given():
     assert seen == {"durations or starts given for unknown string 'q1'\n"}
 
 
-# -- the real-motion extras: displacements, actuator map, skeleton (issue 9) ----------------
+# -- the optional extras: displacements, actuator map, skeleton ------------------------------
 
 def test_displacements_merge_with_their_segments_and_default_to_unknown():
     ag = Actiongram.from_strings({"knee.rx": "abbc", "knee.ry": "xy"},
@@ -301,7 +301,7 @@ def test_round_trip_text_and_json_with_extras(ag):
     assert Actiongram.from_json(ag.to_json()) == ag
 
 
-# ---- issue 11: inputs that crashed with an undocumented exception
+# ---- inputs that once crashed with an undocumented exception
 def test_deeply_nested_json_is_a_format_error():
     with pytest.raises(FormatError, match="nested too deeply"):
         Actiongram.from_json("[" * 100_000, source="deep.json")

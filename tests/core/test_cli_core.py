@@ -220,7 +220,7 @@ def test_a_reader_that_goes_away_ends_the_command_quietly():
     assert done.returncode in (141, 0)
 
 
-# ---------------------------------------------------------------- issue 11: usability
+# ---------------------------------------------------------------- usability
 def _parsers(parser):
     """``parser`` and every subcommand parser under it."""
     import argparse

@@ -1,4 +1,4 @@
-"""The PSGS derivation engine: SPEC D1-D4 semantics, steps, derivations, random derivations."""
+"""The PSGS derivation engine: the semantics of docs/semantics.md (D1-D4), steps, derivations, random derivations."""
 
 from __future__ import annotations
 

@@ -121,7 +121,7 @@ def test_view_invariance_needs_at_least_one_view():
         view_invariance(_planar_leg(), ("Thigh", "Shin", "Shin.end"), views=0)
 
 
-# ---- issue 11: --frame-rate for AMC, misspelt channels listed
+# ---- --frame-rate for AMC, misspelt channels listed
 def _small_amc(tmp_path):
     from test_kinetology_readers import SMALL_AMC, SMALL_ASF
     (tmp_path / "s.asf").write_text(SMALL_ASF)
