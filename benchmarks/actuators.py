@@ -1,4 +1,4 @@
-"""Which joints perform an action: PAL against two peers on labelled real motion (issue 9).
+"""Which joints perform an action: PAL against two peers on labelled real motion.
 
 Run from the repository root (heavy: under the lock on a shared machine):
 
@@ -13,8 +13,7 @@ one style, and the two walks of CMU subject 02 (the tour's example). Every metho
 list of :class:`kinetology.Motion` performances and names the joints that take part:
 
 * **PAL**: each performance segmented with kinetology's defaults, ``PAL().induce(list)``,
-  reading ``Induction.actuators``. With a PAL that takes one actiongram only (before issue 9's
-  PAL), the performances are joined into one motion, segmented, and the components mapped to
+  reading ``Induction.actuators``. With a PAL that takes one actiongram only (an older PAL), the performances are joined into one motion, segmented, and the components mapped to
   joints by the dot rule: what a user could do then.
 * **PAL (path)**: the ablation, ``PAL(evidence="path")`` (the same selection with angular path
   length in place of kineteme agreement) where PAL has that switch; "n/a" otherwise.

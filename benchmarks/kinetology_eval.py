@@ -134,7 +134,7 @@ def main(argv=None) -> int:
     plotting.save(plotting.plot_selectivity(motions, perfs, KEY_CHANNELS[:4], seconds=4.0),
                   IMG / "kin_selectivity.png")
     settings = {"defaults": {},
-                "before issue 9: 0.025 s, 5 deg/s, 200 deg/s², no relative band":
+                "the earlier defaults: 0.025 s, 5 deg/s, 200 deg/s², no relative band":
                     {"smoothing": 0.025, "velocity_deadband": 5.0,
                      "acceleration_deadband": 200.0, "relative_deadband": 0.0},
                 "smoothing 0.1 s, dead bands 20 deg/s, 1000 deg/s²":

@@ -46,9 +46,9 @@ from psgs.induce import PAL, Sequential  # noqa: E402
 from psgs.induce.sweep import noise_sweep  # noqa: E402
 from psgs.induce.synthetic import PAPER_POINTS, generate, vote_margin  # noqa: E402
 
-# every 2%, and 25% itself (the issue's "100% through 25%")
+# every 2%, and 25% itself (the paper's curve holds 100% up to 25%)
 PAPER_LEVELS = tuple(sorted({round(0.02 * k, 2) for k in range(21)} | {0.25}))
-# every 4%, and 25% and 30% themselves (the levels item 1 of issue 13 names)
+# every 4%, and 25% and 30% themselves (the levels the paper's curve is read at)
 VARIANT_LEVELS = tuple(sorted({round(0.04 * k, 2) for k in range(11)} | {0.25, 0.30}))
 CHECK_LEVELS = (0.22, 0.24, 0.25, 0.26, 0.28)
 CHECK_SEED = 1_000_000  # the ceiling check's actiongrams are not the sweep's

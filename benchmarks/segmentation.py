@@ -8,7 +8,7 @@ A sample is one value of one channel in one frame. Measures, best of ``--repeat`
 reading every CMU AMC file, segmenting every angle channel of those files with the default
 parameters (``segments``, and ``segment``: the same plus building the ``psgs.Actiongram``),
 the same for the Bandai Namco takes, and segmenting a synthetic 100,000-frame x 62-channel
-motion (issue 13's target: at least 50 M samples/s), each with ``engine="numpy"`` and
+motion (the target: at least 50 M samples/s), each with ``engine="numpy"`` and
 ``engine="numba"`` side by side; the synthetic walk also pinned to one core
 (``os.sched_getaffinity``), which is the numba engine's single-thread figure. The compiled
 functions are compiled (or loaded from numba's cache) before anything is timed; the time

@@ -9,7 +9,7 @@ the paper's five kinetological principles. ``psgs`` is used only for its
 
 from __future__ import annotations
 
-import importlib
+from psgs._foundation.lazy import lazy_names
 
 from .motion import AXES, Joint, Motion, MotionFormatError, Skeleton
 # imported now: the function shares its module's name, and a later first import of the
@@ -32,13 +32,4 @@ _LAZY = {
 __all__ = ["Motion", "MotionFormatError", "Joint", "Skeleton", "AXES", "performances", *_LAZY]
 
 
-def __getattr__(name: str):
-    if name in _LAZY:
-        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'kinetology' has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_names(__name__, _LAZY, listed=__all__)

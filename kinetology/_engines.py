@@ -2,7 +2,8 @@
 
 ``engine="auto"`` (the default of every function that segments) takes the compiled engine
 when numba can be imported (``pip install 'psgs[fast]'``) and numpy's otherwise; ``"numpy"``
-and ``"numba"`` ask for one. The choice is an argument, never a setting held anywhere.
+and ``"numba"`` ask for one. The choice is an argument, never a setting held anywhere; how it
+is made is :mod:`psgs._foundation.engines`'s, shared with PAL.
 """
 
 from __future__ import annotations
@@ -13,11 +14,11 @@ from typing import Callable
 
 import numpy as np
 
+from psgs._foundation import engines
+
 from . import _kinetemes
 
 __all__: list[str] = []  # private: kinetology.segmentation is the interface
-
-ENGINES = ("auto", "numpy", "numba")
 
 
 @dataclass(frozen=True)
@@ -40,33 +41,18 @@ NUMPY = Engine("numpy", _kinetemes.largest_step, _kinetemes.smooth_channels, _ra
 
 
 @lru_cache(maxsize=1)
-def _compiled() -> Engine | str:
-    """The numba engine, or why it cannot be had (numba's import error); looked up once."""
-    try:
-        import numba  # noqa: F401  (only to know whether it imports)
-    except ImportError as error:
-        return str(error)
+def _compiled() -> Engine:
+    """The numba engine (imported, and its loops compiled on first call, only when chosen)."""
     from . import _kinetemes_jit as jit
     return Engine("numba", jit.largest_step, jit.smooth_channels, jit.row_ranges,
                   jit.segment_columns)
 
 
 def select(engine: str = "auto") -> Engine:
-    """The engine named ``engine`` (one of :data:`ENGINES`).
+    """The engine named ``engine`` (one of ``"auto"``, ``"numpy"``, ``"numba"``).
 
-    Raises ``ValueError`` for another name and ``ImportError`` when ``"numba"`` is asked for
+    Raises :class:`psgs.errors.ValidationError` (a ``ValueError``) for another name and
+    :class:`psgs.errors.MissingDependency` (an ``ImportError``) when ``"numba"`` is asked for
     and numba does not import.
     """
-    if not isinstance(engine, str) or engine not in ENGINES:
-        raise ValueError(f"engine must be one of {', '.join(map(repr, ENGINES))}, "
-                         f"not {engine!r}")
-    if engine == "numpy":
-        return NUMPY
-    compiled = _compiled()
-    if isinstance(compiled, Engine):
-        return compiled
-    if engine == "numba":
-        raise ImportError(f"engine='numba' needs numba, which does not import here "
-                          f"({compiled}); install it with `pip install 'psgs[fast]'`, or use "
-                          f"engine='numpy'")
-    return NUMPY
+    return engines.select(engine, numpy=NUMPY, numba=_compiled)

@@ -1,4 +1,4 @@
-"""The codecs ours is compared with: quantise-and-delta (SPEC §7's peer).
+"""The codecs ours is compared with: quantise-and-delta (the usual peer of a segment codec).
 
 Quantise-and-delta is what a user would pick without kinetology: round each
 channel to multiples of ``step`` degrees, take frame-to-frame differences
@@ -12,6 +12,8 @@ import lzma
 import struct
 
 import numpy as np
+
+from psgs.errors import ValidationError
 
 from .motion import Motion, MotionFormatError
 
@@ -50,7 +52,7 @@ def quantise_delta_compress(motion: Motion, step: float) -> bytes:
     True
     """
     if not step > 0:
-        raise ValueError(f"step must be positive, not {step!r}")
+        raise ValidationError(f"step must be positive, not {step!r}")
     q = np.round(motion.values / step).astype(np.int64)
     deltas = np.diff(q, axis=0, prepend=np.zeros((1, q.shape[1]), np.int64))
     dtype = np.int16 if np.abs(deltas).max(initial=0) < 2 ** 15 else np.int32

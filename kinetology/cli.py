@@ -1,9 +1,11 @@
 """The ``kinetology`` command: segment, compress, decompress, evaluate, plot.
 
-Every error a user can cause (a bad file, an unknown channel, a bad number)
-is one line on stderr and exit status 2, never a traceback. The exit statuses
-are the table of the ``psgs`` command (:data:`EXIT_STATUS_HELP`), printed at
-the end of every ``--help``.
+Every error a user can cause (a bad file, an unknown channel, a bad number) is one of the
+project's errors (:class:`psgs.PSGSError`), one line on stderr and exit status 2, never a
+traceback; any other exception is a bug and keeps its traceback. The command runs in the
+shell every command of the distribution shares (:mod:`psgs._foundation.shell`: the exit
+statuses, printed at the end of every ``--help``); it is also ``psgs kinetology ...``
+(entry-point group ``psgs.commands``).
 """
 
 from __future__ import annotations
@@ -14,22 +16,11 @@ from pathlib import Path
 
 import numpy as np
 
+from psgs._foundation.shell import positive_float, run, version, with_exit_status_help
+from psgs.errors import ValidationError
+
 from .motion import MotionFormatError
 from .segmentation import DEFAULTS
-
-#: The exit-status table of every psgs and kinetology command (equal to
-#: ``psgs.cli.EXIT_STATUS_HELP``, a test checks: kinetology does not import the psgs CLI).
-EXIT_STATUS_HELP = """\
-exit status (the same for every psgs and kinetology command):
-  0    yes / done
-  1    no: check: the words are not in the language; derive: the random derivation is
-       blocked, or --enumerate found no word up to --max-length
-  2    usage or input error: a bad option, a file that cannot be read or is malformed
-       (one line on stderr, never a traceback)
-  3    a bound was hit or the answer is unknown: a search or derivation stopped at a
-       budget (what was found is still printed; the bound is named on stderr)
-  130  interrupted (Ctrl-C)
-  141  the reader of the output went away (e.g. | head)"""
 
 _FILE_HELP = "a motion file: .bvh, or .amc (its .asf skeleton is found beside it)"
 _FRAME_RATE_HELP = ("frames per second of an AMC file (AMC files do not say; default 120, the "
@@ -44,16 +35,6 @@ _PARAM_HELP = {
                          "speed and acceleration",
     "unwrap": "period in degrees of rotation channels, unwrapped before smoothing (0: off)",
 }
-
-
-class _TableHelpFormatter(argparse.HelpFormatter):
-    """Wraps descriptions as argparse does, but keeps text with line breaks (the exit-status
-    table) as written."""
-
-    def _fill_text(self, text, width, indent):
-        if "\n" in text:
-            return "".join(indent + line for line in text.splitlines(keepends=True))
-        return super()._fill_text(text, width, indent)
 
 
 _CODEC_HELP = {
@@ -79,14 +60,6 @@ def _add_params(parser, *, codec: bool = False) -> None:
                             help=f"{_PARAM_HELP[name]} (default {default:g})")
 
 
-def _version() -> str:
-    from importlib import metadata
-    try:
-        return metadata.version("psgs")  # kinetology ships in the psgs distribution
-    except metadata.PackageNotFoundError:  # run from a checkout
-        return "(not installed)"  # kinetology reads psgs only for actiongrams, not its version
-
-
 def _read(args, path: str):
     """Read a motion file, with ``--frame-rate`` for AMC (a BVH file states its own rate)."""
     from .readers import read
@@ -97,16 +70,6 @@ def _read(args, path: str):
         raise MotionFormatError("--frame-rate applies to AMC files; a BVH file states its own "
                                 "frame time", source=path)
     return read(path, frame_rate=rate)
-
-
-def _positive_rate(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
-    if not (np.isfinite(value) and value > 0):
-        raise argparse.ArgumentTypeError(f"{text!r} is not a positive finite number")
-    return value
 
 
 def _params(args, names) -> dict:
@@ -131,12 +94,12 @@ def _cmd_segment(args) -> int:
     out_dir = None
     if several or (args.output and (args.output.endswith("/") or Path(args.output).is_dir())):
         if not args.output or args.output == "-":
-            raise ValueError("several files make one actiongram each: give -o DIR/")
+            raise ValidationError("several files make one actiongram each: give -o DIR/")
         out_dir = Path(args.output)
         out_dir.mkdir(parents=True, exist_ok=True)
     names = [Path(f).stem for f in args.files]
     if out_dir is not None and len(set(names)) != len(names):
-        raise ValueError("two files share a name; their actiongrams would overwrite each other")
+        raise ValidationError("two files share a name; their actiongrams would overwrite each other")
     if args.labels:
         return _segment_spans(args, channels)
     motions, spans = [], []
@@ -172,14 +135,14 @@ def _segment_spans(args, channels) -> int:
     from .performances import from_spans, segment_performances
 
     if len(args.files) != 1 or not args.output or args.output == "-":
-        raise ValueError("--labels cuts one take into performances: give one FILE and -o DIR/")
+        raise ValidationError("--labels cuts one take into performances: give one FILE and -o DIR/")
     if args.start is not None or args.stop is not None:
-        raise ValueError("--labels and --start/--stop do not go together")
+        raise ValidationError("--labels and --start/--stop do not go together")
     motion = _read(args, args.files[0])
     spans = spans_of(args.labels, motion.frame_rate)
     parts = from_spans(motion, spans, args.label, min_seconds=args.min_seconds)
     if not parts:
-        raise ValueError(f"no span{' labelled ' + repr(args.label) if args.label else ''} of "
+        raise ValidationError(f"no span{' labelled ' + repr(args.label) if args.label else ''} of "
                          f"at least {args.min_seconds:g} s in {args.labels}")
     out_dir = Path(args.output)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -203,9 +166,14 @@ def _cmd_compress(args) -> int:
     motion = _read(args, args.file)
     params = _params(args, CODEC_DEFAULTS)
     if args.max_error is not None and params:
-        raise ValueError(f"--max-error chooses the settings itself; drop "
+        raise ValidationError(f"--max-error chooses the settings itself; drop "
                          f"{', '.join('--' + n.replace('_', '-') for n in sorted(params))}")
-    data = compress(motion, max_error=args.max_error, **params)
+    try:
+        data = compress(motion, max_error=args.max_error, **params)
+    except ValueError as exc:  # the codec's documented refusal of a setting, as one line
+        if isinstance(exc, ValidationError):
+            raise
+        raise ValidationError(str(exc)) from exc
     out = args.output or str(Path(args.file).with_suffix(".kin"))
     Path(out).write_bytes(data)
     size = Path(args.file).stat().st_size
@@ -317,22 +285,13 @@ def _cmd_plot(args) -> int:
     return 0
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The argument parser of the ``kinetology`` command (one subparser per subcommand)."""
-    parser = argparse.ArgumentParser(
-        prog="kinetology",
-        description="Motion capture (BVH, ASF/AMC) in, actiongrams out; compression by "
-                    "segments; the paper's kinetological principles measured.")
-    parser.add_argument("--version", action="version", version=f"%(prog)s {_version()}",
-                        help="print the version and exit")
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True,
-                                help="the subcommand (COMMAND --help for its options)")
-
+def _add_commands(sub) -> None:
+    """Add segment, compress, decompress, evaluate and plot under ``sub``."""
     p = sub.add_parser("segment", help="segment motion files into actiongrams (text form), "
                                        "one per file (one performance each)")
     p.add_argument("files", nargs="+", metavar="FILE", help=_FILE_HELP + "; several files are "
                    "performances of one action")
-    p.add_argument("--frame-rate", type=_positive_rate, metavar="FPS", help=_FRAME_RATE_HELP)
+    p.add_argument("--frame-rate", type=positive_float, metavar="FPS", help=_FRAME_RATE_HELP)
     p.add_argument("--channels", nargs="+", help="channels to keep (names or comma lists)")
     p.add_argument("--start", type=float, default=None,
                    help="seconds: segment only from here (a performance within a take)")
@@ -349,7 +308,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("compress", help="compress a motion file by segments")
     p.add_argument("file", help=_FILE_HELP)
-    p.add_argument("--frame-rate", type=_positive_rate, metavar="FPS", help=_FRAME_RATE_HELP)
+    p.add_argument("--frame-rate", type=positive_float, metavar="FPS", help=_FRAME_RATE_HELP)
     p.add_argument("-o", "--output", help="output file (default: FILE with suffix .kin)")
     _add_params(p, codec=True)
     p.set_defaults(run=_cmd_compress)
@@ -358,13 +317,13 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("file", help="a .kin file written by kinetology compress")
     p.add_argument("-o", "--output", help="CSV output (default: stdout)")
     p.add_argument("--against", help="original motion file: print the mean absolute error")
-    p.add_argument("--frame-rate", type=_positive_rate, metavar="FPS",
+    p.add_argument("--frame-rate", type=positive_float, metavar="FPS",
                    help="--against: " + _FRAME_RATE_HELP)
     p.set_defaults(run=_cmd_decompress)
 
     p = sub.add_parser("evaluate", help="measure the five kinetological principles")
     p.add_argument("files", nargs="*", metavar="FILE", help=_FILE_HELP + " (any number)")
-    p.add_argument("--frame-rate", type=_positive_rate, metavar="FPS", help=_FRAME_RATE_HELP)
+    p.add_argument("--frame-rate", type=positive_float, metavar="FPS", help=_FRAME_RATE_HELP)
     p.add_argument("--mocap6", help="cmu-mocap6 folder: reproducibility and selectivity")
     p.add_argument("--views", type=int, default=36, help="viewpoints on the circle")
     _add_params(p)
@@ -373,7 +332,7 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("plot", help="draw a joint angle by state, its reconstruction, or "
                                     "the view-invariance picture")
     p.add_argument("file", help=_FILE_HELP)
-    p.add_argument("--frame-rate", type=_positive_rate, metavar="FPS", help=_FRAME_RATE_HELP)
+    p.add_argument("--frame-rate", type=positive_float, metavar="FPS", help=_FRAME_RATE_HELP)
     p.add_argument("--channel", required=True,
                    help="channel (states, reconstruction) or angle name such as lknee (view)")
     p.add_argument("--kind", choices=("states", "reconstruction", "view"), default="states",
@@ -384,38 +343,36 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("-o", "--output", required=True, help="image file (.png, .svg, .pdf)")
     _add_params(p)
     p.set_defaults(run=_cmd_plot)
-    parser.epilog = EXIT_STATUS_HELP
-    for command in (parser, *sub.choices.values()):
-        command.epilog = EXIT_STATUS_HELP
-        command.formatter_class = _TableHelpFormatter
+
+
+_DESCRIPTION = ("Motion capture (BVH, ASF/AMC) in, actiongrams out; compression by segments; "
+                "the paper's kinetological principles measured.")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of the ``kinetology`` command (one subparser per subcommand)."""
+    parser = argparse.ArgumentParser(prog="kinetology", description=_DESCRIPTION)
+    parser.add_argument("--version", action="version", version=f"%(prog)s {version()}",
+                        help="print the version and exit")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True,
+                                help="the subcommand (COMMAND --help for its options)")
+    _add_commands(sub)
+    with_exit_status_help(parser)
     return parser
 
 
+def register(subparsers) -> None:
+    """Add ``kinetology`` (segment, compress, ...) to psgs's subcommands (``psgs.commands``)."""
+    parser = subparsers.add_parser("kinetology", help="motion capture in, actiongrams out",
+                                   description=_DESCRIPTION)
+    sub = parser.add_subparsers(dest="kinetology_command", metavar="COMMAND", required=True,
+                                help="the subcommand (COMMAND --help for its options)")
+    _add_commands(sub)
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Run the ``kinetology`` command; returns the exit status."""
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    try:
-        return int(args.run(args) or 0)
-    except (MotionFormatError, ValueError, KeyError, ImportError) as exc:
-        message = exc.args[0] if isinstance(exc, KeyError) and exc.args else exc
-        print(f"kinetology: error: {message}", file=sys.stderr)
-        return 2
-    except OSError as exc:
-        where = f"{exc.filename}: " if getattr(exc, "filename", None) else ""
-        print(f"kinetology: error: {where}{exc.strerror or exc}", file=sys.stderr)
-        return 2
-    except RecursionError:  # the last line of defence: a limit of Python, not a traceback
-        print("kinetology: error: the input nests too deeply (Python's recursion limit)",
-              file=sys.stderr)
-        return 2
-    except MemoryError:
-        print("kinetology: out of memory: the file needs more memory than there is",
-              file=sys.stderr)
-        return 3
-    except KeyboardInterrupt:
-        print("kinetology: interrupted", file=sys.stderr)
-        return 130
+    """Run the ``kinetology`` command; returns the exit status (the shell's table)."""
+    return run(build_parser(), argv)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -28,6 +28,8 @@ from types import MappingProxyType
 
 import numpy as np
 
+from psgs.errors import ValidationError
+
 from .codec import compress, decompress
 from .kinematics import forward_kinematics, joint_angle
 from .motion import Motion
@@ -250,7 +252,7 @@ def view_invariance(motion: Motion, triple: tuple[str, str, str], *, views: int 
     array([1.  , 0.25, 1.  , 0.25])
     """
     if int(views) != views or views < 1:
-        raise ValueError(f"views must be a positive whole number, not {views!r}")
+        raise ValidationError(f"views must be a positive whole number, not {views!r}")
     positions = forward_kinematics(motion)
     index = [motion.skeleton.index(name) for name in triple]
     angle3 = joint_angle(positions, *index)

@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from psgs.errors import ValidationError
+
 from .motion import Motion, MotionFormatError
 
 __all__ = ["rotation_matrices", "forward_kinematics", "joint_angle"]
@@ -116,7 +118,7 @@ def forward_kinematics(motion: Motion) -> np.ndarray:
     """
     skeleton = motion.skeleton
     if skeleton is None:
-        raise ValueError(f"{motion.source}: no skeleton, so no forward kinematics "
+        raise ValidationError(f"{motion.source}: no skeleton, so no forward kinematics "
                          f"(read an AMC file with its ASF)")
     frames = motion.frames
     index = {name: i for i, name in enumerate(motion.channels)}

@@ -14,6 +14,8 @@ from types import MappingProxyType
 
 import numpy as np
 
+from psgs.errors import FormatError, NotFound, ValidationError
+
 __all__ = ["MotionFormatError", "Joint", "Skeleton", "Motion", "AXES", "build_motion"]
 
 #: Channel axes, in the order a joint's channels are listed.
@@ -21,12 +23,14 @@ AXES = ("tx", "ty", "tz", "rx", "ry", "rz")
 _MESSAGE_LIMIT = 200  # characters of an error message, so that it stays one readable line
 
 
-class MotionFormatError(ValueError):
+class MotionFormatError(FormatError):
     """A motion file (or encoded motion) that could not be read.
 
     ``str(error)`` is one line, ``file:line:col: message`` (line and column
     left out when they do not apply); the parts are kept as attributes.
-    A ``ValueError``, so code that catches bad values catches it too.
+    A :class:`psgs.FormatError`, so one ``except psgs.PSGSError`` catches every
+    error of the distribution, and a ``ValueError``, so code that catches bad
+    values catches it too.
 
     Parameters
     ----------
@@ -51,19 +55,7 @@ class MotionFormatError(ValueError):
                  column: int | None = None) -> None:
         if len(message) > _MESSAGE_LIMIT:  # garbage input (a binary file) quoted in full
             message = message[:_MESSAGE_LIMIT - 4] + " ..."
-        self.message = message
-        self.source = str(source)
-        self.line = line
-        self.column = column
-        super().__init__(str(self))
-
-    def __str__(self) -> str:
-        where = self.source
-        if self.line is not None:
-            where += f":{self.line}"
-            if self.column is not None:
-                where += f":{self.column}"
-        return f"{where}: {self.message}"
+        super().__init__(message, source=str(source), line=line, column=column)
 
 
 @dataclass(frozen=True, slots=True)
@@ -136,7 +128,7 @@ class Skeleton:
     >>> Skeleton((Joint("knee", 1, (0, -10, 0)), Joint("hip", None, (0, 0, 0))))
     Traceback (most recent call last):
     ...
-    ValueError: joint 'knee' has parent 1, which does not come before it
+    psgs.errors.ValidationError: joint 'knee' has parent 1, which does not come before it
     """
 
     joints: tuple[Joint, ...]
@@ -145,7 +137,7 @@ class Skeleton:
     def __post_init__(self) -> None:
         for index, joint in enumerate(self.joints):
             if joint.parent is not None and not 0 <= joint.parent < index:
-                raise ValueError(f"joint {joint.name!r} has parent {joint.parent}, which does "
+                raise ValidationError(f"joint {joint.name!r} has parent {joint.parent}, which does "
                                  f"not come before it")
 
     @property
@@ -158,7 +150,7 @@ class Skeleton:
         for i, joint in enumerate(self.joints):
             if joint.name == name:
                 return i
-        raise KeyError(f"no joint named {name!r} (joints: {', '.join(self.names)})")
+        raise NotFound(f"no joint named {name!r} (joints: {', '.join(self.names)})")
 
 
 @dataclass(frozen=True, eq=False)
@@ -199,7 +191,7 @@ class Motion:
     >>> Motion(np.zeros((3, 2)), ("knee.rx",), 120.0)
     Traceback (most recent call last):
     ...
-    ValueError: 1 channel names for 2 columns
+    psgs.errors.ValidationError: 1 channel names for 2 columns
     """
 
     values: np.ndarray
@@ -212,18 +204,18 @@ class Motion:
     def __post_init__(self) -> None:
         values = np.array(self.values, dtype=float, copy=True)
         if values.ndim != 2:
-            raise ValueError(f"motion values must be frames x channels, got shape {values.shape}")
+            raise ValidationError(f"motion values must be frames x channels, got shape {values.shape}")
         channels = tuple(self.channels)
         if values.shape[1] != len(channels):
-            raise ValueError(f"{len(channels)} channel names for {values.shape[1]} columns")
+            raise ValidationError(f"{len(channels)} channel names for {values.shape[1]} columns")
         if len(set(channels)) != len(channels):
-            raise ValueError("channel names must be distinct")
+            raise ValidationError("channel names must be distinct")
         if not np.isfinite(values).all():
             frame, column = np.argwhere(~np.isfinite(values))[0]
-            raise ValueError(f"value at frame {frame}, channel {channels[column]!r} is not finite")
+            raise ValidationError(f"value at frame {frame}, channel {channels[column]!r} is not finite")
         rate = float(self.frame_rate)
         if not np.isfinite(rate) or rate <= 0:
-            raise ValueError(f"frame rate must be positive, not {self.frame_rate!r}")
+            raise ValidationError(f"frame rate must be positive, not {self.frame_rate!r}")
         values.setflags(write=False)
         object.__setattr__(self, "values", values)
         object.__setattr__(self, "channels", channels)
@@ -249,7 +241,7 @@ class Motion:
             import difflib
             close = difflib.get_close_matches(str(channel), self.channels, n=3)
             hint = f" (did you mean {', '.join(close)}?)" if close else ""
-            raise KeyError(f"no channel {channel!r} in {self.source}{hint}; its "
+            raise NotFound(f"no channel {channel!r} in {self.source}{hint}; its "
                            f"{len(self.channels)} channels: {', '.join(self.channels)}") from None
 
     def column(self, channel: str) -> np.ndarray:

@@ -12,6 +12,8 @@ from typing import Iterable
 
 import numpy as np
 
+from psgs.errors import ValidationError
+
 from .labels import Span
 from .motion import Motion
 
@@ -55,17 +57,17 @@ def cut(motion: Motion, start: float | None = None, stop: float | None = None) -
     where = f"the take {motion.source} ({length:g} s, 0 to {length:g})"
     tolerance = 0.5 / motion.frame_rate  # half a frame: label spans are rounded to frames
     if not (begin == begin and end == end):  # NaN
-        raise ValueError(f"start and stop must be numbers, not {start!r}, {stop!r}")
+        raise ValidationError(f"start and stop must be numbers, not {start!r}, {stop!r}")
     if begin < 0 or begin >= length:
-        raise ValueError(f"start {begin:g} s is outside {where}")
+        raise ValidationError(f"start {begin:g} s is outside {where}")
     if end > length + tolerance or end <= 0:
-        raise ValueError(f"stop {end:g} s is outside {where}")
+        raise ValidationError(f"stop {end:g} s is outside {where}")
     if end <= begin:
-        raise ValueError(f"stop {end:g} s is not after start {begin:g} s")
+        raise ValidationError(f"stop {end:g} s is not after start {begin:g} s")
     first = int(round(begin * motion.frame_rate))
     last = min(motion.frames, int(round(end * motion.frame_rate)))
     if last <= first:
-        raise ValueError(f"{begin:g}..{end:g} s holds no frame at {motion.frame_rate:g} fps")
+        raise ValidationError(f"{begin:g}..{end:g} s holds no frame at {motion.frame_rate:g} fps")
     offset = motion.meta.get("cut", (0.0, length))[0]
     meta = {**motion.meta, "cut": (offset + first / motion.frame_rate,
                                    offset + last / motion.frame_rate)}
@@ -181,7 +183,7 @@ def performances(*sources, spans: Iterable[Span] | None = None, label: str | Non
     if spans is None:
         return tuple(motions)
     if len(motions) != 1:
-        raise ValueError(f"spans label one take; got {len(motions)} sources")
+        raise ValidationError(f"spans label one take; got {len(motions)} sources")
     return from_spans(motions[0], spans, label, min_seconds=min_seconds)
 
 

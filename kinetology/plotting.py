@@ -11,6 +11,8 @@ from types import MappingProxyType
 
 import numpy as np
 
+from psgs.errors import MissingDependency, ValidationError
+
 from .motion import Motion
 from .segmentation import DEFAULTS, STATES, states
 
@@ -28,7 +30,7 @@ def _pyplot():
         matplotlib.use("Agg", force=False)
         import matplotlib.pyplot as plt
     except ImportError:  # pragma: no cover - depends on the environment
-        raise ImportError("plotting needs matplotlib: pip install 'psgs[plot]' "
+        raise MissingDependency("plotting needs matplotlib: pip install 'psgs[plot]' "
                           "(or pip install matplotlib)") from None
     return plt
 
@@ -52,7 +54,7 @@ def _window(frames: int, frame_rate: float, start: float, stop: float | None) ->
     t = np.arange(frames) / frame_rate
     window = (t >= start) & (t <= (stop if stop is not None else np.inf))
     if not window.any():
-        raise ValueError(f"no frames between {start:g} s and "
+        raise ValidationError(f"no frames between {start:g} s and "
                          f"{'the end' if stop is None else f'{stop:g} s'} (the motion has "
                          f"{frames} frames, {frames / frame_rate:g} s)")
     return t, window

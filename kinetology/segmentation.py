@@ -45,6 +45,8 @@ from typing import Mapping
 
 import numpy as np
 
+from psgs.errors import ValidationError
+
 from ._engines import select
 from ._kinetemes import round_half_even, smooth_channels
 from .joints import actuator_map, skeleton_parents
@@ -413,7 +415,7 @@ def _check(params: dict) -> dict:
     merged = {**DEFAULTS, **params}
     for name, value in merged.items():
         if not np.isfinite(value) or value < 0:
-            raise ValueError(f"{name} must be a non-negative number, not {value!r}")
+            raise ValidationError(f"{name} must be a non-negative number, not {value!r}")
     return merged
 
 
@@ -476,7 +478,7 @@ def segments(motion: Motion, channels=None, *, engine: str = "auto", **params) -
     >>> segments(wave, engine="fortran")
     Traceback (most recent call last):
     ...
-    ValueError: engine must be one of 'auto', 'numpy', 'numba', not 'fortran'
+    psgs.errors.ValidationError: engine must be one of 'auto', 'numpy', 'numba', not 'fortran'
     """
     use = select(engine)
     p = _check(params)

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from psgs.errors import ValidationError
+
 from .motion import Motion
 from .segmentation import smooth
 
@@ -69,12 +71,12 @@ def synthetic_motion(joints: int = 6, patterned=(0, 1, 2), *, repetitions: int =
     8
     """
     if joints < 1 or repetitions < 1 or period <= 0 or frame_rate <= 0:
-        raise ValueError("joints, repetitions, period and frame_rate must be positive")
+        raise ValidationError("joints, repetitions, period and frame_rate must be positive")
     if not 0 <= jitter < 1:
-        raise ValueError(f"jitter must be in [0, 1), not {jitter}")
+        raise ValidationError(f"jitter must be in [0, 1), not {jitter}")
     patterned = tuple(sorted(set(int(j) for j in patterned)))
     if any(not 0 <= j < joints for j in patterned):
-        raise ValueError(f"patterned joints must be in 0..{joints - 1}")
+        raise ValidationError(f"patterned joints must be in 0..{joints - 1}")
     rng = np.random.default_rng(seed)
     lengths = period * (1 + jitter * rng.uniform(-1, 1, repetitions))
     total = float(lengths.sum())

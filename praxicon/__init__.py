@@ -22,7 +22,7 @@ A praxicon of one action (the wave, two takes of the shared data named in a mani
 
 from __future__ import annotations
 
-import importlib
+from psgs._foundation.lazy import lazy_names
 
 # public name -> module (imported on first use: matplotlib and dask stay unloaded until needed)
 _LAZY = {
@@ -40,13 +40,4 @@ _LAZY = {
 __all__ = list(_LAZY)
 
 
-def __getattr__(name: str):
-    if name in _LAZY:
-        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'praxicon' has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_names(__name__, _LAZY, listed=__all__)

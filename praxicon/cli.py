@@ -7,50 +7,28 @@ Reached from ``psgs`` through the entry-point group ``psgs.commands``
 
 from __future__ import annotations
 
-import argparse
 import sys
+
+from psgs._foundation.shell import key_values, positive_int
+from psgs.errors import ValidationError
 
 __all__ = ["register", "main"]
 
 
 def _bad(message: str):
-    from psgs.errors import ValidationError
-
     raise ValidationError(message)
 
 
-def _workers(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"must be a whole number, not {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be at least 1, not {value}")
-    return value
-
-
-def _key_values(items: list[str], option: str) -> dict:
-    from psgs.cli.induce import _parse_value
-
-    out = {}
-    for item in items:
-        key, eq, value = item.partition("=")
-        if not eq or not key.strip():
-            _bad(f"{option} {item!r}: write KEY=VALUE")
-        out[key.strip()] = _parse_value(value.strip())
-    return out
-
-
 def run_build(args) -> int:
-    from psgs.cli.induce import _make_inducer
+    from psgs.induce import get
 
     from .builder import build, executor_for
     from .datasets import DatasetError, read_datasets
     from .learn import Settings
 
-    params = _key_values(args.param, "--param")
-    segmentation = _key_values(args.segment, "--segment")
-    _make_inducer(args.inducer, params)  # an unknown inducer or parameter: one line, now
+    params = key_values(args.param, "--param")
+    segmentation = key_values(args.segment, "--segment")
+    get(args.inducer, **params)  # an unknown inducer or parameter: one line, now
     from kinetology.segmentation import DEFAULTS
 
     unknown = sorted(set(segmentation) - set(DEFAULTS))
@@ -128,10 +106,10 @@ def _add_commands(sub) -> None:
                        help="an inducer parameter (repeatable)")
     build.add_argument("--segment", action="append", default=[], metavar="K=V",
                        help="a kinetology segmentation parameter (repeatable)")
-    build.add_argument("--min-performances", type=_workers, default=2, metavar="N",
+    build.add_argument("--min-performances", type=positive_int, default=2, metavar="N",
                        help="fewest usable performances an action needs (default 2)")
     where = build.add_mutually_exclusive_group()
-    where.add_argument("--workers", type=_workers, default=None, metavar="N",
+    where.add_argument("--workers", type=positive_int, default=None, metavar="N",
                        help="learn in N processes")
     where.add_argument("--scheduler", default=None, metavar="ADDRESS",
                        help="learn on a Dask cluster (e.g. tcp://host:8786)")
@@ -153,7 +131,7 @@ def _add_commands(sub) -> None:
                                      "them as a BVH file on the source skeleton.")
     gen.add_argument("praxicon", metavar="DIR", help="a praxicon folder")
     gen.add_argument("action", metavar="ACTION", help="an action name of its index")
-    gen.add_argument("--repeat", type=_workers, default=3, metavar="K",
+    gen.add_argument("--repeat", type=positive_int, default=3, metavar="K",
                      help="how many synchronised copies (default 3)")
     gen.add_argument("-o", "--output", required=True, metavar="OUT.bvh",
                      help="the BVH file to write")

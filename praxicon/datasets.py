@@ -30,6 +30,8 @@ from collections import defaultdict
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from psgs.errors import PSGSError
+
 __all__ = ["Performance", "Action", "read_dataset", "read_datasets", "DatasetError"]
 
 _CMU_FRAME_RATE = 120.0  # the AMC files' rate; a label covers 12 frames (1/10 s)
@@ -38,8 +40,11 @@ MIN_SPAN_SECONDS = 2.0
 _BANDAI_NAME = re.compile(r"^dataset-\d+_(?P<content>.+?)_(?P<style>[^_]+)_(?P<take>\d+)$")
 
 
-class DatasetError(ValueError):
-    """A dataset path that is not one of the known layouts, or a malformed manifest."""
+class DatasetError(PSGSError, ValueError):
+    """A dataset path that is not one of the known layouts, or a malformed manifest.
+
+    Under :class:`psgs.PSGSError`, the root of the distribution's errors, so every command
+    reports it in one line."""
 
 
 @dataclass(frozen=True)

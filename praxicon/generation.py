@@ -1,4 +1,4 @@
-"""Motion generated back from an action's grammar system (the paper's claim, issue 10 item 6).
+"""Motion generated back from an action's grammar system (the paper's claim that an action's grammar system generates its motion).
 
 For an action of a praxicon, :func:`generate`:
 

@@ -206,7 +206,7 @@ def _induce(inducer, segmented: list[_Segmented]):
     try:
         return inducer.induce(tuple(actiongrams)), list(range(len(segmented))), None
     except (TypeError, AttributeError, ValidationError) as exc:
-        # an inducer that takes one actiongram (PAL until issue 9 lands): learn from the
+        # an inducer that takes one actiongram only: learn from the
         # longest performance, say so in the record, and still read morphemes from all
         lengths = [sum(map(sum, ag.segment_durations)) for ag in actiongrams]
         longest = int(np.argmax(lengths))
@@ -298,7 +298,7 @@ def _learn_into(record: dict, action: Action, settings: Settings) -> None:
 
 def _component_channels(induction) -> list[str]:
     per_joint = getattr(induction, "actuator_channels", None)
-    if per_joint:  # issue 9: per joint, the channels that carry the pattern
+    if per_joint:  # a motion learner says, per joint, the channels that carry the pattern
         return [c for j in induction.actuators for c in per_joint[j]]
     return list(induction.components)
 
@@ -306,7 +306,7 @@ def _component_channels(induction) -> list[str]:
 def _morpheme(induction, channel: str, pattern: tuple[str, ...], segmented) -> dict:
     learnt = getattr(induction, "morphemes", None) or {}
     given = learnt.get(channel)
-    if given is not None:  # the inducer's own morpheme (issue 9), displacements filled in
+    if given is not None:  # the inducer's own morpheme, displacements filled in
         pattern = tuple(getattr(given, "kinetemes", pattern))
     durations, displacements, count = _typical(pattern, channel, segmented)
     if given is not None:

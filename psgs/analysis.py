@@ -225,7 +225,7 @@ def moves(system: PSGS) -> tuple[SyncTuple, ...]:
     """What one PSGS step may apply, in the order every search tries them.
 
     The tuples of M in order, then (under ``free``) each unsynchronised rule
-    alone as ``(#, …, p, …, #)``, by component and rule order (SPEC D2).
+    alone as ``(#, …, p, …, #)``, by component and rule order (the free mode of unsynchronised rules).
 
     Examples
     --------

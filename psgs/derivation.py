@@ -2,7 +2,7 @@
 
 A *configuration* holds one sentential form per component. For a
 :class:`~psgs.model.PSGS`, a step applies one synchronisation tuple
-(SPEC D1-D3, see ``docs/semantics.md``); for a :class:`~psgs.model.PCGS` a
+(the decisions D1-D3 of ``docs/semantics.md``); for a :class:`~psgs.model.PCGS` a
 step is either a communication step (which has priority) or a rewriting
 step in which every non-terminal component rewrites once.
 
@@ -28,10 +28,11 @@ from .steps import (Configuration, Step, has_query, initial_configuration as _in
                     is_terminal_configuration, is_terminal_form, occurrences, pcgs_communicate,
                     pcgs_steps, psgs_successors, random_step, rewritten)
 
+# Configuration and Step are psgs.steps', the notation psgs.notation's: used here, not
+# offered again from here (one home per name)
 __all__ = [
-    "Configuration", "Step", "Derivation", "initial_configuration", "applicable_steps",
-    "apply_tuple", "communication_step", "is_terminal_configuration",
-    "random_derivation", "format_form", "format_configuration",
+    "Derivation", "initial_configuration", "applicable_steps", "apply_tuple",
+    "communication_step", "random_derivation",
 ]
 
 _System = Union[PSGS, PCGS]
@@ -92,7 +93,7 @@ _PCGS_SYMBOLS = frozenset({Terminal, Nonterminal, Query})
 def applicable_steps(system: _System, configuration: Sequence[Form]) -> tuple[Step, ...]:
     """Every step that applies to ``configuration``, in a deterministic order.
 
-    PSGS (SPEC D3): a tuple ``(p_1, …, p_n)`` applies iff for every component
+    PSGS (decision D3 of docs/semantics.md): a tuple ``(p_1, …, p_n)`` applies iff for every component
     ``i`` with ``p_i ≠ #`` whose form is not terminal, the left-hand side of
     ``p_i`` occurs in it; idle and terminal components stay unchanged, and a
     tuple that would change nothing does not apply. Tuples come in the order
@@ -243,10 +244,11 @@ def apply_tuple(system: _System, configuration: Sequence[Form], sync_tuple,
     >>> import psgs
     >>> gamma = psgs.load("grammars/paper_example.psgs")
     >>> start = psgs.initial_configuration(gamma)
-    >>> step = psgs.apply_tuple(gamma, start, ("S1a", "S2a", "S3a", "S4a"))
+    >>> from psgs.derivation import apply_tuple
+    >>> step = apply_tuple(gamma, start, ("S1a", "S2a", "S3a", "S4a"))
     >>> [" ".join(map(str, form)) for form in step.after]
     ['N13 S1', 'N18 S2', 'N7 S3', 'N23 S4']
-    >>> psgs.apply_tuple(gamma, start, ("#", "#", "#", "#"))
+    >>> apply_tuple(gamma, start, ("#", "#", "#", "#"))
     Traceback (most recent call last):
     ...
     psgs.errors.ValidationError: tuple (#, #, #, #) is not in M

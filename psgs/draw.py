@@ -397,18 +397,24 @@ def system_svg(system) -> str | None:
         return None
 
 
-def _colour(symbol: str, alphabet: list[str]) -> str:
-    fixed = {"B": "#1f5fbf", "G": "#2ca02c", "R": "#d62728", "Y": "#f2c80f"}
-    return fixed.get(symbol) or _PALETTE[alphabet.index(symbol) % len(_PALETTE)]
+def _colour(symbol: str, alphabet: list[str], colours) -> str:
+    return colours.get(symbol) or _PALETTE[alphabet.index(symbol) % len(_PALETTE)]
 
 
-def actiongram_html(actiongram) -> str:
+def actiongram_html(actiongram, colours=None) -> str:
     """An actiongram as an HTML table: per string its symbols as coloured runs (width = time).
 
+    ``colours`` (symbol -> CSS colour) fixes the colours of the symbols that have a meaning
+    to whoever made the actiongram (kinetology's ``kinetology.plotting.STATE_COLOURS`` for its
+    four states); other symbols take the palette in alphabetical order. A notebook shows an
+    actiongram with the palette alone: psgs gives symbols no meaning.
+
     >>> from psgs import Actiongram
-    >>> "<table" in actiongram_html(Actiongram.from_strings({"knee": "BGRY"}))
+    >>> html = actiongram_html(Actiongram.from_strings({"knee": "BGRY"}), {"B": "#1f5fd6"})
+    >>> "<table" in html and "background:#1f5fd6" in html
     True
     """
+    colours = dict(colours or {})
     alphabet = sorted({s for row in actiongram.symbols for s in row})
     total = max((sum(d) for d in actiongram.segment_durations), default=0.0) or 1.0
     rows = []
@@ -416,7 +422,7 @@ def actiongram_html(actiongram) -> str:
                                         actiongram.segment_durations):
         cells = "".join(
             f'<span title="{_escape(s)} {d:g}" style="display:inline-block;height:1.1em;'
-            f'width:{max(0.15, 100 * d / total):.2f}%;background:{_colour(s, alphabet)};'
+            f'width:{max(0.15, 100 * d / total):.2f}%;background:{_colour(s, alphabet, colours)};'
             f'color:white;font-size:0.7em;overflow:hidden">{_escape(s)}</span>'
             for s, d in list(zip(symbols, durations))[:_HTML_SYMBOLS])
         more = f" … (+{len(symbols) - _HTML_SYMBOLS})" if len(symbols) > _HTML_SYMBOLS else ""

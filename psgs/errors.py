@@ -1,7 +1,9 @@
 """Exceptions raised by psgs.
 
 Every error that bad input can cause derives from :class:`PSGSError`, so a
-command-line front end can catch one class and print one line.
+command-line front end can catch one class and print one line. It is the root of the whole
+distribution's errors: kinetology's ``MotionFormatError`` is a :class:`FormatError`, and
+praxicon's errors derive from :class:`PSGSError` too.
 """
 
 from __future__ import annotations
@@ -76,6 +78,47 @@ class FormatError(PSGSError, ValueError):
             if self.column is not None:
                 where += f":{self.column}"
         return f"{where}: {self.message}"
+
+
+class NotFound(PSGSError, KeyError):
+    """A name (a channel, a joint, an action) that is not there; the message lists what is.
+
+    A ``KeyError``, so code that looks names up catches it too, but ``str(error)`` is the
+    message itself, not its quoted repr.
+
+    Parameters
+    ----------
+    message : str
+        What is missing, and what there is instead.
+
+    Examples
+    --------
+    >>> error = NotFound("no channel 'nope' (channels: Hips.tx)")
+    >>> str(error), isinstance(error, KeyError)
+    ("no channel 'nope' (channels: Hips.tx)", True)
+    """
+
+    def __str__(self) -> str:
+        return str(self.args[0]) if self.args else ""
+
+
+class MissingDependency(PSGSError, ImportError):
+    """An optional dependency that the asked-for work needs is not installed.
+
+    The message names the extra to install (``pip install 'psgs[plot]'``) or the choice that
+    needs none. An ``ImportError``, so code that falls back on a missing import catches it.
+
+    Parameters
+    ----------
+    message : str
+        What is missing and how to get it.
+
+    Examples
+    --------
+    >>> error = MissingDependency("plotting needs matplotlib: pip install 'psgs[plot]'")
+    >>> isinstance(error, ImportError), str(error)
+    (True, "plotting needs matplotlib: pip install 'psgs[plot]'")
+    """
 
 
 class BoundReached(PSGSError):

@@ -1,4 +1,4 @@
-"""Reading and writing the psgs text format (see ``docs/format.md``).
+"""Reading the psgs text format (see ``docs/format.md``), and every file psgs reads.
 
 A file describes one PSGS or one PCGS::
 
@@ -18,7 +18,8 @@ The text is split into lines by a Lark grammar shipped with the package
 (``psgs/format.lark``); this module reads the keywords, checks the order of
 the lines and builds the model values. Every mistake, of syntax or of
 meaning, becomes one :class:`~psgs.errors.FormatError` naming
-``source:line:column``.
+``source:line:column``. :func:`load` is psgs's one file reader (grammar systems,
+examples by name, actiongrams); writing is :mod:`psgs.writing`'s (``dump``).
 """
 
 from __future__ import annotations
@@ -34,9 +35,7 @@ import lark
 
 from .errors import FormatError, ValidationError
 from .model import IDLE, PCGS, PSGS, Grammar, Nonterminal, Query, Rule, Terminal
-from .writing import dump, dumps
-
-__all__ = ["loads", "load", "dumps", "dump"]
+__all__ = ["loads", "load", "example_names", "example_path", "ACTIONGRAM_SUFFIXES"]
 
 _MODES = ("parallel", "single")
 _UNSYNCHRONISED = ("free", "strict")
@@ -120,34 +119,108 @@ def loads(text: str | bytes, source: str = "<string>") -> PSGS | PCGS:
     return _Builder(source).build(tree)
 
 
-def load(path: str | PathLike) -> PSGS | PCGS:
-    """Read a PSGS or a PCGS from a file (UTF-8); the header line decides which.
+#: Suffixes of actiongram files (``psgs.load`` reads every other file as a grammar system).
+ACTIONGRAM_SUFFIXES = (".actiongram", ".json")
 
-    Errors name the file: ``grammars/x.psgs:3:7: missing arrow ...``.
+
+def example_names() -> list[str]:
+    """The example grammar systems shipped inside the package, loadable by name.
+
+    Returns
+    -------
+    list of str
+        Names such as ``"paper_example"`` (the files are ``psgs/grammars/NAME.psgs``).
+
+    Examples
+    --------
+    >>> "paper_example" in example_names()
+    True
+    """
+    folder = resources.files("psgs").joinpath("grammars")
+    return sorted(p.name[:-5] for p in folder.iterdir() if p.name.endswith(".psgs"))
+
+
+def example_path(text: str | PathLike) -> str | PathLike:
+    """``text`` itself when such a file exists, else the shipped example it names, else ``text``.
+
+    ``paper_example`` (or ``paper_example.psgs``) names the example inside the package when
+    there is no file of that name in the working directory, so a pip user can follow the tour.
+    Text holding a path separator is always a path.
+
+    Parameters
+    ----------
+    text : str or PathLike
+        A path, or an example's name.
+
+    Returns
+    -------
+    str or PathLike
+        The path to read.
+
+    Examples
+    --------
+    >>> example_path("paper_example").endswith("paper_example.psgs")
+    True
+    >>> example_path("no/such.psgs")
+    'no/such.psgs'
+    """
+    name = str(text)
+    if Path(name).exists() or any(sep in name for sep in ("/", "\\")):
+        return text
+    stem = name[:-5] if name.endswith(".psgs") else name
+    if stem in example_names():
+        return str(resources.files("psgs").joinpath("grammars", f"{stem}.psgs"))
+    return text
+
+
+def load(path: str | PathLike, *, kind: str | None = None):
+    """Read a file: a grammar system (PSGS or PCGS), an example by name, or an actiongram.
+
+    ``kind=None`` decides by the name: ``.actiongram`` and ``.json`` files are actiongrams
+    (:class:`psgs.Actiongram`; JSON when the name ends in ``.json``, else the text form),
+    every other file a grammar system in the text format, whose header line says PSGS or
+    PCGS. A name with no such file, such as ``"paper_example"``, reads the example shipped
+    in the package (:func:`example_names`). Errors name the file:
+    ``grammars/x.psgs:3:7: missing arrow ...``.
 
     Parameters
     ----------
     path : str or PathLike
-        A file in the psgs text format.
+        The file, or an example's name.
+    kind : {None, "system", "actiongram"}, default None
+        What the file holds, when its name does not say (an actiongram named ``walk.txt``).
 
     Returns
     -------
-    PSGS or PCGS
+    PSGS, PCGS or Actiongram
 
     Raises
     ------
     FormatError
-        For malformed text or bytes that are not UTF-8, naming ``path:line:col``.
+        For malformed text or bytes that are not UTF-8, naming ``path:line:col``; for an
+        actiongram file that holds no string.
+    ValidationError
+        For another ``kind``.
     FileNotFoundError
-        When the file does not exist.
+        When the file does not exist (and is no example's name).
 
     Examples
     --------
     >>> import psgs
-    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> gamma = psgs.load("paper_example")
     >>> gamma.name, len(gamma.components), len(gamma.sync)
     ('Gamma', 4, 8)
+    >>> psgs.load("grammars/paper_example.psgs") == gamma
+    True
     """
+    if kind not in (None, "system", "actiongram"):
+        raise ValidationError(f"kind must be None, 'system' or 'actiongram', not {kind!r}")
+    if kind == "actiongram" or (kind is None
+                                and Path(path).suffix.lower() in ACTIONGRAM_SUFFIXES):
+        from .actiongram import _read_file
+
+        return _read_file(path)
+    path = example_path(path)
     data = Path(path).read_bytes()
     source = str(path)
     return loads(_decode(data, source), source=source)

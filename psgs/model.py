@@ -497,13 +497,6 @@ class PSGS(_Components):
                      for g, synced in zip(self.components, self.synchronised_rules))
 
 
-    def _repr_svg_(self) -> str | None:
-        """The forest of a derived word and the synchronisation graph (notebooks)."""
-        from .draw import system_svg
-
-        return system_svg(self)
-
-
 def _component_index(components: tuple[Grammar, ...], component: str | int) -> int:
     if isinstance(component, int) and not isinstance(component, bool):
         if 0 <= component < len(components):
@@ -578,13 +571,6 @@ class PCGS(_Components):
     def centralised(self) -> bool:
         """True when no component but the master holds a query symbol."""
         return all(not g.queries for g in self.components if g.name != self.master)
-
-
-    def _repr_svg_(self) -> str | None:
-        """The forest of a derived word and the synchronisation graph (notebooks)."""
-        from .draw import system_svg
-
-        return system_svg(self)
 
 
 System = Union[PSGS, PCGS]

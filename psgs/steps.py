@@ -1,7 +1,7 @@
 """The step kernel: what one step of a PSGS or a PCGS does to a configuration.
 
 Derivation, membership and enumeration all take their steps from here, so
-the semantics (SPEC D1-D3 for a PSGS, the classical communication and
+the semantics (decisions D1-D3 of docs/semantics.md for a PSGS, the classical communication and
 rewriting steps for a PCGS, see ``docs/semantics.md``) is written once:
 
 * :func:`occurrences` and :func:`rewrite` -- where a nonterminal occurs in a

@@ -1,7 +1,8 @@
-"""Writing a grammar system as psgs text: the inverse of :func:`psgs.format.loads`.
+"""Writing: a grammar system as psgs text (the inverse of :func:`psgs.format.loads`), and
+every file psgs writes (:func:`dump`, the inverse of :func:`psgs.format.load`).
 
 :func:`dumps` writes the canonical form (``loads(dumps(s)) == s`` for every system); the reader
-and its error messages are in :mod:`psgs.format`, which re-exports these two functions.
+and its error messages are in :mod:`psgs.format`.
 """
 
 from __future__ import annotations
@@ -9,6 +10,7 @@ from __future__ import annotations
 from os import PathLike
 from pathlib import Path
 
+from .errors import ValidationError
 from .model import IDLE, PCGS, PSGS, Query, Terminal
 
 __all__ = ["dumps", "dump"]
@@ -73,28 +75,49 @@ def dumps(system: PSGS | PCGS) -> str:
     return "\n".join(lines) + "\n"
 
 
-def dump(system: PSGS | PCGS, path: str | PathLike) -> None:
-    """Write ``dumps(system)`` to a file as UTF-8.
+def dump(value, path: str | PathLike) -> None:
+    """Write a grammar system or an actiongram to a file (UTF-8), as ``psgs.load`` reads it.
+
+    A system is written in the text format (``dumps(system)``); an actiongram as JSON when
+    the name ends in ``.json``, else in its text form.
 
     Parameters
     ----------
-    system : PSGS or PCGS
-        The system to write.
+    value : PSGS, PCGS or Actiongram
+        What to write.
     path : str or PathLike
         The file (overwritten).
+
+    Raises
+    ------
+    ValidationError
+        For a value that is neither.
 
     Examples
     --------
     >>> import tempfile
     >>> from pathlib import Path
     >>> import psgs
-    >>> gamma = psgs.load("grammars/paper_example.psgs")
-    >>> path = Path(tempfile.mkdtemp()) / "copy.psgs"
-    >>> dump(gamma, path)
-    >>> psgs.load(path) == gamma
+    >>> gamma = psgs.load("paper_example")
+    >>> folder = Path(tempfile.mkdtemp())
+    >>> dump(gamma, folder / "copy.psgs")
+    >>> psgs.load(folder / "copy.psgs") == gamma
+    True
+    >>> walk = psgs.Actiongram.from_strings({"knee": "BGRY"})
+    >>> dump(walk, folder / "walk.json")
+    >>> psgs.load(folder / "walk.json") == walk
     True
     """
-    Path(path).write_text(dumps(system), encoding="utf-8")
+    if isinstance(value, (PSGS, PCGS)):
+        text = dumps(value)
+    else:
+        from .actiongram import Actiongram
+
+        if not isinstance(value, Actiongram):
+            raise ValidationError(f"dump writes a PSGS, a PCGS or an Actiongram, not "
+                                  f"{type(value).__name__}")
+        text = value.to_json() if Path(path).suffix.lower() == ".json" else value.to_text()
+    Path(path).write_text(text, encoding="utf-8")
 
 
 def _symbol_text(symbol) -> str:

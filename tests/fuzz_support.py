@@ -121,7 +121,7 @@ def _read_grammar(path: Path):
 
 def _read_actiongram(path: Path):
     import psgs
-    ag = psgs.load_actiongram(path)
+    ag = psgs.load(path, kind="actiongram")
     text = ag.to_text()
     text.encode("utf-8")  # a loaded actiongram can always be written
     assert psgs.Actiongram.from_text(text) == ag, "to_text/from_text round trip changed it"

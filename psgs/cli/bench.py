@@ -14,7 +14,7 @@ import time
 from pathlib import Path
 
 from ..errors import PSGSError, ValidationError
-from ._types import natural, positive_int, share
+from .._foundation.shell import natural, positive_int, share
 
 
 def register(subparsers) -> None:

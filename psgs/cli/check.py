@@ -2,7 +2,7 @@
 
 Exit status: 0 yes, 1 no (the reason is printed), 2 an error (a bad file or
 bad words: one line on stderr), 3 unknown (the budget that ran out is
-printed); the table of every command is ``psgs.cli.EXIT_STATUS_HELP``.
+printed); the table of every command is ``psgs._foundation.shell.EXIT_STATUS_HELP``.
 """
 
 from __future__ import annotations
@@ -11,8 +11,8 @@ import dataclasses
 
 from ..errors import ValidationError
 from ..model import PCGS, PSGS, Terminal
-from . import INCOMPLETE, NO, OK
-from ._types import grammar_file, positive_float, positive_int
+from .._foundation.shell import INCOMPLETE, NO, OK, positive_float, positive_int
+from ._types import grammar_file
 
 YES, UNKNOWN = OK, INCOMPLETE
 

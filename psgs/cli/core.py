@@ -4,7 +4,7 @@ Output on stdout is only the result (tuples, words, grammars, the summary),
 so it can be piped; notes about bounds go to stderr. Exit status: 0 done,
 1 no word (a blocked random derivation, an enumeration that found none),
 2 an error (one line on stderr), 3 a bound stopped the work before it was
-complete (what was found is still printed); see ``psgs.cli.EXIT_STATUS_HELP``.
+complete (what was found is still printed); see ``psgs._foundation.shell.EXIT_STATUS_HELP``.
 
 FILE is a path or the name of an example shipped in the package
 (``psgs show paper_example``). A nonterminal that has no rule (in its component; in a PCGS,
@@ -22,8 +22,8 @@ from pathlib import Path
 from ..errors import ValidationError
 from ..format import load
 from ..model import IDLE, PCGS, PSGS
-from . import INCOMPLETE, NO
-from ._types import example_names, grammar_file, natural, positive_float, positive_int
+from .._foundation.shell import INCOMPLETE, NO, natural, positive_float, positive_int
+from ._types import example_names, grammar_file
 
 _FILE_HELP = "a .psgs file, or the name of an example (paper_example, counting, ...)"
 
@@ -136,7 +136,7 @@ def run_derive(args) -> int:
 
 
 def _show_words(system: PSGS | PCGS, words) -> str:
-    from ..derivation import format_configuration, format_form
+    from ..notation import format_configuration, format_form
     if isinstance(system, PCGS):
         return format_form(words, system)
     return format_configuration(words, system)
@@ -175,7 +175,8 @@ def _witness(system: PSGS | PCGS, words) -> str:
 
 
 def _random(system: PSGS | PCGS, args) -> int:
-    from ..derivation import format_configuration, random_derivation
+    from ..derivation import random_derivation
+    from ..notation import format_configuration
     derivation = random_derivation(system, args.seed, max_steps=args.max_steps)
     if args.trace:
         print(format_configuration(derivation.configurations[0], system))

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ._types import natural, positive_int
+from .._foundation.shell import natural, positive_int
 
 
 def run_draw(args) -> int:

@@ -11,6 +11,7 @@ import sys
 import time
 from pathlib import Path
 
+from .._foundation.shell import key_values
 from ..errors import ValidationError
 
 
@@ -69,7 +70,7 @@ MOTION_SUFFIXES = (".bvh", ".amc", ".asf", ".c3d", ".fbx", ".trc")
 
 def _load_performances(files: list[str]):
     """Actiongram files; a motion-capture file gets a one-line hint (psgs never reads motion)."""
-    from ..actiongram import load_actiongram
+    from ..format import load
 
     for name in files:
         if Path(name).suffix.lower() in MOTION_SUFFIXES:
@@ -77,37 +78,7 @@ def _load_performances(files: list[str]):
             raise ValidationError(f"{name} is motion capture, not an actiongram: run "
                                   f"'kinetology segment {name} -o {stem}' first, then "
                                   f"'psgs induce {stem}'")
-    return [load_actiongram(name) for name in files]
-
-
-# -- argument types -------------------------------------------------------------------
-def _parse_value(text: str):
-    lowered = text.lower()
-    if lowered in ("true", "false"):
-        return lowered == "true"
-    for kind in (int, float):
-        try:
-            return kind(text)
-        except ValueError:
-            pass
-    return text
-
-
-def _params(items: list[str]) -> dict:
-    out = {}
-    for item in items:
-        key, eq, value = item.partition("=")
-        if not eq or not key:
-            raise ValidationError(f"--param {item!r}: write KEY=VALUE")
-        out[key.strip()] = _parse_value(value.strip())
-    return out
-
-
-def _make_inducer(name: str, params: dict):
-    """The inducer ``name`` built with ``params`` (``get`` says what is wrong in one line)."""
-    from ..induce import get
-
-    return get(name, **params)
+    return [load(name, kind="actiongram") for name in files]
 
 
 # -- psgs induce -------------------------------------------------------------------------
@@ -145,10 +116,11 @@ def run_induce(args) -> int:
     ...
     0
     """
-    from ..format import dumps
+    from ..writing import dumps
+    from ..induce import get
     from ..induce.synthetic import generate
 
-    inducer = _make_inducer(args.inducer, _params(args.param))
+    inducer = get(args.inducer, **key_values(args.param))
     truth = None
     if args.file and args.example:
         raise ValidationError("give FILE or --example, not both")
@@ -241,7 +213,7 @@ def run_locate(args) -> int:
     from ..induce import PAL
     from ..induce import locate
 
-    learned = PAL(**_params(args.param)).induce(_load_performances(args.learn))
+    learned = PAL(**key_values(args.param)).induce(_load_performances(args.learn))
     if not learned.components:
         raise ValidationError(f"nothing learnt from the --learn performances: "
                               f"{learned.verdict or 'no component'}")

@@ -83,8 +83,8 @@ def test_load_actiongram_by_suffix(tmp_path):
     ag = Actiongram.from_strings({"a": "xyx", "b": "q"}, durations={"b": [2.5]})
     (tmp_path / "ag.json").write_text(ag.to_json())
     (tmp_path / "ag.txt").write_text(ag.to_text())
-    assert psgs.load_actiongram(tmp_path / "ag.json") == ag
-    assert psgs.load_actiongram(str(tmp_path / "ag.txt")) == ag
+    assert psgs.load(tmp_path / "ag.json") == ag
+    assert psgs.load(str(tmp_path / "ag.txt"), kind="actiongram") == ag
 
 
 symbols = st.text(alphabet="abcXYZ_01+-", min_size=1, max_size=3).filter(
@@ -136,7 +136,7 @@ def test_unreadable_or_empty_files_are_one_format_error(tmp_path, name, content,
     path = tmp_path / name
     path.write_bytes(content)
     with pytest.raises(FormatError) as info:
-        psgs.load_actiongram(path)
+        psgs.load(path, kind="actiongram")
     assert words in str(info.value)
 
 
@@ -152,10 +152,10 @@ def test_a_huge_bad_token_gives_a_short_message():
 def test_a_byte_order_mark_is_not_part_of_the_first_name(tmp_path):
     path = tmp_path / "bom.txt"
     path.write_bytes("\ufeffhip: a b\n".encode("utf-8"))
-    assert psgs.load_actiongram(path).names == ("hip",)
+    assert psgs.load(path, kind="actiongram").names == ("hip",)
     path.write_bytes("\ufeffhip: a b\nknee: \xe9".encode("utf-8")[:-1] + b"\xff")
     with pytest.raises(FormatError, match=r"bom.txt:2:7: not UTF-8 text \(byte 0xc3\)"):
-        psgs.load_actiongram(path)
+        psgs.load(path, kind="actiongram")
 
 
 @pytest.mark.parametrize("item", [
@@ -187,7 +187,7 @@ def test_unknown_names_in_durations_are_reported_in_the_order_given():
     assert seen == {"durations or starts given for unknown string 'q1'\n"}
 
 
-# -- the real-motion extras: displacements, actuator map, skeleton (issue 9) ----------------
+# -- the optional extras: displacements, actuator map, skeleton ------------------------------
 
 def test_displacements_merge_with_their_segments_and_default_to_unknown():
     ag = Actiongram.from_strings({"knee.rx": "abbc", "knee.ry": "xy"},
@@ -301,7 +301,7 @@ def test_round_trip_text_and_json_with_extras(ag):
     assert Actiongram.from_json(ag.to_json()) == ag
 
 
-# ---- issue 11: inputs that crashed with an undocumented exception
+# ---- inputs that once crashed with an undocumented exception
 def test_deeply_nested_json_is_a_format_error():
     with pytest.raises(FormatError, match="nested too deeply"):
         Actiongram.from_json("[" * 100_000, source="deep.json")

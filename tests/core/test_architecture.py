@@ -1,8 +1,10 @@
 """The import graph of psgs, kinetology (and praxicon, when present) keeps its layers.
 
 The graph is built from the source with ``ast``: every ``import`` and ``from … import``
-anywhere in a module (inside functions too), relative imports resolved, ``from pkg import
-sub`` counted as an import of the submodule ``pkg.sub``. Nothing is imported to build it.
+anywhere in a module (inside functions and ``if TYPE_CHECKING:`` blocks too: an import that
+only names a type still ties the modules together), relative imports resolved, ``from pkg
+import sub`` counted as an import of the submodule ``pkg.sub``. Nothing is imported to build it.
+docs/architecture.md draws the layers these tests keep.
 """
 
 from __future__ import annotations
@@ -19,8 +21,11 @@ REPO = Path(__file__).resolve().parents[2]
 PACKAGES = ("psgs", "kinetology", "praxicon")  # praxicon: a package another branch may add
 
 # The formal core, bottom-up: a module may import its own tier and the tiers below, never above.
+# At the bottom, the foundation every package of the distribution shares (errors, the
+# command-line shell, lazy names, the engine selector).
+FOUNDATION = ("psgs.errors", "psgs._foundation", "psgs._foundation.*")
 CORE_TIERS = (
-    ("psgs.errors", "psgs.budget", "psgs.names"),
+    (*FOUNDATION, "psgs.budget", "psgs.names"),
     ("psgs.model",),
     ("psgs.analysis", "psgs.notation"),
     ("psgs.steps",),
@@ -30,14 +35,25 @@ CORE_TIERS = (
 )
 # Beside the core: readers, writers and exporters of the model, needing nothing above it.
 BESIDE = ("psgs.format", "psgs.writing", "psgs.lark_export", "psgs.graph")
-# (psgs.writing is the writing half of the text format, so psgs.format re-exports it)
-BESIDE_MAY_IMPORT = ("psgs.errors", "psgs.names", "psgs.model", "psgs.writing")
-# Core modules over ~600 lines are a smell (psgs/induce is restructured on another branch).
+# (psgs.load and psgs.dump read and write actiongrams too, so format and writing may import it)
+BESIDE_MAY_IMPORT = ("psgs.errors", "psgs.names", "psgs.model", "psgs.writing",
+                     "psgs.actiongram")
+#: What kinetology may import from psgs: the actiongram (what it makes) and the foundation.
+KINETOLOGY_MAY_IMPORT = ("psgs.actiongram", "psgs.actiongram.*", *FOUNDATION)
+#: No module of the three packages is longer (related code stays together in a subpackage).
 MAX_LINES = 600
 
-# TEMPORARY, to be removed by the lead after merging: psgs/cli/core.py (another helper's file)
-# still imports ``language`` from psgs.derivation, which keeps a thin lazy alias for it.
-TEMPORARY_EDGES: set[tuple[str, str]] = set()  # none left
+#: The one import cycle still known, and who removes it: PAL's phase modules annotate the
+#: parameter bag they are handed with the learner's class (type-only imports of
+#: psgs.induce.pal.learner, which imports them all). The inducers' restructuring replaces the
+#: bag by frozen parameter objects below the phases; then this set is empty and stays so.
+KNOWN_CYCLE_MODULES = frozenset({
+    "psgs.induce.pal.learner", "psgs.induce.pal.content", "psgs.induce.pal.cycles",
+    "psgs.induce.pal.motifs", "psgs.induce.pal.performances", "psgs.induce.pal.period",
+    "psgs.induce.pal.pooling", "psgs.induce.pal.statistics", "psgs.induce.pal.together",
+    "psgs.induce.pal.morphemes", "psgs.induce.pal._encoding", "psgs.induce.pal.edges",
+    "psgs.induce.pal.joining", "psgs.induce.pal.widening",
+})
 
 
 def module_files() -> dict[str, Path]:
@@ -54,47 +70,13 @@ def module_files() -> dict[str, Path]:
     return out
 
 
-#: Methods a notebook calls by name to show a value (IPython's rich display protocol). They
-#: import the drawing layer late, on display only: the one sanctioned way a low value reaches
-#: up, so that systems, actiongrams and inductions draw themselves without the core depending on
-#: the drawing code. Nothing else in them may import upwards (only psgs.draw is exempted).
-DISPLAY_HOOKS = {"_repr_svg_", "_repr_html_", "_repr_png_"}
-DISPLAY_MODULE = "psgs.draw"
-
-
-def _type_checking_only(tree: ast.AST) -> set[int]:
-    """ids of the import nodes that are not a dependency of the running code.
-
-    Imports inside ``if TYPE_CHECKING:`` blocks name a type for annotations and never run (PAL's
-    phase modules annotate their parameter with the learner's class). Imports of
-    :data:`DISPLAY_MODULE` inside a :data:`DISPLAY_HOOKS` method run only when a notebook shows
-    the value. Every other import counts, top-level or inside a function.
-    """
-    skipped = set()
-    for node in ast.walk(tree):
-        if isinstance(node, ast.FunctionDef) and node.name in DISPLAY_HOOKS:
-            for inner in ast.walk(node):
-                if isinstance(inner, ast.ImportFrom) and (inner.module or "").endswith("draw"):
-                    skipped.add(id(inner))
-        if isinstance(node, ast.If):
-            test = node.test
-            flag = test.id if isinstance(test, ast.Name) else getattr(test, "attr", None)
-            if flag == "TYPE_CHECKING":
-                for statement in node.body:
-                    skipped.update(id(inner) for inner in ast.walk(statement))
-    return skipped
-
-
 def _imports(name: str, path: Path, known: set[str]) -> set[tuple[str, str]]:
     """(module imported, name taken from it or '') for every import statement in the file."""
     is_package = path.name == "__init__.py"
     package = name if is_package else name.rpartition(".")[0]
     found = set()
     tree = ast.parse(path.read_text(encoding="utf-8"), str(path))
-    annotations_only = _type_checking_only(tree)
-    for node in ast.walk(tree):
-        if id(node) in annotations_only:
-            continue
+    for node in ast.walk(tree):  # every import: in functions and ``if TYPE_CHECKING:`` too
         if isinstance(node, ast.Import):
             found.update((alias.name, "") for alias in node.names)
         elif isinstance(node, ast.ImportFrom):
@@ -128,7 +110,7 @@ def import_graph() -> tuple[dict[str, set[str]], dict[str, set[tuple[str, str]]]
     for module, path in files.items():
         for target, taken in _imports(module, path, known):
             owner = _owner(target, known)
-            if owner is not None and owner != module and (module, owner) not in TEMPORARY_EDGES:
+            if owner is not None and owner != module:
                 edges[module].add(owner)
                 names[module].add((owner, taken))
     return edges, names
@@ -180,8 +162,71 @@ def test_the_graph_is_read_from_every_module_with_function_level_imports():
     assert "psgs.membership.chart" in EDGES["psgs.membership.schedule_search"]
 
 
+def _cycles(edges: dict[str, set[str]]) -> list[set[str]]:
+    """The strongly connected components of more than one module (Tarjan's algorithm)."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on_stack: set[str] = set()
+    found: list[set[str]] = []
+    counter = 0
+    for root in sorted(edges):
+        if root in index:
+            continue
+        work = [(root, iter(sorted(edges[root])))]
+        index[root] = low[root] = counter
+        counter += 1
+        stack.append(root)
+        on_stack.add(root)
+        while work:
+            node, it = work[-1]
+            for nxt in it:
+                if nxt not in index:
+                    index[nxt] = low[nxt] = counter
+                    counter += 1
+                    stack.append(nxt)
+                    on_stack.add(nxt)
+                    work.append((nxt, iter(sorted(edges.get(nxt, ())))))
+                    break
+                if nxt in on_stack:
+                    low[node] = min(low[node], index[nxt])
+            else:
+                work.pop()
+                if work:
+                    low[work[-1][0]] = min(low[work[-1][0]], low[node])
+                if low[node] == index[node]:
+                    component = set()
+                    while True:
+                        member = stack.pop()
+                        on_stack.discard(member)
+                        component.add(member)
+                        if member == node:
+                            break
+                    if len(component) > 1:
+                        found.append(component)
+    return found
+
+
+def test_the_cycle_finder_finds_cycles():
+    assert _cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [{"a", "b", "c"}]
+    assert _cycles({"a": {"b"}, "b": set()}) == []
+    assert _cycle({"a": {"b"}, "b": {"a"}}) == ["a", "b", "a"]
+
+
 def test_no_import_cycle():
-    assert _cycle(EDGES) is None, " -> ".join(_cycle(EDGES))
+    outside = {m: ts - KNOWN_CYCLE_MODULES for m, ts in EDGES.items()
+               if m not in KNOWN_CYCLE_MODULES}
+    assert _cycle(outside) is None, " -> ".join(_cycle(outside))
+    # the one known cycle is exactly the listed modules: a module that leaves it leaves the list
+    in_cycles = set().union(*_cycles(EDGES))
+    assert in_cycles == KNOWN_CYCLE_MODULES, (
+        f"update KNOWN_CYCLE_MODULES: now in a cycle {sorted(in_cycles - KNOWN_CYCLE_MODULES)}, "
+        f"no longer {sorted(KNOWN_CYCLE_MODULES - in_cycles)}")
+
+
+def test_the_notebook_pictures_make_no_cycle_through_the_model():
+    # model.py knows no drawing: psgs._display attaches the pictures from above
+    assert not {m for m in EDGES["psgs.model"] if m.startswith(("psgs.draw", "psgs.derivation"))}
 
 
 def test_the_core_layers_point_down_only():
@@ -211,19 +256,29 @@ def test_psgs_never_imports_kinetology_or_praxicon():
     assert not bad, bad
 
 
-def test_kinetology_uses_psgs_only_for_the_actiongram_type():
+#: What kinetology may import from psgs: the actiongram (what it makes) and the foundation
+#: every package of the distribution shares (errors, command-line shell, lazy names, engines).
+KINETOLOGY_MAY_IMPORT = ("psgs.actiongram", "psgs.actiongram.*", "psgs.errors",
+                         "psgs._foundation", "psgs._foundation.*")
+
+
+def _matches(module: str, patterns) -> bool:
+    return any(module == p or (p.endswith(".*") and module.startswith(p[:-1])) for p in patterns)
+
+
+def test_kinetology_imports_from_psgs_only_the_actiongram_and_the_foundation():
     uses = {(m, owner, taken) for m, pairs in NAMES.items() if m.split(".")[0] == "kinetology"
             for owner, taken in pairs if owner.split(".")[0] in ("psgs", "praxicon")}
-    allowed = {("psgs.actiongram", ""), ("psgs.actiongram", "Actiongram"),
-               ("psgs", "Actiongram"), ("psgs", "actiongram")}
-    bad = [u for u in uses if (u[1], u[2]) not in allowed]
+    # ``from psgs import Actiongram`` names the actiongram through the package
+    bad = [u for u in uses if not _matches(u[1], KINETOLOGY_MAY_IMPORT)
+           and (u[1], u[2]) not in {("psgs", "Actiongram"), ("psgs", "actiongram")}]
     assert not bad, bad
-    assert uses, "kinetology makes actiongrams, so it imports the type somewhere"
+    assert {owner for _, owner, _ in uses} & {"psgs.actiongram", "psgs"}, \
+        "kinetology makes actiongrams, so it imports the type somewhere"
 
 
-@pytest.mark.parametrize("module", sorted(m for m in EDGES if tier_of(m) is not None
-                                          or m in BESIDE or m == "psgs"))
-def test_core_modules_are_small(module):
+@pytest.mark.parametrize("module", sorted(EDGES))
+def test_no_module_is_over_the_line_cap(module):
     path = module_files()[module]
     lines = len(path.read_text(encoding="utf-8").splitlines())
     assert lines <= MAX_LINES, f"{path.relative_to(REPO)} has {lines} lines"

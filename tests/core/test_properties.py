@@ -71,7 +71,7 @@ def test_every_derived_tuple_of_gamma_is_accepted(mode, data):
 @given(st.sampled_from(["parallel", "single"]), st.data())
 def test_near_misses_of_gamma_are_rejected(mode, data):
     system = gamma(mode)
-    # L(Γ) is the same in both modes (SPEC D5), so the words are drawn from parallel-mode
+    # L(Γ) is the same in both modes (D5 of docs/semantics.md), so the words are drawn from parallel-mode
     # derivations: listing every single-mode step of Γ (a product of occurrence counts over four
     # components) made this test take over a minute
     words, _ = data.draw(pst.derivable_words(gamma("parallel"), max_steps=26, max_form_length=40))

@@ -328,24 +328,14 @@ def test_the_shared_ending_lives_once_in_base():
         assert not made_here, f"{path.relative_to(ROOT)} builds {made_here} itself"
 
 
-def test_the_old_synthetic_module_is_a_warning_alias():
-    import warnings
-
-    import psgs.induce.sweep as sweep
-    import psgs.induce.synthetic as synthetic
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DeprecationWarning)
-        import psgs.synthetic as old
-    with pytest.warns(DeprecationWarning, match="psgs.synthetic is deprecated"):
-        importlib.reload(old)
-    assert old.generate is synthetic.generate and old.noise_sweep is sweep.noise_sweep
-    # the new homes import without a warning (in a fresh interpreter: nothing cached)
+def test_the_synthetic_protocol_imports_without_a_warning():
+    # in a fresh interpreter: nothing cached
     done = subprocess.run([sys.executable, "-W", "error", "-c",
                            "import psgs.induce.synthetic, psgs.induce.sweep, psgs.cli"],
                           env=dict(os.environ, PYTHONPATH=str(ROOT)), capture_output=True,
                           text=True, timeout=60)
     assert done.returncode == 0, done.stderr
+    assert importlib.util.find_spec("psgs.synthetic") is None  # the deprecated alias is gone
 
 
 def test_bench_and_synth_live_in_their_own_cli_module():
@@ -359,15 +349,12 @@ def test_bench_and_synth_live_in_their_own_cli_module():
 # -- the examples in the docstrings run ------------------------------------------------------------
 @pytest.mark.parametrize("module", ["psgs.induce", "psgs.induce.base", "psgs.induce.results",
                                     "psgs.induce.registry", "psgs.induce.sequential",
-                                    "psgs.induce.synthetic", "psgs.induce.sweep", "psgs.synthetic",
+                                    "psgs.induce.synthetic", "psgs.induce.sweep",
                                     "psgs.cli.bench", "psgs.cli.induce"])
 def test_docstring_examples_run(module):
     import doctest
-    import warnings
 
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DeprecationWarning)  # psgs.synthetic's, on purpose
-        result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
+    result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0
 
 

@@ -166,7 +166,7 @@ def test_induction_to_dict_is_json_ready():
 
 def test_output_is_identical_whatever_the_hash_seed():
     repo = Path(__file__).resolve().parents[2]
-    code = ("import psgs; from psgs.synthetic import generate; from psgs.induce import PAL;"
+    code = ("import psgs; from psgs.induce.synthetic import generate; from psgs.induce import PAL;"
             "r = PAL().induce(generate(seed=7, noise=0.1).actiongram);"
             "print(psgs.dumps(r.system)); print(r.to_dict())")
     outputs = []

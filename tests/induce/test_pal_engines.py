@@ -17,7 +17,8 @@ from hypothesis import strategies as st
 
 from psgs import Actiongram
 from psgs.induce import PAL
-from psgs.induce.pal import _engines, _motifs_jit
+from psgs._foundation import engines
+from psgs.induce.pal import _motifs_jit
 from psgs.induce.pal.content import find_candidates
 from psgs.induce.pal.learner import encode
 from psgs.induce.pal.motifs import (Timed, _symbol_statistics, find_motif, find_motifs, grow,
@@ -181,7 +182,7 @@ def test_an_unknown_engine_is_refused_by_name():
 
 
 def test_numba_asked_for_without_numba_is_an_import_error(monkeypatch):
-    monkeypatch.setattr(_engines, "_numba_missing", lambda: "No module named 'numba'")
+    monkeypatch.setattr(engines, "numba_missing", lambda: "No module named 'numba'")
     ag = generate(seed=1, noise=0.1).actiongram
     with pytest.raises(ImportError, match=r"pip install 'psgs\[fast\]'"):
         PAL(engine="numba").induce(ag)

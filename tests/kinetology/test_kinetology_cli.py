@@ -26,7 +26,7 @@ def small_bvh(tmp_path):
 def test_segment_writes_an_actiongram_psgs_loads(small_bvh, tmp_path, capsys):
     out = tmp_path / "small.actiongram"
     assert main(["segment", str(small_bvh), "-o", str(out)]) == 0
-    ag = psgs.load_actiongram(out)
+    ag = psgs.load(out)
     assert set(ag.names) == {"Knee.rz", "Knee.rx"}
     assert ag.string("Knee.rz")[:4] == ("G", "R", "Y", "B")
     assert main(["segment", str(small_bvh), "--channels", "Knee.rz"]) == 0
@@ -87,7 +87,7 @@ def test_evaluate_on_a_cmu_take(capsys):
 def test_segment_a_cmu_amc_for_psgs(tmp_path):
     out = tmp_path / "walk.txt"
     assert main(["segment", str(MOCAP / "cmu-subject02" / "02_01.amc"), "-o", str(out)]) == 0
-    ag = psgs.load_actiongram(out)
+    ag = psgs.load(out, kind="actiongram")
     assert "lfemur.rx" in ag.names and ag.total_symbols > 100
 
 
@@ -121,7 +121,7 @@ def test_view_invariance_needs_at_least_one_view():
         view_invariance(_planar_leg(), ("Thigh", "Shin", "Shin.end"), views=0)
 
 
-# ---- issue 11: --frame-rate for AMC, misspelt channels listed
+# ---- --frame-rate for AMC, misspelt channels listed
 def _small_amc(tmp_path):
     from test_kinetology_readers import SMALL_AMC, SMALL_ASF
     (tmp_path / "s.asf").write_text(SMALL_ASF)
@@ -167,7 +167,7 @@ def test_segment_several_files_writes_one_actiongram_each_named_after_it(small_b
     out = tmp_path / "grams"
     assert main(["segment", str(small_bvh), str(other), "-o", f"{out}/"]) == 0
     assert sorted(p.name for p in out.iterdir()) == ["other.actiongram", "small.actiongram"]
-    ag = psgs.load_actiongram(out / "other.actiongram")
+    ag = psgs.load(out / "other.actiongram")
     assert ag.actuator("Knee.rz") == "Knee"
     assert "other.actiongram: 2 strings" in capsys.readouterr().out
     # several files and no folder: refused, one line
@@ -181,7 +181,7 @@ def test_segment_start_stop_cuts_the_take(small_bvh, tmp_path, capsys):
                  str(out)]) == 0
     text = out.read_text()
     assert "from 0.5 s to 1.5 s: 120 frames" in text.splitlines()[0]
-    ag = psgs.load_actiongram(out)
+    ag = psgs.load(out)
     assert sum(ag.durations["Knee.rz"]) == pytest.approx(1.0)
     assert main(["segment", str(small_bvh), "--start", "3"]) == 2
     assert "start 3 s is outside the take" in capsys.readouterr().err
@@ -195,7 +195,7 @@ def test_segment_labels_writes_one_actiongram_per_labelled_span(small_bvh, tmp_p
                  "-o", f"{out}/"]) == 0
     assert sorted(p.name for p in out.iterdir()) == ["small-ArmCircle-1.actiongram",
                                                       "small-ArmCircle-2.actiongram"]
-    second = psgs.load_actiongram(out / "small-ArmCircle-2.actiongram")
+    second = psgs.load(out / "small-ArmCircle-2.actiongram")
     assert sum(second.durations["Knee.rz"]) == pytest.approx(0.5)
     assert main(["segment", str(small_bvh), "--labels", str(labels), "--label", "Squat",
                  "-o", str(out)]) == 2
@@ -210,5 +210,5 @@ def test_segment_labels_of_a_real_mocap6_take(tmp_path, capsys):
                  "--min-seconds", "2", "--channels", "ltibia.rx", "-o", str(tmp_path)]) == 0
     grams = sorted(tmp_path.glob("13_29-Squat-*.actiongram"))
     assert len(grams) == 1
-    ag = psgs.load_actiongram(grams[0])
+    ag = psgs.load(grams[0])
     assert len(ag.string("ltibia.rx")) >= 8  # several squats: several knee cycles

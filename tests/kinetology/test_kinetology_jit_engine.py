@@ -19,7 +19,8 @@ from hypothesis import strategies as st
 
 from kinetology import Motion, _kinetemes_jit
 from kinetology._kinetemes import banded_product, gaussian_kernel
-from kinetology._engines import ENGINES, select
+from kinetology._engines import select
+from psgs._foundation.engines import ENGINES
 from kinetology.performances import segment_performances
 from kinetology.segmentation import segment, segments, states
 # every dead band and smoothing the numpy engine is checked with against plain loops (at 120

@@ -358,7 +358,7 @@ def test_binary_or_run_on_garbage_gives_one_short_line(tmp_path, name):
     assert len(text) < len(str(path)) + 220, len(text)
 
 
-# ---- issue 11: inputs that crashed the readers with an undocumented exception
+# ---- inputs that once crashed the readers with an undocumented exception
 @pytest.mark.parametrize("frame_time", ["1e-320", "nan", "inf", "-inf", "0", "-1"])
 def test_unreadable_frame_times_are_a_format_error(frame_time):
     bad = SMALL_BVH.replace("Frame Time: 0.0333333", f"Frame Time: {frame_time}")

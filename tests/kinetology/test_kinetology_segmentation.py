@@ -126,7 +126,7 @@ def test_actiongram_times_are_seconds_and_reads_back(tmp_path):
         assert set(syms) <= set(STATES)
     path = tmp_path / "synthetic.actiongram"
     path.write_text(ag.to_text())
-    back = psgs.load_actiongram(path)
+    back = psgs.load(path)
     assert back.names == ag.names
     assert all(back.string(n) == ag.string(n) for n in ag.names)
 
@@ -177,7 +177,7 @@ def test_real_amc_segments_into_an_actiongram_psgs_reads(tmp_path):
     assert knee.count("BGRY") >= 2
     path = tmp_path / "walk.txt"
     path.write_text(ag.to_text())
-    assert psgs.load_actiongram(path).names == ag.names
+    assert psgs.load(path, kind="actiongram").names == ag.names
 
 
 def test_shared_defaults_and_tables_are_read_only():

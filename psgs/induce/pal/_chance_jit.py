@@ -11,22 +11,13 @@ from __future__ import annotations
 
 import math
 
-try:
-    import numba
-except ImportError:  # pragma: no cover - psgs.induce.pal._engines then offers numpy's
-    numba = None
+# compiled on first use, once per installed copy; plain Python where numba does not import
+from ..._foundation.engines import jit as _jit
 
 __all__: list[str] = []  # private: the PAL parameter ``engine`` is the interface
 
 #: a chance level this close (relative) to a boundary is left to the numpy engine
 _MARGIN = 1e-6
-
-
-def _jit(function):
-    """Compiled on first use, once per installed copy (``cache=True``); no ``fastmath``."""
-    if numba is None:
-        return function
-    return numba.njit(cache=True, nogil=True)(function)
 
 
 @_jit

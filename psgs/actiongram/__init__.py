@@ -1,4 +1,4 @@
-"""Actiongrams: parallel, timed symbol strings, one per actuator (SPEC §4).
+"""Actiongrams: parallel, timed symbol strings, one per actuator.
 
 An :class:`Actiongram` holds n named strings. Symbol ``j`` of string ``i``
 has a start time ``T_i(j)`` and a duration ``D_i(j) > 0`` with
@@ -20,17 +20,18 @@ The plain-text form, one actuator per line::
 without white space. Bad input raises :class:`~psgs.errors.FormatError`
 naming ``source:line:column``.
 
-Three optional extras describe real motion (all absent in older files, which
-still read):
+Three optional extras, which whoever makes the actiongram supplies (kinetology
+gives them from motion capture: its joints are the actuators); all are absent in
+older files, which still read:
 
-- a **displacement** per symbol, the signed change of the channel over the
-  segment (degrees for rotations), written ``sym@D~X``: ``B@0.5~12.25``;
-- an **actuator map**, string name -> actuator (joint); by default the part
-  of the name before the first dot (``lfemur.rx`` -> ``lfemur``), a name
-  without a dot its own actuator; other assignments are written
-  ``%actuator lfemur: lfemur.rx lfemur.ry``;
+- a **displacement** per symbol, the signed change of the measured quantity over
+  the segment, written ``sym@D~X``: ``B@0.5~12.25``;
+- an **actuator map**, string name -> actuator (the group it belongs to); by
+  default the part of the name before the first dot (``arm.x`` -> ``arm``), a
+  name without a dot its own actuator; other assignments are written
+  ``%actuator arm: arm.x arm.y``;
 - a **skeleton**, actuator -> parent actuator (none for a root), written
-  ``%parent lfemur: root`` and ``%parent root:`` for a root.
+  ``%parent arm: body`` and ``%parent body:`` for a root.
 """
 
 from __future__ import annotations
@@ -42,15 +43,15 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from ._actiongram_checks import (_bad_duration, _bad_name, _bad_symbol, _check_times_advance,
+from ..errors import FormatError
+from ._checks import (_bad_duration, _bad_name, _bad_symbol, _check_times_advance,
                                  _finite, _format_number, _plain_durations, _read_number,
                                  _shown, _strip_comment)
-from ._actiongram_extras import DIRECTIVE as _DIRECTIVE
-from ._actiongram_extras import _merge, default_actuator, normalise_extras
-from ._actiongram_extras import read_directive as _read_directive
-from .errors import FormatError
+from ._extras import DIRECTIVE as _DIRECTIVE
+from ._extras import _merge, default_actuator, normalise_extras
+from ._extras import read_directive as _read_directive
 
-__all__ = ["Actiongram", "default_actuator", "load_actiongram"]
+__all__ = ["Actiongram", "default_actuator"]
 
 _JSON_FORMAT = "psgs-actiongram"
 
@@ -78,7 +79,7 @@ class Actiongram:
         Per string, each symbol's displacement (``sym@D~X`` in the text form), or None for a
         string without them; () when no string has them.
     string_actuators : tuple of str, default () (each string its own actuator)
-        The actuator (joint) each string belongs to.
+        The actuator (group) each string belongs to.
     skeleton_edges : tuple of (str, str or None), default ()
         Actuator to parent actuator (None for a root), where a skeleton is known.
 
@@ -105,9 +106,9 @@ class Actiongram:
     origins: tuple[float, ...] = ()
     #: per string, one signed displacement per symbol, or None (unknown); () = all unknown
     segment_displacements: tuple[tuple[float, ...] | None, ...] = ()
-    #: per string, the actuator (joint) it belongs to; () = :func:`default_actuator` of each
+    #: per string, the actuator (group) it belongs to; () = :func:`default_actuator` of each
     string_actuators: tuple[str, ...] = ()
-    #: ``(actuator, parent or None)`` pairs, in the motion file's order; () = no skeleton known
+    #: ``(actuator, parent or None)`` pairs, in the maker's order; () = no skeleton known
     skeleton_edges: tuple[tuple[str, str | None], ...] = ()
 
     def __post_init__(self) -> None:
@@ -164,7 +165,7 @@ class Actiongram:
 
     def _repr_html_(self) -> str:
         """Each string as coloured runs of its symbols, widths by duration (notebooks)."""
-        from .draw import actiongram_html
+        from ..draw import actiongram_html
 
         return actiongram_html(self)
 
@@ -260,7 +261,7 @@ class Actiongram:
         >>> ag == Actiongram.from_strings({"knee.rx": "BGB"}, {"knee.rx": [0.5, 1, 2]})
         True
         """
-        from ._actiongram_fast import build
+        from ._fast import build
 
         return build(cls, codes, alphabet, durations, displacements, actuators, skeleton)
 
@@ -503,7 +504,7 @@ class Actiongram:
         return self.segment_displacements[self.index(name)]
 
     def actuator(self, name: str) -> str:
-        """The actuator (joint) string ``name`` belongs to."""
+        """The actuator (group) string ``name`` belongs to."""
         return self.string_actuators[self.index(name)]
 
     @property
@@ -526,7 +527,7 @@ class Actiongram:
         return dict(self.skeleton_edges)
 
     def parent(self, actuator: str) -> str | None:
-        """The parent of ``actuator`` in the skeleton (None for a root or an unknown joint)."""
+        """The parent of ``actuator`` in the skeleton (None for a root or an unknown actuator)."""
         return self.skeleton.get(actuator)
 
     def neighbours(self, actuator: str) -> tuple[str, ...]:
@@ -539,37 +540,19 @@ class Actiongram:
         return f"<Actiongram {len(self)} strings, {self.total_symbols} symbols>"
 
 
-def load_actiongram(path: str | Path) -> Actiongram:
-    """Read an actiongram file: JSON when the name ends in ``.json``, else the text form.
+def _read_file(path: str | Path) -> Actiongram:
+    """Read an actiongram file (``psgs.load``'s reader of them): JSON when the name ends in
+    ``.json``, else the text form.
 
     A file that is not UTF-8 text, or that holds no string at all, is a
     :class:`~psgs.errors.FormatError` (an empty actiongram is almost always
     the wrong file; build one in Python with ``Actiongram.from_strings({})``).
 
-    Parameters
-    ----------
-    path : str or Path
-        A ``.json`` file, or a file in the text form.
-
-    Returns
-    -------
-    Actiongram
-
-    Raises
-    ------
-    FormatError
-        For malformed text, naming ``path:line:col``; for a file that is not UTF-8 or holds
-        no string.
-    FileNotFoundError
-        When the file does not exist.
-
-    Examples
-    --------
     >>> import tempfile
     >>> from pathlib import Path
     >>> path = Path(tempfile.mkdtemp()) / "walk.actiongram"
     >>> _ = path.write_text("lknee: B G R@2.5 Y\\nrknee: Y B\\n")
-    >>> ag = load_actiongram(path)
+    >>> ag = _read_file(path)
     >>> ag.names, ag.durations["lknee"]
     (('lknee', 'rknee'), (1.0, 1.0, 2.5, 1.0))
     """

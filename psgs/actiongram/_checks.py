@@ -1,7 +1,7 @@
 """The checks of names and numbers that the actiongram modules share (one job: say what is wrong).
 
-Kept below both :mod:`psgs.actiongram` and :mod:`psgs._actiongram_extras` so that neither has to
-import the other for them.
+Kept below both :mod:`psgs.actiongram` and :mod:`psgs.actiongram._extras` so that neither has
+to import the other for them.
 """
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 import re
 
-from .errors import FormatError
+from ..errors import FormatError
 
 __all__: list[str] = []  # private helpers
 

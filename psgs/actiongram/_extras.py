@@ -1,7 +1,7 @@
-"""The real-motion extras of an actiongram: displacements, actuator map, skeleton (issue 9).
+"""The optional extras of an actiongram: displacements, actuator map, skeleton.
 
-Validation, merging and the text directives live here so that :mod:`psgs.actiongram`
-stays one module of reasonable size; :class:`psgs.Actiongram` is the only user.
+Their validation, merging and text directives, apart from the strings themselves, which
+every actiongram has; :class:`psgs.Actiongram` is the only user.
 """
 
 from __future__ import annotations
@@ -9,8 +9,8 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Sequence
 
-from ._actiongram_checks import _bad_name, _finite, _shown
-from .errors import FormatError
+from ..errors import FormatError
+from ._checks import _bad_name, _finite, _shown
 
 
 def _bad_displacement(value: object) -> str | None:
@@ -27,7 +27,7 @@ def default_actuator(name: str) -> str:
     Parameters
     ----------
     name : str
-        A string's name, e.g. ``lfemur.rx``.
+        A string's name, e.g. ``arm.x``.
 
     Returns
     -------
@@ -37,8 +37,8 @@ def default_actuator(name: str) -> str:
 
     Examples
     --------
-    >>> default_actuator("lfemur.rx"), default_actuator("root"), default_actuator(".x")
-    ('lfemur', 'root', '.x')
+    >>> default_actuator("arm.x"), default_actuator("body"), default_actuator(".x")
+    ('arm', 'body', '.x')
     """
     head = name.split(".", 1)[0]
     return head if head else name
@@ -77,13 +77,13 @@ DIRECTIVE = re.compile(r"\s*%(?:actuator|parent)\s")
 
 def read_directive(line: str, source: str, line_no: int, owner: dict[str, str],
                     edges: list[tuple[str, str | None]]) -> None:
-    """Read ``%actuator JOINT: string …`` or ``%parent JOINT: PARENT`` (nothing: a root)."""
+    """Read ``%actuator ACTUATOR: string …`` or ``%parent ACTUATOR: PARENT`` (nothing: a root)."""
     head, colon, body = line.partition(":")
     keyword, _, joint = head.strip().partition(" ")
     joint = joint.strip()
     column = len(line) - len(line.lstrip()) + 1
     if not colon:
-        raise FormatError(f"expected '{keyword} JOINT: …' (no ':' on this line)", source=source,
+        raise FormatError(f"expected '{keyword} ACTUATOR: …' (no ':' on this line)", source=source,
                           line=line_no, column=column)
     problem = _bad_name(joint)
     if problem:

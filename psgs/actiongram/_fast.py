@@ -16,9 +16,9 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
-from ._actiongram_checks import _bad_name, _bad_symbol, _shown
-from ._actiongram_extras import default_actuator, normalise_actuators, normalise_skeleton
-from .errors import FormatError
+from ..errors import FormatError
+from ._checks import _bad_name, _bad_symbol, _shown
+from ._extras import default_actuator, normalise_actuators, normalise_skeleton
 
 __all__: list[str] = []  # private: Actiongram.from_codes is the interface
 

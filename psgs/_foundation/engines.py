@@ -1,0 +1,154 @@
+"""Which engine computes: numpy's array passes or numba's compiled loops (the same output).
+
+An algorithm with two engines writes each as a table of the same functions (a frozen
+dataclass, say) and calls ``select(engine, numpy=TABLE, numba=loader)``: ``engine="auto"``
+takes the compiled table when numba imports (``pip install 'psgs[fast]'``) and numpy's
+otherwise; ``"numpy"`` and ``"numba"`` ask for one. The choice is an argument, never a
+setting held anywhere. The compiled module decorates its loops with :func:`jit`, so that it
+still imports (as plain Python) where numba does not.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from functools import lru_cache
+from typing import TypeVar
+
+from ..errors import MissingDependency, ValidationError
+
+__all__ = ["ENGINES", "resolve", "select", "jit", "numba_missing"]
+
+#: The engine names every algorithm with two engines accepts.
+ENGINES = ("auto", "numpy", "numba")
+
+T = TypeVar("T")
+F = TypeVar("F", bound=Callable)
+
+
+@lru_cache(maxsize=1)
+def numba_missing() -> str:
+    """Why numba cannot be had (its import error), or ``""`` when it imports; looked up once.
+
+    Returns
+    -------
+    str
+        The import error's text, empty when numba imports.
+
+    Examples
+    --------
+    >>> isinstance(numba_missing(), str)
+    True
+    """
+    try:
+        import numba  # noqa: F401  (only to know whether it imports)
+    except ImportError as error:
+        return str(error) or "numba is not installed"
+    return ""
+
+
+def resolve(engine: str = "auto") -> str:
+    """The engine that runs for ``engine`` (one of :data:`ENGINES`): ``"numpy"`` or ``"numba"``.
+
+    Parameters
+    ----------
+    engine : {"auto", "numpy", "numba"}
+        What the caller asked for.
+
+    Returns
+    -------
+    str
+        ``"numpy"`` or ``"numba"``.
+
+    Raises
+    ------
+    ValidationError
+        For another name.
+    MissingDependency
+        When ``"numba"`` is asked for and numba does not import.
+
+    Examples
+    --------
+    >>> resolve("numpy")
+    'numpy'
+    >>> resolve("auto") in ("numpy", "numba")
+    True
+    >>> resolve("fortran")
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: engine must be one of 'auto', 'numpy', 'numba', not 'fortran'
+    """
+    if not isinstance(engine, str) or engine not in ENGINES:
+        raise ValidationError(f"engine must be one of {', '.join(map(repr, ENGINES))}, "
+                              f"not {engine!r}")
+    if engine == "numpy":
+        return "numpy"
+    missing = numba_missing()
+    if not missing:
+        return "numba"
+    if engine == "numba":
+        raise MissingDependency(f"engine='numba' needs numba, which does not import here "
+                                f"({missing}); install it with `pip install 'psgs[fast]'`, or "
+                                f"use engine='numpy'")
+    return "numpy"
+
+
+def select(engine: str, *, numpy: T, numba: Callable[[], T]) -> T:
+    """The table of functions that runs for ``engine``: ``numpy`` or what ``numba()`` returns.
+
+    Parameters
+    ----------
+    engine : {"auto", "numpy", "numba"}
+        What the caller asked for (see :func:`resolve`).
+    numpy : object
+        The numpy engine's table.
+    numba : callable
+        Returns the compiled engine's table; called only when that engine runs, so that the
+        compiled module is imported (and compiled) only then.
+
+    Returns
+    -------
+    object
+        The chosen table.
+
+    Examples
+    --------
+    >>> select("numpy", numpy="array passes", numba=lambda: "compiled loops")
+    'array passes'
+    """
+    return numba() if resolve(engine) == "numba" else numpy
+
+
+def jit(function: F) -> F:
+    """``function`` compiled by numba on first use, once per installed copy (``cache=True``).
+
+    No ``fastmath``: the compiled loops must give the numpy engine's floats. ``nogil``: the
+    callers run channels or strings in threads. Where numba does not import, ``function``
+    itself, so that the compiled module still imports (the doctests collect everywhere).
+
+    Parameters
+    ----------
+    function : callable
+        A loop numba can compile (nopython mode).
+
+    Returns
+    -------
+    callable
+        The compiled function, or ``function`` unchanged without numba.
+
+    Examples
+    --------
+    A compiled module's loop (numba caches compiled code beside a source file, so a loop
+    typed at the prompt is not the place to show it)::
+
+        @jit
+        def total(values):
+            s = 0.0
+            for v in values:
+                s += v
+            return s
+    """
+    if numba_missing():
+        return function
+    import numba
+
+    return numba.njit(cache=True, nogil=True)(function)
