@@ -154,8 +154,8 @@ def one_thread(sweep: str, shape, repeat: int, expected) -> dict:
 
 def engine_name(engine: str) -> str:
     """The engine ``engine`` runs here ("auto" is numba's when it imports)."""
-    from psgs.induce.pal._engines import select
-    return select(engine)
+    from psgs._foundation.engines import resolve
+    return resolve(engine)
 
 
 def exponents(rows: list[dict], key: str = "pal_seconds") -> tuple[float, float]:

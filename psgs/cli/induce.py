@@ -210,8 +210,7 @@ def run_induce(args) -> int:
 
 def run_locate(args) -> int:
     """``psgs locate``: learn from --learn performances, print where each FILE holds the action."""
-    from ..induce import PAL
-    from ..induce import locate
+    from ..induce import PAL, locate
 
     learned = PAL(**key_values(args.param)).induce(_load_performances(args.learn))
     if not learned.components:

@@ -43,19 +43,6 @@ KINETOLOGY_MAY_IMPORT = ("psgs.actiongram", "psgs.actiongram.*", *FOUNDATION)
 #: No module of the three packages is longer (related code stays together in a subpackage).
 MAX_LINES = 600
 
-#: The one import cycle still known, and who removes it: PAL's phase modules annotate the
-#: parameter bag they are handed with the learner's class (type-only imports of
-#: psgs.induce.pal.learner, which imports them all). The inducers' restructuring replaces the
-#: bag by frozen parameter objects below the phases; then this set is empty and stays so.
-KNOWN_CYCLE_MODULES = frozenset({
-    "psgs.induce.pal.learner", "psgs.induce.pal.content", "psgs.induce.pal.cycles",
-    "psgs.induce.pal.motifs", "psgs.induce.pal.performances", "psgs.induce.pal.period",
-    "psgs.induce.pal.pooling", "psgs.induce.pal.statistics", "psgs.induce.pal.together",
-    "psgs.induce.pal.morphemes", "psgs.induce.pal._encoding", "psgs.induce.pal.edges",
-    "psgs.induce.pal.joining", "psgs.induce.pal.widening",
-})
-
-
 def module_files() -> dict[str, Path]:
     out = {}
     for package in PACKAGES:
@@ -214,14 +201,9 @@ def test_the_cycle_finder_finds_cycles():
 
 
 def test_no_import_cycle():
-    outside = {m: ts - KNOWN_CYCLE_MODULES for m, ts in EDGES.items()
-               if m not in KNOWN_CYCLE_MODULES}
-    assert _cycle(outside) is None, " -> ".join(_cycle(outside))
-    # the one known cycle is exactly the listed modules: a module that leaves it leaves the list
-    in_cycles = set().union(*_cycles(EDGES))
-    assert in_cycles == KNOWN_CYCLE_MODULES, (
-        f"update KNOWN_CYCLE_MODULES: now in a cycle {sorted(in_cycles - KNOWN_CYCLE_MODULES)}, "
-        f"no longer {sorted(KNOWN_CYCLE_MODULES - in_cycles)}")
+    # PAL's phases read the frozen parameter table they are handed, never the learner's class
+    assert _cycle(EDGES) is None, " -> ".join(_cycle(EDGES))
+    assert _cycles(EDGES) == []
 
 
 def test_the_notebook_pictures_make_no_cycle_through_the_model():

@@ -15,7 +15,7 @@ numpy engine's. The significance kept is computed in Python from the integers re
 (:func:`~psgs.induce.pal.motifs.significance`), so every ``Motif`` is the same to the bit.
 
 Without numba this module still imports (the functions are then plain Python, which
-:mod:`psgs.induce.pal._engines` never offers), so that the doctests collect everywhere.
+:func:`psgs.induce.pal.motifs.search` never offers), so that the doctests collect everywhere.
 """
 
 from __future__ import annotations

@@ -11,7 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..conf import Choice, Conf, Number, Parameter, parameter
-from ._engines import ENGINES, select
+from ..._foundation.engines import ENGINES, resolve
 
 __all__ = ["ContentConf", "MIN_COPIES", "ALPHA", "TIMINGS"]
 
@@ -31,10 +31,10 @@ def check_engine(name: str, value: object) -> None:
     >>> check_engine("engine", "fortran")
     Traceback (most recent call last):
     ...
-    ValueError: engine must be one of 'auto', 'numpy', 'numba', not 'fortran'
+    psgs.errors.ValidationError: engine must be one of 'auto', 'numpy', 'numba', not 'fortran'
     """
     if not isinstance(value, str) or value not in ENGINES:
-        select(value)  # raises the ValueError naming the engines
+        resolve(value)  # raises the ValidationError naming the engines
 
 
 @dataclass(frozen=True)

@@ -99,7 +99,7 @@ class ContentPAL(Inducer):
     >>> ContentPAL(engine="fortran")
     Traceback (most recent call last):
     ...
-    ValueError: engine must be one of 'auto', 'numpy', 'numba', not 'fortran'
+    psgs.errors.ValidationError: engine must be one of 'auto', 'numpy', 'numba', not 'fortran'
     """
 
     name = "pal_content"

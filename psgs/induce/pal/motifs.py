@@ -5,14 +5,15 @@ from __future__ import annotations
 import functools
 import math
 import os
+from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ._engines import select
+from ..._foundation.engines import select
 from .statistics import log10_binom_sf, log10_poisson_sf, scan_threshold
-from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from .conf import ContentConf
@@ -159,6 +160,28 @@ def _chain(positions: np.ndarray, length: int) -> list[int]:
     return kept
 
 
+#: What :func:`grow` gets from an engine that leaves the motif to numpy's loop.
+_UNDECIDED = object()
+
+
+@dataclass(frozen=True)
+class Search:
+    """The motif search by one engine, as a table of the same functions (the same motifs).
+
+    ``find_all(strings, conf)``: :func:`find_motif` of every string;
+    ``grow(codes, motif, starts, match_rate, distinct, conf, seed_only)``: one motif grown,
+    or ``_UNDECIDED`` to leave it to numpy's loop. :func:`search` picks the table.
+    """
+
+    find_all: Callable
+    grow: Callable
+
+
+def search(conf: ContentConf) -> Search:
+    """The table of the engine ``conf.engine`` chooses (numba's only when it runs)."""
+    return select(conf.engine, numpy=NUMPY_SEARCH, numba=lambda: COMPILED_SEARCH)
+
+
 def find_motifs(strings: list[np.ndarray], conf: ContentConf) -> list[Motif | None]:
     """:func:`find_motif` of every string, by the engine ``conf.engine`` chooses.
 
@@ -166,8 +189,16 @@ def find_motifs(strings: list[np.ndarray], conf: ContentConf) -> list[Motif | No
     meets a chance level too close to a boundary to decide in its own floats
     (see :mod:`psgs.induce.pal._motifs_jit`) is searched here again.
     """
-    if select(conf.engine) == "numpy":
-        return [find_motif(codes, conf) for codes in strings]
+    return search(conf).find_all(strings, conf)
+
+
+def _find_each(strings: list[np.ndarray], conf: ContentConf) -> list[Motif | None]:
+    """numpy's engine: each string searched on its own."""
+    return [find_motif(codes, conf) for codes in strings]
+
+
+def _find_all_compiled(strings: list[np.ndarray], conf: ContentConf) -> list[Motif | None]:
+    """The compiled engine: every string in one call (see :func:`find_motifs`)."""
     from . import _motifs_jit as jit
 
     count = len(strings)
@@ -320,21 +351,10 @@ def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: f
     With ``conf.engine`` compiled, the compiled loop grows it (the same motif).
     """
     n = len(codes)
-    if n and match_rate > 0 and select(conf.engine) == "numba":
-        from . import _motifs_jit as jit
-
-        state, grown, found, threshold = jit.grow_motif(
-            codes.astype(np.int64, copy=False), np.asarray(motif, dtype=np.int64),
-            np.asarray(starts, dtype=np.int64), int(codes.max()) + 1, match_rate,
-            math.log(match_rate), math.log1p(-match_rate) if match_rate < 1 else -math.inf,
-            conf.min_copies, float(conf.conserve), float(conf.match_fraction),
-            float(conf.scan_alpha), conf.max_pattern, seed_only)
-        if state == jit.FOUND:
-            return Motif(grown, found, significance(n, len(grown), threshold, len(found),
-                                                    match_rate, distinct))
-        if state == jit.NONE:
-            return None
-        # a chance level too close to call in the compiled floats: numpy's loop decides
+    if n and match_rate > 0:
+        decided = search(conf).grow(codes, motif, starts, match_rate, distinct, conf, seed_only)
+        if decided is not _UNDECIDED:
+            return decided
     size = int(codes.max()) + 1
     grown_from = motif
     while len(motif) < conf.max_pattern:
@@ -412,3 +432,32 @@ def significance(n: int, length: int, threshold: int, copies: int, match_rate: f
     return min(value, 0.0)
 
 
+def _numpy_leaves_it(*_args) -> object:
+    """numpy's engine grows every motif in :func:`grow`'s own loop."""
+    return _UNDECIDED
+
+
+def _grow_compiled(codes: np.ndarray, motif, starts, match_rate: float, distinct: int,
+                   conf: ContentConf, seed_only: bool):
+    """The compiled loop's motif, None, or ``_UNDECIDED`` (a chance level too close to call
+    in the compiled floats: numpy's loop decides)."""
+    from . import _motifs_jit as jit
+
+    n = len(codes)
+    state, grown, found, threshold = jit.grow_motif(
+        codes.astype(np.int64, copy=False), np.asarray(motif, dtype=np.int64),
+        np.asarray(starts, dtype=np.int64), int(codes.max()) + 1, match_rate,
+        math.log(match_rate), math.log1p(-match_rate) if match_rate < 1 else -math.inf,
+        conf.min_copies, float(conf.conserve), float(conf.match_fraction),
+        float(conf.scan_alpha), conf.max_pattern, seed_only)
+    if state == jit.FOUND:
+        return Motif(grown, found, significance(n, len(grown), threshold, len(found),
+                                                match_rate, distinct))
+    if state == jit.NONE:
+        return None
+    return _UNDECIDED
+
+
+#: The two engines' tables (numba's compiled module is imported by its functions, on use).
+NUMPY_SEARCH = Search(find_all=_find_each, grow=_numpy_leaves_it)
+COMPILED_SEARCH = Search(find_all=_find_all_compiled, grow=_grow_compiled)

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...analysis import reachable
-from ._engines import select
+from ..._foundation.engines import select
 from .motifs import Timed, grow, locate_copies
 from .statistics import log10_binom_sf, scan_threshold
 from typing import TYPE_CHECKING
@@ -58,10 +58,20 @@ def synchronised(a: np.ndarray, b: np.ndarray, fraction: float, min_copies: int)
 def synchronised_pairs(lists: list[np.ndarray], conf: ContentConf) -> list[tuple[int, int]]:
     """The pairs ``(i, j)``, ``i < j`` in order, of copy interval lists that are
     :func:`synchronised`, by the engine ``conf.engine`` chooses (the same pairs)."""
-    fraction, copies = conf.sync_fraction, conf.min_copies
-    if select(conf.engine) == "numpy":
-        return [(i, j) for i in range(len(lists)) for j in range(i + 1, len(lists))
-                if synchronised(lists[i], lists[j], fraction, copies)]
+    pairs = select(conf.engine, numpy=_pairs_each, numba=lambda: _pairs_compiled)
+    return pairs(lists, conf.sync_fraction, conf.min_copies)
+
+
+def _pairs_each(lists: list[np.ndarray], fraction: float, copies: int
+                ) -> list[tuple[int, int]]:
+    """numpy's engine: :func:`synchronised` on every pair."""
+    return [(i, j) for i in range(len(lists)) for j in range(i + 1, len(lists))
+            if synchronised(lists[i], lists[j], fraction, copies)]
+
+
+def _pairs_compiled(lists: list[np.ndarray], fraction: float, copies: int
+                    ) -> list[tuple[int, int]]:
+    """The compiled engine: every pair in one call."""
     from ._pairs_jit import synchronised_pairs as compiled
 
     bounds = np.zeros(len(lists) + 1, dtype=np.int64)
