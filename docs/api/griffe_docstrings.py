@@ -85,7 +85,8 @@ class TableSignatures(griffe.Extension):
     (a frozen table) when the class is created, so the source holds no ``__init__`` for griffe
     to read: the class would be shown without parameters, and its Parameters section would be
     reported as naming parameters the signature lacks. The signature is read from the class
-    itself (imported: it is the one ``help()`` shows) and written as the class's ``__init__``.
+    itself (imported: it is the one ``help()`` shows) and written as the class's ``__init__``;
+    so is a docstring the class completes when it is made (PAL's Parameters section).
     """
 
     def on_class_members(self, *, cls: griffe.Class, **kwargs: Any) -> None:
@@ -108,3 +109,7 @@ class TableSignatures(griffe.Extension):
         init = griffe.Function("__init__", lineno=cls.lineno, endlineno=cls.lineno,
                                parameters=griffe.Parameters(*parameters), parent=cls)
         cls.set_member("__init__", init)
+        # a docstring completed when the class is made (PAL lists its learners' parameters)
+        written = inspect.cleandoc(runtime.__doc__ or "")
+        if cls.docstring is not None and written and written != cls.docstring.value:
+            cls.docstring.value = written
