@@ -20,8 +20,8 @@ from pathlib import Path
 
 from .datasets import Action, DatasetError
 from .learn import Settings, input_key, learn_action
-from .records import ActionRecord, PerformanceRecord, Praxicon
-from .store import name_problem, read_records, write_index, write_record, write_shared
+from .records import ActionRecord, PerformanceRecord, Praxicon, name_problem
+from .store import read_records, write_index, write_record, write_shared
 
 __all__ = ["build", "BuildResult", "executor_for"]
 
@@ -145,8 +145,9 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
             _repair(out, previous[1], keys[action.name])
         else:
             todo.append(action)
-    for line in damaged:
-        log(f"{line}: learnt again")
+    for name, why in sorted(damaged.items()):
+        if name in keys:
+            log(f"{why}: learnt again")
     learnt, failed = [], [n for n in skipped if not records[n].learnt]
     dataset_list = tuple(str(d) for d in (datasets or sorted({a.dataset for a in actions})))
 

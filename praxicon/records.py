@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 __all__ = ["FORMAT", "FORMAT_VERSION", "REBUILD", "PraxiconError", "PerformanceRecord",
            "ChannelMorpheme", "JointRecord", "ActionRecord", "Praxicon", "Settings", "check_index",
-           "freeze", "thaw", "as_dict"]
+           "freeze", "thaw", "as_dict", "name_problem", "MAX_NAME_BYTES"]
 
 #: The ``"format"`` of a praxicon's ``index.json``.
 FORMAT = "psgs-praxicon"
@@ -37,6 +37,35 @@ FORMAT = "psgs-praxicon"
 FORMAT_VERSION = 2
 #: The command that rebuilds a praxicon folder (named by every "other version" error).
 REBUILD = "psgs praxicon build DATASET... -o FOLDER"
+#: Longest action name in bytes (UTF-8): it names the action's files, which with ``.json``
+#: and a temporary suffix must stay within the 255 bytes file systems allow.
+MAX_NAME_BYTES = 200
+
+
+def name_problem(name) -> str | None:
+    """Why ``name`` cannot name an action's files (None when it can).
+
+    Examples
+    --------
+    >>> name_problem("m.wave"), name_problem("a/b")
+    (None, "action name 'a/b' cannot be a file name (it holds '/')")
+    >>> name_problem("x" * 300)
+    'action name xxxxxxxxxxxxxxxxxxxxxxxx... is 300 bytes long; at most 200 make a file name'
+    """
+    if not isinstance(name, str):
+        return f"action name {name!r} is not text"
+    if not name.strip():
+        return f"action name {name!r} is empty"
+    for bad in ("/", "\\", "\0"):
+        if bad in name:
+            return f"action name {name!r} cannot be a file name (it holds {bad!r})"
+    if name.startswith("."):
+        return f"action name {name!r} cannot be a file name (it starts with '.')"
+    size = len(name.encode("utf-8", "surrogatepass"))
+    if size > MAX_NAME_BYTES:
+        return (f"action name {name[:24]}... is {size} bytes long; at most {MAX_NAME_BYTES} "
+                f"make a file name")
+    return None
 
 
 class PraxiconError(ValueError):

@@ -25,16 +25,12 @@ import json
 import os
 from pathlib import Path
 
-from .records import REBUILD, ActionRecord, Praxicon, PraxiconError, Settings, check_index
+from .records import (REBUILD, ActionRecord, Praxicon, PraxiconError, Settings, check_index,
+                      name_problem)
 from .shared import shared_patterns
 
 __all__ = ["load", "dump", "actuator_matrix", "name_problem", "write_atomic", "dump_json",
-           "write_record", "read_records", "write_index", "MAX_NAME_BYTES"]
-
-#: Longest action name in bytes (UTF-8): it is a file name, with ``.json`` and a temporary
-#: suffix, within the 255 bytes file systems allow.
-MAX_NAME_BYTES = 200
-
+           "write_record", "read_records", "write_index", "write_shared"]
 
 def write_atomic(path: Path, text: str) -> None:
     """Write ``text`` to ``path`` through a temporary file and a rename."""
@@ -47,30 +43,6 @@ def write_atomic(path: Path, text: str) -> None:
 def dump_json(value) -> str:
     """Canonical JSON: sorted keys, two-space indent, a final newline."""
     return json.dumps(value, indent=2, sort_keys=True, ensure_ascii=False) + "\n"
-
-
-def name_problem(name) -> str | None:
-    """Why ``name`` cannot name an action's files (None when it can).
-
-    Examples
-    --------
-    >>> name_problem("m.wave"), name_problem("a/b")
-    (None, "action name 'a/b' cannot be a file name (it holds '/')")
-    >>> name_problem("x" * 300)
-    'action name xxxxxxxxxxxxxxxxxxxxxxxx... is 300 bytes long; at most 200 make a file name'
-    """
-    if not isinstance(name, str) or not name.strip():
-        return f"action name {name!r} is empty"
-    for bad in ("/", "\\", "\0"):
-        if bad in name:
-            return f"action name {name!r} cannot be a file name (it holds {bad!r})"
-    if name.startswith("."):
-        return f"action name {name!r} cannot be a file name (it starts with '.')"
-    size = len(name.encode("utf-8", "surrogatepass"))
-    if size > MAX_NAME_BYTES:
-        return (f"action name {name[:24]}... is {size} bytes long; at most {MAX_NAME_BYTES} "
-                f"make a file name")
-    return None
 
 
 def write_record(out: Path, record: ActionRecord, key: str) -> None:
@@ -115,15 +87,15 @@ def _stored_record(path: Path, name: str | None = None) -> tuple[str, ActionReco
     return value["key"], record
 
 
-def read_records(out: Path) -> tuple[dict[str, tuple[str, ActionRecord]], list[str]]:
-    """What resume can trust in ``out/records``: name -> (input key, record), and one line
-    per record file it cannot trust (that action is learnt again)."""
-    found, damaged = {}, []
+def read_records(out: Path) -> tuple[dict[str, tuple[str, ActionRecord]], dict[str, str]]:
+    """What resume can trust in ``out/records``: name -> (input key, record), and per record
+    file it cannot trust, its action's name -> why (that action is learnt again)."""
+    found, damaged = {}, {}
     for path in sorted((out / "records").glob("*.json")):
         try:
             key, record = _stored_record(path)
         except PraxiconError as exc:
-            damaged.append(str(exc))
+            damaged[path.stem] = str(exc)
             continue
         found[record.name] = (key, record)
     return found, damaged
