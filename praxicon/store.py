@@ -29,7 +29,7 @@ from .records import (REBUILD, ActionRecord, Praxicon, PraxiconError, Settings, 
                       name_problem)
 from .shared import shared_patterns
 
-__all__ = ["load", "dump", "actuator_matrix", "name_problem", "write_atomic", "dump_json",
+__all__ = ["load", "dump", "actuator_matrix", "write_atomic", "dump_json",
            "write_record", "read_records", "write_index", "write_shared"]
 
 def write_atomic(path: Path, text: str) -> None:
