@@ -173,7 +173,7 @@ def freeze(value):
 
 
 def thaw(value):
-    """The JSON value of a :func:`freeze` d one."""
+    """The JSON value of a frozen one (the inverse of :func:`freeze`)."""
     if isinstance(value, _Object):
         return {k: thaw(v) for k, v in value}
     if isinstance(value, tuple):
