@@ -54,7 +54,7 @@ if _SPEC is not None and "praxicon" not in sys.modules:
     sys.modules["praxicon"] = importlib.util.module_from_spec(_SPEC)
     _SPEC.loader.exec_module(sys.modules["praxicon"])
 require("praxicon")
-from praxicon import Settings, build, executor_for, load_record, read_datasets  # noqa: E402
+from praxicon import Settings, build, dump, executor_for, load, read_datasets  # noqa: E402
 from praxicon.generation import generate, is_smooth_cycle  # noqa: E402
 
 MOCAP = Path("..") / "shared" / "data" / "mocap"  # as the docs name it (run from the repo root)
@@ -77,8 +77,8 @@ def _files(folder: Path) -> dict:
             if p.is_file() and p.name != "timings.json"}
 
 
-def timed_build(paths, out: Path, workers: int) -> tuple[float, dict]:
-    """Wall seconds of reading the datasets and building from nothing, and the index."""
+def timed_build(paths, out: Path, workers: int):
+    """Wall seconds of reading the datasets and building from nothing, and the praxicon."""
     if out.exists():
         shutil.rmtree(out)
     began = time.perf_counter()
@@ -89,22 +89,30 @@ def timed_build(paths, out: Path, workers: int) -> tuple[float, dict]:
                        progress=False, datasets=[str(p) for p in paths], log=lambda s: None)
     finally:
         close()
-    return time.perf_counter() - began, result.index
+    return time.perf_counter() - began, result.praxicon
 
 
-def score_actions(folder: Path, index: dict) -> list[dict]:
+def typed_round_trip(folder: Path, built, scratch: Path) -> tuple[bool, bool]:
+    """(the folder loaded equals the praxicon the build returned; the loaded praxicon dumped
+    anew gives the same bytes as the build wrote, timings.json aside)."""
+    loaded = load(folder)
+    again = scratch / "dumped"
+    dump(loaded, again)
+    return loaded == built, _files(again) == _files(folder)
+
+
+def score_actions(px) -> list[dict]:
     bench = _actuators_benchmark()
     rows = []
-    for action in index["actions"]:
-        row = {"action": action["name"], "dataset": action["dataset"],
-               "content": action["content"], "status": action["status"],
-               "performances": sum(p.get("used", False) for p in action["performances"]),
-               "actuators": " ".join(action.get("actuators", ())),
+    for action in px.actions:
+        row = {"action": action.name, "dataset": action.dataset,
+               "content": action.content, "status": action.status,
+               "performances": sum(bool(p.used) for p in action.performances),
+               "actuators": " ".join(action.actuators),
                "precision": "", "recall": "", "f1": ""}
-        truth = bench.TRUTH.get(action["content"])
-        if action["status"] == "ok" and truth is not None:
-            joints = load_record(folder, action["name"])["all_joints"]
-            p, r, f = bench.score(action["actuators"], joints, truth)
+        truth = bench.TRUTH.get(action.content)
+        if action.learnt and truth is not None:
+            p, r, f = bench.score(list(action.actuators), list(action.all_joints), truth)
             row.update(precision=round(p, 3), recall=round(r, 3), f1=round(f, 3))
         rows.append(row)
     return rows
@@ -128,14 +136,13 @@ def _action_trip(folder: str, name: str, repeat: int):
     return name, channels, generated.round_trip(by="actuator")
 
 
-def round_trips(folder: Path, index: dict, repeat: int, workers: int = 2) -> dict:
+def round_trips(folder: Path, px, repeat: int, workers: int = 2) -> dict:
     """Every learnt action generated with ``repeat`` copies, on ``workers`` processes."""
     from concurrent.futures import ProcessPoolExecutor
 
-    learnt = [a for a in index["actions"] if a["status"] == "ok" and a.get("actuators")]
+    learnt = [a for a in px.actions if a.learnt and a.actuators]
     # the 120 fps actions (the longest programmes) first, so that none of them starts last
-    names = [a["name"] for a in sorted(learnt, key=lambda a: (-a.get("frame_rate", 0),
-                                                               a["name"]))]
+    names = [a.name for a in sorted(learnt, key=lambda a: (-(a.frame_rate or 0), a.name))]
     with ProcessPoolExecutor(workers) as pool:
         everything = list(pool.map(_action_trip, [str(folder)] * len(names), names,
                                    [repeat] * len(names)))
@@ -153,11 +160,11 @@ def _share(count: int, total: int) -> str:
     return f"{count} ({count / total:.0%})" if total else "0"
 
 
-def summarise(times, rows, trips, repeat, same_bytes, index) -> str:
+def summarise(times, rows, trips, repeat, same_bytes, px, typed) -> str:
     (one, two), runs = times
     t1, t2 = min(one), min(two)
     median_pair = statistics.median(a / b for a, b in zip(one, two))
-    counts = index["counts"]
+    counts = px.counts
     out = io.StringIO()
     out.write(f"Command: `flock /tmp/heavy.lock python benchmarks/praxicon.py` (one run: "
               f"{runs} builds of each kind from nothing, alternating, the best of each; the "
@@ -173,6 +180,12 @@ def summarise(times, rows, trips, repeat, same_bytes, index) -> str:
     out.write(f"{counts['actions']} actions, {counts['learnt']} learnt, {counts['failed']} "
               f"failed (each with its one-line reason in `index.json`); the two praxicons are "
               f"{'byte-identical' if same_bytes else 'DIFFERENT'}.\n\n")
+    equal, same_dump = typed
+    out.write(f"Typed round trip: `praxicon.load` of the folder "
+              f"{'equals' if equal else 'DIFFERS FROM'} the `Praxicon` the build returned, "
+              f"record for record; `praxicon.dump` of it writes "
+              f"{'the same bytes as the build' if same_dump else 'OTHER BYTES than the build'} "
+              f"(every file but timings.json).\n\n")
     out.write("Actuator sets against the truth of `benchmarks/actuators.py` (learnt actions "
               "whose content has a truth entry):\n\n| dataset | actions scored | mean precision "
               "| mean recall | mean F1 |\n|---|---|---|---|---|\n")
@@ -263,19 +276,22 @@ def main(argv=None) -> int:
         one, two = [], []
         for _ in range(args.runs):  # alternating, so a load from elsewhere hits both alike
             one.append(timed_build(paths, scratch / "one", 1)[0])
-            seconds, index = timed_build(paths, out, 2)
+            seconds, px = timed_build(paths, out, 2)
             two.append(seconds)
             print(f"build: {one[-1]:.1f} s with 1 worker, {two[-1]:.1f} s with 2",
                   file=sys.stderr)
         same = _files(scratch / "one") == _files(out)
-        rows = score_actions(out, index)
+        typed = typed_round_trip(out, px, scratch)
+        print(f"typed round trip: loaded == built {typed[0]}, dumped bytes == built bytes "
+              f"{typed[1]}", file=sys.stderr)
+        rows = score_actions(px)
         repeat = [int(k) for k in args.repeat.split(",")]
         trips = {}
         for k in repeat:
             began = time.perf_counter()
-            trips[k] = round_trips(out, index, k)
+            trips[k] = round_trips(out, px, k)
             print(f"round trip K={k}: {time.perf_counter() - began:.0f} s", file=sys.stderr)
-        summary = summarise(((one, two), args.runs), rows, trips, repeat, same, index)
+        summary = summarise(((one, two), args.runs), rows, trips, repeat, same, px, typed)
         print(summary)
         if not args.no_docs:
             write_docs(summary, rows)

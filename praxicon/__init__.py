@@ -4,6 +4,8 @@ Built on both ``psgs`` (grammar systems, inducers) and ``kinetology`` (motion
 capture in, actiongrams out); ``psgs`` itself never imports either of them.
 A praxicon is a folder (``docs/praxicon.md``): per action the joints that take
 part, their morphemes, the grammar system, and the actuator-set matrix.
+``load(folder)`` reads it as a :class:`~praxicon.records.Praxicon` of typed
+:class:`~praxicon.records.ActionRecord` s; ``dump(praxicon, folder)`` writes one.
 
 A praxicon of one action (the wave, two takes of the shared data named in a manifest);
 ``build(read_dataset("../shared/data/mocap/cmu-mocap6"), "out/px")`` learns a whole dataset:
@@ -15,9 +17,12 @@ A praxicon of one action (the wave, two takes of the shared data named in a mani
 >>> _ = (work / "m.csv").write_text("action,file\\n" + "".join(
 ...     f"bye,{data / f'dataset-1_bye_{style}_001.bvh'}\\n" for style in ("normal", "active")))
 >>> result = build(read_dataset(work / "m.csv"), work / "px", progress=False)
->>> (entry,) = result.index["actions"]
->>> entry["name"], entry["status"], "LowerArm_R" in entry["actuators"]
-('m.bye', 'ok', True)
+>>> from praxicon import load
+>>> px = load(work / "px")
+>>> px.names, px["m.bye"].status, "LowerArm_R" in px["m.bye"].actuators
+(('m.bye',), 'ok', True)
+>>> px == result.praxicon
+True
 """
 
 from __future__ import annotations
@@ -28,9 +33,11 @@ from psgs._foundation.lazy import lazy_names
 _LAZY = {
     "Performance": "datasets", "Action": "datasets", "read_dataset": "datasets",
     "read_datasets": "datasets", "DatasetError": "datasets",
-    "Settings": "learn", "learn_action": "learn",
+    "Settings": "records", "learn_action": "learn",
     "build": "builder", "BuildResult": "builder", "executor_for": "builder",
-    "load_index": "store", "load_record": "store", "actuator_matrix": "store",
+    "load": "store", "dump": "store", "actuator_matrix": "store",
+    "Praxicon": "records", "ActionRecord": "records", "JointRecord": "records",
+    "ChannelMorpheme": "records", "PerformanceRecord": "records", "PraxiconError": "records",
     "shared_patterns": "shared",
     "generate": "generation", "generate_motion": "generation",
     "draw_actuator_matrix": "pictures", "draw_morphemes": "pictures",

@@ -18,22 +18,32 @@ from concurrent.futures import Executor, Future, ProcessPoolExecutor, as_complet
 from dataclasses import dataclass
 from pathlib import Path
 
-from .datasets import Action
+from .datasets import Action, DatasetError
 from .learn import Settings, input_key, learn_action
-from .shared import shared_patterns
-from .store import dump_json, read_records, write_atomic, write_index, write_record
+from .records import ActionRecord, PerformanceRecord, Praxicon, name_problem
+from .store import read_records, write_index, write_record, write_shared
 
 __all__ = ["build", "BuildResult", "executor_for"]
 
 
 @dataclass(frozen=True)
 class BuildResult:
-    """What a build did: the index written, and which actions were learnt, skipped, failed."""
+    """What a build did: the praxicon written, and which actions were learnt, skipped, failed.
 
-    index: dict
+    ``refused`` lists the actions whose name cannot be a file name (with the reason): they
+    are not learnt and not stored.
+    """
+
+    praxicon: Praxicon
     learnt: tuple[str, ...]
     skipped: tuple[str, ...]
     failed: tuple[str, ...]
+    refused: tuple[str, ...] = ()
+
+    @property
+    def index(self) -> dict:
+        """The index written (``index.json``)."""
+        return self.praxicon.index()
 
 
 def executor_for(workers: int | None = None, scheduler=None):
@@ -89,6 +99,11 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
     -------
     BuildResult
 
+    Raises
+    ------
+    DatasetError
+        When two actions have the same name (one record would overwrite the other).
+
     Examples
     --------
     >>> import tempfile, pathlib
@@ -96,15 +111,29 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
     >>> out = pathlib.Path(tempfile.mkdtemp())
     >>> _ = (out / "m.csv").write_text("action,file\\nwave,missing.bvh\\n")
     >>> r = build(read_dataset(out / "m.csv"), out / "px", progress=False, log=lambda s: None)
-    >>> r.failed, r.index["actions"][0]["problems"][0].endswith("unreadable file (no such file)")
+    >>> r.failed, r.praxicon["m.wave"].problems[0].endswith("unreadable file (no such file)")
     (('m.wave',), True)
     """
+    names = [a.name for a in actions]
+    twice = sorted({n for n in names if names.count(n) > 1})
+    if twice:
+        raise DatasetError(f"two actions are named {twice[0]!r}: one record would overwrite "
+                           f"the other")
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     settings = settings or Settings.make()
     executor = _as_executor(executor)
-    done = read_records(out)
-    records: dict[str, dict] = {}
+    bar = _bar(0, False)
+    log = log or (lambda line: bar.write(f"praxicon: {line}"))
+    refused = []
+    for action in actions:
+        problem = name_problem(action.name)
+        if problem:
+            refused.append(action.name)
+            log(f"{problem}: not learnt (rename the action)")
+    actions = [a for a in actions if a.name not in refused]
+    done, damaged = read_records(out)
+    records: dict[str, ActionRecord] = {}
     timings: dict[str, float] = {}
     keys = {a.name: input_key(a, settings) for a in actions}
     todo, skipped = [], []
@@ -113,34 +142,40 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
         if previous is not None and previous[0] == keys[action.name]:
             records[action.name] = previous[1]
             skipped.append(action.name)
+            _repair(out, previous[1], keys[action.name])
         else:
             todo.append(action)
-    learnt, failed = [], [n for n in skipped if records[n]["status"] != "ok"]
-    setting_dict = settings.to_dict()
-    dataset_list = [str(d) for d in (datasets or sorted({a.dataset for a in actions}))]
+    for name, why in sorted(damaged.items()):
+        if name in keys:
+            log(f"{why}: learnt again")
+    learnt, failed = [], [n for n in skipped if not records[n].learnt]
+    dataset_list = tuple(str(d) for d in (datasets or sorted({a.dataset for a in actions})))
+
+    def praxicon() -> Praxicon:
+        return Praxicon(tuple(records[n] for n in sorted(records)), settings, dataset_list,
+                        tuple((n, keys[n]) for n in sorted(records)))
 
     index_written = time.monotonic()
 
-    def finish(action: Action, record: dict, seconds: float) -> None:
+    def finish(action: Action, record: ActionRecord, seconds: float) -> None:
         nonlocal index_written
         write_record(out, record, keys[action.name])
         records[action.name] = record
         timings[action.name] = seconds
-        (failed if record["status"] != "ok" else learnt).append(action.name)
-        for problem in record["problems"]:
+        (failed if not record.learnt else learnt).append(action.name)
+        for problem in record.problems:
             log(f"{action.name}: {problem}")
-        if record["status"] != "ok":
-            log(f"{action.name}: failed: {record['reason']}")
+        if not record.learnt:
+            log(f"{action.name}: failed: {record.reason}")
         # the index is rewritten whole (3.7 s for the 56 rewrites of the shared data's build, in
         # the process that should leave the cores to the workers), so during the build at most
         # once a second: the records are on disk at once, resuming reads them, and the index is
         # written whole at the end, also after Ctrl-C
         if time.monotonic() - index_written >= 1.0:
-            write_index(out, list(records.values()), setting_dict, dataset_list)
+            write_index(out, praxicon())
             index_written = time.monotonic()
 
     bar = _bar(len(todo), progress)
-    log = log or (lambda line: bar.write(f"praxicon: {line}"))
     try:
         if executor is None:
             for action in todo:
@@ -164,13 +199,24 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
     finally:
         bar.close()
         # always leave a consistent index of what is done (also after Ctrl-C)
-        index = write_index(out, list(records.values()), setting_dict, dataset_list,
-                            timings={**_old_timings(out), **timings})
+        result = praxicon()
+        write_index(out, result, timings={**_old_timings(out), **timings})
         # the build's last write: the patterns that recur across actions (Fig. 13)
-        write_atomic(out / "shared.json",
-                     dump_json([p.to_dict() for p in shared_patterns(index)]))
-    return BuildResult(index, tuple(sorted(learnt)), tuple(sorted(skipped)),
-                       tuple(sorted(failed)))
+        write_shared(out, result)
+    return BuildResult(result, tuple(sorted(learnt)), tuple(sorted(skipped)),
+                       tuple(sorted(failed)), tuple(refused))
+
+
+def _repair(out: Path, record: ActionRecord, key: str) -> None:
+    """Rewrite what the record says is on disk where it is not (a deleted ``ACTION.psgs``)."""
+    psgs_path = out / f"{record.name}.psgs"
+    try:
+        intact = (psgs_path.read_text(encoding="utf-8") == record.system) if record.system \
+            else not psgs_path.exists()
+    except (OSError, UnicodeDecodeError):
+        intact = False
+    if not intact:
+        write_record(out, record, key)
 
 
 def schedule(actions: list[Action]) -> list[Action]:
@@ -236,21 +282,27 @@ def schedule(actions: list[Action]) -> list[Action]:
     return [actions[i] for b in order for i in blocks[b]]
 
 
-def _crashed(action: Action, exc: BaseException) -> dict:
-    return {"name": action.name, "dataset": action.dataset, "content": action.content,
-            "style": action.style, "status": "failed",
-            "reason": f"worker failed: {type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}",
-            "problems": list(action.problems),
-            "performances": [p.to_dict() for p in action.performances]}
+def _crashed(action: Action, exc: BaseException) -> ActionRecord:
+    text = str(exc).splitlines()[0] if str(exc) else ""
+    return ActionRecord(action.name, action.dataset, action.content, action.style,
+                        status="failed", reason=f"worker failed: {type(exc).__name__}: {text}",
+                        problems=tuple(action.problems),
+                        performances=tuple(PerformanceRecord(p.file, p.start, p.stop, p.label)
+                                           for p in action.performances))
 
 
 def _old_timings(out: Path) -> dict[str, float]:
+    """The timings of earlier builds, when ``timings.json`` holds what it should."""
     import json
 
     try:
-        return json.loads((out / "timings.json").read_text(encoding="utf-8"))
-    except (OSError, ValueError):
+        old = json.loads((out / "timings.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError, RecursionError):  # damaged: the timings start again
         return {}
+    if not isinstance(old, dict):
+        return {}
+    return {k: v for k, v in old.items()
+            if isinstance(v, (int, float)) and not isinstance(v, bool)}
 
 
 class _NoBar:

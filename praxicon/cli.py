@@ -48,7 +48,7 @@ def run_build(args) -> int:
                        progress=not args.no_progress, datasets=args.datasets)
     finally:
         close()
-    counts = result.index["counts"]
+    counts = result.praxicon.counts
     print(f"praxicon: {counts['actions']} actions, {counts['learnt']} learnt, "
           f"{counts['failed']} failed ({len(result.skipped)} already done) -> "
           f"{args.output}/index.json")

@@ -24,6 +24,8 @@ unreadable label file) never stops the reading: it is kept in the action's
 from __future__ import annotations
 
 import csv
+import io
+import math
 import re
 import tomllib
 from collections import defaultdict
@@ -170,37 +172,84 @@ def _optional_seconds(value, where: str) -> float | None:
         return None
     try:
         seconds = float(value)
-    except (TypeError, ValueError):
-        raise DatasetError(f"{where}: start/stop must be seconds, not {value!r}") from None
-    if not seconds >= 0:
-        raise DatasetError(f"{where}: start/stop must be >= 0, not {value!r}")
+    except (TypeError, ValueError, OverflowError):
+        raise DatasetError(f"{where}: start/stop must be seconds, not {_shown(value)}") from None
+    if isinstance(value, bool) or not (seconds >= 0 and math.isfinite(seconds)):
+        raise DatasetError(f"{where}: start/stop must be seconds >= 0, not {_shown(value)}")
     return seconds
+
+
+def _shown(value) -> str:
+    """``repr(value)``, cut short: a manifest's field can be as long as the file."""
+    text = repr(value)
+    return text if len(text) <= 60 else f"{text[:57]}..."
+
+
+class _Lines:
+    """The lines of a text, counted as the csv reader takes them (its own count lags behind
+    on an error)."""
+
+    def __init__(self, text: str):
+        self._lines = iter(io.StringIO(text, newline=""))
+        self.number = 0
+
+    def __iter__(self):
+        return self
+
+    def __next__(self) -> str:
+        line = next(self._lines)
+        self.number += 1
+        return line
+
+
+def _manifest_text(path: Path) -> str:
+    try:
+        return path.read_bytes().decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise DatasetError(f"{_shown_path(path)}: not UTF-8 text (byte {exc.start + 1})") from None
+    except OSError as exc:
+        raise DatasetError(f"{_shown_path(path)}: cannot be read ({exc.strerror or exc})") \
+            from None
 
 
 def _read_manifest(path: Path) -> list[Action]:
     rows: list[tuple[str, dict]] = []
+    text = _manifest_text(path)
     if path.suffix.lower() == ".toml":
         try:
-            table = tomllib.loads(path.read_text(encoding="utf-8"))
+            table = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
             raise DatasetError(f"{_shown_path(path)}: {exc}") from None
+        except RecursionError:
+            raise DatasetError(f"{_shown_path(path)}: nests too deeply to be a manifest") \
+                from None
         entries = table.get("performance", [])
         if not isinstance(entries, list):
             raise DatasetError(f"{_shown_path(path)}: [[performance]] tables expected")
         rows = [(f"{_shown_path(path)}: performance {i + 1}", e) for i, e in enumerate(entries)]
+        for where, entry in rows:
+            if not isinstance(entry, dict):
+                raise DatasetError(f"{where}: a [[performance]] table expected, not "
+                                   f"{_shown(entry)}")
     else:
-        with path.open(newline="", encoding="utf-8") as handle:
-            reader = csv.DictReader(handle)
+        lines = _Lines(text)
+        reader = csv.DictReader(lines)
+        try:
             missing = {"action", "file"} - set(reader.fieldnames or ())
             if missing:
                 raise DatasetError(f"{_shown_path(path)}:1: manifest needs columns action,file "
                                    f"(missing {', '.join(sorted(missing))})")
-            rows = [(f"{_shown_path(path)}:{n}", row) for n, row in enumerate(reader, 2)]
+            rows = [(f"{_shown_path(path)}:{lines.number}", row) for row in reader]
+        except csv.Error as exc:  # e.g. a field longer than the csv module's limit
+            raise DatasetError(f"{_shown_path(path)}:{lines.number}: {exc}") from None
     groups: dict[str, list[Performance]] = defaultdict(list)
     for where, row in rows:
         action, file = row.get("action"), row.get("file")
         if not action or not file:
             raise DatasetError(f"{where}: action and file are required")
+        if not isinstance(action, str) or not isinstance(file, str):
+            raise DatasetError(f"{where}: action and file must be text, not "
+                               f"{_shown(action if not isinstance(action, str) else file)}")
         file_path = Path(file) if Path(file).is_absolute() else path.parent / file
         start = _optional_seconds(row.get("start"), where)
         stop = _optional_seconds(row.get("stop"), where)
@@ -257,16 +306,35 @@ def read_dataset(path: str | Path, group_by: str | None = None) -> list[Action]:
     path = Path(path)
     parts = _parse_group_by(group_by)
     if path.is_dir() and (path / "cfg" / "content_label.txt").is_file():
-        return _read_bandai(path, parts)
+        return _checked_names(_read_bandai(path, parts), path)
     if path.is_dir() and (path / "amc").is_dir() and (path / "truelabels").is_dir():
-        return _read_cmu_mocap6(path, parts)
+        return _checked_names(_read_cmu_mocap6(path, parts), path)
     if path.is_file() and path.suffix.lower() in (".csv", ".toml"):
-        return _read_manifest(path)
+        return _checked_names(_read_manifest(path), path)
     if not path.exists():
         raise DatasetError(f"{_shown_path(path)}: no such file or folder")
     raise DatasetError(f"{_shown_path(path)}: not a known dataset layout (a Bandai folder with "
                        f"cfg/content_label.txt, a cmu-mocap6 folder with amc/ and truelabels/, "
                        f"or a .csv/.toml manifest)")
+
+
+def _checked_names(actions: list[Action], path: Path) -> list[Action]:
+    """``actions``, or a DatasetError when two of them get one name (one record would
+    overwrite the other) or a name cannot name the action's files."""
+    from .records import name_problem
+
+    first: dict[str, Action] = {}
+    for action in actions:
+        problem = name_problem(action.name)
+        if problem:
+            raise DatasetError(f"{_shown_path(path)}: {problem}")
+        other = first.setdefault(action.name, action)
+        if other is not action:
+            said = [" ".join(p for p in (a.content, a.style) if p) for a in (other, action)]
+            raise DatasetError(f"{_shown_path(path)}: actions {said[0]!r} and {said[1]!r} are "
+                               f"both named {action.name!r} (names keep letters, digits and "
+                               f"_.-): rename one")
+    return actions
 
 
 def read_datasets(paths, group_by: str | None = None) -> list[Action]:

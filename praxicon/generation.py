@@ -33,7 +33,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .store import load_record
+from .records import ActionRecord, Praxicon, as_dict
+from .store import load
 
 __all__ = ["Generated", "Method", "generate", "generate_motion", "derive_copies", "is_smooth_cycle"]
 
@@ -321,7 +322,7 @@ class Method:
     scale: float = 1.0
 
 
-def generate_motion(record: dict, repeat: int, source_motion=None):
+def generate_motion(record: ActionRecord, repeat: int, source_motion=None):
     """The generated :class:`kinetology.Motion` of one action record, its words, its methods.
 
     Returns ``(motion, words, methods)``: the motion, per generated channel its merged
@@ -333,44 +334,43 @@ def generate_motion(record: dict, repeat: int, source_motion=None):
     import kinetology
     from psgs import loads
 
-    if record.get("status") != "ok":
-        raise ValueError(f"action {record['name']!r} was not learnt: {record.get('reason')}")
-    if not record.get("actuators") or not record.get("system"):
-        raise ValueError(f"action {record['name']!r} has no actuators "
-                         f"({record.get('verdict') or 'nothing learnt'}): nothing to generate")
+    if not record.learnt:
+        raise ValueError(f"action {record.name!r} was not learnt: {record.reason}")
+    if not record.actuators or not record.system:
+        raise ValueError(f"action {record.name!r} has no actuators "
+                         f"({record.verdict or 'nothing learnt'}): nothing to generate")
     if not isinstance(repeat, int) or repeat < 1:
         raise ValueError(f"repeat must be a whole number >= 1, not {repeat!r}")
-    system = loads(record["system"], source=f"{record['name']}.psgs")
+    system = loads(record.system, source=record.file)
     words = dict(zip((g.name for g in system.components), derive_copies(system, repeat)))
-    morphemes = {c: m for j in record["actuators"] for c, m in
-                 record["joints"][j]["morphemes"].items()}
-    usable = {c: m for c, m in morphemes.items() if m["durations"] and m["displacements"]}
+    usable = {c: m for c, m in record.morphemes().items() if m.durations and m.displacements}
     if not usable:
-        raise ValueError(f"action {record['name']!r}: no morpheme has durations and "
+        raise ValueError(f"action {record.name!r}: no morpheme has durations and "
                          f"displacements (no exact occurrence of any pattern)")
-    rate = float(record["frame_rate"])
-    period = float(np.median([sum(m["durations"]) for m in usable.values()]))
+    rate = float(record.frame_rate)
+    period = float(np.median([sum(m.durations) for m in usable.values()]))
     frames = int(round(repeat * period * rate)) + 1
     if source_motion is None:
-        source_motion = kinetology.read(record["skeleton_source"])
+        source_motion = kinetology.read(record.skeleton_source)
     skeleton = source_motion.skeleton
     if skeleton is not None and any(any(j.axis) for j in skeleton.joints):
         skeleton = None  # an ASF skeleton: BVH cannot hold its axes, write angles on a star
     channels = source_motion.channels
-    pose = record["mean_pose"]
+    pose = dict(record.mean_pose)
     values = np.tile([pose.get(c, 0.0) for c in channels], (frames, 1))
     derived, methods = {}, {}
-    params = dict(record.get("segmentation") or {})
+    params = as_dict(record.segmentation)
+    component = dict(record.component_names)
     for channel, morpheme in usable.items():
-        word = words.get(record["component_names"].get(channel, channel))
-        kinetemes = tuple(morpheme["kinetemes"])
+        word = words.get(component.get(channel, channel))
+        kinetemes = morpheme.kinetemes
         if word is None or tuple(word) != kinetemes * repeat:
-            raise ValueError(f"action {record['name']!r}: the system derives "
+            raise ValueError(f"action {record.name!r}: the system derives "
                              f"{' '.join(word or ())!r} for {channel}, not its morpheme "
                              f"{' '.join(kinetemes)!r} x {repeat}")
-        durations = np.asarray(morpheme["durations"], float)
+        durations = np.asarray(morpheme.durations, float)
         durations = np.tile(durations * period / durations.sum(), repeat)
-        steps = np.tile(_balanced(kinetemes, morpheme["displacements"]), repeat)
+        steps = np.tile(_balanced(kinetemes, morpheme.displacements), repeat)
         sequence, durations, steps = _merge_runs(kinetemes * repeat, durations, steps)
         knots = np.round(np.concatenate(([0.0], np.cumsum(durations))) * rate).astype(int)
         curve, method = _channel_curve(knots, sequence, steps, frames, rate, params, channel)
@@ -378,18 +378,18 @@ def generate_motion(record: dict, repeat: int, source_motion=None):
         derived[channel] = sequence
         methods[channel] = method
     motion = kinetology.Motion(values, channels, rate, skeleton,
-                               f"generated:{record['name']}", {"format": "generated"})
+                               f"generated:{record.name}", {"format": "generated"})
     return motion, derived, methods
 
 
-def generate(folder: str | Path, action: str, *, repeat: int = 3, output: str | Path | None = None,
-             plot: str | Path | None = None) -> Generated:
+def generate(folder: str | Path | Praxicon, action: str, *, repeat: int = 3,
+             output: str | Path | None = None, plot: str | Path | None = None) -> Generated:
     """Generate ``repeat`` copies of ``action`` from the praxicon in ``folder``.
 
     Parameters
     ----------
-    folder : str or Path
-        A praxicon folder (``psgs praxicon build``).
+    folder : str, Path or Praxicon
+        A praxicon folder (``psgs praxicon build``) or a loaded praxicon.
     action : str
         An action name of its index.
     repeat : int
@@ -425,17 +425,17 @@ def generate(folder: str | Path, action: str, *, repeat: int = 3, output: str | 
     (True, True)
     >>> generate(work / "px", "m.Nope")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
-    ValueError: no action 'm.Nope' in ... (actions: m.bye)
+    praxicon.records.PraxiconError: no action 'm.Nope' in the praxicon (actions: m.bye)
     """
     import kinetology
 
-    record = load_record(folder, action)
+    record = (folder if isinstance(folder, Praxicon) else load(folder))[action]
     motion, words, methods = generate_motion(record, repeat)
     if output is not None:
         kinetology.write_bvh(motion, output)
-    owners = {c: j for j in record["actuators"] for c in record["joints"][j]["morphemes"]}
-    result = Generated(motion, action, repeat, tuple(record["actuators"]), tuple(words), words,
-                       dict(record.get("segmentation") or {}), methods, owners)
+    owners = {c: j.name for j in record.joints for c in j.channels}
+    result = Generated(motion, action, repeat, record.actuators, tuple(words), words,
+                       as_dict(record.segmentation), methods, owners)
     if plot is not None:
         from .pictures import draw_generated
 

@@ -2,8 +2,8 @@
 
 :func:`learn_action` is the unit of work the build hands to an executor: a
 plain, picklable function of an :class:`~praxicon.datasets.Action` and a
-:class:`Settings`, returning a JSON-ready record (never raising for bad input:
-a failure is a record with ``"status": "failed"`` and its reason).
+:class:`Settings`, returning an :class:`~praxicon.records.ActionRecord` (never raising
+for bad input: a failure is a record with ``status == "failed"`` and its reason).
 
 What a record holds (the schema is in ``docs/praxicon.md``): the performances
 used and the problems met, the joints that take part (``actuators``), per
@@ -20,45 +20,19 @@ import functools
 import hashlib
 import json
 import time
-from dataclasses import dataclass, field
+from collections import Counter
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 
 from .datasets import Action, Performance
+from .records import (FORMAT_VERSION, ActionRecord, ChannelMorpheme, JointRecord,
+                      PerformanceRecord, Settings, freeze)
 
-__all__ = ["Settings", "learn_action", "input_key", "FORMAT_VERSION"]
+__all__ = ["Settings", "learn_action", "input_key"]
 
-#: Bumped when what a record holds changes: an old record is then learnt again on resume.
-FORMAT_VERSION = 1
 _LABEL_SLACK = 0.1  # seconds a label span may overrun its motion (cmu labels are 1/10 s)
-
-
-@dataclass(frozen=True)
-class Settings:
-    """How every action is learnt: the inducer by name and its parameters, segmentation.
-
-    ``min_performances`` (2): an action with fewer usable performances fails
-    with that reason (one performance cannot show what repeats across them).
-    """
-
-    inducer: str = "pal"
-    params: tuple[tuple[str, object], ...] = ()
-    segmentation: tuple[tuple[str, object], ...] = ()
-    min_performances: int = 2
-
-    @classmethod
-    def make(cls, inducer: str = "pal", params: dict | None = None,
-             segmentation: dict | None = None, min_performances: int = 2) -> "Settings":
-        """Settings from plain dicts (sorted, so equal settings compare and hash equal)."""
-        return cls(inducer, tuple(sorted((params or {}).items())),
-                   tuple(sorted((segmentation or {}).items())), min_performances)
-
-    def to_dict(self) -> dict:
-        """The settings as plain JSON values (for index.json)."""
-        return {"inducer": self.inducer, "params": dict(self.params),
-                "segmentation": dict(self.segmentation),
-                "min_performances": self.min_performances}
 
 
 # -- inputs ------------------------------------------------------------------------------------
@@ -67,6 +41,8 @@ def _file_digest(path: str) -> str:
         stat = Path(path).stat()
     except OSError as exc:
         return f"unreadable: {exc.strerror or exc}"
+    except ValueError as exc:  # a NUL byte in the path
+        return f"unreadable: {exc}"
     # cached by size and modification time too: a file changed in place is hashed again
     return _digest(path, stat.st_size, stat.st_mtime_ns)
 
@@ -129,7 +105,7 @@ def _load_performance(perf: Performance):
     except (OSError, ValueError) as exc:
         return None, f"{perf.file}: unreadable file ({_one_line(exc)})"
     if perf.stop is not None and perf.stop > motion.duration + _LABEL_SLACK:
-        return None, (f"{perf.label or perf.file}: label span {perf.start:g}-{perf.stop:g} s ends "
+        return None, (f"{perf.label or perf.file}: label span {perf.start or 0:g}-{perf.stop:g} s ends "
                       f"after the motion ({motion.duration:g} s): the label file does not match "
                       f"its motion")
     stop = perf.stop
@@ -206,7 +182,7 @@ def _induce(inducer, segmented: list[_Segmented]):
     try:
         return inducer.induce(tuple(actiongrams)), list(range(len(segmented))), None
     except (TypeError, AttributeError, ValidationError) as exc:
-        # an inducer that takes one actiongram only: learn from the
+        # an inducer that takes one actiongram (PAL until issue 9 lands): learn from the
         # longest performance, say so in the record, and still read morphemes from all
         lengths = [sum(map(sum, ag.segment_durations)) for ag in actiongrams]
         longest = int(np.argmax(lengths))
@@ -216,103 +192,113 @@ def _induce(inducer, segmented: list[_Segmented]):
         return inducer.induce(actiongrams[longest]), [longest], note
 
 
-def _round(values) -> list[float]:
-    return [round(float(v), 6) for v in values]
+def _round(values) -> tuple[float, ...]:
+    return tuple(round(float(v), 6) for v in values)
 
 
-def learn_action(action: Action, settings: Settings) -> tuple[dict, float]:
+def learn_action(action: Action, settings: Settings) -> tuple[ActionRecord, float]:
     """Learn one action; returns ``(record, seconds)`` (see the module docstring).
 
-    Never raises for bad input: unreadable files and labels that do not match
-    their motion are listed in ``record["problems"]``; with fewer than
-    ``settings.min_performances`` usable performances, or when the inducer
-    fails, ``record["status"]`` is ``"failed"`` and ``record["reason"]`` says why.
+    Never raises for bad input: unreadable files, labels that do not match their motion and
+    performances whose channels differ from the others' are listed in ``record.problems``
+    (each costs its performance only); with fewer than ``settings.min_performances`` usable
+    performances, or when the inducer fails, ``record.status`` is ``"failed"`` and
+    ``record.reason`` says why.
     """
     began = time.perf_counter()
-    record = {"name": action.name, "dataset": action.dataset, "content": action.content,
-              "style": action.style, "status": "failed", "reason": None,
-              "problems": list(action.problems),
-              "performances": [p.to_dict() for p in action.performances]}
+    motions, used, problems = _load_all(action)
+    base = ActionRecord(
+        action.name, action.dataset, action.content, action.style, status="failed",
+        problems=tuple(action.problems) + tuple(problems),
+        performances=tuple(PerformanceRecord(p.file, p.start, p.stop, p.label, i in used)
+                           for i, p in enumerate(action.performances)))
+    if len(motions) < settings.min_performances:
+        reason = (f"{len(motions)} usable performance(s); an action needs at least "
+                  f"{settings.min_performances} to show what repeats across them")
+        return replace(base, reason=reason), time.perf_counter() - began
     try:
-        _learn_into(record, action, settings)
+        record = _learnt(base, action, motions, used, settings)
     except Exception as exc:  # a failure of one action is recorded; the build goes on
-        record["status"], record["reason"] = "failed", _one_line(exc)
+        record = replace(base, reason=_one_line(exc))
     return record, time.perf_counter() - began
 
 
-def _learn_into(record: dict, action: Action, settings: Settings) -> None:
+def _load_all(action: Action) -> tuple[list, list[int], list[str]]:
+    """(motions, indices of the performances they are, problems): every performance that
+    can be read, on the channels most of them share (one line per performance left out)."""
+    loaded, problems = [], []
+    for i, perf in enumerate(action.performances):
+        try:
+            motion, problem = _load_performance(perf)
+        except Exception as exc:  # whatever one performance does, it costs that one only
+            motion, problem = None, f"{perf.file}: unreadable ({_one_line(exc)})"
+        if problem:
+            problems.append(problem)
+        else:
+            loaded.append((i, motion))
+    counts = Counter(tuple(m.channels) for _, m in loaded)
+    if len(counts) > 1:  # inducers need one channel set: the most common one (first on a tie)
+        common = max(counts, key=counts.__getitem__)
+        for i, motion in loaded:
+            if tuple(motion.channels) != common:
+                problems.append(f"{action.performances[i].file}: its {len(motion.channels)} "
+                                f"channels are not the {len(common)} of the other "
+                                f"performances (left out)")
+        loaded = [(i, m) for i, m in loaded if tuple(m.channels) == common]
+    return [m for _, m in loaded], [i for i, _ in loaded], problems
+
+
+def _learnt(base: ActionRecord, action: Action, motions, used: list[int],
+            settings: Settings) -> ActionRecord:
     from psgs import dumps
     from psgs.induce import get
 
-    motions, used = [], []
-    for i, perf in enumerate(action.performances):
-        motion, problem = _load_performance(perf)
-        if problem:
-            record["problems"].append(problem)
-        else:
-            motions.append(motion)
-            used.append(i)
-    for i, perf in enumerate(record["performances"]):
-        perf["used"] = i in used
-    if len(motions) < settings.min_performances:
-        record["reason"] = (f"{len(motions)} usable performance(s); an action needs at least "
-                            f"{settings.min_performances} to show what repeats across them")
-        return
     segmentation = dict(settings.segmentation)
     segmented = _segment_all(motions, segmentation)
     inducer = get(settings.inducer, **dict(settings.params))
     induction, learnt, note = _induce(inducer, segmented)
-    record["learnt_from"] = [used[i] for i in learnt]
-    record["note"] = note
     channels = _component_channels(induction)
-    joints: dict[str, dict] = {}
+    joints: dict[str, list] = {}
     for channel in channels:
-        joint = _actuator_of(channel, segmented[0])
         pattern = tuple(induction.patterns.get(channel, ()))
-        morpheme = _morpheme(induction, channel, pattern, segmented)
-        joints.setdefault(joint, {"channels": [], "morphemes": {}})
-        joints[joint]["channels"].append(channel)
-        joints[joint]["morphemes"][channel] = morpheme
-    actuators = tuple(getattr(induction, "actuators", None) or joints)
-    record.update({
-        "status": "ok",
-        "actuators": list(actuators),
-        "joints": {j: joints[j] for j in actuators if j in joints},
-        "verdict": getattr(induction, "verdict", None) or
-        ("" if actuators else "no synchronised repetition"),
-        "inducer": induction.inducer or settings.inducer,
-        "params": {k: v for k, v in sorted(dict(induction.params).items())},
-        "system": dumps(induction.system) if induction.system is not None else None,
+        joints.setdefault(_actuator_of(channel, segmented[0]), []).append(
+            (channel, _morpheme(induction, channel, pattern, segmented)))
+    actuators = tuple(induction.actuators) or tuple(joints)
+    return replace(
+        base, status="ok", learnt_from=tuple(used[i] for i in learnt), note=note,
+        actuators=actuators,
+        joints=tuple(JointRecord(j, tuple(joints[j])) for j in actuators if j in joints),
+        verdict=induction.verdict or ("" if actuators else "no synchronised repetition"),
+        inducer=induction.inducer or settings.inducer, params=freeze(dict(induction.params)),
+        system=dumps(induction.system) if induction.system is not None else None,
         # channel -> component name in the system (names made identifiers: Hips.rx -> Hips_rx)
-        "component_names": {c: induction.component_names.get(c, c) for c in channels},
-        "frame_rate": motions[0].frame_rate,
-        "skeleton_source": action.performances[used[0]].file,
-        # every joint of the motion in skeleton order (JSON objects are written sorted)
-        "all_joints": list(dict.fromkeys(c.rsplit(".", 1)[0] for c in motions[0].channels)),
-        "mean_pose": {c: round(float(v), 6) for c, v in
-                      zip(motions[0].channels, np.mean(np.vstack([m.values for m in motions]),
-                                                       axis=0))},
-        "segmentation": segmentation,
-    })
+        component_names=tuple(sorted((c, induction.component_names.get(c, c))
+                                     for c in channels)),
+        frame_rate=motions[0].frame_rate,
+        skeleton_source=action.performances[used[0]].file,
+        # every joint of the motion in skeleton order
+        all_joints=tuple(dict.fromkeys(c.rsplit(".", 1)[0] for c in motions[0].channels)),
+        mean_pose=tuple(sorted(
+            (c, round(float(v), 6)) for c, v in
+            zip(motions[0].channels, np.mean(np.vstack([m.values for m in motions]), axis=0)))),
+        segmentation=freeze(segmentation))
 
 
 def _component_channels(induction) -> list[str]:
-    per_joint = getattr(induction, "actuator_channels", None)
-    if per_joint:  # a motion learner says, per joint, the channels that carry the pattern
-        return [c for j in induction.actuators for c in per_joint[j]]
+    if induction.actuator_channels:  # per joint, the channels that carry the pattern
+        return [c for j in induction.actuators for c in induction.actuator_channels[j]]
     return list(induction.components)
 
 
-def _morpheme(induction, channel: str, pattern: tuple[str, ...], segmented) -> dict:
-    learnt = getattr(induction, "morphemes", None) or {}
-    given = learnt.get(channel)
+def _morpheme(induction, channel: str, pattern: tuple[str, ...], segmented) -> ChannelMorpheme:
+    given = induction.morphemes.get(channel)
     if given is not None:  # the inducer's own morpheme, displacements filled in
-        pattern = tuple(getattr(given, "kinetemes", pattern))
+        pattern = tuple(given.kinetemes)
     durations, displacements, count = _typical(pattern, channel, segmented)
     if given is not None:
-        durations = getattr(given, "durations", None) or durations
-        displacements = getattr(given, "displacements", None) or displacements
-    return {"kinetemes": list(pattern),
-            "durations": _round(durations) if durations is not None else None,
-            "displacements": _round(displacements) if displacements is not None else None,
-            "occurrences": count}
+        durations = given.durations or durations
+        displacements = given.displacements or displacements
+    return ChannelMorpheme(pattern,
+                           _round(durations) if durations is not None else None,
+                           _round(displacements) if displacements is not None else None,
+                           count)

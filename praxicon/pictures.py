@@ -21,7 +21,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .store import actuator_matrix, load_index, load_record
+from .records import ActionRecord, Praxicon
+from .store import actuator_matrix, load
 
 __all__ = ["KINETEME_COLOURS", "draw_actuator_matrix", "draw_morphemes", "draw_shared_patterns",
            "draw_generated", "draw_praxicon"]
@@ -54,14 +55,15 @@ def _save(fig, path) -> Path:
     return path
 
 
-def _records(folder) -> list[dict]:
-    index = load_index(folder)
-    return [load_record(folder, a["name"]) if a["status"] == "ok" else a
-            for a in index["actions"]]
+def _praxicon(praxicon) -> Praxicon:
+    return praxicon if isinstance(praxicon, Praxicon) else load(praxicon)
 
 
 def draw_actuator_matrix(folder, path) -> Path:
     """Actions x joints, a filled cell where the joint is an actuator (Fig. 10).
+
+    ``folder`` is a praxicon folder or a loaded :class:`~praxicon.records.Praxicon` (so
+    for every drawing function here).
 
     Examples
     --------
@@ -76,7 +78,7 @@ def draw_actuator_matrix(folder, path) -> Path:
     True
     """
     plt = _pyplot()
-    names, joints, rows = actuator_matrix(_records(folder))
+    names, joints, rows = actuator_matrix(_praxicon(folder))
     if not names:
         raise ValueError(f"{folder}: no learnt action to draw")
     matrix = np.array(rows, dtype=float)
@@ -107,15 +109,14 @@ def _runs(ax, y: float, kinetemes, durations, height: float = 0.8) -> None:
 def draw_morphemes(folder, action: str, path) -> Path:
     """An action's morphemes, one row per actuator channel, kinetemes as coloured runs (Fig. 11)."""
     plt = _pyplot()
-    record = load_record(folder, action)
-    rows = [(c, m) for j in record.get("actuators", ()) for c, m in
-            record["joints"][j]["morphemes"].items()]
+    record = _praxicon(folder)[action]
+    rows = list(record.morphemes().items())
     if not rows:
         raise ValueError(f"action {action!r} has no actuators to draw")
     fig, ax = plt.subplots(figsize=(7, 0.8 + 0.28 * len(rows)))
     for y, (channel, morpheme) in enumerate(rows):
-        durations = morpheme["durations"] or [0.1] * len(morpheme["kinetemes"])
-        _runs(ax, y, morpheme["kinetemes"], durations)
+        durations = morpheme.durations or [0.1] * len(morpheme.kinetemes)
+        _runs(ax, y, morpheme.kinetemes, durations)
     ax.set_yticks(range(len(rows)), [c for c, _ in rows], fontsize=7)
     ax.invert_yaxis()
     ax.set_xlabel("seconds (typical durations)")
@@ -131,7 +132,7 @@ def draw_shared_patterns(folder, path, *, most: int = 30, **options) -> Path:
     from .shared import shared_patterns
 
     plt = _pyplot()
-    patterns = sorted(shared_patterns(folder, **options),
+    patterns = sorted(shared_patterns(_praxicon(folder), **options),
                       key=lambda p: (-len(p.actions), -len(p.kinetemes)))[:most]
     if not patterns:
         raise ValueError(f"{folder}: no sub-pattern is shared by several actions")
@@ -151,14 +152,14 @@ def draw_shared_patterns(folder, path, *, most: int = 30, **options) -> Path:
     return _save(fig, path)
 
 
-def draw_generated(record: dict, generated, path, channel: str | None = None) -> Path:
+def draw_generated(record: ActionRecord, generated, path, channel: str | None = None) -> Path:
     """One actuator channel beside a performance (default: the one that moves the most in it)."""
-    from .learn import _load_performance
     from .datasets import Performance
+    from .learn import _load_performance
 
     plt = _pyplot()
-    used = [p for p in record["performances"] if p.get("used")]
-    perf = Performance(used[0]["file"], used[0]["start"], used[0]["stop"], used[0]["label"])
+    used = [p for p in record.performances if p.used]
+    perf = Performance(used[0].file, used[0].start, used[0].stop, used[0].label)
     original, problem = _load_performance(perf)
     if problem:
         raise ValueError(problem)
@@ -174,7 +175,7 @@ def draw_generated(record: dict, generated, path, channel: str | None = None) ->
     for ax in axes:
         ax.set_xlabel("seconds")
     axes[0].set_ylabel(f"{channel} (degrees)")
-    fig.suptitle(record["name"], fontsize=10)
+    fig.suptitle(record.name, fontsize=10)
     fig.tight_layout()
     return _save(fig, path)
 
@@ -186,20 +187,22 @@ def draw_praxicon(folder, out, *, fmt: str = "png") -> list[Path]:
     ``out/morphemes/ACTION.FMT`` and ``out/systems/ACTION.FMT`` (the grammar
     forest and synchronisation graph of :func:`psgs.draw.draw`).
     """
-    from psgs import load
+    from psgs import loads
     from psgs.draw import draw
 
     out = Path(out)
-    written = [draw_actuator_matrix(folder, out / f"actuators.{fmt}")]
+    praxicon = _praxicon(folder)  # read once: a damaged folder is one error before any picture
+    written = [draw_actuator_matrix(praxicon, out / f"actuators.{fmt}")]
     try:
-        written.append(draw_shared_patterns(folder, out / f"shared.{fmt}"))
+        written.append(draw_shared_patterns(praxicon, out / f"shared.{fmt}"))
     except ValueError:
         pass  # nothing shared: no picture (the praxicon may hold one action)
-    for action in load_index(folder)["actions"]:
-        if action["status"] == "ok" and action.get("actuators"):
-            name = action["name"]
-            written.append(draw_morphemes(folder, name, out / "morphemes" / f"{name}.{fmt}"))
+    for action in praxicon.actions:
+        if action.learnt and action.actuators and action.system:
+            name = action.name
+            written.append(draw_morphemes(praxicon, name, out / "morphemes" / f"{name}.{fmt}"))
             (out / "systems").mkdir(parents=True, exist_ok=True)
-            written.append(draw(load(Path(folder) / action["file"]),
+            # the system from the record's own text (the .psgs file beside it is a copy)
+            written.append(draw(loads(action.system, source=action.file),
                                 out / "systems" / f"{name}.{fmt}", max_steps=60))
     return written

@@ -18,9 +18,8 @@ gives the same list.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from pathlib import Path
 
-from .store import load_index
+from .records import ActionRecord, ChannelMorpheme, JointRecord, Praxicon
 
 __all__ = ["SharedPattern", "shared_patterns"]
 
@@ -70,8 +69,8 @@ def shared_patterns(praxicon, *, min_length: int = 4, min_actions: int = 2) -> l
 
     Parameters
     ----------
-    praxicon : str, Path or dict
-        A praxicon folder or its loaded index.
+    praxicon : Praxicon or iterable of ActionRecord
+        A praxicon (:func:`praxicon.load` reads a folder), or its records.
     min_length : int
         Fewest kinetemes in a pattern (4: one full cycle ``B G R Y``).
     min_actions : int
@@ -83,27 +82,25 @@ def shared_patterns(praxicon, *, min_length: int = 4, min_actions: int = 2) -> l
 
     Examples
     --------
-    >>> index = {"actions": [
-    ...     {"name": "a", "status": "ok", "actuators": ["arm"], "joints": {"arm": {
-    ...         "morphemes": {"arm.rx": {"kinetemes": ["B", "G", "R", "Y"]}}}}},
-    ...     {"name": "b", "status": "ok", "actuators": ["arm"], "joints": {"arm": {
-    ...         "morphemes": {"arm.rz": {"kinetemes": ["G", "R", "Y", "B", "G", "B"]}}}}}]}
-    >>> [(p.joint, " ".join(p.kinetemes), p.actions) for p in shared_patterns(index)]
+    >>> def action(name, channel, kinetemes):
+    ...     joint = JointRecord("arm", ((channel, ChannelMorpheme(tuple(kinetemes))),))
+    ...     return ActionRecord(name, "d", name, status="ok", actuators=("arm",),
+    ...                         joints=(joint,))
+    >>> records = [action("a", "arm.rx", "BGRY"), action("b", "arm.rz", "GRYBGB")]
+    >>> [(p.joint, " ".join(p.kinetemes), p.actions) for p in shared_patterns(records)]
     [('arm', 'B G R Y', ('a', 'b'))]
     """
-    if not isinstance(praxicon, dict):
-        praxicon = load_index(Path(praxicon))
+    records = praxicon.actions if isinstance(praxicon, Praxicon) else praxicon
     holders: dict[str, dict[tuple[str, ...], set[tuple[str, str]]]] = {}
     wholes: set[tuple[str, ...]] = set()  # patterns that are a whole cycle (read cyclically)
-    for action in praxicon["actions"]:
-        if action.get("status") != "ok":
+    for action in records:
+        if not action.learnt:
             continue
-        for joint in action.get("actuators", ()):
-            for channel, morpheme in action["joints"][joint]["morphemes"].items():
-                kinetemes = tuple(morpheme["kinetemes"])
-                for sub in _cyclic_substrings(kinetemes, min_length, wholes):
-                    holders.setdefault(joint, {}).setdefault(sub, set()).add(
-                        (action["name"], channel))
+        for joint in action.joints:
+            for channel, morpheme in joint.morphemes:
+                for sub in _cyclic_substrings(morpheme.kinetemes, min_length, wholes):
+                    holders.setdefault(joint.name, {}).setdefault(sub, set()).add(
+                        (action.name, channel))
     found: list[SharedPattern] = []
     for joint, patterns in holders.items():
         shared = {p: h for p, h in patterns.items()

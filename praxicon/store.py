@@ -1,18 +1,20 @@
-"""A praxicon on disk: ``index.json``, one ``ACTION.psgs`` per action, the actuator matrix.
+"""A praxicon on disk: ``load`` a folder into a :class:`~praxicon.records.Praxicon`, ``dump`` one.
 
 Layout of a praxicon folder ``DIR`` (schema in ``docs/praxicon.md``)::
 
-    DIR/index.json            every action's record, sorted by name (deterministic bytes)
+    DIR/index.json            format, version, settings, datasets, and every action's record
+                              without its system text and mean pose, sorted by name
     DIR/actuators.csv         the actuator-set matrix: one row per learnt action, one
                               column per joint, 1 where the joint takes part
     DIR/shared.json           kineteme sub-patterns several actions share, per joint
     DIR/ACTION.psgs           the grammar system learnt for ACTION
-    DIR/records/ACTION.json   one record per action with its input key (what resume reads)
+    DIR/records/ACTION.json   one full record per action with its input key (what resume reads)
     DIR/timings.json          wall seconds per action (kept out of index.json, whose
                               bytes must not change between runs)
 
 Every file is written to a temporary name and renamed into place, so an
-interrupted build never leaves a half-written file.
+interrupted build never leaves a half-written file. Reading a damaged folder
+raises one :class:`~praxicon.records.PraxiconError` naming the file and what is wrong.
 """
 
 from __future__ import annotations
@@ -23,11 +25,12 @@ import json
 import os
 from pathlib import Path
 
-__all__ = ["write_atomic", "dump_json", "write_record", "read_records", "write_index",
-           "load_index", "load_record", "actuator_matrix", "INDEX_FORMAT"]
+from .records import (REBUILD, ActionRecord, Praxicon, PraxiconError, Settings, check_index,
+                      name_problem)
+from .shared import shared_patterns
 
-INDEX_FORMAT = "psgs-praxicon"
-
+__all__ = ["load", "dump", "actuator_matrix", "write_atomic", "dump_json",
+           "write_record", "read_records", "write_index", "write_shared"]
 
 def write_atomic(path: Path, text: str) -> None:
     """Write ``text`` to ``path`` through a temporary file and a rename."""
@@ -42,80 +45,107 @@ def dump_json(value) -> str:
     return json.dumps(value, indent=2, sort_keys=True, ensure_ascii=False) + "\n"
 
 
-def write_record(out: Path, record: dict, key: str) -> None:
+def write_record(out: Path, record: ActionRecord, key: str) -> None:
     """Store one action's record (with its input key) and its ``.psgs`` file."""
-    system = record.get("system")
-    psgs_path = out / f"{record['name']}.psgs"
-    if system:
-        write_atomic(psgs_path, system)
+    psgs_path = out / f"{record.name}.psgs"
+    if record.system:
+        write_atomic(psgs_path, record.system)
     elif psgs_path.exists():
         psgs_path.unlink()
-    write_atomic(out / "records" / f"{record['name']}.json",
-                 dump_json({"key": key, "record": record}))
+    write_atomic(out / "records" / f"{record.name}.json",
+                 dump_json({"key": key, "record": record.to_json()}))
 
 
-def read_records(out: Path) -> dict[str, tuple[str, dict]]:
-    """name -> (input key, record) of every readable record in ``out/records``."""
-    found = {}
+def _read_json(path: Path, missing: str | None = None):
+    """The JSON value in ``path``; one-line :class:`PraxiconError` for whatever is wrong."""
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise PraxiconError(missing or f"{path}: missing") from None
+    except UnicodeDecodeError:
+        raise PraxiconError(f"{path}: not UTF-8 text") from None
+    except OSError as exc:
+        raise PraxiconError(f"{path}: cannot be read ({exc.strerror or exc})") from None
+    try:
+        return json.loads(text)
+    except RecursionError:
+        raise PraxiconError(f"{path}: nests too deeply to be a praxicon file") from None
+    except ValueError as exc:
+        raise PraxiconError(f"{path}: not JSON ({exc})") from None
+
+
+def _stored_record(path: Path, name: str | None = None) -> tuple[str, ActionRecord]:
+    """(input key, record) of ``records/NAME.json``, checked against its file name."""
+    value = _read_json(path)
+    if not isinstance(value, dict) or not isinstance(value.get("key"), str) \
+            or "record" not in value:
+        raise PraxiconError(f"{path}: not a praxicon record file (key and record expected)")
+    record = ActionRecord.from_json(value["record"], str(path))
+    if record.name != (name or path.stem):
+        raise PraxiconError(f"{path}: holds the record of {record.name!r}, not of "
+                            f"{name or path.stem!r}")
+    return value["key"], record
+
+
+def read_records(out: Path) -> tuple[dict[str, tuple[str, ActionRecord]], dict[str, str]]:
+    """What resume can trust in ``out/records``: name -> (input key, record), and per record
+    file it cannot trust, its action's name -> why (that action is learnt again)."""
+    found, damaged = {}, {}
     for path in sorted((out / "records").glob("*.json")):
         try:
-            data = json.loads(path.read_text(encoding="utf-8"))
-            found[data["record"]["name"]] = (data["key"], data["record"])
-        except (OSError, ValueError, KeyError, TypeError):
-            continue  # a damaged record is learnt again
-    return found
+            key, record = _stored_record(path)
+        except PraxiconError as exc:
+            damaged[path.stem] = str(exc)
+            continue
+        found[record.name] = (key, record)
+    return found, damaged
 
 
-def _index_entry(record: dict) -> dict:
-    entry = {k: v for k, v in record.items() if k not in ("system", "mean_pose")}
-    if record.get("system"):
-        entry["file"] = f"{record['name']}.psgs"
-    return entry
-
-
-def actuator_matrix(records: list[dict]) -> tuple[list[str], list[str], list[list[int]]]:
+def actuator_matrix(records) -> tuple[list[str], list[str], list[list[int]]]:
     """(action names, joint names, 0/1 rows) of the learnt actions.
 
     Joints are in order of first appearance over the actions sorted by name, in
     each action's skeleton order (so one dataset's joints stay together).
+
+    Parameters
+    ----------
+    records : Praxicon or iterable of ActionRecord
+
+    Examples
+    --------
+    >>> from praxicon.records import ActionRecord
+    >>> a = ActionRecord("a", "d", "a", status="ok", actuators=("arm",),
+    ...                  all_joints=("hips", "arm", "leg"))
+    >>> actuator_matrix([a])
+    (['a'], ['hips', 'arm', 'leg'], [[0, 1, 0]])
     """
-    learnt = [r for r in records if r.get("status") == "ok"]
+    records = records.actions if isinstance(records, Praxicon) else records
+    learnt = [r for r in records if r.learnt]
     joints: list[str] = []
     for r in learnt:
         for joint in _pose_joints(r):
             if joint not in joints:
                 joints.append(joint)
-    rows = [[int(j in r["actuators"]) for j in joints] for r in learnt]
-    return [r["name"] for r in learnt], joints, rows
+    rows = [[int(j in r.actuators) for j in joints] for r in learnt]
+    return [r.name for r in learnt], joints, rows
 
 
-def _pose_joints(record: dict) -> list[str]:
-    if record.get("all_joints"):
-        return list(record["all_joints"])
+def _pose_joints(record: ActionRecord) -> list[str]:
+    if record.all_joints:
+        return list(record.all_joints)
     seen: list[str] = []
-    for channel in record.get("mean_pose", {}):
+    for channel, _ in record.mean_pose:
         joint = channel.rsplit(".", 1)[0]
         if joint not in seen:
             seen.append(joint)
     return seen
 
 
-def write_index(out: Path, records: list[dict], settings: dict, datasets: list[str],
-                timings: dict[str, float] | None = None) -> dict:
-    """Write ``index.json``, ``actuators.csv``; with ``timings`` (the build's last write) also
-    ``timings.json`` and ``shared.json``. Returns the index."""
-    records = sorted(records, key=lambda r: r["name"])
-    index = {
-        "format": INDEX_FORMAT,
-        "version": 1,
-        "datasets": list(datasets),
-        "settings": settings,
-        "counts": {"actions": len(records),
-                   "learnt": sum(r["status"] == "ok" for r in records),
-                   "failed": sum(r["status"] != "ok" for r in records)},
-        "actions": [_index_entry(r) for r in records],
-    }
-    names, joints, rows = actuator_matrix(records)
+def write_index(out: Path, praxicon: Praxicon, timings: dict[str, float] | None = None) -> dict:
+    """Write ``index.json`` and ``actuators.csv`` (with ``timings`` also ``timings.json``).
+    Returns the index."""
+    index = praxicon.index()
+    names, joints, rows = actuator_matrix(praxicon)
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
     writer.writerow(["action", *joints])
@@ -129,29 +159,96 @@ def write_index(out: Path, records: list[dict], settings: dict, datasets: list[s
     return index
 
 
-def load_index(path: str | Path) -> dict:
-    """Read ``DIR/index.json`` (``path`` is ``DIR`` or the file); ValueError when it is not one."""
-    path = Path(path)
-    if path.is_dir():
-        path = path / "index.json"
-    try:
-        index = json.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise ValueError(f"{path}: no praxicon index (run 'psgs praxicon build' first)") from None
-    except ValueError as exc:
-        raise ValueError(f"{path}: not JSON ({exc})") from None
-    if not isinstance(index, dict) or index.get("format") != INDEX_FORMAT:
-        raise ValueError(f"{path}: not a praxicon index (format is not {INDEX_FORMAT!r})")
-    return index
+def write_shared(out: Path, praxicon: Praxicon) -> None:
+    """Write ``shared.json``: the patterns that recur across actions."""
+    write_atomic(out / "shared.json",
+                 dump_json([p.to_dict() for p in shared_patterns(praxicon)]))
 
 
-def load_record(folder: str | Path, action: str) -> dict:
-    """The full record of ``action`` (with its system text and mean pose)."""
+def dump(praxicon: Praxicon, folder: str | Path) -> None:
+    """Write ``praxicon`` into ``folder``: every record and system, the index, the actuator
+    matrix and the shared patterns (what :func:`load` reads back as an equal value).
+
+    Raises :class:`~praxicon.records.PraxiconError` (before writing anything) when an
+    action's name cannot be a file name.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from praxicon.records import ActionRecord, Settings
+    >>> px = Praxicon((ActionRecord("m.a", "m", "a", reason="no takes"),), Settings.make())
+    >>> folder = Path(tempfile.mkdtemp()) / "px"
+    >>> dump(px, folder)
+    >>> load(folder) == px
+    True
+    """
+    problems = [p for p in map(name_problem, praxicon.names) if p]
+    if problems:
+        raise PraxiconError(problems[0])
     folder = Path(folder)
-    path = folder / "records" / f"{action}.json"
-    try:
-        return json.loads(path.read_text(encoding="utf-8"))["record"]
-    except FileNotFoundError:
-        names = [r["name"] for r in load_index(folder)["actions"]]
-        raise ValueError(f"no action {action!r} in {folder} (actions: "
-                         f"{', '.join(names[:8])}{' ...' if len(names) > 8 else ''})") from None
+    for record in praxicon.actions:
+        write_record(folder, record, praxicon.key(record.name))
+    write_index(folder, praxicon)
+    write_shared(folder, praxicon)
+
+
+def load(folder: str | Path) -> Praxicon:
+    """The praxicon in ``folder`` (made by ``psgs praxicon build``), every record in full.
+
+    Parameters
+    ----------
+    folder : str or Path
+        A praxicon folder.
+
+    Returns
+    -------
+    Praxicon
+
+    Raises
+    ------
+    PraxiconError
+        One line naming the file: a path that does not exist, a folder that is not a
+        praxicon, a praxicon of another format version (the line names the command that
+        rebuilds it), or a damaged index or record.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> load(pathlib.Path(tempfile.mkdtemp()))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    praxicon.records.PraxiconError: ...: not a praxicon folder (no index.json; build one with 'psgs praxicon build DATASET... -o FOLDER')
+    """
+    folder = Path(folder)
+    if not folder.exists():
+        raise PraxiconError(f"{folder}: no such praxicon folder")
+    if not folder.is_dir():
+        raise PraxiconError(f"{folder}: not a praxicon folder (a file; a praxicon is a folder "
+                            f"with index.json)")
+    where = folder / "index.json"
+    index = _read_json(where, f"{folder}: not a praxicon folder (no index.json; build one "
+                              f"with '{REBUILD}')")
+    check_index(index, str(where))
+    entries = index.get("actions")
+    if not isinstance(entries, list) or not all(isinstance(e, dict) for e in entries):
+        raise PraxiconError(f"{where}: 'actions' must be a list of records")
+    datasets = index.get("datasets", [])
+    if not isinstance(datasets, list) or not all(isinstance(d, str) for d in datasets):
+        raise PraxiconError(f"{where}: 'datasets' must be a list of paths")
+    records, keys = [], []
+    for i, entry in enumerate(entries):
+        name = entry.get("name")
+        problem = name_problem(name)
+        if problem:
+            raise PraxiconError(f"{where}: action {i + 1}: {problem}")
+        key, record = _stored_record(folder / "records" / f"{name}.json", name)
+        records.append(record)
+        if key:  # "" is what dump writes for a record whose inputs are not known
+            keys.append((name, key))
+    names = [r.name for r in records]
+    if len(set(names)) != len(names):
+        raise PraxiconError(f"{where}: an action is listed twice")
+    order = sorted(range(len(records)), key=lambda i: names[i])
+    return Praxicon(tuple(records[i] for i in order),
+                    Settings.from_dict(index.get("settings"), f"{where}: settings"),
+                    tuple(datasets), tuple(sorted(keys)))

@@ -8,7 +8,7 @@ from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 import pytest
 
 import praxicon.builder as build_module
-from praxicon import Settings, build, load_index, read_dataset
+from praxicon import Settings, build, load, read_dataset
 
 
 def _files(folder):
@@ -18,29 +18,32 @@ def _files(folder):
 
 def test_build_writes_index_systems_and_matrix(manifest, tmp_path, capsys):
     result = build(read_dataset(manifest), tmp_path / "px", progress=False)
-    index = load_index(tmp_path / "px")
-    assert index["counts"] == {"actions": 4, "learnt": 2, "failed": 2}
-    wave = next(a for a in index["actions"] if a["name"] == "moves.wave")
+    px = load(tmp_path / "px")
+    assert px == result.praxicon  # the typed round trip: the folder read back, field for field
+    assert px.counts == {"actions": 4, "learnt": 2, "failed": 2}
+    index = json.loads((tmp_path / "px" / "index.json").read_text())
+    assert index["counts"] == px.counts and index["version"] == 2
+    wave = px["moves.wave"]
     # the arm and the leg swing in step; hips and head are still
-    assert wave["actuators"] == ["arm", "leg"]
-    assert set(wave["joints"]["arm"]["channels"]) <= {"arm.rx", "arm.rz"}
-    morpheme = wave["joints"]["leg"]["morphemes"]["leg.rx"]
-    assert len(morpheme["kinetemes"]) == len(morpheme["durations"]) == \
-        len(morpheme["displacements"])
-    assert wave["file"] == "moves.wave.psgs" and (tmp_path / "px" / wave["file"]).is_file()
+    assert wave.actuators == ("arm", "leg")
+    assert set(wave.joint("arm").channels) <= {"arm.rx", "arm.rz"}
+    morpheme = wave.joint("leg").morpheme("leg.rx")
+    assert len(morpheme.kinetemes) == len(morpheme.durations) == len(morpheme.displacements)
+    assert wave.file == "moves.wave.psgs"
+    assert (tmp_path / "px" / wave.file).read_text() == wave.system
     matrix = (tmp_path / "px" / "actuators.csv").read_text().splitlines()
     assert matrix[0] == "action,hips,arm,leg,head"
     assert "moves.wave,0,1,1,0" in matrix
     assert result.failed == ("moves.alone", "moves.ghost")
     # bad input: one line each in the index and on stderr, the build went on
     err = capsys.readouterr().err
-    ghost = next(a for a in index["actions"] if a["name"] == "moves.ghost")
-    assert ghost["status"] == "failed" and ghost["problems"][0].endswith(
+    ghost = px["moves.ghost"]
+    assert ghost.status == "failed" and ghost.problems[0].endswith(
         "nowhere.bvh: unreadable file (no such file)")
-    assert "moves.ghost: " + ghost["problems"][0] in err
-    alone = next(a for a in index["actions"] if a["name"] == "moves.alone")
-    assert alone["reason"].startswith("1 usable performance(s); an action needs at least 2")
-    assert f"moves.alone: failed: {alone['reason']}" in err
+    assert "moves.ghost: " + ghost.problems[0] in err
+    alone = px["moves.alone"]
+    assert alone.reason.startswith("1 usable performance(s); an action needs at least 2")
+    assert f"moves.alone: failed: {alone.reason}" in err
 
 
 def test_same_inputs_same_bytes_and_resume(manifest, tmp_path):
@@ -80,8 +83,8 @@ def test_interrupted_build_leaves_a_valid_resumable_folder(manifest, tmp_path, m
     monkeypatch.setattr(build_module, "learn_action", interrupted)
     with pytest.raises(KeyboardInterrupt):
         build(actions, tmp_path / "px", progress=False, log=lambda s: None)
-    index = load_index(tmp_path / "px")  # valid JSON, the two finished actions in it
-    assert [a["name"] for a in index["actions"]] == calls[:2]
+    px = load(tmp_path / "px")  # a valid praxicon, the two finished actions in it
+    assert px.names == tuple(calls[:2])
     monkeypatch.setattr(build_module, "learn_action", real)
     resumed = build(actions, tmp_path / "px", progress=False, log=lambda s: None)
     assert resumed.skipped == tuple(sorted(calls[:2]))

@@ -46,8 +46,8 @@ def test_build_draw_generate(manifest, tmp_path, capsys):
     (["build", ".", "-o", "x", "--inducer", "nope"], "unknown inducer 'nope'"),
     (["build", ".", "-o", "x", "--param", "nope=1"], "has no parameter 'nope'"),
     (["build", ".", "-o", "x", "--segment", "nope=1"], "--segment nope: unknown"),
-    (["draw", "nowhere", "-o", "x"], "no praxicon index"),
-    (["generate", "nowhere", "a", "-o", "x.bvh"], "no praxicon index"),
+    (["draw", "nowhere", "-o", "x"], "nowhere: no such praxicon folder"),
+    (["generate", "nowhere", "a", "-o", "x.bvh"], "nowhere: no such praxicon folder"),
 ])
 def test_bad_input_is_one_line(argv, message, capsys):
     assert main(argv) == 2

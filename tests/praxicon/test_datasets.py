@@ -88,16 +88,16 @@ def test_bandai_default_grouping_and_mismatching_label(tmp_path):
 
 
 def test_a_label_file_that_does_not_match_is_one_line_and_the_build_goes_on(tmp_path, capsys):
-    from praxicon import build, load_index
+    from praxicon import build, load
 
     takes = [(c, "calm", i) for c in ("wave", "walk") for i in (1, 2, 3)]
     root = _bandai(tmp_path / "set", takes, mismatch="dataset-9_wave_calm_003")
     build(read_dataset(root, group_by="content"), tmp_path / "px", progress=False)
-    actions = {a["name"]: a for a in load_index(tmp_path / "px")["actions"]}
-    wave = actions["set.wave"]
-    assert actions["set.walk"]["status"] == "ok" and not actions["set.walk"]["problems"]
-    assert wave["status"] == "ok"  # learnt from the two takes whose labels match
-    (problem,) = wave["problems"]
+    px = load(tmp_path / "px")
+    wave = px["set.wave"]
+    assert px["set.walk"].learnt and not px["set.walk"].problems
+    assert wave.learnt  # learnt from the two takes whose labels match
+    (problem,) = wave.problems
     assert "dataset-9_wave_calm_003.json" in problem and "does not match" in problem
     assert "\n" not in problem
     assert f"set.wave: {problem}" in capsys.readouterr().err

@@ -16,17 +16,18 @@ def _record(pattern, durations, displacements, rate=30.0, legs=None):
     from psgs import dumps
     from psgs.induce.base import build_system
 
+    from praxicon.records import ActionRecord, ChannelMorpheme, JointRecord
+
     leg = legs or (pattern, durations, displacements)
     system = build_system([("arm_rx", tuple(pattern)), ("leg_rx", tuple(leg[0]))])
-    morpheme = {"kinetemes": list(pattern), "durations": list(durations),
-                "displacements": list(displacements)}
-    other = {"kinetemes": list(leg[0]), "durations": list(leg[1]),
-             "displacements": list(leg[2])}
-    return {"name": "t", "status": "ok", "actuators": ["arm", "leg"], "system": dumps(system),
-            "frame_rate": rate, "component_names": {"arm.rx": "arm_rx", "leg.rx": "leg_rx"},
-            "joints": {"arm": {"channels": ["arm.rx"], "morphemes": {"arm.rx": morpheme}},
-                       "leg": {"channels": ["leg.rx"], "morphemes": {"leg.rx": other}}},
-            "mean_pose": {c: 5.0 for c in CHANNELS}}
+    morpheme = ChannelMorpheme(tuple(pattern), tuple(durations), tuple(displacements))
+    other = ChannelMorpheme(tuple(leg[0]), tuple(leg[1]), tuple(leg[2]))
+    return ActionRecord("t", "d", "t", status="ok", actuators=("arm", "leg"),
+                        system=dumps(system), frame_rate=rate,
+                        component_names=(("arm.rx", "arm_rx"), ("leg.rx", "leg_rx")),
+                        joints=(JointRecord("arm", (("arm.rx", morpheme),)),
+                                JointRecord("leg", (("leg.rx", other),))),
+                        mean_pose=tuple((c, 5.0) for c in sorted(CHANNELS)))
 
 
 def _generated(record, repeat):
@@ -99,8 +100,7 @@ def test_any_morpheme_comes_back_from_segmentation_given_time(arm, leg, repeat, 
     assert generated.round_trip() == {"arm.rx": True, "leg.rx": True}, generated.methods
     assert all(not m.kind.startswith("failed") for m in generated.methods.values())
     assert generated.motion.frames == round(repeat * np.median(
-        [sum(m["durations"]) for j in record["joints"].values()
-         for m in j["morphemes"].values()]) * 30) + 1
+        [sum(m.durations) for m in record.morphemes().values()]) * 30) + 1
 
 
 def test_the_correction_layer_makes_a_change_of_both_signs_in_one_frame():

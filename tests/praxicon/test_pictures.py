@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 import psgs
-from praxicon import build, read_dataset, shared_patterns
+from praxicon import build, load, read_dataset, shared_patterns
 from praxicon.pictures import draw_praxicon
 from psgs.cli import main as psgs_main
 from psgs.draw import draw, graphviz_available, parse_forest, sync_edges, to_svg
@@ -64,7 +64,7 @@ def test_praxicon_pictures_and_shared_patterns(manifest, tmp_path):
     assert names == ["actuators.png", "morphemes/moves.step.png", "morphemes/moves.wave.png",
                      "shared.png", "systems/moves.step.png", "systems/moves.wave.png"]
     assert all(p.read_bytes().startswith(b"\x89PNG") for p in written)
-    shared = shared_patterns(tmp_path / "px")
+    shared = shared_patterns(load(tmp_path / "px"))
     # both actions swing the arm through the same whole cycle
     arm = [p for p in shared if p.joint == "arm" and p.kinetemes == ("B", "G", "R", "Y")]
     assert arm and arm[0].actions == ("moves.step", "moves.wave")
