@@ -108,7 +108,10 @@ def read_cmu_truelabels(path: str | Path, frame_rate: float = 120.0) -> tuple[Sp
     for number, line in enumerate(path.read_text(errors="replace").splitlines(), 1):
         for match in re.finditer(r"\S+", line):
             token = match.group()
-            if not token.isdigit() or not 1 <= int(token) <= len(MOCAP6_ACTIONS):
+            # ASCII digits only, and few: int() refuses other Unicode digits ("²") and
+            # strings of thousands of digits with a plain ValueError
+            if not (token.isascii() and token.isdigit() and len(token) <= 6) or \
+                    not 1 <= int(token) <= len(MOCAP6_ACTIONS):
                 raise MotionFormatError(f"expected an action label 1..{len(MOCAP6_ACTIONS)}, "
                                         f"found {token[:20]!r}", source=str(path), line=number,
                                         column=match.start() + 1)
