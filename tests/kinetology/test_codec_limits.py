@@ -28,7 +28,7 @@ def _zigzag(n: int) -> int:
 
 
 def kin(frames, names=("a.rx",), durations=((1,),), displacements=None, firsts=None,
-        step=0.0, residual_bytes=b"", tail=b""):
+        step=0.0, residual_bytes=b"", tail=b"", preset=9 | lzma.PRESET_EXTREME):
     """A ``KIN2`` stream with these fields (state codes B G R Y ... in order)."""
     displacements = displacements or [[0] * len(d) for d in durations]
     firsts = firsts or [0] * len(names)
@@ -44,7 +44,9 @@ def kin(frames, names=("a.rx",), durations=((1,),), displacements=None, firsts=N
     for d in displacements:
         body += varints([_zigzag(x) for x in d])
     body += struct.pack("<d", step) + tail
-    base = lzma.compress(bytes(body), format=lzma.FORMAT_RAW, filters=stream.FILTERS)
+    # any preset up to the decoder's 9 reads back (its dictionary is the largest)
+    base = lzma.compress(bytes(body), format=lzma.FORMAT_RAW,
+                         filters=[{"id": lzma.FILTER_LZMA2, "preset": preset}])
     return b"KIN2" + varints([len(base)]) + base + residual_bytes
 
 
@@ -72,7 +74,7 @@ def test_hostile_headers_are_format_errors(data, words):
 
 
 def test_an_lzma_bomb_is_refused_before_it_is_inflated():
-    data = kin(2, tail=bytes(200 << 20))  # 200 MB of zeros after the base part: ~30 KB
+    data = kin(2, tail=bytes(80 << 20), preset=1)  # 80 MB of zeros after the base part
     assert len(data) < 64 << 10
     tracemalloc.start()
     try:
@@ -81,14 +83,14 @@ def test_an_lzma_bomb_is_refused_before_it_is_inflated():
         peak = tracemalloc.get_traced_memory()[1]
     finally:
         tracemalloc.stop()
-    assert peak < 96 << 20  # the LZMA2 dictionary of preset 9 is 64 MiB; no 200 MB body
+    assert peak < 96 << 20  # the LZMA2 dictionary of preset 9 is 64 MiB; not 80 MB more
 
 
 def test_max_samples_lets_a_long_still_motion_decode():
-    data = kin(5_000_001, durations=[[5_000_000]])
+    data = kin(4_200_001, durations=[[4_200_000]])  # past the 2^22 samples a small stream may claim
     with pytest.raises(MotionFormatError, match="max_samples"):
         decompress(data)
-    assert decompress(data, max_samples=6_000_000).frames == 5_000_001
+    assert decompress(data, max_samples=4_200_001).frames == 4_200_001
 
 
 def test_zero_lanes_decode_at_once_and_escapes_past_62_bits_are_errors():
@@ -123,3 +125,12 @@ def test_truncated_lzma_data_is_an_error():
     length = data[4]  # one varint byte: the base part is short
     with pytest.raises(MotionFormatError):
         decompress(b"KIN2" + varints([length - 3]) + data[5:5 + length - 3])
+
+
+@pytest.mark.parametrize("size", [1, 100, 5_000, 70_000])
+def test_the_cut_dictionary_writes_the_bytes_of_the_full_one(size):
+    """The encoder's dictionary is cut to the body's size (70 ms and 670 MB a stream saved):
+    raw LZMA2 bytes do not depend on it while the body fits."""
+    body = np.random.default_rng(size).integers(0, 40, size, dtype=np.uint8).tobytes()
+    full = lzma.compress(body, format=lzma.FORMAT_RAW, filters=stream.FILTERS)
+    assert lzma.compress(body, format=lzma.FORMAT_RAW, filters=stream._filters_for(size)) == full
