@@ -300,7 +300,9 @@ def read(data: bytes, source: str, max_samples: int | None = None) -> Layout:
 
 def _inflate(packed: bytes, limit: int, source: str) -> bytes:
     """The LZMA base part, refused once it passes ``limit`` bytes (a decompression bomb)."""
-    inflater = lzma.LZMADecompressor(format=lzma.FORMAT_RAW, filters=FILTERS)
+    # a dictionary as large as the most the body may be: no match reaches further back than
+    # its start, and preset 9's 64 MiB would be allocated for every small stream
+    inflater = lzma.LZMADecompressor(format=lzma.FORMAT_RAW, filters=_filters_for(limit + 1))
     try:
         body = inflater.decompress(packed, max_length=limit + 1)
     except lzma.LZMAError as exc:
