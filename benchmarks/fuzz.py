@@ -128,8 +128,9 @@ def main(argv=None) -> int:
                 tally.one(args.time_limit, args.max_bytes)
     tracemalloc.stop()
     wall = time.perf_counter() - start
-    print(f"| reader | inputs | read | documented error | crash | hang | over {args.max_bytes / 2 ** 30:g} GiB "
-          f"| slowest input (s) | largest allocation (MiB) | total (s) |")
+    print(f"| reader | inputs | read | documented error | crash | hang "
+          f"| over {args.max_bytes / 2 ** 30:g} GiB | slowest input (s) "
+          f"| largest allocation (MiB) | total (s) |")
     print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     bad = 0
     for t in tallies:

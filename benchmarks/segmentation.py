@@ -100,7 +100,8 @@ def main(argv=None) -> int:
              f"\"pinned to one core\" row is its single-thread figure. The smoothing is the "
              f"fixed-order direct sum in both (no BLAS: the same floats on every CPU). Both "
              f"engines' output is byte-identical on every file of ../shared/data/mocap. "
-             f"Compiling (or loading the compiled code from numba's cache) took {compile_seconds:.1f} s before the timings.", "",
+             f"Compiling (or loading the compiled code from numba's cache) took "
+             f"{compile_seconds:.1f} s before the timings.", "",
              "| task | samples | numpy s | numpy samples/s | numba s | numba samples/s "
              "| numba / numpy |", "|---|---:|---:|---:|---:|---:|---:|"]
     for name, samples, plain, fast in rows:

@@ -14,14 +14,15 @@ which BVH cannot express: writing one is a ``ValueError``.
 
 Only what reads back is written; anything else is a ``ValueError`` naming the
 joint: a joint name that is empty or holds white space or a brace; two joints
-of one name (end sites named as they read back); an end site
-not named ``parent.end`` (the name a reader gives it); a channel not named
+of one name (end sites named as they read back); an end site not named
+``parent.end`` (the name a reader gives it); a channel not named
 ``joint.axis`` after its own joint; a rotation order other than the one the
 ``CHANNELS`` line implies (the reader takes it from there); a non-finite
-offset; joints nested more than :data:`MAX_DEPTH` deep. The values are written in the order the file lists the channels,
-which is the skeleton's depth-first order even when the skeleton lists its
-joints otherwise. Numbers of 10^15 or more are written in exponent form, and
-the frame time with as many digits as the frame rate needs to read back.
+offset; joints nested more than :data:`MAX_DEPTH` deep. The values are
+written in the order the file lists the channels, which is the skeleton's
+depth-first order even when the skeleton lists its joints otherwise. Numbers
+of 10^15 or more are written in exponent form, and the frame time with as
+many digits as the frame rate needs to read back.
 """
 
 from __future__ import annotations
@@ -77,7 +78,7 @@ def _frame_time(rate: float) -> str:
     seconds = 1.0 / rate
     for text in (f"{seconds:.8f}", repr(seconds)):
         back = 1.0 / float(text) if float(text) > 0 else math.inf
-        if math.isfinite(back) and back >= 1 and abs(back - round(back)) < 0.01:  # the reader's rounding
+        if math.isfinite(back) and back >= 1 and abs(back - round(back)) < 0.01:  # as the reader
             back = float(round(back))
         if math.isclose(back, rate, rel_tol=1e-12):
             return text
