@@ -147,11 +147,12 @@ def format_bvh(motion: Motion) -> str:
     lines = ["HIERARCHY"]
     children: dict[int | None, list[int]] = {}
     seen: set[str] = set()
-    for index, joint in enumerate(skeleton.joints):
-        _check_joint(skeleton, joint, seen)
+    for joint in skeleton.joints:  # first, as the plainest reason an ASF skeleton fails
         if any(joint.axis):
             raise ValueError(f"joint {joint.name!r} has an ASF axis pre-rotation, which BVH "
                              f"cannot express")
+    for index, joint in enumerate(skeleton.joints):
+        _check_joint(skeleton, joint, seen)
         children.setdefault(joint.parent, []).append(index)
     roots = children.get(None, [])
     if len(roots) != 1:
