@@ -196,6 +196,9 @@ def read_bandai_json(path: str | Path, duration: float | None = None) -> tuple[S
     except json.JSONDecodeError as exc:
         raise MotionFormatError(f"not JSON: {exc.msg}", source=str(path), line=exc.lineno,
                                 column=exc.colno) from None
+    except (ValueError, RecursionError) as exc:  # a 5,000-digit number; [[[[... nested deep
+        raise MotionFormatError(f"not a label file ({type(exc).__name__}: "
+                                f"{str(exc)[:80]})", source=str(path)) from None
     if not isinstance(record, dict) or "content" not in record:
         raise MotionFormatError("expected an object with 'content' and 'style'",
                                 source=str(path))

@@ -45,3 +45,13 @@ def test_streams_labels_and_written_files_too(name, seed, mutations, tmp_path_fa
 def test_their_unmutated_seeds_read(name):
     for seed in range(len(READERS[name].seeds)):
         assert outcome(READERS[name], seed_bytes(READERS[name], seed)) == "ok"
+
+
+@pytest.mark.parametrize("mutations", [
+    [("insert", 10356, 1, 34788), ("delete", 13704, 1, 53680)],  # "[" x 2000: RecursionError
+    [("byte", 44097, 1, 3107), ("byte", 47065, 2, 8413), ("insert", 34716, 200, 63559),
+     ("number", 964, 20, 58491)],                                 # 5,000 digits: ValueError
+])
+def test_what_the_long_run_found_in_bandai_labels(mutations):
+    reader = READERS["bandai-label"]
+    assert outcome(reader, apply(seed_bytes(reader, 0), mutations)) == "error"
