@@ -216,19 +216,27 @@ def _other_cpus() -> dict[str, dict[str, str]]:
     }
 
 
-@pytest.mark.skipif(__import__("platform").machine() not in ("x86_64", "AMD64"),
-                    reason="the generic target and the feature names are x86-64's")
-@pytest.mark.parametrize("cpu", ["numba generic", "numpy baseline"])
-def test_another_cpu_computes_the_same_floats(cpu):
-    """The promise: every output (smoothed values, borders, codes, displacements, the codec's
-    bytes) is the same to the bit on every CPU, with either engine. Each sum runs in one
-    fixed order of IEEE operations (no BLAS, no libm in the numbers, no ``fastmath``), so a
-    child process compiling for another CPU gives the host's digest."""
-    import os
-
+@pytest.fixture(scope="module")
+def host_digest():
+    """The probe's digest here, with the numpy engine; the numba engine must give it too."""
     from numerics_probe import fingerprint
     host = fingerprint("numpy")
     assert fingerprint("numba") == host
+    return host
+
+
+@pytest.mark.skipif(__import__("platform").machine() not in ("x86_64", "AMD64"),
+                    reason="the generic target and the feature names are x86-64's")
+@pytest.mark.parametrize("cpu", ["numba generic", "numpy baseline"])
+def test_another_cpu_computes_the_same_floats(cpu, host_digest):
+    """The promise: every output (smoothed values, borders, codes, displacements, the codec's
+    bytes) is the same to the bit on every CPU, with either engine. Each sum runs in one
+    fixed order of IEEE operations (no BLAS, no libm in the numbers, no ``fastmath``), so a
+    child process compiling for another CPU gives the host's digest (numba's generic build
+    is compiled on the first run, 5-8 s, then cached beside the module)."""
+    import os
+
+    host = host_digest
     engine = "numba" if cpu.startswith("numba") else "numpy"
     env = {**os.environ, **_other_cpus()[cpu], "PYTHONPATH": str(REPO)}
     done = subprocess.run([sys.executable, str(Path(__file__).with_name("numerics_probe.py")),
