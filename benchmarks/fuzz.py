@@ -24,6 +24,7 @@ replayable input. Exit status 1 when anything crashed, hung or allocated more th
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import random
 import sys
 import time
@@ -33,11 +34,22 @@ from pathlib import Path
 
 from _common import REPO, load_file, require
 
-# this folder holds benchmarks/praxicon.py, which would shadow the praxicon package that the
-# praxicon readers import: the folder leaves sys.path once _common is loaded
-HERE = Path(__file__).resolve().parent
-sys.path[:] = [p for p in sys.path if Path(p or ".").resolve() != HERE]
 
+def _praxicon_package() -> None:
+    """Import the praxicon package, not this folder's benchmarks/praxicon.py, which Python
+    finds first when a script of this folder runs: the package is then loaded from the
+    repository by its path (nothing is added to the module search path)."""
+    found = importlib.util.find_spec("praxicon")
+    if found is not None and Path(found.origin or "").resolve().parent == REPO / "benchmarks":
+        init = REPO / "praxicon" / "__init__.py"
+        spec = importlib.util.spec_from_file_location(
+            "praxicon", init, submodule_search_locations=[str(init.parent)])
+        module = importlib.util.module_from_spec(spec)
+        sys.modules["praxicon"] = module
+        spec.loader.exec_module(module)
+
+
+_praxicon_package()
 require("psgs")
 require("kinetology")
 require("praxicon")
