@@ -14,26 +14,50 @@ of about a megabyte so that the passes stay in the processor's cache.
 
 from __future__ import annotations
 
+import decimal
+from functools import lru_cache
+
 import numpy as np
 
 __all__: list[str] = []  # private: kinetology.segmentation is the interface
 
-#: kernel half-widths up to this are summed directly (shifted copies), longer ones by blocks
-DIRECT_RADIUS = 8
-_BLOCK = 16              # frames per block of the banded matrix product (measured: 16 is best)
 _GROUP_SAMPLES = 1 << 19  # samples per group of channels: ~4 MB of doubles per array
+_SMOOTH_SAMPLES = 1 << 14  # samples per block of the smoothing's passes: they stay in cache
 _PERCENTILE_SAMPLES = 8192
 
 
 def gaussian_kernel(frame_rate: float, sigma: float, frames: int) -> tuple[int, np.ndarray]:
-    """``(radius, kernel)`` of the smoothing: 3 sigma each side, at most ``frames - 1``."""
+    """``(radius, kernel)`` of the smoothing: 3 sigma each side, at most ``frames - 1``.
+
+    The weights come from decimal arithmetic (40 digits, each ``exp`` and the normalising sum
+    correctly rounded), then one rounding to float each: ``np.exp`` and a float sum would
+    depend on the CPU's math routines (numpy has its own AVX-512 ``exp``) and could give
+    another last bit on another machine. The array is read-only (it is cached).
+
+    Examples
+    --------
+    >>> radius, kernel = gaussian_kernel(120.0, 0.05, 1000)
+    >>> radius, kernel.size, bool(kernel[radius] == kernel.max())
+    (18, 37, True)
+    """
     sigma_frames = sigma * frame_rate
     radius = max(1, int(np.ceil(3 * sigma_frames)))
     radius = min(radius, frames - 1)
-    offsets = np.arange(-radius, radius + 1)
-    kernel = np.exp(-0.5 * (offsets / sigma_frames) ** 2)
-    kernel /= kernel.sum()
-    return radius, kernel
+    return radius, _weights(sigma_frames, radius)
+
+
+@lru_cache(maxsize=64)
+def _weights(sigma_frames: float, radius: int) -> np.ndarray:
+    """The normalised weights of offsets ``-radius .. radius`` (read-only)."""
+    with decimal.localcontext() as context:
+        context.prec = 40
+        spread = decimal.Decimal(sigma_frames)
+        weights = [(-(decimal.Decimal(k) / spread) ** 2 / 2).exp()
+                   for k in range(-radius, radius + 1)]
+        total = sum(weights)
+        kernel = np.array([float(w / total) for w in weights])
+    kernel.flags.writeable = False
+    return kernel
 
 
 def pad_odd(values: np.ndarray, radius: int, extra: int = 0) -> np.ndarray:
@@ -50,61 +74,30 @@ def pad_odd(values: np.ndarray, radius: int, extra: int = 0) -> np.ndarray:
 
 
 def direct_sum(padded: np.ndarray, kernel: np.ndarray, frames: int) -> np.ndarray:
-    """The convolution as shifted copies, two taps at a time (the kernel is symmetric)."""
-    radius = kernel.size // 2
-    out = kernel[radius] * padded[radius:radius + frames]
-    pair = np.empty_like(out)
-    for k in range(radius):
-        np.add(padded[k:k + frames], padded[2 * radius - k:2 * radius - k + frames], out=pair)
-        pair *= kernel[k]
-        out += pair
-    return out
+    """The convolution as shifted copies, two taps at a time (the kernel is symmetric),
+    returned frames first like ``padded``.
 
-
-def banded_product(values: np.ndarray, kernel: np.ndarray, out: np.ndarray | None = None
-                   ) -> np.ndarray:
-    """The convolution of every column of ``values`` (frames x channels, >= 2 channels) as
-    blocks of a banded matrix product, returned channels x frames.
-
-    Each block of ``_BLOCK`` output frames is one small matrix (the kernel on its diagonals)
-    times the block's window of padded input: a BLAS product, an order of magnitude faster
-    than 37 shifted copies or an FFT of the whole take, and as exact (each output is one dot
-    product of the kernel with its window, rounding only in the last bits). A channel's
-    result does not depend on the other channels with two channels or more (a single column
-    would take BLAS's matrix-vector path, which adds in another order); the caller pads one.
-    ``out``, when given, is the ``channels x blocks x _BLOCK`` array to write into (a group of
-    channels' slice of a larger one: :mod:`kinetology._kinetemes_jit` smooths groups in threads).
+    Every output is the same sequence of IEEE operations whatever the CPU, the number of
+    channels or the block: the centre tap, then ``+ (x[k] + x[2r - k]) * kernel[k]`` for
+    ``k = 0, 1, ...`` (elementwise passes, no reduction whose order a library chooses).
+    :mod:`kinetology._kinetemes_jit` sums in the same order. Blocks of
+    ``_SMOOTH_SAMPLES`` samples keep the ``radius`` passes in the processor's cache.
     """
-    frames, channels = values.shape
     radius = kernel.size // 2
-    blocks = -(-frames // _BLOCK)
-    padded = pad_odd(values, radius, blocks * _BLOCK - frames)
-    if out is None:
-        out = np.empty((channels, blocks, _BLOCK))
-    block_product(block_windows(padded, blocks, kernel.size), band_matrix(kernel), out)
-    return out.reshape(channels, blocks * _BLOCK)[:, :frames]
-
-
-def band_matrix(kernel: np.ndarray) -> np.ndarray:
-    """The ``_BLOCK x window`` matrix of :func:`banded_product`: the kernel on its diagonals."""
-    band = np.zeros((_BLOCK, _BLOCK + kernel.size - 1))
-    for a in range(_BLOCK):
-        band[a, a:a + kernel.size] = kernel
-    return band
-
-
-def block_windows(padded: np.ndarray, blocks: int, taps: int) -> np.ndarray:
-    """``blocks x window x channels``: block ``b``'s window is rows ``16 b ..`` of ``padded``."""
-    step = padded.strides[0]
-    return np.lib.stride_tricks.as_strided(
-        padded, shape=(blocks, _BLOCK + taps - 1, padded.shape[1]),
-        strides=(_BLOCK * step, step, padded.strides[1]), writeable=False)
-
-
-def block_product(windows: np.ndarray, band: np.ndarray, out: np.ndarray) -> None:
-    """(channels x window) @ (window x block) per block, written straight into ``out``
-    (channels x blocks x ``_BLOCK``): one BLAS product a block."""
-    np.matmul(windows.transpose(0, 2, 1), band.T, out=out.transpose(1, 0, 2))
+    out = np.empty((frames,) + padded.shape[1:])
+    width = max(1, padded[0].size)
+    step = max(16, _SMOOTH_SAMPLES // width)
+    pair = np.empty((min(step, frames),) + padded.shape[1:])
+    for a in range(0, frames, step):
+        b = min(frames, a + step)
+        block, scratch = out[a:b], pair[:b - a]
+        np.multiply(padded[radius + a:radius + b], kernel[radius], out=block)
+        for k in range(radius):
+            np.add(padded[k + a:k + b], padded[2 * radius - k + a:2 * radius - k + b],
+                   out=scratch)
+            scratch *= kernel[k]
+            block += scratch
+    return out
 
 
 def smooth_channels(values: np.ndarray, frame_rate: float, sigma: float) -> np.ndarray:
@@ -113,11 +106,7 @@ def smooth_channels(values: np.ndarray, frame_rate: float, sigma: float) -> np.n
     if sigma * frame_rate <= 0 or frames < 2 or channels == 0:
         return np.ascontiguousarray(values.T, dtype=float)
     radius, kernel = gaussian_kernel(frame_rate, sigma, frames)
-    if radius <= DIRECT_RADIUS:
-        return np.ascontiguousarray(direct_sum(pad_odd(values, radius), kernel, frames).T)
-    if channels == 1:
-        return banded_product(np.column_stack([values, values]), kernel)[:1]
-    return banded_product(values, kernel)
+    return np.ascontiguousarray(direct_sum(pad_odd(values, radius), kernel, frames).T)
 
 
 def largest_step(values: np.ndarray) -> np.ndarray:

@@ -10,11 +10,11 @@ percentile is numpy's linear interpolation between the same two order statistics
 output is the same to the bit (``tests/kinetology/test_kinetology_jit_engine.py`` checks it
 against the numpy engine, and every file of ``../shared/data/mocap`` was compared).
 
-The 120 fps smoothing stays numpy's banded matrix product (a BLAS kernel whose rounding a loop
-cannot reproduce); short kernels are summed here in one loop, in the numpy engine's order.
-Large takes are cut into groups of channels (two at least: a channel's BLAS result is then
-independent of the others) that threads smooth and segment side by side: BLAS and the
-compiled functions (``nogil``) release the GIL, and no numba threading layer is involved.
+The smoothing is the numpy engine's direct sum in one loop, in the same order (BLAS, which
+this used to take for long kernels, adds in an order that depends on the CPU, the matrix
+shape and the library's version). Large takes are cut into groups of channels that threads
+smooth and segment side by side: the compiled functions (``nogil``) release the GIL, and no
+numba threading layer is involved; a channel's numbers do not depend on its group.
 
 Without numba this module still imports (the functions are then plain Python, which
 :mod:`kinetology._engines` never offers), so that the doctests collect everywhere.
@@ -28,8 +28,7 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
-from ._kinetemes import _BLOCK, _PERCENTILE_SAMPLES, DIRECT_RADIUS, band_matrix, \
-    banded_product, block_product, block_windows, gaussian_kernel, pad_odd
+from ._kinetemes import _PERCENTILE_SAMPLES, gaussian_kernel, pad_odd
 
 try:
     import numba
@@ -66,15 +65,15 @@ def _largest_steps(values):
 
 
 @_jit
-def _direct_sum(padded, kernel, frames):
-    """:func:`kinetology._kinetemes.direct_sum` of each column, returned channels x frames.
+def _direct_sum(padded, kernel, frames, out):
+    """:func:`kinetology._kinetemes.direct_sum` of each column into ``out`` (channels x frames).
 
     Per output: the centre tap, then the pairs ``(x[k] + x[2r - k]) * kernel[k]`` added in
-    the order ``k = 0, 1, ...``, each rounded as numpy rounds its array passes.
+    the order ``k = 0, 1, ...``, each rounded as numpy rounds its array passes (no
+    ``fastmath``: LLVM may vectorise across channels, which changes no output's operations).
     """
     radius = kernel.size // 2
     channels = padded.shape[1]
-    out = np.empty((channels, frames))
     acc = np.empty(channels)
     for t in range(frames):
         for c in range(channels):
@@ -85,7 +84,6 @@ def _direct_sum(padded, kernel, frames):
                 acc[c] += (padded[k + t, c] + padded[2 * radius - k + t, c]) * weight
         for c in range(channels):
             out[c, t] = acc[c]
-    return out
 
 
 @_jit
@@ -369,57 +367,20 @@ def row_ranges(rows: np.ndarray) -> np.ndarray:
                                                                 axis=1)))
 
 
-def _banded_unpadded(values: np.ndarray, kernel: np.ndarray, out: np.ndarray) -> None:
-    """:func:`kinetology._kinetemes.banded_product` into ``out`` without the padded copy of
-    the take (at 100,000 frames its allocation and copy took as long as a third of the
-    products): the blocks whose window lies inside the take read it where it is, only the
-    first and last few blocks a padded head and tail (made as ``pad_odd`` makes them). Each
-    block is the same BLAS product of the same numbers."""
-    frames, channels = values.shape
-    radius = kernel.size // 2
-    blocks = -(-frames // _BLOCK)
-    window = _BLOCK + 2 * radius
-    first = -(-radius // _BLOCK)                 # the first block whose window is inside
-    last = (frames + radius - window) // _BLOCK  # the last one
-    if last < first or values.strides[1] != values.itemsize or \
-            values.strides[0] < channels * values.itemsize:
-        # short, or not frames-major (a column selection can be channels-major): BLAS would
-        # take the windows the other way round and add in another order
-        banded_product(values, kernel, out=out)
-        return
-    band = band_matrix(kernel)
-    head = np.empty(((first - 1) * _BLOCK + window, channels))
-    head[radius:] = values[:head.shape[0] - radius]
-    np.subtract(2 * values[0], values[radius:0:-1], out=head[:radius])
-    start = (last + 1) * _BLOCK                  # the tail's first row of the padded take
-    tail = np.zeros(((blocks - 1) * _BLOCK + window - start, channels))
-    inside = radius + frames - start
-    tail[:inside] = values[start - radius:]
-    np.subtract(2 * values[-1], values[-2:-radius - 2:-1], out=tail[inside:inside + radius])
-    middle = values[first * _BLOCK - radius:]
-    block_product(block_windows(head, first, kernel.size), band, out[:, :first])
-    block_product(block_windows(middle, last + 1 - first, kernel.size), band,
-                  out[:, first:last + 1])
-    block_product(block_windows(tail, blocks - last - 1, kernel.size), band, out[:, last + 1:])
-
-
 def smooth_channels(values: np.ndarray, frame_rate: float, sigma: float) -> np.ndarray:
-    """:func:`kinetology._kinetemes.smooth_channels`: short kernels summed in one loop, long
-    ones as the banded product of groups of channels in threads (the same numbers)."""
+    """:func:`kinetology._kinetemes.smooth_channels`: the direct sum in one compiled loop,
+    groups of channels in threads (each output's operations are the same in every split)."""
     frames, channels = values.shape
     if sigma * frame_rate <= 0 or frames < 2 or channels == 0:
         return np.ascontiguousarray(values.T, dtype=float)
     radius, kernel = gaussian_kernel(frame_rate, sigma, frames)
-    if radius <= DIRECT_RADIUS:
-        return _direct_sum(pad_odd(values, radius), kernel, frames)
-    if channels == 1:
-        return banded_product(np.column_stack([values, values]), kernel)[:1]
+    out = np.empty((channels, frames))
     threads = thread_count(channels, frames)
-    out = np.empty((channels, -(-frames // _BLOCK), _BLOCK))
-    cuts = np.linspace(0, channels, threads + 1).astype(int).tolist()  # >= 2 channels each
-    _in_threads(threads, lambda k: _banded_unpadded(values[:, cuts[k]:cuts[k + 1]], kernel,
-                                                    out[cuts[k]:cuts[k + 1]]))
-    return out.reshape(channels, -1)[:, :frames]
+    cuts = np.linspace(0, channels, threads + 1).astype(int).tolist()
+    _in_threads(threads, lambda k: _direct_sum(
+        pad_odd(values[:, cuts[k]:cuts[k + 1]], radius), kernel, frames,
+        out[cuts[k]:cuts[k + 1]]))
+    return out
 
 
 def segment_columns(smoothed: np.ndarray, frame_rate: float, velocity_deadband: float,

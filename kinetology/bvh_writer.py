@@ -11,11 +11,25 @@ A motion without a skeleton (an AMC file read without its ASF) is written on a
 that the angles survive (any BVH reader reads them) though forward kinematics
 means nothing. ASF skeletons hold a fixed pre-rotation per bone (``axis``),
 which BVH cannot express: writing one is a ``ValueError``.
+
+Only what reads back is written; anything else is a ``ValueError`` naming the
+joint: a joint name that is empty or holds white space or a brace; two joints
+of one name (end sites named as they read back); an end site not named
+``parent.end`` (the name a reader gives it); a channel not named
+``joint.axis`` after its own joint; a rotation order other than the one the
+``CHANNELS`` line implies (the reader takes it from there); a non-finite
+offset; joints nested more than :data:`MAX_DEPTH` deep. The values are
+written in the order the file lists the channels, which is the skeleton's
+depth-first order even when the skeleton lists its joints otherwise. Numbers
+of 10^15 or more are written in exponent form, and the frame time with as
+many digits as the frame rate needs to read back.
 """
 
 from __future__ import annotations
 
 from pathlib import Path
+
+import math
 
 import numpy as np
 
@@ -23,6 +37,8 @@ from .motion import Joint, Motion, Skeleton
 
 __all__ = ["write_bvh", "format_bvh", "star_skeleton"]
 
+#: The deepest nesting written: kinetology's reader (and others) nest by recursion.
+MAX_DEPTH = 500
 _AXIS_NAMES = {"tx": "Xposition", "ty": "Yposition", "tz": "Zposition",
                "rx": "Xrotation", "ry": "Yrotation", "rz": "Zrotation"}
 
@@ -51,8 +67,58 @@ def star_skeleton(channels) -> Skeleton:
 
 
 def _number(value: float) -> str:
+    if abs(value) >= 1e15:  # six decimals would be 300 digits for 1e300 (and no more exact)
+        return repr(float(value))
     text = f"{value:.6f}".rstrip("0").rstrip(".")
     return "0" if text in ("-0", "") else text
+
+
+def _frame_time(rate: float) -> str:
+    """The frame time as the reader turns it back into ``rate`` (8 decimals when enough)."""
+    seconds = 1.0 / rate
+    for text in (f"{seconds:.8f}", repr(seconds)):
+        back = 1.0 / float(text) if float(text) > 0 else math.inf
+        if math.isfinite(back) and back >= 1 and abs(back - round(back)) < 0.01:  # as the reader
+            back = float(round(back))
+        if math.isclose(back, rate, rel_tol=1e-12):
+            return text
+    raise ValueError(f"frame rate {rate!r} cannot be written as a frame time that reads back")
+
+
+def _implied_order(joint: Joint) -> str:
+    """The rotation order a reader gives ``joint``: its rotation channels as listed, the
+    missing axes after them in Z, Y, X order."""
+    order = "".join(c.rsplit(".", 1)[1][1].upper() for c in joint.channels
+                    if c.rsplit(".", 1)[1].startswith("r"))
+    return order + "".join(a for a in "ZYX" if a not in order) if order else "ZYX"
+
+
+def _check_joint(skeleton: Skeleton, joint: Joint, seen: set[str]) -> None:
+    """ValueError unless ``joint`` reads back as it is (see the module docstring)."""
+    name = joint.name
+    if joint.end_site:
+        parent = skeleton.joints[joint.parent].name if joint.parent is not None else None
+        if parent is None or name != f"{parent}.end":
+            raise ValueError(f"end site {name!r} would read back as {parent!r}.end: BVH end "
+                             f"sites have no names")
+    elif not name or any(ch.isspace() or ch in "{}" for ch in name):
+        raise ValueError(f"joint name {name!r} cannot be written to BVH (empty, white space "
+                         f"or a brace: readers split the hierarchy into words and braces)")
+    if name in seen:
+        raise ValueError(f"two joints are named {name!r}")
+    seen.add(name)
+    if not all(math.isfinite(v) for v in joint.offset):
+        raise ValueError(f"joint {name!r} has a non-finite offset {joint.offset}")
+    for channel in joint.channels:
+        owner, _, axis = channel.rpartition(".")
+        if owner != name or axis not in _AXIS_NAMES:
+            raise ValueError(f"channel {channel!r} of joint {name!r} would read back as "
+                             f"{name}.<axis>: channels are named after their joint")
+    if any(c.rsplit(".", 1)[1].startswith("r") for c in joint.channels) and \
+            joint.rotation_order != _implied_order(joint):
+        raise ValueError(f"joint {name!r}: rotation order {joint.rotation_order!r} is not the "
+                         f"order of its rotation channels ({_implied_order(joint)!r}), which "
+                         f"is the order a BVH file gives")
 
 
 def format_bvh(motion: Motion) -> str:
@@ -61,8 +127,9 @@ def format_bvh(motion: Motion) -> str:
     Raises
     ------
     ValueError
-        When a skeleton channel is missing from the motion (or the reverse), or a
-        joint has an ASF ``axis`` pre-rotation.
+        When a skeleton channel is missing from the motion (or the reverse), a
+        joint has an ASF ``axis`` pre-rotation, or anything else would not read
+        back (see the module docstring).
 
     Examples
     --------
@@ -79,18 +146,34 @@ def format_bvh(motion: Motion) -> str:
         raise ValueError(f"skeleton and motion channels differ ({', '.join(missing[:5])})")
     lines = ["HIERARCHY"]
     children: dict[int | None, list[int]] = {}
-    for index, joint in enumerate(skeleton.joints):
+    seen: set[str] = set()
+    for joint in skeleton.joints:  # first, as the plainest reason an ASF skeleton fails
         if any(joint.axis):
             raise ValueError(f"joint {joint.name!r} has an ASF axis pre-rotation, which BVH "
                              f"cannot express")
+    for index, joint in enumerate(skeleton.joints):
+        _check_joint(skeleton, joint, seen)
         children.setdefault(joint.parent, []).append(index)
     roots = children.get(None, [])
     if len(roots) != 1:
         raise ValueError(f"a BVH file has one root joint, this skeleton has {len(roots)}")
 
-    def emit(index: int, depth: int) -> None:
+    depth = [0] * len(skeleton.joints)
+    for index, joint in enumerate(skeleton.joints):  # parents come first: one pass
+        depth[index] = 0 if joint.parent is None else depth[joint.parent] + 1
+    if max(depth, default=0) > MAX_DEPTH:
+        raise ValueError(f"joints nested {max(depth)} deep; BVH readers (kinetology's "
+                         f"included) read at most {MAX_DEPTH} levels")
+    written: list[str] = []  # channels in the file's order: depth-first from the root
+    stack: list[tuple[int, int, bool]] = [(roots[0], 0, True)]  # a loop: chains can be deep
+    while stack:
+        index, depth, opening = stack.pop()
+        pad = "  " * min(depth, 40)  # indentation is cosmetic; deep chains stay linear
+        if not opening:
+            lines.append(pad + "}")
+            continue
         joint = skeleton.joints[index]
-        pad = "  " * depth
+        written.extend(joint.channels)
         if joint.end_site:
             lines.append(f"{pad}End Site")
         else:
@@ -100,13 +183,11 @@ def format_bvh(motion: Motion) -> str:
         if joint.channels:
             names = " ".join(_AXIS_NAMES[c.rsplit('.', 1)[1]] for c in joint.channels)
             lines.append(f"{pad}  CHANNELS {len(joint.channels)} {names}")
-        for child in children.get(index, []):
-            emit(child, depth + 1)
-        lines.append(pad + "}")
-
-    emit(roots[0], 0)
-    order = [motion.index(c) for c in listed]
-    lines += ["MOTION", f"Frames: {motion.frames}", f"Frame Time: {1.0 / motion.frame_rate:.8f}"]
+        stack.append((index, depth, False))
+        stack.extend((child, depth + 1, True) for child in reversed(children.get(index, [])))
+    order = [motion.index(c) for c in written]
+    lines += ["MOTION", f"Frames: {motion.frames}",
+              f"Frame Time: {_frame_time(motion.frame_rate)}"]
     values = np.asarray(motion.values)[:, order]
     lines += [" ".join(_number(v) for v in row) for row in values.tolist()]
     return "\n".join(lines) + "\n"

@@ -32,7 +32,7 @@ from psgs.errors import ValidationError
 
 from .codec import compress, decompress
 from .kinematics import forward_kinematics, joint_angle
-from .motion import Motion
+from .motion import Motion, MotionFormatError
 from .segmentation import DEFAULTS, STATES, smooth, states, unwrap
 
 __all__ = ["codec_point", "CMU_ANGLES", "CMU_BVH_ANGLES", "BANDAI_ANGLES", "angle_table",
@@ -331,7 +331,8 @@ def mocap6_performances(folder: str | Path, *, min_seconds: float = 2.0):
     Raises
     ------
     MotionFormatError
-        When an AMC file is malformed.
+        When an AMC file or a label file is malformed, or the folder holds no
+        take (a missing folder included).
 
     Examples
     --------
@@ -351,7 +352,7 @@ def mocap6_performances(folder: str | Path, *, min_seconds: float = 2.0):
             continue
         motion = read(amc)
         motions[label_file.stem] = motion
-        labels = np.array(label_file.read_text().split(), dtype=int)
+        labels = _labels(label_file)
         per_frame = np.repeat(labels, 12)[: motion.frames]
         starts = np.concatenate(([0], np.flatnonzero(per_frame[1:] != per_frame[:-1]) + 1))
         stops = np.append(starts[1:], per_frame.size)
@@ -359,7 +360,31 @@ def mocap6_performances(folder: str | Path, *, min_seconds: float = 2.0):
             if (b - a) / motion.frame_rate >= min_seconds:
                 found.append(Performance(label_file.stem, MOCAP6_ACTIONS[per_frame[a] - 1],
                                          int(a), int(b)))
+    if not motions:
+        raise MotionFormatError(f"no cmu-mocap6 takes here (expected truelabels/NAME.txt beside "
+                                f"amc/NAME.amc in {folder})", source=str(folder))
     return motions, found
+
+
+def _labels(path: Path) -> np.ndarray:
+    """The labels of a ``truelabels`` file: whole numbers 1 .. 6, one per tenth of a second."""
+    try:
+        text = path.read_text(encoding="utf-8")
+    except UnicodeDecodeError as error:
+        raise MotionFormatError(f"not UTF-8 text ({error.reason})", source=str(path)) from None
+    labels = []
+    for number, line in enumerate(text.splitlines(), 1):
+        column = 1
+        for word in line.split():
+            column = line.index(word, column - 1) + 1
+            if not (word.isascii() and word.isdigit()
+                    and 1 <= int(word) <= len(MOCAP6_ACTIONS)):
+                raise MotionFormatError(f"a label is a number from 1 to {len(MOCAP6_ACTIONS)}, "
+                                        f"not {word[:20]!r}", source=str(path), line=number,
+                                        column=column)
+            labels.append(int(word))
+            column += len(word)
+    return np.array(labels, dtype=int)
 
 
 def describe(codes: np.ndarray, signal: np.ndarray, *, min_range: float = 5.0) -> str:

@@ -36,6 +36,8 @@ from .search import budget_sentence, pcgs_search, psgs_search
 __all__ = ["Language", "language", "context_free_words"]
 
 INFINITE = math.inf
+#: words built between two readings of the clock (about a millisecond of set inserts)
+_WORDS_PER_READING = 4096
 
 
 @dataclass(frozen=True)
@@ -253,8 +255,18 @@ def _sequence_words(rhs, n: int, words_of, yields, clock: Budget) -> set:
             for n1 in range(low, m - rest + 1):
                 heads = words_of(rhs[i], n1)
                 after = tails.get(m - n1) if heads else None
-                if after:
-                    out.update(h + t for h in heads for t in after)
+                if not after:
+                    continue
+                # the clock is read every few thousand words built, not once per position:
+                # one position's products can be millions of words (S -> SS | aSb | ε)
+                built = 0
+                for h in heads:
+                    out.update(h + t for t in after)
+                    built += len(after)
+                    if built >= _WORDS_PER_READING:
+                        built = 0
+                        if clock.expired():
+                            raise BoundReached("max_seconds")
             if out:
                 here[m] = out
         tails = here

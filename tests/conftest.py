@@ -5,6 +5,10 @@ source, not from a random seed), keeps no example database between runs (a failu
 not replayed forever after, and a clean checkout behaves like any other) and sets no deadline (a
 2-core machine under load times single examples unevenly). ``--hypothesis-profile=thorough``
 draws ten times as many random examples for a long, opt-in run.
+
+The suite-wide rules for every test and doctest (15 s a test, doctests of the real data
+skipped when it is absent) are in the repository's top-level ``conftest.py``, whose hooks
+reach the doctests of the packages too.
 """
 
 from hypothesis import HealthCheck, settings
@@ -65,3 +69,4 @@ def _warm_pal():
         PAL(engine="numba").induce(generate(seed=1, noise=0.1).actiongram)
     except ImportError:
         pass
+

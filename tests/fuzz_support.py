@@ -158,6 +158,93 @@ def _read_amc(path: Path):
     _check_motion(read_amc(path, asf=read_asf(SEEDS / "small.asf")))
 
 
+def _read_codec(path: Path):
+    from kinetology.codec import decompress
+    _check_motion(decompress(path.read_bytes(), str(path)))
+
+
+def _read_codec_body(path: Path):
+    """The file is a decompressed base part: packed as the encoder packs it, then decoded
+    (byte edits of LZMA data mostly stop at LZMA's own check; these reach the parser)."""
+    import lzma
+
+    from kinetology.codec import decompress, stream
+    from kinetology.codec.varint import encode
+    # a small dictionary: the decoder's (preset 9) is larger, so it reads this; preset 9e
+    # itself would take 0.1 s and 670 MB a compression
+    packed = lzma.compress(path.read_bytes(), format=lzma.FORMAT_RAW,
+                           filters=[{"id": lzma.FILTER_LZMA2, "preset": 1}])
+    _check_motion(decompress(stream.MAGIC + encode([len(packed)]) + packed, str(path)))
+
+
+def _write_bvh_back(path: Path):
+    """Read a BVH file; what ``format_bvh`` writes of it reads back to the same motion (or
+    the writer refuses with a plain ValueError, its documented error)."""
+    import numpy as np
+    from kinetology.bvh import parse_bvh, read_bvh
+    from kinetology.bvh_writer import format_bvh
+    motion = read_bvh(path)
+    try:
+        text = format_bvh(motion)
+    except ValueError as error:
+        if type(error) is ValueError:
+            return
+        raise
+    back = parse_bvh(text, source="written.bvh")
+    assert sorted(back.channels) == sorted(motion.channels), "channels changed"
+    for name in motion.channels:
+        a, b = motion.column(name), back.column(name)
+        assert np.allclose(a, b, rtol=1e-12, atol=1e-6), f"{name}: values changed"
+    assert math.isclose(back.frame_rate, motion.frame_rate, rel_tol=1e-9), "frame rate changed"
+
+
+def _read_manifest(path: Path):
+    from praxicon.datasets import read_dataset
+    read_dataset(path)
+
+
+def _read_truelabels(path: Path):
+    from kinetology.labels import read_cmu_truelabels
+    read_cmu_truelabels(path)
+
+
+def _read_bandai_label(path: Path):
+    import shutil
+
+    from kinetology.labels import read_bandai_json
+    shutil.copytree(SEEDS / "bandai" / "cfg", path.parent / "cfg")
+    (path.parent / "data").mkdir()
+    label = path.parent / "data" / "dataset-1_bow_happy_001.json"
+    label.write_bytes(path.read_bytes())
+    read_bandai_json(label, duration=2.0)
+
+
+def _praxicon_folder(path: Path, target: str) -> Path:
+    """A copy of the seed praxicon with ``target`` replaced by the fuzzed bytes."""
+    import shutil
+    folder = path.parent / "praxicon"
+    shutil.copytree(SEEDS / "praxicon", folder)
+    (folder / target).write_bytes(path.read_bytes())
+    return folder
+
+
+def _read_praxicon(folder: Path):
+    from praxicon.shared import shared_patterns
+    from praxicon.store import load_index, load_record
+    index = load_index(folder)
+    for entry in index.get("actions", []):
+        load_record(folder, entry["name"])
+    shared_patterns(folder)
+
+
+def _read_praxicon_index(path: Path):
+    _read_praxicon(_praxicon_folder(path, "index.json"))
+
+
+def _read_praxicon_record(path: Path):
+    _read_praxicon(_praxicon_folder(path, "records/moves.wave.json"))
+
+
 @dataclass(frozen=True)
 class Reader:
     """A reader under test: its seed files, the suffix it reads, the errors it documents."""
@@ -179,6 +266,15 @@ def _kinetology_errors():
     return (MotionFormatError,)
 
 
+def _dataset_errors():
+    from praxicon.datasets import DatasetError
+    return (DatasetError,)
+
+
+def _praxicon_errors():  # load_index, load_record: "ValueError when it is not one"
+    return (ValueError,)
+
+
 READERS = {r.name: r for r in (
     Reader("grammar", ("counting.psgs", "idling.psgs", "pcgs_returning.psgs"), ".psgs",
            _read_grammar, _psgs_errors),
@@ -188,6 +284,21 @@ READERS = {r.name: r for r in (
     Reader("bvh", ("small.bvh",), ".bvh", _read_bvh, _kinetology_errors),
     Reader("asf", ("small.asf",), ".asf", _read_asf, _kinetology_errors),
     Reader("amc", ("small_1.amc",), ".amc", _read_amc, _kinetology_errors),
+    Reader("codec", ("small.kin", "small_residual.kin"), ".kin", _read_codec,
+           _kinetology_errors),
+    Reader("codec-body", ("small.kinbody",), ".bin", _read_codec_body, _kinetology_errors),
+    Reader("bvh-write", ("small.bvh",), ".bvh", _write_bvh_back, _kinetology_errors),
+    Reader("manifest-csv", ("small_manifest.csv",), ".csv", _read_manifest, _dataset_errors),
+    Reader("manifest-toml", ("small_manifest.toml",), ".toml", _read_manifest,
+           _dataset_errors),
+    Reader("truelabels", ("small_truelabels.txt",), ".txt", _read_truelabels,
+           _kinetology_errors),
+    Reader("bandai-label", ("bandai/data/dataset-1_bow_happy_001.json",), ".json",
+           _read_bandai_label, _kinetology_errors),
+    Reader("praxicon-index", ("praxicon/index.json",), ".json", _read_praxicon_index,
+           _praxicon_errors),
+    Reader("praxicon-record", ("praxicon/records/moves.wave.json",), ".json",
+           _read_praxicon_record, _praxicon_errors),
 )}
 
 

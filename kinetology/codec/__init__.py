@@ -70,7 +70,9 @@ def compress(motion: Motion, max_error: float | None = None, **params) -> Compre
     TypeError
         For an unknown setting, or settings given with ``max_error``.
     ValueError
-        For a setting out of range, or ``max_error`` not positive.
+        For a setting out of range, ``max_error`` not positive, or a
+        ``max_error`` no setting meets (checked on the decoded values: the
+        returned stream's ``mean_error`` is never above it).
 
     Examples
     --------

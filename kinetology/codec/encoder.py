@@ -240,7 +240,8 @@ def compress_with(motion: Motion, settings: dict, *, base=None,
     return Compressed(stream.write(layout), angles, every, p, max_error)
 
 
-def decompress(data: bytes, source: str = "<compressed motion>") -> Motion:
+def decompress(data: bytes, source: str = "<compressed motion>", *,
+               max_samples: int | None = None) -> Motion:
     """Decode :func:`kinetology.codec.compress` output to a :class:`Motion`.
 
     Same channels, frames and frame rate as the original; rotation channels
@@ -252,6 +253,10 @@ def decompress(data: bytes, source: str = "<compressed motion>") -> Motion:
         ``KIN2`` bytes (``KIN1`` from earlier versions decode too).
     source : str
         Name used in error messages.
+    max_samples : int, optional
+        How many samples (frames x channels) the stream may claim. By default
+        what its size allows (:mod:`kinetology.codec.stream`, "What a stream
+        may claim"): 2^22, or 64 a byte of a longer stream.
 
     Returns
     -------
@@ -260,7 +265,8 @@ def decompress(data: bytes, source: str = "<compressed motion>") -> Motion:
     Raises
     ------
     MotionFormatError
-        When ``data`` is not a compressed motion or is damaged.
+        When ``data`` is not a compressed motion, is damaged, or claims more
+        than its size allows.
 
     Examples
     --------
@@ -271,7 +277,7 @@ def decompress(data: bytes, source: str = "<compressed motion>") -> Motion:
     >>> back.frames == m.frames and back.channels == m.channels
     True
     """
-    layout = stream.read(data, source)
+    layout = stream.read(data, source, max_samples)
     count, frames = len(layout.names), layout.frames
     try:
         channels = []

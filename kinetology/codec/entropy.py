@@ -234,6 +234,8 @@ def decode(data: bytes, frames: int, lanes: int) -> np.ndarray:
     if count > len(reader.data):
         raise EntropyError("more escapes than bytes")
     escapes = [reader.varint() for _ in range(count)]
+    if escapes and max(escapes) >= 1 << 62:  # int64 with room for the unary part
+        raise EntropyError("an escaped residual magnitude is out of range (2^62 or more)")
     sizes = [reader.varint() for _ in range(lanes)]
     if sum(sizes) * 2 + 4 * lanes > len(reader.data) - reader.pos:
         raise EntropyError("residual data ends early")
@@ -247,6 +249,10 @@ def decode(data: bytes, frames: int, lanes: int) -> np.ndarray:
         raise EntropyError("trailing bytes after the residual streams")
     if (state < _LOW).any():
         raise EntropyError("bad residual stream state")
+    if lanes == 0:  # nothing is coded: no need to step through the frames
+        if escapes:
+            raise EntropyError("residual streams do not end where they should")
+        return np.zeros((frames, 0), np.int64)
     sizes_arr = np.array(sizes, np.int64)
     pointer = np.zeros(lanes, np.int64)
     model = _Model(lanes)

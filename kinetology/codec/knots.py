@@ -22,6 +22,8 @@ from types import MappingProxyType
 
 import numpy as np
 
+from .._kinetemes import _weights
+
 __all__ = ["PINNED", "unwrap", "is_rotation", "channel_knots"]
 
 #: The codec's segmentation parameters (seconds, degrees): fixed here, not read
@@ -65,9 +67,7 @@ def _smooth(signal: np.ndarray, sigma_frames: float) -> np.ndarray:
     if sigma_frames <= 0 or signal.size < 2:
         return signal.astype(float, copy=True)
     radius = min(max(1, int(np.ceil(3 * sigma_frames))), signal.size - 1)
-    offsets = np.arange(-radius, radius + 1)
-    kernel = np.exp(-0.5 * (offsets / sigma_frames) ** 2)
-    kernel /= kernel.sum()
+    kernel = _weights(sigma_frames, radius)  # the segmentation's: the same on every CPU
     padded = np.pad(signal, radius, mode="reflect", reflect_type="odd")
     out = np.zeros(signal.size)
     for weight, shift in zip(kernel, range(2 * radius + 1)):

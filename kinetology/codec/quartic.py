@@ -26,6 +26,7 @@ signal are a least-squares problem with a tridiagonal matrix
 
 from __future__ import annotations
 
+from fractions import Fraction
 from functools import lru_cache
 from itertools import product
 
@@ -51,6 +52,26 @@ def _row(at: float, derivative: int) -> np.ndarray:
     for i in range(derivative, 5):
         row[i] = np.prod(np.arange(i - derivative + 1, i + 1)) * at ** (i - derivative)
     return row
+
+
+def _solve_exactly(matrix: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """``matrix^-1 rhs`` in exact rationals (the floats' own values), each result rounded once.
+
+    LAPACK's answer depends in its last bits on the CPU's kernels; these coefficients shape
+    every decoded value, so they are computed the same way everywhere. The system is small
+    (at most 10 x 10) and nonsingular (the two knot values fix the constant and linear
+    parts the jerk does not, and the border conditions are independent).
+    """
+    n = len(rhs)
+    a = [[Fraction(float(x)) for x in row] + [Fraction(float(b))] for row, b in zip(matrix, rhs)]
+    for col in range(n):
+        pivot = next(r for r in range(col, n) if a[r][col] != 0)
+        a[col], a[pivot] = a[pivot], a[col]
+        for r in range(n):
+            if r != col and a[r][col] != 0:
+                factor = a[r][col] / a[col][col]
+                a[r] = [x - factor * y for x, y in zip(a[r], a[col])]
+    return np.array([float(a[r][n] / a[r][r]) for r in range(n)])
 
 
 @lru_cache(maxsize=None)
@@ -95,7 +116,7 @@ def basis(left_velocity: bool, left_acceleration: bool, right_velocity: bool,
     for y0, y1 in ((1.0, 0.0), (0.0, 1.0)):
         rhs = np.zeros(5 + m)
         rhs[5], rhs[6] = y0, y1
-        coefficients = np.linalg.lstsq(kkt, rhs, rcond=None)[0][:5]
+        coefficients = _solve_exactly(kkt, rhs)[:5]
         coefficients.setflags(write=False)  # cached: shared by every caller
         out.append(coefficients)
     return out[0], out[1]
@@ -136,11 +157,20 @@ def _design(knots: np.ndarray, codes: np.ndarray):
     seg = np.append(seg, lengths.size - 1)  # the last frame ends the last segment
     offset = np.arange(frames) - knots[seg]
     s = offset / lengths[seg]
-    powers = s[:, None] ** np.arange(5)
     pattern = _border_flags(codes)[seg]
-    u = np.einsum("fk,fk->f", powers, _TABLE_U[pattern])
-    w = np.einsum("fk,fk->f", powers, _TABLE_W[pattern])
-    return seg, u, w
+    return seg, _polynomial(s, _TABLE_U[pattern]), _polynomial(s, _TABLE_W[pattern])
+
+
+def _polynomial(s: np.ndarray, coefficients: np.ndarray) -> np.ndarray:
+    """``sum_k c[:, k] s^k`` in one fixed order of elementwise operations (powers by
+    multiplication, terms added from ``k = 0``): ``np.einsum`` and ``**`` may add or round
+    differently on another CPU."""
+    out = coefficients[:, 0].copy()
+    power = np.ones_like(s)
+    for k in range(1, 5):
+        power = power * s
+        out += coefficients[:, k] * power
+    return out
 
 
 def reconstruct(knots: np.ndarray, codes: np.ndarray, values: np.ndarray) -> np.ndarray:

@@ -106,6 +106,9 @@ def _with_residual(motion: Motion, max_error: float, original: np.ndarray, smoot
 def compress_to(motion: Motion, max_error: float) -> Compressed:
     """Compress ``motion`` with a mean rotation-channel error of at most ``max_error`` degrees.
 
+    The bound is checked on every candidate's decoded values; when none meets it (values
+    too large to code that finely) a ``ValueError`` says so.
+
     Examples
     --------
     >>> import kinetology
@@ -124,8 +127,17 @@ def compress_to(motion: Motion, max_error: float) -> Compressed:
     if found is not None:
         candidates.append(compress_with(motion, found[0], base=found[1], max_error=max_error))
     for smoothing, quantum in RESIDUAL_BASES:
-        settings, base = _with_residual(motion, max_error, original, smoothing, quantum)
+        try:
+            settings, base = _with_residual(motion, max_error, original, smoothing, quantum)
+        except ValueError:  # residuals beyond 62 bits at every step that meets the bound
+            continue
         candidates.append(compress_with(motion, settings, base=base, max_error=max_error))
-    best = min(candidates, key=len)  # ties: the first (base only), the simpler stream
-    assert best.mean_error <= max_error, (best.mean_error, max_error)  # by construction
-    return best
+    # the promise is checked on what was encoded, not taken for granted: values near the
+    # float range's end (1e308) defeat the construction's arithmetic
+    meeting = [c for c in candidates if c.mean_error <= max_error]
+    if not meeting:
+        closest = min((c.mean_error for c in candidates), default=float("nan"))
+        raise ValueError(f"no setting meets max_error={max_error} on this motion (the "
+                         f"closest reached {closest!r} degrees); its values may be too large "
+                         f"to code that finely")
+    return min(meeting, key=len)  # ties: the first (base only), the simpler stream

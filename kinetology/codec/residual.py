@@ -45,14 +45,15 @@ def quantise(residual: np.ndarray, step: float, hysteresis: float) -> np.ndarray
         return out
     scaled = residual / step
     nearest = np.round(scaled)
+    if not (np.abs(nearest) < 2.0 ** 62).all():  # before the int64 cast, which would wrap
+        raise ValueError(f"residual step {step!r} is too small (or the residuals not "
+                         f"finite): residuals need more than 62 bits")
     current = nearest[0].copy()
     out[0] = current
     for t in range(1, residual.shape[0]):
         jump = np.abs(scaled[t] - current) > hysteresis
         current = np.where(jump, nearest[t], current)
         out[t] = current
-    if np.abs(out).max(initial=0) >= 2 ** 62:
-        raise ValueError(f"residual step {step!r} is too small: residuals need more than 62 bits")
     return out
 
 
@@ -78,4 +79,8 @@ def decode(data: bytes, frames: int, channels: int) -> np.ndarray:
     >>> decode(encode(np.zeros((2, 2), int)), 2, 2).tolist()
     [[0, 0], [0, 0]]
     """
-    return np.cumsum(entropy.decode(data, frames, channels), axis=0)
+    deltas = entropy.decode(data, frames, channels)
+    # the running sums must stay in int64: bound them in floats first (exact enough here)
+    if deltas.size and np.abs(np.cumsum(deltas, axis=0, dtype=float)).max() >= 2.0 ** 62:
+        raise entropy.EntropyError("residual levels out of range (2^62 or more)")
+    return np.cumsum(deltas, axis=0)

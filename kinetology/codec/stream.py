@@ -26,6 +26,25 @@ floats are little-endian IEEE 754 doubles::
 ``KIN1`` (the first version) is ``b"KIN1"`` and the LZMA2 stream alone, with
 version 1 and no residual step. Grouping like fields lets LZMA find their
 regularities (the state deltas are almost all 1: ``B G R Y B ...``).
+
+**What a stream may claim.** A header can claim any number of frames and
+LZMA can expand a few bytes into gigabytes, so :func:`read` checks every
+claim against the stream's own size before it allocates or decodes:
+
+* frames x channels (frames alone with no channels) at most
+  ``max(MIN_SAMPLES, SAMPLES_PER_BYTE * len(data))`` samples (2^22, 64 a
+  byte: the CMU takes need about 12 a byte);
+* the decompressed base part at most ``max(MIN_BODY, BODY_PER_BYTE *
+  len(data))`` bytes (1 MiB, 16 a byte) -- parsing is linear in it;
+* a residual layer at most ``max(MIN_RESIDUAL_FRAMES, RESIDUAL_FRAMES_PER_BYTE
+  * its bytes)`` frames (2^16, 256 a byte) -- it decodes one frame at a time;
+* durations, displacements and knot values below 2^62 in magnitude (the
+  knot values' running sums included), durations adding up to the frames.
+
+A stream beyond the first three is a :class:`MotionFormatError` that says so;
+``max_samples=`` (on :func:`read` and :func:`kinetology.codec.decompress`)
+allows a longer one (a still motion of millions of frames compresses to a few
+bytes), and then bounds the base part and the residual frames by it too.
 """
 
 from __future__ import annotations
@@ -40,7 +59,19 @@ from ..motion import MotionFormatError
 from .varint import VarintError, decode
 from .varint import encode as varints
 
-__all__ = ["Layout", "write", "read"]
+__all__ = ["Layout", "write", "read", "MIN_SAMPLES", "SAMPLES_PER_BYTE", "MIN_BODY",
+           "BODY_PER_BYTE", "MIN_RESIDUAL_FRAMES", "RESIDUAL_FRAMES_PER_BYTE"]
+
+#: Samples (frames x channels) any stream may claim, and how many more per byte of it.
+MIN_SAMPLES = 1 << 22
+SAMPLES_PER_BYTE = 64
+#: Bytes the base part may decompress to, and how many more per byte of the stream.
+MIN_BODY = 1 << 20
+BODY_PER_BYTE = 16
+#: Frames a residual layer may claim, and how many more per byte of the layer.
+MIN_RESIDUAL_FRAMES = 1 << 16
+RESIDUAL_FRAMES_PER_BYTE = 256
+_INT_LIMIT = 1 << 62  # durations, displacements, knot values: int64 with room to add
 
 MAGIC = b"KIN2"
 OLD_MAGIC = b"KIN1"
@@ -109,8 +140,17 @@ def write(layout: Layout) -> bytes:
     for steps in layout.displacements:
         body += varints(zigzag(steps))
     body += struct.pack("<d", layout.residual_step)
-    base = lzma.compress(bytes(body), format=lzma.FORMAT_RAW, filters=FILTERS)
+    base = lzma.compress(bytes(body), format=lzma.FORMAT_RAW, filters=_filters_for(len(body)))
     return MAGIC + varints([len(base)]) + base + layout.residual
+
+
+def _filters_for(size: int) -> list[dict]:
+    """:data:`FILTERS` with the dictionary cut to the body's size (a power of two, 4 KiB at
+    least): the same bytes (a raw LZMA2 stream does not record its dictionary, and no match
+    reaches further back than the body's start), but preset 9's 64 MiB dictionary made every
+    encoder allocate some 670 MB and take 70 ms on a body of a hundred bytes."""
+    dictionary = max(4096, 1 << max(size - 1, 1).bit_length())
+    return [{**FILTERS[0], "dict_size": min(dictionary, 64 << 20)}]
 
 
 class _Reader:
@@ -128,6 +168,13 @@ class _Reader:
             self.pos = exc.pos
             self.fail(str(exc))
         return value
+
+    def integers(self, count: int, signed: bool) -> list[int]:
+        """``count`` varints (zigzag ``signed`` ones), each below 2^62 in magnitude."""
+        out = [self.signed() if signed else self.varint() for _ in range(count)]
+        if out and max(max(out), -min(out)) >= _INT_LIMIT:
+            self.fail("a duration or displacement is out of range (2^62 or more)")
+        return out
 
     def signed(self) -> int:
         n = self.varint()
@@ -148,8 +195,11 @@ class _Reader:
         return chunk
 
 
-def read(data: bytes, source: str) -> Layout:
+def read(data: bytes, source: str, max_samples: int | None = None) -> Layout:
     """Parse and check ``KIN2`` (or ``KIN1``) bytes; malformed ones raise MotionFormatError.
+
+    ``max_samples``: how many samples (frames x channels) the stream may claim; by default
+    what its size allows (the module's "What a stream may claim").
 
     Examples
     --------
@@ -163,6 +213,12 @@ def read(data: bytes, source: str) -> Layout:
         raise MotionFormatError("not a kinetology compressed motion (bad magic bytes)",
                                 source=source)
     data = bytes(data)
+    if max_samples is None:
+        samples_limit = max(MIN_SAMPLES, SAMPLES_PER_BYTE * len(data))
+        body_limit = max(MIN_BODY, BODY_PER_BYTE * len(data))
+    else:
+        samples_limit = int(max_samples)
+        body_limit = max(MIN_BODY, BODY_PER_BYTE * len(data), 32 * samples_limit + (1 << 16))
     if data[:4] == MAGIC:
         head = _Reader(data, source, "the file")
         head.pos = 4
@@ -171,10 +227,7 @@ def read(data: bytes, source: str) -> Layout:
         residual = data[head.pos:]
     else:
         packed, residual = data[4:], b""
-    try:
-        body = lzma.decompress(packed, format=lzma.FORMAT_RAW, filters=FILTERS)
-    except lzma.LZMAError as exc:
-        raise MotionFormatError(f"corrupt compressed data ({exc})", source=source) from None
+    body = _inflate(packed, body_limit, source)
     r = _Reader(body, source, "the decompressed base part")
     version = r.varint()
     if version != (VERSION if data[:4] == MAGIC else 1):
@@ -187,6 +240,10 @@ def read(data: bytes, source: str) -> Layout:
         r.fail("bad frame rate or quantum")
     if count > len(body):
         r.fail(f"{count} channels cannot fit in {len(body)} bytes")
+    if frames * max(count, 1) > samples_limit:
+        r.fail(f"{frames} frames x {count} channels is more than a stream of {len(data)} "
+               f"bytes may claim ({samples_limit} samples; decompress(..., max_samples=N) "
+               f"allows more)")
     names = []
     for _ in range(count):
         length = r.varint()
@@ -204,9 +261,8 @@ def read(data: bytes, source: str) -> Layout:
         if n and (raw > 3).any():
             r.fail("bad state code")
         codes_list.append((np.cumsum(raw) % 4).astype(np.int8))
-    durations = [np.array([r.varint() for _ in range(n)], dtype=np.int64) for n in seg_counts]
-    displacements = [np.array([r.signed() for _ in range(n)], dtype=np.int64)
-                     for n in seg_counts]
+    durations = [r.integers(n, False) for n in seg_counts]
+    displacements = [r.integers(n, True) for n in seg_counts]
     step = r.double() if version >= 2 else 0.0
     if r.pos != len(body):
         r.fail("trailing bytes")
@@ -215,11 +271,50 @@ def read(data: bytes, source: str) -> Layout:
     if step == 0 and residual:
         raise MotionFormatError("trailing bytes after the base part (no residual layer)",
                                 source=source)
+    if step > 0 and frames:
+        frames_limit = max(MIN_RESIDUAL_FRAMES, RESIDUAL_FRAMES_PER_BYTE * len(residual))
+        if max_samples is not None:
+            frames_limit = max(frames_limit, samples_limit)
+        if frames > frames_limit:
+            raise MotionFormatError(
+                f"a residual layer of {len(residual)} bytes cannot hold {frames} frames "
+                f"(at most {frames_limit}; decompress(..., max_samples=N) allows more)",
+                source=source)
     for c in range(count):  # check the layout before allocating frames x channels
         n = seg_counts[c]
         if frames and n == 0 and frames != 1:
             r.fail(f"channel {names[c]!r} has no segments for {frames} frames")
-        if frames and n and (int(durations[c].sum()) != frames - 1 or durations[c].min() <= 0):
+        if frames and n and (sum(durations[c]) != frames - 1 or min(durations[c]) <= 0):
             r.fail(f"channel {names[c]!r}: durations do not add up to {frames - 1} frames")
-    return Layout(rate, frames, quantum, tuple(names), tuple(codes_list), tuple(durations),
-                  tuple(firsts), tuple(displacements), step, residual)
+        if abs(firsts[c]) >= _INT_LIMIT:
+            r.fail(f"channel {names[c]!r}: first knot value {firsts[c]} is out of range")
+        knot = firsts[c]
+        for step_value in displacements[c]:  # the running sums the decoder forms
+            knot += step_value
+            if abs(knot) >= _INT_LIMIT:
+                r.fail(f"channel {names[c]!r}: a knot value is out of range (2^62 or more)")
+    return Layout(rate, frames, quantum, tuple(names), tuple(codes_list),
+                  tuple(np.array(d, dtype=np.int64) for d in durations), tuple(firsts),
+                  tuple(np.array(d, dtype=np.int64) for d in displacements), step, residual)
+
+
+def _inflate(packed: bytes, limit: int, source: str) -> bytes:
+    """The LZMA base part, refused once it passes ``limit`` bytes (a decompression bomb)."""
+    # a dictionary as large as the most the body may be: no match reaches further back than
+    # its start, and preset 9's 64 MiB would be allocated for every small stream
+    inflater = lzma.LZMADecompressor(format=lzma.FORMAT_RAW, filters=_filters_for(limit + 1))
+    try:
+        body = inflater.decompress(packed, max_length=limit + 1)
+    except lzma.LZMAError as exc:
+        raise MotionFormatError(f"corrupt compressed data ({exc})", source=source) from None
+    if len(body) > limit:
+        raise MotionFormatError(f"the base part decompresses to more than {limit} bytes, "
+                                f"more than a stream of this size may hold (decompress(..., "
+                                f"max_samples=N) allows more)", source=source)
+    if not inflater.eof:
+        raise MotionFormatError("corrupt compressed data (it ends before the end-of-stream "
+                                "marker)", source=source)
+    if inflater.unused_data:
+        raise MotionFormatError("trailing bytes after the compressed base part",
+                                source=source)
+    return body

@@ -53,11 +53,18 @@ def test_compress_decompress_round_trip(small_bvh, tmp_path, capsys):
     (["segment", "{small}", "--smoothing", "-1"], "non-negative"),
     (["decompress", "{small}"], "bad magic"),
     (["evaluate"], "nothing to evaluate"),
+    (["evaluate", "--mocap6", "/nonexistent"], "no cmu-mocap6 takes"),  # was StopIteration
+    (["evaluate", "--mocap6", "{labels}"], "labels.txt:2:3: a label is a number from 1 to"),
 ])
 def test_errors_are_one_line_and_exit_2(args, fragment, small_bvh, tmp_path, capsys):
     bad = tmp_path / "bad.bvh"
     bad.write_text(small_bvh.read_text().replace("0 0 0 0 0 0 0.0000 0 20.0000", "0 0 0", 1))
-    args = [a.format(bad=bad, small=small_bvh) for a in args]
+    (tmp_path / "amc").mkdir()
+    (tmp_path / "truelabels").mkdir()
+    (tmp_path / "amc" / "labels.amc").write_text(":FULLY-SPECIFIED\n:DEGREES\n1\nroot 0 0 0 "
+                                                 "0 0 0\n2\nroot 0 0 0 1 0 0\n")
+    (tmp_path / "truelabels" / "labels.txt").write_text("1 1\n1 0 2\n")  # 0: no action
+    args = [a.format(bad=bad, small=small_bvh, labels=tmp_path) for a in args]
     assert main(args) == 2
     captured = capsys.readouterr()
     lines = captured.err.strip().splitlines()

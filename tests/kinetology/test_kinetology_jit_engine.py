@@ -18,13 +18,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from kinetology import Motion, _kinetemes_jit
-from kinetology._kinetemes import banded_product, gaussian_kernel
 from kinetology._engines import select
 from psgs._foundation.engines import ENGINES
 from kinetology.performances import segment_performances
 from kinetology.segmentation import segment, segments, states
 # every dead band and smoothing the numpy engine is checked with against plain loops (at 120
-# fps: 0.05 s is 18 frames each side, the banded product; 0.01 s is 4, the direct sum)
+# fps: 0.05 s is 18 frames each side, 0.01 s is 4)
 from test_kinetology_fast_segmentation import deadbands
 
 REPO = Path(__file__).resolve().parents[2]
@@ -102,7 +101,7 @@ def test_segment_performances_alike(motion, params, lengths):
 
 
 @pytest.mark.parametrize("frames, channels, rate", [
-    (20_011, 31, 120.0),   # threaded: odd groups, rows padded to whole blocks of the product
+    (20_011, 31, 120.0),   # threaded: odd groups of channels
     (30_000, 40, 30.0),    # threaded, the direct sum (5 frames each side)
     (9_000, 7, 120.0),     # one thread; several percentile steps (every 1st frame: 9,000 > 8,192)
 ])
@@ -115,27 +114,14 @@ def test_long_takes_alike(frames, channels, rate):
     assert_same(segments(motion, engine="numba"), segments(motion, engine="numpy"))
 
 
-@settings(max_examples=60)
-@given(st.integers(2, 700), st.integers(2, 9), st.sampled_from([0.05, 0.1, 0.2]),
-       st.sampled_from(["whole", "group", "channels-major"]), st.integers(0, 1000))
-def test_the_unpadded_banded_product_is_the_padded_one(frames, count, sigma, layout, seed):
-    """The compiled engine's smoothing reads the inner windows from the take itself; a group
-    of channels (a view into wider rows) and a channels-major selection give the same bits."""
-    values = np.cumsum(np.random.default_rng(seed).normal(size=(frames, count + 3)), axis=0)
-    part = {"whole": values[:, :count].copy(), "group": values[:, 1:1 + count],
-            "channels-major": values[:, list(range(count))]}[layout]
-    radius, kernel = gaussian_kernel(120.0, sigma, frames)
-    expected = banded_product(np.ascontiguousarray(part), kernel)
-    out = np.empty((count, -(-frames // 16), 16))
-    _kinetemes_jit._banded_unpadded(part, kernel, out)
-    assert out.reshape(count, -1)[:, :frames].tobytes() == \
-        np.ascontiguousarray(expected).tobytes()
-
-
-def test_threads_do_not_change_the_result(monkeypatch):
+@pytest.mark.parametrize("rate", [120.0, 30.0])
+def test_threads_do_not_change_the_result(monkeypatch, rate):
+    """1-4 threads (groups of 9 channels split 9, 4+5, 3+3+3, 2+2+2+3): the same bits."""
     rng = np.random.default_rng(3)
-    motion = Motion(np.cumsum(rng.normal(size=(5_000, 9)), axis=0),
-                    tuple(f"j{i}.ry" for i in range(9)), 120.0)
+    values = np.cumsum(rng.normal(size=(5_000, 9)), axis=0)
+    values[:, 4] = (values[:, 4] * 40 + 180) % 360 - 180  # wraps: largest_step splits frames
+    motion = Motion(values, tuple(f"j{i}.ry" for i in range(9)), rate)
+    monkeypatch.setattr(_kinetemes_jit, "thread_count", lambda c, f: 1)
     alone = segments(motion, engine="numba")
     for threads in (2, 3, 4):
         monkeypatch.setattr(_kinetemes_jit, "thread_count", lambda c, f, k=threads: k)
@@ -215,3 +201,46 @@ def test_without_numba_auto_is_numpy_and_numba_is_a_clear_error():
     assert done.returncode == 0, done.stderr[-2000:]
     assert lines[0] == "True"
     assert "engine='numba' needs numba" in lines[1] and "pip install 'psgs[fast]'" in lines[1]
+
+
+def _other_cpus() -> dict[str, dict[str, str]]:
+    """Child environments that compute as another x86-64 would: numba compiling for a generic
+    x86-64 (SSE2, no AVX or FMA: the code a CI machine's CPU or an AVX-512 one would not
+    share with this one), numpy's SIMD loops held to its baseline, OpenBLAS's kernels to an
+    old core. Environment variables, so each needs a fresh process."""
+    import numpy._core._multiarray_umath as umath
+    dispatched = [f for f in umath.__cpu_dispatch__ if umath.__cpu_features__.get(f)]
+    return {
+        "numba generic": {"NUMBA_CPU_NAME": "generic", "NUMBA_CPU_FEATURES": ""},
+        "numpy baseline": {"NPY_DISABLE_CPU_FEATURES": " ".join(dispatched),
+                           "OPENBLAS_CORETYPE": "Prescott"},
+    }
+
+
+@pytest.fixture(scope="module")
+def host_digest():
+    """The probe's digest here, with the numpy engine; the numba engine must give it too."""
+    from numerics_probe import fingerprint
+    host = fingerprint("numpy")
+    assert fingerprint("numba") == host
+    return host
+
+
+@pytest.mark.skipif(__import__("platform").machine() not in ("x86_64", "AMD64"),
+                    reason="the generic target and the feature names are x86-64's")
+@pytest.mark.parametrize("cpu", ["numba generic", "numpy baseline"])
+def test_another_cpu_computes_the_same_floats(cpu, host_digest):
+    """The promise: every output (smoothed values, borders, codes, displacements, the codec's
+    bytes) is the same to the bit on every CPU, with either engine. Each sum runs in one
+    fixed order of IEEE operations (no BLAS, no libm in the numbers, no ``fastmath``), so a
+    child process compiling for another CPU gives the host's digest (numba's generic build
+    is compiled on the first run, 5-8 s, then cached beside the module)."""
+    import os
+
+    host = host_digest
+    engine = "numba" if cpu.startswith("numba") else "numpy"
+    env = {**os.environ, **_other_cpus()[cpu], "PYTHONPATH": str(REPO)}
+    done = subprocess.run([sys.executable, str(Path(__file__).with_name("numerics_probe.py")),
+                           engine], env=env, capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout.strip() == host
