@@ -28,7 +28,7 @@ _PUBLIC = {
     "derivation": ("Configuration", "Step", "Derivation", "initial_configuration",
                    "applicable_steps", "apply_tuple", "random_derivation"),
     "enumeration": ("language", "Language"),
-    "membership": ("accepts", "Acceptance"),
+    "membership": ("accepts", "Acceptance", "nearest", "Nearest"),
     "actiongram": ("Actiongram", "load_actiongram"),
 }
 _LAZY = {name: module for module, names in _PUBLIC.items() for name in names}

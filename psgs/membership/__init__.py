@@ -29,7 +29,7 @@ from .pcgs_search import accepts_pcgs
 from .result import Acceptance
 from .schedule_search import accepts_psgs
 
-__all__ = ["Acceptance", "accepts", "EAGER_REPLAY_LIMIT", "MAX_SYMBOLS"]
+__all__ = ["Acceptance", "accepts", "EAGER_REPLAY_LIMIT", "MAX_SYMBOLS", "Nearest", "nearest"]
 
 #: Words of at most this many symbols in all get their witness replayed at once.
 EAGER_REPLAY_LIMIT = 2000
@@ -159,3 +159,6 @@ def _coerce_words(system: PSGS, words) -> tuple[Word, ...]:
     if len(words) != n:
         raise ValidationError(f"the system has {n} components but {len(words)} words were given")
     return tuple(as_word(w) for w in words)
+
+
+from .nearest import Nearest, nearest  # noqa: E402 -- it reads _coerce_words from here
