@@ -26,8 +26,10 @@ from ..budget import Budget
 from ..errors import ValidationError
 from ..model import PCGS, PSGS, Terminal, Word, as_word
 from .pcgs_search import accepts_pcgs
+from .nearest import Nearest, nearest
 from .result import Acceptance
 from .schedule_search import accepts_psgs
+from .words import coerce_words as _coerce_words
 
 __all__ = ["Acceptance", "accepts", "EAGER_REPLAY_LIMIT", "MAX_SYMBOLS", "Nearest", "nearest"]
 
@@ -141,24 +143,3 @@ def accepts(system: PSGS | PCGS, words, *, max_states: int = 200_000,
         if check_witness or (check_witness is None and total <= EAGER_REPLAY_LIMIT):
             result.witness  # noqa: B018 -- replaying checks every step
     return result
-
-
-# ---------------------------------------------------------------- PSGS
-def _coerce_words(system: PSGS, words) -> tuple[Word, ...]:
-    n = len(system.components)
-    if isinstance(words, str):
-        if n != 1:
-            raise ValidationError(f"give one word per component ({n}), not one string")
-        words = (words,)
-    try:
-        words = tuple(words)
-    except TypeError:
-        raise ValidationError(f"words must be a sequence of words, not {words!r}") from None
-    if n == 1 and words and all(isinstance(w, Terminal) for w in words):
-        words = (words,)
-    if len(words) != n:
-        raise ValidationError(f"the system has {n} components but {len(words)} words were given")
-    return tuple(as_word(w) for w in words)
-
-
-from .nearest import Nearest, nearest  # noqa: E402 -- it reads _coerce_words from here

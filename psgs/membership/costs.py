@@ -199,7 +199,7 @@ def apply_edits(word: Word, edits) -> Word:
     Examples
     --------
     >>> from psgs.model import Terminal as T, as_word
-    >>> edits = (Edit("delete", 0, T("x"), None, 1), Edit("insert", 2, None, T("c"), 1))
+    >>> edits = (Edit("delete", 0, T("x"), None, 1), Edit("insert", 3, None, T("c"), 1))
     >>> "".join(map(str, apply_edits(as_word("xab"), edits)))
     'abc'
     """

@@ -50,6 +50,19 @@ class ErrorChart:
     ``insert[t]`` is the cost of inserting terminal ``t``, ``delete[p]`` of
     deleting the symbol at position ``p``, ``substitute(p, t)`` of replacing it
     by ``t`` (0 when it is ``t``).
+
+    Examples
+    --------
+    ``S → a S | a`` against ``a x a`` (``x`` is id 1, no terminal): one substitution or deletion.
+
+    >>> from psgs.model import Grammar, Rule, Nonterminal as N, Terminal as T
+    >>> from psgs.membership.chart import CompiledGrammar
+    >>> g = Grammar("G", N("S"), (Rule("p", N("S"), (T("a"), N("S"))), Rule("q", N("S"), (T("a"),))))
+    >>> cg = CompiledGrammar(g, {T("a"): 0})
+    >>> word = [0, 1, 0]
+    >>> chart = ErrorChart(cg, word, [1], [1, 1, 1], lambda p, t: 0 if word[p] == t else 1)
+    >>> chart.cost(cg.index[N("S")], 0, 3, cap=5), chart.cost(cg.index[N("S")], 0, 0, cap=5)
+    (1.0, 1)
     """
 
     def __init__(self, compiled: CompiledGrammar, word: Sequence[int], insert: Sequence[float],

@@ -27,6 +27,7 @@ from .chart import CompiledGrammar
 from .costs import Edit, EditCosts, edit_costs
 from .error_chart import INF, ErrorChart
 from .nearest_search import DistanceSearch
+from .words import coerce_words
 from .witness import PCGSSchedule, PSGSSchedule, Rewrite, ScheduledMove, replay
 
 __all__ = ["Nearest", "nearest"]
@@ -62,6 +63,10 @@ class Nearest:
         The same in words, or why there is no tuple.
     states : int
         Search states explored.
+    system : PSGS or PCGS, optional
+        The system asked about (to replay the witness).
+    schedule : PSGSSchedule or PCGSSchedule, optional
+        What the witness is replayed from.
 
     Examples
     --------
@@ -177,8 +182,7 @@ def nearest(system: PSGS | PCGS, words, *, max_errors: float | None = None, cost
                              budget)
     if not isinstance(system, PSGS):
         raise ValidationError(f"expected a PSGS or a PCGS, not {type(system).__name__}")
-    from . import _coerce_words
-    tuple_of_words = _coerce_words(system, words)
+    tuple_of_words = coerce_words(system, words)
     collecting = gc.isenabled()
     gc.disable()  # as in accepts: the search allocates many short-lived tuples, no cycles
     try:

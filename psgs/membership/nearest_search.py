@@ -35,7 +35,17 @@ __all__ = ["DistanceSearch"]
 
 
 class DistanceSearch:
-    """Rounds of bounded depth-first search for the cheapest synchronised schedule."""
+    """Rounds of bounded depth-first search for the cheapest synchronised schedule.
+
+    Built by :func:`psgs.nearest`, which reads the answer from ``run``.
+
+    Examples
+    --------
+    >>> import psgs
+    >>> gamma = psgs.load("grammars/paper_example.psgs")
+    >>> psgs.nearest(gamma, ["abcdbcad", "bcadabcd", "cdabcdab", "abcdbcd"]).states > 0
+    True
+    """
 
     def __init__(self, system: PSGS, compiled, charts: list[ErrorChart], max_states: int,
                  budget: Budget, step: float) -> None:
