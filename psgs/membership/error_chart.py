@@ -40,6 +40,15 @@ from .chart import UNBOUNDED, CompiledGrammar
 __all__ = ["ErrorChart"]
 
 INF = math.inf
+#: A walk over a body this short stops at its first unknown child (resolved first, nominal
+#: ends first, so its value prunes the rest); a longer body notes many per pass.
+_LONG_BODY = 8
+#: How far along a span's edge a known neighbour is looked for.
+_NEIGHBOURS = 8
+#: A bounded nonterminal with at most this many words is costed against its words directly.
+_FINITE_WORDS = 16
+#: A row of edit distances reaches this far past the longest word (more on demand).
+_ROW_MARGIN = 8
 
 
 class ErrorChart:
@@ -81,6 +90,11 @@ class ErrorChart:
         self.deleted = prefix  # deleted[j] - deleted[i]: deleting word[i:j]
         terminal_ids = {~s for body in g.body for s in body if s < 0}
         self.min_insert = min((insert[t] for t in terminal_ids), default=INF)
+        # dropping one symbol from a span's edge saves at most its deletion and costs at most
+        # one insertion: what bounds a span's cost by a neighbouring span's
+        self.max_insert = max((insert[t] for t in terminal_ids), default=0.0)
+        self._by_end: dict[tuple[int, int], dict[int, float]] = {}
+        self._by_start: dict[tuple[int, int], dict[int, float]] = {}
         self.min_delete = min(self.delete, default=INF)
         rules = [(g.lhs[k], [s for s in body if s >= 0], sum(insert[~s] for s in body if s < 0))
                  for k, body in enumerate(g.body)]
@@ -95,6 +109,8 @@ class ErrorChart:
                 acc[t] = acc[t + 1] + (insert[~s] if s < 0 else self.min_yield[s])
             self.suffix_insert.append(acc)
         self._closure: dict[int, list[tuple[float, int]]] = {}
+        self.finite = self._finite_languages()
+        self._rows: dict[tuple[int, int], list[float]] = {}
         self.memo: dict[tuple[int, int, int], tuple[float, bool]] = {}
         self._split_cache: dict[tuple[int, int, int], tuple[float, list, float]] = {}
 
@@ -153,6 +169,100 @@ class ErrorChart:
         self._closure[a] = out
         return out
 
+    def _finite_languages(self) -> list:
+        """Per nonterminal its few words (tuples of terminal ids), or None when there are many.
+
+        A nonterminal of bounded yield whose language has at most
+        ``_FINITE_WORDS`` words is costed by comparing the span with its
+        words directly (:meth:`_row`), not through its derivation trees:
+        the blocks of the induced grammars are such, and one row of edit
+        distances gives every end of a span at once.
+        """
+        g = self.g
+        langs: list = [None] * len(g.nonterminals)
+        for component in g._components:  # successor components first
+            if any(g.maxlen[a] >= UNBOUNDED or g.minlen[a] >= UNBOUNDED for a in component):
+                continue
+            current = {a: set() for a in component}
+            ok = True
+            changed = True
+            while changed and ok:
+                changed = False
+                for a in component:
+                    for k in g.useful_by_lhs[a]:
+                        self.budget.tick()
+                        words = [()]
+                        for sym in g.body[k]:
+                            if sym < 0:
+                                options = ((~sym,),)
+                            elif sym in current:
+                                options = tuple(current[sym])
+                            else:
+                                options = langs[sym]
+                            if options is None:
+                                ok = False
+                                break
+                            words = [w + o for w in words for o in options]
+                            if len(words) > _FINITE_WORDS:
+                                ok = False
+                                break
+                        if not ok:
+                            break
+                        for w in words:
+                            if w not in current[a]:
+                                current[a].add(w)
+                                changed = True
+                        if len(current[a]) > _FINITE_WORDS:
+                            ok = False
+                            break
+                    if not ok:
+                        break
+            if ok:
+                for a in component:
+                    langs[a] = tuple(sorted(current[a]))
+        return langs
+
+    def _row(self, a: int, i: int, j: int) -> float:
+        """``cost(a, i, j)`` for a nonterminal with few words: edit distances from ``i`` on."""
+        row = self._rows.get((a, i))
+        if row is None or j - i >= len(row):
+            upto = min(self.n, max(j, i + self.g.maxlen[a] + _ROW_MARGIN))
+            row = self._edit_row(self.finite[a], i, upto)
+            self._rows[(a, i)] = row
+        return row[j - i]
+
+    def _edit_row(self, words, i: int, upto: int) -> list[float]:
+        """Least edit distance from ``word[i:j]`` to one of ``words``, for every ``j ≤ upto``."""
+        delete = self.delete
+        insert = self.insert
+        sub = self.substitute
+        span = upto - i
+        first = [0.0] * (span + 1)
+        for k in range(span):
+            first[k + 1] = first[k] + delete[i + k]
+        best = [INF] * (span + 1)
+        for u in words:
+            self.budget.tick()
+            prev = first
+            for t in u:
+                cost_t = insert[t]
+                row = [prev[0] + cost_t]
+                for k in range(span):
+                    p = i + k
+                    v = prev[k] + sub(p, t)
+                    x = prev[k + 1] + cost_t
+                    if x < v:
+                        v = x
+                    x = row[k] + delete[p]
+                    if x < v:
+                        v = x
+                    row.append(v)
+                prev = row
+            for k in range(span + 1):
+                if prev[k] < best[k]:
+                    best[k] = prev[k]
+        return best
+
     # ---------------------------------------------------------- queries
     def cost(self, a: int, i: int, j: int, cap: float) -> float:
         """The least cost of ``a`` on ``word[i:j]`` when it is at most ``cap``, else ``inf``."""
@@ -161,6 +271,9 @@ class ErrorChart:
             return v if v <= cap else INF
         if self.lower_bound(a, i, j) > cap:
             return INF
+        if self.finite[a] is not None:
+            v = self._row(a, i, j)
+            return v if v <= cap else INF
         key = (a, i, j)
         entry = self.memo.get(key)
         if entry is None or (not entry[1] and entry[0] < cap):
@@ -209,6 +322,9 @@ class ErrorChart:
         lb = self._length_bound(self.g.minlen[s], self.g.maxlen[s], q - p)
         if lb > need:
             return lb, None
+        if self.finite[s] is not None:
+            v = self._row(s, p, q)
+            return (v, True) if v <= need else (v, None)
         if missing is None:
             self.cost(s, p, q, need)
             v, exact = self.memo[(s, p, q)]
@@ -221,8 +337,41 @@ class ErrorChart:
             if v >= need:
                 return v, None
             lb = max(lb, v)
+        near = self._neighbour_bound(s, p, q, need)
+        if near > need:
+            return near, None
         missing.append((s, p, q, need))
-        return lb, False
+        return max(lb, near), False
+
+    def _neighbour_bound(self, s: int, p: int, q: int, need: float) -> float:
+        """A lower bound of ``cost(s, p, q)`` from spans of ``s`` that differ at one edge.
+
+        Moving a span's edge by ``k`` symbols changes its cost by at most ``k``
+        insertions one way and the deletion of those symbols the other way,
+        so a known neighbour bounds an unknown span before it is computed
+        (a misaligned span next to a well-aligned one is then pruned unseen).
+        """
+        best = 0.0
+        mx = self.max_insert
+        deleted = self.deleted
+        reach = _NEIGHBOURS
+        starts = self._by_end.get((s, q))
+        if starts:
+            for x in range(max(0, p - reach), min(q, p + reach) + 1):
+                v = starts.get(x)
+                if v is not None:
+                    b = v - (x - p) * mx if x > p else v - (deleted[p] - deleted[x])
+                    if b > best:
+                        best = b
+        ends = self._by_start.get((s, p))
+        if ends:
+            for y in range(max(p, q - reach), min(self.n, q + reach) + 1):
+                v = ends.get(y)
+                if v is not None:
+                    b = v - (q - y) * mx if y < q else v - (deleted[y] - deleted[q])
+                    if b > best:
+                        best = b
+        return best
 
     def _walk(self, rule: int, i: int, j: int, cap: float, proper: bool, missing: list | None,
               excess: list):
@@ -272,7 +421,12 @@ class ErrorChart:
                        j - max(0, lo2 - math.floor(ins_room)))
             if (first > p or last < j) and cap < excess[0]:
                 excess[0] = cap  # the ends left out cost more than cap
-            return range(max(first, p), last + 1)
+            found = range(max(first, p), last + 1)
+            if missing is None or len(found) <= 1:
+                return found
+            # the ends the lengths favour first (a child at its usual length, the rest too)
+            return sorted(found, key=lambda q: self._length_bound(lo, hi, q - p)
+                          + self._length_bound(lo2, hi2, j - q))
 
         bounds = [i]
         accs = [0.0]
@@ -304,6 +458,8 @@ class ErrorChart:
                         excess[0] = total + rest
                     continue
                 known = known and knowns[t]
+                if missing and r <= _LONG_BODY:
+                    return  # resolve this child first: its value prunes the other ends
                 if t == r - 1:
                     if known:
                         yield total, (*bounds, q)
@@ -330,11 +486,14 @@ class ErrorChart:
             if u + self._length_bound(g.minlen[x], g.maxlen[x], span) > bound:
                 continue
             for rule in g.useful_by_lhs[x]:
-                bound = min(cap, best)
+                # only a cheaper split matters once one is known (ties are pruned)
+                bound = cap if best == INF else min(cap, best - 1e-9 * max(1.0, best))
                 excess = [INF]
                 for total, _ in self._walk(rule, i, j, bound - u, True, missing, excess):
                     if u + total < best:
                         best = u + total
+                if missing and len(g.body[rule]) <= _LONG_BODY:
+                    return best
         return best
 
     def _resolve(self, root: tuple[int, int, int], cap: float) -> None:
@@ -357,4 +516,7 @@ class ErrorChart:
             if value <= need:
                 memo[(a, i, j)] = (value, True)
             else:
-                memo[(a, i, j)] = (max(need, entry[0]) if entry else need, False)
+                value = max(need, entry[0]) if entry else need
+                memo[(a, i, j)] = (value, False)
+            self._by_end.setdefault((a, j), {})[i] = value
+            self._by_start.setdefault((a, i), {})[j] = value

@@ -32,6 +32,8 @@ from .witness import PCGSSchedule, PSGSSchedule, Rewrite, ScheduledMove, replay
 
 __all__ = ["Nearest", "nearest"]
 
+_GROWTH = 2
+
 
 @dataclass(frozen=True)
 class Nearest:
@@ -284,7 +286,7 @@ def _component_distance(chart: ErrorChart, start: int, step: float, max_errors) 
         d = chart.cost(start, 0, chart.n, cap)
         if d < INF or cap >= ceiling or (max_errors is not None and cap >= max_errors):
             return d
-        cap = 2 * cap + step
+        cap = _GROWTH * cap + step
 
 
 def _over(system, max_errors, proved, costs, states=0) -> Nearest:
