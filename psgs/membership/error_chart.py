@@ -110,6 +110,7 @@ class ErrorChart:
             self.suffix_insert.append(acc)
         self._closure: dict[int, list[tuple[float, int]]] = {}
         self.finite = self._finite_languages()
+        self.finite_lists = [None if ws is None else [list(u) for u in ws] for ws in self.finite]
         self._rows: dict[tuple[int, int], list[float]] = {}
         self.memo: dict[tuple[int, int, int], tuple[float, bool]] = {}
         self._split_cache: dict[tuple[int, int, int], tuple[float, list, float]] = {}
@@ -225,6 +226,12 @@ class ErrorChart:
     def _row(self, a: int, i: int, j: int) -> float:
         """``cost(a, i, j)`` for a nonterminal with few words: edit distances from ``i`` on."""
         row = self._rows.get((a, i))
+        if row is None:
+            # the common case, a block read without error, needs no row
+            span = self.word[i:j]
+            for u in self.finite_lists[a]:
+                if u == span:
+                    return 0.0
         if row is None or j - i >= len(row):
             upto = min(self.n, max(j, i + self.g.maxlen[a] + _ROW_MARGIN))
             row = self._edit_row(self.finite[a], i, upto)
@@ -424,7 +431,17 @@ class ErrorChart:
             found = range(max(first, p), last + 1)
             if missing is None or len(found) <= 1:
                 return found
-            # the ends the lengths favour first (a child at its usual length, the rest too)
+            # the cheapest-looking ends first: the child's cost when it is cheap to know (a
+            # terminal, a few-word block), else its length bound, plus the rest's length
+            # bound. Resolving the well-aligned child first lets its value prune the others
+            # (a misaligned suffix is cut one block later by its aligned neighbour's bound)
+            if s < 0:
+                return sorted(found, key=lambda q: self.terminal_cost(~s, p, q)
+                              + self._length_bound(lo2, hi2, j - q))
+            if self.finite[s] is not None:
+                return sorted(found, key=lambda q: (self._row(s, p, q) if q > p
+                                                    else self.min_yield[s])
+                              + self._length_bound(lo2, hi2, j - q))
             return sorted(found, key=lambda q: self._length_bound(lo, hi, q - p)
                           + self._length_bound(lo2, hi2, j - q))
 
