@@ -73,10 +73,12 @@ class DistanceSearch:
 
     # ------------------------------------------------------------ estimates
     def item_cost(self, c: int, item, cap: float) -> float:
+        """Component ``c``'s chart cost of an occurrence ``(A, i, j)`` (``inf`` above ``cap``)."""
         a, i, j = item
         return self.charts[c].cost(a, i, j, cap)
 
     def key(self, state):
+        """A state up to equal substrings (as in ``accepts``): equal keys have equal futures."""
         out = []
         for c, front in enumerate(state):
             classes = self.substrings[c]
