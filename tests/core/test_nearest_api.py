@@ -112,3 +112,15 @@ def test_cli_nearest(capsys):
     assert main(["check", GAMMA, *BLOCKS[:3], "ab", "--nearest", "--max-errors", "-2"]) == 2
     assert "max_errors" in capsys.readouterr().err
     assert main(["check", GAMMA, *BLOCKS[:3], "--nearest"]) == 2
+
+
+def test_a_time_budget_stops_a_long_search(gamma):
+    import time
+
+    words = [b * 150 for b in BLOCKS]
+    words = [w[:100] + w[101:300] + "dd" + w[300:] for w in words]
+    start = time.perf_counter()
+    result = psgs.nearest(gamma, words, max_seconds=0.3)
+    took = time.perf_counter() - start
+    assert not result.exact and result.bound == "max_seconds" and "0.3 s" in result.reason
+    assert took < 3.0  # the clock is read as the chart and the search work, not only at the end
