@@ -233,7 +233,9 @@ class ErrorChart:
                 if u == span:
                     return 0.0
         if row is None or j - i >= len(row):
-            upto = min(self.n, max(j, i + self.g.maxlen[a] + _ROW_MARGIN))
+            # a longer row on demand: at least twice as long, so a row is built a few times
+            upto = min(self.n, max(j, i + self.g.maxlen[a] + _ROW_MARGIN,
+                                   i + 2 * len(row) if row is not None else 0))
             row = self._edit_row(self.finite[a], i, upto)
             self._rows[(a, i)] = row
         return row[j - i]
@@ -439,6 +441,8 @@ class ErrorChart:
                 return sorted(found, key=lambda q: self.terminal_cost(~s, p, q)
                               + self._length_bound(lo2, hi2, j - q))
             if self.finite[s] is not None:
+                if q_last := (found[-1] if found[-1] > p else 0):
+                    self._row(s, p, q_last)  # the farthest end first: one row serves them all
                 return sorted(found, key=lambda q: (self._row(s, p, q) if q > p
                                                     else self.min_yield[s])
                               + self._length_bound(lo2, hi2, j - q))

@@ -32,6 +32,8 @@ from .witness import PCGSSchedule, PSGSSchedule, Rewrite, ScheduledMove, replay
 
 __all__ = ["Nearest", "nearest"]
 
+#: Each round of a component distance at least doubles its cost cap (measured: 1.5 and 3
+#: no faster on Γ with 1% and 5% random edits)
 _GROWTH = 2
 
 
