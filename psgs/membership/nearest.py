@@ -137,7 +137,8 @@ def nearest(system: PSGS | PCGS, words, *, max_errors: float | None = None, cost
     (as for :func:`psgs.accepts`); a symbol outside the system's alphabet is
     an input like any other (it is deleted or substituted). The distance is
     the least sum over components of each word's edit distance to the
-    tuple's word; ``0`` exactly when :func:`psgs.accepts` says yes.
+    tuple's word; ``0`` exactly when :func:`psgs.accepts` says yes (when
+    every cost is positive).
     ``max_errors`` bounds the search: no tuple within it gives
     ``distance=None`` with ``bound="max_errors"``. The budgets are those of
     ``accepts``; when one runs out the answer is not ``exact``: ``distance``

@@ -11,7 +11,7 @@ import psgs.strategies as pst
 from psgs.enumeration import language
 from psgs.membership import accepts, nearest
 from psgs.membership.costs import apply_edits, edit_costs
-from psgs.membership.nearest import _edit_distance
+from psgs.membership.nearest import _all_costs, _edit_distance
 from psgs.model import Terminal
 
 ALPHABET = ("a", "b")
@@ -56,7 +56,11 @@ def check_against_oracle(system, words, costs=None):
     if result.distance is None:
         assert expected is None
         return result
-    assert (result.distance == 0) == bool(accepts(system, words, max_states=20_000))
+    member = bool(accepts(system, words, max_states=20_000))
+    if min(_all_costs(table)) > 0:
+        assert (result.distance == 0) == member
+    else:  # free edits can reach a member at no cost
+        assert result.distance == 0 or not member
     # the witness derives the nearest words; the edit scripts turn the input into them
     assert result.witness.words == result.words
     assert result.witness.is_terminal
@@ -94,7 +98,7 @@ def test_nearest_with_costs_equals_the_oracle(data):
     system = data.draw(pst.psgs_systems(max_components=2, max_rules=4, max_rhs=2,
                                         alphabet=ALPHABET))
     words = data.draw(word_tuples(len(system.components)))
-    number = st.sampled_from([0.5, 1, 2, 3])
+    number = st.sampled_from([0, 0.5, 1, 2, 3])
     costs = {"insert": data.draw(number), "delete": data.draw(number),
              "substitute": data.draw(number), "pairs": {("a", "b"): data.draw(number)}}
     check_against_oracle(system, words, costs)
@@ -151,3 +155,29 @@ def test_all_tuples_small_exhaustive():
         words[k] = words[k][:4] + sub
         result = nearest(system, words)
         assert result.exact and (result.distance == 0) == bool(accepts(system, words))
+
+
+@PROPERTY
+@given(st.data())
+def test_error_chart_is_the_context_free_distance(data):
+    """The chart's cost (the search's estimate) equals the brute-force distance to L(G) alone."""
+    from psgs.membership.chart import CompiledGrammar
+    from psgs.membership.error_chart import ErrorChart
+
+    grammar = data.draw(pst.grammars(max_rules=5, max_rhs=3, alphabet=ALPHABET))
+    word = data.draw(st.lists(st.sampled_from(INPUT_ALPHABET), max_size=4))
+    lang = language(grammar, MAX_LANGUAGE, max_configurations=5_000)
+    assume(lang.complete)
+    table = edit_costs(None)
+    ids = {Terminal("a"): 0, Terminal("b"): 1}
+    cg = CompiledGrammar(grammar, ids)
+    ws = [ids.get(Terminal(x), 2) for x in word]
+    chart = ErrorChart(cg, ws, [1, 1], [1] * len(ws), lambda p, t: 0 if ws[p] == t else 1)
+    got = chart.cost(cg.index[grammar.start], 0, len(ws), cap=50)
+    w = tuple(Terminal(x) for x in word)
+    expected = min((_edit_distance(w, u, table) for u in lang.words), default=None)
+    floor = MAX_LANGUAGE + 1 - len(word)
+    if expected is not None and expected <= floor:
+        assert got == expected
+    else:
+        assert got >= min(floor, expected if expected is not None else floor)
