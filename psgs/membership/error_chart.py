@@ -113,7 +113,15 @@ class ErrorChart:
         self.finite_lists = [None if ws is None else [list(u) for u in ws] for ws in self.finite]
         self._rows: dict[tuple[int, int], list[float]] = {}
         self.memo: dict[tuple[int, int, int], tuple[float, bool]] = {}
+        # what the chart keeps, in symbols (memo entries, row cells, cached splits): counted
+        # against the search's max_symbols, so a word far from the language (large caps,
+        # long rows) cannot grow the chart without bound
+        self.held = 0
         self._split_cache: dict[tuple[int, int, int], tuple[float, list, float]] = {}
+
+    def _hold(self, symbols: int) -> None:
+        self.held += symbols
+        self.budget.hold(symbols)
 
     # ---------------------------------------------------------- bounds
     def _length_bound(self, smin: int, smax: int, length: int) -> float:
@@ -238,6 +246,7 @@ class ErrorChart:
                                    i + 2 * len(row) if row is not None else 0))
             row = self._edit_row(self.finite[a], i, upto)
             self._rows[(a, i)] = row
+            self._hold(len(row))
         return row[j - i]
 
     def _edit_row(self, words, i: int, upto: int) -> list[float]:
@@ -314,6 +323,7 @@ class ErrorChart:
             found.append((total, bounds))
         found.sort()
         self._split_cache[key] = (cap, found, excess[0])
+        self._hold(1 + sum(len(b) for _, b in found))
         return found, excess[0]
 
     # ---------------------------------------------------------- machinery
@@ -541,3 +551,4 @@ class ErrorChart:
                 memo[(a, i, j)] = (value, False)
             self._by_end.setdefault((a, j), {})[i] = value
             self._by_start.setdefault((a, i), {})[j] = value
+            self._hold(3)

@@ -230,7 +230,8 @@ class DistanceSearch:
         self.proved = lower
         eps_cap = 4
         while True:
-            self.budget.held = 0  # the previous round's visited set is gone
+            # the previous round's visited set is gone; the charts are kept
+            self.budget.held = sum(chart.held for chart in self.charts)
             status, lowest, capped = self._round(cap, eps_cap)
             if status == "max_states":
                 return "max_states", None, None

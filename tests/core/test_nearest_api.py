@@ -124,3 +124,10 @@ def test_a_time_budget_stops_a_long_search(gamma):
     took = time.perf_counter() - start
     assert not result.exact and result.bound == "max_seconds" and "0.3 s" in result.reason
     assert took < 3.0  # the clock is read as the chart and the search work, not only at the end
+
+
+def test_memory_is_bounded_by_max_symbols_for_a_far_word(gamma):
+    """Far from the language the chart's caps and rows grow: what it keeps is counted too."""
+    result = psgs.nearest(gamma, ["x" * 400] * 4, max_symbols=20_000, max_seconds=20)
+    assert not result.exact and result.bound == "max_symbols"
+    assert "max_symbols=20000" in result.reason
