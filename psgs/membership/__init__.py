@@ -11,6 +11,10 @@ undecidable in general): a breadth-first search over configurations, pruned
 soundly by the master's word (:mod:`psgs.membership.pcgs_search`). See
 ``docs/membership.md``.
 
+:func:`nearest` answers how far a word tuple is from the language instead,
+with a :class:`Nearest` tuple, its witness and the edits
+(:mod:`psgs.membership.nearest`).
+
 The package, bottom-up: ``chart`` (one context-free grammar, one word),
 ``witness`` (the typed schedule of a yes and its replay as a checked
 :class:`~psgs.derivation.Derivation`), ``result`` (the :class:`Acceptance`
@@ -24,9 +28,9 @@ import gc
 
 from ..budget import Budget
 from ..errors import ValidationError
-from ..model import PCGS, PSGS, Terminal, Word, as_word
-from .pcgs_search import accepts_pcgs
+from ..model import PCGS, PSGS, as_word
 from .nearest import Nearest, nearest
+from .pcgs_search import accepts_pcgs
 from .result import Acceptance
 from .schedule_search import accepts_psgs
 from .words import coerce_words as _coerce_words

@@ -23,8 +23,6 @@ backtracking.
 
 from __future__ import annotations
 
-import math
-
 from ..analysis import moves as system_moves
 from ..budget import Budget
 from ..model import IDLE, PSGS
