@@ -32,7 +32,7 @@ _PUBLIC = {
     "derivation": ("Derivation", "initial_configuration", "applicable_steps",
                    "random_derivation"),
     "enumeration": ("language", "Language"),
-    "membership": ("accepts", "Acceptance"),
+    "membership": ("accepts", "Acceptance", "nearest", "Nearest"),
     "actiongram": ("Actiongram",),
 }
 _LAZY = {name: module for module, names in _PUBLIC.items() for name in names}

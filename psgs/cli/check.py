@@ -3,6 +3,8 @@
 Exit status: 0 yes, 1 no (the reason is printed), 2 an error (a bad file or
 bad words: one line on stderr), 3 unknown (the budget that ran out is
 printed); the table of every command is ``psgs._foundation.shell.EXIT_STATUS_HELP``.
+With ``--nearest``: 0 distance 0, 1 a distance above 0 (or none within
+``--max-errors``, or an empty language), 3 a budget ran out first.
 """
 
 from __future__ import annotations
@@ -39,6 +41,12 @@ def register(subparsers) -> None:
                        help="search budget in seconds (default 30)")
     check.add_argument("--max-steps", type=positive_int, default=200, metavar="K",
                        help="PCGS: longest derivation searched (default 200)")
+    check.add_argument("--nearest", action="store_true",
+                       help="print the distance to the language, a nearest word tuple and the "
+                            "edits under the input (exit 0 at distance 0, 1 above, 3 when a "
+                            "budget ran out)")
+    check.add_argument("--max-errors", type=float, default=None, metavar="D",
+                       help="with --nearest: look no further than distance D")
     check.set_defaults(run=run_check)
 
 
@@ -77,6 +85,10 @@ def run_check(args) -> int:
                                   f"({', '.join(system.component_names)}), so give {n} words, "
                                   f"not {len(args.words)}")
         words = [read_word(w, system) for w in args.words]
+    if args.nearest:
+        return _run_nearest(system, words, args)
+    if args.max_errors is not None:
+        raise ValidationError("--max-errors applies with --nearest only")
     result = accepts(system, words, max_states=args.max_states, max_seconds=args.max_seconds,
                      max_steps=args.max_steps)
     if result.answer == "yes":
@@ -89,3 +101,68 @@ def run_check(args) -> int:
         return NO
     print(f"unknown: {result.reason} (budget: {result.bound})")
     return UNKNOWN
+
+
+def _run_nearest(system, words, args) -> int:
+    from ..membership import nearest
+
+    result = nearest(system, words, max_errors=args.max_errors, max_states=args.max_states,
+                     max_seconds=args.max_seconds, max_steps=args.max_steps)
+    print(result)
+    if result.words is not None:
+        if isinstance(system, PCGS):
+            rows = [("master", words, result.words, result.edits)]
+        else:
+            rows = zip(system.component_names, words, result.words, result.edits)
+        for name, given, found, edits in rows:
+            print(f"{name}:")
+            for line in aligned(given, found, edits):
+                print(f"  {line}")
+    if result.distance is None:
+        return NO if result.exact else UNKNOWN
+    if not result.exact:
+        return UNKNOWN
+    return YES if result.distance == 0 else NO
+
+
+def aligned(given, found, edits) -> list[str]:
+    """Three lines: the input, the edit marks, the nearest word, one column per aligned symbol.
+
+    ``=`` keeps, ``~`` substitutes, ``-`` deletes (nothing below), ``+`` inserts.
+
+    Examples
+    --------
+    >>> from psgs.membership.costs import Edit
+    >>> from psgs.model import Terminal as T, as_word
+    >>> for line in aligned(as_word("abxd"), as_word("abcd"), [Edit("substitute", 2, T("x"), T("c"), 1)]):
+    ...     print(line)
+    input   a b x d
+    edit    = = ~ =
+    nearest a b c d
+    """
+    top, mid, bottom = ["input  "], ["edit   "], ["nearest"]
+    by_position: dict[int, list] = {}
+    for e in edits:
+        by_position.setdefault(e.position, []).append(e)
+
+    def column(a: str, mark: str, b: str) -> None:
+        width = max(len(a), len(b), 1)
+        top.append(a.ljust(width))
+        mid.append(mark.ljust(width))
+        bottom.append(b.ljust(width))
+
+    for p in range(len(given) + 1):
+        handled = False
+        for e in by_position.get(p, ()):
+            if e.op == "insert":
+                column("", "+", e.new.name)
+            elif e.op == "delete":
+                column(given[p].name, "-", "")
+                handled = True
+            else:
+                column(given[p].name, "~", e.new.name)
+                handled = True
+        if p < len(given) and not handled:
+            column(given[p].name, "=", given[p].name)
+    del found  # the bottom row is rebuilt from the edits; the caller checked they agree
+    return [" ".join(row).rstrip() for row in (top, mid, bottom)]

@@ -11,6 +11,10 @@ undecidable in general): a breadth-first search over configurations, pruned
 soundly by the master's word (:mod:`psgs.membership.pcgs_search`). See
 ``docs/membership.md``.
 
+:func:`nearest` answers how far a word tuple is from the language instead,
+with a :class:`Nearest` tuple, its witness and the edits
+(:mod:`psgs.membership.nearest`).
+
 The package, bottom-up: ``chart`` (one context-free grammar, one word),
 ``witness`` (the typed schedule of a yes and its replay as a checked
 :class:`~psgs.derivation.Derivation`), ``result`` (the :class:`Acceptance`
@@ -24,12 +28,14 @@ import gc
 
 from ..budget import Budget
 from ..errors import ValidationError
-from ..model import PCGS, PSGS, Terminal, Word, as_word
+from ..model import PCGS, PSGS, as_word
+from .nearest import Nearest, nearest
 from .pcgs_search import accepts_pcgs
 from .result import Acceptance
 from .schedule_search import accepts_psgs
+from .words import coerce_words as _coerce_words
 
-__all__ = ["Acceptance", "accepts", "EAGER_REPLAY_LIMIT", "MAX_SYMBOLS"]
+__all__ = ["Acceptance", "accepts", "EAGER_REPLAY_LIMIT", "MAX_SYMBOLS", "Nearest", "nearest"]
 
 #: Words of at most this many symbols in all get their witness replayed at once.
 EAGER_REPLAY_LIMIT = 2000
@@ -141,21 +147,3 @@ def accepts(system: PSGS | PCGS, words, *, max_states: int = 200_000,
         if check_witness or (check_witness is None and total <= EAGER_REPLAY_LIMIT):
             result.witness  # noqa: B018 -- replaying checks every step
     return result
-
-
-# ---------------------------------------------------------------- PSGS
-def _coerce_words(system: PSGS, words) -> tuple[Word, ...]:
-    n = len(system.components)
-    if isinstance(words, str):
-        if n != 1:
-            raise ValidationError(f"give one word per component ({n}), not one string")
-        words = (words,)
-    try:
-        words = tuple(words)
-    except TypeError:
-        raise ValidationError(f"words must be a sequence of words, not {words!r}") from None
-    if n == 1 and words and all(isinstance(w, Terminal) for w in words):
-        words = (words,)
-    if len(words) != n:
-        raise ValidationError(f"the system has {n} components but {len(words)} words were given")
-    return tuple(as_word(w) for w in words)

@@ -1,0 +1,183 @@
+"""psgs.nearest against a brute-force oracle: enumerate L(Γ) to a length bound, least summed edit distance."""
+
+from __future__ import annotations
+
+import itertools
+
+import pytest
+from hypothesis import HealthCheck, assume, given, settings, strategies as st
+
+import psgs.strategies as pst
+from psgs.enumeration import language
+from psgs.membership import accepts, nearest
+from psgs.membership.costs import apply_edits, edit_costs
+from psgs.membership.nearest import _all_costs, _edit_distance
+from psgs.model import Terminal
+
+ALPHABET = ("a", "b")
+INPUT_ALPHABET = ("a", "b", "z")  # z is in no system: it must be deleted or substituted
+MAX_LANGUAGE = 7
+PROPERTY = settings(max_examples=40, deadline=None,
+                    suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
+
+
+def word_tuples(components: int):
+    word = st.lists(st.sampled_from(INPUT_ALPHABET), max_size=2).map(tuple)
+    return st.tuples(*[word] * components)
+
+
+def oracle(members, words, costs):
+    """Least total cost over the enumerated tuples (None when there are none)."""
+    best = None
+    for u in members:
+        d = sum(_edit_distance(w, v, costs) for w, v in zip(words, u))
+        if best is None or d < best:
+            best = d
+    return best
+
+
+def check_against_oracle(system, words, costs=None):
+    table = edit_costs(costs)
+    lang = language(system, MAX_LANGUAGE, method="search", max_configurations=5_000)
+    assume(lang.complete)
+    words = tuple(tuple(Terminal(x) for x in w) for w in words)
+    members = list(lang.words)
+    result = nearest(system, words, costs=costs, max_states=20_000, max_seconds=20)
+    assert result.exact, result
+    # a tuple longer than the enumeration bound needs at least this many insertions
+    floor = (MAX_LANGUAGE + 1 - sum(map(len, words))) * min(
+        [table.insert, *table.insert_symbol.values()])
+    expected = oracle(members, words, table)
+    if expected is not None and expected <= floor:
+        assert result.distance == pytest.approx(expected), (words, result)
+    elif result.distance is not None:
+        assert result.distance >= floor - 1e-9
+        assert expected is None or result.distance <= expected + 1e-9
+    if result.distance is None:
+        assert expected is None
+        return result
+    member = bool(accepts(system, words, max_states=20_000))
+    if min(_all_costs(table)) > 0:
+        assert (result.distance == 0) == member
+    else:  # free edits can reach a member at no cost
+        assert result.distance == 0 or not member
+    # the witness derives the nearest words; the edit scripts turn the input into them
+    assert result.witness.words == result.words
+    assert result.witness.is_terminal
+    total = 0
+    for w, u, script in zip(words, result.words, result.edits):
+        assert apply_edits(w, script) == u
+        assert sum(e.cost for e in script) == pytest.approx(_edit_distance(w, u, table))
+        total += sum(e.cost for e in script)
+    assert total == pytest.approx(result.distance)
+    return result
+
+
+@pytest.mark.parametrize("mode", ["parallel", "single"])
+@pytest.mark.parametrize("policy", ["free", "strict"])
+def test_nearest_equals_the_oracle(mode, policy):
+    seen = []
+
+    @PROPERTY
+    @given(st.data())
+    def check(data):
+        system = data.draw(pst.psgs_systems(max_components=2, mode=mode, unsynchronised=policy,
+                                            max_rules=4, max_rhs=2, alphabet=ALPHABET))
+        words = data.draw(word_tuples(len(system.components)))
+        result = check_against_oracle(system, words)
+        seen.append(result.distance)
+
+    check()
+    assert sum(d is not None for d in seen) >= 8, "too few drawn systems had a tuple"
+    assert any(d is not None and d > 0 for d in seen), "no drawn input needed an edit"
+
+
+@PROPERTY
+@given(st.data())
+def test_nearest_with_costs_equals_the_oracle(data):
+    system = data.draw(pst.psgs_systems(max_components=2, max_rules=4, max_rhs=2,
+                                        alphabet=ALPHABET))
+    words = data.draw(word_tuples(len(system.components)))
+    number = st.sampled_from([0, 0.5, 1, 2, 3])
+    costs = {"insert": data.draw(number), "delete": data.draw(number),
+             "substitute": data.draw(number), "pairs": {("a", "b"): data.draw(number)}}
+    check_against_oracle(system, words, costs)
+
+
+@PROPERTY
+@given(st.sampled_from(["parallel", "single"]), st.data())
+def test_gamma_one_edit_is_distance_one(mode, data):
+    import dataclasses
+
+    from test_membership import gamma
+
+    system = dataclasses.replace(gamma(), mode=mode)
+    blocks = ["abcdbcad", "bcadabcd", "cdabcdab", "abcdbcad"]
+    c = data.draw(st.integers(0, 3))
+    p = data.draw(st.integers(0, 7))
+    op = data.draw(st.sampled_from(["insert", "delete", "substitute"]))
+    word = list(blocks[c])
+    if op == "insert":
+        word.insert(p, data.draw(st.sampled_from("abcdz")))
+    elif op == "delete":
+        del word[p]
+    else:
+        word[p] = data.draw(st.sampled_from([x for x in "abcdz" if x != word[p]]))
+    words = list(blocks)
+    words[c] = "".join(word)
+    result = nearest(system, words)
+    expected = 0 if words == blocks else 1  # an insertion next to an equal symbol may be undone
+    assert result.exact and result.distance == expected
+    assert result.witness.words == result.words
+    assert apply_edits(tuple(Terminal(x) for x in words[c]), result.edits[c]) == result.words[c]
+
+
+def test_synchronisation_can_cost_more_than_the_components():
+    """(aⁿ, bⁿ): each word alone is in its component's language, the pair needs n equal."""
+    from psgs.format import load
+    from pathlib import Path
+
+    counting = load(Path(__file__).parents[2] / "grammars" / "counting.psgs")
+    result = nearest(counting, ["aaaa", "bb"])
+    assert result.exact and result.distance == 2
+    assert len(result.words[0]) == len(result.words[1])
+    assert accepts(counting, result.words)
+
+
+def test_all_tuples_small_exhaustive():
+    """Every input up to length 3 for Γ's one-block prefix shape: distance 0 iff accepted."""
+    from test_membership import gamma
+
+    system = gamma()
+    blocks = ["abcdbcad", "bcadabcd", "cdabcdab", "abcdbcad"]
+    for k, sub in itertools.product(range(4), ["", "a", "ab"]):
+        words = list(blocks)
+        words[k] = words[k][:4] + sub
+        result = nearest(system, words)
+        assert result.exact and (result.distance == 0) == bool(accepts(system, words))
+
+
+@PROPERTY
+@given(st.data())
+def test_error_chart_is_the_context_free_distance(data):
+    """The chart's cost (the search's estimate) equals the brute-force distance to L(G) alone."""
+    from psgs.membership.chart import CompiledGrammar
+    from psgs.membership.error_chart import ErrorChart
+
+    grammar = data.draw(pst.grammars(max_rules=5, max_rhs=3, alphabet=ALPHABET))
+    word = data.draw(st.lists(st.sampled_from(INPUT_ALPHABET), max_size=4))
+    lang = language(grammar, MAX_LANGUAGE, max_configurations=5_000)
+    assume(lang.complete)
+    table = edit_costs(None)
+    ids = {Terminal("a"): 0, Terminal("b"): 1}
+    cg = CompiledGrammar(grammar, ids)
+    ws = [ids.get(Terminal(x), 2) for x in word]
+    chart = ErrorChart(cg, ws, [1, 1], [1] * len(ws), lambda p, t: 0 if ws[p] == t else 1)
+    got = chart.cost(cg.index[grammar.start], 0, len(ws), cap=50)
+    w = tuple(Terminal(x) for x in word)
+    expected = min((_edit_distance(w, u, table) for u in lang.words), default=None)
+    floor = MAX_LANGUAGE + 1 - len(word)
+    if expected is not None and expected <= floor:
+        assert got == expected
+    else:
+        assert got >= min(floor, expected if expected is not None else floor)
