@@ -384,6 +384,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("-o", "--output", required=True, help="image file (.png, .svg, .pdf)")
     _add_params(p)
     p.set_defaults(run=_cmd_plot)
+    from .viewer import register as register_view  # kinetology view: the skeleton player
+    register_view(sub)
     parser.epilog = EXIT_STATUS_HELP
     for command in (parser, *sub.choices.values()):
         command.epilog = EXIT_STATUS_HELP
