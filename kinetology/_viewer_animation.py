@@ -34,29 +34,35 @@ def animate(player, path: Path, suffix: str, *, dpi: int = 72) -> None:
     for i, panel in enumerate(player.panels):
         ax = fig.add_subplot(1, n, i + 1)
         every = np.stack([panel.pose(f) for f in range(panel.frames)])
-        lo, hi = every.min(axis=(0, 1)), every.max(axis=(0, 1))
+        floors = [panel.floor(f) for f in range(panel.frames)]
+        lo, hi = every[:, panel.body].min(axis=(0, 1)), every[:, panel.body].max(axis=(0, 1))
         pad = 0.05 * float((hi - lo).max())
         ax.set_xlim(lo[0] - pad, hi[0] + pad)
         ax.set_ylim(lo[1] - pad, hi[1] + pad)
         ax.set_aspect("equal")
         ax.set_axis_off()
         ax.set_title(panel.label, fontsize=8)
-        pairs = [(j, p) for j, p in enumerate(panel.parents) if p >= 0]
+        grid = LineCollection([], colors="#e4e4e4", linewidths=0.8)
+        ax.add_collection(grid)
+        pairs = [(j, p) for j, p in enumerate(panel.parents) if panel.bones[j]]
         bones = LineCollection([], colors="#444444", linewidths=2, capstyle="round")
         ax.add_collection(bones)
-        dots = [j for j, name in enumerate(panel.joints) if not name.endswith(".end")]
+        dots = [j for j, name in enumerate(panel.joints)
+                if panel.body[j] and not name.endswith(".end")]
         joints = ax.scatter(np.zeros(len(dots)), np.zeros(len(dots)), s=14, zorder=3)
         ringed = [j for j, a in enumerate(panel.actuators) if a]
         rings = ax.scatter(np.zeros(len(ringed)), np.zeros(len(ringed)), s=70,
                            facecolors="none", edgecolors="black", linewidths=1.2, zorder=4)
         label = ax.text(0.02, 0.98, "", transform=ax.transAxes, fontsize=7, va="top")
-        artists.append((panel, every, pairs, bones, dots, joints, ringed, rings, label))
+        artists.append((panel, every, floors, grid, pairs, bones, dots, joints, ringed, rings,
+                        label))
 
     def update(tick: int):
-        for i, (panel, every, pairs, bones, dots, joints, ringed, rings, label) in \
-                enumerate(artists):
+        for i, (panel, every, floors, grid, pairs, bones, dots, joints, ringed, rings,
+                label) in enumerate(artists):
             f = player.frame_of(i, tick)
             xy = every[f]
+            grid.set_segments(floors[f])
             bones.set_segments([(xy[p], xy[j]) for j, p in pairs])
             joints.set_offsets(xy[dots])
             joints.set_facecolors([STATE_COLOURS.get(panel.states[j][f], _STILL)

@@ -36,7 +36,23 @@ const panels = data.panels.map(function (p) {
   const tall = p.height * Math.cos(pitch) + 2 * p.radius * Math.sin(pitch);
   const scale = 0.9 * Math.min(WIDTH / (2 * p.radius), (HEIGHT - 30) / tall);
   const base = HEIGHT - 0.05 * HEIGHT - scale * p.radius * Math.sin(pitch);
-  return {p: p, n: n, pos: pos, canvas: canvas, ctx: canvas.getContext("2d"),
+  const anchors = [];
+  for (let f = 0; f < p.frames; f++) {
+    let x = 0, z = 0;
+    if (p.follow) {
+      let count = 0;
+      for (let j = 0; j < n; j++) {
+        if (!p.body[j]) continue;
+        x += pos[3 * (f * n + j)];
+        z += pos[3 * (f * n + j) + 2];
+        count++;
+      }
+      x /= count;
+      z /= count;
+    }
+    anchors.push([x, z]);
+  }
+  return {p: p, n: n, pos: pos, anchors: anchors, canvas: canvas, ctx: canvas.getContext("2d"),
           scale: scale, base: base};
 });
 
@@ -44,40 +60,52 @@ function frameOf(q, tick) {
   return Math.min(Math.floor(tick * q.p.rate / data.rate + 1e-9), q.p.frames - 1);
 }
 
-function project(q, f, j) {
-  const i = 3 * (f * q.n + j), x = q.pos[i], y = q.pos[i + 1], z = q.pos[i + 2];
+// the floor point the camera looks at: below the mean of the joints (following) or the middle
+// of the path (0, 0), as Panel._anchors
+function anchor(q, f) {
+  return q.anchors[f];
+}
+
+// a point (x, y, z) seen from the camera at floor point `a`, as kinetology.viewer.Panel.pose
+function screen(q, a, x, y, z) {
+  x -= a[0];
+  z -= a[1];
   const across = x * Math.cos(yaw) - z * Math.sin(yaw);
   const depth = x * Math.sin(yaw) + z * Math.cos(yaw);
   const up = y * Math.cos(pitch) + depth * Math.sin(pitch);
   return [WIDTH / 2 + q.scale * across, q.base - q.scale * up];
 }
 
-function drawFloor(q) {
-  const ctx = q.ctx, r = q.p.radius;
+function project(q, f, j) {
+  const i = 3 * (f * q.n + j);
+  return screen(q, anchor(q, f), q.pos[i], q.pos[i + 1], q.pos[i + 2]);
+}
+
+// lines fixed on the floor, every half radius, around the camera's point: a body that
+// travels passes over them (as Panel.floor draws them in a GIF)
+function drawFloor(q, f) {
+  const ctx = q.ctx, r = q.p.radius, s = r / 2, a = anchor(q, f);
   ctx.strokeStyle = "#e4e4e4";
   ctx.lineWidth = 1;
-  for (let k = -4; k <= 4; k++) {
-    for (const [a, b] of [[[k * r / 4, -r], [k * r / 4, r]], [[-r, k * r / 4], [r, k * r / 4]]]) {
-      const pa = floorPoint(q, a[0], a[1]), pb = floorPoint(q, b[0], b[1]);
+  for (let axis = 0; axis < 2; axis++) {
+    const first = Math.ceil((a[axis] - r) / s);
+    for (let k = first; k < first + 5; k++) {
+      const c = k * s, lo = a[1 - axis] - r, hi = a[1 - axis] + r;
+      const p0 = axis === 0 ? screen(q, a, c, 0, lo) : screen(q, a, lo, 0, c);
+      const p1 = axis === 0 ? screen(q, a, c, 0, hi) : screen(q, a, hi, 0, c);
       ctx.beginPath();
-      ctx.moveTo(pa[0], pa[1]);
-      ctx.lineTo(pb[0], pb[1]);
+      ctx.moveTo(p0[0], p0[1]);
+      ctx.lineTo(p1[0], p1[1]);
       ctx.stroke();
     }
   }
-}
-
-function floorPoint(q, x, z) {
-  const across = x * Math.cos(yaw) - z * Math.sin(yaw);
-  const depth = x * Math.sin(yaw) + z * Math.cos(yaw);
-  return [WIDTH / 2 + q.scale * across, q.base - q.scale * depth * Math.sin(pitch)];
 }
 
 function draw(q, tick) {
   const f = frameOf(q, tick), ctx = q.ctx, p = q.p;
   ctx.fillStyle = "#ffffff";
   ctx.fillRect(0, 0, WIDTH, HEIGHT);
-  drawFloor(q);
+  drawFloor(q, f);
   const xy = [];
   for (let j = 0; j < q.n; j++) xy.push(project(q, f, j));
   ctx.strokeStyle = "#444444";
@@ -85,13 +113,14 @@ function draw(q, tick) {
   ctx.lineCap = "round";
   for (let j = 0; j < q.n; j++) {
     const parent = p.parents[j];
-    if (parent < 0) continue;
+    if (!p.bones[j]) continue;  // a root's translation, not a bone
     ctx.beginPath();
     ctx.moveTo(xy[parent][0], xy[parent][1]);
     ctx.lineTo(xy[j][0], xy[j][1]);
     ctx.stroke();
   }
   for (let j = 0; j < q.n; j++) {
+    if (!p.body[j]) continue;
     if (!p.joints[j].endsWith(".end") || p.actuators[j]) {
       const state = p.states[j][f];
       ctx.fillStyle = data.colours[state] || data.colours["-"];

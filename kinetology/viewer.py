@@ -32,6 +32,7 @@ import json
 import math
 import shutil
 from dataclasses import dataclass
+from functools import cached_property
 from importlib import resources
 from pathlib import Path
 from typing import Iterable, Mapping, Sequence
@@ -102,6 +103,10 @@ class Panel:
         Kept frames per second (the motion's rate divided by the step).
     step : int
         Every ``step``-th frame of the motion was kept.
+    follow : bool, default True
+        The camera follows the body (the mean of its joints) over the floor: a walk stays in
+        the picture, the floor's grid passes under it; False: it looks at the middle of the
+        whole path.
 
     Examples
     --------
@@ -124,27 +129,79 @@ class Panel:
     actuators: tuple[bool, ...]
     frame_rate: float
     step: int
+    follow: bool = True
 
     @property
     def frames(self) -> int:
         """Number of kept frames."""
         return self.positions.shape[0]
 
+    @cached_property
+    def bones(self) -> tuple[bool, ...]:
+        """Per joint, whether the line to its parent is a bone: a link whose length stays
+        within 1% of its mean. Not a bone: a root that stays at the origin while the body's
+        translation channels carry it away (Bandai Namco's ``joint_Root``); such a link is not
+        drawn, and a joint without bones is not part of the body."""
+        out = []
+        for j, parent in enumerate(self.parents):
+            if parent < 0:
+                out.append(False)
+                continue
+            length = np.linalg.norm(self.positions[:, j] - self.positions[:, parent], axis=-1)
+            out.append(bool(np.ptp(length) <= 0.01 * length.mean() + 1e-9))
+        return tuple(out)
+
+    @cached_property
+    def body(self) -> np.ndarray:
+        """Joints that are part of the drawn body (at an end of a bone), a boolean mask."""
+        mask = np.array(self.bones)
+        for j, parent in enumerate(self.parents):
+            if self.bones[j]:
+                mask[parent] = True
+        return mask if mask.any() else np.ones(len(self.joints), bool)
+
     def pose(self, frame: int, yaw: float = _YAW, pitch: float = _PITCH) -> np.ndarray:
         """The joints of kept frame ``frame`` projected on the screen plane, ``(joints, 2)``:
         x to the right, y up, in file units (the page and the GIF draw this projection)."""
-        return _project(self.positions[frame], self._centre(), yaw, pitch)
+        return _project(self.positions[frame], self._anchors()[frame], yaw, pitch)
+
+    def floor(self, frame: int, yaw: float = _YAW, pitch: float = _PITCH) -> np.ndarray:
+        """The floor's grid around the camera's point at kept frame ``frame``, projected as
+        :meth:`pose` projects the joints: ``(lines, 2, 2)``. The lines are fixed on the floor,
+        so a body that travels passes over them."""
+        anchor = self._anchors()[frame]
+        radius, _ = self._fit()
+        spacing = radius / 2
+        lines = []
+        for axis in (0, 2):  # lines of constant x, then of constant z
+            other = 2 - axis
+            first = math.ceil((anchor[axis] - radius) / spacing)
+            for k in range(first, first + 5):
+                a, b = anchor.copy(), anchor.copy()
+                a[axis] = b[axis] = k * spacing
+                a[other], b[other] = anchor[other] - radius, anchor[other] + radius
+                lines.append((a, b))
+        return _project(np.array(lines, float).reshape(-1, 2, 3), anchor, yaw, pitch)
 
     def _centre(self) -> np.ndarray:
         lo, hi = self.positions.min(axis=(0, 1)), self.positions.max(axis=(0, 1))
         return np.array([(lo[0] + hi[0]) / 2, lo[1], (lo[2] + hi[2]) / 2])
 
+    def _anchors(self) -> np.ndarray:
+        """Per kept frame, the floor point the camera looks at: when following, below the mean
+        of the joints (not the root joint: Bandai Namco's root stays at the origin while the
+        hips carry the body away)."""
+        anchors = np.tile(self._centre(), (self.frames, 1))
+        if self.follow:
+            anchors[:, [0, 2]] = self.positions[:, self.body][..., [0, 2]].mean(axis=1)
+        return anchors
+
     def _fit(self) -> tuple[float, float]:
-        """Horizontal radius around the centre (any yaw fits in it) and height."""
-        centre = self._centre()
-        flat = self.positions[..., [0, 2]] - centre[[0, 2]]
+        """Horizontal radius around the camera's point (any yaw fits in it) and height."""
+        anchors, body = self._anchors(), self.positions[:, self.body]
+        flat = body[..., [0, 2]] - anchors[:, None, [0, 2]]
         radius = float(np.sqrt((flat ** 2).sum(-1)).max())
-        height = float(self.positions[..., 1].max() - centre[1])
+        height = float(body[..., 1].max() - anchors[0, 1])
         return max(radius, 1e-9), max(height, 1e-9)
 
     def to_json(self) -> dict:
@@ -158,7 +215,8 @@ class Panel:
                 "frames": self.frames, "rate": self.frame_rate, "quantum": quantum,
                 "radius": radius / quantum, "height": height / quantum,
                 "pos": deltas.ravel().tolist(), "states": list(self.states),
-                "actuators": [int(a) for a in self.actuators]}
+                "actuators": [int(a) for a in self.actuators], "follow": self.follow,
+                "bones": [int(b) for b in self.bones], "body": [int(b) for b in self.body]}
 
 
 def _project(points: np.ndarray, centre: np.ndarray, yaw: float, pitch: float) -> np.ndarray:
@@ -337,7 +395,7 @@ def _actuator_flags(motion: Motion, label: str, names: Iterable[str] | None) -> 
 
 
 def _panel(label: str, motion: Motion, actuators, kinetemes: bool, max_rate: float,
-           max_frames: int, params: dict) -> Panel:
+           max_frames: int, follow: bool, params: dict) -> Panel:
     if not isinstance(motion, Motion):
         raise ViewError(f"not a kinetology.Motion but {type(motion).__name__}", source=label)
     if motion.frames == 0:
@@ -357,13 +415,15 @@ def _panel(label: str, motion: Motion, actuators, kinetemes: bool, max_rate: flo
         tuple("-" * kept.frames for _ in joints)
     return Panel(label, motion.skeleton.names,
                  tuple(-1 if j.parent is None else j.parent for j in joints), positions,
-                 states, _actuator_flags(motion, label, actuators), kept.frame_rate, step)
+                 states, _actuator_flags(motion, label, actuators), kept.frame_rate, step,
+                 follow)
 
 
 def view(motions: Motion | Sequence[Motion] | Mapping[str, Motion],
          output: str | Path | None = None, *,
          actuators: Iterable[str] | Mapping[str, Iterable[str]] | None = None,
          kinetemes: bool = True, max_rate: float = 30.0, max_frames: int = 500,
+         follow: bool = True,
          **params) -> Player:
     """A player of one or more motions side by side; written to ``output`` when given.
 
@@ -383,6 +443,9 @@ def view(motions: Motion | Sequence[Motion] | Mapping[str, Motion],
         Most frames per second kept.
     max_frames : int, default 500
         Most frames kept per motion (the step grows for longer motions).
+    follow : bool, default True
+        The camera follows the body over the floor (False: it looks at the middle of the
+        path, so the whole path is in the picture and the body smaller).
     **params
         Segmentation parameters (:data:`kinetology.segmentation.DEFAULTS`).
 
@@ -446,7 +509,7 @@ def view(motions: Motion | Sequence[Motion] | Mapping[str, Motion],
                         f"is not a panel ({', '.join(map(repr, named))})",
                         source="kinetology.view")
     panels = tuple(_panel(label, m, per_panel.get(label), kinetemes, max_rate, max_frames,
-                          params) for label, m in named.items())
+                          follow, params) for label, m in named.items())
     player = Player(panels, max(p.frame_rate for p in panels))
     if output is not None:
         player.save(output)
@@ -500,6 +563,7 @@ def _run(args) -> int:
     actuators = [a for item in args.actuators or () for a in item.split(",") if a]
     player = view(motions, args.output, actuators=actuators or None,
                   kinetemes=not args.no_kinetemes, max_rate=args.max_rate,
+                  follow=not args.fixed_camera,
                   max_frames=args.max_frames)
     kept = ", ".join(f"{p.label}: {p.frames} frames at {p.frame_rate:g} fps"
                      for p in player.panels)
@@ -533,6 +597,8 @@ def register(subparsers) -> None:
                    help="joints to highlight (names or comma lists)")
     p.add_argument("--no-kinetemes", action="store_true",
                    help="do not colour joints by state (skips the segmentation)")
+    p.add_argument("--fixed-camera", action="store_true",
+                   help="look at the middle of the whole path instead of following the body")
     p.add_argument("--max-rate", type=float, default=30.0, metavar="FPS",
                    help="most frames per second kept (default 30)")
     p.add_argument("--max-frames", type=int, default=500, metavar="N",

@@ -202,3 +202,37 @@ def test_notebook_repr_of_a_motion_is_the_player():
     assert 'class="kinetology-view"' in fragment and "<!DOCTYPE" not in fragment
     assert _data(fragment)["panels"][0]["joints"] == ["hip", "knee", "knee.end"]
     assert leg.select(leg.channels)._repr_html_() is None  # no skeleton: the plain repr
+
+
+@needs_mocap
+def test_a_root_left_behind_is_not_a_bone_and_the_camera_follows_the_body():
+    bandai, cmu = view([kinetology.read(BVH), kinetology.read(AMC)]).panels
+    # Bandai Namco's joint_Root stays at the origin while the hips' channels carry the body
+    assert [bandai.joints[j] for j, b in enumerate(bandai.bones) if not b] == \
+        ["joint_Root", "Hips"]
+    assert not bandai.body[0] and bandai.body[1:].all()
+    # CMU's root is the pelvis: every link below it is a bone
+    assert cmu.bones == tuple(p >= 0 for p in cmu.parents) and cmu.body.all()
+    # following: the camera's point is under the body's mean at every frame, so the body stays
+    # in the picture of a walk that crosses the room (02_01 travels about 3 m: 80 ASF units)
+    for panel in (bandai, cmu):
+        xy = np.stack([panel.pose(f)[panel.body] for f in range(panel.frames)])
+        assert np.abs(xy[..., 0].mean(axis=1)).max() < 0.5 * np.abs(xy[..., 0]).max()
+    travel = np.ptp(cmu.positions[:, 0, 2])
+    radius, _ = cmu._fit()
+    assert travel > 2 * radius  # the walk is longer than the picture is wide
+    fixed = view(kinetology.read(AMC), follow=False).panels[0]
+    assert fixed._fit()[0] > travel / 2  # without following, the whole path is in the picture
+
+
+def test_the_floor_is_fixed_in_the_world():
+    leg = _leg(30)  # the knee bends and straightens: the first and last poses are the same
+    skeleton = Skeleton((Joint("hip", None, (0, 0, 0), ("hip.tz", "hip.rx")),
+                         *leg.skeleton.joints[1:]))
+    walking = Motion(np.column_stack([np.linspace(0, 50, 30), leg.values]),
+                     ("hip.tz", *leg.channels), 30, skeleton)
+    panel = view(walking).panels[0]
+    # the body is drawn at the same place after 50 units of travel; the grid moved under it
+    assert np.allclose(panel.pose(0), panel.pose(29), atol=1e-3)
+    first, last = panel.floor(0), panel.floor(29)
+    assert first.shape == last.shape == (10, 2, 2) and not np.allclose(first, last)
