@@ -25,8 +25,6 @@ def animate(player, path: Path, suffix: str, *, dpi: int = 72) -> None:
     from matplotlib.collections import LineCollection
     from matplotlib.figure import Figure
 
-    writer = animation.PillowWriter(fps=player.frame_rate) if suffix == ".gif" else \
-        animation.FFMpegWriter(fps=player.frame_rate)
     n = len(player.panels)
     fig = Figure(figsize=(2.6 * n, 3.4), dpi=dpi)
     FigureCanvasAgg(fig)
@@ -72,6 +70,33 @@ def animate(player, path: Path, suffix: str, *, dpi: int = 72) -> None:
             label.set_text(f"{tick / player.frame_rate:.2f} s")
         return []
 
+    if suffix == ".gif":
+        _gif(fig, update, player, path)
+        return
     movie = animation.FuncAnimation(fig, update, frames=player.ticks,
                                     interval=1000 / player.frame_rate, blit=False)
-    movie.save(str(path), writer=writer, dpi=dpi)
+    movie.save(str(path), writer=animation.FFMpegWriter(fps=player.frame_rate), dpi=dpi)
+
+
+def _gif(fig, update, player, path: Path) -> None:
+    """The frames drawn by matplotlib, written by Pillow with one palette for all of them:
+    a picture of a few flat colours, so a small file (matplotlib's own PillowWriter stores
+    every frame in full colour, several times larger) with no dithering noise."""
+    from PIL import Image
+
+    # the picture's own colours, each also blended with the white background (the edges
+    # that antialiasing draws), as the palette every frame is mapped to
+    inks = ["#000000", "#444444", "#e4e4e4", _STILL, *STATE_COLOURS.values()]
+    rgb = [tuple(int(c[i:i + 2], 16) for i in (1, 3, 5)) for c in inks]
+    shades = [(255, 255, 255)] + [tuple(round(255 + (v - 255) * k) for v in colour)
+                                  for colour in rgb for k in (1.0, 0.66, 0.33)]
+    palette = Image.new("P", (1, 1))
+    palette.putpalette([v for colour in shades for v in colour])
+    frames = []
+    for tick in range(player.ticks):
+        update(tick)
+        fig.canvas.draw()
+        image = Image.fromarray(np.asarray(fig.canvas.buffer_rgba())[..., :3])
+        frames.append(image.quantize(palette=palette, dither=Image.Dither.NONE))
+    frames[0].save(path, format="GIF", save_all=True, append_images=frames[1:], loop=0,
+                   duration=round(1000 / player.frame_rate), optimize=True)
