@@ -1,7 +1,13 @@
 // The player of kinetology.viewer, inlined into every page it writes (no network, no library).
-// `root` is the player's element; the data is the JSON script inside it. The page's state is
-// readable by a test or a user: root.dataset.tick, each canvas's dataset.frame, and root.viewer.
+// `script` is this script's element, `id` the player's: the player is the script's parent (the
+// same player shown twice in a notebook has its id twice), or found by id where a notebook runs
+// the script detached from the page. The data is the JSON script inside the player. The page's
+// state is readable by a test or a user: root.dataset.tick, each canvas's dataset.frame,
+// root.viewer.
 "use strict";
+const parent = script ? script.parentElement : null;
+const root = parent && parent.classList.contains("kinetology-view") ? parent
+  : document.getElementById(id);
 const data = JSON.parse(root.querySelector("script.data").textContent);
 const slider = root.querySelector("input.time");
 const button = root.querySelector("button.play");

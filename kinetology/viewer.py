@@ -163,14 +163,14 @@ class Panel:
     def pose(self, frame: int, yaw: float = _YAW, pitch: float = _PITCH) -> np.ndarray:
         """The joints of kept frame ``frame`` projected on the screen plane, ``(joints, 2)``:
         x to the right, y up, in file units (the page and the GIF draw this projection)."""
-        return _project(self.positions[frame], self._anchors()[frame], yaw, pitch)
+        return _project(self.positions[frame], self._anchors[frame], yaw, pitch)
 
     def floor(self, frame: int, yaw: float = _YAW, pitch: float = _PITCH) -> np.ndarray:
         """The floor's grid around the camera's point at kept frame ``frame``, projected as
         :meth:`pose` projects the joints: ``(lines, 2, 2)``. The lines are fixed on the floor,
         so a body that travels passes over them."""
-        anchor = self._anchors()[frame]
-        radius, _ = self._fit()
+        anchor = self._anchors[frame]
+        radius, _ = self._fit
         spacing = radius / 2
         lines = []
         for axis in (0, 2):  # lines of constant x, then of constant z
@@ -187,6 +187,7 @@ class Panel:
         lo, hi = self.positions.min(axis=(0, 1)), self.positions.max(axis=(0, 1))
         return np.array([(lo[0] + hi[0]) / 2, lo[1], (lo[2] + hi[2]) / 2])
 
+    @cached_property
     def _anchors(self) -> np.ndarray:
         """Per kept frame, the floor point the camera looks at: when following, below the mean
         of the joints (not the root joint: Bandai Namco's root stays at the origin while the
@@ -196,9 +197,10 @@ class Panel:
             anchors[:, [0, 2]] = self.positions[:, self.body][..., [0, 2]].mean(axis=1)
         return anchors
 
+    @cached_property
     def _fit(self) -> tuple[float, float]:
         """Horizontal radius around the camera's point (any yaw fits in it) and height."""
-        anchors, body = self._anchors(), self.positions[:, self.body]
+        anchors, body = self._anchors, self.positions[:, self.body]
         flat = body[..., [0, 2]] - anchors[:, None, [0, 2]]
         radius = float(np.sqrt((flat ** 2).sum(-1)).max())
         height = float(body[..., 1].max() - anchors[0, 1])
@@ -207,7 +209,7 @@ class Panel:
     def to_json(self) -> dict:
         """The panel as the page's script reads it (positions as integer differences)."""
         centre = self._centre()
-        radius, height = self._fit()
+        radius, height = self._fit
         quantum = max(2 * radius, height) / _QUANTA
         ints = np.rint((self.positions - centre) / quantum).astype(np.int64)
         deltas = np.diff(ints, axis=0, prepend=np.zeros_like(ints[:1]))
@@ -282,7 +284,8 @@ class Player:
     def _fragment(self) -> str:
         data = {"rate": self.frame_rate, "ticks": self.ticks, "yaw": _YAW, "pitch": _PITCH,
                 "colours": STATE_COLOURS, "panels": [p.to_json() for p in self.panels]}
-        text = json.dumps(data, separators=(",", ":")).replace("</", "<\\/")
+        # no "<" at all inside the script element: a label cannot end it or open a comment
+        text = json.dumps(data, separators=(",", ":")).replace("<", "\\u003c")
         # the element id comes from the content: two players on one notebook page do not
         # collide, and the same motions give the same page
         import hashlib
@@ -305,8 +308,8 @@ class Player:
                 f'</div>\n<div style="font-size:.85em;margin-top:4px">{legend} '
                 f'&middot; drag a body to turn it</div>\n'
                 f'<script type="application/json" class="data">{text}</script>\n'
-                f'<script>\n(function (root) {{\n{script}\n}})(document.getElementById('
-                f'"{ident}"));\n</script>\n</div>')
+                f'<script>\n(function (script, id) {{\n{script}\n}})(document.currentScript, '
+                f'"{ident}");\n</script>\n</div>')
 
     def save(self, path: str | Path, *, dpi: int = 72) -> Path:
         """Write the player to ``path``: ``.html`` (the page), ``.gif`` or ``.mp4``.

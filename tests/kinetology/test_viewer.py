@@ -52,7 +52,7 @@ Frame Time: {1 / rate:.8f}
 def _data(page: str) -> dict:
     text = re.search(r'<script type="application/json" class="data">(.*?)</script>', page,
                      re.S).group(1)
-    return json.loads(text.replace("<\\/", "</"))
+    return json.loads(text)
 
 
 def _decoded(panel: dict) -> np.ndarray:
@@ -68,7 +68,7 @@ def _assert_page_positions(panel, data) -> None:
     centre = panel._centre()
     error = np.abs(_decoded(data) - (panel.positions - centre)).max()
     assert error <= data["quantum"] / 2 * (1 + 1e-9), (error, data["quantum"])
-    radius, height = panel._fit()
+    radius, height = panel._fit
     assert data["quantum"] == max(2 * radius, height) / 1000  # 1/1000 of the body's size
 
 
@@ -241,10 +241,10 @@ def test_a_root_left_behind_is_not_a_bone_and_the_camera_follows_the_body():
         xy = np.stack([panel.pose(f)[panel.body] for f in range(panel.frames)])
         assert np.abs(xy[..., 0].mean(axis=1)).max() < 0.5 * np.abs(xy[..., 0]).max()
     travel = np.ptp(cmu.positions[:, 0, 2])
-    radius, _ = cmu._fit()
+    radius, _ = cmu._fit
     assert travel > 2 * radius  # the walk is longer than the picture is wide
     fixed = view(kinetology.read(AMC), follow=False).panels[0]
-    assert fixed._fit()[0] > travel / 2  # without following, the whole path is in the picture
+    assert fixed._fit[0] > travel / 2  # without following, the whole path is in the picture
 
 
 def test_the_floor_is_fixed_in_the_world():

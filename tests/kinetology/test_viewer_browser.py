@@ -99,3 +99,19 @@ def test_page_draws_the_skeleton_and_the_slider_moves_it(browser, tmp_path):
     browser.find_element(By.CSS_SELECTOR, "button.play").click()
     assert root.get_attribute("data-playing") == "no"
     assert int(root.get_attribute("data-tick")) > 5
+
+
+def test_two_players_of_one_motion_on_one_page_play_apart(browser, tmp_path):
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.common.keys import Keys
+
+    # what a notebook shows when one motion is displayed twice: one element id, twice
+    fragment = read(AMC)._repr_html_()
+    page = tmp_path / "twice.html"
+    page.write_text(f"<!DOCTYPE html><html><body>{fragment}{fragment}</body></html>")
+    browser.get(page.as_uri())
+    first, second = browser.find_elements(By.CSS_SELECTOR, "div.kinetology-view")
+    assert first.get_attribute("id") == second.get_attribute("id")
+    second.find_element(By.CSS_SELECTOR, "input.time").send_keys(Keys.END)
+    assert first.get_attribute("data-tick") == "0"
+    assert int(second.get_attribute("data-tick")) > 0
