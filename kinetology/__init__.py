@@ -27,7 +27,17 @@ _LAZY = {
     "cut": "performances", "segment_performances": "performances",
     "Span": "labels", "read_cmu_truelabels": "labels", "read_bandai_json": "labels",
     "actuator_map": "joints", "skeleton_parents": "joints",
+    "view": "viewer", "Player": "viewer", "ViewError": "viewer",
 }
+
+def _motion_html(motion: Motion) -> str | None:
+    from .viewer import motion_html
+    return motion_html(motion)
+
+
+# a notebook shows a motion as its skeleton player; attached here, not in motion.py, so that the
+# value's module does not depend on the viewer that depends on it
+Motion._repr_html_ = _motion_html
 
 __all__ = ["Motion", "MotionFormatError", "Joint", "Skeleton", "AXES", "performances", *_LAZY]
 

@@ -22,7 +22,7 @@ import shutil
 from dataclasses import dataclass
 from pathlib import Path
 
-from .errors import ValidationError
+from .errors import PSGSError, ValidationError
 from .model import PCGS, PSGS, Query
 
 __all__ = ["Forest", "parse_forest", "sync_edges", "draw", "to_svg", "graphviz_available"]
@@ -303,8 +303,12 @@ def _render(system, forest: Forest | None, fmt: str, engine: str) -> bytes:
             if engine == "graphviz":
                 raise ValidationError(f"graphviz could not draw this system: "
                                       f"{str(exc).splitlines()[0]}") from None
-    import matplotlib
-    import matplotlib.pyplot as plt
+    try:
+        import matplotlib
+        import matplotlib.pyplot as plt
+    except ImportError:  # a plain install: one line naming what to install, not a traceback
+        raise PSGSError("drawing needs matplotlib (pip install 'psgs[plot]') or Graphviz (the "
+                        "dot program and pip install graphviz)") from None
 
     fig = _matplotlib(system, forest)
     buffer = io.BytesIO()

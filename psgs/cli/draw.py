@@ -25,7 +25,9 @@ def register(subparsers) -> None:
         description="Draw the component grammars as a forest of parse trees of a derived word "
                     "(a random derivation, --seed) beside the synchronisation graph; through "
                     "Graphviz when 'dot' is installed, matplotlib otherwise.")
-    draw.add_argument("file", metavar="FILE", help="a .psgs file")
+    from ._types import grammar_file  # a shipped example by name, as show and derive take it
+    draw.add_argument("file", metavar="FILE", type=grammar_file,
+                      help="a .psgs file, or the name of an example (paper_example, ...)")
     draw.add_argument("-o", "--output", required=True, metavar="OUT",
                       help="the picture, .svg or .png")
     draw.add_argument("--seed", type=natural, default=0, help="seed of the derivation drawn")

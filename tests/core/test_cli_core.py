@@ -327,7 +327,12 @@ def test_a_built_wheel_ships_the_example_grammars_and_the_metadata(tmp_path):
     assert shipped == {p.name for p in (REPO / "psgs" / "grammars").glob("*.psgs")}
     assert "paper_example.psgs" in shipped and "psgs/format.lark" in names
     assert "kinetology/__main__.py" in names
-    assert "License-Expression: MIT" in metadata and "Project-URL: Homepage" in metadata
+    assert "License-Expression: MIT" in metadata and "Author: the psgs developers" in metadata
+    # typed packages (PEP 561), the viewer's script, no placeholder address
+    assert {"psgs/py.typed", "kinetology/py.typed", "praxicon/py.typed",
+            "kinetology/viewer.js"} <= names
+    assert "Classifier: Typing :: Typed" in metadata and "Project-URL" not in metadata
+    assert "Provides-Extra: all" in metadata
 
 
 @pytest.mark.parametrize("error, status, words", [(RecursionError, 2, "nests too deeply"),

@@ -1,0 +1,611 @@
+"""See a motion: the skeleton from forward kinematics, played in time, joints coloured by kineteme.
+
+:func:`view` turns one or more motions into a :class:`Player`: per motion a panel holding the
+joint positions (:func:`kinetology.forward_kinematics`) of a subsample of the frames, the state
+(``B G R Y``, :mod:`kinetology.segmentation`) each joint is in at each of those frames, and which
+joints are actuators. A player writes itself as
+
+* a self-contained HTML page (``.html``): the data and the script inline, no network, so it
+  opens from a file on a machine without internet; a time slider, play/pause, drag to turn the
+  bodies; several motions side by side on one clock;
+* an animated GIF (``.gif``, matplotlib's animation with Pillow) or an MP4 (``.mp4``, with
+  ffmpeg), for documents and papers.
+
+In a notebook a :class:`~kinetology.Motion` shows this player (``Motion._repr_html_``).
+
+**A joint's colour** is the state of its moving rotation channel with the widest range (a
+joint has up to three; the widest is the one that shapes the pose most); grey when none of its
+channels moves (``min_range``, as the segmentation decides). **Actuators**, when given, are
+drawn with a ring.
+
+**Data volume.** Frames are subsampled, every ``k``-th kept with ``k`` the smallest step that
+gives at most ``max_rate`` frames per second (30) and at most ``max_frames`` frames per motion
+(500); positions are stored to 1/1000 of the motion's largest extent, as differences from the
+frame before. A page holds at most ``max_frames x joints x 3`` small integers per motion (180 KB
+for a CMU walk with its 38 joints at the cap, 490 frames).
+"""
+
+from __future__ import annotations
+
+import html
+import json
+import math
+import shutil
+from dataclasses import dataclass
+from functools import cached_property
+from importlib import resources
+from pathlib import Path
+from typing import Iterable, Mapping, Sequence
+
+import numpy as np
+
+from .motion import Motion, MotionFormatError
+from .plotting import STATE_COLOURS as _STATES_DRAWN
+
+__all__ = ["STATE_COLOURS", "SUFFIXES", "ViewError", "Panel", "Player", "view", "motion_html",
+           "register"]
+
+#: Colour of each kineteme state (those of the plots) and of a joint that does not move, ``"-"``.
+STATE_COLOURS = {**_STATES_DRAWN, "-": "#9a9a9a"}
+#: Output suffixes a player writes.
+SUFFIXES = (".html", ".gif", ".mp4")
+_STATE_READING = {"B": "rising, speeding up", "G": "rising, slowing down",
+                  "R": "falling, speeding up", "Y": "falling, slowing down", "-": "still"}
+_QUANTA = 1000  # positions to 1/1000 of the largest extent: 2 mm on a 2 m body, below a pixel
+_YAW, _PITCH = 30.0, 12.0  # degrees: the default view, a little from the side and above
+
+
+class ViewError(MotionFormatError):
+    """Motion the viewer cannot show, or an output it cannot write; one line, naming what.
+
+    A :class:`~kinetology.MotionFormatError` (so a ``ValueError``): the command line reports
+    it as it reports a bad motion file, in one line with exit status 2.
+
+    Parameters
+    ----------
+    message : str
+        What is wrong.
+    source : str
+        The motion, file or output concerned (``str(error)`` is ``source: message``).
+    line, column : int, optional
+        As for :class:`~kinetology.MotionFormatError`; the viewer's errors have no place in a
+        file, so leave them out.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> view(Motion(np.zeros((0, 1)), ("knee.rx",), 30, source="empty.bvh"))
+    Traceback (most recent call last):
+    ...
+    kinetology.viewer.ViewError: empty.bvh: the motion has no frames; nothing to show
+    """
+
+
+@dataclass(frozen=True, eq=False)
+class Panel:
+    """One motion as the player shows it: subsampled joint positions, states, actuators.
+
+    Attributes
+    ----------
+    label : str
+        The panel's title (a file name, or the key given to :func:`view`).
+    joints : tuple of str
+        Joint names in skeleton order (end sites included).
+    parents : tuple of int
+        Each joint's parent index, -1 for the root.
+    positions : numpy.ndarray
+        ``(frames, joints, 3)``, the kept frames' joint positions (file units, y up).
+    states : tuple of str
+        Per joint, one state letter per kept frame (``"-"``: the joint does not move).
+    actuators : tuple of bool
+        Per joint, whether it is highlighted as an actuator.
+    frame_rate : float
+        Kept frames per second (the motion's rate divided by the step).
+    step : int
+        Every ``step``-th frame of the motion was kept.
+    follow : bool, default True
+        The camera follows the body (the mean of its joints) over the floor: a walk stays in
+        the picture, the floor's grid passes under it; False: it looks at the middle of the
+        whole path.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from kinetology import Joint, Skeleton
+    >>> arm = Skeleton((Joint("shoulder", None, (0, 0, 0), ("shoulder.rz",)),
+    ...                 Joint("hand", 0, (10, 0, 0), end_site=True)))
+    >>> panel = view(Motion(np.linspace(0, 90, 61)[:, None], ("shoulder.rz",), 60, arm)).panels[0]
+    >>> panel.step, panel.frames, panel.joints, panel.parents
+    (2, 31, ('shoulder', 'hand'), (-1, 0))
+    >>> np.round(panel.positions[-1, 1], 6)        # the hand, raised by 90 degrees
+    array([ 0., 10.,  0.])
+    """
+
+    label: str
+    joints: tuple[str, ...]
+    parents: tuple[int, ...]
+    positions: np.ndarray
+    states: tuple[str, ...]
+    actuators: tuple[bool, ...]
+    frame_rate: float
+    step: int
+    follow: bool = True
+
+    @property
+    def frames(self) -> int:
+        """Number of kept frames."""
+        return self.positions.shape[0]
+
+    @cached_property
+    def bones(self) -> tuple[bool, ...]:
+        """Per joint, whether the line to its parent is a bone: a link whose length stays
+        within 1% of its mean. Not a bone: a root that stays at the origin while the body's
+        translation channels carry it away (Bandai Namco's ``joint_Root``); such a link is not
+        drawn, and a joint without bones is not part of the body."""
+        out = []
+        for j, parent in enumerate(self.parents):
+            if parent < 0:
+                out.append(False)
+                continue
+            length = np.linalg.norm(self.positions[:, j] - self.positions[:, parent], axis=-1)
+            out.append(bool(np.ptp(length) <= 0.01 * length.mean() + 1e-9))
+        return tuple(out)
+
+    @cached_property
+    def body(self) -> np.ndarray:
+        """Joints that are part of the drawn body (at an end of a bone), a boolean mask."""
+        mask = np.array(self.bones)
+        for j, parent in enumerate(self.parents):
+            if self.bones[j]:
+                mask[parent] = True
+        return mask if mask.any() else np.ones(len(self.joints), bool)
+
+    def pose(self, frame: int, yaw: float = _YAW, pitch: float = _PITCH) -> np.ndarray:
+        """The joints of kept frame ``frame`` projected on the screen plane, ``(joints, 2)``:
+        x to the right, y up, in file units (the page and the GIF draw this projection)."""
+        return _project(self.positions[frame], self._anchors[frame], yaw, pitch)
+
+    def floor(self, frame: int, yaw: float = _YAW, pitch: float = _PITCH) -> np.ndarray:
+        """The floor's grid around the camera's point at kept frame ``frame``, projected as
+        :meth:`pose` projects the joints: ``(lines, 2, 2)``. The lines are fixed on the floor,
+        so a body that travels passes over them."""
+        anchor = self._anchors[frame]
+        radius, _ = self._fit
+        spacing = radius / 2
+        lines = []
+        for axis in (0, 2):  # lines of constant x, then of constant z
+            other = 2 - axis
+            first = math.ceil((anchor[axis] - radius) / spacing)
+            for k in range(first, first + 5):
+                a, b = anchor.copy(), anchor.copy()
+                a[axis] = b[axis] = k * spacing
+                a[other], b[other] = anchor[other] - radius, anchor[other] + radius
+                lines.append((a, b))
+        return _project(np.array(lines, float).reshape(-1, 2, 3), anchor, yaw, pitch)
+
+    def _centre(self) -> np.ndarray:
+        lo, hi = self.positions.min(axis=(0, 1)), self.positions.max(axis=(0, 1))
+        return np.array([(lo[0] + hi[0]) / 2, lo[1], (lo[2] + hi[2]) / 2])
+
+    @cached_property
+    def _anchors(self) -> np.ndarray:
+        """Per kept frame, the floor point the camera looks at: when following, below the mean
+        of the joints (not the root joint: Bandai Namco's root stays at the origin while the
+        hips carry the body away)."""
+        anchors = np.tile(self._centre(), (self.frames, 1))
+        if self.follow:
+            anchors[:, [0, 2]] = self.positions[:, self.body][..., [0, 2]].mean(axis=1)
+        return anchors
+
+    @cached_property
+    def _fit(self) -> tuple[float, float]:
+        """Horizontal radius around the camera's point (any yaw fits in it) and height."""
+        anchors, body = self._anchors, self.positions[:, self.body]
+        flat = body[..., [0, 2]] - anchors[:, None, [0, 2]]
+        radius = float(np.sqrt((flat ** 2).sum(-1)).max())
+        height = float(body[..., 1].max() - anchors[0, 1])
+        return max(radius, 1e-9), max(height, 1e-9)
+
+    def to_json(self) -> dict:
+        """The panel as the page's script reads it (positions as integer differences)."""
+        centre = self._centre()
+        radius, height = self._fit
+        quantum = max(2 * radius, height) / _QUANTA
+        ints = np.rint((self.positions - centre) / quantum).astype(np.int64)
+        deltas = np.diff(ints, axis=0, prepend=np.zeros_like(ints[:1]))
+        return {"label": self.label, "joints": list(self.joints), "parents": list(self.parents),
+                "frames": self.frames, "rate": self.frame_rate, "quantum": quantum,
+                "radius": radius / quantum, "height": height / quantum,
+                "pos": deltas.ravel().tolist(), "states": list(self.states),
+                "actuators": [int(a) for a in self.actuators], "follow": self.follow,
+                "bones": [int(b) for b in self.bones], "body": [int(b) for b in self.body]}
+
+
+def _project(points: np.ndarray, centre: np.ndarray, yaw: float, pitch: float) -> np.ndarray:
+    """Orthographic view turned by ``yaw`` about the vertical and tilted ``pitch`` downwards."""
+    a, b = math.radians(yaw), math.radians(pitch)
+    x, y, z = (points - centre)[..., 0], (points - centre)[..., 1], (points - centre)[..., 2]
+    across = x * math.cos(a) - z * math.sin(a)
+    depth = x * math.sin(a) + z * math.cos(a)
+    return np.stack([across, y * math.cos(b) + depth * math.sin(b)], axis=-1)
+
+
+@dataclass(frozen=True, eq=False)
+class Player:
+    """Motions ready to be played side by side: ``to_html()``, ``save(path)``, notebook repr.
+
+    Attributes
+    ----------
+    panels : tuple of Panel
+        One per motion, in the order given.
+    frame_rate : float
+        The clock of the page and of the animation: the fastest panel's kept rate.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from kinetology import Joint, Skeleton
+    >>> arm = Skeleton((Joint("shoulder", None, (0, 0, 0), ("shoulder.rz",)),
+    ...                 Joint("hand", 0, (10, 0, 0), end_site=True)))
+    >>> slow = Motion(np.linspace(0, 90, 10)[:, None], ("shoulder.rz",), 10, arm)
+    >>> fast = Motion(np.linspace(0, 90, 30)[:, None], ("shoulder.rz",), 30, arm)
+    >>> player = view({"slow": slow, "fast": fast})
+    >>> player.frame_rate, player.ticks, player.frame_of(0, 29), player.frame_of(1, 29)
+    (30.0, 30, 9, 29)
+    >>> 'class="kinetology-view"' in player._repr_html_()    # what a notebook shows
+    True
+    """
+
+    panels: tuple[Panel, ...]
+    frame_rate: float
+
+    @property
+    def ticks(self) -> int:
+        """Steps of the time slider (and frames of a GIF/MP4): the longest motion's length."""
+        return max(1, max(math.ceil(p.frames * self.frame_rate / p.frame_rate - 1e-9)
+                          for p in self.panels))
+
+    def frame_of(self, panel: int, tick: int) -> int:
+        """The kept frame that panel ``panel`` shows at slider step ``tick`` (the last frame
+        once its motion has ended)."""
+        p = self.panels[panel]
+        return min(int(math.floor(tick * p.frame_rate / self.frame_rate + 1e-9)), p.frames - 1)
+
+    def to_html(self, *, title: str | None = None) -> str:
+        """The whole page: inline data and script, nothing fetched, opens from a file."""
+        title = title or " | ".join(p.label for p in self.panels)
+        return ("<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\">"
+                f"<title>{html.escape(title)}</title></head>\n<body style=\"margin:8px;"
+                f"font-family:sans-serif\">\n{self._fragment()}\n</body></html>\n")
+
+    def _repr_html_(self) -> str:
+        return self._fragment()
+
+    def _fragment(self) -> str:
+        data = {"rate": self.frame_rate, "ticks": self.ticks, "yaw": _YAW, "pitch": _PITCH,
+                "colours": STATE_COLOURS, "panels": [p.to_json() for p in self.panels]}
+        # no "<" at all inside the script element: a label cannot end it or open a comment
+        text = json.dumps(data, separators=(",", ":")).replace("<", "\\u003c")
+        # the element id comes from the content: two players on one notebook page do not
+        # collide, and the same motions give the same page
+        import hashlib
+        ident = "kinetology-view-" + hashlib.sha1(text.encode()).hexdigest()[:12]
+        legend = " ".join(
+            f'<span title="{_STATE_READING[s]}"><span style="display:inline-block;width:.8em;'
+            f'height:.8em;border-radius:50%;background:{c}"></span> {s if s != "-" else "still"}'
+            f'</span>' for s, c in STATE_COLOURS.items())
+        if any(any(p.actuators) for p in self.panels):
+            legend += (' <span><span style="display:inline-block;width:.8em;height:.8em;'
+                       'border-radius:50%;border:2px solid #000"></span> actuator</span>')
+        script = resources.files(__package__).joinpath("viewer.js").read_text("utf-8")
+        return (f'<div id="{ident}" class="kinetology-view">\n'
+                f'<div class="panels" style="display:flex;gap:8px;flex-wrap:wrap"></div>\n'
+                f'<div style="display:flex;gap:8px;align-items:center;margin-top:4px">'
+                f'<button class="play" type="button">Play</button>'
+                f'<input class="time" type="range" min="0" max="{self.ticks - 1}" value="0" '
+                f'step="1" style="flex:1" aria-label="time">'
+                f'<span class="clock" style="font-variant-numeric:tabular-nums">0.00 s</span>'
+                f'</div>\n<div style="font-size:.85em;margin-top:4px">{legend} '
+                f'&middot; drag a body to turn it</div>\n'
+                f'<script type="application/json" class="data">{text}</script>\n'
+                f'<script>\n(function (script, id) {{\n{script}\n}})(document.currentScript, '
+                f'"{ident}");\n</script>\n</div>')
+
+    def save(self, path: str | Path, *, dpi: int = 72) -> Path:
+        """Write the player to ``path``: ``.html`` (the page), ``.gif`` or ``.mp4``.
+
+        Raises
+        ------
+        ViewError
+            For another suffix, and for ``.gif``/``.mp4`` when matplotlib (``.gif``: with
+            Pillow) or ffmpeg (``.mp4``) is missing, naming what to install.
+        """
+        path = Path(path)
+        suffix = _check_suffix(path)
+        if suffix == ".html":
+            path.write_text(self.to_html(), encoding="utf-8")
+        else:
+            _check_writer(path, suffix)
+            from ._viewer_animation import animate
+            animate(self, path, suffix, dpi=dpi)
+        return path
+
+
+def _check_suffix(path: Path) -> str:
+    suffix = path.suffix.lower()
+    if suffix not in SUFFIXES:
+        raise ViewError(f"cannot write {suffix or 'a file without a suffix'!r}; give one of "
+                        f"{', '.join(SUFFIXES)}", source=str(path))
+    if suffix == ".mp4" and shutil.which("ffmpeg") is None:
+        raise ViewError("writing .mp4 needs ffmpeg, which is not on PATH (install it, e.g. "
+                        "apt-get install ffmpeg), or write a .gif", source=str(path))
+    return suffix
+
+
+def _check_writer(path: Path, suffix: str) -> None:
+    """matplotlib (and Pillow for a GIF) import, before any drawing starts."""
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        raise ViewError(f"writing {suffix} needs matplotlib: pip install 'psgs[plot]'",
+                        source=str(path)) from None
+    if suffix == ".gif":
+        try:
+            import PIL  # noqa: F401  (matplotlib depends on it; named here in case it is gone)
+        except ImportError:
+            raise ViewError("writing .gif needs Pillow: pip install pillow",
+                            source=str(path)) from None
+
+
+def _step(motion: Motion, max_rate: float, max_frames: int) -> int:
+    by_rate = math.ceil(motion.frame_rate / max_rate - 1e-9)
+    by_count = math.ceil(motion.frames / max_frames)
+    return max(1, by_rate, by_count)
+
+
+def _joint_states(motion: Motion, step: int, params: dict) -> tuple[str, ...]:
+    """Per joint, the state letter of its widest moving rotation channel at each kept frame."""
+    from .segmentation import STATES, segments, unwrap
+
+    found = segments(motion, engine="numpy", **params)
+    letters = np.array([*STATES])
+    codes = {c: np.repeat(found.codes[i], np.diff(found.borders[i]))[::step]
+             for i, c in enumerate(found.channels)}
+    kept = math.ceil(motion.frames / step)
+    out = []
+    for joint in motion.skeleton.joints:
+        moving = [c for c in joint.channels if c in codes]
+        if not moving:
+            out.append("-" * kept)
+            continue
+        widest = max(moving, key=lambda c: float(np.ptp(unwrap(motion.column(c)))))
+        out.append("".join(letters[codes[widest]]))
+    return tuple(out)
+
+
+def _actuator_flags(motion: Motion, label: str, names: Iterable[str] | None) -> tuple[bool, ...]:
+    joints = motion.skeleton.names
+    chosen = set()
+    for name in names or ():
+        if name in joints:
+            chosen.add(name)
+        elif name in motion.channels:  # a channel stands for the joint that lists it
+            chosen.update(j.name for j in motion.skeleton.joints if name in j.channels)
+        else:
+            raise ViewError(f"no joint or channel {name!r} to highlight (joints: "
+                            f"{', '.join(joints)})", source=label)
+    return tuple(j in chosen for j in joints)
+
+
+def _panel(label: str, motion: Motion, actuators, kinetemes: bool, max_rate: float,
+           max_frames: int, follow: bool, params: dict) -> Panel:
+    if not isinstance(motion, Motion):
+        raise ViewError(f"not a kinetology.Motion but {type(motion).__name__}", source=label)
+    if motion.frames == 0:
+        raise ViewError("the motion has no frames; nothing to show", source=motion.source)
+    if motion.skeleton is None:
+        raise ViewError("no skeleton to draw (read an AMC file with its ASF)",
+                        source=motion.source)
+    from .kinematics import forward_kinematics
+
+    step = _step(motion, max_rate, max_frames)
+    kept = Motion(motion.values[::step], motion.channels, motion.frame_rate / step,
+                  motion.skeleton, motion.source)
+    positions = forward_kinematics(kept)
+    positions.setflags(write=False)
+    joints = motion.skeleton.joints
+    states = _joint_states(motion, step, params) if kinetemes else \
+        tuple("-" * kept.frames for _ in joints)
+    return Panel(label, motion.skeleton.names,
+                 tuple(-1 if j.parent is None else j.parent for j in joints), positions,
+                 states, _actuator_flags(motion, label, actuators), kept.frame_rate, step,
+                 follow)
+
+
+def view(motions: Motion | Sequence[Motion] | Mapping[str, Motion],
+         output: str | Path | None = None, *,
+         actuators: Iterable[str] | Mapping[str, Iterable[str]] | None = None,
+         kinetemes: bool = True, max_rate: float = 30.0, max_frames: int = 500,
+         follow: bool = True,
+         **params) -> Player:
+    """A player of one or more motions side by side; written to ``output`` when given.
+
+    Parameters
+    ----------
+    motions : Motion, sequence of Motion, or mapping of str to Motion
+        What to show, one panel each, on one clock. A mapping's keys are the panels' titles
+        (``{"real": take, "generated": result.motion}``); otherwise the file names.
+    output : str or Path, optional
+        ``.html``, ``.gif`` or ``.mp4`` (see :meth:`Player.save`).
+    actuators : iterable of str, or mapping of title to iterable of str, optional
+        Joints (or channels, standing for their joints) drawn with a ring; a mapping gives each
+        panel its own.
+    kinetemes : bool, default True
+        Colour joints by their current state (False: every joint grey, no segmentation run).
+    max_rate : float, default 30
+        Most frames per second kept.
+    max_frames : int, default 500
+        Most frames kept per motion (the step grows for longer motions).
+    follow : bool, default True
+        The camera follows the body over the floor (False: it looks at the middle of the
+        path, so the whole path is in the picture and the body smaller).
+    **params
+        Segmentation parameters (:data:`kinetology.segmentation.DEFAULTS`).
+
+    Returns
+    -------
+    Player
+
+    Raises
+    ------
+    ViewError
+        For no motion, a motion without frames or skeleton, an unknown joint to highlight, an
+        output suffix it cannot write or a missing writer (naming what to install).
+
+    Examples
+    --------
+    A leg of two bones whose knee bends, played at most 10 frames per second:
+
+    >>> import numpy as np
+    >>> from kinetology.bvh import parse_bvh
+    >>> lines = "\\n".join(f"0 {a:g}" for a in 45 * (1 - np.cos(np.linspace(0, 6.3, 60))))
+    >>> leg = parse_bvh('''HIERARCHY
+    ... ROOT hip
+    ... { OFFSET 0 0 0
+    ...   CHANNELS 1 Xrotation
+    ...   JOINT knee
+    ...   { OFFSET 0 -10 0
+    ...     CHANNELS 1 Xrotation
+    ...     End Site
+    ...     { OFFSET 0 -10 0 } } }
+    ... MOTION
+    ... Frames: 60
+    ... Frame Time: 0.0333333
+    ... ''' + lines + "\\n", source="leg.bvh")
+    >>> player = view(leg, actuators=["knee"], max_rate=10)
+    >>> panel = player.panels[0]
+    >>> panel.step, panel.frames, panel.states[1][:8], panel.actuators
+    (3, 20, 'BBBBBGGG', (False, True, False))
+    >>> page = player.to_html()       # data and script inline: nothing to fetch
+    >>> page.startswith("<!DOCTYPE html>"), " src=" in page, "<link" in page
+    (True, False, False)
+    >>> view(leg, "leg.png")
+    Traceback (most recent call last):
+    ...
+    kinetology.viewer.ViewError: leg.png: cannot write '.png'; give one of .html, .gif, .mp4
+    """
+    if output is not None:
+        _check_suffix(Path(output))  # before any work: a bad suffix fails at once
+    if isinstance(motions, Motion):
+        motions = [motions]
+    named = dict(motions) if isinstance(motions, Mapping) else _titled(motions)
+    if not named:
+        raise ViewError("no motion to show", source="kinetology.view")
+    if max_rate <= 0 or max_frames < 1:
+        raise ViewError(f"max_rate must be positive and max_frames at least 1, not "
+                        f"{max_rate!r} and {max_frames!r}", source="kinetology.view")
+    per_panel = actuators if isinstance(actuators, Mapping) else \
+        {label: actuators for label in named}
+    unknown = set(per_panel) - set(named)
+    if unknown:
+        raise ViewError(f"actuators given for {', '.join(map(repr, sorted(unknown)))}, which "
+                        f"is not a panel ({', '.join(map(repr, named))})",
+                        source="kinetology.view")
+    panels = tuple(_panel(label, m, per_panel.get(label), kinetemes, max_rate, max_frames,
+                          follow, params) for label, m in named.items())
+    player = Player(panels, max(p.frame_rate for p in panels))
+    if output is not None:
+        player.save(output)
+    return player
+
+
+def motion_html(motion: Motion) -> str | None:
+    """What a notebook shows for a motion: its player (no page around it), or None (the plain
+    ``repr``) when the motion has no frames or no skeleton.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from kinetology import Joint, Skeleton
+    >>> arm = Skeleton((Joint("shoulder", None, (0, 0, 0), ("shoulder.rz",)),
+    ...                 Joint("hand", 0, (10, 0, 0), end_site=True)))
+    >>> swing = Motion(np.linspace(0, 90, 30)[:, None], ("shoulder.rz",), 30, arm)
+    >>> motion_html(swing) == swing._repr_html_(), motion_html(swing.select(swing.channels))
+    (True, None)
+    """
+    if motion.frames == 0 or motion.skeleton is None:
+        return None
+    return view(motion)._repr_html_()
+
+
+def _titled(motions: Iterable) -> dict:
+    """Panels titled by file name; a name that repeats (a/walk.bvh, b/walk.bvh) gets its
+    position added, so that every motion keeps its panel."""
+    motions = list(motions)
+    names = [Path(m.source).name if isinstance(m, Motion) else str(i)
+             for i, m in enumerate(motions)]
+    return {(name if names.count(name) == 1 else f"{name} ({i + 1})"): m
+            for i, (name, m) in enumerate(zip(names, motions))}
+
+
+# ------------------------------------------------------------------ command line
+_EXIT = ("Exit status 0: written; 2: a file that is not motion, a motion without frames or "
+         "skeleton, an output suffix other than .html/.gif/.mp4, or a missing writer "
+         "(matplotlib for .gif, ffmpeg for .mp4), said in one line on stderr.")
+
+
+def _run(args) -> int:
+    from .readers import read
+
+    _check_suffix(Path(args.output))
+    motions = []
+    for name in args.files:
+        options = {"frame_rate": args.frame_rate} if args.frame_rate and \
+            Path(name).suffix.lower() == ".amc" else {}
+        motions.append(read(name, **options))
+    actuators = [a for item in args.actuators or () for a in item.split(",") if a]
+    player = view(motions, args.output, actuators=actuators or None,
+                  kinetemes=not args.no_kinetemes, max_rate=args.max_rate,
+                  follow=not args.fixed_camera,
+                  max_frames=args.max_frames)
+    kept = ", ".join(f"{p.label}: {p.frames} frames at {p.frame_rate:g} fps"
+                     for p in player.panels)
+    print(f"{args.output}: {kept}")
+    return 0
+
+
+def register(subparsers) -> None:
+    """Add ``view`` to a command's subparsers (the ``kinetology`` command).
+
+    Examples
+    --------
+    >>> import argparse
+    >>> parser = argparse.ArgumentParser(prog="kinetology")
+    >>> register(parser.add_subparsers())
+    >>> parser.parse_args(["view", "walk.bvh", "-o", "walk.html"]).max_rate
+    30.0
+    """
+    p = subparsers.add_parser(
+        "view", help="play motion files as a skeleton: an HTML page, a GIF or an MP4",
+        description="Draw the body from the skeleton's forward kinematics and play it; several "
+                    "files side by side on one clock; joints coloured by their current "
+                    "kineteme. The HTML page is self-contained (opens from a file, no network). "
+                    + _EXIT)
+    p.add_argument("files", nargs="+", metavar="FILE",
+                   help="motion files: .bvh, or .amc (its .asf skeleton found beside it)")
+    p.add_argument("-o", "--output", required=True, metavar="OUT",
+                   help="out.html (player page), out.gif (needs matplotlib) or out.mp4 "
+                        "(needs matplotlib and ffmpeg)")
+    p.add_argument("--actuators", nargs="+", metavar="JOINT",
+                   help="joints to highlight (names or comma lists)")
+    p.add_argument("--no-kinetemes", action="store_true",
+                   help="do not colour joints by state (skips the segmentation)")
+    p.add_argument("--fixed-camera", action="store_true",
+                   help="look at the middle of the whole path instead of following the body")
+    p.add_argument("--max-rate", type=float, default=30.0, metavar="FPS",
+                   help="most frames per second kept (default 30)")
+    p.add_argument("--max-frames", type=int, default=500, metavar="N",
+                   help="most frames kept per file (default 500)")
+    p.add_argument("--frame-rate", type=float, default=None, metavar="FPS",
+                   help="frames per second of AMC files (default 120, the CMU rate)")
+    p.set_defaults(run=_run)
