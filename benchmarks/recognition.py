@@ -72,39 +72,16 @@ def read_bandai(folder: Path) -> list[Take]:
 def series(motion, rate: float = 10.0) -> np.ndarray:
     """Frames x channels at ``rate`` fps: non-root rotations and the root's local velocities."""
     from kinetology.segmentation import smooth, unwrap
-    from praxicon.features import _ROTATIONS, _root_joints
+    from praxicon.features import _ROTATIONS, _root_joints, root_motion
 
     roots = _root_joints(motion)
     cols = [c for c, ch in enumerate(motion.channels)
             if ch.rpartition(".")[2] in _ROTATIONS and ch.rpartition(".")[0] not in roots]
     x = smooth(unwrap(motion.values[:, cols].astype(float)), motion.frame_rate, 0.05)
-    extra = [_root_series(motion, j) for j in sorted(roots)]
-    if extra:
-        x = np.concatenate([x[:-1]] + extra, axis=1)
+    if roots:
+        x = np.concatenate([x[:-1], root_motion(motion, roots)], axis=1)
     step = max(1, int(round(motion.frame_rate / rate)))
     return np.ascontiguousarray(x[::step])
-
-
-def _root_series(motion, joint):
-    from kinetology.kinematics import rotation_matrices
-    from kinetology.segmentation import smooth, unwrap
-
-    rate = motion.frame_rate
-    order = "".join(c.rsplit(".", 1)[1][1].upper() for c in motion.channels
-                    if c.startswith(joint + ".") and c.rsplit(".", 1)[1] in ("rx", "ry", "rz"))
-    if motion.skeleton is not None and joint in motion.skeleton.names:
-        order = motion.skeleton.joints[motion.skeleton.index(joint)].rotation_order
-    angles = {a.upper(): smooth(unwrap(motion.column(f"{joint}.r{a}").astype(float)), rate, 0.05)
-              for a in "xyz" if f"{joint}.r{a}" in motion.channels}
-    rot = rotation_matrices(angles, order or "XYZ", motion.frames)
-    pos = np.stack([smooth(motion.column(f"{joint}.t{a}").astype(float), rate, 0.05)
-                    if f"{joint}.t{a}" in motion.channels else np.zeros(motion.frames)
-                    for a in "xyz"], axis=1)
-    velocity = np.einsum("tji,tj->ti", rot[:-1], np.diff(pos, axis=0)) * rate
-    step = np.einsum("tji,tjk->tik", rot[:-1], rot[1:])
-    turning = np.degrees(np.stack([step[:, 2, 1] - step[:, 1, 2], step[:, 0, 2] - step[:, 2, 0],
-                                   step[:, 1, 0] - step[:, 0, 1]], axis=1) / 2) * rate
-    return np.concatenate([velocity, turning], axis=1)
 
 
 def _resampled(x: np.ndarray, length: int) -> np.ndarray:

@@ -36,14 +36,63 @@ def feature_joint(feature: str) -> str:
     return channel.split(".", 1)[0] if "." in channel else "*"
 
 
-def _root_joints(motion) -> set[str]:
-    """Joints whose position channels move: the root (its heading and travel drift)."""
-    roots = set()
+def _joints_in_order(motion) -> list[str]:
+    seen: dict[str, None] = {}
+    for name in motion.channels:
+        seen.setdefault(name.rpartition(".")[0], None)
+    return list(seen)
+
+
+def _root_joints(motion) -> list[str]:
+    """The root chain: every joint (in channel order) up to the last whose position moves.
+
+    A take may carry the body's travel on a top joint (``joint_Root``) and its bobbing on the
+    next (``Hips``), or both on one: the chain's composed motion is the body's either way, so
+    every take of a skeleton gets the same features. Empty when no position moves.
+    """
+    joints = _joints_in_order(motion)
+    last = -1
     for c, name in enumerate(motion.channels):
         joint, _, axis = name.rpartition(".")
         if axis in _TRANSLATIONS and np.ptp(motion.values[:, c]) > 1e-6:
-            roots.add(joint)
-    return roots
+            last = max(last, joints.index(joint))
+    return joints[:last + 1]
+
+
+def _joint_transform(motion, joint: str):
+    """Per frame the joint's rotation matrix and translation (smoothed channels)."""
+    from kinetology.kinematics import rotation_matrices
+    from kinetology.segmentation import smooth, unwrap
+
+    rate = motion.frame_rate
+    order = "".join(c.rsplit(".", 1)[1][1].upper() for c in motion.channels
+                    if c.startswith(joint + ".") and c.rsplit(".", 1)[1] in _ROTATIONS)
+    if motion.skeleton is not None and joint in motion.skeleton.names:
+        order = motion.skeleton.joints[motion.skeleton.index(joint)].rotation_order
+    angles = {a.upper(): smooth(unwrap(motion.column(f"{joint}.r{a}").astype(float)), rate,
+                                _SMOOTHING)
+              for a in "xyz" if f"{joint}.r{a}" in motion.channels}
+    rot = rotation_matrices(angles, order or "XYZ", motion.frames)
+    pos = np.stack([smooth(motion.column(f"{joint}.t{a}").astype(float), rate, _SMOOTHING)
+                    if f"{joint}.t{a}" in motion.channels else np.zeros(motion.frames)
+                    for a in "xyz"], axis=1)
+    return rot, pos
+
+
+def root_motion(motion, chain: list[str]) -> np.ndarray:
+    """Frames-1 x 6: the root chain's velocity and turning rate (deg/s) in its own frame."""
+    rot = np.broadcast_to(np.eye(3), (motion.frames, 3, 3)).copy()
+    pos = np.zeros((motion.frames, 3))
+    for joint in chain:  # compose parent to child: p += R t_child, R = R R_child
+        r, t = _joint_transform(motion, joint)
+        pos = pos + np.einsum("tij,tj->ti", rot, t)
+        rot = rot @ r
+    rate = motion.frame_rate
+    velocity = np.einsum("tji,tj->ti", rot[:-1], np.diff(pos, axis=0)) * rate
+    step = np.einsum("tji,tjk->tik", rot[:-1], rot[1:])  # R_t^T R_t+1: the turn in one frame
+    turning = np.degrees(np.stack([step[:, 2, 1] - step[:, 1, 2], step[:, 0, 2] - step[:, 2, 0],
+                                   step[:, 1, 0] - step[:, 0, 1]], axis=1) / 2) * rate
+    return np.concatenate([velocity, turning], axis=1)
 
 
 def _tempo(speed: np.ndarray, frame_rate: float) -> float:
@@ -62,41 +111,24 @@ def _tempo(speed: np.ndarray, frame_rate: float) -> float:
     return float(lag / frame_rate)
 
 
-def _root_features(motion, joint: str) -> list[tuple[str, float]]:
+def _root_features(motion, chain: list[str]) -> list[tuple[str, float]]:
     """The root's travel and turning in its own frame, whichever way the body faces.
 
-    The root's velocity and angular velocity are expressed in the root's frame (so a walk to
-    the north and one to the south, or a turn started facing east, give the same numbers):
+    The root chain's velocity and angular velocity are expressed in its own frame (so a walk
+    to the north and one to the south, or a turn started facing east, give the same numbers):
     per local axis the mean (the drift: a turn's heading rate, the travel speed) and the RMS
-    of the rest (bobbing, swaying). The rotation order is the skeleton's, else the order of
-    the root's rotation channels in the motion.
+    of the rest (bobbing, swaying). Rotation orders are the skeleton's, else the order of each
+    joint's rotation channels in the motion. Named after the chain's last joint.
     """
-    from kinetology.kinematics import rotation_matrices
-    from kinetology.segmentation import smooth, unwrap
-
-    rate = motion.frame_rate
-    order = "".join(c.rsplit(".", 1)[1][1].upper() for c in motion.channels
-                    if c.startswith(joint + ".") and c.rsplit(".", 1)[1] in _ROTATIONS)
-    if motion.skeleton is not None and joint in motion.skeleton.names:
-        order = motion.skeleton.joints[motion.skeleton.index(joint)].rotation_order
-    angles = {a.upper(): smooth(unwrap(motion.column(f"{joint}.r{a}").astype(float)), rate,
-                                _SMOOTHING)
-              for a in "xyz" if f"{joint}.r{a}" in motion.channels}
-    rot = rotation_matrices(angles, order or "XYZ", motion.frames)
-    pos = np.stack([smooth(motion.column(f"{joint}.t{a}").astype(float), rate, _SMOOTHING)
-                    if f"{joint}.t{a}" in motion.channels else np.zeros(motion.frames)
-                    for a in "xyz"], axis=1)
-    velocity = np.einsum("tji,tj->ti", rot[:-1], np.diff(pos, axis=0)) * rate
-    step = np.einsum("tji,tjk->tik", rot[:-1], rot[1:])  # R_t^T R_t+1: the turn in one frame
-    turning = np.degrees(np.stack([step[:, 2, 1] - step[:, 1, 2], step[:, 0, 2] - step[:, 2, 0],
-                                   step[:, 1, 0] - step[:, 0, 1]], axis=1) / 2) * rate
+    series = root_motion(motion, chain)
     out = []
-    for kind, series in (("travel", velocity), ("turn", turning)):
-        mean = series.mean(axis=0)
-        sway = np.sqrt(((series - mean) ** 2).mean(axis=0))
+    for k, kind in enumerate(("travel", "turn")):
+        part = series[:, 3 * k:3 * k + 3]
+        mean = part.mean(axis=0)
+        sway = np.sqrt(((part - mean) ** 2).mean(axis=0))
         for i, a in enumerate("xyz"):
-            out.append((f"{kind}{a}:drift", float(mean[i])))
-            out.append((f"{kind}{a}:energy", math.log1p(float(sway[i]))))
+            out.append((f"{chain[-1]}.{kind}{a}:drift", float(mean[i])))
+            out.append((f"{chain[-1]}.{kind}{a}:energy", math.log1p(float(sway[i]))))
     return out
 
 
@@ -154,9 +186,9 @@ def motion_features(motion, *, shape: bool = True) -> tuple[tuple[str, ...], np.
         for kind, column in table:
             names.append(f"{motion.channels[c]}:{kind}")
             values.append(float(column[k]))
-    for joint in sorted(roots):
-        for kind, value in _root_features(motion, joint):
-            names.append(f"{joint}.{kind}")
+    if roots:
+        for name, value in _root_features(motion, roots):
+            names.append(name)
             values.append(value)
     if columns:
         names.append("tempo")

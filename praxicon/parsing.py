@@ -131,6 +131,7 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH) -> Ti
     -------
     Timeline
     """
+    from .features import feature_joint
     from .recognition import _descriptions, _motion, feature_matrix
 
     descriptions = _descriptions(praxicon, windows=True)
@@ -141,7 +142,7 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH) -> Ti
     window = descriptions.spread.window
     starts, cuts = windows(motion, window, hop)
     columns, x, _ = feature_matrix(descriptions, cuts, shape=False)
-    if not len(columns):
+    if not any(feature_joint(descriptions.spread.features[i]) != "*" for i in columns):
         raise DescriptionError("the motion shares no joint with the praxicon's actions")
     spread = descriptions.spread
     means = np.array([a.mean for a in descriptions.actions])[:, columns]

@@ -167,7 +167,7 @@ def recognise_many(praxicon, motions, *, explain: int = 3) -> list[Recognition]:
                                "whole-take descriptions")
     motions = [_motion(m) for m in motions]
     columns, x, missing = feature_matrix(descriptions, motions)
-    if not len(columns):
+    if not any(feature_joint(descriptions.spread.features[i]) != "*" for i in columns):
         raise DescriptionError("the motion shares no joint with the praxicon's actions")
     spread = descriptions.spread
     features = [spread.features[i] for i in columns]
