@@ -205,7 +205,7 @@ def summarise(results, protocol, methods=METHODS):
 
 
 # -- open set ----------------------------------------------------------------------------------
-_MARGINS = (1.0, 1.5, 2.0, 3.0)  # thresholds tried: x the worst left-out training take
+_MARGINS = (0.5, 0.75, 1.0, 1.5, 2.0)  # thresholds tried: x the worst held-out training take
 
 
 def open_set(results, protocol, train, test):

@@ -40,7 +40,9 @@ __all__ = ["FORMAT_VERSION", "ActionDescription", "Spread", "Descriptions", "des
 FORMAT_VERSION = 1
 _RANK = 16  # shared directions of variation kept (fewer when there are fewer takes)
 _NOISE_FLOOR = 0.05  # smallest per-feature variance left, in scaled units
-_MARGIN = 1.5  # the "none of these" threshold: this times the worst left-out training take
+_PRIOR_TAKES = 10.0  # pseudo-takes of typical spread each feature's own spread is shrunk to
+_MARGIN = 1.5  # the "none of these" threshold: this times the worst held-out training take
+_FOLDS = 5  # held-out folds of the calibration
 
 
 class DescriptionError(ValueError):
@@ -143,19 +145,32 @@ class Descriptions:
         """The actions' names, in order."""
         return tuple(a.name for a in self.actions)
 
+    def to_dict(self) -> dict:
+        """Plain JSON values (floats kept exactly)."""
+        return {"format": "praxicon-descriptions", "version": FORMAT_VERSION,
+                "actions": [a.to_dict() for a in self.actions], "spread": self.spread.to_dict()}
+
     def to_json(self) -> str:
         """JSON text; floats come back exactly from :meth:`from_json`."""
-        return json.dumps({"format": "praxicon-descriptions", "version": FORMAT_VERSION,
-                           "actions": [a.to_dict() for a in self.actions],
-                           "spread": self.spread.to_dict()})
+        return json.dumps(self.to_dict())
+
+    @classmethod
+    def from_dict(cls, data: dict) -> "Descriptions":
+        """The descriptions :meth:`to_dict` wrote (another version: a clear error)."""
+        _check(data, "praxicon-descriptions")
+        try:
+            return cls(tuple(ActionDescription.from_dict(a) for a in data["actions"]),
+                       Spread.from_dict(data["spread"]))
+        except (KeyError, TypeError, ValueError) as exc:
+            if isinstance(exc, DescriptionError):
+                raise
+            raise DescriptionError(f"malformed praxicon descriptions ({type(exc).__name__}: "
+                                   f"{exc})") from None
 
     @classmethod
     def from_json(cls, text: str) -> "Descriptions":
         """The descriptions :meth:`to_json` wrote (another version: a clear error)."""
-        data = _loads(text)
-        _check(data, "praxicon-descriptions")
-        return cls(tuple(ActionDescription.from_dict(a) for a in data["actions"]),
-                   Spread.from_dict(data["spread"]))
+        return cls.from_dict(_loads(text))
 
 
 def _loads(text: str) -> dict:
@@ -231,26 +246,49 @@ def _fit_spread(groups: list[np.ndarray], rank: int):
     rest = float(eigen[r:].sum() / max(1, residuals.shape[1] - r))
     factors = vt[:r] * np.sqrt(np.maximum(eigen[:r] - rest, 0.0))[:, None]
     noise = np.maximum(variance - (factors ** 2).sum(axis=0), max(_NOISE_FLOOR, rest))
+    # a variance read from few takes is mostly luck: shrink each feature's towards the mean
+    # over features, as if _PRIOR_TAKES more takes had shown the typical spread
+    noise = (dof * noise + _PRIOR_TAKES * noise.mean()) / (dof + _PRIOR_TAKES)
     return scale, means, factors, noise
 
 
-def _calibrate(groups, means, parts, features: int) -> tuple[float, float]:
-    """Threshold and temperature from each training take left out of its action's mean."""
-    rows, truth = [], []
-    moved = []
-    for a, g in enumerate(groups):
-        if len(g) < 2:
+def _calibrate(groups: list[np.ndarray], rank: int, folds: int = _FOLDS):
+    """Threshold and temperature from held-out training takes (``folds``-fold).
+
+    Every take is scored by a model learnt without it (its action's mean *and* the shared
+    spread), as an unseen take would be; an action with a single take cannot be held out.
+    The threshold is ``_MARGIN`` times the largest distance per feature such a take got; the
+    temperature the one (a power of 2) whose probabilities fit the held-out takes best.
+    """
+    moved, truth = [], []
+    for fold in range(folds):
+        train = [np.delete(g, np.arange(fold, len(g), folds), axis=0) for g in groups]
+        if any(len(t) == 0 for t in train):
+            keep = [a for a, t in enumerate(train) if len(t)]
+        else:
+            keep = list(range(len(groups)))
+        if len(keep) < 1:
             continue
-        for x in g:
-            loo = means.copy()
-            loo[a] = (means[a] * len(g) - x) / (len(g) - 1)
-            moved.append(distances(x[None], loo, parts)[0])
-            truth.append(a)
+        scale, means, factors, noise = _fit_spread([train[a] for a in keep], rank)
+        spread = Spread(("",) * len(scale), _floats(scale), tuple(_floats(f) for f in factors),
+                        _floats(noise), math.inf, 1.0)
+        parts = precision_parts(spread, np.arange(len(scale)))
+        for k, a in enumerate(keep):
+            held = groups[a][fold::folds]
+            if len(held) and len(train[a]):
+                moved.extend(distances(held, means, parts))
+                truth.extend([k] * len(held))
+                # rows must share one set of actions: pad the actions left out with +inf
+                if len(keep) < len(groups):
+                    moved[-len(held):] = [np.concatenate([r, np.full(len(groups) - len(keep),
+                                                                     np.inf)])
+                                          for r in moved[-len(held):]]
     if not moved:
         return math.inf, 1.0
     dist = np.array(moved)
-    rows = dist[np.arange(len(truth)), truth] / features
-    threshold = float(rows.max() * _MARGIN)
+    features = groups[0].shape[1]
+    own = dist[np.arange(len(truth)), truth] / features
+    threshold = float(own.max() * _MARGIN)
     best, best_loss = 1.0, math.inf
     for temperature in 2.0 ** np.arange(0, 12):
         p = probabilities(dist, temperature)[np.arange(len(truth)), truth]
@@ -270,8 +308,7 @@ def describe_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
     scale, means, factors, noise = _fit_spread(groups, rank)
     spread = Spread(tuple(features), _floats(scale), tuple(_floats(f) for f in factors),
                     _floats(noise), math.inf, 1.0, window)
-    parts = precision_parts(spread, np.arange(len(features)))
-    threshold, temperature = _calibrate(groups, means, parts, len(features))
+    threshold, temperature = _calibrate(groups, rank)
     spread = Spread(spread.features, spread.scale, spread.factors, spread.noise, threshold,
                     temperature, window)
     actions = tuple(ActionDescription(n, tuple(features), _floats(m), _floats(g.std(axis=0)),

@@ -22,7 +22,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from .description import FORMAT_VERSION, ActionDescription, DescriptionError
+from .description import FORMAT_VERSION, DescriptionError, Descriptions
 
 __all__ = ["describe_folder", "read_descriptions", "write_descriptions", "register_recognise"]
 
@@ -34,14 +34,13 @@ def write_descriptions(folder, takes, windows) -> Path:
     from .store import write_atomic
 
     path = Path(folder) / _FILE
-    text = json.dumps({"format": "praxicon-descriptions", "version": FORMAT_VERSION,
-                       "takes": [json.loads(d.to_json()) for d in takes],
-                       "windows": [json.loads(d.to_json()) for d in windows]}, indent=1)
+    text = json.dumps({"format": "praxicon-descriptions-file", "version": FORMAT_VERSION,
+                       "takes": takes.to_dict(), "windows": windows.to_dict()})
     write_atomic(path, text + "\n")
     return path
 
 
-def read_descriptions(folder, *, windows: bool = False) -> tuple[ActionDescription, ...]:
+def read_descriptions(folder, *, windows: bool = False) -> Descriptions:
     """The descriptions a praxicon folder holds (whole takes, or ``windows`` for parsing).
 
     Raises
@@ -67,16 +66,16 @@ def read_descriptions(folder, *, windows: bool = False) -> tuple[ActionDescripti
                                f"'psgs praxicon describe {folder}')") from None
     except ValueError as exc:
         raise DescriptionError(f"{path}: not JSON ({exc})") from None
-    if not isinstance(data, dict) or data.get("format") != "praxicon-descriptions":
+    if not isinstance(data, dict) or data.get("format") != "praxicon-descriptions-file":
         raise DescriptionError(f"{path}: not a praxicon descriptions file")
     if data.get("version") != FORMAT_VERSION:
         raise DescriptionError(f"{path}: descriptions of version {data.get('version')!r}, "
                                f"this psgs reads version {FORMAT_VERSION} (learn them again "
                                f"with 'psgs praxicon describe {folder}')")
-    items = data["windows" if windows else "takes"]
-    if not items:
-        raise DescriptionError(f"{path}: no learnt action to recognise")
-    return tuple(ActionDescription.from_json(json.dumps(d)) for d in items)
+    try:
+        return Descriptions.from_dict(data["windows" if windows else "takes"])
+    except (KeyError, TypeError, DescriptionError) as exc:
+        raise DescriptionError(f"{path}: {exc}") from None
 
 
 def describe_folder(folder, *, log=print) -> Path:
