@@ -38,7 +38,7 @@ import numpy as np  # noqa: E402
 import importlib.machinery  # noqa: E402
 import importlib.util  # noqa: E402
 
-from _common import DATA, DOCS, MOCAP, REPO, require, write_csv  # noqa: E402
+from _common import DATA, DOCS, IMG, MOCAP, REPO, require, write_csv  # noqa: E402
 
 # benchmarks/praxicon.py sits first on the import path and would be imported as "praxicon":
 # the package is loaded from the repository (as benchmarks/praxicon.py itself does)
@@ -449,6 +449,32 @@ def cost_growth(data, counts=(2, 4, 8, 16)):
     return rows
 
 
+def pictures(data, say, style="active", contents=("walk", "byebye", "bow")):
+    """The docs' pictures: a joined recording of one unseen style parsed, and a recognition's
+    explanation (learnt from every other style)."""
+    from praxicon.description import describe
+    from praxicon.parsing import describe_windows, parse
+    from praxicon.recognition import recognise
+    from praxicon.recognition_pictures import draw_explanation, draw_timeline
+
+    train = defaultdict(list)
+    for t in data:
+        if t.style != style:
+            train[t.content].append(t.motion)
+    takes = [next(t for t in data if t.style == style and t.content == c) for c in contents]
+    motion, spans = _joined(takes, None)
+    timeline = parse(describe_windows(train), motion)
+    draw_timeline(timeline, motion, IMG / "recognition_timeline.png")
+    say("truth: " + ", ".join(f"{c} {a:.2f}-{b:.2f}" for c, a, b in spans))
+    for span in timeline.spans:
+        say(f"parsed: {span.start:6.2f} {span.stop:6.2f} {span.action or '-'} {span.score:.3f}")
+    found = recognise(describe(train), next(t.motion for t in data if t.style == style
+                                            and t.content == "byebye"))
+    draw_explanation(found, IMG / "recognition_explanation.png")
+    for line in found.explain().splitlines():
+        say(line.replace(str(MOCAP), "../shared/data/mocap"))
+
+
 def _fmt(x, digits=3):
     return f"{x:.{digits}f}" if isinstance(x, float) else str(x)
 
@@ -457,7 +483,7 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--only", action="append", default=None,
                         help="d1-loso, d2-in-style, d2-loso, open-set, cmu-parse, joined-parse, "
-                             "growth (repeatable; default all)")
+                             "growth, pictures (repeatable; default all)")
     parser.add_argument("--methods", default=",".join(METHODS))
     parser.add_argument("--no-docs", action="store_true")
     parser.add_argument("--no-peers", action="store_true",
@@ -477,7 +503,8 @@ def main(argv=None) -> int:
     d1 = d2 = None
     if want("d2-in-style") or want("d2-loso") or want("open-set"):
         d2 = read_bandai(MOCAP / "bandai-namco-2-subset")
-    if want("d1-loso") or want("open-set") or want("joined-parse") or want("growth"):
+    if want("d1-loso") or want("open-set") or want("joined-parse") or want("growth") or \
+            want("pictures"):
         d1 = read_bandai(MOCAP / "bandai-namco-1")
     if want("d1-loso"):
         for style in sorted({t.style for t in d1}):
@@ -555,6 +582,8 @@ def main(argv=None) -> int:
                     f"reported={row['absent_reported']:.3f} (recordings with one: "
                     f"{row['recordings_with_absent']:.2f})")
             rows.append(row)
+    if want("pictures"):
+        pictures(d1, say)
     if want("growth"):
         for g in cost_growth(d1):
             say(f"growth  actions={g['actions']:2d} train takes={g['train_takes']:3d} "

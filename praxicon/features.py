@@ -25,11 +25,6 @@ class FeatureError(ValueError):
     """A motion that has no features (fewer than 3 frames)."""
 
 
-def _kind(feature: str) -> str:
-    kind = feature.rsplit(":", 1)[-1].rstrip("0123456789")
-    return "travel" if kind == "drift" and ".travel" in feature else kind
-
-
 def feature_joint(feature: str) -> str:
     """The joint a feature belongs to (``"*"`` for the take-wide tempo)."""
     channel = feature.rsplit(":", 1)[0]
@@ -175,7 +170,11 @@ def motion_features(motion, *, shape: bool = True) -> tuple[tuple[str, ...], np.
     speed = np.abs(np.gradient(x, axis=0)) * rate
     median = np.median(x, axis=0)
     low, high = np.percentile(x, [10, 90], axis=0)
-    table = [("pose", median), ("spread", np.log1p(high - low)),
+    # an angle is a point on a circle: its typical value as sine and cosine (in degrees of arc
+    # near 0), so a take read as 179 and one read as -181 have the same pose
+    radians = np.radians(median)
+    table = [("pose", np.degrees(np.sin(radians))), ("posec", np.degrees(np.cos(radians))),
+             ("spread", np.log1p(high - low)),
              ("energy", np.log1p(np.sqrt(np.mean(speed ** 2, axis=0))))]
     if shape:
         table += [(f"shape{i}", q.mean(axis=0) - median)
