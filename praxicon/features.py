@@ -141,7 +141,8 @@ def motion_features(motion, *, shape: bool = True) -> tuple[tuple[str, ...], np.
     Returns
     -------
     names : tuple of str
-        ``channel:kind`` (kinds pose, spread, energy, shape0..3, drift) and ``tempo``.
+        ``channel:kind`` (kinds pose and posec: the median's sine and cosine, spread, energy,
+        shape0..3; the root's ``travel*``/``turn*`` drift and energy) and ``tempo``.
     values : numpy.ndarray
 
     Raises
@@ -154,7 +155,7 @@ def motion_features(motion, *, shape: bool = True) -> tuple[tuple[str, ...], np.
     >>> from kinetology import synthetic_motion
     >>> names, values = motion_features(synthetic_motion(2, (0,), seed=1))
     >>> names[:3], len(names) == len(values)
-    (('j0.rx:pose', 'j0.rx:spread', 'j0.rx:energy'), True)
+    (('j0.rx:pose', 'j0.rx:posec', 'j0.rx:spread'), True)
     """
     from kinetology.segmentation import smooth, unwrap
 
