@@ -91,7 +91,7 @@ class Recognition:
 
 def _descriptions(source, *, windows: bool = False) -> Descriptions:
     if isinstance(source, (str, Path)):
-        from .recognition_cli import read_descriptions
+        from .description_store import read_descriptions
         return read_descriptions(source, windows=windows)
     if isinstance(source, Descriptions):
         return source
