@@ -475,6 +475,61 @@ def pictures(data, say, style="active", contents=("walk", "byebye", "bow")):
         say(line.replace(str(MOCAP), "../shared/data/mocap"))
 
 
+def _kind(feature: str) -> str:
+    if feature == "tempo":
+        return "tempo"
+    if ".travel" in feature or ".turn" in feature:
+        return "root drift and sway"
+    kind = feature.rsplit(":", 1)[-1].rstrip("0123456789")
+    return {"posec": "pose"}.get(kind, kind)
+
+
+def ablation(say, d1, d2):
+    """What each kind of feature buys: accuracy with the kind left out (same splits)."""
+    from praxicon.description import common_table, describe_table, distances, feature_rows
+    from praxicon.description import precision_parts
+
+    splits = []
+    for name, data, folds in (
+            ("d2-in-style", d2, [(lambda t: t.take <= 3, lambda t: t.take > 3)]),
+            ("d2-loso", d2, [(lambda t, s=s: t.style != s, lambda t, s=s: t.style == s)
+                             for s in sorted({t.style for t in d2})]),
+            ("d1-loso", d1, [(lambda t, s=s: t.style != s, lambda t, s=s: t.style == s)
+                             for s in sorted({t.style for t in d1})])):
+        rows = feature_rows([t.motion for t in data])
+        order, table = common_table({"all": rows})
+        splits.append((name, data, folds, order, table["all"]))
+    kinds = ["none"] + sorted({_kind(f) for f in splits[0][3]}) + ["rank 0"]
+    out = []
+    for kind in kinds:
+        rank = 0 if kind == "rank 0" else 16
+        accs = []
+        for name, data, folds, order, x in splits:
+            keep = np.array([_kind(f) != kind for f in order])
+            feats = tuple(f for f, k in zip(order, keep) if k)
+            right = total = 0
+            for is_train, is_test in folds:
+                tr = [i for i, t in enumerate(data) if is_train(t)]
+                labels = sorted({data[i].content for i in tr})
+                te = [i for i, t in enumerate(data) if is_test(t) and t.content in labels]
+                d = describe_table({c: x[[i for i in tr if data[i].content == c]][:, keep]
+                                    for c in labels}, feats, rank=rank)
+                means = np.array([a.mean for a in d.actions])
+                dist = distances(x[te][:, keep], means,
+                                 precision_parts(d.spread, np.arange(len(feats))))
+                pred = np.array(d.names)[dist.argmin(axis=1)]
+                right += int((pred == np.array([data[i].content for i in te])).sum())
+                total += len(te)
+            accs.append(right / total)
+        label = ("all features" if kind == "none" else "no shared directions (diagonal)"
+                 if kind == "rank 0" else f"without {kind}")
+        say(f"ablation {label:28s} " + "  ".join(f"{n} {a:.3f}" for (n, *_), a in
+                                                  zip(splits, accs)))
+        out.append({"protocol": "ablation", "method": label,
+                    **{n: a for (n, *_), a in zip(splits, accs)}})
+    return out
+
+
 def _fmt(x, digits=3):
     return f"{x:.{digits}f}" if isinstance(x, float) else str(x)
 
@@ -483,7 +538,7 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--only", action="append", default=None,
                         help="d1-loso, d2-in-style, d2-loso, open-set, cmu-parse, joined-parse, "
-                             "growth, pictures (repeatable; default all)")
+                             "growth, ablation, pictures (repeatable; default all)")
     parser.add_argument("--methods", default=",".join(METHODS))
     parser.add_argument("--no-docs", action="store_true")
     parser.add_argument("--no-peers", action="store_true",
@@ -501,10 +556,10 @@ def main(argv=None) -> int:
         lines.append(line)
 
     d1 = d2 = None
-    if want("d2-in-style") or want("d2-loso") or want("open-set"):
+    if want("d2-in-style") or want("d2-loso") or want("open-set") or want("ablation"):
         d2 = read_bandai(MOCAP / "bandai-namco-2-subset")
     if want("d1-loso") or want("open-set") or want("joined-parse") or want("growth") or \
-            want("pictures"):
+            want("pictures") or want("ablation"):
         d1 = read_bandai(MOCAP / "bandai-namco-1")
     if want("d1-loso"):
         for style in sorted({t.style for t in d1}):
@@ -582,6 +637,8 @@ def main(argv=None) -> int:
                     f"reported={row['absent_reported']:.3f} (recordings with one: "
                     f"{row['recordings_with_absent']:.2f})")
             rows.append(row)
+    if want("ablation"):
+        rows += ablation(say, d1, d2)
     if want("pictures"):
         pictures(d1, say)
     if want("growth"):
@@ -595,7 +652,7 @@ def main(argv=None) -> int:
                   "cpu_ms_per_take", "cpu_vs_dtw", "none_of_these", "closed_accuracy",
                   "frame_accuracy", "segment_f1", "recordings", "time_precision",
                   "time_recall", "absent_reported", "recordings_with_absent", "actions",
-                  "train_takes", "praxicon", "dtw-1nn"]
+                  "train_takes", "praxicon", "dtw-1nn", "d2-in-style", "d2-loso", "d1-loso"]
         write_csv(DATA / "recognition.csv", header,
                   [[_fmt(r.get(h, "")) if not isinstance(r.get(h, ""), float)
                     else f"{r[h]:.4f}" for h in header] for r in rows])
