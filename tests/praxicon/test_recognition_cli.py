@@ -161,3 +161,22 @@ def test_real_turns_told_from_walks_by_their_drift():
     right = px.actions[px.names.index("walk-turn-right")]
     drift = [i for i, f in enumerate(left.features) if f == "Hips.turnx:drift"]
     assert drift and left.mean[drift[0]] * right.mean[drift[0]] < 0  # opposite headings
+
+
+def test_folder_round_trip_equals_in_memory(px):
+    """describe -> descriptions.json -> read gives the very descriptions learnt in memory, and
+    the same answers."""
+    import kinetology
+    from praxicon.description import describe
+    from praxicon.description_store import read_descriptions
+    from praxicon.parsing import describe_windows
+    from praxicon.recognition import recognise_many
+
+    index = json.loads((px / "index.json").read_text())
+    takes = {a["name"]: [kinetology.read(p["file"]) for p in a["performances"]]
+             for a in index["actions"]}
+    memory, folder = describe(takes), read_descriptions(px)
+    assert folder == memory
+    assert read_descriptions(px, windows=True) == describe_windows(takes)
+    new = [kinetology.read(px / f"new{s}.bvh") for s in (7, 8)]
+    assert recognise_many(folder, new) == recognise_many(memory, new)
