@@ -429,7 +429,7 @@ def parse_joined(results, data, per_style: int = 4, window=2.0, hop=0.25):
                 r["seconds"] += motion.duration
 
 
-def cost_growth(data, counts=(2, 4, 8, 16)):
+def cost_growth(data, counts=(2, 4, 8, 10)):
     """CPU per take as the number of actions grows (takes of those actions only)."""
     contents = sorted({t.content for t in data}, key=lambda c: -sum(t.content == c
                                                                     for t in data))
@@ -438,8 +438,9 @@ def cost_growth(data, counts=(2, 4, 8, 16)):
         chosen = set(contents[:k])
         pool = [t for t in data if t.content in chosen]
         train = [t for t in pool if t.take == 1 and t.style not in ("normal", "old")]
-        test = [t for t in pool if t.style in ("normal", "old")][:20]
-        row = {"actions": len(chosen), "train_takes": len(train), "test_takes": len(test)}
+        learnt = {t.content for t in train}
+        test = [t for t in pool if t.style in ("normal", "old") and t.content in learnt][:20]
+        row = {"actions": len(learnt), "train_takes": len(train), "test_takes": len(test)}
         for name in ("praxicon", "dtw-1nn"):
             predict = METHODS[name]([t.motion for t in train], [t.content for t in train])
             began = time.process_time()
