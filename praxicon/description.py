@@ -252,17 +252,24 @@ def _fit_spread(groups: list[np.ndarray], rank: int):
     return scale, means, factors, noise
 
 
-def _calibrate(groups: list[np.ndarray], rank: int, folds: int = _FOLDS):
+def _calibrate(groups: list[np.ndarray], rank: int, sources=None, folds: int = _FOLDS):
     """Threshold and temperature from held-out training takes (``folds``-fold).
 
     Every take is scored by a model learnt without it (its action's mean *and* the shared
     spread), as an unseen take would be; an action with a single take cannot be held out.
     The threshold is ``_MARGIN`` times the largest distance per feature such a take got; the
     temperature the one (a power of 2) whose probabilities fit the held-out takes best.
+    ``sources`` (per action, per row: the take a row comes from) keeps the windows of one take
+    in one fold, so that a take is never scored by a model that saw another piece of it.
     """
+    if sources is None:
+        sources = [np.arange(len(g)) for g in groups]
+    else:  # takes numbered in order, so that a take's fold does not depend on its id
+        sources = [np.unique(np.asarray(s), return_inverse=True)[1] for s in sources]
     moved, truth = [], []
     for fold in range(folds):
-        train = [np.delete(g, np.arange(fold, len(g), folds), axis=0) for g in groups]
+        out = [s % folds == fold for s in sources]
+        train = [g[~o] for g, o in zip(groups, out)]
         if any(len(t) == 0 for t in train):
             keep = [a for a, t in enumerate(train) if len(t)]
         else:
@@ -274,7 +281,7 @@ def _calibrate(groups: list[np.ndarray], rank: int, folds: int = _FOLDS):
                         _floats(noise), math.inf, 1.0)
         parts = precision_parts(spread, np.arange(len(scale)))
         for k, a in enumerate(keep):
-            held = groups[a][fold::folds]
+            held = groups[a][out[a]]
             if len(held) and len(train[a]):
                 moved.extend(distances(held, means, parts))
                 truth.extend([k] * len(held))
@@ -299,8 +306,12 @@ def _calibrate(groups: list[np.ndarray], rank: int, folds: int = _FOLDS):
 
 
 def describe_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
-                   window: float = 0.0, rank: int = _RANK) -> Descriptions:
-    """Descriptions from feature rows (``{action: takes x features}``), sorted by name."""
+                   window: float = 0.0, rank: int = _RANK, sources=None) -> Descriptions:
+    """Descriptions from feature rows (``{action: takes x features}``), sorted by name.
+
+    ``sources`` (``{action: per row the take it comes from}``, for windows) keeps each take's
+    rows together when the threshold is calibrated.
+    """
     names = sorted(table)
     groups = [np.asarray(table[n], dtype=float) for n in names]
     if not groups:
@@ -308,7 +319,8 @@ def describe_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
     scale, means, factors, noise = _fit_spread(groups, rank)
     spread = Spread(tuple(features), _floats(scale), tuple(_floats(f) for f in factors),
                     _floats(noise), math.inf, 1.0, window)
-    threshold, temperature = _calibrate(groups, rank)
+    threshold, temperature = _calibrate(
+        groups, rank, None if sources is None else [sources[n] for n in names])
     spread = Spread(spread.features, spread.scale, spread.factors, spread.noise, threshold,
                     temperature, window)
     actions = tuple(ActionDescription(n, tuple(features), _floats(m), _floats(g.std(axis=0)),

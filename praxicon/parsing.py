@@ -90,10 +90,13 @@ def describe_windows(takes: dict[str, list], *, window: float = _WINDOW, hop: fl
     The windows of a take start every ``2 * hop`` seconds; the descriptions' ``window`` is the
     window length, which :func:`parse` cuts recordings into.
     """
-    rows = {name: feature_rows([w for m in motions for w in windows(m, window, 2 * hop)[1]],
-                               shape=False) for name, motions in takes.items()}
+    rows, sources = {}, {}
+    for name, motions in takes.items():
+        cuts = [(k, w) for k, m in enumerate(motions) for w in windows(m, window, 2 * hop)[1]]
+        rows[name] = feature_rows([w for _, w in cuts], shape=False)
+        sources[name] = np.array([k for k, _ in cuts])
     order, table = common_table(rows)
-    return describe_table(table, order, window=window)
+    return describe_table(table, order, window=window, sources=sources)
 
 
 def _viterbi(costs: np.ndarray, switch: float) -> np.ndarray:
