@@ -232,10 +232,22 @@ def probabilities(dist: np.ndarray, temperature: float) -> np.ndarray:
     return p / p.sum(axis=-1, keepdims=True)
 
 
-def _fit_spread(groups: list[np.ndarray], rank: int):
+def _scale_floors(features) -> np.ndarray:
+    """The smallest scale of each feature: a degree (or a degree per second, a length unit per
+    second) for angles and rates, 10 % for the log ranges and energies, 5 % of the tempo.
+
+    A joint that never moves in training has a near-zero spread; divided by it, a tenth of a
+    degree in a new take would count as a thousand standard deviations.
+    """
+    floors = {"spread": 0.1, "energy": 0.1, "tempo": 0.05}
+    return np.array([floors.get(f.rsplit(":", 1)[-1].rstrip("0123456789"), 1.0)
+                     for f in features])
+
+
+def _fit_spread(groups: list[np.ndarray], rank: int, floors=None):
     every = np.concatenate(groups)
     scale = every.std(axis=0)
-    scale = np.where(scale > 1e-9, scale, 1.0)
+    scale = np.maximum(scale, 1e-9 if floors is None else floors)
     means = np.array([g.mean(axis=0) for g in groups])
     residuals = np.concatenate([(g - m) / scale for g, m in zip(groups, means)])
     dof = max(1, sum(len(g) - 1 for g in groups))
@@ -252,7 +264,8 @@ def _fit_spread(groups: list[np.ndarray], rank: int):
     return scale, means, factors, noise
 
 
-def _calibrate(groups: list[np.ndarray], rank: int, sources=None, folds: int = _FOLDS):
+def _calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
+               folds: int = _FOLDS):
     """Threshold and temperature from held-out training takes (``folds``-fold).
 
     Every take is scored by a model learnt without it (its action's mean *and* the shared
@@ -276,7 +289,7 @@ def _calibrate(groups: list[np.ndarray], rank: int, sources=None, folds: int = _
             keep = list(range(len(groups)))
         if len(keep) < 1:
             continue
-        scale, means, factors, noise = _fit_spread([train[a] for a in keep], rank)
+        scale, means, factors, noise = _fit_spread([train[a] for a in keep], rank, floors)
         spread = Spread(("",) * len(scale), _floats(scale), tuple(_floats(f) for f in factors),
                         _floats(noise), math.inf, 1.0)
         parts = precision_parts(spread, np.arange(len(scale)))
@@ -316,11 +329,12 @@ def describe_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
     groups = [np.asarray(table[n], dtype=float) for n in names]
     if not groups:
         raise DescriptionError("no action to describe")
-    scale, means, factors, noise = _fit_spread(groups, rank)
+    floors = _scale_floors(features)
+    scale, means, factors, noise = _fit_spread(groups, rank, floors)
     spread = Spread(tuple(features), _floats(scale), tuple(_floats(f) for f in factors),
                     _floats(noise), math.inf, 1.0, window)
     threshold, temperature = _calibrate(
-        groups, rank, None if sources is None else [sources[n] for n in names])
+        groups, rank, None if sources is None else [sources[n] for n in names], floors)
     spread = Spread(spread.features, spread.scale, spread.factors, spread.noise, threshold,
                     temperature, window)
     actions = tuple(ActionDescription(n, tuple(features), _floats(m), _floats(g.std(axis=0)),
