@@ -62,6 +62,9 @@ def read_bandai(folder: Path) -> list[Take]:
     import kinetology
 
     out = []
+    if not (folder / "data").is_dir():
+        raise SystemExit(f"{folder}: no such dataset (the shared data is read from "
+                         f"../shared/data/mocap beside the repository)")
     for path in sorted((folder / "data").glob("*.bvh")):
         m = _NAME.match(path.stem)
         out.append(Take(m["content"], m["style"], int(m["take"]), kinetology.read(path)))
