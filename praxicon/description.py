@@ -367,6 +367,14 @@ def describe(takes: dict[str, list], *, rank: int = _RANK) -> Descriptions:
     """Descriptions of every action from its takes (``{name: [Motion, ...]}``).
 
     Features some take lacks (its skeleton has fewer joints) are left out.
+
+    Examples
+    --------
+    >>> from kinetology import synthetic_motion
+    >>> d = describe({"a": [synthetic_motion(2, (0,), seed=s) for s in (1, 2)],
+    ...               "b": [synthetic_motion(2, (1,), seed=s) for s in (3, 4)]})
+    >>> d.names, [a.takes for a in d.actions], len(d.spread.features) == len(d.actions[0].mean)
+    (('a', 'b'), [2, 2], True)
     """
     rows = {name: feature_rows(motions) for name, motions in takes.items()}
     order, table = common_table(rows)

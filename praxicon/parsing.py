@@ -66,7 +66,15 @@ class Timeline:
 
 def windows(motion, window: float = _WINDOW, hop: float = _HOP):
     """The motion cut into windows: ``(starts in seconds, motions)``; a motion shorter than
-    one window is one window."""
+    one window is one window.
+
+    Examples
+    --------
+    >>> from kinetology import synthetic_motion
+    >>> starts, cuts = windows(synthetic_motion(2, (0,), repetitions=3, seed=1), 1.0, 0.5)
+    >>> starts[:3], cuts[0].duration
+    ([0.0, 0.5, 1.0], 1.0)
+    """
     from kinetology import Motion
 
     if motion.frames < 3:

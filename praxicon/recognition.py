@@ -160,7 +160,18 @@ def _reasons(features, terms, x_row, mean) -> tuple[JointReason, ...]:
 
 
 def recognise_many(praxicon, motions, *, explain: int = 3) -> list[Recognition]:
-    """:func:`recognise` for many motions in one call (features once, one matrix of scores)."""
+    """:func:`recognise` for many motions in one call (features once, one matrix of scores).
+
+    Examples
+    --------
+    >>> from kinetology import synthetic_motion
+    >>> from praxicon.description import describe
+    >>> px = describe({"a": [synthetic_motion(2, (0,), seed=1, noise=n) for n in (0.2, 0.6)],
+    ...                "b": [synthetic_motion(2, (1,), seed=2, noise=n) for n in (0.2, 0.6)]})
+    >>> [r.action for r in recognise_many(px, [synthetic_motion(2, (0,), seed=1, noise=0.4),
+    ...                                        synthetic_motion(2, (1,), seed=2, noise=0.4)])]
+    ['a', 'b']
+    """
     descriptions = _descriptions(praxicon)
     if any(a.window for a in descriptions.actions):
         raise DescriptionError("these are window descriptions (for parse); recognise needs the "
@@ -218,5 +229,15 @@ def recognise(praxicon, motion, *, explain: int = 3) -> Recognition:
     ------
     DescriptionError
         When the motion has fewer than 3 frames or shares no joint with the praxicon.
+
+    Examples
+    --------
+    >>> from kinetology import synthetic_motion
+    >>> from praxicon.description import describe
+    >>> px = describe({"a": [synthetic_motion(2, (0,), seed=1, noise=n) for n in (0.2, 0.6)],
+    ...                "b": [synthetic_motion(2, (1,), seed=2, noise=n) for n in (0.2, 0.6)]})
+    >>> found = recognise(px, synthetic_motion(2, (1,), seed=2, noise=0.4))
+    >>> found.action, found.ranking[0][0], found.missing
+    ('b', 'b', ())
     """
     return recognise_many(praxicon, [motion], explain=explain)[0]
