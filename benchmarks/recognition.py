@@ -1,0 +1,672 @@
+"""Recognising and parsing real motion: the praxicon's descriptions against three peers.
+
+Run from the repository root (heavy: under the lock on a shared machine)::
+
+    flock /tmp/heavy.lock python benchmarks/recognition.py           # everything, writes docs
+    python benchmarks/recognition.py --only d2-in-style --no-docs     # one protocol
+
+Peers, in the same run, on the same split and the same channels (every rotation channel of the
+non-root joints, unwrapped, and the root's travel and turning velocities in its own frame):
+DTW 1-nearest-neighbour (``dtaidistance``, multivariate, at 10 fps), MiniRocket (``aeon``,
+every take resampled to 64 steps) and a nearest centroid on each joint's angle range.
+
+Protocols: Bandai dataset 1 leave one style out; the dataset-2 subset in style (takes 1-3
+learn, 4-5 test) and leave one style out; open set (one content left out of the learning: its
+takes must come back "none of these"); parsing cmu-mocap6 leave one sequence out (frame
+accuracy and segment F1) and recordings joined from three takes of different Bandai dataset-1
+contents (time precision and recall of the spans, absent actions reported), each against a
+sliding-window MiniRocket. CPU per take is ``time.process_time`` of classifying the test takes
+(features included, reading the files not), divided by their number.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import re
+import sys
+import time
+from collections import defaultdict
+from dataclasses import dataclass
+from pathlib import Path
+
+os.environ.setdefault("NUMBA_NUM_THREADS", "1")
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+
+import numpy as np  # noqa: E402
+
+import importlib.machinery  # noqa: E402
+import importlib.util  # noqa: E402
+
+from _common import DATA, DOCS, IMG, MOCAP, REPO, require, write_csv  # noqa: E402
+
+# benchmarks/praxicon.py sits first on the import path and would be imported as "praxicon":
+# the package is loaded from the repository (as benchmarks/praxicon.py itself does)
+_SPEC = importlib.machinery.PathFinder.find_spec("praxicon", [str(REPO)])
+if _SPEC is not None and "praxicon" not in sys.modules:
+    sys.modules["praxicon"] = importlib.util.module_from_spec(_SPEC)
+    _SPEC.loader.exec_module(sys.modules["praxicon"])
+
+_NAME = re.compile(r"^dataset-\d+_(?P<content>.+?)_(?P<style>[^_]+)_(?P<take>\d+)$")
+
+
+@dataclass(frozen=True)
+class Take:
+    content: str
+    style: str
+    take: int
+    motion: object
+
+
+def read_bandai(folder: Path) -> list[Take]:
+    import kinetology
+
+    out = []
+    if not (folder / "data").is_dir():
+        raise SystemExit(f"{folder}: no such dataset (the shared data is read from "
+                         f"../shared/data/mocap beside the repository)")
+    for path in sorted((folder / "data").glob("*.bvh")):
+        m = _NAME.match(path.stem)
+        out.append(Take(m["content"], m["style"], int(m["take"]), kinetology.read(path)))
+    return out
+
+
+# -- the peers' input: the same channels the descriptions read ----------------------------------
+def series(motion, rate: float = 10.0) -> np.ndarray:
+    """Frames x channels at ``rate`` fps: non-root rotations and the root's local velocities."""
+    from kinetology.segmentation import smooth, unwrap
+    from praxicon.features import _ROTATIONS, _root_joints, root_motion
+
+    roots = _root_joints(motion)
+    cols = [c for c, ch in enumerate(motion.channels)
+            if ch.rpartition(".")[2] in _ROTATIONS and ch.rpartition(".")[0] not in roots]
+    x = smooth(unwrap(motion.values[:, cols].astype(float)), motion.frame_rate, 0.05)
+    if roots:
+        x = np.concatenate([x[:-1], root_motion(motion, roots)], axis=1)
+    step = max(1, int(round(motion.frame_rate / rate)))
+    return np.ascontiguousarray(x[::step])
+
+
+def _resampled(x: np.ndarray, length: int) -> np.ndarray:
+    t = np.linspace(0, len(x) - 1, length)
+    return np.stack([np.interp(t, np.arange(len(x)), x[:, c]) for c in range(x.shape[1])])
+
+
+# -- classifiers: fit(train motions, labels) -> predict(test motions) ---------------------------
+def praxicon_fit(motions, labels, styles=None):
+    """The praxicon's descriptions; with ``styles``, one action per content and style (as
+    ``psgs praxicon build`` groups the dataset-2 subset), the answer's content counted."""
+    from praxicon.description import describe
+
+    groups = defaultdict(list)
+    for i, (m, y) in enumerate(zip(motions, labels)):
+        groups[y if styles is None else f"{y}|{styles[i]}"].append(m)
+    descriptions = describe(groups)
+
+    def predict(test):
+        from praxicon.recognition import recognise_many
+        found = recognise_many(descriptions, test, explain=0)
+        return ([r.ranking[0][0].split("|")[0] for r in found],
+                [r.action.split("|")[0] if r.action else None for r in found])
+    return predict
+
+
+def dtw_fit(motions, labels):
+    from dtaidistance import dtw_ndim
+
+    train = [series(m) for m in motions]
+    scale = np.concatenate(train).std(axis=0) + 1e-9  # every channel on one scale
+
+    def predict(test):
+        out = []
+        for m in test:
+            q = series(m) / scale
+            d = [dtw_ndim.distance_fast(q, t / scale, use_pruning=True) for t in train]
+            out.append(labels[int(np.argmin(d))])
+        return out, out
+    return predict
+
+
+def minirocket_fit(motions, labels, length: int = 64):
+    from aeon.classification.convolution_based import MiniRocketClassifier
+
+    x = np.stack([_resampled(series(m, 30.0), length) for m in motions])
+    model = MiniRocketClassifier(random_state=0, n_jobs=1).fit(x, np.array(labels))
+
+    def predict(test):
+        z = np.stack([_resampled(series(m, 30.0), length) for m in test])
+        out = list(model.predict(z))
+        return out, out
+    return predict
+
+
+def _ranges(motion) -> np.ndarray:
+    x = series(motion, 30.0)
+    joints = defaultdict(float)
+    from praxicon.features import _ROTATIONS, _root_joints
+    roots = _root_joints(motion)
+    names = [ch.rpartition(".")[0] for ch in motion.channels
+             if ch.rpartition(".")[2] in _ROTATIONS and ch.rpartition(".")[0] not in roots]
+    r = np.percentile(x, 95, axis=0) - np.percentile(x, 5, axis=0)
+    for name, value in zip(names, r):
+        joints[name] = max(joints[name], value)
+    return np.array([joints[j] for j in sorted(joints)])
+
+
+def centroid_fit(motions, labels):
+    x = np.stack([_ranges(m) for m in motions])
+    names = sorted(set(labels))
+    centroids = np.stack([x[[y == n for y in labels]].mean(axis=0) for n in names])
+
+    def predict(test):
+        z = np.stack([_ranges(m) for m in test])
+        d = ((z[:, None, :] - centroids[None]) ** 2).sum(axis=2)
+        out = [names[i] for i in d.argmin(axis=1)]
+        return out, out
+    return predict
+
+
+METHODS = {"praxicon": praxicon_fit, "dtw-1nn": dtw_fit, "minirocket": minirocket_fit,
+           "range-centroid": centroid_fit}
+
+
+def run_split(results, protocol, train, test, methods=METHODS):
+    """Fit and predict every method on one split; accumulate predictions and CPU."""
+    labels = [t.content for t in train]
+    known = set(labels)
+    test = [t for t in test if t.content in known]
+    if not test:
+        return
+    for name, fit in methods.items():
+        if getattr(fit, "needs_styles", False):
+            predict = fit([t.motion for t in train], labels, [t.style for t in train])
+        else:
+            predict = fit([t.motion for t in train], labels)
+        began = time.process_time()
+        ranked, decided = predict([t.motion for t in test])
+        cpu = time.process_time() - began
+        r = results[protocol, name]
+        r["truth"] += [t.content for t in test]
+        r["pred"] += list(ranked)
+        r["cpu"] += cpu
+        r["n"] += len(test)
+
+
+def summarise(results, protocol, methods=METHODS):
+    rows = []
+    for name in methods:
+        r = results.get((protocol, name))
+        if not r or not r["n"]:
+            continue
+        truth, pred = np.array(r["truth"]), np.array(r["pred"])
+        recall = {c: float((pred[truth == c] == c).mean()) for c in sorted(set(truth))}
+        rows.append({"protocol": protocol, "method": name, "takes": int(r["n"]),
+                     "accuracy": float((truth == pred).mean()),
+                     "min_recall": min(recall.values()),
+                     "cpu_ms_per_take": 1000 * r["cpu"] / r["n"], "recall": recall})
+    return rows
+
+
+# -- open set ----------------------------------------------------------------------------------
+_MARGINS = (0.5, 0.75, 1.0, 1.5, 2.0)  # thresholds tried: x the worst held-out training take
+
+
+def open_set(results, protocol, train, test):
+    """One content left out of the learning: its test takes should come back None.
+
+    The praxicon's own threshold (1.5 x the worst left-out training take) and the others of
+    ``_MARGINS`` are counted, so the trade-off between rejecting the unknown and keeping the
+    known is printed, not one chosen point.
+    """
+    from praxicon.description import _MARGIN
+    from praxicon.recognition import recognise_many
+
+    labels = [t.content for t in train]
+    groups = defaultdict(list)
+    for t in train:
+        groups[t.content].append(t.motion)
+    from praxicon.description import describe
+    found = recognise_many(describe(groups), [t.motion for t in test], explain=0)
+    known = set(labels)
+    for margin in _MARGINS:
+        r = results[protocol, f"praxicon x{margin:g}"]
+        for t, f in zip(test, found):
+            limit = f.threshold / _MARGIN * margin
+            decided = f.ranking[0][0] if f.penalty <= limit else None
+            if t.content in known:
+                r["known"] += 1
+                r["known_right"] += int(decided == t.content)
+            else:
+                r["unknown"] += 1
+                r["rejected"] += int(decided is None)
+
+
+# -- parsing -----------------------------------------------------------------------------------
+def _rate(motion, rate: float = 30.0):
+    """The motion at about ``rate`` fps (every k-th frame after smoothing): parsing's input."""
+    from kinetology import Motion
+    from kinetology.segmentation import smooth
+
+    k = max(1, int(round(motion.frame_rate / rate)))
+    values = smooth(np.asarray(motion.values, dtype=float), motion.frame_rate, 0.5 * k /
+                    motion.frame_rate)[::k]
+    return Motion(values, motion.channels, motion.frame_rate / k, motion.skeleton,
+                  motion.source)
+
+
+def _cut(motion, start, stop):
+    from kinetology import Motion
+    a, b = int(round(start * motion.frame_rate)), int(round(stop * motion.frame_rate))
+    return Motion(motion.values[a:b], motion.channels, motion.frame_rate, motion.skeleton,
+                  motion.source)
+
+
+_PEERS = [True]  # --no-peers (a quick check of the praxicon alone) sets it False
+
+
+def _window_peer(takes: dict, window: float, hop: float, length: int = 64):
+    """Sliding-window MiniRocket: fit on the training takes' windows, label every window."""
+    if not _PEERS[0]:
+        return lambda motion: (np.array([0.0]), [None])
+    from aeon.classification.convolution_based import MiniRocketClassifier
+    from praxicon.parsing import windows
+
+    x, y = [], []
+    for name, motions in takes.items():
+        for m in motions:
+            for w in windows(m, window, 2 * hop)[1]:
+                x.append(_resampled(series(w, 30.0), length))
+                y.append(name)
+    model = MiniRocketClassifier(random_state=0, n_jobs=1).fit(np.stack(x), np.array(y))
+
+    def label(motion):
+        starts, cuts = windows(motion, window, hop)
+        z = np.stack([_resampled(series(w, 30.0), length) for w in cuts])
+        centres = np.array(starts) + min(window, motion.duration) / 2
+        return centres, list(model.predict(z))
+    return label
+
+
+def _timeline_labels(timeline, times):
+    return timeline.labels(times)
+
+
+def _peer_labels(centres, labels, times):
+    idx = np.abs(np.asarray(times)[:, None] - centres[None, :]).argmin(axis=1)
+    return [labels[i] for i in idx]
+
+
+def _segments(labels, times, step):
+    out = []
+    i = 0
+    while i < len(labels):
+        j = i
+        while j + 1 < len(labels) and labels[j + 1] == labels[i]:
+            j += 1
+        out.append((labels[i], times[i] - step / 2, times[j] + step / 2))
+        i = j + 1
+    return out
+
+
+def segment_f1(truth, found, step):
+    """Segments (runs of one label) matched when the label agrees and IoU >= 0.5."""
+    times = np.arange(len(truth)) * step + step / 2
+    t = [s for s in _segments(truth, times, step) if s[0] is not None]
+    f = [s for s in _segments(found, times, step) if s[0] is not None]
+    hit = 0
+    for label, a, b in t:
+        for label2, c, d in f:
+            inter = max(0.0, min(b, d) - max(a, c))
+            if label == label2 and inter / (max(b, d) - min(a, c)) >= 0.5:
+                hit += 1
+                break
+    precision = hit / len(f) if f else 0.0
+    recall = hit / len(t) if t else 0.0
+    return 2 * precision * recall / (precision + recall) if hit else 0.0
+
+
+def parse_cmu(results, window=2.0, hop=0.25):
+    import kinetology
+    from praxicon.parsing import describe_windows, parse
+
+    root = MOCAP / "cmu-mocap6"
+    sequences = {}
+    for path in sorted((root / "amc").glob("*.amc")):
+        labels = kinetology.read_cmu_truelabels(root / "truelabels" / f"{path.stem}.txt", 120.0)
+        sequences[path.stem] = (_rate(kinetology.read(path)), labels)
+    for left in sequences:
+        takes = defaultdict(list)
+        for name, (motion, spans) in sequences.items():
+            if name == left:
+                continue
+            for span in spans:
+                if span.stop - span.start >= 2.0:
+                    takes[span.label].append(_cut(motion, span.start, min(span.stop,
+                                                                          motion.duration)))
+        motion, spans = sequences[left]
+        step = 0.1
+        times = np.arange(int(motion.duration / step)) * step + step / 2
+        truth = [next((s.label for s in spans if s.start <= t < s.stop), None) for t in times]
+        known = [lab in takes for lab in truth]
+        descriptions = describe_windows(takes, window=window, hop=hop)
+        began = time.process_time()
+        found = parse(descriptions, motion, hop=hop).labels(times)
+        cpu_ours = time.process_time() - began
+        peer = _window_peer(takes, window, hop)
+        began = time.process_time()
+        centres, labels = peer(motion)
+        other = _peer_labels(centres, labels, times)
+        cpu_peer = time.process_time() - began
+        for method, pred, cpu in (("praxicon", found, cpu_ours),
+                                  ("minirocket-windows", other, cpu_peer)):
+            r = results["cmu-parse", method]
+            r["frames"] += sum(known)
+            r["right"] += sum(k and p == t for k, p, t in zip(known, pred, truth))
+            r["f1"].append(segment_f1([t if k else None for t, k in zip(truth, known)],
+                                      pred, step))
+            r["cpu"] += cpu
+            r["seconds"] += motion.duration
+
+
+def _joined(takes, rng):
+    """Takes one after another, the root's position continued where the last take stopped."""
+    from kinetology import Motion
+
+    pieces, spans, t = [], [], 0.0
+    last = None
+    for take in takes:
+        values = np.array(take.motion.values, dtype=float)
+        trans = [c for c, ch in enumerate(take.motion.channels) if ch[-2:] in ("tx", "ty", "tz")]
+        if last is not None:
+            values[:, trans] += last[trans] - values[0, trans]
+        last = values[-1]
+        pieces.append(values)
+        spans.append((take.content, t, t + take.motion.duration))
+        t += take.motion.duration
+    m = takes[0].motion
+    return Motion(np.concatenate(pieces), m.channels, m.frame_rate, m.skeleton,
+                  "<joined>"), spans
+
+
+def parse_joined(results, data, per_style: int = 4, window=2.0, hop=0.25):
+    from praxicon.parsing import describe_windows, parse
+
+    rng = np.random.default_rng(0)
+    for style in sorted({t.style for t in data}):
+        train = defaultdict(list)
+        for t in data:
+            if t.style != style:
+                train[t.content].append(t.motion)
+        mine = [t for t in data if t.style == style and t.content in train]
+        contents = sorted({t.content for t in mine})
+        if len(contents) < 3:
+            continue
+        descriptions = describe_windows(train, window=window, hop=hop)
+        peer = _window_peer(train, window, hop)
+        for _ in range(per_style):
+            chosen = rng.choice(contents, 3, replace=False)
+            takes = [next(t for t in mine if t.content == c) for c in chosen]
+            motion, spans = _joined(takes, rng)
+            step = 0.05
+            times = np.arange(int(motion.duration / step)) * step + step / 2
+            truth = [next((c for c, a, b in spans if a <= x < b), None) for x in times]
+            began = time.process_time()
+            found = parse(descriptions, motion, hop=hop).labels(times)
+            cpu_ours = time.process_time() - began
+            centres, labels = peer(motion)
+            other = _peer_labels(centres, labels, times)
+            for method, pred, cpu in (("praxicon", found, cpu_ours),
+                                      ("minirocket-windows", other, 0.0)):
+                r = results["joined-parse", method]
+                pred = list(pred)
+                r["claimed"] += sum(p is not None for p in pred)
+                r["inside"] += sum(p is not None and p == t for p, t in zip(pred, truth))
+                r["true"] += len(truth)
+                r["covered"] += sum(p == t for p, t in zip(pred, truth))
+                absent = set(train) - set(chosen)
+                r["absent_pairs"] += len(absent)
+                r["absent_reported"] += len(absent & set(pred))
+                r["recordings"] += 1
+                r["any_absent"] += int(bool(absent & set(pred)))
+                r["cpu"] += cpu
+                r["seconds"] += motion.duration
+
+
+def cost_growth(data, counts=(2, 4, 8, 10)):
+    """CPU per take as the number of actions grows (takes of those actions only)."""
+    contents = sorted({t.content for t in data}, key=lambda c: -sum(t.content == c
+                                                                    for t in data))
+    rows = []
+    for k in counts:
+        chosen = set(contents[:k])
+        pool = [t for t in data if t.content in chosen]
+        train = [t for t in pool if t.take == 1 and t.style not in ("normal", "old")]
+        learnt = {t.content for t in train}
+        test = [t for t in pool if t.style in ("normal", "old") and t.content in learnt][:20]
+        row = {"actions": len(learnt), "train_takes": len(train), "test_takes": len(test)}
+        for name in ("praxicon", "dtw-1nn"):
+            predict = METHODS[name]([t.motion for t in train], [t.content for t in train])
+            began = time.process_time()
+            predict([t.motion for t in test])
+            row[name] = 1000 * (time.process_time() - began) / len(test)
+        rows.append(row)
+    return rows
+
+
+def pictures(data, say, style="active", contents=("walk", "byebye", "bow")):
+    """The docs' pictures: a joined recording of one unseen style parsed, and a recognition's
+    explanation (learnt from every other style)."""
+    from praxicon.description import describe
+    from praxicon.parsing import describe_windows, parse
+    from praxicon.recognition import recognise
+    from praxicon.recognition_pictures import draw_explanation, draw_timeline
+
+    train = defaultdict(list)
+    for t in data:
+        if t.style != style:
+            train[t.content].append(t.motion)
+    takes = [next(t for t in data if t.style == style and t.content == c) for c in contents]
+    motion, spans = _joined(takes, None)
+    timeline = parse(describe_windows(train), motion)
+    draw_timeline(timeline, motion, IMG / "recognition_timeline.png")
+    say("truth: " + ", ".join(f"{c} {a:.2f}-{b:.2f}" for c, a, b in spans))
+    for span in timeline.spans:
+        say(f"parsed: {span.start:6.2f} {span.stop:6.2f} {span.action or '-'} {span.score:.3f}")
+    found = recognise(describe(train), next(t.motion for t in data if t.style == style
+                                            and t.content == "byebye"))
+    draw_explanation(found, IMG / "recognition_explanation.png")
+    for line in found.explain().splitlines():
+        say(line.replace(str(MOCAP), "../shared/data/mocap"))
+
+
+def _kind(feature: str) -> str:
+    if feature == "tempo":
+        return "tempo"
+    if ".travel" in feature or ".turn" in feature:
+        return "root drift and sway"
+    kind = feature.rsplit(":", 1)[-1].rstrip("0123456789")
+    return {"posec": "pose"}.get(kind, kind)
+
+
+def ablation(say, d1, d2):
+    """What each kind of feature buys: accuracy with the kind left out (same splits)."""
+    from praxicon.description import common_table, describe_table, distances, feature_rows
+    from praxicon.description import precision_parts
+
+    splits = []
+    for name, data, folds in (
+            ("d2-in-style", d2, [(lambda t: t.take <= 3, lambda t: t.take > 3)]),
+            ("d2-loso", d2, [(lambda t, s=s: t.style != s, lambda t, s=s: t.style == s)
+                             for s in sorted({t.style for t in d2})]),
+            ("d1-loso", d1, [(lambda t, s=s: t.style != s, lambda t, s=s: t.style == s)
+                             for s in sorted({t.style for t in d1})])):
+        rows = feature_rows([t.motion for t in data])
+        order, table = common_table({"all": rows})
+        splits.append((name, data, folds, order, table["all"]))
+    kinds = ["none"] + sorted({_kind(f) for f in splits[0][3]}) + ["rank 0"]
+    out = []
+    for kind in kinds:
+        rank = 0 if kind == "rank 0" else 16
+        accs = []
+        for name, data, folds, order, x in splits:
+            keep = np.array([_kind(f) != kind for f in order])
+            feats = tuple(f for f, k in zip(order, keep) if k)
+            right = total = 0
+            for is_train, is_test in folds:
+                tr = [i for i, t in enumerate(data) if is_train(t)]
+                labels = sorted({data[i].content for i in tr})
+                te = [i for i, t in enumerate(data) if is_test(t) and t.content in labels]
+                d = describe_table({c: x[[i for i in tr if data[i].content == c]][:, keep]
+                                    for c in labels}, feats, rank=rank)
+                means = np.array([a.mean for a in d.actions])
+                dist = distances(x[te][:, keep], means,
+                                 precision_parts(d.spread, np.arange(len(feats))))
+                pred = np.array(d.names)[dist.argmin(axis=1)]
+                right += int((pred == np.array([data[i].content for i in te])).sum())
+                total += len(te)
+            accs.append(right / total)
+        label = ("all features" if kind == "none" else "no shared directions (diagonal)"
+                 if kind == "rank 0" else f"without {kind}")
+        say(f"ablation {label:28s} " + "  ".join(f"{n} {a:.3f}" for (n, *_), a in
+                                                  zip(splits, accs)))
+        out.append({"protocol": "ablation", "method": label,
+                    **{n: a for (n, *_), a in zip(splits, accs)}})
+    return out
+
+
+def _fmt(x, digits=3):
+    return f"{x:.{digits}f}" if isinstance(x, float) else str(x)
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--only", action="append", default=None,
+                        help="d1-loso, d2-in-style, d2-loso, open-set, cmu-parse, joined-parse, "
+                             "growth, ablation, pictures (repeatable; default all)")
+    parser.add_argument("--methods", default=",".join(METHODS))
+    parser.add_argument("--no-docs", action="store_true")
+    parser.add_argument("--no-peers", action="store_true",
+                        help="parsing without its MiniRocket peer (a quick check)")
+    args = parser.parse_args(argv)
+    _PEERS[0] = not args.no_peers
+    require("praxicon")
+    methods = {k: METHODS[k] for k in args.methods.split(",")}
+    want = (lambda p: args.only is None or p in args.only)
+    results = defaultdict(lambda: defaultdict(float, truth=[], pred=[], f1=[]))
+    rows, lines = [], []
+
+    def say(line):
+        print(line, flush=True)
+        lines.append(line)
+
+    d1 = d2 = None
+    if want("d2-in-style") or want("d2-loso") or want("open-set") or want("ablation"):
+        d2 = read_bandai(MOCAP / "bandai-namco-2-subset")
+    if want("d1-loso") or want("open-set") or want("joined-parse") or want("growth") or \
+            want("pictures") or want("ablation"):
+        d1 = read_bandai(MOCAP / "bandai-namco-1")
+    if want("d1-loso"):
+        for style in sorted({t.style for t in d1}):
+            run_split(results, "d1-loso", [t for t in d1 if t.style != style],
+                      [t for t in d1 if t.style == style], methods)
+        rows += summarise(results, "d1-loso", methods)
+    if want("d2-in-style"):
+        run_split(results, "d2-in-style", [t for t in d2 if t.take <= 3],
+                  [t for t in d2 if t.take > 3], methods)
+        rows += summarise(results, "d2-in-style", methods)
+    if want("d2-loso"):
+        for style in sorted({t.style for t in d2}):
+            run_split(results, "d2-loso", [t for t in d2 if t.style != style],
+                      [t for t in d2 if t.style == style], methods)
+        rows += summarise(results, "d2-loso", methods)
+    for row in rows:
+        best_peer = max((r["accuracy"] for r in rows if r["protocol"] == row["protocol"]
+                         and r["method"] not in ("praxicon",)), default=float("nan"))
+        dtw = next((r["cpu_ms_per_take"] for r in rows if r["protocol"] == row["protocol"]
+                    and r["method"] == "dtw-1nn"), float("nan"))
+        row["vs_best_peer"] = row["accuracy"] - best_peer
+        row["cpu_vs_dtw"] = row["cpu_ms_per_take"] / dtw
+        worst = sorted(row["recall"].items(), key=lambda kv: kv[1])[:3]
+        say(f"{row['protocol']:12s} {row['method']:15s} n={row['takes']:4d} "
+            f"acc={row['accuracy']:.3f} (best peer {best_peer:.3f}) min-recall="
+            f"{row['min_recall']:.2f} cpu={row['cpu_ms_per_take']:.2f} ms/take "
+            f"(x{row['cpu_vs_dtw']:.2f} DTW)  worst: "
+            + ", ".join(f"{c} {v:.2f}" for c, v in worst))
+    if want("open-set"):
+        for content in sorted({t.content for t in d2}):
+            open_set(results, "open-d2-in-style",
+                     [t for t in d2 if t.take <= 3 and t.content != content],
+                     [t for t in d2 if t.take > 3])
+        many = sorted(c for c in {t.content for t in d1} if sum(t.content == c for t in d1) >= 10)
+        for i, style in enumerate(sorted({t.style for t in d1})):
+            content = many[i % len(many)]
+            open_set(results, "open-d1-loso",
+                     [t for t in d1 if t.style != style and t.content != content],
+                     [t for t in d1 if t.style == style])
+        for protocol in ("open-d2-in-style", "open-d1-loso"):
+            for margin in _MARGINS:
+                method = f"praxicon x{margin:g}"
+                r = results[protocol, method]
+                row = {"protocol": protocol, "method": method, "takes": int(r["unknown"]),
+                       "none_of_these": r["rejected"] / r["unknown"],
+                       "closed_accuracy": r["known_right"] / r["known"]}
+                rows.append(row)
+                say(f"{protocol:16s} {method:13s} left-out takes={row['takes']} none-of-these="
+                    f"{row['none_of_these']:.3f}  known takes={int(r['known'])} accuracy with "
+                    f"rejection={row['closed_accuracy']:.3f}")
+    for protocol, run in (("cmu-parse", lambda: parse_cmu(results)),
+                          ("joined-parse", lambda: parse_joined(results, d1))):
+        if not want(protocol):
+            continue
+        run()
+        for method in ("praxicon", "minirocket-windows"):
+            r = results[protocol, method]
+            if protocol == "cmu-parse":
+                row = {"protocol": protocol, "method": method,
+                       "frame_accuracy": r["right"] / r["frames"],
+                       "segment_f1": float(np.mean(r["f1"])),
+                       "cpu_ms_per_second": 1000 * r["cpu"] / r["seconds"]}
+                say(f"{protocol:12s} {method:19s} frame accuracy={row['frame_accuracy']:.3f} "
+                    f"segment F1={row['segment_f1']:.3f} cpu={row['cpu_ms_per_second']:.2f} "
+                    f"ms per second of motion")
+            else:
+                row = {"protocol": protocol, "method": method,
+                       "recordings": int(r["recordings"]),
+                       "time_precision": r["inside"] / max(1, r["claimed"]),
+                       "time_recall": r["covered"] / r["true"],
+                       "absent_reported": r["absent_reported"] / r["absent_pairs"],
+                       "recordings_with_absent": r["any_absent"] / r["recordings"]}
+                say(f"{protocol:12s} {method:19s} recordings={row['recordings']} time precision="
+                    f"{row['time_precision']:.3f} recall={row['time_recall']:.3f} absent action "
+                    f"reported={row['absent_reported']:.3f} (recordings with one: "
+                    f"{row['recordings_with_absent']:.2f})")
+            rows.append(row)
+    if want("ablation"):
+        rows += ablation(say, d1, d2)
+    if want("pictures"):
+        pictures(d1, say)
+    if want("growth"):
+        for g in cost_growth(d1):
+            say(f"growth  actions={g['actions']:2d} train takes={g['train_takes']:3d} "
+                f"praxicon {g['praxicon']:.2f} ms/take, DTW 1-NN {g['dtw-1nn']:.2f} ms/take "
+                f"(ratio {g['praxicon'] / g['dtw-1nn']:.2f})")
+            rows.append({"protocol": "growth", "method": "praxicon/dtw-1nn", **g})
+    if not args.no_docs:
+        header = ["protocol", "method", "takes", "accuracy", "min_recall", "vs_best_peer",
+                  "cpu_ms_per_take", "cpu_vs_dtw", "none_of_these", "closed_accuracy",
+                  "frame_accuracy", "segment_f1", "recordings", "time_precision",
+                  "time_recall", "absent_reported", "recordings_with_absent", "actions",
+                  "train_takes", "praxicon", "dtw-1nn", "d2-in-style", "d2-loso", "d1-loso"]
+        write_csv(DATA / "recognition.csv", header,
+                  [[_fmt(r.get(h, "")) if not isinstance(r.get(h, ""), float)
+                    else f"{r[h]:.4f}" for h in header] for r in rows])
+        from _common import replace_section
+        replace_section(DOCS / "praxicon.md", "recognition",
+                        "Measured by `flock /tmp/heavy.lock python benchmarks/recognition.py` "
+                        "(one run, every method on the same split and channels):\n\n```text\n"
+                        + "\n".join(lines) + "\n```")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,381 @@
+"""What the praxicon keeps per action for recognition, and the spread its actions share.
+
+Every take becomes one feature vector (:func:`praxicon.features.motion_features`). An
+:class:`ActionDescription` is the mean of its action's vectors and how much its own copies vary
+(per feature); :class:`Spread` is how the copies of *any* action vary around their action's
+mean, pooled over every action and style: a per-feature scale, a few correlated directions
+(``factors``, the main ways a style changes a performance: faster, bigger, more stooped) and
+what is left per feature (``noise``). Together (:class:`Descriptions`) they are a Gaussian per
+action with one shared covariance, ``diag(noise) + factorsᵀ factors`` in scaled units, so the
+log-likelihoods of all actions are on one scale; their size grows with the number of actions
+and features, never with the number of takes (no take is kept).
+
+A motion is "none of these" when even its best action's squared Mahalanobis distance per
+feature exceeds ``Spread.threshold``, the largest a training take reached when left out of its
+own action's mean. Probabilities are the likelihoods at the ``temperature`` that fits the
+left-out training takes best.
+
+>>> from kinetology import synthetic_motion
+>>> takes = {"a": [synthetic_motion(3, (0,), seed=s) for s in (1, 2, 3)],
+...          "b": [synthetic_motion(3, (2,), seed=s) for s in (4, 5, 6)]}
+>>> d = describe(takes)
+>>> [a.name for a in d.actions], Descriptions.from_json(d.to_json()) == d
+(['a', 'b'], True)
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .features import FeatureError, motion_features
+
+__all__ = ["FORMAT_VERSION", "ActionDescription", "Spread", "Descriptions", "describe",
+           "describe_table", "DescriptionError"]
+
+#: Bumped when what a description holds or how features are computed changes.
+FORMAT_VERSION = 1
+_RANK = 16  # shared directions of variation kept (fewer when there are fewer takes)
+_NOISE_FLOOR = 0.05  # smallest per-feature variance left, in scaled units
+_PRIOR_TAKES = 10.0  # pseudo-takes of typical spread each feature's own spread is shrunk to
+_MARGIN = 1.5  # the "none of these" threshold: this times the worst held-out training take
+_FOLDS = 5  # held-out folds of the calibration
+
+
+class DescriptionError(ValueError):
+    """Descriptions that cannot be made, read or used (one line, naming what to do)."""
+
+
+def _floats(values) -> tuple[float, ...]:
+    return tuple(float(v) for v in values)
+
+
+@dataclass(frozen=True)
+class ActionDescription:
+    """One action: per feature the mean of its takes and their spread (standard deviation).
+
+    ``takes`` counts the takes (or windows) learnt from; ``window`` is the length in seconds of
+    the windows learnt from (0: whole takes).
+    """
+
+    name: str
+    features: tuple[str, ...]
+    mean: tuple[float, ...]
+    spread: tuple[float, ...]
+    takes: int
+    window: float = 0.0
+    version: int = FORMAT_VERSION
+
+    def to_dict(self) -> dict:
+        """Plain JSON values (floats kept exactly: JSON writes them with ``repr``)."""
+        return {"format": "praxicon-action-description", "version": self.version,
+                "name": self.name, "features": list(self.features), "mean": list(self.mean),
+                "spread": list(self.spread), "takes": self.takes, "window": self.window}
+
+    def to_json(self) -> str:
+        """JSON text of :meth:`to_dict`."""
+        return json.dumps(self.to_dict())
+
+    @classmethod
+    def from_dict(cls, data: dict) -> "ActionDescription":
+        """The description :meth:`to_dict` wrote (another format or version: a clear error)."""
+        _check(data, "praxicon-action-description")
+        return cls(str(data["name"]), tuple(data["features"]), _floats(data["mean"]),
+                   _floats(data["spread"]), int(data["takes"]), float(data["window"]))
+
+    @classmethod
+    def from_json(cls, text: str) -> "ActionDescription":
+        """The description :meth:`to_json` wrote.
+
+        Examples
+        --------
+        >>> d = ActionDescription("wave", ("a.rx:pose",), (0.1,), (2.0 / 3,), 2)
+        >>> ActionDescription.from_json(d.to_json()) == d
+        True
+        """
+        return cls.from_dict(_loads(text))
+
+
+@dataclass(frozen=True)
+class Spread:
+    """How copies of an action vary around its mean, shared by every action of a praxicon.
+
+    Features are divided by ``scale``; in those units the covariance is
+    ``diag(noise) + factorsᵀ factors`` (``factors``: rows of shared directions).
+    """
+
+    features: tuple[str, ...]
+    scale: tuple[float, ...]
+    factors: tuple[tuple[float, ...], ...]
+    noise: tuple[float, ...]
+    threshold: float
+    temperature: float
+    window: float = 0.0
+    version: int = FORMAT_VERSION
+
+    def to_dict(self) -> dict:
+        """Plain JSON values (floats kept exactly)."""
+        return {"format": "praxicon-spread", "version": self.version,
+                "features": list(self.features), "scale": list(self.scale),
+                "factors": [list(f) for f in self.factors], "noise": list(self.noise),
+                "threshold": self.threshold, "temperature": self.temperature,
+                "window": self.window}
+
+    @classmethod
+    def from_dict(cls, data: dict) -> "Spread":
+        """The spread :meth:`to_dict` wrote."""
+        _check(data, "praxicon-spread")
+        return cls(tuple(data["features"]), _floats(data["scale"]),
+                   tuple(_floats(f) for f in data["factors"]), _floats(data["noise"]),
+                   float(data["threshold"]), float(data["temperature"]), float(data["window"]))
+
+
+@dataclass(frozen=True)
+class Descriptions:
+    """Every action's description and their shared spread: what recognition reads."""
+
+    actions: tuple[ActionDescription, ...]
+    spread: Spread
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """The actions' names, in order."""
+        return tuple(a.name for a in self.actions)
+
+    def to_dict(self) -> dict:
+        """Plain JSON values (floats kept exactly)."""
+        return {"format": "praxicon-descriptions", "version": FORMAT_VERSION,
+                "actions": [a.to_dict() for a in self.actions], "spread": self.spread.to_dict()}
+
+    def to_json(self) -> str:
+        """JSON text; floats come back exactly from :meth:`from_json`."""
+        return json.dumps(self.to_dict())
+
+    @classmethod
+    def from_dict(cls, data: dict) -> "Descriptions":
+        """The descriptions :meth:`to_dict` wrote (another version: a clear error)."""
+        _check(data, "praxicon-descriptions")
+        try:
+            return cls(tuple(ActionDescription.from_dict(a) for a in data["actions"]),
+                       Spread.from_dict(data["spread"]))
+        except (KeyError, TypeError, ValueError) as exc:
+            if isinstance(exc, DescriptionError):
+                raise
+            raise DescriptionError(f"malformed praxicon descriptions ({type(exc).__name__}: "
+                                   f"{exc})") from None
+
+    @classmethod
+    def from_json(cls, text: str) -> "Descriptions":
+        """The descriptions :meth:`to_json` wrote (another version: a clear error)."""
+        return cls.from_dict(_loads(text))
+
+
+def _loads(text: str) -> dict:
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise DescriptionError(f"not JSON (line {exc.lineno}, column {exc.colno}: "
+                               f"{exc.msg})") from None
+    if not isinstance(data, dict):
+        raise DescriptionError("not a praxicon description (a JSON object expected)")
+    return data
+
+
+def _check(data: dict, kind: str) -> None:
+    if data.get("format") != kind:
+        raise DescriptionError(f"not a {kind} (format {data.get('format')!r})")
+    if data.get("version") != FORMAT_VERSION:
+        raise DescriptionError(f"{kind} of version {data.get('version')!r}; this psgs reads "
+                               f"version {FORMAT_VERSION}: learn the descriptions again "
+                               f"(psgs praxicon describe PX)")
+
+
+# -- the model ---------------------------------------------------------------------------------
+def precision_parts(spread: Spread, columns) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(scale, 1/noise, W, M⁻¹)`` pieces of the precision on ``columns`` (Woodbury)."""
+    scale = np.asarray(spread.scale)[columns]
+    inverse = 1.0 / np.asarray(spread.noise)[columns]
+    w = np.asarray(spread.factors, dtype=float).reshape(-1, len(spread.scale))[:, columns]
+    inner = np.linalg.inv(np.eye(len(w)) + (w * inverse) @ w.T)
+    return scale, inverse, w, inner
+
+
+def mahalanobis_terms(x: np.ndarray, mean: np.ndarray, parts) -> np.ndarray:
+    """Per-feature terms ``d_f (Σ⁻¹ d)_f`` of the squared Mahalanobis distance (rows: motions);
+    they sum to the distance, and their sums per joint are the explanation."""
+    scale, inverse, w, inner = parts
+    d = (np.atleast_2d(x) - mean) / scale
+    pd = d * inverse
+    b = pd @ w.T
+    return d * (pd - ((b @ inner) @ w) * inverse)
+
+
+def distances(x: np.ndarray, means: np.ndarray, parts) -> np.ndarray:
+    """Squared Mahalanobis distance of every row of ``x`` to every mean (motions x actions)."""
+    scale, inverse, w, inner = parts
+    out = np.empty((len(x), len(means)))
+    for a, mean in enumerate(means):
+        d = (x - mean) / scale
+        b = (d * inverse) @ w.T
+        out[:, a] = (d * d * inverse).sum(axis=1) - np.einsum("ni,ij,nj->n", b, inner, b)
+    return out
+
+
+def probabilities(dist: np.ndarray, temperature: float) -> np.ndarray:
+    """Posterior probabilities (equal priors) from squared distances at ``temperature``."""
+    logits = -0.5 * dist / temperature
+    logits -= logits.max(axis=-1, keepdims=True)
+    p = np.exp(logits)
+    return p / p.sum(axis=-1, keepdims=True)
+
+
+def _scale_floors(features) -> np.ndarray:
+    """The smallest scale of each feature: a degree (or a degree per second, a length unit per
+    second) for angles and rates, 10 % for the log ranges and energies, 5 % of the tempo.
+
+    A joint that never moves in training has a near-zero spread; divided by it, a tenth of a
+    degree in a new take would count as a thousand standard deviations.
+    """
+    floors = {"spread": 0.1, "energy": 0.1, "tempo": 0.05}
+    return np.array([floors.get(f.rsplit(":", 1)[-1].rstrip("0123456789"), 1.0)
+                     for f in features])
+
+
+def _fit_spread(groups: list[np.ndarray], rank: int, floors=None):
+    every = np.concatenate(groups)
+    scale = every.std(axis=0)
+    scale = np.maximum(scale, 1e-9 if floors is None else floors)
+    means = np.array([g.mean(axis=0) for g in groups])
+    residuals = np.concatenate([(g - m) / scale for g, m in zip(groups, means)])
+    dof = max(1, sum(len(g) - 1 for g in groups))
+    variance = (residuals ** 2).sum(axis=0) / dof
+    r = max(0, min(rank, dof - 1, residuals.shape[1] - 1))
+    _, singular, vt = np.linalg.svd(residuals / math.sqrt(dof), full_matrices=False)
+    eigen = singular ** 2
+    rest = float(eigen[r:].sum() / max(1, residuals.shape[1] - r))
+    factors = vt[:r] * np.sqrt(np.maximum(eigen[:r] - rest, 0.0))[:, None]
+    noise = np.maximum(variance - (factors ** 2).sum(axis=0), max(_NOISE_FLOOR, rest))
+    # a variance read from few takes is mostly luck: shrink each feature's towards the mean
+    # over features, as if _PRIOR_TAKES more takes had shown the typical spread
+    noise = (dof * noise + _PRIOR_TAKES * noise.mean()) / (dof + _PRIOR_TAKES)
+    return scale, means, factors, noise
+
+
+def _calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
+               folds: int = _FOLDS):
+    """Threshold and temperature from held-out training takes (``folds``-fold).
+
+    Every take is scored by a model learnt without it (its action's mean *and* the shared
+    spread), as an unseen take would be; an action with a single take cannot be held out.
+    The threshold is ``_MARGIN`` times the largest distance per feature such a take got; the
+    temperature the one (a power of 2) whose probabilities fit the held-out takes best.
+    ``sources`` (per action, per row: the take a row comes from) keeps the windows of one take
+    in one fold, so that a take is never scored by a model that saw another piece of it.
+    """
+    if sources is None:
+        sources = [np.arange(len(g)) for g in groups]
+    else:  # takes numbered in order, so that a take's fold does not depend on its id
+        sources = [np.unique(np.asarray(s), return_inverse=True)[1] for s in sources]
+    moved, truth = [], []
+    for fold in range(folds):
+        out = [s % folds == fold for s in sources]
+        train = [g[~o] for g, o in zip(groups, out)]
+        if any(len(t) == 0 for t in train):
+            keep = [a for a, t in enumerate(train) if len(t)]
+        else:
+            keep = list(range(len(groups)))
+        if len(keep) < 1:
+            continue
+        scale, means, factors, noise = _fit_spread([train[a] for a in keep], rank, floors)
+        spread = Spread(("",) * len(scale), _floats(scale), tuple(_floats(f) for f in factors),
+                        _floats(noise), math.inf, 1.0)
+        parts = precision_parts(spread, np.arange(len(scale)))
+        for k, a in enumerate(keep):
+            held = groups[a][out[a]]
+            if len(held) and len(train[a]):
+                moved.extend(distances(held, means, parts))
+                truth.extend([k] * len(held))
+                # rows must share one set of actions: pad the actions left out with +inf
+                if len(keep) < len(groups):
+                    moved[-len(held):] = [np.concatenate([r, np.full(len(groups) - len(keep),
+                                                                     np.inf)])
+                                          for r in moved[-len(held):]]
+    if not moved:
+        return math.inf, 1.0
+    dist = np.array(moved)
+    features = groups[0].shape[1]
+    own = dist[np.arange(len(truth)), truth] / features
+    threshold = float(own.max() * _MARGIN)
+    best, best_loss = 1.0, math.inf
+    for temperature in 2.0 ** np.arange(0, 12):
+        p = probabilities(dist, temperature)[np.arange(len(truth)), truth]
+        loss = float(-np.log(np.maximum(p, 1e-300)).mean())
+        if loss < best_loss - 1e-12:
+            best, best_loss = float(temperature), loss
+    return threshold, best
+
+
+def describe_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
+                   window: float = 0.0, rank: int = _RANK, sources=None) -> Descriptions:
+    """Descriptions from feature rows (``{action: takes x features}``), sorted by name.
+
+    ``sources`` (``{action: per row the take it comes from}``, for windows) keeps each take's
+    rows together when the threshold is calibrated.
+    """
+    names = sorted(table)
+    groups = [np.asarray(table[n], dtype=float) for n in names]
+    if not groups:
+        raise DescriptionError("no action to describe")
+    floors = _scale_floors(features)
+    scale, means, factors, noise = _fit_spread(groups, rank, floors)
+    spread = Spread(tuple(features), _floats(scale), tuple(_floats(f) for f in factors),
+                    _floats(noise), math.inf, 1.0, window)
+    threshold, temperature = _calibrate(
+        groups, rank, None if sources is None else [sources[n] for n in names], floors)
+    spread = Spread(spread.features, spread.scale, spread.factors, spread.noise, threshold,
+                    temperature, window)
+    actions = tuple(ActionDescription(n, tuple(features), _floats(m), _floats(g.std(axis=0)),
+                                      len(g), window) for n, g, m in zip(names, groups, means))
+    return Descriptions(actions, spread)
+
+
+def feature_rows(motions, *, shape: bool = True) -> list[dict[str, float]]:
+    """Each motion's features as a ``{feature: value}`` dict."""
+    rows = []
+    for m in motions:
+        try:
+            rows.append(dict(zip(*motion_features(m, shape=shape))))
+        except FeatureError as exc:
+            raise DescriptionError(str(exc)) from None
+    return rows
+
+
+def common_table(rows: dict[str, list[dict[str, float]]]):
+    """The features every row has, in the first row's order, and the table of them."""
+    for name, per in rows.items():
+        if not per:
+            raise DescriptionError(f"action {name!r} has no takes")
+    common = set.intersection(*(set(r) for per in rows.values() for r in per))
+    order = tuple(f for f in next(iter(rows.values()))[0] if f in common)
+    return order, {n: np.array([[r[f] for f in order] for r in per]) for n, per in rows.items()}
+
+
+def describe(takes: dict[str, list], *, rank: int = _RANK) -> Descriptions:
+    """Descriptions of every action from its takes (``{name: [Motion, ...]}``).
+
+    Features some take lacks (its skeleton has fewer joints) are left out.
+
+    Examples
+    --------
+    >>> from kinetology import synthetic_motion
+    >>> d = describe({"a": [synthetic_motion(2, (0,), seed=s) for s in (1, 2)],
+    ...               "b": [synthetic_motion(2, (1,), seed=s) for s in (3, 4)]})
+    >>> d.names, [a.takes for a in d.actions], len(d.spread.features) == len(d.actions[0].mean)
+    (('a', 'b'), [2, 2], True)
+    """
+    rows = {name: feature_rows(motions) for name, motions in takes.items()}
+    order, table = common_table(rows)
+    return describe_table(table, order, rank=rank)

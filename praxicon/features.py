@@ -1,0 +1,196 @@
+"""Features of a take: one fixed-length vector of numbers, computed once per take or window.
+
+Per rotation channel of every joint but the root: its typical pose (median angle), its spread
+(10-90 % range, log), its velocity energy (RMS speed, log) and the course of the take (the means
+of its four quarters, relative to the median; a one-off action's shape). Per root (the joint
+whose position moves): its travel and turning velocities in its own frame, mean (the drift: a
+turn's heading rate, the speed of travel) and RMS of the rest (bobbing, swaying). And the take's
+tempo: the period of its summed joint speed (log seconds).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["motion_features", "feature_joint", "FeatureError"]
+
+_ROTATIONS = ("rx", "ry", "rz")
+_TRANSLATIONS = ("tx", "ty", "tz")
+_SMOOTHING = 0.05  # seconds: Gaussian smoothing before differentiating (sensor noise)
+
+
+class FeatureError(ValueError):
+    """A motion that has no features (fewer than 3 frames)."""
+
+
+def feature_joint(feature: str) -> str:
+    """The joint a feature belongs to (``"*"`` for the take-wide tempo)."""
+    channel = feature.rsplit(":", 1)[0]
+    return channel.split(".", 1)[0] if "." in channel else "*"
+
+
+def _joints_in_order(motion) -> list[str]:
+    seen: dict[str, None] = {}
+    for name in motion.channels:
+        seen.setdefault(name.rpartition(".")[0], None)
+    return list(seen)
+
+
+def _root_joints(motion) -> list[str]:
+    """The root chain: every joint (in channel order) up to the last whose position moves.
+
+    A take may carry the body's travel on a top joint (``joint_Root``) and its bobbing on the
+    next (``Hips``), or both on one: the chain's composed motion is the body's either way, so
+    every take of a skeleton gets the same features. Empty when no position moves.
+    """
+    joints = _joints_in_order(motion)
+    last = -1
+    for c, name in enumerate(motion.channels):
+        joint, _, axis = name.rpartition(".")
+        if axis in _TRANSLATIONS and np.ptp(motion.values[:, c]) > 1e-6:
+            last = max(last, joints.index(joint))
+    return joints[:last + 1]
+
+
+def _joint_transform(motion, joint: str):
+    """Per frame the joint's rotation matrix and translation (smoothed channels)."""
+    from kinetology.kinematics import rotation_matrices
+    from kinetology.segmentation import smooth, unwrap
+
+    rate = motion.frame_rate
+    order = "".join(c.rsplit(".", 1)[1][1].upper() for c in motion.channels
+                    if c.startswith(joint + ".") and c.rsplit(".", 1)[1] in _ROTATIONS)
+    if motion.skeleton is not None and joint in motion.skeleton.names:
+        order = motion.skeleton.joints[motion.skeleton.index(joint)].rotation_order
+    angles = {a.upper(): smooth(unwrap(motion.column(f"{joint}.r{a}").astype(float)), rate,
+                                _SMOOTHING)
+              for a in "xyz" if f"{joint}.r{a}" in motion.channels}
+    rot = rotation_matrices(angles, order or "XYZ", motion.frames)
+    pos = np.stack([smooth(motion.column(f"{joint}.t{a}").astype(float), rate, _SMOOTHING)
+                    if f"{joint}.t{a}" in motion.channels else np.zeros(motion.frames)
+                    for a in "xyz"], axis=1)
+    return rot, pos
+
+
+def root_motion(motion, chain: list[str]) -> np.ndarray:
+    """Frames-1 x 6: the root chain's velocity and turning rate (deg/s) in its own frame."""
+    rot = np.broadcast_to(np.eye(3), (motion.frames, 3, 3)).copy()
+    pos = np.zeros((motion.frames, 3))
+    for joint in chain:  # compose parent to child: p += R t_child, R = R R_child
+        r, t = _joint_transform(motion, joint)
+        pos = pos + np.einsum("tij,tj->ti", rot, t)
+        rot = rot @ r
+    rate = motion.frame_rate
+    velocity = np.einsum("tji,tj->ti", rot[:-1], np.diff(pos, axis=0)) * rate
+    step = np.einsum("tji,tjk->tik", rot[:-1], rot[1:])  # R_t^T R_t+1: the turn in one frame
+    turning = np.degrees(np.stack([step[:, 2, 1] - step[:, 1, 2], step[:, 0, 2] - step[:, 2, 0],
+                                   step[:, 1, 0] - step[:, 0, 1]], axis=1) / 2) * rate
+    return np.concatenate([velocity, turning], axis=1)
+
+
+def _tempo(speed: np.ndarray, frame_rate: float) -> float:
+    """Period (seconds) of the summed joint speed: the first autocorrelation peak in 0.25-4 s."""
+    x = speed - speed.mean()
+    n = len(x)
+    lo, hi = int(0.25 * frame_rate), min(int(4.0 * frame_rate), n // 2)
+    if hi <= lo + 2 or not np.any(x):
+        return float(n / frame_rate)
+    spectrum = np.fft.rfft(x, 2 * n)
+    ac = np.fft.irfft(spectrum * np.conj(spectrum))[:n]
+    ac = ac / ac[0]
+    seg = ac[lo:hi]
+    peaks = np.flatnonzero((seg[1:-1] > seg[:-2]) & (seg[1:-1] >= seg[2:]) & (seg[1:-1] > 0.1))
+    lag = lo + 1 + peaks[0] if len(peaks) else n
+    return float(lag / frame_rate)
+
+
+def _root_features(motion, chain: list[str]) -> list[tuple[str, float]]:
+    """The root's travel and turning in its own frame, whichever way the body faces.
+
+    The root chain's velocity and angular velocity are expressed in its own frame (so a walk
+    to the north and one to the south, or a turn started facing east, give the same numbers):
+    per local axis the mean (the drift: a turn's heading rate, the travel speed) and the RMS
+    of the rest (bobbing, swaying). Rotation orders are the skeleton's, else the order of each
+    joint's rotation channels in the motion. Named after the chain's last joint.
+    """
+    series = root_motion(motion, chain)
+    out = []
+    for k, kind in enumerate(("travel", "turn")):
+        part = series[:, 3 * k:3 * k + 3]
+        mean = part.mean(axis=0)
+        sway = np.sqrt(((part - mean) ** 2).mean(axis=0))
+        for i, a in enumerate("xyz"):
+            out.append((f"{chain[-1]}.{kind}{a}:drift", float(mean[i])))
+            out.append((f"{chain[-1]}.{kind}{a}:energy", math.log1p(float(sway[i]))))
+    return out
+
+
+def motion_features(motion, *, shape: bool = True) -> tuple[tuple[str, ...], np.ndarray]:
+    """The feature vector of a whole motion: names and values (see the module's description).
+
+    Parameters
+    ----------
+    motion : kinetology.Motion
+        At least 3 frames.
+    shape : bool, default True
+        Include the four quarter means per channel (the course of a one-off action); windows
+        of a recording leave them out (a window's quarters depend on where it starts).
+
+    Returns
+    -------
+    names : tuple of str
+        ``channel:kind`` (kinds pose and posec: the median's sine and cosine, spread, energy,
+        shape0..3; the root's ``travel*``/``turn*`` drift and energy) and ``tempo``.
+    values : numpy.ndarray
+
+    Raises
+    ------
+    FeatureError
+        When the motion has fewer than 3 frames.
+
+    Examples
+    --------
+    >>> from kinetology import synthetic_motion
+    >>> names, values = motion_features(synthetic_motion(2, (0,), seed=1))
+    >>> names[:3], len(names) == len(values)
+    (('j0.rx:pose', 'j0.rx:posec', 'j0.rx:spread'), True)
+    """
+    from kinetology.segmentation import smooth, unwrap
+
+    if motion.frames < 3:
+        raise FeatureError(f"{motion.source}: {motion.frames} frames; a description needs "
+                               f"at least 3")
+    rate = motion.frame_rate
+    roots = _root_joints(motion)
+    columns = [c for c, channel in enumerate(motion.channels)
+               if channel.rpartition(".")[2] in _ROTATIONS
+               and channel.rpartition(".")[0] not in roots]
+    x = smooth(unwrap(motion.values[:, columns].astype(float)), rate, _SMOOTHING)
+    speed = np.abs(np.gradient(x, axis=0)) * rate
+    median = np.median(x, axis=0)
+    low, high = np.percentile(x, [10, 90], axis=0)
+    # an angle is a point on a circle: its typical value as sine and cosine (in degrees of arc
+    # near 0), so a take read as 179 and one read as -181 have the same pose
+    radians = np.radians(median)
+    table = [("pose", np.degrees(np.sin(radians))), ("posec", np.degrees(np.cos(radians))),
+             ("spread", np.log1p(high - low)),
+             ("energy", np.log1p(np.sqrt(np.mean(speed ** 2, axis=0))))]
+    if shape:
+        table += [(f"shape{i}", q.mean(axis=0) - median)
+                  for i, q in enumerate(np.array_split(x, 4))]
+    names: list[str] = []
+    values: list[float] = []
+    for k, c in enumerate(columns):
+        for kind, column in table:
+            names.append(f"{motion.channels[c]}:{kind}")
+            values.append(float(column[k]))
+    if roots:
+        for name, value in _root_features(motion, roots):
+            names.append(name)
+            values.append(value)
+    if columns:
+        names.append("tempo")
+        values.append(math.log(_tempo(speed.sum(axis=1), rate)))
+    return tuple(names), np.array(values, dtype=float)

@@ -1,0 +1,179 @@
+"""Parsing a recording into actions: a timeline of spans, each a learnt action or none.
+
+Sliding windows (``window`` seconds long, every ``hop`` seconds) are scored by the actions'
+window descriptions with the same penalty that recognises whole takes; a Viterbi pass then
+picks one action (or none) per window, paying ``switch`` per change, so one odd window does not
+break a span and a span is never longer than the run of windows that carry it. Each window's
+answer covers the ``hop`` around its centre, so spans follow the motion to within half a window.
+
+>>> from kinetology import Motion, synthetic_motion
+>>> import numpy as np
+>>> a = [synthetic_motion(3, (0,), seed=1, noise=n) for n in (0.2, 0.5, 1.0)]
+>>> b = [synthetic_motion(3, (2,), seed=2, noise=n) for n in (0.2, 0.5, 1.0)]
+>>> px = describe_windows({"a": a, "b": b}, window=1.0, hop=0.5)
+>>> joined = Motion(np.concatenate([a[0].values, b[1].values]), a[0].channels, 120.0)
+>>> [(s.start, s.stop, s.action) for s in parse(px, joined).spans]
+[(0.0, 7.625, 'a'), (7.625, 8.625, None), (8.625, 15.866667, 'b')]
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .description import (DescriptionError, common_table, describe_table, distances,
+                          feature_rows, precision_parts, probabilities)
+
+__all__ = ["Span", "Timeline", "parse", "describe_windows", "windows"]
+
+_WINDOW = 2.0  # seconds: about two cycles of a gait or a wave
+_HOP = 0.25  # seconds between window starts
+_SWITCH = 10.0  # log-likelihood a change of action costs: about e^-10, a rare event
+
+
+@dataclass(frozen=True)
+class Span:
+    """``start`` .. ``stop`` seconds performing ``action`` (None: no learnt action), ``score``
+    the mean probability of that answer over the span's windows."""
+
+    start: float
+    stop: float
+    action: str | None
+    score: float
+
+
+@dataclass(frozen=True)
+class Timeline:
+    """A recording parsed into spans, in time order, covering ``0 .. duration``."""
+
+    source: str
+    duration: float
+    spans: tuple[Span, ...]
+
+    def labels(self, times) -> list[str | None]:
+        """The action at each of ``times`` (seconds)."""
+        stops = np.array([s.stop for s in self.spans])
+        index = np.minimum(np.searchsorted(stops, np.asarray(times), side="right"),
+                           len(self.spans) - 1)
+        return [self.spans[i].action for i in index]
+
+    def text(self) -> str:
+        """One line per span: start, stop, action, score."""
+        return "\n".join(f"{s.start:8.2f} {s.stop:8.2f}  {s.action or '-':24s} {s.score:.3f}"
+                         for s in self.spans)
+
+
+def windows(motion, window: float = _WINDOW, hop: float = _HOP):
+    """The motion cut into windows: ``(starts in seconds, motions)``; a motion shorter than
+    one window is one window.
+
+    Examples
+    --------
+    >>> from kinetology import synthetic_motion
+    >>> starts, cuts = windows(synthetic_motion(2, (0,), repetitions=3, seed=1), 1.0, 0.5)
+    >>> starts[:3], cuts[0].duration
+    ([0.0, 0.5, 1.0], 1.0)
+    """
+    from kinetology import Motion
+
+    if motion.frames < 3:
+        raise DescriptionError(f"{motion.source}: {motion.frames} frames; parsing needs at "
+                               f"least 3")
+    size = max(3, int(round(window * motion.frame_rate)))
+    step = max(1, int(round(hop * motion.frame_rate)))
+    if motion.frames <= size:
+        return [0.0], [motion]
+    starts = list(range(0, motion.frames - size + 1, step))
+    if starts[-1] != motion.frames - size:
+        starts.append(motion.frames - size)
+    return ([s / motion.frame_rate for s in starts],
+            [Motion(motion.values[s:s + size], motion.channels, motion.frame_rate,
+                    motion.skeleton, motion.source) for s in starts])
+
+
+def describe_windows(takes: dict[str, list], *, window: float = _WINDOW, hop: float = _HOP):
+    """Window descriptions of every action, learnt from the windows of its takes.
+
+    The windows of a take start every ``2 * hop`` seconds; the descriptions' ``window`` is the
+    window length, which :func:`parse` cuts recordings into.
+    """
+    rows, sources = {}, {}
+    for name, motions in takes.items():
+        cuts = [(k, w) for k, m in enumerate(motions) for w in windows(m, window, 2 * hop)[1]]
+        rows[name] = feature_rows([w for _, w in cuts], shape=False)
+        sources[name] = np.array([k for k, _ in cuts])
+    order, table = common_table(rows)
+    return describe_table(table, order, window=window, sources=sources)
+
+
+def _viterbi(costs: np.ndarray, switch: float) -> np.ndarray:
+    n, k = costs.shape
+    total = costs[0].copy()
+    back = np.zeros((n, k), dtype=int)
+    for i in range(1, n):
+        best = int(np.argmin(total))
+        stay = total
+        move = total[best] + switch
+        back[i] = np.where(stay <= move, np.arange(k), best)
+        total = np.minimum(stay, move) + costs[i]
+    path = np.empty(n, dtype=int)
+    path[-1] = int(np.argmin(total))
+    for i in range(n - 1, 0, -1):
+        path[i - 1] = back[i, path[i]]
+    return path
+
+
+def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH) -> Timeline:
+    """The recording as a timeline of spans (see the module's description).
+
+    Parameters
+    ----------
+    praxicon : Descriptions (window descriptions), a Praxicon or a folder
+    motion : kinetology.Motion or path
+    hop : float, default 0.25
+        Seconds between windows.
+    switch : float, default 10.0
+        The cost of changing action, in log-likelihood (nats).
+
+    Returns
+    -------
+    Timeline
+    """
+    from .features import feature_joint
+    from .recognition import _descriptions, _motion, feature_matrix
+
+    descriptions = _descriptions(praxicon, windows=True)
+    if not descriptions.spread.window:
+        raise DescriptionError("parse needs window descriptions (describe_windows; "
+                               "'psgs praxicon describe' writes them)")
+    motion = _motion(motion)
+    window = descriptions.spread.window
+    starts, cuts = windows(motion, window, hop)
+    columns, x, _ = feature_matrix(descriptions, cuts, shape=False)
+    if not any(feature_joint(descriptions.spread.features[i]) != "*" for i in columns):
+        raise DescriptionError("the motion shares no joint with the praxicon's actions")
+    spread = descriptions.spread
+    means = np.array([a.mean for a in descriptions.actions])[:, columns]
+    dist = distances(x, means, precision_parts(spread, columns))
+    # "none of these" is one more state, at the threshold's distance: an action wins a window
+    # only where it is nearer than that and nearer than every other action
+    dist = np.concatenate([dist, np.full((len(dist), 1), spread.threshold * len(columns))],
+                          axis=1)
+    costs = 0.5 * dist / spread.temperature
+    path = _viterbi(costs, switch)
+    p = probabilities(dist, spread.temperature)
+    names = [*descriptions.names, None]
+    half = min(window, motion.duration) / 2
+    centres = np.array(starts) + half
+    edges = np.concatenate([[0.0], (centres[1:] + centres[:-1]) / 2, [motion.duration]])
+    spans = []
+    i = 0
+    while i < len(path):
+        j = i
+        while j + 1 < len(path) and path[j + 1] == path[i]:
+            j += 1
+        spans.append(Span(round(float(edges[i]), 6), round(float(edges[j + 1]), 6),
+                          names[path[i]], round(float(p[i:j + 1, path[i]].mean()), 6)))
+        i = j + 1
+    return Timeline(getattr(motion, "source", "<motion>"), float(motion.duration), tuple(spans))

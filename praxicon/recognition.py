@@ -1,0 +1,243 @@
+"""Recognising motion through the praxicon: which learnt action a take is, or none of them.
+
+Every action's :class:`~praxicon.description.ActionDescription` scores the take's feature
+vector with the same Gaussian log-likelihood (one covariance shared by every action), so the
+scores compare across actions; an action
+with many joints gains nothing from them, because the joints that must stay still and the
+joints that move but are not the action's cost as much as a joint that moves wrongly. The best
+action is the answer unless its mean penalty exceeds the threshold calibrated on the training
+takes: then the answer is ``None`` ("none of these").
+
+>>> from kinetology import synthetic_motion
+>>> from praxicon.description import describe
+>>> takes = {"left": [synthetic_motion(3, (0,), seed=1, noise=n) for n in (0.2, 0.5, 1.0)],
+...          "right": [synthetic_motion(3, (2,), seed=2, noise=n) for n in (0.2, 0.5, 1.0)]}
+>>> px = describe(takes)
+>>> found = recognise(px, synthetic_motion(3, (2,), seed=2, noise=0.7))
+>>> found.action, [name for name, _ in found.ranking]
+('right', ['right', 'left'])
+>>> recognise(px, synthetic_motion(3, (1,), seed=5)).action is None  # none of these
+True
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .description import (DescriptionError, Descriptions, distances, feature_rows,
+                          mahalanobis_terms, precision_parts, probabilities)
+from .features import feature_joint
+
+__all__ = ["Recognition", "recognise", "recognise_many", "feature_matrix", "JointReason"]
+
+
+@dataclass(frozen=True)
+class JointReason:
+    """One joint's part in a recognition: its penalty and why (for :meth:`Recognition.explain`)."""
+
+    joint: str
+    penalty: float  # summed over the joint's features, relative to a perfect match
+    role: str  # "matched", "still but should move", "moves but should be still", "differs"
+
+
+@dataclass(frozen=True)
+class Recognition:
+    """What a motion is: ``action`` (or None: none of these) and every action's score.
+
+    ``ranking`` holds ``(action, probability)`` best first: the probabilities come from one
+    log-likelihood per action, on one scale, and sum to 1 over the praxicon's actions.
+    ``penalty`` is the best action's squared Mahalanobis distance per feature and
+    ``threshold`` the largest it may be for an answer other than None; ``missing`` names joints the descriptions have and the motion lacks (recognised
+    over the joints it has); ``reasons`` holds, for the best three actions, every joint's part.
+    """
+
+    source: str
+    action: str | None
+    ranking: tuple[tuple[str, float], ...]
+    penalty: float
+    threshold: float
+    missing: tuple[str, ...] = ()
+    reasons: tuple[tuple[str, tuple[JointReason, ...]], ...] = ()
+    tempo: tuple[tuple[str, float], ...] = ()  # per action shown: the tempo's distance term
+    drift: tuple[tuple[str, float], ...] = ()  # per action shown: the root drift's terms
+
+    def explain(self, joints: int = 4) -> str:
+        """The reasons, as text: per shown action the joints that decided it."""
+        lines = [f"{self.source}: {self.action or 'none of these'} (distance {self.penalty:.3f}"
+                 f" per feature, threshold {self.threshold:.3f})"]
+        if self.missing:
+            lines.append(f"  missing joints (recognised without them): "
+                         f"{', '.join(self.missing)}")
+        probability = dict(self.ranking)
+        tempo, drift = dict(self.tempo), dict(self.drift)
+        for name, reasons in self.reasons:
+            lines.append(f"  {name}: p={probability[name]:.3f}, tempo term "
+                         f"{tempo.get(name, 0.0):.2f}, drift terms {drift.get(name, 0.0):.2f}")
+            matched = [r.joint for r in sorted(reasons, key=lambda r: r.penalty)
+                       if r.role == "matched"][:joints]
+            if matched:
+                lines.append(f"    matched: {', '.join(matched)}")
+            for role in ("still but should move", "moves but should be still", "differs"):
+                worst = [r for r in sorted(reasons, key=lambda r: -r.penalty)
+                         if r.role == role][:joints]
+                if worst:
+                    lines.append(f"    {role}: " + ", ".join(
+                        f"{r.joint} ({r.penalty:.1f})" for r in worst))
+        return "\n".join(lines)
+
+
+def _descriptions(source, *, windows: bool = False) -> Descriptions:
+    if isinstance(source, (str, Path)):
+        from .description_store import read_descriptions
+        return read_descriptions(source, windows=windows)
+    if isinstance(source, Descriptions):
+        return source
+    found = getattr(source, "window_descriptions" if windows else "descriptions", None)
+    if isinstance(found, Descriptions):  # a typed praxicon value
+        return found
+    raise DescriptionError("recognise needs a praxicon (folder or value) or Descriptions")
+
+
+def _motion(source):
+    if isinstance(source, (str, Path)):
+        import kinetology
+        return kinetology.read(source)
+    return source
+
+
+def feature_matrix(descriptions: Descriptions, motions, *, shape: bool = True):
+    """The features the descriptions share with every motion, as one matrix.
+
+    Returns ``(columns, rows, missing)``: the indices of the descriptions' features kept, a
+    motions x kept-features matrix, and per motion the joints of the descriptions' features
+    it lacks (recognised without them).
+    """
+    wanted = descriptions.spread.features
+    rows = feature_rows(motions, shape=shape)
+    present = [set(r) for r in rows]
+    columns = np.array([i for i, f in enumerate(wanted) if all(f in p for p in present)],
+                       dtype=int)
+    missing = tuple(tuple(sorted({feature_joint(f) for f in wanted if f not in p}))
+                    for p in present)
+    x = np.array([[row[wanted[i]] for i in columns] for row in rows], dtype=float)
+    return columns, x.reshape(len(rows), len(columns)), missing
+
+
+def _energies(features, values) -> dict[str, float]:
+    out: dict[str, float] = {}
+    for f, v in zip(features, values):
+        if f.endswith(":energy"):
+            joint = feature_joint(f)
+            out[joint] = max(out.get(joint, 0.0), float(np.expm1(v)))
+    return out
+
+
+def _reasons(features, terms, x_row, mean) -> tuple[JointReason, ...]:
+    per_joint: dict[str, float] = {}
+    for f, t in zip(features, terms):
+        per_joint[feature_joint(f)] = per_joint.get(feature_joint(f), 0.0) + float(t)
+    moves, should = _energies(features, x_row), _energies(features, mean)
+    # a joint "matched" when it adds no more than an average joint of a training take would
+    typical = len(features) / max(1, len(per_joint))
+    out = []
+    for joint, penalty in per_joint.items():
+        if joint == "*":
+            continue
+        m, s = moves.get(joint, 0.0), should.get(joint, 0.0)
+        if penalty <= typical:
+            role = "matched"
+        elif s > 2 * m:
+            role = "still but should move"
+        elif m > 2 * s:
+            role = "moves but should be still"
+        else:
+            role = "differs"
+        out.append(JointReason(joint, round(penalty, 3), role))
+    return tuple(out)
+
+
+def recognise_many(praxicon, motions, *, explain: int = 3) -> list[Recognition]:
+    """:func:`recognise` for many motions in one call (features once, one matrix of scores).
+
+    Examples
+    --------
+    >>> from kinetology import synthetic_motion
+    >>> from praxicon.description import describe
+    >>> px = describe({"a": [synthetic_motion(2, (0,), seed=1, noise=n) for n in (0.2, 0.6)],
+    ...                "b": [synthetic_motion(2, (1,), seed=2, noise=n) for n in (0.2, 0.6)]})
+    >>> [r.action for r in recognise_many(px, [synthetic_motion(2, (0,), seed=1, noise=0.4),
+    ...                                        synthetic_motion(2, (1,), seed=2, noise=0.4)])]
+    ['a', 'b']
+    """
+    descriptions = _descriptions(praxicon)
+    if any(a.window for a in descriptions.actions):
+        raise DescriptionError("these are window descriptions (for parse); recognise needs the "
+                               "whole-take descriptions")
+    motions = [_motion(m) for m in motions]
+    columns, x, missing = feature_matrix(descriptions, motions)
+    if not any(feature_joint(descriptions.spread.features[i]) != "*" for i in columns):
+        raise DescriptionError("the motion shares no joint with the praxicon's actions")
+    spread = descriptions.spread
+    features = [spread.features[i] for i in columns]
+    parts = precision_parts(spread, columns)
+    means = np.array([a.mean for a in descriptions.actions])[:, columns]
+    dist = distances(x, means, parts)
+    p = probabilities(dist, spread.temperature)
+    per_feature = dist / len(columns)
+    names = descriptions.names
+    drift = [i for i, f in enumerate(features) if f.endswith(":drift")]
+    tempo = [i for i, f in enumerate(features) if f == "tempo"]
+    out = []
+    for i, motion in enumerate(motions):
+        order = np.argsort(-p[i], kind="stable")
+        best = int(order[0])
+        action = names[best] if per_feature[i, best] <= spread.threshold else None
+        reasons, tempos, drifts = [], [], []
+        for a in order[:explain]:
+            terms = mahalanobis_terms(x[i], means[a], parts)[0]
+            reasons.append((names[a], _reasons(features, terms, x[i], means[a])))
+            tempos.append((names[a], round(float(terms[tempo].sum()), 3)))
+            drifts.append((names[a], round(float(terms[drift].sum()), 3)))
+        out.append(Recognition(
+            getattr(motion, "source", "<motion>"), action,
+            tuple((names[a], float(p[i, a])) for a in order),
+            float(per_feature[i, best]), float(spread.threshold), missing[i], tuple(reasons),
+            tuple(tempos), tuple(drifts)))
+    return out
+
+
+def recognise(praxicon, motion, *, explain: int = 3) -> Recognition:
+    """Which of the praxicon's actions ``motion`` is, or None for none of these.
+
+    Parameters
+    ----------
+    praxicon : Praxicon, folder, or Descriptions
+        The learnt actions.
+    motion : kinetology.Motion or path
+        The take (at least 3 frames).
+    explain : int, default 3
+        For how many of the best actions the per-joint reasons are kept.
+
+    Returns
+    -------
+    Recognition
+
+    Raises
+    ------
+    DescriptionError
+        When the motion has fewer than 3 frames or shares no joint with the praxicon.
+
+    Examples
+    --------
+    >>> from kinetology import synthetic_motion
+    >>> from praxicon.description import describe
+    >>> px = describe({"a": [synthetic_motion(2, (0,), seed=1, noise=n) for n in (0.2, 0.6)],
+    ...                "b": [synthetic_motion(2, (1,), seed=2, noise=n) for n in (0.2, 0.6)]})
+    >>> found = recognise(px, synthetic_motion(2, (1,), seed=2, noise=0.4))
+    >>> found.action, found.ranking[0][0], found.missing
+    ('b', 'b', ())
+    """
+    return recognise_many(praxicon, [motion], explain=explain)[0]

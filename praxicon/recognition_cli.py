@@ -1,0 +1,166 @@
+"""Descriptions in a praxicon folder, and ``psgs praxicon describe|recognise|parse``.
+
+A praxicon folder keeps its actions' descriptions in ``descriptions.json`` (one
+:class:`~praxicon.description.ActionDescription` per learnt action for whole takes, and one per
+action for the windows of a recording), learnt by :func:`describe_folder` from the performances
+the folder's index names. The commands (added to ``psgs praxicon`` by
+:func:`register_recognise`):
+
+* ``psgs praxicon describe PX``: learn the descriptions of every learnt action of PX;
+* ``psgs praxicon recognise PX FILE... [--explain]``: one line per file, best action, its
+  probability, the runner-up; with ``--explain`` the joints that decided it;
+* ``psgs praxicon parse PX FILE [--plot PNG]``: the recording's timeline of spans.
+
+Bad input (a folder that is not a praxicon, descriptions of another version, an empty or
+one-frame motion, a path that does not exist) is one line on stderr and exit status 2; a motion
+whose skeleton lacks some of the actions' joints is recognised over the joints it has, and the
+missing joints are named on stderr.
+"""
+
+from __future__ import annotations
+
+from .description import DescriptionError
+from .description_store import read_descriptions, write_descriptions
+
+__all__ = ["describe_folder", "register_recognise"]
+
+
+def describe_folder(folder, *, log=print) -> Path:
+    """Learn every learnt action's descriptions from the performances the index names.
+
+    Performances are read as the build read them (cut to their span, angles unwrapped); one
+    that cannot be read is left out and named through ``log``.
+    """
+    from .datasets import Performance
+    from .description import describe
+    from .learn import _load_performance
+    from .parsing import describe_windows
+    from .store import load_index
+
+    try:
+        index = load_index(folder)
+    except ValueError as exc:
+        raise DescriptionError(str(exc)) from None
+    takes: dict[str, list] = {}
+    for action in index["actions"]:
+        if action.get("status") != "ok":
+            continue
+        motions = []
+        for p in action.get("performances", ()):
+            if not p.get("used", True):
+                continue
+            motion, problem = _load_performance(Performance(p["file"], p.get("start"),
+                                                            p.get("stop"), p.get("label")))
+            if problem:
+                log(f"{action['name']}: {problem}")
+            else:
+                motions.append(motion)
+        if motions:
+            takes[action["name"]] = motions
+    if not takes:
+        raise DescriptionError(f"{folder}: no learnt action with a readable performance")
+    return write_descriptions(folder, describe(takes), describe_windows(takes))
+
+
+def _bad(message: str):
+    from psgs.errors import ValidationError
+
+    raise ValidationError(message)
+
+
+def _read_motion(path: str):
+    import kinetology
+
+    try:
+        motion = kinetology.read(path)
+    except FileNotFoundError:
+        _bad(f"{path}: no such file")
+    except (OSError, ValueError) as exc:
+        _bad(str(exc).splitlines()[0])
+    if motion.frames < 3:
+        _bad(f"{path}: {motion.frames} frame{'s' if motion.frames != 1 else ''}; recognising "
+             f"needs at least 3")
+    return motion
+
+
+def run_describe(args) -> int:
+    import sys
+
+    try:
+        path = describe_folder(args.praxicon, log=lambda s: print(s, file=sys.stderr))
+    except DescriptionError as exc:
+        _bad(str(exc))
+    print(path)
+    return 0
+
+
+def run_recognise(args) -> int:
+    import sys
+
+    from .recognition import recognise_many
+
+    try:
+        descriptions = read_descriptions(args.praxicon)
+    except DescriptionError as exc:
+        _bad(str(exc))
+    motions = [_read_motion(f) for f in args.files]
+    try:
+        found = recognise_many(descriptions, motions, explain=3 if args.explain else 0)
+    except DescriptionError as exc:
+        _bad(str(exc))
+    for file, r in zip(args.files, found):
+        if r.missing:
+            print(f"{file}: recognised without the joints it lacks: {', '.join(r.missing)}",
+                  file=sys.stderr)
+        (best, p), *rest = r.ranking
+        runner = f", runner-up {rest[0][0]} {rest[0][1]:.3f}" if rest else ""
+        answer = r.action if r.action else f"none of these (closest {best})"
+        print(f"{file}: {answer} {p:.3f}{runner}")
+        if args.explain:
+            print(r.explain())
+    return 0
+
+
+def run_parse(args) -> int:
+    from .parsing import parse
+
+    try:
+        descriptions = read_descriptions(args.praxicon, windows=True)
+    except DescriptionError as exc:
+        _bad(str(exc))
+    motion = _read_motion(args.file)
+    try:
+        timeline = parse(descriptions, motion)
+    except DescriptionError as exc:
+        _bad(str(exc))
+    print(timeline.text())
+    if args.plot:
+        from .recognition_pictures import draw_timeline
+        draw_timeline(timeline, motion, args.plot)
+        print(args.plot)
+    return 0
+
+
+def register_recognise(sub) -> None:
+    """Add ``describe``, ``recognise`` and ``parse`` to the ``psgs praxicon`` subcommands."""
+    d = sub.add_parser("describe", help="learn the descriptions recognition needs",
+                       description="Learn every learnt action's description from its "
+                                   "performances and write PX/descriptions.json.")
+    d.add_argument("praxicon", metavar="PX", help="a praxicon folder")
+    d.set_defaults(run=run_describe)
+    r = sub.add_parser("recognise", help="which learnt action each motion file is",
+                       description="One line per file: the best action (or none of these), "
+                                   "its probability and the runner-up.")
+    r.add_argument("praxicon", metavar="PX", help="a praxicon folder")
+    r.add_argument("files", nargs="+", metavar="FILE", help="a .bvh or .amc motion file")
+    r.add_argument("--explain", action="store_true",
+                   help="also the joints that decided it, tempo and drift")
+    r.set_defaults(run=run_recognise)
+    p = sub.add_parser("parse", help="a recording as a timeline of learnt actions",
+                       description="One line per span: start, stop (seconds), action (- for "
+                                   "none), score.")
+    p.add_argument("praxicon", metavar="PX", help="a praxicon folder")
+    p.add_argument("file", metavar="FILE", help="a .bvh or .amc motion file")
+    p.add_argument("--plot", default=None, metavar="PNG",
+                   help="also draw the timeline over the joint angles")
+    p.set_defaults(run=run_parse)

@@ -1,0 +1,178 @@
+"""Recognition through the praxicon: descriptions, recognise, parse, bad input (synthetic)."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from kinetology import Motion, synthetic_motion
+from praxicon.description import (FORMAT_VERSION, ActionDescription, DescriptionError,
+                                  Descriptions, Spread, describe)
+from praxicon.features import motion_features
+from praxicon.parsing import describe_windows, parse
+from praxicon.recognition import recognise, recognise_many
+
+
+def _takes(pattern, seed, n=3):
+    """``n`` takes of one synthetic action: the same movement, differing sensor noise."""
+    return [synthetic_motion(4, pattern, seed=seed, noise=0.2 + 0.3 * k, repetitions=5)
+            for k in range(n)]
+
+
+@pytest.fixture(scope="module")
+def takes():
+    return {"left": _takes((0,), 1), "both": _takes((0, 2), 2), "right": _takes((2,), 3)}
+
+
+@pytest.fixture(scope="module")
+def px(takes):
+    return describe(takes)
+
+
+def test_each_action_recognised_and_ranked_on_one_scale(px):
+    found = recognise_many(px, [synthetic_motion(4, p, seed=s, noise=0.45, repetitions=5)
+                                for p, s in (((0,), 1), ((0, 2), 2), ((2,), 3))])
+    assert [r.action for r in found] == ["left", "both", "right"]
+    for r in found:
+        probabilities = [p for _, p in r.ranking]
+        assert probabilities == sorted(probabilities, reverse=True)
+        assert math.isclose(sum(probabilities), 1.0)
+        assert {name for name, _ in r.ranking} == {"left", "both", "right"}
+
+
+def test_unseen_movement_is_none_of_these(px):
+    found = recognise(px, synthetic_motion(4, (1, 3), seed=9, repetitions=5))
+    assert found.action is None and found.penalty > found.threshold
+    assert "none of these" in found.explain()
+
+
+def test_explanation_names_the_extra_joint(px):
+    """A one-hand take against the two-hand action: the other hand should move and does not."""
+    found = recognise(px, synthetic_motion(4, (0,), seed=1, noise=0.45, repetitions=5))
+    assert found.action == "left"
+    assert all(r.role == "matched" for r in dict(found.reasons)["left"])
+    reasons = {r.joint: r for r in dict(found.reasons)["both"]}
+    assert reasons["j2"].role == "still but should move"
+    assert "still but should move: j2" in found.explain()
+
+
+def test_missing_joints_recognised_over_the_rest_and_named(px):
+    motion = synthetic_motion(4, (2,), seed=3, noise=0.45, repetitions=5)
+    fewer = motion.select(("j0.rx", "j2.rx", "j3.rx"))
+    found = recognise(px, fewer)
+    assert found.action == "right" and found.missing == ("j1",)
+    assert "missing joints" in found.explain()
+
+
+@pytest.mark.parametrize("frames", [0, 1, 2])
+def test_too_short_motion_is_one_clear_error(px, frames):
+    motion = Motion(np.zeros((frames, 4)), tuple(f"j{j}.rx" for j in range(4)), 120.0)
+    with pytest.raises(DescriptionError, match="at least 3"):
+        recognise(px, motion)
+
+
+def test_motion_sharing_no_joint_is_an_error(px):
+    with pytest.raises(DescriptionError, match="no joint"):
+        recognise(px, Motion(np.zeros((10, 1)), ("elbow.rx",), 120.0))
+
+
+def test_descriptions_round_trip_exactly(px):
+    text = px.to_json()
+    again = Descriptions.from_json(text)
+    assert again == px and again.to_json() == text
+
+
+_floats = st.floats(allow_nan=False, allow_infinity=False, width=64)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.tuples(_floats, _floats), min_size=1, max_size=6), _floats,
+       st.integers(1, 10 ** 6))
+def test_action_description_round_trips_every_float(pairs, window, takes):
+    names = tuple(f"j{i}.rx:pose" for i in range(len(pairs)))
+    d = ActionDescription("a", names, tuple(p[0] for p in pairs), tuple(p[1] for p in pairs),
+                          takes, window)
+    again = ActionDescription.from_json(d.to_json())
+    assert again == d
+    assert all(math.copysign(1, x) == math.copysign(1, y) for x, y in zip(again.mean, d.mean))
+
+
+def test_other_version_is_a_clear_error(px):
+    data = json.loads(px.to_json())
+    data["version"] = FORMAT_VERSION + 1
+    with pytest.raises(DescriptionError, match="version .*psgs praxicon describe"):
+        Descriptions.from_json(json.dumps(data))
+    with pytest.raises(DescriptionError, match="line 1, column"):
+        Descriptions.from_json("{")
+
+
+def _floats_stored(d: Descriptions) -> int:
+    return sum(len(a.mean) + len(a.spread) for a in d.actions) + len(d.spread.scale) + \
+        len(d.spread.noise) + sum(len(f) for f in d.spread.factors)
+
+
+def test_size_grows_with_actions_not_takes(takes):
+    """No take is kept: the floats stored are bounded by actions and features alone."""
+    features = len(describe(takes).spread.features)
+    for n in (2, 3):
+        for k in (1, 2, 3):
+            chosen = {name: v[:n] for name, v in list(takes.items())[:k]}
+            d = describe(chosen)
+            assert [a.takes for a in d.actions] == [n] * k
+            assert _floats_stored(d) <= features * (2 * k + 2 + 16)
+
+
+@settings(max_examples=15, deadline=None)
+@given(st.floats(-180, 180))
+def test_root_features_do_not_depend_on_heading(heading):
+    """A walk to the north and one turned by any heading travel and turn alike."""
+    t = np.arange(120) / 30.0
+    rad = np.radians(heading)
+    forward = 100 * t
+    base = np.column_stack([np.zeros_like(t), 90 + 2 * np.sin(6 * t), forward,
+                            np.zeros_like(t), np.zeros_like(t), 20 * t,
+                            30 * np.sin(6 * t)])
+    turned = base.copy()
+    turned[:, 0], turned[:, 2] = forward * np.sin(rad), forward * np.cos(rad)
+    turned[:, 5] = 20 * t + heading
+    names = ("root.tx", "root.ty", "root.tz", "root.rx", "root.rz", "root.ry", "knee.rx")
+    a = dict(zip(*motion_features(Motion(base, names, 30.0))))
+    b = dict(zip(*motion_features(Motion(turned, names, 30.0))))
+    roots = [f for f in a if f.startswith("root.")]
+    assert roots and all(abs(a[f] - b[f]) < 1e-6 * max(1, abs(a[f])) for f in roots)
+    assert a["root.turny:drift"] == pytest.approx(20.0, rel=0.01)  # the turn's rate, deg/s
+
+
+def test_parse_finds_the_actions_in_order(takes):
+    windows = describe_windows(takes, window=1.0, hop=0.25)
+    a, b = takes["left"][0], takes["right"][1]
+    joined = Motion(np.concatenate([a.values, b.values]), a.channels, a.frame_rate)
+    timeline = parse(windows, joined)
+    spans = timeline.spans
+    assert [s.action for s in spans if s.action] == ["left", "right"]
+    assert spans[0].start == 0 and spans[-1].stop == pytest.approx(joined.duration)
+    assert all(x.stop == y.start for x, y in zip(spans, spans[1:]))
+    cut = a.duration
+    for s in spans:  # no span reaches more than one window into the other action
+        if s.action == "left":
+            assert s.stop <= cut + 1.0
+        if s.action == "right":
+            assert s.start >= cut - 1.0
+
+
+def test_parse_needs_window_descriptions(px, takes):
+    with pytest.raises(DescriptionError, match="window descriptions"):
+        parse(px, takes["left"][0])
+    with pytest.raises(DescriptionError, match="window descriptions"):
+        recognise(describe_windows(takes, window=1.0), takes["left"][0])
+
+
+def test_spread_is_shared_and_calibrated(px):
+    assert isinstance(px.spread, Spread)
+    assert 0 < px.spread.threshold < math.inf and px.spread.temperature >= 1
+    assert len(px.spread.factors) <= 16

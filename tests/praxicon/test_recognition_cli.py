@@ -1,0 +1,182 @@
+"""``psgs praxicon describe|recognise|parse``: output, exit statuses, one-line errors; and a
+real-data check (marked ``mocap``)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from praxicon.recognition_cli import register_recognise
+from praxicon_fixtures import SHARED, needs_mocap
+
+
+def _register(subparsers) -> None:
+    parser = subparsers.add_parser("praxicon")
+    register_recognise(parser.add_subparsers(dest="praxicon_command", required=True))
+
+
+def run(argv):
+    from psgs.cli import main
+
+    return main(["praxicon", *argv], commands={"praxicon": _register})
+
+
+def _take(seed: int, arm: bool, leg: bool, seconds: float = 5.0, rate: float = 30.0):
+    from kinetology import Motion
+    from kinetology.bvh_writer import star_skeleton
+
+    rng = np.random.default_rng(seed)
+    t = np.arange(int(seconds * rate)) / rate
+    phase = 2 * np.pi * t / (1 + 0.05 * (seed % 3))  # three tempos, learnt and new alike
+    channels = ("hips.rz", "arm.rx", "arm.rz", "leg.rx", "head.ry")
+    values = np.column_stack([
+        0.3 * rng.standard_normal(t.size),
+        (40 * np.sin(phase) if arm else 0 * t) + 0.3 * rng.standard_normal(t.size),
+        (25 * np.sin(phase + 0.7) if arm else 0 * t) + 0.3 * rng.standard_normal(t.size),
+        (30 * np.sin(phase + 2) if leg else 0 * t) + 0.3 * rng.standard_normal(t.size),
+        0.3 * rng.standard_normal(t.size)])
+    return Motion(values, channels, rate, star_skeleton(channels), f"take{seed}")
+
+
+@pytest.fixture(scope="module")
+def px(tmp_path_factory) -> Path:
+    """A praxicon folder (index of two actions, their BVH takes) with descriptions learnt."""
+    from kinetology import write_bvh
+
+    folder = tmp_path_factory.mktemp("px")
+    actions = []
+    for name, arm, leg, seeds in (("wave", True, False, (1, 2, 3)),
+                                  ("step", False, True, (4, 5, 6))):
+        performances = []
+        for seed in seeds:
+            path = folder / f"{name}{seed}.bvh"
+            write_bvh(_take(seed, arm, leg), path)
+            performances.append({"file": str(path), "start": None, "stop": None,
+                                 "label": None, "used": True})
+        actions.append({"name": name, "status": "ok", "performances": performances})
+    (folder / "index.json").write_text(json.dumps({"format": "psgs-praxicon", "version": 1,
+                                                   "actions": actions}))
+    assert run(["describe", str(folder)]) == 0
+    for seed, arm, leg in ((7, True, False), (8, False, True)):
+        write_bvh(_take(seed, arm, leg), folder / f"new{seed}.bvh")
+    return folder
+
+
+def test_recognise_prints_one_line_per_file(px, capsys):
+    capsys.readouterr()
+    assert run(["recognise", str(px), str(px / "new7.bvh"), str(px / "new8.bvh")]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert len(lines) == 2
+    assert lines[0].startswith(f"{px / 'new7.bvh'}: wave ") and "runner-up step" in lines[0]
+    assert lines[1].startswith(f"{px / 'new8.bvh'}: step ")
+
+
+def test_recognise_explain(px, capsys):
+    capsys.readouterr()
+    assert run(["recognise", str(px), str(px / "new7.bvh"), "--explain"]) == 0
+    out = capsys.readouterr().out
+    assert "matched:" in out and "step: p=" in out
+
+
+def test_parse_prints_the_timeline(px, capsys):
+    from kinetology import Motion, read, write_bvh
+
+    a, b = read(px / "new7.bvh"), read(px / "new8.bvh")
+    joined = Motion(np.concatenate([a.values, b.values]), a.channels, a.frame_rate, a.skeleton)
+    write_bvh(joined, px / "joined.bvh")
+    capsys.readouterr()
+    assert run(["parse", str(px), str(px / "joined.bvh")]) == 0
+    rows = [line.split() for line in capsys.readouterr().out.splitlines()]
+    assert [r[2] for r in rows if r[2] != "-"] == ["wave", "step"]
+    assert float(rows[0][0]) == 0.0 and float(rows[-1][1]) == pytest.approx(10.0, abs=0.05)
+
+
+def _error(capsys, argv) -> str:
+    capsys.readouterr()
+    assert run(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("psgs: error: ") and "\n" not in err and "Traceback" not in err
+    return err
+
+
+def test_bad_input_is_one_line_exit_2(px, tmp_path, capsys):
+    from kinetology import Motion, write_bvh
+
+    assert "no such praxicon folder" in _error(capsys, ["recognise", str(tmp_path / "none"),
+                                                        str(px / "new7.bvh")])
+    assert "praxicon index" in _error(capsys, ["recognise", str(tmp_path), str(px / "new7.bvh")])
+    assert "no such file" in _error(capsys, ["recognise", str(px), str(tmp_path / "x.bvh")])
+    one = _take(9, True, False)
+    write_bvh(Motion(one.values[:1], one.channels, 30.0, one.skeleton), tmp_path / "one.bvh")
+    assert "1 frame;" in _error(capsys, ["recognise", str(px), str(tmp_path / "one.bvh")])
+    old = tmp_path / "old"
+    old.mkdir()
+    (old / "index.json").write_text((px / "index.json").read_text())
+    data = json.loads((px / "descriptions.json").read_text())
+    data["version"] = 0
+    (old / "descriptions.json").write_text(json.dumps(data))
+    assert "psgs praxicon describe" in _error(capsys, ["recognise", str(old),
+                                                       str(px / "new7.bvh")])
+    bare = tmp_path / "bare"
+    bare.mkdir()
+    (bare / "index.json").write_text((px / "index.json").read_text())
+    assert "psgs praxicon describe" in _error(capsys, ["parse", str(bare),
+                                                       str(px / "new7.bvh")])
+
+
+def test_missing_joints_named_on_stderr(px, tmp_path, capsys):
+    from kinetology import read, write_bvh
+
+    full = read(px / "new7.bvh")
+    keep = [c for c in full.channels if not c.startswith("leg.")]
+    write_bvh(full.select(keep), tmp_path / "noleg.bvh")
+    capsys.readouterr()
+    assert run(["recognise", str(px), str(tmp_path / "noleg.bvh")]) == 0
+    captured = capsys.readouterr()
+    assert ": wave " in captured.out and "lacks: leg" in captured.err
+
+
+@pytest.mark.mocap
+@needs_mocap()
+def test_real_turns_told_from_walks_by_their_drift():
+    """Bandai dataset 2, normal style: walk and the two turns learnt from takes 1-3, takes 4-5
+    recognised; the turns' heading drift is what tells them apart."""
+    import kinetology
+    from praxicon.description import describe
+    from praxicon.recognition import recognise_many
+
+    data = SHARED / "bandai-namco-2-subset" / "data"
+    contents = ("walk", "walk-turn-left", "walk-turn-right")
+    takes = {c: [kinetology.read(data / f"dataset-2_{c}_normal_00{k}.bvh") for k in (1, 2, 3)]
+             for c in contents}
+    px = describe(takes)
+    tests = [(c, kinetology.read(data / f"dataset-2_{c}_normal_00{k}.bvh"))
+             for c in contents for k in (4, 5)]
+    found = recognise_many(px, [m for _, m in tests])
+    assert [r.action for r in found] == [c for c, _ in tests]
+    left = px.actions[px.names.index("walk-turn-left")]
+    right = px.actions[px.names.index("walk-turn-right")]
+    drift = [i for i, f in enumerate(left.features) if f == "Hips.turnx:drift"]
+    assert drift and left.mean[drift[0]] * right.mean[drift[0]] < 0  # opposite headings
+
+
+def test_folder_round_trip_equals_in_memory(px):
+    """describe -> descriptions.json -> read gives the very descriptions learnt in memory, and
+    the same answers."""
+    import kinetology
+    from praxicon.description import describe
+    from praxicon.description_store import read_descriptions
+    from praxicon.parsing import describe_windows
+    from praxicon.recognition import recognise_many
+
+    index = json.loads((px / "index.json").read_text())
+    takes = {a["name"]: [kinetology.read(p["file"]) for p in a["performances"]]
+             for a in index["actions"]}
+    memory, folder = describe(takes), read_descriptions(px)
+    assert folder == memory
+    assert read_descriptions(px, windows=True) == describe_windows(takes)
+    new = [kinetology.read(px / f"new{s}.bvh") for s in (7, 8)]
+    assert recognise_many(folder, new) == recognise_many(memory, new)
