@@ -33,7 +33,13 @@ from pathlib import Path
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
+import warnings  # noqa: E402
+
 import numpy as np  # noqa: E402
+
+# aeon warns once per fit that some channels of some takes barely move (a joint held still):
+# true of motion capture, and the same for every run, so it is not printed hundreds of times
+warnings.filterwarnings("ignore", message="Data seen by instance of MiniRocket")
 
 import importlib.machinery  # noqa: E402
 import importlib.util  # noqa: E402

@@ -12,8 +12,11 @@ answer covers the ``hop`` around its centre, so spans follow the motion to withi
 >>> b = [synthetic_motion(3, (2,), seed=2, noise=n) for n in (0.2, 0.5, 1.0)]
 >>> px = describe_windows({"a": a, "b": b}, window=1.0, hop=0.5)
 >>> joined = Motion(np.concatenate([a[0].values, b[1].values]), a[0].channels, 120.0)
->>> [(s.start, s.stop, s.action) for s in parse(px, joined).spans]
-[(0.0, 7.625, 'a'), (7.625, 8.625, None), (8.625, 15.866667, 'b')]
+>>> for span in parse(px, joined).spans:
+...     print(span.start, span.stop, span.action)
+0.0 7.625 a
+7.625 8.625 None
+8.625 15.866667 b
 """
 
 from __future__ import annotations
