@@ -68,8 +68,7 @@ class ViewError(MotionFormatError):
     source : str
         The motion, file or output concerned (``str(error)`` is ``source: message``).
     line, column : int, optional
-        As for :class:`~kinetology.MotionFormatError`; the viewer's errors have no place in a
-        file, so leave them out.
+        Unused: the viewer's errors have no place in a file.
 
     Examples
     --------
@@ -325,7 +324,11 @@ class Player:
         if suffix == ".html":
             path.write_text(self.to_html(), encoding="utf-8")
         else:
-            _check_writer(path, suffix)
+            try:
+                import matplotlib  # noqa: F401  (Pillow, which writes the GIF, comes with it)
+            except ImportError:
+                raise ViewError(f"writing {suffix} needs matplotlib: pip install 'psgs[plot]'",
+                                source=str(path)) from None
             from ._viewer_animation import animate
             animate(self, path, suffix, dpi=dpi)
         return path
@@ -340,21 +343,6 @@ def _check_suffix(path: Path) -> str:
         raise ViewError("writing .mp4 needs ffmpeg, which is not on PATH (install it, e.g. "
                         "apt-get install ffmpeg), or write a .gif", source=str(path))
     return suffix
-
-
-def _check_writer(path: Path, suffix: str) -> None:
-    """matplotlib (and Pillow for a GIF) import, before any drawing starts."""
-    try:
-        import matplotlib  # noqa: F401
-    except ImportError:
-        raise ViewError(f"writing {suffix} needs matplotlib: pip install 'psgs[plot]'",
-                        source=str(path)) from None
-    if suffix == ".gif":
-        try:
-            import PIL  # noqa: F401  (matplotlib depends on it; named here in case it is gone)
-        except ImportError:
-            raise ViewError("writing .gif needs Pillow: pip install pillow",
-                            source=str(path)) from None
 
 
 def _step(motion: Motion, max_rate: float, max_frames: int) -> int:
@@ -549,11 +537,6 @@ def _titled(motions: Iterable) -> dict:
 
 
 # ------------------------------------------------------------------ command line
-_EXIT = ("Exit status 0: written; 2: a file that is not motion, a motion without frames or "
-         "skeleton, an output suffix other than .html/.gif/.mp4, or a missing writer "
-         "(matplotlib for .gif, ffmpeg for .mp4), said in one line on stderr.")
-
-
 def _run(args) -> int:
     from .readers import read
 
@@ -590,7 +573,9 @@ def register(subparsers) -> None:
         description="Draw the body from the skeleton's forward kinematics and play it; several "
                     "files side by side on one clock; joints coloured by their current "
                     "kineteme. The HTML page is self-contained (opens from a file, no network). "
-                    + _EXIT)
+                    "Exit status 0: written; 2: a file that is not motion, a motion without "
+                    "frames or skeleton, an output suffix other than .html/.gif/.mp4, or a "
+                    "missing writer (matplotlib for .gif, ffmpeg for .mp4), in one line.")
     p.add_argument("files", nargs="+", metavar="FILE",
                    help="motion files: .bvh, or .amc (its .asf skeleton found beside it)")
     p.add_argument("-o", "--output", required=True, metavar="OUT",
