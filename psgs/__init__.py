@@ -18,7 +18,7 @@ from ._foundation.lazy import lazy_names
 from .errors import BoundReached, FormatError, PSGSError, ValidationError
 from .model import IDLE, PCGS, PSGS, Grammar, Nonterminal, Query, Rule, Terminal, as_word
 
-from . import _display  # noqa: F401  (gives the systems their notebook picture)
+from . import _display  # noqa: F401  (gives systems and actiongrams their notebook pictures)
 
 
 # module -> the public names it defines (or re-exports); each is in that module's __all__

@@ -84,12 +84,7 @@ class NotFound(PSGSError, KeyError):
     """A name (a channel, a joint, an action) that is not there; the message lists what is.
 
     A ``KeyError``, so code that looks names up catches it too, but ``str(error)`` is the
-    message itself, not its quoted repr.
-
-    Parameters
-    ----------
-    message : str
-        What is missing, and what there is instead.
+    message itself (its one argument), not its quoted repr.
 
     Examples
     --------
@@ -107,11 +102,6 @@ class MissingDependency(PSGSError, ImportError):
 
     The message names the extra to install (``pip install 'psgs[plot]'``) or the choice that
     needs none. An ``ImportError``, so code that falls back on a missing import catches it.
-
-    Parameters
-    ----------
-    message : str
-        What is missing and how to get it.
 
     Examples
     --------

@@ -163,12 +163,6 @@ class Actiongram:
     def _set_extras(self, names: tuple[str, ...], symbols: tuple[tuple[str, ...], ...]) -> None:
         normalise_extras(self, names, symbols)
 
-    def _repr_html_(self) -> str:
-        """Each string as coloured runs of its symbols, widths by duration (notebooks)."""
-        from ..draw import actiongram_html
-
-        return actiongram_html(self)
-
     # -- construction ------------------------------------------------------
     @classmethod
     def from_strings(cls, strings: Mapping[str, Iterable[str] | str],

@@ -150,48 +150,11 @@ def test_the_graph_is_read_from_every_module_with_function_level_imports():
 
 
 def _cycles(edges: dict[str, set[str]]) -> list[set[str]]:
-    """The strongly connected components of more than one module (Tarjan's algorithm)."""
-    index: dict[str, int] = {}
-    low: dict[str, int] = {}
-    stack: list[str] = []
-    on_stack: set[str] = set()
-    found: list[set[str]] = []
-    counter = 0
-    for root in sorted(edges):
-        if root in index:
-            continue
-        work = [(root, iter(sorted(edges[root])))]
-        index[root] = low[root] = counter
-        counter += 1
-        stack.append(root)
-        on_stack.add(root)
-        while work:
-            node, it = work[-1]
-            for nxt in it:
-                if nxt not in index:
-                    index[nxt] = low[nxt] = counter
-                    counter += 1
-                    stack.append(nxt)
-                    on_stack.add(nxt)
-                    work.append((nxt, iter(sorted(edges.get(nxt, ())))))
-                    break
-                if nxt in on_stack:
-                    low[node] = min(low[node], index[nxt])
-            else:
-                work.pop()
-                if work:
-                    low[work[-1][0]] = min(low[work[-1][0]], low[node])
-                if low[node] == index[node]:
-                    component = set()
-                    while True:
-                        member = stack.pop()
-                        on_stack.discard(member)
-                        component.add(member)
-                        if member == node:
-                            break
-                    if len(component) > 1:
-                        found.append(component)
-    return found
+    """The strongly connected components of more than one module."""
+    from psgs.analysis import strongly_connected
+
+    found = strongly_connected(sorted(edges), {m: sorted(ts) for m, ts in edges.items()})
+    return [set(component) for component in found if len(component) > 1]
 
 
 def test_the_cycle_finder_finds_cycles():
@@ -292,3 +255,57 @@ def test_help_of_psgs_needs_no_hypothesis():
     done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
                           cwd=REPO, timeout=60)
     assert done.returncode == 0 and done.stdout.strip() == "ok", done.stderr[-2000:]
+
+
+# -- the picture in docs/architecture.md -------------------------------------------------------
+def _picture():
+    spec = importlib.util.spec_from_file_location("architecture_picture",
+                                                  REPO / "docs" / "architecture_picture.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def _box(module: str) -> str | None:
+    """The box of the picture that holds ``module`` (None: the package roots)."""
+    top = module.split(".")[0]
+    if top in ("kinetology", "praxicon"):
+        return top
+    if module == "psgs":
+        return None  # the lazy table names everything; what it imports itself is the top's
+    if module.startswith("psgs.induce"):
+        return "induce"
+    if module.startswith(("psgs.cli", "psgs._display", "psgs.strategies", "psgs.__main__")):
+        return "cli"
+    if module.startswith("psgs.actiongram"):
+        return "actiongram"
+    if _matches(module, FOUNDATION):
+        return "foundation"
+    return "core"
+
+
+def test_the_picture_is_up_to_date_and_draws_what_the_imports_do():
+    picture = _picture()
+    committed = (REPO / "docs" / "img" / "architecture.svg").read_text(encoding="utf-8")
+    assert committed == picture.svg(), "run: python docs/architecture_picture.py"
+    arrows: dict[str, set[str]] = {}
+    for source, target, *_ in picture.ARROWS:
+        arrows.setdefault(source, set()).add(target)
+
+    def reachable(box: str) -> set[str]:
+        seen, todo = set(), [box]
+        while todo:
+            for nxt in arrows.get(todo.pop(), ()):
+                if nxt not in seen:
+                    seen.add(nxt)
+                    todo.append(nxt)
+        return seen
+
+    undrawn = sorted(f"{m} -> {t}" for m, ts in EDGES.items() for t in ts
+                     if _box(m) and _box(t) and _box(m) != _box(t)
+                     and _box(t) not in reachable(_box(m)))
+    assert not undrawn, f"imports the picture does not allow: {undrawn}"
+    # and each arrow is used by some import (a picture of rules, not of wishes)
+    used = {(_box(m), _box(t)) for m, ts in EDGES.items() for t in ts}
+    unused = [a[:2] for a in picture.ARROWS if tuple(a[:2]) not in used]
+    assert not unused, f"arrows no import takes: {unused}"
