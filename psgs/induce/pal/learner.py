@@ -110,7 +110,7 @@ class PAL(Inducer):
     >>> PAL(engine="fortran")
     Traceback (most recent call last):
     ...
-    ValueError: engine must be one of 'auto', 'numpy', 'numba', not 'fortran'
+    psgs.errors.ValidationError: engine must be one of 'auto', 'numpy', 'numba', not 'fortran'
     """
 
     name = "pal"
