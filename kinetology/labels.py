@@ -151,10 +151,15 @@ def _bvh_duration(bvh: Path) -> float:
                 frame_time = stripped.split(":", 1)[1]
                 break
     try:
-        return int(frames) * float(frame_time)
-    except (TypeError, ValueError):
+        duration = int(frames) * float(frame_time)
+    except (TypeError, ValueError, OverflowError):
         raise MotionFormatError("no 'Frames:' and 'Frame Time:' header lines",
                                 source=str(bvh)) from None
+    if not 0 < duration < float("inf"):  # a label span needs a take of some length
+        raise MotionFormatError(f"'Frames: {frames.strip()}' and 'Frame Time: "
+                                f"{frame_time.strip()}' give no length to label",
+                                source=str(bvh))
+    return duration
 
 
 def read_bandai_json(path: str | Path, duration: float | None = None) -> tuple[Span, ...]:
@@ -196,7 +201,10 @@ def read_bandai_json(path: str | Path, duration: float | None = None) -> tuple[S
     except json.JSONDecodeError as exc:
         raise MotionFormatError(f"not JSON: {exc.msg}", source=str(path), line=exc.lineno,
                                 column=exc.colno) from None
-    except (ValueError, RecursionError) as exc:  # a 5,000-digit number; [[[[... nested deep
+    except RecursionError:  # json's parser recurses once per nested array or object
+        raise MotionFormatError("nests too deeply to be a label file", source=str(path)) \
+            from None
+    except ValueError as exc:  # a 5,000-digit number
         raise MotionFormatError(f"not a label file ({type(exc).__name__}: "
                                 f"{str(exc)[:80]})", source=str(path)) from None
     if not isinstance(record, dict) or "content" not in record:

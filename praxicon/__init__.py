@@ -42,6 +42,9 @@ _LAZY = {
     "generate": "generation", "generate_motion": "generation",
     "draw_actuator_matrix": "pictures", "draw_morphemes": "pictures",
     "draw_shared_patterns": "pictures", "draw_praxicon": "pictures",
+    "recognise": "recognition", "recognise_many": "recognition", "Recognition": "recognition",
+    "parse": "parsing", "Timeline": "parsing", "Span": "parsing",
+    "describe": "description", "Descriptions": "description", "DescriptionError": "description",
 }
 
 __all__ = list(_LAZY)

@@ -15,15 +15,18 @@ from __future__ import annotations
 import sys
 import time
 from concurrent.futures import Executor, Future, ProcessPoolExecutor, as_completed
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from .datasets import Action, DatasetError
 from .learn import Settings, input_key, learn_action
-from .records import ActionRecord, PerformanceRecord, Praxicon, name_problem
-from .store import read_records, write_index, write_record, write_shared
+from .description import DescriptionError
+from .description_store import (FILE, descriptions_key, descriptions_text,
+                                read_descriptions_file)
+from .records import ActionRecord, PerformanceRecord, Praxicon, PraxiconError, name_problem
+from .store import read_records, write_atomic, write_index, write_record, write_shared
 
-__all__ = ["build", "BuildResult", "executor_for"]
+__all__ = ["build", "BuildResult", "executor_for", "describe_praxicon"]
 
 
 @dataclass(frozen=True)
@@ -201,10 +204,72 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
         # always leave a consistent index of what is done (also after Ctrl-C)
         result = praxicon()
         write_index(out, result, timings={**_old_timings(out), **timings})
-        # the build's last write: the patterns that recur across actions (Fig. 13)
+        # the patterns that recur across actions (Fig. 13)
         write_shared(out, result)
+    # the build's last step: what recognition and parsing read, learnt from every learnt
+    # action's performances together (the actions share one spread)
+    result = _described(out, result, log)
     return BuildResult(result, tuple(sorted(learnt)), tuple(sorted(skipped)),
                        tuple(sorted(failed)), tuple(refused))
+
+
+def describe_praxicon(praxicon: Praxicon, *, log=print):
+    """The whole-take and window descriptions of every learnt action of ``praxicon``.
+
+    Each action is described from the performances it was learnt from, read as the build
+    read them (cut to their span, angles unwrapped); one that cannot be read now is left out
+    and named through ``log``. Returns ``(takes, windows)``, or ``None`` (and says why through
+    ``log``) when no learnt action has a readable performance or they cannot be described.
+    """
+    from .datasets import Performance
+    from .description import describe
+    from .learn import _load_performance
+    from .parsing import describe_windows
+
+    takes: dict[str, list] = {}
+    for action in praxicon.actions:
+        if not action.learnt:
+            continue
+        motions = []
+        for p in action.performances:
+            if p.used is False:
+                continue
+            motion, problem = _load_performance(Performance(p.file, p.start, p.stop, p.label))
+            if problem:
+                log(f"{action.name}: not described from {p.file}: {problem}")
+            else:
+                motions.append(motion)
+        if motions:
+            takes[action.name] = motions
+    if not takes:
+        log("no learnt action with a readable performance: nothing to recognise with")
+        return None
+    try:
+        return describe(takes), describe_windows(takes)
+    except DescriptionError as exc:
+        log(f"descriptions not learnt: {exc}")
+        return None
+
+
+def _described(out: Path, praxicon: Praxicon, log) -> Praxicon:
+    """``praxicon`` with its descriptions: the folder's when they were learnt from the same
+    actions, else learnt now and written (``descriptions.json``)."""
+    key = descriptions_key(praxicon)
+    try:
+        found = read_descriptions_file(out)
+    except PraxiconError as exc:  # damaged or of another version: learnt again
+        log(f"{exc}: learnt again")
+        found = None
+    if found is not None and found[2] == key:
+        takes, windows = found[0], found[1]
+    else:
+        learnt = describe_praxicon(praxicon, log=log)
+        if learnt is None:
+            (out / FILE).unlink(missing_ok=True)  # none that would describe other actions
+            return praxicon
+        takes, windows = learnt
+        write_atomic(out / FILE, descriptions_text(takes, windows, key))
+    return replace(praxicon, descriptions=takes, window_descriptions=windows)
 
 
 def _repair(out: Path, record: ActionRecord, key: str) -> None:

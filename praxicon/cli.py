@@ -1,4 +1,4 @@
-"""``psgs praxicon build|draw|generate``: the praxicon's command line.
+"""``psgs praxicon build|draw|generate|recognise|parse``: the praxicon's command line.
 
 Reached from ``psgs`` through the entry-point group ``psgs.commands``
 (``praxicon = "praxicon.cli:register"``), and without an install as
@@ -139,13 +139,19 @@ def _add_commands(sub) -> None:
                      help="also plot one joint, original performance beside generated")
     gen.set_defaults(run=run_generate)
 
+    from .recognition_cli import register_recognise  # recognise, parse
+
+    register_recognise(sub)
+
 
 def register(subparsers) -> None:
-    """Add ``praxicon`` (with ``build``, ``draw``, ``generate``) to psgs's subcommands."""
+    """Add ``praxicon`` (build, draw, generate, recognise, parse) to psgs's subcommands."""
     parser = subparsers.add_parser("praxicon", help="every action's morphology, at scale",
-                                   description="Build, draw and generate from a praxicon.")
+                                   description="Build, draw, generate, recognise and parse "
+                                               "with a praxicon.")
     sub = parser.add_subparsers(dest="praxicon_command", metavar="COMMAND",
-                                help="build, draw or generate (COMMAND --help for its options)")
+                                help="build, draw, generate, recognise or parse (COMMAND --help "
+                                     "for its options)")
     sub.required = True
     _add_commands(sub)
 

@@ -33,7 +33,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .records import ActionRecord, Praxicon, as_dict
+from .jsonvalues import as_dict
+from .records import ActionRecord, Praxicon
 from .store import load
 
 __all__ = ["Generated", "Method", "generate", "generate_motion", "derive_copies", "is_smooth_cycle"]

@@ -27,8 +27,9 @@ from pathlib import Path
 import numpy as np
 
 from .datasets import Action, Performance
+from .jsonvalues import freeze
 from .records import (FORMAT_VERSION, ActionRecord, ChannelMorpheme, JointRecord,
-                      PerformanceRecord, Settings, freeze)
+                      PerformanceRecord, Settings)
 
 __all__ = ["Settings", "learn_action", "input_key"]
 

@@ -1,12 +1,9 @@
-"""Descriptions in a praxicon folder, and ``psgs praxicon describe|recognise|parse``.
+"""``psgs praxicon recognise|parse``: learnt actions found in new motion files.
 
-A praxicon folder keeps its actions' descriptions in ``descriptions.json`` (one
-:class:`~praxicon.description.ActionDescription` per learnt action for whole takes, and one per
-action for the windows of a recording), learnt by :func:`describe_folder` from the performances
-the folder's index names. The commands (added to ``psgs praxicon`` by
+The descriptions they read are learnt by ``psgs praxicon build`` (``descriptions.json`` in
+the folder, :mod:`praxicon.description_store`). The commands (added to ``psgs praxicon`` by
 :func:`register_recognise`):
 
-* ``psgs praxicon describe PX``: learn the descriptions of every learnt action of PX;
 * ``psgs praxicon recognise PX FILE... [--explain]``: one line per file, best action, its
   probability, the runner-up; with ``--explain`` the joints that decided it;
 * ``psgs praxicon parse PX FILE [--plot PNG]``: the recording's timeline of spans.
@@ -20,46 +17,9 @@ missing joints are named on stderr.
 from __future__ import annotations
 
 from .description import DescriptionError
-from .description_store import read_descriptions, write_descriptions
+from .description_store import read_descriptions
 
-__all__ = ["describe_folder", "register_recognise"]
-
-
-def describe_folder(folder, *, log=print) -> Path:
-    """Learn every learnt action's descriptions from the performances the index names.
-
-    Performances are read as the build read them (cut to their span, angles unwrapped); one
-    that cannot be read is left out and named through ``log``.
-    """
-    from .datasets import Performance
-    from .description import describe
-    from .learn import _load_performance
-    from .parsing import describe_windows
-    from .store import load_index
-
-    try:
-        index = load_index(folder)
-    except ValueError as exc:
-        raise DescriptionError(str(exc)) from None
-    takes: dict[str, list] = {}
-    for action in index["actions"]:
-        if action.get("status") != "ok":
-            continue
-        motions = []
-        for p in action.get("performances", ()):
-            if not p.get("used", True):
-                continue
-            motion, problem = _load_performance(Performance(p["file"], p.get("start"),
-                                                            p.get("stop"), p.get("label")))
-            if problem:
-                log(f"{action['name']}: {problem}")
-            else:
-                motions.append(motion)
-        if motions:
-            takes[action["name"]] = motions
-    if not takes:
-        raise DescriptionError(f"{folder}: no learnt action with a readable performance")
-    return write_descriptions(folder, describe(takes), describe_windows(takes))
+__all__ = ["register_recognise"]
 
 
 def _bad(message: str):
@@ -81,17 +41,6 @@ def _read_motion(path: str):
         _bad(f"{path}: {motion.frames} frame{'s' if motion.frames != 1 else ''}; recognising "
              f"needs at least 3")
     return motion
-
-
-def run_describe(args) -> int:
-    import sys
-
-    try:
-        path = describe_folder(args.praxicon, log=lambda s: print(s, file=sys.stderr))
-    except DescriptionError as exc:
-        _bad(str(exc))
-    print(path)
-    return 0
 
 
 def run_recognise(args) -> int:
@@ -142,12 +91,7 @@ def run_parse(args) -> int:
 
 
 def register_recognise(sub) -> None:
-    """Add ``describe``, ``recognise`` and ``parse`` to the ``psgs praxicon`` subcommands."""
-    d = sub.add_parser("describe", help="learn the descriptions recognition needs",
-                       description="Learn every learnt action's description from its "
-                                   "performances and write PX/descriptions.json.")
-    d.add_argument("praxicon", metavar="PX", help="a praxicon folder")
-    d.set_defaults(run=run_describe)
+    """Add ``recognise`` and ``parse`` to the ``psgs praxicon`` subcommands."""
     r = sub.add_parser("recognise", help="which learnt action each motion file is",
                        description="One line per file: the best action (or none of these), "
                                    "its probability and the runner-up.")

@@ -27,14 +27,17 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from .description import DescriptionError, Descriptions
+from .jsonvalues import Fields, as_dict, freeze, pairs as _pairs
+
 __all__ = ["FORMAT", "FORMAT_VERSION", "REBUILD", "PraxiconError", "PerformanceRecord",
            "ChannelMorpheme", "JointRecord", "ActionRecord", "Praxicon", "Settings", "check_index",
-           "freeze", "thaw", "as_dict", "name_problem", "MAX_NAME_BYTES"]
+           "name_problem", "MAX_NAME_BYTES"]
 
 #: The ``"format"`` of a praxicon's ``index.json``.
 FORMAT = "psgs-praxicon"
 #: The version of what a record holds (see the module's versioning rule).
-FORMAT_VERSION = 2
+FORMAT_VERSION = 3
 #: The command that rebuilds a praxicon folder (named by every "other version" error).
 REBUILD = "psgs praxicon build DATASET... -o FOLDER"
 #: Longest action name in bytes (UTF-8): it names the action's files, which with ``.json``
@@ -78,122 +81,6 @@ class PraxiconError(ValueError):
     ...
     praxicon.records.PraxiconError: records/a.json: not a praxicon record (no 'status')
     """
-
-
-# -- reading JSON values with one-line errors -------------------------------------------------
-class _Json:
-    """Typed access to one JSON object; every error names ``where`` and the key."""
-
-    def __init__(self, value, where: str, what: str = "record"):
-        if not isinstance(value, dict):
-            raise PraxiconError(f"{where}: not a praxicon {what} (a JSON object expected, "
-                                f"not {type(value).__name__})")
-        self.value, self.where, self.what = value, where, what
-
-    def _bad(self, key: str, expected: str):
-        got = self.value[key]
-        shown = repr(got) if len(repr(got)) <= 40 else type(got).__name__
-        return PraxiconError(f"{self.where}: {key!r} must be {expected}, not {shown}")
-
-    def need(self, key: str):
-        if key not in self.value:
-            raise PraxiconError(f"{self.where}: not a praxicon {self.what} (no {key!r})")
-        return self.value[key]
-
-    def text(self, key: str, optional: bool = False) -> str | None:
-        value = self.value.get(key) if optional else self.need(key)
-        if value is None and optional:
-            return None
-        if not isinstance(value, str):
-            raise self._bad(key, "text")
-        return value
-
-    def number(self, key: str, optional: bool = False) -> float | None:
-        value = self.value.get(key) if optional else self.need(key)
-        if value is None and optional:
-            return None
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise self._bad(key, "a number")
-        return value
-
-    def texts(self, key: str, optional: bool = False) -> tuple[str, ...] | None:
-        value = self.value.get(key) if optional else self.need(key)
-        if value is None and optional:
-            return None
-        if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
-            raise self._bad(key, "a list of text")
-        return tuple(value)
-
-    def numbers(self, key: str, optional: bool = False, whole: bool = False):
-        value = self.value.get(key) if optional else self.need(key)
-        if value is None and optional:
-            return None
-        kinds = (int,) if whole else (int, float)
-        if not isinstance(value, list) or any(isinstance(v, bool) or not isinstance(v, kinds)
-                                              for v in value):
-            raise self._bad(key, "a list of whole numbers" if whole else "a list of numbers")
-        return tuple(value)
-
-    def object(self, key: str, optional: bool = False) -> dict | None:
-        value = self.value.get(key) if optional else self.need(key)
-        if value is None and optional:
-            return None
-        if not isinstance(value, dict):
-            raise self._bad(key, "a JSON object")
-        return value
-
-    def objects(self, key: str) -> list:
-        value = self.need(key)
-        if not isinstance(value, list):
-            raise self._bad(key, "a list")
-        return value
-
-
-class _Object(tuple):
-    """A JSON object frozen: its ``(key, value)`` pairs sorted by key."""
-
-    __slots__ = ()
-
-
-def freeze(value):
-    """A JSON value as an immutable one: lists become tuples, objects sorted pairs.
-
-    Examples
-    --------
-    >>> freeze({"b": [1, 2], "a": {"c": None}})
-    (('a', (('c', None),)), ('b', (1, 2)))
-    >>> thaw(freeze({"b": [1, 2], "a": {"c": None}}))
-    {'a': {'c': None}, 'b': [1, 2]}
-    """
-    if isinstance(value, dict):
-        return _Object((str(k), freeze(v)) for k, v in sorted(value.items()))
-    if isinstance(value, (list, tuple)):
-        return tuple(freeze(v) for v in value)
-    return value
-
-
-def thaw(value):
-    """The JSON value of a frozen one (the inverse of :func:`freeze`)."""
-    if isinstance(value, _Object):
-        return {k: thaw(v) for k, v in value}
-    if isinstance(value, tuple):
-        return [thaw(v) for v in value]
-    return value
-
-
-def as_dict(pairs) -> dict:
-    """The JSON object of a mapping-like field (``(key, value)`` pairs, values frozen).
-
-    Examples
-    --------
-    >>> as_dict(()), as_dict(freeze({"a": [1]}))
-    ({}, {'a': [1]})
-    """
-    return {k: thaw(v) for k, v in pairs}
-
-
-def _pairs(value: dict | None) -> tuple:
-    return freeze(value or {})
 
 
 @dataclass(frozen=True)
@@ -243,6 +130,11 @@ class Settings:
         # JSON lists come back as lists; the settings made from a command line hold the same
         return cls.make(value["inducer"], value["params"], value["segmentation"],
                         value["min_performances"])
+
+
+def _Json(value, where: str, what: str) -> Fields:
+    """Typed access to a JSON object whose errors are :class:`PraxiconError` s."""
+    return Fields(value, where, what, PraxiconError)
 
 
 # -- the records --------------------------------------------------------------------------------
@@ -466,7 +358,7 @@ class ActionRecord:
     @classmethod
     def from_json(cls, value, where: str = "record") -> "ActionRecord":
         """Read :meth:`to_json`'s value back (:class:`PraxiconError` when malformed)."""
-        j = _Json(value, where)
+        j = _Json(value, where, "record")
         status = j.text("status")
         if status not in ("ok", "failed"):
             raise j._bad("status", "'ok' or 'failed'")
@@ -506,7 +398,8 @@ class ActionRecord:
 @dataclass(frozen=True)
 class Praxicon:
     """A whole praxicon: its records sorted by name, the settings and datasets it was built
-    from, and each record's input key (what resume compares; ``""`` when unknown).
+    from, each record's input key (what resume compares; ``""`` when unknown), and the
+    descriptions that recognition and parsing read (learnt by the build after the actions).
 
     Read one from a folder with :func:`praxicon.load`, write one with :func:`praxicon.dump`;
     ``to_json`` is the whole praxicon as one JSON value (the index with every full record).
@@ -524,6 +417,11 @@ class Praxicon:
     settings: Settings
     datasets: tuple[str, ...] = ()
     keys: tuple[tuple[str, str], ...] = ()
+    #: what recognition reads: every learnt action's description of whole takes, with the
+    #: spread the actions share (``praxicon.recognition``); None before they are learnt
+    descriptions: Descriptions | None = None
+    #: the same for windows of a recording (``praxicon.parsing``)
+    window_descriptions: Descriptions | None = None
 
     def __post_init__(self) -> None:
         names = [a.name for a in self.actions]
@@ -565,8 +463,12 @@ class Praxicon:
     def to_json(self) -> dict:
         """The whole praxicon as plain JSON values: the index with every full record, and the
         records' input keys."""
-        return {**self.index(), "actions": [a.to_json() for a in self.actions],
-                "keys": dict(self.keys)}
+        out = {**self.index(), "actions": [a.to_json() for a in self.actions],
+               "keys": dict(self.keys)}
+        if self.descriptions is not None and self.window_descriptions is not None:
+            out["descriptions"] = {"takes": self.descriptions.to_dict(),
+                                   "windows": self.window_descriptions.to_dict()}
+        return out
 
     @classmethod
     def from_json(cls, value, where: str = "praxicon") -> "Praxicon":
@@ -582,8 +484,17 @@ class Praxicon:
         names = [a.name for a in actions]
         if len(set(names)) != len(names):
             raise PraxiconError(f"{where}: an action is listed twice")
+        described = j.object("descriptions", True)
+        takes = windows = None
+        if described is not None:
+            try:
+                takes = Descriptions.from_dict(described["takes"])
+                windows = Descriptions.from_dict(described["windows"])
+            except (KeyError, TypeError, DescriptionError) as exc:
+                raise PraxiconError(f"{where}: descriptions: {exc}") from None
         return cls(tuple(actions), Settings.from_dict(j.object("settings"), where),
-                   j.texts("datasets"), tuple(sorted((n, keys[n]) for n in names if n in keys)))
+                   j.texts("datasets"), tuple(sorted((n, keys[n]) for n in names if n in keys)),
+                   takes, windows)
 
 
 def check_index(index, where: str) -> None:
@@ -594,7 +505,7 @@ def check_index(index, where: str) -> None:
     >>> check_index({"format": "psgs-praxicon", "version": 1}, "px/index.json")
     Traceback (most recent call last):
     ...
-    praxicon.records.PraxiconError: px/index.json: a praxicon of format version 1; this psgs reads version 2: rebuild it with 'psgs praxicon build DATASET... -o FOLDER'
+    praxicon.records.PraxiconError: px/index.json: a praxicon of format version 1; this psgs reads version 3: rebuild it with 'psgs praxicon build DATASET... -o FOLDER'
     """
     if not isinstance(index, dict) or index.get("format") != FORMAT:
         raise PraxiconError(f"{where}: not a praxicon index (its format is not {FORMAT!r})")

@@ -27,6 +27,8 @@ from pathlib import Path
 
 from .records import (REBUILD, ActionRecord, Praxicon, PraxiconError, Settings, check_index,
                       name_problem)
+from .description_store import (FILE, descriptions_key, descriptions_text,
+                                read_descriptions_file)
 from .shared import shared_patterns
 
 __all__ = ["load", "dump", "actuator_matrix", "write_atomic", "dump_json",
@@ -190,6 +192,9 @@ def dump(praxicon: Praxicon, folder: str | Path) -> None:
         write_record(folder, record, praxicon.key(record.name))
     write_index(folder, praxicon)
     write_shared(folder, praxicon)
+    if praxicon.descriptions is not None and praxicon.window_descriptions is not None:
+        write_atomic(folder / FILE, descriptions_text(
+            praxicon.descriptions, praxicon.window_descriptions, descriptions_key(praxicon)))
 
 
 def load(folder: str | Path) -> Praxicon:
@@ -249,6 +254,7 @@ def load(folder: str | Path) -> Praxicon:
     if len(set(names)) != len(names):
         raise PraxiconError(f"{where}: an action is listed twice")
     order = sorted(range(len(records)), key=lambda i: names[i])
+    described = read_descriptions_file(folder) or (None, None, "")
     return Praxicon(tuple(records[i] for i in order),
                     Settings.from_dict(index.get("settings"), f"{where}: settings"),
-                    tuple(datasets), tuple(sorted(keys)))
+                    tuple(datasets), tuple(sorted(keys)), described[0], described[1])

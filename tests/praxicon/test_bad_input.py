@@ -233,7 +233,7 @@ def _edit_record(change):
 DAMAGE = {
     "index not a praxicon": (lambda f: (f / "index.json").write_text(
         '{"format": "psgs-praxicon", "actions": 5}'), "index.json: a praxicon of format "
-                                                     "version None; this psgs reads version 2"),
+                                                     "version None; this psgs reads version 3"),
     "index of another version": (_index_of_version_1, "rebuild it with 'psgs praxicon build "
                                                       "DATASET... -o FOLDER'"),
     "index nests too deeply": (lambda f: (f / "index.json").write_text("[" * 100_000),

@@ -9,6 +9,7 @@ import pytest
 
 import praxicon.builder as build_module
 from praxicon import Settings, build, load, read_dataset
+from praxicon.records import FORMAT_VERSION
 
 
 def _files(folder):
@@ -22,7 +23,7 @@ def test_build_writes_index_systems_and_matrix(manifest, tmp_path, capsys):
     assert px == result.praxicon  # the typed round trip: the folder read back, field for field
     assert px.counts == {"actions": 4, "learnt": 2, "failed": 2}
     index = json.loads((tmp_path / "px" / "index.json").read_text())
-    assert index["counts"] == px.counts and index["version"] == 2
+    assert index["counts"] == px.counts and index["version"] == FORMAT_VERSION
     wave = px["moves.wave"]
     # the arm and the leg swing in step; hips and head are still
     assert wave.actuators == ("arm", "leg")

@@ -1,4 +1,4 @@
-"""``psgs praxicon describe|recognise|parse``: output, exit statuses, one-line errors; and a
+"""``psgs praxicon recognise|parse``: output, exit statuses, one-line errors; and a
 real-data check (marked ``mocap``)."""
 
 from __future__ import annotations
@@ -43,23 +43,23 @@ def _take(seed: int, arm: bool, leg: bool, seconds: float = 5.0, rate: float = 3
 
 @pytest.fixture(scope="module")
 def px(tmp_path_factory) -> Path:
-    """A praxicon folder (index of two actions, their BVH takes) with descriptions learnt."""
+    """A praxicon folder built from a manifest of two actions' BVH takes (its descriptions
+    learnt by the build), and two new takes beside it."""
     from kinetology import write_bvh
+    from praxicon import build, read_dataset
 
     folder = tmp_path_factory.mktemp("px")
-    actions = []
+    rows = ["action,file"]
     for name, arm, leg, seeds in (("wave", True, False, (1, 2, 3)),
                                   ("step", False, True, (4, 5, 6))):
-        performances = []
         for seed in seeds:
             path = folder / f"{name}{seed}.bvh"
             write_bvh(_take(seed, arm, leg), path)
-            performances.append({"file": str(path), "start": None, "stop": None,
-                                 "label": None, "used": True})
-        actions.append({"name": name, "status": "ok", "performances": performances})
-    (folder / "index.json").write_text(json.dumps({"format": "psgs-praxicon", "version": 1,
-                                                   "actions": actions}))
-    assert run(["describe", str(folder)]) == 0
+            rows.append(f"{name},{path}")
+    (folder / "m.csv").write_text("\n".join(rows) + "\n")
+    result = build(read_dataset(folder / "m.csv"), folder, progress=False, log=lambda s: None)
+    assert result.praxicon.descriptions is not None
+    assert result.praxicon.descriptions.names == ("m.step", "m.wave")
     for seed, arm, leg in ((7, True, False), (8, False, True)):
         write_bvh(_take(seed, arm, leg), folder / f"new{seed}.bvh")
     return folder
@@ -70,15 +70,15 @@ def test_recognise_prints_one_line_per_file(px, capsys):
     assert run(["recognise", str(px), str(px / "new7.bvh"), str(px / "new8.bvh")]) == 0
     lines = capsys.readouterr().out.splitlines()
     assert len(lines) == 2
-    assert lines[0].startswith(f"{px / 'new7.bvh'}: wave ") and "runner-up step" in lines[0]
-    assert lines[1].startswith(f"{px / 'new8.bvh'}: step ")
+    assert lines[0].startswith(f"{px / 'new7.bvh'}: m.wave ") and "runner-up m.step" in lines[0]
+    assert lines[1].startswith(f"{px / 'new8.bvh'}: m.step ")
 
 
 def test_recognise_explain(px, capsys):
     capsys.readouterr()
     assert run(["recognise", str(px), str(px / "new7.bvh"), "--explain"]) == 0
     out = capsys.readouterr().out
-    assert "matched:" in out and "step: p=" in out
+    assert "matched:" in out and "m.step: p=" in out
 
 
 def test_parse_prints_the_timeline(px, capsys):
@@ -90,7 +90,7 @@ def test_parse_prints_the_timeline(px, capsys):
     capsys.readouterr()
     assert run(["parse", str(px), str(px / "joined.bvh")]) == 0
     rows = [line.split() for line in capsys.readouterr().out.splitlines()]
-    assert [r[2] for r in rows if r[2] != "-"] == ["wave", "step"]
+    assert [r[2] for r in rows if r[2] != "-"] == ["m.wave", "m.step"]
     assert float(rows[0][0]) == 0.0 and float(rows[-1][1]) == pytest.approx(10.0, abs=0.05)
 
 
@@ -118,13 +118,13 @@ def test_bad_input_is_one_line_exit_2(px, tmp_path, capsys):
     data = json.loads((px / "descriptions.json").read_text())
     data["version"] = 0
     (old / "descriptions.json").write_text(json.dumps(data))
-    assert "psgs praxicon describe" in _error(capsys, ["recognise", str(old),
-                                                       str(px / "new7.bvh")])
+    assert "psgs praxicon build" in _error(capsys, ["recognise", str(old),
+                                                    str(px / "new7.bvh")])
     bare = tmp_path / "bare"
     bare.mkdir()
     (bare / "index.json").write_text((px / "index.json").read_text())
-    assert "psgs praxicon describe" in _error(capsys, ["parse", str(bare),
-                                                       str(px / "new7.bvh")])
+    assert "psgs praxicon build" in _error(capsys, ["parse", str(bare),
+                                                    str(px / "new7.bvh")])
 
 
 def test_missing_joints_named_on_stderr(px, tmp_path, capsys):
@@ -136,7 +136,7 @@ def test_missing_joints_named_on_stderr(px, tmp_path, capsys):
     capsys.readouterr()
     assert run(["recognise", str(px), str(tmp_path / "noleg.bvh")]) == 0
     captured = capsys.readouterr()
-    assert ": wave " in captured.out and "lacks: leg" in captured.err
+    assert ": m.wave " in captured.out and "lacks: leg" in captured.err
 
 
 @pytest.mark.mocap
@@ -164,19 +164,31 @@ def test_real_turns_told_from_walks_by_their_drift():
 
 
 def test_folder_round_trip_equals_in_memory(px):
-    """describe -> descriptions.json -> read gives the very descriptions learnt in memory, and
-    the same answers."""
+    """build -> descriptions.json -> load gives the very descriptions learnt in memory from
+    the same takes, and the same answers from the folder, the loaded value and memory."""
     import kinetology
+    from praxicon import load
     from praxicon.description import describe
     from praxicon.description_store import read_descriptions
     from praxicon.parsing import describe_windows
     from praxicon.recognition import recognise_many
 
-    index = json.loads((px / "index.json").read_text())
-    takes = {a["name"]: [kinetology.read(p["file"]) for p in a["performances"]]
-             for a in index["actions"]}
-    memory, folder = describe(takes), read_descriptions(px)
-    assert folder == memory
+    loaded = load(px)
+    takes = {a.name: [kinetology.read(p.file) for p in a.performances if p.used]
+             for a in loaded.actions if a.learnt}
+    memory = describe(takes)
+    assert read_descriptions(px) == memory == loaded.descriptions
     assert read_descriptions(px, windows=True) == describe_windows(takes)
+    assert loaded.window_descriptions == describe_windows(takes)
     new = [kinetology.read(px / f"new{s}.bvh") for s in (7, 8)]
-    assert recognise_many(folder, new) == recognise_many(memory, new)
+    assert recognise_many(px, new) == recognise_many(loaded, new) == recognise_many(memory, new)
+
+
+def test_resumed_build_keeps_its_descriptions(px):
+    """A build that learns no action again reuses the descriptions (same file, same value)."""
+    from praxicon import build, load, read_dataset
+
+    before = (px / "descriptions.json").read_bytes()
+    result = build(read_dataset(px / "m.csv"), px, progress=False, log=lambda s: None)
+    assert result.learnt == () and (px / "descriptions.json").read_bytes() == before
+    assert result.praxicon == load(px)

@@ -8,8 +8,9 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from praxicon import dump, load
+from praxicon.jsonvalues import freeze
 from praxicon.records import (FORMAT_VERSION, ActionRecord, ChannelMorpheme, JointRecord,
-                              PerformanceRecord, Praxicon, PraxiconError, Settings, freeze)
+                              PerformanceRecord, Praxicon, PraxiconError, Settings)
 
 names = st.text(st.characters(min_codepoint=33, max_codepoint=0x2FF,
                               blacklist_characters="/\\."), min_size=1, max_size=12)

@@ -1,0 +1,148 @@
+"""JSON values as frozen values: typed access to a JSON object with one-line errors, and
+:func:`freeze`/:func:`thaw` between JSON objects and sorted tuples of pairs.
+
+Its one job is the boundary between the praxicon's JSON files and its frozen records: every
+reader of a record goes through :class:`Fields`, so a damaged file gives one line naming the
+file and the key, never a ``KeyError`` or ``TypeError``.
+"""
+
+from __future__ import annotations
+
+__all__ = ["Fields", "freeze", "thaw", "as_dict", "pairs"]
+
+
+class Fields:
+    """Typed access to one JSON object; every error (``error``, a one-line exception class)
+    names ``where`` and the key.
+
+    Examples
+    --------
+    >>> Fields({"a": 1}, "x.json", "record", ValueError).number("a")
+    1
+    >>> Fields({"a": "1"}, "x.json", "record", ValueError).number("a")
+    Traceback (most recent call last):
+    ...
+    ValueError: x.json: 'a' must be a number, not '1'
+    """
+
+    def __init__(self, value, where: str, what: str, error: type[Exception]):
+        self.error = error
+        if not isinstance(value, dict):
+            raise error(f"{where}: not a praxicon {what} (a JSON object expected, "
+                        f"not {type(value).__name__})")
+        self.value, self.where, self.what = value, where, what
+
+    def _bad(self, key: str, expected: str):
+        got = self.value[key]
+        shown = repr(got) if len(repr(got)) <= 40 else type(got).__name__
+        return self.error(f"{self.where}: {key!r} must be {expected}, not {shown}")
+
+    def need(self, key: str):
+        """The value at ``key`` (an error when absent)."""
+        if key not in self.value:
+            raise self.error(f"{self.where}: not a praxicon {self.what} (no {key!r})")
+        return self.value[key]
+
+    def text(self, key: str, optional: bool = False) -> str | None:
+        """Text at ``key`` (``None`` when ``optional`` and absent)."""
+        value = self.value.get(key) if optional else self.need(key)
+        if value is None and optional:
+            return None
+        if not isinstance(value, str):
+            raise self._bad(key, "text")
+        return value
+
+    def number(self, key: str, optional: bool = False) -> float | None:
+        """A number at ``key`` (``None`` when ``optional`` and absent)."""
+        value = self.value.get(key) if optional else self.need(key)
+        if value is None and optional:
+            return None
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise self._bad(key, "a number")
+        return value
+
+    def texts(self, key: str, optional: bool = False) -> tuple[str, ...] | None:
+        """A list of text at ``key`` (``None`` when ``optional`` and absent)."""
+        value = self.value.get(key) if optional else self.need(key)
+        if value is None and optional:
+            return None
+        if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+            raise self._bad(key, "a list of text")
+        return tuple(value)
+
+    def numbers(self, key: str, optional: bool = False, whole: bool = False):
+        """A list of numbers at ``key`` (``None`` when ``optional`` and absent)."""
+        value = self.value.get(key) if optional else self.need(key)
+        if value is None and optional:
+            return None
+        kinds = (int,) if whole else (int, float)
+        if not isinstance(value, list) or any(isinstance(v, bool) or not isinstance(v, kinds)
+                                              for v in value):
+            raise self._bad(key, "a list of whole numbers" if whole else "a list of numbers")
+        return tuple(value)
+
+    def object(self, key: str, optional: bool = False) -> dict | None:
+        """A JSON object at ``key`` (``None`` when ``optional`` and absent)."""
+        value = self.value.get(key) if optional else self.need(key)
+        if value is None and optional:
+            return None
+        if not isinstance(value, dict):
+            raise self._bad(key, "a JSON object")
+        return value
+
+    def objects(self, key: str) -> list:
+        """A list at ``key`` (``None`` when ``optional`` and absent)."""
+        value = self.need(key)
+        if not isinstance(value, list):
+            raise self._bad(key, "a list")
+        return value
+
+
+class _Object(tuple):
+    """A JSON object frozen: its ``(key, value)`` pairs sorted by key."""
+
+    __slots__ = ()
+
+
+def freeze(value):
+    """A JSON value as an immutable one: lists become tuples, objects sorted pairs.
+
+    Examples
+    --------
+    >>> freeze({"b": [1, 2], "a": {"c": None}})
+    (('a', (('c', None),)), ('b', (1, 2)))
+    >>> thaw(freeze({"b": [1, 2], "a": {"c": None}}))
+    {'a': {'c': None}, 'b': [1, 2]}
+    """
+    if isinstance(value, dict):
+        return _Object((str(k), freeze(v)) for k, v in sorted(value.items()))
+    if isinstance(value, (list, tuple)):
+        return tuple(freeze(v) for v in value)
+    return value
+
+
+def thaw(value):
+    """The JSON value of a frozen one (the inverse of :func:`freeze`)."""
+    if isinstance(value, _Object):
+        return {k: thaw(v) for k, v in value}
+    if isinstance(value, tuple):
+        return [thaw(v) for v in value]
+    return value
+
+
+def as_dict(pairs) -> dict:
+    """The JSON object of a mapping-like field (``(key, value)`` pairs, values frozen).
+
+    Examples
+    --------
+    >>> as_dict(()), as_dict(freeze({"a": [1]}))
+    ({}, {'a': [1]})
+    """
+    return {k: thaw(v) for k, v in pairs}
+
+
+def pairs(value: dict | None) -> tuple:
+    """A JSON object (or None) frozen as sorted pairs."""
+    return freeze(value or {})
+
+
