@@ -28,6 +28,8 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
+from psgs._foundation.engines import jit as _jit
+
 from ._kinetemes import _PERCENTILE_SAMPLES, gaussian_kernel, pad_odd
 
 try:
@@ -41,14 +43,6 @@ __all__: list[str] = []  # private: kinetology.segmentation is the interface
 #: step costs more than it saves on the CMU takes (10,000 to 290,000 samples: 45 ms in one
 #: thread for all 16, 68 ms with threads from 65,536 samples up)
 _THREADED_SAMPLES = 1 << 19
-
-
-def _jit(function):
-    """Compiled on first use, once per installed copy (``cache=True``); no ``fastmath``, so
-    IEEE arithmetic in the written order; ``nogil`` so that threads run side by side."""
-    if numba is None:
-        return function
-    return numba.njit(cache=True, nogil=True)(function)
 
 
 @_jit

@@ -21,13 +21,14 @@ from pathlib import Path
 
 import numpy as np
 
+from kinetology.plotting import STATE_COLOURS
+
 from .records import ActionRecord, Praxicon
 from .store import actuator_matrix, load
 
-__all__ = ["KINETEME_COLOURS", "draw_actuator_matrix", "draw_morphemes", "draw_shared_patterns",
+__all__ = ["draw_actuator_matrix", "draw_morphemes", "draw_shared_patterns",
            "draw_generated", "draw_praxicon"]
 
-KINETEME_COLOURS = {"B": "#1f5fbf", "G": "#2ca02c", "R": "#d62728", "Y": "#f2c80f"}
 
 
 def _pyplot():
@@ -98,7 +99,7 @@ def draw_actuator_matrix(folder, path) -> Path:
 def _runs(ax, y: float, kinetemes, durations, height: float = 0.8) -> None:
     x = 0.0
     for k, d in zip(kinetemes, durations):
-        ax.barh(y, d, left=x, height=height, color=KINETEME_COLOURS.get(k, "#999999"),
+        ax.barh(y, d, left=x, height=height, color=STATE_COLOURS.get(k, "#999999"),
                 edgecolor="white", lw=0.5)
         if d > 0.04:
             ax.text(x + d / 2, y, k, ha="center", va="center", fontsize=6,
