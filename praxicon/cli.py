@@ -87,7 +87,30 @@ def run_generate(args) -> int:
     for channel in result.channels:
         if not exact[channel]:
             print(f"  {channel}: {result.methods[channel].kind}")
+    if args.view:
+        print(f"{args.view}: {_view_beside_a_performance(args.praxicon, result, args.view)}")
     return 0
+
+
+def _view_beside_a_performance(folder, result, output) -> str:
+    """Write the player of the generated motion beside the first performance it was learnt
+    from (one clock, actuators ringed); what it shows, in words."""
+    import kinetology
+
+    from .datasets import Performance
+    from .learn import _load_performance
+    from .store import load
+
+    shown = {}
+    for p in load(folder)[result.action].performances:
+        if p.used is not False:
+            motion, problem = _load_performance(Performance(p.file, p.start, p.stop, p.label))
+            if not problem:
+                shown[f"performance ({p.file})"] = motion
+                break
+    shown["generated"] = result.motion
+    kinetology.view(shown, output, actuators=list(result.actuators))
+    return " beside ".join(shown)
 
 
 def _add_commands(sub) -> None:
@@ -137,6 +160,9 @@ def _add_commands(sub) -> None:
                      help="the BVH file to write")
     gen.add_argument("--plot", default=None, metavar="PNG",
                      help="also plot one joint, original performance beside generated")
+    gen.add_argument("--view", default=None, metavar="OUT.html",
+                     help="also a player of the generated motion beside a performance "
+                          "(.html, .gif or .mp4: kinetology view)")
     gen.set_defaults(run=run_generate)
 
     from .recognition_cli import register_recognise  # recognise, parse

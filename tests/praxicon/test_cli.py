@@ -39,6 +39,14 @@ def test_build_draw_generate(manifest, tmp_path, capsys):
     # the round trip: the synthetic waves are smooth cycles, every channel comes back
     assert re.search(r"segmented again: (\d+) of \1 channels give back their morpheme x 2",
                      printed), printed
+    # --view: the generated motion played beside a performance it was learnt from
+    assert main(["generate", str(out), "moves.wave", "--repeat", "1", "-o",
+                 str(tmp_path / "w1.bvh"), "--view", str(tmp_path / "w1.html")]) == 0
+    last = capsys.readouterr().out.splitlines()[-1]
+    assert last.startswith(f"{tmp_path / 'w1.html'}: performance (") and \
+        last.endswith(") beside generated")
+    page = (tmp_path / "w1.html").read_text()
+    assert page.count("generated") >= 1 and "<script" in page
 
 
 @pytest.mark.parametrize("argv, message", [
