@@ -10,11 +10,10 @@ from pathlib import Path
 
 import numpy as np
 
-from .plotting import STATE_COLOURS
+from .plotting import STATE_COLOURS, STILL_COLOUR as _STILL
 
 __all__ = ["animate"]
 
-_STILL = "#9a9a9a"  # a joint that does not move, as on the page
 
 
 def animate(player, path: Path, suffix: str, *, dpi: int = 72) -> None:

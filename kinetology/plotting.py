@@ -16,12 +16,14 @@ from psgs.errors import MissingDependency, ValidationError
 from .motion import Motion
 from .segmentation import DEFAULTS, STATES, states
 
-__all__ = ["STATE_COLOURS", "plot_states", "plot_reconstruction", "plot_view_invariance",
+__all__ = ["STATE_COLOURS", "STILL_COLOUR", "plot_states", "plot_reconstruction", "plot_view_invariance",
            "plot_reproducibility", "plot_selectivity", "plot_rate_distortion", "save"]
 
 #: Colours of the four states (B blue, G green, R red, Y yellow).
 STATE_COLOURS = MappingProxyType({"B": "#1f5fd6", "G": "#2ca02c", "R": "#d62728",
                                   "Y": "#e8b400"})
+#: Colour of a channel or joint that does not move (the viewer's state ``"-"``).
+STILL_COLOUR = "#9a9a9a"
 
 
 def _pyplot():

@@ -40,13 +40,13 @@ from typing import Iterable, Mapping, Sequence
 import numpy as np
 
 from .motion import Motion, MotionFormatError
-from .plotting import STATE_COLOURS as _STATES_DRAWN
+from .plotting import STATE_COLOURS, STILL_COLOUR
 
-__all__ = ["STATE_COLOURS", "SUFFIXES", "ViewError", "Panel", "Player", "view", "motion_html",
+__all__ = ["SUFFIXES", "ViewError", "Panel", "Player", "view", "motion_html",
            "register"]
 
-#: Colour of each kineteme state (those of the plots) and of a joint that does not move, ``"-"``.
-STATE_COLOURS = {**_STATES_DRAWN, "-": "#9a9a9a"}
+#: the states' colours (those of the plots) and a still joint's, ``"-"``
+_COLOURS = {**STATE_COLOURS, "-": STILL_COLOUR}
 #: Output suffixes a player writes.
 SUFFIXES = (".html", ".gif", ".mp4")
 _STATE_READING = {"B": "rising, speeding up", "G": "rising, slowing down",
@@ -282,7 +282,7 @@ class Player:
 
     def _fragment(self) -> str:
         data = {"rate": self.frame_rate, "ticks": self.ticks, "yaw": _YAW, "pitch": _PITCH,
-                "colours": STATE_COLOURS, "panels": [p.to_json() for p in self.panels]}
+                "colours": _COLOURS, "panels": [p.to_json() for p in self.panels]}
         # no "<" at all inside the script element: a label cannot end it or open a comment
         text = json.dumps(data, separators=(",", ":")).replace("<", "\\u003c")
         # the element id comes from the content: two players on one notebook page do not
@@ -292,7 +292,7 @@ class Player:
         legend = " ".join(
             f'<span title="{_STATE_READING[s]}"><span style="display:inline-block;width:.8em;'
             f'height:.8em;border-radius:50%;background:{c}"></span> {s if s != "-" else "still"}'
-            f'</span>' for s, c in STATE_COLOURS.items())
+            f'</span>' for s, c in _COLOURS.items())
         if any(any(p.actuators) for p in self.panels):
             legend += (' <span><span style="display:inline-block;width:.8em;height:.8em;'
                        'border-radius:50%;border:2px solid #000"></span> actuator</span>')

@@ -16,16 +16,12 @@ missing joints are named on stderr.
 
 from __future__ import annotations
 
+from psgs.errors import ValidationError
+
 from .description import DescriptionError
 from .description_store import read_descriptions
 
 __all__ = ["register_recognise"]
-
-
-def _bad(message: str):
-    from psgs.errors import ValidationError
-
-    raise ValidationError(message)
 
 
 def _read_motion(path: str):
@@ -35,12 +31,13 @@ def _read_motion(path: str):
     try:
         motion = kinetology.read(path)
     except FileNotFoundError:
-        _bad(f"{path}: no such file")
+        raise ValidationError(f"{path}: no such file")
     except (OSError, PSGSError) as exc:  # unreadable, or not motion: one line
-        _bad(str(exc).splitlines()[0])
+        raise ValidationError(str(exc).splitlines()[0])
     if motion.frames < 3:
-        _bad(f"{path}: {motion.frames} frame{'s' if motion.frames != 1 else ''}; recognising "
-             f"needs at least 3")
+        plural = "s" if motion.frames != 1 else ""
+        raise ValidationError(f"{path}: {motion.frames} frame{plural}; recognising needs at "
+                              f"least 3")
     return motion
 
 
@@ -52,12 +49,12 @@ def run_recognise(args) -> int:
     try:
         descriptions = read_descriptions(args.praxicon)
     except DescriptionError as exc:
-        _bad(str(exc))
+        raise ValidationError(str(exc))
     motions = [_read_motion(f) for f in args.files]
     try:
         found = recognise_many(descriptions, motions, explain=3 if args.explain else 0)
     except DescriptionError as exc:
-        _bad(str(exc))
+        raise ValidationError(str(exc))
     for file, r in zip(args.files, found):
         if r.missing:
             print(f"{file}: recognised without the joints it lacks: {', '.join(r.missing)}",
@@ -77,12 +74,12 @@ def run_parse(args) -> int:
     try:
         descriptions = read_descriptions(args.praxicon, windows=True)
     except DescriptionError as exc:
-        _bad(str(exc))
+        raise ValidationError(str(exc))
     motion = _read_motion(args.file)
     try:
         timeline = parse(descriptions, motion)
     except DescriptionError as exc:
-        _bad(str(exc))
+        raise ValidationError(str(exc))
     print(timeline.text())
     if args.plot:
         from .recognition_pictures import draw_timeline
