@@ -108,7 +108,9 @@ def locate(learned: Induction | PSGS, actiongram: Actiongram, *, threshold: floa
     ------
     ValidationError
         When ``learned`` has no component, or none of its components is a
-        string of ``actiongram``.
+        string of ``actiongram``; when a scale is not finite and positive, or
+        ``repeats`` is below 1. A tempo whose pattern is longer than the new
+        motion is skipped before it is sampled (it fits nowhere).
     TypeError
         When the arguments are not of these types.
 
@@ -126,6 +128,10 @@ def locate(learned: Induction | PSGS, actiongram: Actiongram, *, threshold: floa
         raise TypeError(f"locate needs an Actiongram, not {type(actiongram).__name__}")
     if method not in ("auto", "joints", "pattern"):
         raise ValidationError(f"method must be auto, joints or pattern, not {method!r}")
+    scales = _checked_scales(scales)
+    if repeats is not None and (isinstance(repeats, bool) or not isinstance(repeats, int)
+                                or repeats < 1):
+        raise ValidationError(f"repeats must be a whole number of at least 1, not {repeats!r}")
     if method == "joints" or (method == "auto" and isinstance(learned, Induction)
                               and learned.actuators and _cyclic(learned)):
         return _by_joints(learned, actiongram, min_share if min_share is not None else 0.4)
@@ -144,6 +150,11 @@ def locate(learned: Induction | PSGS, actiongram: Actiongram, *, threshold: floa
     best = np.full(grid.points, -np.inf)
     width = np.zeros(grid.points, dtype=np.int64)
     for scale in scales:
+        # a template longer than the new motion fits nowhere: skip it before sampling it,
+        # so that a huge tempo costs nothing (its sampled length would be unbounded)
+        if max(_sampled_length(durs, scale, step) for _, durs, _ in templates.values()) \
+                > grid.points:
+            continue
         states = {name: _template_states(syms, durs, scale, step, codes)
                   for name, (syms, durs, _) in templates.items()}
         length = max(len(s) for s in states.values())
@@ -243,6 +254,29 @@ def _expand(symbol, by_lhs, depth: int) -> list[str]:
     if not rules:
         return []
     return [t for s in rules[0].rhs for t in _expand(s, by_lhs, depth + 1)]
+
+
+def _checked_scales(scales) -> tuple[float, ...]:
+    """``scales`` as finite positive floats, or a :class:`ValidationError` naming the bad one."""
+    try:
+        values = tuple(scales)
+    except TypeError:
+        raise ValidationError(f"scales must be a sequence of numbers, not {scales!r}") from None
+    if not values:
+        raise ValidationError("scales must hold at least one tempo")
+    out = []
+    for value in values:
+        if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+            raise ValidationError(f"a scale must be a number, not {value!r}")
+        if not np.isfinite(value) or value <= 0:
+            raise ValidationError(f"a scale must be finite and positive, not {value!r}")
+        out.append(float(value))
+    return tuple(out)
+
+
+def _sampled_length(durations, scale: float, step: float) -> float:
+    """How many grid points the pattern covers at tempo ``scale`` (as a float: may be huge)."""
+    return float(np.sum(np.asarray(durations, dtype=float))) * scale / step
 
 
 def _template_states(symbols, durations, scale: float, step: float,
