@@ -126,3 +126,27 @@ def test_a_huge_tempo_is_skipped_without_allocating_its_pattern():
     # a huge tempo beside a fitting one: the fitting one still finds the action
     spans = locate(learned, new, threshold=0.6, scales=(1.0, 1e9))
     assert [(round(s.start), round(s.stop)) for s in spans] == [(0, 12)]
+
+
+def test_locate_with_its_defaults_spots_an_action_between_others():
+    """Pattern A, then B, then A: the spans of learnt B lie inside B's true span (before,
+    the default found one span from the first cycle to the last of the whole recording)."""
+    kinetology = pytest.importorskip("kinetology")
+    import numpy as np
+    from kinetology.synthetic import synthetic_motion
+
+    b = synthetic_motion(patterned=(0, 1, 2), seed=1)
+    before = synthetic_motion(patterned=(3, 4, 5), seed=2, repetitions=3)
+    after = synthetic_motion(patterned=(3, 4, 5), seed=3, repetitions=3)
+    recording = kinetology.Motion(np.concatenate([before.values, b.values, after.values]),
+                                  b.channels, b.frame_rate)
+    learned = PAL().induce(kinetology.segment(b))
+    spans = locate(learned, kinetology.segment(recording))
+    start, stop = before.duration, before.duration + b.duration
+    assert spans
+    assert all(start <= s.start < s.stop <= stop for s in spans), (spans, start, stop)
+    # and they cover most of it (at least half of what is performed)
+    assert sum(s.stop - s.start for s in spans) >= 0.5 * b.duration
+    # B performed alone is found over most of the take
+    alone = locate(learned, kinetology.segment(b))
+    assert alone and alone[-1].stop - alone[0].start >= 0.7 * b.duration

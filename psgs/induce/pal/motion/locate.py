@@ -29,7 +29,7 @@ from ...results import Induction
 from ..period import track_windows
 from .conf import MotionConf
 from .cycles import cycle_evidence, joint_period, lag_scores
-from .grids import grid_step, sample
+from .grids import agreement_counts, grid_step, kappa, sample
 
 __all__ = ["Located", "locate"]
 
@@ -370,6 +370,47 @@ def _by_joints(learned: Induction, actiongram: Actiongram, min_share: float
     starts = track_windows(grid.states[list(mine)], lag)
     if len(starts) == 0:
         return ()
+    # spot: only the cycles where the learned joints repeat themselves (a cycle agreeing,
+    # beyond chance, with the one before or after it), consecutive ones one span; the
+    # rest of the recording performs something else
+    kept = _repeating(grid.states[list(mine)], starts, lag, size)
     t0, step = grid.t0, grid.step
-    return (Located(t0 + float(starts[0]) * step, t0 + float(starts[-1] + lag) * step,
-                    round(share, 6)),)
+    spans: list[list[int]] = []
+    for k in np.flatnonzero(kept).tolist():
+        if spans and spans[-1][1] == k - 1:
+            spans[-1][1] = k
+        else:
+            spans.append([k, k])
+    return tuple(Located(t0 + float(starts[a]) * step, t0 + float(starts[b] + lag) * step,
+                         round(share, 6)) for a, b in spans)
+
+
+#: Least chance-corrected agreement of a cycle with a neighbouring one for it to be
+#: part of the action (the learned joints' states, cycle against cycle).
+CYCLE_KAPPA = 0.3
+
+
+def _repeating(states: np.ndarray, starts: np.ndarray, lag: int, size: int) -> np.ndarray:
+    """Per tracked cycle: whether it is a cycle of the action.
+
+    Each cycle's ``states`` are compared with the next one's (kappa). A cycle
+    is kept when it agrees at :data:`CYCLE_KAPPA` with both neighbours (the
+    recording's ends count as agreeing), or at twice that with one: a cycle
+    that straddles the start or end of the action agrees only weakly with its
+    one neighbour inside it, and keeping it would make the span longer than
+    what is performed.
+    """
+    windows = states[:, starts[:, None] + np.arange(lag)]          # (rows, cycles, lag)
+    count = windows.shape[1]
+    if count < 2:
+        return np.zeros(count, dtype=bool)
+    pairs = np.swapaxes(windows, 0, 1)                            # (cycles, rows, lag)
+    observed, chance, _ = agreement_counts(pairs[:-1].reshape(count - 1, -1),
+                                           pairs[1:].reshape(count - 1, -1), size)
+    score = kappa(observed, chance)                               # cycle k with k + 1
+    before = np.concatenate([[np.inf], score])                    # cycle k with k - 1
+    after = np.concatenate([score, [np.inf]])
+    both = (before >= CYCLE_KAPPA) & (after >= CYCLE_KAPPA)
+    strong = (np.where(np.isinf(before), -np.inf, before) >= 2 * CYCLE_KAPPA) \
+        | (np.where(np.isinf(after), -np.inf, after) >= 2 * CYCLE_KAPPA)
+    return both | strong
