@@ -87,3 +87,66 @@ def test_locate_with_a_grammar_system_reads_its_patterns():
     new = Actiongram.from_strings({"a": "wwxx" + "xyzw" * 5, "b": "ssrr" + "pqrs" * 5})
     spans = locate(learned.system, new)
     assert spans and spans[0].start >= 2
+
+
+def _synthetic_case():
+    learned = Induction(None, ("a", "b"), {"a": ("x", "y"), "b": ("u", "v")},
+                        {"a": ((0, 2),), "b": ((0, 2),)})
+    new = Actiongram.from_strings({"a": "xy" * 6 + "xxxxyyyyxxxx", "b": "uv" * 6 + "u" * 12})
+    return learned, new
+
+
+@pytest.mark.parametrize("scales", [(float("nan"),), (float("inf"),), (0.0,), (-1.0,), (),
+                                    ("fast",), (True,)])
+def test_bad_scales_are_a_validation_error(scales):
+    learned, new = _synthetic_case()
+    with pytest.raises(ValidationError, match="scale"):
+        locate(learned, new, scales=scales)
+
+
+@pytest.mark.parametrize("repeats", [0, -1, 1.5, True])
+def test_bad_repeats_are_a_validation_error(repeats):
+    learned, new = _synthetic_case()
+    with pytest.raises(ValidationError, match="repeats"):
+        locate(learned, new, scales=(1e9,), repeats=repeats)
+
+
+def test_a_huge_tempo_is_skipped_without_allocating_its_pattern():
+    import tracemalloc
+
+    learned, new = _synthetic_case()
+    tracemalloc.start()
+    try:
+        assert locate(learned, new, scales=(1e9,), method="pattern") == ()
+        assert locate(learned, new, scales=(1e9,), repeats=1, method="pattern") == ()
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 50 * 2**20
+    # a huge tempo beside a fitting one: the fitting one still finds the action
+    spans = locate(learned, new, threshold=0.6, scales=(1.0, 1e9))
+    assert [(round(s.start), round(s.stop)) for s in spans] == [(0, 12)]
+
+
+def test_locate_with_its_defaults_spots_an_action_between_others():
+    """Pattern A, then B, then A: the spans of learnt B lie inside B's true span (before,
+    the default found one span from the first cycle to the last of the whole recording)."""
+    kinetology = pytest.importorskip("kinetology")
+    import numpy as np
+    from kinetology.synthetic import synthetic_motion
+
+    b = synthetic_motion(patterned=(0, 1, 2), seed=1)
+    before = synthetic_motion(patterned=(3, 4, 5), seed=2, repetitions=3)
+    after = synthetic_motion(patterned=(3, 4, 5), seed=3, repetitions=3)
+    recording = kinetology.Motion(np.concatenate([before.values, b.values, after.values]),
+                                  b.channels, b.frame_rate)
+    learned = PAL().induce(kinetology.segment(b))
+    spans = locate(learned, kinetology.segment(recording))
+    start, stop = before.duration, before.duration + b.duration
+    assert spans
+    assert all(start <= s.start < s.stop <= stop for s in spans), (spans, start, stop)
+    # and they cover most of it (at least half of what is performed)
+    assert sum(s.stop - s.start for s in spans) >= 0.5 * b.duration
+    # B performed alone is found over most of the take
+    alone = locate(learned, kinetology.segment(b))
+    assert alone and alone[-1].stop - alone[0].start >= 0.7 * b.duration

@@ -68,11 +68,27 @@ def _self_agreement(grid: np.ndarray, size: int) -> tuple[np.ndarray, np.ndarray
     same = np.zeros_like(pairs)
     chance = np.zeros(grid.shape[0])
     counted = np.maximum(valid.sum(axis=1), 1)
-    for sym in range(size):
-        indicator = grid == sym
-        if indicator.any():
-            same += np.round(correlate(indicator))
-            chance += (indicator.sum(axis=1) / counted) ** 2
+    for row in range(grid.shape[0]):
+        # only the symbols this string holds: the cost follows its own alphabet, not the
+        # actiongram's; a symbol at few points is counted pair by pair (whole numbers, as
+        # the rounded correlation gives them), a frequent one by an FFT
+        values = grid[row]
+        order = np.argsort(values, kind="stable")
+        order = order[values[order] >= 0]
+        syms, first, counts = np.unique(values[order], return_index=True, return_counts=True)
+        gaps = []
+        for sym, start, count in zip(syms.tolist(), first.tolist(), counts.tolist()):
+            if count * count <= 4 * nfft:
+                at = order[start:start + count]
+                pairs_of = (at[None, :] - at[:, None]).ravel()
+                gaps.append(pairs_of[pairs_of >= 0])
+            else:
+                same[row] += np.round(correlate((values == sym)[None]))[0]
+        if gaps:
+            same[row] += np.bincount(np.concatenate(gaps), minlength=n)[:n]
+        shares = counts / counted[row]
+        # summed symbol after symbol, as a loop over the alphabet would (absent ones add 0)
+        chance[row] = np.add.accumulate(shares ** 2)[-1] if len(shares) else 0.0
     return same / np.maximum(pairs, 1), chance
 
 
@@ -228,8 +244,8 @@ def _plurality_runs(copies: np.ndarray, size: int) -> tuple[int, ...]:
         if len(values) == 0:
             column.append(-1)
             continue
-        tally = np.bincount(values, minlength=size)
-        column.append(int(column[-1]) if column and column[-1] >= 0
+        tally = np.bincount(values)  # up to the largest present symbol: the same argmax
+        column.append(int(column[-1]) if column and 0 <= column[-1] < len(tally)
                       and tally[column[-1]] == tally.max() else int(np.argmax(tally)))
     runs: list[list[int]] = []
     for sym in column:

@@ -34,13 +34,21 @@ def _lags(grid: Grid, conf: MotionConf) -> range:
     return range(low, grid.points // conf.min_copies + 1)
 
 
+def _present(states: np.ndarray) -> np.ndarray:
+    """The states that occur in ``states``, ascending (absent ones add exactly 0 to chance)."""
+    return np.unique(states[states >= 0])
+
+
 def _weighted_kappa(states: np.ndarray, weight: np.ndarray, lag: int, size: int,
                     onehot: np.ndarray | None = None) -> np.ndarray:
     """Per row, the kappa of the states with themselves ``lag`` points later, weighted by
     the mean of the two points' speeds: :func:`~psgs.induce.pal.motion.grids.agreement` on the
-    two slices, with the states' indicator ``onehot`` (state, row, point) made once."""
+    two slices, with the indicator ``onehot`` (state, row, point) of the states present in
+    ``states`` (ascending) made once. A state that does not occur has share 0 and adds
+    exactly 0 to chance, so leaving it out changes no number and keeps the cost
+    independent of the size of the alphabet."""
     if onehot is None:
-        onehot = states[None] == np.arange(size)[:, None, None]
+        onehot = states[None] == _present(states)[:, None, None]
     valid = states >= 0
     w = np.where(valid[:, :-lag] & valid[:, lag:], (weight[:, :-lag] + weight[:, lag:]) / 2,
                  0.0)
@@ -48,10 +56,23 @@ def _weighted_kappa(states: np.ndarray, weight: np.ndarray, lag: int, size: int,
     observed = ((states[:, :-lag] == states[:, lag:]) * w).sum(axis=1) / div
     share_a = (onehot[:, :, :-lag] * w).sum(axis=2) / div
     share_b = (onehot[:, :, lag:] * w).sum(axis=2) / div
-    chance = np.zeros(states.shape[0])
-    for sym in range(size):  # in the order agreement sums them
-        chance += share_a[sym] * share_b[sym]
+    # summed state after state, in the order agreement sums them (accumulate is sequential)
+    chance = np.add.accumulate(share_a * share_b, axis=0)[-1] if len(onehot) \
+        else np.zeros(states.shape[0])
     return kappa(observed, chance)
+
+
+def _kappa_by_rows(states: np.ndarray, weight: np.ndarray, lag: int, size: int
+                   ) -> np.ndarray:
+    """:func:`_weighted_kappa` of every row; rows with different states apart, so that
+    many channels over a large alphabet cost what each channel's own states cost (rows are
+    independent: the numbers are those of one call over every row)."""
+    if len(_present(states)) <= 16:
+        return _weighted_kappa(states, weight, lag, size)
+    out = np.zeros(states.shape[0])
+    for row in range(states.shape[0]):
+        out[row:row + 1] = _weighted_kappa(states[row:row + 1], weight[row:row + 1], lag, size)
+    return out
 
 
 @dataclass(eq=False)
@@ -90,10 +111,12 @@ class LagScores:
         rows = list(rows)
         todo = [r for r in dict.fromkeys(rows) if not self._done[r]]
         if todo and self._union:
-            states, speed = self.grid.states[todo], self.grid.speed[todo]
-            onehot = states[None] == np.arange(self.size)[:, None, None]
-            for lag, k in self._union.items():
-                self._kappa[k, todo] = _weighted_kappa(states, speed, lag, self.size, onehot)
+            for group in _alike_rows(self.grid.states, todo):
+                states, speed = self.grid.states[group], self.grid.speed[group]
+                onehot = states[None] == _present(states)[:, None, None]
+                for lag, k in self._union.items():
+                    self._kappa[k, group] = _weighted_kappa(states, speed, lag, self.size,
+                                                            onehot)
         self._done[todo] = True
         at = [self._union[lag] for lag in self.lags]
         half = [self._union[max(1, lag // 2)] for lag in self.lags]
@@ -108,8 +131,15 @@ class LagScores:
             if lag in self._union and self._done.all():  # rows are independent: the same
                 self._full[lag] = self._kappa[self._union[lag]].copy()
             else:
-                self._full[lag] = _weighted_kappa(grid.states, grid.speed, lag, self.size)
+                self._full[lag] = _kappa_by_rows(grid.states, grid.speed, lag, self.size)
         return self._full[lag]
+
+
+def _alike_rows(states: np.ndarray, rows: list[int]) -> list[list[int]]:
+    """``rows`` as one group when together they hold few states, else one row a group."""
+    if len(_present(states[rows])) <= 16:
+        return [rows]
+    return [[r] for r in rows]
 
 
 def lag_scores(grid: Grid, size: int, conf: MotionConf) -> LagScores:
@@ -229,7 +259,12 @@ def cycles_alike(grids: list[Grid], periods: list[int | None], rows: tuple[int, 
     # indicators (performance, row, state, point); for every circular shift k the other
     # copy's indicators at point j - k: the joint tallies of a pair at every shift are one
     # matrix product of zeros and ones (exact)
-    states = np.arange(size)[:, None]
+    # only the states the cycles hold: an absent one tallies nothing and adds exactly 0
+    present = _present(np.array(means))
+    if len(present) == 0:
+        present = np.zeros(1, dtype=np.int64)
+    size = len(present)
+    states = present[:, None]
     mine = (np.array(means)[:, :, None, :] == states).astype(float)
     turn = (np.arange(width)[None, :] - np.arange(width)[:, None]) % width  # (shift, point)
     others = mine[..., turn].reshape(len(means), len(rows), size * width, width)

@@ -140,12 +140,13 @@ def agreement(a: np.ndarray, b: np.ndarray, weight: np.ndarray, size: int
     observed = same.sum(axis=1) / div
     # every state's weighted share in one array (state, row, point): each (state, row) is
     # summed along its points exactly as a per-state loop would, so the numbers are the same
-    syms = np.arange(size)[:, None, None]
+    # only the states that occur: an absent one has share 0 and adds exactly 0 to chance
+    syms = np.union1d(a[a >= 0], b[b >= 0])[:, None, None]
     share_a = ((a[None] == syms) * w[None]).sum(axis=2) / div
     share_b = ((b[None] == syms) * w[None]).sum(axis=2) / div
-    chance = np.zeros(a.shape[0])
-    for sym in range(size):
-        chance += share_a[sym] * share_b[sym]
+    # summed state after state (accumulate is sequential)
+    chance = np.add.accumulate(share_a * share_b, axis=0)[-1] if len(syms) \
+        else np.zeros(a.shape[0])
     return observed, chance, total
 
 
@@ -161,13 +162,17 @@ def agreement_counts(a: np.ndarray, b: np.ndarray, size: int
     a, b = np.asarray(a), np.asarray(b)
     lead = np.broadcast_shapes(a.shape, b.shape)[:-1]
     rows = int(np.prod(lead, dtype=np.int64))
-    # one joint tally per row: bin a * size + b of the pairs where both are present, one
-    # more bin for the rest; its trace, row and column sums are every count needed
-    cells = size * size + 1
-    pair = np.where((a >= 0) & (b >= 0), a * size + b, size * size)
-    pair = pair.reshape(rows, -1) + (np.arange(rows, dtype=np.int64) * cells)[:, None]
-    tally = np.bincount(pair.ravel(), minlength=rows * cells).reshape(rows, cells)
-    observed, chance, total = from_tallies(tally[:, :-1].reshape(rows, size, size))
+    shape = lead + (max(a.shape[-1], b.shape[-1]),)
+    a = np.broadcast_to(a, shape).reshape(rows, -1)
+    b = np.broadcast_to(b, shape).reshape(rows, -1)
+    # the margins of the joint tally, counted directly (not the tally itself, whose
+    # size * size cells per row would make the cost grow with the square of the alphabet)
+    valid = (a >= 0) & (b >= 0)
+    base = (np.arange(rows, dtype=np.int64) * size)[:, None]
+    of_a = np.bincount((a + base)[valid], minlength=rows * size).reshape(rows, size)
+    of_b = np.bincount((b + base)[valid], minlength=rows * size).reshape(rows, size)
+    same = ((a == b) & valid).sum(axis=1)
+    observed, chance, total = _from_margins(of_a, of_b, same)
     return observed.reshape(lead), chance.reshape(lead), total.reshape(lead)
 
 
@@ -175,24 +180,25 @@ def from_tallies(joint: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]
     """:func:`agreement_counts` from joint tallies ``(..., state of a, state of b)``."""
     size = joint.shape[-1]
     lead = joint.shape[:-2]
-    # the margins, the diagonal and the total of every tally as one product with a 0/1
-    # matrix (sums of whole numbers: exact, whatever order the product adds them in)
-    cells = np.arange(size * size)
-    margins = np.zeros((size * size, 2 * size + 2))
-    margins[cells, cells // size] = 1                   # state of a
-    margins[cells, size + cells % size] = 1             # state of b
-    margins[cells[cells // size == cells % size], 2 * size] = 1
-    margins[:, 2 * size + 1] = 1
-    sums = joint.reshape(-1, size * size).astype(float) @ margins
-    total = sums[:, 2 * size + 1]
+    joint = joint.reshape(-1, size, size)
+    # the margins and the diagonal are sums of whole numbers: exact in any order
+    observed, chance, total = _from_margins(joint.sum(axis=2), joint.sum(axis=1),
+                                            np.trace(joint, axis1=1, axis2=2))
+    return observed.reshape(lead), chance.reshape(lead), total.reshape(lead)
+
+
+def _from_margins(of_a: np.ndarray, of_b: np.ndarray, same: np.ndarray
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Observed share, chance level and total from the counts of each state (rows, state)
+    in ``a`` and in ``b`` over the points where both are present, and of agreeing points."""
+    of_a, of_b = of_a.astype(float), of_b.astype(float)
+    total = of_a.sum(axis=1)
     div = np.maximum(total, 1e-300)
-    share_a = sums[:, :size] / div[:, None]
-    share_b = sums[:, size:2 * size] / div[:, None]
-    chance = np.zeros(len(total))
-    for sym in range(size):  # in the order agreement sums them
-        chance += share_a[:, sym] * share_b[:, sym]
-    return ((sums[:, 2 * size] / div).reshape(lead), chance.reshape(lead),
-            total.reshape(lead))
+    products = (of_a / div[:, None]) * (of_b / div[:, None])
+    # summed state after state, in the order agreement sums them (accumulate is sequential)
+    chance = np.add.accumulate(products, axis=1)[:, -1] if products.shape[1] \
+        else np.zeros(len(total))
+    return np.asarray(same, dtype=float) / div, chance, total
 
 
 def plurality(copies: np.ndarray) -> np.ndarray:

@@ -29,7 +29,7 @@ from ...results import Induction
 from ..period import track_windows
 from .conf import MotionConf
 from .cycles import cycle_evidence, joint_period, lag_scores
-from .grids import grid_step, sample
+from .grids import agreement_counts, grid_step, kappa, sample
 
 __all__ = ["Located", "locate"]
 
@@ -108,7 +108,9 @@ def locate(learned: Induction | PSGS, actiongram: Actiongram, *, threshold: floa
     ------
     ValidationError
         When ``learned`` has no component, or none of its components is a
-        string of ``actiongram``.
+        string of ``actiongram``; when a scale is not finite and positive, or
+        ``repeats`` is below 1. A tempo whose pattern is longer than the new
+        motion is skipped before it is sampled (it fits nowhere).
     TypeError
         When the arguments are not of these types.
 
@@ -126,6 +128,10 @@ def locate(learned: Induction | PSGS, actiongram: Actiongram, *, threshold: floa
         raise TypeError(f"locate needs an Actiongram, not {type(actiongram).__name__}")
     if method not in ("auto", "joints", "pattern"):
         raise ValidationError(f"method must be auto, joints or pattern, not {method!r}")
+    scales = _checked_scales(scales)
+    if repeats is not None and (isinstance(repeats, bool) or not isinstance(repeats, int)
+                                or repeats < 1):
+        raise ValidationError(f"repeats must be a whole number of at least 1, not {repeats!r}")
     if method == "joints" or (method == "auto" and isinstance(learned, Induction)
                               and learned.actuators and _cyclic(learned)):
         return _by_joints(learned, actiongram, min_share if min_share is not None else 0.4)
@@ -144,6 +150,11 @@ def locate(learned: Induction | PSGS, actiongram: Actiongram, *, threshold: floa
     best = np.full(grid.points, -np.inf)
     width = np.zeros(grid.points, dtype=np.int64)
     for scale in scales:
+        # a template longer than the new motion fits nowhere: skip it before sampling it,
+        # so that a huge tempo costs nothing (its sampled length would be unbounded)
+        if max(_sampled_length(durs, scale, step) for _, durs, _ in templates.values()) \
+                > grid.points:
+            continue
         states = {name: _template_states(syms, durs, scale, step, codes)
                   for name, (syms, durs, _) in templates.items()}
         length = max(len(s) for s in states.values())
@@ -245,6 +256,29 @@ def _expand(symbol, by_lhs, depth: int) -> list[str]:
     return [t for s in rules[0].rhs for t in _expand(s, by_lhs, depth + 1)]
 
 
+def _checked_scales(scales) -> tuple[float, ...]:
+    """``scales`` as finite positive floats, or a :class:`ValidationError` naming the bad one."""
+    try:
+        values = tuple(scales)
+    except TypeError:
+        raise ValidationError(f"scales must be a sequence of numbers, not {scales!r}") from None
+    if not values:
+        raise ValidationError("scales must hold at least one tempo")
+    out = []
+    for value in values:
+        if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+            raise ValidationError(f"a scale must be a number, not {value!r}")
+        if not np.isfinite(value) or value <= 0:
+            raise ValidationError(f"a scale must be finite and positive, not {value!r}")
+        out.append(float(value))
+    return tuple(out)
+
+
+def _sampled_length(durations, scale: float, step: float) -> float:
+    """How many grid points the pattern covers at tempo ``scale`` (as a float: may be huge)."""
+    return float(np.sum(np.asarray(durations, dtype=float))) * scale / step
+
+
 def _template_states(symbols, durations, scale: float, step: float,
                      codes: dict[str, int]) -> np.ndarray:
     """The pattern sampled every ``step`` seconds at tempo ``scale`` (state codes)."""
@@ -336,6 +370,47 @@ def _by_joints(learned: Induction, actiongram: Actiongram, min_share: float
     starts = track_windows(grid.states[list(mine)], lag)
     if len(starts) == 0:
         return ()
+    # spot: only the cycles where the learned joints repeat themselves (a cycle agreeing,
+    # beyond chance, with the one before or after it), consecutive ones one span; the
+    # rest of the recording performs something else
+    kept = _repeating(grid.states[list(mine)], starts, lag, size)
     t0, step = grid.t0, grid.step
-    return (Located(t0 + float(starts[0]) * step, t0 + float(starts[-1] + lag) * step,
-                    round(share, 6)),)
+    spans: list[list[int]] = []
+    for k in np.flatnonzero(kept).tolist():
+        if spans and spans[-1][1] == k - 1:
+            spans[-1][1] = k
+        else:
+            spans.append([k, k])
+    return tuple(Located(t0 + float(starts[a]) * step, t0 + float(starts[b] + lag) * step,
+                         round(share, 6)) for a, b in spans)
+
+
+#: Least chance-corrected agreement of a cycle with a neighbouring one for it to be
+#: part of the action (the learned joints' states, cycle against cycle).
+CYCLE_KAPPA = 0.3
+
+
+def _repeating(states: np.ndarray, starts: np.ndarray, lag: int, size: int) -> np.ndarray:
+    """Per tracked cycle: whether it is a cycle of the action.
+
+    Each cycle's ``states`` are compared with the next one's (kappa). A cycle
+    is kept when it agrees at :data:`CYCLE_KAPPA` with both neighbours (the
+    recording's ends count as agreeing), or at twice that with one: a cycle
+    that straddles the start or end of the action agrees only weakly with its
+    one neighbour inside it, and keeping it would make the span longer than
+    what is performed.
+    """
+    windows = states[:, starts[:, None] + np.arange(lag)]          # (rows, cycles, lag)
+    count = windows.shape[1]
+    if count < 2:
+        return np.zeros(count, dtype=bool)
+    pairs = np.swapaxes(windows, 0, 1)                            # (cycles, rows, lag)
+    observed, chance, _ = agreement_counts(pairs[:-1].reshape(count - 1, -1),
+                                           pairs[1:].reshape(count - 1, -1), size)
+    score = kappa(observed, chance)                               # cycle k with k + 1
+    before = np.concatenate([[np.inf], score])                    # cycle k with k - 1
+    after = np.concatenate([score, [np.inf]])
+    both = (before >= CYCLE_KAPPA) & (after >= CYCLE_KAPPA)
+    strong = (np.where(np.isinf(before), -np.inf, before) >= 2 * CYCLE_KAPPA) \
+        | (np.where(np.isinf(after), -np.inf, after) >= 2 * CYCLE_KAPPA)
+    return both | strong
