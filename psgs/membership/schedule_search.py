@@ -208,7 +208,11 @@ class _ScheduleSearch:
         out = []
         for c, front in enumerate(state):
             classes = self.substrings[c]
-            out.append(tuple(sorted((a, classes.of(i, j)) for a, i, j in front)))
+            if len(front) == 1:
+                (a, i, j), = front
+                out.append(((a, classes.of(i, j)),))
+            else:
+                out.append(tuple(sorted((a, classes.of(i, j)) for a, i, j in front)))
         return tuple(out)
 
     def _children(self, c: int, rule: int, split: tuple[int, ...]):
@@ -417,7 +421,9 @@ class _ScheduleSearch:
                     path.pop()
                 continue
             _, _, state, move = nxt
-            if any(sum(1 for _, i, j in front if i == j) > cap for front in state):
+            # a frontier of at most cap occurrences cannot hold more than cap ε-occurrences
+            if any(len(front) > cap and sum(1 for _, i, j in front if i == j) > cap
+                   for front in state):
                 capped = True
                 continue
             k = self.key(state)
