@@ -308,6 +308,11 @@ class Chart:
             return
         tick = self.budget.tick
         minlen, maxlen = g.minlen, g.maxlen
+        if r <= 2:
+            # the bodies of most grammars (and all of the induced ones) have one or two
+            # symbols: the same walk as below, in the same order, without its stacks
+            yield from self._enumerate_short(body, i, j, proper, missing)
+            return
 
         def ends(t: int, p: int):
             s = body[t]
@@ -361,6 +366,57 @@ class Chart:
                 levels.pop()
                 bounds.pop()
                 doubts.pop()
+
+    def _enumerate_short(self, body, i: int, j: int, proper: bool, missing: list | None):
+        """:meth:`_enumerate` for a body of one or two symbols (length window already checked)."""
+        g = self.g
+        span = j - i
+        symbol_ok = self._symbol_ok
+        tick = self.budget.tick
+        if len(body) == 1:
+            s = body[0]
+            tick()
+            if proper and s >= 0:
+                return
+            ok = symbol_ok(s, i, j, missing)
+            if ok:
+                yield (i, j)
+            return
+        s, last = body
+        if last < 0:
+            low = high = 1
+        else:
+            low, high = g.minlen[last], g.maxlen[last]
+        if s < 0:
+            candidates = (i + 1,)
+        else:
+            candidates = range(max(i + g.minlen[s], j - high), min(i + g.maxlen[s], j - low) + 1)
+        for q in candidates:
+            tick()
+            if q < i or q > j:
+                continue
+            rest = j - q
+            if rest < low or rest > high:
+                continue
+            if proper and s >= 0 and q - i == span:
+                continue
+            ok = symbol_ok(s, i, q, missing)
+            if ok is None:  # unknown yet, and noted in missing
+                if len(missing) > _MISSING_PER_PASS:
+                    continue
+                doubt = True
+            elif ok:
+                doubt = False
+            else:
+                continue
+            tick()
+            if proper and last >= 0 and rest == span:
+                continue
+            ok = symbol_ok(last, q, j, missing)
+            if ok is None:
+                continue
+            if ok and not doubt:
+                yield (i, q, j)
 
     def _evaluate(self, key: tuple[int, int, int], missing: list) -> bool | None:
         a, i, j = key

@@ -190,6 +190,11 @@ class _ScheduleSearch:
         self.move_rule_ids = [
             tuple(None if r is IDLE else cg.rule_id[r] for r, cg in zip(m, compiled))
             for m in moves]
+        # per move, its (component, left-hand side) entries that rewrite a tracked symbol
+        self.move_entries = [
+            tuple((c, compiled[c].lhs[rule]) for c, rule in enumerate(rule_ids)
+                  if rule is not None and (focus is None or compiled[c].lhs[rule] in focus[c]))
+            for rule_ids in self.move_rule_ids]
         # moves by (component, left-hand side) of each non-idle entry: a state looks only at
         # the moves that rewrite a nonterminal it holds, not at every move of the system
         self.moves_needing: dict[tuple[int, int], list[int]] = {}
@@ -203,7 +208,11 @@ class _ScheduleSearch:
         out = []
         for c, front in enumerate(state):
             classes = self.substrings[c]
-            out.append(tuple(sorted((a, classes.of(i, j)) for a, i, j in front)))
+            if len(front) == 1:
+                (a, i, j), = front
+                out.append(((a, classes.of(i, j)),))
+            else:
+                out.append(tuple(sorted((a, classes.of(i, j)) for a, i, j in front)))
         return tuple(out)
 
     def _children(self, c: int, rule: int, split: tuple[int, ...]):
@@ -253,6 +262,16 @@ class _ScheduleSearch:
         classes = self.substrings[c]
         tick = self.budget.tick
         rest = [it for it in front if it[0] != a]
+        if len(targets) == 1:
+            # one occurrence: the general product below reduces to its splits, in order;
+            # this path skips the grouping and the lazy product (most steps of most grammars)
+            it = targets[0]
+            for split in chart.splits(rule, it[1], it[2]):
+                tick()
+                new = rest + self._children(c, rule, split)
+                new.sort(key=_item_order)
+                yield tuple(new), ((it, split),)
+            return
         groups: dict[int, list] = {}
         for it in targets:
             groups.setdefault(classes.of(it[1], it[2]), []).append(it)
@@ -301,14 +320,11 @@ class _ScheduleSearch:
         for c, table in enumerate(leftmost_of):
             for a in table:
                 relevant.update(self.moves_needing.get((c, a), ()))
+        move_entries = self.move_entries
         for m in sorted(relevant):
-            rule_ids = self.move_rule_ids[m]
             key = None
-            for c, rule in enumerate(rule_ids):
-                if rule is None or not state[c]:
-                    continue
-                a = self.compiled[c].lhs[rule]
-                if self.focus is not None and a not in self.focus[c]:
+            for c, a in move_entries[m]:
+                if not state[c]:
                     continue
                 at = leftmost_of[c].get(a)
                 if at is None:
@@ -405,7 +421,9 @@ class _ScheduleSearch:
                     path.pop()
                 continue
             _, _, state, move = nxt
-            if any(sum(1 for _, i, j in front if i == j) > cap for front in state):
+            # a frontier of at most cap occurrences cannot hold more than cap ε-occurrences
+            if any(len(front) > cap and sum(1 for _, i, j in front if i == j) > cap
+                   for front in state):
                 capped = True
                 continue
             k = self.key(state)
@@ -418,8 +436,10 @@ class _ScheduleSearch:
             budget.hold(1 + sum(len(front) for front in state))
             path.append(move)
             if all(not front for front in state):
+                # a relaxation's yes is only a "maybe": its schedule is never read
+                schedule = self._readable(path) if self.focus is None else None
                 return (Acceptance("yes", states=explored, system=self.system,
-                                   schedule=self._readable(path)), explored, capped)
+                                   schedule=schedule), explored, capped)
             if explored >= self.max_states:
                 reason = f"the schedule search stopped after {explored} states"
                 if capped:
