@@ -414,6 +414,18 @@ class _Components:
         """The position of a component given by name or position."""
         return _component_index(self.components, component)
 
+    def _summary(self) -> str:
+        rules = sum(len(g.rules) for g in self.components)
+        names = ", ".join(self.component_names[:6]) + (", ..." if len(self.components) > 6
+                                                        else "")
+        return f"{self.name!r}: {len(self.components)} component(s) ({names}), {rules} rules"
+
+    def __str__(self) -> str:
+        # what a user prints is the system as they would write it, in the text format
+        from .writing import dumps
+
+        return dumps(self).rstrip("\n")
+
 
 @dataclass(frozen=True)
 class PSGS(_Components):
@@ -450,6 +462,16 @@ class PSGS(_Components):
     >>> pair = PSGS((g, h), sync=[("p", "u"), ("q", "v")], unsynchronised="strict", name="Pair")
     >>> pair.component_names, [[r.label for r in t] for t in pair.sync]
     (('G', 'H'), [['p', 'u'], ['q', 'v']])
+    >>> pair
+    <PSGS 'Pair': 2 component(s) (G, H), 4 rules, 2 tuples in M, parallel>
+    >>> print(pair)  # doctest: +ELLIPSIS, +NORMALIZE_WHITESPACE
+    psgs Pair
+    mode parallel
+    unsynchronised strict
+    ...
+    sync
+      (p, u)
+      (q, v)
     """
 
     components: tuple[Grammar, ...]
@@ -457,6 +479,10 @@ class PSGS(_Components):
     mode: Literal["parallel", "single"] = "parallel"
     unsynchronised: Literal["free", "strict"] = "free"
     name: str = "system"
+
+    def __repr__(self) -> str:
+        # a summary, not the dataclass dump of every rule (str() gives the whole text)
+        return f"<PSGS {self._summary()}, {len(self.sync)} tuples in M, {self.mode}>"
 
     def __post_init__(self) -> None:
         _require_identifier(self.name, "system name")
@@ -538,12 +564,19 @@ class PCGS(_Components):
     >>> system = PCGS((master, helper), returning=False)
     >>> system.master, system.centralised
     ('G1', True)
+    >>> system
+    <PCGS 'system': 2 component(s) (G1, G2), 2 rules, master G1, non-returning>
     """
 
     components: tuple[Grammar, ...]
     returning: bool = True
     master: str = field(default="")
     name: str = "system"
+
+    def __repr__(self) -> str:
+        # a summary, not the dataclass dump of every rule (str() gives the whole text)
+        kind = "returning" if self.returning else "non-returning"
+        return f"<PCGS {self._summary()}, master {self.master}, {kind}>"
 
     def __post_init__(self) -> None:
         _require_identifier(self.name, "system name")
