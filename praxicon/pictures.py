@@ -138,14 +138,17 @@ def draw_shared_patterns(folder, path, *, most: int = 30, **options) -> Path:
     if not patterns:
         raise ValueError(f"{folder}: no sub-pattern is shared by several actions")
     fig, ax = plt.subplots(figsize=(10, 0.8 + 0.3 * len(patterns)))
+    longest = max(len(p.kinetemes) for p in patterns)
     for y, pattern in enumerate(patterns):
         _runs(ax, y, pattern.kinetemes, [0.25] * len(pattern.kinetemes))
-        shown = ", ".join(a.split(".", 1)[-1] for a in pattern.actions)
-        ax.text(0.25 * len(pattern.kinetemes) + 0.1, y, f"{len(pattern.actions)}: {shown}",
-                va="center", fontsize=6)
+        names = [a.split(".", 1)[-1] for a in pattern.actions]
+        # at most 8 names, then a count: a long list ran off the picture's right edge
+        shown = ", ".join(names[:8]) + (f", +{len(names) - 8} more" if len(names) > 8 else "")
+        ax.text(0.25 * longest + 0.1, y, f"{len(pattern.actions)}: {shown}",
+                va="center", fontsize=6, clip_on=True)
     ax.set_yticks(range(len(patterns)), [p.joint for p in patterns], fontsize=7)
     ax.invert_yaxis()
-    ax.set_xlim(0, 6)
+    ax.set_xlim(0, 0.25 * longest + 7)
     ax.set_xticks([])
     ax.set_title("kineteme sub-patterns shared across actions (joint; how many actions: which)",
                  fontsize=9)
