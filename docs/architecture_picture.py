@@ -14,8 +14,9 @@ from pathlib import Path
 
 #: box id -> (x, y, width, height, title, lines); the unit is the pixel, y grows downwards
 BOXES = {
-    "praxicon": (250, 20, 460, 70, "praxicon",
-                 ["every action of a motion database: build, draw, generate",
+    "praxicon": (250, 20, 460, 90, "praxicon",
+                 ["every action of a motion database: build, draw, generate,",
+                  "recognise and parse new motion",
                   "praxicon/ (a psgs.commands plug-in: psgs praxicon ...)"]),
     "kinetology": (20, 140, 300, 90, "kinetology",
                    ["motion capture in, actiongrams out;",

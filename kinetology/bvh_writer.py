@@ -33,6 +33,8 @@ import math
 
 import numpy as np
 
+from psgs.errors import ValidationError
+
 from .motion import Joint, Motion, Skeleton
 
 __all__ = ["write_bvh", "format_bvh", "star_skeleton"]
@@ -55,7 +57,7 @@ def star_skeleton(channels) -> Skeleton:
     for name in channels:
         joint, _, axis = name.rpartition(".")
         if not joint or axis not in _AXIS_NAMES:
-            raise ValueError(f"channel {name!r} is not named joint.axis (axis tx .. rz)")
+            raise ValidationError(f"channel {name!r} is not named joint.axis (axis tx .. rz)")
         by_joint.setdefault(joint, []).append(name)
     joints = []
     for index, (joint, names) in enumerate(by_joint.items()):
@@ -82,7 +84,7 @@ def _frame_time(rate: float) -> str:
             back = float(round(back))
         if math.isclose(back, rate, rel_tol=1e-12):
             return text
-    raise ValueError(f"frame rate {rate!r} cannot be written as a frame time that reads back")
+    raise ValidationError(f"frame rate {rate!r} cannot be written as a frame time that reads back")
 
 
 def _implied_order(joint: Joint) -> str:
@@ -99,24 +101,24 @@ def _check_joint(skeleton: Skeleton, joint: Joint, seen: set[str]) -> None:
     if joint.end_site:
         parent = skeleton.joints[joint.parent].name if joint.parent is not None else None
         if parent is None or name != f"{parent}.end":
-            raise ValueError(f"end site {name!r} would read back as {parent!r}.end: BVH end "
+            raise ValidationError(f"end site {name!r} would read back as {parent!r}.end: BVH end "
                              f"sites have no names")
     elif not name or any(ch.isspace() or ch in "{}" for ch in name):
-        raise ValueError(f"joint name {name!r} cannot be written to BVH (empty, white space "
+        raise ValidationError(f"joint name {name!r} cannot be written to BVH (empty, white space "
                          f"or a brace: readers split the hierarchy into words and braces)")
     if name in seen:
-        raise ValueError(f"two joints are named {name!r}")
+        raise ValidationError(f"two joints are named {name!r}")
     seen.add(name)
     if not all(math.isfinite(v) for v in joint.offset):
-        raise ValueError(f"joint {name!r} has a non-finite offset {joint.offset}")
+        raise ValidationError(f"joint {name!r} has a non-finite offset {joint.offset}")
     for channel in joint.channels:
         owner, _, axis = channel.rpartition(".")
         if owner != name or axis not in _AXIS_NAMES:
-            raise ValueError(f"channel {channel!r} of joint {name!r} would read back as "
+            raise ValidationError(f"channel {channel!r} of joint {name!r} would read back as "
                              f"{name}.<axis>: channels are named after their joint")
     if any(c.rsplit(".", 1)[1].startswith("r") for c in joint.channels) and \
             joint.rotation_order != _implied_order(joint):
-        raise ValueError(f"joint {name!r}: rotation order {joint.rotation_order!r} is not the "
+        raise ValidationError(f"joint {name!r}: rotation order {joint.rotation_order!r} is not the "
                          f"order of its rotation channels ({_implied_order(joint)!r}), which "
                          f"is the order a BVH file gives")
 
@@ -143,26 +145,26 @@ def format_bvh(motion: Motion) -> str:
     listed = [c for j in skeleton.joints for c in j.channels]
     if sorted(listed) != sorted(motion.channels):
         missing = sorted(set(motion.channels) ^ set(listed))
-        raise ValueError(f"skeleton and motion channels differ ({', '.join(missing[:5])})")
+        raise ValidationError(f"skeleton and motion channels differ ({', '.join(missing[:5])})")
     lines = ["HIERARCHY"]
     children: dict[int | None, list[int]] = {}
     seen: set[str] = set()
     for joint in skeleton.joints:  # first, as the plainest reason an ASF skeleton fails
         if any(joint.axis):
-            raise ValueError(f"joint {joint.name!r} has an ASF axis pre-rotation, which BVH "
+            raise ValidationError(f"joint {joint.name!r} has an ASF axis pre-rotation, which BVH "
                              f"cannot express")
     for index, joint in enumerate(skeleton.joints):
         _check_joint(skeleton, joint, seen)
         children.setdefault(joint.parent, []).append(index)
     roots = children.get(None, [])
     if len(roots) != 1:
-        raise ValueError(f"a BVH file has one root joint, this skeleton has {len(roots)}")
+        raise ValidationError(f"a BVH file has one root joint, this skeleton has {len(roots)}")
 
     depth = [0] * len(skeleton.joints)
     for index, joint in enumerate(skeleton.joints):  # parents come first: one pass
         depth[index] = 0 if joint.parent is None else depth[joint.parent] + 1
     if max(depth, default=0) > MAX_DEPTH:
-        raise ValueError(f"joints nested {max(depth)} deep; BVH readers (kinetology's "
+        raise ValidationError(f"joints nested {max(depth)} deep; BVH readers (kinetology's "
                          f"included) read at most {MAX_DEPTH} levels")
     written: list[str] = []  # channels in the file's order: depth-first from the root
     stack: list[tuple[int, int, bool]] = [(roots[0], 0, True)]  # a loop: chains can be deep

@@ -22,6 +22,8 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
+from psgs.errors import ValidationError
+
 from .motion import MotionFormatError
 
 __all__ = ["Span", "MOCAP6_ACTIONS", "read_cmu_truelabels", "read_bandai_json", "spans_of"]
@@ -60,7 +62,7 @@ class Span:
 
     def __post_init__(self) -> None:
         if not (0 <= self.start < self.stop):
-            raise ValueError(f"span {self.label!r}: need 0 <= start < stop, got "
+            raise ValidationError(f"span {self.label!r}: need 0 <= start < stop, got "
                              f"{self.start!r}..{self.stop!r}")
 
     @property
@@ -102,7 +104,7 @@ def read_cmu_truelabels(path: str | Path, frame_rate: float = 120.0) -> tuple[Sp
     """
     path = Path(path)
     if not frame_rate > 0:
-        raise ValueError(f"frame rate must be positive, not {frame_rate!r}")
+        raise ValidationError(f"frame rate must be positive, not {frame_rate!r}")
     step = FRAMES_PER_LABEL / frame_rate
     labels: list[int] = []
     for number, line in enumerate(path.read_text(errors="replace").splitlines(), 1):

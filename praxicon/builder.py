@@ -18,6 +18,8 @@ from concurrent.futures import Executor, Future, ProcessPoolExecutor, as_complet
 from dataclasses import dataclass, replace
 from pathlib import Path
 
+from psgs.errors import MissingDependency
+
 from .datasets import Action, DatasetError
 from .learn import Settings, input_key, learn_action
 from .description import DescriptionError
@@ -59,7 +61,7 @@ def executor_for(workers: int | None = None, scheduler=None):
         try:
             from dask.distributed import Client
         except ImportError:  # pragma: no cover - the dask extra is not installed
-            raise ValueError("--scheduler needs dask.distributed (pip install "
+            raise MissingDependency("--scheduler needs dask.distributed (pip install "
                              "'psgs[dask]')") from None
         client = scheduler if isinstance(scheduler, Client) else Client(scheduler)
         executor = client.get_executor()

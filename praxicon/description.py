@@ -31,6 +31,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from psgs.errors import PSGSError
+
 from .features import FeatureError, motion_features
 
 __all__ = ["FORMAT_VERSION", "ActionDescription", "Spread", "Descriptions", "describe",
@@ -45,7 +47,7 @@ _MARGIN = 1.5  # the "none of these" threshold: this times the worst held-out tr
 _FOLDS = 5  # held-out folds of the calibration
 
 
-class DescriptionError(ValueError):
+class DescriptionError(PSGSError, ValueError):
     """Descriptions that cannot be made, read or used (one line, naming what to do)."""
 
 

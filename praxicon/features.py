@@ -14,6 +14,8 @@ import math
 
 import numpy as np
 
+from psgs.errors import PSGSError
+
 __all__ = ["motion_features", "feature_joint", "FeatureError"]
 
 _ROTATIONS = ("rx", "ry", "rz")
@@ -21,7 +23,7 @@ _TRANSLATIONS = ("tx", "ty", "tz")
 _SMOOTHING = 0.05  # seconds: Gaussian smoothing before differentiating (sensor noise)
 
 
-class FeatureError(ValueError):
+class FeatureError(PSGSError, ValueError):
     """A motion that has no features (fewer than 3 frames)."""
 
 

@@ -182,9 +182,10 @@ def _induce(inducer, segmented: list[_Segmented]):
     actiongrams = [s.actiongram for s in segmented]
     try:
         return inducer.induce(tuple(actiongrams)), list(range(len(segmented))), None
-    except (TypeError, AttributeError, ValidationError) as exc:
-        # an inducer that takes one actiongram (PAL until issue 9 lands): learn from the
-        # longest performance, say so in the record, and still read morphemes from all
+    except (TypeError, ValidationError) as exc:
+        # an inducer that takes one actiongram only (the content learner, a plug-in): learn
+        # from the longest performance, say so in the record, and still read morphemes from
+        # all
         lengths = [sum(map(sum, ag.segment_durations)) for ag in actiongrams]
         longest = int(np.argmax(lengths))
         why = str(exc).splitlines()[0] if str(exc) else type(exc).__name__

@@ -30,12 +30,13 @@ def _bad(message: str):
 
 def _read_motion(path: str):
     import kinetology
+    from psgs.errors import PSGSError
 
     try:
         motion = kinetology.read(path)
     except FileNotFoundError:
         _bad(f"{path}: no such file")
-    except (OSError, ValueError) as exc:
+    except (OSError, PSGSError) as exc:  # unreadable, or not motion: one line
         _bad(str(exc).splitlines()[0])
     if motion.frames < 3:
         _bad(f"{path}: {motion.frames} frame{'s' if motion.frames != 1 else ''}; recognising "

@@ -12,6 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
+from psgs.errors import ValidationError
+
 __all__ = ["draw_timeline", "draw_explanation"]
 
 _ROLE_COLOURS = {"matched": "#2ca02c", "still but should move": "#1f5fbf",
@@ -71,7 +73,7 @@ def draw_explanation(recognition, path, *, joints: int = 12) -> Path:
     plt = _pyplot()
     shown = recognition.reasons
     if not shown:
-        raise ValueError("the recognition keeps no reasons (recognise with explain >= 1)")
+        raise ValidationError("the recognition keeps no reasons (recognise with explain >= 1)")
     probability = dict(recognition.ranking)
     fig, axes = plt.subplots(1, len(shown), figsize=(3.6 * len(shown), 3.8), squeeze=False)
     for ax, (name, reasons) in zip(axes[0], shown):

@@ -27,6 +27,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from psgs.errors import NotFound, PSGSError
+
 from .description import DescriptionError, Descriptions
 from .jsonvalues import Fields, as_dict, freeze, pairs as _pairs
 
@@ -71,7 +73,7 @@ def name_problem(name) -> str | None:
     return None
 
 
-class PraxiconError(ValueError):
+class PraxiconError(PSGSError, ValueError):
     """A praxicon folder, index or record that cannot be read; the message is one line.
 
     Examples
@@ -243,7 +245,7 @@ class JointRecord:
         for c, m in self.morphemes:
             if c == channel:
                 return m
-        raise KeyError(channel)
+        raise NotFound(channel)
 
     def to_json(self) -> dict:
         """The joint as plain JSON values (its name is the key it is stored under)."""
@@ -322,7 +324,7 @@ class ActionRecord:
         for joint in self.joints:
             if joint.name == name:
                 return joint
-        raise KeyError(name)
+        raise NotFound(name)
 
     def morphemes(self) -> dict[str, ChannelMorpheme]:
         """Every actuator channel's morpheme, channel -> morpheme, actuators in order."""

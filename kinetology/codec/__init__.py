@@ -1,4 +1,4 @@
-"""Compression by segments, reconstruction by one quartic per segment (SPEC §7), rate control.
+"""Compression by segments, reconstruction by one quartic per segment, rate control.
 
 Two layers, both decoded exactly and deterministically (the same bytes decode
 to the same floats, run after run):

@@ -6,6 +6,8 @@ from types import MappingProxyType
 
 import numpy as np
 
+from psgs.errors import ValidationError
+
 from ..motion import Motion, MotionFormatError
 from . import entropy, residual, stream
 from .knots import PINNED, channel_knots, is_rotation, unwrap
@@ -118,7 +120,7 @@ def mean_errors(original: Motion, decoded: Motion) -> tuple[float, float]:
     (0.5, 0.5)
     """
     if original.channels != decoded.channels or original.frames != decoded.frames:
-        raise ValueError("the two motions differ in channels or frame count")
+        raise ValidationError("the two motions differ in channels or frame count")
     return _errors(np.array(original.values), np.array(decoded.values), original.channels)
 
 
@@ -131,11 +133,11 @@ def _settings(params: dict) -> dict:
     for name, value in p.items():
         if not (isinstance(value, (int, float, np.floating, np.integer))
                 and np.isfinite(value) and value >= 0):
-            raise ValueError(f"{name} must be a non-negative number, not {value!r}")
+            raise ValidationError(f"{name} must be a non-negative number, not {value!r}")
     if not p["quantum"] > 0:
-        raise ValueError(f"quantum must be positive, not {p['quantum']!r}")
+        raise ValidationError(f"quantum must be positive, not {p['quantum']!r}")
     if p["residual_step"] and p["hysteresis"] < 0.5:
-        raise ValueError(f"hysteresis must be at least 0.5, not {p['hysteresis']!r}")
+        raise ValidationError(f"hysteresis must be at least 0.5, not {p['hysteresis']!r}")
     return {k: float(v) for k, v in p.items()}
 
 
@@ -186,7 +188,7 @@ def encode_segments(motion: Motion, **params):
         steps = np.round(knot_values / quantum)
         if not np.all(np.abs(steps) < 2.0 ** 62):
             # beyond this the int64 cast (and the zigzag varints) would silently wrap
-            raise ValueError(f"quantum {quantum!r} is too small for channel {name!r}: knot "
+            raise ValidationError(f"quantum {quantum!r} is too small for channel {name!r}: knot "
                              f"values would need more than 62 bits")
         out.append((knots, codes, steps.astype(np.int64)))
     return out, quantum

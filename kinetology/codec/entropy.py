@@ -32,6 +32,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from psgs.errors import ValidationError
+
 from . import varint
 
 __all__ = ["encode", "decode", "ESCAPE", "EntropyError"]
@@ -105,7 +107,7 @@ def _contexts(previous, before):
 def _check(symbols):
     symbols = np.asarray(symbols, dtype=np.int64)
     if symbols.ndim != 2:
-        raise ValueError(f"symbols must be frames x lanes, got shape {symbols.shape}")
+        raise ValidationError(f"symbols must be frames x lanes, got shape {symbols.shape}")
     return symbols
 
 

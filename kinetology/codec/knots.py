@@ -1,6 +1,6 @@
 """Where the codec puts its knots: its own, pinned copy of the state segmentation.
 
-The codec's knots are the segment borders of SPEC §7's segmentation (states
+The codec's knots are the segment borders of kinetology's segmentation (states
 ``B G R Y`` from the signs of velocity and acceleration, after Gaussian
 smoothing, with dead bands). :mod:`kinetology.segmentation` is tuned for
 actiongrams and its defaults (and its rules) may change; a change there must

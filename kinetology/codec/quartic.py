@@ -1,4 +1,4 @@
-"""The per-segment quartic of SPEC §7: decoding knots to a curve, and fitting knots to one.
+"""The per-segment quartic of the codec: decoding knots to a curve, and fitting knots to one.
 
 Segment ``i`` of a channel runs from knot ``i`` to knot ``i + 1``; on it the
 angle is a polynomial of degree 4 in ``s`` (0 to 1 across the segment) with

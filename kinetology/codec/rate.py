@@ -22,6 +22,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from psgs.errors import ValidationError
+
 from ..motion import Motion
 from . import residual
 from .encoder import (CODEC_DEFAULTS, Compressed, _base_values, _errors, compress_with,
@@ -119,7 +121,7 @@ def compress_to(motion: Motion, max_error: float) -> Compressed:
     """
     if not (isinstance(max_error, (int, float, np.floating, np.integer))
             and np.isfinite(max_error) and max_error > 0):
-        raise ValueError(f"max_error must be a positive number of degrees, not {max_error!r}")
+        raise ValidationError(f"max_error must be a positive number of degrees, not {max_error!r}")
     max_error = float(max_error)
     original = np.array(motion.values)
     candidates = []
@@ -137,7 +139,7 @@ def compress_to(motion: Motion, max_error: float) -> Compressed:
     meeting = [c for c in candidates if c.mean_error <= max_error]
     if not meeting:
         closest = min((c.mean_error for c in candidates), default=float("nan"))
-        raise ValueError(f"no setting meets max_error={max_error} on this motion (the "
+        raise ValidationError(f"no setting meets max_error={max_error} on this motion (the "
                          f"closest reached {closest!r} degrees); its values may be too large "
                          f"to code that finely")
     return min(meeting, key=len)  # ties: the first (base only), the simpler stream

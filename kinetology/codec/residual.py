@@ -20,6 +20,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from psgs.errors import ValidationError
+
 from . import entropy
 
 __all__ = ["quantise", "encode", "decode"]
@@ -39,14 +41,14 @@ def quantise(residual: np.ndarray, step: float, hysteresis: float) -> np.ndarray
     """
     residual = np.asarray(residual, dtype=float)
     if not (step > 0 and 0.5 <= hysteresis):
-        raise ValueError(f"need step > 0 and hysteresis >= 0.5, not {step!r}, {hysteresis!r}")
+        raise ValidationError(f"need step > 0 and hysteresis >= 0.5, not {step!r}, {hysteresis!r}")
     out = np.empty(residual.shape, np.int64)
     if residual.shape[0] == 0:
         return out
     scaled = residual / step
     nearest = np.round(scaled)
     if not (np.abs(nearest) < 2.0 ** 62).all():  # before the int64 cast, which would wrap
-        raise ValueError(f"residual step {step!r} is too small (or the residuals not "
+        raise ValidationError(f"residual step {step!r} is too small (or the residuals not "
                          f"finite): residuals need more than 62 bits")
     current = nearest[0].copy()
     out[0] = current

@@ -4,10 +4,12 @@ integers that both the ``KIN2`` container and the residual layer write.
 
 from __future__ import annotations
 
+from psgs.errors import ValidationError
+
 __all__ = ["VarintError", "encode", "decode"]
 
 
-class VarintError(ValueError):
+class VarintError(ValidationError):
     """Bytes that do not hold a number; ``pos`` is where reading stopped.
 
     Examples
@@ -36,7 +38,7 @@ def encode(numbers) -> bytes:
     for n in numbers:
         n = int(n)
         if n < 0:
-            raise ValueError("varints are unsigned")
+            raise ValidationError("varints are unsigned")
         while n >= 0x80:
             out.append((n & 0x7F) | 0x80)
             n >>= 7

@@ -23,7 +23,8 @@ PACKAGES = ("psgs", "kinetology", "praxicon")  # praxicon: a package another bra
 # The formal core, bottom-up: a module may import its own tier and the tiers below, never above.
 # At the bottom, the foundation every package of the distribution shares (errors, the
 # command-line shell, lazy names, the engine selector).
-FOUNDATION = ("psgs.errors", "psgs._foundation", "psgs._foundation.*")
+FOUNDATION = ("psgs.errors", "psgs._foundation", "psgs._foundation.shell",
+              "psgs._foundation.lazy", "psgs._foundation.engines")
 CORE_TIERS = (
     (*FOUNDATION, "psgs.budget", "psgs.names"),
     ("psgs.model",),
@@ -38,7 +39,9 @@ BESIDE = ("psgs.format", "psgs.writing", "psgs.lark_export", "psgs.graph")
 # (psgs.load and psgs.dump read and write actiongrams too, so format and writing may import it)
 BESIDE_MAY_IMPORT = ("psgs.errors", "psgs.names", "psgs.model", "psgs.writing",
                      "psgs.actiongram")
-#: What kinetology may import from psgs: the actiongram (what it makes) and the foundation.
+#: What kinetology may import from psgs: the actiongram (what it makes) and the foundation
+#: every package of the distribution shares (errors, command-line shell, lazy names, engines),
+#: each module named.
 KINETOLOGY_MAY_IMPORT = ("psgs.actiongram", "psgs.actiongram.*", *FOUNDATION)
 #: No module of the three packages is longer (related code stays together in a subpackage).
 MAX_LINES = 600
@@ -201,12 +204,6 @@ def test_psgs_never_imports_kinetology_or_praxicon():
     assert not bad, bad
 
 
-#: What kinetology may import from psgs: the actiongram (what it makes) and the foundation
-#: every package of the distribution shares (errors, command-line shell, lazy names, engines).
-KINETOLOGY_MAY_IMPORT = ("psgs.actiongram", "psgs.actiongram.*", "psgs.errors",
-                         "psgs._foundation", "psgs._foundation.*")
-
-
 def _matches(module: str, patterns) -> bool:
     return any(module == p or (p.endswith(".*") and module.startswith(p[:-1])) for p in patterns)
 
@@ -220,6 +217,14 @@ def test_kinetology_imports_from_psgs_only_the_actiongram_and_the_foundation():
     assert not bad, bad
     assert {owner for _, owner, _ in uses} & {"psgs.actiongram", "psgs"}, \
         "kinetology makes actiongrams, so it imports the type somewhere"
+
+
+def test_the_foundation_stands_on_the_errors_alone():
+    """The foundation is below everything: it imports the error tree and its own modules."""
+    for module in (m for m in EDGES if _matches(m, FOUNDATION)):
+        above = {t for t in EDGES[module] if t.split(".")[0] in PACKAGES}
+        assert above <= set(FOUNDATION), (module, above - set(FOUNDATION))
+    assert set(EDGES) >= set(FOUNDATION), "every named foundation module exists"
 
 
 @pytest.mark.parametrize("module", sorted(EDGES))
