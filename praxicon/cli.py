@@ -55,13 +55,20 @@ def run_build(args) -> int:
     return 0
 
 
+def _draw_progress(done: int, total: int, name: str) -> None:
+    # one line rewritten in place on stderr: stdout stays the list of pictures written
+    print(f"\rdrawing {done + 1}/{total}: {name:<40}", end="", file=sys.stderr, flush=True)
+
+
 def run_draw(args) -> int:
     from .pictures import draw_praxicon
 
     try:
-        written = draw_praxicon(args.praxicon, args.output, fmt=args.format)
+        written = draw_praxicon(args.praxicon, args.output, fmt=args.format,
+                                progress=_draw_progress)
     except ValueError as exc:
         _bad(str(exc))
+    print(f"\rdrew {len(written)} pictures into {args.output}" + " " * 30, file=sys.stderr)
     for path in written:
         print(path)
     return 0

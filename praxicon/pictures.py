@@ -138,14 +138,17 @@ def draw_shared_patterns(folder, path, *, most: int = 30, **options) -> Path:
     if not patterns:
         raise ValueError(f"{folder}: no sub-pattern is shared by several actions")
     fig, ax = plt.subplots(figsize=(10, 0.8 + 0.3 * len(patterns)))
+    longest = max(len(p.kinetemes) for p in patterns)
     for y, pattern in enumerate(patterns):
         _runs(ax, y, pattern.kinetemes, [0.25] * len(pattern.kinetemes))
-        shown = ", ".join(a.split(".", 1)[-1] for a in pattern.actions)
-        ax.text(0.25 * len(pattern.kinetemes) + 0.1, y, f"{len(pattern.actions)}: {shown}",
-                va="center", fontsize=6)
+        names = [a.split(".", 1)[-1] for a in pattern.actions]
+        # at most 8 names, then a count: a long list ran off the picture's right edge
+        shown = ", ".join(names[:8]) + (f", +{len(names) - 8} more" if len(names) > 8 else "")
+        ax.text(0.25 * longest + 0.1, y, f"{len(pattern.actions)}: {shown}",
+                va="center", fontsize=6, clip_on=True)
     ax.set_yticks(range(len(patterns)), [p.joint for p in patterns], fontsize=7)
     ax.invert_yaxis()
-    ax.set_xlim(0, 6)
+    ax.set_xlim(0, 0.25 * longest + 7)
     ax.set_xticks([])
     ax.set_title("kineteme sub-patterns shared across actions (joint; how many actions: which)",
                  fontsize=9)
@@ -181,29 +184,43 @@ def draw_generated(record: ActionRecord, generated, path, channel: str | None = 
     return _save(fig, path)
 
 
-def draw_praxicon(folder, out, *, fmt: str = "png") -> list[Path]:
+def draw_praxicon(folder, out, *, fmt: str = "png", progress=None) -> list[Path]:
     """Every picture of a praxicon into ``out``; returns the paths written.
 
     ``out/actuators.FMT``, ``out/shared.FMT``, and per action with actuators
     ``out/morphemes/ACTION.FMT`` and ``out/systems/ACTION.FMT`` (the grammar
-    forest and synchronisation graph of :func:`psgs.draw.draw`).
+    forest and synchronisation graph of :func:`psgs.draw.draw`). ``progress``,
+    when given, is called with ``(done, total, action name)`` before each action.
+    matplotlib's layout warnings (a title wider than its figure) are kept inside:
+    they say nothing a reader of the pictures can act on.
     """
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", category=UserWarning, module="matplotlib")
+        warnings.filterwarnings("ignore", message=".*tight_layout.*")
+        warnings.filterwarnings("ignore", message=".*Glyph .* missing.*")
+        return _draw_all(folder, Path(out), fmt, progress)
+
+
+def _draw_all(folder, out: Path, fmt: str, progress) -> list[Path]:
     from psgs import loads
     from psgs.draw import draw
 
-    out = Path(out)
     praxicon = _praxicon(folder)  # read once: a damaged folder is one error before any picture
     written = [draw_actuator_matrix(praxicon, out / f"actuators.{fmt}")]
     try:
         written.append(draw_shared_patterns(praxicon, out / f"shared.{fmt}"))
     except ValueError:
         pass  # nothing shared: no picture (the praxicon may hold one action)
-    for action in praxicon.actions:
-        if action.learnt and action.actuators and action.system:
-            name = action.name
-            written.append(draw_morphemes(praxicon, name, out / "morphemes" / f"{name}.{fmt}"))
-            (out / "systems").mkdir(parents=True, exist_ok=True)
-            # the system from the record's own text (the .psgs file beside it is a copy)
-            written.append(draw(loads(action.system, source=action.file),
-                                out / "systems" / f"{name}.{fmt}", max_steps=60))
+    drawn = [a for a in praxicon.actions if a.learnt and a.actuators and a.system]
+    for done, action in enumerate(drawn):
+        if progress is not None:
+            progress(done, len(drawn), action.name)
+        name = action.name
+        written.append(draw_morphemes(praxicon, name, out / "morphemes" / f"{name}.{fmt}"))
+        (out / "systems").mkdir(parents=True, exist_ok=True)
+        # the system from the record's own text (the .psgs file beside it is a copy)
+        written.append(draw(loads(action.system, source=action.file),
+                            out / "systems" / f"{name}.{fmt}", max_steps=60))
     return written

@@ -10,8 +10,10 @@ holds it to the queried component), and :func:`draw` renders both side by side:
 
 * through Graphviz (the ``graphviz`` package, and Debian's ``graphviz`` for the
   ``dot`` program) when ``dot`` is on the PATH;
-* with a matplotlib layout otherwise (leaves in word order, a parent over its
-  children; rules of a component in one column, synchronisation as lines).
+* with a matplotlib layout otherwise: per component a cell (its parse tree, leaves in
+  word order, over its rules), at most :data:`PER_ROW` cells a row, further components
+  wrapped onto more rows; synchronisation as tags ``Mk`` on the rules of tuple k of M
+  (lines would cross the components between), explained in a legend.
 
 :func:`to_svg` gives the SVG text (what notebooks show, ``_repr_svg_``).
 """
@@ -25,7 +27,8 @@ from pathlib import Path
 from .errors import PSGSError, ValidationError
 from .model import PCGS, PSGS, Query
 
-__all__ = ["Forest", "parse_forest", "sync_edges", "draw", "to_svg", "graphviz_available"]
+__all__ = ["Forest", "parse_forest", "sync_edges", "draw", "to_svg", "graphviz_available",
+           "PER_ROW"]
 
 _PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2",
             "#17becf", "#bcbd22", "#7f7f7f")
@@ -222,67 +225,128 @@ def _graphviz(system, forest: Forest | None):
     return graph
 
 
+PER_ROW = 8  # components side by side in a matplotlib picture; more wrap onto further rows
+
+
+def _tuples_of(system) -> dict[tuple[str, str], list[int]]:
+    """(component, rule) -> the tuples of M (0-based) that hold the rule (PSGS only)."""
+    member: dict[tuple[str, str], list[int]] = {}
+    if isinstance(system, PSGS):
+        names = system.component_names
+        for t, entries in enumerate(system.sync):
+            for c, rule in enumerate(entries):
+                if rule is not None:
+                    member.setdefault((names[c], rule.label), []).append(t)
+    return member
+
+
+def _place_tree(forest: Forest, root: int):
+    """x (leaf order) and depth of every node under ``root``; returns (x, depth, width)."""
+    x_of: dict[int, float] = {}
+    depth: dict[int, int] = {root: 0}
+    cursor = 0.0
+    stack: list[tuple[int, bool]] = [(root, False)]
+    while stack:  # iterative post-order: a long derivation is a deep tree
+        node, done = stack.pop()
+        kids = forest.children[node]
+        if done:
+            x_of[node] = sum(x_of[k] for k in kids) / len(kids)
+        elif not kids:
+            x_of[node] = cursor
+            cursor += 1.0
+        else:
+            stack.append((node, True))
+            for k in reversed(kids):
+                depth[k] = depth[node] + 1
+                stack.append((k, False))
+    return x_of, depth, max(cursor, 1.0)
+
+
 def _matplotlib(system, forest: Forest | None):
+    """Components in rows of at most :data:`PER_ROW`; per component its rules (and its parse
+    tree) in its own cell, so that no line crosses another component.
+
+    Synchronisation is drawn as tags, not lines: a rule in tuple k of M carries ``Mk``, in
+    tuple k's colour, and the legend says what a tag means; a line between two components
+    would cross every component between them, idle ones included.
+    """
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     n = len(system.components)
+    columns = min(n, PER_ROW)
+    rows = -(-n // columns)
+    member = _tuples_of(system)
     tall = max(len(g.rules) for g in system.components)
-    fig, axes = plt.subplots(1, 2 if forest is not None else 1, squeeze=False,
-                             figsize=(6 + 3 * n, 1.5 + 0.45 * tall + (2 if forest else 0)))
-    if forest is not None:
-        ax = axes[0][0]
-        ax.set_title("parse trees of a derived word")
-        x_of: dict[int, float] = {}
-        depth: dict[int, int] = {}
-        cursor = 0.0
-        for c, root in enumerate(forest.roots):
-            def place(node: int, d: int) -> float:
-                nonlocal cursor
-                depth[node] = d
-                kids = forest.children[node]
-                if not kids:
-                    x_of[node] = cursor
-                    cursor += 1.0
-                else:
-                    xs = [place(k, d + 1) for k in kids]
-                    x_of[node] = sum(xs) / len(xs)
-                return x_of[node]
-            place(root, 0)
-            cursor += 1.5
-            colour = _PALETTE[c % len(_PALETTE)]
-            stack = [root]
-            while stack:
-                node = stack.pop()
-                for k in forest.children[node]:
-                    ax.plot([x_of[node], x_of[k]], [-depth[node], -depth[k]], color=colour,
-                            lw=0.8)
-                    stack.append(k)
-                ax.text(x_of[node], -depth[node], forest.labels[node], ha="center",
-                        va="center", fontsize=7,
-                        bbox=dict(boxstyle="round", fc="white", ec=colour, lw=0.5))
-        ax.axis("off")
-    ax = axes[0][-1]
-    ax.set_title("synchronisation graph")
-    where = {}
+    placed = [_place_tree(forest, root) for root in forest.roots] if forest is not None else []
+    deep = max((max(d.values()) for _, d, _ in placed), default=-1) + 1
+    tree_h = 0.0 if forest is None else min(6.0, 0.6 + 0.18 * deep)
+    rule_h = 0.5 + 0.28 * tall
+    cell_w = 2.6
+    fig = plt.figure(figsize=(0.4 + cell_w * columns, 1.4 + rows * (rule_h + tree_h + 0.4)))
+    height = fig.get_figheight()
+    top = 1 - 0.9 / height
+    band = (top - 0.5 / height) / rows
     for c, grammar in enumerate(system.components):
-        ax.text(c, 1, grammar.name, ha="center", fontweight="bold",
-                color=_PALETTE[c % len(_PALETTE)])
+        row, col = divmod(c, columns)
+        colour = _PALETTE[c % len(_PALETTE)]
+        left = (0.2 + col * cell_w) / fig.get_figwidth()
+        width = (cell_w - 0.15) / fig.get_figwidth()
+        y0 = top - (row + 1) * band
+        share = tree_h / (tree_h + rule_h)
+        ax = fig.add_axes((left, y0, width, band * (1 - share) * 0.9))
+        ax.set_axis_off()
+        ax.set_xlim(0, 1)
+        ax.set_ylim(-tall + 0.4, 1.0)
+        ax.text(0.5, 0.8, grammar.name, ha="center", va="center", fontweight="bold",
+                fontsize=8, color=colour)
         for r, rule in enumerate(grammar.rules):
-            where[grammar.name, rule.label] = (c, -r)
-            ax.text(c, -r, _rule_text(rule), ha="center", va="center", fontsize=7,
-                    bbox=dict(boxstyle="square", fc="white", ec="grey", lw=0.5))
-    for a, b, t in sync_edges(system):
-        end = where.get(b) or where[(b[0], system.components[system.index(b[0])].rules[0].label)]
-        (xa, ya), (xb, yb) = where[a], end
-        ax.plot([xa, xb], [ya, yb], color=_PALETTE[t % len(_PALETTE)], lw=1,
-                ls="-" if t >= 0 else "--", alpha=0.7, zorder=0)
-    ax.set_xlim(-0.7, n - 0.3)
-    ax.set_ylim(-tall, 1.5)
-    ax.axis("off")
-    fig.tight_layout()
+            tags = member.get((grammar.name, rule.label), [])
+            # the tag first, then the rule: a long rule is clipped at the cell's edge, never
+            # drawn over its tag or the next component
+            ax.text(0.2, -r, _rule_text(rule), ha="left", va="center", fontsize=6,
+                    family="monospace", clip_on=True)
+            if tags:
+                ax.text(0.0, -r, " ".join(f"M{t + 1}" for t in tags[:2])
+                        + ("…" if len(tags) > 2 else ""), ha="left", va="center",
+                        fontsize=6, color="white", fontweight="bold",
+                        bbox=dict(boxstyle="round,pad=0.15", lw=0,
+                                  fc=_PALETTE[tags[0] % len(_PALETTE)]))
+            for sym in rule.rhs:
+                if isinstance(sym, Query):
+                    ax.text(0.0, -r, f"?{sym.component}", ha="left", va="center",
+                            fontsize=6, color="black",
+                            bbox=dict(boxstyle="round,pad=0.15", lw=0.5, fc="white",
+                                      ec="black", ls="--"))
+        if forest is not None:
+            x_of, depth, wide = placed[c]
+            tax = fig.add_axes((left, y0 + band * (1 - share), width, band * share * 0.95))
+            tax.set_axis_off()
+            tax.set_xlim(-0.8, wide - 0.2)
+            tax.set_ylim(-deep + 0.5, 0.6)
+            segments = [[(x_of[p], -depth[p]), (x_of[k], -depth[k])]
+                        for p in x_of for k in forest.children[p]]
+            from matplotlib.collections import LineCollection
+
+            tax.add_collection(LineCollection(segments, colors=colour, linewidths=0.6))
+            small = max(3.0, min(6.0, 60 / wide))
+            for node, x in x_of.items():
+                leaf = not forest.children[node]
+                tax.text(x, -depth[node], forest.labels[node], ha="center", va="center",
+                         fontsize=small, color="black" if leaf else colour)
+    what = ("each component's parse tree of a derived word (top) and its rules (below); "
+            if forest is not None else "each component's rules; ")
+    if isinstance(system, PSGS):
+        legend = (what + "a tag Mk: the rule belongs to tuple k of M (rules with the same tag "
+                  "are applied together, components without it idle)")
+    else:
+        legend = what + "?G: the rule queries component G (its form is communicated)"
+    fig.text(0.5, 1 - 0.3 / height, system.name or "system", ha="center", va="center",
+             fontsize=10, fontweight="bold")
+    fig.text(0.5, 1 - 0.6 / height, legend, ha="center", va="center", fontsize=7,
+             wrap=True)
     return fig
 
 

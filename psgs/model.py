@@ -414,6 +414,16 @@ class _Components:
         """The position of a component given by name or position."""
         return _component_index(self.components, component)
 
+    def _summary(self) -> str:
+        names = ", ".join(self.component_names[:6]) + (", ..." * (len(self.components) > 6))
+        return (f"{self.name!r}: {len(self.components)} component(s) ({names}), "
+                f"{sum(len(g.rules) for g in self.components)} rules")
+
+    def __str__(self) -> str:  # the summary, then each component's rules on one line
+        rules = ("; ".join(f"{r.label}: {r}" for r in g.rules) for g in self.components)
+        lines = [f"  {g.name}: {r}" for g, r in zip(self.components, rules)]
+        return "\n".join([repr(self)] + lines)
+
 
 @dataclass(frozen=True)
 class PSGS(_Components):
@@ -450,6 +460,10 @@ class PSGS(_Components):
     >>> pair = PSGS((g, h), sync=[("p", "u"), ("q", "v")], unsynchronised="strict", name="Pair")
     >>> pair.component_names, [[r.label for r in t] for t in pair.sync]
     (('G', 'H'), [['p', 'u'], ['q', 'v']])
+    >>> print(pair)  # repr() is the first line
+    <PSGS 'Pair': 2 component(s) (G, H), 4 rules, 2 tuples in M, parallel>
+      G: p: S → a S; q: S → ε
+      H: u: T → b T; v: T → ε
     """
 
     components: tuple[Grammar, ...]
@@ -457,6 +471,9 @@ class PSGS(_Components):
     mode: Literal["parallel", "single"] = "parallel"
     unsynchronised: Literal["free", "strict"] = "free"
     name: str = "system"
+
+    def __repr__(self) -> str:  # a summary, not the dataclass dump of every rule
+        return f"<PSGS {self._summary()}, {len(self.sync)} tuples in M, {self.mode}>"
 
     def __post_init__(self) -> None:
         _require_identifier(self.name, "system name")
@@ -538,12 +555,18 @@ class PCGS(_Components):
     >>> system = PCGS((master, helper), returning=False)
     >>> system.master, system.centralised
     ('G1', True)
+    >>> system
+    <PCGS 'system': 2 component(s) (G1, G2), 2 rules, master G1, non-returning>
     """
 
     components: tuple[Grammar, ...]
     returning: bool = True
     master: str = field(default="")
     name: str = "system"
+
+    def __repr__(self) -> str:  # a summary, not the dataclass dump
+        back = "returning" if self.returning else "non-returning"
+        return f"<PCGS {self._summary()}, master {self.master}, {back}>"
 
     def __post_init__(self) -> None:
         _require_identifier(self.name, "system name")

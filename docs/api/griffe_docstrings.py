@@ -7,7 +7,9 @@ package that has no docstring is logged as a warning, and ``mkdocs build --stric
 name without a leading underscore that is defined (not imported) in the module; methods and
 properties of a public class are public unless their name starts with an underscore. Names
 imported from elsewhere are checked where they are defined, not where they are re-exported.
-It also turns the Sphinx roles the docstrings use (``:func:`name```, ``:class:`~a.b.C```) into
+It fences the ``>>>`` examples that stand outside an ``Examples`` section (a module's docstring
+usually) as ``pycon`` code: the numpy parser reads them as prose, and Markdown then runs their
+lines together into one paragraph. It also turns the Sphinx roles the docstrings use (``:func:`name```, ``:class:`~a.b.C```) into
 inline code, which is how they read in ``help()`` too; mkdocstrings would print them verbatim.
 
 The command-line modules (``psgs.cli``, ``kinetology.cli``) are not API: a command's documentation
@@ -68,11 +70,47 @@ def _undocumented_methods(cls: griffe.Class):
             yield member.path
 
 
+def fence_doctests(text: str) -> str:
+    """``>>>`` blocks outside a numpy ``Examples`` section as fenced ``pycon`` code.
+
+    A block runs from its first ``>>>`` line to the next blank line, at the same indent.
+
+    >>> lines = ["Use it:", ">>> 1 + 1", "2", "", "Examples", "--------", ">>> 3", "3"]
+    >>> fenced = fence_doctests(chr(10).join(lines)).split(chr(10))
+    >>> fenced[:6]
+    ['Use it:', '', '```pycon', '>>> 1 + 1', '2', '```']
+    >>> fenced[-4:]  # the Examples section is the numpy parser's own: left as it is
+    ['Examples', '--------', '>>> 3', '3']
+    """
+    lines = text.split("\n")
+    out: list[str] = []
+    in_examples = False
+    i = 0
+    while i < len(lines):
+        line = lines[i]
+        underline = lines[i + 1].strip() if i + 1 < len(lines) else ""
+        if line.strip() and underline and set(underline) == {"-"}:
+            in_examples = line.strip() == "Examples"  # the numpy parser's own code section
+        if not in_examples and line.lstrip().startswith(">>>"):
+            indent = line[:len(line) - len(line.lstrip())]
+            if out and out[-1].strip():
+                out.append("")
+            out.append(indent + "```pycon")
+            while i < len(lines) and lines[i].strip() and lines[i].startswith(indent):
+                out.append(lines[i])
+                i += 1
+            out.append(indent + "```")
+            continue
+        out.append(line)
+        i += 1
+    return "\n".join(out)
+
+
 def _plain_roles(obj) -> None:
     if obj.docstring:
-        obj.docstring.value = _ROLE.sub(
+        obj.docstring.value = fence_doctests(_ROLE.sub(
             lambda m: f"`{m.group(2).rsplit('.', 1)[-1] if m.group(1) else m.group(2)}`",
-            obj.docstring.value)
+            obj.docstring.value))
     for member in obj.members.values():
         if not member.is_alias:
             _plain_roles(member)

@@ -1,7 +1,8 @@
 """``psgs induce``: learn a grammar system from an actiongram file, or the built-in example.
 
-It prints the components, their patterns and the system (or JSON with
-``--json``). ``psgs synth`` and ``psgs bench`` are in :mod:`psgs.cli.bench`.
+It prints a summary (what was found: per joint, or per component, one line),
+the whole grammar system with ``--full``, or JSON with ``--json``.
+``psgs synth`` and ``psgs bench`` are in :mod:`psgs.cli.bench`.
 """
 
 from __future__ import annotations
@@ -46,6 +47,9 @@ def register(subparsers) -> None:
                         help="an inducer parameter, e.g. --param alpha=1e-6 (repeatable)")
     induce.add_argument("--json", action="store_true",
                         help="print one JSON object (the system as text under 'system')")
+    induce.add_argument("--full", action="store_true",
+                        help="also print the whole grammar system and every pattern in full "
+                             "(default: a summary, one line per joint or component)")
     induce.add_argument("-o", "--output", metavar="OUT.psgs",
                         help="also write the grammar system to this file")
     induce.set_defaults(run=run_induce)
@@ -163,19 +167,7 @@ def run_induce(args) -> int:
     out.append(f"{result.inducer}: {len(result.components)} component(s) of "
                f"{len(actiongram)} strings, {actiongram.total_symbols} symbols{takes}, "
                f"in {seconds * 1000:.0f} ms")
-    if result.actuators:
-        out.append("  joints: " + ", ".join(
-            f"{a} ({', '.join(result.actuator_channels.get(a, ()))})" for a in result.actuators))
-    for name in result.components:
-        pattern = " ".join(result.patterns[name])
-        where = result.occurrences[name]
-        times = ", ".join(f"{a:g}-{b:g}" for a, b in where[:3]) + (", ..." if len(where) > 3
-                                                                      else "")
-        line = f"  {name}: {pattern}   ({len(where)} copies at t = {times})"
-        if truth is not None:
-            ok = truth.patterns.get(name) == tuple(result.patterns[name])
-            line += "   [the hidden template]" if ok else "   [NOT the hidden template]"
-        out.append(line)
+    out.extend(_found_lines(result, truth, full=args.full))
     dropped: dict[str, int] = {}
     for report in result.reports:
         if report.status == "component":
@@ -201,11 +193,68 @@ def run_induce(args) -> int:
         out.append("No grammar system: " + (result.verdict or "no string repeats in step with "
                                              "another") + ".")
     else:
-        out.append("Grammar system (each component repeats its pattern, all the same number of "
-                   "times):")
-        out.append(system_text.rstrip("\n"))
+        out.append(_system_summary(result.system)
+                   + (":" if args.full else " (--full prints it, -o OUT.psgs writes it)."))
+        if args.full:
+            out.append(system_text.rstrip("\n"))
     print("\n".join(out))
     return 0
+
+
+SHOWN_SYMBOLS = 12  # a pattern's symbols on a summary line; the rest is counted
+
+
+def _short(pattern, full: bool) -> str:
+    """A pattern as text: whole with ``full``, else its first symbols and how many there are."""
+    if full or len(pattern) <= SHOWN_SYMBOLS:
+        return " ".join(pattern)
+    return " ".join(pattern[:SHOWN_SYMBOLS]) + f" ... ({len(pattern)} symbols)"
+
+
+def _copies(where) -> str:
+    times = ", ".join(f"{a:.4g}-{b:.4g}" for a, b in where[:3])
+    times += ", ..." if len(where) > 3 else ""
+    return f"{len(where)} copies at t = {times}"
+
+
+def _found_lines(result, truth, *, full: bool) -> list[str]:
+    """What was found: one line per joint (its channels, pattern lengths, copies) when the
+    inducer names joints, and one line per component outside any joint; ``full`` spells out
+    every pattern instead of a summary."""
+    lines = []
+    in_joint: set[str] = set()
+    if not full:
+        for joint in result.actuators:
+            channels = [c for c in result.actuator_channels.get(joint, ())
+                        if c in result.patterns]
+            if not channels or channels == [joint]:  # a string is its own joint: a line below
+                continue
+            in_joint.update(channels)
+            lengths = sorted({len(result.patterns[c]) for c in channels})
+            size = str(lengths[0]) if len(lengths) == 1 else f"{lengths[0]}-{lengths[-1]}"
+            lines.append(f"  {joint}: {len(channels)} channel(s) ({', '.join(channels)}), "
+                         f"patterns of {size} symbols, {_copies(result.occurrences[channels[0]])}")
+    elif result.actuators:
+        lines.append("  joints: " + ", ".join(
+            f"{a} ({', '.join(result.actuator_channels.get(a, ()))})" for a in result.actuators))
+    for name in result.components:
+        if name in in_joint:
+            continue
+        line = (f"  {name}: {_short(result.patterns[name], full)}   "
+                f"({_copies(result.occurrences[name])})")
+        if truth is not None:
+            ok = truth.patterns.get(name) == tuple(result.patterns[name])
+            line += "   [the hidden template]" if ok else "   [NOT the hidden template]"
+        lines.append(line)
+    return lines
+
+
+def _system_summary(system) -> str:
+    rules = sum(len(g.rules) for g in system.components)
+    tuples = len(getattr(system, "sync", ()))
+    return (f"Grammar system: {len(system.components)} component(s), {rules} rules, "
+            f"{tuples} synchronised tuples; each component repeats its pattern, all the same "
+            f"number of times")
 
 
 def run_locate(args) -> int:

@@ -124,6 +124,11 @@ class Induction:
     >>> result = Induction(None, ("knee",), {"knee": ["a", "b"]}, {"knee": [(0, 2), (2, 4)]})
     >>> result.patterns["knee"], result.occurrence_performance["knee"]
     (('a', 'b'), (0, 0))
+    >>> result
+    <Induction unnamed inducer: 1 component(s) (knee)>
+    >>> print(result)
+    <Induction unnamed inducer: 1 component(s) (knee)>
+      knee: a b  (2 copies)
     """
 
     system: PSGS | None
@@ -187,6 +192,25 @@ class Induction:
                              dict(self.occurrence_performance), self.actuators,
                              dict(self.actuator_channels), dict(self.morphemes), self.verdict,
                              self.actuator_reports))
+
+    def __repr__(self) -> str:
+        # a summary, not the dataclass dump of every pattern and occurrence
+        found = ", ".join(self.components[:6]) + (", ..." if len(self.components) > 6 else "")
+        joints = f", joints {', '.join(self.actuators)}" if self.actuators else ""
+        takes = f" from {self.performances} performances" if self.performances > 1 else ""
+        verdict = f" ({self.verdict})" if self.verdict else ""
+        return (f"<Induction {self.inducer or 'unnamed inducer'}{takes}: "
+                f"{len(self.components)} component(s) ({found or 'none'}){joints}{verdict}>")
+
+    def __str__(self) -> str:
+        # one line per component: its pattern (cut at 12 symbols) and how many copies
+        lines = [repr(self)]
+        for name in self.components:
+            pattern = self.patterns.get(name, ())
+            shown = " ".join(pattern[:12]) + (f" ... ({len(pattern)} symbols)"
+                                              if len(pattern) > 12 else "")
+            lines.append(f"  {name}: {shown}  ({len(self.occurrences.get(name, ()))} copies)")
+        return "\n".join(lines)
 
     def _repr_html_(self) -> str:
         """Verdict, actuators, patterns and the system's picture (notebooks)."""

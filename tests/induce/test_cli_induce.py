@@ -17,7 +17,11 @@ def test_induce_example_explains_itself(capsys):
     assert "Hidden in it: 4 strings" in out
     assert out.count("[the hidden template]") == 4
     assert "found exactly the hidden patterns" in out
-    assert "component s" in out  # the grammar system text
+    assert "component s" not in out  # a summary: the grammar's text only with --full
+    assert "Grammar system: 4 component(s)" in out and "--full prints it" in out
+    assert main(["induce", "--example", "--full"]) == 0
+    full = capsys.readouterr().out
+    assert "component s" in full and "--full prints it" not in full
 
 
 def test_induce_without_file_uses_the_example(capsys):

@@ -22,7 +22,15 @@ def test_induce_several_files_names_the_joints(tmp_path, capsys):
     assert main(["induce", *paths]) == 0
     out = capsys.readouterr().out
     assert "(5 performances)" in out
-    assert "joints: arm (" in out and "hand (" in out and "other (" not in out
+    # the summary: one line per joint, its channels, pattern lengths and copies
+    joint_lines = [line for line in out.splitlines() if "channel(s) (" in line]
+    assert [line.split(":")[0].strip() for line in joint_lines][:2] == ["arm", "hand"]
+    assert all("patterns of" in line and "copies at t =" in line for line in joint_lines)
+    assert not any(line.strip().startswith("other") for line in out.splitlines())
+    assert "component arm" not in out  # the grammar's text only with --full
+    assert main(["induce", *paths, "--full"]) == 0
+    full = capsys.readouterr().out
+    assert "joints: arm (" in full and "hand (" in full and "component arm" in full
     assert main(["induce", *paths, "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["performances"] == 5 and data["actuators"][:2] == ["arm", "hand"]

@@ -31,7 +31,11 @@ def test_build_draw_generate(manifest, tmp_path, capsys):
     assert "(4 already done)" in capsys.readouterr().out
     assert main(["draw", str(out), "-o", str(out / "img"), "--format", "svg"]) == 0
     assert (out / "img" / "actuators.svg").is_file()
-    capsys.readouterr()
+    drew = capsys.readouterr()
+    # stdout: the pictures written; stderr: progress per action and a count, no warning
+    assert all(Path(line).is_file() for line in drew.out.splitlines())
+    assert "drawing 1/" in drew.err and f"drew {len(drew.out.splitlines())} pictures" in drew.err
+    assert "Warning" not in drew.err
     assert main(["generate", str(out), "moves.wave", "--repeat", "2",
                  "-o", str(tmp_path / "w.bvh")]) == 0
     printed = capsys.readouterr().out

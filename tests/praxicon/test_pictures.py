@@ -73,3 +73,45 @@ def test_praxicon_pictures_and_shared_patterns(manifest, tmp_path):
 
     listed = json.loads((tmp_path / "px" / "shared.json").read_text())
     assert listed == [p.to_dict() for p in shared]
+
+
+def _text_boxes(fig):
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    return [(t.get_text(), t.get_window_extent(renderer)) for ax in fig.axes for t in ax.texts]
+
+
+def test_matplotlib_drawing_wraps_large_systems_and_tags_instead_of_lines():
+    # a system wider than a row wraps: the picture's width stays that of PER_ROW cells
+    # whatever the number of components, and synchronisation is tags, not crossing lines
+    pytest.importorskip("matplotlib")
+    import matplotlib.pyplot as plt
+
+    from psgs.draw import PER_ROW, _matplotlib
+    from psgs.model import PSGS, Grammar, Nonterminal, Rule, Terminal
+
+    def component(i):
+        start = Nonterminal(f"S{i}")
+        return Grammar(f"G{i}", start, (Rule(f"p{i}", start, (Terminal("a"), start)),
+                                        Rule(f"q{i}", start, ())))
+
+    n = 3 * PER_ROW + 2
+    grammars = tuple(component(i) for i in range(n))
+    # tuple 1 skips every other component: those idle in it
+    sync = [tuple(f"p{i}" if i % 2 == 0 else "#" for i in range(n)),
+            tuple(f"q{i}" for i in range(n))]
+    system = PSGS(grammars, sync=sync, name="wide")
+    small = _matplotlib(PSGS(grammars[:PER_ROW], sync=[tuple(f"q{i}" for i in range(PER_ROW))]),
+                        None)
+    fig = _matplotlib(system, None)
+    try:
+        assert fig.get_figwidth() == small.get_figwidth()
+        assert fig.get_figheight() > 3 * small.get_figheight() / 2
+        assert not any(ax.lines for ax in fig.axes)  # no line can cross an idle component
+        texts = [t for t, _ in _text_boxes(fig)]
+        # p of an idle component carries no tag; q of every component carries M2
+        assert texts.count("M1") == (n + 1) // 2 and texts.count("M2") == n
+        assert any("tuple k of M" in t.get_text() for t in fig.texts)  # the legend
+    finally:
+        plt.close(fig)
+        plt.close(small)
