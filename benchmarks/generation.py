@@ -13,10 +13,10 @@ holds every style it can) are split three ways, never sharing a take:
 * ``--train`` takes (default 3) train a MiniRocket (aeon) on real motion only;
 * ``--test`` takes (default 3) are the held-apart real takes it is scored on.
 
-Dataset 2 has 35 takes per content: only the first ones of the round-robin deal are used (a
-subsample, to keep a run near 3 minutes). Every learnt action is generated (``--repeat`` 3
-cycles) and the classifier labels it. Takes enter the classifier as windows of 2 s (64 frames,
-half-overlapping, a take shorter than that padded with its last frame), a take's label the
+Dataset 1 has 15 takes per content, dataset 2 35: only the first ones of the round-robin deal
+are used (a subsample, to keep a run near a minute); contents with fewer takes are left out.
+Every learnt action is generated (``--repeat`` 3 cycles) and the classifier labels it.
+Takes enter the classifier as windows of 2 s (64 frames, half-overlapping, a take shorter than that padded with its last frame), a take's label the
 majority of its windows' labels. A window's series: every rotation channel, the root's
 horizontal speed (cm/s) and turning rate (deg/s of ``Hips.ry``).
 
