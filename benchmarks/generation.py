@@ -17,8 +17,9 @@ Dataset 1 has 15 takes per content, dataset 2 35: only the first ones of the rou
 are used (a subsample, to keep a run near a minute); contents with fewer takes are left out.
 Every learnt action is generated (``--repeat`` 3 cycles) and the classifier labels it.
 Takes enter the classifier as windows of 2 s (64 frames, half-overlapping, a take shorter
-than that padded with its last frame), a take's label the majority of its windows' labels. A window's series: every rotation channel, the root's
-horizontal speed (cm/s) and turning rate (deg/s of ``Hips.ry``).
+than that padded with its last frame), a take's label the majority of its windows' labels.
+A window's series: every rotation channel, the root's horizontal speed (cm/s) and
+turning rate (deg/s of ``Hips.ry``).
 
 Figures printed and written to ``docs/data/generation.csv`` (one row per action):
 
