@@ -47,7 +47,7 @@ def test_each_action_recognised_and_ranked_on_one_scale(px):
 
 def test_unseen_movement_is_none_of_these(px):
     found = recognise(px, synthetic_motion(4, (1, 3), seed=9, repetitions=5))
-    assert found.action is None and found.penalty > found.threshold
+    assert found.action is None and (found.penalty > found.threshold or found.excess > 1.0)
     assert "none of these" in found.explain()
 
 
