@@ -325,8 +325,9 @@ def _fit_spread(groups: list[np.ndarray], rank: int, floors=None):
     return scale, means, factors, noise
 
 
-def _group_limits(held: np.ndarray, level: float) -> np.ndarray:
-    """Per feature group (columns of ``held``: held-out takes x groups) the distance a known
+def _group_limits(held: np.ndarray, level: float, sizes) -> np.ndarray:
+    """Per feature group (columns of ``held``: held-out takes x groups; ``sizes``: features
+    per group) the distance a known
     take exceeds in any group with probability ``level`` (Bonferroni over the groups).
 
     Held-out distances are heavy-tailed (a style that stoops moves the spine a lot), so no
@@ -338,7 +339,10 @@ def _group_limits(held: np.ndarray, level: float) -> np.ndarray:
     median = np.median(held, axis=0)
     excess = np.array([float((h[h > m] - m).mean()) if np.any(h > m) else 0.0
                        for h, m in zip(held.T, median)])
-    return median + excess * math.log(max(1.0, 0.5 * held.shape[1] / level))
+    limit = median + excess * math.log(max(1.0, 0.5 * held.shape[1] / level))
+    # never under one of the action's own standard deviations per feature: held-out takes that
+    # all agree exactly (a tempo every training take shares) would otherwise allow nothing
+    return np.maximum(limit, sizes)
 
 
 def _calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
@@ -391,7 +395,9 @@ def _calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
                                           for r in moved[-len(held):]]
     if not moved:
         return math.inf, 1.0, ()
-    limits = _group_limits(np.concatenate(grouped), level) if grouped else ()
+    limits = (_group_limits(np.concatenate(grouped), level,
+                             np.array([len(c) for c in parts_of.values()], dtype=float))
+              if grouped else ())
     limits = tuple((g, float(v)) for g, v in zip(parts_of, limits))
     dist = np.array(moved)
     features = groups[0].shape[1]
