@@ -12,8 +12,13 @@ and features, never with the number of takes (no take is kept).
 
 A motion is "none of these" when even its best action's squared Mahalanobis distance per
 feature exceeds ``Spread.threshold``, the largest a training take reached when left out of its
-own action's mean. Probabilities are the likelihoods at the ``temperature`` that fits the
-left-out training takes best.
+own action's mean, or when one group of its features (a joint, the root's drift, the root's
+sway, the tempo) is further from that action than its limit (``Spread.limits``: what a
+held-out training take exceeds with probability ``GROUP_LEVEL`` over all groups). The group
+test measures each action against its own spread (shrunk towards the shared one): a deviation
+concentrated in a few features, such as a walk's missing heading drift against a turn whose
+drift is tight, drowns in a sum over all features but stands out in its group. Probabilities
+are the likelihoods at the ``temperature`` that fits the left-out training takes best.
 
 >>> from kinetology import synthetic_motion
 >>> takes = {"a": [synthetic_motion(3, (0,), seed=s) for s in (1, 2, 3)],
@@ -33,10 +38,11 @@ import numpy as np
 
 from psgs.errors import PSGSError
 
-from .features import FeatureError, motion_features
+from .features import FeatureError, feature_joint, motion_features
 
 __all__ = ["FORMAT_VERSION", "ActionDescription", "Spread", "Descriptions", "describe",
-           "describe_table", "DescriptionError"]
+           "describe_table", "DescriptionError", "feature_groups", "group_distances",
+           "GROUP_LEVEL"]
 
 #: Bumped when what a description holds or how features are computed changes.
 FORMAT_VERSION = 1
@@ -45,6 +51,8 @@ _NOISE_FLOOR = 0.05  # smallest per-feature variance left, in scaled units
 _PRIOR_TAKES = 10.0  # pseudo-takes of typical spread each feature's own spread is shrunk to
 _MARGIN = 1.5  # the "none of these" threshold: this times the worst held-out training take
 _FOLDS = 5  # held-out folds of the calibration
+#: How often a known take may fail the feature-group test (over all groups together).
+GROUP_LEVEL = 0.01
 
 
 class DescriptionError(PSGSError, ValueError):
@@ -117,6 +125,7 @@ class Spread:
     temperature: float
     window: float = 0.0
     version: int = FORMAT_VERSION
+    limits: tuple[tuple[str, float], ...] = ()  # per feature group: its largest distance
 
     def to_dict(self) -> dict:
         """Plain JSON values (floats kept exactly)."""
@@ -124,7 +133,7 @@ class Spread:
                 "features": list(self.features), "scale": list(self.scale),
                 "factors": [list(f) for f in self.factors], "noise": list(self.noise),
                 "threshold": self.threshold, "temperature": self.temperature,
-                "window": self.window}
+                "window": self.window, "limits": [[g, v] for g, v in self.limits]}
 
     @classmethod
     def from_dict(cls, data: dict) -> "Spread":
@@ -132,7 +141,10 @@ class Spread:
         _check(data, "praxicon-spread")
         return cls(tuple(data["features"]), _floats(data["scale"]),
                    tuple(_floats(f) for f in data["factors"]), _floats(data["noise"]),
-                   float(data["threshold"]), float(data["temperature"]), float(data["window"]))
+                   float(data["threshold"]), float(data["temperature"]), float(data["window"]),
+                   FORMAT_VERSION,
+                   # descriptions written before the group test have none: no group test
+                   tuple((str(g), float(v)) for g, v in data.get("limits", [])))
 
 
 @dataclass(frozen=True)
@@ -234,6 +246,55 @@ def probabilities(dist: np.ndarray, temperature: float) -> np.ndarray:
     return p / p.sum(axis=-1, keepdims=True)
 
 
+def feature_groups(features) -> dict[str, np.ndarray]:
+    """The columns of each feature group: a joint's features, the root's drift, the root's
+    sway, the tempo (the units a deviation concentrates in).
+
+    Examples
+    --------
+    >>> g = feature_groups(["a.rx:pose", "a.ry:spread", "Hips.turnx:drift",
+    ...                     "Hips.turnx:energy", "tempo"])
+    >>> {k: v.tolist() for k, v in g.items()}
+    {'a': [0, 1], 'Hips:drift': [2], 'Hips:sway': [3], 'tempo': [4]}
+    """
+    out: dict[str, list[int]] = {}
+    for i, f in enumerate(features):
+        if f == "tempo":
+            key = "tempo"
+        elif ".travel" in f or ".turn" in f:
+            key = f"{feature_joint(f)}:{'drift' if f.endswith(':drift') else 'sway'}"
+        else:
+            key = feature_joint(f)
+        out.setdefault(key, []).append(i)
+    return {k: np.array(v, dtype=int) for k, v in out.items()}
+
+
+def _action_variances(sums: np.ndarray, counts) -> np.ndarray:
+    """Per action and feature the variance of its own copies (scaled units) from the sums of
+    squared deviations, shrunk towards the variance pooled over actions as if
+    ``_PRIOR_TAKES`` more takes had shown that: a turn's tight drift stays tight, an action
+    learnt from two takes borrows the others' spread."""
+    counts = np.asarray(counts, dtype=float)[:, None]
+    pooled = np.maximum(sums.sum(axis=0) / max(1.0, float((counts - 1).sum())), _NOISE_FLOOR)
+    return (sums + _PRIOR_TAKES * pooled) / (counts - 1 + _PRIOR_TAKES)
+
+
+def action_variances(descriptions: "Descriptions", columns) -> np.ndarray:
+    """Actions x ``columns``: each action's own variance per feature, in the spread's scaled
+    units (from the stored per-action spreads and take counts)."""
+    scale = np.asarray(descriptions.spread.scale)[columns]
+    n = np.array([a.takes for a in descriptions.actions], dtype=float)
+    spread = np.array([a.spread for a in descriptions.actions]).reshape(len(n), -1)[:, columns]
+    return _action_variances((spread / scale) ** 2 * n[:, None], n)
+
+
+def group_distances(x, mean, variance, scale, groups: dict[str, np.ndarray]) -> np.ndarray:
+    """Rows x groups: each group's squared distance from ``mean``, every feature in units of
+    the action's own ``variance`` (after dividing by ``scale``)."""
+    z = ((np.atleast_2d(x) - mean) / scale) ** 2 / variance
+    return np.stack([z[:, c].sum(axis=1) for c in groups.values()], axis=1)
+
+
 def _scale_floors(features) -> np.ndarray:
     """The smallest scale of each feature: a degree (or a degree per second, a length unit per
     second) for angles and rates, 10 % for the log ranges and energies, 5 % of the tempo.
@@ -266,14 +327,36 @@ def _fit_spread(groups: list[np.ndarray], rank: int, floors=None):
     return scale, means, factors, noise
 
 
+def _group_limits(held: np.ndarray, level: float, sizes) -> np.ndarray:
+    """Per feature group (columns of ``held``: held-out takes x groups; ``sizes``: features
+    per group) the distance a known
+    take exceeds in any group with probability ``level`` (Bonferroni over the groups).
+
+    Held-out distances are heavy-tailed (a style that stoops moves the spine a lot), so no
+    chi-squared law fits them; the tail above the median is taken as exponential, its scale
+    the mean excess over the median, which a few dozen takes estimate steadily where their
+    largest value would not (the largest of n takes is exceeded by a new one with
+    probability 1/(n+1) per group).
+    """
+    median = np.median(held, axis=0)
+    excess = np.array([float((h[h > m] - m).mean()) if np.any(h > m) else 0.0
+                       for h, m in zip(held.T, median)])
+    limit = median + excess * math.log(max(1.0, 0.5 * held.shape[1] / level))
+    # never under one of the action's own standard deviations per feature: held-out takes that
+    # all agree exactly (a tempo every training take shares) would otherwise allow nothing
+    return np.maximum(limit, sizes)
+
+
 def _calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
-               folds: int = _FOLDS):
+               folds: int = _FOLDS, features=None, level: float = GROUP_LEVEL):
     """Threshold and temperature from held-out training takes (``folds``-fold).
 
     Every take is scored by a model learnt without it (its action's mean *and* the shared
     spread), as an unseen take would be; an action with a single take cannot be held out.
     The threshold is ``_MARGIN`` times the largest distance per feature such a take got; the
-    temperature the one (a power of 2) whose probabilities fit the held-out takes best.
+    group limits (with ``features``) from each group's held-out distances to its own action, in
+    that action's own spread (:func:`_group_limits`); the temperature the one (a power of 2)
+    whose probabilities fit the held-out takes best.
     ``sources`` (per action, per row: the take a row comes from) keeps the windows of one take
     in one fold, so that a take is never scored by a model that saw another piece of it.
     """
@@ -281,7 +364,8 @@ def _calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
         sources = [np.arange(len(g)) for g in groups]
     else:  # takes numbered in order, so that a take's fold does not depend on its id
         sources = [np.unique(np.asarray(s), return_inverse=True)[1] for s in sources]
-    moved, truth = [], []
+    moved, truth, grouped = [], [], []
+    parts_of = feature_groups(features) if features is not None else {}
     for fold in range(folds):
         out = [s % folds == fold for s in sources]
         train = [g[~o] for g, o in zip(groups, out)]
@@ -295,8 +379,14 @@ def _calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
         spread = Spread(("",) * len(scale), _floats(scale), tuple(_floats(f) for f in factors),
                         _floats(noise), math.inf, 1.0)
         parts = precision_parts(spread, np.arange(len(scale)))
+        if parts_of:
+            variance = _action_variances(
+                np.array([(((train[a] - m) / scale) ** 2).sum(axis=0)
+                          for a, m in zip(keep, means)]), [len(train[a]) for a in keep])
         for k, a in enumerate(keep):
             held = groups[a][out[a]]
+            if len(held) and len(train[a]) and parts_of:
+                grouped.append(group_distances(held, means[k], variance[k], scale, parts_of))
             if len(held) and len(train[a]):
                 moved.extend(distances(held, means, parts))
                 truth.extend([k] * len(held))
@@ -306,7 +396,11 @@ def _calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
                                                                      np.inf)])
                                           for r in moved[-len(held):]]
     if not moved:
-        return math.inf, 1.0
+        return math.inf, 1.0, ()
+    limits = (_group_limits(np.concatenate(grouped), level,
+                             np.array([len(c) for c in parts_of.values()], dtype=float))
+              if grouped else ())
+    limits = tuple((g, float(v)) for g, v in zip(parts_of, limits))
     dist = np.array(moved)
     features = groups[0].shape[1]
     own = dist[np.arange(len(truth)), truth] / features
@@ -317,15 +411,17 @@ def _calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
         loss = float(-np.log(np.maximum(p, 1e-300)).mean())
         if loss < best_loss - 1e-12:
             best, best_loss = float(temperature), loss
-    return threshold, best
+    return threshold, best, limits
 
 
 def describe_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
-                   window: float = 0.0, rank: int = _RANK, sources=None) -> Descriptions:
+                   window: float = 0.0, rank: int = _RANK, sources=None,
+                   level: float = GROUP_LEVEL) -> Descriptions:
     """Descriptions from feature rows (``{action: takes x features}``), sorted by name.
 
     ``sources`` (``{action: per row the take it comes from}``, for windows) keeps each take's
-    rows together when the threshold is calibrated.
+    rows together when the threshold is calibrated; ``level`` is how often a known take may
+    fail the feature-group test.
     """
     names = sorted(table)
     groups = [np.asarray(table[n], dtype=float) for n in names]
@@ -335,10 +431,11 @@ def describe_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
     scale, means, factors, noise = _fit_spread(groups, rank, floors)
     spread = Spread(tuple(features), _floats(scale), tuple(_floats(f) for f in factors),
                     _floats(noise), math.inf, 1.0, window)
-    threshold, temperature = _calibrate(
-        groups, rank, None if sources is None else [sources[n] for n in names], floors)
+    threshold, temperature, limits = _calibrate(
+        groups, rank, None if sources is None else [sources[n] for n in names], floors,
+        features=features, level=level)
     spread = Spread(spread.features, spread.scale, spread.factors, spread.noise, threshold,
-                    temperature, window)
+                    temperature, window, FORMAT_VERSION, limits)
     actions = tuple(ActionDescription(n, tuple(features), _floats(m), _floats(g.std(axis=0)),
                                       len(g), window) for n, g, m in zip(names, groups, means))
     return Descriptions(actions, spread)
@@ -365,10 +462,12 @@ def common_table(rows: dict[str, list[dict[str, float]]]):
     return order, {n: np.array([[r[f] for f in order] for r in per]) for n, per in rows.items()}
 
 
-def describe(takes: dict[str, list], *, rank: int = _RANK) -> Descriptions:
+def describe(takes: dict[str, list], *, rank: int = _RANK,
+             level: float = GROUP_LEVEL) -> Descriptions:
     """Descriptions of every action from its takes (``{name: [Motion, ...]}``).
 
-    Features some take lacks (its skeleton has fewer joints) are left out.
+    Features some take lacks (its skeleton has fewer joints) are left out. ``level``: how often
+    a known take may be answered "none of these" by the feature-group test.
 
     Examples
     --------
@@ -380,4 +479,4 @@ def describe(takes: dict[str, list], *, rank: int = _RANK) -> Descriptions:
     """
     rows = {name: feature_rows(motions) for name, motions in takes.items()}
     order, table = common_table(rows)
-    return describe_table(table, order, rank=rank)
+    return describe_table(table, order, rank=rank, level=level)

@@ -6,7 +6,9 @@ scores compare across actions; an action
 with many joints gains nothing from them, because the joints that must stay still and the
 joints that move but are not the action's cost as much as a joint that moves wrongly. The best
 action is the answer unless its mean penalty exceeds the threshold calibrated on the training
-takes: then the answer is ``None`` ("none of these").
+takes, or one group of features (a joint, the root's drift or sway, the tempo) is further from
+it, in the action's own spread, than its calibrated limit (exceeded by a held-out training take
+with probability ``GROUP_LEVEL``): then the answer is ``None`` ("none of these").
 
 >>> from kinetology import synthetic_motion
 >>> from praxicon.description import describe
@@ -27,7 +29,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .description import (DescriptionError, Descriptions, distances, feature_rows,
+from .description import (DescriptionError, Descriptions, action_variances,
+                          distances, feature_groups, feature_rows, group_distances,
                           mahalanobis_terms, precision_parts, probabilities)
 from .features import feature_joint
 
@@ -63,11 +66,16 @@ class Recognition:
     reasons: tuple[tuple[str, tuple[JointReason, ...]], ...] = ()
     tempo: tuple[tuple[str, float], ...] = ()  # per action shown: the tempo's distance term
     drift: tuple[tuple[str, float], ...] = ()  # per action shown: the root drift's terms
+    excess: float = 0.0  # the best action's worst feature group over its limit
+    excess_group: str = ""  # which group that is
 
     def explain(self, joints: int = 4) -> str:
         """The reasons, as text: per shown action the joints that decided it."""
         lines = [f"{self.source}: {self.action or 'none of these'} (distance {self.penalty:.3f}"
                  f" per feature, threshold {self.threshold:.3f})"]
+        if self.excess_group:
+            lines.append(f"  furthest feature group: {self.excess_group}, {self.excess:.2f} x "
+                         f"its limit (none of these above 1)")
         if self.missing:
             lines.append(f"  missing joints (recognised without them): "
                          f"{', '.join(self.missing)}")
@@ -189,12 +197,15 @@ def recognise_many(praxicon, motions, *, explain: int = 3) -> list[Recognition]:
     per_feature = dist / len(columns)
     names = descriptions.names
     drift = [i for i, f in enumerate(features) if f.endswith(":drift")]
+    best_of = p.argmax(axis=1) if len(p) else np.zeros(0, dtype=int)
+    excess, excess_group = _excess(descriptions, columns, features, x, means, best_of)
     tempo = [i for i, f in enumerate(features) if f == "tempo"]
     out = []
     for i, motion in enumerate(motions):
         order = np.argsort(-p[i], kind="stable")
         best = int(order[0])
-        action = names[best] if per_feature[i, best] <= spread.threshold else None
+        action = (names[best] if per_feature[i, best] <= spread.threshold
+                  and excess[i] <= 1.0 else None)
         reasons, tempos, drifts = [], [], []
         for a in order[:explain]:
             terms = mahalanobis_terms(x[i], means[a], parts)[0]
@@ -205,8 +216,24 @@ def recognise_many(praxicon, motions, *, explain: int = 3) -> list[Recognition]:
             getattr(motion, "source", "<motion>"), action,
             tuple((names[a], float(p[i, a])) for a in order),
             float(per_feature[i, best]), float(spread.threshold), missing[i], tuple(reasons),
-            tuple(tempos), tuple(drifts)))
+            tuple(tempos), tuple(drifts), float(excess[i]), excess_group[i]))
     return out
+
+
+def _excess(descriptions, columns, features, x, means, best):
+    """Per motion: its best action's worst feature group over that group's calibrated limit
+    (0 and "" when the descriptions have no limits), and the group's name."""
+    limits = dict(descriptions.spread.limits)
+    groups = {g: c for g, c in feature_groups(features).items() if g in limits}
+    if not groups:
+        return np.zeros(len(x)), [""] * len(x)
+    variance = action_variances(descriptions, columns)
+    scale = np.asarray(descriptions.spread.scale)[columns]
+    bound = np.array([limits[g] for g in groups])
+    ratio = np.stack([group_distances(x[i], means[b], variance[b], scale, groups)[0]
+                      for i, b in enumerate(best)]) / np.maximum(bound, 1e-12)
+    names = list(groups)
+    return ratio.max(axis=1), [names[k] for k in ratio.argmax(axis=1)]
 
 
 def recognise(praxicon, motion, *, explain: int = 3) -> Recognition:
