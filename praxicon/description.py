@@ -204,7 +204,8 @@ def _check(data: dict, kind: str) -> None:
     if data.get("version") != FORMAT_VERSION:
         raise DescriptionError(f"{kind} of version {data.get('version')!r}; this psgs reads "
                                f"version {FORMAT_VERSION}: learn the descriptions again "
-                               f"(psgs praxicon describe PX)")
+                               f"(psgs praxicon build ... -o PX resumes the build and "
+                               f"describes its actions)")
 
 
 # -- the model ---------------------------------------------------------------------------------

@@ -149,7 +149,7 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH) -> Ti
     descriptions = _descriptions(praxicon, windows=True)
     if not descriptions.spread.window:
         raise DescriptionError("parse needs window descriptions (describe_windows; "
-                               "'psgs praxicon describe' writes them)")
+                               "'psgs praxicon build' learns them)")
     motion = _motion(motion)
     window = descriptions.spread.window
     starts, cuts = windows(motion, window, hop)
