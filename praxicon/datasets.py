@@ -218,7 +218,7 @@ def _read_manifest(path: Path) -> list[Action]:
     if path.suffix.lower() == ".toml":
         try:
             table = tomllib.loads(text)
-        except tomllib.TOMLDecodeError as exc:
+        except (tomllib.TOMLDecodeError, ValueError) as exc:  # ValueError: e.g. a date out of range
             raise DatasetError(f"{_shown_path(path)}: {exc}") from None
         except RecursionError:
             raise DatasetError(f"{_shown_path(path)}: nests too deeply to be a manifest") \

@@ -179,17 +179,16 @@ def _read_codec_body(path: Path):
 
 def _write_bvh_back(path: Path):
     """Read a BVH file; what ``format_bvh`` writes of it reads back to the same motion (or
-    the writer refuses with a plain ValueError, its documented error)."""
+    the writer refuses with a ValidationError, its documented error)."""
     import numpy as np
     from kinetology.bvh import parse_bvh, read_bvh
     from kinetology.bvh_writer import format_bvh
+    from psgs.errors import ValidationError
     motion = read_bvh(path)
     try:
         text = format_bvh(motion)
-    except ValueError as error:
-        if type(error) is ValueError:
-            return
-        raise
+    except ValidationError:
+        return
     back = parse_bvh(text, source="written.bvh")
     assert sorted(back.channels) == sorted(motion.channels), "channels changed"
     for name in motion.channels:
@@ -229,12 +228,9 @@ def _praxicon_folder(path: Path, target: str) -> Path:
 
 
 def _read_praxicon(folder: Path):
+    from praxicon import load
     from praxicon.shared import shared_patterns
-    from praxicon.store import load_index, load_record
-    index = load_index(folder)
-    for entry in index.get("actions", []):
-        load_record(folder, entry["name"])
-    shared_patterns(folder)
+    shared_patterns(load(folder))
 
 
 def _read_praxicon_index(path: Path):
@@ -271,8 +267,9 @@ def _dataset_errors():
     return (DatasetError,)
 
 
-def _praxicon_errors():  # load_index, load_record: "ValueError when it is not one"
-    return (ValueError,)
+def _praxicon_errors():  # praxicon.load: one PraxiconError line for a damaged folder
+    from praxicon.records import PraxiconError
+    return (PraxiconError,)
 
 
 READERS = {r.name: r for r in (
