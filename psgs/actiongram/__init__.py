@@ -7,18 +7,24 @@ has a start time ``T_i(j)`` and a duration ``D_i(j) > 0`` with
 
 Adjacent equal symbols are one segment: when a string is built with two equal
 neighbours they are merged into one symbol whose duration is the sum of
-theirs, so ``A_i(j) != A_i(j + 1)`` always holds, as the paper requires.
+theirs, so ``A_i(j) != A_i(j + 1)`` holds, as the paper requires. An actiongram
+built with ``keep_repeats=True`` keeps them apart instead (a re-struck note
+``C C D`` stays three segments); the flag is part of the value and of both file
+forms (``%keep_repeats`` in the text form).
 
 The plain-text form, one actuator per line::
 
-    # a comment (a line, or the rest of a line after white space, starting with #)
+    # a comment line
     lknee: B G R Y B@3 G@2.5
     rknee@10: Y B G        # this string starts at time 10
 
 ``sym@D`` gives a duration (default 1). Symbols are non-space tokens without
 ``@`` or ``:`` and not starting with ``#``; actuator names likewise, also
-without white space. Bad input raises :class:`~psgs.errors.FormatError`
-naming ``source:line:column``.
+without white space. A comment is a line whose first non-blank character is
+``#``, or the rest of a line from a ``#`` that follows white space and is
+followed by white space (or ends the line); a token such as ``#4`` on a string
+line is an error at its place, never a silent cut. Bad input raises
+:class:`~psgs.errors.FormatError` naming ``source:line:column``.
 
 Three optional extras, which whoever makes the actiongram supplies (kinetology
 gives them from motion capture: its joints are the actuators); all are absent in
@@ -38,18 +44,14 @@ from __future__ import annotations
 
 import json
 import math
-import re
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import FormatError
-from ._checks import (_bad_duration, _bad_name, _bad_symbol, _check_times_advance,
-                                 _finite, _format_number, _plain_durations, _read_number,
-                                 _shown, _strip_comment)
-from ._extras import DIRECTIVE as _DIRECTIVE
+from ._checks import (_bad_duration, _bad_name, _bad_symbol, _check_times_advance, _finite,
+                      _format_number, _plain_durations, _shown)
 from ._extras import _merge, default_actuator, normalise_extras
-from ._extras import read_directive as _read_directive
 
 __all__ = ["Actiongram", "default_actuator"]
 
@@ -82,6 +84,8 @@ class Actiongram:
         The actuator (group) each string belongs to.
     skeleton_edges : tuple of (str, str or None), default ()
         Actuator to parent actuator (None for a root), where a skeleton is known.
+    keep_repeats : bool, default False
+        Keep equal neighbours as separate segments instead of merging them.
 
     Raises
     ------
@@ -110,6 +114,8 @@ class Actiongram:
     string_actuators: tuple[str, ...] = ()
     #: ``(actuator, parent or None)`` pairs, in the maker's order; () = no skeleton known
     skeleton_edges: tuple[tuple[str, str | None], ...] = ()
+    #: True: equal neighbours stay separate segments (a re-struck note), False: they merge
+    keep_repeats: bool = False
 
     def __post_init__(self) -> None:
         names = tuple(self.names)
@@ -118,6 +124,8 @@ class Actiongram:
         origins = tuple(self.origins) if self.origins else (0.0,) * len(names)
         if not (len(names) == len(symbols) == len(durations) == len(origins)):
             raise ValueError("names, symbols, durations and origins must have one entry per string")
+        if not isinstance(self.keep_repeats, bool):
+            raise FormatError(f"keep_repeats must be True or False, not {_shown(self.keep_repeats)}")
         seen: set[str] = set()
         merged_symbols, merged_durations = [], []
         for name, syms, durs, origin in zip(names, symbols, durations, origins):
@@ -147,7 +155,7 @@ class Actiongram:
                     or not _finite(origin):
                 raise FormatError(f"string {_shown(name)}: start time must be a finite number, "
                                   f"not {_shown(origin)}")
-            s, d = _merge(syms, durs)
+            s, d = (syms, tuple(map(float, durs))) if self.keep_repeats else _merge(syms, durs)
             if not math.isfinite(float(origin) + sum(d)):
                 raise FormatError(f"string {_shown(name)}: its times overflow (the durations "
                                   f"add up to more than a float can hold)")
@@ -170,13 +178,14 @@ class Actiongram:
                      starts: Mapping[str, float] | None = None, *,
                      displacements: Mapping[str, Iterable[float]] | None = None,
                      actuators: Mapping[str, str] | None = None,
-                     skeleton: Mapping[str, str | None] | None = None) -> "Actiongram":
+                     skeleton: Mapping[str, str | None] | None = None,
+                     keep_repeats: bool = False) -> "Actiongram":
         """Build from ``{name: symbols}`` (a ``str`` is read one character per symbol).
 
         ``durations`` maps a name to one duration per symbol (default 1 each);
         ``starts`` maps a name to the start time of its string (default 0).
         Adjacent equal symbols are merged, their durations added (and their
-        displacements). ``displacements`` maps a name to one signed change per
+        displacements), unless ``keep_repeats``. ``displacements`` maps a name to one signed change per
         symbol (a string left out: unknown); ``actuators`` maps a name to its
         actuator (default :func:`default_actuator`); ``skeleton`` maps an
         actuator to its parent (None for a root).
@@ -214,7 +223,7 @@ class Actiongram:
                       if isinstance(n, str) else n for n in names)
         edges = tuple((skeleton or {}).items())
         return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins),
-                   disp_rows, owner, edges)
+                   disp_rows, owner, edges, keep_repeats)
 
     @classmethod
     def from_codes(cls, codes: Mapping[str, Sequence[int]], alphabet: Sequence[str],
@@ -262,93 +271,9 @@ class Actiongram:
     @classmethod
     def from_text(cls, text: str, source: str = "<string>") -> "Actiongram":
         """Read the plain-text form (see the module docstring)."""
-        names, symbol_rows, duration_rows, origins = [], [], [], []
-        disp_rows: list[tuple[float, ...] | None] = []
-        owner: dict[str, str] = {}
-        edges: list[tuple[str, str | None]] = []
-        where: dict[str, int] = {}
-        for line_no, raw in enumerate(text.splitlines(), start=1):
-            line = _strip_comment(raw)
-            if not line.strip():
-                continue
-            if _DIRECTIVE.match(line):
-                _read_directive(line, source, line_no, owner, edges)
-                continue
-            head, colon, body = line.partition(":")
-            if not colon:
-                col = len(raw) - len(raw.lstrip()) + 1
-                raise FormatError("expected 'name: symbols' (no ':' on this line)",
-                                  source=source, line=line_no, column=col)
-            name_col = len(head) - len(head.lstrip()) + 1
-            name_text = head.strip()
-            name, at, origin_text = name_text.partition("@")
-            origin = 0.0
-            if at:
-                origin = _read_number(origin_text, allow_nonpositive=True)
-                if origin is None:
-                    raise FormatError(f"start time {_shown(origin_text)} is not a number",
-                                      source=source, line=line_no,
-                                      column=name_col + len(name) + 1)
-            problem = _bad_name(name)
-            if problem:
-                raise FormatError(problem, source=source, line=line_no, column=name_col)
-            if name in where:
-                raise FormatError(f"actuator {_shown(name)} already given on line {where[name]}",
-                                  source=source, line=line_no, column=name_col)
-            where[name] = line_no
-            syms, durs, disps = [], [], []
-            offset = len(head) + 1
-            for match in re.finditer(r"\S+", body):
-                token, col = match.group(), offset + match.start() + 1
-                sym, at, dur_text = token.partition("@")
-                if ":" in token:
-                    raise FormatError(f"symbol {_shown(token)} contains ':'", source=source,
-                                      line=line_no, column=col)
-                if not sym:
-                    raise FormatError(f"{_shown(token)} has a duration but no symbol",
-                                      source=source,
-                                      line=line_no, column=col)
-                dur = 1.0
-                if at and "~" in dur_text:  # sym@D~X: a duration, then a signed displacement
-                    dur_text, _, disp_text = dur_text.partition("~")
-                    disp = _read_number(disp_text, allow_nonpositive=True)
-                    if disp is None:
-                        raise FormatError(
-                            f"unknown displacement syntax {_shown('~' + disp_text)} (write "
-                            f"sym@D~X with X a number)", source=source, line=line_no,
-                            column=col + len(sym) + 1 + len(dur_text))
-                    disps.append(disp)
-                if at:
-                    dur = _read_number(dur_text, allow_nonpositive=True)
-                    if dur is not None and dur <= 0:
-                        raise FormatError(f"duration {_shown(dur_text)} must be positive",
-                                          source=source, line=line_no, column=col + len(sym) + 1)
-                    if dur is None:
-                        raise FormatError(
-                            f"unknown duration syntax {_shown('@' + dur_text)} (write sym@D "
-                            f"with D a positive number)", source=source, line=line_no,
-                            column=col + len(sym))
-                syms.append(sym)
-                durs.append(dur)
-                if len(disps) not in (0, len(syms)):
-                    raise FormatError("give a displacement (sym@D~X) for every symbol of a "
-                                      "string or for none", source=source, line=line_no,
-                                      column=col)
-            names.append(name)
-            symbol_rows.append(tuple(syms))
-            duration_rows.append(tuple(durs))
-            origins.append(origin)
-            disp_rows.append(tuple(disps) if disps else None)
-        for name in owner:
-            if name not in where:
-                raise FormatError(f"%actuator names unknown string {_shown(name)}",
-                                  source=source)
-        actuators = tuple(owner.get(n, default_actuator(n)) for n in names)
-        try:
-            return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins),
-                       tuple(disp_rows), actuators, tuple(edges))
-        except FormatError as exc:  # a bad skeleton or actuator: name the file
-            raise FormatError(exc.message, source=source) from None
+        from ._text import read_text
+
+        return read_text(cls, text, source)
 
     @classmethod
     def from_json(cls, text: str, source: str = "<string>") -> "Actiongram":
@@ -389,19 +314,23 @@ class Actiongram:
             actuator_rows.append(item["actuator"] if "actuator" in item
                                  else default_actuator(name) if isinstance(name, str) else name)
         skeleton = data.get("skeleton", {})
+        keep_repeats = data.get("keep_repeats", False)
+        if not isinstance(keep_repeats, bool):
+            raise FormatError("'keep_repeats' must be true or false", source=source)
         if not isinstance(skeleton, dict):
             raise FormatError("'skeleton' must be an object {actuator: parent or null}",
                               source=source)
         try:
             return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins),
-                       tuple(disp_rows), tuple(actuator_rows), tuple(skeleton.items()))
+                       tuple(disp_rows), tuple(actuator_rows), tuple(skeleton.items()),
+                       keep_repeats)
         except FormatError as exc:
             raise FormatError(exc.message, source=source) from None
 
     # -- output ------------------------------------------------------------
     def to_text(self) -> str:
         """The plain-text form; :meth:`from_text` reads it back to an equal value."""
-        lines = []
+        lines = ["%keep_repeats"] if self.keep_repeats else []
         for name, syms, durs, origin, disps in zip(self.names, self.symbols,
                                                    self.segment_durations, self.origins,
                                                    self.segment_displacements):
@@ -437,6 +366,8 @@ class Actiongram:
         data: dict[str, object] = {"format": _JSON_FORMAT, "version": 1, "strings": strings}
         if self.skeleton_edges:
             data["skeleton"] = dict(self.skeleton_edges)
+        if self.keep_repeats:
+            data["keep_repeats"] = True
         return json.dumps(data)
 
     # -- accessors ---------------------------------------------------------
@@ -491,7 +422,7 @@ class Actiongram:
                           tuple(self.origins[i] for i in picks),
                           tuple(self.segment_displacements[i] for i in picks) or (),
                           tuple(self.string_actuators[i] for i in picks) or (),
-                          self.skeleton_edges)
+                          self.skeleton_edges, self.keep_repeats)
 
     def displacements(self, name: str) -> tuple[float, ...] | None:
         """The signed displacement of each symbol of string ``name``, or None when unknown."""
