@@ -62,7 +62,7 @@ _JSON_FORMAT = "psgs-actiongram"
 class Actiongram:
     """Named, timed symbol strings, one per actuator (immutable).
 
-    Build one with :meth:`from_strings`, :meth:`from_text`, :meth:`from_json`
+    Build one with :meth:`from_strings`, :meth:`from_events`, :meth:`from_text`, :meth:`from_json`
     or :func:`load_actiongram`. The constructor takes the normalised fields
     (``names``, ``symbols``, ``durations`` as tuples of tuples, ``origins`` the
     start time of each string) and validates and normalises them.
@@ -267,6 +267,92 @@ class Actiongram:
         from ._fast import build
 
         return build(cls, codes, alphabet, durations, displacements, actuators, skeleton)
+
+    @classmethod
+    def from_events(cls, rows, *, gaps: str = "rest", rest_symbol: str = "_",
+                    keep_repeats: bool = False,
+                    columns: Mapping[str, str] | None = None) -> "Actiongram":
+        """Build from an events table: rows of ``(stream, onset, duration, symbol)``.
+
+        Rows may come in any order; each stream's events are put in onset order and its string
+        starts at its first onset. Events that meet (within a relative 1e-9, so ``0.1 + 0.2``
+        meets ``0.3``) keep their durations. Every instant of a string holds one symbol, so a
+        gap between two events of a stream becomes, by ``gaps``:
+
+        - ``"rest"`` (default): a segment of ``rest_symbol`` lasting the gap (silence is a
+          symbol of its own; every onset and every end keeps its time);
+        - ``"hold"``: the event before lasts until the next onset (onsets keep their times);
+        - ``"error"``: a :class:`~psgs.errors.ValidationError`.
+
+        Parameters
+        ----------
+        rows : iterable of sequence or mapping, or pandas.DataFrame
+            ``(stream, onset, duration, symbol)`` tuples, mappings with those keys, or a
+            DataFrame with those columns. A stream or symbol is text (a valid name or symbol
+            of the text form) or an integer, written in decimal; onsets are 0 or more,
+            durations positive, both finite.
+        gaps : {"rest", "hold", "error"}, default "rest"
+            What a gap between two events of a stream becomes (above).
+        rest_symbol : str, default "_"
+            The symbol of a gap under ``gaps="rest"``.
+        keep_repeats : bool, default False
+            Keep equal neighbours (a re-struck note ``C C``) as separate segments; by default
+            they merge into one.
+        columns : mapping of str to str, optional
+            Your key or column name for each of ``stream``, ``onset``, ``duration``,
+            ``symbol`` (``{"stream": "voice", "symbol": "pitch"}``).
+
+        Returns
+        -------
+        Actiongram
+            One string per stream, in the order of each stream's first row.
+
+        Raises
+        ------
+        ValidationError
+            For no rows, a missing key or column, or a bad row, naming the row (its index, the
+            DataFrame's index label): a negative or non-finite onset, a duration that is not
+            positive and finite, a symbol the text form cannot hold, two events of one stream
+            that overlap, a gap under ``gaps="error"``.
+
+        Examples
+        --------
+        >>> rows = [("alto", 0, 2, "E4"), ("bass", 1, 1, "C3"), ("bass", 3, 1, "C3"),
+        ...         ("alto", 2, 1, "E4"), ("bass", 2, 1, "G2")]
+        >>> ag = Actiongram.from_events(rows)
+        >>> ag.strings, ag.starts["bass"]
+        ({'alto': ('E4',), 'bass': ('C3', 'G2', 'C3')}, (1.0, 2.0, 3.0))
+        >>> Actiongram.from_events(rows, keep_repeats=True).string("alto")
+        ('E4', 'E4')
+        >>> Actiongram.from_events([("s", 0, 1, "a"), ("s", 2, 1, "b")]).durations
+        {'s': (1.0, 1.0, 1.0)}
+        >>> Actiongram.from_events([("s", 0, 1, "a"), ("s", 2, 1, "b")], gaps="hold").durations
+        {'s': (2.0, 1.0)}
+        >>> Actiongram.from_events([("s", 0, 2, "a"), ("s", 1, 1, "b")])
+        Traceback (most recent call last):
+        ...
+        psgs.errors.ValidationError: row 1: overlaps row 0 in stream 's' (row 0 lasts from 0 to 2, this one starts at 1)
+        """
+        from ._events import from_events
+
+        return from_events(cls, rows, gaps=gaps, rest_symbol=rest_symbol,
+                           keep_repeats=keep_repeats, columns=columns)
+
+    def to_events(self, rest_symbol: str | None = None) -> tuple[tuple[str, float, float, str],
+                                                                  ...]:
+        """The events table: one ``(stream, onset, duration, symbol)`` per segment.
+
+        Segments of ``rest_symbol`` are left out when it is given, so that
+        ``Actiongram.from_events(ag.to_events("_"), keep_repeats=ag.keep_repeats)`` is ``ag``
+        for an actiongram that :meth:`from_events` made.
+
+        >>> ag = Actiongram.from_events([("s", 0, 1, "a"), ("s", 2, 0.5, "b")])
+        >>> ag.to_events(rest_symbol="_")
+        (('s', 0.0, 1.0, 'a'), ('s', 2.0, 0.5, 'b'))
+        """
+        from ._events import to_events
+
+        return to_events(self, rest_symbol)
 
     @classmethod
     def from_text(cls, text: str, source: str = "<string>") -> "Actiongram":
