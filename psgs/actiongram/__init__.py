@@ -53,7 +53,7 @@ from ._checks import (_bad_duration, _bad_name, _bad_symbol, _check_times_advanc
                       _format_number, _plain_durations, _shown)
 from ._extras import _merge, default_actuator, normalise_extras
 
-__all__ = ["Actiongram", "default_actuator"]
+__all__ = ["Actiongram", "default_actuator", "read_events_csv"]
 
 _JSON_FORMAT = "psgs-actiongram"
 
@@ -364,54 +364,9 @@ class Actiongram:
     @classmethod
     def from_json(cls, text: str, source: str = "<string>") -> "Actiongram":
         """Read the JSON form written by :meth:`to_json`."""
-        try:
-            data = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise FormatError(f"not JSON: {exc.msg}", source=source, line=exc.lineno,
-                              column=exc.colno) from None
-        except RecursionError:  # '[' * 100000: the decoder recurses per nesting level
-            raise FormatError("not JSON that can be read: nested too deeply", source=source,
-                              line=1, column=1) from None
-        except ValueError as exc:  # an integer of thousands of digits (Python's int limit)
-            raise FormatError(f"not JSON that can be read: {str(exc).split(':')[0]}",
-                              source=source) from None
-        if not isinstance(data, dict) or not isinstance(data.get("strings"), list):
-            raise FormatError("expected a JSON object with a 'strings' list", source=source)
-        names, symbol_rows, duration_rows, origins = [], [], [], []
-        disp_rows: list[tuple | None] = []
-        actuator_rows: list[object] = []
-        for k, item in enumerate(data["strings"]):
-            if not isinstance(item, dict) or not isinstance(item.get("symbols"), list):
-                raise FormatError(f"strings[{k}] must be an object with 'name' and 'symbols'",
-                                  source=source)
-            syms = item["symbols"]
-            durs = item.get("durations", [1.0] * len(syms))
-            if not isinstance(durs, list):
-                raise FormatError(f"strings[{k}].durations must be a list", source=source)
-            disps = item.get("displacements")
-            if disps is not None and not isinstance(disps, list):
-                raise FormatError(f"strings[{k}].displacements must be a list", source=source)
-            names.append(item.get("name"))
-            symbol_rows.append(tuple(syms))
-            duration_rows.append(tuple(durs))
-            origins.append(item.get("start", 0.0))
-            disp_rows.append(None if disps is None else tuple(disps))
-            name = item.get("name")
-            actuator_rows.append(item["actuator"] if "actuator" in item
-                                 else default_actuator(name) if isinstance(name, str) else name)
-        skeleton = data.get("skeleton", {})
-        keep_repeats = data.get("keep_repeats", False)
-        if not isinstance(keep_repeats, bool):
-            raise FormatError("'keep_repeats' must be true or false", source=source)
-        if not isinstance(skeleton, dict):
-            raise FormatError("'skeleton' must be an object {actuator: parent or null}",
-                              source=source)
-        try:
-            return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins),
-                       tuple(disp_rows), tuple(actuator_rows), tuple(skeleton.items()),
-                       keep_repeats)
-        except FormatError as exc:
-            raise FormatError(exc.message, source=source) from None
+        from ._text import read_json
+
+        return read_json(cls, text, source)
 
     # -- output ------------------------------------------------------------
     def to_text(self) -> str:
@@ -549,6 +504,26 @@ class Actiongram:
 
     def __repr__(self) -> str:
         return f"<Actiongram {len(self)} strings, {self.total_symbols} symbols>"
+
+
+def read_events_csv(path: str | Path, *, gaps: str = "rest", rest_symbol: str = "_",
+                    keep_repeats: bool = False) -> Actiongram:
+    """Read a CSV events file (header ``stream,onset,duration,symbol``, in any order, other
+    columns ignored) as :meth:`Actiongram.from_events` reads rows; ``psgs induce --events``.
+
+    Errors are :class:`~psgs.errors.FormatError` naming the file and the line of the bad row.
+
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> path = Path(tempfile.mkdtemp()) / "song.csv"
+    >>> _ = path.write_text("stream,onset,duration,symbol\\nbass,0,1,C2\\nbass,2,1,G2\\n")
+    >>> read_events_csv(path).strings
+    {'bass': ('C2', '_', 'G2')}
+    """
+    from ._events import read_csv
+
+    return read_csv(Actiongram, path, gaps=gaps, rest_symbol=rest_symbol,
+                    keep_repeats=keep_repeats)
 
 
 def _read_file(path: str | Path) -> Actiongram:

@@ -1,4 +1,5 @@
-"""Reading the plain-text form of an actiongram (:meth:`psgs.Actiongram.from_text`).
+"""Reading the two file forms of an actiongram: text and JSON (:meth:`psgs.Actiongram.from_text`,
+:meth:`psgs.Actiongram.from_json`).
 
 One line per string, ``name[@T]: sym sym@D sym@D~X ...``; ``%`` directive lines for the
 extras and for ``%keep_repeats``; ``#`` comments. The grammar is in the docstring of
@@ -7,6 +8,7 @@ extras and for ``%keep_repeats``; ``#`` comments. The grammar is in the docstrin
 
 from __future__ import annotations
 
+import json
 import re
 
 from ..errors import FormatError
@@ -140,3 +142,54 @@ def read_text(cls, text: str, source: str):
     except FormatError as exc:  # a bad skeleton or actuator: name the file
         raise FormatError(exc.message, source=source) from None
 
+
+def read_json(cls, text: str, source: str):
+    """The actiongram (of class ``cls``) that the JSON ``text`` holds; FormatError if none."""
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise FormatError(f"not JSON: {exc.msg}", source=source, line=exc.lineno,
+                          column=exc.colno) from None
+    except RecursionError:  # '[' * 100000: the decoder recurses per nesting level
+        raise FormatError("not JSON that can be read: nested too deeply", source=source,
+                          line=1, column=1) from None
+    except ValueError as exc:  # an integer of thousands of digits (Python's int limit)
+        raise FormatError(f"not JSON that can be read: {str(exc).split(':')[0]}",
+                          source=source) from None
+    if not isinstance(data, dict) or not isinstance(data.get("strings"), list):
+        raise FormatError("expected a JSON object with a 'strings' list", source=source)
+    names, symbol_rows, duration_rows, origins = [], [], [], []
+    disp_rows: list[tuple | None] = []
+    actuator_rows: list[object] = []
+    for k, item in enumerate(data["strings"]):
+        if not isinstance(item, dict) or not isinstance(item.get("symbols"), list):
+            raise FormatError(f"strings[{k}] must be an object with 'name' and 'symbols'",
+                              source=source)
+        syms = item["symbols"]
+        durs = item.get("durations", [1.0] * len(syms))
+        if not isinstance(durs, list):
+            raise FormatError(f"strings[{k}].durations must be a list", source=source)
+        disps = item.get("displacements")
+        if disps is not None and not isinstance(disps, list):
+            raise FormatError(f"strings[{k}].displacements must be a list", source=source)
+        names.append(item.get("name"))
+        symbol_rows.append(tuple(syms))
+        duration_rows.append(tuple(durs))
+        origins.append(item.get("start", 0.0))
+        disp_rows.append(None if disps is None else tuple(disps))
+        name = item.get("name")
+        actuator_rows.append(item["actuator"] if "actuator" in item
+                             else default_actuator(name) if isinstance(name, str) else name)
+    skeleton = data.get("skeleton", {})
+    keep_repeats = data.get("keep_repeats", False)
+    if not isinstance(keep_repeats, bool):
+        raise FormatError("'keep_repeats' must be true or false", source=source)
+    if not isinstance(skeleton, dict):
+        raise FormatError("'skeleton' must be an object {actuator: parent or null}",
+                          source=source)
+    try:
+        return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins),
+                   tuple(disp_rows), tuple(actuator_rows), tuple(skeleton.items()),
+                   keep_repeats)
+    except FormatError as exc:
+        raise FormatError(exc.message, source=source) from None
