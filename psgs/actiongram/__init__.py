@@ -342,9 +342,9 @@ class Actiongram:
                                                                   ...]:
         """The events table: one ``(stream, onset, duration, symbol)`` per segment.
 
-        Segments of ``rest_symbol`` are left out when it is given, so that
-        ``Actiongram.from_events(ag.to_events("_"), keep_repeats=ag.keep_repeats)`` is ``ag``
-        for an actiongram that :meth:`from_events` made.
+        ``Actiongram.from_events(ag.to_events(), keep_repeats=ag.keep_repeats)`` is ``ag``.
+        Segments of ``rest_symbol`` are left out when it is given: the table without its
+        gaps, which :meth:`from_events` turns back into rests.
 
         >>> ag = Actiongram.from_events([("s", 0, 1, "a"), ("s", 2, 0.5, "b")])
         >>> ag.to_events(rest_symbol="_")
