@@ -508,11 +508,32 @@ class Actiongram:
 
 def read_events_csv(path: str | Path, *, gaps: str = "rest", rest_symbol: str = "_",
                     keep_repeats: bool = False) -> Actiongram:
-    """Read a CSV events file (header ``stream,onset,duration,symbol``, in any order, other
-    columns ignored) as :meth:`Actiongram.from_events` reads rows; ``psgs induce --events``.
+    """Read a CSV events file as :meth:`Actiongram.from_events` reads rows (what
+    ``psgs induce --events`` does).
 
-    Errors are :class:`~psgs.errors.FormatError` naming the file and the line of the bad row.
+    Parameters
+    ----------
+    path : str or Path
+        A UTF-8 CSV file whose header row names the columns ``stream``, ``onset``,
+        ``duration`` and ``symbol`` (in any order; other columns are ignored), then one row
+        per event, in any order. Blank rows are skipped.
+    gaps, rest_symbol, keep_repeats
+        As for :meth:`Actiongram.from_events`.
 
+    Returns
+    -------
+    Actiongram
+
+    Raises
+    ------
+    FormatError
+        Naming the file and the line: a missing column, a number that is not one, a row of
+        too few cells, no rows, or any bad row that :meth:`Actiongram.from_events` refuses.
+    ValidationError
+        For a bad ``gaps`` or ``rest_symbol``.
+
+    Examples
+    --------
     >>> import tempfile
     >>> from pathlib import Path
     >>> path = Path(tempfile.mkdtemp()) / "song.csv"
