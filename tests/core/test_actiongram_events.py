@@ -63,7 +63,7 @@ def cells_of_string(symbols, durations):
     return out
 
 
-@settings(max_examples=120, deadline=None)
+@settings(max_examples=80, deadline=None)
 @given(tables(), st.sampled_from(["rest", "hold"]), st.booleans())
 def test_from_events_is_the_brute_force_expansion(table, gaps, keep_repeats):
     streams, rows = table
