@@ -7,18 +7,24 @@ has a start time ``T_i(j)`` and a duration ``D_i(j) > 0`` with
 
 Adjacent equal symbols are one segment: when a string is built with two equal
 neighbours they are merged into one symbol whose duration is the sum of
-theirs, so ``A_i(j) != A_i(j + 1)`` always holds, as the paper requires.
+theirs, so ``A_i(j) != A_i(j + 1)`` holds, as the paper requires. An actiongram
+built with ``keep_repeats=True`` keeps them apart instead (a re-struck note
+``C C D`` stays three segments); the flag is part of the value and of both file
+forms (``%keep_repeats`` in the text form).
 
 The plain-text form, one actuator per line::
 
-    # a comment (a line, or the rest of a line after white space, starting with #)
+    # a comment line
     lknee: B G R Y B@3 G@2.5
     rknee@10: Y B G        # this string starts at time 10
 
 ``sym@D`` gives a duration (default 1). Symbols are non-space tokens without
 ``@`` or ``:`` and not starting with ``#``; actuator names likewise, also
-without white space. Bad input raises :class:`~psgs.errors.FormatError`
-naming ``source:line:column``.
+without white space. A comment is a line whose first non-blank character is
+``#``, or the rest of a line from a ``#`` that follows white space and is
+followed by white space (or ends the line); a token such as ``#4`` on a string
+line is an error at its place, never a silent cut. Bad input raises
+:class:`~psgs.errors.FormatError` naming ``source:line:column``.
 
 Three optional extras, which whoever makes the actiongram supplies (kinetology
 gives them from motion capture: its joints are the actuators); all are absent in
@@ -38,20 +44,16 @@ from __future__ import annotations
 
 import json
 import math
-import re
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import FormatError
-from ._checks import (_bad_duration, _bad_name, _bad_symbol, _check_times_advance,
-                                 _finite, _format_number, _plain_durations, _read_number,
-                                 _shown, _strip_comment)
-from ._extras import DIRECTIVE as _DIRECTIVE
+from ._checks import (_bad_duration, _bad_name, _bad_symbol, _check_times_advance, _finite,
+                      _format_number, _plain_durations, _shown)
 from ._extras import _merge, default_actuator, normalise_extras
-from ._extras import read_directive as _read_directive
 
-__all__ = ["Actiongram", "default_actuator"]
+__all__ = ["Actiongram", "default_actuator", "read_events_csv"]
 
 _JSON_FORMAT = "psgs-actiongram"
 
@@ -60,7 +62,7 @@ _JSON_FORMAT = "psgs-actiongram"
 class Actiongram:
     """Named, timed symbol strings, one per actuator (immutable).
 
-    Build one with :meth:`from_strings`, :meth:`from_text`, :meth:`from_json`
+    Build one with :meth:`from_strings`, :meth:`from_events`, :meth:`from_text`, :meth:`from_json`
     or :func:`load_actiongram`. The constructor takes the normalised fields
     (``names``, ``symbols``, ``durations`` as tuples of tuples, ``origins`` the
     start time of each string) and validates and normalises them.
@@ -82,6 +84,8 @@ class Actiongram:
         The actuator (group) each string belongs to.
     skeleton_edges : tuple of (str, str or None), default ()
         Actuator to parent actuator (None for a root), where a skeleton is known.
+    keep_repeats : bool, default False
+        Keep equal neighbours as separate segments instead of merging them.
 
     Raises
     ------
@@ -110,6 +114,8 @@ class Actiongram:
     string_actuators: tuple[str, ...] = ()
     #: ``(actuator, parent or None)`` pairs, in the maker's order; () = no skeleton known
     skeleton_edges: tuple[tuple[str, str | None], ...] = ()
+    #: True: equal neighbours stay separate segments (a re-struck note), False: they merge
+    keep_repeats: bool = False
 
     def __post_init__(self) -> None:
         names = tuple(self.names)
@@ -118,6 +124,8 @@ class Actiongram:
         origins = tuple(self.origins) if self.origins else (0.0,) * len(names)
         if not (len(names) == len(symbols) == len(durations) == len(origins)):
             raise ValueError("names, symbols, durations and origins must have one entry per string")
+        if not isinstance(self.keep_repeats, bool):
+            raise FormatError(f"keep_repeats must be True or False, not {_shown(self.keep_repeats)}")
         seen: set[str] = set()
         merged_symbols, merged_durations = [], []
         for name, syms, durs, origin in zip(names, symbols, durations, origins):
@@ -147,7 +155,7 @@ class Actiongram:
                     or not _finite(origin):
                 raise FormatError(f"string {_shown(name)}: start time must be a finite number, "
                                   f"not {_shown(origin)}")
-            s, d = _merge(syms, durs)
+            s, d = (syms, tuple(map(float, durs))) if self.keep_repeats else _merge(syms, durs)
             if not math.isfinite(float(origin) + sum(d)):
                 raise FormatError(f"string {_shown(name)}: its times overflow (the durations "
                                   f"add up to more than a float can hold)")
@@ -170,13 +178,14 @@ class Actiongram:
                      starts: Mapping[str, float] | None = None, *,
                      displacements: Mapping[str, Iterable[float]] | None = None,
                      actuators: Mapping[str, str] | None = None,
-                     skeleton: Mapping[str, str | None] | None = None) -> "Actiongram":
+                     skeleton: Mapping[str, str | None] | None = None,
+                     keep_repeats: bool = False) -> "Actiongram":
         """Build from ``{name: symbols}`` (a ``str`` is read one character per symbol).
 
         ``durations`` maps a name to one duration per symbol (default 1 each);
         ``starts`` maps a name to the start time of its string (default 0).
         Adjacent equal symbols are merged, their durations added (and their
-        displacements). ``displacements`` maps a name to one signed change per
+        displacements), unless ``keep_repeats``. ``displacements`` maps a name to one signed change per
         symbol (a string left out: unknown); ``actuators`` maps a name to its
         actuator (default :func:`default_actuator`); ``skeleton`` maps an
         actuator to its parent (None for a root).
@@ -214,7 +223,7 @@ class Actiongram:
                       if isinstance(n, str) else n for n in names)
         edges = tuple((skeleton or {}).items())
         return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins),
-                   disp_rows, owner, edges)
+                   disp_rows, owner, edges, keep_repeats)
 
     @classmethod
     def from_codes(cls, codes: Mapping[str, Sequence[int]], alphabet: Sequence[str],
@@ -260,148 +269,109 @@ class Actiongram:
         return build(cls, codes, alphabet, durations, displacements, actuators, skeleton)
 
     @classmethod
+    def from_events(cls, rows, *, gaps: str = "rest", rest_symbol: str = "_",
+                    keep_repeats: bool = False,
+                    columns: Mapping[str, str] | None = None) -> "Actiongram":
+        """Build from an events table: rows of ``(stream, onset, duration, symbol)``.
+
+        Rows may come in any order; each stream's events are put in onset order and its string
+        starts at its first onset. Events that meet (within a relative 1e-9, so ``0.1 + 0.2``
+        meets ``0.3``) keep their durations. Every instant of a string holds one symbol, so a
+        gap between two events of a stream becomes, by ``gaps``:
+
+        - ``"rest"`` (default): a segment of ``rest_symbol`` lasting the gap (silence is a
+          symbol of its own; every onset and every end keeps its time);
+        - ``"hold"``: the event before lasts until the next onset (onsets keep their times);
+        - ``"error"``: a :class:`~psgs.errors.ValidationError`.
+
+        Parameters
+        ----------
+        rows : iterable of sequence or mapping, or pandas.DataFrame
+            ``(stream, onset, duration, symbol)`` tuples, mappings with those keys, or a
+            DataFrame with those columns. A stream or symbol is text (a valid name or symbol
+            of the text form) or an integer, written in decimal; onsets are 0 or more,
+            durations positive, both finite.
+        gaps : {"rest", "hold", "error"}, default "rest"
+            What a gap between two events of a stream becomes (above).
+        rest_symbol : str, default "_"
+            The symbol of a gap under ``gaps="rest"``.
+        keep_repeats : bool, default False
+            Keep equal neighbours (a re-struck note ``C C``) as separate segments; by default
+            they merge into one.
+        columns : mapping of str to str, optional
+            Your key or column name for each of ``stream``, ``onset``, ``duration``,
+            ``symbol`` (``{"stream": "voice", "symbol": "pitch"}``).
+
+        Returns
+        -------
+        Actiongram
+            One string per stream, in the order of each stream's first row.
+
+        Raises
+        ------
+        ValidationError
+            For no rows, a missing key or column, or a bad row, naming the row (its index, the
+            DataFrame's index label): a negative or non-finite onset, a duration that is not
+            positive and finite, a symbol the text form cannot hold, two events of one stream
+            that overlap, a gap under ``gaps="error"``.
+
+        Examples
+        --------
+        >>> rows = [("alto", 0, 2, "E4"), ("bass", 1, 1, "C3"), ("bass", 3, 1, "C3"),
+        ...         ("alto", 2, 1, "E4"), ("bass", 2, 1, "G2")]
+        >>> ag = Actiongram.from_events(rows)
+        >>> ag.strings, ag.starts["bass"]
+        ({'alto': ('E4',), 'bass': ('C3', 'G2', 'C3')}, (1.0, 2.0, 3.0))
+        >>> Actiongram.from_events(rows, keep_repeats=True).string("alto")
+        ('E4', 'E4')
+        >>> Actiongram.from_events([("s", 0, 1, "a"), ("s", 2, 1, "b")]).durations
+        {'s': (1.0, 1.0, 1.0)}
+        >>> Actiongram.from_events([("s", 0, 1, "a"), ("s", 2, 1, "b")], gaps="hold").durations
+        {'s': (2.0, 1.0)}
+        >>> Actiongram.from_events([("s", 0, 2, "a"), ("s", 1, 1, "b")])
+        Traceback (most recent call last):
+        ...
+        psgs.errors.ValidationError: row 1: overlaps row 0 in stream 's' (row 0 lasts from 0 to 2, this one starts at 1)
+        """
+        from ._events import from_events
+
+        return from_events(cls, rows, gaps=gaps, rest_symbol=rest_symbol,
+                           keep_repeats=keep_repeats, columns=columns)
+
+    def to_events(self, rest_symbol: str | None = None) -> tuple[tuple[str, float, float, str],
+                                                                  ...]:
+        """The events table: one ``(stream, onset, duration, symbol)`` per segment.
+
+        ``Actiongram.from_events(ag.to_events(), keep_repeats=ag.keep_repeats)`` is ``ag``.
+        Segments of ``rest_symbol`` are left out when it is given: the table without its
+        gaps, which :meth:`from_events` turns back into rests.
+
+        >>> ag = Actiongram.from_events([("s", 0, 1, "a"), ("s", 2, 0.5, "b")])
+        >>> ag.to_events(rest_symbol="_")
+        (('s', 0.0, 1.0, 'a'), ('s', 2.0, 0.5, 'b'))
+        """
+        from ._events import to_events
+
+        return to_events(self, rest_symbol)
+
+    @classmethod
     def from_text(cls, text: str, source: str = "<string>") -> "Actiongram":
         """Read the plain-text form (see the module docstring)."""
-        names, symbol_rows, duration_rows, origins = [], [], [], []
-        disp_rows: list[tuple[float, ...] | None] = []
-        owner: dict[str, str] = {}
-        edges: list[tuple[str, str | None]] = []
-        where: dict[str, int] = {}
-        for line_no, raw in enumerate(text.splitlines(), start=1):
-            line = _strip_comment(raw)
-            if not line.strip():
-                continue
-            if _DIRECTIVE.match(line):
-                _read_directive(line, source, line_no, owner, edges)
-                continue
-            head, colon, body = line.partition(":")
-            if not colon:
-                col = len(raw) - len(raw.lstrip()) + 1
-                raise FormatError("expected 'name: symbols' (no ':' on this line)",
-                                  source=source, line=line_no, column=col)
-            name_col = len(head) - len(head.lstrip()) + 1
-            name_text = head.strip()
-            name, at, origin_text = name_text.partition("@")
-            origin = 0.0
-            if at:
-                origin = _read_number(origin_text, allow_nonpositive=True)
-                if origin is None:
-                    raise FormatError(f"start time {_shown(origin_text)} is not a number",
-                                      source=source, line=line_no,
-                                      column=name_col + len(name) + 1)
-            problem = _bad_name(name)
-            if problem:
-                raise FormatError(problem, source=source, line=line_no, column=name_col)
-            if name in where:
-                raise FormatError(f"actuator {_shown(name)} already given on line {where[name]}",
-                                  source=source, line=line_no, column=name_col)
-            where[name] = line_no
-            syms, durs, disps = [], [], []
-            offset = len(head) + 1
-            for match in re.finditer(r"\S+", body):
-                token, col = match.group(), offset + match.start() + 1
-                sym, at, dur_text = token.partition("@")
-                if ":" in token:
-                    raise FormatError(f"symbol {_shown(token)} contains ':'", source=source,
-                                      line=line_no, column=col)
-                if not sym:
-                    raise FormatError(f"{_shown(token)} has a duration but no symbol",
-                                      source=source,
-                                      line=line_no, column=col)
-                dur = 1.0
-                if at and "~" in dur_text:  # sym@D~X: a duration, then a signed displacement
-                    dur_text, _, disp_text = dur_text.partition("~")
-                    disp = _read_number(disp_text, allow_nonpositive=True)
-                    if disp is None:
-                        raise FormatError(
-                            f"unknown displacement syntax {_shown('~' + disp_text)} (write "
-                            f"sym@D~X with X a number)", source=source, line=line_no,
-                            column=col + len(sym) + 1 + len(dur_text))
-                    disps.append(disp)
-                if at:
-                    dur = _read_number(dur_text, allow_nonpositive=True)
-                    if dur is not None and dur <= 0:
-                        raise FormatError(f"duration {_shown(dur_text)} must be positive",
-                                          source=source, line=line_no, column=col + len(sym) + 1)
-                    if dur is None:
-                        raise FormatError(
-                            f"unknown duration syntax {_shown('@' + dur_text)} (write sym@D "
-                            f"with D a positive number)", source=source, line=line_no,
-                            column=col + len(sym))
-                syms.append(sym)
-                durs.append(dur)
-                if len(disps) not in (0, len(syms)):
-                    raise FormatError("give a displacement (sym@D~X) for every symbol of a "
-                                      "string or for none", source=source, line=line_no,
-                                      column=col)
-            names.append(name)
-            symbol_rows.append(tuple(syms))
-            duration_rows.append(tuple(durs))
-            origins.append(origin)
-            disp_rows.append(tuple(disps) if disps else None)
-        for name in owner:
-            if name not in where:
-                raise FormatError(f"%actuator names unknown string {_shown(name)}",
-                                  source=source)
-        actuators = tuple(owner.get(n, default_actuator(n)) for n in names)
-        try:
-            return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins),
-                       tuple(disp_rows), actuators, tuple(edges))
-        except FormatError as exc:  # a bad skeleton or actuator: name the file
-            raise FormatError(exc.message, source=source) from None
+        from ._text import read_text
+
+        return read_text(cls, text, source)
 
     @classmethod
     def from_json(cls, text: str, source: str = "<string>") -> "Actiongram":
         """Read the JSON form written by :meth:`to_json`."""
-        try:
-            data = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise FormatError(f"not JSON: {exc.msg}", source=source, line=exc.lineno,
-                              column=exc.colno) from None
-        except RecursionError:  # '[' * 100000: the decoder recurses per nesting level
-            raise FormatError("not JSON that can be read: nested too deeply", source=source,
-                              line=1, column=1) from None
-        except ValueError as exc:  # an integer of thousands of digits (Python's int limit)
-            raise FormatError(f"not JSON that can be read: {str(exc).split(':')[0]}",
-                              source=source) from None
-        if not isinstance(data, dict) or not isinstance(data.get("strings"), list):
-            raise FormatError("expected a JSON object with a 'strings' list", source=source)
-        names, symbol_rows, duration_rows, origins = [], [], [], []
-        disp_rows: list[tuple | None] = []
-        actuator_rows: list[object] = []
-        for k, item in enumerate(data["strings"]):
-            if not isinstance(item, dict) or not isinstance(item.get("symbols"), list):
-                raise FormatError(f"strings[{k}] must be an object with 'name' and 'symbols'",
-                                  source=source)
-            syms = item["symbols"]
-            durs = item.get("durations", [1.0] * len(syms))
-            if not isinstance(durs, list):
-                raise FormatError(f"strings[{k}].durations must be a list", source=source)
-            disps = item.get("displacements")
-            if disps is not None and not isinstance(disps, list):
-                raise FormatError(f"strings[{k}].displacements must be a list", source=source)
-            names.append(item.get("name"))
-            symbol_rows.append(tuple(syms))
-            duration_rows.append(tuple(durs))
-            origins.append(item.get("start", 0.0))
-            disp_rows.append(None if disps is None else tuple(disps))
-            name = item.get("name")
-            actuator_rows.append(item["actuator"] if "actuator" in item
-                                 else default_actuator(name) if isinstance(name, str) else name)
-        skeleton = data.get("skeleton", {})
-        if not isinstance(skeleton, dict):
-            raise FormatError("'skeleton' must be an object {actuator: parent or null}",
-                              source=source)
-        try:
-            return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins),
-                       tuple(disp_rows), tuple(actuator_rows), tuple(skeleton.items()))
-        except FormatError as exc:
-            raise FormatError(exc.message, source=source) from None
+        from ._text import read_json
+
+        return read_json(cls, text, source)
 
     # -- output ------------------------------------------------------------
     def to_text(self) -> str:
         """The plain-text form; :meth:`from_text` reads it back to an equal value."""
-        lines = []
+        lines = ["%keep_repeats"] if self.keep_repeats else []
         for name, syms, durs, origin, disps in zip(self.names, self.symbols,
                                                    self.segment_durations, self.origins,
                                                    self.segment_displacements):
@@ -437,6 +407,8 @@ class Actiongram:
         data: dict[str, object] = {"format": _JSON_FORMAT, "version": 1, "strings": strings}
         if self.skeleton_edges:
             data["skeleton"] = dict(self.skeleton_edges)
+        if self.keep_repeats:
+            data["keep_repeats"] = True
         return json.dumps(data)
 
     # -- accessors ---------------------------------------------------------
@@ -491,7 +463,7 @@ class Actiongram:
                           tuple(self.origins[i] for i in picks),
                           tuple(self.segment_displacements[i] for i in picks) or (),
                           tuple(self.string_actuators[i] for i in picks) or (),
-                          self.skeleton_edges)
+                          self.skeleton_edges, self.keep_repeats)
 
     def displacements(self, name: str) -> tuple[float, ...] | None:
         """The signed displacement of each symbol of string ``name``, or None when unknown."""
@@ -532,6 +504,47 @@ class Actiongram:
 
     def __repr__(self) -> str:
         return f"<Actiongram {len(self)} strings, {self.total_symbols} symbols>"
+
+
+def read_events_csv(path: str | Path, *, gaps: str = "rest", rest_symbol: str = "_",
+                    keep_repeats: bool = False) -> Actiongram:
+    """Read a CSV events file as :meth:`Actiongram.from_events` reads rows (what
+    ``psgs induce --events`` does).
+
+    Parameters
+    ----------
+    path : str or Path
+        A UTF-8 CSV file whose header row names the columns ``stream``, ``onset``,
+        ``duration`` and ``symbol`` (in any order; other columns are ignored), then one row
+        per event, in any order. Blank rows are skipped.
+    gaps, rest_symbol, keep_repeats
+        As for :meth:`Actiongram.from_events`.
+
+    Returns
+    -------
+    Actiongram
+
+    Raises
+    ------
+    FormatError
+        Naming the file and the line: a missing column, a number that is not one, a row of
+        too few cells, no rows, or any bad row that :meth:`Actiongram.from_events` refuses.
+    ValidationError
+        For a bad ``gaps`` or ``rest_symbol``.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> path = Path(tempfile.mkdtemp()) / "song.csv"
+    >>> _ = path.write_text("stream,onset,duration,symbol\\nbass,0,1,C2\\nbass,2,1,G2\\n")
+    >>> read_events_csv(path).strings
+    {'bass': ('C2', '_', 'G2')}
+    """
+    from ._events import read_csv
+
+    return read_csv(Actiongram, path, gaps=gaps, rest_symbol=rest_symbol,
+                    keep_repeats=keep_repeats)
 
 
 def _read_file(path: str | Path) -> Actiongram:

@@ -106,12 +106,6 @@ def _format_number(value: float) -> str:
     return repr(float(value))
 
 
-def _strip_comment(line: str) -> str:
-    """Drop a '#' comment: at line start or after white space."""
-    match = re.search(r"(?:^|\s)#", line)
-    return line if match is None else line[:match.start()]
-
-
 def _read_number(text: str, *, allow_nonpositive: bool) -> float | None:
     if not _NUMBER.match(text):
         return None

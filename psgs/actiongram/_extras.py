@@ -128,7 +128,12 @@ def normalise_extras(value, names: tuple[str, ...], symbols: tuple[tuple[str, ..
             if problem:
                 raise FormatError(f"string {_shown(name)}: {problem}")
         # an empty string has nothing to displace: unknown, as the text form reads it back
-        rows.append(_merge_displacements(syms, disps) if syms else None)
+        if not syms:
+            rows.append(None)
+        elif value.keep_repeats:
+            rows.append(tuple(map(float, disps)))
+        else:
+            rows.append(_merge_displacements(syms, disps))
     object.__setattr__(value, "segment_displacements", tuple(rows))
     normalise_actuators(value, names)
     normalise_skeleton(value)

@@ -134,6 +134,7 @@ def build(cls, codes: Mapping, alphabet: Sequence[str], durations: Mapping | Non
     setattr_(value, "string_actuators",
              tuple(owner[n] if n in owner else default_actuator(n) for n in names))
     setattr_(value, "skeleton_edges", tuple((skeleton or {}).items()))
+    setattr_(value, "keep_repeats", False)  # equal neighbours took the public path above
     normalise_actuators(value, names)
     normalise_skeleton(value)
     return value

@@ -39,6 +39,18 @@ def register(subparsers) -> None:
     induce.add_argument("file", metavar="FILE", nargs="*",
                         help="an actiongram file; several files are performances of one action "
                              "(learnt from together, never joined)")
+    induce.add_argument("--events", metavar="FILE.csv",
+                        help="learn from an events table instead: a CSV file with a header row "
+                             "stream,onset,duration,symbol (one row an event, in any order)")
+    induce.add_argument("--gaps", choices=("rest", "hold", "error"),
+                        help="with --events: a gap between two events of a stream becomes a "
+                             "rest symbol (rest, the default), the event before lasts until the "
+                             "next onset (hold), or is an error")
+    induce.add_argument("--rest-symbol", metavar="SYM",
+                        help="with --events: the symbol of a gap (default _)")
+    induce.add_argument("--keep-repeats", action="store_true",
+                        help="with --events: keep equal neighbours (a re-struck note C C) as "
+                             "separate segments instead of merging them")
     induce.add_argument("--example", action="store_true",
                         help="use the built-in synthetic example (20 strings, 4 patterned)")
     induce.add_argument("--inducer", default="pal", help="pal (default), sequential, or a "
@@ -85,6 +97,17 @@ def _load_performances(files: list[str]):
     return [load(name, kind="actiongram") for name in files]
 
 
+def _load_events(args):
+    """The actiongram of ``--events FILE.csv`` with its gap and repeat options."""
+    from ..actiongram import read_events_csv
+
+    if args.file or args.example:
+        raise ValidationError("give --events, FILE or --example, not two of them")
+    return read_events_csv(args.events, gaps=args.gaps or "rest",
+                           rest_symbol="_" if args.rest_symbol is None else args.rest_symbol,
+                           keep_repeats=args.keep_repeats)
+
+
 # -- psgs induce -------------------------------------------------------------------------
 EXAMPLE_SEED = 1
 EXAMPLE_NOISE = 0.1
@@ -129,7 +152,11 @@ def run_induce(args) -> int:
     if args.file and args.example:
         raise ValidationError("give FILE or --example, not both")
     performances = None
-    if args.file:
+    if args.events is not None:
+        actiongram = _load_events(args)
+    elif args.gaps or args.rest_symbol is not None or args.keep_repeats:
+        raise ValidationError("--gaps, --rest-symbol and --keep-repeats go with --events")
+    elif args.file:
         performances = _load_performances(args.file)
         actiongram = performances[0]
     else:

@@ -1,0 +1,240 @@
+"""Actiongrams from events tables (:meth:`psgs.Actiongram.from_events`) and back.
+
+An event is ``(stream, onset, duration, symbol)``: a note of a voice, a label of a sensor, a
+state of a machine. An actiongram has no gaps (each symbol of a string starts where the one
+before ends), so a stretch of a stream with no event has to become something: a segment of
+the rest symbol (``gaps="rest"``), the event before lasting until the next onset
+(``gaps="hold"``), or an error (``gaps="error"``). Each string starts at its stream's first
+onset.
+
+Rows come as tuples, as mappings, as a pandas DataFrame (recognised only when the caller has
+pandas loaded: psgs never imports it) or, for the command line, as a CSV file. Every bad row is
+one error naming the row (its index, or the file's line).
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+import numbers
+import sys
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from pathlib import Path
+
+from ..errors import FormatError, ValidationError
+from ._checks import _bad_name, _bad_symbol, _shown
+
+__all__: list[str] = []  # private: Actiongram.from_events and to_events are the interface
+
+FIELDS = ("stream", "onset", "duration", "symbol")
+GAPS = ("rest", "hold", "error")
+#: times closer than this share of their size (and of 1) are equal: 0.1 + 0.2 ends at 0.3
+TOLERANCE = 1e-9
+
+
+class _RowError(Exception):
+    """A bad row: its position in the input and what is wrong (the caller names the row)."""
+
+    def __init__(self, index: int, message: str) -> None:
+        super().__init__(message)
+        self.index = index
+        self.message = message
+
+
+def _close(a: float, b: float) -> bool:
+    return abs(a - b) <= TOLERANCE * max(1.0, abs(a), abs(b))
+
+
+def _text(value: object, what: str, index: int) -> str:
+    """A stream name or symbol as text: a str as it is, an integer (MIDI pitch 60, voice 1) in
+    decimal; anything else is an error."""
+    if isinstance(value, numbers.Integral) and not isinstance(value, bool):
+        value = str(int(value))
+    problem = _bad_name(value) if what == "stream" else _bad_symbol(value)
+    if problem:
+        raise _RowError(index, f"{what}: {problem}" if what == "stream" else problem)
+    return value
+
+
+def _time(value: object, what: str, index: int) -> float:
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise _RowError(index, f"{what} must be a number, not {_shown(value)}")
+    number = float(value)
+    if not math.isfinite(number):
+        raise _RowError(index, f"{what} must be finite, not {_shown(value)}")
+    if number < 0 if what == "onset" else number <= 0:
+        raise _RowError(index, f"{what} must be {'0 or more' if what == 'onset' else 'positive'}"
+                               f", not {_shown(value)}")
+    return number
+
+
+def _dataframe_columns(rows, columns: Mapping[str, str]) -> list | None:
+    """The four columns of a pandas DataFrame as lists, with its index; None when ``rows`` is
+    not a DataFrame. Only a pandas the caller has already imported is looked at."""
+    pandas = sys.modules.get("pandas")
+    if pandas is None or not isinstance(rows, pandas.DataFrame):
+        return None
+    names = [columns.get(f, f) for f in FIELDS]
+    missing = [n for n in names if n not in rows.columns]
+    if missing:
+        raise ValidationError(f"the table has no column {_shown(missing[0])} (its columns: "
+                              f"{', '.join(map(str, rows.columns))}); name them stream, onset, "
+                              f"duration, symbol or map yours with columns={{...}}")
+    return [list(rows.index), *(rows[n].tolist() for n in names)]
+
+
+def _records(rows, columns: Mapping[str, str]) -> tuple[list[tuple], list[object]]:
+    """``(stream, onset, duration, symbol)`` per row, unchecked, and each row's label."""
+    frame = _dataframe_columns(rows, columns)
+    if frame is not None:
+        index, *cols = frame
+        return list(zip(*cols)), index
+    if isinstance(rows, (str, bytes)) or not isinstance(rows, Iterable):
+        raise ValidationError(f"events must be rows of (stream, onset, duration, symbol), "
+                              f"mappings or a pandas DataFrame, not {type(rows).__name__}")
+    keys = [columns.get(f, f) for f in FIELDS]
+    out = []
+    for k, row in enumerate(rows):
+        if isinstance(row, Mapping):
+            missing = [key for key in keys if key not in row]
+            if missing:
+                raise ValidationError(f"row {k}: no {_shown(missing[0])} (a row needs "
+                                      f"{', '.join(keys)})")
+            out.append(tuple(row[key] for key in keys))
+        elif isinstance(row, Sequence) and not isinstance(row, (str, bytes)) and len(row) == 4:
+            out.append(tuple(row))
+        else:
+            raise ValidationError(f"row {k}: expected (stream, onset, duration, symbol), not "
+                                  f"{_shown(row)}")
+    return out, list(range(len(out)))
+
+
+def _strings(records: Sequence[tuple], label: Callable[[int], str], gaps: str,
+             rest_symbol: str):
+    """Per stream (in order of first appearance): its symbols, durations and start time."""
+    if not records:
+        raise ValidationError("no events: an actiongram needs at least one")
+    streams: dict[str, list[tuple[float, int, float, str]]] = {}
+    for k, (stream, onset, duration, symbol) in enumerate(records):
+        name = _text(stream, "stream", k)
+        event = (_time(onset, "onset", k), k, _time(duration, "duration", k),
+                 _text(symbol, "symbol", k))
+        streams.setdefault(name, []).append(event)
+    strings, durations, starts = {}, {}, {}
+    for name, events in streams.items():
+        events.sort()
+        syms, durs = [], []
+        for (onset, k, duration, symbol), (after, j, _, _) in zip(events, events[1:]):
+            end = onset + duration
+            syms.append(symbol)
+            if _close(after, end):  # back to back: the table's own duration (exact round trips)
+                durs.append(duration)
+            elif after < end:
+                raise _RowError(j, f"overlaps {label(k)} in stream {_shown(name)} ({label(k)} "
+                                   f"lasts from {onset:g} to {end:g}, this one starts at "
+                                   f"{after:g})")
+            elif gaps == "hold":
+                durs.append(after - onset)
+            elif gaps == "rest":
+                durs.append(duration)
+                syms.append(rest_symbol)
+                durs.append(after - end)
+            else:
+                raise _RowError(j, f"a gap in stream {_shown(name)} from {end:g} to {after:g} "
+                                   f"(after {label(k)}); gaps='rest' or 'hold' fill it")
+        syms.append(events[-1][3])
+        durs.append(events[-1][2])
+        strings[name], durations[name], starts[name] = syms, durs, events[0][0]
+    return strings, durations, starts
+
+
+def _check_options(gaps: object, rest_symbol: object) -> None:
+    if gaps not in GAPS:
+        raise ValidationError(f"gaps must be one of {', '.join(GAPS)}, not {_shown(gaps)}")
+    problem = _bad_symbol(rest_symbol)
+    if problem:
+        raise ValidationError(f"rest_symbol: {problem}")
+
+
+def from_events(cls, rows, *, gaps: str = "rest", rest_symbol: str = "_",
+                keep_repeats: bool = False, columns: Mapping[str, str] | None = None):
+    """:meth:`psgs.Actiongram.from_events` (its docstring says what each argument does)."""
+    _check_options(gaps, rest_symbol)
+    records, labels = _records(rows, dict(columns or {}))
+    label = lambda k: f"row {labels[k]!r}"  # noqa: E731 - the index a user gave, as given
+    try:
+        strings, durations, starts = _strings(records, label, gaps, rest_symbol)
+    except _RowError as bad:
+        raise ValidationError(f"{label(bad.index)}: {bad.message}") from None
+    return cls.from_strings(strings, durations, starts, keep_repeats=keep_repeats)
+
+
+def read_csv(cls, path: str | Path, *, gaps: str = "rest", rest_symbol: str = "_",
+             keep_repeats: bool = False):
+    """The actiongram of a CSV events file, header ``stream,onset,duration,symbol`` (in any
+    order; other columns are ignored). Errors are FormatErrors naming the file and line."""
+    _check_options(gaps, rest_symbol)
+    source = str(path)
+    try:
+        text = Path(path).read_bytes().decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise FormatError(f"not UTF-8 text (byte {exc.object[exc.start]:#04x})",
+                          source=source) from None
+    reader = csv.reader(io.StringIO(text, newline=""))
+    try:
+        header = [cell.strip() for cell in next(reader)]
+    except StopIteration:
+        raise FormatError("empty file: expected a header row stream,onset,duration,symbol",
+                          source=source, line=1) from None
+    except csv.Error as exc:
+        raise FormatError(f"not CSV: {exc}", source=source, line=1) from None
+    missing = [f for f in FIELDS if f not in header]
+    if missing:
+        raise FormatError(f"the header has no column {missing[0]!r} (it needs "
+                          f"{','.join(FIELDS)})", source=source, line=1)
+    where = [header.index(f) for f in FIELDS]
+    records, lines = [], []
+    try:
+        for row in reader:
+            if not any(cell.strip() for cell in row):
+                continue
+            if len(row) < len(header):
+                raise FormatError(f"{len(row)} cells, the header has {len(header)}",
+                                  source=source, line=reader.line_num)
+            stream, onset, duration, symbol = (row[i].strip() for i in where)
+            records.append((stream, _number(onset, "onset", source, reader.line_num),
+                            _number(duration, "duration", source, reader.line_num), symbol))
+            lines.append(reader.line_num)
+    except csv.Error as exc:
+        raise FormatError(f"not CSV: {exc}", source=source, line=reader.line_num) from None
+    if not records:
+        raise FormatError("no events: only a header row", source=source, line=1)
+    try:
+        strings, durations, starts = _strings(records, lambda k: f"line {lines[k]}", gaps,
+                                              rest_symbol)
+    except _RowError as bad:
+        raise FormatError(bad.message, source=source, line=lines[bad.index]) from None
+    return cls.from_strings(strings, durations, starts, keep_repeats=keep_repeats)
+
+
+def _number(text: str, what: str, source: str, line: int) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        raise FormatError(f"{what} {_shown(text)} is not a number", source=source,
+                          line=line) from None
+
+
+def to_events(actiongram, rest_symbol: str | None = None) -> tuple[tuple[str, float, float, str],
+                                                                   ...]:
+    """:meth:`psgs.Actiongram.to_events`: one ``(stream, onset, duration, symbol)`` per
+    segment, string by string, leaving out segments of ``rest_symbol`` when it is given."""
+    out = []
+    starts = actiongram.starts
+    for name, syms, durs in zip(actiongram.names, actiongram.symbols,
+                                actiongram.segment_durations):
+        for symbol, onset, duration in zip(syms, starts[name], durs):
+            if symbol != rest_symbol:
+                out.append((name, onset, duration, symbol))
+    return tuple(out)

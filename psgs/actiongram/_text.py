@@ -1,0 +1,195 @@
+"""Reading the two file forms of an actiongram: text and JSON (:meth:`psgs.Actiongram.from_text`,
+:meth:`psgs.Actiongram.from_json`).
+
+One line per string, ``name[@T]: sym sym@D sym@D~X ...``; ``%`` directive lines for the
+extras and for ``%keep_repeats``; ``#`` comments. The grammar is in the docstring of
+:mod:`psgs.actiongram` and in docs/actiongram.md.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+
+from ..errors import FormatError
+from ._checks import _bad_name, _read_number, _shown
+from ._extras import DIRECTIVE as _DIRECTIVE
+from ._extras import default_actuator
+from ._extras import read_directive as _read_directive
+
+__all__: list[str] = []  # private: Actiongram.from_text is the interface
+
+#: the directive line that keeps equal neighbours apart (``Actiongram.keep_repeats``)
+KEEP_REPEATS = "%keep_repeats"
+
+_COMMENT = re.compile(r"(?:^|\s)#")
+
+
+def strip_comment(line: str, source: str, line_no: int) -> str:
+    """``line`` without its comment.
+
+    A line whose first non-blank character is ``#`` is a comment; elsewhere a comment starts
+    at a ``#`` after white space that is followed by white space or ends the line. A token
+    that starts with ``#`` and goes on (``1 #4 5``) is neither a symbol (none starts with
+    ``#``) nor a comment, so it is an error at its place rather than a silent cut.
+    """
+    match = _COMMENT.search(line)
+    if match is None:
+        return line
+    at = match.end() - 1  # the '#'
+    if not line[:at].strip():
+        return ""
+    after = line[at + 1:at + 2]
+    if after and not after.isspace():
+        token = line[at:].split(None, 1)[0]
+        raise FormatError(f"{_shown(token)} starts with '#': a symbol cannot, and a comment "
+                          f"needs white space after its '#' ('# note')", source=source,
+                          line=line_no, column=at + 1)
+    return line[:at]
+
+
+def read_text(cls, text: str, source: str):
+    """The actiongram (of class ``cls``) that ``text`` holds; FormatError at its place."""
+    names, symbol_rows, duration_rows, origins = [], [], [], []
+    disp_rows: list[tuple[float, ...] | None] = []
+    owner: dict[str, str] = {}
+    edges: list[tuple[str, str | None]] = []
+    where: dict[str, int] = {}
+    keep_repeats = False
+    for line_no, raw in enumerate(text.splitlines(), start=1):
+        line = strip_comment(raw, source, line_no)
+        if not line.strip():
+            continue
+        if line.strip() == KEEP_REPEATS:
+            keep_repeats = True
+            continue
+        if _DIRECTIVE.match(line):
+            _read_directive(line, source, line_no, owner, edges)
+            continue
+        head, colon, body = line.partition(":")
+        if not colon:
+            col = len(raw) - len(raw.lstrip()) + 1
+            raise FormatError("expected 'name: symbols' (no ':' on this line)",
+                              source=source, line=line_no, column=col)
+        name_col = len(head) - len(head.lstrip()) + 1
+        name_text = head.strip()
+        name, at, origin_text = name_text.partition("@")
+        origin = 0.0
+        if at:
+            origin = _read_number(origin_text, allow_nonpositive=True)
+            if origin is None:
+                raise FormatError(f"start time {_shown(origin_text)} is not a number",
+                                  source=source, line=line_no,
+                                  column=name_col + len(name) + 1)
+        problem = _bad_name(name)
+        if problem:
+            raise FormatError(problem, source=source, line=line_no, column=name_col)
+        if name in where:
+            raise FormatError(f"actuator {_shown(name)} already given on line {where[name]}",
+                              source=source, line=line_no, column=name_col)
+        where[name] = line_no
+        syms, durs, disps = [], [], []
+        offset = len(head) + 1
+        for match in re.finditer(r"\S+", body):
+            token, col = match.group(), offset + match.start() + 1
+            sym, at, dur_text = token.partition("@")
+            if ":" in token:
+                raise FormatError(f"symbol {_shown(token)} contains ':'", source=source,
+                                  line=line_no, column=col)
+            if not sym:
+                raise FormatError(f"{_shown(token)} has a duration but no symbol",
+                                  source=source,
+                                  line=line_no, column=col)
+            dur = 1.0
+            if at and "~" in dur_text:  # sym@D~X: a duration, then a signed displacement
+                dur_text, _, disp_text = dur_text.partition("~")
+                disp = _read_number(disp_text, allow_nonpositive=True)
+                if disp is None:
+                    raise FormatError(
+                        f"unknown displacement syntax {_shown('~' + disp_text)} (write "
+                        f"sym@D~X with X a number)", source=source, line=line_no,
+                        column=col + len(sym) + 1 + len(dur_text))
+                disps.append(disp)
+            if at:
+                dur = _read_number(dur_text, allow_nonpositive=True)
+                if dur is not None and dur <= 0:
+                    raise FormatError(f"duration {_shown(dur_text)} must be positive",
+                                      source=source, line=line_no, column=col + len(sym) + 1)
+                if dur is None:
+                    raise FormatError(
+                        f"unknown duration syntax {_shown('@' + dur_text)} (write sym@D "
+                        f"with D a positive number)", source=source, line=line_no,
+                        column=col + len(sym))
+            syms.append(sym)
+            durs.append(dur)
+            if len(disps) not in (0, len(syms)):
+                raise FormatError("give a displacement (sym@D~X) for every symbol of a "
+                                  "string or for none", source=source, line=line_no,
+                                  column=col)
+        names.append(name)
+        symbol_rows.append(tuple(syms))
+        duration_rows.append(tuple(durs))
+        origins.append(origin)
+        disp_rows.append(tuple(disps) if disps else None)
+    for name in owner:
+        if name not in where:
+            raise FormatError(f"%actuator names unknown string {_shown(name)}",
+                              source=source)
+    actuators = tuple(owner.get(n, default_actuator(n)) for n in names)
+    try:
+        return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins),
+                   tuple(disp_rows), actuators, tuple(edges), keep_repeats)
+    except FormatError as exc:  # a bad skeleton or actuator: name the file
+        raise FormatError(exc.message, source=source) from None
+
+
+def read_json(cls, text: str, source: str):
+    """The actiongram (of class ``cls``) that the JSON ``text`` holds; FormatError if none."""
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise FormatError(f"not JSON: {exc.msg}", source=source, line=exc.lineno,
+                          column=exc.colno) from None
+    except RecursionError:  # '[' * 100000: the decoder recurses per nesting level
+        raise FormatError("not JSON that can be read: nested too deeply", source=source,
+                          line=1, column=1) from None
+    except ValueError as exc:  # an integer of thousands of digits (Python's int limit)
+        raise FormatError(f"not JSON that can be read: {str(exc).split(':')[0]}",
+                          source=source) from None
+    if not isinstance(data, dict) or not isinstance(data.get("strings"), list):
+        raise FormatError("expected a JSON object with a 'strings' list", source=source)
+    names, symbol_rows, duration_rows, origins = [], [], [], []
+    disp_rows: list[tuple | None] = []
+    actuator_rows: list[object] = []
+    for k, item in enumerate(data["strings"]):
+        if not isinstance(item, dict) or not isinstance(item.get("symbols"), list):
+            raise FormatError(f"strings[{k}] must be an object with 'name' and 'symbols'",
+                              source=source)
+        syms = item["symbols"]
+        durs = item.get("durations", [1.0] * len(syms))
+        if not isinstance(durs, list):
+            raise FormatError(f"strings[{k}].durations must be a list", source=source)
+        disps = item.get("displacements")
+        if disps is not None and not isinstance(disps, list):
+            raise FormatError(f"strings[{k}].displacements must be a list", source=source)
+        names.append(item.get("name"))
+        symbol_rows.append(tuple(syms))
+        duration_rows.append(tuple(durs))
+        origins.append(item.get("start", 0.0))
+        disp_rows.append(None if disps is None else tuple(disps))
+        name = item.get("name")
+        actuator_rows.append(item["actuator"] if "actuator" in item
+                             else default_actuator(name) if isinstance(name, str) else name)
+    skeleton = data.get("skeleton", {})
+    keep_repeats = data.get("keep_repeats", False)
+    if not isinstance(keep_repeats, bool):
+        raise FormatError("'keep_repeats' must be true or false", source=source)
+    if not isinstance(skeleton, dict):
+        raise FormatError("'skeleton' must be an object {actuator: parent or null}",
+                          source=source)
+    try:
+        return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins),
+                   tuple(disp_rows), tuple(actuator_rows), tuple(skeleton.items()),
+                   keep_repeats)
+    except FormatError as exc:
+        raise FormatError(exc.message, source=source) from None
