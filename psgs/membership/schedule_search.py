@@ -25,6 +25,7 @@ from ..budget import Budget
 from ..errors import BoundReached
 from ..model import IDLE, PSGS, Terminal, Word
 from .chart import Chart, CompiledGrammar
+from .depth_first import Finish, depth_first
 from .result import Acceptance
 from .witness import PSGSSchedule, Rewrite, ScheduledMove
 
@@ -403,52 +404,63 @@ class _ScheduleSearch:
         if all(not front for front in initial):  # only in a relaxation with nothing to track
             return (Acceptance("yes", states=explored + 1, system=self.system,
                                schedule=self._readable([])), explored + 1, False)
+        path, explored, capped = self.walk(initial, _finished, cap, explored)
+        if path is None:
+            return None, explored, capped
+        if path == "max_states":
+            reason = f"the schedule search stopped after {explored} states"
+            if capped:
+                reason += " (occurrences that derive ε can pile up without end here)"
+            return (Acceptance("unknown", reason=reason + f" (max_states={self.max_states})",
+                               bound="max_states", states=explored, system=self.system),
+                    explored, capped)
+        # a relaxation's yes is only a "maybe": its schedule is never read
+        schedule = self._readable(path) if self.focus is None else None
+        return (Acceptance("yes", states=explored, system=self.system, schedule=schedule),
+                explored, capped)
+
+    def walk(self, initial, finished, cap: int, explored: int):
+        """Depth-first from ``initial`` to a state ``finished`` accepts: ``(path, explored, capped)``.
+
+        ``path`` is the list of moves found, ``None`` when every state (with
+        at most ``cap`` ε-occurrences per component) was explored, or
+        ``"max_states"``; ``capped`` says whether the ε cap cut a state.
+        """
         visited = {self.key(initial)}
-        stack = [iter(self.successors(initial))]
-        path: list = []
         explored += 1
         self.explored = explored
-        capped = False
         budget = self.budget
-        while stack:
-            nxt = next(stack[-1], None)
-            # the clock is read per generated successor, not per new state: successors that
-            # are already visited or over the ε cap cost time without adding a state
-            budget.tick()
-            if nxt is None:
-                stack.pop()
-                if path:
-                    path.pop()
-                continue
+        counts = [explored, False]  # states explored, whether the ε cap cut a state
+
+        def expand(nxt, path):
             _, _, state, move = nxt
             # a frontier of at most cap occurrences cannot hold more than cap ε-occurrences
             if any(len(front) > cap and sum(1 for _, i, j in front if i == j) > cap
                    for front in state):
-                capped = True
-                continue
+                counts[1] = True
+                return None
             k = self.key(state)
             if k in visited:
-                continue
+                return None
             visited.add(k)
-            explored += 1
-            self.explored = explored
+            counts[0] += 1
+            self.explored = counts[0]
             # memory: a state keeps one entry per tracked occurrence (states × form size)
             budget.hold(1 + sum(len(front) for front in state))
-            path.append(move)
-            if all(not front for front in state):
-                # a relaxation's yes is only a "maybe": its schedule is never read
-                schedule = self._readable(path) if self.focus is None else None
-                return (Acceptance("yes", states=explored, system=self.system,
-                                   schedule=schedule), explored, capped)
-            if explored >= self.max_states:
-                reason = f"the schedule search stopped after {explored} states"
-                if capped:
-                    reason += " (occurrences that derive ε can pile up without end here)"
-                return (Acceptance("unknown", reason=reason + f" (max_states={self.max_states})",
-                                   bound="max_states", states=explored, system=self.system),
-                        explored, capped)
-            stack.append(iter(self.successors(state)))
-        return None, explored, capped
+            if finished(state):
+                return Finish([*path, move])
+            if counts[0] >= self.max_states:
+                return Finish("max_states")
+            return move, self.successors(state)
+
+        # the clock is read per generated successor, not per new state: successors that
+        # are already visited or over the ε cap cost time without adding a state
+        found = depth_first(self.successors(initial), expand, budget.tick)
+        return found, counts[0], counts[1]
+
+
+def _finished(state) -> bool:
+    return all(not front for front in state)
 
 
 def _item_order(item):
