@@ -1,15 +1,16 @@
 """A fast path to a yes: derive the words block by block, every component in lockstep.
 
-It applies to a PSGS whose components all have *right-linear spines*: the
-start symbol is on the spine (the nonterminals on or above a cycle of the
-grammar, see :func:`psgs.membership.schedule_search._spine`), and every usable
-rule whose left side is on the spine has at most one spine symbol in its
-body, as its last symbol (``S → N S | N`` in Γ and in the grammars PAL
-induces; ``S → a S | a`` too). Everything else in such a body is off the
-spine and derives a finite language.
+It applies to a PSGS whose components all have *right-linear spines*: every
+usable rule whose left side is on the spine (the nonterminals on or above a
+cycle of the grammar, see :func:`psgs.membership.schedule_search._spine`) has
+at most one spine symbol in its body, as its last symbol (``S → N S | N`` in
+Γ and in the grammars PAL induces; ``S → a S | a`` too). Everything else in
+such a body is off the spine and derives a finite language.
 
 The search only visits *synchronisation points*: configurations where each
-component's sentential form is one spine occurrence or nothing. From one, a
+component's sentential form is one spine occurrence or nothing. A component
+whose start symbol is off the spine (a finite language) is one block,
+derived first by the block schedule described next. From a point, a
 *spine move* (a move that rewrites the spine occurrence of every component it
 names, terminal components skipping their entry) opens one block per
 component, its non-spine symbols spanning a prefix of the occurrence's span;
@@ -46,7 +47,7 @@ _BLOCK_EPSILON_CAP = 16
 
 
 def lockstep_applies(compiled: list[CompiledGrammar]) -> bool:
-    """Whether every component's spine is right-linear and holds its start symbol.
+    """Whether every component's spine is right-linear.
 
     Examples
     --------
@@ -59,8 +60,6 @@ def lockstep_applies(compiled: list[CompiledGrammar]) -> bool:
     """
     for cg in compiled:
         spine = _spine(cg)
-        if cg.index[cg.grammar.start] not in spine:
-            return False
         for a, body in zip(cg.lhs, cg.body):
             if a in spine and any(s in spine for s in body[:-1]):
                 return False
@@ -254,16 +253,10 @@ class _Lockstep:
                 items.append((tail, split[-1], front[0][2]))
             initial.append(tuple(sorted(items, key=_item_order)))
         initial = tuple(initial)
-        spine = self.spine
-        if all(it[0] in spine[c] for c, front in enumerate(initial) for it in front):
+        if all(it[0] in self.spine[c] for c, front in enumerate(initial) for it in front):
             schedule = []
         else:
-            path, self.explored, _ = self.block.walk(
-                initial, lambda state: all(it[0] in spine[c] for c, front in enumerate(state)
-                                           for it in front),
-                _BLOCK_EPSILON_CAP, self.explored)
-            if path == "max_states":
-                raise _OutOfStates
+            path = self._close_blocks(initial)
             schedule = None if path is None else [
                 (move, tuple(tuple(((a, i - _origin(ways, c), j - _origin(ways, c)),
                                     tuple(b - _origin(ways, c) for b in split))
@@ -273,11 +266,35 @@ class _Lockstep:
         self.block_cache[key] = schedule
         return schedule
 
+    def _close_blocks(self, start):
+        """Block moves from ``start`` to a synchronisation point (None: none found)."""
+        spine = self.spine
+        path, self.explored, _ = self.block.walk(
+            start, lambda state: all(it[0] in spine[c] for c, front in enumerate(state)
+                                     for it in front), _BLOCK_EPSILON_CAP, self.explored)
+        if path == "max_states":
+            raise _OutOfStates
+        return path
+
     # ---- the walk over synchronisation points
     def run(self) -> Acceptance | None:
-        initial = tuple(((cg.index[g.start], 0, chart.n),)
-                        for g, cg, chart in zip(self.system.components, self.compiled,
-                                                self.charts))
+        start = tuple(((cg.index[g.start], 0, chart.n),)
+                      for g, cg, chart in zip(self.system.components, self.compiled,
+                                              self.charts))
+        # components whose start is off the spine derive their whole word as one block
+        initial = tuple(front if front[0][0] in spine else ()
+                        for front, spine in zip(start, self.spine))
+        first: list = []
+        if initial != start:
+            try:
+                first = self._close_blocks(start)
+            except _OutOfStates:
+                return None
+            if first is None:
+                return None
+            if all(not front for front in initial):
+                return Acceptance("yes", states=self.explored, system=self.system,
+                                  plan=lambda: self.block._readable(first))
         visited = {initial}
         self.explored += 1
         budget = self.budget
@@ -307,7 +324,7 @@ class _Lockstep:
             return None
         # the schedule (thousands of moves on long words) is built when it is first read
         return Acceptance("yes", states=self.explored, system=self.system,
-                          plan=lambda: self.block._readable(self._moves(found)))
+                          plan=lambda: self.block._readable(first + self._moves(found)))
 
     def _moves(self, found) -> list:
         """The general search's path: each spine move, then its block schedule shifted."""

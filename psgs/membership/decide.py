@@ -23,8 +23,10 @@ __all__ = ["accepts_psgs"]
 
 
 def accepts_psgs(system: PSGS, words: tuple[Word, ...], max_states: int,
-                 budget: Budget) -> Acceptance:
+                 budget: Budget, *, fast: bool = True) -> Acceptance:
     """Decide ``words ∈ L(system)``; ``budget`` was started by the caller, before any analysis.
+
+    ``fast=False`` skips the block-by-block fast path (the tests compare the two).
 
     Examples
     --------
@@ -58,7 +60,7 @@ def accepts_psgs(system: PSGS, words: tuple[Word, ...], max_states: int,
             compiled.append(cg)
             charts.append(Chart(cg, list(map(terminal_ids.__getitem__, w)), budget))
         substrings = [_Substrings(chart.word) for chart in charts]
-        if lockstep_applies(compiled):
+        if fast and lockstep_applies(compiled):
             # a yes found block by block is exact; anything else is decided below
             quick = lockstep_accepts(system, compiled, charts, substrings,
                                      max(1, max_states // 4), budget)
