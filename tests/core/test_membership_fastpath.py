@@ -147,3 +147,11 @@ def test_the_fast_paths_share_of_max_states_runs_out_into_the_general_search():
     words = [b * 40 for b in BLOCKS]
     assert fast_path(gamma(), words, max_states=5) is None
     assert psgs.accepts(gamma(), words, max_states=5_000).answer == "yes"
+
+
+@pytest.mark.parametrize("budget, value", [("max_seconds", 0.001), ("max_symbols", 200)])
+def test_budgets_hold_on_the_fast_path(budget, value):
+    words = [b * 300 for b in BLOCKS]
+    result = psgs.accepts(gamma(), words, **{budget: value})
+    assert result.answer == "unknown" and result.bound == budget
+    assert str(value) in result.reason or f"{value:g}" in result.reason
