@@ -157,6 +157,7 @@ class DistanceSearch:
 
         ``lowest[0]`` is lowered to the least estimate of a child left out.
         """
+        tick, hold = self.budget.tick, self.budget.hold
         leftmost_of = []
         for front in state:
             table: dict[int, int] = {}
@@ -209,6 +210,10 @@ class DistanceSearch:
                 continue
             cut = [INF]
             for delta, picks in _bounded_product(slots, slack, cut):
+                # the product can be huge far from the language: each child reads the clock
+                # and counts against max_symbols while the list of children is built
+                tick()
+                hold(1 + len(picks))
                 new_state = tuple(front for _, front, _ in picks)
                 if new_state != state:
                     out.append((f + delta, order, m, new_state,
