@@ -5,9 +5,10 @@
 
 For each system of ``grammars/`` and each size, the words are a member tuple
 of the language. ``accepts`` is timed end to end (parse every component and
-find a synchronised schedule; the witness replay is left to first access and
-not timed). Lark is timed parsing each component's word with the exported
-grammar (``psgs.to_lark``, ``lark.Lark(..., parser="earley", lexer="basic")``,
+find a synchronised schedule; building the schedule found and replaying the
+witness are left to first access and not timed). Lark is timed parsing each
+component's word with the exported grammar (``psgs.to_lark``,
+``lark.Lark(..., parser="earley", lexer="basic")``,
 symbols joined by spaces), parser construction excluded; Lark's time is the
 same for both modes (it knows nothing of them) and is measured once per word
 tuple; Lark's LALR parser is timed the same way where the exported grammar
@@ -200,7 +201,8 @@ def write_section(table: str, nearest_table: str, command: str) -> None:
             f"{time.strftime('%Y-%m-%d', time.gmtime())}, on a machine shared with other jobs "
             f"(load average {os.getloadavg()[0]:.1f} at the end). `accepts`: best of 3 runs; Lark: "
             f"one run. `accepts` includes parsing every component and the schedule search "
-            f"(not the witness replay, done on first access); Lark is the parse of the same "
+            f"(not building the schedule found and replaying the witness, both done on first "
+            f"access); Lark is the parse of the same "
             f"component words alone, with the exported grammars, parser construction excluded, "
             f"measured once per word tuple (it has no modes).\n\n{table}\n")
     body += ("\n### Distance to the language (`psgs.nearest`)\n\nThe same run: member tuples "

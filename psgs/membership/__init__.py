@@ -18,8 +18,10 @@ with a :class:`Nearest` tuple, its witness and the edits
 The package, bottom-up: ``chart`` (one context-free grammar, one word),
 ``witness`` (the typed schedule of a yes and its replay as a checked
 :class:`~psgs.derivation.Derivation`), ``result`` (the :class:`Acceptance`
-value), ``schedule_search`` (PSGS), ``pcgs_search`` (PCGS), and :func:`accepts`
-here.
+value), ``depth_first`` (the walk of the PSGS searches), ``schedule_search``
+(PSGS, general), ``block_search`` (PSGS, the block-by-block fast path),
+``decide`` (PSGS: the two, in order), ``pcgs_search`` (PCGS), and
+:func:`accepts` here.
 """
 
 from __future__ import annotations
@@ -32,7 +34,7 @@ from ..model import PCGS, PSGS, as_word
 from .nearest import Nearest, nearest
 from .pcgs_search import accepts_pcgs
 from .result import Acceptance
-from .schedule_search import accepts_psgs
+from .decide import accepts_psgs
 from .words import coerce_words as _coerce_words
 
 __all__ = ["Acceptance", "accepts", "EAGER_REPLAY_LIMIT", "MAX_SYMBOLS", "Nearest", "nearest"]

@@ -36,6 +36,7 @@ from collections.abc import Callable, Sequence
 from ..analysis import least_sums
 from ..budget import Budget
 from .chart import UNBOUNDED, CompiledGrammar
+from .spine_costs import suffix_costs
 
 __all__ = ["ErrorChart"]
 
@@ -118,6 +119,12 @@ class ErrorChart:
         # long rows) cannot grow the chart without bound
         self.held = 0
         self._split_cache: dict[tuple[int, int, int], tuple[float, list, float]] = {}
+        # a right-linear spine: the exact cost of every span a spine occurrence can have, at
+        # once and in linear time, instead of top-down with a number of ends that grows with
+        # the cap
+        spine = suffix_costs(self)
+        if spine is not None:
+            self.memo.update((key, (value, True)) for key, value in spine.items())
 
     def _hold(self, symbols: int) -> None:
         self.held += symbols

@@ -26,6 +26,7 @@ from __future__ import annotations
 from ..analysis import moves as system_moves
 from ..budget import Budget
 from ..model import IDLE, PSGS
+from .depth_first import Finish, depth_first
 from .error_chart import INF, ErrorChart
 from .schedule_search import _item_order, _Substrings
 
@@ -156,6 +157,7 @@ class DistanceSearch:
 
         ``lowest[0]`` is lowered to the least estimate of a child left out.
         """
+        tick, hold = self.budget.tick, self.budget.hold
         leftmost_of = []
         for front in state:
             table: dict[int, int] = {}
@@ -208,6 +210,10 @@ class DistanceSearch:
                 continue
             cut = [INF]
             for delta, picks in _bounded_product(slots, slack, cut):
+                # the product can be huge far from the language: each child reads the clock
+                # and counts against max_symbols while the list of children is built
+                tick()
+                hold(1 + len(picks))
                 new_state = tuple(front for _, front, _ in picks)
                 if new_state != state:
                     out.append((f + delta, order, m, new_state,
@@ -276,44 +282,42 @@ class DistanceSearch:
         if self.best is not None and self.best[0] - tol <= bound:
             bound = self.best[0] - 2 * tol  # only a cheaper tuple is of interest
         visited = {self.key(initial): f0}
-        stack = [iter(self.successors(initial, f0, bound, lowest))]
-        path: list = []
-        capped = False
         budget = self.budget
-        while stack:
-            nxt = next(stack[-1], None)
-            budget.tick()
-            if nxt is None:
-                stack.pop()
-                if path:
-                    path.pop()
-                continue
+        # the walk's mutable facts: the cost bound (lowered by each tuple found), whether the
+        # ε cap cut a state
+        walk = {"bound": bound, "capped": False}
+
+        def expand(nxt, path):
             f, _, m, state, rewrites = nxt
-            if f > bound + tol:
-                continue
+            if f > walk["bound"] + tol:
+                return None
             if any(sum(1 for _, i, j in front if i == j) > eps_cap for front in state):
-                capped = True
+                walk["capped"] = True
                 lowest[0] = min(lowest[0], f)
-                continue
+                return None
             k = self.key(state)
             old = visited.get(k)
             if old is not None and old <= f + tol:
-                continue
+                return None
             visited[k] = f
             self.explored += 1
             budget.hold(1 + sum(len(front) for front in state))
-            path.append((m, rewrites))
             if all(not front for front in state):
-                self.best = (f, list(path))
-                path.pop()
+                self.best = (f, [*path, (m, rewrites)])
                 if f <= self.proved + tol:
-                    return "found", INF, capped  # no tuple is cheaper than the proved bound
-                bound = f - 2 * tol
-                continue
+                    return Finish("found")  # no tuple is cheaper than the proved bound
+                walk["bound"] = f - 2 * tol
+                return None
             if self.explored >= self.max_states:
-                return "max_states", lowest[0], capped
-            stack.append(iter(self.successors(state, f, bound, lowest)))
-        return "done", lowest[0], capped
+                return Finish("max_states")
+            return (m, rewrites), self.successors(state, f, walk["bound"], lowest)
+
+        status = depth_first(self.successors(initial, f0, bound, lowest), expand, budget.tick)
+        if status == "found":
+            return "found", INF, walk["capped"]
+        if status == "max_states":
+            return "max_states", lowest[0], walk["capped"]
+        return "done", lowest[0], walk["capped"]
 
 
 def _bounded_product(slots, slack: float, excess: list):

@@ -149,7 +149,7 @@ def _search(system: PCGS, word: Word, max_steps: int, max_states: int,
             if all(isinstance(s, Terminal) for s in master):
                 if master == word:
                     return Acceptance("yes", states=explored, system=system,
-                                      schedule=_path(parent, after))
+                                      plan=_path(parent, after))
                 if prune:
                     continue  # nobody can reset the master: its word is final
                 # otherwise a query may send the master's word away and restart it

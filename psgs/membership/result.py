@@ -6,6 +6,7 @@ from which the witness derivation is rebuilt, every step checked, on demand.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Literal
@@ -42,8 +43,10 @@ class Acceptance:
         Search states explored.
     system : PSGS or PCGS, optional
         The system asked about (to replay the witness).
-    schedule : tuple, default ()
-        The schedule found (what the witness is replayed from).
+    plan : Schedule, or a function of no arguments that builds one, optional
+        The schedule found (what the witness is replayed from), or how to build it: a
+        search that found a long schedule leaves building it to the first access of
+        ``schedule``.
 
     Examples
     --------
@@ -69,10 +72,16 @@ class Acceptance:
     bound: str | None = None
     states: int = 0
     system: PSGS | PCGS | None = field(default=None, repr=False, compare=False)
-    schedule: Schedule | None = field(default=None, repr=False, compare=False)
+    plan: Schedule | Callable[[], Schedule] | None = field(default=None, repr=False,
+                                                          compare=False)
 
     def __bool__(self) -> bool:
         return self.answer == "yes"
+
+    @cached_property
+    def schedule(self) -> Schedule | None:
+        """The schedule found (``None`` unless the answer is yes), built on first access."""
+        return self.plan() if callable(self.plan) else self.plan
 
     @cached_property
     def witness(self):

@@ -25,10 +25,11 @@ from ..budget import Budget
 from ..errors import BoundReached
 from ..model import IDLE, PSGS, Terminal, Word
 from .chart import Chart, CompiledGrammar
+from .depth_first import Finish, depth_first
 from .result import Acceptance
 from .witness import PSGSSchedule, Rewrite, ScheduledMove
 
-__all__ = ["accepts_psgs"]
+__all__: list[str] = []
 
 
 class _Substrings:
@@ -72,63 +73,6 @@ class _Substrings:
         return cls
 
 
-def accepts_psgs(system: PSGS, words: tuple[Word, ...], max_states: int,
-                 budget: Budget) -> Acceptance:
-    """Decide ``words ∈ L(system)``; ``budget`` was started by the caller, before any analysis.
-
-    Examples
-    --------
-    >>> import psgs
-    >>> gamma = psgs.load("grammars/paper_example.psgs")
-    >>> from psgs.model import as_word
-    >>> words = tuple(as_word(w) for w in ("abcdbcad", "bcadabcd", "cdabcdab", "abcdbcad"))
-    >>> from psgs.budget import Budget
-    >>> accepts_psgs(gamma, words, max_states=10_000, budget=Budget(seconds=10)).answer
-    'yes'
-    """
-    terminal_ids: dict[Terminal, int] = {}
-    for t in sorted(system.terminals):
-        terminal_ids[t] = len(terminal_ids)
-    for g, w in zip(system.components, words):
-        for k, t in enumerate(w):
-            if t not in g.terminals:
-                return Acceptance("no", reason=(
-                    f"component {g.name}'s word is not in its context-free language "
-                    f"({t} at position {k + 1} is not one of its terminals)"), system=system)
-    search = None
-    try:
-        compiled, charts = [], []
-        usable = usable_rules(system)
-        for c, (g, w) in enumerate(zip(system.components, words)):
-            # a rule in no tuple can never apply under 'strict': parse without it, so a word
-            # that needs it is refused by the chart instead of by an endless schedule search
-            cg = CompiledGrammar(g, terminal_ids, usable[c], budget)
-            compiled.append(cg)
-            charts.append(Chart(cg, [terminal_ids[t] for t in w], budget))
-        for g, cg, chart, w in zip(system.components, compiled, charts, words):
-            if not chart.derives(cg.index[g.start], 0, len(w)):
-                scope = (" (under 'strict', taking only the rules that are in some tuple)"
-                         if system.unsynchronised == "strict" else "")
-                return Acceptance("no", reason=(
-                    f"component {g.name}'s word is not in its context-free language{scope}"),
-                    system=system)
-        spine = _spine_check(system, compiled, charts, max_states, budget)
-        if spine is not None:
-            return spine
-        search = _ScheduleSearch(system, compiled, charts, max_states, budget)
-        return search.run()
-    except BoundReached as stop:
-        explored = search.explored if search is not None else 0
-        if stop.bound == "max_symbols":
-            reason = (f"the search kept {budget.held} symbols in its states, more than "
-                      f"max_symbols={budget.max_symbols} ({explored} states)")
-        else:
-            reason = (f"the search ran out of time after {budget.seconds:g} s "
-                      f"({explored} states)")
-        return Acceptance("unknown", reason=reason, bound=stop.bound, states=explored,
-                          system=system)
-
-
 def _spine(cg: CompiledGrammar) -> frozenset[int]:
     """Nonterminals that lie on a cycle of the grammar, or can reach one (upward closed)."""
     n = len(cg.nonterminals)
@@ -144,37 +88,12 @@ def _spine(cg: CompiledGrammar) -> frozenset[int]:
     return frozenset(reachable(reverse, cyclic))
 
 
-def _spine_check(system, compiled, charts, max_states, budget) -> Acceptance | None:
-    """A fast necessary condition: can the recursive parts (the spines) be scheduled alone?
-
-    Tracking only the occurrences of spine nonterminals (an upward-closed set:
-    a spine occurrence is only ever created by rewriting a spine occurrence)
-    relaxes the system: a tuple asks nothing of a component whose entry
-    rewrites a non-spine symbol, and a component with no spine occurrence
-    left skips its entry. Every derivation projects onto a schedule of this
-    relaxation, so when the relaxation has none the answer is a proved no.
-    Its states are few (spines are short frontiers), whereas the full search
-    would wander through the interleavings of the independent blocks.
-    """
-    focus = [_spine(cg) for cg in compiled]
-    if all(len(f) == len(cg.nonterminals) for f, cg in zip(focus, compiled)) or \
-            not any(focus):
-        return None
-    relaxed = _ScheduleSearch(system, compiled, charts, max(1, max_states // 4), budget,
-                              focus=focus)
-    result = relaxed.run()
-    if result.answer == "no":
-        return Acceptance("no", reason="every component parses but no schedule of the tuples "
-                          "fits (even their recursive parts cannot be synchronised)",
-                          states=result.states, system=system)
-    return None
-
-
 class _ScheduleSearch:
     """Depth-first search for a synchronised schedule over span-annotated frontiers."""
 
     def __init__(self, system: PSGS, compiled: list[CompiledGrammar], charts: list[Chart],
-                 max_states: int, budget: Budget, focus=None) -> None:
+                 max_states: int, budget: Budget, focus=None, substrings=None,
+                 allowed=None) -> None:
         self.system = system
         # focus: per component the nonterminals tracked (None: all); see _spine_check
         self.focus = focus
@@ -184,7 +103,8 @@ class _ScheduleSearch:
         self.max_states = max_states
         self.budget = budget
         self.parallel = system.mode == "parallel"
-        self.substrings = [_Substrings(c.word) for c in charts]
+        self.substrings = (substrings if substrings is not None
+                           else [_Substrings(c.word) for c in charts])
         moves = system_moves(system)
         self.moves = moves
         self.move_rule_ids = [
@@ -197,8 +117,11 @@ class _ScheduleSearch:
             for rule_ids in self.move_rule_ids]
         # moves by (component, left-hand side) of each non-idle entry: a state looks only at
         # the moves that rewrite a nonterminal it holds, not at every move of the system
+        # allowed: the moves the search may apply (None: all), e.g. one block's moves only
         self.moves_needing: dict[tuple[int, int], list[int]] = {}
         for m, rule_ids in enumerate(self.move_rule_ids):
+            if allowed is not None and m not in allowed:
+                continue
             for c, rule in enumerate(rule_ids):
                 if rule is not None:
                     self.moves_needing.setdefault((c, compiled[c].lhs[rule]), []).append(m)
@@ -402,53 +325,64 @@ class _ScheduleSearch:
                                                                self.compiled, self.charts)))
         if all(not front for front in initial):  # only in a relaxation with nothing to track
             return (Acceptance("yes", states=explored + 1, system=self.system,
-                               schedule=self._readable([])), explored + 1, False)
+                               plan=self._readable([])), explored + 1, False)
+        path, explored, capped = self.walk(initial, _finished, cap, explored)
+        if path is None:
+            return None, explored, capped
+        if path == "max_states":
+            reason = f"the schedule search stopped after {explored} states"
+            if capped:
+                reason += " (occurrences that derive ε can pile up without end here)"
+            return (Acceptance("unknown", reason=reason + f" (max_states={self.max_states})",
+                               bound="max_states", states=explored, system=self.system),
+                    explored, capped)
+        # a relaxation's yes is only a "maybe": its schedule is never read
+        schedule = self._readable(path) if self.focus is None else None
+        return (Acceptance("yes", states=explored, system=self.system, plan=schedule),
+                explored, capped)
+
+    def walk(self, initial, finished, cap: int, explored: int):
+        """Depth-first from ``initial`` to a state ``finished`` accepts: ``(path, explored, capped)``.
+
+        ``path`` is the list of moves found, ``None`` when every state (with
+        at most ``cap`` ε-occurrences per component) was explored, or
+        ``"max_states"``; ``capped`` says whether the ε cap cut a state.
+        """
         visited = {self.key(initial)}
-        stack = [iter(self.successors(initial))]
-        path: list = []
         explored += 1
         self.explored = explored
-        capped = False
         budget = self.budget
-        while stack:
-            nxt = next(stack[-1], None)
-            # the clock is read per generated successor, not per new state: successors that
-            # are already visited or over the ε cap cost time without adding a state
-            budget.tick()
-            if nxt is None:
-                stack.pop()
-                if path:
-                    path.pop()
-                continue
+        counts = [explored, False]  # states explored, whether the ε cap cut a state
+
+        def expand(nxt, path):
             _, _, state, move = nxt
             # a frontier of at most cap occurrences cannot hold more than cap ε-occurrences
             if any(len(front) > cap and sum(1 for _, i, j in front if i == j) > cap
                    for front in state):
-                capped = True
-                continue
+                counts[1] = True
+                return None
             k = self.key(state)
             if k in visited:
-                continue
+                return None
             visited.add(k)
-            explored += 1
-            self.explored = explored
+            counts[0] += 1
+            self.explored = counts[0]
             # memory: a state keeps one entry per tracked occurrence (states × form size)
             budget.hold(1 + sum(len(front) for front in state))
-            path.append(move)
-            if all(not front for front in state):
-                # a relaxation's yes is only a "maybe": its schedule is never read
-                schedule = self._readable(path) if self.focus is None else None
-                return (Acceptance("yes", states=explored, system=self.system,
-                                   schedule=schedule), explored, capped)
-            if explored >= self.max_states:
-                reason = f"the schedule search stopped after {explored} states"
-                if capped:
-                    reason += " (occurrences that derive ε can pile up without end here)"
-                return (Acceptance("unknown", reason=reason + f" (max_states={self.max_states})",
-                                   bound="max_states", states=explored, system=self.system),
-                        explored, capped)
-            stack.append(iter(self.successors(state)))
-        return None, explored, capped
+            if finished(state):
+                return Finish([*path, move])
+            if counts[0] >= self.max_states:
+                return Finish("max_states")
+            return move, self.successors(state)
+
+        # the clock is read per generated successor, not per new state: successors that
+        # are already visited or over the ε cap cost time without adding a state
+        found = depth_first(self.successors(initial), expand, budget.tick)
+        return found, counts[0], counts[1]
+
+
+def _finished(state) -> bool:
+    return all(not front for front in state)
 
 
 def _item_order(item):

@@ -47,4 +47,12 @@ def coerce_words(system: PSGS, words) -> tuple[Word, ...]:
         words = (words,)
     if len(words) != n:
         raise ValidationError(f"the system has {n} components but {len(words)} words were given")
-    return tuple(as_word(w) for w in words)
+    return tuple(_word(w) for w in words)
+
+
+def _word(value) -> Word:
+    """:func:`~psgs.model.as_word`, making one Terminal per distinct character of a str."""
+    if isinstance(value, str):
+        terminal = {ch: as_word(ch)[0] for ch in set(value)}
+        return tuple(map(terminal.__getitem__, value))
+    return as_word(value)
