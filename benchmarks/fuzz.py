@@ -1,14 +1,14 @@
 """The long fuzz run over every reader and writer: 0 crashes, 0 hangs, 0 allocations over 1 GB.
 
-    flock /tmp/heavy.lock python benchmarks/fuzz.py --seconds 600    # the whole run
+    nice -n 10 flock /tmp/fuzz.lock python benchmarks/fuzz.py --seconds 600    # the whole run
     python benchmarks/fuzz.py --inputs 500 --reader codec             # a quick look
 
 The mutations and the rule are those of the suite's fuzz tests (``tests/fuzz_support.py``):
-each input is a seed file from ``tests/data/fuzz`` with one to four byte edits, written to a
-file and read by the public reader (psgs text, actiongram text and JSON, BVH, ASF, AMC, codec
+each input is a seed file from ``tests/data/fuzz`` with one to four edits (of its bytes, or of
+one value of a JSON file), written to a file and read by the public reader (psgs text, actiongram text and JSON, BVH, ASF, AMC, codec
 streams and their decompressed base part, ``write_bvh`` round trips, praxicon manifests, label
-files, praxicon folders); it must, within the time limit, read (and pass the reader's check)
-or raise the reader's documented error. With ``--seconds N`` the readers take turns, one input
+files, praxicon folders: index, record, descriptions); it must, within the time limit, read
+(and pass the reader's check) or raise the reader's documented error. With ``--seconds N`` the readers take turns, one input
 each, until N seconds have passed; with ``--inputs K`` each gets K inputs. Inputs are drawn
 from ``random.Random(seed)``, so a run is reproducible; a finding prints its seed file and
 mutations, which ``fuzz_support.apply`` replays.

@@ -175,7 +175,7 @@ class Descriptions:
         try:
             return cls(tuple(ActionDescription.from_dict(a) for a in data["actions"]),
                        Spread.from_dict(data["spread"]))
-        except (KeyError, TypeError, ValueError) as exc:
+        except (KeyError, TypeError, ValueError, OverflowError) as exc:  # Overflow: float(10**400)
             if isinstance(exc, DescriptionError):
                 raise
             raise DescriptionError(f"malformed praxicon descriptions ({type(exc).__name__}: "
@@ -199,6 +199,8 @@ def _loads(text: str) -> dict:
 
 
 def _check(data: dict, kind: str) -> None:
+    if not isinstance(data, dict):
+        raise DescriptionError(f"not a {kind} (a JSON object expected)")
     if data.get("format") != kind:
         raise DescriptionError(f"not a {kind} (format {data.get('format')!r})")
     if data.get("version") != FORMAT_VERSION:

@@ -6,7 +6,9 @@ docs/testing.md). A *mutation* is a small edit of the file's bytes, the kind tha
 get from hand editing, truncation and bad exporters: delete a span, duplicate a span, put an
 edge-case number (``nan``, ``1e-320``, ``1e308`` ..) in place of one of the file's numbers,
 insert a token that readers treat specially (numbers at the edges of a float, braces, keywords,
-byte-order marks, bytes that are not UTF-8, a lone surrogate), or overwrite one byte.
+byte-order marks, bytes that are not UTF-8, a lone surrogate), overwrite one byte, or, in a
+JSON file, replace or drop one value (most byte edits of JSON stop at the parser; these reach
+what reads the parsed value).
 
 A reader passes on an input when, within :data:`TIME_LIMIT` seconds, it either returns a
 value that survives its round-trip check, or raises one of its documented errors. Anything
@@ -15,6 +17,7 @@ else (another exception, a hang) is a finding.
 
 from __future__ import annotations
 
+import json
 import math
 import random
 import re
@@ -48,9 +51,43 @@ _NUMBER = re.compile(rb"[-+]?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?")
 # bytes that are not UTF-8 text on their own
 RAW_BYTES = (b"\xff", b"\xc3", b"\xed\xa0\x80", b"\x00", b"\xef\xbb\xbf")
 
+# values put in place of one value of a JSON file ("json" edits; _DROP removes the member):
+# byte edits of JSON mostly stop at the parser, these reach what reads the parsed value
+_DROP = object()
+JSON_VALUES = (_DROP, None, True, 0, -1, 2.5, 10 ** 400, 1e308, -1e308, "", "x", "a/b",
+               "\u0000", [], {}, [1, 2], ["x"], {"x": 1}, [[[[[[[[[[[]]]]]]]]]]])
+
 #: One mutation: (kind, position, length, argument); positions wrap around the data's length.
 Mutation = tuple[str, int, int, int]
-KINDS = ("delete", "duplicate", "insert", "raw", "byte", "number")
+KINDS = ("delete", "duplicate", "insert", "raw", "byte", "number", "json")
+
+
+def _json_edit(data: bytes, position: int, argument: int) -> bytes:
+    """``data`` with its (position mod count)-th JSON value replaced (or dropped); data that
+    is not JSON is left as it is."""
+    try:
+        root = [json.loads(data)]
+    except (ValueError, RecursionError):
+        return data
+    slots = []  # (container, key) of every value but the root's own container
+    stack = [(root, 0)]
+    while stack:
+        container, key = stack.pop()
+        slots.append((container, key))
+        value = container[key]
+        if isinstance(value, dict):
+            stack.extend((value, k) for k in value)
+        elif isinstance(value, list):
+            stack.extend((value, i) for i in range(len(value)))
+    container, key = slots[position % len(slots)]
+    new = JSON_VALUES[argument % len(JSON_VALUES)]
+    if new is _DROP:
+        if container is root:
+            return data
+        del container[key]
+    else:
+        container[key] = json.loads(json.dumps(new))  # a fresh copy
+    return json.dumps(root[0], indent=2).encode()
 
 
 def apply(data: bytes, mutations: list[Mutation]) -> bytes:
@@ -73,6 +110,8 @@ def apply(data: bytes, mutations: list[Mutation]) -> bytes:
                 match = found[position % len(found)]
                 data = (data[:match.start()] + NUMBERS[argument % len(NUMBERS)].encode()
                         + data[match.end():])
+        elif kind == "json":
+            data = _json_edit(data, position, argument)
         elif data:  # "byte": overwrite one byte with a printable character
             at = min(at, len(data) - 1)
             data = data[:at] + bytes([32 + argument % 95]) + data[at + 1:]
@@ -227,10 +266,93 @@ def _praxicon_folder(path: Path, target: str) -> Path:
     return folder
 
 
+def _morpheme_system(channels: dict[str, tuple[str, ...]]) -> str:
+    """A grammar system of the shape PAL learns: per channel one cycle of its morpheme,
+    the channels' steps synchronised."""
+    lines = ["psgs pal", "mode parallel", "unsynchronised free", ""]
+    for channel, kinetemes in channels.items():
+        c = channel.replace(".", "_")
+        lines += [f"component {c} start S_{c}", f"  more_{c}: S_{c} -> N_{c} S_{c}",
+                  f"  last_{c}: S_{c} -> N_{c}",
+                  f"  body_{c}: N_{c} -> " + " ".join(f'"{k}"' for k in kinetemes), ""]
+    lines.append("sync")
+    for rule in ("more", "last", "body"):
+        lines.append("  (" + ", ".join(f"{rule}_{c.replace('.', '_')}" for c in channels) + ")")
+    return "\n".join(lines) + "\n"
+
+
+def praxicon_seed():
+    """The praxicon the praxicon surfaces mutate: two learnt actions sharing a pattern, one
+    failed action, and descriptions, at the current format versions.
+
+    Written into ``tests/data/fuzz/praxicon`` by :func:`write_praxicon_seed`
+    (``python tests/fuzz_support.py``); a test checks that the stored folder is what this
+    writes, so a format change that makes it stale fails there instead of leaving every
+    mutated folder refused as "another version".
+    """
+    from praxicon.description import ActionDescription, Descriptions, Spread
+    from praxicon.records import (ActionRecord, ChannelMorpheme, JointRecord, PerformanceRecord,
+                                  Praxicon, Settings)
+    settings = Settings.make("pal", {"min_copies": 3, "seeds": 3})
+    joints = ("hips", "arm", "leg", "head")
+    actions, keys = [], []
+    for name, shift in (("moves.step", 1), ("moves.wave", 0)):
+        cycle = ("G", "R", "Y", "B")
+        channels = {"arm.rx": cycle[shift:] + cycle[:shift], "arm.rz": cycle,
+                    "leg.rx": cycle[2:] + cycle[:2]}
+        morphemes = {c: ChannelMorpheme(k, (0.25, 0.3, 0.25, 0.2),
+                                        (38.5, -42.25, -33.0, 36.75), 10 + shift)
+                     for c, k in channels.items()}
+        takes = tuple(PerformanceRecord(f"{name[6:]}_{i}.bvh", None if i else 0.5,
+                                        None if i else 4.0, "moves.csv", used=True)
+                      for i in range(2))
+        actions.append(ActionRecord(
+            name, "moves", name[6:], status="ok", performances=takes, learnt_from=(0, 1),
+            actuators=("arm", "leg"),
+            joints=(JointRecord("arm", tuple((c, morphemes[c]) for c in ("arm.rx", "arm.rz"))),
+                    JointRecord("leg", (("leg.rx", morphemes["leg.rx"]),))),
+            inducer="pal", params=settings.params, system=_morpheme_system(channels),
+            component_names=tuple((c, c.replace(".", "_")) for c in channels),
+            frame_rate=30.0, skeleton_source=takes[0].file, all_joints=joints,
+            mean_pose=(("arm.rx", 12.0725), ("arm.rz", 1.25), ("hips.rz", 0.0085),
+                       ("leg.rx", -0.205))))
+        keys.append((name, f"{sum(map(ord, name)):064x}"))
+    actions.insert(0, ActionRecord("moves.bow", "moves", "bow", "happy",
+                                   reason="1 usable performance (at least 2 needed)",
+                                   problems=("bow_2.bvh: not a BVH file (line 1, column 1)",),
+                                   performances=(PerformanceRecord("bow_1.bvh", used=True),
+                                                 PerformanceRecord("bow_2.bvh", used=False))))
+    features = ("arm.rx:pose", "arm.rx:range", "leg.rx:pose", "root:tempo")
+    groups = (("arm", 4.5), ("leg", 3.25), ("tempo", 2.0))
+
+    def described(window: float) -> Descriptions:
+        spread = Spread(features, (10.0, 20.0, 5.0, 0.5), ((0.5, -0.25, 0.125, 0.0),),
+                        (0.25, 0.5, 0.75, 1.0), 9.5, 1.5, window, limits=groups)
+        return Descriptions(tuple(ActionDescription(a.name, features, (1.0, 2.0, -3.0, 0.5),
+                                                    (0.5, 1.0, 0.25, 0.125), 2, window)
+                                  for a in actions if a.learnt), spread)
+
+    return Praxicon(tuple(actions), settings, ("moves.csv",), tuple(keys), described(0.0),
+                    described(2.0))
+
+
+def write_praxicon_seed(folder: Path = SEEDS / "praxicon") -> None:
+    """Write :func:`praxicon_seed` into ``folder`` with ``praxicon.dump`` (replacing what
+    was there)."""
+    import shutil
+
+    from praxicon import dump
+    shutil.rmtree(folder, ignore_errors=True)
+    dump(praxicon_seed(), folder)
+
+
 def _read_praxicon(folder: Path):
     from praxicon import load
+    from praxicon.records import Praxicon
     from praxicon.shared import shared_patterns
-    shared_patterns(load(folder))
+    praxicon = load(folder)
+    assert Praxicon.from_json(praxicon.to_json()) == praxicon, "to_json/from_json changed it"
+    shared_patterns(praxicon)
 
 
 def _read_praxicon_index(path: Path):
@@ -239,6 +361,10 @@ def _read_praxicon_index(path: Path):
 
 def _read_praxicon_record(path: Path):
     _read_praxicon(_praxicon_folder(path, "records/moves.wave.json"))
+
+
+def _read_praxicon_descriptions(path: Path):
+    _read_praxicon(_praxicon_folder(path, "descriptions.json"))
 
 
 @dataclass(frozen=True)
@@ -296,6 +422,8 @@ READERS = {r.name: r for r in (
            _praxicon_errors),
     Reader("praxicon-record", ("praxicon/records/moves.wave.json",), ".json",
            _read_praxicon_record, _praxicon_errors),
+    Reader("praxicon-descriptions", ("praxicon/descriptions.json",), ".json",
+           _read_praxicon_descriptions, _praxicon_errors),
 )}
 
 
@@ -320,3 +448,7 @@ def outcome(reader: Reader, data: bytes, directory: Path | None = None,
         except reader.errors():
             return "error"
     return "ok"
+
+
+if __name__ == "__main__":  # python tests/fuzz_support.py: write the praxicon seed folder anew
+    write_praxicon_seed()

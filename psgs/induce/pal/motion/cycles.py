@@ -67,11 +67,9 @@ def _kappa_by_rows(states: np.ndarray, weight: np.ndarray, lag: int, size: int
     """:func:`_weighted_kappa` of every row; rows with different states apart, so that
     many channels over a large alphabet cost what each channel's own states cost (rows are
     independent: the numbers are those of one call over every row)."""
-    if len(_present(states)) <= 16:
-        return _weighted_kappa(states, weight, lag, size)
     out = np.zeros(states.shape[0])
-    for row in range(states.shape[0]):
-        out[row:row + 1] = _weighted_kappa(states[row:row + 1], weight[row:row + 1], lag, size)
+    for group in _alike_rows(states, list(range(states.shape[0]))):
+        out[group] = _weighted_kappa(states[group], weight[group], lag, size)
     return out
 
 
@@ -135,11 +133,20 @@ class LagScores:
         return self._full[lag]
 
 
+#: Most (state, row, point) cells one batch of :func:`_weighted_kappa` spans: its float
+#: temporaries take 8 bytes a cell, so a batch stays near 32 MiB however many channels a
+#: long take has (rows are independent: batching changes no number).
+_BATCH_CELLS = 1 << 22
+
+
 def _alike_rows(states: np.ndarray, rows: list[int]) -> list[list[int]]:
-    """``rows`` as one group when together they hold few states, else one row a group."""
-    if len(_present(states[rows])) <= 16:
-        return [rows]
-    return [[r] for r in rows]
+    """``rows`` in batches when together they hold few states (as many rows a batch as
+    :data:`_BATCH_CELLS` allows), else one row a batch."""
+    present = len(_present(states[rows]))
+    if present > 16:
+        return [[r] for r in rows]
+    per = max(1, _BATCH_CELLS // (max(present, 1) * max(states.shape[1], 1)))
+    return [rows[i:i + per] for i in range(0, len(rows), per)]
 
 
 def lag_scores(grid: Grid, size: int, conf: MotionConf) -> LagScores:
