@@ -198,8 +198,8 @@ def _announcer(stream):
         def on_start(self, event) -> None:
             if not self.told:
                 self.told = True
-                print("psgs: numba is compiling the fast engine (once per installation, "
-                      "some 30 s; later runs read it from numba's cache)", file=stream,
+                print("psgs: numba is compiling the fast engine (once per installation, up to "
+                      "half a minute; later runs read it from numba's cache)", file=stream,
                       flush=True)
 
         def on_end(self, event) -> None:
