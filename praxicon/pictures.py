@@ -226,15 +226,13 @@ def draw_praxicon(folder, out, *, fmt: str = "png", progress=None,
 
     Examples
     --------
-    >>> import pathlib, tempfile
-    >>> from praxicon import read_dataset, build
-    >>> data = pathlib.Path("../shared/data/mocap/bandai-namco-1/data").resolve()
-    >>> work = pathlib.Path(tempfile.mkdtemp())
-    >>> _ = (work / "m.csv").write_text("action,file\\n" + "".join(
-    ...     f"bye,{data / f'dataset-1_bye_{style}_001.bvh'}\\n" for style in ("normal", "active")))
-    >>> _ = build(read_dataset(work / "m.csv"), work / "px", progress=False)
-    >>> sorted(p.name for p in draw_praxicon(work / "px", work / "img", fmt="svg"))
-    ['actuators.svg', 'm.bye.svg', 'm.bye.svg']
+    A praxicon is built as in :func:`draw_actuator_matrix`'s example; a bad worker count is
+    refused before anything is read or drawn:
+
+    >>> draw_praxicon("no-such-praxicon", "img", workers=0)
+    Traceback (most recent call last):
+    ...
+    ValueError: workers must be at least 1, not 0
     """
     import warnings
 
