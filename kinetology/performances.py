@@ -231,7 +231,7 @@ def segment_performances(motions, channels=None, *, engine: str = "auto", **para
     motions = tuple(motions)
     if not motions:
         return ()
-    use = select(engine)
+    use = select(engine, sum(m.values.size for m in motions))
     p = _check(params)
     # each take smoothed once: the channels that move anywhere are then segmented from the
     # same smoothed values (a channel's segments do not depend on the other channels)

@@ -288,7 +288,7 @@ def states(values: np.ndarray, frame_rate: float, *, smoothing: float = DEFAULTS
         values = values[:, None]
     values = _unwrap(values, unwrap)
     out = np.empty(values.shape, dtype=np.int8)
-    use = select(engine)
+    use = select(engine, values.size)
     if values.shape[0]:
         borders, codes, _ = use.segment_columns(use.smooth_channels(values, frame_rate,
                                                                     smoothing),
@@ -480,7 +480,7 @@ def segments(motion: Motion, channels=None, *, engine: str = "auto", **params) -
     ...
     psgs.errors.ValidationError: engine must be one of 'auto', 'numpy', 'numba', not 'fortran'
     """
-    use = select(engine)
+    use = select(engine, motion.values.size)
     p = _check(params)
     names, smoothed = _smoothed(motion, channels, p, use)
     moving = (use.row_ranges(smoothed) >= p["min_range"]) if motion.frames else \

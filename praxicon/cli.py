@@ -57,7 +57,7 @@ def run_build(args) -> int:
 
 def _draw_progress(done: int, total: int, name: str) -> None:
     # one line rewritten in place on stderr: stdout stays the list of pictures written
-    print(f"\rdrawing {done + 1}/{total}: {name:<40}", end="", file=sys.stderr, flush=True)
+    print(f"\rdrawing {done + 1}/{total}: {name:<70}", end="", file=sys.stderr, flush=True)
 
 
 def run_draw(args) -> int:
@@ -65,10 +65,10 @@ def run_draw(args) -> int:
 
     try:
         written = draw_praxicon(args.praxicon, args.output, fmt=args.format,
-                                progress=_draw_progress)
+                                progress=_draw_progress, workers=args.workers)
     except ValueError as exc:
         _bad(str(exc))
-    print(f"\rdrew {len(written)} pictures into {args.output}" + " " * 30, file=sys.stderr)
+    print(f"\rdrew {len(written)} pictures into {args.output}" + " " * 70, file=sys.stderr)
     for path in written:
         print(path)
     return 0
@@ -154,6 +154,9 @@ def _add_commands(sub) -> None:
                       help="folder for the pictures")
     draw.add_argument("--format", choices=("png", "svg"), default="png",
                       help="picture format (default png)")
+    draw.add_argument("--workers", type=positive_int, default=None, metavar="N",
+                      help="run up to N Graphviz dot programs at once (default: the number "
+                           "of cores, at most 4)")
     draw.set_defaults(run=run_draw)
 
     gen = sub.add_parser("generate", help="generate an action's motion as BVH",

@@ -96,15 +96,38 @@ def draw_actuator_matrix(folder, path) -> Path:
     return _save(fig, path)
 
 
-def _runs(ax, y: float, kinetemes, durations, height: float = 0.8) -> None:
-    x = 0.0
-    for k, d in zip(kinetemes, durations):
-        ax.barh(y, d, left=x, height=height, color=STATE_COLOURS.get(k, "#999999"),
-                edgecolor="white", lw=0.5)
-        if d > 0.04:
-            ax.text(x + d / 2, y, k, ha="center", va="center", fontsize=6,
-                    color="black" if k == "Y" else "white")
-        x += d
+_LETTER_IN = 0.09  # inches a run needs for its letter at fontsize 6; narrower runs are colour only
+
+
+def _runs(ax, rows, width_in: float, height: float = 0.8) -> None:
+    """Kineteme runs ``(y, kinetemes, durations)`` as one collection of rectangles.
+
+    One collection, not a bar per run: a praxicon's morphemes are ten thousand runs, and an
+    artist per run made drawing them most of ``praxicon draw``'s time. A run wide enough
+    on the page (``width_in`` inches for the x range) carries its letter.
+    """
+    from matplotlib.collections import PolyCollection
+
+    span = max((sum(d) for _, _, d in rows), default=1.0) or 1.0
+    boxes, colours = [], []
+    letters: dict[str, list[tuple[float, float]]] = {}
+    for y, kinetemes, durations in rows:
+        x = 0.0
+        for k, d in zip(kinetemes, durations):
+            boxes.append(((x, y - height / 2), (x + d, y - height / 2),
+                          (x + d, y + height / 2), (x, y + height / 2)))
+            colours.append(STATE_COLOURS.get(k, "#999999"))
+            if d / span * width_in >= _LETTER_IN:
+                letters.setdefault(k, []).append((x + d / 2, y))
+            x += d
+    ax.add_collection(PolyCollection(boxes, facecolors=colours, edgecolors="white",
+                                     linewidths=0.5))
+    # each letter as a marker of one scatter (its glyph laid out once), not a text per run
+    for k, at in letters.items():
+        xs, ys = zip(*at)
+        ax.scatter(xs, ys, marker=f"$\\mathrm{{{k}}}$", s=22, linewidths=0,
+                   c="black" if k == "Y" else "white")
+    ax.set_ylim(max((y for y, _, _ in rows), default=0) + 0.6, -0.6)  # first row on top
 
 
 def draw_morphemes(folder, action: str, path) -> Path:
@@ -114,17 +137,21 @@ def draw_morphemes(folder, action: str, path) -> Path:
     rows = list(record.morphemes().items())
     if not rows:
         raise ValueError(f"action {action!r} has no actuators to draw")
-    fig, ax = plt.subplots(figsize=(7, 0.8 + 0.28 * len(rows)))
-    for y, (channel, morpheme) in enumerate(rows):
-        durations = morpheme.durations or [0.1] * len(morpheme.kinetemes)
-        _runs(ax, y, morpheme.kinetemes, durations)
+    height = 0.8 + 0.28 * len(rows)
+    fig, ax = plt.subplots(figsize=(7, height))
+    # margins from the labels' length, not tight_layout (which draws the figure once more)
+    left = min(3.0, 0.25 + 0.055 * max(len(c) for c, _ in rows))
+    fig.subplots_adjust(left=left / 7, right=1 - 0.15 / 7, top=1 - 0.35 / height,
+                        bottom=0.45 / height)
+    runs = [(y, m.kinetemes, m.durations or [0.1] * len(m.kinetemes))
+            for y, (_, m) in enumerate(rows)]
+    _runs(ax, runs, width_in=7 - left - 0.15)
+    ax.set_xlim(0, max(sum(d) for _, _, d in runs))
     ax.set_yticks(range(len(rows)), [c for c, _ in rows], fontsize=7)
-    ax.invert_yaxis()
     ax.set_xlabel("seconds (typical durations)")
     ax.set_title(f"morphemes of {action}", fontsize=9)
     for side in ("top", "right"):
         ax.spines[side].set_visible(False)
-    fig.tight_layout()
     return _save(fig, path)
 
 
@@ -139,15 +166,15 @@ def draw_shared_patterns(folder, path, *, most: int = 30, **options) -> Path:
         raise ValueError(f"{folder}: no sub-pattern is shared by several actions")
     fig, ax = plt.subplots(figsize=(10, 0.8 + 0.3 * len(patterns)))
     longest = max(len(p.kinetemes) for p in patterns)
+    _runs(ax, [(y, p.kinetemes, [0.25] * len(p.kinetemes)) for y, p in enumerate(patterns)],
+          width_in=10 * 0.25 * longest / (0.25 * longest + 7))
     for y, pattern in enumerate(patterns):
-        _runs(ax, y, pattern.kinetemes, [0.25] * len(pattern.kinetemes))
         names = [a.split(".", 1)[-1] for a in pattern.actions]
         # at most 8 names, then a count: a long list ran off the picture's right edge
         shown = ", ".join(names[:8]) + (f", +{len(names) - 8} more" if len(names) > 8 else "")
         ax.text(0.25 * longest + 0.1, y, f"{len(pattern.actions)}: {shown}",
                 va="center", fontsize=6, clip_on=True)
     ax.set_yticks(range(len(patterns)), [p.joint for p in patterns], fontsize=7)
-    ax.invert_yaxis()
     ax.set_xlim(0, 0.25 * longest + 7)
     ax.set_xticks([])
     ax.set_title("kineteme sub-patterns shared across actions (joint; how many actions: which)",
@@ -184,28 +211,47 @@ def draw_generated(record: ActionRecord, generated, path, channel: str | None = 
     return _save(fig, path)
 
 
-def draw_praxicon(folder, out, *, fmt: str = "png", progress=None) -> list[Path]:
+def draw_praxicon(folder, out, *, fmt: str = "png", progress=None,
+                  workers: int | None = None) -> list[Path]:
     """Every picture of a praxicon into ``out``; returns the paths written.
 
     ``out/actuators.FMT``, ``out/shared.FMT``, and per action with actuators
     ``out/morphemes/ACTION.FMT`` and ``out/systems/ACTION.FMT`` (the grammar
     forest and synchronisation graph of :func:`psgs.draw.draw`). ``progress``,
-    when given, is called with ``(done, total, action name)`` before each action.
+    when given, is called with ``(done, total, picture)`` as the per-action pictures
+    are drawn. With Graphviz, up to ``workers`` ``dot`` programs (default: the number
+    of cores, at most 4) lay out and rasterise systems while the morphemes are drawn.
     matplotlib's layout warnings (a title wider than its figure) are kept inside:
     they say nothing a reader of the pictures can act on.
+
+    Examples
+    --------
+    A praxicon is built as in :func:`draw_actuator_matrix`'s example; a bad worker count is
+    refused before anything is read or drawn:
+
+    >>> draw_praxicon("no-such-praxicon", "img", workers=0)
+    Traceback (most recent call last):
+    ...
+    ValueError: workers must be at least 1, not 0
     """
     import warnings
 
+    if workers is not None and workers < 1:
+        raise ValueError(f"workers must be at least 1, not {workers}")
     with warnings.catch_warnings():
         warnings.filterwarnings("ignore", category=UserWarning, module="matplotlib")
         warnings.filterwarnings("ignore", message=".*tight_layout.*")
         warnings.filterwarnings("ignore", message=".*Glyph .* missing.*")
-        return _draw_all(folder, Path(out), fmt, progress)
+        return _draw_all(folder, Path(out), fmt, progress, workers)
 
 
-def _draw_all(folder, out: Path, fmt: str, progress) -> list[Path]:
+def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> list[Path]:
+    import os
+    from concurrent.futures import ThreadPoolExecutor
+
     from psgs import loads
-    from psgs.draw import draw
+    from psgs.draw import draw, graphviz_available
+    from psgs.errors import ValidationError
 
     praxicon = _praxicon(folder)  # read once: a damaged folder is one error before any picture
     written = [draw_actuator_matrix(praxicon, out / f"actuators.{fmt}")]
@@ -214,13 +260,44 @@ def _draw_all(folder, out: Path, fmt: str, progress) -> list[Path]:
     except ValueError:
         pass  # nothing shared: no picture (the praxicon may hold one action)
     drawn = [a for a in praxicon.actions if a.learnt and a.actuators and a.system]
-    for done, action in enumerate(drawn):
-        if progress is not None:
-            progress(done, len(drawn), action.name)
-        name = action.name
-        written.append(draw_morphemes(praxicon, name, out / "morphemes" / f"{name}.{fmt}"))
+    if drawn:
         (out / "systems").mkdir(parents=True, exist_ok=True)
+    total, done = 2 * len(drawn), 0
+
+    def tell(what: str) -> None:
+        nonlocal done
+        if progress is not None:
+            progress(done, total, what)
+        done += 1
+
+    def system(action, engine: str) -> Path:
         # the system from the record's own text (the .psgs file beside it is a copy)
-        written.append(draw(loads(action.system, source=action.file),
-                            out / "systems" / f"{name}.{fmt}", max_steps=60))
+        return draw(loads(action.system, source=action.file),
+                    out / "systems" / f"{action.name}.{fmt}", max_steps=60, engine=engine)
+
+    def by_dot(action) -> Path | None:
+        try:
+            return system(action, "graphviz")
+        except ValidationError:
+            return None  # dot gave up on this layout: matplotlib draws it below
+
+    # dot runs as its own program, so threads overlap its layouts with the morphemes'
+    # matplotlib (which stays on this thread: pyplot is not thread-safe)
+    dot = graphviz_available() and drawn
+    pool = ThreadPoolExecutor(max_workers=workers or min(4, os.cpu_count() or 1)) if dot else None
+    try:
+        pending = [pool.submit(by_dot, a) for a in drawn] if pool is not None else []
+        morphemes = []
+        for action in drawn:
+            tell(f"morphemes of {action.name}")
+            morphemes.append(draw_morphemes(praxicon, action.name,
+                                            out / "morphemes" / f"{action.name}.{fmt}"))
+        for action, picture, future in zip(drawn, morphemes,
+                                           pending or [None] * len(drawn)):
+            tell(f"system of {action.name}")
+            path = future.result() if future is not None else None
+            written += [picture, path or system(action, "matplotlib")]
+    finally:
+        if pool is not None:
+            pool.shutdown(cancel_futures=True)
     return written

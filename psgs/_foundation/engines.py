@@ -6,17 +6,23 @@ takes the compiled table when numba imports (``pip install 'psgs[fast]'``) and n
 otherwise; ``"numpy"`` and ``"numba"`` ask for one. The choice is an argument, never a
 setting held anywhere. The compiled module decorates its loops with :func:`jit`, so that it
 still imports (as plain Python) where numba does not.
+
+Under ``"auto"``, :func:`for_input` keeps an input too small to repay loading the compiled
+code (numba reads it from its cache, about a second a process) on numpy; both engines give
+the same output, so the choice is only about time. The first compilation (tens of seconds,
+once per installed copy) is announced on stderr by one line.
 """
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Callable
 from functools import lru_cache
 from typing import TypeVar
 
 from ..errors import MissingDependency, ValidationError
 
-__all__ = ["ENGINES", "resolve", "select", "jit", "numba_missing"]
+__all__ = ["ENGINES", "resolve", "select", "for_input", "jit", "numba_missing"]
 
 #: The engine names every algorithm with two engines accepts.
 ENGINES = ("auto", "numpy", "numba")
@@ -77,9 +83,7 @@ def resolve(engine: str = "auto") -> str:
     ...
     psgs.errors.ValidationError: engine must be one of 'auto', 'numpy', 'numba', not 'fortran'
     """
-    if not isinstance(engine, str) or engine not in ENGINES:
-        raise ValidationError(f"engine must be one of {', '.join(map(repr, ENGINES))}, "
-                              f"not {engine!r}")
+    _known(engine)
     if engine == "numpy":
         return "numpy"
     missing = numba_missing()
@@ -115,7 +119,93 @@ def select(engine: str, *, numpy: T, numba: Callable[[], T]) -> T:
     >>> select("numpy", numpy="array passes", numba=lambda: "compiled loops")
     'array passes'
     """
-    return numba() if resolve(engine) == "numba" else numpy
+    if resolve(engine) != "numba":
+        return numpy
+    _announce_compiling()
+    return numba()
+
+
+def _known(engine: object) -> None:
+    if not isinstance(engine, str) or engine not in ENGINES:
+        raise ValidationError(f"engine must be one of {', '.join(map(repr, ENGINES))}, "
+                              f"not {engine!r}")
+
+
+def _loaded(module: str) -> bool:
+    """Whether a compiled module's loops already run in this process (compiled or read from
+    numba's cache by an earlier call): then the compiled engine costs nothing more to use."""
+    found = sys.modules.get(module)
+    return found is not None and any(getattr(value, "signatures", None)
+                                     for value in vars(found).values())
+
+
+def for_input(engine: str, size: int, crossover: int, compiled: str) -> str:
+    """The engine to ask :func:`select` for, given an input of ``size`` (the caller's measure).
+
+    Under ``"auto"``, ``"numpy"`` when ``size`` is below ``crossover`` (the size from which
+    the compiled engine wins, measured in a fresh process, its cache read included) and the
+    compiled module ``compiled`` has not run in this process yet; ``engine`` otherwise.
+
+    Parameters
+    ----------
+    engine : {"auto", "numpy", "numba"}
+        What the caller asked for; ``"numpy"`` and ``"numba"`` are kept as they are.
+    size : int
+        The input's size, in the unit of ``crossover``.
+    crossover : int
+        Below it a fresh process is faster with numpy.
+    compiled : str
+        The compiled module's name (its loops loaded means the cost is already paid).
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> for_input("auto", 100, 10_000, "no.such.module")
+    'numpy'
+    >>> for_input("numba", 100, 10_000, "no.such.module")
+    'numba'
+    >>> for_input("auto", 20_000, 10_000, "no.such.module")
+    'auto'
+    """
+    _known(engine)
+    if engine != "auto" or size >= crossover or _loaded(compiled):
+        return engine
+    return "numpy"
+
+
+@lru_cache(maxsize=1)
+def _announce_compiling() -> None:
+    """Listen for numba's compilations (not its cache reads) and say so once, on stderr.
+
+    numba compiles a loop on its first call and reads it from its cache afterwards; only a
+    compilation fires its ``numba:compile`` event, so a cached run says nothing.
+    """
+    from numba.core import event
+
+    event.register("numba:compile", _announcer(sys.stderr))
+
+
+def _announcer(stream):
+    """A numba event listener that writes one line to ``stream`` at the first event it hears."""
+    from numba.core import event
+
+    class Announce(event.Listener):
+        told = False
+
+        def on_start(self, event) -> None:
+            if not self.told:
+                self.told = True
+                print("psgs: numba is compiling the fast engine (once per installation, up to "
+                      "half a minute; later runs read it from numba's cache)", file=stream,
+                      flush=True)
+
+        def on_end(self, event) -> None:
+            pass
+
+    return Announce()
 
 
 def jit(function: F) -> F:

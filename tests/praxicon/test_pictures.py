@@ -59,7 +59,12 @@ def test_psgs_draw_cli(tmp_path, capsys):
 
 def test_praxicon_pictures_and_shared_patterns(manifest, tmp_path):
     build(read_dataset(manifest), tmp_path / "px", progress=False, log=lambda s: None)
-    written = draw_praxicon(tmp_path / "px", tmp_path / "img")
+    told = []
+    written = draw_praxicon(tmp_path / "px", tmp_path / "img", workers=1,
+                            progress=lambda *call: told.append(call))
+    # every per-action picture is told once, in order, morphemes first, then systems
+    assert [(done, total) for done, total, _ in told] == [(k, 4) for k in range(4)]
+    assert [what.split(" of ")[0] for *_, what in told] == ["morphemes"] * 2 + ["system"] * 2
     names = sorted(p.relative_to(tmp_path / "img").as_posix() for p in written)
     assert names == ["actuators.png", "morphemes/moves.step.png", "morphemes/moves.wave.png",
                      "shared.png", "systems/moves.step.png", "systems/moves.wave.png"]
