@@ -12,9 +12,9 @@ and features, never with the number of takes (no take is kept).
 
 A motion is "none of these" when even its best action's squared Mahalanobis distance per
 feature exceeds ``Spread.threshold``, the largest a training take reached when left out of its
-own action's mean, or when one group of its features (a joint, the root's drift, the root's
-sway, the tempo) is further from that action than its limit (``Spread.limits``: what a
-held-out training take exceeds with probability ``GROUP_LEVEL`` over all groups). The group
+own action's mean, or when one group of its features (a joint; each of the root's drifts and
+sways, axis by axis; the tempo) is further from that action than its limit (``Spread.limits``:
+what a held-out training take exceeds with probability ``GROUP_LEVEL`` over all groups). The group
 test measures each action against its own spread (shrunk towards the shared one): a deviation
 concentrated in a few features, such as a walk's missing heading drift against a turn whose
 drift is tight, drowns in a sum over all features but stands out in its group. Probabilities
@@ -45,7 +45,7 @@ __all__ = ["FORMAT_VERSION", "ActionDescription", "Spread", "Descriptions", "des
            "GROUP_LEVEL"]
 
 #: Bumped when what a description holds or how features are computed changes.
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2
 _RANK = 16  # shared directions of variation kept (fewer when there are fewer takes)
 _NOISE_FLOOR = 0.05  # smallest per-feature variance left, in scaled units
 _PRIOR_TAKES = 10.0  # pseudo-takes of typical spread each feature's own spread is shrunk to
@@ -250,24 +250,24 @@ def probabilities(dist: np.ndarray, temperature: float) -> np.ndarray:
 
 
 def feature_groups(features) -> dict[str, np.ndarray]:
-    """The columns of each feature group: a joint's features, the root's drift, the root's
-    sway, the tempo (the units a deviation concentrates in).
+    """The columns of each feature group: a joint's features, each of the root's travel and
+    turning features alone, the tempo (the units a deviation concentrates in).
+
+    A joint's features move together (a pose, its range and its speed are one movement), but
+    the root's are separate quantities a gait is defined by: a turn's heading rate is one
+    number, and summed with the sideways and vertical travel its absence in a walk drowns.
 
     Examples
     --------
     >>> g = feature_groups(["a.rx:pose", "a.ry:spread", "Hips.turnx:drift",
     ...                     "Hips.turnx:energy", "tempo"])
     >>> {k: v.tolist() for k, v in g.items()}
-    {'a': [0, 1], 'Hips:drift': [2], 'Hips:sway': [3], 'tempo': [4]}
+    {'a': [0, 1], 'Hips.turnx:drift': [2], 'Hips.turnx:energy': [3], 'tempo': [4]}
     """
     out: dict[str, list[int]] = {}
     for i, f in enumerate(features):
-        if f == "tempo":
-            key = "tempo"
-        elif ".travel" in f or ".turn" in f:
-            key = f"{feature_joint(f)}:{'drift' if f.endswith(':drift') else 'sway'}"
-        else:
-            key = feature_joint(f)
+        root = ".travel" in f or ".turn" in f
+        key = f if f == "tempo" or root else feature_joint(f)
         out.setdefault(key, []).append(i)
     return {k: np.array(v, dtype=int) for k, v in out.items()}
 

@@ -6,8 +6,8 @@ scores compare across actions; an action
 with many joints gains nothing from them, because the joints that must stay still and the
 joints that move but are not the action's cost as much as a joint that moves wrongly. The best
 action is the answer unless its mean penalty exceeds the threshold calibrated on the training
-takes, or one group of features (a joint, the root's drift or sway, the tempo) is further from
-it, in the action's own spread, than its calibrated limit (exceeded by a held-out training take
+takes, or one group of features (a joint, one of the root's drifts or sways, the tempo) is
+further from it, in the action's own spread, than its calibrated limit (exceeded by a held-out training take
 with probability ``GROUP_LEVEL``): then the answer is ``None`` ("none of these").
 
 >>> from kinetology import synthetic_motion

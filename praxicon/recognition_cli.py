@@ -4,8 +4,9 @@ The descriptions they read are learnt by ``psgs praxicon build`` (``descriptions
 the folder, :mod:`praxicon.description_store`). The commands (added to ``psgs praxicon`` by
 :func:`register_recognise`):
 
-* ``psgs praxicon recognise PX FILE... [--explain]``: one line per file, best action, its
-  probability, the runner-up; with ``--explain`` the joints that decided it;
+* ``psgs praxicon recognise PX FILE... [--explain] [--plot PNG]``: one line per file, best
+  action, its probability, the runner-up; with ``--explain`` the joints that decided it, with
+  ``--plot`` (one file) the picture of them;
 * ``psgs praxicon parse PX FILE [--plot PNG]``: the recording's timeline of spans.
 
 Bad input (a folder that is not a praxicon, descriptions of another version, an empty or
@@ -50,9 +51,13 @@ def run_recognise(args) -> int:
         descriptions = read_descriptions(args.praxicon)
     except DescriptionError as exc:
         raise ValidationError(str(exc))
+    if args.plot and len(args.files) != 1:
+        raise ValidationError(f"--plot draws one recognition's explanation: give one FILE "
+                              f"(got {len(args.files)})")
     motions = [_read_motion(f) for f in args.files]
     try:
-        found = recognise_many(descriptions, motions, explain=3 if args.explain else 0)
+        found = recognise_many(descriptions, motions,
+                               explain=3 if args.explain or args.plot else 0)
     except DescriptionError as exc:
         raise ValidationError(str(exc))
     for file, r in zip(args.files, found):
@@ -65,6 +70,10 @@ def run_recognise(args) -> int:
         print(f"{file}: {answer} {p:.3f}{runner}")
         if args.explain:
             print(r.explain())
+    if args.plot:
+        from .recognition_pictures import draw_explanation
+        draw_explanation(found[0], args.plot)
+        print(args.plot)
     return 0
 
 
@@ -97,6 +106,9 @@ def register_recognise(sub) -> None:
     r.add_argument("files", nargs="+", metavar="FILE", help="a .bvh or .amc motion file")
     r.add_argument("--explain", action="store_true",
                    help="also the joints that decided it, tempo and drift")
+    r.add_argument("--plot", default=None, metavar="PNG",
+                   help="also draw the explanation: per best action its joints' distance "
+                        "terms (one FILE)")
     r.set_defaults(run=run_recognise)
     p = sub.add_parser("parse", help="a recording as a timeline of learnt actions",
                        description="One line per span: start, stop (seconds), action (- for "
