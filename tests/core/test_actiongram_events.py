@@ -283,3 +283,14 @@ def test_documentation_examples_run(page):
     result = doctest.testfile(str(ROOT / "docs" / page), module_relative=False,
                               optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
     assert result.attempted > 0 and result.failed == 0
+
+
+def test_performances_padded_to_the_same_strings_keep_their_repeats():
+    """Takes with different strings are padded for the motion learner; a re-struck note stays."""
+    from psgs.induce.pal.motion.learner import same_strings
+
+    a = Actiongram.from_strings({"knee": "aab"}, keep_repeats=True)
+    b = Actiongram.from_strings({"hip": "xxy"}, keep_repeats=True)
+    padded = same_strings([a, b])
+    assert [p.keep_repeats for p in padded] == [True, True]
+    assert padded[0].string("knee") == ("a", "a", "b")

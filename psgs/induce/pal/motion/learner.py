@@ -130,7 +130,7 @@ def same_strings(performances):
             tuple(p.durations[n] if n in have else () for n in union),
             tuple(p.origins[p.index(n)] if n in have else 0.0 for n in union),
             tuple(p.displacements(n) if n in have else None for n in union),
-            tuple(owner[n] for n in union), skeleton))
+            tuple(owner[n] for n in union), skeleton, keep_repeats=p.keep_repeats))
     return out
 
 
