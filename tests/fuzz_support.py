@@ -451,4 +451,9 @@ def outcome(reader: Reader, data: bytes, directory: Path | None = None,
 
 
 if __name__ == "__main__":  # python tests/fuzz_support.py: write the praxicon seed folder anew
+    import sys
+
+    # run as a script, this file's folder comes first on the path, and its praxicon/ test
+    # folder would hide the praxicon package: the repository's root is looked in instead
+    sys.path[0] = str(Path(__file__).resolve().parents[1])
     write_praxicon_seed()
