@@ -18,8 +18,11 @@ For an action of a praxicon, :func:`generate`:
    give back its morpheme ``K`` times, corrects it with the frame-domain layer of
    :mod:`praxicon.shaping` (segments lengthened within the period, or
    displacements scaled up past ``min_range``, where that is what it takes);
-5. holds every other channel at the performances' mean pose, and writes a BVH
-   file on the source skeleton (:func:`kinetology.write_bvh`).
+5. gives every other channel the performances' mean cycle, phase-aligned to the
+   generated channel that moves most, moves the root as the performances do (their
+   mean speed in the body's own frame and mean turning rate, measured from the root's
+   world rotation) and writes a BVH file on the source skeleton
+   (:func:`kinetology.write_bvh`); :mod:`praxicon.body_motion` does step 5's measuring.
 
 :meth:`Generated.round_trip` segments the generated motion again and says, per
 channel (or per actuator), whether its kineteme string is the morpheme repeated
@@ -331,10 +334,12 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None):
     kineteme sequence, and per channel the :class:`Method` that made it.
 
     ``source_motion`` gives the skeleton and the channel order (default: the
-    record's ``skeleton_source`` file, read). Channels no morpheme drives hold the
-    action's mean pose; the root advances and turns steadily at the performances'
-    average speed and turning rate, read from the performance files (when they can be
-    read).
+    record's ``skeleton_source`` file, read). Channels no morpheme drives take the
+    performances' mean cycle (:func:`praxicon.body_motion.animate`; the mean pose when the
+    performance files cannot be read); the root advances and turns steadily at the
+    performances' average speed and turning rate, on the still joint above it when the
+    skeleton has one (Bandai's ``joint_Root``), so that the root's own channels keep
+    their generated values.
     """
     import kinetology
     from psgs import loads
