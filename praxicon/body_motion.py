@@ -241,7 +241,8 @@ def cycle_starts(leader, template) -> list[int]:
     if lags.size:
         auto = [float(centred[:-k] @ centred[k:]) / (x.size - k) for k in lags]
         # the first lag near the best: two periods correlate as well as one
-        i = int(np.flatnonzero(np.asarray(auto) >= 0.9 * max(auto))[0])
+        best = max(auto)
+        i = int(np.flatnonzero(np.asarray(auto) >= best - 0.1 * abs(best))[0])
         while i + 1 < len(auto) and auto[i + 1] >= auto[i]:  # up to that peak's top
             i += 1
         own = int(lags[i])
