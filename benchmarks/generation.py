@@ -18,8 +18,11 @@ are used (a subsample, to keep a run near a minute); contents with fewer takes a
 Every learnt action is generated (``--repeat`` 3 cycles) and the classifier labels it.
 Takes enter the classifier as windows of 2 s (64 frames, half-overlapping, a take shorter
 than that padded with its last frame), a take's label the majority of its windows' labels.
-A window's series: every rotation channel, the root's horizontal speed (cm/s) and
-turning rate (deg/s of ``Hips.ry``).
+A window's series: every rotation channel (the root's heading-free:
+:func:`praxicon.body_motion.heading_free_angles`, since its Euler angles flip in a turn), the
+root's horizontal speed (cm/s, from forward kinematics) and turning rate (deg/s of its heading,
+:func:`praxicon.body_motion.heading`), and those two integrated from the window's first frame
+(MiniRocket's zero-sum kernels cannot see a steady level, only a slope).
 
 Figures printed and written to ``docs/data/generation.csv`` (one row per action):
 
@@ -58,12 +61,16 @@ require("praxicon")
 require("aeon")
 import kinetology  # noqa: E402
 from praxicon import build, load, read_dataset  # noqa: E402
+from kinetology.kinematics import forward_kinematics  # noqa: E402
+from praxicon.body_motion import body_frame, global_rotation, heading, \
+    heading_free_angles  # noqa: E402
 from praxicon.generation import generate  # noqa: E402
 
 MOCAP = REPO.parent / "shared" / "data" / "mocap"
 DATASETS = ("bandai-namco-1", "bandai-namco-2-subset")
 WINDOW, STRIDE = 64, 32
 QUANTILES = np.linspace(0.0, 1.0, 21)
+ROOT = "Hips"  # the joint that travels in the Bandai skeleton (joint_Root above it stays still)
 
 
 def split(actions, learn: int, train: int, test: int):
@@ -87,59 +94,68 @@ def split(actions, learn: int, train: int, test: int):
     return parts
 
 
-def series(motion) -> np.ndarray:
-    """(channels, frames): rotation channels, root horizontal speed and turning rate."""
+def series(motion, axis) -> np.ndarray:
+    """(channels, frames): rotation channels (the root's heading-free), root speed and turning rate."""
     chans = list(motion.channels)
     values = np.asarray(motion.values, float)
-    rot = [i for i, c in enumerate(chans) if c.split(".")[-1] in ("rx", "ry", "rz")
-           and c != "Hips.ry" and not c.startswith("joint_Root")]
-    speed, turn = root_signals(motion)
-    return np.vstack([values[:, rot].T, speed[None], turn[None]])
+    rot = {c: values[:, i] for i, c in enumerate(chans) if c.split(".")[-1] in ("rx", "ry", "rz")
+           and not c.startswith("joint_Root")}
+    rot.update(heading_free_angles(motion, ROOT, axis) or {})
+    speed, turn = root_signals(motion, axis)
+    return np.vstack([np.array(list(rot.values())), speed[None], turn[None]])
 
 
-def root_signals(motion):
-    """Per frame, the root's horizontal speed (cm/s) and turning rate (deg/s)."""
-    chans = list(motion.channels)
-    v = np.asarray(motion.values, float)
+def root_signals(motion, axis):
+    """Per frame, the root's horizontal speed (cm/s, world) and turning rate (deg/s of its heading)."""
     rate = float(motion.frame_rate)
-    frames = v.shape[0]
-    if "Hips.tx" in chans and "Hips.tz" in chans:
-        x, z = v[:, chans.index("Hips.tx")], v[:, chans.index("Hips.tz")]
-        speed = np.hypot(np.gradient(x), np.gradient(z)) * rate if frames > 1 else np.zeros(1)
-    else:
-        speed = np.zeros(frames)
-    if "Hips.ry" in chans and frames > 1:
-        turn = np.gradient(np.unwrap(np.radians(v[:, chans.index("Hips.ry")]))) * rate
-        turn = np.degrees(turn)
-    else:
-        turn = np.zeros(frames)
-    return speed, turn
+    if motion.frames < 2:
+        return np.zeros(motion.frames), np.zeros(motion.frames)
+    position = forward_kinematics(motion)[:, motion.skeleton.index(ROOT)]
+    speed = np.hypot(np.gradient(position[:, 0]), np.gradient(position[:, 2])) * rate
+    h, _ = heading(global_rotation(motion, ROOT), axis[0])
+    return speed, np.degrees(np.gradient(h)) * rate
 
 
-def windows(x: np.ndarray) -> list[np.ndarray]:
+def windows(x: np.ndarray, rate: float) -> list[np.ndarray]:
+    """2 s windows; each also holds the distance and the heading change since its first frame.
+
+    MiniRocket's kernels sum to zero, so a channel's constant level is invisible to it: a
+    steady speed or turning rate (the last two rows) reads the same at any value, and a
+    left turn like a right one. Their integrals over the window are ramps whose slope it
+    does see.
+    """
     if x.shape[1] < WINDOW:
         x = np.concatenate([x, np.repeat(x[:, -1:], WINDOW - x.shape[1], axis=1)], axis=1)
-    return [x[:, s:s + WINDOW] for s in range(0, x.shape[1] - WINDOW + 1, STRIDE)]
+    out = []
+    for s in range(0, x.shape[1] - WINDOW + 1, STRIDE):
+        w = x[:, s:s + WINDOW]
+        out.append(np.vstack([w, np.cumsum(w[-2:], axis=1) / rate]))
+    return out
 
 
 def quantile_distance(a: np.ndarray, b: np.ndarray) -> float:
     return float(np.sqrt(np.mean((np.quantile(a, QUANTILES) - np.quantile(b, QUANTILES)) ** 2)))
 
 
-def channel_judgement(generated, real_motions, channel):
+def angles(motion, channel: str, axis) -> np.ndarray:
+    """One channel's angles; the root's rotation heading-free (its Euler angles flip in a turn)."""
+    free = heading_free_angles(motion, ROOT, axis) if channel.startswith(f"{ROOT}.r") else None
+    return np.asarray(free[channel] if free else motion.column(channel), float)
+
+
+def channel_judgement(generated, real_motions, channel, axis):
     """(distance of generated to the reals, spread between reals) for one channel."""
-    reals = [np.asarray(m.values[:, list(m.channels).index(channel)], float)
-             for m in real_motions if channel in m.channels]
-    gen = np.asarray(generated.values[:, list(generated.channels).index(channel)], float)
+    reals = [angles(m, channel, axis) for m in real_motions if channel in m.channels]
+    gen = angles(generated, channel, axis)
     distance = float(np.mean([quantile_distance(gen, r) for r in reals]))
     spread = max(float(np.mean([quantile_distance(r, o) for j, o in enumerate(reals) if j != i]))
                  for i, r in enumerate(reals)) if len(reals) > 1 else 0.0
     return distance, spread
 
 
-def travel(motion):
+def travel(motion, axis):
     """Mean horizontal speed (cm/s) and net turning rate (deg/s) over the whole take."""
-    speed, turn = root_signals(motion)
+    speed, turn = root_signals(motion, axis)
     return float(np.mean(speed)), float(np.mean(turn))
 
 
@@ -177,17 +193,19 @@ def main(argv=None) -> int:
                 cache[f] = kinetology.read(f)
             return cache[f]
 
+        # one body axis for the whole dataset, so that every take's heading-free angles agree
+        axis = body_frame([read(f) for _, train, _ in parts.values() for f in train], ROOT)
         xs, ys = [], []
         for content, (_, train, _) in sorted(parts.items()):
             for f in train:
-                for w in windows(series(read(f))):
+                for w in windows(series(read(f), axis), read(f).frame_rate):
                     xs.append(w)
                     ys.append(content)
         clf = MiniRocketClassifier(random_state=args.seed)
         clf.fit(np.stack(xs), np.array(ys))
 
         def label(motion):
-            predicted = clf.predict(np.stack(windows(series(motion))))
+            predicted = clf.predict(np.stack(windows(series(motion, axis), motion.frame_rate)))
             values, counts = np.unique(predicted, return_counts=True)
             return str(values[np.argmax(counts)])
 
@@ -216,7 +234,7 @@ def main(argv=None) -> int:
             gen_ok += got == content
             gen_n += 1
             reals = [read(f) for f in learn]
-            dists = [channel_judgement(g.motion, reals, c) for c in g.channels]
+            dists = [channel_judgement(g.motion, reals, c, axis) for c in g.channels]
             inside = sum(d <= s for d, s in dists)
             within += inside
             judged += len(dists)
@@ -225,8 +243,8 @@ def main(argv=None) -> int:
             trip = g.round_trip()
             trips += sum(trip.values())
             trip_n += len(trip)
-            speed, turn = travel(g.motion)
-            real_travel = [travel(m) for m in reals]
+            speed, turn = travel(g.motion, axis)
+            real_travel = [travel(m, axis) for m in reals]
             row.update(generated_label=got, channels=len(dists), within_spread=inside,
                        median_distance=round(float(np.median([d for d, _ in dists])), 2),
                        median_spread=round(float(np.median([s for _, s in dists])), 2),

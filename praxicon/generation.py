@@ -18,8 +18,11 @@ For an action of a praxicon, :func:`generate`:
    give back its morpheme ``K`` times, corrects it with the frame-domain layer of
    :mod:`praxicon.shaping` (segments lengthened within the period, or
    displacements scaled up past ``min_range``, where that is what it takes);
-5. holds every other channel at the performances' mean pose, and writes a BVH
-   file on the source skeleton (:func:`kinetology.write_bvh`).
+5. gives every other channel the performances' mean cycle, phase-aligned to the
+   generated channel that moves most, moves the root as the performances do (their
+   mean speed in the body's own frame and mean turning rate, measured from the root's
+   world rotation) and writes a BVH file on the source skeleton
+   (:func:`kinetology.write_bvh`); :mod:`praxicon.body_motion` does step 5's measuring.
 
 :meth:`Generated.round_trip` segments the generated motion again and says, per
 channel (or per actuator), whether its kineteme string is the morpheme repeated
@@ -33,6 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .body_motion import animate, body_of
 from .jsonvalues import as_dict
 from .records import ActionRecord, Praxicon
 from .store import load
@@ -330,10 +334,12 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None):
     kineteme sequence, and per channel the :class:`Method` that made it.
 
     ``source_motion`` gives the skeleton and the channel order (default: the
-    record's ``skeleton_source`` file, read). Channels no morpheme drives hold the
-    action's mean pose; the root advances and turns steadily at the performances'
-    average speed and turning rate, read from the performance files (when they can be
-    read).
+    record's ``skeleton_source`` file, read). Channels no morpheme drives take the
+    performances' mean cycle (:func:`praxicon.body_motion.animate`; the mean pose when the
+    performance files cannot be read); the root advances and turns steadily at the
+    performances' average speed and turning rate, on the still joint above it when the
+    skeleton has one (Bandai's ``joint_Root``), so that the root's own channels keep
+    their generated values.
     """
     import kinetology
     from psgs import loads
@@ -361,6 +367,8 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None):
         skeleton = None  # an ASF skeleton: BVH cannot hold its axes, write angles on a star
     channels = source_motion.channels
     pose = dict(record.mean_pose)
+    body = body_of(record, channels, set(usable))
+    centre = {**pose, **(body.centre or {})}  # the root's rotation: heading-free means
     values = np.tile([pose.get(c, 0.0) for c in channels], (frames, 1))
     derived, methods = {}, {}
     params = as_dict(record.segmentation)
@@ -378,77 +386,15 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None):
         sequence, durations, steps = _merge_runs(kinetemes * repeat, durations, steps)
         knots = np.round(np.concatenate(([0.0], np.cumsum(durations))) * rate).astype(int)
         curve, method = _channel_curve(knots, sequence, steps, frames, rate, params, channel)
-        values[:, channels.index(channel)] = curve - curve.mean() + pose.get(channel, 0.0)
+        values[:, channels.index(channel)] = curve - curve.mean() + centre.get(channel, 0.0)
         derived[channel] = sequence
         methods[channel] = method
-    _travel(values, channels, record, rate, set(derived))
+    # a morpheme that only rises (or only falls) drifts: on a root rotation, an Euler flip
+    drifting = {c for c, m in usable.items() if len({_RISING[k] for k in m.kinetemes}) == 1}
+    animate(values, channels, body, set(derived), rate, period, drifting)
     motion = kinetology.Motion(values, channels, rate, skeleton,
                                f"generated:{record.name}", {"format": "generated"})
     return motion, derived, methods
-
-
-def _root_travel(motion, root: str):
-    """(forward, sideways) speed in the start heading's frame, turning rate: per performance."""
-    chans = list(motion.channels)
-    v = np.asarray(motion.values, float)
-    seconds = (v.shape[0] - 1) / float(motion.frame_rate)
-    if seconds <= 0:
-        return None
-    heading = np.unwrap(np.radians(v[:, chans.index(f"{root}.ry")]))
-    dx = v[-1, chans.index(f"{root}.tx")] - v[0, chans.index(f"{root}.tx")]
-    dz = v[-1, chans.index(f"{root}.tz")] - v[0, chans.index(f"{root}.tz")]
-    c, s = np.cos(heading[0]), np.sin(heading[0])  # the displacement seen from the start heading
-    return (c * dx - s * dz) / seconds, (s * dx + c * dz) / seconds, \
-        np.degrees(heading[-1] - heading[0]) / seconds
-
-
-def _travel(values, channels, record, rate, derived) -> None:
-    """Move the root as the performances do: a steady advance and turn, averaged over them.
-
-    Only root channels that no morpheme drives are moved, so the kineteme strings of the
-    generated channels (the symbolic round trip) are untouched. Performances that cannot be read
-    move nothing.
-    """
-    import kinetology
-
-    roots = [c.split(".")[0] for c in channels if c.endswith(".tx")]
-    moving = [r for r in roots if all(f"{r}.{a}" in channels for a in ("tx", "tz", "ry"))]
-    if not moving:
-        return
-    used = record.learnt_from or range(len(record.performances))
-    found = []
-    for i in used:
-        p = record.performances[i]
-        try:
-            m = kinetology.read(p.file)
-        except Exception:  # a moved or unreadable file: the root stays where it is
-            continue
-        if p.start is not None or p.stop is not None:
-            a = int(round((p.start or 0.0) * m.frame_rate))
-            b = m.frames if p.stop is None else int(round(p.stop * m.frame_rate))
-            m = kinetology.Motion(m.values[a:b], m.channels, m.frame_rate, m.skeleton, m.source)
-        # the root whose position moves most in this performance is the one that travels
-        root = max(moving, key=lambda r: float(np.ptp(m.values[:, list(m.channels).index(
-            f"{r}.tx")])) + float(np.ptp(m.values[:, list(m.channels).index(f"{r}.tz")]))
-            if f"{r}.tx" in m.channels else -1.0)
-        if f"{root}.ry" in m.channels:
-            travel = _root_travel(m, root)
-            if travel is not None:
-                found.append((root, travel))
-    if not found:
-        return
-    root = found[0][0]
-    forward, sideways, turn = np.mean([t for r, t in found if r == root], axis=0)
-    t = np.arange(values.shape[0]) / rate
-    if f"{root}.ry" not in derived:
-        values[:, channels.index(f"{root}.ry")] += turn * t
-    heading = np.radians(values[:, channels.index(f"{root}.ry")])
-    c, s = np.cos(heading), np.sin(heading)
-    vx, vz = c * forward + s * sideways, -s * forward + c * sideways
-    for axis, v in (("tx", vx), ("tz", vz)):
-        if f"{root}.{axis}" not in derived:
-            values[:, channels.index(f"{root}.{axis}")] += np.concatenate(([0.0], np.cumsum(
-                (v[1:] + v[:-1]) / 2) / rate))
 
 
 def generate(folder: str | Path | Praxicon, action: str, *, repeat: int = 3,

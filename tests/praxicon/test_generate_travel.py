@@ -1,32 +1,94 @@
-"""Generated motion moves its root as the performances do (and keeps the symbolic round trip)."""
+"""Generated motion moves its root as the performances do, and its other joints as they do."""
 
 from __future__ import annotations
 
 import numpy as np
+from hypothesis import given, settings, strategies as st
 
 import kinetology
+from kinetology.motion import Joint, Skeleton
 from praxicon import build, read_dataset
+from praxicon.body_motion import body_frame, cycle_starts, heading, heading_free_angles, \
+    mean_cycles, travel, yaw_matrices
 from praxicon.generation import generate
 from praxicon_fixtures import SHARED, needs_mocap
 
+_DATA = SHARED / "bandai-namco-2-subset" / "data"
 
-def _speed(motion, root="Hips"):
-    """Net horizontal speed (cm/s) of the root over the whole motion."""
-    ch = list(motion.channels)
-    x, z = motion.values[:, ch.index(f"{root}.tx")], motion.values[:, ch.index(f"{root}.tz")]
-    return float(np.hypot(x[-1] - x[0], z[-1] - z[0]) / ((motion.frames - 1) / motion.frame_rate))
+
+def _generated(tmp_path, content, styles=("normal_001", "active_001", "elderly_001")):
+    files = [_DATA / f"dataset-2_{content}_{s}.bvh" for s in styles]
+    manifest = tmp_path / "m.csv"
+    manifest.write_text("action,file\n" + "".join(f"{content},{f}\n" for f in files))
+    build(read_dataset(manifest), tmp_path / "px", progress=False, log=lambda s: None)
+    return generate(tmp_path / "px", f"m.{content}", repeat=3), [kinetology.read(f) for f in files]
 
 
 @needs_mocap()
 def test_a_generated_walk_advances_at_the_performances_speed(tmp_path):
-    data = SHARED / "bandai-namco-2-subset" / "data"
-    files = [data / f"dataset-2_walk_normal_00{i}.bvh" for i in (1, 2, 3)]
-    manifest = tmp_path / "m.csv"
-    manifest.write_text("action,file\n" + "".join(f"walk,{f}\n" for f in files))
-    build(read_dataset(manifest), tmp_path / "px", progress=False, log=lambda s: None)
-    generated = generate(tmp_path / "px", "m.walk", repeat=3)
-    real = [_speed(kinetology.read(f)) for f in files]
-    speed = _speed(generated.motion)
-    # the root was held still before: now it advances, as fast as the takes do on average
+    generated, takes = _generated(tmp_path, "walk")
+    real = [travel(m, "Hips").speed for m in takes]
+    speed = travel(generated.motion, "Hips").speed
+    # measured in the world (forward kinematics): the travel is on joint_Root, above the hips
     assert 0.8 * min(real) <= speed <= 1.2 * max(real), (speed, real)
     assert all(generated.round_trip().values())
+
+
+@needs_mocap()
+def test_a_generated_turn_turns_its_way_at_the_performances_rate(tmp_path):
+    generated, takes = _generated(tmp_path, "walk-turn-left")
+    real = [travel(m, "Hips").turn for m in takes]
+    turn = travel(generated.motion, "Hips").turn
+    assert min(real) > 5, real  # the takes turn left: the heading rises
+    assert 0.8 * min(real) <= turn <= 1.2 * max(real), (turn, real)
+    assert all(generated.round_trip().values())
+    # joints the grammar does not drive move (a mean cycle), not held at a constant
+    moving = [c for c in generated.motion.channels if c.split(".")[0] not in generated.actuators
+              and c.split(".")[-1].startswith("r") and not c.startswith("joint_Root")]
+    ranges = [float(np.ptp(generated.motion.column(c))) for c in moving]
+    assert moving and sum(r > 0.1 for r in ranges) >= len(ranges) // 2, dict(zip(moving, ranges))
+
+
+def _turning(degrees_per_second, tilt, frames=61):
+    """One joint turning steadily about the vertical, tilted by ``tilt`` degrees about its x."""
+    skeleton = Skeleton((Joint("hip", None, (0, 0, 0), ("hip.tx", "hip.tz", "hip.ry", "hip.rx",
+                                                        "hip.rz"), "YXZ"),))
+    t = np.arange(frames) / 30.0
+    h = np.radians(degrees_per_second * t)
+    x, z = np.cumsum(50 * np.sin(h)) / 30, np.cumsum(50 * np.cos(h)) / 30
+    values = np.c_[x, z, np.degrees(h), np.full(frames, tilt), np.zeros(frames)]
+    return kinetology.Motion(values, ("hip.tx", "hip.tz", "hip.ry", "hip.rx", "hip.rz"), 30.0,
+                             skeleton)
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.floats(-120, 120), st.floats(-30, 30))
+def test_the_heading_and_the_heading_free_pose_of_a_steady_turn(rate, tilt):
+    m = _turning(rate, tilt)
+    got = travel(m, "hip")
+    assert abs(got.turn - rate) < 1e-6
+    # forward or sideways: which horizontal body axis is read as the heading is a choice
+    assert abs(got.speed - 50) < 1.0 and abs(np.hypot(got.forward, got.sideways) - 50) < 1.0
+    # the heading turned away, what stays is the tilt, the same in every frame
+    free = heading_free_angles(m, "hip", body_frame([m], "hip"))
+    assert np.ptp(free["hip.rx"]) < 1e-6 and abs(abs(free["hip.rx"][0]) - abs(tilt)) < 1e-6
+
+
+def test_heading_reads_the_turn_of_any_horizontal_body_axis():
+    r = yaw_matrices(np.radians(np.linspace(0, 200, 40)))  # past 180°: unwrapped, not a jump
+    for axis in (0, 2):
+        h, _ = heading(r, axis)
+        assert abs(np.degrees(h[-1] - h[0]) - 200) < 1e-9
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(12, 40), st.floats(0.7, 1.4), st.integers(0, 10))
+def test_mean_cycles_find_a_cycle_of_any_tempo_and_phase(period, tempo, shift):
+    # a take at its own tempo and phase; the template is the generated cycle
+    own = int(round(period * tempo))
+    frames = np.arange(shift, shift + 4 * own + 1)
+    take = np.sin(2 * np.pi * frames / own)
+    template = np.sin(2 * np.pi * np.arange(period) / period)
+    starts = cycle_starts(take, template)
+    got = mean_cycles([{"c": take}], [starts], period)["c"]
+    assert np.abs(got - template).max() < 0.25, (starts, got)

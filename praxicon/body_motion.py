@@ -1,0 +1,482 @@
+"""The whole body around a generated action's actuators: where the root goes, and what the rest does.
+
+Generation (:mod:`praxicon.generation`) makes the actuator channels from the grammar
+system. This module gives everything else from the action's performances:
+
+* **heading and travel.** A root's Euler angles are a poor measure of where a body
+  faces: Bandai Namco's ``Hips`` turns ``Z X Y`` with ``rz`` near 90°, so its heading is
+  mostly ``rx``, and a turn through ``rx = ±90°`` flips ``rz`` and ``ry`` by 180°. The
+  heading (:func:`heading`) is read from the root's rotation instead: the body axis that
+  stays most horizontal, its direction about the vertical (``y``), unwrapped. The root's
+  velocity is measured in that heading's frame (forward, sideways), so a turning walk
+  keeps one speed while its direction changes (:func:`travel`);
+* **the body's own orientation**, heading removed (:func:`heading_free_angles`): the root's
+  rotation turned back by its heading, as angles in the root's rotation order, continuous
+  through a turn;
+* **typical movements** (:func:`mean_cycles`): per channel, the performances' mean cycle,
+  its phase aligned to a leading generated channel, so joints the grammar does not drive
+  move as they do in the takes instead of standing still.
+
+Every function is pure: motions in, arrays out.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["Body", "Travel", "animate", "body_frame", "body_of", "cycle_starts", "euler_angles",
+           "global_rotation", "heading", "heading_free_angles", "mean_cycles",
+           "performances_of", "root_chain", "travel", "yaw_matrices"]
+
+_UP = 1  # y is vertical in BVH and in the ASF files of the shared data
+
+
+def root_chain(skeleton, root: str) -> list[int]:
+    """Indices of the joints from the skeleton's top down to ``root`` (inclusive)."""
+    chain = [skeleton.index(root)]
+    while skeleton.joints[chain[-1]].parent is not None:
+        chain.append(skeleton.joints[chain[-1]].parent)
+    return chain[::-1]
+
+
+def _local(motion, joint) -> np.ndarray:
+    from kinetology.kinematics import rotation_matrices
+
+    index = {c: i for i, c in enumerate(motion.channels)}
+    angles = {c.rsplit(".", 1)[1][1].upper(): motion.values[:, index[c]] for c in joint.channels
+              if c in index and c.rsplit(".", 1)[1].startswith("r")}
+    local = rotation_matrices(angles, joint.rotation_order, motion.frames)
+    if any(joint.axis):
+        pre = rotation_matrices({a: np.full(1, v) for a, v in zip("XYZ", joint.axis)},
+                                joint.rotation_order, 1)[0]
+        local = pre @ local @ pre.T
+    return local
+
+
+def global_rotation(motion, root: str) -> np.ndarray:
+    """Per frame the world rotation of joint ``root``, shape ``(frames, 3, 3)``."""
+    out = np.broadcast_to(np.eye(3), (motion.frames, 3, 3)).copy()
+    for j in root_chain(motion.skeleton, root):
+        out = out @ _local(motion, motion.skeleton.joints[j])
+    return out
+
+
+def yaw_matrices(radians) -> np.ndarray:
+    """Rotations about the vertical by ``radians`` (one per frame): ``Ry``."""
+    r = np.asarray(radians, float)
+    c, s = np.cos(r), np.sin(r)
+    out = np.zeros(r.shape + (3, 3))
+    out[..., 0, 0] = out[..., 2, 2] = c
+    out[..., 1, 1] = 1.0
+    out[..., 0, 2], out[..., 2, 0] = s, -s
+    return out
+
+
+def heading(rotations, axis: int | None = None) -> tuple[np.ndarray, int]:
+    """The unwrapped heading (radians about the vertical) of rotations, and the body axis used.
+
+    The body axis (0, 1, 2: local x, y, z) is the one that stays most horizontal over
+    the frames (unless given); the heading is its direction's angle from ``+z``
+    towards ``+x``, so that ``yaw_matrices(-h) @ R`` turns the axis back onto ``+z``.
+
+    Examples
+    --------
+    A body turning steadily by 90° over 10 frames:
+
+    >>> import numpy as np
+    >>> h, axis = heading(yaw_matrices(np.linspace(0, np.pi / 2, 10)))
+    >>> axis, round(float(np.degrees(h[-1] - h[0])), 6)   # x and z level: the first
+    (0, 90.0)
+    """
+    r = np.asarray(rotations, float)
+    if axis is None:
+        axis = int(np.argmin(np.abs(r[:, _UP, :]).mean(axis=0)))
+    d = r[:, :, axis]
+    return np.unwrap(np.arctan2(d[:, 0], d[:, 2])), axis
+
+
+def body_frame(motions, root: str) -> tuple[int, float]:
+    """The body axis of ``root`` and a quarter turn that set its heading-free angles, for all ``motions``.
+
+    The axis (0, 1, 2) is the local axis that stays most horizontal over all of them:
+    one axis for all, so that their headings agree (a body whose two horizontal axes are
+    about as level would otherwise be read facing one way in one take and 90° off in the
+    next). The offset (radians, a multiple of 90°) is added to the heading removed, chosen
+    so that the middle Euler angle of the heading-free rotation is nearest 0 on average:
+    far from the gimbal angle (±90°), where the other two are ill-defined.
+    """
+    rotations = [global_rotation(m, root) for m in motions]
+    axis = int(np.argmin(sum(np.abs(r[:, _UP, :]).mean(axis=0) for r in rotations)))
+    joint = motions[0].skeleton.joints[motions[0].skeleton.index(root)]
+    if _rotation_channels(joint) is None:
+        return axis, 0.0
+
+    def tilt(offset):
+        return sum(float(np.abs(_free(r, axis, offset, joint.rotation_order)[:, 1]).mean())
+                   for r in rotations)
+
+    return axis, min(np.radians([0.0, 90.0, 180.0, 270.0]), key=tilt)
+
+
+@dataclass(frozen=True)
+class Travel:
+    """How a root moves: mean speed in its own heading's frame and mean turning rate.
+
+    Attributes
+    ----------
+    forward, sideways : float
+        Mean velocity along the heading and across it (length units per second).
+    turn : float
+        Net change of heading over the take per second (degrees per second).
+    speed : float
+        Mean horizontal speed, whatever the direction (length units per second).
+    """
+
+    forward: float
+    sideways: float
+    turn: float
+    speed: float
+
+
+def _world_positions(motion, root: str) -> np.ndarray:
+    from kinetology.kinematics import forward_kinematics
+
+    return forward_kinematics(motion)[:, motion.skeleton.index(root)]
+
+
+def travel(motion, root: str, axis: int | None = None) -> Travel | None:
+    """The root's :class:`Travel` over a motion with a skeleton (None under two frames).
+
+    Examples
+    --------
+    >>> import numpy as np, kinetology
+    >>> from kinetology.motion import Joint, Skeleton
+    >>> sk = Skeleton((Joint("hip", None, (0, 0, 0), ("hip.tx", "hip.tz", "hip.ry"), "ZXY"),))
+    >>> t = np.arange(31) / 30.0                  # one second: 90° of turn, 100 units ahead
+    >>> h = np.radians(90.0 * t)
+    >>> x, z = np.cumsum(100 * np.sin(h)) / 30, np.cumsum(100 * np.cos(h)) / 30
+    >>> m = kinetology.Motion(np.c_[x, z, np.degrees(h)], ("hip.tx", "hip.tz", "hip.ry"), 30.0, sk)
+    >>> got = travel(m, "hip")
+    >>> round(got.speed), round(got.turn)
+    (100, 90)
+    """
+    if motion.frames < 2:
+        return None
+    rate = float(motion.frame_rate)
+    h, _ = heading(global_rotation(motion, root), axis)
+    p = _world_positions(motion, root)
+    v = np.gradient(p, axis=0) * rate
+    # the velocity seen from the body: turned back by the heading at that frame
+    forward = np.cos(h) * v[:, 2] + np.sin(h) * v[:, 0]
+    sideways = np.cos(h) * v[:, 0] - np.sin(h) * v[:, 2]
+    seconds = (motion.frames - 1) / rate
+    return Travel(float(forward.mean()), float(sideways.mean()),
+                  float(np.degrees(h[-1] - h[0]) / seconds),
+                  float(np.hypot(v[:, 0], v[:, 2]).mean()))
+
+
+def euler_angles(matrices, order: str) -> np.ndarray:
+    """Angles (degrees, ``(frames, 3)`` in ``order``) whose product ``R_order[0] R_order[1] R_order[2]`` is each matrix; unwrapped over frames."""
+    from scipy.spatial.transform import Rotation
+
+    angles = Rotation.from_matrix(np.asarray(matrices, float)).as_euler(order.upper())
+    return np.degrees(np.unwrap(angles, axis=0))
+
+
+def heading_free_angles(motion, root: str, frame=(None, 0.0)) -> dict[str, np.ndarray] | None:
+    """The root's world rotation with its heading turned away: channel -> angles (degrees).
+
+    The root's world rotation is turned back by its heading (:func:`heading` on the
+    body axis ``frame[0]``) less the offset ``frame[1]`` (:func:`body_frame`), and
+    decomposed in its rotation order. None when the root does not have three rotation
+    channels in that order.
+    """
+    joint = motion.skeleton.joints[motion.skeleton.index(root)]
+    rotations = _rotation_channels(joint)
+    if rotations is None:
+        return None
+    angles = _free(global_rotation(motion, root), frame[0], frame[1], joint.rotation_order)
+    return {c: angles[:, i] for i, c in enumerate(rotations)}
+
+
+def _free(world, axis, offset, order) -> np.ndarray:
+    h, _ = heading(world, axis)
+    return euler_angles(yaw_matrices(offset - h) @ world, order)
+
+
+def _rotation_channels(joint):
+    """A joint's three rotation channels in its rotation order, or None."""
+    rotations = [c for c in joint.channels if c.rsplit(".", 1)[1].startswith("r")]
+    if len(rotations) != 3 or any(joint.axis) or \
+            "".join(c[-1].upper() for c in rotations) != joint.rotation_order.upper():
+        return None
+    return rotations
+
+
+def cycle_starts(leader, template) -> list[int]:
+    """Frames where each cycle of ``template`` (one generated period) begins in ``leader``, and where the last ends.
+
+    The take's own period is first read from its autocorrelation (the first lag within
+    0.6 to 1.5 template lengths that correlates nearly as well as the best), and the template stretched to it, so that a slower or
+    faster style is matched at its own tempo; the first start is then the
+    best-correlating offset within one period, each next one the best within a quarter
+    period of one period on.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> take = np.sin(2 * np.pi * (np.arange(100) - 5) / 25)
+    >>> cycle_starts(take, np.sin(2 * np.pi * np.arange(20) / 20))
+    [5, 30, 55, 80]
+    """
+    x = np.asarray(leader, float)
+    g = np.asarray(template, float)
+    n = g.size
+    if x.size < n or n < 2 or not np.any(g - g.mean()):
+        return []
+    centred = x - x.mean()
+    lags = np.arange(max(2, int(0.6 * n)), min(int(1.5 * n), x.size - 2) + 1)
+    if lags.size:
+        auto = [float(centred[:-k] @ centred[k:]) / (x.size - k) for k in lags]
+        # the first lag near the best: two periods correlate as well as one
+        best = max(auto)
+        i = int(np.flatnonzero(np.asarray(auto) >= best - 0.1 * abs(best))[0])
+        while i + 1 < len(auto) and auto[i + 1] >= auto[i]:  # up to that peak's top
+            i += 1
+        own = int(lags[i])
+        g = np.interp(np.linspace(0, n, own, endpoint=False), np.arange(n + 1), np.append(g, g[0]))
+    g = g - g.mean()
+    p = g.size
+    if x.size < p:
+        return []
+    windows = np.lib.stride_tricks.sliding_window_view(x, p)
+    score = (windows - windows.mean(axis=1, keepdims=True)) @ g
+    starts = [int(np.argmax(score[:p]))]
+    while True:
+        lo, hi = starts[-1] + p - p // 4, starts[-1] + p + p // 4
+        if hi > score.size - 1:  # the search must fit: at the take's end its edge would win
+            # the last cycle ends one period on, when the take holds it
+            return starts + [starts[-1] + p] if starts[-1] + p < x.size else starts
+        starts.append(lo + int(np.argmax(score[lo:hi + 1])))
+
+
+def mean_cycles(curves, starts, period: int) -> dict[str, np.ndarray]:
+    """Per channel the mean of its cycles, each resampled to ``period`` frames, closed on itself.
+
+    ``curves`` is one dict per performance (channel -> angles), ``starts`` the matching
+    cycle bounds (:func:`cycle_starts`); a cycle runs from one to the next. The mean's end is brought back to its
+    start by a linear ramp, so the cycles repeat without a jump.
+
+    Examples
+    --------
+    Two takes of a sine, one twice as slow, give back the sine:
+
+    >>> import numpy as np
+    >>> a = np.sin(2 * np.pi * np.arange(60) / 20)
+    >>> b = np.sin(2 * np.pi * np.arange(120) / 40)
+    >>> got = mean_cycles([{"c": a}, {"c": b}], [[0, 20, 40], [0, 40, 80]], 20)["c"]
+    >>> bool(np.allclose(got, np.sin(2 * np.pi * np.arange(20) / 20), atol=0.02))
+    True
+    """
+    sums: dict[str, np.ndarray] = {}
+    counts: dict[str, int] = {}
+    phase = np.linspace(0.0, 1.0, period + 1)
+    for take, begins in zip(curves, starts):
+        for channel, values in take.items():
+            values = np.asarray(values, float)
+            for s, e in zip(begins, begins[1:]):
+                if e >= values.size or e - s < 2:
+                    continue
+                cycle = np.interp(s + phase * (e - s), np.arange(values.size), values)
+                sums[channel] = sums.get(channel, 0.0) + cycle
+                counts[channel] = counts.get(channel, 0) + 1
+    out = {}
+    for channel, total in sums.items():
+        mean = total / counts[channel]
+        mean = mean - (mean[-1] - mean[0]) * phase  # closed: the end meets the start
+        out[channel] = mean[:-1]
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class Body:
+    """What an action's performances say about the channels the grammar does not drive.
+
+    Built by :func:`body_of`. ``root`` is the joint that travels (None when the
+    performances cannot tell: no skeleton, no file that reads), ``carrier`` the joint
+    above it whose channels are all still in the takes (Bandai's ``joint_Root``), which
+    generation turns and moves so that the root's own channels keep their generated
+    values; ``curves`` per performance the channels' angles with the root's rotation
+    heading-free and its horizontal position removed (the travel puts it back);
+    ``centre`` their mean per channel.
+    """
+
+    performances: tuple = ()
+    root: str | None = None
+    carrier: str | None = None
+    axis: int | None = None
+    curves: tuple = ()
+    centre: dict | None = None
+    travel: Travel | None = None
+
+
+def performances_of(record) -> list:
+    """The motions of the performances an action was learnt from (trimmed; unreadable ones left out)."""
+    import kinetology
+
+    out = []
+    for i in record.learnt_from or range(len(record.performances)):
+        p = record.performances[i]
+        try:
+            m = kinetology.read(p.file)
+        except Exception:  # a moved or unreadable file: generation falls back to the mean pose
+            continue
+        if p.start is not None or p.stop is not None:
+            a = int(round((p.start or 0.0) * m.frame_rate))
+            b = m.frames if p.stop is None else int(round(p.stop * m.frame_rate))
+            m = kinetology.Motion(m.values[a:b], m.channels, m.frame_rate, m.skeleton, m.source)
+        if m.frames >= 2:
+            out.append(m)
+    return out
+
+
+def _still(motions, channels) -> bool:
+    return all(float(np.abs(m.column(c)).max()) < 1e-6 for m in motions for c in channels
+               if c in m.channels)
+
+
+def body_of(record, channels, driven) -> Body:
+    """The :class:`Body` of an action's performances, for a motion with ``channels``.
+
+    ``driven`` are the channels the grammar system makes (the actuators' channels).
+    """
+    takes = [m for m in performances_of(record) if m.skeleton is not None
+             and set(channels) <= set(m.channels)]
+    if not takes:
+        return Body()
+    skeleton = takes[0].skeleton
+    roots = [j.name for j in skeleton.joints
+             if f"{j.name}.tx" in channels and f"{j.name}.tz" in channels]
+    if not roots:
+        return Body(tuple(takes))
+    root = max(roots, key=lambda r: sum(float(np.ptp(m.column(f"{r}.tx")) +
+                                              np.ptp(m.column(f"{r}.tz"))) for m in takes))
+    frame = body_frame(takes, root)
+    axis = frame[0]
+    top = skeleton.joints[root_chain(skeleton, root)[0]]
+    carrier = None
+    if top.name != root and {f"{top.name}.{a}" for a in ("tx", "tz", "ry")} <= set(channels) \
+            and not set(top.channels) & set(driven) and _still(takes, top.channels):
+        carrier = top.name
+    curves = []
+    for m in takes:
+        take = {c: m.column(c) for c in channels}
+        free = heading_free_angles(m, root, frame)
+        if free is not None:
+            take.update(free)
+        for a in ("tx", "tz"):  # the horizontal path is the travel's
+            take[f"{root}.{a}"] = np.zeros(m.frames)
+        curves.append(take)
+    centre = {c: float(np.mean([np.mean(t[c]) for t in curves])) for c in channels}
+    moves = [travel(m, root, axis) for m in takes]
+    mean = Travel(*(float(np.mean([getattr(t, k) for t in moves]))
+                    for k in ("forward", "sideways", "turn", "speed")))
+    return Body(tuple(takes), root, carrier, axis, tuple(curves), centre, mean)
+
+
+def animate(values, channels, body: Body, driven, rate: float, period: float,
+            drifting=()) -> None:
+    """Fill the channels the grammar does not drive, and move the root; ``values`` in place.
+
+    Every channel not in ``driven`` takes the performances' mean cycle, phase-aligned
+    to the generated channel that moves most (the leader): generated copy ``k`` begins
+    at ``k * period``, and so does each cycle laid here. The root then travels and
+    turns at the performances' mean rates: on ``body.carrier`` when there is one (the
+    root's channels keep their values), else on the root itself, whose rotation takes
+    the turn only when no rotation channel of it is driven (a driven channel keeps its
+    generated values, so the turn is left out).
+
+    ``drifting`` are driven root rotation channels whose morpheme only rises or only
+    falls: a root's Euler angle that flips by 180° as the body turns through the gimbal
+    angle reads as one long rise, and generated as such it would spin the body. With a
+    carrier, such a channel keeps its generated values (and kineteme string), and the
+    carrier's rotation undoes it in the world: the body takes that channel's mean cycle
+    instead.
+    """
+    if body.centre is None:
+        return
+    index = {c: i for i, c in enumerate(channels)}
+    frames = values.shape[0]
+    steps = max(2, int(round(period * rate)))
+    own = {body.root, body.carrier}
+    leaders = [c for c in driven if c.split(".")[0] not in own] or list(driven)
+    if leaders:
+        leader = max(leaders, key=lambda c: float(np.ptp(values[:, index[c]])))
+        template = values[:steps, index[leader]]
+        starts = [cycle_starts(m.column(leader), template) for m in body.performances]
+        cycles = mean_cycles([{c: v for c, v in t.items() if c not in driven or c in drifting}
+                              for t in body.curves], starts, steps)
+    else:
+        cycles = {}
+    phase = np.arange(frames) * steps / (period * rate)
+    typical = {c: np.interp(phase, np.arange(steps), cycle, period=steps)
+               for c, cycle in cycles.items()}
+    for c in channels:
+        if c not in driven:
+            values[:, index[c]] = typical.get(c, body.centre.get(c, values[0, index[c]]))
+    _move(values, index, body, rate, driven, {c: typical[c] for c in drifting if c in typical})
+
+
+def _move(values, index, body: Body, rate: float, driven, undo) -> None:
+    move = body.travel
+    t = np.arange(values.shape[0]) / rate
+    h = np.radians(move.turn) * t
+    vx = np.sin(h) * move.forward + np.cos(h) * move.sideways
+    vz = np.cos(h) * move.forward - np.sin(h) * move.sideways
+    path = {a: np.concatenate(([0.0], np.cumsum((v[1:] + v[:-1]) / 2) / rate))
+            for a, v in (("tx", vx), ("tz", vz))}
+    holder = body.carrier or body.root
+    for a, p in path.items():
+        values[:, index[f"{holder}.{a}"]] += p
+    skeleton = body.performances[0].skeleton
+    joint = skeleton.joints[skeleton.index(body.root)]
+    rotations = _rotation_channels(joint)
+    if body.carrier is None:
+        if joint.parent is not None or rotations is None or set(rotations) & set(driven):
+            return  # a turn composed under a moving parent, or over driven angles, is left out
+        _set_rotation(values, index, joint, yaw_matrices(h) @ _rotation(values, index, joint))
+        return
+    carrier = skeleton.joints[skeleton.index(body.carrier)]
+    turn = yaw_matrices(h)
+    if undo and rotations is not None:  # world = yaw @ wanted: the carrier is yaw @ wanted @ own^-1
+        own = _rotation(values, index, joint)
+        wanted = _rotation({**{c: values[:, index[c]] for c in rotations}, **undo}, None, joint)
+        turn = turn @ wanted @ np.swapaxes(own, 1, 2)
+    if _rotation_channels(carrier) is None:
+        values[:, index[f"{body.carrier}.ry"]] += np.degrees(h)
+        return
+    _set_rotation(values, index, carrier, turn)
+    # the root sits where the heading alone would put it, whatever else the carrier turns
+    own_t = np.stack([values[:, index[f"{body.root}.{a}"]] if f"{body.root}.{a}" in index
+                      else np.zeros(len(h)) for a in ("tx", "ty", "tz")], axis=1)
+    shift = np.einsum("fij,fj->fi", yaw_matrices(h) - turn, own_t)
+    for i, a in enumerate(("tx", "ty", "tz")):
+        if f"{body.carrier}.{a}" in index:
+            values[:, index[f"{body.carrier}.{a}"]] += shift[:, i]
+
+
+def _rotation(values, index, joint) -> np.ndarray:
+    """A joint's local rotation per frame from its channels' values (an array, or a dict)."""
+    from kinetology.kinematics import rotation_matrices
+
+    column = (lambda c: values[c]) if index is None else (lambda c: values[:, index[c]])
+    angles = {c[-1].upper(): column(c) for c in _rotation_channels(joint)}
+    return rotation_matrices(angles, joint.rotation_order, len(next(iter(angles.values()))))
+
+
+def _set_rotation(values, index, joint, matrices) -> None:
+    angles = euler_angles(matrices, joint.rotation_order)
+    for i, c in enumerate(_rotation_channels(joint)):
+        values[:, index[c]] = angles[:, i]
