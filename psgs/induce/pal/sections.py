@@ -1,0 +1,187 @@
+"""Long repeats of one string, and the one significance every candidate is ranked by.
+
+The motif search of :mod:`~psgs.induce.pal.motifs` grows from the most
+frequent digrams, so it finds what repeats *often*: a short figure played
+five times beats a long section played twice. A repetition's evidence grows
+with its length, its copies and its agreement alike, so this module adds a
+second candidate per string, its **section**: the longest window that occurs
+``min_copies`` times or more exactly and without overlap, with every such copy.
+
+:func:`repeat_significance` is the significance both kinds of candidate are
+weighed by (``docs/streams.md``, "Significance of a repetition"): the
+expected number, in a random string of the same length and symbol
+frequencies, of sets of ``copies`` windows of ``length`` symbols whose
+copies after the first agree with the pattern in at least as many positions
+as these do, counted over every set of window positions (a Bonferroni bound
+over the positions).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .statistics import log10_binom_sf
+
+__all__: list[str] = []  # private: content.py is the caller
+
+#: odd, so that it is invertible modulo 2**64 (the window hashes need its inverse)
+_BASE = 0x9E3779B97F4A7C15
+_INVERSE = pow(_BASE, -1, 1 << 64)
+
+
+@dataclass(frozen=True)
+class Section:
+    """The longest exact repeat of a string: its codes, its copies' starts, its significance."""
+
+    motif: np.ndarray
+    starts: np.ndarray
+    significance: float
+
+
+def repeat_significance(n: int, length: int, copies: int, agreeing: int,
+                        match_rate: float) -> float:
+    """log10 of the expected chance repetitions as strong as this one (at most 0).
+
+    Parameters
+    ----------
+    n : int
+        The string's length, in symbols.
+    length : int
+        The pattern's length ``L``.
+    copies : int
+        How many copies ``c`` (non-overlapping windows of ``L`` symbols).
+    agreeing : int
+        In how many of the ``(c - 1) L`` positions of the copies after the
+        first the symbol agrees with the pattern (``(c - 1) L`` when exact).
+    match_rate : float
+        The chance ``q`` that two symbols drawn from the string agree (the sum
+        of its squared symbol shares).
+
+    Returns
+    -------
+    float
+        ``min(0, log10(C(n - L + 1, c) * P(Binomial((c - 1) L, q) >= agreeing)))``.
+
+    Examples
+    --------
+    A 40-symbol section twice in 800 symbols is far less likely by chance than
+    a 4-symbol figure five times:
+
+    >>> round(repeat_significance(800, 40, 2, 40, 0.1), 1)
+    -34.5
+    >>> round(repeat_significance(800, 4, 5, 16, 0.1), 1)
+    -3.6
+    """
+    windows = n - length + 1
+    if copies < 2 or windows < copies or length < 1:
+        return 0.0
+    sets = (math.lgamma(windows + 1) - math.lgamma(copies + 1)
+            - math.lgamma(windows - copies + 1)) / math.log(10)
+    tail = log10_binom_sf(agreeing, (copies - 1) * length, match_rate)
+    return min(0.0, sets + tail)
+
+
+def copy_agreements(codes: np.ndarray, pattern, starts) -> list[float]:
+    """The share of the pattern's positions each copy starting at ``starts`` agrees with.
+
+    Examples
+    --------
+    >>> copy_agreements(np.array([1, 2, 3, 1, 2, 4]), [1, 2, 3], [0, 3])
+    [1.0, 0.6666666666666666]
+    """
+    pattern = np.asarray(pattern)
+    out = []
+    for a in np.asarray(starts).tolist():
+        window = codes[a:a + len(pattern)]
+        out.append(float(np.count_nonzero(window == pattern[:len(window)])) / len(pattern))
+    return out
+
+
+def find_section(codes: np.ndarray, copies: int, longest: int,
+                 match_rate: float) -> Section | None:
+    """The longest window of ``codes`` found ``copies`` times or more, exact and apart.
+
+    Among windows of that length the one with the most copies wins, the
+    earliest among equals; its copies are all its non-overlapping occurrences,
+    taken from the left. At most ``longest`` symbols; None when no window of
+    two symbols or more repeats so.
+
+    Examples
+    --------
+    >>> codes = np.array([5, 0, 1, 2, 3, 6, 0, 1, 2, 3, 7])
+    >>> found = find_section(codes, 2, 64, 0.2)
+    >>> found.motif.tolist(), found.starts.tolist()
+    ([0, 1, 2, 3], [1, 6])
+    """
+    n = len(codes)
+    low, high = 1, min(longest, n // copies)
+    best = None
+    while low < high:  # a window with c copies apart: so has each of its prefixes
+        middle = (low + high + 1) // 2
+        hit = _repeated(codes, middle, copies)
+        if hit is None:
+            high = middle - 1
+        else:
+            low, best = middle, hit
+    if best is None and low >= 2:
+        best = _repeated(codes, low, copies)
+    if best is None or low < 2:
+        return None
+    starts = best
+    motif = codes[starts[0]:starts[0] + low].copy()
+    agreeing = (len(starts) - 1) * low
+    return Section(motif, starts, repeat_significance(n, low, len(starts), agreeing,
+                                                      match_rate))
+
+
+def _repeated(codes: np.ndarray, length: int, copies: int) -> np.ndarray | None:
+    """The starts of the window of ``length`` with the most copies apart (at least
+    ``copies``; the earliest among equals), or None."""
+    hashes = _window_hashes(codes, length)
+    order = np.argsort(hashes, kind="stable")
+    ordered = hashes[order]
+    cuts = np.flatnonzero(np.diff(ordered)) + 1
+    first = np.concatenate(([0], cuts))
+    sizes = np.diff(np.concatenate((first, [len(ordered)])))
+    best, best_key = None, None
+    for g in np.flatnonzero(sizes >= copies).tolist():
+        where = order[first[g]:first[g] + sizes[g]]  # ascending: a stable sort of positions
+        kept = _apart(where, length)
+        if len(kept) < copies:
+            continue
+        reference = codes[kept[0]:kept[0] + length]
+        kept = [p for p in kept if np.array_equal(codes[p:p + length], reference)]
+        if len(kept) < copies:
+            continue  # (a hash collision)
+        key = (-len(kept), kept[0])
+        if best_key is None or key < best_key:
+            best, best_key = np.asarray(kept, dtype=np.int64), key
+    return best
+
+
+def _apart(positions: np.ndarray, length: int) -> list[int]:
+    """The sorted ``positions`` kept left to right, each at least ``length`` after the last."""
+    kept: list[int] = []
+    for p in positions.tolist():
+        if not kept or p - kept[-1] >= length:
+            kept.append(p)
+    return kept
+
+
+def _window_hashes(codes: np.ndarray, length: int) -> np.ndarray:
+    """A 64-bit polynomial hash of every window of ``length`` symbols (wrapping arithmetic)."""
+    n = len(codes)
+    with np.errstate(over="ignore"):
+        steps = np.full(n, _INVERSE, dtype=np.uint64)
+        steps[0] = 1
+        inverse_powers = np.cumprod(steps, dtype=np.uint64)  # BASE**-j
+        weighted = (codes.astype(np.uint64) + np.uint64(1)) * inverse_powers
+        prefix = np.concatenate(([np.uint64(0)], np.cumsum(weighted, dtype=np.uint64)))
+        sums = prefix[length:] - prefix[:-length]  # sum of code_j BASE**-j over the window
+        steps[:] = _BASE
+        steps[0] = 1
+        powers = np.cumprod(steps, dtype=np.uint64)  # BASE**j
+        return sums * powers[length - 1:]
