@@ -58,7 +58,7 @@ def _sectioned(seed: int, sectioned: int, spurious: int, length: int, letters: i
     return ag, truth, copies
 
 
-@settings(max_examples=12, deadline=None, derandomize=True)
+@settings(max_examples=25, deadline=None, derandomize=True)
 @given(seed=st.integers(0, 10_000), sectioned=st.integers(2, 6), spurious=st.integers(0, 16),
        length=st.integers(8, 16), letters=st.integers(6, 12))
 def test_pal_names_exactly_the_sectioned_strings_with_both_copies(seed, sectioned, spurious,
@@ -70,9 +70,10 @@ def test_pal_names_exactly_the_sectioned_strings_with_both_copies(seed, sectione
         found = result.occurrences[name]
         assert len(found) == 2
         for (start, end), (a, b) in zip(found, copies):
-            # each true copy lies in a reported one, which runs past it only by chance
-            # agreement of the symbols around it (a few at most)
-            assert start <= a and b <= end and (end - start) - (b - a) <= 4
+            # each reported copy holds most of a true one; its edges move only where the
+            # symbols around the copies agree by chance (a few at most)
+            assert min(end, b) - max(start, a) >= (b - a) / 2
+            assert abs(start - a) <= 4 and abs(end - b) <= 4
         assert result.agreements[name] == (1.0, 1.0)
 
 
