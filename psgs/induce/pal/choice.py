@@ -44,7 +44,8 @@ WEAK_COPIES = "not significant at its group's copies"
 def find_sections(strings: list[Timed], conf: ContentConf) -> list[Section | None]:
     """Every string's section (None where it is too short or no window repeats)."""
     # (not bounded by max_pattern: a section is found by a search over lengths, not grown)
-    return [find_section(s.codes, conf.min_copies, len(s.codes), s.match_rate)
+    level = math.log10(conf.alpha)
+    return [find_section(s.codes, conf.min_copies, len(s.codes), s.match_rate, level)
             if len(s.codes) >= 2 * conf.min_copies else None for s in strings]
 
 

@@ -100,14 +100,15 @@ def copy_agreements(codes: np.ndarray, pattern, starts) -> list[float]:
     return out
 
 
-def find_section(codes: np.ndarray, copies: int, longest: int,
-                 match_rate: float) -> Section | None:
+def find_section(codes: np.ndarray, copies: int, longest: int, match_rate: float,
+                 level: float = 0.0) -> Section | None:
     """The longest window of ``codes`` found ``copies`` times or more, exact and apart.
 
     Among windows of that length the one with the most copies wins, the
     earliest among equals; its copies are all its non-overlapping occurrences,
     taken from the left. At most ``longest`` symbols; None when no window of
-    two symbols or more repeats so.
+    two symbols or more repeats so, or when none is long enough for its
+    significance to reach ``level`` (log10; 0 looks at every length).
 
     Examples
     --------
@@ -115,40 +116,52 @@ def find_section(codes: np.ndarray, copies: int, longest: int,
     >>> found = find_section(codes, 2, 64, 0.2)
     >>> found.motif.tolist(), found.starts.tolist()
     ([0, 1, 2, 3], [1, 6])
+    >>> find_section(codes, 2, 64, 0.2, level=-6.0) is None  # 4 symbols twice: about 1e-1.2
+    True
     """
     n = len(codes)
-    low, high = 1, min(longest, n // copies)
-    best = None
+    high = min(longest, n // copies)
+    low = _shortest(n, copies, match_rate, level, high)
+    if low > high or not _repeated(codes, low, copies, first=True):
+        return None
     while low < high:  # a window with c copies apart: so has each of its prefixes
         middle = (low + high + 1) // 2
-        hit = _repeated(codes, middle, copies)
-        if hit is None:
-            high = middle - 1
+        if _repeated(codes, middle, copies, first=True):
+            low = middle
         else:
-            low, best = middle, hit
-    if best is None and low >= 2:
-        best = _repeated(codes, low, copies)
-    if best is None or low < 2:
-        return None
-    starts = best
+            high = middle - 1
+    starts = _repeated(codes, low, copies)
     motif = codes[starts[0]:starts[0] + low].copy()
     agreeing = (len(starts) - 1) * low
     return Section(motif, starts, repeat_significance(n, low, len(starts), agreeing,
                                                       match_rate))
 
 
-def _repeated(codes: np.ndarray, length: int, copies: int) -> np.ndarray | None:
+def _shortest(n: int, copies: int, match_rate: float, level: float, high: int) -> int:
+    """The fewest symbols (two at least) whose exact copies can reach ``level``."""
+    length = 2
+    while length <= high and repeat_significance(n, length, copies, (copies - 1) * length,
+                                                 match_rate) > level:
+        length += 1
+    return length
+
+
+def _repeated(codes: np.ndarray, length: int, copies: int, first: bool = False):
     """The starts of the window of ``length`` with the most copies apart (at least
-    ``copies``; the earliest among equals), or None."""
+    ``copies``; the earliest among equals), or None; with ``first``, only whether one
+    exists (True or None)."""
     hashes = _window_hashes(codes, length)
     order = np.argsort(hashes, kind="stable")
     ordered = hashes[order]
     cuts = np.flatnonzero(np.diff(ordered)) + 1
-    first = np.concatenate(([0], cuts))
-    sizes = np.diff(np.concatenate((first, [len(ordered)])))
+    begins = np.concatenate(([0], cuts))
+    sizes = np.diff(np.concatenate((begins, [len(ordered)])))
+    # a group's copies apart span at least (copies - 1) * length: from its first to its last
+    spread = np.maximum.reduceat(order, begins) - np.minimum.reduceat(order, begins)
+    possible = np.flatnonzero((sizes >= copies) & (spread >= (copies - 1) * length))
     best, best_key = None, None
-    for g in np.flatnonzero(sizes >= copies).tolist():
-        where = order[first[g]:first[g] + sizes[g]]  # ascending: a stable sort of positions
+    for g in possible.tolist():
+        where = order[begins[g]:begins[g] + sizes[g]]  # ascending: a stable sort of positions
         kept = _apart(where, length)
         if len(kept) < copies:
             continue
@@ -156,6 +169,8 @@ def _repeated(codes: np.ndarray, length: int, copies: int) -> np.ndarray | None:
         kept = [p for p in kept if np.array_equal(codes[p:p + length], reference)]
         if len(kept) < copies:
             continue  # (a hash collision)
+        if first:
+            return True
         key = (-len(kept), kept[0])
         if best_key is None or key < best_key:
             best, best_key = np.asarray(kept, dtype=np.int64), key
