@@ -104,6 +104,11 @@ def test_find_section_is_the_longest_exact_repeat(codes, copies):
     if best == 0:
         assert found is None
         return
+    window = max((w for w in windows if len(w) == best and len(apart(w)) >= copies),
+                 key=lambda w: (len(apart(w)), -apart(w)[0]))
+    if any(window[p:] == window[:-p] for p in range(1, best // 2 + 1)):
+        assert found is None  # a cycle is left to the digram search
+        return
     assert len(found.motif) == best
     assert found.starts.tolist() == apart(tuple(found.motif.tolist()))
 

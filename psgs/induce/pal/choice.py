@@ -60,7 +60,7 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
     partners: dict[int, list[int]] = {i: [] for i in candidates}
     for k, a in enumerate(candidates):
         for b in candidates[k + 1:]:
-            if coincide(intervals[a], intervals[b], conf.min_copies):
+            if coincide(intervals[a], intervals[b], conf.min_copies, conf.sync_fraction):
                 partners[a].append(b)
                 partners[b].append(a)
     found.section_partners = partners
@@ -118,12 +118,13 @@ def _members(where: tuple[int, int], groups: list[list[int]],
     return (groups if kind == 0 else sectioned)[k]
 
 
-def coincide(a: np.ndarray, b: np.ndarray, copies: int) -> bool:
+def coincide(a: np.ndarray, b: np.ndarray, copies: int, fraction: float = 1.0) -> bool:
     """Whether ``copies`` copies of one section pair off with copies of the other, each pair
-    sharing at least half of the time the two cover together (each copy in one pair).
+    sharing at least half of the time the two cover together (each copy in one pair), and
+    the pairs are at least ``fraction`` of the copies of each.
 
-    Looser than this, a short chance repeat inside a long section's copies would count as
-    in step with it.
+    Looser than this, a short chance repeat inside a long section's copies, or a few copies
+    among many of the other, would count as in step with it.
 
     Examples
     --------
@@ -142,7 +143,7 @@ def coincide(a: np.ndarray, b: np.ndarray, copies: int) -> bool:
                 used.add(k)
                 paired += 1
                 break
-    return paired >= copies
+    return paired >= copies and paired >= fraction * max(len(a), len(b))
 
 
 def motif_weight(string: Timed, pattern: tuple[int, ...],
