@@ -70,11 +70,12 @@ def voice_rows(part) -> tuple[tuple[float, float, str], ...]:
     """A part as one monophonic line: notes (top of a chord), rests and the gaps as ``r``."""
     rows, end = [], 0.0
     for el in part.flatten().notesAndRests:
-        onset, duration = float(el.offset), float(el.quarterLength)
+        # beats to a millionth: music21's float offsets leave crumbs of 1e-15
+        onset, duration = round(float(el.offset), 6), round(float(el.quarterLength), 6)
         if duration <= 0 or onset < end:
             continue  # a grace note, or a second voice of the staff under the first
         if onset > end:
-            rows.append((end, onset - end, "r"))
+            rows.append((end, round(onset - end, 6), "r"))
         if el.isRest:
             symbol = "r"
         elif el.isChord:
@@ -82,7 +83,7 @@ def voice_rows(part) -> tuple[tuple[float, float, str], ...]:
         else:
             symbol = el.pitch.nameWithOctave
         rows.append((onset, duration, symbol))
-        end = onset + duration
+        end = round(onset + duration, 6)
     return tuple(rows)
 
 
@@ -197,13 +198,11 @@ def longest_rule(symbols: tuple[str, ...]) -> tuple[int, list[int]] | None:
     """Peer (b): scikit-sequitur's longest rule, its length and its two first starts apart."""
     from sksequitur import parse
 
-    grammar = parse(list(symbols))
+    expansions = parse(list(symbols)).expansions()
     best: tuple[str, ...] = ()
-    for rule in list(grammar)[1:]:
-        expansion = tuple(grammar.expansions[rule]) if hasattr(grammar, "expansions") \
-            else tuple(_expand(grammar, rule))
-        if len(expansion) > len(best):
-            best = expansion
+    for rule, expansion in expansions.items():
+        if int(rule) != 0 and len(expansion) > len(best):  # rule 0 is the whole string
+            best = tuple(expansion)
     if len(best) < 2:
         return None
     starts = []
@@ -213,13 +212,6 @@ def longest_rule(symbols: tuple[str, ...]) -> tuple[int, list[int]] | None:
             if len(starts) == 2:
                 return len(best), starts
     return None
-
-
-def _expand(grammar, rule) -> list[str]:
-    out = []
-    for item in grammar[rule]:
-        out.extend(_expand(grammar, item) if item in grammar else [item])
-    return out
 
 
 def peer(ag: Actiongram, repeat_of) -> dict[str, tuple[tuple[float, float], ...]]:
