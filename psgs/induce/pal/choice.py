@@ -27,7 +27,7 @@ import numpy as np
 
 from .motifs import Timed
 from .pooling import sync_groups
-from .sections import Section, copy_agreements, find_section, repeat_significance
+from .sections import copy_agreements, find_sections, repeat_significance
 
 if TYPE_CHECKING:
     from .conf import ContentConf
@@ -41,17 +41,11 @@ TOO_FEW_AGREEING = "too few copies agree with the pattern"
 WEAK_COPIES = "not significant at its group's copies"
 
 
-def find_sections(strings: list[Timed], conf: ContentConf) -> list[Section | None]:
-    """Every string's section (None where it is too short or no window repeats)."""
-    # (not bounded by max_pattern: a section is found by a search over lengths, not grown)
-    level = math.log10(conf.alpha)
-    return [find_section(s.codes, conf.min_copies, len(s.codes), s.match_rate, level)
-            if len(s.codes) >= 2 * conf.min_copies else None for s in strings]
-
-
 def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) -> None:
     """Section groups formed and weighed against the motif groups; ``found`` updated."""
-    sections = find_sections(strings, conf)
+    # (not bounded by max_pattern: a section is found by a search over lengths, not grown)
+    sections = find_sections([s.codes for s in strings], conf.min_copies,
+                             [s.match_rate for s in strings], math.log10(conf.alpha))
     found.sections = sections
     level = math.log10(conf.alpha)
     candidates = [i for i, s in enumerate(sections) if s is not None and s.significance <= level]
@@ -133,17 +127,19 @@ def coincide(a: np.ndarray, b: np.ndarray, copies: int, fraction: float = 1.0) -
     >>> coincide(np.array([[0., 16.], [20., 36.]]), np.array([[3., 9.], [23., 29.]]), 2)
     False
     """
-    paired, used = 0, set()
-    for start, end in a.tolist():
-        for k, (s, e) in enumerate(b.tolist()):
-            if k in used:
-                continue
-            shared = min(end, e) - max(start, s)
-            if shared > 0 and 2 * shared >= max(end, e) - min(start, s):
-                used.add(k)
-                paired += 1
-                break
-    return paired >= copies and paired >= fraction * max(len(a), len(b))
+    if min(len(a), len(b)) < max(copies, fraction * max(len(a), len(b))):
+        return False  # too few copies on one side to pair off enough of the other's
+    # copies of one string are disjoint and in time order, so a copy of ``a`` can only pair
+    # with the copy of ``b`` that starts nearest it, and no copy of ``b`` with two of ``a``
+    at = np.clip(np.searchsorted(b[:, 0], a[:, 0]), 1, len(b) - 1) if len(b) > 1 \
+        else np.zeros(len(a), dtype=np.int64)
+    paired = np.zeros(len(a), dtype=bool)
+    for near in (at - 1, at) if len(b) > 1 else (at,):
+        shared = np.minimum(a[:, 1], b[near, 1]) - np.maximum(a[:, 0], b[near, 0])
+        union = np.maximum(a[:, 1], b[near, 1]) - np.minimum(a[:, 0], b[near, 0])
+        paired |= (shared > 0) & (2 * shared >= union)
+    count = min(int(np.count_nonzero(paired)), len(b))
+    return count >= copies and count >= fraction * max(len(a), len(b))
 
 
 def motif_weight(string: Timed, pattern: tuple[int, ...],

@@ -147,15 +147,69 @@ def copy_agreements(codes: np.ndarray, pattern, starts) -> list[float]:
     [1.0, 0.6666666666666666]
     """
     pattern = np.asarray(pattern)
-    out = []
-    for a in np.asarray(starts).tolist():
-        window = codes[a:a + len(pattern)]
-        out.append(float(np.count_nonzero(window == pattern[:len(window)])) / len(pattern))
+    starts = np.asarray(starts, dtype=np.int64)
+    index = starts[:, None] + np.arange(len(pattern))
+    inside = index < len(codes)
+    agree = inside & (codes[np.minimum(index, len(codes) - 1)] == pattern)
+    return (np.count_nonzero(agree, axis=1) / len(pattern)).tolist()
+
+
+def find_sections(strings: list[np.ndarray], copies: int, match_rates: list[float],
+                  level: float) -> list[Section | None]:
+    """:func:`find_section` of every string (unbounded in length), strings that cannot hold a
+    section reaching ``level`` passed over in one pass over all of them.
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(0)
+    >>> section = rng.integers(0, 9, 12)
+    >>> strings = [np.concatenate((section, rng.integers(0, 9, 5), section)),
+    ...            rng.integers(0, 9, 29)]
+    >>> [None if s is None else len(s.motif) for s in find_sections(strings, 2, [0.11] * 2, -2)]
+    [12, None]
+    """
+    out: list[Section | None] = [None] * len(strings)
+    follows = [follow_rate(c) if len(c) >= 2 * copies else None for c in strings]
+    lows = [_shortest(len(c), copies, q, f, level, len(c) // copies)
+            if len(c) >= 2 * copies else 0 for c, q, f in zip(strings, match_rates, follows)]
+    for i in _may_repeat(strings, lows, copies):
+        out[i] = find_section(strings[i], copies, len(strings[i]), match_rates[i], level,
+                              follows[i], lows[i])
     return out
 
 
+def _may_repeat(strings: list[np.ndarray], lows: list[int], copies: int) -> list[int]:
+    """The strings where some window of ``lows[i]`` symbols comes ``copies`` times, spread
+    over ``(copies - 1) lows[i]`` symbols at least (what a section needs; hashes of every
+    string of one length compared at once)."""
+    by_length: dict[int, list[int]] = {}
+    for i, (codes, low) in enumerate(zip(strings, lows)):
+        if 2 <= low <= len(codes) // copies:
+            by_length.setdefault(low, []).append(i)
+    out: list[int] = []
+    for length, rows in by_length.items():
+        flat = np.concatenate([strings[i] for i in rows])
+        bounds = np.cumsum([0] + [len(strings[i]) for i in rows])
+        hashes = _window_hashes(flat, length)
+        owner = np.repeat(np.arange(len(rows)), np.diff(bounds))[:len(hashes)]
+        valid = np.arange(len(hashes)) + length <= bounds[owner + 1]
+        where = np.flatnonzero(valid)
+        with np.errstate(over="ignore"):
+            keys = hashes[where] + owner[where].astype(np.uint64) * np.uint64(_INVERSE)
+        order = np.argsort(keys)  # (any order within a group: only its extent is read)
+        ordered = keys[order]
+        begins = np.concatenate(([0], np.flatnonzero(np.diff(ordered)) + 1))
+        sizes = np.diff(np.concatenate((begins, [len(ordered)])))
+        positions = where[order]
+        spread = np.maximum.reduceat(positions, begins) - np.minimum.reduceat(positions, begins)
+        hit = begins[(sizes >= copies) & (spread >= (copies - 1) * length)]
+        out.extend(rows[k] for k in np.unique(owner[positions[hit]]).tolist())
+    return sorted(out)
+
+
 def find_section(codes: np.ndarray, copies: int, longest: int, match_rate: float,
-                 level: float = 0.0) -> Section | None:
+                 level: float = 0.0, follow: float | None = None,
+                 low: int | None = None) -> Section | None:
     """The longest window of ``codes`` found ``copies`` times or more, exact and apart.
 
     Among windows of that length the one with the most copies wins, the
@@ -164,7 +218,8 @@ def find_section(codes: np.ndarray, copies: int, longest: int, match_rate: float
     two symbols or more repeats so, when none is long enough for its
     significance to reach ``level`` (log10; 0 looks at every length), or when
     the longest is a cycle (it repeats itself at a shift of half its length
-    or less: ``x y z x y z``).
+    or less: ``x y z x y z``). ``follow`` and ``low``: the string's
+    :func:`follow_rate` and the shortest length worth a look, when known.
 
     Examples
     --------
@@ -177,8 +232,9 @@ def find_section(codes: np.ndarray, copies: int, longest: int, match_rate: float
     """
     n = len(codes)
     high = min(longest, n // copies)
-    follow = follow_rate(codes)
-    low = _shortest(n, copies, match_rate, follow, level, high)
+    if low is None:  # (find_sections hands both in)
+        follow = follow_rate(codes)
+        low = _shortest(n, copies, match_rate, follow, level, high)
     if low > high or not _repeated(codes, low, copies, first=True):
         return None
     while low < high:  # a window with c copies apart: so has each of its prefixes
