@@ -39,12 +39,13 @@ where something is named.
 from __future__ import annotations
 
 import argparse
+import datetime
 import time
 from dataclasses import dataclass
 
 import numpy as np
 
-from _common import DATA, require, write_csv
+from _common import BENCHMARKS_PAGE, DATA, DOCS, replace_section, require, write_csv
 
 require("psgs")
 from psgs import Actiongram  # noqa: E402
@@ -267,6 +268,18 @@ METHODS = {
 }
 
 
+def table(rows: list[dict]) -> str:
+    """The results as a markdown table, one line per method and shape."""
+    lines = ["| strings | method | exactly the voices named | recall of the true voices | "
+             "claims on pieces without repetition | seconds |", "|---|---|---:|---:|---:|---:|"]
+    for r in rows:
+        shape = "the voices alone" if r["spurious"] == 0 else f"+ {r['spurious']} spurious"
+        lines.append(f"| {shape} | {r['method']} | {r['exactly_the_voices']} / "
+                     f"{r['pieces_with_repeats']} | {r['recall']:.3f} | {r['claims_without']} / "
+                     f"{r['pieces_without']} | {r['seconds']} |")
+    return "\n".join(lines)
+
+
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--limit", type=int, default=None,
@@ -309,6 +322,14 @@ def main(argv=None) -> None:
     if not args.no_write:
         header = list(rows[0])
         write_csv(DATA / "streams.csv", header, [[r[h] for h in header] for r in rows])
+        text = table(rows)
+        replace_section(BENCHMARKS_PAGE, "streams", "## PAL on parallel streams of music\n\n"
+                        f"Measured with `python benchmarks/streams.py` ({datetime.date.today()}); "
+                        "data in `docs/data/streams.csv`, what it means in "
+                        "[Any parallel streams](streams.md).\n\n" + text)
+        page = DOCS / "streams.md"
+        if page.exists() and "<!-- streams:start -->" in page.read_text(encoding="utf-8"):
+            replace_section(page, "streams", text)
     print(f"total {time.time() - began:.0f} s")
 
 
