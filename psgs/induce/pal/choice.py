@@ -44,10 +44,10 @@ WEAK_COPIES = "not significant at its group's copies"
 def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) -> None:
     """Section groups formed and weighed against the motif groups; ``found`` updated."""
     # (not bounded by max_pattern: a section is found by a search over lengths, not grown)
-    sections = find_sections([s.codes for s in strings], conf.min_copies,
-                             [s.match_rate for s in strings], math.log10(conf.alpha))
-    found.sections = sections
     level = math.log10(conf.alpha)
+    sections = find_sections([s.codes for s in strings], conf.min_copies,
+                             [s.match_rate for s in strings], level)
+    found.sections = sections
     candidates = [i for i, s in enumerate(sections) if s is not None and s.significance <= level]
     intervals = {i: strings[i].intervals(sections[i].starts, len(sections[i].motif))
                  for i in candidates}
@@ -92,24 +92,15 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
     keep_agreeing(strings, found, conf)
     # a group that the agreement left with one member is no longer in step with anything
     left: dict[tuple[int, int], list[int]] = {}
-    for i in found.patterns:
-        left.setdefault(taken.get(i, (0, -1)), []).append(i)
-    for where, members in left.items():
-        if len(members) == 1 and len(_members(where, found.groups, sectioned)) > 1:
+    for i in found.patterns:  # (each is in ``taken``: the others were deleted above)
+        left.setdefault(taken[i], []).append(i)
+    for (kind, k), members in left.items():
+        if len(members) == 1 and len((sectioned if kind else found.groups)[k]) > 1:
             i = members[0]
             del found.patterns[i], found.occurrences[i], found.spans[i], found.agreements[i]
             found.joined.pop(i, None)
             found.from_sections.discard(i)
             found.dropped[i] = TOO_FEW_AGREEING
-
-
-def _members(where: tuple[int, int], groups: list[list[int]],
-             sectioned: list[list[int]]) -> list[int]:
-    """The strings of the group ``where`` names: (0, k) motif group k, (1, k) section group k."""
-    kind, k = where
-    if k < 0:
-        return []
-    return (groups if kind == 0 else sectioned)[k]
 
 
 def coincide(a: np.ndarray, b: np.ndarray, copies: int, fraction: float = 1.0) -> bool:
