@@ -149,3 +149,18 @@ def test_sections_are_pairwise_in_step_in_a_group():
     result = PAL(min_copies=2).induce(ag)
     for a, b in combinations(truth, 2):
         assert coincide(np.asarray(result.occurrences[a]), np.asarray(result.occurrences[b]), 2)
+
+
+def test_an_induction_holds_one_agreement_per_occurrence():
+    import pickle
+
+    from psgs.induce import Induction
+
+    made = Induction(None, ("k",), {"k": ("a", "b")}, {"k": ((0.0, 2.0), (2.0, 4.0))},
+                     agreements={"k": (1.0, 0.5)})
+    assert pickle.loads(pickle.dumps(made)).agreements == {"k": (1.0, 0.5)}
+    assert made.to_dict()["agreements"] == {"k": [1.0, 0.5]}
+    assert "agreements" not in Induction(None, (), {}, {}).to_dict()
+    with pytest.raises(ValidationError, match="agreements"):
+        Induction(None, ("k",), {"k": ("a", "b")}, {"k": ((0.0, 2.0),)},
+                  agreements={"k": (1.0, 0.5)})
