@@ -326,10 +326,10 @@ def main(argv=None) -> None:
         replace_section(BENCHMARKS_PAGE, "streams", "## PAL on parallel streams of music\n\n"
                         f"Measured with `python benchmarks/streams.py` ({datetime.date.today()}); "
                         "data in `docs/data/streams.csv`, what it means in "
-                        "[Any parallel streams](streams.md).\n\n" + text)
-        page = DOCS / "streams.md"
-        if page.exists() and "<!-- streams:start -->" in page.read_text(encoding="utf-8"):
-            replace_section(page, "streams", text)
+                        "[PAL](pal.md#benchmark-on-real-music).\n\n" + text)
+        for page in (DOCS / "pal.md", DOCS / "streams.md"):
+            if page.exists() and "<!-- streams:start -->" in page.read_text(encoding="utf-8"):
+                replace_section(page, "streams", text)
     print(f"total {time.time() - began:.0f} s")
 
 
