@@ -119,16 +119,14 @@ def follow_rate(codes: np.ndarray) -> float | None:
     if len(codes) < 3:
         return None
     size = int(codes.max()) + 1
-    pairs = np.bincount(codes[:-1] * size + codes[1:], minlength=size * size)
+    # (digram counts by sorting: a long alphabet would make size ** 2 bins)
+    keys, pairs = np.unique(codes[:-1] * size + codes[1:], return_counts=True)
     firsts = np.bincount(codes[:-1], minlength=size)
     steps = len(codes) - 1
-    seen = pairs.reshape(size, size)[firsts > 0]
     rows = firsts[firsts > 0]
     symbols = len(rows)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        alone = float(np.sum(rows * np.log(rows / steps)))
-        ratios = np.where(seen > 0, seen / rows[:, None], 1.0)
-        chained = float(np.sum(seen * np.log(ratios)))
+    alone = float(np.sum(rows * np.log(rows / steps)))
+    chained = float(np.sum(pairs * np.log(pairs / firsts[keys // size])))
     extra = symbols * (symbols - 1) - (symbols - 1)  # the chain's further parameters
     if chained - alone <= extra / 2 * math.log(steps):
         return None
