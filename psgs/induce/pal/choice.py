@@ -72,7 +72,10 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
     taken: dict[int, tuple[int, int]] = {}  # string -> (kind, group) it is a component of
     for _, kind, k, group in sorted(weighed, key=lambda w: w[:3]):
         free = [i for i in group if i not in taken]
-        if len(free) >= 2 or (kind == 0 and free and len(free) == len(found.groups[k])):
+        # a motif group keeps a lone member when the rest of it are components already
+        # (taken by a stronger group, so still in step with it), or when it was one alone
+        if len(free) >= 2 or (kind == 0 and free and all(i in taken or i in free
+                                                         for i in found.groups[k])):
             taken.update((i, (kind, k)) for i in free)
     for i in list(found.patterns):
         if taken.get(i, (1,))[0] != 0:
@@ -95,7 +98,9 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
     for i in found.patterns:  # (each is in ``taken``: the others were deleted above)
         left.setdefault(taken[i], []).append(i)
     for (kind, k), members in left.items():
-        if len(members) == 1 and len((sectioned if kind else found.groups)[k]) > 1:
+        mates = [] if kind else [j for j in found.groups[k] if j != members[0]]
+        if len(members) == 1 and (kind or (mates and not any(j in found.patterns
+                                                               for j in mates))):
             i = members[0]
             del found.patterns[i], found.occurrences[i], found.spans[i], found.agreements[i]
             found.joined.pop(i, None)
