@@ -106,6 +106,10 @@ class Induction:
         repetition"``; empty otherwise.
     actuator_reports : tuple of ActuatorReport, optional
         One per joint, with the stage that dropped it.
+    agreements : mapping of str to tuple of float, optional
+        Actuator name -> for each entry of ``occurrences[name]``, the share of
+        the pattern's positions that copy agrees with (1.0 for an exact copy);
+        empty when the inducer does not measure it.
 
     Raises
     ------
@@ -146,6 +150,7 @@ class Induction:
     morphemes: Mapping[str, Morpheme] = field(default_factory=dict)
     verdict: str = ""
     actuator_reports: tuple[ActuatorReport, ...] = ()
+    agreements: Mapping[str, tuple[float, ...]] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         if isinstance(self.performances, bool) or not isinstance(self.performances, int) \
@@ -167,6 +172,11 @@ class Induction:
         if given:
             raise ValidationError(f"occurrence_performance names {next(iter(given))!r}, "
                                   f"which has no occurrences")
+        agreements = {k: tuple(float(a) for a in v) for k, v in self.agreements.items()}
+        for name, shares in agreements.items():
+            if len(shares) != len(occurrences.get(name, ())):
+                raise ValidationError(f"agreements[{name!r}] has {len(shares)} entries for "
+                                      f"{len(occurrences.get(name, ()))} occurrences")
         frozen = {
             "components": tuple(self.components),
             "patterns": MappingProxyType({k: tuple(v) for k, v in self.patterns.items()}),
@@ -180,6 +190,7 @@ class Induction:
                                                    self.actuator_channels.items()}),
             "morphemes": MappingProxyType(dict(self.morphemes)),
             "actuator_reports": tuple(self.actuator_reports),
+            "agreements": MappingProxyType(agreements),
         }
         for key, value in frozen.items():
             object.__setattr__(self, key, value)
@@ -191,7 +202,7 @@ class Induction:
                              self.inducer, dict(self.params), self.performances,
                              dict(self.occurrence_performance), self.actuators,
                              dict(self.actuator_channels), dict(self.morphemes), self.verdict,
-                             self.actuator_reports))
+                             self.actuator_reports, dict(self.agreements)))
 
     def __repr__(self) -> str:
         # a summary, not the dataclass dump of every pattern and occurrence
@@ -253,8 +264,8 @@ synchronised_with=())
         -------
         dict
             Plain lists, numbers and strings only; ``occurrence_performance`` is
-            included only when there was more than one performance, so the
-            summary of one actiongram is what it always was.
+            included only when there was more than one performance, and
+            ``agreements`` only when the inducer measured them.
 
         Examples
         --------
@@ -285,6 +296,8 @@ synchronised_with=())
                                         "share": round(r.share, 4),
                                         "significance": round(r.significance, 3)}
                                        for r in self.actuator_reports]
+        if self.agreements:
+            out["agreements"] = {k: [round(a, 4) for a in v] for k, v in self.agreements.items()}
         if self.performances > 1:
             out["performances"] = self.performances
             out["occurrence_performance"] = {k: list(v)

@@ -65,6 +65,7 @@ class ContentConf(Conf):
     seeds: int = parameter(3, Number(low=1, integer=True))
     rounds: int = parameter(2, Number(low=1, integer=True))
     joins_copies: int = parameter(4, Number(low=2, integer=True))
+    copy_agreement: float = parameter(0.5, Number(low=0, high=1))
     timing: str = parameter("auto", Choice(TIMINGS))
     period_quantile: float = parameter(0.9, Number(low=0, high=1))
     period_agreement: float = parameter(0.6, Number(low=0, high=1, low_open=True))

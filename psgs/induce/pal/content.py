@@ -20,6 +20,12 @@ if TYPE_CHECKING:
     from .conf import ContentConf
 
 
+#: the statuses of a string some stage of the pooling dropped (see ``docs/pal.md``)
+DROPPED_IN_WINDOWS = "not repeated in the group's windows"
+LEFT_ALONE = "group left with one member"
+TRIMMED_AWAY = "pattern trimmed away"
+
+
 @dataclass
 class ContentResult:
     """What the content mode found, per string index (a working record, not a public value)."""
@@ -31,6 +37,13 @@ class ContentResult:
     patterns: dict[int, tuple[int, ...]] = field(default_factory=dict)
     occurrences: dict[int, tuple[tuple[float, float], ...]] = field(default_factory=dict)
     joined: dict[int, list[int]] = field(default_factory=dict)
+    spans: dict[int, tuple[tuple[int, int], ...]] = field(default_factory=dict)  # positions
+    groups: list[list[int]] = field(default_factory=list)  # the components, group by group
+    dropped: dict[int, str] = field(default_factory=dict)  # string -> the stage that dropped it
+    sections: list = field(default_factory=list)  # per string: its Section or None
+    section_partners: dict[int, list[int]] = field(default_factory=dict)
+    from_sections: set[int] = field(default_factory=set)  # components whose pattern is a section
+    agreements: dict[int, tuple[float, ...]] = field(default_factory=dict)  # per copy
 
 
 def find_candidates(strings: list[Timed], conf: ContentConf) -> ContentResult:
@@ -53,6 +66,7 @@ def pool_groups(strings: list[Timed], found: ContentResult, conf: ContentConf) -
     intervals = found.intervals
     groups = sync_groups(found.candidates, found.partners)
     patterns, occurrences, joined = found.patterns, found.occurrences, found.joined
+    dropped = found.dropped
     grouped = {i for g in groups for i in g}
     for group in groups:
         located = {i: intervals[i] for i in group}
@@ -81,10 +95,15 @@ def pool_groups(strings: list[Timed], found: ContentResult, conf: ContentConf) -
                          if (v := vote(strings[i], windows)) is not None
                          and repeats_in_windows(strings[i], v, conf, conf.min_copies,
                                                 beyond_chance=False)}
+                for i in members:
+                    if i not in votes:
+                        dropped[i] = DROPPED_IN_WINDOWS
                 if len(votes) == len(members) or len(votes) < 2:
                     break
                 members = sorted(votes)
             if len(votes) < 2:
+                for i in votes:
+                    dropped[i] = LEFT_ALONE
                 votes = {}
                 break
             together = locate_together(strings, votes, conf)
@@ -105,18 +124,25 @@ def pool_groups(strings: list[Timed], found: ContentResult, conf: ContentConf) -
                     joined[i] = group
                     grouped.add(i)
         kept_columns = trim(votes, conf.edge_share, conf.column_alpha) if votes else {}
+        kept = []
         for i, (first, last) in kept_columns.items():
             if last <= first:
+                dropped[i] = TRIMMED_AWAY
                 continue
             v = votes[i]
             length = len(v.pattern)
             patterns[i] = pooled_pattern(strings[i], v)[first:last]
-            where = []
+            where, spans = [], []
             for a, b in v.spans:
                 if b - a == length:
                     a, b = a + first, a + last
                 where.append((float(strings[i].starts[a]), float(strings[i].ends[b - 1])))
+                spans.append((int(a), int(b)))
             occurrences[i] = tuple(where)
+            found.spans[i] = tuple(spans)
+            kept.append(i)
+        if kept:
+            found.groups.append(kept)
     return found
 
 

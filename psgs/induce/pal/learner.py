@@ -21,6 +21,7 @@ from ..base import Inducer, as_performances
 from ..results import NO_REPETITION, Induction, StringReport
 from ._encoding import encode
 from .conf import ContentConf
+from .choice import add_sections
 from .content import ContentResult, find_candidates, pool_groups
 from .motifs import Timed
 from .period import period_mode
@@ -79,6 +80,10 @@ class ContentPAL(Inducer):
         A string outside every group joins one when, read in the group's windows, at least
         this many of its copies have the common length and half of their columns agree,
         beyond chance, in a share ``conserve`` of them.
+    copy_agreement : float, default 0.5
+        Least share of a pattern's positions a copy must agree with to be reported in
+        ``occurrences``; a string left with fewer than ``min_copies`` such copies is no
+        component.
     timing : {"auto", "content", "period"}, default "auto"
         How copies are located. ``"content"``: by content in each string, joined in time;
         ``"period"``: by time windows of the action's period pooled over all strings (for
@@ -170,19 +175,24 @@ def learn_content(inducer: Inducer, conf: ContentConf, actiongram: Actiongram) -
     conf = replace(conf, engine=for_input(conf.engine, sum(len(s.codes) for s in strings),
                                           CROSSOVER, "psgs.induce.pal._motifs_jit"))
     found = pool_groups(strings, find_candidates(strings, conf), conf)
+    if conf.timing != "period":
+        add_sections(strings, found, conf)
     by_period = None
     if conf.timing == "period" or (conf.timing == "auto" and not found.patterns):
         by_period = _period_phase(strings, len(symbol_of), found, conf)
     reports = _reports(actiongram, found, by_period is not None or conf.timing == "period",
                        symbol_of)
     patterns = {i: tuple(symbol_of[c] for c in codes) for i, codes in found.patterns.items()}
-    return _result(inducer, actiongram, patterns, found.occurrences, reports)
+    result = _result(inducer, actiongram, patterns, found.occurrences, reports)
+    names = actiongram.names
+    return replace(result, agreements={names[i]: found.agreements[i] for i in found.patterns
+                                       if i in found.agreements})
 
 
 def _period_phase(strings: list[Timed], size: int, found: ContentResult, conf: ContentConf):
     """Replace the content mode's findings by the period mode's (which may be none)."""
     by_period = period_mode(strings, size, conf)
-    found.patterns, found.occurrences, found.joined = {}, {}, {}
+    found.patterns, found.occurrences, found.joined, found.agreements = {}, {}, {}, {}
     if by_period is not None:
         for i, codes in by_period.patterns.items():
             found.patterns[i] = codes
@@ -193,30 +203,41 @@ def _period_phase(strings: list[Timed], size: int, found: ContentResult, conf: C
 
 def _reports(actiongram: Actiongram, found: ContentResult, period_used: bool,
              symbol_of: list[str]) -> tuple[StringReport, ...]:
-    """One report per string: component, or the stage that dropped it."""
+    """One report per string: component, or the stage that dropped it.
+
+    A string reported "not synchronised" has no partner at all; one that had
+    partners and was dropped later says by which stage.
+    """
     reports = []
-    partners = found.partners
+    partners, section_partners = found.partners, found.section_partners
+    sections = found.sections or [None] * len(found.motifs)
     names = actiongram.names
     for i, name in enumerate(names):
-        m = found.motifs[i]
+        m, section = found.motifs[i], sections[i]
+        if i in found.from_sections or (m is None and section is not None):
+            m = section  # the repetition the report is about
+        if i in found.joined and i in found.patterns:
+            partners[i] = found.joined[i]
+        synchronised = (*partners.get(i, ()), *(j for j in section_partners.get(i, ())
+                                                if j not in partners.get(i, ())))
         if i in found.patterns:
             status = "component"
-            if i in found.joined:
-                partners[i] = found.joined[i]
         elif period_used:
             status = "not in step with the period"
-        elif m is None:
-            status = "no repetition"
-        elif i not in partners:
-            status = "not significant"
-        else:
+        elif i in found.dropped:
+            status = found.dropped[i]
+        elif i not in partners and i not in section_partners:
+            status = "no repetition" if m is None else "not significant"
+        elif not synchronised:
             status = "not synchronised"
+        else:
+            status = "synchronised, but no pattern kept"
         reports.append(StringReport(
             name=name, status=status,
             motif=tuple([symbol_of[c] for c in m.motif.tolist()]) if m else (),
             copies=len(m.starts) if m else 0,
             significance=m.significance if m else 0.0,
-            synchronised_with=tuple([names[j] for j in partners.get(i, ())])))
+            synchronised_with=tuple([names[j] for j in synchronised])))
     return tuple(reports)
 
 

@@ -1,0 +1,337 @@
+"""PAL on parallel streams that are not motion: the voices of real music, repeats as the truth.
+
+Run from the repository root (music21, in the bench extra, brings the corpus):
+
+    python benchmarks/streams.py [--limit N] [--no-write]
+
+The data: the pieces of music21's corpus by the composers in ``COMPOSERS`` with
+three to five voices (parts). The four-part Bach chorales are left out on
+purpose (they are kept to check the result). One voice is one string, one
+note a symbol (its pitch with octave, the top note of a chord; a rest is
+``r``), times in beats. A piece **with repetition** has repeat barlines: its
+repeats are expanded (music21's ``expandRepeats``), so each repeated section
+is played twice in all voices; the truth is the score's own barlines (the
+measures whose number comes twice in the expanded score, runs of two
+measures or more). A piece **without repetition** has no repeat barline and
+no repeat expression (da capo, segno); it is a negative, though a composer
+may still write a passage out twice.
+
+Each piece is run alone (its voices only) and with 16 spurious strings beside
+its voices (voices of other pieces, their notes shuffled, cut to the piece's
+time): the paper's shape of a few patterned strings among many. Methods, in
+the same run on the same strings:
+
+- PAL with its defaults, and PAL with ``min_copies=2`` (a section played twice);
+- the longest exact repeat of each string (two copies apart), strings grouped
+  by time span: two strings are in step when their copies pair off in time
+  (each pair sharing half the time they cover together), every string of a
+  group of two or more is named;
+- scikit-sequitur's longest rule of each string (its two first copies apart),
+  grouped the same way.
+
+A voice counts as **found** when it is named with two reported copies whose
+middles lie in the two passes of one true section. Printed and written to
+docs/data/streams.csv: per method and shape, pieces where exactly the voices
+are named, the recall of the true voices, and the pieces without repetition
+where something is named.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from _common import BENCHMARKS_PAGE, DATA, DOCS, replace_section, require, write_csv
+
+require("psgs")
+from psgs import Actiongram  # noqa: E402
+from psgs.induce import PAL  # noqa: E402
+from psgs.induce.pal.choice import coincide  # noqa: E402 (the same time-span rule for peers)
+
+#: who is read from music21's corpus (Bach is not: its chorales are reserved)
+COMPOSERS = ("haydn", "mozart", "beethoven", "corelli", "monteverdi", "handel", "schubert",
+             "josquin", "verdi", "weber", "cpebach", "ciconia", "luca", "palestrina")
+#: Palestrina's 1,318 pieces are read one in this many (in path order): a sample of motets
+#: and masses beside the others, not a corpus of its own
+PALESTRINA_STEP = 20
+SPURIOUS = 16
+
+
+@dataclass(frozen=True)
+class Piece:
+    """One piece: its voices as (onset, duration, symbol) rows, and its repeated sections."""
+
+    name: str
+    voices: tuple[tuple[tuple[float, float, str], ...], ...]
+    sections: tuple[tuple[tuple[float, float], tuple[float, float]], ...]  # (pass 1, pass 2)
+
+
+def voice_rows(part) -> tuple[tuple[float, float, str], ...]:
+    """A part as one monophonic line: notes (top of a chord), rests and the gaps as ``r``."""
+    rows, end = [], 0.0
+    for el in part.flatten().notesAndRests:
+        # beats to a millionth: music21's float offsets leave crumbs of 1e-15
+        onset, duration = round(float(el.offset), 6), round(float(el.quarterLength), 6)
+        if duration <= 0 or onset < end:
+            continue  # a grace note, or a second voice of the staff under the first
+        if onset > end:
+            rows.append((end, round(onset - end, 6), "r"))
+        if el.isRest:
+            symbol = "r"
+        elif el.isChord:
+            symbol = max(el.pitches, key=lambda p: p.ps).nameWithOctave
+        else:
+            symbol = el.pitch.nameWithOctave
+        rows.append((onset, duration, symbol))
+        end = round(onset + duration, 6)
+    return tuple(rows)
+
+
+def repeated_sections(part) -> tuple[tuple[tuple[float, float], tuple[float, float]], ...]:
+    """The runs of two or more measures whose numbers come twice in an expanded part."""
+    measures = list(part.getElementsByClass("Measure"))
+    first: dict[int, int] = {}
+    runs, current = [], None
+    for j, m in enumerate(measures):
+        i = first.get(m.number)
+        if i is None:
+            first[m.number] = j
+        if i is not None and current is not None and i == current[1] + 1 and j == current[3] + 1:
+            current[1], current[3] = i, j
+            continue
+        if current is not None:
+            runs.append(current)
+        current = [i, i, j, j] if i is not None else None
+    if current is not None:
+        runs.append(current)
+
+    def span(a, b):
+        return float(measures[a].offset), float(measures[b].offset + measures[b].quarterLength)
+
+    return tuple((span(a, b), span(c, d)) for a, b, c, d in runs if b > a)
+
+
+def load(limit: int | None) -> tuple[list[Piece], list[Piece]]:
+    """The pieces with repetition and those without, from music21's corpus."""
+    from music21 import bar, corpus, repeat
+
+    with_rep, without = [], []
+    seen: set[str] = set()
+    for composer in COMPOSERS:
+        paths = sorted(map(str, corpus.getComposer(composer)))
+        if composer == "palestrina":
+            paths = paths[::PALESTRINA_STEP]
+        for path in paths:
+            stem = path.rsplit(".", 1)[0].removesuffix("_old")
+            if stem in seen:
+                continue  # one piece in two encodings (krn and mxl), or an older copy
+            seen.add(stem)
+            try:
+                score = corpus.parse(path)
+            except Exception:  # a file music21 cannot read is left out, as a user would
+                continue
+            if hasattr(score, "scores"):
+                score = score.scores[0]
+            if not 3 <= len(score.parts) <= 5:
+                continue
+            name = path.split("corpus/")[-1]
+            marks = list(score.parts[0].recurse().getElementsByClass(bar.Repeat))
+            expressions = list(score.recurse().getElementsByClass(repeat.RepeatExpression))
+            if not marks and not expressions:
+                voices = tuple(voice_rows(p) for p in score.parts)
+                if all(len(v) >= 8 for v in voices):
+                    without.append(Piece(name, voices, ()))
+                continue
+            if expressions:
+                continue  # da capo and segno: the truth is not the barlines alone
+            try:
+                expanded = score.expandRepeats()
+            except Exception:
+                continue
+            sections = repeated_sections(expanded.parts[0])
+            voices = tuple(voice_rows(p) for p in expanded.parts)
+            if sections and all(len(v) >= 8 for v in voices):
+                with_rep.append(Piece(name, voices, sections))
+            if limit and len(with_rep) >= limit and len(without) >= limit:
+                return with_rep, without
+    return with_rep, without
+
+
+def actiongram(piece: Piece, pool: list[tuple[tuple[float, float, str], ...]],
+               spurious: int, rng: np.random.Generator) -> tuple[Actiongram, list[str]]:
+    """The piece's voices (``v0``...) and ``spurious`` shuffled voices of other pieces."""
+    strings, durations, starts = {}, {}, {}
+    for k, rows in enumerate(piece.voices):
+        strings[f"v{k}"] = [s for _, _, s in rows]
+        durations[f"v{k}"] = [d for _, d, _ in rows]
+        starts[f"v{k}"] = rows[0][0]
+    end = max(o + d for rows in piece.voices for o, d, _ in rows[-1:])
+    for k in range(spurious):
+        rows = pool[int(rng.integers(len(pool)))]
+        order = rng.permutation(len(rows))
+        syms, durs, t = [], [], 0.0
+        for i in order.tolist():
+            if t >= end:
+                break
+            syms.append(rows[i][2])
+            durs.append(rows[i][1])
+            t += rows[i][1]
+        strings[f"x{k}"], durations[f"x{k}"] = syms, durs
+    return Actiongram.from_strings(strings, durations, starts), list(strings)[:len(piece.voices)]
+
+
+def longest_repeat(symbols: tuple[str, ...]) -> tuple[int, list[int]] | None:
+    """Peer (a): the longest window found twice without overlap, its length and two starts."""
+    def twice(length):
+        seen: dict[tuple[str, ...], int] = {}
+        for p in range(len(symbols) - length + 1):
+            key = symbols[p:p + length]
+            q = seen.setdefault(key, p)
+            if p - q >= length:
+                return [q, p]
+        return None
+
+    low, high, best = 1, len(symbols) // 2, None
+    while low <= high:
+        middle = (low + high) // 2
+        hit = twice(middle)
+        if hit:
+            low, best = middle + 1, (middle, hit)
+        else:
+            high = middle - 1
+    return best if best and best[0] >= 2 else None
+
+
+def longest_rule(symbols: tuple[str, ...]) -> tuple[int, list[int]] | None:
+    """Peer (b): scikit-sequitur's longest rule, its length and its two first starts apart."""
+    from sksequitur import parse
+
+    expansions = parse(list(symbols)).expansions()
+    best: tuple[str, ...] = ()
+    for rule, expansion in expansions.items():
+        if int(rule) != 0 and len(expansion) > len(best):  # rule 0 is the whole string
+            best = tuple(expansion)
+    if len(best) < 2:
+        return None
+    starts = []
+    for p in range(len(symbols) - len(best) + 1):
+        if symbols[p:p + len(best)] == best and (not starts or p - starts[-1] >= len(best)):
+            starts.append(p)
+            if len(starts) == 2:
+                return len(best), starts
+    return None
+
+
+def peer(ag: Actiongram, repeat_of) -> dict[str, tuple[tuple[float, float], ...]]:
+    """A peer's repeats per string, grouped by time span: named string -> its copies."""
+    found = {}
+    for name in ag.names:
+        symbols = ag.string(name)
+        hit = repeat_of(symbols)
+        if hit is None:
+            continue
+        length, where = hit
+        starts = ag.starts[name]
+        durs = ag.durations[name]
+        found[name] = np.array([(starts[a], starts[a + length - 1] + durs[a + length - 1])
+                                for a in where])
+    names = list(found)
+    named = set()
+    for k, a in enumerate(names):
+        for b in names[k + 1:]:
+            if coincide(found[a], found[b], 2):
+                named |= {a, b}
+    return {n: tuple(map(tuple, found[n].tolist())) for n in names if n in named}
+
+
+def score(named: dict, voices: list[str], piece: Piece) -> tuple[bool, int]:
+    """Whether exactly the voices are named, and how many voices are found (both passes)."""
+    hits = 0
+    for v in voices:
+        middles = [(a + b) / 2 for a, b in named.get(v, ())]
+        if any(any(p1[0] <= m < p1[1] for m in middles) and any(p2[0] <= m < p2[1]
+                                                                 for m in middles)
+               for p1, p2 in piece.sections):
+            hits += 1
+    return set(named) == set(voices), hits
+
+
+METHODS = {
+    "PAL defaults": lambda ag: dict(PAL().induce(ag).occurrences),
+    "PAL min_copies=2": lambda ag: dict(PAL(min_copies=2).induce(ag).occurrences),
+    "longest exact repeat": lambda ag: peer(ag, longest_repeat),
+    "scikit-sequitur longest rule": lambda ag: peer(ag, longest_rule),
+}
+
+
+def table(rows: list[dict]) -> str:
+    """The results as a markdown table, one line per method and shape."""
+    lines = ["| strings | method | exactly the voices named | recall of the true voices | "
+             "claims on pieces without repetition | seconds |", "|---|---|---:|---:|---:|---:|"]
+    for r in rows:
+        shape = "the voices alone" if r["spurious"] == 0 else f"+ {r['spurious']} spurious"
+        lines.append(f"| {shape} | {r['method']} | {r['exactly_the_voices']} / "
+                     f"{r['pieces_with_repeats']} | {r['recall']:.3f} | {r['claims_without']} / "
+                     f"{r['pieces_without']} | {r['seconds']} |")
+    return "\n".join(lines)
+
+
+def main(argv=None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--limit", type=int, default=None,
+                        help="stop reading the corpus once this many of each kind are in")
+    parser.add_argument("--no-write", action="store_true")
+    args = parser.parse_args(argv)
+    began = time.time()
+    with_rep, without = load(args.limit)
+    print(f"{len(with_rep)} pieces with repeats, {len(without)} without "
+          f"(read in {time.time() - began:.0f} s)", flush=True)
+    pool_of = {p.name: p.voices for p in with_rep + without}
+    rows = []
+    for spurious in (0, SPURIOUS):
+        tally = {m: [0, 0, 0, 0, 0.0] for m in METHODS}  # exact, found, voices, claims, s
+        for k, piece in enumerate(with_rep + without):
+            pool = [v for name, vs in pool_of.items() if name != piece.name for v in vs]
+            rng = np.random.default_rng(k)
+            ag, voices = actiongram(piece, pool, spurious, rng)
+            for method, run in METHODS.items():
+                t = time.perf_counter()
+                named = run(ag)
+                tally[method][4] += time.perf_counter() - t
+                if piece.sections:
+                    exact, hits = score(named, voices, piece)
+                    tally[method][0] += exact
+                    tally[method][1] += hits
+                    tally[method][2] += len(voices)
+                else:
+                    tally[method][3] += bool(named)
+        for method, (exact, hits, total, claims, seconds) in tally.items():
+            rows.append({"spurious": spurious, "method": method,
+                         "pieces_with_repeats": len(with_rep),
+                         "exactly_the_voices": exact,
+                         "recall": round(hits / max(total, 1), 3),
+                         "pieces_without": len(without), "claims_without": claims,
+                         "seconds": round(seconds, 1)})
+            print(f"{spurious:2d} spurious  {method:30s} exactly the voices {exact:3d}/"
+                  f"{len(with_rep)}  recall {hits / max(total, 1):.3f}  claims on pieces "
+                  f"without {claims:2d}/{len(without)}  ({seconds:.1f} s)", flush=True)
+    if not args.no_write:
+        header = list(rows[0])
+        write_csv(DATA / "streams.csv", header, [[r[h] for h in header] for r in rows])
+        text = table(rows)
+        replace_section(BENCHMARKS_PAGE, "streams", "## PAL on parallel streams of music\n\n"
+                        f"Measured with `python benchmarks/streams.py` ({datetime.date.today()}); "
+                        "data in `docs/data/streams.csv`, what it means in "
+                        "[PAL](pal.md#benchmark-on-real-music).\n\n" + text)
+        for page in (DOCS / "pal.md", DOCS / "streams.md"):
+            if page.exists() and "<!-- streams:start -->" in page.read_text(encoding="utf-8"):
+                replace_section(page, "streams", text)
+    print(f"total {time.time() - began:.0f} s")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,164 @@
+"""Sections grouped in time, and the choice between them and the motif groups (step 3b).
+
+Every string's section (:mod:`~psgs.induce.pal.sections`, its longest exact
+repeat) that passes ``alpha`` is a second candidate beside its motif; sections
+are synchronised in time as motifs are (step 3) and form their own groups.
+A string can then be in a motif group (steps 4-6) and in a section group.
+Both kinds are weighed by one significance,
+:func:`~psgs.induce.pal.sections.repeat_significance`, summed over a group's
+members: the groups are taken strongest first (a motif group before a
+section group of equal weight), each keeping the members no stronger group
+took, while two or more are left. A motif's copies are weighed at their own
+agreement with the voted pattern, so many damaged copies of a motif can
+outweigh a few exact ones, and a long section twice outweighs a short figure
+played often.
+
+Then every copy agreeing with its pattern in less than a share
+``copy_agreement`` of its positions is dropped from the occurrences, and a
+string left with fewer than ``min_copies`` copies is no component.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .motifs import Timed
+from .pooling import sync_groups
+from .sections import copy_agreements, find_sections, repeat_significance
+
+if TYPE_CHECKING:
+    from .conf import ContentConf
+    from .content import ContentResult
+
+__all__: list[str] = []  # private: content.py is the caller
+
+#: the statuses of a string this step dropped (see ``docs/pal.md``)
+OUTWEIGHED = "its group outweighed by a stronger one"
+TOO_FEW_AGREEING = "too few copies agree with the pattern"
+WEAK_COPIES = "not significant at its group's copies"
+
+
+def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) -> None:
+    """Section groups formed and weighed against the motif groups; ``found`` updated."""
+    # (not bounded by max_pattern: a section is found by a search over lengths, not grown)
+    level = math.log10(conf.alpha)
+    sections = find_sections([s.codes for s in strings], conf.min_copies,
+                             [s.match_rate for s in strings], level)
+    found.sections = sections
+    candidates = [i for i, s in enumerate(sections) if s is not None and s.significance <= level]
+    intervals = {i: strings[i].intervals(sections[i].starts, len(sections[i].motif))
+                 for i in candidates}
+    partners: dict[int, list[int]] = {i: [] for i in candidates}
+    for k, a in enumerate(candidates):
+        for b in candidates[k + 1:]:
+            if coincide(intervals[a], intervals[b], conf.min_copies, conf.sync_fraction):
+                partners[a].append(b)
+                partners[b].append(a)
+    found.section_partners = partners
+    weights = {i: motif_weight(strings[i], found.patterns[i], found.spans[i])
+               for i in found.patterns}
+    # a motif group's member must be significant at the copies it ended with, too
+    motif_groups = [[i for i in g if weights[i] <= level] for g in found.groups]
+    for i in weights:
+        if weights[i] > level:
+            found.dropped[i] = WEAK_COPIES
+    weighed = [(sum(weights[i] for i in g), 0, k, g) for k, g in enumerate(motif_groups)]
+    sectioned = sync_groups(candidates, partners)
+    weighed += [(sum(sections[i].significance for i in g), 1, k, g)
+                for k, g in enumerate(sectioned)]
+    taken: dict[int, tuple[int, int]] = {}  # string -> (kind, group) it is a component of
+    for _, kind, k, group in sorted(weighed, key=lambda w: w[:3]):
+        free = [i for i in group if i not in taken]
+        # a motif group keeps a lone member when the rest of it are components already
+        # (taken by a stronger group, so still in step with it), or when it was one alone
+        if len(free) >= 2 or (kind == 0 and free and all(i in taken or i in free
+                                                         for i in found.groups[k])):
+            taken.update((i, (kind, k)) for i in free)
+    for i in list(found.patterns):
+        if taken.get(i, (1,))[0] != 0:
+            del found.patterns[i], found.occurrences[i], found.spans[i]
+            found.joined.pop(i, None)
+            if i not in taken:
+                found.dropped.setdefault(i, OUTWEIGHED)
+    for i, (kind, k) in taken.items():
+        if kind == 1:
+            s, length = sections[i], len(sections[i].motif)
+            found.patterns[i] = tuple(s.motif.tolist())
+            found.occurrences[i] = tuple(map(tuple, intervals[i].tolist()))
+            found.spans[i] = tuple((a, a + length) for a in s.starts.tolist())
+            found.from_sections.add(i)
+    for i in {i for g in sectioned for i in g} - set(taken):
+        found.dropped.setdefault(i, OUTWEIGHED)
+    keep_agreeing(strings, found, conf)
+    # a group that the agreement left with one member is no longer in step with anything
+    left: dict[tuple[int, int], list[int]] = {}
+    for i in found.patterns:  # (each is in ``taken``: the others were deleted above)
+        left.setdefault(taken[i], []).append(i)
+    for (kind, k), members in left.items():
+        mates = [] if kind else [j for j in found.groups[k] if j != members[0]]
+        if len(members) == 1 and (kind or (mates and not any(j in found.patterns
+                                                               for j in mates))):
+            i = members[0]
+            del found.patterns[i], found.occurrences[i], found.spans[i], found.agreements[i]
+            found.joined.pop(i, None)
+            found.from_sections.discard(i)
+            found.dropped[i] = TOO_FEW_AGREEING
+
+
+def coincide(a: np.ndarray, b: np.ndarray, copies: int, fraction: float = 1.0) -> bool:
+    """Whether ``copies`` copies of one section pair off with copies of the other, each pair
+    sharing at least half of the time the two cover together (each copy in one pair), and
+    the pairs are at least ``fraction`` of the copies of each.
+
+    Looser than this, a short chance repeat inside a long section's copies, or a few copies
+    among many of the other, would count as in step with it.
+
+    Examples
+    --------
+    >>> coincide(np.array([[0., 16.], [20., 36.]]), np.array([[1., 16.], [21., 35.]]), 2)
+    True
+    >>> coincide(np.array([[0., 16.], [20., 36.]]), np.array([[3., 9.], [23., 29.]]), 2)
+    False
+    """
+    if min(len(a), len(b)) < max(copies, fraction * max(len(a), len(b))):
+        return False  # too few copies on one side to pair off enough of the other's
+    # copies of one string are disjoint and in time order, so a copy of ``a`` can only pair
+    # with the copy of ``b`` that starts nearest it, and no copy of ``b`` with two of ``a``
+    at = np.clip(np.searchsorted(b[:, 0], a[:, 0]), 1, len(b) - 1) if len(b) > 1 \
+        else np.zeros(len(a), dtype=np.int64)
+    paired = np.zeros(len(a), dtype=bool)
+    for near in (at - 1, at) if len(b) > 1 else (at,):
+        shared = np.minimum(a[:, 1], b[near, 1]) - np.maximum(a[:, 0], b[near, 0])
+        union = np.maximum(a[:, 1], b[near, 1]) - np.minimum(a[:, 0], b[near, 0])
+        paired |= (shared > 0) & (2 * shared >= union)
+    count = min(int(np.count_nonzero(paired)), len(b))
+    return count >= copies and count >= fraction * max(len(a), len(b))
+
+
+def motif_weight(string: Timed, pattern: tuple[int, ...],
+                 spans: tuple[tuple[int, int], ...]) -> float:
+    """:func:`repeat_significance` of a motif group member, its copies read at ``spans``."""
+    matches = [round(a * len(pattern)) for a in
+               copy_agreements(string.codes, pattern, [a for a, _ in spans])]
+    agreeing = sum(matches) - max(matches)  # the best copy stands for the pattern
+    return repeat_significance(len(string.codes), len(pattern), len(spans), agreeing,
+                               string.match_rate)
+
+
+def keep_agreeing(strings: list[Timed], found: ContentResult, conf: ContentConf) -> None:
+    """Each component's per-copy agreement; copies under ``copy_agreement`` dropped."""
+    for i in list(found.patterns):
+        shares = copy_agreements(strings[i].codes, found.patterns[i],
+                                 [a for a, _ in found.spans[i]])
+        keep = np.asarray(shares) >= conf.copy_agreement
+        if np.count_nonzero(keep) < min(conf.min_copies, len(shares)):
+            del found.patterns[i], found.occurrences[i], found.spans[i]
+            found.joined.pop(i, None)
+            found.dropped[i] = TOO_FEW_AGREEING
+            continue
+        found.occurrences[i] = tuple(o for o, k in zip(found.occurrences[i], keep) if k)
+        found.spans[i] = tuple(s for s, k in zip(found.spans[i], keep) if k)
+        found.agreements[i] = tuple(a for a, k in zip(shares, keep) if k)

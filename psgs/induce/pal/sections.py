@@ -1,0 +1,324 @@
+"""Long repeats of one string, and the one significance every candidate is ranked by.
+
+The motif search of :mod:`~psgs.induce.pal.motifs` grows from the most
+frequent digrams, so it finds what repeats *often*: a short figure played
+five times beats a long section played twice. A repetition's evidence grows
+with its length, its copies and its agreement alike, so this module adds a
+second candidate per string, its **section**: the longest window that occurs
+``min_copies`` times or more exactly and without overlap, with every such copy.
+
+:func:`repeat_significance` is the significance both kinds of candidate are
+weighed by (``docs/streams.md``, "Significance of a repetition"): the
+expected number, in a random string of the same length and symbol
+frequencies, of sets of ``copies`` windows of ``length`` symbols whose
+copies after the first agree with the pattern in at least as many positions
+as these do, counted over every set of window positions (a Bonferroni bound
+over the positions).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .statistics import log10_binom_sf
+
+__all__: list[str] = []  # private: content.py is the caller
+
+#: odd, so that it is invertible modulo 2**64 (the window hashes need its inverse)
+_BASE = 0x9E3779B97F4A7C15
+_INVERSE = pow(_BASE, -1, 1 << 64)
+
+
+@dataclass(frozen=True)
+class Section:
+    """The longest exact repeat of a string: its codes, its copies' starts, its significance."""
+
+    motif: np.ndarray
+    starts: np.ndarray
+    significance: float
+
+
+def repeat_significance(n: int, length: int, copies: int, agreeing: int,
+                        match_rate: float, follow_rate: float | None = None) -> float:
+    """log10 of the expected chance repetitions as strong as this one (at most 0).
+
+    Parameters
+    ----------
+    n : int
+        The string's length, in symbols.
+    length : int
+        The pattern's length ``L``.
+    copies : int
+        How many copies ``c`` (non-overlapping windows of ``L`` symbols).
+    agreeing : int
+        In how many of the ``(c - 1) L`` positions of the copies after the
+        first the symbol agrees with the pattern (``(c - 1) L`` when exact).
+    match_rate : float
+        The chance ``q`` that two symbols drawn from the string agree (the sum
+        of its squared symbol shares).
+    follow_rate : float, optional
+        For exact copies: the chance ``r`` that the symbols after two equal
+        symbols agree too (:func:`follow_rate`); a string whose symbols follow
+        each other by rule (``B G R Y`` of motion) repeats exactly far more
+        often than its symbol shares say. Without it, ``r = q``.
+
+    Returns
+    -------
+    float
+        ``min(0, log10(C(n - L + 1, c) * P))``: ``P = (q r^(L-1))^(c-1)`` for
+        exact copies, ``P(Binomial((c - 1) L, q) >= agreeing)`` otherwise.
+
+    Examples
+    --------
+    A 40-symbol section twice in 800 symbols is far less likely by chance than
+    a 4-symbol figure five times:
+
+    >>> round(repeat_significance(800, 40, 2, 40, 0.1), 1)
+    -34.5
+    >>> round(repeat_significance(800, 4, 5, 16, 0.1), 1)
+    -3.6
+    >>> round(repeat_significance(800, 40, 2, 40, 0.1, follow_rate=0.5), 1)  # by rule
+    -7.3
+    """
+    windows = n - length + 1
+    if copies < 2 or windows < copies or length < 1:
+        return 0.0
+    sets = (math.lgamma(windows + 1) - math.lgamma(copies + 1)
+            - math.lgamma(windows - copies + 1)) / math.log(10)
+    if agreeing >= (copies - 1) * length and follow_rate is not None:
+        if match_rate <= 0 or follow_rate <= 0:
+            return -math.inf
+        tail = (copies - 1) * (math.log10(match_rate) + (length - 1) * math.log10(follow_rate))
+    else:
+        tail = log10_binom_sf(agreeing, (copies - 1) * length, match_rate)
+    return min(0.0, sets + tail)
+
+
+def follow_rate(codes: np.ndarray) -> float | None:
+    """The chance that, after two equal symbols, the next two agree too, or None.
+
+    Only when the string's digrams explain it better than its symbol shares
+    do (a first-order Markov chain against independent symbols, by the Bayesian
+    information criterion): motion, whose symbols follow each other by rule,
+    repeats exactly far more often than its symbol shares say; in a string of
+    independent symbols the digram counts are only noise, and None says to use
+    the match rate. Estimated without bias from the digram counts ``n_ab``:
+    ``(sum n_ab^2 - (n - 1)) / (sum n_a^2 - (n - 1))``, ``n_a`` how often ``a``
+    is followed by anything.
+
+    Examples
+    --------
+    >>> follow_rate(np.array([0, 1, 2, 3] * 10))  # each symbol has one successor
+    1.0
+    >>> follow_rate(np.random.default_rng(0).integers(0, 6, 60)) is None
+    True
+    """
+    if len(codes) < 3:
+        return None
+    size = int(codes.max()) + 1
+    # (digram counts by sorting: a long alphabet would make size ** 2 bins)
+    keys, pairs = np.unique(codes[:-1] * size + codes[1:], return_counts=True)
+    firsts = np.bincount(codes[:-1], minlength=size)
+    steps = len(codes) - 1
+    rows = firsts[firsts > 0]
+    symbols = len(rows)
+    alone = float(np.sum(rows * np.log(rows / steps)))
+    chained = float(np.sum(pairs * np.log(pairs / firsts[keys // size])))
+    extra = symbols * (symbols - 1) - (symbols - 1)  # the chain's further parameters
+    if chained - alone <= extra / 2 * math.log(steps):
+        return None
+    below = float(np.sum(firsts.astype(np.float64) ** 2)) - steps
+    if below <= 0:
+        return None
+    return max(0.0, float(np.sum(pairs.astype(np.float64) ** 2) - steps) / below)
+
+
+def copy_agreements(codes: np.ndarray, pattern, starts) -> list[float]:
+    """The share of the pattern's positions each copy starting at ``starts`` agrees with.
+
+    Examples
+    --------
+    >>> copy_agreements(np.array([1, 2, 3, 1, 2, 4]), [1, 2, 3], [0, 3])
+    [1.0, 0.6666666666666666]
+    """
+    pattern = np.asarray(pattern)
+    starts = np.asarray(starts, dtype=np.int64)
+    index = starts[:, None] + np.arange(len(pattern))
+    inside = index < len(codes)
+    agree = inside & (codes[np.minimum(index, len(codes) - 1)] == pattern)
+    return (np.count_nonzero(agree, axis=1) / len(pattern)).tolist()
+
+
+def find_sections(strings: list[np.ndarray], copies: int, match_rates: list[float],
+                  level: float) -> list[Section | None]:
+    """:func:`find_section` of every string (unbounded in length), strings that cannot hold a
+    section reaching ``level`` passed over in one pass over all of them.
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(0)
+    >>> section = rng.integers(0, 9, 12)
+    >>> strings = [np.concatenate((section, rng.integers(0, 9, 5), section)),
+    ...            rng.integers(0, 9, 29)]
+    >>> [None if s is None else len(s.motif) for s in find_sections(strings, 2, [0.11] * 2, -2)]
+    [12, None]
+    """
+    out: list[Section | None] = [None] * len(strings)
+    follows = [follow_rate(c) if len(c) >= 2 * copies else None for c in strings]
+    lows = [_shortest(len(c), copies, q, f, level, len(c) // copies)
+            if len(c) >= 2 * copies else 0 for c, q, f in zip(strings, match_rates, follows)]
+    for i in _may_repeat(strings, lows, copies):
+        out[i] = find_section(strings[i], copies, len(strings[i]), match_rates[i], level,
+                              follows[i], lows[i])
+    return out
+
+
+def _may_repeat(strings: list[np.ndarray], lows: list[int], copies: int) -> list[int]:
+    """The strings where some window of ``lows[i]`` symbols comes ``copies`` times, spread
+    over ``(copies - 1) lows[i]`` symbols at least (what a section needs; hashes of every
+    string of one length compared at once)."""
+    by_length: dict[int, list[int]] = {}
+    for i, (codes, low) in enumerate(zip(strings, lows)):
+        if 2 <= low <= len(codes) // copies:
+            by_length.setdefault(low, []).append(i)
+    out: list[int] = []
+    for length, rows in by_length.items():
+        flat = np.concatenate([strings[i] for i in rows])
+        bounds = np.cumsum([0] + [len(strings[i]) for i in rows])
+        hashes = _window_hashes(flat, length)
+        owner = np.repeat(np.arange(len(rows)), np.diff(bounds))[:len(hashes)]
+        valid = np.arange(len(hashes)) + length <= bounds[owner + 1]
+        where = np.flatnonzero(valid)
+        with np.errstate(over="ignore"):
+            keys = hashes[where] + owner[where].astype(np.uint64) * np.uint64(_INVERSE)
+        order = np.argsort(keys)  # (any order within a group: only its extent is read)
+        ordered = keys[order]
+        begins = np.concatenate(([0], np.flatnonzero(np.diff(ordered)) + 1))
+        sizes = np.diff(np.concatenate((begins, [len(ordered)])))
+        positions = where[order]
+        spread = np.maximum.reduceat(positions, begins) - np.minimum.reduceat(positions, begins)
+        hit = begins[(sizes >= copies) & (spread >= (copies - 1) * length)]
+        out.extend(rows[k] for k in np.unique(owner[positions[hit]]).tolist())
+    return sorted(out)
+
+
+def find_section(codes: np.ndarray, copies: int, longest: int, match_rate: float,
+                 level: float = 0.0, follow: float | None = None,
+                 low: int | None = None) -> Section | None:
+    """The longest window of ``codes`` found ``copies`` times or more, exact and apart.
+
+    Among windows of that length the one with the most copies wins, the
+    earliest among equals; its copies are all its non-overlapping occurrences,
+    taken from the left. At most ``longest`` symbols; None when no window of
+    two symbols or more repeats so, when none is long enough for its
+    significance to reach ``level`` (log10; 0 looks at every length), or when
+    the longest is a cycle (it repeats itself at a shift of half its length
+    or less: ``x y z x y z``). ``follow`` and ``low``: the string's
+    :func:`follow_rate` and the shortest length worth a look, when known.
+
+    Examples
+    --------
+    >>> codes = np.array([5, 0, 1, 2, 3, 6, 0, 1, 2, 3, 7])
+    >>> found = find_section(codes, 2, 64, 0.2)
+    >>> found.motif.tolist(), found.starts.tolist()
+    ([0, 1, 2, 3], [1, 6])
+    >>> find_section(codes, 2, 64, 0.2, level=-6.0) is None  # 4 symbols twice: about 1e-1.2
+    True
+    """
+    n = len(codes)
+    high = min(longest, n // copies)
+    if low is None:  # (find_sections hands both in)
+        follow = follow_rate(codes)
+        low = _shortest(n, copies, match_rate, follow, level, high)
+    if low > high or not _repeated(codes, low, copies, first=True):
+        return None
+    while low < high:  # a window with c copies apart: so has each of its prefixes
+        middle = (low + high + 1) // 2
+        if _repeated(codes, middle, copies, first=True):
+            low = middle
+        else:
+            high = middle - 1
+    starts = _repeated(codes, low, copies)
+    motif = codes[starts[0]:starts[0] + low].copy()
+    if _cycles(motif):
+        # a cycle (a block played over and over) is what the digram search and the
+        # period mode are for; as a section it would only be that block's copies again
+        return None
+    agreeing = (len(starts) - 1) * low
+    return Section(motif, starts, repeat_significance(n, low, len(starts), agreeing,
+                                                      match_rate, follow))
+
+
+def _cycles(motif: np.ndarray) -> bool:
+    """Whether ``motif`` repeats itself at a shift of half its length or less (a cycle)."""
+    length = len(motif)
+    return any(np.array_equal(motif[p:], motif[:-p]) for p in range(1, length // 2 + 1))
+
+
+def _shortest(n: int, copies: int, match_rate: float, follow: float, level: float,
+              high: int) -> int:
+    """The fewest symbols (two at least) whose exact copies can reach ``level``."""
+    length = 2
+    while length <= high and repeat_significance(n, length, copies, (copies - 1) * length,
+                                                 match_rate, follow) > level:
+        length += 1
+    return length
+
+
+def _repeated(codes: np.ndarray, length: int, copies: int, first: bool = False):
+    """The starts of the window of ``length`` with the most copies apart (at least
+    ``copies``; the earliest among equals), or None; with ``first``, only whether one
+    exists (True or None)."""
+    hashes = _window_hashes(codes, length)
+    order = np.argsort(hashes, kind="stable")
+    ordered = hashes[order]
+    cuts = np.flatnonzero(np.diff(ordered)) + 1
+    begins = np.concatenate(([0], cuts))
+    sizes = np.diff(np.concatenate((begins, [len(ordered)])))
+    # a group's copies apart span at least (copies - 1) * length: from its first to its last
+    spread = np.maximum.reduceat(order, begins) - np.minimum.reduceat(order, begins)
+    possible = np.flatnonzero((sizes >= copies) & (spread >= (copies - 1) * length))
+    best, best_key = None, None
+    for g in possible.tolist():
+        where = order[begins[g]:begins[g] + sizes[g]]  # ascending: a stable sort of positions
+        kept = _apart(where, length)
+        if len(kept) < copies:
+            continue
+        reference = codes[kept[0]:kept[0] + length]
+        kept = [p for p in kept if np.array_equal(codes[p:p + length], reference)]
+        if len(kept) < copies:
+            continue  # (a hash collision)
+        if first:
+            return True
+        key = (-len(kept), kept[0])
+        if best_key is None or key < best_key:
+            best, best_key = np.asarray(kept, dtype=np.int64), key
+    return best
+
+
+def _apart(positions: np.ndarray, length: int) -> list[int]:
+    """The sorted ``positions`` kept left to right, each at least ``length`` after the last."""
+    kept: list[int] = []
+    for p in positions.tolist():
+        if not kept or p - kept[-1] >= length:
+            kept.append(p)
+    return kept
+
+
+def _window_hashes(codes: np.ndarray, length: int) -> np.ndarray:
+    """A 64-bit polynomial hash of every window of ``length`` symbols (wrapping arithmetic)."""
+    n = len(codes)
+    with np.errstate(over="ignore"):
+        steps = np.full(n, _INVERSE, dtype=np.uint64)
+        steps[0] = 1
+        inverse_powers = np.cumprod(steps, dtype=np.uint64)  # BASE**-j
+        weighted = (codes.astype(np.uint64) + np.uint64(1)) * inverse_powers
+        prefix = np.concatenate(([np.uint64(0)], np.cumsum(weighted, dtype=np.uint64)))
+        sums = prefix[length:] - prefix[:-length]  # sum of code_j BASE**-j over the window
+        steps[:] = _BASE
+        steps[0] = 1
+        powers = np.cumprod(steps, dtype=np.uint64)  # BASE**j
+        return sums * powers[length - 1:]

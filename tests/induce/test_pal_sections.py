@@ -1,0 +1,166 @@
+"""PAL on sections played twice: the long repeat found, weighed and reported per copy."""
+
+from __future__ import annotations
+
+import math
+from itertools import combinations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from psgs import Actiongram, ValidationError
+from psgs.induce import PAL
+from psgs.induce.pal.choice import coincide
+from psgs.induce.pal.sections import find_section, repeat_significance
+
+
+def _draw(rng: np.random.Generator, letters: int, count: int, before: int | None = None
+          ) -> list[int]:
+    """``count`` symbols from ``letters``, no two neighbours equal (an actiongram merges
+    them), the first unlike ``before``."""
+    out: list[int] = []
+    for _ in range(count):
+        last = out[-1] if out else before
+        choice = int(rng.integers(0, letters - (last is not None)))
+        out.append(choice + (last is not None and choice >= last))
+    return out
+
+
+def _sectioned(seed: int, sectioned: int, spurious: int, length: int, letters: int):
+    """Strings of 60 symbols; ``sectioned`` of them play a section of ``length`` twice, at the
+    same times in each; ``spurious`` random strings beside them. Returns the actiongram, the
+    sectioned names and the two copies' times."""
+    rng = np.random.default_rng(seed)
+    lead, gap = int(rng.integers(0, 10)), int(rng.integers(1, 8))
+    strings, truth = {}, []
+    for k in range(sectioned):
+        section = _draw(rng, letters, length)
+        while len(set(section)) < 4:
+            section = _draw(rng, letters, length)
+        head = _draw(rng, letters, lead)
+        parts = head + section
+        parts += _draw(rng, letters, gap, parts[-1])
+        # the gap's last symbol must differ from the section's first, or they would merge
+        while parts[-1] == section[0]:
+            parts[-1] = (parts[-1] + 1) % letters if parts[-2] != (parts[-1] + 1) % letters \
+                else (parts[-1] + 2) % letters
+        parts += section
+        parts += _draw(rng, letters, 60 - len(parts), parts[-1])
+        strings[f"s{k}"] = parts
+        truth.append(f"s{k}")
+    for k in range(spurious):
+        strings[f"r{k}"] = _draw(rng, letters, 60)
+    names = "abcdefghijklmnop"
+    ag = Actiongram.from_strings({n: [names[c] for c in s] for n, s in strings.items()})
+    copies = ((lead, lead + length), (lead + length + gap, lead + 2 * length + gap))
+    return ag, truth, copies
+
+
+@settings(max_examples=25, deadline=None, derandomize=True)
+@given(seed=st.integers(0, 10_000), sectioned=st.integers(2, 6), spurious=st.integers(0, 16),
+       length=st.integers(8, 16), letters=st.integers(6, 12))
+def test_pal_names_exactly_the_sectioned_strings_with_both_copies(seed, sectioned, spurious,
+                                                                   length, letters):
+    ag, truth, copies = _sectioned(seed, sectioned, spurious, length, letters)
+    result = PAL(min_copies=2).induce(ag)
+    assert set(result.components) == set(truth)
+    for name in truth:
+        found = result.occurrences[name]
+        assert len(found) == 2
+        for (start, end), (a, b) in zip(found, copies):
+            # each reported copy holds most of a true one; its edges move only where the
+            # symbols around the copies agree by chance (a few at most)
+            assert min(end, b) - max(start, a) >= (b - a) / 2
+            assert abs(start - a) <= 4 and abs(end - b) <= 4
+        assert result.agreements[name] == (1.0, 1.0)
+
+
+def test_a_long_section_twice_outweighs_a_short_figure_played_often():
+    assert repeat_significance(800, 40, 2, 40, 0.1) < repeat_significance(800, 4, 5, 16, 0.1)
+    # exact copies are stronger than the same copies half damaged
+    assert repeat_significance(100, 8, 4, 24, 0.1) < repeat_significance(100, 8, 4, 12, 0.1)
+    assert repeat_significance(10, 8, 2, 8, 0.1) == pytest.approx(
+        math.log10(3) - 8, rel=1e-9)
+
+
+@settings(max_examples=40, deadline=None, derandomize=True)
+@given(st.lists(st.integers(0, 3), min_size=4, max_size=40), st.integers(2, 3))
+def test_find_section_is_the_longest_exact_repeat(codes, copies):
+    codes = np.asarray(codes, dtype=np.int64)
+    found = find_section(codes, copies, 64, 0.3)
+
+    def apart(window):  # the oracle: every start, copies taken left to right
+        length, kept = len(window), []
+        for p in range(len(codes) - length + 1):
+            if tuple(codes[p:p + length]) == window and (not kept or p - kept[-1] >= length):
+                kept.append(p)
+        return kept
+
+    windows = {tuple(codes[p:p + L]) for L in range(2, len(codes) + 1)
+               for p in range(len(codes) - L + 1)}
+    best = max((len(w) for w in windows if len(apart(w)) >= copies), default=0)
+    if best == 0:
+        assert found is None
+        return
+    window = max((w for w in windows if len(w) == best and len(apart(w)) >= copies),
+                 key=lambda w: (len(apart(w)), -apart(w)[0]))
+    if any(window[p:] == window[:-p] for p in range(1, best // 2 + 1)):
+        assert found is None  # a cycle is left to the digram search
+        return
+    assert len(found.motif) == best
+    assert found.starts.tolist() == apart(tuple(found.motif.tolist()))
+
+
+def test_a_chance_repeat_inside_long_copies_is_not_in_step():
+    long = np.array([[0.0, 16.0], [20.0, 36.0]])
+    assert coincide(long, long + 0.5, 2)
+    assert not coincide(long, np.array([[3.0, 9.0], [23.0, 29.0]]), 2)
+    assert not coincide(long, long[:1], 2)
+
+
+def test_statuses_agree_with_synchronised_with():
+    ag, _, _ = _sectioned(3, 3, 12, 10, 8)
+    for params in ({}, {"min_copies": 2}):
+        for report in PAL(**params).induce(ag).reports:
+            if report.status == "not synchronised":
+                assert report.synchronised_with == ()
+            if report.status in ("no repetition", "not significant"):
+                assert report.synchronised_with == ()
+
+
+def test_no_copy_is_reported_below_copy_agreement():
+    from psgs.induce.synthetic import generate
+
+    case = generate(seed=5, noise=0.3)
+    for level in (0.5, 0.7):
+        result = PAL(copy_agreement=level).induce(case.actiongram)
+        for name in result.components:
+            shares = result.agreements[name]
+            assert len(shares) == len(result.occurrences[name])
+            assert min(shares) >= level
+    with pytest.raises(ValidationError, match="copy_agreement"):
+        PAL(copy_agreement=1.5)
+
+
+def test_sections_are_pairwise_in_step_in_a_group():
+    ag, truth, _ = _sectioned(11, 4, 4, 12, 8)
+    result = PAL(min_copies=2).induce(ag)
+    for a, b in combinations(truth, 2):
+        assert coincide(np.asarray(result.occurrences[a]), np.asarray(result.occurrences[b]), 2)
+
+
+def test_an_induction_holds_one_agreement_per_occurrence():
+    import pickle
+
+    from psgs.induce import Induction
+
+    made = Induction(None, ("k",), {"k": ("a", "b")}, {"k": ((0.0, 2.0), (2.0, 4.0))},
+                     agreements={"k": (1.0, 0.5)})
+    assert pickle.loads(pickle.dumps(made)).agreements == {"k": (1.0, 0.5)}
+    assert made.to_dict()["agreements"] == {"k": [1.0, 0.5]}
+    assert "agreements" not in Induction(None, (), {}, {}).to_dict()
+    with pytest.raises(ValidationError, match="agreements"):
+        Induction(None, ("k",), {"k": ("a", "b")}, {"k": ((0.0, 2.0),)},
+                  agreements={"k": (1.0, 0.5)})
