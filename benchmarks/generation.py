@@ -18,11 +18,8 @@ are used (a subsample, to keep a run near a minute); contents with fewer takes a
 Every learnt action is generated (``--repeat`` 3 cycles) and the classifier labels it.
 Takes enter the classifier as windows of 2 s (64 frames, half-overlapping, a take shorter
 than that padded with its last frame), a take's label the majority of its windows' labels.
-A window's series: every rotation channel (the root's heading-free:
-:func:`praxicon.body_motion.heading_free_angles`, since its Euler angles flip in a turn), the
-root's horizontal speed (cm/s, from forward kinematics) and turning rate (deg/s of its heading,
-:func:`praxicon.body_motion.heading`), and those two integrated from the window's first frame
-(MiniRocket's zero-sum kernels cannot see a steady level, only a slope).
+A window's series: every rotation channel, the root's horizontal speed (cm/s) and
+turning rate (deg/s of ``Hips.ry``).
 
 Figures printed and written to ``docs/data/generation.csv`` (one row per action):
 
@@ -116,21 +113,10 @@ def root_signals(motion, axis):
     return speed, np.degrees(np.gradient(h)) * rate
 
 
-def windows(x: np.ndarray, rate: float) -> list[np.ndarray]:
-    """2 s windows; each also holds the distance and the heading change since its first frame.
-
-    MiniRocket's kernels sum to zero, so a channel's constant level is invisible to it: a
-    steady speed or turning rate (the last two rows) reads the same at any value, and a
-    left turn like a right one. Their integrals over the window are ramps whose slope it
-    does see.
-    """
+def windows(x: np.ndarray) -> list[np.ndarray]:
     if x.shape[1] < WINDOW:
         x = np.concatenate([x, np.repeat(x[:, -1:], WINDOW - x.shape[1], axis=1)], axis=1)
-    out = []
-    for s in range(0, x.shape[1] - WINDOW + 1, STRIDE):
-        w = x[:, s:s + WINDOW]
-        out.append(np.vstack([w, np.cumsum(w[-2:], axis=1) / rate]))
-    return out
+    return [x[:, s:s + WINDOW] for s in range(0, x.shape[1] - WINDOW + 1, STRIDE)]
 
 
 def quantile_distance(a: np.ndarray, b: np.ndarray) -> float:
@@ -198,14 +184,14 @@ def main(argv=None) -> int:
         xs, ys = [], []
         for content, (_, train, _) in sorted(parts.items()):
             for f in train:
-                for w in windows(series(read(f), axis), read(f).frame_rate):
+                for w in windows(series(read(f), axis)):
                     xs.append(w)
                     ys.append(content)
         clf = MiniRocketClassifier(random_state=args.seed)
         clf.fit(np.stack(xs), np.array(ys))
 
         def label(motion):
-            predicted = clf.predict(np.stack(windows(series(motion, axis), motion.frame_rate)))
+            predicted = clf.predict(np.stack(windows(series(motion, axis))))
             values, counts = np.unique(predicted, return_counts=True)
             return str(values[np.argmax(counts)])
 

@@ -179,9 +179,15 @@ def travel(motion, root: str, axis: int | None = None) -> Travel | None:
 
 def euler_angles(matrices, order: str) -> np.ndarray:
     """Angles (degrees, ``(frames, 3)`` in ``order``) whose product ``R_order[0] R_order[1] R_order[2]`` is each matrix; unwrapped over frames."""
+    import warnings
+
     from scipy.spatial.transform import Rotation
 
-    angles = Rotation.from_matrix(np.asarray(matrices, float)).as_euler(order.upper())
+    with warnings.catch_warnings():
+        # at gimbal lock scipy sets the third angle to zero and warns; that angle is as good
+        # as any there (the product is the same matrix), so the warning says nothing to a user
+        warnings.simplefilter("ignore", UserWarning)
+        angles = Rotation.from_matrix(np.asarray(matrices, float)).as_euler(order.upper())
     return np.degrees(np.unwrap(angles, axis=0))
 
 
