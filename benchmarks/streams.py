@@ -326,7 +326,7 @@ def main(argv=None) -> None:
         replace_section(BENCHMARKS_PAGE, "streams", "## PAL on parallel streams of music\n\n"
                         f"Measured with `python benchmarks/streams.py` ({datetime.date.today()}); "
                         "data in `docs/data/streams.csv`, what it means in "
-                        "[PAL](pal.md#benchmark-on-real-music).\n\n" + text)
+                        "[Any parallel streams](streams.md#benchmark-on-real-music).\n\n" + text)
         for page in (DOCS / "pal.md", DOCS / "streams.md"):
             if page.exists() and "<!-- streams:start -->" in page.read_text(encoding="utf-8"):
                 replace_section(page, "streams", text)
