@@ -6,7 +6,8 @@
 The mutations and the rule are those of the suite's fuzz tests (``tests/fuzz_support.py``):
 each input is a seed file from ``tests/data/fuzz`` with one to four edits (of its bytes, or of
 one value of a JSON file), written to a file and read by the public reader (psgs text, actiongram text and JSON, BVH, ASF, AMC, codec
-streams and their decompressed base part, ``write_bvh`` round trips, praxicon manifests, label
+streams and their decompressed base part, ``write_bvh`` and ``compress`` round trips, events
+tables, praxicon manifests, label
 files, praxicon folders: index, record, descriptions); it must, within the time limit, read
 (and pass the reader's check) or raise the reader's documented error. With ``--seconds N`` the readers take turns, one input
 each, until N seconds have passed; with ``--inputs K`` each gets K inputs. Inputs are drawn

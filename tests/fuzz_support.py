@@ -236,6 +236,39 @@ def _write_bvh_back(path: Path):
     assert math.isclose(back.frame_rate, motion.frame_rate, rel_tol=1e-9), "frame rate changed"
 
 
+def _compress_back(path: Path):
+    """Read a BVH file and compress it at a rate-controlled error: what decodes keeps the
+    ``max_error`` promise, measured here again from the values (or the encoder refuses with
+    its documented errors)."""
+    import numpy as np
+    from kinetology.bvh import read_bvh
+    from kinetology.codec import compress, decompress
+    from psgs.errors import ValidationError
+    motion = read_bvh(path)
+    try:
+        data = compress(motion, max_error=0.5)
+    except ValidationError:
+        return
+    back = decompress(bytes(data), "compressed.kin")
+    assert back.channels == motion.channels and back.frames == motion.frames, "shape changed"
+    rotation = [i for i, name in enumerate(motion.channels) if name[-2:] in ("rx", "ry", "rz")]
+    if motion.frames and rotation:
+        difference = (np.asarray(back.values)[:, rotation] - np.asarray(motion.values)[:, rotation]
+                      + 180.0) % 360.0 - 180.0
+        error = float(np.abs(difference).mean())
+        assert error <= 0.5 + 1e-9, f"mean error {error} over the promised 0.5"
+
+
+def _read_events(path: Path):
+    """An events table: read, written back as rows, and read again to the same actiongram."""
+    from psgs.actiongram import read_events_csv
+    from psgs import Actiongram
+    ag = read_events_csv(path)
+    rows = ag.to_events()
+    assert Actiongram.from_events(rows, keep_repeats=ag.keep_repeats) == ag, \
+        "to_events/from_events round trip changed it"
+
+
 def _read_manifest(path: Path):
     from praxicon.datasets import read_dataset
     read_dataset(path)
@@ -411,6 +444,8 @@ READERS = {r.name: r for r in (
            _kinetology_errors),
     Reader("codec-body", ("small.kinbody",), ".bin", _read_codec_body, _kinetology_errors),
     Reader("bvh-write", ("small.bvh",), ".bvh", _write_bvh_back, _kinetology_errors),
+    Reader("codec-write", ("small.bvh",), ".bvh", _compress_back, _kinetology_errors),
+    Reader("events-csv", ("small_events.csv",), ".csv", _read_events, _psgs_errors),
     Reader("manifest-csv", ("small_manifest.csv",), ".csv", _read_manifest, _dataset_errors),
     Reader("manifest-toml", ("small_manifest.toml",), ".toml", _read_manifest,
            _dataset_errors),

@@ -1,7 +1,8 @@
 """Fuzzing the motion readers: mutated BVH, ASF and AMC files either read (finite values, and
 forward kinematics finite or a MotionFormatError) or raise MotionFormatError, each within a
 time limit; the same for codec streams (whole, and their decompressed base part repacked),
-label files, and write_bvh (what it writes of a read file reads back, or a plain ValueError).
+label files, write_bvh (what it writes of a read file reads back, or a plain ValueError) and
+the codec's encoder (what compress writes at a rate-controlled error decodes within it).
 
 Derandomised by the ``ci`` profile (tests/conftest.py); the long run is benchmarks/fuzz.py.
 """
@@ -15,7 +16,7 @@ from hypothesis import strategies as st
 from fuzz_support import READERS, apply, mutations_strategy, outcome, seed_bytes
 
 
-@pytest.mark.parametrize("name", ["bvh", "asf", "amc"])
+@pytest.mark.parametrize("name", ["bvh", "asf", "amc", "codec-write"])
 @settings(max_examples=150)
 @given(seed=st.integers(0, 2), mutations=mutations_strategy())
 def test_mutated_files_read_or_give_a_documented_error(name, seed, mutations, tmp_path_factory):
@@ -24,7 +25,7 @@ def test_mutated_files_read_or_give_a_documented_error(name, seed, mutations, tm
     assert outcome(reader, data, tmp_path_factory.getbasetemp()) in ("ok", "error")
 
 
-@pytest.mark.parametrize("name", ["bvh", "asf", "amc"])
+@pytest.mark.parametrize("name", ["bvh", "asf", "amc", "codec-write"])
 def test_the_unmutated_seeds_read(name):
     assert outcome(READERS[name], seed_bytes(READERS[name], 0)) == "ok"
 
