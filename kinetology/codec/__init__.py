@@ -28,6 +28,8 @@ reported errors compare them modulo 360°.
 
 from __future__ import annotations
 
+import numpy as np
+
 from ..motion import Motion
 from .encoder import (CODEC_DEFAULTS, Compressed, compress_with, decompress, encode_segments,
                       mean_errors)
@@ -87,9 +89,12 @@ def compress(motion: Motion, max_error: float | None = None, **params) -> Compre
     >>> len(compress(m)) < len(data)      # the defaults: the base alone, coarser
     True
     """
-    if max_error is not None:
-        if params:
-            raise TypeError(f"max_error chooses the settings itself; drop "
-                            f"{', '.join(sorted(params))}")
-        return compress_to(motion, max_error)
-    return compress_with(motion, params)
+    if max_error is not None and params:
+        raise TypeError(f"max_error chooses the settings itself; drop "
+                        f"{', '.join(sorted(params))}")
+    # values near the float range's end overflow in the smoothing and the knot fit; those
+    # candidates are refused by the checks on what decodes, so numpy's warnings say nothing
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        if max_error is not None:
+            return compress_to(motion, max_error)
+        return compress_with(motion, params)
