@@ -142,7 +142,7 @@ def test_bad_options_and_a_refused_gap():
 
 
 def test_a_dataframe_is_read_by_its_columns_and_named_by_its_index():
-    pandas = pytest.importorskip("pandas")
+    import pandas  # in the test extra: this path is tested, never skipped
     frame = pandas.DataFrame({"voice": ["S", "S", "B"], "onset": [0.0, 1.0, 0.5],
                               "duration": [1.0, 1.0, 2.0], "note": ["C5", "D5", "C3"]},
                              index=[10, 11, 12])
