@@ -17,10 +17,20 @@ from psgs.errors import ValidationError
 
 from .motion import Motion, MotionFormatError
 
-__all__ = ["rotation_matrices", "forward_kinematics", "joint_angle"]
+__all__ = ["axis_rotation", "rotation_matrices", "local_rotation", "forward_kinematics",
+           "joint_angle"]
 
 
-def _elementary(axis: str, radians: np.ndarray) -> np.ndarray:
+def axis_rotation(axis: str, radians) -> np.ndarray:
+    """Rotations about one axis (``"X"``, ``"Y"`` or ``"Z"``), one per angle, shape ``(..., 3, 3)``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> np.round(axis_rotation("Y", np.array([np.pi / 2]))[0] @ [0.0, 0.0, 1.0], 6)
+    array([1., 0., 0.])
+    """
+    radians = np.asarray(radians, float)
     c, s = np.cos(radians), np.sin(radians)
     out = np.zeros(radians.shape + (3, 3))
     i = "XYZ".index(axis)
@@ -63,8 +73,38 @@ def rotation_matrices(angles_deg: dict[str, np.ndarray], order: str, frames: int
     result = np.broadcast_to(np.eye(3), (frames, 3, 3)).copy()
     for axis in order:
         if axis in angles_deg:
-            result = result @ _elementary(axis, np.radians(angles_deg[axis]))
+            result = result @ axis_rotation(axis, np.radians(angles_deg[axis]))
     return result
+
+
+def _oriented(joint, local: np.ndarray) -> np.ndarray:
+    """``local`` seen in the joint's own axes (an ASF joint's ``axis``; BVH joints have none)."""
+    if not any(joint.axis):
+        return local
+    pre = rotation_matrices({a: np.full(1, v) for a, v in zip("XYZ", joint.axis)},
+                            joint.rotation_order, 1)[0]
+    return pre @ local @ pre.T
+
+
+def local_rotation(motion: Motion, joint) -> np.ndarray:
+    """Per frame the rotation of ``joint`` relative to its parent, shape ``(frames, 3, 3)``.
+
+    The joint's rotation channels in its rotation order (a channel the motion lacks is
+    zero), in the joint's own axes: the rotation :func:`forward_kinematics` chains.
+
+    Examples
+    --------
+    >>> import numpy as np, kinetology
+    >>> from kinetology.motion import Joint, Skeleton
+    >>> sk = Skeleton((Joint("hip", None, (0, 0, 0), ("hip.ry",), "ZXY"),))
+    >>> m = kinetology.Motion(np.array([[0.0], [90.0]]), ("hip.ry",), 30.0, sk)
+    >>> np.round(local_rotation(m, sk.joints[0])[1] @ [0.0, 0.0, 1.0], 6)
+    array([1., 0., 0.])
+    """
+    index = {c: i for i, c in enumerate(motion.channels)}
+    angles = {c.rsplit(".", 1)[1][1].upper(): motion.values[:, index[c]] for c in joint.channels
+              if c in index and c.rsplit(".", 1)[1].startswith("r")}
+    return _oriented(joint, rotation_matrices(angles, joint.rotation_order, motion.frames))
 
 
 def forward_kinematics(motion: Motion) -> np.ndarray:
@@ -135,11 +175,7 @@ def forward_kinematics(motion: Motion) -> np.ndarray:
                 translation[:, "xyz".index(axis[1])] = column
             else:
                 angles[axis[1].upper()] = column
-        local = rotation_matrices(angles, joint.rotation_order, frames)
-        if any(joint.axis):
-            pre = rotation_matrices({a: np.full(1, v) for a, v in zip("XYZ", joint.axis)},
-                                    joint.rotation_order, 1)[0]
-            local = pre @ local @ pre.T
+        local = _oriented(joint, rotation_matrices(angles, joint.rotation_order, frames))
         if joint.parent is None:
             rotations[j] = local
             positions[:, j] = translation

@@ -41,37 +41,21 @@ def root_chain(skeleton, root: str) -> list[int]:
     return chain[::-1]
 
 
-def _local(motion, joint) -> np.ndarray:
-    from kinetology.kinematics import rotation_matrices
-
-    index = {c: i for i, c in enumerate(motion.channels)}
-    angles = {c.rsplit(".", 1)[1][1].upper(): motion.values[:, index[c]] for c in joint.channels
-              if c in index and c.rsplit(".", 1)[1].startswith("r")}
-    local = rotation_matrices(angles, joint.rotation_order, motion.frames)
-    if any(joint.axis):
-        pre = rotation_matrices({a: np.full(1, v) for a, v in zip("XYZ", joint.axis)},
-                                joint.rotation_order, 1)[0]
-        local = pre @ local @ pre.T
-    return local
-
-
 def global_rotation(motion, root: str) -> np.ndarray:
     """Per frame the world rotation of joint ``root``, shape ``(frames, 3, 3)``."""
+    from kinetology.kinematics import local_rotation
+
     out = np.broadcast_to(np.eye(3), (motion.frames, 3, 3)).copy()
     for j in root_chain(motion.skeleton, root):
-        out = out @ _local(motion, motion.skeleton.joints[j])
+        out = out @ local_rotation(motion, motion.skeleton.joints[j])
     return out
 
 
 def yaw_matrices(radians) -> np.ndarray:
     """Rotations about the vertical by ``radians`` (one per frame): ``Ry``."""
-    r = np.asarray(radians, float)
-    c, s = np.cos(r), np.sin(r)
-    out = np.zeros(r.shape + (3, 3))
-    out[..., 0, 0] = out[..., 2, 2] = c
-    out[..., 1, 1] = 1.0
-    out[..., 0, 2], out[..., 2, 0] = s, -s
-    return out
+    from kinetology.kinematics import axis_rotation
+
+    return axis_rotation("Y", radians)
 
 
 def heading(rotations, axis: int | None = None) -> tuple[np.ndarray, int]:
