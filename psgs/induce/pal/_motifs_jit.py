@@ -37,7 +37,7 @@ _BRIDGE = 2
 @_jit
 def _chain(positions, count, length):
     """Sorted ``positions[:count]`` kept left to right, each ``length`` after the last
-    (duplicates dropped): motifs.merge_copies and motifs._chain."""
+    (duplicates dropped): motifs.merge_copies and motifs.keep_apart."""
     out = np.empty(count, dtype=np.int64)
     kept = 0
     for j in range(count):

@@ -125,7 +125,7 @@ def locate_copies(codes: np.ndarray, motif: np.ndarray, threshold: int) -> np.nd
                 & ((at == 0) | (here - left >= length))
             here = here[free]
         if len(here) > 1 and np.min(np.diff(here)) < length:
-            here = here[_chain(here, length)]
+            here = here[keep_apart(here, length)]
         chosen = np.sort(np.concatenate((chosen, here)))
     return chosen
 
@@ -147,10 +147,10 @@ def merge_copies(old: np.ndarray, new: np.ndarray, length: int) -> np.ndarray:
         both = both[np.concatenate(([True], both[1:] != both[:-1]))]
     if len(both) < 2 or np.min(np.diff(both)) >= length:
         return both
-    return both[_chain(both, length)]
+    return both[keep_apart(both, length)]
 
 
-def _chain(positions: np.ndarray, length: int) -> list[int]:
+def keep_apart(positions: np.ndarray, length: int) -> list[int]:
     """Indices of the sorted ``positions`` kept left to right, each ``length`` after the last."""
     following = np.searchsorted(positions, positions + length).tolist()
     kept, at, end = [], 0, len(positions)

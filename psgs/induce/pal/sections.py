@@ -23,6 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .motifs import keep_apart
 from .statistics import log10_binom_sf
 
 __all__: list[str] = []  # private: content.py is the caller
@@ -284,7 +285,7 @@ def _repeated(codes: np.ndarray, length: int, copies: int, first: bool = False):
     best, best_key = None, None
     for g in possible.tolist():
         where = order[begins[g]:begins[g] + sizes[g]]  # ascending: a stable sort of positions
-        kept = _apart(where, length)
+        kept = where[keep_apart(where, length)].tolist()
         if len(kept) < copies:
             continue
         reference = codes[kept[0]:kept[0] + length]
@@ -297,15 +298,6 @@ def _repeated(codes: np.ndarray, length: int, copies: int, first: bool = False):
         if best_key is None or key < best_key:
             best, best_key = np.asarray(kept, dtype=np.int64), key
     return best
-
-
-def _apart(positions: np.ndarray, length: int) -> list[int]:
-    """The sorted ``positions`` kept left to right, each at least ``length`` after the last."""
-    kept: list[int] = []
-    for p in positions.tolist():
-        if not kept or p - kept[-1] >= length:
-            kept.append(p)
-    return kept
 
 
 def _window_hashes(codes: np.ndarray, length: int) -> np.ndarray:
