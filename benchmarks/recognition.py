@@ -228,8 +228,7 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
     With ``by_style`` one action is learnt per content and style (as ``psgs praxicon build``
     groups a dataset with several takes of each pair) and the answer's content counted.
     """
-    from praxicon.description import (_MARGIN, common_table, describe_table, distances,
-                                      feature_rows, precision_parts)
+    from praxicon.description import _MARGIN, common_table, describe_table, feature_rows, scores
     from praxicon.recognition import _excess, feature_matrix
 
     groups = defaultdict(list)
@@ -244,9 +243,9 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
             columns, x, _ = feature_matrix(d, [t.motion for t in test])
             features = [d.spread.features[i] for i in columns]
         means = np.array([a.mean for a in d.actions])[:, columns]
-        dist = distances(x, means, precision_parts(d.spread, columns)) / len(columns)
-        best = dist.argmin(axis=1)
-        penalty = dist[np.arange(len(x)), best]
+        dist, score = scores(d, x, columns)
+        best = score.argmin(axis=1)
+        penalty = dist[np.arange(len(x)), best] / len(columns)
         excess, _ = _excess(d, columns, features, x, means, best)
         rules = {f"groups a={level:g}": (penalty <= d.spread.threshold) & (excess <= 1.0)}
         if level == _LEVELS[0]:
@@ -411,6 +410,11 @@ def _joined(takes, rng):
                   "<joined>"), spans
 
 
+# the root's features also scored in each action's own spread: none of them, and the drift
+# with the sway (the praxicon's default is the drift alone)
+_OWN_VARIANTS = (("none", ()), ("drift+sway", ("drift", "energy")))
+
+
 def parse_joined(results, data, per_style: int = 4, window=2.0, hop=0.25):
     from praxicon.parsing import describe_windows, parse
 
@@ -436,9 +440,13 @@ def parse_joined(results, data, per_style: int = 4, window=2.0, hop=0.25):
             began = time.process_time()
             found = parse(descriptions, motion, hop=hop).labels(times)
             cpu_ours = time.process_time() - began
+            # the same descriptions scored otherwise: the trade-off of the own-spread terms
+            variants = [(f"praxicon own={name}", parse(descriptions, motion, hop=hop,
+                                                       own=own).labels(times), 0.0)
+                        for name, own in _OWN_VARIANTS]
             centres, labels = peer(motion)
             other = _peer_labels(centres, labels, times)
-            for method, pred, cpu in (("praxicon", found, cpu_ours),
+            for method, pred, cpu in (("praxicon", found, cpu_ours), *variants,
                                       ("minirocket-windows", other, 0.0)):
                 r = results["joined-parse", method]
                 pred = list(pred)
@@ -513,8 +521,7 @@ def _kind(feature: str) -> str:
 
 def ablation(say, d1, d2):
     """What each kind of feature buys: accuracy with the kind left out (same splits)."""
-    from praxicon.description import common_table, describe_table, distances, feature_rows
-    from praxicon.description import precision_parts
+    from praxicon.description import OWN_KINDS, common_table, describe_table, feature_rows, scores
 
     splits = []
     for name, data, folds in (
@@ -526,10 +533,12 @@ def ablation(say, d1, d2):
         rows = feature_rows([t.motion for t in data])
         order, table = common_table({"all": rows})
         splits.append((name, data, folds, order, table["all"]))
-    kinds = ["none"] + sorted({_kind(f) for f in splits[0][3]}) + ["rank 0"]
+    kinds = (["none"] + sorted({_kind(f) for f in splits[0][3]})
+             + ["rank 0", "own: none", "own: drift and sway"])
     out = []
     for kind in kinds:
         rank = 0 if kind == "rank 0" else 16
+        own = {"own: none": (), "own: drift and sway": ("drift", "energy")}.get(kind, OWN_KINDS)
         accs = []
         for name, data, folds, order, x in splits:
             keep = np.array([_kind(f) != kind for f in order])
@@ -541,16 +550,16 @@ def ablation(say, d1, d2):
                 te = [i for i, t in enumerate(data) if is_test(t) and t.content in labels]
                 d = describe_table({c: x[[i for i in tr if data[i].content == c]][:, keep]
                                     for c in labels}, feats, rank=rank)
-                means = np.array([a.mean for a in d.actions])
-                dist = distances(x[te][:, keep], means,
-                                 precision_parts(d.spread, np.arange(len(feats))))
-                pred = np.array(d.names)[dist.argmin(axis=1)]
+                score = scores(d, x[te][:, keep], np.arange(len(feats)), kinds=own)[1]
+                pred = np.array(d.names)[score.argmin(axis=1)]
                 right += int((pred == np.array([data[i].content for i in te])).sum())
                 total += len(te)
             accs.append(right / total)
-        label = ("all features" if kind == "none" else "no shared directions (diagonal)"
-                 if kind == "rank 0" else f"without {kind}")
-        say(f"ablation {label:28s} " + "  ".join(f"{n} {a:.3f}" for (n, *_), a in
+        label = {"none": "all features", "rank 0": "no shared directions (diagonal)",
+                 "own: none": "root drift not in own spread",
+                 "own: drift and sway": "root drift and sway in own spread"}.get(
+                     kind, f"without {kind}")
+        say(f"ablation {label:33s} " + "  ".join(f"{n} {a:.3f}" for (n, *_), a in
                                                   zip(splits, accs)))
         out.append({"protocol": "ablation", "method": label,
                     **{n: a for (n, *_), a in zip(splits, accs)}})
@@ -661,7 +670,9 @@ def main(argv=None) -> int:
         if not want(protocol):
             continue
         run()
-        for method in ("praxicon", "minirocket-windows"):
+        variants = ([f"praxicon own={name}" for name, _ in _OWN_VARIANTS]
+                    if protocol == "joined-parse" else [])
+        for method in ("praxicon", *variants, "minirocket-windows"):
             r = results[protocol, method]
             if protocol == "cmu-parse":
                 row = {"protocol": protocol, "method": method,
@@ -678,7 +689,7 @@ def main(argv=None) -> int:
                        "time_recall": r["covered"] / r["true"],
                        "absent_reported": r["absent_reported"] / r["absent_pairs"],
                        "recordings_with_absent": r["any_absent"] / r["recordings"]}
-                say(f"{protocol:12s} {method:19s} recordings={row['recordings']} time precision="
+                say(f"{protocol:12s} {method:24s} recordings={row['recordings']} time precision="
                     f"{row['time_precision']:.3f} recall={row['time_recall']:.3f} absent action "
                     f"reported={row['absent_reported']:.3f} (recordings with one: "
                     f"{row['recordings_with_absent']:.2f})")

@@ -42,7 +42,7 @@ from .features import FeatureError, feature_joint, motion_features
 
 __all__ = ["FORMAT_VERSION", "ActionDescription", "Spread", "Descriptions", "describe",
            "describe_table", "DescriptionError", "feature_groups", "group_distances",
-           "GROUP_LEVEL"]
+           "GROUP_LEVEL", "OWN_KINDS", "own_columns", "own_terms", "scores"]
 
 #: Bumped when what a description holds or how features are computed changes.
 FORMAT_VERSION = 2
@@ -53,6 +53,8 @@ _MARGIN = 1.5  # the "none of these" threshold: this times the worst held-out tr
 _FOLDS = 5  # held-out folds of the calibration
 #: How often a known take may fail the feature-group test (over all groups together).
 GROUP_LEVEL = 0.01
+#: Kinds of the root's features every action also scores in its own spread (:func:`scores`).
+OWN_KINDS = ("drift",)
 
 
 class DescriptionError(PSGSError, ValueError):
@@ -249,6 +251,73 @@ def probabilities(dist: np.ndarray, temperature: float) -> np.ndarray:
     return p / p.sum(axis=-1, keepdims=True)
 
 
+def own_columns(features, kinds=OWN_KINDS) -> np.ndarray:
+    """The columns of the root's features of ``kinds`` (``"drift"``: the mean travel and
+    turning velocities; ``"energy"``: the sway around them), scored in each action's own spread.
+
+    Examples
+    --------
+    >>> own_columns(["a.rx:pose", "Hips.travelz:drift", "Hips.travelz:energy", "tempo"]).tolist()
+    [1]
+    """
+    return np.array([i for i, f in enumerate(features) if (".travel" in f or ".turn" in f)
+                     and f.rsplit(":", 1)[-1] in kinds], dtype=int)
+
+
+def own_terms(x, means, variance, scale) -> np.ndarray:
+    """Motions x actions: each action's own-spread term, relative to the best action's.
+
+    Per action the Gaussian log-likelihood of the columns given (``x``: motions x columns,
+    ``means`` and ``variance``: actions x columns, the variance in units of ``scale``), as
+    ``sum z²/v + log v``, minus the smallest over actions: the action whose own spread fits
+    best pays nothing more, so a "none of these" threshold on the shared distance keeps its
+    meaning.
+
+    Examples
+    --------
+    >>> t = own_terms(np.array([[1.0]]), np.array([[1.0], [-1.0]]), np.ones((2, 1)), np.ones(1))
+    >>> t.tolist()
+    [[0.0, 4.0]]
+    """
+    x, means = np.atleast_2d(x), np.atleast_2d(means)
+    z = ((x[:, None, :] - means[None]) / scale) ** 2 / variance[None]
+    terms = (z + np.log(variance)[None]).sum(axis=2)
+    return terms - terms.min(axis=1, keepdims=True) if terms.size else terms
+
+
+def scores(descriptions: "Descriptions", x, columns, *, kinds=OWN_KINDS):
+    """Motions x actions: the shared distance (what the "none of these" threshold reads) and
+    the score actions are ranked by, which adds :func:`own_terms` for the root's features of
+    ``kinds``.
+
+    The shared spread pools how every action's copies vary; a style that walks faster moves
+    the forward travel of every gait alike, so the shared directions let a walk's travel be
+    read as a walk backwards' at little cost, and a heading rate drowns among hundreds of
+    features. Each action's own spread of its drift (a walk backwards always travels
+    backwards, a turn's heading rate is tight) keeps them apart.
+
+    Examples
+    --------
+    >>> from kinetology import synthetic_motion
+    >>> d = describe({"a": [synthetic_motion(2, (0,), seed=s) for s in (1, 2)],
+    ...               "b": [synthetic_motion(2, (1,), seed=s) for s in (3, 4)]})
+    >>> x = np.array([d.actions[0].mean])
+    >>> shared, score = scores(d, x, np.arange(len(d.spread.features)))
+    >>> shared.shape, bool(np.all(score >= shared))
+    ((1, 2), True)
+    """
+    spread = descriptions.spread
+    columns = np.asarray(columns, dtype=int)
+    means = np.array([a.mean for a in descriptions.actions])[:, columns]
+    shared = distances(x, means, precision_parts(spread, columns))
+    own = own_columns([spread.features[i] for i in columns], kinds)
+    if not len(own):
+        return shared, shared
+    variance = action_variances(descriptions, columns[own])
+    scale = np.asarray(spread.scale)[columns[own]]
+    return shared, shared + own_terms(np.asarray(x)[:, own], means[:, own], variance, scale)
+
+
 def feature_groups(features) -> dict[str, np.ndarray]:
     """The columns of each feature group: a joint's features, each of the root's travel and
     turning features alone, the tempo (the units a deviation concentrates in).
@@ -359,7 +428,8 @@ def _calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
     The threshold is ``_MARGIN`` times the largest distance per feature such a take got; the
     group limits (with ``features``) from each group's held-out distances to its own action, in
     that action's own spread (:func:`_group_limits`); the temperature the one (a power of 2)
-    whose probabilities fit the held-out takes best.
+    whose probabilities, from the score actions are ranked by (:func:`scores`), fit the
+    held-out takes best.
     ``sources`` (per action, per row: the take a row comes from) keeps the windows of one take
     in one fold, so that a take is never scored by a model that saw another piece of it.
     """
@@ -367,8 +437,9 @@ def _calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
         sources = [np.arange(len(g)) for g in groups]
     else:  # takes numbered in order, so that a take's fold does not depend on its id
         sources = [np.unique(np.asarray(s), return_inverse=True)[1] for s in sources]
-    moved, truth, grouped = [], [], []
+    moved, ranked, truth, grouped = [], [], [], []
     parts_of = feature_groups(features) if features is not None else {}
+    own = own_columns(features) if features is not None else np.zeros(0, dtype=int)
     for fold in range(folds):
         out = [s % folds == fold for s in sources]
         train = [g[~o] for g, o in zip(groups, out)]
@@ -382,7 +453,7 @@ def _calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
         spread = Spread(("",) * len(scale), _floats(scale), tuple(_floats(f) for f in factors),
                         _floats(noise), math.inf, 1.0)
         parts = precision_parts(spread, np.arange(len(scale)))
-        if parts_of:
+        if parts_of or len(own):
             variance = _action_variances(
                 np.array([(((train[a] - m) / scale) ** 2).sum(axis=0)
                           for a, m in zip(keep, means)]), [len(train[a]) for a in keep])
@@ -391,13 +462,16 @@ def _calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
             if len(held) and len(train[a]) and parts_of:
                 grouped.append(group_distances(held, means[k], variance[k], scale, parts_of))
             if len(held) and len(train[a]):
-                moved.extend(distances(held, means, parts))
-                truth.extend([k] * len(held))
+                shared = distances(held, means, parts)
+                score = shared
+                if len(own):  # ranked as recognition ranks: own-spread terms added
+                    score = shared + own_terms(held[:, own], means[:, own],
+                                               variance[:, own], scale[own])
                 # rows must share one set of actions: pad the actions left out with +inf
-                if len(keep) < len(groups):
-                    moved[-len(held):] = [np.concatenate([r, np.full(len(groups) - len(keep),
-                                                                     np.inf)])
-                                          for r in moved[-len(held):]]
+                pad = np.full((len(held), len(groups) - len(keep)), np.inf)
+                moved.extend(np.concatenate([shared, pad], axis=1))
+                ranked.extend(np.concatenate([score, pad], axis=1))
+                truth.extend([k] * len(held))
     if not moved:
         return math.inf, 1.0, ()
     limits = (_group_limits(np.concatenate(grouped), level,
@@ -406,11 +480,12 @@ def _calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
     limits = tuple((g, float(v)) for g, v in zip(parts_of, limits))
     dist = np.array(moved)
     features = groups[0].shape[1]
-    own = dist[np.arange(len(truth)), truth] / features
-    threshold = float(own.max() * _MARGIN)
+    nearest = dist[np.arange(len(truth)), truth] / features
+    threshold = float(nearest.max() * _MARGIN)
     best, best_loss = 1.0, math.inf
+    score = np.array(ranked)
     for temperature in 2.0 ** np.arange(0, 12):
-        p = probabilities(dist, temperature)[np.arange(len(truth)), truth]
+        p = probabilities(score, temperature)[np.arange(len(truth)), truth]
         loss = float(-np.log(np.maximum(p, 1e-300)).mean())
         if loss < best_loss - 1e-12:
             best, best_loss = float(temperature), loss

@@ -1,7 +1,8 @@
 """Parsing a recording into actions: a timeline of spans, each a learnt action or none.
 
 Sliding windows (``window`` seconds long, every ``hop`` seconds) are scored by the actions'
-window descriptions with the same penalty that recognises whole takes; a Viterbi pass then
+window descriptions with the same score that ranks whole takes (the shared spread's distance
+and the root drift's in each action's own spread); a Viterbi pass then
 picks one action (or none) per window, paying ``switch`` per change, so one odd window does not
 break a span and a span is never longer than the run of windows that carry it. Each window's
 answer covers the ``hop`` around its centre, so spans follow the motion to within half a window.
@@ -25,8 +26,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .description import (DescriptionError, common_table, describe_table, distances,
-                          feature_rows, precision_parts, probabilities)
+from .description import (OWN_KINDS, DescriptionError, common_table, describe_table,
+                          feature_rows, probabilities, scores)
 
 __all__ = ["Span", "Timeline", "parse", "describe_windows", "windows"]
 
@@ -127,7 +128,8 @@ def _viterbi(costs: np.ndarray, switch: float) -> np.ndarray:
     return path
 
 
-def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH) -> Timeline:
+def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
+          own=OWN_KINDS) -> Timeline:
     """The recording as a timeline of spans (see the module's description).
 
     Parameters
@@ -138,6 +140,9 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH) -> Ti
         Seconds between windows.
     switch : float, default 10.0
         The cost of changing action, in log-likelihood (nats).
+    own : tuple of str, default ("drift",)
+        Kinds of the root's features also scored in each action's own spread
+        (:func:`~praxicon.description.scores`; ``()``: the shared spread alone).
 
     Returns
     -------
@@ -157,8 +162,7 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH) -> Ti
     if not any(feature_joint(descriptions.spread.features[i]) != "*" for i in columns):
         raise DescriptionError("the motion shares no joint with the praxicon's actions")
     spread = descriptions.spread
-    means = np.array([a.mean for a in descriptions.actions])[:, columns]
-    dist = distances(x, means, precision_parts(spread, columns))
+    _, dist = scores(descriptions, x, columns, kinds=own)
     # "none of these" is one more state, at the threshold's distance: an action wins a window
     # only where it is nearer than that and nearer than every other action
     dist = np.concatenate([dist, np.full((len(dist), 1), spread.threshold * len(columns))],

@@ -4,7 +4,9 @@ Every action's :class:`~praxicon.description.ActionDescription` scores the take'
 vector with the same Gaussian log-likelihood (one covariance shared by every action), so the
 scores compare across actions; an action
 with many joints gains nothing from them, because the joints that must stay still and the
-joints that move but are not the action's cost as much as a joint that moves wrongly. The best
+joints that move but are not the action's cost as much as a joint that moves wrongly. The
+root's drift (its travel and turning velocities) is also scored in each action's own spread
+(:func:`~praxicon.description.scores`): a walk backwards always travels backwards. The best
 action is the answer unless its mean penalty exceeds the threshold calibrated on the training
 takes, or one group of features (a joint, one of the root's drifts or sways, the tempo) is
 further from it, in the action's own spread, than its calibrated limit (exceeded by a held-out training take
@@ -30,8 +32,8 @@ from pathlib import Path
 import numpy as np
 
 from .description import (DescriptionError, Descriptions, action_variances,
-                          distances, feature_groups, feature_rows, group_distances,
-                          mahalanobis_terms, precision_parts, probabilities)
+                          feature_groups, feature_rows, group_distances, mahalanobis_terms,
+                          precision_parts, probabilities, scores)
 from .features import feature_joint
 
 __all__ = ["Recognition", "recognise", "recognise_many", "feature_matrix", "JointReason"]
@@ -192,8 +194,8 @@ def recognise_many(praxicon, motions, *, explain: int = 3) -> list[Recognition]:
     features = [spread.features[i] for i in columns]
     parts = precision_parts(spread, columns)
     means = np.array([a.mean for a in descriptions.actions])[:, columns]
-    dist = distances(x, means, parts)
-    p = probabilities(dist, spread.temperature)
+    dist, score = scores(descriptions, x, columns)
+    p = probabilities(score, spread.temperature)
     per_feature = dist / len(columns)
     names = descriptions.names
     drift = [i for i, f in enumerate(features) if f.endswith(":drift")]
@@ -211,7 +213,9 @@ def recognise_many(praxicon, motions, *, explain: int = 3) -> list[Recognition]:
             terms = mahalanobis_terms(x[i], means[a], parts)[0]
             reasons.append((names[a], _reasons(features, terms, x[i], means[a])))
             tempos.append((names[a], round(float(terms[tempo].sum()), 3)))
-            drifts.append((names[a], round(float(terms[drift].sum()), 3)))
+            # the drift's part of the shared distance and of the action's own-spread term
+            drifts.append((names[a], round(float(terms[drift].sum() + score[i, a]
+                                                 - dist[i, a]), 3)))
         out.append(Recognition(
             getattr(motion, "source", "<motion>"), action,
             tuple((names[a], float(p[i, a])) for a in order),

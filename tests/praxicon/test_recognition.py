@@ -231,3 +231,28 @@ def test_group_test_rejects_a_walk_against_turns_by_its_heading_rate():
     assert walk.action is None and walk.excess_group == "root.turny:drift"
     turns = recognise_many(px, [_gait(21.0, 600), _gait(-19.0, 601)])
     assert [r.action for r in turns] == ["turn-left", "turn-right"]
+
+
+def test_drift_is_also_scored_in_each_actions_own_spread():
+    """Actions are ranked by the shared distance plus each action's own-spread term of the
+    root's drift, relative to the best action's (which pays nothing more); without the term
+    the score is the shared distance, which the "none of these" threshold reads either way.
+    A left turn's heading rate costs the right turn, whose own rates are far from it, more."""
+    from praxicon.description import own_columns, scores
+
+    rng = np.random.default_rng(1)
+    takes = {name: [_gait(sign * (20 + 2 * rng.standard_normal()), seed)
+                    for seed in range(k, k + 6)]
+             for name, sign, k in (("turn-left", 1, 0), ("turn-right", -1, 100))}
+    px = describe(takes)
+    columns = np.arange(len(px.spread.features))
+    x = np.array([motion_features(_gait(21.0, 700))[1]])
+    shared, score = scores(px, x, columns)
+    plain_shared, plain = scores(px, x, columns, kinds=())
+    assert np.array_equal(shared, plain_shared) and np.array_equal(plain, shared)
+    extra = score - shared
+    assert len(own_columns(px.spread.features)) == 6
+    assert extra.min() == 0.0 and extra[0, 0] == 0.0 and extra[0, 1] > 10.0
+    found = recognise(px, _gait(21.0, 700))
+    assert found.ranking[0][0] == "turn-left" and found.penalty == pytest.approx(
+        shared[0, 0] / len(columns))
