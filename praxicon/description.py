@@ -17,8 +17,10 @@ sways, axis by axis; the tempo) is further from that action than its limit (``Sp
 what a held-out training take exceeds with probability ``GROUP_LEVEL`` over all groups). The group
 test measures each action against its own spread (shrunk towards the shared one): a deviation
 concentrated in a few features, such as a walk's missing heading drift against a turn whose
-drift is tight, drowns in a sum over all features but stands out in its group. Probabilities
-are the likelihoods at the ``temperature`` that fits the left-out training takes best.
+drift is tight, drowns in a sum over all features but stands out in its group. Actions are
+ranked by the shared distance plus the root drift's distance in each action's own spread
+(:func:`scores`); probabilities are those scores' likelihoods at the ``temperature`` that fits
+the left-out training takes best.
 
 >>> from kinetology import synthetic_motion
 >>> takes = {"a": [synthetic_motion(3, (0,), seed=s) for s in (1, 2, 3)],
