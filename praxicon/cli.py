@@ -152,8 +152,9 @@ def _add_commands(sub) -> None:
     draw.add_argument("praxicon", metavar="DIR", help="a praxicon folder")
     draw.add_argument("-o", "--output", required=True, metavar="IMGDIR",
                       help="folder for the pictures")
-    draw.add_argument("--format", choices=("png", "svg"), default="png",
-                      help="picture format (default png)")
+    draw.add_argument("--format", choices=("svg", "png"), default="svg",
+                      help="picture format (default svg: sharp at any zoom, and a system's "
+                           "graph is written without rasterising tens of thousands of pixels)")
     draw.add_argument("--workers", type=positive_int, default=None, metavar="N",
                       help="run up to N Graphviz dot programs at once (default: the number "
                            "of cores, at most 4)")

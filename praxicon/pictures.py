@@ -211,13 +211,16 @@ def draw_generated(record: ActionRecord, generated, path, channel: str | None = 
     return _save(fig, path)
 
 
-def draw_praxicon(folder, out, *, fmt: str = "png", progress=None,
+def draw_praxicon(folder, out, *, fmt: str = "svg", progress=None,
                   workers: int | None = None) -> list[Path]:
     """Every picture of a praxicon into ``out``; returns the paths written.
 
     ``out/actuators.FMT``, ``out/shared.FMT``, and per action with actuators
     ``out/morphemes/ACTION.FMT`` and ``out/systems/ACTION.FMT`` (the grammar
-    forest and synchronisation graph of :func:`psgs.draw.draw`). ``progress``,
+    forest and synchronisation graph of :func:`psgs.draw.draw`). ``fmt`` is ``"svg"``
+    (the default) or ``"png"``: a system of thirty-odd components is a graph some 20,000
+    points wide, which SVG keeps readable at any zoom, and which as PNG is most of the time
+    spent (rasterising it costs ``dot`` about six times its layout). ``progress``,
     when given, is called with ``(done, total, picture)`` as the per-action pictures
     are drawn. With Graphviz, up to ``workers`` ``dot`` programs (default: the number
     of cores, at most 4) lay out and rasterise systems while the morphemes are drawn.

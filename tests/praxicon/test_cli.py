@@ -29,8 +29,11 @@ def test_build_draw_generate(manifest, tmp_path, capsys):
     assert main(["build", str(manifest), "-o", str(out), "--no-progress",
                  "--param", "min_copies=3"]) == 0
     assert "(4 already done)" in capsys.readouterr().out
-    assert main(["draw", str(out), "-o", str(out / "img"), "--format", "svg"]) == 0
+    assert main(["draw", str(out), "-o", str(out / "img")]) == 0
+    # SVG by default: a system's graph is not rasterised
     assert (out / "img" / "actuators.svg").is_file()
+    assert sorted(p.suffix for p in (out / "img" / "systems").iterdir()) == [".svg"] * len(
+        list((out / "img" / "systems").iterdir()))
     drew = capsys.readouterr()
     # stdout: the pictures written; stderr: progress per action and a count, no warning
     assert all(Path(line).is_file() for line in drew.out.splitlines())

@@ -60,7 +60,7 @@ def test_psgs_draw_cli(tmp_path, capsys):
 def test_praxicon_pictures_and_shared_patterns(manifest, tmp_path):
     build(read_dataset(manifest), tmp_path / "px", progress=False, log=lambda s: None)
     told = []
-    written = draw_praxicon(tmp_path / "px", tmp_path / "img", workers=1,
+    written = draw_praxicon(tmp_path / "px", tmp_path / "img", workers=1, fmt="png",
                             progress=lambda *call: told.append(call))
     # every per-action picture is told once, in order, morphemes first, then systems
     assert [(done, total) for done, total, _ in told] == [(k, 4) for k in range(4)]
