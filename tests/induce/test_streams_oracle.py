@@ -77,3 +77,17 @@ def test_a_section_shorter_than_the_bound_is_not_counted(oracle):
               _voice(section + [(1.0, "A4")] + section + [(1.0, "B4")])]
     assert oracle(voices, 4.0) is None
     assert oracle(voices, 3.0)[:3] == (3.0, 4.0, 0.0)
+
+
+def test_a_section_after_a_shared_rest_is_found_inside_the_longer_span(oracle):
+    rng = random.Random(7)
+    voices = []
+    for pitch in ("C5", "D5"):
+        section = _random(rng, 8)
+        voices.append(_voice([(10.0, "r")] + section + [(3.0, pitch)] + [(10.0, "r")] +
+                             section + [(1.0, "E5")]))
+    # the span both voices share at a shift of 21 beats is 18 long, 10 of them rests: too
+    # quiet as a whole, the 8 notes after the rest a section
+    found = oracle(voices, 8.0)
+    assert found is not None and found[1] == 21.0 and found[0] >= 8.0
+    assert 2 * 8.0 >= found[0]
