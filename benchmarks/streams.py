@@ -30,10 +30,22 @@ the same run on the same strings:
   grouped the same way.
 
 A voice counts as **found** when it is named with two reported copies whose
-middles lie in the two passes of one true section. Printed and written to
-docs/data/streams.csv: per method and shape, pieces where exactly the voices
-are named, the recall of the true voices, and the pieces without repetition
-where something is named.
+middles lie in the two passes of one true section.
+
+A piece without repeat signs may still repeat a passage written out (a
+recapitulation, a line sung twice). An oracle independent of PAL
+(:func:`written_repeat`, brute force over the pairs of voices and time shifts)
+looks for a section of ``WRITTEN_BARS`` (2) of the piece's measures or more that
+two voices play twice at the same two times, note for note (pitches,
+durations, rests), each sounding in half of it at least. A piece without
+repeat signs where it finds none is a **verified negative**; the claims there
+are counted beside the claims on every piece without repeat signs, and again
+with a bound of ``WRITTEN_BARS_LONG`` (4) measures, to show how the count moves
+with the bound. The oracle also runs on the pieces with repeat signs (it must
+find their repeats). Printed and written to docs/data/streams.csv: per method
+and shape, pieces where exactly the voices are named, the recall of the true
+voices, and the pieces without repetition (by the barlines; verified) where
+something is named.
 """
 
 from __future__ import annotations
@@ -68,6 +80,7 @@ class Piece:
     name: str
     voices: tuple[tuple[tuple[float, float, str], ...], ...]
     sections: tuple[tuple[tuple[float, float], tuple[float, float]], ...]  # (pass 1, pass 2)
+    bar: float = 4.0  # the length of its most common measure, in beats
 
 
 def voice_rows(part) -> tuple[tuple[float, float, str], ...]:
@@ -115,6 +128,12 @@ def repeated_sections(part) -> tuple[tuple[tuple[float, float], tuple[float, flo
     return tuple((span(a, b), span(c, d)) for a, b, c, d in runs if b > a)
 
 
+def bar_length(part) -> float:
+    """The length in beats of a part's most common measure (4.0 when it has none)."""
+    lengths = [round(float(m.quarterLength), 6) for m in part.getElementsByClass("Measure")]
+    return max(set(lengths), key=lengths.count) if lengths else 4.0
+
+
 def load(limit: int | None) -> tuple[list[Piece], list[Piece]]:
     """The pieces with repetition and those without, from music21's corpus."""
     from music21 import bar, corpus, repeat
@@ -144,7 +163,7 @@ def load(limit: int | None) -> tuple[list[Piece], list[Piece]]:
             if not marks and not expressions:
                 voices = tuple(voice_rows(p) for p in score.parts)
                 if all(len(v) >= 8 for v in voices):
-                    without.append(Piece(name, voices, ()))
+                    without.append(Piece(name, voices, (), bar_length(score.parts[0])))
                 continue
             if expressions:
                 continue  # da capo and segno: the truth is not the barlines alone
@@ -155,11 +174,117 @@ def load(limit: int | None) -> tuple[list[Piece], list[Piece]]:
             sections = repeated_sections(expanded.parts[0])
             voices = tuple(voice_rows(p) for p in expanded.parts)
             if sections and all(len(v) >= 8 for v in voices):
-                with_rep.append(Piece(name, voices, sections))
+                with_rep.append(Piece(name, voices, sections, bar_length(score.parts[0])))
             if limit and len(with_rep) >= limit and len(without) >= limit:
                 return with_rep, without
     return with_rep, without
 
+
+#: a written-out repeat counts when it lasts this many of the piece's measures: the shortest
+#: run the barline truth of the pieces with repetition counts (two measures)
+WRITTEN_BARS = 2
+#: a longer bound, printed beside it to show how the verdict moves with the bound
+WRITTEN_BARS_LONG = 4
+
+
+def shift_runs(rows, shortest: float) -> dict[float, list[tuple[float, float]]]:
+    """Per time shift ``d``: the spans of ``shortest`` beats or more where the voice at
+    ``t`` equals itself at ``t + d`` (the same notes, durations and rests, event by event).
+
+    The events of a voice tile its time (its gaps are rests), so a run of equal events at a
+    fixed distance in the event list has one time shift.
+    """
+    keys: dict[tuple[str, float], int] = {}
+    codes = np.array([keys.setdefault((s, d), len(keys)) for _, d, s in rows])
+    onsets = np.array([o for o, _, _ in rows])
+    ends = np.array([o + d for o, d, _ in rows])
+    out: dict[float, list[tuple[float, float]]] = {}
+    for k in range(1, len(rows)):
+        equal = np.concatenate(([False], codes[:-k] == codes[k:], [False]))
+        edges = np.flatnonzero(np.diff(equal.astype(np.int8)))
+        first, last = edges[::2], edges[1::2] - 1
+        long = ends[last] - onsets[first] >= shortest
+        first, last = first[long], last[long]
+        shifts = np.round(onsets[first + k] - onsets[first], 6)
+        for a, b, d in zip(onsets[first].tolist(), ends[last].tolist(), shifts.tolist()):
+            out.setdefault(d, []).append((a, b))
+    return {d: sorted(v) for d, v in out.items()}
+
+
+class Sounding:
+    """How many beats a voice sounds notes (not rests) up to any time: prefix sums."""
+
+    def __init__(self, rows):
+        self.bounds = np.array([o for o, _, _ in rows] + [rows[-1][0] + rows[-1][1]])
+        self.notes = np.array([s != "r" for _, _, s in rows] + [False])
+        self.before = np.concatenate(([0.0], np.cumsum(np.diff(self.bounds) * self.notes[:-1])))
+
+    def until(self, t: float) -> float:
+        """Beats sounded from the voice's start to ``t``."""
+        i = int(np.clip(np.searchsorted(self.bounds, t, side="right") - 1, 0,
+                        len(self.bounds) - 1))
+        return float(self.before[i] + max(0.0, t - self.bounds[i]) * self.notes[i])
+
+    def between(self, a: float, b: float) -> float:
+        """Beats sounded in ``[a, b)``.
+
+        >>> Sounding([(0.0, 2.0, "C4"), (2.0, 2.0, "r"), (4.0, 1.0, "D4")]).between(1.0, 5.0)
+        2.0
+        """
+        return self.until(b) - self.until(a)
+
+
+def _windows(lo: float, hi: float, d: float, shortest: float, times):
+    """The windows tried inside a span ``[lo, hi)`` the two voices share at shift ``d``:
+    the whole span (cut to ``d``), and from every note's onset or to every note's end in it
+    the longest window and the window of ``shortest`` beats (copies apart: at most ``d``)."""
+    yield lo, min(hi, lo + d)
+    inside = times[(times > lo) & (times < hi)].tolist()
+    for t in inside:
+        if t + shortest <= hi:
+            yield t, min(hi, t + d)
+            yield t, t + shortest
+        if t - shortest >= lo:
+            yield max(lo, t - d), t
+            yield t - shortest, t
+
+
+def written_repeat(voices, shortest: float):
+    """The oracle of repetition, independent of PAL: the longest section of ``shortest``
+    beats or more that two voices play twice at the same two times, or None.
+
+    Brute force over the pairs of voices and the time shifts ``d``: a section from ``t``
+    to ``t + L`` counts when both voices, from ``t`` on for ``L`` beats, equal themselves
+    ``d`` beats later (notes, durations and rests), the copies do not overlap (``L <= d``)
+    and each voice sounds notes in half of the section at least (two voices resting at
+    two times are no repetition). Inside each span the two voices share at one shift, the
+    windows tried start or end at the span's edges and at every note's onset and end.
+    Returns ``(L, d, t, (voice, voice))``.
+    """
+    runs = [shift_runs(v, shortest) for v in voices]
+    sounding = [Sounding(v) for v in voices]
+    best = None
+    for x in range(len(voices)):
+        for y in range(x + 1, len(voices)):
+            times = np.unique(np.concatenate([sounding[x].bounds, sounding[y].bounds]))
+            for d in sorted(set(runs[x]) & set(runs[y])):
+                if d < shortest:
+                    continue
+                ra, rb = runs[x][d], runs[y][d]
+                i = j = 0
+                while i < len(ra) and j < len(rb):  # the two voices' spans intersected
+                    lo, hi = max(ra[i][0], rb[j][0]), min(ra[i][1], rb[j][1])
+                    if min(hi - lo, d) >= shortest and (best is None
+                                                        or min(hi - lo, d) > best[0]):
+                        for a, b in _windows(lo, hi, d, shortest, times):
+                            if b - a >= shortest and (best is None or b - a > best[0]) and all(
+                                    2 * sounding[v].between(a, b) >= b - a for v in (x, y)):
+                                best = (b - a, d, a, (x, y))
+                    if ra[i][1] < rb[j][1]:
+                        i += 1
+                    else:
+                        j += 1
+    return best
 
 def actiongram(piece: Piece, pool: list[tuple[tuple[float, float, str], ...]],
                spurious: int, rng: np.random.Generator) -> tuple[Actiongram, list[str]]:
@@ -271,12 +396,18 @@ METHODS = {
 def table(rows: list[dict]) -> str:
     """The results as a markdown table, one line per method and shape."""
     lines = ["| strings | method | exactly the voices named | recall of the true voices | "
-             "claims on pieces without repetition | seconds |", "|---|---|---:|---:|---:|---:|"]
+             "claims on pieces without repeat signs | claims on verified negatives "
+             f"(no written-out repeat of {WRITTEN_BARS} bars) | the same, bound "
+             f"{WRITTEN_BARS_LONG} bars | seconds |", "|---|---|---:|---:|---:|---:|---:|---:|"]
     for r in rows:
         shape = "the voices alone" if r["spurious"] == 0 else f"+ {r['spurious']} spurious"
         lines.append(f"| {shape} | {r['method']} | {r['exactly_the_voices']} / "
                      f"{r['pieces_with_repeats']} | {r['recall']:.3f} | {r['claims_without']} / "
-                     f"{r['pieces_without']} | {r['seconds']} |")
+                     f"{r['pieces_without']} | {r['claims_verified']} / {r['verified']} "
+                     f"({100 * r['claims_verified'] / max(r['verified'], 1):.1f} %) | "
+                     f"{r['claims_verified_long']} / {r['verified_long']} "
+                     f"({100 * r['claims_verified_long'] / max(r['verified_long'], 1):.1f} %) | "
+                     f"{r['seconds']} |")
     return "\n".join(lines)
 
 
@@ -291,9 +422,20 @@ def main(argv=None) -> None:
     print(f"{len(with_rep)} pieces with repeats, {len(without)} without "
           f"(read in {time.time() - began:.0f} s)", flush=True)
     pool_of = {p.name: p.voices for p in with_rep + without}
+    t = time.time()
+    written = {p.name: written_repeat(p.voices, WRITTEN_BARS * p.bar) for p in with_rep + without}
+    verified = {p.name for p in without if written[p.name] is None}
+    verified_long = {p.name for p in without
+                     if written_repeat(p.voices, WRITTEN_BARS_LONG * p.bar) is None}
+    print(f"written-out repeats (two voices, the same two times, {WRITTEN_BARS} bars or more): "
+          f"in {sum(written[p.name] is not None for p in with_rep)} of {len(with_rep)} pieces "
+          f"with repeat signs, {len(without) - len(verified)} of {len(without)} without; "
+          f"verified negatives {len(verified)} ({len(verified_long)} with a bound of "
+          f"{WRITTEN_BARS_LONG} bars; {time.time() - t:.0f} s)", flush=True)
     rows = []
     for spurious in (0, SPURIOUS):
-        tally = {m: [0, 0, 0, 0, 0.0] for m in METHODS}  # exact, found, voices, claims, s
+        # exact, found, voices, claims, seconds, claims on verified (2 bars, 4 bars)
+        tally = {m: [0, 0, 0, 0, 0.0, 0, 0] for m in METHODS}
         for k, piece in enumerate(with_rep + without):
             pool = [v for name, vs in pool_of.items() if name != piece.name for v in vs]
             rng = np.random.default_rng(k)
@@ -309,16 +451,26 @@ def main(argv=None) -> None:
                     tally[method][2] += len(voices)
                 else:
                     tally[method][3] += bool(named)
-        for method, (exact, hits, total, claims, seconds) in tally.items():
+                    tally[method][5] += bool(named) and piece.name in verified
+                    tally[method][6] += bool(named) and piece.name in verified_long
+                    if named and piece.name in verified and method.startswith("PAL"):
+                        print(f"   {method} claims verified negative {piece.name}: "
+                              + ", ".join(f"{v} {[(round(a, 1), round(b, 1)) for a, b in c]}"
+                                          for v, c in named.items()), flush=True)
+        for method, (exact, hits, total, claims, seconds, sure, sure_long) in tally.items():
             rows.append({"spurious": spurious, "method": method,
                          "pieces_with_repeats": len(with_rep),
                          "exactly_the_voices": exact,
                          "recall": round(hits / max(total, 1), 3),
                          "pieces_without": len(without), "claims_without": claims,
+                         "verified": len(verified), "claims_verified": sure,
+                         "verified_long": len(verified_long), "claims_verified_long": sure_long,
                          "seconds": round(seconds, 1)})
             print(f"{spurious:2d} spurious  {method:30s} exactly the voices {exact:3d}/"
                   f"{len(with_rep)}  recall {hits / max(total, 1):.3f}  claims on pieces "
-                  f"without {claims:2d}/{len(without)}  ({seconds:.1f} s)", flush=True)
+                  f"without {claims:2d}/{len(without)}, verified {sure:2d}/{len(verified)} "
+                  f"({sure_long}/{len(verified_long)} at {WRITTEN_BARS_LONG} bars)  "
+                  f"({seconds:.1f} s)", flush=True)
     if not args.no_write:
         header = list(rows[0])
         write_csv(DATA / "streams.csv", header, [[r[h] for h in header] for r in rows])

@@ -13,6 +13,7 @@ import time
 from pathlib import Path
 
 from .._foundation.shell import key_values
+from ..actiongram._events import GAPS
 from ..errors import ValidationError
 
 
@@ -42,7 +43,7 @@ def register(subparsers) -> None:
     induce.add_argument("--events", metavar="FILE.csv",
                         help="learn from an events table instead: a CSV file with a header row "
                              "stream,onset,duration,symbol (one row an event, in any order)")
-    induce.add_argument("--gaps", choices=("rest", "hold", "error"),
+    induce.add_argument("--gaps", choices=GAPS,
                         help="with --events: a gap between two events of a stream becomes a "
                              "rest symbol (rest, the default), the event before lasts until the "
                              "next onset (hold), or is an error")
@@ -103,9 +104,11 @@ def _load_events(args):
 
     if args.file or args.example:
         raise ValidationError("give --events, FILE or --example, not two of them")
-    return read_events_csv(args.events, gaps=args.gaps or "rest",
-                           rest_symbol="_" if args.rest_symbol is None else args.rest_symbol,
-                           keep_repeats=args.keep_repeats)
+    # an option not given is left out, so the reader's own defaults apply (None: not given)
+    given = {key: value for key, value in (("gaps", args.gaps),
+                                           ("rest_symbol", args.rest_symbol))
+             if value is not None}
+    return read_events_csv(args.events, keep_repeats=args.keep_repeats, **given)
 
 
 # -- psgs induce -------------------------------------------------------------------------
@@ -154,7 +157,7 @@ def run_induce(args) -> int:
     performances = None
     if args.events is not None:
         actiongram = _load_events(args)
-    elif args.gaps or args.rest_symbol is not None or args.keep_repeats:
+    elif args.gaps is not None or args.rest_symbol is not None or args.keep_repeats:
         raise ValidationError("--gaps, --rest-symbol and --keep-repeats go with --events")
     elif args.file:
         performances = _load_performances(args.file)
