@@ -10,12 +10,16 @@ system. This module gives everything else from the action's performances:
   stays most horizontal, its direction about the vertical (``y``), unwrapped. The root's
   velocity is measured in that heading's frame (forward, sideways), so a turning walk
   keeps one speed while its direction changes (:func:`travel`);
+* **the course** (:func:`course`): the heading's change and that velocity over a take, in
+  the take's own time and averaged over one period, so that a generated turn goes straight,
+  turns and goes on as the takes do rather than turning steadily throughout;
 * **the body's own orientation**, heading removed (:func:`heading_free_angles`): the root's
   rotation turned back by its heading, as angles in the root's rotation order, continuous
-  through a turn;
+  through a turn; averaged over takes on one side of ±180° (:func:`nearest_turn`);
 * **typical movements** (:func:`mean_cycles`): per channel, the performances' mean cycle,
   its phase aligned to a leading generated channel, so joints the grammar does not drive
-  move as they do in the takes instead of standing still.
+  move as they do in the takes instead of standing still;
+* **a style's performances** (:func:`performances_of` with a style, :func:`style_of`).
 
 Every function is pure: motions in, arrays out.
 """
@@ -26,9 +30,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Body", "Travel", "animate", "body_frame", "body_of", "cycle_starts", "euler_angles",
-           "global_rotation", "heading", "heading_free_angles", "mean_cycles",
-           "performances_of", "root_chain", "travel", "yaw_matrices"]
+__all__ = ["Body", "Course", "Travel", "animate", "body_frame", "body_of", "course",
+           "cycle_starts", "euler_angles", "global_rotation", "heading", "heading_free_angles",
+           "mean_course", "mean_cycles", "nearest_turn", "own_period", "performances_of",
+           "root_chain", "style_of", "travel", "yaw_matrices"]
 
 _UP = 1  # y is vertical in BVH and in the ASF files of the shared data
 
@@ -161,6 +166,86 @@ def travel(motion, root: str, axis: int | None = None) -> Travel | None:
                   float(np.hypot(v[:, 0], v[:, 2]).mean()))
 
 
+@dataclass(frozen=True, eq=False)
+class Course:
+    """Where a root goes over a take, in the take's own time from 0 (start) to 1 (end).
+
+    Attributes
+    ----------
+    heading : numpy.ndarray
+        Heading change since the start (radians), at evenly spaced points of the take.
+    forward, sideways : numpy.ndarray
+        The velocity in the heading's frame at the same points (length units per second).
+    """
+
+    heading: np.ndarray
+    forward: np.ndarray
+    sideways: np.ndarray
+
+    def at(self, frames: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Heading, forward and sideways velocity resampled to ``frames`` frames spanning the course."""
+        t = np.linspace(0.0, 1.0, self.heading.size)
+        u = np.linspace(0.0, 1.0, frames)
+        return tuple(np.interp(u, t, x) for x in (self.heading, self.forward, self.sideways))
+
+
+def _moving_mean(x: np.ndarray, width: int) -> np.ndarray:
+    if width < 2 or x.size < 2:
+        return x
+    padded = np.pad(x, (width // 2, width - 1 - width // 2), mode="edge")
+    return np.convolve(padded, np.ones(width) / width, mode="valid")
+
+
+def course(motion, root: str, axis: int | None = None, period: float | None = None,
+           samples: int = 101) -> Course | None:
+    """The root's :class:`Course` over a motion (None under two frames).
+
+    With ``period`` (seconds), the heading and the velocity are first averaged over one
+    period about each frame: what stays is where the body goes, not the sway of each step
+    (a mean over exactly one cycle removes a periodic component whatever its shape).
+
+    Examples
+    --------
+    A root that goes straight for a second, then turns 90° in the next:
+
+    >>> import numpy as np, kinetology
+    >>> from kinetology.motion import Joint, Skeleton
+    >>> sk = Skeleton((Joint("hip", None, (0, 0, 0), ("hip.tx", "hip.tz", "hip.ry"), "ZXY"),))
+    >>> h = np.radians(np.r_[np.zeros(30), np.linspace(0, 90, 31)])
+    >>> x, z = np.cumsum(100 * np.sin(h)) / 30, np.cumsum(100 * np.cos(h)) / 30
+    >>> m = kinetology.Motion(np.c_[x, z, np.degrees(h)], ("hip.tx", "hip.tz", "hip.ry"), 30.0, sk)
+    >>> c = course(m, "hip", axis=2, samples=3)   # the body faces along its local z
+    >>> np.round(np.degrees(c.heading)).tolist(), np.round(c.forward).tolist()
+    ([0.0, 0.0, 90.0], [100.0, 100.0, 100.0])
+    """
+    if motion.frames < 2:
+        return None
+    rate = float(motion.frame_rate)
+    h, _ = heading(global_rotation(motion, root), axis)
+    v = np.gradient(_world_positions(motion, root), axis=0) * rate
+    forward = np.cos(h) * v[:, 2] + np.sin(h) * v[:, 0]
+    sideways = np.cos(h) * v[:, 0] - np.sin(h) * v[:, 2]
+    width = int(round(period * rate)) if period else 1
+    h, forward, sideways = (_moving_mean(x, width) for x in (h - h[0], forward, sideways))
+    t = np.linspace(0.0, 1.0, motion.frames)
+    u = np.linspace(0.0, 1.0, samples)
+    return Course(*(np.interp(u, t, x) for x in (h - h[0], forward, sideways)))
+
+
+def mean_course(courses) -> Course:
+    """The point-wise mean of several :class:`Course` values of one length.
+
+    >>> import numpy as np
+    >>> a = Course(np.array([0.0, 1.0]), np.array([100.0, 100.0]), np.zeros(2))
+    >>> b = Course(np.array([0.0, 2.0]), np.array([50.0, 50.0]), np.zeros(2))
+    >>> mean_course([a, b]).heading.tolist()
+    [0.0, 1.5]
+    """
+    courses = list(courses)
+    return Course(*(np.mean([getattr(c, k) for c in courses], axis=0)
+                    for k in ("heading", "forward", "sideways")))
+
+
 def euler_angles(matrices, order: str) -> np.ndarray:
     """Angles (degrees, ``(frames, 3)`` in ``order``) whose product ``R_order[0] R_order[1] R_order[2]`` is each matrix; unwrapped over frames."""
     import warnings
@@ -196,6 +281,10 @@ def _free(world, axis, offset, order) -> np.ndarray:
     return euler_angles(yaw_matrices(offset - h) @ world, order)
 
 
+def _is_angle(channel: str) -> bool:
+    return channel.rsplit(".", 1)[-1] in ("rx", "ry", "rz")
+
+
 def _rotation_channels(joint):
     """A joint's three rotation channels in its rotation order, or None."""
     rotations = [c for c in joint.channels if c.rsplit(".", 1)[1].startswith("r")]
@@ -203,6 +292,45 @@ def _rotation_channels(joint):
             "".join(c[-1].upper() for c in rotations) != joint.rotation_order.upper():
         return None
     return rotations
+
+
+def own_period(values, expected: int) -> int | None:
+    """A take's own period (frames) near ``expected``, from the autocorrelation of ``values``.
+
+    The first lag within 0.6 to 1.5 times ``expected`` that correlates nearly as well
+    (within 10%) as the best there, taken up to the top of its peak (two periods
+    correlate as well as one, so the first is the period). None when the take is too
+    short for those lags.
+
+    >>> import numpy as np
+    >>> own_period(np.sin(2 * np.pi * np.arange(200) / 26), 20)
+    26
+    """
+    x = np.asarray(values, float)
+    centred = x - x.mean()
+    lags = np.arange(max(2, int(0.6 * expected)), min(int(1.5 * expected), x.size - 2) + 1)
+    if not lags.size:
+        return None
+    auto = [float(centred[:-k] @ centred[k:]) / (x.size - k) for k in lags]
+    best = max(auto)
+    i = int(np.flatnonzero(np.asarray(auto) >= best - 0.1 * abs(best))[0])
+    while i + 1 < len(auto) and auto[i + 1] >= auto[i]:  # up to that peak's top
+        i += 1
+    return int(lags[i])
+
+
+def nearest_turn(values, reference: float) -> np.ndarray:
+    """Angles (degrees) shifted by the whole turns that bring their mean nearest ``reference``.
+
+    Angles 360° apart are one rotation, but two takes of one pose can be read on either
+    side of ±180° (a root turned back by its heading sits there): their means are only
+    comparable, or worth averaging, on one side.
+
+    >>> nearest_turn([179.0, -179.0 + 360.0], -178.0).tolist()
+    [-181.0, -179.0]
+    """
+    x = np.asarray(values, float)
+    return x - 360.0 * np.round((x.mean() - reference) / 360.0)
 
 
 def cycle_starts(leader, template) -> list[int]:
@@ -226,16 +354,8 @@ def cycle_starts(leader, template) -> list[int]:
     n = g.size
     if x.size < n or n < 2 or not np.any(g - g.mean()):
         return []
-    centred = x - x.mean()
-    lags = np.arange(max(2, int(0.6 * n)), min(int(1.5 * n), x.size - 2) + 1)
-    if lags.size:
-        auto = [float(centred[:-k] @ centred[k:]) / (x.size - k) for k in lags]
-        # the first lag near the best: two periods correlate as well as one
-        best = max(auto)
-        i = int(np.flatnonzero(np.asarray(auto) >= best - 0.1 * abs(best))[0])
-        while i + 1 < len(auto) and auto[i + 1] >= auto[i]:  # up to that peak's top
-            i += 1
-        own = int(lags[i])
+    own = own_period(x, n)
+    if own is not None:
         g = np.interp(np.linspace(0, n, own, endpoint=False), np.arange(n + 1), np.append(g, g[0]))
     g = g - g.mean()
     p = g.size
@@ -300,7 +420,11 @@ class Body:
     generation turns and moves so that the root's own channels keep their generated
     values; ``curves`` per performance the channels' angles with the root's rotation
     heading-free and its horizontal position removed (the travel puts it back);
-    ``centre`` their mean per channel.
+    ``centre`` their mean per channel; ``travel`` the mean of their :class:`Travel`,
+    ``course`` the mean of their :class:`Course` (where the body goes over a take: a walk
+    advances, a turn goes straight, turns and goes on, as the takes do); ``offset`` the
+    heading (radians) the root's heading-free rotation faces (:func:`body_frame`), which
+    the travel's direction adds to the turn.
     """
 
     performances: tuple = ()
@@ -310,15 +434,36 @@ class Body:
     curves: tuple = ()
     centre: dict | None = None
     travel: Travel | None = None
+    course: Course | None = None
+    offset: float = 0.0
 
 
-def performances_of(record) -> list:
-    """The motions of the performances an action was learnt from (trimmed; unreadable ones left out)."""
+def style_of(file) -> list[str]:
+    """The words of a performance's file name, any of which can name its style.
+
+    Bandai Namco's names are ``dataset-N_CONTENT_STYLE_TAKE``: their words are split at
+    ``_``, so ``walk-turn-left`` stays one word.
+
+    >>> style_of("data/dataset-2_walk-turn-left_elderly_003.bvh")
+    ['dataset-2', 'walk-turn-left', 'elderly', '003']
+    """
+    from pathlib import Path
+
+    return Path(str(file)).stem.split("_")
+
+
+def performances_of(record, style: str | None = None) -> list:
+    """The motions of the performances an action was learnt from (trimmed; unreadable ones left out).
+
+    With ``style``, only those whose file name holds it as a word (:func:`style_of`).
+    """
     import kinetology
 
     out = []
     for i in record.learnt_from or range(len(record.performances)):
         p = record.performances[i]
+        if style is not None and style not in style_of(p.file):
+            continue
         try:
             m = kinetology.read(p.file)
         except Exception:  # a moved or unreadable file: generation falls back to the mean pose
@@ -337,12 +482,16 @@ def _still(motions, channels) -> bool:
                if c in m.channels)
 
 
-def body_of(record, channels, driven) -> Body:
+def body_of(record, channels, driven, period: float | None = None,
+            style: str | None = None) -> Body:
     """The :class:`Body` of an action's performances, for a motion with ``channels``.
 
-    ``driven`` are the channels the grammar system makes (the actuators' channels).
+    ``driven`` are the channels the grammar system makes (the actuators' channels);
+    ``period`` the action's period in seconds (the course is averaged over one, see
+    :func:`course`); ``style`` keeps the performances of that style only
+    (:func:`performances_of`).
     """
-    takes = [m for m in performances_of(record) if m.skeleton is not None
+    takes = [m for m in performances_of(record, style) if m.skeleton is not None
              and set(channels) <= set(m.channels)]
     if not takes:
         return Body()
@@ -368,12 +517,17 @@ def body_of(record, channels, driven) -> Body:
             take.update(free)
         for a in ("tx", "tz"):  # the horizontal path is the travel's
             take[f"{root}.{a}"] = np.zeros(m.frames)
+        if curves:  # every take's angles on the first's side of ±180°, to be averaged
+            take = {c: nearest_turn(v, float(np.mean(curves[0][c]))) if _is_angle(c) else v
+                    for c, v in take.items()}
         curves.append(take)
     centre = {c: float(np.mean([np.mean(t[c]) for t in curves])) for c in channels}
     moves = [travel(m, root, axis) for m in takes]
     mean = Travel(*(float(np.mean([getattr(t, k) for t in moves]))
                     for k in ("forward", "sideways", "turn", "speed")))
-    return Body(tuple(takes), root, carrier, axis, tuple(curves), centre, mean)
+    path = mean_course(course(m, root, axis, period) for m in takes)
+    return Body(tuple(takes), root, carrier, axis, tuple(curves), centre, mean, path,
+                float(frame[1]))
 
 
 def animate(values, channels, body: Body, driven, rate: float, period: float,
@@ -382,8 +536,9 @@ def animate(values, channels, body: Body, driven, rate: float, period: float,
 
     Every channel not in ``driven`` takes the performances' mean cycle, phase-aligned
     to the generated channel that moves most (the leader): generated copy ``k`` begins
-    at ``k * period``, and so does each cycle laid here. The root then travels and
-    turns at the performances' mean rates: on ``body.carrier`` when there is one (the
+    at ``k * period``, and so does each cycle laid here. The root then follows the
+    performances' mean course (:class:`Course`, stretched over the generated take; their
+    mean rates when there is none): on ``body.carrier`` when there is one (the
     root's channels keep their values), else on the root itself, whose rotation takes
     the turn only when no rotation channel of it is driven (a driven channel keeps its
     generated values, so the turn is left out).
@@ -420,11 +575,16 @@ def animate(values, channels, body: Body, driven, rate: float, period: float,
 
 
 def _move(values, index, body: Body, rate: float, driven, undo) -> None:
-    move = body.travel
-    t = np.arange(values.shape[0]) / rate
-    h = np.radians(move.turn) * t
-    vx = np.sin(h) * move.forward + np.cos(h) * move.sideways
-    vz = np.cos(h) * move.forward - np.sin(h) * move.sideways
+    if body.course is not None:  # the performances' course, over the generated take
+        h, forward, sideways = body.course.at(values.shape[0])
+    else:
+        h = np.radians(body.travel.turn) * np.arange(values.shape[0]) / rate
+        forward, sideways = body.travel.forward, body.travel.sideways
+    # the heading-free body faces body.offset: turned by h, it faces h + offset, and its
+    # velocity, measured along and across its facing, is laid that way
+    facing = h + body.offset
+    vx = np.sin(facing) * forward + np.cos(facing) * sideways
+    vz = np.cos(facing) * forward - np.sin(facing) * sideways
     path = {a: np.concatenate(([0.0], np.cumsum((v[1:] + v[:-1]) / 2) / rate))
             for a, v in (("tx", vx), ("tz", vz))}
     holder = body.carrier or body.root
