@@ -297,10 +297,11 @@ def _rotation_channels(joint):
 def own_period(values, expected: int) -> int | None:
     """A take's own period (frames) near ``expected``, from the autocorrelation of ``values``.
 
-    The first lag within 0.6 to 1.5 times ``expected`` that correlates nearly as well
-    (within 10%) as the best there, taken up to the top of its peak (two periods
-    correlate as well as one, so the first is the period). None when the take is too
-    short for those lags.
+    Among the lags within 0.6 to 1.5 times ``expected`` where the autocorrelation peaks
+    (a local maximum inside that range), the first that correlates nearly as well (within
+    10%) as the best peak: two periods correlate as well as one, so the first is the
+    period. None when the take is too short for those lags or the autocorrelation has no
+    peak there (a smooth take correlates best at the shortest lag, which is no period).
 
     >>> import numpy as np
     >>> own_period(np.sin(2 * np.pi * np.arange(200) / 26), 20)
@@ -311,12 +312,12 @@ def own_period(values, expected: int) -> int | None:
     lags = np.arange(max(2, int(0.6 * expected)), min(int(1.5 * expected), x.size - 2) + 1)
     if not lags.size:
         return None
-    auto = [float(centred[:-k] @ centred[k:]) / (x.size - k) for k in lags]
-    best = max(auto)
-    i = int(np.flatnonzero(np.asarray(auto) >= best - 0.1 * abs(best))[0])
-    while i + 1 < len(auto) and auto[i + 1] >= auto[i]:  # up to that peak's top
-        i += 1
-    return int(lags[i])
+    auto = np.array([float(centred[:-k] @ centred[k:]) / (x.size - k) for k in lags])
+    peaks = [i for i in range(1, auto.size - 1) if auto[i - 1] <= auto[i] >= auto[i + 1]]
+    if not peaks:
+        return None
+    best = max(auto[i] for i in peaks)
+    return int(lags[next(i for i in peaks if auto[i] >= best - 0.1 * abs(best))])
 
 
 def nearest_turn(values, reference: float) -> np.ndarray:
