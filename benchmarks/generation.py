@@ -10,25 +10,37 @@ all styles together), the takes (sorted by name, then dealt round-robin so that 
 holds every style it can) are split three ways, never sharing a take:
 
 * ``--learn`` takes (default 4) build a praxicon (``praxicon.build`` in a temporary folder);
-* ``--train`` takes (default 3) train a MiniRocket (aeon) on real motion only;
-* ``--test`` takes (default 3) are the held-apart real takes it is scored on.
+* ``--test`` takes (default 3) are the held-apart real takes the judges are scored on;
+* the rest train the judges (MiniRocket, aeon) on real motion only: every judge of
+  ``--train`` (default ``3,all``: the first 3 of the rest, or all of them).
 
-Dataset 1 has 15 takes per content, dataset 2 35: only the first ones of the round-robin deal
-are used (a subsample, to keep a run near a minute); contents with fewer takes are left out.
-Every learnt action is generated (``--repeat`` 3 cycles) and the classifier labels it.
-Takes enter the classifier as windows of 2 s (64 frames, half-overlapping, a take shorter
-than that padded with its last frame), a take's label the majority of its windows' labels.
-A window's series: every rotation channel, the root's horizontal speed (cm/s) and
-turning rate (deg/s of ``Hips.ry``).
+Contents with fewer than ``learn + test + 3`` takes are left out. A judge is a training size
+and a view of a take:
+
+* ``windows``: windows of 2 s (64 frames, half-overlapping, a take shorter than that padded
+  with its last frame) of every rotation channel (the root's heading-free), the root's
+  horizontal speed (cm/s) and turning rate (deg/s of its heading); a take's label the
+  majority of its windows' labels;
+* ``body windows``: the same windows of what the body does, whichever joint carries it:
+  the rotation channels of every joint below the root, and the root chain's velocity and
+  turning rate in its own frame (``praxicon.features.root_motion``);
+* ``whole``: that body view of the whole take resampled to 64 steps.
+
+The judge used is the one most accurate on the held-apart real takes (ties: more training
+takes, then the order above); every judge's figures are printed. Every learnt action is
+generated (``--repeat`` 3 cycles) once from all its performances and once per style of the
+performances it was learnt from (``generate(..., style=...)``); n is printed.
 
 Figures printed and written to ``docs/data/generation.csv`` (one row per action):
 
 * accuracy on generated takes beside accuracy on held-apart real takes;
 * per actuator channel, the distance from the generated angles to the learning performances'
-  (the RMS difference of their 21 quantiles, so amplitude and offset, not tempo) beside the
-  spread between real performances (the largest mean distance of one performance to the
-  others): a channel is "within the spread" when its distance is no larger;
-* root travel speed and turning rate, generated against the learning performances' range;
+  (the RMS difference of their 21 quantiles, so amplitude and offset, not tempo; angles on
+  one side of ±180°) beside the spread between real performances (the largest mean distance
+  of one performance to the others): a channel is "within the spread" when its distance is
+  no larger;
+* root travel speed, and the net heading change over the take (degrees), generated against
+  the learning performances' range;
 * the symbolic round trip (``Generated.round_trip``): channels whose re-segmented string is
   the morpheme repeated.
 """
@@ -60,7 +72,8 @@ import kinetology  # noqa: E402
 from praxicon import build, load, read_dataset  # noqa: E402
 from kinetology.kinematics import forward_kinematics  # noqa: E402
 from praxicon.body_motion import body_frame, global_rotation, heading, \
-    heading_free_angles  # noqa: E402
+    heading_free_angles, nearest_turn, root_chain, style_of  # noqa: E402
+from praxicon.features import root_motion  # noqa: E402
 from praxicon.generation import generate  # noqa: E402
 
 MOCAP = REPO.parent / "shared" / "data" / "mocap"
@@ -70,8 +83,10 @@ QUANTILES = np.linspace(0.0, 1.0, 21)
 ROOT = "Hips"  # the joint that travels in the Bandai skeleton (joint_Root above it stays still)
 
 
-def split(actions, learn: int, train: int, test: int):
-    """Per content, its takes dealt round-robin over styles: (learn, train, test) file lists."""
+def split(actions, learn: int, test: int, train: int):
+    """Per content, its takes dealt round-robin over styles: (learn, test, rest) file lists.
+
+    A content is kept when it has at least ``learn + test + train`` takes."""
     parts = {}
     for action in actions:
         by_style: dict = {}
@@ -86,8 +101,7 @@ def split(actions, learn: int, train: int, test: int):
                     dealt.append(q.pop(0))
         if len(dealt) < learn + train + test:
             continue
-        parts[action.content] = (dealt[:learn], dealt[learn:learn + train],
-                                 dealt[learn + train:learn + train + test])
+        parts[action.content] = (dealt[:learn], dealt[learn:learn + test], dealt[learn + test:])
     return parts
 
 
@@ -100,6 +114,35 @@ def series(motion, axis) -> np.ndarray:
     rot.update(heading_free_angles(motion, ROOT, axis) or {})
     speed, turn = root_signals(motion, axis)
     return np.vstack([np.array(list(rot.values())), speed[None], turn[None]])
+
+
+def body_series(motion) -> np.ndarray:
+    """(channels, frames at 30 fps): what the body does, whichever joint carries it.
+
+    The rotation channels of the joints below the root (smoothed as the segmentation
+    smooths), and the root chain's velocity and turning rate in its own frame: a body
+    turned by the joint above the root (generation's carrier) or by the root itself (a
+    capture) reads the same.
+    """
+    from kinetology.segmentation import smooth, unwrap
+
+    chain = [motion.skeleton.joints[j].name for j in root_chain(motion.skeleton, ROOT)]
+    cols = [i for i, c in enumerate(motion.channels)
+            if c.rpartition(".")[2] in ("rx", "ry", "rz") and c.rpartition(".")[0] not in chain]
+    x = smooth(unwrap(motion.values[:, cols].astype(float)), motion.frame_rate, 0.05)
+    x = np.concatenate([x[:-1], root_motion(motion, chain)], axis=1)
+    step = max(1, int(round(motion.frame_rate / 30.0)))
+    return np.ascontiguousarray(x[::step].T)
+
+
+def resampled(x: np.ndarray, length: int = WINDOW) -> np.ndarray:
+    t = np.linspace(0, x.shape[1] - 1, length)
+    return np.stack([np.interp(t, np.arange(x.shape[1]), row) for row in x])
+
+
+VIEWS = {"windows": lambda m, axis: windows(series(m, axis)),
+         "body windows": lambda m, axis: windows(body_series(m)),
+         "whole": lambda m, axis: [resampled(body_series(m))]}
 
 
 def root_signals(motion, axis):
@@ -132,7 +175,11 @@ def angles(motion, channel: str, axis) -> np.ndarray:
 def channel_judgement(generated, real_motions, channel, axis):
     """(distance of generated to the reals, spread between reals) for one channel."""
     reals = [angles(m, channel, axis) for m in real_motions if channel in m.channels]
-    gen = angles(generated, channel, axis)
+    if channel.rpartition(".")[2].startswith("r"):  # one side of ±180° for all
+        reals = [nearest_turn(r, float(np.mean(reals[0]))) for r in reals]
+        gen = nearest_turn(angles(generated, channel, axis), float(np.mean(reals[0])))
+    else:
+        gen = angles(generated, channel, axis)
     distance = float(np.mean([quantile_distance(gen, r) for r in reals]))
     spread = max(float(np.mean([quantile_distance(r, o) for j, o in enumerate(reals) if j != i]))
                  for i, r in enumerate(reals)) if len(reals) > 1 else 0.0
@@ -140,32 +187,63 @@ def channel_judgement(generated, real_motions, channel, axis):
 
 
 def travel(motion, axis):
-    """Mean horizontal speed (cm/s) and net turning rate (deg/s) over the whole take."""
+    """Mean horizontal speed (cm/s) and net heading change (degrees) over the whole take."""
     speed, turn = root_signals(motion, axis)
-    return float(np.mean(speed)), float(np.mean(turn))
+    return float(np.mean(speed)), float(np.sum(turn[1:] + turn[:-1]) / 2 / motion.frame_rate)
+
+
+def fit_judges(parts, read, axis, sizes, seed):
+    """Every judge (training size x view): name -> (size, view, fitted classifier)."""
+    from aeon.classification.convolution_based import MiniRocketClassifier
+
+    judges = {}
+    for size in sizes:
+        for view, cut in VIEWS.items():
+            xs, ys = [], []
+            for content, (_, _, rest) in sorted(parts.items()):
+                for f in rest[:size]:
+                    pieces = cut(read(f), axis)
+                    xs += pieces
+                    ys += [content] * len(pieces)
+            clf = MiniRocketClassifier(random_state=seed, n_jobs=1)
+            clf.fit(np.stack(xs), np.array(ys))
+            largest = max(len(rest) for _, _, rest in parts.values())
+            judges[f"{view}, {'all' if size >= largest else size} training takes"] = \
+                (size, view, clf)
+    return judges
+
+
+def labeller(judge, axis):
+    size, view, clf = judge
+
+    def label(motion):
+        predicted = clf.predict(np.stack(VIEWS[view](motion, axis)))
+        values, counts = np.unique(predicted, return_counts=True)
+        return str(values[np.argmax(counts)])
+    return label
 
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--learn", type=int, default=4)
-    ap.add_argument("--train", type=int, default=3)
     ap.add_argument("--test", type=int, default=3)
+    ap.add_argument("--train", default="3,all",
+                    help="training sizes of the judges, comma-separated (all: every other take)")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--no-docs", action="store_true")
     args = ap.parse_args(argv)
+    sizes = [10 ** 6 if t == "all" else int(t) for t in args.train.split(",")]
     # the root's speed and turning rate are 0 throughout in-place actions: aeon warns about
     # every such window, which says nothing here
     warnings.filterwarnings("ignore", message="Data seen by instance of MiniRocket")
-    from aeon.classification.convolution_based import MiniRocketClassifier
 
     t0 = time.perf_counter()
     work = Path(tempfile.mkdtemp(prefix="genbench-"))
-    rows, channel_rows = [], []
-    summary = {}
+    rows, judge_rows = [], []
     for dataset in DATASETS:
         actions = read_dataset(MOCAP / dataset, group_by="content")
-        parts = split(actions, args.learn, args.train, args.test)
+        parts = split(actions, args.learn, args.test, min(sizes))
         manifest = work / f"{dataset}.csv"
         manifest.write_text("action,file\n" + "".join(
             f"{content},{f}\n" for content, (learn, _, _) in sorted(parts.items()) for f in learn))
@@ -180,77 +258,96 @@ def main(argv=None) -> int:
             return cache[f]
 
         # one body axis for the whole dataset, so that every take's heading-free angles agree
-        axis = body_frame([read(f) for _, train, _ in parts.values() for f in train], ROOT)
-        xs, ys = [], []
-        for content, (_, train, _) in sorted(parts.items()):
-            for f in train:
-                for w in windows(series(read(f), axis)):
-                    xs.append(w)
-                    ys.append(content)
-        clf = MiniRocketClassifier(random_state=args.seed)
-        clf.fit(np.stack(xs), np.array(ys))
+        axis = body_frame([read(f) for _, _, rest in parts.values() for f in rest[:3]], ROOT)
+        judges = fit_judges(parts, read, axis, sizes, args.seed)
+        real = {name: sum(labeller(j, axis)(read(f)) == content
+                          for content, (_, test, _) in parts.items() for f in test)
+                for name, j in judges.items()}
+        real_n = sum(len(test) for _, test, _ in parts.values())
+        # the most accurate on real takes; ties: more training takes, then the views' order
+        order = list(judges)
+        chosen = max(order, key=lambda n: (real[n], judges[n][0], -order.index(n)))
+        label = labeller(judges[chosen], axis)
 
-        def label(motion):
-            predicted = clf.predict(np.stack(windows(series(motion, axis))))
-            values, counts = np.unique(predicted, return_counts=True)
-            return str(values[np.argmax(counts)])
+        generated = []  # (content, style or None, Generated)
+        for content, (learn, _, _) in sorted(parts.items()):
+            name = f"{manifest.stem}.{content}"
+            record = px[name] if name in px else None
+            if record is None or not record.learnt or not record.actuators:
+                continue
+            styles = [None] + sorted({style_of(f)[2] for f in learn})
+            for style in styles:
+                generated.append((content, style, generate(px, name, repeat=args.repeat,
+                                                           style=style)))
+        for name, j in judges.items():
+            lab = labeller(j, axis)
+            hits = [lab(g.motion) == c for c, _, g in generated]
+            plain = [h for h, (_, st, _) in zip(hits, generated) if st is None]
+            judge_rows.append((dataset, name, real[name], real_n, sum(hits), len(hits),
+                               sum(plain), len(plain), name == chosen))
+        print(f"{dataset}: judges (MiniRocket trained on real takes only), chosen by their "
+              f"accuracy on {real_n} held-apart real takes:")
+        for d, name, r, rn, g, gn, gp, gpn, pick in judge_rows:
+            if d == dataset:
+                print(f"  {'*' if pick else ' '} {name:<40} real {r}/{rn} ({100 * r / rn:.0f}%)"
+                      f"  generated {g}/{gn} ({100 * g / max(gn, 1):.0f}%; all styles "
+                      f"together {gp}/{gpn})")
 
-        real_ok = real_n = gen_ok = gen_n = 0
-        within = judged = trips = trip_n = 0
-        for content, (learn, _, test) in sorted(parts.items()):
+        real_ok = real_n_all = gen_ok = within = judged = trips = trip_n = 0
+        for content, (learn, test, _) in sorted(parts.items()):
             name = f"{manifest.stem}.{content}"
             real_hits = sum(label(read(f)) == content for f in test)
             real_ok += real_hits
-            real_n += len(test)
+            real_n_all += len(test)
             record = px[name] if name in px else None
             row = {"dataset": dataset, "action": content, "real_correct": real_hits,
                    "real_takes": len(test), "learnt": bool(record and record.learnt)}
-            if record is None or not record.learnt or not record.actuators:
-                row["generated_label"] = "(not generated: "+ (record.reason or record.verdict
-                                                              if record else "no record") + ")"
+            mine = [(st, g) for c, st, g in generated if c == content]
+            if not mine:
+                row["generated_labels"] = "(not generated: " + (
+                    record.reason or record.verdict if record else "no record") + ")"
                 rows.append(row)
                 continue
-            try:
-                g = generate(px, name, repeat=args.repeat)
-            except ValueError as exc:
-                row["generated_label"] = f"(not generated: {exc})"
-                rows.append(row)
-                continue
-            got = label(g.motion)
-            gen_ok += got == content
-            gen_n += 1
+            labels = [label(g.motion) for _, g in mine]
+            gen_ok += sum(lb == content for lb in labels)
+            g = mine[0][1]  # all styles together: the channels, travel and round trip
             reals = [read(f) for f in learn]
             dists = [channel_judgement(g.motion, reals, c, axis) for c in g.channels]
-            inside = sum(d <= s for d, s in dists)
+            inside = sum(d <= sp for d, sp in dists)
             within += inside
             judged += len(dists)
-            for c, (d, s) in zip(g.channels, dists):
-                channel_rows.append((dataset, content, c, d, s))
-            trip = g.round_trip()
+            trip = {}
+            for st, gg in mine:
+                trip.update({(st, c): ok for c, ok in gg.round_trip().items()})
             trips += sum(trip.values())
             trip_n += len(trip)
             speed, turn = travel(g.motion, axis)
             real_travel = [travel(m, axis) for m in reals]
-            row.update(generated_label=got, channels=len(dists), within_spread=inside,
+            wrong = [f"{st or 'all'}->{lb}" for (st, _), lb in zip(mine, labels) if lb != content]
+            row.update(generated_correct=sum(lb == content for lb in labels),
+                       generated_takes=len(labels), generated_labels=" ".join(wrong),
+                       channels=len(dists), within_spread=inside,
                        median_distance=round(float(np.median([d for d, _ in dists])), 2),
-                       median_spread=round(float(np.median([s for _, s in dists])), 2),
+                       median_spread=round(float(np.median([sp for _, sp in dists])), 2),
                        gen_speed=round(speed, 1),
-                       real_speed=f"{min(s for s, _ in real_travel):.1f}..."
-                                  f"{max(s for s, _ in real_travel):.1f}",
-                       gen_turn=round(turn, 1),
-                       real_turn=f"{min(t for _, t in real_travel):.1f}..."
-                                 f"{max(t for _, t in real_travel):.1f}",
+                       real_speed=f"{min(v for v, _ in real_travel):.1f}..."
+                                  f"{max(v for v, _ in real_travel):.1f}",
+                       gen_turn_deg=round(turn, 1),
+                       real_turn_deg=f"{min(t for _, t in real_travel):.1f}..."
+                                     f"{max(t for _, t in real_travel):.1f}",
                        round_trip=f"{sum(trip.values())}/{len(trip)}")
             rows.append(row)
-        summary[dataset] = (real_ok, real_n, gen_ok, gen_n, within, judged, trips, trip_n)
-        print(f"{dataset}: MiniRocket on held-apart real takes {real_ok}/{real_n} "
-              f"({100 * real_ok / max(real_n, 1):.0f}%), on generated takes {gen_ok}/{gen_n} "
-              f"({100 * gen_ok / max(gen_n, 1):.0f}%); actuator channels within the real "
-              f"spread {within}/{judged} ({100 * within / max(judged, 1):.0f}%); symbolic "
-              f"round trip {trips}/{trip_n} channels", flush=True)
-    keys = ["dataset", "action", "learnt", "real_correct", "real_takes", "generated_label",
-            "channels", "within_spread", "median_distance", "median_spread", "gen_speed",
-            "real_speed", "gen_turn", "real_turn", "round_trip"]
+        gen_n = len(generated)
+        print(f"{dataset}: judge '{chosen}': held-apart real takes {real_ok}/{real_n_all} "
+              f"({100 * real_ok / max(real_n_all, 1):.0f}%), generated takes {gen_ok}/{gen_n} "
+              f"({100 * gen_ok / max(gen_n, 1):.0f}%; n = {gen_n}: every learnt action from all "
+              f"its performances and once per style learnt from); actuator channels within "
+              f"the real spread {within}/{judged} ({100 * within / max(judged, 1):.0f}%); "
+              f"symbolic round trip {trips}/{trip_n} channels", flush=True)
+    keys = ["dataset", "action", "learnt", "real_correct", "real_takes", "generated_correct",
+            "generated_takes", "generated_labels", "channels", "within_spread",
+            "median_distance", "median_spread", "gen_speed", "real_speed", "gen_turn_deg",
+            "real_turn_deg", "round_trip"]
     print()
     print(" | ".join(keys[1:]))
     for r in rows:
@@ -262,7 +359,13 @@ def main(argv=None) -> int:
             w = csv.DictWriter(fh, keys)
             w.writeheader()
             w.writerows(rows)
-        print(f"wrote {path.relative_to(REPO)}")
+        judges_path = REPO / "docs" / "data" / "generation_judges.csv"
+        with judges_path.open("w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(["dataset", "judge", "real_correct", "real_takes", "generated_correct",
+                        "generated_takes", "all_styles_correct", "all_styles_takes", "chosen"])
+            w.writerows(judge_rows)
+        print(f"wrote {path.relative_to(REPO)}, {judges_path.relative_to(REPO)}")
     return 0
 
 

@@ -3,19 +3,17 @@
 Generation (:mod:`praxicon.generation`) makes the actuator channels from the grammar
 system. This module gives everything else from the action's performances:
 
-* **heading and travel.** A root's Euler angles are a poor measure of where a body
-  faces: Bandai Namco's ``Hips`` turns ``Z X Y`` with ``rz`` near 90°, so its heading is
-  mostly ``rx``, and a turn through ``rx = ±90°`` flips ``rz`` and ``ry`` by 180°. The
-  heading (:func:`heading`) is read from the root's rotation instead: the body axis that
-  stays most horizontal, its direction about the vertical (``y``), unwrapped. The root's
-  velocity is measured in that heading's frame (forward, sideways), so a turning walk
-  keeps one speed while its direction changes (:func:`travel`);
+* **heading, travel and course** (:mod:`praxicon.heading`, re-exported here): where the
+  root faces, read from its world rotation rather than one Euler channel, its velocity in
+  that heading's frame (:func:`travel`), and its :func:`course` over a take, averaged over
+  one period, so that a generated turn goes straight, turns and goes on as the takes do;
 * **the body's own orientation**, heading removed (:func:`heading_free_angles`): the root's
   rotation turned back by its heading, as angles in the root's rotation order, continuous
-  through a turn;
+  through a turn; averaged over takes on one side of ±180° (:func:`nearest_turn`);
 * **typical movements** (:func:`mean_cycles`): per channel, the performances' mean cycle,
   its phase aligned to a leading generated channel, so joints the grammar does not drive
-  move as they do in the takes instead of standing still.
+  move as they do in the takes instead of standing still;
+* **a style's performances** (:func:`performances_of` with a style, :func:`style_of`).
 
 Every function is pure: motions in, arrays out.
 """
@@ -26,59 +24,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Body", "Travel", "animate", "body_frame", "body_of", "cycle_starts", "euler_angles",
-           "global_rotation", "heading", "heading_free_angles", "mean_cycles",
-           "performances_of", "root_chain", "travel", "yaw_matrices"]
+from .heading import _UP, Course, Travel, course, global_rotation, heading, mean_course, \
+    root_chain, travel, yaw_matrices
 
-_UP = 1  # y is vertical in BVH and in the ASF files of the shared data
-
-
-def root_chain(skeleton, root: str) -> list[int]:
-    """Indices of the joints from the skeleton's top down to ``root`` (inclusive)."""
-    chain = [skeleton.index(root)]
-    while skeleton.joints[chain[-1]].parent is not None:
-        chain.append(skeleton.joints[chain[-1]].parent)
-    return chain[::-1]
-
-
-def global_rotation(motion, root: str) -> np.ndarray:
-    """Per frame the world rotation of joint ``root``, shape ``(frames, 3, 3)``."""
-    from kinetology.kinematics import local_rotation
-
-    out = np.broadcast_to(np.eye(3), (motion.frames, 3, 3)).copy()
-    for j in root_chain(motion.skeleton, root):
-        out = out @ local_rotation(motion, motion.skeleton.joints[j])
-    return out
-
-
-def yaw_matrices(radians) -> np.ndarray:
-    """Rotations about the vertical by ``radians`` (one per frame): ``Ry``."""
-    from kinetology.kinematics import axis_rotation
-
-    return axis_rotation("Y", radians)
-
-
-def heading(rotations, axis: int | None = None) -> tuple[np.ndarray, int]:
-    """The unwrapped heading (radians about the vertical) of rotations, and the body axis used.
-
-    The body axis (0, 1, 2: local x, y, z) is the one that stays most horizontal over
-    the frames (unless given); the heading is its direction's angle from ``+z``
-    towards ``+x``, so that ``yaw_matrices(-h) @ R`` turns the axis back onto ``+z``.
-
-    Examples
-    --------
-    A body turning steadily by 90° over 10 frames:
-
-    >>> import numpy as np
-    >>> h, axis = heading(yaw_matrices(np.linspace(0, np.pi / 2, 10)))
-    >>> axis, round(float(np.degrees(h[-1] - h[0])), 6)   # x and z level: the first
-    (0, 90.0)
-    """
-    r = np.asarray(rotations, float)
-    if axis is None:
-        axis = int(np.argmin(np.abs(r[:, _UP, :]).mean(axis=0)))
-    d = r[:, :, axis]
-    return np.unwrap(np.arctan2(d[:, 0], d[:, 2])), axis
+__all__ = ["Body", "Course", "Travel", "animate", "body_frame", "body_of", "course",
+           "cycle_starts", "euler_angles", "global_rotation", "heading", "heading_free_angles",
+           "mean_course", "mean_cycles", "nearest_turn", "own_period", "performances_of",
+           "root_chain", "style_of", "travel", "yaw_matrices"]
 
 
 def body_frame(motions, root: str) -> tuple[int, float]:
@@ -102,63 +54,6 @@ def body_frame(motions, root: str) -> tuple[int, float]:
                    for r in rotations)
 
     return axis, min(np.radians([0.0, 90.0, 180.0, 270.0]), key=tilt)
-
-
-@dataclass(frozen=True)
-class Travel:
-    """How a root moves: mean speed in its own heading's frame and mean turning rate.
-
-    Attributes
-    ----------
-    forward, sideways : float
-        Mean velocity along the heading and across it (length units per second).
-    turn : float
-        Net change of heading over the take per second (degrees per second).
-    speed : float
-        Mean horizontal speed, whatever the direction (length units per second).
-    """
-
-    forward: float
-    sideways: float
-    turn: float
-    speed: float
-
-
-def _world_positions(motion, root: str) -> np.ndarray:
-    from kinetology.kinematics import forward_kinematics
-
-    return forward_kinematics(motion)[:, motion.skeleton.index(root)]
-
-
-def travel(motion, root: str, axis: int | None = None) -> Travel | None:
-    """The root's :class:`Travel` over a motion with a skeleton (None under two frames).
-
-    Examples
-    --------
-    >>> import numpy as np, kinetology
-    >>> from kinetology.motion import Joint, Skeleton
-    >>> sk = Skeleton((Joint("hip", None, (0, 0, 0), ("hip.tx", "hip.tz", "hip.ry"), "ZXY"),))
-    >>> t = np.arange(31) / 30.0                  # one second: 90° of turn, 100 units ahead
-    >>> h = np.radians(90.0 * t)
-    >>> x, z = np.cumsum(100 * np.sin(h)) / 30, np.cumsum(100 * np.cos(h)) / 30
-    >>> m = kinetology.Motion(np.c_[x, z, np.degrees(h)], ("hip.tx", "hip.tz", "hip.ry"), 30.0, sk)
-    >>> got = travel(m, "hip")
-    >>> round(got.speed), round(got.turn)
-    (100, 90)
-    """
-    if motion.frames < 2:
-        return None
-    rate = float(motion.frame_rate)
-    h, _ = heading(global_rotation(motion, root), axis)
-    p = _world_positions(motion, root)
-    v = np.gradient(p, axis=0) * rate
-    # the velocity seen from the body: turned back by the heading at that frame
-    forward = np.cos(h) * v[:, 2] + np.sin(h) * v[:, 0]
-    sideways = np.cos(h) * v[:, 0] - np.sin(h) * v[:, 2]
-    seconds = (motion.frames - 1) / rate
-    return Travel(float(forward.mean()), float(sideways.mean()),
-                  float(np.degrees(h[-1] - h[0]) / seconds),
-                  float(np.hypot(v[:, 0], v[:, 2]).mean()))
 
 
 def euler_angles(matrices, order: str) -> np.ndarray:
@@ -196,6 +91,10 @@ def _free(world, axis, offset, order) -> np.ndarray:
     return euler_angles(yaw_matrices(offset - h) @ world, order)
 
 
+def _is_angle(channel: str) -> bool:
+    return channel.rsplit(".", 1)[-1] in ("rx", "ry", "rz")
+
+
 def _rotation_channels(joint):
     """A joint's three rotation channels in its rotation order, or None."""
     rotations = [c for c in joint.channels if c.rsplit(".", 1)[1].startswith("r")]
@@ -203,6 +102,46 @@ def _rotation_channels(joint):
             "".join(c[-1].upper() for c in rotations) != joint.rotation_order.upper():
         return None
     return rotations
+
+
+def own_period(values, expected: int) -> int | None:
+    """A take's own period (frames) near ``expected``, from the autocorrelation of ``values``.
+
+    Among the lags within 0.6 to 1.5 times ``expected`` where the autocorrelation peaks
+    (a local maximum inside that range), the first that correlates nearly as well (within
+    10%) as the best peak: two periods correlate as well as one, so the first is the
+    period. None when the take is too short for those lags or the autocorrelation has no
+    peak there (a smooth take correlates best at the shortest lag, which is no period).
+
+    >>> import numpy as np
+    >>> own_period(np.sin(2 * np.pi * np.arange(200) / 26), 20)
+    26
+    """
+    x = np.asarray(values, float)
+    centred = x - x.mean()
+    lags = np.arange(max(2, int(0.6 * expected)), min(int(1.5 * expected), x.size - 2) + 1)
+    if not lags.size:
+        return None
+    auto = np.array([float(centred[:-k] @ centred[k:]) / (x.size - k) for k in lags])
+    peaks = [i for i in range(1, auto.size - 1) if auto[i - 1] <= auto[i] >= auto[i + 1]]
+    if not peaks:
+        return None
+    best = max(auto[i] for i in peaks)
+    return int(lags[next(i for i in peaks if auto[i] >= best - 0.1 * abs(best))])
+
+
+def nearest_turn(values, reference: float) -> np.ndarray:
+    """Angles (degrees) shifted by the whole turns that bring their mean nearest ``reference``.
+
+    Angles 360° apart are one rotation, but two takes of one pose can be read on either
+    side of ±180° (a root turned back by its heading sits there): their means are only
+    comparable, or worth averaging, on one side.
+
+    >>> nearest_turn([179.0, -179.0 + 360.0], -178.0).tolist()
+    [-181.0, -179.0]
+    """
+    x = np.asarray(values, float)
+    return x - 360.0 * np.round((x.mean() - reference) / 360.0)
 
 
 def cycle_starts(leader, template) -> list[int]:
@@ -226,16 +165,8 @@ def cycle_starts(leader, template) -> list[int]:
     n = g.size
     if x.size < n or n < 2 or not np.any(g - g.mean()):
         return []
-    centred = x - x.mean()
-    lags = np.arange(max(2, int(0.6 * n)), min(int(1.5 * n), x.size - 2) + 1)
-    if lags.size:
-        auto = [float(centred[:-k] @ centred[k:]) / (x.size - k) for k in lags]
-        # the first lag near the best: two periods correlate as well as one
-        best = max(auto)
-        i = int(np.flatnonzero(np.asarray(auto) >= best - 0.1 * abs(best))[0])
-        while i + 1 < len(auto) and auto[i + 1] >= auto[i]:  # up to that peak's top
-            i += 1
-        own = int(lags[i])
+    own = own_period(x, n)
+    if own is not None:
         g = np.interp(np.linspace(0, n, own, endpoint=False), np.arange(n + 1), np.append(g, g[0]))
     g = g - g.mean()
     p = g.size
@@ -300,7 +231,11 @@ class Body:
     generation turns and moves so that the root's own channels keep their generated
     values; ``curves`` per performance the channels' angles with the root's rotation
     heading-free and its horizontal position removed (the travel puts it back);
-    ``centre`` their mean per channel.
+    ``centre`` their mean per channel; ``travel`` the mean of their :class:`Travel`,
+    ``course`` the mean of their :class:`Course` (where the body goes over a take: a walk
+    advances, a turn goes straight, turns and goes on, as the takes do); ``offset`` the
+    heading (radians) the root's heading-free rotation faces (:func:`body_frame`), which
+    the travel's direction adds to the turn.
     """
 
     performances: tuple = ()
@@ -310,15 +245,36 @@ class Body:
     curves: tuple = ()
     centre: dict | None = None
     travel: Travel | None = None
+    course: Course | None = None
+    offset: float = 0.0
 
 
-def performances_of(record) -> list:
-    """The motions of the performances an action was learnt from (trimmed; unreadable ones left out)."""
+def style_of(file) -> list[str]:
+    """The words of a performance's file name, any of which can name its style.
+
+    Bandai Namco's names are ``dataset-N_CONTENT_STYLE_TAKE``: their words are split at
+    ``_``, so ``walk-turn-left`` stays one word.
+
+    >>> style_of("data/dataset-2_walk-turn-left_elderly_003.bvh")
+    ['dataset-2', 'walk-turn-left', 'elderly', '003']
+    """
+    from pathlib import Path
+
+    return Path(str(file)).stem.split("_")
+
+
+def performances_of(record, style: str | None = None) -> list:
+    """The motions of the performances an action was learnt from (trimmed; unreadable ones left out).
+
+    With ``style``, only those whose file name holds it as a word (:func:`style_of`).
+    """
     import kinetology
 
     out = []
     for i in record.learnt_from or range(len(record.performances)):
         p = record.performances[i]
+        if style is not None and style not in style_of(p.file):
+            continue
         try:
             m = kinetology.read(p.file)
         except Exception:  # a moved or unreadable file: generation falls back to the mean pose
@@ -337,12 +293,16 @@ def _still(motions, channels) -> bool:
                if c in m.channels)
 
 
-def body_of(record, channels, driven) -> Body:
+def body_of(record, channels, driven, period: float | None = None,
+            style: str | None = None) -> Body:
     """The :class:`Body` of an action's performances, for a motion with ``channels``.
 
-    ``driven`` are the channels the grammar system makes (the actuators' channels).
+    ``driven`` are the channels the grammar system makes (the actuators' channels);
+    ``period`` the action's period in seconds (the course is averaged over one, see
+    :func:`course`); ``style`` keeps the performances of that style only
+    (:func:`performances_of`).
     """
-    takes = [m for m in performances_of(record) if m.skeleton is not None
+    takes = [m for m in performances_of(record, style) if m.skeleton is not None
              and set(channels) <= set(m.channels)]
     if not takes:
         return Body()
@@ -368,12 +328,17 @@ def body_of(record, channels, driven) -> Body:
             take.update(free)
         for a in ("tx", "tz"):  # the horizontal path is the travel's
             take[f"{root}.{a}"] = np.zeros(m.frames)
+        if curves:  # every take's angles on the first's side of ±180°, to be averaged
+            take = {c: nearest_turn(v, float(np.mean(curves[0][c]))) if _is_angle(c) else v
+                    for c, v in take.items()}
         curves.append(take)
     centre = {c: float(np.mean([np.mean(t[c]) for t in curves])) for c in channels}
     moves = [travel(m, root, axis) for m in takes]
     mean = Travel(*(float(np.mean([getattr(t, k) for t in moves]))
                     for k in ("forward", "sideways", "turn", "speed")))
-    return Body(tuple(takes), root, carrier, axis, tuple(curves), centre, mean)
+    path = mean_course(course(m, root, axis, period) for m in takes)
+    return Body(tuple(takes), root, carrier, axis, tuple(curves), centre, mean, path,
+                float(frame[1]))
 
 
 def animate(values, channels, body: Body, driven, rate: float, period: float,
@@ -382,8 +347,9 @@ def animate(values, channels, body: Body, driven, rate: float, period: float,
 
     Every channel not in ``driven`` takes the performances' mean cycle, phase-aligned
     to the generated channel that moves most (the leader): generated copy ``k`` begins
-    at ``k * period``, and so does each cycle laid here. The root then travels and
-    turns at the performances' mean rates: on ``body.carrier`` when there is one (the
+    at ``k * period``, and so does each cycle laid here. The root then follows the
+    performances' mean course (:class:`Course`, stretched over the generated take; their
+    mean rates when there is none): on ``body.carrier`` when there is one (the
     root's channels keep their values), else on the root itself, whose rotation takes
     the turn only when no rotation channel of it is driven (a driven channel keeps its
     generated values, so the turn is left out).
@@ -420,11 +386,16 @@ def animate(values, channels, body: Body, driven, rate: float, period: float,
 
 
 def _move(values, index, body: Body, rate: float, driven, undo) -> None:
-    move = body.travel
-    t = np.arange(values.shape[0]) / rate
-    h = np.radians(move.turn) * t
-    vx = np.sin(h) * move.forward + np.cos(h) * move.sideways
-    vz = np.cos(h) * move.forward - np.sin(h) * move.sideways
+    if body.course is not None:  # the performances' course, over the generated take
+        h, forward, sideways = body.course.at(values.shape[0])
+    else:
+        h = np.radians(body.travel.turn) * np.arange(values.shape[0]) / rate
+        forward, sideways = body.travel.forward, body.travel.sideways
+    # the heading-free body faces body.offset: turned by h, it faces h + offset, and its
+    # velocity, measured along and across its facing, is laid that way
+    facing = h + body.offset
+    vx = np.sin(facing) * forward + np.cos(facing) * sideways
+    vz = np.cos(facing) * forward - np.sin(facing) * sideways
     path = {a: np.concatenate(([0.0], np.cumsum((v[1:] + v[:-1]) / 2) / rate))
             for a, v in (("tx", vx), ("tz", vz))}
     holder = body.carrier or body.root

@@ -41,7 +41,8 @@ from .jsonvalues import as_dict
 from .records import ActionRecord, Praxicon
 from .store import load
 
-__all__ = ["Generated", "Method", "generate", "generate_motion", "derive_copies", "is_smooth_cycle"]
+__all__ = ["Generated", "Method", "generate", "generate_motion", "derive_copies",
+           "is_smooth_cycle", "style_scales"]
 
 _RISING = {"B": 1.0, "G": 1.0, "R": -1.0, "Y": -1.0}
 # kineteme changes a smooth angle can make: one sign flips, and a velocity sign flips only
@@ -327,11 +328,54 @@ class Method:
     scale: float = 1.0
 
 
-def generate_motion(record: ActionRecord, repeat: int, source_motion=None):
+def style_scales(record, channels, period: float, style: str, rate: float):
+    """How a style's performances differ from all of an action's: (tempo, amplitude per channel).
+
+    ``tempo`` is the style's median period over all performances' median (the morphemes'
+    durations are at the median tempo), each performance's period read from its
+    autocorrelation near ``period`` (:func:`praxicon.body_motion.own_period`) on the
+    channel that moves most in the performances; a channel's amplitude is the style's mean
+    range (5th to 95th percentile) over all performances' mean. Raises ValueError when no
+    performance of the action has that style.
+    """
+    from .body_motion import own_period, performances_of, style_of
+
+    every = [m for m in performances_of(record) if set(channels) <= set(m.channels)]
+    own = [m for m in performances_of(record, style) if set(channels) <= set(m.channels)]
+    if not own:
+        names = [style_of(p.file) for p in record.performances]
+        # the words that tell the performances apart, take numbers aside
+        styles = sorted({n[i] for n in names for i in range(len(n))
+                         if not n[i].isdigit() and any(len(o) <= i or o[i] != n[i] for o in names)})
+        raise ValueError(f"action {record.name!r} has no performance of style {style!r}"
+                         + (f" (styles: {', '.join(styles)})" if styles else ""))
+
+    def spread(m, c):
+        return float(np.subtract(*np.percentile(m.column(c), [95, 5])))
+
+    ranges = {c: [spread(m, c) for m in every] for c in channels}
+    amplitude = {c: float(np.mean([spread(m, c) for m in own]) / max(np.mean(r), 1e-9))
+                 for c, r in ranges.items()}
+    leader = max(channels, key=lambda c: float(np.mean(ranges[c])))
+    expected = max(2, int(round(period * rate)))
+
+    def periods(takes):
+        found = [own_period(m.column(leader), expected) for m in takes]
+        return [p for p in found if p is not None] or [expected]
+
+    return float(np.median(periods(own)) / np.median(periods(every))), amplitude
+
+
+def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
+                    style: str | None = None):
     """The generated :class:`kinetology.Motion` of one action record, its words, its methods.
 
     Returns ``(motion, words, methods)``: the motion, per generated channel its merged
     kineteme sequence, and per channel the :class:`Method` that made it.
+
+    With ``style``, the motion is that style's: the period scaled by the style's tempo and
+    each actuator channel's displacements by its amplitude (:func:`style_scales`), the
+    other channels and the root's course from that style's performances only.
 
     ``source_motion`` gives the skeleton and the channel order (default: the
     record's ``skeleton_source`` file, read). Channels no morpheme drives take the
@@ -359,6 +403,10 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None):
                          f"displacements (no exact occurrence of any pattern)")
     rate = float(record.frame_rate)
     period = float(np.median([sum(m.durations) for m in usable.values()]))
+    tempo, amplitude = 1.0, {}
+    if style is not None:
+        tempo, amplitude = style_scales(record, sorted(usable), period, style, rate)
+        period *= tempo
     frames = int(round(repeat * period * rate)) + 1
     if source_motion is None:
         source_motion = kinetology.read(record.skeleton_source)
@@ -367,7 +415,7 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None):
         skeleton = None  # an ASF skeleton: BVH cannot hold its axes, write angles on a star
     channels = source_motion.channels
     pose = dict(record.mean_pose)
-    body = body_of(record, channels, set(usable))
+    body = body_of(record, channels, set(usable), period, style)
     centre = {**pose, **(body.centre or {})}  # the root's rotation: heading-free means
     values = np.tile([pose.get(c, 0.0) for c in channels], (frames, 1))
     derived, methods = {}, {}
@@ -382,7 +430,8 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None):
                              f"{' '.join(kinetemes)!r} x {repeat}")
         durations = np.asarray(morpheme.durations, float)
         durations = np.tile(durations * period / durations.sum(), repeat)
-        steps = np.tile(_balanced(kinetemes, morpheme.displacements), repeat)
+        steps = np.tile(_balanced(kinetemes, morpheme.displacements), repeat) * \
+            amplitude.get(channel, 1.0)
         sequence, durations, steps = _merge_runs(kinetemes * repeat, durations, steps)
         knots = np.round(np.concatenate(([0.0], np.cumsum(durations))) * rate).astype(int)
         curve, method = _channel_curve(knots, sequence, steps, frames, rate, params, channel)
@@ -398,7 +447,8 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None):
 
 
 def generate(folder: str | Path | Praxicon, action: str, *, repeat: int = 3,
-             output: str | Path | None = None, plot: str | Path | None = None) -> Generated:
+             output: str | Path | None = None, plot: str | Path | None = None,
+             style: str | None = None) -> Generated:
     """Generate ``repeat`` copies of ``action`` from the praxicon in ``folder``.
 
     Parameters
@@ -414,6 +464,12 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int = 3,
     plot : str or Path, optional
         Save a picture of the first actuator channel: a performance beside the
         generated motion.
+    style : str, optional
+        Generate that style of the action: a word of its performances' file names
+        (Bandai Namco's ``dataset-2_walk_elderly_001.bvh`` is style ``elderly``). Its
+        tempo and each actuator channel's amplitude are the style's performances'
+        against all of them (:func:`style_scales`), the other joints and the root's
+        course are those performances' alone. Default: every performance together.
 
     Returns
     -------
@@ -422,7 +478,8 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int = 3,
     Raises
     ------
     ValueError
-        When the action is unknown, was not learnt, or has nothing to generate.
+        When the action is unknown, was not learnt, has nothing to generate, or has no
+        performance of ``style``.
 
     Examples
     --------
@@ -438,6 +495,10 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int = 3,
     >>> generated = generate(work / "px", "m.bye", repeat=1, output=work / "bye.bvh")
     >>> generated.motion.frames > 0, (work / "bye.bvh").exists()
     (True, True)
+    >>> active = generate(work / "px", "m.bye", repeat=1, style="active")
+    >>> generate(work / "px", "m.bye", style="sad")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ValueError: action 'm.bye' has no performance of style 'sad' (styles: active, normal)
     >>> generate(work / "px", "m.Nope")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     praxicon.records.PraxiconError: no action 'm.Nope' in the praxicon (actions: m.bye)
@@ -445,7 +506,7 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int = 3,
     import kinetology
 
     record = (folder if isinstance(folder, Praxicon) else load(folder))[action]
-    motion, words, methods = generate_motion(record, repeat)
+    motion, words, methods = generate_motion(record, repeat, style=style)
     if output is not None:
         kinetology.write_bvh(motion, output)
     owners = {c: j.name for j in record.joints for c in j.channels}

@@ -3,13 +3,15 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from hypothesis import given, settings, strategies as st
 
 import kinetology
+import kinetology.kinematics
 from kinetology.motion import Joint, Skeleton
 from praxicon import build, read_dataset
-from praxicon.body_motion import body_frame, cycle_starts, heading, heading_free_angles, \
-    mean_cycles, travel, yaw_matrices
+from praxicon.body_motion import body_frame, cycle_starts, global_rotation, heading, \
+    heading_free_angles, mean_cycles, travel, yaw_matrices
 from praxicon.generation import generate
 from praxicon_fixtures import SHARED, needs_mocap
 
@@ -24,9 +26,17 @@ def _generated(tmp_path, content, styles=("normal_001", "active_001", "elderly_0
     return generate(tmp_path / "px", f"m.{content}", repeat=3), [kinetology.read(f) for f in files]
 
 
+@pytest.fixture(scope="module")
+def walk(tmp_path_factory):
+    """A praxicon of three walks (normal, active, elderly), its walk generated, the takes."""
+    folder = tmp_path_factory.mktemp("walk")
+    generated, takes = _generated(folder, "walk")
+    return folder / "px", generated, takes
+
+
 @needs_mocap()
-def test_a_generated_walk_advances_at_the_performances_speed(tmp_path):
-    generated, takes = _generated(tmp_path, "walk")
+def test_a_generated_walk_advances_at_the_performances_speed(walk):
+    _, generated, takes = walk
     real = [travel(m, "Hips").speed for m in takes]
     speed = travel(generated.motion, "Hips").speed
     # measured in the world (forward kinematics): the travel is on joint_Root, above the hips
@@ -35,11 +45,16 @@ def test_a_generated_walk_advances_at_the_performances_speed(tmp_path):
 
 
 @needs_mocap()
-def test_a_generated_turn_turns_its_way_at_the_performances_rate(tmp_path):
+def test_a_generated_turn_turns_its_way_as_far_as_the_performances(tmp_path):
     generated, takes = _generated(tmp_path, "walk-turn-left")
-    real = [travel(m, "Hips").turn for m in takes]
-    turn = travel(generated.motion, "Hips").turn
-    assert min(real) > 5, real  # the takes turn left: the heading rises
+
+    def net(m):  # the heading's whole change, degrees
+        t = travel(m, "Hips")
+        return t.turn * (m.frames - 1) / m.frame_rate
+
+    real = [net(m) for m in takes]
+    turn = net(generated.motion)
+    assert min(real) > 45, real  # the takes turn left: the heading rises
     assert 0.8 * min(real) <= turn <= 1.2 * max(real), (turn, real)
     assert all(generated.round_trip().values())
     # joints the grammar does not drive move (a mean cycle), not held at a constant
@@ -47,6 +62,41 @@ def test_a_generated_turn_turns_its_way_at_the_performances_rate(tmp_path):
               and c.split(".")[-1].startswith("r") and not c.startswith("joint_Root")]
     ranges = [float(np.ptp(generated.motion.column(c))) for c in moving]
     assert moving and sum(r > 0.1 for r in ranges) >= len(ranges) // 2, dict(zip(moving, ranges))
+
+
+def _up_and_ahead(m):
+    """The vertical and the travel's direction in the hips' own axes, over a take."""
+    r = global_rotation(m, "Hips")
+    up = np.einsum("fji,j->fi", r, [0.0, 1.0, 0.0]).mean(axis=0)
+    p = kinetology.kinematics.forward_kinematics(m)[:, m.skeleton.index("Hips")]
+    v = np.gradient(p, axis=0)
+    v[:, 1] = 0.0
+    ahead = np.einsum("fji,fj->fi", r, v).mean(axis=0)
+    return up, ahead / np.linalg.norm(ahead)
+
+
+@needs_mocap()
+def test_a_generated_walk_stands_as_the_takes_stand_and_walks_where_it_faces(walk):
+    # the takes' heading-free hips sit near ±180° in one Euler angle: averaged across that
+    # edge, the generated body lay on its side; measured along its facing, it walked sideways
+    _, generated, takes = walk
+    up, ahead = _up_and_ahead(generated.motion)
+    for m in takes:
+        real_up, real_ahead = _up_and_ahead(m)
+        assert float(up @ real_up) > 0.95, (up, real_up)
+        assert float(ahead @ real_ahead) > 0.9, (ahead, real_ahead)
+
+
+@needs_mocap()
+def test_a_style_asked_for_is_generated_at_its_tempo_and_a_missing_one_is_refused(walk):
+    folder = walk[0]
+    # elderly walks are slower than active ones: so are the generated ones
+    slow = generate(folder, "m.walk", repeat=3, style="elderly").motion
+    fast = generate(folder, "m.walk", repeat=3, style="active").motion
+    assert slow.frames > fast.frames, (slow.frames, fast.frames)
+    assert travel(slow, "Hips").speed < travel(fast, "Hips").speed
+    with pytest.raises(ValueError, match="no performance of style 'giant'"):
+        generate(folder, "m.walk", style="giant")
 
 
 def _turning(degrees_per_second, tilt, frames=61):

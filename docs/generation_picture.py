@@ -1,0 +1,48 @@
+"""Draw docs/img/prax_generated_turn.gif: a real turn beside the turn generated from its action.
+
+    python docs/generation_picture.py          # from the repository root, about a minute
+
+A praxicon is built (in a temporary folder) of the dataset-2 subset's walk-turn-right, from the
+first take of each of its seven styles; the action is generated in the normal style
+(``generate(..., style="normal")``, three copies) and played beside the normal style's first
+take, which is one of the takes learnt from. Run by hand; the picture is committed.
+"""
+
+from __future__ import annotations
+
+import sys
+import tempfile
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
+DATA = REPO.parent / "shared" / "data" / "mocap" / "bandai-namco-2-subset" / "data"
+OUT = REPO / "docs" / "img" / "prax_generated_turn.gif"
+
+
+def main() -> int:
+    import kinetology
+    from praxicon import build, read_dataset
+    from praxicon.generation import generate
+
+    takes = sorted(DATA.glob("dataset-2_walk-turn-right_*_001.bvh"))
+    if not takes:
+        raise SystemExit(f"{DATA}: no walk-turn-right takes (the shared data sits beside the "
+                         f"repository)")
+    work = Path(tempfile.mkdtemp(prefix="genpicture-"))
+    manifest = work / "m.csv"
+    manifest.write_text("action,file\n" + "".join(f"walk-turn-right,{f}\n" for f in takes))
+    build(read_dataset(manifest), work / "px", progress=False, log=lambda line: None)
+    generated = generate(work / "px", "m.walk-turn-right", repeat=3, style="normal")
+    real = kinetology.read(DATA / "dataset-2_walk-turn-right_normal_001.bvh")
+    player = kinetology.view({"real (walk-turn-right normal 001)": real,
+                              "generated (normal style, 3 copies)": generated.motion},
+                             actuators=list(generated.actuators), max_rate=10)
+    player.save(OUT, dpi=56)
+    print(f"{OUT.relative_to(REPO)}: {real.frames / real.frame_rate:.1f} s real beside "
+          f"{generated.motion.frames / generated.motion.frame_rate:.1f} s generated, "
+          f"{len(generated.actuators)} actuators ringed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
