@@ -13,9 +13,11 @@ these. *Strings*: strings of 10,000 symbols, their number growing from 10 to
 100 (10^5 to 10^6 symbols), 8% of them patterned (2 at least). *Short*: many
 short strings, 1,000 symbols each, their number growing from 100 to 1,000
 (10^5 to 10^6 symbols), 8% patterned; its last row, 1,000 strings of 1,000,
-is where PAL's per-string costs decide. PAL runs with its default engine
-(``engine="auto"``: the compiled one when numba imports, ``pip install
-'psgs[fast]'``); at 10^6 symbols each sweep also times ``engine="numpy"``, so
+is where PAL's per-string costs decide. PAL runs with the compiled engine
+when numba imports (``pip install 'psgs[fast]'``), asked for by name: under
+``engine="auto"`` an input below ``learner.CROSSOVER`` symbols (2^20, more than
+every row here) runs on numpy until the compiled loops have run in the process,
+which would time numpy under the compiled engine's name; at 10^6 symbols each sweep also times ``engine="numpy"``, so
 that the compiled engine's gain shows side by side (both give the same
 Induction; the script checks it). The peer is scikit-sequitur
 (``pip install scikit-sequitur``, the ``bench`` extra), which learns the same
@@ -138,14 +140,14 @@ def measure(sweep: str, shape, repeat: int, peer_learn=None, peer_name: str = ""
     return row
 
 
-def one_thread(sweep: str, shape, repeat: int, expected) -> dict:
+def one_thread(sweep: str, shape, repeat: int, expected, engine: str = "auto") -> dict:
     """The compiled engine's row with its motif search kept in one thread (it takes two
     from ``motifs._THREADED_SYMBOLS`` symbols on)."""
     from psgs.induce.pal import motifs
     threaded = motifs._THREADED_SYMBOLS
     motifs._THREADED_SYMBOLS = 1 << 62
     try:
-        row = measure(sweep, shape, repeat, expected=expected)
+        row = measure(sweep, shape, repeat, expected=expected, engine=engine)
     finally:
         motifs._THREADED_SYMBOLS = threaded
     row["engine"] += " (one thread)"
@@ -186,17 +188,18 @@ def main(argv=None) -> int:
     short_sweep = SHORT_SWEEP[:2] if args.quick else SHORT_SWEEP
     print(f"PAL engine: {engine_name('auto')} (engine='auto'); numpy's engine too at the "
           f"largest size of each sweep", flush=True)
-    rows = [measure("length", shape, args.repeat, peer_learn, peer_name, sequential)
+    own = engine_name("auto")  # by name: "auto" keeps these sizes on numpy in a fresh process
+    rows = [measure("length", shape, args.repeat, peer_learn, peer_name, sequential, own)
             for shape in length_sweep]
-    rows += [measure("strings", shape, args.repeat) for shape in strings_sweep]
-    rows += [measure("short", shape, args.repeat) for shape in short_sweep]
+    rows += [measure("strings", shape, args.repeat, engine=own) for shape in strings_sweep]
+    rows += [measure("short", shape, args.repeat, engine=own) for shape in short_sweep]
     for sweep, sweep_rows in (("length", length_sweep), ("strings", strings_sweep),
                               ("short", short_sweep)):
         if engine_name("auto") != "numpy":  # numpy's engine beside it, on the largest
             last = [r for r in rows if r["sweep"] == sweep][-1]
             rows.append(measure(sweep, sweep_rows[-1], min(args.repeat, 3), engine="numpy",
                                 expected=last["_result"]))
-            rows.append(one_thread(sweep, sweep_rows[-1], args.repeat, last["_result"]))
+            rows.append(one_thread(sweep, sweep_rows[-1], args.repeat, last["_result"], own))
     for r in rows:
         del r["_result"]
     main_engine = engine_name("auto")
