@@ -341,7 +341,8 @@ def style_scales(record, channels, period: float, style: str, rate: float):
     from .body_motion import own_period, performances_of, style_of
 
     every = [m for m in performances_of(record) if set(channels) <= set(m.channels)]
-    own = [m for m in performances_of(record, style) if set(channels) <= set(m.channels)]
+    # the style's takes are among those just read: picked by their file names, not read again
+    own = [m for m in every if style in style_of(m.source)]
     if not own:
         names = [style_of(p.file) for p in record.performances]
         # the words that tell the performances apart, take numbers aside
