@@ -97,6 +97,16 @@ def _world_positions(motion, root: str) -> np.ndarray:
     return forward_kinematics(motion)[:, motion.skeleton.index(root)]
 
 
+def _body_velocity(motion, root: str, axis: int | None):
+    """Per frame the root's heading, world velocity, and that velocity seen from the body
+    (turned back by the heading at that frame): ``(h, v, forward, sideways)``."""
+    h, _ = heading(global_rotation(motion, root), axis)
+    v = np.gradient(_world_positions(motion, root), axis=0) * float(motion.frame_rate)
+    forward = np.cos(h) * v[:, 2] + np.sin(h) * v[:, 0]
+    sideways = np.cos(h) * v[:, 0] - np.sin(h) * v[:, 2]
+    return h, v, forward, sideways
+
+
 def travel(motion, root: str, axis: int | None = None) -> Travel | None:
     """The root's :class:`Travel` over a motion with a skeleton (None under two frames).
 
@@ -116,12 +126,7 @@ def travel(motion, root: str, axis: int | None = None) -> Travel | None:
     if motion.frames < 2:
         return None
     rate = float(motion.frame_rate)
-    h, _ = heading(global_rotation(motion, root), axis)
-    p = _world_positions(motion, root)
-    v = np.gradient(p, axis=0) * rate
-    # the velocity seen from the body: turned back by the heading at that frame
-    forward = np.cos(h) * v[:, 2] + np.sin(h) * v[:, 0]
-    sideways = np.cos(h) * v[:, 0] - np.sin(h) * v[:, 2]
+    h, v, forward, sideways = _body_velocity(motion, root, axis)
     seconds = (motion.frames - 1) / rate
     return Travel(float(forward.mean()), float(sideways.mean()),
                   float(np.degrees(h[-1] - h[0]) / seconds),
@@ -183,10 +188,7 @@ def course(motion, root: str, axis: int | None = None, period: float | None = No
     if motion.frames < 2:
         return None
     rate = float(motion.frame_rate)
-    h, _ = heading(global_rotation(motion, root), axis)
-    v = np.gradient(_world_positions(motion, root), axis=0) * rate
-    forward = np.cos(h) * v[:, 2] + np.sin(h) * v[:, 0]
-    sideways = np.cos(h) * v[:, 0] - np.sin(h) * v[:, 2]
+    h, _, forward, sideways = _body_velocity(motion, root, axis)
     width = int(round(period * rate)) if period else 1
     h, forward, sideways = (_moving_mean(x, width) for x in (h - h[0], forward, sideways))
     t = np.linspace(0.0, 1.0, motion.frames)
