@@ -120,8 +120,13 @@ def follow_rate(codes: np.ndarray) -> float | None:
     if len(codes) < 3:
         return None
     size = int(codes.max()) + 1
-    # (digram counts by sorting: a long alphabet would make size ** 2 bins)
-    keys, pairs = np.unique(codes[:-1] * size + codes[1:], return_counts=True)
+    digrams = codes[:-1] * size + codes[1:]
+    if size * size <= 4 * len(codes):
+        counts = np.bincount(digrams, minlength=size * size)
+        keys = np.flatnonzero(counts)
+        pairs = counts[keys]
+    else:  # (by sorting: a long alphabet would make size ** 2 bins)
+        keys, pairs = np.unique(digrams, return_counts=True)
     firsts = np.bincount(codes[:-1], minlength=size)
     steps = len(codes) - 1
     rows = firsts[firsts > 0]
@@ -195,7 +200,17 @@ def _may_repeat(strings: list[np.ndarray], lows: list[int], copies: int) -> list
         where = np.flatnonzero(valid)
         with np.errstate(over="ignore"):
             keys = hashes[where] + owner[where].astype(np.uint64) * np.uint64(_INVERSE)
-        order = np.argsort(keys)  # (any order within a group: only its extent is read)
+        # most windows come once: the keys alone sorted (cheaper than ordering positions)
+        # name the few that come ``copies`` times, and only their windows are ordered
+        ordered = np.sort(keys)
+        begins = np.concatenate(([0], np.flatnonzero(np.diff(ordered)) + 1))
+        sizes = np.diff(np.concatenate((begins, [len(ordered)])))
+        common = ordered[begins[sizes >= copies]]
+        if not len(common):
+            continue
+        at = np.minimum(np.searchsorted(common, keys), len(common) - 1)
+        chosen = np.flatnonzero(common[at] == keys)
+        order = chosen[np.argsort(keys[chosen])]  # (any order within a group: only its extent is read)
         ordered = keys[order]
         begins = np.concatenate(([0], np.flatnonzero(np.diff(ordered)) + 1))
         sizes = np.diff(np.concatenate((begins, [len(ordered)])))
@@ -236,12 +251,7 @@ def find_section(codes: np.ndarray, copies: int, longest: int, match_rate: float
         low = _shortest(n, copies, match_rate, follow, level, high)
     if low > high or not _repeated(codes, low, copies, first=True):
         return None
-    while low < high:  # a window with c copies apart: so has each of its prefixes
-        middle = (low + high + 1) // 2
-        if _repeated(codes, middle, copies, first=True):
-            low = middle
-        else:
-            high = middle - 1
+    low = _longest_repeated(codes, copies, low, high)
     starts = _repeated(codes, low, copies)
     motif = codes[starts[0]:starts[0] + low].copy()
     if _cycles(motif):
@@ -251,6 +261,32 @@ def find_section(codes: np.ndarray, copies: int, longest: int, match_rate: float
     agreeing = (len(starts) - 1) * low
     return Section(motif, starts, repeat_significance(n, low, len(starts), agreeing,
                                                       match_rate, follow))
+
+
+def _longest_repeated(codes: np.ndarray, copies: int, low: int, high: int) -> int:
+    """The longest length in ``[low, high]`` whose some window comes ``copies`` times apart,
+    ``low`` known to.
+
+    A window with ``copies`` copies apart gives each of its prefixes as many, so the
+    lengths that repeat are the ones up to the answer. The search doubles from ``low``
+    before it halves: a string's longest repeat is most often far shorter than ``high``
+    (half the string), and each probe hashes and sorts the whole string.
+    """
+    step = max(1, low)
+    while low < high:
+        probe = min(high, low + step)
+        if _repeated(codes, probe, copies, first=True):
+            low, step = probe, 2 * step
+        else:
+            high = probe - 1
+            break
+    while low < high:
+        middle = (low + high + 1) // 2
+        if _repeated(codes, middle, copies, first=True):
+            low = middle
+        else:
+            high = middle - 1
+    return low
 
 
 def _cycles(motif: np.ndarray) -> bool:
@@ -274,6 +310,11 @@ def _repeated(codes: np.ndarray, length: int, copies: int, first: bool = False):
     ``copies``; the earliest among equals), or None; with ``first``, only whether one
     exists (True or None)."""
     hashes = _window_hashes(codes, length)
+    if first:
+        # (most probes find no window coming ``copies`` times: the hashes alone say so)
+        ordered = np.sort(hashes)
+        if not np.any(ordered[copies - 1:] == ordered[:len(ordered) - copies + 1]):
+            return None
     order = np.argsort(hashes, kind="stable")
     ordered = hashes[order]
     cuts = np.flatnonzero(np.diff(ordered)) + 1
@@ -308,7 +349,7 @@ def _window_hashes(codes: np.ndarray, length: int) -> np.ndarray:
         steps[0] = 1
         inverse_powers = np.cumprod(steps, dtype=np.uint64)  # BASE**-j
         weighted = (codes.astype(np.uint64) + np.uint64(1)) * inverse_powers
-        prefix = np.concatenate(([np.uint64(0)], np.cumsum(weighted, dtype=np.uint64)))
+        prefix = np.concatenate(([np.uint64(0)], np.cumsum(weighted, out=weighted)))
         sums = prefix[length:] - prefix[:-length]  # sum of code_j BASE**-j over the window
         steps[:] = _BASE
         steps[0] = 1
