@@ -21,6 +21,7 @@ string left with fewer than ``min_copies`` copies is no component.
 from __future__ import annotations
 
 import math
+from bisect import bisect_left
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -125,16 +126,22 @@ def coincide(a: np.ndarray, b: np.ndarray, copies: int, fraction: float = 1.0) -
     """
     if min(len(a), len(b)) < max(copies, fraction * max(len(a), len(b))):
         return False  # too few copies on one side to pair off enough of the other's
-    # copies of one string are disjoint and in time order, so a copy of ``a`` can only pair
-    # with the copy of ``b`` that starts nearest it, and no copy of ``b`` with two of ``a``
-    at = np.clip(np.searchsorted(b[:, 0], a[:, 0]), 1, len(b) - 1) if len(b) > 1 \
-        else np.zeros(len(a), dtype=np.int64)
-    paired = np.zeros(len(a), dtype=bool)
-    for near in (at - 1, at) if len(b) > 1 else (at,):
-        shared = np.minimum(a[:, 1], b[near, 1]) - np.maximum(a[:, 0], b[near, 0])
-        union = np.maximum(a[:, 1], b[near, 1]) - np.minimum(a[:, 0], b[near, 0])
-        paired |= (shared > 0) & (2 * shared >= union)
-    count = min(int(np.count_nonzero(paired)), len(b))
+    # copies of one string are disjoint and in time order, so the copies of ``b`` a copy of
+    # ``a`` can share time with run from the last one starting before it to the last one
+    # starting before it ends (the ones before that end before it starts)
+    a_list, b_list = a.tolist(), b.tolist()
+    b_starts = [start for start, _ in b_list]
+    count = 0
+    for a0, a1 in a_list:
+        near = max(bisect_left(b_starts, a0) - 1, 0)
+        while near < len(b_list) and b_list[near][0] < a1:
+            b0, b1 = b_list[near]
+            shared = min(a1, b1) - max(a0, b0)
+            if shared > 0 and 2 * shared >= max(a1, b1) - min(a0, b0):
+                count += 1
+                break
+            near += 1
+    count = min(count, len(b_list))
     return count >= copies and count >= fraction * max(len(a), len(b))
 
 
