@@ -228,7 +228,8 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
     With ``by_style`` one action is learnt per content and style (as ``psgs praxicon build``
     groups a dataset with several takes of each pair) and the answer's content counted.
     """
-    from praxicon.description import _MARGIN, common_table, describe_table, feature_rows, scores
+    from praxicon.description import (_MARGIN, common_table, describe_table, feature_rows,
+                                      score_model, scores)
     from praxicon.recognition import _excess, feature_matrix
 
     groups = defaultdict(list)
@@ -242,11 +243,11 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
         if x is None:
             columns, x, _ = feature_matrix(d, [t.motion for t in test])
             features = [d.spread.features[i] for i in columns]
-        means = np.array([a.mean for a in d.actions])[:, columns]
-        dist, score = scores(d, x, columns)
+        fitted = score_model(d, columns)
+        dist, score = scores(d, x, columns, fitted=fitted)
         best = score.argmin(axis=1)
         penalty = dist[np.arange(len(x)), best] / len(columns)
-        excess, _ = _excess(d, columns, features, x, means, best)
+        excess, _ = _excess(d, features, x, best, fitted)
         rules = {f"groups a={level:g}": (penalty <= d.spread.threshold) & (excess <= 1.0)}
         if level == _LEVELS[0]:
             rules.update({f"whole x{m:g}": penalty <= d.spread.threshold / _MARGIN * m
