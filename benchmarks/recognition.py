@@ -228,8 +228,8 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
     With ``by_style`` one action is learnt per content and style (as ``psgs praxicon build``
     groups a dataset with several takes of each pair) and the answer's content counted.
     """
-    from praxicon.description import (_MARGIN, common_table, describe_table, feature_rows,
-                                      score_model, scores)
+    from praxicon.description import (_MARGIN, GROUP_LEVEL, common_table, describe_table,
+                                      feature_rows, score_model, scores)
     from praxicon.recognition import _excess, feature_matrix
 
     groups = defaultdict(list)
@@ -262,6 +262,34 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
                 else:
                     r["unknown"] += 1
                     r["rejected"] += int(decided is None)
+                if level == GROUP_LEVEL and name.startswith("groups"):
+                    # what the praxicon's own rule answered, per left-out content and per
+                    # known take it got wrong: where the open set fails
+                    detail = results[protocol, "detail"]
+                    if t.content not in known:
+                        detail.setdefault("left-out", {}).setdefault(t.content, []).append(
+                            decided)
+                    elif decided != t.content:
+                        detail.setdefault("known-wrong", {}).setdefault(
+                            f"{t.content} {t.style}_{t.take:03d}", []).append(decided)
+
+
+def _open_detail(protocol, results) -> str:
+    """One line per protocol at the praxicon's level: per left-out content its takes answered
+    none of these and the commonest other answer, and the known takes answered wrongly (how
+    many splits, and as what)."""
+    from collections import Counter
+
+    detail = results[protocol, "detail"]
+    parts = []
+    for content, answers in sorted(detail.get("left-out", {}).items()):
+        taken = Counter(a for a in answers if a is not None).most_common(1)
+        parts.append(f"{content} {sum(a is None for a in answers)}/{len(answers)}"
+                     + (f" (else {taken[0][0]} {taken[0][1]})" if taken else ""))
+    wrong = [f"{k} x{len(v)} as {Counter(map(str, v)).most_common(1)[0][0]}"
+             for k, v in sorted(detail.get("known-wrong", {}).items())]
+    return (f"{protocol:16s} at a=0.01: none of these per left-out content: " + ", ".join(parts)
+            + "; known takes wrong: " + (", ".join(wrong) or "none"))
 
 
 # -- parsing -----------------------------------------------------------------------------------
@@ -666,6 +694,8 @@ def main(argv=None) -> int:
                 say(f"{protocol:16s} {method:15s} left-out takes={row['takes']} none-of-these="
                     f"{row['none_of_these']:.3f}  known takes={int(r['known'])} accuracy with "
                     f"rejection={row['closed_accuracy']:.3f}")
+            if results[protocol, "detail"].get("left-out"):
+                say(_open_detail(protocol, results))
     for protocol, run in (("cmu-parse", lambda: parse_cmu(results)),
                           ("joined-parse", lambda: parse_joined(results, d1))):
         if not want(protocol):
