@@ -224,20 +224,21 @@ def recognise_many(praxicon, motions, *, explain: int = 3) -> list[Recognition]:
     return out
 
 
-def _excess(descriptions, features, x, best, fitted):
+def _excess(descriptions, features, x, best, fitted, *, telling: bool = True):
     """Per motion: its best action's worst feature group over that group's calibrated limit
     (0 and "" when the descriptions have no limits), and the group's name.
 
     Only the groups that tell the best action apart from another learnt action are read
-    (:func:`~praxicon.description.telling_groups`); ``fitted`` is the score model on the
-    motions' columns.
+    (:func:`~praxicon.description.telling_groups`; ``telling=False``: every group, as the
+    benchmark compares); ``fitted`` is the score model on the motions' columns.
     """
     limits = dict(descriptions.spread.limits)
     groups = {g: c for g, c in feature_groups(features).items() if g in limits}
     if not groups or not len(x):
         return np.zeros(len(x)), [""] * len(x)
     bound = np.maximum(np.array([limits[g] for g in groups]), 1e-12)
-    tells = telling_groups(fitted.means, fitted.variance, fitted.scale, groups, bound)
+    tells = (telling_groups(fitted.means, fitted.variance, fitted.scale, groups, bound)
+             if telling else np.ones((len(fitted.means), len(groups)), dtype=bool))
     ratio = np.stack([group_distances(x[i], fitted.means[b], fitted.variance[b], fitted.scale,
                                       groups)[0] / bound * tells[b]
                       for i, b in enumerate(best)])
