@@ -13,11 +13,13 @@ and features, never with the number of takes (no take is kept).
 A motion is "none of these" when even its best action's squared Mahalanobis distance per
 feature exceeds ``Spread.threshold``, the largest a training take reached when left out of its
 own action's mean, or when one group of its features (a joint; each of the root's drifts and
-sways, axis by axis; the tempo) is further from that action than its limit (``Spread.limits``:
-what a held-out training take exceeds with probability ``GROUP_LEVEL`` over all groups). The group
-test measures each action against its own spread (shrunk towards the shared one): a deviation
-concentrated in a few features, such as a walk's missing heading drift against a turn whose
-drift is tight, drowns in a sum over all features but stands out in its group. Actions are
+sways, axis by axis, a whole take's turning read by its excursion; the tempo) is further from
+that action than its limit (``Spread.limits``: what a held-out training take exceeds with
+probability ``GROUP_LEVEL`` over all groups). The group test measures each action against its
+own spread (shrunk towards the shared one): a deviation concentrated in a few features, such
+as a walk's missing heading drift against a turn whose drift is tight, drowns in a sum over
+all features but stands out in its group. It reads only the groups that tell the action apart
+from another learnt action (:func:`telling_groups`). Actions are
 ranked by the shared distance plus the root drift's distance in each action's own spread
 (:func:`scores`); probabilities are those scores' likelihoods at the ``temperature`` that fits
 the left-out training takes best.

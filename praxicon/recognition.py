@@ -8,9 +8,10 @@ joints that move but are not the action's cost as much as a joint that moves wro
 root's drift (its travel and turning velocities) is also scored in each action's own spread
 (:func:`~praxicon.description.scores`): a walk backwards always travels backwards. The best
 action is the answer unless its mean penalty exceeds the threshold calibrated on the training
-takes, or one group of features (a joint, one of the root's drifts or sways, the tempo) is
-further from it, in the action's own spread, than its calibrated limit (exceeded by a held-out training take
-with probability ``GROUP_LEVEL``): then the answer is ``None`` ("none of these").
+takes, or one group of features (a joint, one of the root's drifts, sways or turn excursions,
+the tempo) that tells it apart from another learnt action is further from it, in the action's
+own spread, than its calibrated limit (exceeded by a held-out training take with probability
+``GROUP_LEVEL``): then the answer is ``None`` ("none of these").
 
 >>> from kinetology import synthetic_motion
 >>> from praxicon.description import describe
