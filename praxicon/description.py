@@ -13,11 +13,13 @@ and features, never with the number of takes (no take is kept).
 A motion is "none of these" when even its best action's squared Mahalanobis distance per
 feature exceeds ``Spread.threshold``, the largest a training take reached when left out of its
 own action's mean, or when one group of its features (a joint; each of the root's drifts and
-sways, axis by axis; the tempo) is further from that action than its limit (``Spread.limits``:
-what a held-out training take exceeds with probability ``GROUP_LEVEL`` over all groups). The group
-test measures each action against its own spread (shrunk towards the shared one): a deviation
-concentrated in a few features, such as a walk's missing heading drift against a turn whose
-drift is tight, drowns in a sum over all features but stands out in its group. Actions are
+sways, axis by axis, a whole take's turning read by its excursion; the tempo) is further from
+that action than its limit (``Spread.limits``: what a held-out training take exceeds with
+probability ``GROUP_LEVEL`` over all groups). The group test measures each action against its
+own spread (shrunk towards the shared one): a deviation concentrated in a few features, such
+as a walk's missing heading drift against a turn whose drift is tight, drowns in a sum over
+all features but stands out in its group. It reads only the groups that tell the action apart
+from another learnt action (:func:`telling_groups`). Actions are
 ranked by the shared distance plus the root drift's distance in each action's own spread
 (:func:`scores`); probabilities are those scores' likelihoods at the ``temperature`` that fits
 the left-out training takes best.
@@ -44,10 +46,11 @@ from .features import FeatureError, feature_joint, motion_features
 
 __all__ = ["FORMAT_VERSION", "ActionDescription", "Spread", "Descriptions", "describe",
            "describe_table", "DescriptionError", "feature_groups", "group_distances",
-           "GROUP_LEVEL", "OWN_KINDS", "own_columns", "own_terms", "scores"]
+           "GROUP_LEVEL", "OWN_KINDS", "own_columns", "own_terms", "scores", "ScoreModel",
+           "score_model", "telling_groups"]
 
 #: Bumped when what a description holds or how features are computed changes.
-FORMAT_VERSION = 2
+FORMAT_VERSION = 3
 _RANK = 16  # shared directions of variation kept (fewer when there are fewer takes)
 _NOISE_FLOOR = 0.05  # smallest per-feature variance left, in scaled units
 _PRIOR_TAKES = 10.0  # pseudo-takes of typical spread each feature's own spread is shrunk to
@@ -287,10 +290,33 @@ def own_terms(x, means, variance, scale) -> np.ndarray:
     return terms - terms.min(axis=1, keepdims=True) if terms.size else terms
 
 
-def scores(descriptions: "Descriptions", x, columns, *, kinds=OWN_KINDS):
+@dataclass(frozen=True)
+class ScoreModel:
+    """What scoring reads on some of the descriptions' columns, computed once per call: the
+    actions' means, the shared precision's pieces (:func:`precision_parts`) and each action's
+    own variance, in the spread's scaled units (``scale``)."""
+
+    columns: np.ndarray
+    means: np.ndarray  # actions x columns
+    parts: tuple
+    variance: np.ndarray  # actions x columns
+    scale: np.ndarray
+
+
+def score_model(descriptions: "Descriptions", columns) -> ScoreModel:
+    """The :class:`ScoreModel` of ``descriptions`` on ``columns``."""
+    columns = np.asarray(columns, dtype=int)
+    return ScoreModel(columns, np.array([a.mean for a in descriptions.actions])[:, columns],
+                      precision_parts(descriptions.spread, columns),
+                      action_variances(descriptions, columns),
+                      np.asarray(descriptions.spread.scale)[columns])
+
+
+def scores(descriptions: "Descriptions", x, columns, *, kinds=OWN_KINDS,
+           fitted: ScoreModel | None = None):
     """Motions x actions: the shared distance (what the "none of these" threshold reads) and
     the score actions are ranked by, which adds :func:`own_terms` for the root's features of
-    ``kinds``.
+    ``kinds``. ``fitted``: the :func:`score_model` on ``columns``, when the caller has it.
 
     The shared spread pools how every action's copies vary; a style that walks faster moves
     the forward travel of every gait alike, so the shared directions let a walk's travel be
@@ -308,16 +334,14 @@ def scores(descriptions: "Descriptions", x, columns, *, kinds=OWN_KINDS):
     >>> shared.shape, bool(np.all(score >= shared))
     ((1, 2), True)
     """
-    spread = descriptions.spread
     columns = np.asarray(columns, dtype=int)
-    means = np.array([a.mean for a in descriptions.actions])[:, columns]
-    shared = distances(x, means, precision_parts(spread, columns))
-    own = own_columns([spread.features[i] for i in columns], kinds)
+    m = score_model(descriptions, columns) if fitted is None else fitted
+    shared = distances(x, m.means, m.parts)
+    own = own_columns([descriptions.spread.features[i] for i in columns], kinds)
     if not len(own):
         return shared, shared
-    variance = action_variances(descriptions, columns[own])
-    scale = np.asarray(spread.scale)[columns[own]]
-    return shared, shared + own_terms(np.asarray(x)[:, own], means[:, own], variance, scale)
+    return shared, shared + own_terms(np.asarray(x)[:, own], m.means[:, own],
+                                      m.variance[:, own], m.scale[own])
 
 
 def feature_groups(features) -> dict[str, np.ndarray]:
@@ -327,6 +351,10 @@ def feature_groups(features) -> dict[str, np.ndarray]:
     A joint's features move together (a pose, its range and its speed are one movement), but
     the root's are separate quantities a gait is defined by: a turn's heading rate is one
     number, and summed with the sideways and vertical travel its absence in a walk drowns.
+    Where a whole take's turn excursion is there, it stands for that axis's turning and the
+    mean turning rate is in no group: the rate is the net turn over the take, so a take that
+    turned and came partly back reads as a turn the other way, while how far it turned says
+    what it performed (the rate is still scored, in the ranking).
 
     Examples
     --------
@@ -334,13 +362,47 @@ def feature_groups(features) -> dict[str, np.ndarray]:
     ...                     "Hips.turnx:energy", "tempo"])
     >>> {k: v.tolist() for k, v in g.items()}
     {'a': [0, 1], 'Hips.turnx:drift': [2], 'Hips.turnx:energy': [3], 'tempo': [4]}
+    >>> list(feature_groups(["Hips.turnx:drift", "Hips.turnx:excursion"]))
+    ['Hips.turnx:excursion']
     """
+    features = list(features)
+    turned = {f.rsplit(":", 1)[0] for f in features if f.endswith(":excursion")}
     out: dict[str, list[int]] = {}
     for i, f in enumerate(features):
         root = ".travel" in f or ".turn" in f
+        if root and f.endswith(":drift") and f.rsplit(":", 1)[0] in turned:
+            continue
         key = f if f == "tempo" or root else feature_joint(f)
         out.setdefault(key, []).append(i)
     return {k: np.array(v, dtype=int) for k, v in out.items()}
+
+
+def telling_groups(means, variance, scale, groups: dict[str, np.ndarray], bound) -> np.ndarray:
+    """Actions x groups: whether the group tells the action apart from another learnt action
+    (that action's mean would fail the group's limit ``bound`` in this action's own spread).
+
+    A group in which every learnt action looks alike (the sideways drift of walks, turns and
+    runs) cannot tell the answer from the other answers; a take far out in it is still most
+    likely what it ranked as, and failing it rejects known takes that a style or a slip moved
+    there. The group test reads only the groups that do tell; with a single action there is
+    nothing to tell it from, and every group is read.
+
+    Examples
+    --------
+    >>> groups = {"a": np.array([0]), "b": np.array([1])}
+    >>> means = np.array([[0.0, 0.0], [5.0, 0.1]])  # the actions differ in "a" only
+    >>> telling_groups(means, np.ones((2, 2)), np.ones(2), groups, np.array([4.0, 4.0])).tolist()
+    [[True, False], [True, False]]
+    """
+    means = np.atleast_2d(means)
+    if len(means) < 2:
+        return np.ones((len(means), len(groups)), dtype=bool)
+    out = np.empty((len(means), len(groups)), dtype=bool)
+    for a in range(len(means)):
+        others = np.delete(means, a, axis=0)
+        far = group_distances(others, means[a], variance[a], scale, groups) / bound
+        out[a] = far.max(axis=0) > 1.0
+    return out
 
 
 def _action_variances(sums: np.ndarray, counts) -> np.ndarray:

@@ -4,8 +4,10 @@ Per rotation channel of every joint but the root: its typical pose (median angle
 (10-90 % range, log), its velocity energy (RMS speed, log) and the course of the take (the means
 of its four quarters, relative to the median; a one-off action's shape). Per root (the joint
 whose position moves): its travel and turning velocities in its own frame, mean (the drift: a
-turn's heading rate, the speed of travel) and RMS of the rest (bobbing, swaying). And the take's
-tempo: the period of its summed joint speed (log seconds).
+turn's heading rate, the speed of travel) and RMS of the rest (bobbing, swaying); for whole
+takes also, per local axis, the largest signed turn from the take's first frame (a turn performed
+and then partly undone still turned that far). And the take's tempo: the period of its summed
+joint speed (log seconds).
 """
 
 from __future__ import annotations
@@ -108,14 +110,35 @@ def _tempo(speed: np.ndarray, frame_rate: float) -> float:
     return float(lag / frame_rate)
 
 
-def _root_features(motion, chain: list[str]) -> list[tuple[str, float]]:
+def _excursions(turning: np.ndarray, frame_rate: float) -> np.ndarray:
+    """Per axis the turn furthest from the first frame's, with its sign (degrees).
+
+    The mean turning rate is the net turn over the take: a take that turns right a quarter
+    turn and then back left further has the mean rate of a left turn, though it performed the
+    right turn; how far it got from where it started says it did.
+
+    Examples
+    --------
+    >>> rate = np.array([[-10.0], [-10.0], [5.0], [5.0], [5.0]])  # deg/s, at 1 frame/s
+    >>> _excursions(rate, 1.0).tolist()
+    [-20.0]
+    """
+    angle = np.concatenate([np.zeros((1, turning.shape[1])),
+                            np.cumsum(turning, axis=0) / frame_rate])
+    far = np.abs(angle).argmax(axis=0)
+    return angle[far, np.arange(turning.shape[1])]
+
+
+def _root_features(motion, chain: list[str], *, course: bool = True) -> list[tuple[str, float]]:
     """The root's travel and turning in its own frame, whichever way the body faces.
 
     The root chain's velocity and angular velocity are expressed in its own frame (so a walk
     to the north and one to the south, or a turn started facing east, give the same numbers):
     per local axis the mean (the drift: a turn's heading rate, the travel speed) and the RMS
     of the rest (bobbing, swaying). Rotation orders are the skeleton's, else the order of each
-    joint's rotation channels in the motion. Named after the chain's last joint.
+    joint's rotation channels in the motion. Named after the chain's last joint. With
+    ``course`` also each axis's turn excursion (:func:`_excursions`): like the quarter means it
+    reads the course of a whole take, which a window of a recording cut anywhere does not have.
     """
     series = root_motion(motion, chain)
     out = []
@@ -126,6 +149,9 @@ def _root_features(motion, chain: list[str]) -> list[tuple[str, float]]:
         for i, a in enumerate("xyz"):
             out.append((f"{chain[-1]}.{kind}{a}:drift", float(mean[i])))
             out.append((f"{chain[-1]}.{kind}{a}:energy", math.log1p(float(sway[i]))))
+    if course:
+        for a, value in zip("xyz", _excursions(series[:, 3:], motion.frame_rate)):
+            out.append((f"{chain[-1]}.turn{a}:excursion", float(value)))
     return out
 
 
@@ -137,14 +163,16 @@ def motion_features(motion, *, shape: bool = True) -> tuple[tuple[str, ...], np.
     motion : kinetology.Motion
         At least 3 frames.
     shape : bool, default True
-        Include the four quarter means per channel (the course of a one-off action); windows
-        of a recording leave them out (a window's quarters depend on where it starts).
+        Include the four quarter means per channel (the course of a one-off action) and the
+        root's turn excursions; windows of a recording leave them out (a window's quarters and
+        how far it turns depend on where it starts).
 
     Returns
     -------
     names : tuple of str
         ``channel:kind`` (kinds pose and posec: the median's sine and cosine, spread, energy,
-        shape0..3; the root's ``travel*``/``turn*`` drift and energy) and ``tempo``.
+        shape0..3; the root's ``travel*``/``turn*`` drift and energy, and ``turn*`` excursion)
+        and ``tempo``.
     values : numpy.ndarray
 
     Raises
@@ -189,7 +217,7 @@ def motion_features(motion, *, shape: bool = True) -> tuple[tuple[str, ...], np.
             names.append(f"{motion.channels[c]}:{kind}")
             values.append(float(column[k]))
     if roots:
-        for name, value in _root_features(motion, roots):
+        for name, value in _root_features(motion, roots, course=shape):
             names.append(name)
             values.append(value)
     if columns:

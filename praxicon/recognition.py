@@ -8,9 +8,10 @@ joints that move but are not the action's cost as much as a joint that moves wro
 root's drift (its travel and turning velocities) is also scored in each action's own spread
 (:func:`~praxicon.description.scores`): a walk backwards always travels backwards. The best
 action is the answer unless its mean penalty exceeds the threshold calibrated on the training
-takes, or one group of features (a joint, one of the root's drifts or sways, the tempo) is
-further from it, in the action's own spread, than its calibrated limit (exceeded by a held-out training take
-with probability ``GROUP_LEVEL``): then the answer is ``None`` ("none of these").
+takes, or one group of features (a joint, one of the root's drifts, sways or turn excursions,
+the tempo) that tells it apart from another learnt action is further from it, in the action's
+own spread, than its calibrated limit (exceeded by a held-out training take with probability
+``GROUP_LEVEL``): then the answer is ``None`` ("none of these").
 
 >>> from kinetology import synthetic_motion
 >>> from praxicon.description import describe
@@ -31,9 +32,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .description import (DescriptionError, Descriptions, action_variances,
-                          feature_groups, feature_rows, group_distances, mahalanobis_terms,
-                          precision_parts, probabilities, scores)
+from .description import (DescriptionError, Descriptions, feature_groups, feature_rows,
+                          group_distances, mahalanobis_terms, probabilities, score_model,
+                          scores, telling_groups)
 from .features import feature_joint
 
 __all__ = ["Recognition", "recognise", "recognise_many", "feature_matrix", "JointReason"]
@@ -192,15 +193,15 @@ def recognise_many(praxicon, motions, *, explain: int = 3) -> list[Recognition]:
         raise DescriptionError("the motion shares no joint with the praxicon's actions")
     spread = descriptions.spread
     features = [spread.features[i] for i in columns]
-    parts = precision_parts(spread, columns)
-    means = np.array([a.mean for a in descriptions.actions])[:, columns]
-    dist, score = scores(descriptions, x, columns)
+    fitted = score_model(descriptions, columns)
+    parts, means = fitted.parts, fitted.means
+    dist, score = scores(descriptions, x, columns, fitted=fitted)
     p = probabilities(score, spread.temperature)
     per_feature = dist / len(columns)
     names = descriptions.names
     drift = [i for i, f in enumerate(features) if f.endswith(":drift")]
     best_of = p.argmax(axis=1) if len(p) else np.zeros(0, dtype=int)
-    excess, excess_group = _excess(descriptions, columns, features, x, means, best_of)
+    excess, excess_group = _excess(descriptions, features, x, best_of, fitted)
     tempo = [i for i, f in enumerate(features) if f == "tempo"]
     out = []
     for i, motion in enumerate(motions):
@@ -224,20 +225,28 @@ def recognise_many(praxicon, motions, *, explain: int = 3) -> list[Recognition]:
     return out
 
 
-def _excess(descriptions, columns, features, x, means, best):
+def _excess(descriptions, features, x, best, fitted, *, telling: bool = True):
     """Per motion: its best action's worst feature group over that group's calibrated limit
-    (0 and "" when the descriptions have no limits), and the group's name."""
+    (0 and "" when the descriptions have no limits), and the group's name.
+
+    Only the groups that tell the best action apart from another learnt action are read
+    (:func:`~praxicon.description.telling_groups`; ``telling=False``: every group, as the
+    benchmark compares); ``fitted`` is the score model on the motions' columns.
+    """
     limits = dict(descriptions.spread.limits)
     groups = {g: c for g, c in feature_groups(features).items() if g in limits}
-    if not groups:
+    if not groups or not len(x):
         return np.zeros(len(x)), [""] * len(x)
-    variance = action_variances(descriptions, columns)
-    scale = np.asarray(descriptions.spread.scale)[columns]
-    bound = np.array([limits[g] for g in groups])
-    ratio = np.stack([group_distances(x[i], means[b], variance[b], scale, groups)[0]
-                      for i, b in enumerate(best)]) / np.maximum(bound, 1e-12)
+    bound = np.maximum(np.array([limits[g] for g in groups]), 1e-12)
+    tells = (telling_groups(fitted.means, fitted.variance, fitted.scale, groups, bound)
+             if telling else np.ones((len(fitted.means), len(groups)), dtype=bool))
+    ratio = np.stack([group_distances(x[i], fitted.means[b], fitted.variance[b], fitted.scale,
+                                      groups)[0] / bound * tells[b]
+                      for i, b in enumerate(best)])
     names = list(groups)
-    return ratio.max(axis=1), [names[k] for k in ratio.argmax(axis=1)]
+    # no group read (none tells the best action apart): no group to name
+    return ratio.max(axis=1), [names[k] if r[k] > 0 else "" for k, r in
+                               zip(ratio.argmax(axis=1), ratio)]
 
 
 def recognise(praxicon, motion, *, explain: int = 3) -> Recognition:

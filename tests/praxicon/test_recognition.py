@@ -200,37 +200,86 @@ def test_group_test_names_a_joint_that_departs():
     assert f"furthest feature group: {odd.excess_group}" in odd.explain()
 
 
-def _gait(rate: float, seed: int, speed: float = 100.0) -> Motion:
-    """A synthetic gait: travelling forward at about ``speed``, a knee swinging, the heading
-    turning at ``rate`` degrees per second (0: straight on); sensor noise from ``seed``."""
+def _gait(rate, seed: int, speed: float = 100.0, rise: float = 0.0) -> Motion:
+    """A synthetic gait: travelling forward at about ``speed`` (and up at ``rise``), a knee
+    swinging, the heading turning at ``rate`` degrees per second (0: straight on; a
+    function of time in seconds: that course); sensor noise from ``seed``."""
     rng = np.random.default_rng(seed)
     t = np.arange(150) / 30.0
     speed, tempo = speed + 5 * rng.standard_normal(), 6 + 0.2 * rng.standard_normal()
-    heading = np.radians(rate * t)
+    course = (np.cumsum(rate(t)) / 30.0 - rate(t)[0] / 30.0 if callable(rate) else rate * t)
+    heading = np.radians(course)
     step = np.gradient(speed * t)
     x, z = np.cumsum(step * np.sin(heading)), np.cumsum(step * np.cos(heading))
-    values = np.column_stack([x, 90 + 2 * np.sin(tempo * t), z, np.zeros_like(t),
-                              np.zeros_like(t), rate * t, 30 * np.sin(tempo * t)])
+    values = np.column_stack([x, 90 + rise * t + 2 * np.sin(tempo * t), z, np.zeros_like(t),
+                              np.zeros_like(t), course, 30 * np.sin(tempo * t)])
     values += 0.2 * rng.standard_normal(values.shape)
     names = ("root.tx", "root.ty", "root.tz", "root.rx", "root.rz", "root.ry", "knee.rx")
-    return Motion(values, names, 30.0, source=f"gait{rate:+.0f}.{seed}")
+    label = f"{rate:+.0f}" if not callable(rate) else "course"
+    return Motion(values, names, 30.0, source=f"gait{label}.{seed}")
 
 
-def test_group_test_rejects_a_walk_against_turns_by_its_heading_rate():
+def _turns(rng, n: int = 8):
+    return {name: [_gait(sign * (20 + 2 * rng.standard_normal()), seed,
+                         100 + 80 * (seed % 4 == 0)) for seed in range(k, k + n)]
+            for name, sign, k in (("turn-left", 1, 0), ("turn-right", -1, 100))}
+
+
+def test_group_test_rejects_a_walk_against_turns_by_its_heading():
     """Learnt: a left and a right turn (heading rate +-20 deg/s, a few degrees' spread; some
-    takes hurried, as a style does). A straight walk ranks first one of them, but its heading
-    rate, a feature group of its own, is far outside that turn's: none of these. Summed with
-    the travel into one group, the hurried takes' speeds would hide it. New turns pass."""
-    rng = np.random.default_rng(0)
-    takes = {name: [_gait(sign * (20 + 2 * rng.standard_normal()), seed,
-                          100 + 80 * (seed % 4 == 0)) for seed in range(k, k + 8)]
-             for name, sign, k in (("turn-left", 1, 0), ("turn-right", -1, 100))}
-    px = describe(takes)
-    assert "root.turny:drift" in dict(px.spread.limits)
+    takes hurried, as a style does). A straight walk ranks first one of them, but how far it
+    turns, a feature group of its own, is far outside that turn's: none of these. Summed with
+    the travel into one group, the hurried takes' speeds would hide it. New turns pass. The
+    whole take's excursion stands for the heading; its mean rate is in no group."""
+    px = describe(_turns(np.random.default_rng(0)))
+    limits = dict(px.spread.limits)
+    assert "root.turny:excursion" in limits and "root.turny:drift" not in limits
     walk = recognise(px, _gait(0.0, 500))
-    assert walk.action is None and walk.excess_group == "root.turny:drift"
+    assert walk.action is None and walk.excess_group == "root.turny:excursion"
     turns = recognise_many(px, [_gait(21.0, 600), _gait(-19.0, 601)])
     assert [r.action for r in turns] == ["turn-left", "turn-right"]
+
+
+def test_turn_excursion_is_the_largest_signed_turn_from_the_start():
+    """Oracle: a gait turning right at 40 deg/s for 3 s and then back left at 50 deg/s has
+    turned furthest (-120 deg) at 3 s, and its mean turning rate is the net turn (-20 deg)
+    over the take; the excursion reads the first, the drift the second. Windows (no course
+    features) have no excursion."""
+    motion = _gait(lambda t: np.where(t < 3.0, -40.0, 50.0), 3)
+    features = dict(zip(*motion_features(motion)))
+    course = np.cumsum(np.where(np.arange(150) / 30.0 < 3.0, -40.0, 50.0)) / 30.0
+    assert features["root.turny:excursion"] == pytest.approx(-120.0, abs=4.0)
+    assert features["root.turny:drift"] == pytest.approx(course[-1] / motion.duration, abs=2.0)
+    assert abs(features["root.turnx:excursion"]) < 2.0
+    assert not any(f.endswith(":excursion") for f in motion_features(motion, shape=False)[0])
+
+
+def test_group_test_reads_only_the_groups_that_tell_actions_apart():
+    """Every learnt turn travels on the level: the vertical travel cannot tell one turn from
+    the other, so a right turn taken up a slope, far outside that group's limit, is still a
+    right turn; the heading, which tells them apart, is read (a walk is none of these)."""
+    from praxicon.description import (feature_groups, group_distances, score_model,
+                                      telling_groups)
+    from praxicon.recognition import feature_matrix
+
+    px = describe(_turns(np.random.default_rng(3)))
+    climbing = _gait(-20.0, 901, rise=2.0)
+    columns, x, _ = feature_matrix(px, [climbing])
+    features = [px.spread.features[i] for i in columns]
+    limits = dict(px.spread.limits)
+    groups = {g: c for g, c in feature_groups(features).items() if g in limits}
+    fitted = score_model(px, columns)
+    bound = np.array([limits[g] for g in groups])
+    right = px.names.index("turn-right")
+    far = dict(zip(groups, group_distances(x[0], fitted.means[right], fitted.variance[right],
+                                           fitted.scale, groups)[0] / bound))
+    tells = dict(zip(groups, telling_groups(fitted.means, fitted.variance, fitted.scale,
+                                            groups, bound)[right]))
+    upward = max((g for g in groups if ".travel" in g and g.endswith(":drift")), key=far.get)
+    assert far[upward] > 1.0 and not tells[upward] and tells["root.turny:excursion"]
+    found = recognise(px, climbing)
+    assert found.action == "turn-right" and found.excess_group != upward
+    assert recognise(px, _gait(0.0, 902)).action is None
 
 
 def test_drift_is_also_scored_in_each_actions_own_spread():
