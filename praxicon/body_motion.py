@@ -297,15 +297,20 @@ def _still(motions, channels) -> bool:
 
 
 def body_of(record, channels, driven, period: float | None = None,
-            style: str | None = None) -> Body:
+            style: str | None = None, performances=None) -> Body:
     """The :class:`Body` of an action's performances, for a motion with ``channels``.
 
     ``driven`` are the channels the grammar system makes (the actuators' channels);
     ``period`` the action's period in seconds (the course is averaged over one, see
     :func:`course`); ``style`` keeps the performances of that style only
-    (:func:`performances_of`).
+    (:func:`performances_of`); ``performances`` are the action's motions when already
+    read (all of them: the style is picked by their file names), else they are read here.
     """
-    takes = [m for m in performances_of(record, style) if m.skeleton is not None
+    if performances is None:
+        performances = performances_of(record, style)
+    elif style is not None:
+        performances = [m for m in performances if style in style_of(m.source)]
+    takes = [m for m in performances if m.skeleton is not None
              and set(channels) <= set(m.channels)]
     if not takes:
         return Body()

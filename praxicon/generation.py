@@ -36,7 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .body_motion import animate, body_of, whole_cycle
+from .body_motion import animate, body_of, performances_of, whole_cycle
 from .jsonvalues import as_dict
 from .records import ActionRecord, Praxicon
 from .store import load
@@ -332,7 +332,7 @@ class Method:
     scale: float = 1.0
 
 
-def style_scales(record, channels, period: float, style: str, rate: float):
+def style_scales(record, channels, period: float, style: str, rate: float, performances=None):
     """How a style's performances differ from all of an action's: (tempo, amplitude per channel).
 
     ``tempo`` is the style's median period over all performances' median (the morphemes'
@@ -340,11 +340,14 @@ def style_scales(record, channels, period: float, style: str, rate: float):
     autocorrelation near ``period`` (:func:`praxicon.body_motion.own_period`) on the
     channel that moves most in the performances; a channel's amplitude is the style's mean
     range (5th to 95th percentile) over all performances' mean. Raises ValueError when no
-    performance of the action has that style.
+    performance of the action has that style. ``performances``: the action's motions
+    when already read (:func:`praxicon.body_motion.performances_of`), else read here.
     """
     from .body_motion import own_period, performances_of, style_of
 
-    every = [m for m in performances_of(record) if set(channels) <= set(m.channels)]
+    if performances is None:
+        performances = performances_of(record)
+    every = [m for m in performances if set(channels) <= set(m.channels)]
     # the style's takes are among those just read: picked by their file names, not read again
     own = [m for m in every if style in style_of(m.source)]
     if not own:
@@ -408,8 +411,11 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     rate = float(record.frame_rate)
     period = float(np.median([sum(m.durations) for m in usable.values()]))
     tempo, amplitude = 1.0, {}
+    # the performances are read once, for the style's scales and for the body around them
+    performances = performances_of(record)
     if style is not None:
-        tempo, amplitude = style_scales(record, sorted(usable), period, style, rate)
+        tempo, amplitude = style_scales(record, sorted(usable), period, style, rate,
+                                        performances)
         period *= tempo
     if source_motion is None:
         source_motion = kinetology.read(record.skeleton_source)
@@ -418,7 +424,7 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
         skeleton = None  # an ASF skeleton: BVH cannot hold its axes, write angles on a star
     channels = source_motion.channels
     pose = dict(record.mean_pose)
-    body = body_of(record, channels, set(usable), period, style)
+    body = body_of(record, channels, set(usable), period, style, performances)
     # a morpheme of half a stride repeats before the body does (the legs take turns): each
     # copy asked for is the whole body's cycle, that many morphemes
     cycle = whole_cycle(body, period, rate)
