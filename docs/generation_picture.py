@@ -26,6 +26,8 @@ WALK = REPO / "docs" / "img" / "kin_view_walk.gif"
 
 
 def main() -> int:
+    import numpy as np
+
     import kinetology
     from praxicon import build, read_dataset
     from praxicon.generation import generate
@@ -61,6 +63,15 @@ def main() -> int:
     print(f"{WALK.relative_to(REPO)}: {real.frames / real.frame_rate:.1f} s real beside "
           f"{motion.frames / motion.frame_rate:.1f} s generated from {len(walks)} normal walks, "
           f"{len(generated.actuators)} actuators ringed")
+    from kinetology.kinematics import forward_kinematics
+
+    for name, m in (("real", real), ("generated", motion)):  # what the caption says
+        at = forward_kinematics(m)
+        hips, head = (at[:, m.skeleton.index(j)] for j in ("Hips", "Head"))
+        print(f"  {name}: Hips.rz mean {m.column('Hips.rz').mean():.1f} deg, head at "
+              f"{(head[:, 1] - at[:, :, 1].min(axis=1)).mean():.0f} above the lowest joint, hips "
+              f"travel {float(np.hypot(*(hips[-1] - hips[0])[[0, 2]])):.0f} in "
+              f"{(m.frames - 1) / m.frame_rate:.1f} s")
     return 0
 
 
