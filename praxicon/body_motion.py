@@ -24,13 +24,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .heading import _UP, Course, Travel, course, global_rotation, heading, mean_course, \
-    root_chain, travel, yaw_matrices
+from .heading import _UP, Course, Travel, _moving_mean, course, course_time, global_rotation, \
+    heading, mean_course, root_chain, travel, yaw_matrices
 
-__all__ = ["Body", "Course", "Travel", "animate", "body_frame", "body_of", "course",
+__all__ = ["Body", "Course", "Travel", "animate", "body_frame", "body_of", "channel_drift", "course",
            "cycle_starts", "euler_angles", "global_rotation", "heading", "heading_free_angles",
            "mean_course", "mean_cycles", "nearest_turn", "own_period", "performances_of",
-           "root_chain", "style_of", "travel", "yaw_matrices"]
+           "root_chain", "style_of", "travel", "whole_cycle", "yaw_matrices"]
 
 
 def body_frame(motions, root: str) -> tuple[int, float]:
@@ -235,7 +235,9 @@ class Body:
     ``course`` the mean of their :class:`Course` (where the body goes over a take: a walk
     advances, a turn goes straight, turns and goes on, as the takes do); ``offset`` the
     heading (radians) the root's heading-free rotation faces (:func:`body_frame`), which
-    the travel's direction adds to the turn.
+    the travel's direction adds to the turn; ``drift`` per angle channel the slow part of
+    its course over a take (:func:`channel_drift`: a head turned into a turn and back), on
+    the clock of ``course``.
     """
 
     performances: tuple = ()
@@ -247,6 +249,7 @@ class Body:
     travel: Travel | None = None
     course: Course | None = None
     offset: float = 0.0
+    drift: dict | None = None
 
 
 def style_of(file) -> list[str]:
@@ -294,15 +297,20 @@ def _still(motions, channels) -> bool:
 
 
 def body_of(record, channels, driven, period: float | None = None,
-            style: str | None = None) -> Body:
+            style: str | None = None, performances=None) -> Body:
     """The :class:`Body` of an action's performances, for a motion with ``channels``.
 
     ``driven`` are the channels the grammar system makes (the actuators' channels);
     ``period`` the action's period in seconds (the course is averaged over one, see
     :func:`course`); ``style`` keeps the performances of that style only
-    (:func:`performances_of`).
+    (:func:`performances_of`); ``performances`` are the action's motions when already
+    read (all of them: the style is picked by their file names), else they are read here.
     """
-    takes = [m for m in performances_of(record, style) if m.skeleton is not None
+    if performances is None:
+        performances = performances_of(record, style)
+    elif style is not None:
+        performances = [m for m in performances if style in style_of(m.source)]
+    takes = [m for m in performances if m.skeleton is not None
              and set(channels) <= set(m.channels)]
     if not takes:
         return Body()
@@ -320,9 +328,13 @@ def body_of(record, channels, driven, period: float | None = None,
     if top.name != root and {f"{top.name}.{a}" for a in ("tx", "tz", "ry")} <= set(channels) \
             and not set(top.channels) & set(driven) and _still(takes, top.channels):
         carrier = top.name
+    from kinetology.segmentation import unwrap
+
     curves = []
     for m in takes:
-        take = {c: m.column(c) for c in channels}
+        # a joint that hangs near ±180° (Bandai's legs) is written wrapped, jumping between
+        # +179° and -179°: its angles are only averaged, or cycled, once made continuous
+        take = {c: unwrap(m.column(c)) if _is_angle(c) else m.column(c) for c in channels}
         free = heading_free_angles(m, root, frame)
         if free is not None:
             take.update(free)
@@ -337,8 +349,68 @@ def body_of(record, channels, driven, period: float | None = None,
     mean = Travel(*(float(np.mean([getattr(t, k) for t in moves]))
                     for k in ("forward", "sideways", "turn", "speed")))
     path = mean_course(course(m, root, axis, period) for m in takes)
+    width = max(1, int(round((period or 0.0) * float(takes[0].frame_rate))))
+    drift = {c: channel_drift([t[c] for t in curves], width) for c in channels if _is_angle(c)}
     return Body(tuple(takes), root, carrier, axis, tuple(curves), centre, mean, path,
-                float(frame[1]))
+                float(frame[1]), drift)
+
+
+def whole_cycle(body: Body, period: float, rate: float, most: int = 3) -> int:
+    """How many periods of the morphemes make one cycle of the whole body (1, 2 or 3).
+
+    A learnt morpheme may be half a stride: the hip swings once in it, but the left and
+    right legs take turns, so the body repeats only every second one. Per multiple ``m``
+    of ``period``, the performances' channels (``body.curves``) are correlated with
+    themselves about ``m`` periods on (the best lag within 15%), each channel's
+    correlation normalised and averaged over the channels that move; the cycle is the
+    smallest multiple that correlates nearly as well (within 0.1) as the best. 1 when
+    the takes are too short to tell.
+    """
+    steps = period * rate
+    scores = []
+    for m in range(1, most + 1):
+        found = []
+        for take in body.curves:
+            moving = [np.asarray(v, float) - np.mean(v) for c, v in take.items()
+                      if _is_angle(c) and np.ptp(v) > 1.0]
+            if not moving:
+                continue
+            x = np.stack(moving)
+            energy = np.maximum((x * x).sum(axis=1), 1e-12)
+            lags = range(max(1, int(0.85 * m * steps)), int(1.15 * m * steps) + 1)
+            best = [float(np.mean((x[:, :-k] * x[:, k:]).sum(axis=1) / energy *
+                                  x.shape[1] / (x.shape[1] - k)))
+                    for k in lags if k < x.shape[1] - steps / 2]
+            if best:
+                found.append(max(best))
+        if not found:
+            break
+        scores.append(float(np.mean(found)))
+    if not scores:
+        return 1
+    return next(m for m, r in enumerate(scores, 1) if r >= max(scores) - 0.1)
+
+
+def channel_drift(curves, width: int, samples: int = 101) -> np.ndarray:
+    """The mean slow course of one channel over its takes, each in its own time (0 to 1).
+
+    Each take's angles averaged over ``width`` frames (one period) about each frame, less
+    their mean: what stays is where the joint goes over the take (a head that turns into
+    a turn and back), not each cycle's swing, which the mean cycle gives.
+
+    >>> import numpy as np
+    >>> ramp = np.linspace(-1.0, 1.0, 50) + np.sin(2 * np.pi * np.arange(50) / 10)
+    >>> got = channel_drift([ramp], 10, samples=3)
+    >>> bool(got[0] < -0.4 and abs(got[1]) < 0.05 and got[2] > 0.4)   # the ramp, not the sine
+    True
+    """
+    u = np.linspace(0.0, 1.0, samples)
+    out = []
+    for x in curves:
+        x = np.asarray(x, float)
+        slow = _moving_mean(x, width) - x.mean()
+        out.append(np.interp(u, np.linspace(0.0, 1.0, x.size), slow))
+    return np.mean(out, axis=0)
 
 
 def animate(values, channels, body: Body, driven, rate: float, period: float,
@@ -379,15 +451,35 @@ def animate(values, channels, body: Body, driven, rate: float, period: float,
     phase = np.arange(frames) * steps / (period * rate)
     typical = {c: np.interp(phase, np.arange(steps), cycle, period=steps)
                for c, cycle in cycles.items()}
+    seconds = body.course.seconds if body.course is not None else None
+    when = course_time(frames, rate, seconds)
     for c in channels:
         if c not in driven:
             values[:, index[c]] = typical.get(c, body.centre.get(c, values[0, index[c]]))
+            if body.drift and c in body.drift:
+                values[:, index[c]] += np.interp(when, np.linspace(0.0, 1.0, body.drift[c].size),
+                                                 body.drift[c])
     _move(values, index, body, rate, driven, {c: typical[c] for c in drifting if c in typical})
+    _wrap_as_written(values, channels, body.performances)
+
+
+def _wrap_as_written(values, channels, performances) -> None:
+    """Angles written in [-180°, 180°) where every performance writes them so, ``values`` in place.
+
+    The same rotation reads as +179° or -181°; a capture that writes its angles wrapped
+    (a leg hanging near ±180° jumps between the two) is matched by generated angles written
+    the same way. Segmenting unwraps them again, so the kineteme strings do not change.
+    """
+    for i, c in enumerate(channels):
+        if _is_angle(c) and performances and all(
+                c in m.channels and float(np.abs(m.column(c)).max()) <= 180.0
+                for m in performances):
+            values[:, i] = (values[:, i] + 180.0) % 360.0 - 180.0
 
 
 def _move(values, index, body: Body, rate: float, driven, undo) -> None:
     if body.course is not None:  # the performances' course, over the generated take
-        h, forward, sideways = body.course.at(values.shape[0])
+        h, forward, sideways = body.course.at(values.shape[0], rate)
     else:
         h = np.radians(body.travel.turn) * np.arange(values.shape[0]) / rate
         forward, sideways = body.travel.forward, body.travel.sideways

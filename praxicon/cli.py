@@ -79,17 +79,19 @@ def run_generate(args) -> int:
 
     try:
         result = generate(args.praxicon, args.action, repeat=args.repeat, output=args.output,
-                          plot=args.plot)
+                          plot=args.plot, style=args.style)
     except ValueError as exc:
         _bad(str(exc))
     print(f"{args.output}: {result.motion.frames} frames at {result.motion.frame_rate:g} fps, "
           f"{len(result.channels)} generated channels of {len(result.actuators)} actuators, "
-          f"{args.repeat} copies")
+          f"{args.repeat} copies" + (f" of {result.cycle} morphemes each" if result.cycle > 1
+                                     else "") + (f", style {args.style}" if args.style else ""))
     # the round trip, what the acceptance asks: the motion segmented again gives the morpheme
     exact = result.round_trip()
     kinds = [result.methods[c].kind for c in result.channels if exact[c]]
+    copies = args.repeat * result.cycle
     print(f"segmented again: {sum(exact.values())} of {len(exact)} channels give back their "
-          f"morpheme x {args.repeat} ({kinds.count('quartic')} by the quartic alone, "
+          f"morpheme x {copies} ({kinds.count('quartic')} by the quartic alone, "
           f"{kinds.count('corrected')} corrected)")
     for channel in result.channels:
         if not exact[channel]:
@@ -169,6 +171,10 @@ def _add_commands(sub) -> None:
                      help="how many synchronised copies (default 3)")
     gen.add_argument("-o", "--output", required=True, metavar="OUT.bvh",
                      help="the BVH file to write")
+    gen.add_argument("--style", default=None, metavar="STYLE",
+                     help="generate that style of the action: a word of its performances' "
+                          "file names (Bandai's dataset-2_walk_elderly_001.bvh is style "
+                          "elderly); default: every performance together")
     gen.add_argument("--plot", default=None, metavar="PNG",
                      help="also plot one joint, original performance beside generated")
     gen.add_argument("--view", default=None, metavar="OUT.html",

@@ -36,7 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .body_motion import animate, body_of
+from .body_motion import animate, body_of, performances_of, whole_cycle
 from .jsonvalues import as_dict
 from .records import ActionRecord, Praxicon
 from .store import load
@@ -109,7 +109,10 @@ class Generated:
 
     ``methods`` says per channel how its curve was made (:class:`Method`: the
     quartic alone, or with the correction layer, with segments lengthened or
-    displacements scaled up), ``owners`` each channel's joint.
+    displacements scaled up), ``owners`` each channel's joint, ``cycle`` how many
+    morphemes make one of the ``repeat`` copies (2 when the morpheme is half a stride,
+    :func:`praxicon.body_motion.whole_cycle`): each word is its morpheme
+    ``repeat * cycle`` times.
     """
 
     motion: object
@@ -121,6 +124,7 @@ class Generated:
     segmentation: dict
     methods: dict = field(default_factory=dict)
     owners: dict = field(default_factory=dict)
+    cycle: int = 1
 
     def resegmented(self) -> dict[str, tuple[str, ...]]:
         """Per generated channel, its kineteme string when the motion is segmented again."""
@@ -328,7 +332,7 @@ class Method:
     scale: float = 1.0
 
 
-def style_scales(record, channels, period: float, style: str, rate: float):
+def style_scales(record, channels, period: float, style: str, rate: float, performances=None):
     """How a style's performances differ from all of an action's: (tempo, amplitude per channel).
 
     ``tempo`` is the style's median period over all performances' median (the morphemes'
@@ -336,11 +340,14 @@ def style_scales(record, channels, period: float, style: str, rate: float):
     autocorrelation near ``period`` (:func:`praxicon.body_motion.own_period`) on the
     channel that moves most in the performances; a channel's amplitude is the style's mean
     range (5th to 95th percentile) over all performances' mean. Raises ValueError when no
-    performance of the action has that style.
+    performance of the action has that style. ``performances``: the action's motions
+    when already read (:func:`praxicon.body_motion.performances_of`), else read here.
     """
     from .body_motion import own_period, performances_of, style_of
 
-    every = [m for m in performances_of(record) if set(channels) <= set(m.channels)]
+    if performances is None:
+        performances = performances_of(record)
+    every = [m for m in performances if set(channels) <= set(m.channels)]
     # the style's takes are among those just read: picked by their file names, not read again
     own = [m for m in every if style in style_of(m.source)]
     if not own:
@@ -397,7 +404,6 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     if not isinstance(repeat, int) or repeat < 1:
         raise ValueError(f"repeat must be a whole number >= 1, not {repeat!r}")
     system = loads(record.system, source=record.file)
-    words = dict(zip((g.name for g in system.components), derive_copies(system, repeat)))
     usable = {c: m for c, m in record.morphemes().items() if m.durations and m.displacements}
     if not usable:
         raise ValueError(f"action {record.name!r}: no morpheme has durations and "
@@ -405,10 +411,12 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     rate = float(record.frame_rate)
     period = float(np.median([sum(m.durations) for m in usable.values()]))
     tempo, amplitude = 1.0, {}
+    # the performances are read once, for the style's scales and for the body around them
+    performances = performances_of(record)
     if style is not None:
-        tempo, amplitude = style_scales(record, sorted(usable), period, style, rate)
+        tempo, amplitude = style_scales(record, sorted(usable), period, style, rate,
+                                        performances)
         period *= tempo
-    frames = int(round(repeat * period * rate)) + 1
     if source_motion is None:
         source_motion = kinetology.read(record.skeleton_source)
     skeleton = source_motion.skeleton
@@ -416,7 +424,13 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
         skeleton = None  # an ASF skeleton: BVH cannot hold its axes, write angles on a star
     channels = source_motion.channels
     pose = dict(record.mean_pose)
-    body = body_of(record, channels, set(usable), period, style)
+    body = body_of(record, channels, set(usable), period, style, performances)
+    # a morpheme of half a stride repeats before the body does (the legs take turns): each
+    # copy asked for is the whole body's cycle, that many morphemes
+    cycle = whole_cycle(body, period, rate)
+    copies = repeat * cycle
+    words = dict(zip((g.name for g in system.components), derive_copies(system, copies)))
+    frames = int(round(copies * period * rate)) + 1
     centre = {**pose, **(body.centre or {})}  # the root's rotation: heading-free means
     values = np.tile([pose.get(c, 0.0) for c in channels], (frames, 1))
     derived, methods = {}, {}
@@ -425,15 +439,15 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     for channel, morpheme in usable.items():
         word = words.get(component.get(channel, channel))
         kinetemes = morpheme.kinetemes
-        if word is None or tuple(word) != kinetemes * repeat:
+        if word is None or tuple(word) != kinetemes * copies:
             raise ValueError(f"action {record.name!r}: the system derives "
                              f"{' '.join(word or ())!r} for {channel}, not its morpheme "
-                             f"{' '.join(kinetemes)!r} x {repeat}")
+                             f"{' '.join(kinetemes)!r} x {copies}")
         durations = np.asarray(morpheme.durations, float)
-        durations = np.tile(durations * period / durations.sum(), repeat)
-        steps = np.tile(_balanced(kinetemes, morpheme.displacements), repeat) * \
+        durations = np.tile(durations * period / durations.sum(), copies)
+        steps = np.tile(_balanced(kinetemes, morpheme.displacements), copies) * \
             amplitude.get(channel, 1.0)
-        sequence, durations, steps = _merge_runs(kinetemes * repeat, durations, steps)
+        sequence, durations, steps = _merge_runs(kinetemes * copies, durations, steps)
         knots = np.round(np.concatenate(([0.0], np.cumsum(durations))) * rate).astype(int)
         curve, method = _channel_curve(knots, sequence, steps, frames, rate, params, channel)
         values[:, channels.index(channel)] = curve - curve.mean() + centre.get(channel, 0.0)
@@ -441,9 +455,9 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
         methods[channel] = method
     # a morpheme that only rises (or only falls) drifts: on a root rotation, an Euler flip
     drifting = {c for c, m in usable.items() if len({_RISING[k] for k in m.kinetemes}) == 1}
-    animate(values, channels, body, set(derived), rate, period, drifting)
-    motion = kinetology.Motion(values, channels, rate, skeleton,
-                               f"generated:{record.name}", {"format": "generated"})
+    animate(values, channels, body, set(derived), rate, period * cycle, drifting)
+    motion = kinetology.Motion(values, channels, rate, skeleton, f"generated:{record.name}",
+                               {"format": "generated", "cycle": cycle})
     return motion, derived, methods
 
 
@@ -512,7 +526,8 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int = 3,
         kinetology.write_bvh(motion, output)
     owners = {c: j.name for j in record.joints for c in j.channels}
     result = Generated(motion, action, repeat, record.actuators, tuple(words), words,
-                       as_dict(record.segmentation), methods, owners)
+                       as_dict(record.segmentation), methods, owners,
+                       int(motion.meta.get("cycle", 1)))
     if plot is not None:
         from .pictures import draw_generated
 

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Course", "Travel", "course", "global_rotation", "heading", "mean_course",
+__all__ = ["Course", "Travel", "course", "course_time", "global_rotation", "heading", "mean_course",
            "root_chain", "travel", "yaw_matrices"]
 
 _UP = 1  # y is vertical in BVH and in the ASF files of the shared data
@@ -148,12 +148,43 @@ class Course:
     heading: np.ndarray
     forward: np.ndarray
     sideways: np.ndarray
+    seconds: float | None = None
 
-    def at(self, frames: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Heading, forward and sideways velocity resampled to ``frames`` frames spanning the course."""
+    def at(self, frames: int, rate: float | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Heading (from 0), forward and sideways velocity at ``frames`` frames.
+
+        Without ``rate`` (or without the take's ``seconds``), the course is stretched over
+        the frames. With it, the frames keep the take's own clock: a shorter motion is
+        the middle of the course (a turn turns at the takes' rate, not faster), a longer
+        one goes on straight at the course's ends.
+
+        >>> import numpy as np
+        >>> c = Course(np.array([0.0, 0.0, 1.0, 1.0]), np.ones(4), np.zeros(4), seconds=3.0)
+        >>> np.round(c.at(3, rate=1.0)[0], 3).tolist()   # 2 s of a 3 s course: its middle
+        [0.0, 0.5, 1.0]
+        """
         t = np.linspace(0.0, 1.0, self.heading.size)
-        u = np.linspace(0.0, 1.0, frames)
-        return tuple(np.interp(u, t, x) for x in (self.heading, self.forward, self.sideways))
+        u = course_time(frames, rate, self.seconds)
+        h, forward, sideways = (np.interp(u, t, x) for x in (self.heading, self.forward,
+                                                             self.sideways))
+        return h - h[0], forward, sideways
+
+
+def course_time(frames: int, rate: float | None, seconds: float | None) -> np.ndarray:
+    """Per generated frame, where it falls in a take of ``seconds`` (0: start, 1: end).
+
+    Without ``rate`` or ``seconds``: the frames spread over the whole take. With them, on
+    the take's own clock: a shorter motion is the take's middle, a longer one holds the
+    ends (0 and 1) beyond it.
+
+    >>> course_time(3, 1.0, 4.0).tolist(), course_time(3, 1.0, 1.0).tolist()
+    ([0.25, 0.5, 0.75], [0.0, 0.5, 1.0])
+    """
+    u = np.linspace(0.0, 1.0, frames)
+    if rate and seconds:
+        length = (frames - 1) / float(rate) / seconds
+        u = np.clip(0.5 - length / 2 + u * length, 0.0, 1.0)
+    return u
 
 
 def _moving_mean(x: np.ndarray, width: int) -> np.ndarray:
@@ -193,7 +224,8 @@ def course(motion, root: str, axis: int | None = None, period: float | None = No
     h, forward, sideways = (_moving_mean(x, width) for x in (h - h[0], forward, sideways))
     t = np.linspace(0.0, 1.0, motion.frames)
     u = np.linspace(0.0, 1.0, samples)
-    return Course(*(np.interp(u, t, x) for x in (h - h[0], forward, sideways)))
+    return Course(*(np.interp(u, t, x) for x in (h - h[0], forward, sideways)),
+                  seconds=(motion.frames - 1) / rate)
 
 
 def mean_course(courses) -> Course:
@@ -206,5 +238,7 @@ def mean_course(courses) -> Course:
     [0.0, 1.5]
     """
     courses = list(courses)
+    seconds = [c.seconds for c in courses]
     return Course(*(np.mean([getattr(c, k) for c in courses], axis=0)
-                    for k in ("heading", "forward", "sideways")))
+                    for k in ("heading", "forward", "sideways")),
+                  seconds=float(np.mean(seconds)) if None not in seconds else None)

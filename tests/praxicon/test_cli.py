@@ -56,6 +56,24 @@ def test_build_draw_generate(manifest, tmp_path, capsys):
     assert page.count("generated") >= 1 and "<script" in page
 
 
+def test_generate_a_style(manifest, tmp_path, capsys):
+    out = tmp_path / "px"
+    assert main(["build", str(manifest), "-o", str(out), "--no-progress",
+                 "--param", "min_copies=3"]) == 0
+    capsys.readouterr()
+    # the synthetic takes are wave_1, wave_2, wave_3: each number a word of the file name
+    assert main(["generate", str(out), "moves.wave", "--repeat", "1", "--style", "2",
+                 "-o", str(tmp_path / "w2.bvh")]) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert first.endswith(", style 2") and (tmp_path / "w2.bvh").is_file()
+    assert main(["generate", str(out), "moves.wave", "--style", "sad",
+                 "-o", str(tmp_path / "sad.bvh")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    # take numbers are not named as styles: these takes have none
+    assert err == ["psgs: error: action 'moves.wave' has no performance of style 'sad'"]
+    assert not (tmp_path / "sad.bvh").exists()
+
+
 @pytest.mark.parametrize("argv, message", [
     (["build", "nowhere", "-o", "x"], "nowhere: no such file or folder"),
     (["build", ".", "-o", "x", "--inducer", "nope"], "unknown inducer 'nope'"),

@@ -142,3 +142,38 @@ def test_mean_cycles_find_a_cycle_of_any_tempo_and_phase(period, tempo, shift):
     starts = cycle_starts(take, template)
     got = mean_cycles([{"c": take}], [starts], period)["c"]
     assert np.abs(got - template).max() < 0.25, (starts, got)
+
+
+def test_a_whole_cycle_is_the_stride_both_legs_complete():
+    from praxicon.body_motion import Body, whole_cycle
+
+    t = np.arange(200)
+    # the hip swings every half stride (10 frames), each leg once a stride (20 frames)
+    take = {"hip.rx": 10 * np.sin(2 * np.pi * t / 10), "leg_l.rx": 20 * np.sin(2 * np.pi * t / 20),
+            "leg_r.rx": -20 * np.sin(2 * np.pi * t / 20), "hips.tx": np.zeros(t.size)}
+    body = Body(curves=(take,))
+    assert whole_cycle(body, 10 / 30.0, 30.0) == 2   # a morpheme of half a stride: two
+    assert whole_cycle(body, 20 / 30.0, 30.0) == 1   # a morpheme of the stride itself
+    assert whole_cycle(Body(), 1.0, 30.0) == 1       # no takes: the morpheme
+
+
+@needs_mocap()
+def test_a_style_reads_each_performance_once_and_wrapped_legs_stay_where_they_hang(
+        walk, monkeypatch):
+    folder, generated, takes = walk
+    read = []
+    real_read = kinetology.read
+    monkeypatch.setattr(kinetology, "read", lambda f, *a, **k: read.append(str(f)) or
+                        real_read(f, *a, **k))
+    generate(folder, "m.walk", repeat=1, style="elderly")
+    # the skeleton's source, and each of the three performances once
+    assert len(read) == 4 and len(set(read)) == 3, read
+    # Bandai's legs hang near ±180° and the takes write them wrapped: a mean of such raw
+    # angles lies nowhere near the leg; generated, the leg hangs where the takes' does
+    for c in ("UpperLeg_R.rz", "UpperLeg_R.ry", "UpperLeg_L.rz"):
+        got = generated.motion.column(c)
+        assert got.min() >= -180.0 and got.max() < 180.0
+        direction = lambda x: np.exp(1j * np.radians(x)).mean()
+        real = np.angle(np.mean([direction(m.column(c)) for m in takes]), deg=True)
+        gap = abs((np.angle(direction(got), deg=True) - real + 180) % 360 - 180)
+        assert gap < 15, (c, gap, real)
