@@ -26,8 +26,10 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .motifs import Timed
+from .in_step import group_significance
 from .pooling import sync_groups
-from .sections import copy_agreements, find_sections, repeat_significance
+from .sections import (Section, copy_agreements, find_sections, follow_rate,
+                       repeat_significance)
 
 if TYPE_CHECKING:
     from .conf import ContentConf
@@ -39,6 +41,11 @@ __all__: list[str] = []  # private: content.py is the caller
 OUTWEIGHED = "its group outweighed by a stronger one"
 TOO_FEW_AGREEING = "too few copies agree with the pattern"
 WEAK_COPIES = "not significant at its group's copies"
+CHANCE_IN_STEP = "in step with its group no more than by chance"
+
+#: a string's section is a candidate when fewer than one repeat as long is expected by chance
+#: in it (log10 of just under 1): a section is judged with the group it is in step with
+SCREEN = -1e-9
 
 
 def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) -> None:
@@ -46,9 +53,9 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
     # (not bounded by max_pattern: a section is found by a search over lengths, not grown)
     level = math.log10(conf.alpha)
     sections = find_sections([s.codes for s in strings], conf.min_copies,
-                             [s.match_rate for s in strings], level)
+                             [s.match_rate for s in strings], SCREEN)
     found.sections = sections
-    candidates = [i for i, s in enumerate(sections) if s is not None and s.significance <= level]
+    candidates = [i for i, s in enumerate(sections) if s is not None and s.significance <= SCREEN]
     intervals = {i: strings[i].intervals(sections[i].starts, len(sections[i].motif))
                  for i in candidates}
     partners: dict[int, list[int]] = {i: [] for i in candidates}
@@ -66,15 +73,27 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
         if weights[i] > level:
             found.dropped[i] = WEAK_COPIES
     weighed = [(sum(weights[i] for i in g), 0, k, g) for k, g in enumerate(motif_groups)]
-    sectioned = sync_groups(candidates, partners)
-    weighed += [(sum(sections[i].significance for i in g), 1, k, g)
-                for k, g in enumerate(sectioned)]
+    sectioned, readings = [], []
+    follows = [follow_rate(s.codes) for s in strings]
+    for group in sync_groups(candidates, partners):
+        significance, members = group_significance(strings, sections, intervals, follows,
+                                                   group, partners, level)
+        for i in group:
+            if significance > level or i not in members:
+                found.dropped.setdefault(i, CHANCE_IN_STEP)
+        if significance <= level:
+            weighed.append((significance, 1, len(sectioned), sorted(members)))
+            sectioned.append(sorted(members))
+            readings.append(members)
     taken: dict[int, tuple[int, int]] = {}  # string -> (kind, group) it is a component of
     for _, kind, k, group in sorted(weighed, key=lambda w: w[:3]):
         free = [i for i in group if i not in taken]
-        # a motif group keeps a lone member when the rest of it are components already
-        # (taken by a stronger group, so still in step with it), or when it was one alone
-        if len(free) >= 2 or (kind == 0 and free and all(i in taken or i in free
+        # a motif group keeps a lone member when the rest of it are components of motif
+        # groups already (taken by a stronger group, so still in step with it), or when it
+        # was one alone; a section group took them by their repeats at its lead's copies,
+        # where the lone member was read too and did not beat chance
+        if len(free) >= 2 or (kind == 0 and free and all((i in taken and taken[i][0] == 0)
+                                                         or i in free
                                                          for i in found.groups[k])):
             taken.update((i, (kind, k)) for i in free)
     for i in list(found.patterns):
@@ -85,11 +104,20 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
                 found.dropped.setdefault(i, OUTWEIGHED)
     for i, (kind, k) in taken.items():
         if kind == 1:
-            s, length = sections[i], len(sections[i].motif)
+            s = readings[k][i]  # its own section, or the repeat read at the lead's copies
+            length = len(s.motif)
+            if s is not sections[i]:
+                s = Section(s.motif, s.starts, repeat_significance(
+                    len(strings[i].codes), length, len(s.starts), (len(s.starts) - 1) * length,
+                    strings[i].match_rate, follows[i]))
+                sections[i] = s
             found.patterns[i] = tuple(s.motif.tolist())
-            found.occurrences[i] = tuple(map(tuple, intervals[i].tolist()))
+            found.occurrences[i] = tuple(map(tuple, strings[i].intervals(s.starts,
+                                                                         length).tolist()))
             found.spans[i] = tuple((a, a + length) for a in s.starts.tolist())
             found.from_sections.add(i)
+            mates = [j for j in readings[k] if j != i]  # (a string read at the lead's copies
+            found.section_partners[i] = sorted(set(partners.get(i, [])) | set(mates))  # too)
     for i in {i for g in sectioned for i in g} - set(taken):
         found.dropped.setdefault(i, OUTWEIGHED)
     keep_agreeing(strings, found, conf)
