@@ -82,7 +82,13 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
             if significance > level or i not in members:
                 found.dropped.setdefault(i, CHANCE_IN_STEP)
         if significance <= level:
-            weighed.append((significance, 1, len(sectioned), sorted(members)))
+            # ranked as the motif groups are, by its members' significances summed, each
+            # weighed alone by the one rule of a motif's copies (the group's own
+            # significance is the test it has passed)
+            rank = sum(motif_weight(strings[i], tuple(s.motif.tolist()),
+                                    tuple((a, a + len(s.motif)) for a in s.starts.tolist()))
+                       for i, s in members.items())
+            weighed.append((rank, 1, len(sectioned), sorted(members)))
             sectioned.append(sorted(members))
             readings.append(members)
     taken: dict[int, tuple[int, int]] = {}  # string -> (kind, group) it is a component of

@@ -72,45 +72,64 @@ def group_significance(strings: list[Timed], sections: list, intervals: dict[int
     total = len(strings)
     best: tuple[float, dict[int, Section]] = (math.inf, {})
     for lead in group:
-        lead_copies = intervals[lead]
-        joined: dict[int, Section] = {}
-        weights = []
-        for j in range(total):
-            if j == lead:
-                continue
-            readings = []
-            if j in partners[lead]:
-                readings.append((in_step_significance(strings[j], sections[j], intervals[j],
-                                                      lead_copies, follows[j]), sections[j]))
-            if len(lead_copies) == 2:
-                again = read_at(strings[j], lead_copies, follows[j])
-                if again is not None:
-                    readings.append(again)
-            if not readings:
-                continue
-            weight, section = min(readings, key=lambda r: r[0])
-            if weight + math.log10(total - 1) <= level:
-                joined[j] = section
-                weights.append(weight)
-        if not joined:
-            continue
-        # the lead must be in step beyond chance too, read at its strongest member's copies:
-        # else a chance repeat inside the others' long copies would lead them. Its own
-        # section may also be a longer repeat overlapping the one the others play (a chance
-        # agreement around it); it is reported as read there
-        mate = list(joined)[int(np.argmin(weights))]
-        at = strings[mate].intervals(joined[mate].starts, len(joined[mate].motif))
-        again = read_at(strings[lead], at, follows[lead]) if len(at) == 2 else (
-            in_step_significance(strings[lead], sections[lead], lead_copies, at, follows[lead]),
-            sections[lead])
-        if again is None or again[0] + math.log10(total - 1) > level:
-            continue
-        m = len(joined) + 1
-        significance = (lead_significance(strings[lead], sections[lead], follows[lead])
-                        + sum(weights) + math.log10(total) + _log10_choose(total - 1, m - 1))
-        if significance < best[0]:
-            best = (significance, {lead: again[1], **joined})
+        best = min(best, _led_by(strings, lead, sections[lead], intervals[lead], follows,
+                                 partners[lead], sections, intervals, level),
+                   key=lambda b: b[0])
+    # a lead's own section may be a chance extension of the repeat the others play, which
+    # puts the others' copies off its own: each member leads again, at the copies it was
+    # read at
+    for lead, section in list(best[1].items()):
+        if section is not sections[lead]:
+            at = strings[lead].intervals(section.starts, len(section.motif))
+            best = min(best, _led_by(strings, lead, section, at, follows, [], sections,
+                                     intervals, level), key=lambda b: b[0])
     return best
+
+
+def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.ndarray,
+            follows: list[float | None], partners: list[int], sections: list,
+            intervals: dict[int, np.ndarray], level: float) -> tuple[float, dict[int, Section]]:
+    """:func:`group_significance` with one lead read at ``lead_copies``: every other string
+    read there (its own section too when it is one of the lead's ``partners``)."""
+    total = len(strings)
+    joined: dict[int, Section] = {}
+    weights = []
+    for j in range(total):
+        if j == lead:
+            continue
+        readings = []
+        if j in partners:
+            readings.append((in_step_significance(strings[j], sections[j], intervals[j],
+                                                  lead_copies, follows[j]), sections[j]))
+        if len(lead_copies) == 2:
+            again = read_at(strings[j], lead_copies, follows[j])
+            if again is not None:
+                readings.append(again)
+        if not readings:
+            continue
+        weight, found = min(readings, key=lambda r: r[0])
+        if weight + math.log10(total - 1) <= level:
+            joined[j] = found
+            weights.append(weight)
+    if not joined:
+        return math.inf, {}
+    # the lead must be in step beyond chance too, read at the copies of the member it is
+    # most in step with: else a chance repeat inside the others' long copies would lead
+    # them; it is reported as read there
+    again = None
+    for mate, found in joined.items():
+        at = strings[mate].intervals(found.starts, len(found.motif))
+        here = read_at(strings[lead], at, follows[lead]) if len(at) == 2 else (
+            in_step_significance(strings[lead], section, lead_copies, at, follows[lead]),
+            section)
+        if here is not None and (again is None or here[0] < again[0]):
+            again = here
+    if again is None or again[0] + math.log10(total - 1) > level:
+        return math.inf, {}
+    m = len(joined) + 1
+    significance = (lead_significance(strings[lead], section, follows[lead]) + sum(weights)
+                    + math.log10(total) + _log10_choose(total - 1, m - 1))
+    return significance, {lead: again[1], **joined}
 
 
 def lead_significance(string: Timed, section: Section, follow: float | None) -> float:
@@ -146,19 +165,20 @@ def lead_significance(string: Timed, section: Section, follow: float | None) -> 
 
 def in_step_significance(string: Timed, section: Section, copies: np.ndarray, lead: np.ndarray,
                          follow: float | None) -> float:
-    """``log10(A * (1 + ln M) * P * (1 - r^(c-1)))``: a section's exact copies, lying as
-    close to the lead's copies as they do, by chance.
+    """``log10(A * H * P * (1 - r^(c-1)))``: a section's exact copies, lying as close to
+    the lead's copies as they do, by chance.
 
     ``P = (q r^(L-1))^(c-1)``, the chance that ``c`` windows of ``L`` symbols agree
     (``q`` the match rate, ``r`` the follow rate or ``q``), and ``1 - r^(c-1)`` that the
     symbols before them do not (a repeat counted once, at its left end; 1 when a copy
     could open the string). A copy pairs with a lead copy when the two share half of the
     time they cover together; its distance to it is the time outside the shared part. Of
-    the ``M`` sets of windows of ``L`` symbols pairing copy by copy with the lead copies
-    these pair with (a copy pairing with none: any window), ``A`` lie as close in all
-    (their distances summed) as these copies do. ``1 + ln M`` bounds what choosing the
-    distance after seeing it costs (a sum of ``1 / rank`` over the sets). ``copies`` and
-    ``lead`` are (copies, 2) arrays of times.
+    the sets of windows of ``L`` symbols pairing copy by copy with the lead copies these
+    pair with (a copy pairing with none: any window), ``A`` lie as close in all (their
+    distances summed) as these copies do. ``H`` is what choosing that distance after
+    seeing it costs: the sum over the distances ``d`` of the sets at ``d`` over the sets at
+    ``d`` or nearer (the union over every set of the chance that it is as strong; at most
+    ``1 + ln`` of the sets). ``copies`` and ``lead`` are (copies, 2) arrays of times.
 
     Examples
     --------
@@ -167,9 +187,9 @@ def in_step_significance(string: Timed, section: Section, copies: np.ndarray, le
     >>> section = Section(codes[1:5], np.array([1, 6]), -1.0)
     >>> same = np.array([[1.0, 5.0], [6.0, 10.0]])
     >>> round(in_step_significance(string, section, same, same, None), 2)  # one place
-    -2.92
+    -3.08
     >>> round(in_step_significance(string, section, same, same + 1, None), 2)  # more
-    -2.04
+    -2.19
     """
     length = len(section.motif)
     q = string.match_rate
@@ -205,11 +225,14 @@ def in_step_significance(string: Timed, section: Section, copies: np.ndarray, le
         if len(sums) > 1 << 20:  # (many copies anywhere: every set counts, as close or not)
             sums = np.zeros(min(len(sums), 1 << 20))
             observed = math.inf
-    places = len(sums)
     slack = 1e-9 * max(1.0, float(np.max(np.abs(copies))))
     near = max(1, int(np.count_nonzero(sums <= observed + slack)))
     left = 0.0 if opens else math.log10(max(1e-300, 1 - r ** (c - 1)))
-    return math.log10(near) + math.log10(1 + math.log(max(places, 1))) + chance + left
+    # choosing the distance after seeing it: the union over the sets of the chance each
+    # is as strong, sum over the distances d of (sets at d) / (sets at d or nearer)
+    _, counts = np.unique(np.round(sums / slack), return_counts=True)
+    paid = math.log10(float(np.sum(counts / np.cumsum(counts))))
+    return math.log10(near) + paid + chance + left
 
 
 def read_at(string: Timed, lead: np.ndarray, follow: float | None
@@ -244,22 +267,26 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None
             continue
         equal = np.concatenate(([False], codes[lo:hi] == codes[lo + shift:hi + shift], [False]))
         edges = np.flatnonzero(np.diff(equal.astype(np.int8)))
-        for s, e in zip((edges[::2] + lo).tolist(), (edges[1::2] + lo).tolist()):
-            length = e - s
-            if length < 2 or length > shift:
+        for begin, end in zip((edges[::2] + lo).tolist(), (edges[1::2] + lo).tolist()):
+            if end - begin < 2:
                 continue
-            if (s == lo and lo > 0) or (e == hi and hi < n - shift):
+            if (begin == lo and lo > 0) or (end == hi and hi < n - shift):
                 continue  # (cut by the range looked at: not maximal)
-            where = np.array([[starts[s], ends[e - 1]], [starts[s + shift], ends[e - 1 + shift]]])
-            if not all(_pairs(w, c) for w, c in zip(where.tolist(), lead.tolist())):
-                continue
-            motif = codes[s:e].copy()
-            if _cycles(motif):
-                continue
-            section = Section(motif, np.array([s, s + shift], dtype=np.int64), 0.0)
-            weight = in_step_significance(string, section, where, lead, follow)
-            if best is None or weight < best[0]:
-                best = (weight, section)
+            # a run longer than the shift holds copies of the shift's length that do not
+            # overlap (copies that touch, and chance agreement after the second)
+            length = min(end - begin, shift)
+            for s in range(begin, end - length + 1):
+                where = np.array([[starts[s], ends[s + length - 1]],
+                                  [starts[s + shift], ends[s + length - 1 + shift]]])
+                if not all(_pairs(w, c) for w, c in zip(where.tolist(), lead.tolist())):
+                    continue
+                motif = codes[s:s + length].copy()
+                if _cycles(motif):
+                    continue
+                section = Section(motif, np.array([s, s + shift], dtype=np.int64), 0.0)
+                weight = in_step_significance(string, section, where, lead, follow)
+                if best is None or weight < best[0]:
+                    best = (weight, section)
     return best
 
 
