@@ -201,8 +201,9 @@ def in_step_significance(string: Timed, section: Section, copies: np.ndarray, le
     n = len(string.codes)
     begins = string.starts[:n - length + 1]
     ends = string.ends[length - 1:]
-    sums = np.zeros(1)  # the summed distances of every set of windows so far
-    observed, opens = 0.0, False
+    slack = 1e-9 * max(1.0, float(np.max(np.abs(copies))))
+    anywhere, opens = 0.0, False
+    per_copy = []  # (its distance, the distances of every window pairing as it does)
     for a, b in copies.tolist():
         closest = None
         for lo, hi in lead.tolist():
@@ -211,28 +212,41 @@ def in_step_significance(string: Timed, section: Section, copies: np.ndarray, le
                                                        or union - shared < closest[0]):
                 closest = (union - shared, lo, hi)
         if closest is None:
-            distances = np.zeros(len(begins))  # anywhere: every window is as close
+            anywhere += math.log10(len(begins))  # it could be any window
             opens = True
-        else:
-            apart, lo, hi = closest
-            observed += apart
-            shared = np.minimum(ends, hi) - np.maximum(begins, lo)
-            union = np.maximum(ends, hi) - np.minimum(begins, lo)
-            pairs = (shared > 0) & (2 * shared >= union)
-            distances = (union - shared)[pairs]
-            opens = opens or bool(pairs[0])
-        sums = (sums[:, None] + distances[None, :]).ravel()
-        if len(sums) > 1 << 20:  # (many copies anywhere: every set counts, as close or not)
-            sums = np.zeros(min(len(sums), 1 << 20))
-            observed = math.inf
-    slack = 1e-9 * max(1.0, float(np.max(np.abs(copies))))
-    near = max(1, int(np.count_nonzero(sums <= observed + slack)))
+            continue
+        apart, lo, hi = closest
+        shared = np.minimum(ends, hi) - np.maximum(begins, lo)
+        union = np.maximum(ends, hi) - np.minimum(begins, lo)
+        pairs = (shared > 0) & (2 * shared >= union)
+        per_copy.append((apart, (union - shared)[pairs]))
+        opens = opens or bool(pairs[0])
     left = 0.0 if opens else math.log10(max(1e-300, 1 - r ** (c - 1)))
+    return anywhere + _as_close(per_copy, slack) + chance + left
+
+
+def _as_close(per_copy: list[tuple[float, np.ndarray]], slack: float) -> float:
+    """log10 of ``A * H`` (:func:`in_step_significance`) for copies at the distances given,
+    each of which could have been at any of the distances listed with it.
+
+    The sets are closer by their distances summed while they are few (4096 or fewer); past
+    that, copy by copy (``A`` and ``H`` the products of each copy's own), which bounds the
+    same union.
+    """
+    if not per_copy:
+        return 0.0
+    sizes = [len(d) for _, d in per_copy]
+    if math.prod(sizes) > 1 << 12:
+        return sum(_as_close([one], slack) for one in per_copy)
+    sums = np.zeros(1)
+    for _, distances in per_copy:
+        sums = (sums[:, None] + distances[None, :]).ravel()
+    observed = sum(apart for apart, _ in per_copy)
+    near = max(1, int(np.count_nonzero(sums <= observed + slack)))
     # choosing the distance after seeing it: the union over the sets of the chance each
     # is as strong, sum over the distances d of (sets at d) / (sets at d or nearer)
     _, counts = np.unique(np.round(sums / slack), return_counts=True)
-    paid = math.log10(float(np.sum(counts / np.cumsum(counts))))
-    return math.log10(near) + paid + chance + left
+    return math.log10(near) + math.log10(float(np.sum(counts / np.cumsum(counts))))
 
 
 def read_at(string: Timed, lead: np.ndarray, follow: float | None
