@@ -94,13 +94,15 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
     taken: dict[int, tuple[int, int]] = {}  # string -> (kind, group) it is a component of
     for _, kind, k, group in sorted(weighed, key=lambda w: w[:3]):
         free = [i for i in group if i not in taken]
-        # a motif group keeps a lone member when the rest of it are components of motif
-        # groups already (taken by a stronger group, so still in step with it), or when it
-        # was one alone; a section group took them by their repeats at its lead's copies,
-        # where the lone member was read too and did not beat chance
-        if len(free) >= 2 or (kind == 0 and free and all((i in taken and taken[i][0] == 0)
-                                                         or i in free
-                                                         for i in found.groups[k])):
+        # a motif group keeps a lone member when the rest of it are components already
+        # (taken by a stronger group, so still in step with it), or when it was one alone;
+        # when a section group took them, the member must beat chance among the other
+        # strings as a section group's members must
+        beside = math.log10(max(len(strings) - 1, 1))
+        if len(free) >= 2 or (kind == 0 and free and all(
+                i in free or (i in taken and (taken[i][0] == 0 or all(
+                    weights[j] + beside <= level for j in free)))
+                for i in found.groups[k])):
             taken.update((i, (kind, k)) for i in free)
     for i in list(found.patterns):
         if taken.get(i, (1,))[0] != 0:
