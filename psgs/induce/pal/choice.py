@@ -1,17 +1,20 @@
 """Sections grouped in time, and the choice between them and the motif groups (step 3b).
 
 Every string's section (:mod:`~psgs.induce.pal.sections`, its longest exact
-repeat) that passes ``alpha`` is a second candidate beside its motif; sections
-are synchronised in time as motifs are (step 3) and form their own groups.
-A string can then be in a motif group (steps 4-6) and in a section group.
-Both kinds are weighed by one significance,
-:func:`~psgs.induce.pal.sections.repeat_significance`, summed over a group's
-members: the groups are taken strongest first (a motif group before a
-section group of equal weight), each keeping the members no stronger group
-took, while two or more are left. A motif's copies are weighed at their own
-agreement with the voted pattern, so many damaged copies of a motif can
-outweigh a few exact ones, and a long section twice outweighs a short figure
-played often.
+repeat) with fewer than one chance repeat as long expected in its string is a
+second candidate beside its motif; sections are synchronised in time as
+motifs are (step 3) and form their own groups, each kept only when the group
+as one event beats ``alpha`` (:mod:`~psgs.induce.pal.in_step`: one string's
+short repeat is no evidence, several at the same times are). A string can
+then be in a motif group (steps 4-6) and in a section group. Both kinds are
+ranked by one significance,
+:func:`~psgs.induce.pal.sections.repeat_significance` at the copies'
+agreement, summed over a group's members: the groups are taken strongest
+first (a motif group before a section group of equal weight), each keeping
+the members no stronger group took, while two or more are left. A motif's
+copies are weighed at their own agreement with the voted pattern, so many
+damaged copies of a motif can outweigh a few exact ones, and a long section
+twice outweighs a short figure played often.
 
 Then every copy agreeing with its pattern in less than a share
 ``copy_agreement`` of its positions is dropped from the occurrences, and a
