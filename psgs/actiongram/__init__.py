@@ -51,9 +51,10 @@ from pathlib import Path
 from ..errors import FormatError
 from ._checks import (_bad_duration, _bad_name, _bad_symbol, _check_times_advance, _finite,
                       _format_number, _plain_durations, _shown)
+from ._events import GAPS
 from ._extras import _merge, default_actuator, normalise_extras
 
-__all__ = ["Actiongram", "default_actuator", "read_events_csv"]
+__all__ = ["Actiongram", "GAPS", "default_actuator", "read_events_csv"]
 
 _JSON_FORMAT = "psgs-actiongram"
 

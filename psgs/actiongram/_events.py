@@ -28,6 +28,8 @@ from ._checks import _bad_name, _bad_symbol, _shown
 __all__: list[str] = []  # private: Actiongram.from_events and to_events are the interface
 
 FIELDS = ("stream", "onset", "duration", "symbol")
+#: what a gap between two events of a stream becomes (``from_events(gaps=...)``): a rest
+#: symbol, the event before held until the next onset, or an error
 GAPS = ("rest", "hold", "error")
 #: times closer than this share of their size (and of 1) are equal: 0.1 + 0.2 ends at 0.3
 TOLERANCE = 1e-9

@@ -13,7 +13,7 @@ import time
 from pathlib import Path
 
 from .._foundation.shell import key_values
-from ..actiongram._events import GAPS
+from ..actiongram import GAPS
 from ..errors import ValidationError
 
 

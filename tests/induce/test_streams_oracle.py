@@ -13,8 +13,8 @@ BENCHMARKS = Path(__file__).resolve().parents[2] / "benchmarks"
 
 
 @pytest.fixture(scope="module")
-def oracle():
-    """benchmarks/streams.py's ``written_repeat``, the script loaded by its path."""
+def script():
+    """benchmarks/streams.py, loaded by its path."""
     sys.path.insert(0, str(BENCHMARKS))  # (the script imports its neighbour _common)
     had_common = "_common" in sys.modules
     try:
@@ -28,7 +28,25 @@ def oracle():
         sys.modules.pop("streams_benchmark", None)
         if not had_common:
             sys.modules.pop("_common", None)
-    return module.written_repeat
+    return module
+
+
+@pytest.fixture(scope="module")
+def oracle(script):
+    """benchmarks/streams.py's ``written_repeat``."""
+    return script.written_repeat
+
+
+def test_a_claim_counts_only_on_a_written_out_repeat(script):
+    rng = random.Random(3)
+    section = _random(rng, 8)
+    voice = _voice(section + [(1.0, "r")] + section + _random(rng, 6))
+    assert script.lies_on_repeat(voice, ((0.0, 8.0), (9.0, 17.0)))
+    assert not script.lies_on_repeat(voice, ((0.0, 8.0), (10.0, 18.0)))  # off by a beat
+    piece = script.Piece("p", (voice, voice), ())
+    assert not script.false_claim({"v0": ((0.0, 8.0), (9.0, 17.0))}, piece)
+    assert script.false_claim({"v0": ((0.0, 8.0), (9.0, 17.0)), "x3": ((0.0, 8.0), (9.0, 17.0))},
+                              piece)  # a spurious string named
 
 
 def _voice(notes: list[tuple[float, str]]) -> tuple[tuple[float, float, str], ...]:

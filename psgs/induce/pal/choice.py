@@ -1,17 +1,20 @@
 """Sections grouped in time, and the choice between them and the motif groups (step 3b).
 
 Every string's section (:mod:`~psgs.induce.pal.sections`, its longest exact
-repeat) that passes ``alpha`` is a second candidate beside its motif; sections
-are synchronised in time as motifs are (step 3) and form their own groups.
-A string can then be in a motif group (steps 4-6) and in a section group.
-Both kinds are weighed by one significance,
-:func:`~psgs.induce.pal.sections.repeat_significance`, summed over a group's
-members: the groups are taken strongest first (a motif group before a
-section group of equal weight), each keeping the members no stronger group
-took, while two or more are left. A motif's copies are weighed at their own
-agreement with the voted pattern, so many damaged copies of a motif can
-outweigh a few exact ones, and a long section twice outweighs a short figure
-played often.
+repeat) with fewer than one chance repeat as long expected in its string is a
+second candidate beside its motif; sections are synchronised in time as
+motifs are (step 3) and form their own groups, each kept only when the group
+as one event beats ``alpha`` (:mod:`~psgs.induce.pal.in_step`: one string's
+short repeat is no evidence, several at the same times are). A string can
+then be in a motif group (steps 4-6) and in a section group. Both kinds are
+ranked by one significance,
+:func:`~psgs.induce.pal.sections.repeat_significance` at the copies'
+agreement, summed over a group's members: the groups are taken strongest
+first (a motif group before a section group of equal weight), each keeping
+the members no stronger group took, while two or more are left. A motif's
+copies are weighed at their own agreement with the voted pattern, so many
+damaged copies of a motif can outweigh a few exact ones, and a long section
+twice outweighs a short figure played often.
 
 Then every copy agreeing with its pattern in less than a share
 ``copy_agreement`` of its positions is dropped from the occurrences, and a
@@ -27,8 +30,10 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .motifs import Timed
+from .in_step import group_significance
 from .pooling import sync_groups
-from .sections import copy_agreements, find_sections, repeat_significance
+from .sections import (Section, copy_agreements, find_sections, follow_rate,
+                       repeat_significance)
 
 if TYPE_CHECKING:
     from .conf import ContentConf
@@ -40,6 +45,11 @@ __all__: list[str] = []  # private: content.py is the caller
 OUTWEIGHED = "its group outweighed by a stronger one"
 TOO_FEW_AGREEING = "too few copies agree with the pattern"
 WEAK_COPIES = "not significant at its group's copies"
+CHANCE_IN_STEP = "in step with its group no more than by chance"
+
+#: a string's section is a candidate when fewer than one repeat as long is expected by chance
+#: in it (log10 of just under 1): a section is judged with the group it is in step with
+SCREEN = -1e-9
 
 
 def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) -> None:
@@ -47,9 +57,9 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
     # (not bounded by max_pattern: a section is found by a search over lengths, not grown)
     level = math.log10(conf.alpha)
     sections = find_sections([s.codes for s in strings], conf.min_copies,
-                             [s.match_rate for s in strings], level)
+                             [s.match_rate for s in strings], SCREEN)
     found.sections = sections
-    candidates = [i for i, s in enumerate(sections) if s is not None and s.significance <= level]
+    candidates = [i for i, s in enumerate(sections) if s is not None and s.significance <= SCREEN]
     intervals = {i: strings[i].intervals(sections[i].starts, len(sections[i].motif))
                  for i in candidates}
     partners: dict[int, list[int]] = {i: [] for i in candidates}
@@ -67,16 +77,36 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
         if weights[i] > level:
             found.dropped[i] = WEAK_COPIES
     weighed = [(sum(weights[i] for i in g), 0, k, g) for k, g in enumerate(motif_groups)]
-    sectioned = sync_groups(candidates, partners)
-    weighed += [(sum(sections[i].significance for i in g), 1, k, g)
-                for k, g in enumerate(sectioned)]
+    sectioned, readings = [], []
+    follows = [follow_rate(s.codes) for s in strings]
+    for group in sync_groups(candidates, partners):
+        significance, members = group_significance(strings, sections, intervals, follows,
+                                                   group, partners, level)
+        for i in group:
+            if significance > level or i not in members:
+                found.dropped.setdefault(i, CHANCE_IN_STEP)
+        if significance <= level:
+            # ranked as the motif groups are, by its members' significances summed, each
+            # weighed alone by the one rule of a motif's copies (the group's own
+            # significance is the test it has passed)
+            rank = sum(motif_weight(strings[i], tuple(s.motif.tolist()),
+                                    tuple((a, a + len(s.motif)) for a in s.starts.tolist()))
+                       for i, s in members.items())
+            weighed.append((rank, 1, len(sectioned), sorted(members)))
+            sectioned.append(sorted(members))
+            readings.append(members)
     taken: dict[int, tuple[int, int]] = {}  # string -> (kind, group) it is a component of
     for _, kind, k, group in sorted(weighed, key=lambda w: w[:3]):
         free = [i for i in group if i not in taken]
         # a motif group keeps a lone member when the rest of it are components already
-        # (taken by a stronger group, so still in step with it), or when it was one alone
-        if len(free) >= 2 or (kind == 0 and free and all(i in taken or i in free
-                                                         for i in found.groups[k])):
+        # (taken by a stronger group, so still in step with it), or when it was one alone;
+        # when a section group took them, the member must beat chance among the other
+        # strings as a section group's members must
+        beside = math.log10(max(len(strings) - 1, 1))
+        if len(free) >= 2 or (kind == 0 and free and all(
+                i in free or (i in taken and (taken[i][0] == 0 or all(
+                    weights[j] + beside <= level for j in free)))
+                for i in found.groups[k])):
             taken.update((i, (kind, k)) for i in free)
     for i in list(found.patterns):
         if taken.get(i, (1,))[0] != 0:
@@ -86,11 +116,20 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
                 found.dropped.setdefault(i, OUTWEIGHED)
     for i, (kind, k) in taken.items():
         if kind == 1:
-            s, length = sections[i], len(sections[i].motif)
+            s = readings[k][i]  # its own section, or the repeat read at the lead's copies
+            length = len(s.motif)
+            if s is not sections[i]:
+                s = Section(s.motif, s.starts, repeat_significance(
+                    len(strings[i].codes), length, len(s.starts), (len(s.starts) - 1) * length,
+                    strings[i].match_rate, follows[i]))
+                sections[i] = s
             found.patterns[i] = tuple(s.motif.tolist())
-            found.occurrences[i] = tuple(map(tuple, intervals[i].tolist()))
+            found.occurrences[i] = tuple(map(tuple, strings[i].intervals(s.starts,
+                                                                         length).tolist()))
             found.spans[i] = tuple((a, a + length) for a in s.starts.tolist())
             found.from_sections.add(i)
+            mates = [j for j in readings[k] if j != i]  # (a string read at the lead's copies
+            found.section_partners[i] = sorted(set(partners.get(i, [])) | set(mates))  # too)
     for i in {i for g in sectioned for i in g} - set(taken):
         found.dropped.setdefault(i, OUTWEIGHED)
     keep_agreeing(strings, found, conf)

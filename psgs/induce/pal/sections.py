@@ -101,21 +101,30 @@ def repeat_significance(n: int, length: int, copies: int, agreeing: int,
 def follow_rate(codes: np.ndarray) -> float | None:
     """The chance that, after two equal symbols, the next two agree too, or None.
 
-    Only when the string's digrams explain it better than its symbol shares
-    do (a first-order Markov chain against independent symbols, by the Bayesian
-    information criterion): motion, whose symbols follow each other by rule,
-    repeats exactly far more often than its symbol shares say; in a string of
-    independent symbols the digram counts are only noise, and None says to use
-    the match rate. Estimated without bias from the digram counts ``n_ab``:
-    ``(sum n_ab^2 - (n - 1)) / (sum n_a^2 - (n - 1))``, ``n_a`` how often ``a``
-    is followed by anything.
+    Two models of a random string are weighed by the Bayesian information
+    criterion. The **neighbour model**: each symbol is drawn by the string's
+    symbol shares ``p``, but equals the one before it only at the string's own
+    rate ``rho`` of equal neighbours (an actiongram merges equal neighbours,
+    so ``rho`` is 0 unless it keeps repeats): then the rate is
+    ``sum_a (p_a^2 / q) (rho^2 + (1 - rho)^2 sum_(b != a) p_b^2 / (1 - p_a)^2)``,
+    ``q = sum p_a^2`` the match rate. Over ``k`` equally used letters without
+    equal neighbours that is ``1 / (k - 1)``, not ``1 / k``: a repeat is that
+    much cheaper than independent symbols say. The **chain**: a first-order
+    Markov chain of the digrams, for strings whose symbols follow each other
+    by rule (``B G R Y`` of motion), which repeat exactly far more often; its
+    rate is estimated without bias from the digram counts ``n_ab`` as
+    ``(sum n_ab^2 - (n - 1)) / (sum n_a^2 - (n - 1))``, ``n_a`` how often
+    ``a`` is followed by anything. None for a string of one symbol or under
+    three symbols long (the match rate then stands for it).
 
     Examples
     --------
     >>> follow_rate(np.array([0, 1, 2, 3] * 10))  # each symbol has one successor
     1.0
-    >>> follow_rate(np.random.default_rng(0).integers(0, 6, 60)) is None
-    True
+    >>> letters = np.random.default_rng(0).integers(0, 3, 400)
+    >>> no_equal = np.cumsum(letters + 1) % 4  # never equal to the one before
+    >>> round(follow_rate(no_equal), 2)  # four letters: about 1 / 3, not 1 / 4
+    0.34
     """
     if len(codes) < 3:
         return None
@@ -131,15 +140,26 @@ def follow_rate(codes: np.ndarray) -> float | None:
     steps = len(codes) - 1
     rows = firsts[firsts > 0]
     symbols = len(rows)
-    alone = float(np.sum(rows * np.log(rows / steps)))
+    shares = np.bincount(codes, minlength=size) / len(codes)
+    if symbols < 2 or shares.max() >= 1:
+        return None
     chained = float(np.sum(pairs * np.log(pairs / firsts[keys // size])))
-    extra = symbols * (symbols - 1) - (symbols - 1)  # the chain's further parameters
-    if chained - alone <= extra / 2 * math.log(steps):
-        return None
-    below = float(np.sum(firsts.astype(np.float64) ** 2)) - steps
-    if below <= 0:
-        return None
-    return max(0.0, float(np.sum(pairs.astype(np.float64) ** 2) - steps) / below)
+    same = keys // size == keys % size
+    rho = float(pairs[same].sum()) / steps
+    left, right = keys // size, keys % size
+    with np.errstate(divide="ignore"):
+        moves = np.where(same, math.log(rho) if rho > 0 else 0.0,
+                         math.log1p(-rho) + np.log(shares[right]) - np.log1p(-shares[left]))
+    neighbours = float(np.sum(pairs * moves))
+    extra = symbols * (symbols - 1) - symbols  # the chain's parameters beyond (shares, rho)
+    if chained - neighbours > extra / 2 * math.log(steps):
+        below = float(np.sum(firsts.astype(np.float64) ** 2)) - steps
+        if below > 0:
+            return max(0.0, float(np.sum(pairs.astype(np.float64) ** 2) - steps) / below)
+    match = float(np.sum(shares ** 2))
+    used = shares[shares > 0]
+    others = (match - used ** 2) / (1 - used) ** 2
+    return float(np.sum(used ** 2 / match * (rho ** 2 + (1 - rho) ** 2 * others)))
 
 
 def copy_agreements(codes: np.ndarray, pattern, starts) -> list[float]:

@@ -1,0 +1,318 @@
+"""How unlikely a group of sections in step is by chance: the group's one significance.
+
+A string's section (:mod:`~psgs.induce.pal.sections`) is weighed alone by
+:func:`~psgs.induce.pal.sections.repeat_significance`, a bound over every
+place its copies could lie. A second string whose section lies at the *same
+times* is far stronger evidence than a second repeat anywhere: the places it
+could have taken and still lain as close to the first string's copies are a
+handful, not thousands. So a group of sections in step is weighed as one
+event (``docs/streams.md``, "Significance of a repetition"):
+
+- its **lead**, one member, repeats somewhere: :func:`lead_significance`,
+  the expected number of maximal exact repeats as strong in its string;
+- each other member repeats where the lead's copies are:
+  :func:`in_step_significance`, ``T_j``, counting only the places its copies
+  could take lying as close to the lead's copies as they do;
+- and the lead and its ``m - 1`` partners could have been any of the
+  ``N`` strings: ``log10(N * C(N - 1, m - 1))``.
+
+The group's significance is the sum, at the lead that makes it strongest; a
+member is kept only when its own ``T_j`` beats chance among the other
+strings (``T_j + log10(N - 1) <= log10(alpha)``), so that no random string is
+carried in by the others' strength. A string is read at the lead's copies
+(:func:`read_at`), not only at its own section: its longest repeat may be a
+chance repeat elsewhere, as long as the section or longer.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .motifs import Timed
+from .sections import Section, _cycles
+
+__all__: list[str] = []  # private: choice.py is the caller
+
+_LN10 = math.log(10)
+
+
+def group_significance(strings: list[Timed], sections: list, intervals: dict[int, np.ndarray],
+                       follows: list[float | None], group: list[int],
+                       partners: dict[int, list[int]], level: float
+                       ) -> tuple[float, dict[int, Section]]:
+    """The strongest reading of a group of sections in step: its significance and members.
+
+    ``sections[i]`` is string ``i``'s Section, ``intervals[i]`` its copies' times,
+    ``follows[i]`` its follow rate (None: its match rate), ``partners`` who is in step
+    with whom, ``level`` log10 of ``alpha``. The members map to the section each is read
+    at (its own, or one found at the lead's copies). Returns ``(inf, {})`` when no lead
+    has a partner that beats chance.
+
+    Examples
+    --------
+    >>> from psgs.induce.pal.sections import find_section
+    >>> rng = np.random.default_rng(1)
+    >>> codes = []
+    >>> for _ in range(2):
+    ...     section = rng.integers(0, 8, 10)
+    ...     codes.append(np.concatenate((rng.integers(0, 8, 5), section, rng.integers(0, 8, 3),
+    ...                                  section, rng.integers(0, 8, 12))))
+    >>> strings = [Timed.from_codes(c, np.ones(len(c)), 0.0) for c in codes]
+    >>> rates = [s.match_rate for s in strings]
+    >>> sections = [find_section(c, 2, 40, q) for c, q in zip(codes, rates)]
+    >>> times = {i: s.intervals(x.starts, len(x.motif)) for i, (s, x) in
+    ...          enumerate(zip(strings, sections))}
+    >>> significance, members = group_significance(strings, sections, times, [None, None],
+    ...                                            [0, 1], {0: [1], 1: [0]}, -2.0)
+    >>> sorted(members), significance < -2.0
+    ([0, 1], True)
+    """
+    total = len(strings)
+    best: tuple[float, dict[int, Section]] = (math.inf, {})
+    for lead in group:
+        best = min(best, _led_by(strings, lead, sections[lead], intervals[lead], follows,
+                                 partners[lead], sections, intervals, level),
+                   key=lambda b: b[0])
+    # a lead's own section may be a chance extension of the repeat the others play, which
+    # puts the others' copies off its own: each member leads again, at the copies it was
+    # read at
+    for lead, section in list(best[1].items()):
+        if section is not sections[lead]:
+            at = strings[lead].intervals(section.starts, len(section.motif))
+            best = min(best, _led_by(strings, lead, section, at, follows, [], sections,
+                                     intervals, level), key=lambda b: b[0])
+    return best
+
+
+def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.ndarray,
+            follows: list[float | None], partners: list[int], sections: list,
+            intervals: dict[int, np.ndarray], level: float) -> tuple[float, dict[int, Section]]:
+    """:func:`group_significance` with one lead read at ``lead_copies``: every other string
+    read there (its own section too when it is one of the lead's ``partners``)."""
+    total = len(strings)
+    joined: dict[int, Section] = {}
+    weights = []
+    for j in range(total):
+        if j == lead:
+            continue
+        readings = []
+        if j in partners:
+            readings.append((in_step_significance(strings[j], sections[j], intervals[j],
+                                                  lead_copies, follows[j]), sections[j]))
+        if len(lead_copies) == 2:
+            again = read_at(strings[j], lead_copies, follows[j])
+            if again is not None:
+                readings.append(again)
+        if not readings:
+            continue
+        weight, found = min(readings, key=lambda r: r[0])
+        if weight + math.log10(total - 1) <= level:
+            joined[j] = found
+            weights.append(weight)
+    if not joined:
+        return math.inf, {}
+    # the lead must be in step beyond chance too, read at the copies of the member it is
+    # most in step with: else a chance repeat inside the others' long copies would lead
+    # them; it is reported as read there
+    again = None
+    for mate, found in joined.items():
+        at = strings[mate].intervals(found.starts, len(found.motif))
+        here = read_at(strings[lead], at, follows[lead]) if len(at) == 2 else (
+            in_step_significance(strings[lead], section, lead_copies, at, follows[lead]),
+            section)
+        if here is not None and (again is None or here[0] < again[0]):
+            again = here
+    if again is None or again[0] + math.log10(total - 1) > level:
+        return math.inf, {}
+    m = len(joined) + 1
+    significance = (lead_significance(strings[lead], section, follows[lead]) + sum(weights)
+                    + math.log10(total) + _log10_choose(total - 1, m - 1))
+    return significance, {lead: again[1], **joined}
+
+
+def lead_significance(string: Timed, section: Section, follow: float | None) -> float:
+    """log10 of the expected number of maximal exact repeats as strong as ``section``.
+
+    ``[C(K - 1, c) (1 - r^(c-1)) + C(K - 1, c - 1)] * P``: ``C(K, c)``, ``K = n - c (L - 1)``,
+    is the number of ways to place ``c`` windows of ``L`` symbols apart in ``n``, ``P =
+    (q r^(L-1))^(c-1)`` the chance that they agree; a repeat is counted once, at its left
+    end, where the symbols before its copies do not all agree (chance ``1 - r^(c-1)``) or
+    its first copy opens the string.
+
+    Examples
+    --------
+    >>> codes = np.array([0, 1, 2, 3, 4, 5, 1, 2, 3, 4, 6, 7])
+    >>> string = Timed.from_codes(codes, np.ones(12), 0.0)
+    >>> round(lead_significance(string, Section(codes[1:5], np.array([1, 6]), -1.0), None), 2)
+    -2.3
+    """
+    n, length, copies = len(string.codes), len(section.motif), len(section.starts)
+    q = string.match_rate
+    r = q if follow is None else follow
+    if q <= 0 or r <= 0:
+        return -math.inf
+    # c windows of L symbols apart in n symbols: C(n - c (L - 1), c) sets, of which
+    # C(n - c (L - 1) - 1, c - 1) open the string
+    sets = n - copies * (length - 1)
+    inner = _log10_choose(sets - 1, copies) + math.log10(max(1e-300, 1 - r ** (copies - 1)))
+    edge = _log10_choose(sets - 1, copies - 1)
+    top = max(inner, edge)
+    sets = top + math.log10(10 ** (inner - top) + 10 ** (edge - top))
+    return sets + (copies - 1) * (math.log10(q) + (length - 1) * math.log10(r))
+
+
+def in_step_significance(string: Timed, section: Section, copies: np.ndarray, lead: np.ndarray,
+                         follow: float | None) -> float:
+    """``log10(A * H * P * (1 - r^(c-1)))``: a section's exact copies, lying as close to
+    the lead's copies as they do, by chance.
+
+    ``P = (q r^(L-1))^(c-1)``, the chance that ``c`` windows of ``L`` symbols agree
+    (``q`` the match rate, ``r`` the follow rate or ``q``), and ``1 - r^(c-1)`` that the
+    symbols before them do not (a repeat counted once, at its left end; 1 when a copy
+    could open the string). A copy pairs with a lead copy when the two share half of the
+    time they cover together; its distance to it is the time outside the shared part. Of
+    the sets of windows of ``L`` symbols pairing copy by copy with the lead copies these
+    pair with (a copy pairing with none: any window), ``A`` lie as close in all (their
+    distances summed) as these copies do. ``H`` is what choosing that distance after
+    seeing it costs: the sum over the distances ``d`` of the sets at ``d`` over the sets at
+    ``d`` or nearer (the union over every set of the chance that it is as strong; at most
+    ``1 + ln`` of the sets). ``copies`` and ``lead`` are (copies, 2) arrays of times.
+
+    Examples
+    --------
+    >>> codes = np.array([0, 1, 2, 3, 4, 5, 1, 2, 3, 4, 6, 7])
+    >>> string = Timed.from_codes(codes, np.ones(12), 0.0)
+    >>> section = Section(codes[1:5], np.array([1, 6]), -1.0)
+    >>> same = np.array([[1.0, 5.0], [6.0, 10.0]])
+    >>> round(in_step_significance(string, section, same, same, None), 2)  # one place
+    -3.08
+    >>> round(in_step_significance(string, section, same, same + 1, None), 2)  # more
+    -2.19
+    """
+    length = len(section.motif)
+    q = string.match_rate
+    r = q if follow is None else follow
+    if q <= 0 or r <= 0:
+        return -math.inf
+    c = len(copies)
+    chance = (c - 1) * (math.log10(q) + (length - 1) * math.log10(r))
+    n = len(string.codes)
+    begins = string.starts[:n - length + 1]
+    ends = string.ends[length - 1:]
+    slack = 1e-9 * max(1.0, float(np.max(np.abs(copies))))
+    anywhere, opens = 0.0, False
+    per_copy = []  # (its distance, the distances of every window pairing as it does)
+    for a, b in copies.tolist():
+        closest = None
+        for lo, hi in lead.tolist():
+            shared, union = min(b, hi) - max(a, lo), max(b, hi) - min(a, lo)
+            if shared > 0 and 2 * shared >= union and (closest is None
+                                                       or union - shared < closest[0]):
+                closest = (union - shared, lo, hi)
+        if closest is None:
+            anywhere += math.log10(len(begins))  # it could be any window
+            opens = True
+            continue
+        apart, lo, hi = closest
+        shared = np.minimum(ends, hi) - np.maximum(begins, lo)
+        union = np.maximum(ends, hi) - np.minimum(begins, lo)
+        pairs = (shared > 0) & (2 * shared >= union)
+        per_copy.append((apart, (union - shared)[pairs]))
+        opens = opens or bool(pairs[0])
+    left = 0.0 if opens else math.log10(max(1e-300, 1 - r ** (c - 1)))
+    return anywhere + _as_close(per_copy, slack) + chance + left
+
+
+def _as_close(per_copy: list[tuple[float, np.ndarray]], slack: float) -> float:
+    """log10 of ``A * H`` (:func:`in_step_significance`) for copies at the distances given,
+    each of which could have been at any of the distances listed with it.
+
+    The sets are closer by their distances summed while they are few (4096 or fewer); past
+    that, copy by copy (``A`` and ``H`` the products of each copy's own), which bounds the
+    same union.
+    """
+    if not per_copy:
+        return 0.0
+    sizes = [len(d) for _, d in per_copy]
+    if math.prod(sizes) > 1 << 12:
+        return sum(_as_close([one], slack) for one in per_copy)
+    sums = np.zeros(1)
+    for _, distances in per_copy:
+        sums = (sums[:, None] + distances[None, :]).ravel()
+    observed = sum(apart for apart, _ in per_copy)
+    near = max(1, int(np.count_nonzero(sums <= observed + slack)))
+    # choosing the distance after seeing it: the union over the sets of the chance each
+    # is as strong, sum over the distances d of (sets at d) / (sets at d or nearer)
+    _, counts = np.unique(np.round(sums / slack), return_counts=True)
+    return math.log10(near) + math.log10(float(np.sum(counts / np.cumsum(counts))))
+
+
+def read_at(string: Timed, lead: np.ndarray, follow: float | None
+            ) -> tuple[float, Section] | None:
+    """The exact repeat of ``string`` at two lead copies' times that is least likely by
+    chance (:func:`in_step_significance`), or None.
+
+    Every maximal run of agreeing symbols between a window at the first copy and one at
+    the second (all shifts between the segments under them) that pairs with both copies,
+    does not overlap itself and is no cycle.
+
+    Examples
+    --------
+    >>> codes = np.array([5, 1, 2, 3, 4, 6, 1, 2, 3, 4, 7, 0, 6, 5])
+    >>> string = Timed.from_codes(codes, np.ones(14), 0.0)
+    >>> weight, found = read_at(string, np.array([[1.0, 5.0], [6.0, 10.0]]), None)
+    >>> found.motif.tolist(), found.starts.tolist()
+    ([1, 2, 3, 4], [1, 6])
+    """
+    codes, starts, ends = string.codes, string.starts, string.ends
+    n = len(codes)
+    (a1, b1), (a2, b2) = lead.tolist()
+    first = np.flatnonzero((starts < b1) & (ends > a1))
+    second = np.flatnonzero((starts < b2) & (ends > a2))
+    if len(first) == 0 or len(second) == 0:
+        return None
+    reach = len(first) + len(second)
+    best = None
+    for shift in range(max(1, int(second[0] - first[-1])), int(second[-1] - first[0]) + 1):
+        lo, hi = max(0, int(first[0]) - reach), min(n - shift, int(first[-1]) + reach + 1)
+        if hi - lo < 2:
+            continue
+        equal = np.concatenate(([False], codes[lo:hi] == codes[lo + shift:hi + shift], [False]))
+        edges = np.flatnonzero(np.diff(equal.astype(np.int8)))
+        for begin, end in zip((edges[::2] + lo).tolist(), (edges[1::2] + lo).tolist()):
+            if end - begin < 2:
+                continue
+            if (begin == lo and lo > 0) or (end == hi and hi < n - shift):
+                continue  # (cut by the range looked at: not maximal)
+            # a run longer than the shift holds copies of the shift's length that do not
+            # overlap (copies that touch, and chance agreement after the second)
+            length = min(end - begin, shift)
+            for s in range(begin, end - length + 1):
+                where = np.array([[starts[s], ends[s + length - 1]],
+                                  [starts[s + shift], ends[s + length - 1 + shift]]])
+                if not all(_pairs(w, c) for w, c in zip(where.tolist(), lead.tolist())):
+                    continue
+                motif = codes[s:s + length].copy()
+                if _cycles(motif):
+                    continue
+                section = Section(motif, np.array([s, s + shift], dtype=np.int64), 0.0)
+                weight = in_step_significance(string, section, where, lead, follow)
+                if best is None or weight < best[0]:
+                    best = (weight, section)
+    return best
+
+
+def _pairs(copy, lead) -> bool:
+    """Whether two time spans share half of the time the two cover together."""
+    (a, b), (c, d) = copy, lead
+    shared, union = min(b, d) - max(a, c), max(b, d) - min(a, c)
+    return shared > 0 and 2 * shared >= union
+
+
+def _log10_choose(n: int, k: int) -> float:
+    """log10 of the binomial coefficient ``C(n, k)`` (0 when ``k`` is out of range)."""
+    if k < 0 or k > n:
+        return -math.inf
+    return (math.lgamma(n + 1) - math.lgamma(k + 1) - math.lgamma(n - k + 1)) / _LN10
