@@ -32,9 +32,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .description import (DescriptionError, Descriptions, feature_groups, feature_rows,
-                          group_distances, mahalanobis_terms, probabilities, score_model,
-                          scores, telling_groups)
+from .description import (DescriptionError, Descriptions, feature_rows, mahalanobis_terms,
+                          probabilities, score_model, scores)
+from .feature_groups import feature_groups, group_distances, telling_groups
 from .features import feature_joint
 
 __all__ = ["Recognition", "recognise", "recognise_many", "feature_matrix", "JointReason"]
@@ -230,7 +230,7 @@ def _excess(descriptions, features, x, best, fitted, *, telling: bool = True):
     (0 and "" when the descriptions have no limits), and the group's name.
 
     Only the groups that tell the best action apart from another learnt action are read
-    (:func:`~praxicon.description.telling_groups`; ``telling=False``: every group, as the
+    (:func:`~praxicon.feature_groups.telling_groups`; ``telling=False``: every group, as the
     benchmark compares); ``fitted`` is the score model on the motions' columns.
     """
     limits = dict(descriptions.spread.limits)

@@ -258,8 +258,8 @@ def test_group_test_reads_only_the_groups_that_tell_actions_apart():
     """Every learnt turn travels on the level: the vertical travel cannot tell one turn from
     the other, so a right turn taken up a slope, far outside that group's limit, is still a
     right turn; the heading, which tells them apart, is read (a walk is none of these)."""
-    from praxicon.description import (feature_groups, group_distances, score_model,
-                                      telling_groups)
+    from praxicon.description import score_model
+    from praxicon.feature_groups import feature_groups, group_distances, telling_groups
     from praxicon.recognition import feature_matrix
 
     px = describe(_turns(np.random.default_rng(3)))
