@@ -12,11 +12,13 @@ every take resampled to 64 steps) and a nearest centroid on each joint's angle r
 
 Protocols: Bandai dataset 1 leave one style out; the dataset-2 subset in style (takes 1-3
 learn, 4-5 test) and leave one style out; open set (one content left out of the learning: its
-takes must come back "none of these"); parsing cmu-mocap6 leave one sequence out (frame
-accuracy and segment F1) and recordings joined from three takes of different Bandai dataset-1
-contents (time precision and recall of the spans, absent actions reported), each against a
-sliding-window MiniRocket. CPU per take is ``time.process_time`` of classifying the test takes
-(features included, reading the files not), divided by their number.
+takes must come back "none of these"; DTW 1-NN and MiniRocket with a rejection threshold
+calibrated on held-out known takes beside the praxicon); parsing cmu-mocap6 leave one
+sequence out (frame accuracy and segment F1) and recordings joined from three takes of
+different Bandai dataset-1 contents (time precision and recall of the spans, absent actions
+reported), each against a sliding-window MiniRocket. CPU per take is ``time.process_time``
+of classifying the test takes (features included, reading the files not), divided by their
+number.
 """
 
 from __future__ import annotations
@@ -255,6 +257,16 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
         if level == _LEVELS[0]:
             rules.update({f"whole x{m:g}": penalty <= d.spread.threshold / _MARGIN * m
                           for m in _MARGINS})
+        if level == GROUP_LEVEL and not by_style:
+            # a pairwise test on top: how far the take lies from its best action towards the
+            # runner-up, against how far held-out known takes lay (tried, not the praxicon's)
+            runner = np.where(np.arange(score.shape[1])[None] == best[:, None], np.inf,
+                              score).argmin(axis=1)
+            towards = _towards(fitted, dist, best, runner)
+            held = _towards_held_out(table, order)
+            for q in _PAIR_QUANTILES:
+                rules[f"groups+pair q={q:g}"] = rules[f"groups a={level:g}"] & (
+                    towards <= np.quantile(held, q))
         for name, accept in rules.items():
             r = results[protocol, name]
             for t, b, ok in zip(test, best, accept):
@@ -265,7 +277,7 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
                 else:
                     r["unknown"] += 1
                     r["rejected"] += int(decided is None)
-                if level == GROUP_LEVEL and name.startswith("groups"):
+                if name == f"groups a={GROUP_LEVEL:g}":
                     # what the praxicon's own rule answered, per left-out content and per
                     # known take it got wrong: where the open set fails
                     detail = results[protocol, "detail"]
@@ -275,6 +287,47 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
                     elif decided != t.content:
                         detail.setdefault("known-wrong", {}).setdefault(
                             f"{t.content} {t.style}_{t.take:03d}", []).append(decided)
+
+
+_PAIR_QUANTILES = (0.9, 0.99)  # the pairwise test: share of held-out known takes it keeps
+
+
+def _towards(fitted, dist, best, other) -> np.ndarray:
+    """Per take, how many shared standard deviations it lies from its best action's mean
+    towards ``other``'s along the line between the two means: from the shared squared
+    distances alone, ``(d_best - d_other + D²) / 2D`` with ``D`` the means' distance."""
+    from praxicon.description import distances
+
+    gap = np.array([distances(fitted.means[o][None], fitted.means[b][None], fitted.parts)[0, 0]
+                    for b, o in zip(best, other)])
+    gap = np.sqrt(np.maximum(gap, 1e-12))
+    i = np.arange(len(best))
+    return (dist[i, best] - dist[i, other] + gap ** 2) / (2 * gap)
+
+
+def _towards_held_out(table, order, folds: int = 5) -> np.ndarray:
+    """:func:`_towards` of the training takes, each scored by descriptions learnt without
+    its fold, for those ranked right (towards their runner-up): what known takes do."""
+    from praxicon.description import describe_table, score_model, scores
+
+    out = []
+    columns = np.arange(len(order))
+    for fold in range(folds):
+        learn = {c: v[np.arange(len(v)) % folds != fold] for c, v in table.items()}
+        d = describe_table({c: v for c, v in learn.items() if len(v)}, order)
+        fitted = score_model(d, columns)
+        for c, v in table.items():
+            v = v[np.arange(len(v)) % folds == fold]
+            if not len(v) or c not in d.names:
+                continue
+            dist, score = scores(d, v, columns, fitted=fitted)
+            best = score.argmin(axis=1)
+            right = best == d.names.index(c)
+            if right.any():
+                runner = np.where(np.arange(score.shape[1])[None] == best[:, None], np.inf,
+                                  score).argmin(axis=1)
+                out.extend(_towards(fitted, dist[right], best[right], runner[right]))
+    return np.array(out) if out else np.array([np.inf])
 
 
 def _open_detail(protocol, results) -> str:
@@ -775,6 +828,7 @@ def main(argv=None) -> int:
     if want("open-set") or want("open-d1") or want("open-d2"):
         rules = ([f"whole x{m:g}" for m in _MARGINS] + [f"groups a={v:g}" for v in _LEVELS]
                  + ["every group a=0.01"]
+                 + [f"groups+pair q={q:g}" for q in _PAIR_QUANTILES]
                  + [f"{peer} q={q:g}" for peer in ("dtw-1nn", "minirocket")
                     for q in _PEER_QUANTILES])
         for protocol in ("open-d2-in-style", "open-d2-in-style-per-style", "open-d1-in-style",
