@@ -12,11 +12,13 @@ every take resampled to 64 steps) and a nearest centroid on each joint's angle r
 
 Protocols: Bandai dataset 1 leave one style out; the dataset-2 subset in style (takes 1-3
 learn, 4-5 test) and leave one style out; open set (one content left out of the learning: its
-takes must come back "none of these"); parsing cmu-mocap6 leave one sequence out (frame
-accuracy and segment F1) and recordings joined from three takes of different Bandai dataset-1
-contents (time precision and recall of the spans, absent actions reported), each against a
-sliding-window MiniRocket. CPU per take is ``time.process_time`` of classifying the test takes
-(features included, reading the files not), divided by their number.
+takes must come back "none of these"; DTW 1-NN and MiniRocket with a rejection threshold
+calibrated on held-out known takes beside the praxicon); parsing cmu-mocap6 leave one
+sequence out (frame accuracy and segment F1) and recordings joined from three takes of
+different Bandai dataset-1 contents (time precision and recall of the spans, absent actions
+reported), each against a sliding-window MiniRocket. CPU per take is ``time.process_time``
+of classifying the test takes (features included, reading the files not), divided by their
+number.
 """
 
 from __future__ import annotations
@@ -255,6 +257,16 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
         if level == _LEVELS[0]:
             rules.update({f"whole x{m:g}": penalty <= d.spread.threshold / _MARGIN * m
                           for m in _MARGINS})
+        if level == GROUP_LEVEL and not by_style:
+            # a pairwise test on top: how far the take lies from its best action towards the
+            # runner-up, against how far held-out known takes lay (tried, not the praxicon's)
+            runner = np.where(np.arange(score.shape[1])[None] == best[:, None], np.inf,
+                              score).argmin(axis=1)
+            towards = _towards(fitted, dist, best, runner)
+            held = _towards_held_out(table, order)
+            for q in _PAIR_QUANTILES:
+                rules[f"groups+pair q={q:g}"] = rules[f"groups a={level:g}"] & (
+                    towards <= np.quantile(held, q))
         for name, accept in rules.items():
             r = results[protocol, name]
             for t, b, ok in zip(test, best, accept):
@@ -265,7 +277,7 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
                 else:
                     r["unknown"] += 1
                     r["rejected"] += int(decided is None)
-                if level == GROUP_LEVEL and name.startswith("groups"):
+                if name == f"groups a={GROUP_LEVEL:g}":
                     # what the praxicon's own rule answered, per left-out content and per
                     # known take it got wrong: where the open set fails
                     detail = results[protocol, "detail"]
@@ -275,6 +287,47 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
                     elif decided != t.content:
                         detail.setdefault("known-wrong", {}).setdefault(
                             f"{t.content} {t.style}_{t.take:03d}", []).append(decided)
+
+
+_PAIR_QUANTILES = (0.9, 0.99)  # the pairwise test: share of held-out known takes it keeps
+
+
+def _towards(fitted, dist, best, other) -> np.ndarray:
+    """Per take, how many shared standard deviations it lies from its best action's mean
+    towards ``other``'s along the line between the two means: from the shared squared
+    distances alone, ``(d_best - d_other + D²) / 2D`` with ``D`` the means' distance."""
+    from praxicon.description import distances
+
+    gap = np.array([distances(fitted.means[o][None], fitted.means[b][None], fitted.parts)[0, 0]
+                    for b, o in zip(best, other)])
+    gap = np.sqrt(np.maximum(gap, 1e-12))
+    i = np.arange(len(best))
+    return (dist[i, best] - dist[i, other] + gap ** 2) / (2 * gap)
+
+
+def _towards_held_out(table, order, folds: int = 5) -> np.ndarray:
+    """:func:`_towards` of the training takes, each scored by descriptions learnt without
+    its fold, for those ranked right (towards their runner-up): what known takes do."""
+    from praxicon.description import describe_table, score_model, scores
+
+    out = []
+    columns = np.arange(len(order))
+    for fold in range(folds):
+        learn = {c: v[np.arange(len(v)) % folds != fold] for c, v in table.items()}
+        d = describe_table({c: v for c, v in learn.items() if len(v)}, order)
+        fitted = score_model(d, columns)
+        for c, v in table.items():
+            v = v[np.arange(len(v)) % folds == fold]
+            if not len(v) or c not in d.names:
+                continue
+            dist, score = scores(d, v, columns, fitted=fitted)
+            best = score.argmin(axis=1)
+            right = best == d.names.index(c)
+            if right.any():
+                runner = np.where(np.arange(score.shape[1])[None] == best[:, None], np.inf,
+                                  score).argmin(axis=1)
+                out.extend(_towards(fitted, dist[right], best[right], runner[right]))
+    return np.array(out) if out else np.array([np.inf])
 
 
 def _open_detail(protocol, results) -> str:
@@ -293,6 +346,82 @@ def _open_detail(protocol, results) -> str:
              for k, v in sorted(detail.get("known-wrong", {}).items())]
     return (f"{protocol:16s} at a=0.01: none of these per left-out content: " + ", ".join(parts)
             + "; known takes wrong: " + (", ".join(wrong) or "none"))
+
+
+# -- the peers on the open set: a rejection threshold calibrated on held-out known takes --------
+_PEER_QUANTILES = (0.9, 0.95, 0.99, 1.0)  # share of held-out known takes a peer's threshold keeps
+
+
+def _dtw_matrix(takes, cache: dict) -> np.ndarray:
+    """Every pair's DTW distance over ``takes`` (the same scaled series as the 1-NN peer),
+    computed once per dataset and read by every open-set split."""
+    key = id(takes)
+    if key not in cache:
+        from dtaidistance import dtw_ndim
+
+        xs = [series(t.motion) for t in takes]
+        scale = np.concatenate(xs).std(axis=0) + 1e-9
+        d = dtw_ndim.distance_matrix_fast([np.ascontiguousarray(x / scale) for x in xs],
+                                          parallel=False)
+        cache[key] = (np.where(np.isfinite(d), d, d.T) if np.isinf(d).any() else d,
+                      {id(t): i for i, t in enumerate(takes)})
+    return cache[key]
+
+
+def peer_open_set(results, protocol, takes, train, test, cache: dict, folds: int = 5):
+    """The open set as an analyst would do it with the peers: DTW 1-NN answers none of these
+    when the nearest training take is further than the held-out known takes' nearest
+    distances allow (each training take's nearest other training take), MiniRocket when its
+    ridge head's top score is below what held-out known takes got (``folds``-fold on the
+    training takes). One threshold per quantile of ``_PEER_QUANTILES``: the share of held-out
+    known takes the threshold keeps, so the trade-off is printed as for the praxicon."""
+    from sklearn.linear_model import RidgeClassifierCV
+    from sklearn.model_selection import KFold
+    from sklearn.pipeline import make_pipeline
+    from sklearn.preprocessing import StandardScaler
+
+    known = {t.content for t in train}
+    labels = np.array([t.content for t in train])
+    answers = {}
+    d, index = _dtw_matrix(takes, cache)
+    tr = np.array([index[id(t)] for t in train])
+    te = np.array([index[id(t)] for t in test])
+    own = d[np.ix_(tr, tr)].copy()
+    np.fill_diagonal(own, np.inf)
+    held = own.min(axis=1)
+    near = d[np.ix_(te, tr)]
+    nearest, dist = labels[near.argmin(axis=1)], near.min(axis=1)
+    for q in _PEER_QUANTILES:
+        limit = np.quantile(held, q)
+        answers[f"dtw-1nn q={q:g}"] = [y if s <= limit else None for y, s in zip(nearest, dist)]
+
+    from aeon.transformations.collection.convolution_based import MiniRocket
+
+    x = np.stack([_resampled(series(t.motion, 30.0), 64) for t in train])
+    z = np.stack([_resampled(series(t.motion, 30.0), 64) for t in test])
+    head = lambda: make_pipeline(StandardScaler(with_mean=False),  # noqa: E731
+                                 RidgeClassifierCV(alphas=np.logspace(-3, 3, 10)))
+    rocket = MiniRocket(random_state=0, n_jobs=1).fit(x)
+    fx, fz = rocket.transform(x), rocket.transform(z)
+    top_held = np.empty(len(train))
+    for fit_i, out_i in KFold(folds, shuffle=True, random_state=0).split(fx):
+        model = head().fit(fx[fit_i], labels[fit_i])
+        top_held[out_i] = model.decision_function(fx[out_i]).max(axis=1)
+    model = head().fit(fx, labels)
+    score = model.decision_function(fz)
+    best, top = model.classes_[score.argmax(axis=1)], score.max(axis=1)
+    for q in _PEER_QUANTILES:
+        limit = np.quantile(top_held, 1 - q)
+        answers[f"minirocket q={q:g}"] = [y if s >= limit else None for y, s in zip(best, top)]
+    for name, decided in answers.items():
+        r = results[protocol, name]
+        for t, a in zip(test, decided):
+            if t.content in known:
+                r["known"] += 1
+                r["known_right"] += int(a == t.content)
+            else:
+                r["unknown"] += 1
+                r["rejected"] += int(a is None)
 
 
 # -- parsing -----------------------------------------------------------------------------------
@@ -611,7 +740,7 @@ def main(argv=None) -> int:
     parser.add_argument("--methods", default=",".join(METHODS))
     parser.add_argument("--no-docs", action="store_true")
     parser.add_argument("--no-peers", action="store_true",
-                        help="parsing without its MiniRocket peer (a quick check)")
+                        help="parsing and the open set without their peers (a quick check)")
     args = parser.parse_args(argv)
     _PEERS[0] = not args.no_peers
     require("praxicon")
@@ -625,6 +754,7 @@ def main(argv=None) -> int:
         lines.append(line)
 
     d1 = d2 = None
+    peer_cache = {}  # the peers' DTW distances, once per dataset
     if want("d2-in-style") or want("d2-loso") or want("open-set") or want("open-d2") or \
             want("ablation"):
         d2 = read_bandai(MOCAP / "bandai-namco-2-subset")
@@ -665,6 +795,10 @@ def main(argv=None) -> int:
                 open_set(results, protocol,
                          [t for t in d2 if t.take <= 3 and t.content != content],
                          [t for t in d2 if t.take > 3], by_style=by_style)
+            if _PEERS[0]:
+                peer_open_set(results, "open-d2-in-style", d2,
+                              [t for t in d2 if t.take <= 3 and t.content != content],
+                              [t for t in d2 if t.take > 3], peer_cache)
     if want("open-set") or want("open-d1"):
         many = sorted(c for c in {t.content for t in d1} if sum(t.content == c for t in d1) >= 10)
         for i, style in enumerate(sorted({t.style for t in d1})):
@@ -672,6 +806,10 @@ def main(argv=None) -> int:
             open_set(results, "open-d1-loso",
                      [t for t in d1 if t.style != style and t.content != content],
                      [t for t in d1 if t.style == style])
+            if _PEERS[0]:
+                peer_open_set(results, "open-d1-loso", d1,
+                              [t for t in d1 if t.style != style and t.content != content],
+                              [t for t in d1 if t.style == style], peer_cache)
         # in style on dataset 1: only walk has two takes of each style, so its second takes are
         # the known ones (their first takes learnt); every other content is left out in turn
         # with all its styles, each of them learnt from the other contents
@@ -682,9 +820,17 @@ def main(argv=None) -> int:
                      [t for t in d1 if t.content != content and t.take == 1],
                      [t for t in d1 if t.content == content
                       or (t.take == 2 and t.content == "walk")])
+            if _PEERS[0]:
+                peer_open_set(results, "open-d1-in-style", d1,
+                              [t for t in d1 if t.content != content and t.take == 1],
+                              [t for t in d1 if t.content == content
+                               or (t.take == 2 and t.content == "walk")], peer_cache)
     if want("open-set") or want("open-d1") or want("open-d2"):
         rules = ([f"whole x{m:g}" for m in _MARGINS] + [f"groups a={v:g}" for v in _LEVELS]
-                 + ["every group a=0.01"])
+                 + ["every group a=0.01"]
+                 + [f"groups+pair q={q:g}" for q in _PAIR_QUANTILES]
+                 + [f"{peer} q={q:g}" for peer in ("dtw-1nn", "minirocket")
+                    for q in _PEER_QUANTILES])
         for protocol in ("open-d2-in-style", "open-d2-in-style-per-style", "open-d1-in-style",
                          "open-d1-loso"):
             for method in rules:
