@@ -56,8 +56,10 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
     """Section groups formed and weighed against the motif groups; ``found`` updated."""
     # (not bounded by max_pattern: a section is found by a search over lengths, not grown)
     level = math.log10(conf.alpha)
+    # every string's follow rate, read by the section search and by the groups' test alike
+    follows = [follow_rate(s.codes) for s in strings]
     sections = find_sections([s.codes for s in strings], conf.min_copies,
-                             [s.match_rate for s in strings], SCREEN)
+                             [s.match_rate for s in strings], SCREEN, follows)
     found.sections = sections
     candidates = [i for i, s in enumerate(sections) if s is not None and s.significance <= SCREEN]
     intervals = {i: strings[i].intervals(sections[i].starts, len(sections[i].motif))
@@ -78,7 +80,6 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
             found.dropped[i] = WEAK_COPIES
     weighed = [(sum(weights[i] for i in g), 0, k, g) for k, g in enumerate(motif_groups)]
     sectioned, readings = [], []
-    follows = [follow_rate(s.codes) for s in strings]
     for group in sync_groups(candidates, partners):
         significance, members = group_significance(strings, sections, intervals, follows,
                                                    group, partners, level)

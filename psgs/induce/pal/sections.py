@@ -179,7 +179,8 @@ def copy_agreements(codes: np.ndarray, pattern, starts) -> list[float]:
 
 
 def find_sections(strings: list[np.ndarray], copies: int, match_rates: list[float],
-                  level: float) -> list[Section | None]:
+                  level: float, follows: list[float | None] | None = None
+                  ) -> list[Section | None]:
     """:func:`find_section` of every string (unbounded in length), strings that cannot hold a
     section reaching ``level`` passed over in one pass over all of them.
 
@@ -193,7 +194,9 @@ def find_sections(strings: list[np.ndarray], copies: int, match_rates: list[floa
     [12, None]
     """
     out: list[Section | None] = [None] * len(strings)
-    follows = [follow_rate(c) if len(c) >= 2 * copies else None for c in strings]
+    # (``follows``: every string's :func:`follow_rate`, when the caller has them already)
+    follows = [(follow_rate(c) if follows is None else follows[i]) if len(c) >= 2 * copies
+               else None for i, c in enumerate(strings)]
     lows = [_shortest(len(c), copies, q, f, level, len(c) // copies)
             if len(c) >= 2 * copies else 0 for c, q, f in zip(strings, match_rates, follows)]
     for i in _may_repeat(strings, lows, copies):
