@@ -60,7 +60,12 @@ def euler_angles(matrices, order: str) -> np.ndarray:
     """Angles (degrees, ``(frames, 3)`` in ``order``) whose product ``R_order[0] R_order[1] R_order[2]`` is each matrix; unwrapped over frames."""
     import warnings
 
-    from scipy.spatial.transform import Rotation
+    try:
+        from scipy.spatial.transform import Rotation
+    except ImportError:  # a plain install: one line naming the extra, not a traceback
+        from psgs.errors import PSGSError
+        raise PSGSError("whole-body generation needs scipy: pip install 'psgs[praxicon]'"
+                        ) from None
 
     with warnings.catch_warnings():
         # at gimbal lock scipy sets the third angle to zero and warns; that angle is as good

@@ -102,6 +102,15 @@ def test_generation_without_scipy_names_the_praxicon_extra(plain_install):
         shape(np.zeros(101), [0, 20, 40, 60, 80, 100], "RYRBR", 30.0, {})
 
 
+def test_whole_body_generation_without_scipy_names_the_praxicon_extra(plain_install):
+    # the body's rotations (a real take's root and its heading) are read through scipy
+    from praxicon.body_motion import euler_angles
+    from psgs.errors import PSGSError
+
+    with pytest.raises(PSGSError, match=r"pip install 'psgs\[praxicon\]'"):
+        euler_angles(np.eye(3)[None], "zxy")
+
+
 def test_asking_for_the_compiled_engine_without_numba_names_the_fast_extra():
     # a fresh interpreter: in this one the engine may have been chosen and kept already
     code = ("import sys; sys.modules['numba'] = None; from psgs.cli import main; "
