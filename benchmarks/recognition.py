@@ -271,12 +271,7 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
             r = results[protocol, name]
             for t, b, ok in zip(test, best, accept):
                 decided = d.names[b].split("|")[0] if ok else None
-                if t.content in known:
-                    r["known"] += 1
-                    r["known_right"] += int(decided == t.content)
-                else:
-                    r["unknown"] += 1
-                    r["rejected"] += int(decided is None)
+                _tally(r, t.content, known, decided)
                 if name == f"groups a={GROUP_LEVEL:g}":
                     # what the praxicon's own rule answered, per left-out content and per
                     # known take it got wrong: where the open set fails
@@ -416,12 +411,17 @@ def peer_open_set(results, protocol, takes, train, test, cache: dict, folds: int
     for name, decided in answers.items():
         r = results[protocol, name]
         for t, a in zip(test, decided):
-            if t.content in known:
-                r["known"] += 1
-                r["known_right"] += int(a == t.content)
-            else:
-                r["unknown"] += 1
-                r["rejected"] += int(a is None)
+            _tally(r, t.content, known, a)
+
+
+def _tally(counts: dict, content: str, known, decided) -> None:
+    """One open-set answer counted: a known take right, or a left-out take rejected (None)."""
+    if content in known:
+        counts["known"] += 1
+        counts["known_right"] += int(decided == content)
+    else:
+        counts["unknown"] += 1
+        counts["rejected"] += int(decided is None)
 
 
 # -- parsing -----------------------------------------------------------------------------------
