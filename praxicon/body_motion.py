@@ -63,9 +63,9 @@ def euler_angles(matrices, order: str) -> np.ndarray:
     try:
         from scipy.spatial.transform import Rotation
     except ImportError:  # a plain install: one line naming the extra, not a traceback
-        from psgs.errors import PSGSError
-        raise PSGSError("whole-body generation needs scipy: pip install 'psgs[praxicon]'"
-                        ) from None
+        from psgs.errors import MissingDependency
+        raise MissingDependency("whole-body generation needs scipy: pip install "
+                                "'psgs[praxicon]'") from None
 
     with warnings.catch_warnings():
         # at gimbal lock scipy sets the third angle to zero and warns; that angle is as good

@@ -235,9 +235,9 @@ def shape(base, knots, symbols, frame_rate: float, segmentation: dict, *,
         from scipy import sparse
         from scipy.optimize import linprog
     except ImportError:  # a plain install: one line naming the extra, not a traceback
-        from psgs.errors import PSGSError
-        raise PSGSError("generation's correction layer needs scipy: pip install "
-                        "'psgs[praxicon]'") from None
+        from psgs.errors import MissingDependency
+        raise MissingDependency("generation's correction layer needs scipy: pip install "
+                                "'psgs[praxicon]'") from None
 
     from kinetology.segmentation import DEFAULTS
 
