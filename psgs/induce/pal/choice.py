@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .motifs import Timed
-from .in_step import group_significance
+from .in_step import group_significance, spans_pair
 from .pooling import sync_groups
 from .sections import (Section, copy_agreements, find_sections, follow_rate,
                        repeat_significance)
@@ -175,9 +175,7 @@ def coincide(a: np.ndarray, b: np.ndarray, copies: int, fraction: float = 1.0) -
     for a0, a1 in a_list:
         near = max(bisect_left(b_starts, a0) - 1, 0)
         while near < len(b_list) and b_list[near][0] < a1:
-            b0, b1 = b_list[near]
-            shared = min(a1, b1) - max(a0, b0)
-            if shared > 0 and 2 * shared >= max(a1, b1) - min(a0, b0):
+            if spans_pair((a0, a1), b_list[near]):
                 count += 1
                 break
             near += 1

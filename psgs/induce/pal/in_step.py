@@ -32,10 +32,9 @@ import numpy as np
 
 from .motifs import Timed
 from .sections import Section, _cycles
+from .statistics import log10_choose
 
 __all__: list[str] = []  # private: choice.py is the caller
-
-_LN10 = math.log(10)
 
 
 def group_significance(strings: list[Timed], sections: list, intervals: dict[int, np.ndarray],
@@ -128,7 +127,7 @@ def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.n
         return math.inf, {}
     m = len(joined) + 1
     significance = (lead_significance(strings[lead], section, follows[lead]) + sum(weights)
-                    + math.log10(total) + _log10_choose(total - 1, m - 1))
+                    + math.log10(total) + log10_choose(total - 1, m - 1))
     return significance, {lead: again[1], **joined}
 
 
@@ -156,8 +155,8 @@ def lead_significance(string: Timed, section: Section, follow: float | None) -> 
     # c windows of L symbols apart in n symbols: C(n - c (L - 1), c) sets, of which
     # C(n - c (L - 1) - 1, c - 1) open the string
     sets = n - copies * (length - 1)
-    inner = _log10_choose(sets - 1, copies) + math.log10(max(1e-300, 1 - r ** (copies - 1)))
-    edge = _log10_choose(sets - 1, copies - 1)
+    inner = log10_choose(sets - 1, copies) + math.log10(max(1e-300, 1 - r ** (copies - 1)))
+    edge = log10_choose(sets - 1, copies - 1)
     top = max(inner, edge)
     sets = top + math.log10(10 ** (inner - top) + 10 ** (edge - top))
     return sets + (copies - 1) * (math.log10(q) + (length - 1) * math.log10(r))
@@ -292,7 +291,7 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None
             for s in range(begin, end - length + 1):
                 where = np.array([[starts[s], ends[s + length - 1]],
                                   [starts[s + shift], ends[s + length - 1 + shift]]])
-                if not all(_pairs(w, c) for w, c in zip(where.tolist(), lead.tolist())):
+                if not all(spans_pair(w, c) for w, c in zip(where.tolist(), lead.tolist())):
                     continue
                 motif = codes[s:s + length].copy()
                 if _cycles(motif):
@@ -304,15 +303,9 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None
     return best
 
 
-def _pairs(copy, lead) -> bool:
+def spans_pair(copy, lead) -> bool:
     """Whether two time spans share half of the time the two cover together."""
     (a, b), (c, d) = copy, lead
     shared, union = min(b, d) - max(a, c), max(b, d) - min(a, c)
     return shared > 0 and 2 * shared >= union
 
-
-def _log10_choose(n: int, k: int) -> float:
-    """log10 of the binomial coefficient ``C(n, k)`` (0 when ``k`` is out of range)."""
-    if k < 0 or k > n:
-        return -math.inf
-    return (math.lgamma(n + 1) - math.lgamma(k + 1) - math.lgamma(n - k + 1)) / _LN10

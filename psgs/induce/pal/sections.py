@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .motifs import keep_apart
-from .statistics import log10_binom_sf
+from .statistics import log10_binom_sf, log10_choose
 
 __all__: list[str] = []  # private: content.py is the caller
 
@@ -87,8 +87,7 @@ def repeat_significance(n: int, length: int, copies: int, agreeing: int,
     windows = n - length + 1
     if copies < 2 or windows < copies or length < 1:
         return 0.0
-    sets = (math.lgamma(windows + 1) - math.lgamma(copies + 1)
-            - math.lgamma(windows - copies + 1)) / math.log(10)
+    sets = log10_choose(windows, copies)
     if agreeing >= (copies - 1) * length and follow_rate is not None:
         if match_rate <= 0 or follow_rate <= 0:
             return -math.inf

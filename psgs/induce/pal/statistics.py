@@ -14,6 +14,17 @@ if TYPE_CHECKING:
 _LN10 = math.log(10)
 
 
+def log10_choose(n: int, k: int) -> float:
+    """log10 of the binomial coefficient ``C(n, k)`` (-inf when ``k`` is out of range).
+
+    >>> round(log10_choose(10, 3), 6) == round(math.log10(120), 6)
+    True
+    """
+    if k < 0 or k > n:
+        return -math.inf
+    return (math.lgamma(n + 1) - math.lgamma(k + 1) - math.lgamma(n - k + 1)) / _LN10
+
+
 def log10_binom_sf(k: int, m: int, p: float) -> float:
     """log10 P(X >= k) for X ~ Binomial(m, p)."""
     if k <= 0:
