@@ -255,7 +255,15 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None
 
     Every maximal run of agreeing symbols between a window at the first copy and one at
     the second (all shifts between the segments under them) that pairs with both copies,
-    does not overlap itself and is no cycle.
+    does not overlap itself and is no cycle. Among equally unlikely ones, the first in
+    the order of the shifts and then of the runs.
+
+    The candidates are weighed from the least bound on their weight up (the bound is
+    their chance agreement, which only the length sets: the other terms of
+    :func:`in_step_significance` are counts, at least one, and the symbols before the
+    copies disagree with chance ``1 - r`` at the least), and the search stops at the
+    first bound no lighter than the best weight found: the same repeat as weighing every
+    candidate, without weighing the many long runs' shorter ones.
 
     Examples
     --------
@@ -273,7 +281,7 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None
     if len(first) == 0 or len(second) == 0:
         return None
     reach = len(first) + len(second)
-    best = None
+    found: list[tuple[int, int, int]] = []  # (length, start, shift), in the search's order
     for shift in range(max(1, int(second[0] - first[-1])), int(second[-1] - first[0]) + 1):
         lo, hi = max(0, int(first[0]) - reach), min(n - shift, int(first[-1]) + reach + 1)
         if hi - lo < 2:
@@ -288,19 +296,45 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None
             # a run longer than the shift holds copies of the shift's length that do not
             # overlap (copies that touch, and chance agreement after the second)
             length = min(end - begin, shift)
-            for s in range(begin, end - length + 1):
-                where = np.array([[starts[s], ends[s + length - 1]],
-                                  [starts[s + shift], ends[s + length - 1 + shift]]])
-                if not all(spans_pair(w, c) for w, c in zip(where.tolist(), lead.tolist())):
-                    continue
-                motif = codes[s:s + length].copy()
-                if _cycles(motif):
-                    continue
-                section = Section(motif, np.array([s, s + shift], dtype=np.int64), 0.0)
-                weight = in_step_significance(string, section, where, lead, follow)
-                if best is None or weight < best[0]:
-                    best = (weight, section)
+            at = np.arange(begin, end - length + 1)
+            pairs = (_pairs_with(starts[at], ends[at + length - 1], a1, b1)
+                     & _pairs_with(starts[at + shift], ends[at + length - 1 + shift], a2, b2))
+            found.extend((length, s, shift) for s in at[pairs].tolist())
+    if not found:
+        return None
+    q = string.match_rate
+    r = q if follow is None else follow
+    bounds: dict[int, float] = {}
+    for length in {f[0] for f in found}:
+        # in_step_significance's chance term at two copies, and its least left-end term
+        bounds[length] = (-math.inf if q <= 0 or r <= 0 else
+                          (math.log10(q) + (length - 1) * math.log10(r))
+                          + math.log10(max(1e-300, 1 - r)))
+    best, best_order = None, -1
+    for bound, order in sorted((bounds[f[0]], k) for k, f in enumerate(found)):
+        if best is not None and bound >= best[0]:
+            if bound > best[0]:
+                break  # (every candidate left is at least as heavy)
+            if order > best_order:
+                continue  # (at most as light as the best, and after it)
+        length, s, shift = found[order]
+        motif = codes[s:s + length].copy()
+        if _cycles(motif):
+            continue
+        where = np.array([[starts[s], ends[s + length - 1]],
+                          [starts[s + shift], ends[s + length - 1 + shift]]])
+        section = Section(motif, np.array([s, s + shift], dtype=np.int64), 0.0)
+        weight = in_step_significance(string, section, where, lead, follow)
+        if best is None or weight < best[0] or (weight == best[0] and order < best_order):
+            best, best_order = (weight, section), order
     return best
+
+
+def _pairs_with(begins: np.ndarray, ends: np.ndarray, lo: float, hi: float) -> np.ndarray:
+    """:func:`spans_pair` of every span ``(begins[k], ends[k])`` with ``(lo, hi)``."""
+    shared = np.minimum(ends, hi) - np.maximum(begins, lo)
+    union = np.maximum(ends, hi) - np.minimum(begins, lo)
+    return (shared > 0) & (2 * shared >= union)
 
 
 def spans_pair(copy, lead) -> bool:
