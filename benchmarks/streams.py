@@ -2,7 +2,7 @@
 
 Run from the repository root (music21, in the bench extra, brings the corpus):
 
-    python benchmarks/streams.py [--limit N] [--no-write]
+    python benchmarks/streams.py [--limit N] [--no-write] [--confirm | --confirm2]
 
 The data: the pieces of music21's corpus by the composers in ``COMPOSERS`` with
 three to five voices (parts). The four-part Bach chorales are left out on
@@ -21,7 +21,10 @@ its voices (voices of other pieces, their notes shuffled, cut to the piece's
 time): the paper's shape of a few patterned strings among many. Methods, in
 the same run on the same strings:
 
-- PAL with its defaults, and PAL with ``min_copies=2`` (a section played twice);
+- PAL with its defaults, and PAL with ``min_copies=2`` (a section played twice): on the
+  pitch strings, with ``section_durations="equal"`` (a section's copies must repeat each
+  note's duration too), and on symbols that carry their durations (``C4_1.5``, the other
+  encoding: the same pitches in another rhythm are other symbols);
 - the longest exact repeat of each string (two copies apart), strings grouped
   by time span: two strings are in step when their copies pair off in time
   (each pair sharing half the time they cover together), every string of a
@@ -76,6 +79,13 @@ SPURIOUS = 16
 #: main run reads the 1st, 21st, ...)
 CONFIRM_COMPOSERS = ("trecento", "palestrina")
 CONFIRM_PALESTRINA_OFFSET = 10
+#: the second confirmation run (``--confirm2``), on pieces neither run above read: every
+#: piece of the corpus's composers no run read (Bach and the corpus's demos and exercises
+#: aside), and Palestrina's one in 20 from the 6th piece and from the 16th (the runs above
+#: read the 1st, 11th, 21st, 31st, ...)
+CONFIRM2_COMPOSERS = ("beach", "chopin", "johnson_j_r", "joplin", "liliuokalani", "lusitano",
+                      "schoenberg", "schumann_clara", "schumann_robert", "webern", "palestrina")
+CONFIRM2_PALESTRINA_OFFSETS = (5, 15)
 
 
 @dataclass(frozen=True)
@@ -139,18 +149,20 @@ def bar_length(part) -> float:
     return max(set(lengths), key=lengths.count) if lengths else 4.0
 
 
-def load(limit: int | None, confirm: bool = False) -> tuple[list[Piece], list[Piece]]:
-    """The pieces with repetition and those without, from music21's corpus (the
-    confirmation run's pieces with ``confirm``)."""
+def load(limit: int | None, run: str = "main") -> tuple[list[Piece], list[Piece]]:
+    """The pieces with repetition and those without, from music21's corpus: the main
+    run's, or the pieces of a confirmation run (``run`` "confirm" or "confirm2")."""
     from music21 import bar, corpus, repeat
 
     with_rep, without = [], []
     seen: set[str] = set()
-    offset = CONFIRM_PALESTRINA_OFFSET if confirm else 0
-    for composer in CONFIRM_COMPOSERS if confirm else COMPOSERS:
+    composers, offsets = {"main": (COMPOSERS, (0,)),
+                          "confirm": (CONFIRM_COMPOSERS, (CONFIRM_PALESTRINA_OFFSET,)),
+                          "confirm2": (CONFIRM2_COMPOSERS, CONFIRM2_PALESTRINA_OFFSETS)}[run]
+    for composer in composers:
         paths = sorted(map(str, corpus.getComposer(composer)))
         if composer == "palestrina":
-            paths = paths[offset::PALESTRINA_STEP]
+            paths = [p for offset in offsets for p in paths[offset::PALESTRINA_STEP]]
         for path in paths:
             stem = path.rsplit(".", 1)[0].removesuffix("_old")
             if stem in seen:
@@ -418,9 +430,21 @@ def score(named: dict, voices: list[str], piece: Piece) -> tuple[bool, int]:
     return set(named) == set(voices), hits
 
 
+def with_durations(ag: Actiongram) -> Actiongram:
+    """The other encoding: each symbol carries its duration (``C4_1.5``), so that the same
+    pitches in another rhythm are other symbols."""
+    return Actiongram.from_strings(
+        {n: [f"{s}_{d:g}" for s, d in zip(ag.string(n), ag.durations[n])] for n in ag.names},
+        ag.durations, dict(zip(ag.names, ag.origins)))
+
+
 METHODS = {
     "PAL defaults": lambda ag: dict(PAL().induce(ag).occurrences),
     "PAL min_copies=2": lambda ag: dict(PAL(min_copies=2).induce(ag).occurrences),
+    "PAL min_copies=2, equal durations": lambda ag: dict(
+        PAL(min_copies=2, section_durations="equal").induce(ag).occurrences),
+    "PAL min_copies=2 on pitch_duration symbols": lambda ag: dict(
+        PAL(min_copies=2).induce(with_durations(ag)).occurrences),
     "longest exact repeat": lambda ag: peer(ag, longest_repeat),
     "scikit-sequitur longest rule": lambda ag: peer(ag, longest_rule),
 }
@@ -454,11 +478,15 @@ def main(argv=None) -> None:
     parser.add_argument("--no-write", action="store_true")
     parser.add_argument("--confirm", action="store_true",
                         help="the confirmation run: pieces no earlier run read (printed only)")
+    parser.add_argument("--confirm2", action="store_true",
+                        help="the second confirmation run: pieces neither run read (printed "
+                             "only)")
     args = parser.parse_args(argv)
-    if args.confirm:
+    if args.confirm or args.confirm2:
         args.no_write = True
     began = time.time()
-    with_rep, without = load(args.limit, args.confirm)
+    with_rep, without = load(args.limit, "confirm2" if args.confirm2 else
+                             "confirm" if args.confirm else "main")
     print("pieces:", ", ".join(p.name for p in with_rep + without), flush=True)
     print(f"{len(with_rep)} pieces with repeats, {len(without)} without "
           f"(read in {time.time() - began:.0f} s)", flush=True)

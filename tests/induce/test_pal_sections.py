@@ -183,3 +183,32 @@ def test_an_induction_holds_one_agreement_per_occurrence():
     with pytest.raises(ValidationError, match="agreements"):
         Induction(None, ("k",), {"k": ("a", "b")}, {"k": ((0.0, 2.0),)},
                   agreements={"k": (1.0, 0.5)})
+
+
+def _in_two_rhythms(second_rhythm: bool):
+    """Three strings playing a section at the same two times; with ``second_rhythm`` the
+    second copy holds the same symbols in another rhythm (each 1 a 2 and each 2 a 1)."""
+    rng = np.random.default_rng(7)
+    strings, durations = {}, {}
+    rhythm = [float(d) for d in rng.choice([1.0, 2.0], 12)]
+    again = [3.0 - d for d in rhythm] if second_rhythm else rhythm
+    for k in range(3):
+        section = _draw(rng, 8, 12)
+        head, gap, tail = _draw(rng, 8, 4, None), _draw(rng, 8, 3, section[-1]), _draw(rng, 8, 6)
+        while gap[-1] == section[0] or head[-1] == section[0] or tail[0] == section[-1]:
+            gap, head, tail = _draw(rng, 8, 3, section[-1]), _draw(rng, 8, 4), _draw(rng, 8, 6)
+        strings[f"s{k}"] = ["abcdefgh"[c] for c in head + section + gap + section + tail]
+        durations[f"s{k}"] = [1.0] * 4 + rhythm + [1.0] * 3 + again + [1.0] * 6
+    return Actiongram.from_strings(strings, durations)
+
+
+def test_equal_durations_tell_a_repeat_from_the_same_symbols_in_another_rhythm():
+    same, other = _in_two_rhythms(False), _in_two_rhythms(True)
+    # the symbols alone cannot tell them apart
+    assert PAL(min_copies=2).induce(other).components == ("s0", "s1", "s2")
+    strict = PAL(min_copies=2, section_durations="equal")
+    assert strict.induce(same).components == ("s0", "s1", "s2")
+    assert strict.induce(same).occurrences == PAL(min_copies=2).induce(same).occurrences
+    assert strict.induce(other).components == ()
+    assert strict.induce(same).report("s0").motif == PAL(min_copies=2).induce(same).report(
+        "s0").motif

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import math
 from bisect import bisect_left
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -58,6 +59,11 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
     level = math.log10(conf.alpha)
     # every string's follow rate, read by the section search and by the groups' test alike
     follows = [follow_rate(s.codes) for s in strings]
+    symbols = strings
+    if conf.section_durations == "equal":
+        # a section's copies repeat what ``codes`` holds: here the symbols with their
+        # durations; every rate stays the symbols' own
+        strings = [with_durations(s) for s in strings]
     sections = find_sections([s.codes for s in strings], conf.min_copies,
                              [s.match_rate for s in strings], SCREEN, follows)
     found.sections = sections
@@ -71,7 +77,7 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
                 partners[a].append(b)
                 partners[b].append(a)
     found.section_partners = partners
-    weights = {i: motif_weight(strings[i], found.patterns[i], found.spans[i])
+    weights = {i: motif_weight(symbols[i], found.patterns[i], found.spans[i])
                for i in found.patterns}
     # a motif group's member must be significant at the copies it ended with, too
     motif_groups = [[i for i in g if weights[i] <= level] for g in found.groups]
@@ -124,7 +130,7 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
                     len(strings[i].codes), length, len(s.starts), (len(s.starts) - 1) * length,
                     strings[i].match_rate, follows[i]))
                 sections[i] = s
-            found.patterns[i] = tuple(s.motif.tolist())
+            found.patterns[i] = tuple(symbols[i].codes[s.starts[0]:s.starts[0] + length].tolist())
             found.occurrences[i] = tuple(map(tuple, strings[i].intervals(s.starts,
                                                                          length).tolist()))
             found.spans[i] = tuple((a, a + length) for a in s.starts.tolist())
@@ -133,6 +139,11 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
             found.section_partners[i] = sorted(set(partners.get(i, [])) | set(mates))  # too)
     for i in {i for g in sectioned for i in g} - set(taken):
         found.dropped.setdefault(i, OUTWEIGHED)
+    if symbols is not strings:  # the sections as their symbols, for the reports
+        found.sections = [None if x is None else Section(
+            symbols[i].codes[x.starts[0]:x.starts[0] + len(x.motif)].copy(), x.starts,
+            x.significance) for i, x in enumerate(sections)]
+        strings = symbols
     keep_agreeing(strings, found, conf)
     # a group that the agreement left with one member is no longer in step with anything
     left: dict[tuple[int, int], list[int]] = {}
@@ -147,6 +158,38 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
             found.joined.pop(i, None)
             found.from_sections.discard(i)
             found.dropped[i] = TOO_FEW_AGREEING
+
+
+@dataclass(frozen=True)
+class _Keyed(Timed):
+    """A string whose codes are what its sections' copies must repeat, weighed by the
+    chance agreement of its symbols (``rate``, their match rate)."""
+
+    rate: float = 0.0
+
+    @property
+    def match_rate(self) -> float:
+        return self.rate
+
+
+def with_durations(string: Timed) -> Timed:
+    """``string`` with one code per (symbol, duration) pair, its match rate its symbols'.
+
+    Durations are equal when they agree to a millionth of the string's longest (float
+    rounding of the times aside).
+
+    Examples
+    --------
+    >>> string = Timed.from_codes(np.array([0, 1, 0, 1]), np.array([1.0, 1.0, 1.0, 2.0]), 0.0)
+    >>> keyed = with_durations(string)
+    >>> keyed.codes.tolist(), keyed.match_rate == string.match_rate
+    ([0, 1, 0, 2], True)
+    """
+    durations = string.ends - string.starts
+    grain = 1e-6 * max(float(np.max(durations, initial=0.0)), 1e-300)
+    steps = np.round(durations / grain).astype(np.int64)
+    _, keys = np.unique(np.column_stack((string.codes, steps)), axis=0, return_inverse=True)
+    return _Keyed(keys.ravel().astype(np.int64), string.starts, string.ends, string.match_rate)
 
 
 def coincide(a: np.ndarray, b: np.ndarray, copies: int, fraction: float = 1.0) -> bool:

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from ..conf import Choice, Conf, Number, Parameter, parameter
 from ..._foundation.engines import ENGINES, resolve
 
-__all__ = ["ContentConf", "MIN_COPIES", "ALPHA", "TIMINGS"]
+__all__ = ["ContentConf", "MIN_COPIES", "ALPHA", "TIMINGS", "SECTION_DURATIONS"]
 
 #: Fewest copies (of a motif, or cycles of a joint) that count as repetition.
 MIN_COPIES = Parameter(3, Number(low=2, integer=True))
@@ -21,6 +21,9 @@ MIN_COPIES = Parameter(3, Number(low=2, integer=True))
 ALPHA = Parameter(1e-2, Number(low=0, high=1, low_open=True))
 #: How the paper's learner locates copies (see :class:`ContentConf`).
 TIMINGS = ("content", "period", "auto")
+#: What a section's copies must repeat (see :class:`ContentConf`): the symbols, or the
+#: symbols and their durations alike.
+SECTION_DURATIONS = ("any", "equal")
 
 
 def check_engine(name: str, value: object) -> None:
@@ -66,6 +69,7 @@ class ContentConf(Conf):
     rounds: int = parameter(2, Number(low=1, integer=True))
     joins_copies: int = parameter(4, Number(low=2, integer=True))
     copy_agreement: float = parameter(0.5, Number(low=0, high=1))
+    section_durations: str = parameter("any", Choice(SECTION_DURATIONS))
     timing: str = parameter("auto", Choice(TIMINGS))
     period_quantile: float = parameter(0.9, Number(low=0, high=1))
     period_agreement: float = parameter(0.6, Number(low=0, high=1, low_open=True))

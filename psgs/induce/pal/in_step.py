@@ -255,7 +255,16 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None
 
     Every maximal run of agreeing symbols between a window at the first copy and one at
     the second (all shifts between the segments under them) that pairs with both copies,
-    does not overlap itself and is no cycle.
+    does not overlap itself and is no cycle. Among equally unlikely ones, the first in
+    the order of the shifts and then of the runs.
+
+    The runs of every shift are found at once (shifts as the rows of one array), and
+    the candidates weighed from the least bound on their weight up (the bound is their
+    chance agreement, which only the length sets: the other terms of
+    :func:`in_step_significance` are counts, at least one, and the symbols before the
+    copies disagree with chance ``1 - r`` at the least); the search stops at the first
+    bound no lighter than the best weight found: the same repeat as weighing every
+    candidate in the order of the shifts.
 
     Examples
     --------
@@ -273,34 +282,81 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None
     if len(first) == 0 or len(second) == 0:
         return None
     reach = len(first) + len(second)
-    best = None
-    for shift in range(max(1, int(second[0] - first[-1])), int(second[-1] - first[0]) + 1):
-        lo, hi = max(0, int(first[0]) - reach), min(n - shift, int(first[-1]) + reach + 1)
-        if hi - lo < 2:
+    low, top = max(1, int(second[0] - first[-1])), int(second[-1] - first[0])
+    lo = max(0, int(first[0]) - reach)
+    width = max(0, min(n - low, int(first[-1]) + reach + 1) - lo)
+    if top < low or width < 2:
+        return None
+    # every shift's maximal runs of agreement at once, shifts as rows (a block of rows at
+    # a time, so that a long string's block stays small): a run from ``begin`` to ``end``
+    # at a shift is a row's stretch of True
+    found = []  # (lengths, starts, shifts) of the candidates, in the order of the shifts
+    position = lo + np.arange(width)
+    rows = max(1, (1 << 22) // (width + 2))
+    for block in range(low, top + 1, rows):
+        shifts = np.arange(block, min(top, block + rows - 1) + 1)
+        his = np.minimum(n - shifts, int(first[-1]) + reach + 1)
+        inside = position[None, :] < his[:, None]
+        other = np.minimum(position[None, :] + shifts[:, None], n - 1)
+        grid = np.zeros((len(shifts), width + 2), dtype=np.int8)
+        grid[:, 1:-1] = inside & (codes[position][None, :] == codes[other])
+        steps = np.diff(grid, axis=1)
+        row, begin = np.nonzero(steps == 1)
+        end = np.nonzero(steps == -1)[1] + lo
+        begin = begin + lo
+        shift, hi = shifts[row], his[row]
+        # (cut by the range looked at: not maximal)
+        keep = (end - begin >= 2) & ~((begin == lo) & (lo > 0)) & ~((end == hi) & (hi < n - shift))
+        begin, end, shift = begin[keep], end[keep], shift[keep]
+        # a run longer than the shift holds copies of the shift's length that do not
+        # overlap (copies that touch, and chance agreement after the second)
+        length = np.minimum(end - begin, shift)
+        count = end - length - begin + 1
+        cum = np.cumsum(count)
+        at = np.repeat(begin, count) + np.arange(int(cum[-1]) if len(cum) else 0) - np.repeat(
+            cum - count, count)
+        length, shift = np.repeat(length, count), np.repeat(shift, count)
+        pairs = (_pairs_with(starts[at], ends[at + length - 1], a1, b1)
+                 & _pairs_with(starts[at + shift], ends[at + length - 1 + shift], a2, b2))
+        found.append((length[pairs], at[pairs], shift[pairs]))
+    lengths = np.concatenate([f[0] for f in found]).tolist()
+    if not lengths:
+        return None
+    ats = np.concatenate([f[1] for f in found]).tolist()
+    shifted = np.concatenate([f[2] for f in found]).tolist()
+    q = string.match_rate
+    r = q if follow is None else follow
+    bounds: dict[int, float] = {}
+    for length in set(lengths):
+        # in_step_significance's chance term at two copies, and its least left-end term
+        bounds[length] = (-math.inf if q <= 0 or r <= 0 else
+                          (math.log10(q) + (length - 1) * math.log10(r))
+                          + math.log10(max(1e-300, 1 - r)))
+    best, best_order = None, -1
+    for bound, order in sorted((bounds[length], k) for k, length in enumerate(lengths)):
+        if best is not None and bound >= best[0]:
+            if bound > best[0]:
+                break  # (every candidate left is at least as heavy)
+            if order > best_order:
+                continue  # (at most as light as the best, and after it)
+        length, s, shift = lengths[order], ats[order], shifted[order]
+        motif = codes[s:s + length].copy()
+        if _cycles(motif):
             continue
-        equal = np.concatenate(([False], codes[lo:hi] == codes[lo + shift:hi + shift], [False]))
-        edges = np.flatnonzero(np.diff(equal.astype(np.int8)))
-        for begin, end in zip((edges[::2] + lo).tolist(), (edges[1::2] + lo).tolist()):
-            if end - begin < 2:
-                continue
-            if (begin == lo and lo > 0) or (end == hi and hi < n - shift):
-                continue  # (cut by the range looked at: not maximal)
-            # a run longer than the shift holds copies of the shift's length that do not
-            # overlap (copies that touch, and chance agreement after the second)
-            length = min(end - begin, shift)
-            for s in range(begin, end - length + 1):
-                where = np.array([[starts[s], ends[s + length - 1]],
-                                  [starts[s + shift], ends[s + length - 1 + shift]]])
-                if not all(spans_pair(w, c) for w, c in zip(where.tolist(), lead.tolist())):
-                    continue
-                motif = codes[s:s + length].copy()
-                if _cycles(motif):
-                    continue
-                section = Section(motif, np.array([s, s + shift], dtype=np.int64), 0.0)
-                weight = in_step_significance(string, section, where, lead, follow)
-                if best is None or weight < best[0]:
-                    best = (weight, section)
+        where = np.array([[starts[s], ends[s + length - 1]],
+                          [starts[s + shift], ends[s + length - 1 + shift]]])
+        section = Section(motif, np.array([s, s + shift], dtype=np.int64), 0.0)
+        weight = in_step_significance(string, section, where, lead, follow)
+        if best is None or weight < best[0] or (weight == best[0] and order < best_order):
+            best, best_order = (weight, section), order
     return best
+
+
+def _pairs_with(begins: np.ndarray, ends: np.ndarray, lo: float, hi: float) -> np.ndarray:
+    """:func:`spans_pair` of every span ``(begins[k], ends[k])`` with ``(lo, hi)``."""
+    shared = np.minimum(ends, hi) - np.maximum(begins, lo)
+    union = np.maximum(ends, hi) - np.minimum(begins, lo)
+    return (shared > 0) & (2 * shared >= union)
 
 
 def spans_pair(copy, lead) -> bool:

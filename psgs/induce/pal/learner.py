@@ -84,6 +84,13 @@ class ContentPAL(Inducer):
         Least share of a pattern's positions a copy must agree with to be reported in
         ``occurrences``; a string left with fewer than ``min_copies`` such copies is no
         component.
+    section_durations : {"any", "equal"}, default "any"
+        What a section's copies (a string's long exact repeat, with ``min_copies=2`` a
+        section played twice) must repeat. ``"any"``: the symbols; ``"equal"``: the
+        symbols and each one's duration alike (to float rounding), so that a stream whose
+        times mean something (music's notes, an event log's) does not count the same
+        symbols in another rhythm as a repeat. Their significance stays that of the
+        symbols alone (an upper bound on the chance of the stricter repeat).
     timing : {"auto", "content", "period"}, default "auto"
         How copies are located. ``"content"``: by content in each string, joined in time;
         ``"period"``: by time windows of the action's period pooled over all strings (for

@@ -1,0 +1,104 @@
+"""Reading a string at a lead's copies: the pruned search against weighing every candidate."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from psgs import Actiongram
+from psgs.induce import PAL
+from psgs.induce.pal import in_step
+from psgs.induce.pal.in_step import in_step_significance, read_at, spans_pair
+from psgs.induce.pal.motifs import Timed
+from psgs.induce.pal.sections import Section, _cycles
+
+
+def _every_candidate(string: Timed, lead: np.ndarray, follow):
+    """The oracle: every maximal run between the two copies' segments at every shift, each
+    of its windows that pairs with both copies weighed, the first of the lightest kept."""
+    codes, starts, ends = string.codes, string.starts, string.ends
+    n = len(codes)
+    (a1, b1), (a2, b2) = lead.tolist()
+    first = np.flatnonzero((starts < b1) & (ends > a1))
+    second = np.flatnonzero((starts < b2) & (ends > a2))
+    if len(first) == 0 or len(second) == 0:
+        return None
+    reach = len(first) + len(second)
+    best = None
+    for shift in range(max(1, int(second[0] - first[-1])), int(second[-1] - first[0]) + 1):
+        lo, hi = max(0, int(first[0]) - reach), min(n - shift, int(first[-1]) + reach + 1)
+        if hi - lo < 2:
+            continue
+        equal = np.concatenate(([False], codes[lo:hi] == codes[lo + shift:hi + shift], [False]))
+        edges = np.flatnonzero(np.diff(equal.astype(np.int8)))
+        for begin, end in zip((edges[::2] + lo).tolist(), (edges[1::2] + lo).tolist()):
+            if end - begin < 2:
+                continue
+            if (begin == lo and lo > 0) or (end == hi and hi < n - shift):
+                continue
+            length = min(end - begin, shift)
+            for s in range(begin, end - length + 1):
+                where = np.array([[starts[s], ends[s + length - 1]],
+                                  [starts[s + shift], ends[s + length - 1 + shift]]])
+                if not all(spans_pair(w, c) for w, c in zip(where.tolist(), lead.tolist())):
+                    continue
+                motif = codes[s:s + length].copy()
+                if _cycles(motif):
+                    continue
+                section = Section(motif, np.array([s, s + shift], dtype=np.int64), 0.0)
+                weight = in_step_significance(string, section, where, lead, follow)
+                if best is None or weight < best[0]:
+                    best = (weight, section)
+    return best
+
+
+def _same(a, b) -> bool:
+    if a is None or b is None:
+        return a is b
+    return (a[0] == b[0] and a[1].motif.tolist() == b[1].motif.tolist()
+            and a[1].starts.tolist() == b[1].starts.tolist())
+
+
+@pytest.mark.parametrize("follow", [None, 0.5, 0.99])
+def test_read_at_is_the_lightest_of_every_candidate(follow):
+    # short strings over two or three letters: many runs at many shifts, and ties; a
+    # follow rate near 1 makes the left-end term (the part of the bound that is not the
+    # chance agreement) large enough to matter
+    for seed in range(1200):
+        rng = np.random.default_rng(seed)
+        n = int(rng.integers(6, 40))
+        codes = rng.integers(0, int(rng.integers(2, 4)), n)
+        durations = np.ones(n) if seed % 3 else rng.choice([0.5, 1.0, 1.5], n)
+        string = Timed.from_codes(codes, durations, 0.0)
+        if seed % 2:  # copies on segment edges
+            a, length = int(rng.integers(0, n // 2)), int(rng.integers(2, n // 2 + 1))
+            b = int(rng.integers(a + 1, n - length + 1)) if a + 1 < n - length + 1 else a + 1
+            lead = np.array([[string.starts[min(a, n - 1)], string.ends[min(a + length, n) - 1]],
+                             [string.starts[min(b, n - 1)], string.ends[min(b + length, n) - 1]]])
+        else:
+            lead = np.sort(rng.uniform(0, float(string.ends[-1]), 4)).reshape(2, 2)
+        assert _same(read_at(string, lead, follow), _every_candidate(string, lead, follow)), seed
+
+
+def _actiongram(seed: int) -> Actiongram:
+    """Strings over few letters, some playing a section twice at shared times, some random."""
+    rng = np.random.default_rng(seed)
+    letters = "abcde"[:int(rng.integers(3, 6))]
+    strings = {}
+    section_at, gap = int(rng.integers(0, 8)), int(rng.integers(1, 6))
+    for k in range(int(rng.integers(2, 7))):
+        body = list(rng.choice(list(letters), 50))
+        if k < 3:
+            length = int(rng.integers(5, 12))
+            section = body[section_at:section_at + length]
+            body[section_at + length + gap:section_at + 2 * length + gap] = section
+        strings[f"s{k}"] = [c for i, c in enumerate(body) if i == 0 or c != body[i - 1]]
+    return Actiongram.from_strings(strings)
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_inductions_are_the_same_as_with_every_candidate_weighed(seed, monkeypatch):
+    ag = _actiongram(seed)
+    fast = PAL(min_copies=2).induce(ag)
+    monkeypatch.setattr(in_step, "read_at", _every_candidate)
+    assert PAL(min_copies=2).induce(ag) == fast
