@@ -29,8 +29,8 @@ from .heading import _UP, Course, Travel, _moving_mean, course, course_time, glo
 
 __all__ = ["Body", "Course", "Travel", "animate", "body_frame", "body_of", "channel_drift", "course",
            "cycle_starts", "euler_angles", "global_rotation", "heading", "heading_free_angles",
-           "mean_course", "mean_cycles", "nearest_turn", "own_period", "performances_of",
-           "root_chain", "style_of", "travel", "whole_cycle", "yaw_matrices"]
+           "mean_course", "mean_cycles", "missing_style", "nearest_turn", "own_period",
+           "performances_of", "root_chain", "style_of", "travel", "whole_cycle", "yaw_matrices"]
 
 
 def body_frame(motions, root: str) -> tuple[int, float]:
@@ -269,6 +269,19 @@ def style_of(file) -> list[str]:
     from pathlib import Path
 
     return Path(str(file)).stem.split("_")
+
+
+def missing_style(record, style: str) -> ValueError:
+    """The error for a style no performance of ``record`` has, naming the styles there are.
+
+    The styles named are the words that tell the performances' file names apart (take
+    numbers aside).
+    """
+    names = [style_of(p.file) for p in record.performances]
+    styles = sorted({n[i] for n in names for i in range(len(n))
+                     if not n[i].isdigit() and any(len(o) <= i or o[i] != n[i] for o in names)})
+    return ValueError(f"action {record.name!r} has no performance of style {style!r}"
+                      + (f" (styles: {', '.join(styles)})" if styles else ""))
 
 
 def performances_of(record, style: str | None = None) -> list:

@@ -82,14 +82,17 @@ def run_generate(args) -> int:
                           plot=args.plot, style=args.style)
     except ValueError as exc:
         _bad(str(exc))
+    if result.origin == "performances":
+        _report_performed(args, result)
+        return 0
     print(f"{args.output}: {result.motion.frames} frames at {result.motion.frame_rate:g} fps, "
           f"{len(result.channels)} generated channels of {len(result.actuators)} actuators, "
-          f"{args.repeat} copies" + (f" of {result.cycle} morphemes each" if result.cycle > 1
+          f"{result.repeat} copies" + (f" of {result.cycle} morphemes each" if result.cycle > 1
                                      else "") + (f", style {args.style}" if args.style else ""))
     # the round trip, what the acceptance asks: the motion segmented again gives the morpheme
     exact = result.round_trip()
     kinds = [result.methods[c].kind for c in result.channels if exact[c]]
-    copies = args.repeat * result.cycle
+    copies = result.repeat * result.cycle
     print(f"segmented again: {sum(exact.values())} of {len(exact)} channels give back their "
           f"morpheme x {copies} ({kinds.count('quartic')} by the quartic alone, "
           f"{kinds.count('corrected')} corrected)")
@@ -99,6 +102,27 @@ def run_generate(args) -> int:
     if args.view:
         print(f"{args.view}: {_view_beside_a_performance(args.praxicon, result, args.view)}")
     return 0
+
+
+def _report_performed(args, result) -> None:
+    """What was made for an action without a grammar, and why there is no round trip."""
+    each = (result.motion.frames - 1) // result.repeat + 1
+    times = "once" if result.repeat == 1 else f"{result.repeat} times, one after the other"
+    print(f"{args.output}: {result.motion.frames} frames at {result.motion.frame_rate:g} fps, "
+          f"the action played {times} ({each} frames"
+          + ("" if result.repeat == 1 else " each") + ")"
+          + (f", style {args.style}" if args.style else ""))
+    if result.performances == 1:
+        how = "its one performance's channels, on its own clock"
+    else:
+        how = "every channel the performances' mean after warping them to their median length"
+    print(f"generated from the course of {result.performances} performance"
+          f"{'' if result.performances == 1 else 's'}, not from a grammar: no synchronised "
+          f"repetition was found in the action, so it has no grammar system ({how}; the root "
+          f"travels and turns as in the takes)")
+    print("segmented again: no symbolic round trip (there is no morpheme to give back)")
+    if args.view:
+        print(f"{args.view}: {_view_beside_a_performance(args.praxicon, result, args.view)}")
 
 
 def _view_beside_a_performance(folder, result, output) -> str:
@@ -164,11 +188,15 @@ def _add_commands(sub) -> None:
 
     gen = sub.add_parser("generate", help="generate an action's motion as BVH",
                          description="Derive K synchronised copies of an action and write "
-                                     "them as a BVH file on the source skeleton.")
+                                     "them as a BVH file on the source skeleton; an action "
+                                     "with no synchronised repetition is generated from its "
+                                     "performances' course instead.")
     gen.add_argument("praxicon", metavar="DIR", help="a praxicon folder")
     gen.add_argument("action", metavar="ACTION", help="an action name of its index")
-    gen.add_argument("--repeat", type=positive_int, default=3, metavar="K",
-                     help="how many synchronised copies (default 3)")
+    gen.add_argument("--repeat", type=positive_int, default=None, metavar="K",
+                     help="how many synchronised copies (default 3); an action with no "
+                          "synchronised repetition (no grammar) is its performances' course, "
+                          "played K times one after the other (default once)")
     gen.add_argument("-o", "--output", required=True, metavar="OUT.bvh",
                      help="the BVH file to write")
     gen.add_argument("--style", default=None, metavar="STYLE",

@@ -42,7 +42,7 @@ from .records import ActionRecord, Praxicon
 from .store import load
 
 __all__ = ["Generated", "Method", "generate", "generate_motion", "derive_copies",
-           "is_smooth_cycle", "style_scales"]
+           "has_grammar", "is_smooth_cycle", "style_scales"]
 
 _RISING = {"B": 1.0, "G": 1.0, "R": -1.0, "Y": -1.0}
 # kineteme changes a smooth angle can make: one sign flips, and a velocity sign flips only
@@ -113,6 +113,12 @@ class Generated:
     morphemes make one of the ``repeat`` copies (2 when the morpheme is half a stride,
     :func:`praxicon.body_motion.whole_cycle`): each word is its morpheme
     ``repeat * cycle`` times.
+
+    ``origin`` is ``"grammar"`` (derived from the action's grammar system) or
+    ``"performances"`` (an action with no synchronised repetition, hence no grammar: its
+    performances' mean course, :mod:`praxicon.acyclic`; then ``channels``, ``words`` and
+    ``methods`` are empty, there is no symbolic round trip, and ``performances`` says how
+    many takes were averaged).
     """
 
     motion: object
@@ -125,6 +131,8 @@ class Generated:
     methods: dict = field(default_factory=dict)
     owners: dict = field(default_factory=dict)
     cycle: int = 1
+    origin: str = "grammar"
+    performances: int = 0
 
     def resegmented(self) -> dict[str, tuple[str, ...]]:
         """Per generated channel, its kineteme string when the motion is segmented again."""
@@ -343,7 +351,7 @@ def style_scales(record, channels, period: float, style: str, rate: float, perfo
     performance of the action has that style. ``performances``: the action's motions
     when already read (:func:`praxicon.body_motion.performances_of`), else read here.
     """
-    from .body_motion import own_period, performances_of, style_of
+    from .body_motion import missing_style, own_period, performances_of, style_of
 
     if performances is None:
         performances = performances_of(record)
@@ -351,12 +359,7 @@ def style_scales(record, channels, period: float, style: str, rate: float, perfo
     # the style's takes are among those just read: picked by their file names, not read again
     own = [m for m in every if style in style_of(m.source)]
     if not own:
-        names = [style_of(p.file) for p in record.performances]
-        # the words that tell the performances apart, take numbers aside
-        styles = sorted({n[i] for n in names for i in range(len(n))
-                         if not n[i].isdigit() and any(len(o) <= i or o[i] != n[i] for o in names)})
-        raise ValueError(f"action {record.name!r} has no performance of style {style!r}"
-                         + (f" (styles: {', '.join(styles)})" if styles else ""))
+        raise missing_style(record, style)
 
     def spread(m, c):
         return float(np.subtract(*np.percentile(m.column(c), [95, 5])))
@@ -372,6 +375,16 @@ def style_scales(record, channels, period: float, style: str, rate: float, perfo
         return [p for p in found if p is not None] or [expected]
 
     return float(np.median(periods(own)) / np.median(periods(every))), amplitude
+
+
+def has_grammar(record: ActionRecord) -> bool:
+    """Whether the action has a grammar system to derive copies from (actuators and a system).
+
+    A learnt action without one is an action in which the inducer found no synchronised
+    repetition (``record.verdict``): it is generated from its performances' course
+    (:mod:`praxicon.acyclic`), not from a grammar.
+    """
+    return bool(record.actuators and record.system)
 
 
 def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
@@ -392,17 +405,26 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     performances' average speed and turning rate, on the still joint above it when the
     skeleton has one (Bandai's ``joint_Root``), so that the root's own channels keep
     their generated values.
+
+    An action without a grammar system (:func:`has_grammar`: no synchronised repetition)
+    is its performances' mean course instead, warped to one time base and played
+    ``repeat`` times (:func:`praxicon.acyclic.performed_motion`); its words and methods
+    are empty.
     """
     import kinetology
     from psgs import loads
 
     if not record.learnt:
         raise ValueError(f"action {record.name!r} was not learnt: {record.reason}")
-    if not record.actuators or not record.system:
-        raise ValueError(f"action {record.name!r} has no actuators "
-                         f"({record.verdict or 'nothing learnt'}): nothing to generate")
     if not isinstance(repeat, int) or repeat < 1:
         raise ValueError(f"repeat must be a whole number >= 1, not {repeat!r}")
+    if not has_grammar(record):  # a one-off gesture: its performances' course, played
+        from .acyclic import performed_motion
+
+        if source_motion is None:
+            source_motion = kinetology.read(record.skeleton_source)
+        motion, _ = performed_motion(record, repeat, source_motion, style)
+        return motion, {}, {}
     system = loads(record.system, source=record.file)
     usable = {c: m for c, m in record.morphemes().items() if m.durations and m.displacements}
     if not usable:
@@ -461,10 +483,16 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     return motion, derived, methods
 
 
-def generate(folder: str | Path | Praxicon, action: str, *, repeat: int = 3,
+def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None = None,
              output: str | Path | None = None, plot: str | Path | None = None,
              style: str | None = None) -> Generated:
     """Generate ``repeat`` copies of ``action`` from the praxicon in ``folder``.
+
+    An action with a grammar system is derived from it (the module's steps). A learnt
+    action in which no synchronised repetition was found has none: it is generated from its
+    performances' course (:mod:`praxicon.acyclic`: every channel their mean after warping
+    them to their median length, the root travelling and turning as they do), played once,
+    or ``repeat`` times, and ``Generated.origin`` says so.
 
     Parameters
     ----------
@@ -472,8 +500,9 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int = 3,
         A praxicon folder (``psgs praxicon build``) or a loaded praxicon.
     action : str
         An action name of its index.
-    repeat : int
-        How many synchronised copies.
+    repeat : int, optional
+        How many synchronised copies (default 3); of an action without a grammar, how many
+        times its gesture is played one after the other (default 1).
     output : str or Path, optional
         Write the motion there as BVH.
     plot : str or Path, optional
@@ -493,8 +522,8 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int = 3,
     Raises
     ------
     ValueError
-        When the action is unknown, was not learnt, has nothing to generate, or has no
-        performance of ``style``.
+        When the action is unknown, was not learnt, has nothing to generate (no grammar and
+        no performance that reads), or has no performance of ``style``.
 
     Examples
     --------
@@ -521,13 +550,18 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int = 3,
     import kinetology
 
     record = (folder if isinstance(folder, Praxicon) else load(folder))[action]
+    grammar = has_grammar(record)
+    if repeat is None:
+        repeat = 3 if grammar else 1
     motion, words, methods = generate_motion(record, repeat, style=style)
     if output is not None:
         kinetology.write_bvh(motion, output)
     owners = {c: j.name for j in record.joints for c in j.channels}
     result = Generated(motion, action, repeat, record.actuators, tuple(words), words,
                        as_dict(record.segmentation), methods, owners,
-                       int(motion.meta.get("cycle", 1)))
+                       int(motion.meta.get("cycle", 1)),
+                       "grammar" if grammar else "performances",
+                       int(motion.meta.get("performances", 0)))
     if plot is not None:
         from .pictures import draw_generated
 

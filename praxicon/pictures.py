@@ -195,14 +195,20 @@ def draw_generated(record: ActionRecord, generated, path, channel: str | None = 
     if problem:
         raise ValueError(problem)
     if channel is None:  # the generated channel that moves the most in the performance
-        channel = max(generated.channels, key=lambda c: float(np.ptp(original.column(c))))
+        # (an action without a grammar generates every channel from its performances)
+        candidates = generated.channels or [c for c in generated.motion.channels
+                                            if c.rsplit(".", 1)[-1] in ("rx", "ry", "rz")]
+        channel = max(candidates, key=lambda c: float(np.ptp(original.column(c))))
     fig, axes = plt.subplots(1, 2, figsize=(10, 3), sharey=True)
     t = np.arange(original.frames) / original.frame_rate
     axes[0].plot(t, original.column(channel), color="#444444", lw=1)
     axes[0].set_title(f"a performance: {Path(perf.file).name}", fontsize=9)
     g = generated.motion
     axes[1].plot(np.arange(g.frames) / g.frame_rate, g.column(channel), color="#1f5fbf", lw=1)
-    axes[1].set_title(f"generated from the grammar, {generated.repeat} copies", fontsize=9)
+    made = "the grammar" if getattr(generated, "origin", "grammar") == "grammar" else \
+        "its performances' course"
+    axes[1].set_title(f"generated from {made}, {generated.repeat} "
+                      f"cop{'y' if generated.repeat == 1 else 'ies'}", fontsize=9)
     for ax in axes:
         ax.set_xlabel("seconds")
     axes[0].set_ylabel(f"{channel} (degrees)")

@@ -202,3 +202,108 @@ def test_real_walk_comes_back_whole(tmp_path):
     exact = generated.round_trip()
     assert len(exact) >= 20 and all(exact.values()), {
         c: generated.methods[c] for c, ok in exact.items() if not ok}
+
+
+def _gesture(seed: int, seconds: float, at: float, rate: float = 30.0):
+    """One raise of the arm (two channels) held for half a second, at ``at`` s: no repetition."""
+    from kinetology import Motion
+    from kinetology.bvh_writer import star_skeleton
+
+    rng = np.random.default_rng(seed)
+    t = np.arange(int(seconds * rate)) / rate
+    up = 1 / (1 + np.exp(-(t - at) * 10)) - 1 / (1 + np.exp(-(t - at - 0.5) * 10))
+    values = np.column_stack([0.2 * rng.standard_normal(t.size), 70 * up + 5, 30 * up,
+                              0.2 * rng.standard_normal(t.size),
+                              0.2 * rng.standard_normal(t.size)])
+    return Motion(values, CHANNELS, rate, star_skeleton(CHANNELS), f"point{seed}")
+
+
+@pytest.fixture
+def gestures(tmp_path):
+    """A praxicon of one action, a gesture made once per take, early, late or midway."""
+    from kinetology import write_bvh
+
+    lines = ["action,file"]
+    for seed, (seconds, at) in enumerate([(4.0, 0.5), (4.5, 2.8), (3.5, 1.5)]):
+        write_bvh(_gesture(seed, seconds, at), tmp_path / f"point_{seed}.bvh")
+        lines.append(f"point,point_{seed}.bvh")
+    (tmp_path / "gestures.csv").write_text("\n".join(lines) + "\n")
+    build(read_dataset(tmp_path / "gestures.csv"), tmp_path / "px", progress=False,
+          log=lambda s: None)
+    return tmp_path / "px"
+
+
+def test_an_action_without_repetition_is_its_performances_course(gestures, tmp_path):
+    import kinetology
+
+    from praxicon import load
+    from praxicon.acyclic import performed_motion
+
+    record = load(gestures)["gestures.point"]
+    assert record.learnt and not record.actuators
+    assert record.verdict == "no synchronised repetition"
+    generated = generate(gestures, "gestures.point", output=tmp_path / "point.bvh")
+    assert generated.origin == "performances" and generated.performances == 3
+    # played once by default, as long as the median take, every channel of the takes
+    assert generated.repeat == 1 and generated.motion.frames == 120
+    assert generated.motion.channels == CHANNELS
+    assert generated.channels == () and generated.round_trip() == {}
+    back = kinetology.read(tmp_path / "point.bvh")
+    assert np.abs(back.values - generated.motion.values).max() < 0.01
+    # warped onto one another, the three raises keep their height and their speed; the
+    # plain mean of the takes resampled to one length is a lower, slower raise
+    real = _gesture(0, 4.0, 0.5).column("arm.rx")
+    linear, _ = performed_motion(record, 1, back, alignment="linear")
+    for motion, fine in ((generated.motion, True), (linear, False)):
+        arm = motion.column("arm.rx")
+        tall = np.ptp(arm) >= 0.9 * np.ptp(real)
+        quick = np.abs(np.diff(arm)).max() >= 0.8 * np.abs(np.diff(real)).max()
+        assert (tall and quick) == fine, (np.ptp(arm), np.abs(np.diff(arm)).max())
+    # still channels stay still: the mean of noise
+    assert np.ptp(generated.motion.column("head.ry")) < 1.5
+
+
+def test_an_action_without_repetition_played_several_times_joins_without_a_jump(gestures):
+    once = generate(gestures, "gestures.point")
+    three = generate(gestures, "gestures.point", repeat=3)
+    assert three.repeat == 3 and three.motion.frames == 3 * (once.motion.frames - 1) + 1
+    arm = three.motion.column("arm.rx")
+    assert np.abs(np.diff(arm)).max() <= np.abs(np.diff(once.motion.column("arm.rx"))).max() + 1
+    assert np.allclose(arm[:once.motion.frames], once.motion.column("arm.rx"))
+
+
+def test_the_command_line_says_an_action_was_generated_from_its_performances(
+        gestures, tmp_path, capsys):
+    from praxicon.cli import main
+
+    assert main(["generate", str(gestures), "gestures.point", "-o",
+                 str(tmp_path / "p.bvh"), "--repeat", "2"]) == 0
+    printed = capsys.readouterr().out.splitlines()
+    assert printed[0] == (f"{tmp_path / 'p.bvh'}: 239 frames at 30 fps, the action played "
+                          f"2 times, one after the other (120 frames each)")
+    assert printed[1].startswith("generated from the course of 3 performances, not from a "
+                                 "grammar: no synchronised repetition was found")
+    assert printed[2] == "segmented again: no symbolic round trip (there is no morpheme to " \
+                         "give back)"
+    assert (tmp_path / "p.bvh").is_file()
+
+
+@needs_mocap()
+def test_a_real_gesture_without_repetition_generates_from_its_takes(tmp_path):
+    # Bandai's guide (point the way once): PAL finds no synchronised repetition in it
+    data = SHARED / "bandai-namco-1" / "data"
+    styles = ("active", "angry", "childish", "chimpira")
+    (tmp_path / "guide.csv").write_text("action,file\n" + "".join(
+        f"guide,{data / f'dataset-1_guide_{s}_001.bvh'}\n" for s in styles))
+    build(read_dataset(tmp_path / "guide.csv"), tmp_path / "px", progress=False,
+          log=lambda s: None)
+    generated = generate(tmp_path / "px", "guide.guide")
+    assert generated.origin == "performances" and generated.performances == 4
+    assert generated.motion.frames == 129  # the median of 110, 119, 140 and 186 frames
+    arm = generated.motion.column("UpperArm_R.ry")
+    assert 60 < np.ptp(arm) < 120  # the right arm points (the takes: 63-116 degrees)
+    # one style: its one take, on its own clock
+    angry = generate(tmp_path / "px", "guide.guide", style="angry")
+    assert angry.performances == 1 and angry.motion.frames == 110
+    with pytest.raises(ValueError, match="no performance of style 'sad'"):
+        generate(tmp_path / "px", "guide.guide", style="sad")
