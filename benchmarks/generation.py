@@ -28,8 +28,11 @@ and a view of a take:
 
 The judge used is the one most accurate on the held-apart real takes (ties: more training
 takes, then the order above); every judge's figures are printed. Every learnt action is
-generated (``--repeat`` 3 cycles) once from all its performances and once per style of the
-performances it was learnt from (``generate(..., style=...)``); n is printed.
+generated once from all its performances and once per style of the performances it was
+learnt from (``generate(..., style=...)``); n is printed. An action with a grammar is
+``--repeat`` (3) cycles of it; one in which PAL found no synchronised repetition (no
+grammar: Bandai's guide) is its performances' course played once, as a real take performs
+it (``praxicon.acyclic``), and its figures are printed beside the others' too.
 
 Figures printed and written to ``docs/data/generation.csv`` (one row per action):
 
@@ -42,7 +45,12 @@ Figures printed and written to ``docs/data/generation.csv`` (one row per action)
 * root travel speed, and the net heading change over the take (degrees), generated against
   the learning performances' range;
 * the symbolic round trip (``Generated.round_trip``): channels whose re-segmented string is
-  the morpheme repeated.
+  the morpheme repeated, over the actions with a grammar (one without has no morpheme);
+* for an action without a grammar, which has no actuators: the channels-within-spread
+  figure over the rotation channels that move (10 degrees or more) in its performances,
+  outside the actuator count, and (column ``alignment``) its generated range and speed
+  against the performances', with the takes warped onto one another as generated and
+  linearly time-normalised instead.
 """
 
 from __future__ import annotations
@@ -74,7 +82,8 @@ from kinetology.kinematics import forward_kinematics  # noqa: E402
 from praxicon.body_motion import body_frame, global_rotation, heading, \
     heading_free_angles, nearest_turn, root_chain, style_of  # noqa: E402
 from praxicon.features import root_motion  # noqa: E402
-from praxicon.generation import generate  # noqa: E402
+from praxicon.acyclic import performed_motion  # noqa: E402
+from praxicon.generation import generate, has_grammar  # noqa: E402
 
 MOCAP = REPO.parent / "shared" / "data" / "mocap"
 DATASETS = ("bandai-namco-1", "bandai-namco-2-subset")
@@ -192,6 +201,46 @@ def travel(motion, axis):
     return float(np.mean(speed)), float(np.sum(turn[1:] + turn[:-1]) / 2 / motion.frame_rate)
 
 
+def moving_channels(reals, least: float = 10.0) -> list[str]:
+    """Rotation channels below the root whose 5-95 % range is at least ``least`` degrees in
+    the performances on average: what an action without actuators moves."""
+    from kinetology.segmentation import unwrap
+
+    chain = {c.split(".")[0] for c in reals[0].channels if c.startswith(("joint_Root", ROOT))}
+    out = []
+    for c in reals[0].channels:
+        if c.rpartition(".")[2] in ("rx", "ry", "rz") and c.split(".")[0] not in chain:
+            ranges = [np.subtract(*np.percentile(unwrap(m.column(c)), [95, 5])) for m in reals]
+            if np.mean(ranges) >= least:
+                out.append(c)
+    return out
+
+
+def alignment_figures(record, reals) -> str:
+    """For an action generated from its performances' course: per moving channel, the
+    generated 5-95 % range and 95th percentile of speed over the performances' mean of
+    each (medians over channels), with the takes warped onto one another (as generated)
+    and linearly time-normalised instead."""
+    from kinetology.segmentation import unwrap
+
+    def spread(x):
+        return float(np.subtract(*np.percentile(unwrap(x), [95, 5])))
+
+    def fast(m, c):
+        return float(np.percentile(np.abs(np.gradient(unwrap(m.column(c)))), 95)) * m.frame_rate
+
+    channels = moving_channels(reals)
+    out = []
+    for alignment in ("warp", "linear"):
+        motion, _ = performed_motion(record, 1, reals[0], alignment=alignment)
+        size = np.median([spread(motion.column(c)) / np.mean([spread(m.column(c)) for m in reals])
+                          for c in channels])
+        speed = np.median([fast(motion, c) / np.mean([fast(m, c) for m in reals])
+                           for c in channels])
+        out.append(f"{alignment}: range {size:.2f} speed {speed:.2f}")
+    return f"{len(channels)} moving channels, of the takes' mean: " + "; ".join(out)
+
+
 def fit_judges(parts, read, axis, sizes, seed):
     """Every judge (training size x view): name -> (size, view, fitted classifier)."""
     from aeon.classification.convolution_based import MiniRocketClassifier
@@ -273,11 +322,14 @@ def main(argv=None) -> int:
         for content, (learn, _, _) in sorted(parts.items()):
             name = f"{manifest.stem}.{content}"
             record = px[name] if name in px else None
-            if record is None or not record.learnt or not record.actuators:
+            if record is None or not record.learnt:
                 continue
+            # an action without a grammar is its performances' course played once, as a
+            # real take performs it once (generate's default for it)
+            repeat = args.repeat if has_grammar(record) else None
             styles = [None] + sorted({style_of(f)[2] for f in learn})
             for style in styles:
-                generated.append((content, style, generate(px, name, repeat=args.repeat,
+                generated.append((content, style, generate(px, name, repeat=repeat,
                                                            style=style)))
         for name, j in judges.items():
             lab = labeller(j, axis)
@@ -285,6 +337,7 @@ def main(argv=None) -> int:
             plain = [h for h, (_, st, _) in zip(hits, generated) if st is None]
             judge_rows.append((dataset, name, real[name], real_n, sum(hits), len(hits),
                                sum(plain), len(plain), name == chosen))
+        acyclic = sorted({c for c, _, g in generated if g.origin == "performances"})
         print(f"{dataset}: judges (MiniRocket trained on real takes only), chosen by their "
               f"accuracy on {real_n} held-apart real takes:")
         for d, name, r, rn, g, gn, gp, gpn, pick in judge_rows:
@@ -294,6 +347,7 @@ def main(argv=None) -> int:
                       f"together {gp}/{gpn})")
 
         real_ok = real_n_all = gen_ok = within = judged = trips = trip_n = 0
+        course_ok = course_n = 0  # the generated takes of actions without a grammar
         for content, (learn, test, _) in sorted(parts.items()):
             name = f"{manifest.stem}.{content}"
             real_hits = sum(label(read(f)) == content for f in test)
@@ -312,10 +366,18 @@ def main(argv=None) -> int:
             gen_ok += sum(lb == content for lb in labels)
             g = mine[0][1]  # all styles together: the channels, travel and round trip
             reals = [read(f) for f in learn]
-            dists = [channel_judgement(g.motion, reals, c, axis) for c in g.channels]
+            grammar = g.origin == "grammar"
+            if grammar:
+                judged_channels = list(g.channels)
+            else:  # no actuators: every rotation channel that moves in the performances
+                judged_channels = moving_channels(reals)
+                course_ok += sum(lb == content for lb in labels)
+                course_n += len(labels)
+            dists = [channel_judgement(g.motion, reals, c, axis) for c in judged_channels]
             inside = sum(d <= sp for d, sp in dists)
-            within += inside
-            judged += len(dists)
+            if grammar:  # the actuator figure counts actuator channels only
+                within += inside
+                judged += len(dists)
             trip = {}
             for st, gg in mine:
                 trip.update({(st, c): ok for c, ok in gg.round_trip().items()})
@@ -324,7 +386,8 @@ def main(argv=None) -> int:
             speed, turn = travel(g.motion, axis)
             real_travel = [travel(m, axis) for m in reals]
             wrong = [f"{st or 'all'}->{lb}" for (st, _), lb in zip(mine, labels) if lb != content]
-            row.update(generated_correct=sum(lb == content for lb in labels),
+            row.update(origin=g.origin,
+                       generated_correct=sum(lb == content for lb in labels),
                        generated_takes=len(labels), generated_labels=" ".join(wrong),
                        channels=len(dists), within_spread=inside,
                        median_distance=round(float(np.median([d for d, _ in dists])), 2),
@@ -335,19 +398,29 @@ def main(argv=None) -> int:
                        gen_turn_deg=round(turn, 1),
                        real_turn_deg=f"{min(t for _, t in real_travel):.1f}..."
                                      f"{max(t for _, t in real_travel):.1f}",
-                       round_trip=f"{sum(trip.values())}/{len(trip)}")
+                       round_trip=f"{sum(trip.values())}/{len(trip)}" if grammar
+                       else "n/a (no grammar)")
+            if not grammar:
+                row.update(alignment=alignment_figures(px[name], reals))
             rows.append(row)
         gen_n = len(generated)
+        learnt_n = len({c for c, _, _ in generated})
+        grammar_ok, grammar_n = gen_ok - course_ok, gen_n - course_n
         print(f"{dataset}: judge '{chosen}': held-apart real takes {real_ok}/{real_n_all} "
               f"({100 * real_ok / max(real_n_all, 1):.0f}%), generated takes {gen_ok}/{gen_n} "
-              f"({100 * gen_ok / max(gen_n, 1):.0f}%; n = {gen_n}: every learnt action from all "
-              f"its performances and once per style learnt from); actuator channels within "
-              f"the real spread {within}/{judged} ({100 * within / max(judged, 1):.0f}%); "
-              f"symbolic round trip {trips}/{trip_n} channels", flush=True)
-    keys = ["dataset", "action", "learnt", "real_correct", "real_takes", "generated_correct",
-            "generated_takes", "generated_labels", "channels", "within_spread",
-            "median_distance", "median_spread", "gen_speed", "real_speed", "gen_turn_deg",
-            "real_turn_deg", "round_trip"]
+              f"({100 * gen_ok / max(gen_n, 1):.0f}%; n = {gen_n}: all {learnt_n} learnt actions, "
+              f"each from all its performances and once per style learnt from"
+              + (f"; {', '.join(acyclic)} without a grammar, from its performances' course: "
+                 f"{course_ok}/{course_n}, the actions with a grammar {grammar_ok}/{grammar_n}"
+                 if acyclic else "")
+              + f"); actuator channels within the real spread {within}/{judged} "
+              f"({100 * within / max(judged, 1):.0f}%); symbolic round trip {trips}/{trip_n} "
+              f"channels (the actions with a grammar; "
+              f"{'none' if not acyclic else ', '.join(acyclic)} without one)", flush=True)
+    keys = ["dataset", "action", "learnt", "origin", "real_correct", "real_takes",
+            "generated_correct", "generated_takes", "generated_labels", "channels",
+            "within_spread", "median_distance", "median_spread", "gen_speed", "real_speed",
+            "gen_turn_deg", "real_turn_deg", "round_trip", "alignment"]
     print()
     print(" | ".join(keys[1:]))
     for r in rows:
