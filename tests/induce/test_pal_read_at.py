@@ -18,11 +18,10 @@ def _every_candidate(string: Timed, lead: np.ndarray, follow):
     of its windows that pairs with both copies weighed, the first of the lightest kept."""
     codes, starts, ends = string.codes, string.starts, string.ends
     n = len(codes)
-    (a1, b1), (a2, b2) = lead.tolist()
-    first = np.flatnonzero((starts < b1) & (ends > a1))
-    second = np.flatnonzero((starts < b2) & (ends > a2))
-    if len(first) == 0 or len(second) == 0:
+    segments = in_step.lead_segments(string, lead)
+    if segments is None:
         return None
+    first, second = segments
     reach = len(first) + len(second)
     best = None
     for shift in range(max(1, int(second[0] - first[-1])), int(second[-1] - first[0]) + 1):

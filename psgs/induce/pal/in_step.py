@@ -248,6 +248,25 @@ def _as_close(per_copy: list[tuple[float, np.ndarray]], slack: float) -> float:
     return math.log10(near) + math.log10(float(np.sum(counts / np.cumsum(counts))))
 
 
+def lead_segments(string: Timed, lead: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """The indices of ``string``'s segments that overlap each of the lead's two copies
+    (``lead``: their ``[[start, end], [start, end]]`` times), or ``None`` when a copy
+    overlaps none.
+
+    Examples
+    --------
+    >>> string = Timed.from_codes(np.array([5, 1, 2, 6]), np.ones(4), 0.0)
+    >>> [s.tolist() for s in lead_segments(string, np.array([[0.5, 2.0], [3.0, 4.0]]))]
+    [[0, 1], [3]]
+    """
+    (a1, b1), (a2, b2) = lead.tolist()
+    first = np.flatnonzero((string.starts < b1) & (string.ends > a1))
+    second = np.flatnonzero((string.starts < b2) & (string.ends > a2))
+    if len(first) == 0 or len(second) == 0:
+        return None
+    return first, second
+
+
 def read_at(string: Timed, lead: np.ndarray, follow: float | None
             ) -> tuple[float, Section] | None:
     """The exact repeat of ``string`` at two lead copies' times that is least likely by
@@ -277,10 +296,10 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None
     codes, starts, ends = string.codes, string.starts, string.ends
     n = len(codes)
     (a1, b1), (a2, b2) = lead.tolist()
-    first = np.flatnonzero((starts < b1) & (ends > a1))
-    second = np.flatnonzero((starts < b2) & (ends > a2))
-    if len(first) == 0 or len(second) == 0:
+    segments = lead_segments(string, lead)
+    if segments is None:
         return None
+    first, second = segments
     reach = len(first) + len(second)
     low, top = max(1, int(second[0] - first[-1])), int(second[-1] - first[0])
     lo = max(0, int(first[0]) - reach)
