@@ -205,7 +205,7 @@ def draw_generated(record: ActionRecord, generated, path, channel: str | None = 
     axes[0].set_title(f"a performance: {Path(perf.file).name}", fontsize=9)
     g = generated.motion
     axes[1].plot(np.arange(g.frames) / g.frame_rate, g.column(channel), color="#1f5fbf", lw=1)
-    made = "the grammar" if getattr(generated, "origin", "grammar") == "grammar" else \
+    made = "the grammar" if generated.origin == "grammar" else \
         "its performances' course"
     axes[1].set_title(f"generated from {made}, {generated.repeat} "
                       f"cop{'y' if generated.repeat == 1 else 'ies'}", fontsize=9)
