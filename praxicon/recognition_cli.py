@@ -42,6 +42,18 @@ def _read_motion(path: str):
     return motion
 
 
+def _check_pictures(plot) -> None:
+    # before any work: without the praxicon extra a --plot would fail only after the answers
+    # were printed, and as a traceback
+    if plot:
+        from .pictures import _pyplot
+
+        try:
+            _pyplot()
+        except ValueError as exc:
+            raise ValidationError(str(exc)) from None
+
+
 def run_recognise(args) -> int:
     import sys
 
@@ -54,6 +66,7 @@ def run_recognise(args) -> int:
     if args.plot and len(args.files) != 1:
         raise ValidationError(f"--plot draws one recognition's explanation: give one FILE "
                               f"(got {len(args.files)})")
+    _check_pictures(args.plot)
     motions = [_read_motion(f) for f in args.files]
     try:
         found = recognise_many(descriptions, motions,
@@ -84,6 +97,7 @@ def run_parse(args) -> int:
         descriptions = read_descriptions(args.praxicon, windows=True)
     except DescriptionError as exc:
         raise ValidationError(str(exc))
+    _check_pictures(args.plot)
     motion = _read_motion(args.file)
     try:
         timeline = parse(descriptions, motion)

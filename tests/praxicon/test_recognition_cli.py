@@ -210,3 +210,17 @@ def test_resumed_build_keeps_its_descriptions(px):
     result = build(read_dataset(px / "m.csv"), px, progress=False, log=lambda s: None)
     assert result.learnt == () and (px / "descriptions.json").read_bytes() == before
     assert result.praxicon == load(px)
+
+
+def test_plot_without_matplotlib_names_the_extra_before_any_answer(px, monkeypatch, capsys):
+    # None in sys.modules makes `import matplotlib` fail, as after a plain `pip install .`
+    import sys
+
+    monkeypatch.setitem(sys.modules, "matplotlib", None)
+    for argv in (["recognise", str(px), str(px / "new7.bvh"), "--plot", "x.png"],
+                 ["parse", str(px), str(px / "new7.bvh"), "--plot", "x.png"]):
+        err = _error(capsys, argv)
+        assert "pip install 'psgs[praxicon]'" in err
+    capsys.readouterr()
+    assert run(["recognise", str(px), str(px / "new7.bvh"), "--plot", "x.png"]) == 2
+    assert capsys.readouterr().out == ""  # no answer printed before the error
