@@ -50,7 +50,7 @@ def _save(fig, path) -> Path:
     import matplotlib
 
     metadata = {"Date": None} if path.suffix.lower() == ".svg" else {}
-    with matplotlib.rc_context({"svg.hashsalt": "praxicon"}):
+    with matplotlib.rc_context({"svg.hashsalt": "praxicon", "svg.fonttype": "none"}):
         fig.savefig(path, dpi=110, metadata=metadata or None)
     plt.close(fig)
     return path

@@ -380,7 +380,9 @@ def _render(system, forest: Forest | None, fmt: str, engine: str) -> bytes:
 
     fig = _matplotlib(system, forest)
     buffer = io.BytesIO()
-    with matplotlib.rc_context({"svg.hashsalt": "psgs"}):  # the same ids in every run
+    # the same ids in every run; text as SVG text, not glyph outlines: a system of thirty-odd
+    # components has some two thousand labels, and outlining them was most of its drawing time
+    with matplotlib.rc_context({"svg.hashsalt": "psgs", "svg.fonttype": "none"}):
         fig.savefig(buffer, format=fmt, dpi=120,
                     metadata={"Date": None} if fmt == "svg" else None)
     plt.close(fig)
