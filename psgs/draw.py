@@ -266,6 +266,24 @@ def _place_tree(forest: Forest, root: int):
     return x_of, depth, max(cursor, 1.0)
 
 
+def _cell(ax, box, xlim, ylim):
+    """The transform from a cell's own coordinates (``xlim`` by ``ylim``) onto ``box`` (left,
+    bottom, width, height in inches) of ``ax``, whose data coordinates are inches."""
+    from matplotlib.transforms import Affine2D
+
+    left, bottom, width, height = box
+    sx, sy = width / (xlim[1] - xlim[0]), height / (ylim[1] - ylim[0])
+    return Affine2D().scale(sx, sy).translate(left - xlim[0] * sx,
+                                              bottom - ylim[0] * sy) + ax.transData
+
+
+def _inches_box(ax, box):
+    """``box`` (left, bottom, width, height in inches) as a clip box of ``ax``."""
+    from matplotlib.transforms import Bbox, TransformedBbox
+
+    return TransformedBbox(Bbox.from_bounds(*box), ax.transData)
+
+
 def _matplotlib(system, forest: Forest | None):
     """Components in rows of at most :data:`PER_ROW`; per component its rules (and its parse
     tree) in its own cell, so that no line crosses another component.
@@ -290,56 +308,63 @@ def _matplotlib(system, forest: Forest | None):
     rule_h = 0.5 + 0.28 * tall
     cell_w = 2.6
     fig = plt.figure(figsize=(0.4 + cell_w * columns, 1.4 + rows * (rule_h + tree_h + 0.4)))
-    height = fig.get_figheight()
+    width_in, height = fig.get_figwidth(), fig.get_figheight()
+    # one axes in inches for the whole picture, each cell placed by its own transform: an axes
+    # per cell (two per component) cost more than the drawing itself in a praxicon system
+    ax = fig.add_axes((0, 0, 1, 1))
+    ax.set_axis_off()
+    ax.set_xlim(0, width_in)
+    ax.set_ylim(0, height)
     top = 1 - 0.9 / height
     band = (top - 0.5 / height) / rows
     for c, grammar in enumerate(system.components):
         row, col = divmod(c, columns)
         colour = _PALETTE[c % len(_PALETTE)]
-        left = (0.2 + col * cell_w) / fig.get_figwidth()
-        width = (cell_w - 0.15) / fig.get_figwidth()
-        y0 = top - (row + 1) * band
+        left = 0.2 + col * cell_w
+        width = cell_w - 0.15
+        y0 = (top - (row + 1) * band) * height
         share = tree_h / (tree_h + rule_h)
-        ax = fig.add_axes((left, y0, width, band * (1 - share) * 0.9))
-        ax.set_axis_off()
-        ax.set_xlim(0, 1)
-        ax.set_ylim(-tall + 0.4, 1.0)
+        rules_h = band * (1 - share) * 0.9 * height
+        low = -tall + 0.4  # the cell's rules from y=1 (the name) down to one row per rule
+        cell = _cell(ax, (left, y0, width, rules_h), (0.0, 1.0), (low, 1.0))
+        clip = _inches_box(ax, (left, y0, width, rules_h))
         ax.text(0.5, 0.8, grammar.name, ha="center", va="center", fontweight="bold",
-                fontsize=8, color=colour)
+                fontsize=8, color=colour, transform=cell)
         for r, rule in enumerate(grammar.rules):
             tags = member.get((grammar.name, rule.label), [])
             # the tag first, then the rule: a long rule is clipped at the cell's edge, never
             # drawn over its tag or the next component
-            ax.text(0.2, -r, _rule_text(rule), ha="left", va="center", fontsize=6,
-                    family="monospace", clip_on=True)
+            text = ax.text(0.2, -r, _rule_text(rule), ha="left", va="center", fontsize=6,
+                           family="monospace", clip_on=True, transform=cell)
+            text.set_clip_box(clip)
             if tags:
                 ax.text(0.0, -r, " ".join(f"M{t + 1}" for t in tags[:2])
                         + ("…" if len(tags) > 2 else ""), ha="left", va="center",
-                        fontsize=6, color="white", fontweight="bold",
+                        fontsize=6, color="white", fontweight="bold", transform=cell,
                         bbox=dict(boxstyle="round,pad=0.15", lw=0,
                                   fc=_PALETTE[tags[0] % len(_PALETTE)]))
             for sym in rule.rhs:
                 if isinstance(sym, Query):
                     ax.text(0.0, -r, f"?{sym.component}", ha="left", va="center",
-                            fontsize=6, color="black",
+                            fontsize=6, color="black", transform=cell,
                             bbox=dict(boxstyle="round,pad=0.15", lw=0.5, fc="white",
                                       ec="black", ls="--"))
         if forest is not None:
             x_of, depth, wide = placed[c]
-            tax = fig.add_axes((left, y0 + band * (1 - share), width, band * share * 0.95))
-            tax.set_axis_off()
-            tax.set_xlim(-0.8, wide - 0.2)
-            tax.set_ylim(-deep + 0.5, 0.6)
+            tree_box = (left, y0 + band * (1 - share) * height, width,
+                        band * share * 0.95 * height)
+            tree = _cell(ax, tree_box, (-0.8, wide - 0.2), (-deep + 0.5, 0.6))
             segments = [[(x_of[p], -depth[p]), (x_of[k], -depth[k])]
                         for p in x_of for k in forest.children[p]]
             from matplotlib.collections import LineCollection
 
-            tax.add_collection(LineCollection(segments, colors=colour, linewidths=0.6))
+            ax.add_collection(LineCollection(segments, colors=colour, linewidths=0.6,
+                                             transform=tree))
             small = max(3.0, min(6.0, 60 / wide))
             for node, x in x_of.items():
                 leaf = not forest.children[node]
-                tax.text(x, -depth[node], forest.labels[node], ha="center", va="center",
-                         fontsize=small, color="black" if leaf else colour)
+                ax.text(x, -depth[node], forest.labels[node], ha="center", va="center",
+                        fontsize=small, color="black" if leaf else colour, transform=tree)
     what = ("each component's parse tree of a derived word (top) and its rules (below); "
             if forest is not None else "each component's rules; ")
     if isinstance(system, PSGS):
