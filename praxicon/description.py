@@ -24,6 +24,13 @@ ranked by the shared distance plus the root drift's distance in each action's ow
 (:func:`scores`); probabilities are those scores' likelihoods at the ``temperature`` that fits
 the left-out training takes best.
 
+Actions need not share a skeleton. Each action keeps the features every one of its takes has
+(``ActionDescription.features``: its joints are its takes'), and the spread covers every
+feature some action has. A motion is compared with each action over the features the two
+share, and its distance is read per feature compared and scaled to the motion's own number of
+features, so actions compared over fewer features stay on one scale (:func:`scores`); an
+action that shares no joint with the motion is not compared at all.
+
 >>> from kinetology import synthetic_motion
 >>> takes = {"a": [synthetic_motion(3, (0,), seed=s) for s in (1, 2, 3)],
 ...          "b": [synthetic_motion(3, (2,), seed=s) for s in (4, 5, 6)]}
@@ -43,15 +50,17 @@ import numpy as np
 from psgs.errors import PSGSError
 
 from .feature_groups import feature_groups, group_distances
-from .features import FeatureError, motion_features
+from .features import FeatureError, feature_joint, motion_features
 
 __all__ = ["FORMAT_VERSION", "ActionDescription", "Spread", "Descriptions", "describe",
            "describe_table", "DescriptionError",
            "GROUP_LEVEL", "OWN_KINDS", "own_columns", "own_terms", "scores", "ScoreModel",
            "score_model"]
 
-#: Bumped when what a description holds or how features are computed changes.
-FORMAT_VERSION = 3
+#: Bumped when what a description holds or how features are computed changes (4: each
+#: action keeps its own features, which need not be the spread's, so that actions learnt from
+#: different skeletons keep their joints; before, only the features every take had were kept).
+FORMAT_VERSION = 4
 _RANK = 16  # shared directions of variation kept (fewer when there are fewer takes)
 _NOISE_FLOOR = 0.05  # smallest per-feature variance left, in scaled units
 _PRIOR_TAKES = 10.0  # pseudo-takes of typical spread each feature's own spread is shrunk to
@@ -75,8 +84,10 @@ def _floats(values) -> tuple[float, ...]:
 class ActionDescription:
     """One action: per feature the mean of its takes and their spread (standard deviation).
 
-    ``takes`` counts the takes (or windows) learnt from; ``window`` is the length in seconds of
-    the windows learnt from (0: whole takes).
+    ``features`` are the ones every take of the action has (a subset of the spread's: actions
+    learnt from other skeletons have other joints); ``takes`` counts the takes (or windows)
+    learnt from; ``window`` is the length in seconds of the windows learnt from (0: whole
+    takes).
     """
 
     name: str
@@ -162,10 +173,42 @@ class Descriptions:
     actions: tuple[ActionDescription, ...]
     spread: Spread
 
+    def __post_init__(self) -> None:
+        known = set(self.spread.features)
+        for a in self.actions:
+            if not (len(a.features) == len(a.mean) == len(a.spread)):
+                raise DescriptionError(f"action {a.name!r}: {len(a.features)} features but "
+                                       f"{len(a.mean)} means and {len(a.spread)} spreads")
+            if not known.issuperset(a.features):
+                extra = sorted(set(a.features) - known)[:3]
+                raise DescriptionError(f"action {a.name!r} has features the spread has not "
+                                       f"({', '.join(extra)})")
+
     @property
     def names(self) -> tuple[str, ...]:
         """The actions' names, in order."""
         return tuple(a.name for a in self.actions)
+
+    def aligned(self, field: str = "mean") -> np.ndarray:
+        """Actions x the spread's features: each action's ``field`` (``"mean"`` or
+        ``"spread"``), NaN where the action lacks the feature.
+
+        Examples
+        --------
+        >>> spread = Spread(("a", "b"), (1.0, 1.0), (), (1.0, 1.0), 1.0, 1.0)
+        >>> d = Descriptions((ActionDescription("x", ("b",), (2.0,), (0.5,), 2),), spread)
+        >>> d.aligned().tolist()
+        [[nan, 2.0]]
+        """
+        index = {f: i for i, f in enumerate(self.spread.features)}
+        out = np.full((len(self.actions), len(index)), np.nan)
+        for k, a in enumerate(self.actions):
+            values = np.asarray(getattr(a, field), dtype=float)
+            if a.features == self.spread.features:
+                out[k] = values
+            else:
+                out[k, [index[f] for f in a.features]] = values
+        return out
 
     def to_dict(self) -> dict:
         """Plain JSON values (floats kept exactly)."""
@@ -221,9 +264,17 @@ def _check(data: dict, kind: str) -> None:
 # -- the model ---------------------------------------------------------------------------------
 def precision_parts(spread: Spread, columns) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``(scale, 1/noise, W, M⁻¹)`` pieces of the precision on ``columns`` (Woodbury)."""
-    scale = np.asarray(spread.scale)[columns]
-    inverse = 1.0 / np.asarray(spread.noise)[columns]
-    w = np.asarray(spread.factors, dtype=float).reshape(-1, len(spread.scale))[:, columns]
+    return _parts(np.asarray(spread.scale), np.asarray(spread.noise),
+                  np.asarray(spread.factors, dtype=float).reshape(-1, len(spread.scale)),
+                  columns)
+
+
+def _parts(scale, noise, factors, columns):
+    """:func:`precision_parts` from the spread's arrays (all features) on ``columns``: the
+    marginal of the shared Gaussian on those features."""
+    scale = scale[columns]
+    inverse = 1.0 / noise[columns]
+    w = factors[:, columns]
     inner = np.linalg.inv(np.eye(len(w)) + (w * inverse) @ w.T)
     return scale, inverse, w, inner
 
@@ -285,32 +336,122 @@ def own_terms(x, means, variance, scale) -> np.ndarray:
     >>> t.tolist()
     [[0.0, 4.0]]
     """
+    terms = _own_raw(x, means, variance, scale)
+    return terms - terms.min(axis=1, keepdims=True) if terms.size else terms
+
+
+def _own_raw(x, means, variance, scale) -> np.ndarray:
     x, means = np.atleast_2d(x), np.atleast_2d(means)
     z = ((x[:, None, :] - means[None]) / scale) ** 2 / variance[None]
-    terms = (z + np.log(variance)[None]).sum(axis=2)
-    return terms - terms.min(axis=1, keepdims=True) if terms.size else terms
+    return (z + np.log(variance)[None]).sum(axis=2)
 
 
 @dataclass(frozen=True)
 class ScoreModel:
     """What scoring reads on some of the descriptions' columns, computed once per call: the
     actions' means, the shared precision's pieces (:func:`precision_parts`) and each action's
-    own variance, in the spread's scaled units (``scale``)."""
+    own variance, in the spread's scaled units (``scale``).
+
+    ``means`` and ``variance`` are NaN where an action lacks a column (it was learnt from
+    another skeleton). ``blocks`` groups the actions compared over the same columns:
+    ``(actions, positions among the columns, the precision's pieces on them)``; an action
+    that has no joint among the columns is in no block (not compared).
+    """
 
     columns: np.ndarray
     means: np.ndarray  # actions x columns
     parts: tuple
     variance: np.ndarray  # actions x columns
     scale: np.ndarray
+    blocks: tuple = ()
+
+    @property
+    def compared(self) -> np.ndarray:
+        """Per action: whether it is compared (shares a joint with the columns)."""
+        out = np.zeros(len(self.means), dtype=bool)
+        for actions, _, _ in self.blocks:
+            out[actions] = True
+        return out
+
+    def block_of(self, action: int):
+        """``(positions, parts)`` the action is compared over (``None`` if it is not)."""
+        for actions, positions, parts in self.blocks:
+            if action in actions:
+                return positions, parts
+        return None
+
+
+def _score_model(columns, names, scale, noise, factors, means, variance) -> ScoreModel:
+    """The :class:`ScoreModel` on ``columns`` from the spread's arrays over every feature
+    (``names``) and the actions' means and own variances (NaN where an action lacks one)."""
+    columns = np.asarray(columns, dtype=int)
+    parts = _parts(scale, noise, factors, columns)
+    means, variance = means[:, columns], variance[:, columns]
+    has = ~np.isnan(means)
+    joint = np.array([feature_joint(names[c]) != "*" for c in columns], dtype=bool)
+    same: dict[bytes, list[int]] = {}
+    for a, row in enumerate(has):
+        if np.any(row & joint):  # the take-wide tempo alone compares no movement
+            same.setdefault(row.tobytes(), []).append(a)
+    blocks = []
+    for actions in same.values():
+        positions = np.flatnonzero(has[actions[0]])
+        blocks.append((np.array(actions), positions, parts if len(positions) == len(columns)
+                       else _parts(scale, noise, factors, columns[positions])))
+    return ScoreModel(columns, means, parts, variance, scale[columns], tuple(blocks))
 
 
 def score_model(descriptions: "Descriptions", columns) -> ScoreModel:
     """The :class:`ScoreModel` of ``descriptions`` on ``columns``."""
-    columns = np.asarray(columns, dtype=int)
-    return ScoreModel(columns, np.array([a.mean for a in descriptions.actions])[:, columns],
-                      precision_parts(descriptions.spread, columns),
-                      action_variances(descriptions, columns),
-                      np.asarray(descriptions.spread.scale)[columns])
+    spread = descriptions.spread
+    return _score_model(columns, spread.features, np.asarray(spread.scale),
+                        np.asarray(spread.noise),
+                        np.asarray(spread.factors, dtype=float).reshape(-1, len(spread.scale)),
+                        descriptions.aligned("mean"),
+                        action_variances(descriptions, np.arange(len(spread.features))))
+
+
+def _part(a: np.ndarray, rows=None, columns=None) -> np.ndarray:
+    """``a[rows][:, columns]`` (``None``: all), and ``a`` itself when that is all of it: a
+    copy may lie differently in memory, and a matrix product's last bits can depend on that,
+    so that one skeleton's scores are those of a praxicon of that skeleton alone."""
+    if rows is not None and not (len(rows) == len(a) and np.array_equal(rows, np.arange(len(a)))):
+        a = a[rows]
+    if columns is not None and not (len(columns) == a.shape[-1]
+                                    and np.array_equal(columns, np.arange(a.shape[-1]))):
+        a = a[..., columns]
+    return a
+
+
+def model_scores(m: ScoreModel, x, own) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`scores` from a :class:`ScoreModel` (``own``: positions among its columns of the
+    features also scored in each action's own spread).
+
+    Each block of actions is compared over its own columns; its distance per feature compared
+    is scaled to the number of columns, so that actions compared over fewer features (learnt
+    from a skeleton with fewer of the motion's joints) are on the same scale as the others:
+    the "none of these" threshold, a distance per feature, reads each action's own. Actions
+    not compared (no joint in common) get an infinite distance: ranked last, probability 0.
+    """
+    n = len(m.columns)
+    shared = np.full((len(x), len(m.means)), np.inf)
+    raw = np.zeros_like(shared)
+    compared = m.compared
+    for actions, positions, parts in m.blocks:
+        shared[:, actions] = distances(_part(x, None, positions),
+                                       _part(m.means, actions, positions),
+                                       parts) * (n / len(positions))
+        mine = positions[np.isin(positions, own)]
+        if len(mine):
+            raw[:, actions] = _own_raw(x[:, mine], _part(m.means, actions)[:, mine],
+                                       _part(m.variance, actions)[:, mine],
+                                       m.scale[mine]) * (len(own) / len(mine))
+    if not len(own):
+        return shared, shared
+    if not raw.size or not compared.any():
+        return shared, shared + raw
+    best = np.where(compared, raw, np.inf).min(axis=1, keepdims=True)
+    return shared, shared + np.where(compared, raw - best, 0.0)
 
 
 def scores(descriptions: "Descriptions", x, columns, *, kinds=OWN_KINDS,
@@ -337,12 +478,8 @@ def scores(descriptions: "Descriptions", x, columns, *, kinds=OWN_KINDS,
     """
     columns = np.asarray(columns, dtype=int)
     m = score_model(descriptions, columns) if fitted is None else fitted
-    shared = distances(x, m.means, m.parts)
     own = own_columns([descriptions.spread.features[i] for i in columns], kinds)
-    if not len(own):
-        return shared, shared
-    return shared, shared + own_terms(np.asarray(x)[:, own], m.means[:, own],
-                                      m.variance[:, own], m.scale[own])
+    return model_scores(m, np.asarray(x), own)
 
 
 def _action_variances(sums: np.ndarray, counts) -> np.ndarray:
@@ -351,7 +488,9 @@ def _action_variances(sums: np.ndarray, counts) -> np.ndarray:
     ``_PRIOR_TAKES`` more takes had shown that: a turn's tight drift stays tight, an action
     learnt from two takes borrows the others' spread."""
     counts = np.asarray(counts, dtype=float)[:, None]
-    pooled = np.maximum(sums.sum(axis=0) / max(1.0, float((counts - 1).sum())), _NOISE_FLOOR)
+    has = ~np.isnan(sums)  # pooled over the actions that have the feature
+    dof = np.maximum(1.0, np.where(has, counts - 1, 0.0).sum(axis=0))
+    pooled = np.maximum(np.where(has, sums, 0.0).sum(axis=0) / dof, _NOISE_FLOOR)
     return (sums + _PRIOR_TAKES * pooled) / (counts - 1 + _PRIOR_TAKES)
 
 
@@ -360,7 +499,7 @@ def action_variances(descriptions: "Descriptions", columns) -> np.ndarray:
     units (from the stored per-action spreads and take counts)."""
     scale = np.asarray(descriptions.spread.scale)[columns]
     n = np.array([a.takes for a in descriptions.actions], dtype=float)
-    spread = np.array([a.spread for a in descriptions.actions]).reshape(len(n), -1)[:, columns]
+    spread = descriptions.aligned("spread")[:, columns]
     return _action_variances((spread / scale) ** 2 * n[:, None], n)
 
 
@@ -376,23 +515,47 @@ def _scale_floors(features) -> np.ndarray:
                      for f in features])
 
 
+def _blocks(has: np.ndarray):
+    """Features grouped by which actions have them (``has``: actions x features):
+    ``(columns, actions)`` per group, one group when every action has every feature."""
+    same: dict[bytes, list[int]] = {}
+    for c in range(has.shape[1]):
+        same.setdefault(has[:, c].tobytes(), []).append(c)
+    return [(np.array(c), np.flatnonzero(has[:, c[0]])) for c in same.values()]
+
+
 def _fit_spread(groups: list[np.ndarray], rank: int, floors=None):
-    every = np.concatenate(groups)
-    scale = every.std(axis=0)
+    """Scale, means, shared factors and noise of takes-x-features ``groups``, one per action
+    (NaN columns: features the action lacks, learnt from another skeleton).
+
+    A feature's scale and variance come from the actions that have it; the residuals of the
+    others are 0, so no direction of variation links features no take has together, and each
+    feature's column is weighed by its own degrees of freedom.
+    """
+    has = np.array([~np.isnan(g).any(axis=0) for g in groups])
+    scale = np.ones(groups[0].shape[1])  # a feature no action has is never read
+    for columns, actions in _blocks(has):
+        if len(actions) == len(groups) and len(columns) == len(scale):
+            scale = np.concatenate(groups).std(axis=0)
+        elif len(actions):
+            scale[columns] = np.concatenate([groups[a][:, columns] for a in actions]).std(axis=0)
     scale = np.maximum(scale, 1e-9 if floors is None else floors)
     means = np.array([g.mean(axis=0) for g in groups])
-    residuals = np.concatenate([(g - m) / scale for g, m in zip(groups, means)])
+    residuals = np.concatenate([np.where(h, (g - m) / scale, 0.0)
+                                for g, m, h in zip(groups, means, has)])
     dof = max(1, sum(len(g) - 1 for g in groups))
-    variance = (residuals ** 2).sum(axis=0) / dof
+    per = np.maximum(1, ((np.array([len(g) for g in groups])[:, None] - 1) * has).sum(axis=0))
+    variance = (residuals ** 2).sum(axis=0) / per
     r = max(0, min(rank, dof - 1, residuals.shape[1] - 1))
-    _, singular, vt = np.linalg.svd(residuals / math.sqrt(dof), full_matrices=False)
+    _, singular, vt = np.linalg.svd(residuals / np.sqrt(per), full_matrices=False)
     eigen = singular ** 2
     rest = float(eigen[r:].sum() / max(1, residuals.shape[1] - r))
     factors = vt[:r] * np.sqrt(np.maximum(eigen[:r] - rest, 0.0))[:, None]
     noise = np.maximum(variance - (factors ** 2).sum(axis=0), max(_NOISE_FLOOR, rest))
     # a variance read from few takes is mostly luck: shrink each feature's towards the mean
     # over features, as if _PRIOR_TAKES more takes had shown the typical spread
-    noise = (dof * noise + _PRIOR_TAKES * noise.mean()) / (dof + _PRIOR_TAKES)
+    typical = noise[has.any(axis=0)].mean()  # over the features some action has
+    noise = (per * noise + _PRIOR_TAKES * typical) / (per + _PRIOR_TAKES)
     return scale, means, factors, noise
 
 
@@ -407,23 +570,29 @@ def _group_limits(held: np.ndarray, level: float, sizes) -> np.ndarray:
     largest value would not (the largest of n takes is exceeded by a new one with
     probability 1/(n+1) per group).
     """
-    median = np.median(held, axis=0)
+    tested = ~np.isnan(held)  # NaN: a take whose action lacks the group (another skeleton)
+    # Bonferroni over the groups a take is tested on: per group, those of the takes that have it
+    count = np.where(tested, tested.sum(axis=1, keepdims=True), 0).max(axis=0)
+    columns = [h[t] for h, t in zip(held.T, tested.T)]
+    median = np.array([np.median(h) if len(h) else np.nan for h in columns])
     excess = np.array([float((h[h > m] - m).mean()) if np.any(h > m) else 0.0
-                       for h, m in zip(held.T, median)])
-    limit = median + excess * math.log(max(1.0, 0.5 * held.shape[1] / level))
+                       for h, m in zip(columns, median)])
+    factor = np.array([math.log(max(1.0, 0.5 * c / level)) for c in count])
+    limit = median + excess * factor
     # never under one of the action's own standard deviations per feature: held-out takes that
     # all agree exactly (a tempo every training take shares) would otherwise allow nothing
-    return np.maximum(limit, sizes)
+    return np.maximum(limit, sizes)  # NaN (no held-out take has the group): no limit
 
 
 def _calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
-               folds: int = _FOLDS, features=None, level: float = GROUP_LEVEL):
+               folds: int = _FOLDS, *, features, level: float = GROUP_LEVEL):
     """Threshold and temperature from held-out training takes (``folds``-fold).
 
     Every take is scored by a model learnt without it (its action's mean *and* the shared
-    spread), as an unseen take would be; an action with a single take cannot be held out.
+    spread), as an unseen take would be, over its action's features (:func:`model_scores`, as
+    recognition scores a motion); an action with a single take cannot be held out.
     The threshold is ``_MARGIN`` times the largest distance per feature such a take got; the
-    group limits (with ``features``) from each group's held-out distances to its own action, in
+    group limits from each group's held-out distances to its own action, in
     that action's own spread (:func:`_group_limits`); the temperature the one (a power of 2)
     whose probabilities, from the score actions are ranked by (:func:`scores`), fit the
     held-out takes best.
@@ -434,9 +603,10 @@ def _calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
         sources = [np.arange(len(g)) for g in groups]
     else:  # takes numbered in order, so that a take's fold does not depend on its id
         sources = [np.unique(np.asarray(s), return_inverse=True)[1] for s in sources]
-    moved, ranked, truth, grouped = [], [], [], []
-    parts_of = feature_groups(features) if features is not None else {}
-    own = own_columns(features) if features is not None else np.zeros(0, dtype=int)
+    moved, ranked, truth, grouped, compared = [], [], [], [], []
+    features = tuple(features)
+    parts_of = feature_groups(features)
+    has = [~np.isnan(g).any(axis=0) for g in groups]
     for fold in range(folds):
         out = [s % folds == fold for s in sources]
         train = [g[~o] for g, o in zip(groups, out)]
@@ -447,37 +617,39 @@ def _calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
         if len(keep) < 1:
             continue
         scale, means, factors, noise = _fit_spread([train[a] for a in keep], rank, floors)
-        spread = Spread(("",) * len(scale), _floats(scale), tuple(_floats(f) for f in factors),
-                        _floats(noise), math.inf, 1.0)
-        parts = precision_parts(spread, np.arange(len(scale)))
-        if parts_of or len(own):
-            variance = _action_variances(
-                np.array([(((train[a] - m) / scale) ** 2).sum(axis=0)
-                          for a, m in zip(keep, means)]), [len(train[a]) for a in keep])
+        variance = _action_variances(
+            np.array([(((train[a] - m) / scale) ** 2).sum(axis=0)
+                      for a, m in zip(keep, means)]), [len(train[a]) for a in keep])
+        models: dict[bytes, tuple] = {}  # one per set of features (a skeleton's actions)
         for k, a in enumerate(keep):
             held = groups[a][out[a]]
-            if len(held) and len(train[a]) and parts_of:
+            if not len(held):
+                continue
+            if parts_of:
                 grouped.append(group_distances(held, means[k], variance[k], scale, parts_of))
-            if len(held) and len(train[a]):
-                shared = distances(held, means, parts)
-                score = shared
-                if len(own):  # ranked as recognition ranks: own-spread terms added
-                    score = shared + own_terms(held[:, own], means[:, own],
-                                               variance[:, own], scale[own])
-                # rows must share one set of actions: pad the actions left out with +inf
-                pad = np.full((len(held), len(groups) - len(keep)), np.inf)
-                moved.extend(np.concatenate([shared, pad], axis=1))
-                ranked.extend(np.concatenate([score, pad], axis=1))
-                truth.extend([k] * len(held))
+            key = has[a].tobytes()
+            if key not in models:
+                columns = np.flatnonzero(has[a])
+                models[key] = (columns, _score_model(columns, features, scale, noise, factors,
+                                                     means, variance),
+                               own_columns([features[c] for c in columns]))
+            columns, model, own = models[key]
+            # ranked as recognition ranks: own-spread terms added
+            shared, score = model_scores(model, _part(held, None, columns), own)
+            # rows must share one set of actions: pad the actions left out with +inf
+            pad = np.full((len(held), len(groups) - len(keep)), np.inf)
+            moved.extend(np.concatenate([shared, pad], axis=1))
+            ranked.extend(np.concatenate([score, pad], axis=1))
+            truth.extend([k] * len(held))
+            compared.extend([len(columns)] * len(held))
     if not moved:
         return math.inf, 1.0, ()
     limits = (_group_limits(np.concatenate(grouped), level,
                              np.array([len(c) for c in parts_of.values()], dtype=float))
               if grouped else ())
-    limits = tuple((g, float(v)) for g, v in zip(parts_of, limits))
+    limits = tuple((g, float(v)) for g, v in zip(parts_of, limits) if not math.isnan(v))
     dist = np.array(moved)
-    features = groups[0].shape[1]
-    nearest = dist[np.arange(len(truth)), truth] / features
+    nearest = dist[np.arange(len(truth)), truth] / np.array(compared)
     threshold = float(nearest.max() * _MARGIN)
     best, best_loss = 1.0, math.inf
     score = np.array(ranked)
@@ -494,14 +666,28 @@ def describe_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
                    level: float = GROUP_LEVEL) -> Descriptions:
     """Descriptions from feature rows (``{action: takes x features}``), sorted by name.
 
-    ``sources`` (``{action: per row the take it comes from}``, for windows) keeps each take's
-    rows together when the threshold is calibrated; ``level`` is how often a known take may
-    fail the feature-group test.
+    A NaN in an action's column means the action lacks that feature (its takes are of another
+    skeleton, :func:`common_table`): the action keeps the features all its rows have, and
+    must have a joint among them. ``sources`` (``{action: per row the take it comes from}``,
+    for windows) keeps each take's rows together when the threshold is calibrated; ``level``
+    is how often a known take may fail the feature-group test.
     """
     names = sorted(table)
     groups = [np.asarray(table[n], dtype=float) for n in names]
     if not groups:
         raise DescriptionError("no action to describe")
+    features = tuple(features)
+    has = [~np.isnan(g).any(axis=0) for g in groups]
+    if not all(h.all() for h in has):
+        groups = [np.where(h, g, np.nan) for g, h in zip(groups, has)]
+        used = np.any(has, axis=0)  # a feature no action has is left out
+        if not used.all():
+            features = tuple(f for f, u in zip(features, used) if u)
+            groups, has = [g[:, used] for g in groups], [h[used] for h in has]
+    for n, h in zip(names, has):
+        if not any(k and feature_joint(f) != "*" for f, k in zip(features, h)):
+            raise DescriptionError(f"action {n!r}: its takes share no joint (learn an action "
+                                   f"from takes of one skeleton)")
     floors = _scale_floors(features)
     scale, means, factors, noise = _fit_spread(groups, rank, floors)
     spread = Spread(tuple(features), _floats(scale), tuple(_floats(f) for f in factors),
@@ -511,8 +697,9 @@ def describe_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
         features=features, level=level)
     spread = Spread(spread.features, spread.scale, spread.factors, spread.noise, threshold,
                     temperature, window, FORMAT_VERSION, limits)
-    actions = tuple(ActionDescription(n, tuple(features), _floats(m), _floats(g.std(axis=0)),
-                                      len(g), window) for n, g, m in zip(names, groups, means))
+    actions = tuple(ActionDescription(n, tuple(f for f, k in zip(features, h) if k),
+                                      _floats(m[h]), _floats(g.std(axis=0)[h]), len(g), window)
+                    for n, g, m, h in zip(names, groups, means, has))
     return Descriptions(actions, spread)
 
 
@@ -528,20 +715,31 @@ def feature_rows(motions, *, shape: bool = True) -> list[dict[str, float]]:
 
 
 def common_table(rows: dict[str, list[dict[str, float]]]):
-    """The features every row has, in the first row's order, and the table of them."""
+    """Per action the features every one of its rows has; every action's features, in the
+    order they first appear, and the table of them (per action rows x features, NaN where the
+    action lacks a feature: its takes are of another skeleton).
+
+    Examples
+    --------
+    >>> order, table = common_table({"a": [{"x": 1.0, "t": 2.0}], "b": [{"y": 3.0, "t": 4.0}]})
+    >>> order, table["a"].tolist(), table["b"].tolist()
+    (('x', 't', 'y'), [[1.0, 2.0, nan]], [[nan, 4.0, 3.0]])
+    """
     for name, per in rows.items():
         if not per:
             raise DescriptionError(f"action {name!r} has no takes")
-    common = set.intersection(*(set(r) for per in rows.values() for r in per))
-    order = tuple(f for f in next(iter(rows.values()))[0] if f in common)
-    return order, {n: np.array([[r[f] for f in order] for r in per]) for n, per in rows.items()}
+    kept = {n: set.intersection(*(set(r) for r in per)) for n, per in rows.items()}
+    order = tuple(dict.fromkeys(f for n, per in rows.items() for f in per[0] if f in kept[n]))
+    return order, {n: np.array([[r[f] if f in kept[n] else math.nan for f in order]
+                                for r in per]) for n, per in rows.items()}
 
 
 def describe(takes: dict[str, list], *, rank: int = _RANK,
              level: float = GROUP_LEVEL) -> Descriptions:
     """Descriptions of every action from its takes (``{name: [Motion, ...]}``).
 
-    Features some take lacks (its skeleton has fewer joints) are left out. ``level``: how often
+    Each action keeps the features all its takes have: actions learnt from different
+    skeletons keep their own joints (an action's takes must share one). ``level``: how often
     a known take may be answered "none of these" by the feature-group test.
 
     Examples
