@@ -210,3 +210,30 @@ def test_descriptions_of_the_old_format_are_learnt_again(px, tmp_path):
         recognise(old, _take("cmu-wave", 7))
     result = build(read_dataset(px / "m.csv"), old, progress=False, log=lambda s: None)
     assert result.learnt == () and read_descriptions(old) == read_descriptions(px)
+
+
+def test_cli_recognises_takes_of_both_skeletons_in_one_call(px, capsys):
+    """``psgs praxicon recognise PX FILE...`` with a CMU and a Bandai take: one line each,
+    its own action; the take lacking a joint is named on stderr, exit status 0."""
+    from kinetology import read, write_bvh
+    from praxicon.recognition_cli import register_recognise
+    from psgs.cli import main
+
+    def register(subparsers) -> None:
+        parser = subparsers.add_parser("praxicon")
+        register_recognise(parser.add_subparsers(dest="praxicon_command", required=True))
+
+    full = read(px / "new-bandai-reach8.bvh")
+    write_bvh(full.select(tuple(c for c in full.channels if not c.startswith("Head."))),
+              px / "headless.bvh")
+    files = [px / "new-cmu-step7.bvh", px / "headless.bvh"]
+    capsys.readouterr()
+    assert main(["praxicon", "recognise", str(px), *map(str, files), "--explain"],
+                commands={"praxicon": register}) == 0
+    captured = capsys.readouterr()
+    answers = [line for line in captured.out.splitlines() if line.startswith(str(px))
+               and " p=" not in line and "(distance" not in line]
+    assert answers[0].startswith(f"{files[0]}: m.cmu-step ")
+    assert answers[1].startswith(f"{files[1]}: m.bandai-reach ")
+    assert "sharing no joint with the motion" in captured.out
+    assert f"{files[1]}: recognised without the joints it lacks: Head" in captured.err
