@@ -24,6 +24,13 @@ ranked by the shared distance plus the root drift's distance in each action's ow
 (:func:`scores`); probabilities are those scores' likelihoods at the ``temperature`` that fits
 the left-out training takes best.
 
+Actions need not share a skeleton. Each action keeps the features every one of its takes has
+(``ActionDescription.features``: its joints are its takes'), and the spread covers every
+feature some action has. A motion is compared with each action over the features the two
+share, and its distance is read per feature compared and scaled to the motion's own number of
+features, so actions compared over fewer features stay on one scale (:func:`scores`); an
+action that shares no joint with the motion is not compared at all.
+
 >>> from kinetology import synthetic_motion
 >>> takes = {"a": [synthetic_motion(3, (0,), seed=s) for s in (1, 2, 3)],
 ...          "b": [synthetic_motion(3, (2,), seed=s) for s in (4, 5, 6)]}
@@ -43,24 +50,28 @@ import numpy as np
 from psgs.errors import PSGSError
 
 from .feature_groups import feature_groups, group_distances
-from .features import FeatureError, motion_features
+from .features import FeatureError, feature_joint, motion_features
+# the model and its scores live in .scoring; the names below are this module's as well, for
+# the callers that read descriptions and score with them from one place
+from .scoring import (_NOISE_FLOOR, _PRIOR_TAKES, OWN_KINDS, ScoreModel,  # noqa: F401
+                      _action_variances, _part, _score_model, action_variances, distances,
+                      mahalanobis_terms, model_scores, own_columns, own_terms,
+                      precision_parts, probabilities, score_model, scores)
 
 __all__ = ["FORMAT_VERSION", "ActionDescription", "Spread", "Descriptions", "describe",
            "describe_table", "DescriptionError",
            "GROUP_LEVEL", "OWN_KINDS", "own_columns", "own_terms", "scores", "ScoreModel",
            "score_model"]
 
-#: Bumped when what a description holds or how features are computed changes.
-FORMAT_VERSION = 3
+#: Bumped when what a description holds or how features are computed changes (4: each
+#: action keeps its own features, which need not be the spread's, so that actions learnt from
+#: different skeletons keep their joints; before, only the features every take had were kept).
+FORMAT_VERSION = 4
 _RANK = 16  # shared directions of variation kept (fewer when there are fewer takes)
-_NOISE_FLOOR = 0.05  # smallest per-feature variance left, in scaled units
-_PRIOR_TAKES = 10.0  # pseudo-takes of typical spread each feature's own spread is shrunk to
 _MARGIN = 1.5  # the "none of these" threshold: this times the worst held-out training take
 _FOLDS = 5  # held-out folds of the calibration
 #: How often a known take may fail the feature-group test (over all groups together).
 GROUP_LEVEL = 0.01
-#: Kinds of the root's features every action also scores in its own spread (:func:`scores`).
-OWN_KINDS = ("drift",)
 
 
 class DescriptionError(PSGSError, ValueError):
@@ -75,8 +86,10 @@ def _floats(values) -> tuple[float, ...]:
 class ActionDescription:
     """One action: per feature the mean of its takes and their spread (standard deviation).
 
-    ``takes`` counts the takes (or windows) learnt from; ``window`` is the length in seconds of
-    the windows learnt from (0: whole takes).
+    ``features`` are the ones every take of the action has (a subset of the spread's: actions
+    learnt from other skeletons have other joints); ``takes`` counts the takes (or windows)
+    learnt from; ``window`` is the length in seconds of the windows learnt from (0: whole
+    takes).
     """
 
     name: str
@@ -162,10 +175,42 @@ class Descriptions:
     actions: tuple[ActionDescription, ...]
     spread: Spread
 
+    def __post_init__(self) -> None:
+        known = set(self.spread.features)
+        for a in self.actions:
+            if not (len(a.features) == len(a.mean) == len(a.spread)):
+                raise DescriptionError(f"action {a.name!r}: {len(a.features)} features but "
+                                       f"{len(a.mean)} means and {len(a.spread)} spreads")
+            if not known.issuperset(a.features):
+                extra = sorted(set(a.features) - known)[:3]
+                raise DescriptionError(f"action {a.name!r} has features the spread has not "
+                                       f"({', '.join(extra)})")
+
     @property
     def names(self) -> tuple[str, ...]:
         """The actions' names, in order."""
         return tuple(a.name for a in self.actions)
+
+    def aligned(self, field: str = "mean") -> np.ndarray:
+        """Actions x the spread's features: each action's ``field`` (``"mean"`` or
+        ``"spread"``), NaN where the action lacks the feature.
+
+        Examples
+        --------
+        >>> spread = Spread(("a", "b"), (1.0, 1.0), (), (1.0, 1.0), 1.0, 1.0)
+        >>> d = Descriptions((ActionDescription("x", ("b",), (2.0,), (0.5,), 2),), spread)
+        >>> d.aligned().tolist()
+        [[nan, 2.0]]
+        """
+        index = {f: i for i, f in enumerate(self.spread.features)}
+        out = np.full((len(self.actions), len(index)), np.nan)
+        for k, a in enumerate(self.actions):
+            values = np.asarray(getattr(a, field), dtype=float)
+            if a.features == self.spread.features:
+                out[k] = values
+            else:
+                out[k, [index[f] for f in a.features]] = values
+        return out
 
     def to_dict(self) -> dict:
         """Plain JSON values (floats kept exactly)."""
@@ -218,152 +263,6 @@ def _check(data: dict, kind: str) -> None:
                                f"describes its actions)")
 
 
-# -- the model ---------------------------------------------------------------------------------
-def precision_parts(spread: Spread, columns) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``(scale, 1/noise, W, M⁻¹)`` pieces of the precision on ``columns`` (Woodbury)."""
-    scale = np.asarray(spread.scale)[columns]
-    inverse = 1.0 / np.asarray(spread.noise)[columns]
-    w = np.asarray(spread.factors, dtype=float).reshape(-1, len(spread.scale))[:, columns]
-    inner = np.linalg.inv(np.eye(len(w)) + (w * inverse) @ w.T)
-    return scale, inverse, w, inner
-
-
-def mahalanobis_terms(x: np.ndarray, mean: np.ndarray, parts) -> np.ndarray:
-    """Per-feature terms ``d_f (Σ⁻¹ d)_f`` of the squared Mahalanobis distance (rows: motions);
-    they sum to the distance, and their sums per joint are the explanation."""
-    scale, inverse, w, inner = parts
-    d = (np.atleast_2d(x) - mean) / scale
-    pd = d * inverse
-    b = pd @ w.T
-    return d * (pd - ((b @ inner) @ w) * inverse)
-
-
-def distances(x: np.ndarray, means: np.ndarray, parts) -> np.ndarray:
-    """Squared Mahalanobis distance of every row of ``x`` to every mean (motions x actions)."""
-    scale, inverse, w, inner = parts
-    out = np.empty((len(x), len(means)))
-    for a, mean in enumerate(means):
-        d = (x - mean) / scale
-        b = (d * inverse) @ w.T
-        out[:, a] = (d * d * inverse).sum(axis=1) - np.einsum("ni,ij,nj->n", b, inner, b)
-    return out
-
-
-def probabilities(dist: np.ndarray, temperature: float) -> np.ndarray:
-    """Posterior probabilities (equal priors) from squared distances at ``temperature``."""
-    logits = -0.5 * dist / temperature
-    logits -= logits.max(axis=-1, keepdims=True)
-    p = np.exp(logits)
-    return p / p.sum(axis=-1, keepdims=True)
-
-
-def own_columns(features, kinds=OWN_KINDS) -> np.ndarray:
-    """The columns of the root's features of ``kinds`` (``"drift"``: the mean travel and
-    turning velocities; ``"energy"``: the sway around them), scored in each action's own spread.
-
-    Examples
-    --------
-    >>> own_columns(["a.rx:pose", "Hips.travelz:drift", "Hips.travelz:energy", "tempo"]).tolist()
-    [1]
-    """
-    return np.array([i for i, f in enumerate(features) if (".travel" in f or ".turn" in f)
-                     and f.rsplit(":", 1)[-1] in kinds], dtype=int)
-
-
-def own_terms(x, means, variance, scale) -> np.ndarray:
-    """Motions x actions: each action's own-spread term, relative to the best action's.
-
-    Per action the Gaussian log-likelihood of the columns given (``x``: motions x columns,
-    ``means`` and ``variance``: actions x columns, the variance in units of ``scale``), as
-    ``sum z²/v + log v``, minus the smallest over actions: the action whose own spread fits
-    best pays nothing more, so a "none of these" threshold on the shared distance keeps its
-    meaning.
-
-    Examples
-    --------
-    >>> t = own_terms(np.array([[1.0]]), np.array([[1.0], [-1.0]]), np.ones((2, 1)), np.ones(1))
-    >>> t.tolist()
-    [[0.0, 4.0]]
-    """
-    x, means = np.atleast_2d(x), np.atleast_2d(means)
-    z = ((x[:, None, :] - means[None]) / scale) ** 2 / variance[None]
-    terms = (z + np.log(variance)[None]).sum(axis=2)
-    return terms - terms.min(axis=1, keepdims=True) if terms.size else terms
-
-
-@dataclass(frozen=True)
-class ScoreModel:
-    """What scoring reads on some of the descriptions' columns, computed once per call: the
-    actions' means, the shared precision's pieces (:func:`precision_parts`) and each action's
-    own variance, in the spread's scaled units (``scale``)."""
-
-    columns: np.ndarray
-    means: np.ndarray  # actions x columns
-    parts: tuple
-    variance: np.ndarray  # actions x columns
-    scale: np.ndarray
-
-
-def score_model(descriptions: "Descriptions", columns) -> ScoreModel:
-    """The :class:`ScoreModel` of ``descriptions`` on ``columns``."""
-    columns = np.asarray(columns, dtype=int)
-    return ScoreModel(columns, np.array([a.mean for a in descriptions.actions])[:, columns],
-                      precision_parts(descriptions.spread, columns),
-                      action_variances(descriptions, columns),
-                      np.asarray(descriptions.spread.scale)[columns])
-
-
-def scores(descriptions: "Descriptions", x, columns, *, kinds=OWN_KINDS,
-           fitted: ScoreModel | None = None):
-    """Motions x actions: the shared distance (what the "none of these" threshold reads) and
-    the score actions are ranked by, which adds :func:`own_terms` for the root's features of
-    ``kinds``. ``fitted``: the :func:`score_model` on ``columns``, when the caller has it.
-
-    The shared spread pools how every action's copies vary; a style that walks faster moves
-    the forward travel of every gait alike, so the shared directions let a walk's travel be
-    read as a walk backwards' at little cost, and a heading rate drowns among hundreds of
-    features. Each action's own spread of its drift (a walk backwards always travels
-    backwards, a turn's heading rate is tight) keeps them apart.
-
-    Examples
-    --------
-    >>> from kinetology import synthetic_motion
-    >>> d = describe({"a": [synthetic_motion(2, (0,), seed=s) for s in (1, 2)],
-    ...               "b": [synthetic_motion(2, (1,), seed=s) for s in (3, 4)]})
-    >>> x = np.array([d.actions[0].mean])
-    >>> shared, score = scores(d, x, np.arange(len(d.spread.features)))
-    >>> shared.shape, bool(np.all(score >= shared))
-    ((1, 2), True)
-    """
-    columns = np.asarray(columns, dtype=int)
-    m = score_model(descriptions, columns) if fitted is None else fitted
-    shared = distances(x, m.means, m.parts)
-    own = own_columns([descriptions.spread.features[i] for i in columns], kinds)
-    if not len(own):
-        return shared, shared
-    return shared, shared + own_terms(np.asarray(x)[:, own], m.means[:, own],
-                                      m.variance[:, own], m.scale[own])
-
-
-def _action_variances(sums: np.ndarray, counts) -> np.ndarray:
-    """Per action and feature the variance of its own copies (scaled units) from the sums of
-    squared deviations, shrunk towards the variance pooled over actions as if
-    ``_PRIOR_TAKES`` more takes had shown that: a turn's tight drift stays tight, an action
-    learnt from two takes borrows the others' spread."""
-    counts = np.asarray(counts, dtype=float)[:, None]
-    pooled = np.maximum(sums.sum(axis=0) / max(1.0, float((counts - 1).sum())), _NOISE_FLOOR)
-    return (sums + _PRIOR_TAKES * pooled) / (counts - 1 + _PRIOR_TAKES)
-
-
-def action_variances(descriptions: "Descriptions", columns) -> np.ndarray:
-    """Actions x ``columns``: each action's own variance per feature, in the spread's scaled
-    units (from the stored per-action spreads and take counts)."""
-    scale = np.asarray(descriptions.spread.scale)[columns]
-    n = np.array([a.takes for a in descriptions.actions], dtype=float)
-    spread = np.array([a.spread for a in descriptions.actions]).reshape(len(n), -1)[:, columns]
-    return _action_variances((spread / scale) ** 2 * n[:, None], n)
-
-
 def _scale_floors(features) -> np.ndarray:
     """The smallest scale of each feature: a degree (or a degree per second, a length unit per
     second) for angles and rates, 10 % for the log ranges and energies, 5 % of the tempo.
@@ -376,23 +275,47 @@ def _scale_floors(features) -> np.ndarray:
                      for f in features])
 
 
+def _blocks(has: np.ndarray):
+    """Features grouped by which actions have them (``has``: actions x features):
+    ``(columns, actions)`` per group, one group when every action has every feature."""
+    same: dict[bytes, list[int]] = {}
+    for c in range(has.shape[1]):
+        same.setdefault(has[:, c].tobytes(), []).append(c)
+    return [(np.array(c), np.flatnonzero(has[:, c[0]])) for c in same.values()]
+
+
 def _fit_spread(groups: list[np.ndarray], rank: int, floors=None):
-    every = np.concatenate(groups)
-    scale = every.std(axis=0)
+    """Scale, means, shared factors and noise of takes-x-features ``groups``, one per action
+    (NaN columns: features the action lacks, learnt from another skeleton).
+
+    A feature's scale and variance come from the actions that have it; the residuals of the
+    others are 0, so no direction of variation links features no take has together, and each
+    feature's column is weighed by its own degrees of freedom.
+    """
+    has = np.array([~np.isnan(g).any(axis=0) for g in groups])
+    scale = np.ones(groups[0].shape[1])  # a feature no action has is never read
+    for columns, actions in _blocks(has):
+        if len(actions) == len(groups) and len(columns) == len(scale):
+            scale = np.concatenate(groups).std(axis=0)
+        elif len(actions):
+            scale[columns] = np.concatenate([groups[a][:, columns] for a in actions]).std(axis=0)
     scale = np.maximum(scale, 1e-9 if floors is None else floors)
     means = np.array([g.mean(axis=0) for g in groups])
-    residuals = np.concatenate([(g - m) / scale for g, m in zip(groups, means)])
+    residuals = np.concatenate([np.where(h, (g - m) / scale, 0.0)
+                                for g, m, h in zip(groups, means, has)])
     dof = max(1, sum(len(g) - 1 for g in groups))
-    variance = (residuals ** 2).sum(axis=0) / dof
+    per = np.maximum(1, ((np.array([len(g) for g in groups])[:, None] - 1) * has).sum(axis=0))
+    variance = (residuals ** 2).sum(axis=0) / per
     r = max(0, min(rank, dof - 1, residuals.shape[1] - 1))
-    _, singular, vt = np.linalg.svd(residuals / math.sqrt(dof), full_matrices=False)
+    _, singular, vt = np.linalg.svd(residuals / np.sqrt(per), full_matrices=False)
     eigen = singular ** 2
     rest = float(eigen[r:].sum() / max(1, residuals.shape[1] - r))
     factors = vt[:r] * np.sqrt(np.maximum(eigen[:r] - rest, 0.0))[:, None]
     noise = np.maximum(variance - (factors ** 2).sum(axis=0), max(_NOISE_FLOOR, rest))
     # a variance read from few takes is mostly luck: shrink each feature's towards the mean
     # over features, as if _PRIOR_TAKES more takes had shown the typical spread
-    noise = (dof * noise + _PRIOR_TAKES * noise.mean()) / (dof + _PRIOR_TAKES)
+    typical = noise[has.any(axis=0)].mean()  # over the features some action has
+    noise = (per * noise + _PRIOR_TAKES * typical) / (per + _PRIOR_TAKES)
     return scale, means, factors, noise
 
 
@@ -407,23 +330,29 @@ def _group_limits(held: np.ndarray, level: float, sizes) -> np.ndarray:
     largest value would not (the largest of n takes is exceeded by a new one with
     probability 1/(n+1) per group).
     """
-    median = np.median(held, axis=0)
+    tested = ~np.isnan(held)  # NaN: a take whose action lacks the group (another skeleton)
+    # Bonferroni over the groups a take is tested on: per group, those of the takes that have it
+    count = np.where(tested, tested.sum(axis=1, keepdims=True), 0).max(axis=0)
+    columns = [h[t] for h, t in zip(held.T, tested.T)]
+    median = np.array([np.median(h) if len(h) else np.nan for h in columns])
     excess = np.array([float((h[h > m] - m).mean()) if np.any(h > m) else 0.0
-                       for h, m in zip(held.T, median)])
-    limit = median + excess * math.log(max(1.0, 0.5 * held.shape[1] / level))
+                       for h, m in zip(columns, median)])
+    factor = np.array([math.log(max(1.0, 0.5 * c / level)) for c in count])
+    limit = median + excess * factor
     # never under one of the action's own standard deviations per feature: held-out takes that
     # all agree exactly (a tempo every training take shares) would otherwise allow nothing
-    return np.maximum(limit, sizes)
+    return np.maximum(limit, sizes)  # NaN (no held-out take has the group): no limit
 
 
 def _calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
-               folds: int = _FOLDS, features=None, level: float = GROUP_LEVEL):
+               folds: int = _FOLDS, *, features, level: float = GROUP_LEVEL):
     """Threshold and temperature from held-out training takes (``folds``-fold).
 
     Every take is scored by a model learnt without it (its action's mean *and* the shared
-    spread), as an unseen take would be; an action with a single take cannot be held out.
+    spread), as an unseen take would be, over its action's features (:func:`model_scores`, as
+    recognition scores a motion); an action with a single take cannot be held out.
     The threshold is ``_MARGIN`` times the largest distance per feature such a take got; the
-    group limits (with ``features``) from each group's held-out distances to its own action, in
+    group limits from each group's held-out distances to its own action, in
     that action's own spread (:func:`_group_limits`); the temperature the one (a power of 2)
     whose probabilities, from the score actions are ranked by (:func:`scores`), fit the
     held-out takes best.
@@ -434,9 +363,10 @@ def _calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
         sources = [np.arange(len(g)) for g in groups]
     else:  # takes numbered in order, so that a take's fold does not depend on its id
         sources = [np.unique(np.asarray(s), return_inverse=True)[1] for s in sources]
-    moved, ranked, truth, grouped = [], [], [], []
-    parts_of = feature_groups(features) if features is not None else {}
-    own = own_columns(features) if features is not None else np.zeros(0, dtype=int)
+    moved, ranked, truth, grouped, compared = [], [], [], [], []
+    features = tuple(features)
+    parts_of = feature_groups(features)
+    has = [~np.isnan(g).any(axis=0) for g in groups]
     for fold in range(folds):
         out = [s % folds == fold for s in sources]
         train = [g[~o] for g, o in zip(groups, out)]
@@ -447,37 +377,39 @@ def _calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
         if len(keep) < 1:
             continue
         scale, means, factors, noise = _fit_spread([train[a] for a in keep], rank, floors)
-        spread = Spread(("",) * len(scale), _floats(scale), tuple(_floats(f) for f in factors),
-                        _floats(noise), math.inf, 1.0)
-        parts = precision_parts(spread, np.arange(len(scale)))
-        if parts_of or len(own):
-            variance = _action_variances(
-                np.array([(((train[a] - m) / scale) ** 2).sum(axis=0)
-                          for a, m in zip(keep, means)]), [len(train[a]) for a in keep])
+        variance = _action_variances(
+            np.array([(((train[a] - m) / scale) ** 2).sum(axis=0)
+                      for a, m in zip(keep, means)]), [len(train[a]) for a in keep])
+        models: dict[bytes, tuple] = {}  # one per set of features (a skeleton's actions)
         for k, a in enumerate(keep):
             held = groups[a][out[a]]
-            if len(held) and len(train[a]) and parts_of:
+            if not len(held):
+                continue
+            if parts_of:
                 grouped.append(group_distances(held, means[k], variance[k], scale, parts_of))
-            if len(held) and len(train[a]):
-                shared = distances(held, means, parts)
-                score = shared
-                if len(own):  # ranked as recognition ranks: own-spread terms added
-                    score = shared + own_terms(held[:, own], means[:, own],
-                                               variance[:, own], scale[own])
-                # rows must share one set of actions: pad the actions left out with +inf
-                pad = np.full((len(held), len(groups) - len(keep)), np.inf)
-                moved.extend(np.concatenate([shared, pad], axis=1))
-                ranked.extend(np.concatenate([score, pad], axis=1))
-                truth.extend([k] * len(held))
+            key = has[a].tobytes()
+            if key not in models:
+                columns = np.flatnonzero(has[a])
+                models[key] = (columns, _score_model(columns, features, scale, noise, factors,
+                                                     means, variance),
+                               own_columns([features[c] for c in columns]))
+            columns, model, own = models[key]
+            # ranked as recognition ranks: own-spread terms added
+            shared, score = model_scores(model, _part(held, None, columns), own)
+            # rows must share one set of actions: pad the actions left out with +inf
+            pad = np.full((len(held), len(groups) - len(keep)), np.inf)
+            moved.extend(np.concatenate([shared, pad], axis=1))
+            ranked.extend(np.concatenate([score, pad], axis=1))
+            truth.extend([k] * len(held))
+            compared.extend([len(columns)] * len(held))
     if not moved:
         return math.inf, 1.0, ()
     limits = (_group_limits(np.concatenate(grouped), level,
                              np.array([len(c) for c in parts_of.values()], dtype=float))
               if grouped else ())
-    limits = tuple((g, float(v)) for g, v in zip(parts_of, limits))
+    limits = tuple((g, float(v)) for g, v in zip(parts_of, limits) if not math.isnan(v))
     dist = np.array(moved)
-    features = groups[0].shape[1]
-    nearest = dist[np.arange(len(truth)), truth] / features
+    nearest = dist[np.arange(len(truth)), truth] / np.array(compared)
     threshold = float(nearest.max() * _MARGIN)
     best, best_loss = 1.0, math.inf
     score = np.array(ranked)
@@ -494,14 +426,28 @@ def describe_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
                    level: float = GROUP_LEVEL) -> Descriptions:
     """Descriptions from feature rows (``{action: takes x features}``), sorted by name.
 
-    ``sources`` (``{action: per row the take it comes from}``, for windows) keeps each take's
-    rows together when the threshold is calibrated; ``level`` is how often a known take may
-    fail the feature-group test.
+    A NaN in an action's column means the action lacks that feature (its takes are of another
+    skeleton, :func:`common_table`): the action keeps the features all its rows have, and
+    must have a joint among them. ``sources`` (``{action: per row the take it comes from}``,
+    for windows) keeps each take's rows together when the threshold is calibrated; ``level``
+    is how often a known take may fail the feature-group test.
     """
     names = sorted(table)
     groups = [np.asarray(table[n], dtype=float) for n in names]
     if not groups:
         raise DescriptionError("no action to describe")
+    features = tuple(features)
+    has = [~np.isnan(g).any(axis=0) for g in groups]
+    if not all(h.all() for h in has):
+        groups = [np.where(h, g, np.nan) for g, h in zip(groups, has)]
+        used = np.any(has, axis=0)  # a feature no action has is left out
+        if not used.all():
+            features = tuple(f for f, u in zip(features, used) if u)
+            groups, has = [g[:, used] for g in groups], [h[used] for h in has]
+    for n, h in zip(names, has):
+        if not any(k and feature_joint(f) != "*" for f, k in zip(features, h)):
+            raise DescriptionError(f"action {n!r}: its takes share no joint (learn an action "
+                                   f"from takes of one skeleton)")
     floors = _scale_floors(features)
     scale, means, factors, noise = _fit_spread(groups, rank, floors)
     spread = Spread(tuple(features), _floats(scale), tuple(_floats(f) for f in factors),
@@ -511,8 +457,9 @@ def describe_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
         features=features, level=level)
     spread = Spread(spread.features, spread.scale, spread.factors, spread.noise, threshold,
                     temperature, window, FORMAT_VERSION, limits)
-    actions = tuple(ActionDescription(n, tuple(features), _floats(m), _floats(g.std(axis=0)),
-                                      len(g), window) for n, g, m in zip(names, groups, means))
+    actions = tuple(ActionDescription(n, tuple(f for f, k in zip(features, h) if k),
+                                      _floats(m[h]), _floats(g.std(axis=0)[h]), len(g), window)
+                    for n, g, m, h in zip(names, groups, means, has))
     return Descriptions(actions, spread)
 
 
@@ -528,20 +475,31 @@ def feature_rows(motions, *, shape: bool = True) -> list[dict[str, float]]:
 
 
 def common_table(rows: dict[str, list[dict[str, float]]]):
-    """The features every row has, in the first row's order, and the table of them."""
+    """Per action the features every one of its rows has; every action's features, in the
+    order they first appear, and the table of them (per action rows x features, NaN where the
+    action lacks a feature: its takes are of another skeleton).
+
+    Examples
+    --------
+    >>> order, table = common_table({"a": [{"x": 1.0, "t": 2.0}], "b": [{"y": 3.0, "t": 4.0}]})
+    >>> order, table["a"].tolist(), table["b"].tolist()
+    (('x', 't', 'y'), [[1.0, 2.0, nan]], [[nan, 4.0, 3.0]])
+    """
     for name, per in rows.items():
         if not per:
             raise DescriptionError(f"action {name!r} has no takes")
-    common = set.intersection(*(set(r) for per in rows.values() for r in per))
-    order = tuple(f for f in next(iter(rows.values()))[0] if f in common)
-    return order, {n: np.array([[r[f] for f in order] for r in per]) for n, per in rows.items()}
+    kept = {n: set.intersection(*(set(r) for r in per)) for n, per in rows.items()}
+    order = tuple(dict.fromkeys(f for n, per in rows.items() for f in per[0] if f in kept[n]))
+    return order, {n: np.array([[r[f] if f in kept[n] else math.nan for f in order]
+                                for r in per]) for n, per in rows.items()}
 
 
 def describe(takes: dict[str, list], *, rank: int = _RANK,
              level: float = GROUP_LEVEL) -> Descriptions:
     """Descriptions of every action from its takes (``{name: [Motion, ...]}``).
 
-    Features some take lacks (its skeleton has fewer joints) are left out. ``level``: how often
+    Each action keeps the features all its takes have: actions learnt from different
+    skeletons keep their own joints (an action's takes must share one). ``level``: how often
     a known take may be answered "none of these" by the feature-group test.
 
     Examples

@@ -57,7 +57,9 @@ def telling_groups(means, variance, scale, groups: dict[str, np.ndarray], bound)
     runs) cannot tell the answer from the other answers; a take far out in it is still most
     likely what it ranked as, and failing it rejects known takes that a style or a slip moved
     there. The group test reads only the groups that do tell; with a single action there is
-    nothing to tell it from, and every group is read.
+    nothing to tell it from, and every group is read. Another action that lacks a group (NaN
+    means: learnt from another skeleton) cannot be told apart in it; a group no other action
+    has is read, as with a single action.
 
     Examples
     --------
@@ -73,7 +75,9 @@ def telling_groups(means, variance, scale, groups: dict[str, np.ndarray], bound)
     for a in range(len(means)):
         others = np.delete(means, a, axis=0)
         far = group_distances(others, means[a], variance[a], scale, groups) / bound
-        out[a] = far.max(axis=0) > 1.0
+        known = ~np.isnan(far)
+        out[a] = np.where(known, far, -np.inf).max(axis=0) > 1.0
+        out[a] |= ~known.any(axis=0)
     return out
 
 

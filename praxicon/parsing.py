@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .description import (OWN_KINDS, DescriptionError, common_table, describe_table,
-                          feature_rows, probabilities, scores)
+                          feature_rows, probabilities, score_model, scores)
 
 __all__ = ["Span", "Timeline", "parse", "describe_windows", "windows"]
 
@@ -148,7 +148,6 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
     -------
     Timeline
     """
-    from .features import feature_joint
     from .recognition import _descriptions, _motion, feature_matrix
 
     descriptions = _descriptions(praxicon, windows=True)
@@ -159,10 +158,12 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
     window = descriptions.spread.window
     starts, cuts = windows(motion, window, hop)
     columns, x, _ = feature_matrix(descriptions, cuts, shape=False)
-    if not any(feature_joint(descriptions.spread.features[i]) != "*" for i in columns):
-        raise DescriptionError("the motion shares no joint with the praxicon's actions")
+    fitted = score_model(descriptions, columns)
+    if not fitted.compared.any():  # an action sharing none (another skeleton) is never chosen
+        raise DescriptionError(f"{getattr(motion, 'source', '<motion>')}: the motion shares "
+                               f"no joint with the praxicon's actions")
     spread = descriptions.spread
-    _, dist = scores(descriptions, x, columns, kinds=own)
+    _, dist = scores(descriptions, x, columns, kinds=own, fitted=fitted)
     # "none of these" is one more state, at the threshold's distance: an action wins a window
     # only where it is nearer than that and nearer than every other action
     dist = np.concatenate([dist, np.full((len(dist), 1), spread.threshold * len(columns))],

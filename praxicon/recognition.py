@@ -13,6 +13,12 @@ the tempo) that tells it apart from another learnt action is further from it, in
 own spread, than its calibrated limit (exceeded by a held-out training take with probability
 ``GROUP_LEVEL``): then the answer is ``None`` ("none of these").
 
+A praxicon may hold actions learnt from different skeletons. A motion is compared with each
+action over the features the two share (its distance scaled to one number of features, so
+the scores stay on one scale); ``Recognition.lacking`` names, per action shown, the action's
+joints the motion lacks, and an action that shares no joint with the motion is ranked last,
+at probability 0, and named in ``Recognition.unshared``.
+
 >>> from kinetology import synthetic_motion
 >>> from praxicon.description import describe
 >>> takes = {"left": [synthetic_motion(3, (0,), seed=1, noise=n) for n in (0.2, 0.5, 1.0)],
@@ -33,7 +39,7 @@ from pathlib import Path
 import numpy as np
 
 from .description import (DescriptionError, Descriptions, feature_rows, mahalanobis_terms,
-                          probabilities, score_model, scores)
+                          model_scores, own_columns, _part, probabilities, score_model)
 from .feature_groups import feature_groups, group_distances, telling_groups
 from .features import feature_joint
 
@@ -56,8 +62,11 @@ class Recognition:
     ``ranking`` holds ``(action, probability)`` best first: the probabilities come from one
     log-likelihood per action, on one scale, and sum to 1 over the praxicon's actions.
     ``penalty`` is the best action's squared Mahalanobis distance per feature and
-    ``threshold`` the largest it may be for an answer other than None; ``missing`` names joints the descriptions have and the motion lacks (recognised
-    over the joints it has); ``reasons`` holds, for the best three actions, every joint's part.
+    ``threshold`` the largest it may be for an answer other than None; ``missing`` names the
+    best-ranked action's joints the motion lacks (recognised over the joints it has),
+    ``lacking`` the same per action shown, and ``unshared`` the actions that share no joint
+    with the motion (ranked last, probability 0: learnt from another skeleton); ``reasons``
+    holds, for the best three actions, every joint's part.
     """
 
     source: str
@@ -71,6 +80,8 @@ class Recognition:
     drift: tuple[tuple[str, float], ...] = ()  # per action shown: the root drift's terms
     excess: float = 0.0  # the best action's worst feature group over its limit
     excess_group: str = ""  # which group that is
+    lacking: tuple[tuple[str, tuple[str, ...]], ...] = ()  # per action shown: joints not here
+    unshared: tuple[str, ...] = ()  # actions sharing no joint with the motion
 
     def explain(self, joints: int = 4) -> str:
         """The reasons, as text: per shown action the joints that decided it."""
@@ -83,10 +94,12 @@ class Recognition:
             lines.append(f"  missing joints (recognised without them): "
                          f"{', '.join(self.missing)}")
         probability = dict(self.ranking)
-        tempo, drift = dict(self.tempo), dict(self.drift)
+        tempo, drift, lacking = dict(self.tempo), dict(self.drift), dict(self.lacking)
         for name, reasons in self.reasons:
             lines.append(f"  {name}: p={probability[name]:.3f}, tempo term "
                          f"{tempo.get(name, 0.0):.2f}, drift terms {drift.get(name, 0.0):.2f}")
+            if lacking.get(name):
+                lines.append(f"    lacks the action's joints: {', '.join(lacking[name])}")
             matched = [r.joint for r in sorted(reasons, key=lambda r: r.penalty)
                        if r.role == "matched"][:joints]
             if matched:
@@ -97,6 +110,11 @@ class Recognition:
                 if worst:
                     lines.append(f"    {role}: " + ", ".join(
                         f"{r.joint} ({r.penalty:.1f})" for r in worst))
+        if self.unshared:
+            shown = ", ".join(self.unshared[:6]) + (f" and {len(self.unshared) - 6} more"
+                                                    if len(self.unshared) > 6 else "")
+            lines.append(f"  ranked last, sharing no joint with the motion (learnt from "
+                         f"another skeleton): {shown}")
         return "\n".join(lines)
 
 
@@ -124,7 +142,8 @@ def feature_matrix(descriptions: Descriptions, motions, *, shape: bool = True):
 
     Returns ``(columns, rows, missing)``: the indices of the descriptions' features kept, a
     motions x kept-features matrix, and per motion the joints of the descriptions' features
-    it lacks (recognised without them).
+    it lacks (of every action: in a praxicon of several skeletons, the other skeletons' too;
+    :class:`Recognition` names each action's).
     """
     wanted = descriptions.spread.features
     rows = feature_rows(motions, shape=shape)
@@ -171,7 +190,8 @@ def _reasons(features, terms, x_row, mean) -> tuple[JointReason, ...]:
 
 
 def recognise_many(praxicon, motions, *, explain: int = 3) -> list[Recognition]:
-    """:func:`recognise` for many motions in one call (features once, one matrix of scores).
+    """:func:`recognise` for many motions in one call (features once, one matrix of scores
+    per skeleton among the motions).
 
     Examples
     --------
@@ -188,31 +208,67 @@ def recognise_many(praxicon, motions, *, explain: int = 3) -> list[Recognition]:
         raise DescriptionError("these are window descriptions (for parse); recognise needs the "
                                "whole-take descriptions")
     motions = [_motion(m) for m in motions]
-    columns, x, missing = feature_matrix(descriptions, motions)
-    if not any(feature_joint(descriptions.spread.features[i]) != "*" for i in columns):
-        raise DescriptionError("the motion shares no joint with the praxicon's actions")
+    rows = feature_rows(motions)
+    out: list = [None] * len(motions)
+    for indices, columns, x in _by_features(descriptions, rows):
+        found = _recognise(descriptions, [motions[i] for i in indices], columns, x, explain)
+        for i, r in zip(indices, found):
+            out[i] = r
+    return out
+
+
+def _by_features(descriptions: Descriptions, rows):
+    """The motions' feature rows grouped by which of the descriptions' features they have
+    (one group per skeleton): ``(indices, columns, rows x columns)`` per group."""
+    wanted = descriptions.spread.features
+    same: dict[tuple, list[int]] = {}
+    for i, row in enumerate(rows):
+        same.setdefault(tuple(f in row for f in wanted), []).append(i)
+    for present, indices in same.items():
+        columns = np.array([c for c, p in enumerate(present) if p], dtype=int)
+        x = np.array([[rows[i][wanted[c]] for c in columns] for i in indices], dtype=float)
+        yield indices, columns, x.reshape(len(indices), len(columns))
+
+
+def _recognise(descriptions: Descriptions, motions, columns, x, explain: int):
+    """:func:`recognise_many` for motions that have the same ``columns`` of the features."""
     spread = descriptions.spread
     features = [spread.features[i] for i in columns]
     fitted = score_model(descriptions, columns)
-    parts, means = fitted.parts, fitted.means
-    dist, score = scores(descriptions, x, columns, fitted=fitted)
+    compared = fitted.compared
+    if not compared.any():
+        raise DescriptionError(f"{getattr(motions[0], 'source', '<motion>')}: the motion "
+                               f"shares no joint with the praxicon's actions")
+    dist, score = model_scores(fitted, x, own_columns(features))
     p = probabilities(score, spread.temperature)
     per_feature = dist / len(columns)
     names = descriptions.names
-    drift = [i for i, f in enumerate(features) if f.endswith(":drift")]
     best_of = p.argmax(axis=1) if len(p) else np.zeros(0, dtype=int)
     excess, excess_group = _excess(descriptions, features, x, best_of, fitted)
-    tempo = [i for i, f in enumerate(features) if f == "tempo"]
+    here = set(features)
+    lacking = [tuple(sorted({feature_joint(f) for f in a.features if f not in here} - {"*"}))
+               for a in descriptions.actions]
+    unshared = tuple(names[a] for a in np.flatnonzero(~compared))
+    n = len(columns)
     out = []
     for i, motion in enumerate(motions):
         order = np.argsort(-p[i], kind="stable")
+        order = np.concatenate([order[compared[order]], order[~compared[order]]])
         best = int(order[0])
         action = (names[best] if per_feature[i, best] <= spread.threshold
                   and excess[i] <= 1.0 else None)
         reasons, tempos, drifts = [], [], []
         for a in order[:explain]:
-            terms = mahalanobis_terms(x[i], means[a], parts)[0]
-            reasons.append((names[a], _reasons(features, terms, x[i], means[a])))
+            if not compared[a]:
+                break
+            positions, parts = fitted.block_of(a)
+            shown = [features[k] for k in positions]
+            # scaled as the action's distance is, so that its terms sum to that distance
+            row, mean = _part(x[i], None, positions), _part(fitted.means[a], None, positions)
+            terms = mahalanobis_terms(row, mean, parts)[0] * (n / len(positions))
+            reasons.append((names[a], _reasons(shown, terms, row, mean)))
+            tempo = [k for k, f in enumerate(shown) if f == "tempo"]
+            drift = [k for k, f in enumerate(shown) if f.endswith(":drift")]
             tempos.append((names[a], round(float(terms[tempo].sum()), 3)))
             # the drift's part of the shared distance and of the action's own-spread term
             drifts.append((names[a], round(float(terms[drift].sum() + score[i, a]
@@ -220,8 +276,9 @@ def recognise_many(praxicon, motions, *, explain: int = 3) -> list[Recognition]:
         out.append(Recognition(
             getattr(motion, "source", "<motion>"), action,
             tuple((names[a], float(p[i, a])) for a in order),
-            float(per_feature[i, best]), float(spread.threshold), missing[i], tuple(reasons),
-            tuple(tempos), tuple(drifts), float(excess[i]), excess_group[i]))
+            float(per_feature[i, best]), float(spread.threshold), lacking[best],
+            tuple(reasons), tuple(tempos), tuple(drifts), float(excess[i]), excess_group[i],
+            tuple((names[a], lacking[a]) for a in order[:explain] if compared[a]), unshared))
     return out
 
 
@@ -238,11 +295,16 @@ def _excess(descriptions, features, x, best, fitted, *, telling: bool = True):
     if not groups or not len(x):
         return np.zeros(len(x)), [""] * len(x)
     bound = np.maximum(np.array([limits[g] for g in groups]), 1e-12)
-    tells = (telling_groups(fitted.means, fitted.variance, fitted.scale, groups, bound)
-             if telling else np.ones((len(fitted.means), len(groups)), dtype=bool))
+    # told apart from the actions the motion is compared with (those sharing a joint with it)
+    tells = np.ones((len(fitted.means), len(groups)), dtype=bool)
+    if telling:
+        compared = np.flatnonzero(fitted.compared)
+        tells[compared] = telling_groups(fitted.means[compared], fitted.variance[compared],
+                                         fitted.scale, groups, bound)
     ratio = np.stack([group_distances(x[i], fitted.means[b], fitted.variance[b], fitted.scale,
                                       groups)[0] / bound * tells[b]
                       for i, b in enumerate(best)])
+    ratio = np.where(np.isnan(ratio), 0.0, ratio)  # a group the best action lacks: not read
     names = list(groups)
     # no group read (none tells the best action apart): no group to name
     return ratio.max(axis=1), [names[k] if r[k] > 0 else "" for k, r in
@@ -268,7 +330,9 @@ def recognise(praxicon, motion, *, explain: int = 3) -> Recognition:
     Raises
     ------
     DescriptionError
-        When the motion has fewer than 3 frames or shares no joint with the praxicon.
+        When the motion has fewer than 3 frames or shares no joint with any of the
+        praxicon's actions (an action that shares none, learnt from another skeleton, is
+        ranked last with probability 0 and named in ``Recognition.unshared``).
 
     Examples
     --------

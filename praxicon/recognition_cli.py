@@ -10,9 +10,10 @@ the folder, :mod:`praxicon.description_store`). The commands (added to ``psgs pr
 * ``psgs praxicon parse PX FILE [--plot PNG]``: the recording's timeline of spans.
 
 Bad input (a folder that is not a praxicon, descriptions of another version, an empty or
-one-frame motion, a path that does not exist) is one line on stderr and exit status 2; a motion
-whose skeleton lacks some of the actions' joints is recognised over the joints it has, and the
-missing joints are named on stderr.
+one-frame motion, a path that does not exist, a motion that shares no joint with any learnt
+action) is one line on stderr and exit status 2; a motion whose skeleton lacks some of its best
+action's joints is recognised over the joints it has, and those joints are named on stderr
+(actions learnt from another skeleton, sharing no joint with it, are ranked last).
 """
 
 from __future__ import annotations

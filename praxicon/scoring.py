@@ -1,0 +1,274 @@
+"""Scoring a motion's features against learnt descriptions: the shared Gaussian's pieces,
+the distances, the own-spread terms of the root's drift, and the probabilities.
+
+:class:`~praxicon.description.Descriptions` hold what is learnt; this module reads them. A
+:class:`ScoreModel` is the part of the descriptions one set of a motion's features needs,
+computed once per call; :func:`scores` (:func:`model_scores`) ranks every action. Actions
+learnt from another skeleton are compared over the features they share with the motion, on
+one scale (:func:`model_scores`); one that shares no joint is not compared.
+
+>>> from praxicon.description import describe
+>>> from kinetology import synthetic_motion
+>>> d = describe({"a": [synthetic_motion(2, (0,), seed=s) for s in (1, 2)],
+...               "b": [synthetic_motion(2, (1,), seed=s) for s in (3, 4)]})
+>>> m = score_model(d, np.arange(len(d.spread.features)))
+>>> m.compared.tolist(), len(m.blocks)
+([True, True], 1)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .features import feature_joint
+
+__all__ = ["OWN_KINDS", "own_columns", "own_terms", "scores", "ScoreModel", "score_model"]
+
+_NOISE_FLOOR = 0.05  # smallest per-feature variance left, in scaled units
+_PRIOR_TAKES = 10.0  # pseudo-takes of typical spread each feature's own spread is shrunk to
+#: Kinds of the root's features every action also scores in its own spread (:func:`scores`).
+OWN_KINDS = ("drift",)
+
+
+def precision_parts(spread: "Spread", columns) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(scale, 1/noise, W, M⁻¹)`` pieces of the precision on ``columns`` (Woodbury)."""
+    return _parts(np.asarray(spread.scale), np.asarray(spread.noise),
+                  np.asarray(spread.factors, dtype=float).reshape(-1, len(spread.scale)),
+                  columns)
+
+
+def _parts(scale, noise, factors, columns):
+    """:func:`precision_parts` from the spread's arrays (all features) on ``columns``: the
+    marginal of the shared Gaussian on those features."""
+    scale = scale[columns]
+    inverse = 1.0 / noise[columns]
+    w = factors[:, columns]
+    inner = np.linalg.inv(np.eye(len(w)) + (w * inverse) @ w.T)
+    return scale, inverse, w, inner
+
+
+def mahalanobis_terms(x: np.ndarray, mean: np.ndarray, parts) -> np.ndarray:
+    """Per-feature terms ``d_f (Σ⁻¹ d)_f`` of the squared Mahalanobis distance (rows: motions);
+    they sum to the distance, and their sums per joint are the explanation."""
+    scale, inverse, w, inner = parts
+    d = (np.atleast_2d(x) - mean) / scale
+    pd = d * inverse
+    b = pd @ w.T
+    return d * (pd - ((b @ inner) @ w) * inverse)
+
+
+def distances(x: np.ndarray, means: np.ndarray, parts) -> np.ndarray:
+    """Squared Mahalanobis distance of every row of ``x`` to every mean (motions x actions)."""
+    scale, inverse, w, inner = parts
+    out = np.empty((len(x), len(means)))
+    for a, mean in enumerate(means):
+        d = (x - mean) / scale
+        b = (d * inverse) @ w.T
+        out[:, a] = (d * d * inverse).sum(axis=1) - np.einsum("ni,ij,nj->n", b, inner, b)
+    return out
+
+
+def probabilities(dist: np.ndarray, temperature: float) -> np.ndarray:
+    """Posterior probabilities (equal priors) from squared distances at ``temperature``."""
+    logits = -0.5 * dist / temperature
+    logits -= logits.max(axis=-1, keepdims=True)
+    p = np.exp(logits)
+    return p / p.sum(axis=-1, keepdims=True)
+
+
+def own_columns(features, kinds=OWN_KINDS) -> np.ndarray:
+    """The columns of the root's features of ``kinds`` (``"drift"``: the mean travel and
+    turning velocities; ``"energy"``: the sway around them), scored in each action's own spread.
+
+    Examples
+    --------
+    >>> own_columns(["a.rx:pose", "Hips.travelz:drift", "Hips.travelz:energy", "tempo"]).tolist()
+    [1]
+    """
+    return np.array([i for i, f in enumerate(features) if (".travel" in f or ".turn" in f)
+                     and f.rsplit(":", 1)[-1] in kinds], dtype=int)
+
+
+def own_terms(x, means, variance, scale) -> np.ndarray:
+    """Motions x actions: each action's own-spread term, relative to the best action's.
+
+    Per action the Gaussian log-likelihood of the columns given (``x``: motions x columns,
+    ``means`` and ``variance``: actions x columns, the variance in units of ``scale``), as
+    ``sum z²/v + log v``, minus the smallest over actions: the action whose own spread fits
+    best pays nothing more, so a "none of these" threshold on the shared distance keeps its
+    meaning.
+
+    Examples
+    --------
+    >>> t = own_terms(np.array([[1.0]]), np.array([[1.0], [-1.0]]), np.ones((2, 1)), np.ones(1))
+    >>> t.tolist()
+    [[0.0, 4.0]]
+    """
+    terms = _own_raw(x, means, variance, scale)
+    return terms - terms.min(axis=1, keepdims=True) if terms.size else terms
+
+
+def _own_raw(x, means, variance, scale) -> np.ndarray:
+    x, means = np.atleast_2d(x), np.atleast_2d(means)
+    z = ((x[:, None, :] - means[None]) / scale) ** 2 / variance[None]
+    return (z + np.log(variance)[None]).sum(axis=2)
+
+
+@dataclass(frozen=True)
+class ScoreModel:
+    """What scoring reads on some of the descriptions' columns, computed once per call: the
+    actions' means, the shared precision's pieces (:func:`precision_parts`) and each action's
+    own variance, in the spread's scaled units (``scale``).
+
+    ``means`` and ``variance`` are NaN where an action lacks a column (it was learnt from
+    another skeleton). ``blocks`` groups the actions compared over the same columns:
+    ``(actions, positions among the columns, the precision's pieces on them)``; an action
+    that has no joint among the columns is in no block (not compared).
+    """
+
+    columns: np.ndarray
+    means: np.ndarray  # actions x columns
+    parts: tuple
+    variance: np.ndarray  # actions x columns
+    scale: np.ndarray
+    blocks: tuple = ()
+
+    @property
+    def compared(self) -> np.ndarray:
+        """Per action: whether it is compared (shares a joint with the columns)."""
+        out = np.zeros(len(self.means), dtype=bool)
+        for actions, _, _ in self.blocks:
+            out[actions] = True
+        return out
+
+    def block_of(self, action: int):
+        """``(positions, parts)`` the action is compared over (``None`` if it is not)."""
+        for actions, positions, parts in self.blocks:
+            if action in actions:
+                return positions, parts
+        return None
+
+
+def _score_model(columns, names, scale, noise, factors, means, variance) -> ScoreModel:
+    """The :class:`ScoreModel` on ``columns`` from the spread's arrays over every feature
+    (``names``) and the actions' means and own variances (NaN where an action lacks one)."""
+    columns = np.asarray(columns, dtype=int)
+    parts = _parts(scale, noise, factors, columns)
+    means, variance = means[:, columns], variance[:, columns]
+    has = ~np.isnan(means)
+    joint = np.array([feature_joint(names[c]) != "*" for c in columns], dtype=bool)
+    same: dict[bytes, list[int]] = {}
+    for a, row in enumerate(has):
+        if np.any(row & joint):  # the take-wide tempo alone compares no movement
+            same.setdefault(row.tobytes(), []).append(a)
+    blocks = []
+    for actions in same.values():
+        positions = np.flatnonzero(has[actions[0]])
+        blocks.append((np.array(actions), positions, parts if len(positions) == len(columns)
+                       else _parts(scale, noise, factors, columns[positions])))
+    return ScoreModel(columns, means, parts, variance, scale[columns], tuple(blocks))
+
+
+def score_model(descriptions: "Descriptions", columns) -> ScoreModel:
+    """The :class:`ScoreModel` of ``descriptions`` on ``columns``."""
+    spread = descriptions.spread
+    return _score_model(columns, spread.features, np.asarray(spread.scale),
+                        np.asarray(spread.noise),
+                        np.asarray(spread.factors, dtype=float).reshape(-1, len(spread.scale)),
+                        descriptions.aligned("mean"),
+                        action_variances(descriptions, np.arange(len(spread.features))))
+
+
+def _part(a: np.ndarray, rows=None, columns=None) -> np.ndarray:
+    """``a[rows][:, columns]`` (``None``: all), and ``a`` itself when that is all of it: a
+    copy may lie differently in memory, and a matrix product's last bits can depend on that,
+    so that one skeleton's scores are those of a praxicon of that skeleton alone."""
+    if rows is not None and not (len(rows) == len(a) and np.array_equal(rows, np.arange(len(a)))):
+        a = a[rows]
+    if columns is not None and not (len(columns) == a.shape[-1]
+                                    and np.array_equal(columns, np.arange(a.shape[-1]))):
+        a = a[..., columns]
+    return a
+
+
+def model_scores(m: ScoreModel, x, own) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`scores` from a :class:`ScoreModel` (``own``: positions among its columns of the
+    features also scored in each action's own spread).
+
+    Each block of actions is compared over its own columns; its distance per feature compared
+    is scaled to the number of columns, so that actions compared over fewer features (learnt
+    from a skeleton with fewer of the motion's joints) are on the same scale as the others:
+    the "none of these" threshold, a distance per feature, reads each action's own. Actions
+    not compared (no joint in common) get an infinite distance: ranked last, probability 0.
+    """
+    n = len(m.columns)
+    shared = np.full((len(x), len(m.means)), np.inf)
+    raw = np.zeros_like(shared)
+    compared = m.compared
+    for actions, positions, parts in m.blocks:
+        shared[:, actions] = distances(_part(x, None, positions),
+                                       _part(m.means, actions, positions),
+                                       parts) * (n / len(positions))
+        mine = positions[np.isin(positions, own)]
+        if len(mine):
+            raw[:, actions] = _own_raw(x[:, mine], _part(m.means, actions)[:, mine],
+                                       _part(m.variance, actions)[:, mine],
+                                       m.scale[mine]) * (len(own) / len(mine))
+    if not len(own):
+        return shared, shared
+    if not raw.size or not compared.any():
+        return shared, shared + raw
+    best = np.where(compared, raw, np.inf).min(axis=1, keepdims=True)
+    return shared, shared + np.where(compared, raw - best, 0.0)
+
+
+def scores(descriptions: "Descriptions", x, columns, *, kinds=OWN_KINDS,
+           fitted: ScoreModel | None = None):
+    """Motions x actions: the shared distance (what the "none of these" threshold reads) and
+    the score actions are ranked by, which adds :func:`own_terms` for the root's features of
+    ``kinds``. ``fitted``: the :func:`score_model` on ``columns``, when the caller has it.
+
+    The shared spread pools how every action's copies vary; a style that walks faster moves
+    the forward travel of every gait alike, so the shared directions let a walk's travel be
+    read as a walk backwards' at little cost, and a heading rate drowns among hundreds of
+    features. Each action's own spread of its drift (a walk backwards always travels
+    backwards, a turn's heading rate is tight) keeps them apart.
+
+    Examples
+    --------
+    >>> from kinetology import synthetic_motion
+    >>> from praxicon.description import describe
+    >>> d = describe({"a": [synthetic_motion(2, (0,), seed=s) for s in (1, 2)],
+    ...               "b": [synthetic_motion(2, (1,), seed=s) for s in (3, 4)]})
+    >>> x = np.array([d.actions[0].mean])
+    >>> shared, score = scores(d, x, np.arange(len(d.spread.features)))
+    >>> shared.shape, bool(np.all(score >= shared))
+    ((1, 2), True)
+    """
+    columns = np.asarray(columns, dtype=int)
+    m = score_model(descriptions, columns) if fitted is None else fitted
+    own = own_columns([descriptions.spread.features[i] for i in columns], kinds)
+    return model_scores(m, np.asarray(x), own)
+
+
+def _action_variances(sums: np.ndarray, counts) -> np.ndarray:
+    """Per action and feature the variance of its own copies (scaled units) from the sums of
+    squared deviations, shrunk towards the variance pooled over actions as if
+    ``_PRIOR_TAKES`` more takes had shown that: a turn's tight drift stays tight, an action
+    learnt from two takes borrows the others' spread."""
+    counts = np.asarray(counts, dtype=float)[:, None]
+    has = ~np.isnan(sums)  # pooled over the actions that have the feature
+    dof = np.maximum(1.0, np.where(has, counts - 1, 0.0).sum(axis=0))
+    pooled = np.maximum(np.where(has, sums, 0.0).sum(axis=0) / dof, _NOISE_FLOOR)
+    return (sums + _PRIOR_TAKES * pooled) / (counts - 1 + _PRIOR_TAKES)
+
+
+def action_variances(descriptions: "Descriptions", columns) -> np.ndarray:
+    """Actions x ``columns``: each action's own variance per feature, in the spread's scaled
+    units (from the stored per-action spreads and take counts)."""
+    scale = np.asarray(descriptions.spread.scale)[columns]
+    n = np.array([a.takes for a in descriptions.actions], dtype=float)
+    spread = descriptions.aligned("spread")[:, columns]
+    return _action_variances((spread / scale) ** 2 * n[:, None], n)
