@@ -24,7 +24,7 @@ import shutil
 from dataclasses import dataclass
 from pathlib import Path
 
-from .errors import PSGSError, ValidationError
+from .errors import MissingDependency, PSGSError, ValidationError
 from .model import PCGS, PSGS, Query
 
 __all__ = ["Forest", "parse_forest", "sync_edges", "draw", "to_svg", "graphviz_available",
@@ -388,7 +388,14 @@ def _render(system, forest: Forest | None, fmt: str, engine: str) -> bytes:
     import io
 
     if engine == "graphviz" or (engine == "auto" and graphviz_available()):
-        import graphviz
+        try:
+            import graphviz
+        except ImportError:  # asked for by name after a plain install: say what it needs
+            raise MissingDependency("engine='graphviz' needs the graphviz package (pip install "
+                                    "'psgs[praxicon]') and Graphviz's dot program") from None
+        if shutil.which("dot") is None:
+            raise MissingDependency("engine='graphviz' needs Graphviz's dot program on the PATH "
+                                    "(apt-get install graphviz, brew install graphviz)")
 
         try:
             return _graphviz(system, forest).pipe(format=fmt, quiet=True)

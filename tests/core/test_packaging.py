@@ -83,6 +83,9 @@ def test_without_the_extras_each_command_names_the_one_to_install(plain_install,
 
     assert psgs_main(["draw", "paper_example", "-o", str(tmp_path / "x.png")]) == 2
     _one_line_naming(capsys, "plot")
+    assert psgs_main(["draw", "paper_example", "-o", str(tmp_path / "x.svg"),
+                      "--engine", "graphviz"]) == 2
+    _one_line_naming(capsys, "praxicon")  # the graphviz package asked for by name
     arm = Skeleton((Joint("shoulder", None, (0, 0, 0), ("shoulder.rz",)),
                     Joint("shoulder.end", 0, (10, 0, 0), end_site=True)))
     take = tmp_path / "arm.bvh"
@@ -120,3 +123,14 @@ def test_asking_for_the_compiled_engine_without_numba_names_the_fast_extra():
     err = done.stderr.strip()
     assert done.returncode == 2 and len(err.splitlines()) == 1, err[-500:]
     assert "pip install 'psgs[fast]'" in err
+
+
+def test_the_graphviz_engine_without_dot_says_so(monkeypatch, tmp_path):
+    pytest.importorskip("graphviz")
+    import psgs
+    import psgs.draw
+    from psgs.errors import MissingDependency
+
+    monkeypatch.setattr(psgs.draw.shutil, "which", lambda name: None)
+    with pytest.raises(MissingDependency, match="dot program"):
+        psgs.draw.draw(psgs.load("paper_example"), tmp_path / "x.svg", engine="graphviz")
