@@ -266,6 +266,22 @@ def _place_tree(forest: Forest, root: int):
     return x_of, depth, max(cursor, 1.0)
 
 
+# characters of a rule that fit its cell: 6-point monospace (0.6 of the size a character) on
+# the cell's 1.96 inches right of the tags
+_RULE_CHARS = int(1.96 * 72 / (0.6 * 6))
+
+
+def _fitted(text: str, most: int = _RULE_CHARS) -> str:
+    """``text``, cut to ``most`` characters with an ellipsis when longer: a cut rule says so.
+
+    Examples
+    --------
+    >>> _fitted("p: S → a S", 40), _fitted("r1: N_Hips_rx_1 → N_Hips_rx_2 N_Hips_rx_3", 20)
+    ('p: S → a S', 'r1: N_Hips_rx_1 → N…')
+    """
+    return text if len(text) <= most else text[:most - 1] + "…"
+
+
 def _cell(ax, box, xlim, ylim):
     """The transform from a cell's own coordinates (``xlim`` by ``ylim``) onto ``box`` (left,
     bottom, width, height in inches) of ``ax``, whose data coordinates are inches."""
@@ -334,8 +350,8 @@ def _matplotlib(system, forest: Forest | None):
             tags = member.get((grammar.name, rule.label), [])
             # the tag first, then the rule: a long rule is clipped at the cell's edge, never
             # drawn over its tag or the next component
-            text = ax.text(0.2, -r, _rule_text(rule), ha="left", va="center", fontsize=6,
-                           family="monospace", clip_on=True, transform=cell)
+            text = ax.text(0.2, -r, _fitted(_rule_text(rule)), ha="left", va="center",
+                           fontsize=6, family="monospace", clip_on=True, transform=cell)
             text.set_clip_box(clip)
             if tags:
                 ax.text(0.0, -r, " ".join(f"M{t + 1}" for t in tags[:2])
