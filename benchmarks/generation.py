@@ -291,6 +291,9 @@ def main(argv=None) -> int:
     work = Path(tempfile.mkdtemp(prefix="genbench-"))
     rows, judge_rows = [], []
     for dataset in DATASETS:
+        if not (MOCAP / dataset).is_dir():
+            raise SystemExit(f"{MOCAP / dataset}: no such dataset (the shared data is read from "
+                             f"../shared/data/mocap beside the repository)")
         actions = read_dataset(MOCAP / dataset, group_by="content")
         parts = split(actions, args.learn, args.test, min(sizes))
         manifest = work / f"{dataset}.csv"
