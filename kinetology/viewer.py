@@ -42,8 +42,7 @@ import numpy as np
 from .motion import Motion, MotionFormatError
 from .plotting import STATE_COLOURS, STILL_COLOUR
 
-__all__ = ["SUFFIXES", "ViewError", "Panel", "Player", "view", "motion_html",
-           "register"]
+__all__ = ["SUFFIXES", "ViewError", "Panel", "Player", "view", "motion_html"]
 
 #: the states' colours (those of the plots) and a still joint's, ``"-"``
 _COLOURS = {**STATE_COLOURS, "-": STILL_COLOUR}
@@ -345,6 +344,10 @@ def _check_suffix(path: Path) -> str:
     return suffix
 
 
+def _count(n: int, noun: str) -> str:
+    return f"{n} {noun}{'' if n == 1 else 's'}"
+
+
 def _step(motion: Motion, max_rate: float, max_frames: int) -> int:
     by_rate = math.ceil(motion.frame_rate / max_rate - 1e-9)
     by_count = math.ceil(motion.frames / max_frames)
@@ -534,63 +537,3 @@ def _titled(motions: Iterable) -> dict:
              for i, m in enumerate(motions)]
     return {(name if names.count(name) == 1 else f"{name} ({i + 1})"): m
             for i, (name, m) in enumerate(zip(names, motions))}
-
-
-# ------------------------------------------------------------------ command line
-def _run(args) -> int:
-    from .readers import read
-
-    _check_suffix(Path(args.output))
-    motions = []
-    for name in args.files:
-        options = {"frame_rate": args.frame_rate} if args.frame_rate and \
-            Path(name).suffix.lower() == ".amc" else {}
-        motions.append(read(name, **options))
-    actuators = [a for item in args.actuators or () for a in item.split(",") if a]
-    player = view(motions, args.output, actuators=actuators or None,
-                  kinetemes=not args.no_kinetemes, max_rate=args.max_rate,
-                  follow=not args.fixed_camera,
-                  max_frames=args.max_frames)
-    kept = ", ".join(f"{p.label}: {p.frames} frames at {p.frame_rate:g} fps"
-                     for p in player.panels)
-    print(f"{args.output}: {kept}")
-    return 0
-
-
-def register(subparsers) -> None:
-    """Add ``view`` to a command's subparsers (the ``kinetology`` command).
-
-    Examples
-    --------
-    >>> import argparse
-    >>> parser = argparse.ArgumentParser(prog="kinetology")
-    >>> register(parser.add_subparsers())
-    >>> parser.parse_args(["view", "walk.bvh", "-o", "walk.html"]).max_rate
-    30.0
-    """
-    p = subparsers.add_parser(
-        "view", help="play motion files as a skeleton: an HTML page, a GIF or an MP4",
-        description="Draw the body from the skeleton's forward kinematics and play it; several "
-                    "files side by side on one clock; joints coloured by their current "
-                    "kineteme. The HTML page is self-contained (opens from a file, no network). "
-                    "Exit status 0: written; 2: a file that is not motion, a motion without "
-                    "frames or skeleton, an output suffix other than .html/.gif/.mp4, or a "
-                    "missing writer (matplotlib for .gif, ffmpeg for .mp4), in one line.")
-    p.add_argument("files", nargs="+", metavar="FILE",
-                   help="motion files: .bvh, or .amc (its .asf skeleton found beside it)")
-    p.add_argument("-o", "--output", required=True, metavar="OUT",
-                   help="out.html (player page), out.gif (needs matplotlib) or out.mp4 "
-                        "(needs matplotlib and ffmpeg)")
-    p.add_argument("--actuators", nargs="+", metavar="JOINT",
-                   help="joints to highlight (names or comma lists)")
-    p.add_argument("--no-kinetemes", action="store_true",
-                   help="do not colour joints by state (skips the segmentation)")
-    p.add_argument("--fixed-camera", action="store_true",
-                   help="look at the middle of the whole path instead of following the body")
-    p.add_argument("--max-rate", type=float, default=30.0, metavar="FPS",
-                   help="most frames per second kept (default 30)")
-    p.add_argument("--max-frames", type=int, default=500, metavar="N",
-                   help="most frames kept per file (default 500)")
-    p.add_argument("--frame-rate", type=float, default=None, metavar="FPS",
-                   help="frames per second of AMC files (default 120, the CMU rate)")
-    p.set_defaults(run=_run)
