@@ -115,6 +115,8 @@ class Panel:
     >>> panel = view(Motion(np.linspace(0, 90, 61)[:, None], ("shoulder.rz",), 60, arm)).panels[0]
     >>> panel.step, panel.frames, panel.joints, panel.parents
     (2, 31, ('shoulder', 'hand'), (-1, 0))
+    >>> panel
+    <Panel '<motion>': 31 frames of 2 joints at 30 fps (1 frame in 2)>
     >>> np.round(panel.positions[-1, 1], 6)        # the hand, raised by 90 degrees
     array([ 0., 10.,  0.])
     """
@@ -133,6 +135,11 @@ class Panel:
     def frames(self) -> int:
         """Number of kept frames."""
         return self.positions.shape[0]
+
+    def __repr__(self) -> str:  # a summary, not the array of positions
+        kept = "every frame" if self.step == 1 else f"1 frame in {self.step}"
+        return (f"<Panel {self.label!r}: {_count(self.frames, 'frame')} of "
+                f"{_count(len(self.joints), 'joint')} at {self.frame_rate:g} fps ({kept})>")
 
     @cached_property
     def bones(self) -> tuple[bool, ...]:
@@ -250,12 +257,20 @@ class Player:
     >>> player = view({"slow": slow, "fast": fast})
     >>> player.frame_rate, player.ticks, player.frame_of(0, 29), player.frame_of(1, 29)
     (30.0, 30, 9, 29)
+    >>> player
+    <Player of 2 motions at 30 fps, 30 steps: slow (10 frames, 2 joints), fast (30 frames, 2 joints)>
     >>> 'class="kinetology-view"' in player._repr_html_()    # what a notebook shows
     True
     """
 
     panels: tuple[Panel, ...]
     frame_rate: float
+
+    def __repr__(self) -> str:  # a summary, not every panel's positions
+        shown = ", ".join(f"{p.label} ({_count(p.frames, 'frame')}, "
+                          f"{_count(len(p.joints), 'joint')})" for p in self.panels)
+        return (f"<Player of {_count(len(self.panels), 'motion')} at {self.frame_rate:g} fps, "
+                f"{_count(self.ticks, 'step')}: {shown}>")
 
     @property
     def ticks(self) -> int:
