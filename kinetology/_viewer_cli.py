@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .viewer import _check_suffix, _count, view
+from .viewer import _count, check_output, view
 
 __all__ = ["register"]
 
@@ -12,7 +12,7 @@ __all__ = ["register"]
 def _run(args) -> int:
     from .readers import read
 
-    _check_suffix(Path(args.output))
+    check_output(Path(args.output))
     motions = []
     for name in args.files:
         options = {"frame_rate": args.frame_rate} if args.frame_rate and \

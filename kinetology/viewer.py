@@ -42,7 +42,7 @@ import numpy as np
 from .motion import Motion, MotionFormatError
 from .plotting import STATE_COLOURS, STILL_COLOUR
 
-__all__ = ["SUFFIXES", "ViewError", "Panel", "Player", "view", "motion_html"]
+__all__ = ["SUFFIXES", "ViewError", "Panel", "Player", "view", "motion_html", "check_output"]
 
 #: the states' colours (those of the plots) and a still joint's, ``"-"``
 _COLOURS = {**STATE_COLOURS, "-": STILL_COLOUR}
@@ -334,7 +334,7 @@ class Player:
             Pillow) or ffmpeg (``.mp4``) is missing, naming what to install.
         """
         path = Path(path)
-        suffix = _check_suffix(path)
+        suffix = check_output(path)
         if suffix == ".html":
             path.write_text(self.to_html(), encoding="utf-8")
         else:
@@ -348,7 +348,20 @@ class Player:
         return path
 
 
-def _check_suffix(path: Path) -> str:
+def check_output(path: str | Path) -> str:
+    """The suffix of ``path`` when a player can be written there (``.html``, ``.gif``, ``.mp4``
+    with ffmpeg on PATH), else :class:`ViewError`: checked before any work is done.
+
+    Examples
+    --------
+    >>> check_output("walk.HTML")
+    '.html'
+    >>> check_output("walk.pdf")
+    Traceback (most recent call last):
+    ...
+    kinetology.viewer.ViewError: walk.pdf: cannot write '.pdf'; give one of .html, .gif, .mp4
+    """
+    path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in SUFFIXES:
         raise ViewError(f"cannot write {suffix or 'a file without a suffix'!r}; give one of "
@@ -501,7 +514,7 @@ def view(motions: Motion | Sequence[Motion] | Mapping[str, Motion],
     kinetology.viewer.ViewError: leg.png: cannot write '.png'; give one of .html, .gif, .mp4
     """
     if output is not None:
-        _check_suffix(Path(output))  # before any work: a bad suffix fails at once
+        check_output(Path(output))  # before any work: a bad suffix fails at once
     if isinstance(motions, Motion):
         motions = [motions]
     named = dict(motions) if isinstance(motions, Mapping) else _titled(motions)

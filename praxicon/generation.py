@@ -549,6 +549,10 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None =
     """
     import kinetology
 
+    if plot is not None:  # a picture matplotlib cannot write: said before any work
+        from .pictures import check_picture
+
+        check_picture(plot)
     record = (folder if isinstance(folder, Praxicon) else load(folder))[action]
     grammar = has_grammar(record)
     if repeat is None:
