@@ -109,7 +109,7 @@ def run_generate(args) -> int:
             draw_generated(praxicon[args.action], result, args.plot)
         Path(args.output).write_text(text, encoding="utf-8")
         if player is not None:
-            player.save(args.view)
+            _save_player(player, shown, args.view)
     except ValueError as exc:
         _bad(str(exc))
     if result.origin == "performances":
@@ -160,7 +160,8 @@ def _report_performed(args, result) -> None:
 
 def _beside_a_performance(praxicon, result):
     """The player of the generated motion beside the first performance it was learnt from
-    (one clock, actuators ringed), and its panels as (label, full name) pairs."""
+    (one clock, actuators ringed), and its panels as (label, full name) pairs. A panel is
+    labelled with the file's name: a whole path would be wider than the panel under it."""
     import kinetology
 
     from .datasets import Performance
@@ -171,12 +172,22 @@ def _beside_a_performance(praxicon, result):
         if p.used is not False:
             motion, problem = _load_performance(Performance(p.file, p.start, p.stop, p.label))
             if not problem:
-                shown[f"performance ({p.file})"] = (motion, p.file)
+                shown[f"performance ({Path(p.file).name})"] = (motion, p.file)
                 break
     shown["generated"] = (result.motion, result.motion.source)
     player = kinetology.view({label: m for label, (m, _) in shown.items()},
                              actuators=list(result.actuators))
     return player, tuple((label, name) for label, (_, name) in shown.items())
+
+
+def _save_player(player, shown, output) -> None:
+    """The page's title names the performance's whole path (the browser's tab and tooltip);
+    a GIF or MP4 has no title."""
+    if Path(output).suffix.lower() == ".html":
+        title = " beside ".join(name for _, name in shown)
+        Path(output).write_text(player.to_html(title=title), encoding="utf-8")
+    else:
+        player.save(output)
 
 
 def _add_commands(sub) -> None:

@@ -139,3 +139,23 @@ def test_generate_checks_every_output_before_writing_any(manifest, tmp_path, cap
     assert main(["generate", str(out), "moves.wave", "--repeat", "1", "-o", str(bvh),
                  "--plot", str(plot), "--view", str(page)]) == 0
     assert sorted(p.name for p in tmp_path.glob("g.*")) == ["g.bvh", "g.html", "g.png"]
+
+
+def test_generate_view_labels_panels_by_file_name(manifest, tmp_path, capsys):
+    out = tmp_path / "px"
+    assert main(["build", str(manifest), "-o", str(out), "--no-progress",
+                 "--param", "min_copies=3"]) == 0
+    page = tmp_path / "w.html"
+    assert main(["generate", str(out), "moves.wave", "--repeat", "1", "-o",
+                 str(tmp_path / "w.bvh"), "--view", str(page)]) == 0
+    text = page.read_text()
+    data = json.loads(re.search(r'<script type="application/json" class="data">(.*?)</script>',
+                                text, re.S).group(1))
+    # the panel's title is the file's name, short enough to sit beside the other panel
+    assert [p["label"] for p in data["panels"]] == ["performance (wave_1.bvh)", "generated"]
+    # the whole path is in the page's title (the browser's tab)
+    first = manifest.parent / "wave_1.bvh"
+    title = re.search(r"<title>(.*?)</title>", text).group(1)
+    assert title == f"{first} beside generated:moves.wave"
+    assert capsys.readouterr().out.splitlines()[-1] == \
+        f"{page}: performance (wave_1.bvh) beside generated"
