@@ -38,7 +38,7 @@ import numpy as np
 
 from .body_motion import animate, body_of, performances_of, whole_cycle
 from .jsonvalues import as_dict
-from .records import ActionRecord, Praxicon
+from .records import ActionRecord, Praxicon, _count
 from .store import load
 
 __all__ = ["Generated", "Method", "generate", "generate_motion", "derive_copies",
@@ -133,6 +133,19 @@ class Generated:
     cycle: int = 1
     origin: str = "grammar"
     performances: int = 0
+
+    def __repr__(self) -> str:  # a summary, not the dataclass dump of the motion's values
+        m = self.motion
+        made = (f"from the grammar, {self.repeat} cop{'y' if self.repeat == 1 else 'ies'}"
+                + (f" of {self.cycle} morphemes" if self.cycle > 1 else "")
+                + f", {_count(len(self.channels), 'channel')} of "
+                  f"{_count(len(self.actuators), 'actuator')}"
+                if self.origin == "grammar" else
+                f"from the course of {_count(self.performances, 'performance')}, played "
+                + ("once" if self.repeat == 1 else f"{self.repeat} times"))
+        size = f"{_count(m.frames, 'frame')} at {m.frame_rate:g} fps" if m is not None else \
+            "no motion"
+        return f"<Generated {self.action!r}: {size}, {made}>"
 
     def resegmented(self) -> dict[str, tuple[str, ...]]:
         """Per generated channel, its kineteme string when the motion is segmented again."""
@@ -539,6 +552,8 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None =
     >>> generated = generate(work / "px", "m.bye", repeat=1, output=work / "bye.bvh")
     >>> generated.motion.frames > 0, (work / "bye.bvh").exists()
     (True, True)
+    >>> generated  # doctest: +ELLIPSIS
+    <Generated 'm.bye': ... frames at 30 fps, from the grammar, 1 copy, ... channels of ... actuators>
     >>> active = generate(work / "px", "m.bye", repeat=1, style="active")
     >>> generate(work / "px", "m.bye", style="sad")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
