@@ -91,7 +91,7 @@ def _check_outputs(args) -> None:
 
 
 def run_generate(args) -> int:
-    from kinetology.bvh_writer import format_bvh
+    from kinetology.bvh_writer import format_bvh, without_axes
 
     from .generation import generate
     from .pictures import draw_generated
@@ -104,7 +104,7 @@ def run_generate(args) -> int:
         # everything that can fail is made in memory first: the files are written together
         player, shown = (_beside_a_performance(praxicon, result) if args.view is not None
                          else (None, ()))
-        text = format_bvh(result.motion)
+        text = format_bvh(without_axes(result.motion))
         if args.plot is not None:
             draw_generated(praxicon[args.action], result, args.plot)
         Path(args.output).write_text(text, encoding="utf-8")

@@ -22,7 +22,9 @@ For an action of a praxicon, :func:`generate`:
    generated channel that moves most, moves the root as the performances do (their
    mean speed in the body's own frame and mean turning rate, measured from the root's
    world rotation) and writes a BVH file on the source skeleton
-   (:func:`kinetology.write_bvh`); :mod:`praxicon.body_motion` does step 5's measuring.
+   (:func:`kinetology.write_bvh`; an ASF skeleton's ``axis`` pre-rotations, which BVH cannot
+   hold, turned into its angles by :func:`kinetology.bvh_writer.without_axes`);
+   :mod:`praxicon.body_motion` does step 5's measuring.
 
 :meth:`Generated.round_trip` segments the generated motion again and says, per
 channel (or per actuator), whether its kineteme string is the morpheme repeated
@@ -454,9 +456,8 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
         period *= tempo
     if source_motion is None:
         source_motion = kinetology.read(record.skeleton_source)
+    # an ASF skeleton is kept (the viewer draws it); the BVH file re-expresses its angles
     skeleton = source_motion.skeleton
-    if skeleton is not None and any(any(j.axis) for j in skeleton.joints):
-        skeleton = None  # an ASF skeleton: BVH cannot hold its axes, write angles on a star
     channels = source_motion.channels
     pose = dict(record.mean_pose)
     body = body_of(record, channels, set(usable), period, style, performances)
@@ -573,8 +574,10 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None =
     if repeat is None:
         repeat = 3 if grammar else 1
     motion, words, methods = generate_motion(record, repeat, style=style)
-    if output is not None:
-        kinetology.write_bvh(motion, output)
+    if output is not None:  # on the source skeleton, an ASF one's axes turned into angles
+        from kinetology.bvh_writer import without_axes
+
+        kinetology.write_bvh(without_axes(motion), output)
     owners = {c: j.name for j in record.joints for c in j.channels}
     result = Generated(motion, action, repeat, record.actuators, tuple(words), words,
                        as_dict(record.segmentation), methods, owners,
