@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
+
 from .viewer import _count, check_output, view
 
 __all__ = ["register"]
@@ -26,6 +28,10 @@ def _run(args) -> int:
     kept = ", ".join(f"{p.label}: {_count(p.frames, 'frame')} at {p.frame_rate:g} fps"
                      for p in player.panels)
     print(f"{args.output}: {kept}")
+    for p in player.panels:  # a skeleton of angles only draws as a dot: said, not hidden
+        if np.ptp(p.positions, axis=1).max() < 1e-9:
+            print(f"{p.label}: every joint at one point (all offsets 0: a skeleton of angles "
+                  f"only, as written for an AMC take without its ASF); the body is a dot")
     return 0
 
 

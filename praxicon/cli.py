@@ -116,6 +116,10 @@ def run_generate(args) -> int:
         _report_performed(args, result)
     else:
         _report_derived(args, result)
+    if result.motion.skeleton is None:  # nothing to put the bones on: said, not hidden
+        print(f"{args.output}: on a star skeleton (every joint on the root at offset 0, angles "
+              f"only): {praxicon[args.action].skeleton_source} has no skeleton (an AMC file "
+              f"without its ASF)")
     if player is not None:
         print(f"{args.view}: {' beside '.join(label for label, _ in shown)}")
     return 0

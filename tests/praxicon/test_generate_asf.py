@@ -85,3 +85,33 @@ def test_an_action_learnt_from_amc_takes_is_written_on_their_asf_skeleton(tmp_pa
     error = np.abs(forward_kinematics(back) - forward_kinematics(generated.motion)).max()
     assert error < 1e-4, error
     assert all(generated.round_trip().values()), generated.methods
+
+
+def test_takes_without_a_skeleton_are_generated_on_a_star_and_the_command_says_so(tmp_path,
+                                                                                  capsys):
+    from praxicon.cli import main
+
+    # AMC takes whose channels a SkeletonJoints.key names, with no ASF (as cmu-mocap6 ships)
+    (tmp_path / "SkeletonJoints.key").write_text("root tx ty tz rx ry rz\narm rx rz\nleg rx\n"
+                                                 "head ry\n")
+    for seed in (1, 2, 3):
+        (tmp_path / f"07_0{seed}.amc").write_text(_amc(seed))
+    (tmp_path / "m.csv").write_text("action,file\n" + "".join(
+        f"wave,07_0{seed}.amc\n" for seed in (1, 2, 3)))
+    assert main(["build", str(tmp_path / "m.csv"), "-o", str(tmp_path / "px"), "--no-progress",
+                 "--param", "min_copies=3"]) == 0
+    capsys.readouterr()
+    out = tmp_path / "g.bvh"
+    assert main(["generate", str(tmp_path / "px"), "m.wave", "--repeat", "1", "-o",
+                 str(out)]) == 0
+    assert capsys.readouterr().out.splitlines()[-1] == (
+        f"{out}: on a star skeleton (every joint on the root at offset 0, angles only): "
+        f"{tmp_path / '07_01.amc'} has no skeleton (an AMC file without its ASF)")
+    assert all(j.offset == (0.0, 0.0, 0.0) for j in kinetology.read(out).skeleton.joints)
+    # the viewer says why the body is a dot
+    from kinetology.cli import main as kinetology_main
+
+    assert kinetology_main(["view", str(out), "-o", str(tmp_path / "g.html")]) == 0
+    assert capsys.readouterr().out.splitlines()[-1] == (
+        "g.bvh: every joint at one point (all offsets 0: a skeleton of angles only, as written "
+        "for an AMC take without its ASF); the body is a dot")
