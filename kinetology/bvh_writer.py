@@ -10,7 +10,8 @@ A motion without a skeleton (an AMC file read without its ASF) is written on a
 *star* skeleton: every joint a child of the first one, at a zero offset, so
 that the angles survive (any BVH reader reads them) though forward kinematics
 means nothing. ASF skeletons hold a fixed pre-rotation per bone (``axis``),
-which BVH cannot express: writing one is a ``ValueError``.
+which BVH cannot express: writing one is a ``ValueError``; :func:`without_axes`
+first gives the same motion on a skeleton BVH can hold.
 
 Only what reads back is written; anything else is a ``ValueError`` naming the
 joint: a joint name that is empty or holds white space or a brace; two joints
@@ -37,7 +38,7 @@ from psgs.errors import ValidationError
 
 from .motion import Joint, Motion, Skeleton
 
-__all__ = ["write_bvh", "format_bvh", "star_skeleton"]
+__all__ = ["write_bvh", "format_bvh", "star_skeleton", "without_axes"]
 
 #: The deepest nesting written: kinetology's reader (and others) nest by recursion.
 MAX_DEPTH = 500
@@ -66,6 +67,55 @@ def star_skeleton(channels) -> Skeleton:
         joints.append(Joint(joint, None if index == 0 else 0, (0.0, 0.0, 0.0), tuple(names),
                             order))
     return Skeleton(tuple(joints), length_unit="none (angles only)")
+
+
+def without_axes(motion: Motion) -> Motion:
+    """The same motion on a skeleton without ASF ``axis`` pre-rotations, which BVH can hold.
+
+    Each joint keeps its name, place and offset; a rotated joint's local rotation
+    ``C @ R @ C.T`` (:class:`~kinetology.motion.Joint`) becomes three rotation channels
+    ``joint.r?`` in its rotation order (:func:`~kinetology.kinematics.euler_angles`), after
+    its position channels. Forward kinematics gives the same positions, so a CMU take (or a
+    motion generated on its skeleton) is written as BVH on its own skeleton, bone for bone.
+    A motion whose skeleton has no axes (or no skeleton) is returned as it is.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from kinetology import Joint, Motion, Skeleton
+    >>> from kinetology.kinematics import forward_kinematics
+    >>> arm = Skeleton((Joint("shoulder", None, (0, 0, 0), ("shoulder.rx",), "ZYX", (0, 0, 90)),
+    ...                 Joint("hand", 0, (10, 0, 0), end_site=True)))
+    >>> swing = Motion(np.array([[0.0], [45.0]]), ("shoulder.rx",), 30.0, arm)
+    >>> plain = without_axes(swing)
+    >>> plain.channels, plain.skeleton.joints[0].axis
+    (('shoulder.rz', 'shoulder.ry', 'shoulder.rx'), (0.0, 0.0, 0.0))
+    >>> bool(np.allclose(forward_kinematics(plain), forward_kinematics(swing)))
+    True
+    """
+    from .kinematics import euler_angles, local_rotation
+
+    skeleton = motion.skeleton
+    if skeleton is None or not any(any(j.axis) for j in skeleton.joints):
+        return motion
+    joints, columns, names = [], [], []
+    for joint in skeleton.joints:
+        moved = [c for c in joint.channels if c in motion.channels]
+        rotated = any(c.rsplit(".", 1)[1].startswith("r") for c in moved)
+        positions = [c for c in moved if c.rsplit(".", 1)[1].startswith("t")]
+        # without rotation channels the local rotation is C @ C.T, none: no channel needed
+        channels = positions + ([f"{joint.name}.r{a.lower()}" for a in joint.rotation_order]
+                                if rotated else [])
+        columns += [motion.column(c) for c in positions]
+        if rotated:
+            columns += list(euler_angles(local_rotation(motion, joint),
+                                         joint.rotation_order).T)
+        names += channels
+        joints.append(Joint(joint.name, joint.parent, joint.offset, tuple(channels),
+                            joint.rotation_order, (0.0, 0.0, 0.0), joint.end_site))
+    values = np.column_stack(columns) if columns else np.zeros((motion.frames, 0))
+    return Motion(values, tuple(names), motion.frame_rate,
+                  Skeleton(tuple(joints), skeleton.length_unit), motion.source, motion.meta)
 
 
 def _number(value: float) -> str:
@@ -152,7 +202,8 @@ def format_bvh(motion: Motion) -> str:
     for joint in skeleton.joints:  # first, as the plainest reason an ASF skeleton fails
         if any(joint.axis):
             raise ValidationError(f"joint {joint.name!r} has an ASF axis pre-rotation, which BVH "
-                             f"cannot express")
+                             f"cannot express (kinetology.bvh_writer.without_axes re-expresses "
+                             f"the angles without it)")
     for index, joint in enumerate(skeleton.joints):
         _check_joint(skeleton, joint, seen)
         children.setdefault(joint.parent, []).append(index)

@@ -338,7 +338,7 @@ def _add_commands(sub) -> None:
     p.add_argument("-o", "--output", required=True, help="image file (.png, .svg, .pdf)")
     _add_params(p)
     p.set_defaults(run=_cmd_plot)
-    from .viewer import register as register_view  # kinetology view: the skeleton player
+    from ._viewer_cli import register as register_view  # kinetology view: the skeleton player
     register_view(sub)
 
 

@@ -17,7 +17,8 @@ from psgs.errors import ValidationError
 
 from .motion import Motion, MotionFormatError
 
-__all__ = ["axis_rotation", "rotation_matrices", "local_rotation", "forward_kinematics",
+__all__ = ["axis_rotation", "rotation_matrices", "euler_angles", "local_rotation",
+           "forward_kinematics",
            "joint_angle"]
 
 
@@ -75,6 +76,36 @@ def rotation_matrices(angles_deg: dict[str, np.ndarray], order: str, frames: int
         if axis in angles_deg:
             result = result @ axis_rotation(axis, np.radians(angles_deg[axis]))
     return result
+
+
+def euler_angles(matrices: np.ndarray, order: str) -> np.ndarray:
+    """Angles (degrees) whose product ``R_order[0] @ R_order[1] @ R_order[2]`` is each matrix.
+
+    The inverse of :func:`rotation_matrices` for an order of three distinct axes; shape
+    ``(frames, 3)``, the columns in ``order``, each unwrapped over the frames (no jump of
+    360°). The middle angle is within ±90°; where it is ±90° (gimbal lock) the first is 0.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> angles = {"Z": np.array([30.0, 170.0]), "Y": np.array([-20.0, 10.0]),
+    ...           "X": np.array([45.0, -175.0])}
+    >>> np.round(euler_angles(rotation_matrices(angles, "ZYX", 2), "ZYX"), 6)  # -175 as 185
+    array([[ 30., -20.,  45.],
+           [170.,  10., 185.]])
+    """
+    if sorted(order) != ["X", "Y", "Z"]:
+        raise ValidationError(f"rotation order {order!r} is not three distinct axes X, Y, Z")
+    m = np.asarray(matrices, float)
+    i, j, k = ("XYZ".index(a) for a in order)
+    sign = 1.0 if (j - i) % 3 == 1 else -1.0  # XYZ, YZX, ZXY: +1; the others: -1
+    middle = np.arcsin(np.clip(sign * m[:, i, k], -1.0, 1.0))
+    first = np.arctan2(-sign * m[:, j, k], m[:, k, k])
+    last = np.arctan2(-sign * m[:, i, j], m[:, i, i])
+    locked = np.hypot(m[:, i, i], m[:, i, j]) < 1e-9  # the middle at +-90 degrees
+    first[locked] = 0.0  # only the sum (or difference) of the other two is defined there
+    last[locked] = np.arctan2(sign * m[locked, j, i], m[locked, j, j])
+    return np.degrees(np.unwrap(np.stack([first, middle, last], axis=1), axis=0))
 
 
 def _oriented(joint, local: np.ndarray) -> np.ndarray:

@@ -42,8 +42,7 @@ import numpy as np
 from .motion import Motion, MotionFormatError
 from .plotting import STATE_COLOURS, STILL_COLOUR
 
-__all__ = ["SUFFIXES", "ViewError", "Panel", "Player", "view", "motion_html",
-           "register"]
+__all__ = ["SUFFIXES", "ViewError", "Panel", "Player", "view", "motion_html", "check_output"]
 
 #: the states' colours (those of the plots) and a still joint's, ``"-"``
 _COLOURS = {**STATE_COLOURS, "-": STILL_COLOUR}
@@ -116,6 +115,8 @@ class Panel:
     >>> panel = view(Motion(np.linspace(0, 90, 61)[:, None], ("shoulder.rz",), 60, arm)).panels[0]
     >>> panel.step, panel.frames, panel.joints, panel.parents
     (2, 31, ('shoulder', 'hand'), (-1, 0))
+    >>> panel
+    <Panel '<motion>': 31 frames of 2 joints at 30 fps (1 frame in 2)>
     >>> np.round(panel.positions[-1, 1], 6)        # the hand, raised by 90 degrees
     array([ 0., 10.,  0.])
     """
@@ -134,6 +135,11 @@ class Panel:
     def frames(self) -> int:
         """Number of kept frames."""
         return self.positions.shape[0]
+
+    def __repr__(self) -> str:  # a summary, not the array of positions
+        kept = "every frame" if self.step == 1 else f"1 frame in {self.step}"
+        return (f"<Panel {self.label!r}: {_count(self.frames, 'frame')} of "
+                f"{_count(len(self.joints), 'joint')} at {self.frame_rate:g} fps ({kept})>")
 
     @cached_property
     def bones(self) -> tuple[bool, ...]:
@@ -251,12 +257,20 @@ class Player:
     >>> player = view({"slow": slow, "fast": fast})
     >>> player.frame_rate, player.ticks, player.frame_of(0, 29), player.frame_of(1, 29)
     (30.0, 30, 9, 29)
+    >>> player
+    <Player of 2 motions at 30 fps, 30 steps: slow (10 frames, 2 joints), fast (30 frames, 2 joints)>
     >>> 'class="kinetology-view"' in player._repr_html_()    # what a notebook shows
     True
     """
 
     panels: tuple[Panel, ...]
     frame_rate: float
+
+    def __repr__(self) -> str:  # a summary, not every panel's positions
+        shown = ", ".join(f"{p.label} ({_count(p.frames, 'frame')}, "
+                          f"{_count(len(p.joints), 'joint')})" for p in self.panels)
+        return (f"<Player of {_count(len(self.panels), 'motion')} at {self.frame_rate:g} fps, "
+                f"{_count(self.ticks, 'step')}: {shown}>")
 
     @property
     def ticks(self) -> int:
@@ -320,7 +334,7 @@ class Player:
             Pillow) or ffmpeg (``.mp4``) is missing, naming what to install.
         """
         path = Path(path)
-        suffix = _check_suffix(path)
+        suffix = check_output(path)
         if suffix == ".html":
             path.write_text(self.to_html(), encoding="utf-8")
         else:
@@ -334,7 +348,20 @@ class Player:
         return path
 
 
-def _check_suffix(path: Path) -> str:
+def check_output(path: str | Path) -> str:
+    """The suffix of ``path`` when a player can be written there (``.html``, ``.gif``, ``.mp4``
+    with ffmpeg on PATH), else :class:`ViewError`: checked before any work is done.
+
+    Examples
+    --------
+    >>> check_output("walk.HTML")
+    '.html'
+    >>> check_output("walk.pdf")
+    Traceback (most recent call last):
+    ...
+    kinetology.viewer.ViewError: walk.pdf: cannot write '.pdf'; give one of .html, .gif, .mp4
+    """
+    path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in SUFFIXES:
         raise ViewError(f"cannot write {suffix or 'a file without a suffix'!r}; give one of "
@@ -343,6 +370,10 @@ def _check_suffix(path: Path) -> str:
         raise ViewError("writing .mp4 needs ffmpeg, which is not on PATH (install it, e.g. "
                         "apt-get install ffmpeg), or write a .gif", source=str(path))
     return suffix
+
+
+def _count(n: int, noun: str) -> str:
+    return f"{n} {noun}{'' if n == 1 else 's'}"
 
 
 def _step(motion: Motion, max_rate: float, max_frames: int) -> int:
@@ -483,7 +514,7 @@ def view(motions: Motion | Sequence[Motion] | Mapping[str, Motion],
     kinetology.viewer.ViewError: leg.png: cannot write '.png'; give one of .html, .gif, .mp4
     """
     if output is not None:
-        _check_suffix(Path(output))  # before any work: a bad suffix fails at once
+        check_output(Path(output))  # before any work: a bad suffix fails at once
     if isinstance(motions, Motion):
         motions = [motions]
     named = dict(motions) if isinstance(motions, Mapping) else _titled(motions)
@@ -534,63 +565,3 @@ def _titled(motions: Iterable) -> dict:
              for i, m in enumerate(motions)]
     return {(name if names.count(name) == 1 else f"{name} ({i + 1})"): m
             for i, (name, m) in enumerate(zip(names, motions))}
-
-
-# ------------------------------------------------------------------ command line
-def _run(args) -> int:
-    from .readers import read
-
-    _check_suffix(Path(args.output))
-    motions = []
-    for name in args.files:
-        options = {"frame_rate": args.frame_rate} if args.frame_rate and \
-            Path(name).suffix.lower() == ".amc" else {}
-        motions.append(read(name, **options))
-    actuators = [a for item in args.actuators or () for a in item.split(",") if a]
-    player = view(motions, args.output, actuators=actuators or None,
-                  kinetemes=not args.no_kinetemes, max_rate=args.max_rate,
-                  follow=not args.fixed_camera,
-                  max_frames=args.max_frames)
-    kept = ", ".join(f"{p.label}: {p.frames} frames at {p.frame_rate:g} fps"
-                     for p in player.panels)
-    print(f"{args.output}: {kept}")
-    return 0
-
-
-def register(subparsers) -> None:
-    """Add ``view`` to a command's subparsers (the ``kinetology`` command).
-
-    Examples
-    --------
-    >>> import argparse
-    >>> parser = argparse.ArgumentParser(prog="kinetology")
-    >>> register(parser.add_subparsers())
-    >>> parser.parse_args(["view", "walk.bvh", "-o", "walk.html"]).max_rate
-    30.0
-    """
-    p = subparsers.add_parser(
-        "view", help="play motion files as a skeleton: an HTML page, a GIF or an MP4",
-        description="Draw the body from the skeleton's forward kinematics and play it; several "
-                    "files side by side on one clock; joints coloured by their current "
-                    "kineteme. The HTML page is self-contained (opens from a file, no network). "
-                    "Exit status 0: written; 2: a file that is not motion, a motion without "
-                    "frames or skeleton, an output suffix other than .html/.gif/.mp4, or a "
-                    "missing writer (matplotlib for .gif, ffmpeg for .mp4), in one line.")
-    p.add_argument("files", nargs="+", metavar="FILE",
-                   help="motion files: .bvh, or .amc (its .asf skeleton found beside it)")
-    p.add_argument("-o", "--output", required=True, metavar="OUT",
-                   help="out.html (player page), out.gif (needs matplotlib) or out.mp4 "
-                        "(needs matplotlib and ffmpeg)")
-    p.add_argument("--actuators", nargs="+", metavar="JOINT",
-                   help="joints to highlight (names or comma lists)")
-    p.add_argument("--no-kinetemes", action="store_true",
-                   help="do not colour joints by state (skips the segmentation)")
-    p.add_argument("--fixed-camera", action="store_true",
-                   help="look at the middle of the whole path instead of following the body")
-    p.add_argument("--max-rate", type=float, default=30.0, metavar="FPS",
-                   help="most frames per second kept (default 30)")
-    p.add_argument("--max-frames", type=int, default=500, metavar="N",
-                   help="most frames kept per file (default 500)")
-    p.add_argument("--frame-rate", type=float, default=None, metavar="FPS",
-                   help="frames per second of AMC files (default 120, the CMU rate)")
-    p.set_defaults(run=_run)

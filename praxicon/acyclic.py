@@ -242,9 +242,7 @@ def performed_motion(record, repeat: int, source_motion, style: str | None = Non
     else:
         where = [np.linspace(0.0, x.shape[0] - 1, frames) for x in stacked]
     one = np.mean([_at(x, w) for x, w in zip(stacked, where)], axis=0)
-    skeleton = source_motion.skeleton
-    if skeleton is not None and any(any(j.axis) for j in skeleton.joints):
-        skeleton = None  # an ASF skeleton: BVH cannot hold its axes, write angles on a star
+    skeleton = source_motion.skeleton  # an ASF one too: the BVH writer re-expresses its axes
     ease = max(2, min(frames // 4, int(round(0.5 * rate))))
     parts = [one]
     for _ in range(repeat - 1):

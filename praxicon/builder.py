@@ -50,6 +50,11 @@ class BuildResult:
         """The index written (``index.json``)."""
         return self.praxicon.index()
 
+    def __repr__(self) -> str:  # a summary, not the dataclass dump of the whole praxicon
+        refused = f", {len(self.refused)} refused" if self.refused else ""
+        return (f"<BuildResult: {len(self.learnt)} learnt, {len(self.skipped)} already done, "
+                f"{len(self.failed)} failed{refused}; {self.praxicon!r}>")
+
 
 def executor_for(workers: int | None = None, scheduler=None):
     """An executor: a Dask client's (``scheduler`` an address or a Client), N processes, or None.

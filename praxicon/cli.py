@@ -8,6 +8,7 @@ Reached from ``psgs`` through the entry-point group ``psgs.commands``
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 
 from psgs._foundation.shell import key_values, positive_int
 from psgs.errors import ValidationError
@@ -74,17 +75,58 @@ def run_draw(args) -> int:
     return 0
 
 
+def _check_outputs(args) -> None:
+    """Every output's name, before anything is generated: a wrong one is one line now, not an
+    error after the BVH file (or the plot) is already on disk."""
+    from kinetology.viewer import check_output
+
+    from .pictures import check_picture
+
+    if Path(args.output).suffix.lower() != ".bvh":
+        _bad(f"{args.output}: the motion is written as BVH; give -o a .bvh file")
+    if args.plot is not None:
+        check_picture(args.plot)
+    if args.view is not None:
+        check_output(args.view)
+
+
 def run_generate(args) -> int:
+    from kinetology.bvh_writer import format_bvh, without_axes
+
     from .generation import generate
+    from .pictures import draw_generated
+    from .store import load
 
     try:
-        result = generate(args.praxicon, args.action, repeat=args.repeat, output=args.output,
-                          plot=args.plot, style=args.style)
+        _check_outputs(args)
+        praxicon = load(args.praxicon)
+        result = generate(praxicon, args.action, repeat=args.repeat, style=args.style)
+        # everything that can fail is made in memory first: the files are written together
+        player, shown = (_beside_a_performance(praxicon, result) if args.view is not None
+                         else (None, ()))
+        text = format_bvh(without_axes(result.motion))
+        if args.plot is not None:
+            draw_generated(praxicon[args.action], result, args.plot)
+        Path(args.output).write_text(text, encoding="utf-8")
+        if player is not None:
+            _save_player(player, shown, args.view)
     except ValueError as exc:
         _bad(str(exc))
     if result.origin == "performances":
         _report_performed(args, result)
-        return 0
+    else:
+        _report_derived(args, result)
+    if result.motion.skeleton is None:  # nothing to put the bones on: said, not hidden
+        print(f"{args.output}: on a star skeleton (every joint on the root at offset 0, angles "
+              f"only): {praxicon[args.action].skeleton_source} has no skeleton (an AMC file "
+              f"without its ASF)")
+    if player is not None:
+        print(f"{args.view}: {' beside '.join(label for label, _ in shown)}")
+    return 0
+
+
+def _report_derived(args, result) -> None:
+    """What was derived from the grammar, and the round trip."""
     print(f"{args.output}: {result.motion.frames} frames at {result.motion.frame_rate:g} fps, "
           f"{len(result.channels)} generated channels of {len(result.actuators)} actuators, "
           f"{result.repeat} copies" + (f" of {result.cycle} morphemes each" if result.cycle > 1
@@ -99,9 +141,6 @@ def run_generate(args) -> int:
     for channel in result.channels:
         if not exact[channel]:
             print(f"  {channel}: {result.methods[channel].kind}")
-    if args.view:
-        print(f"{args.view}: {_view_beside_a_performance(args.praxicon, result, args.view)}")
-    return 0
 
 
 def _report_performed(args, result) -> None:
@@ -121,29 +160,38 @@ def _report_performed(args, result) -> None:
           f"repetition was found in the action, so it has no grammar system ({how}; the root "
           f"travels and turns as in the takes)")
     print("segmented again: no symbolic round trip (there is no morpheme to give back)")
-    if args.view:
-        print(f"{args.view}: {_view_beside_a_performance(args.praxicon, result, args.view)}")
 
 
-def _view_beside_a_performance(folder, result, output) -> str:
-    """Write the player of the generated motion beside the first performance it was learnt
-    from (one clock, actuators ringed); what it shows, in words."""
+def _beside_a_performance(praxicon, result):
+    """The player of the generated motion beside the first performance it was learnt from
+    (one clock, actuators ringed), and its panels as (label, full name) pairs. A panel is
+    labelled with the file's name: a whole path would be wider than the panel under it."""
     import kinetology
 
     from .datasets import Performance
     from .learn import _load_performance
-    from .store import load
 
     shown = {}
-    for p in load(folder)[result.action].performances:
+    for p in praxicon[result.action].performances:
         if p.used is not False:
             motion, problem = _load_performance(Performance(p.file, p.start, p.stop, p.label))
             if not problem:
-                shown[f"performance ({p.file})"] = motion
+                shown[f"performance ({Path(p.file).name})"] = (motion, p.file)
                 break
-    shown["generated"] = result.motion
-    kinetology.view(shown, output, actuators=list(result.actuators))
-    return " beside ".join(shown)
+    shown["generated"] = (result.motion, result.motion.source)
+    player = kinetology.view({label: m for label, (m, _) in shown.items()},
+                             actuators=list(result.actuators))
+    return player, tuple((label, name) for label, (_, name) in shown.items())
+
+
+def _save_player(player, shown, output) -> None:
+    """The page's title names the performance's whole path (the browser's tab and tooltip);
+    a GIF or MP4 has no title."""
+    if Path(output).suffix.lower() == ".html":
+        title = " beside ".join(name for _, name in shown)
+        Path(output).write_text(player.to_html(title=title), encoding="utf-8")
+    else:
+        player.save(output)
 
 
 def _add_commands(sub) -> None:

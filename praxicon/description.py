@@ -100,6 +100,11 @@ class ActionDescription:
     window: float = 0.0
     version: int = FORMAT_VERSION
 
+    def __repr__(self) -> str:  # a summary, not every feature's mean and spread
+        windows = f", windows of {self.window:g} s" if self.window else ""
+        return (f"<ActionDescription {self.name!r}: {len(self.features)} features from "
+                f"{self.takes} takes{windows}, format {self.version}>")
+
     def to_dict(self) -> dict:
         """Plain JSON values (floats kept exactly: JSON writes them with ``repr``)."""
         return {"format": "praxicon-action-description", "version": self.version,
@@ -148,6 +153,10 @@ class Spread:
     version: int = FORMAT_VERSION
     limits: tuple[tuple[str, float], ...] = ()  # per feature group: its largest distance
 
+    def __repr__(self) -> str:  # a summary, not the factors
+        return (f"<Spread: {len(self.features)} features, {len(self.factors)} shared "
+                f"directions, format {self.version}>")
+
     def to_dict(self) -> dict:
         """Plain JSON values (floats kept exactly)."""
         return {"format": "praxicon-spread", "version": self.version,
@@ -190,6 +199,12 @@ class Descriptions:
     def names(self) -> tuple[str, ...]:
         """The actions' names, in order."""
         return tuple(a.name for a in self.actions)
+
+    def __repr__(self) -> str:  # a summary, not every action's features
+        window = self.spread.window
+        of = f"windows of {window:g} s" if window else "whole takes"
+        return (f"<Descriptions of {len(self.actions)} actions ({of}): "
+                f"{len(self.spread.features)} features, format {FORMAT_VERSION}>")
 
     def aligned(self, field: str = "mean") -> np.ndarray:
         """Actions x the spread's features: each action's ``field`` (``"mean"`` or

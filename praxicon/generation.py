@@ -22,7 +22,9 @@ For an action of a praxicon, :func:`generate`:
    generated channel that moves most, moves the root as the performances do (their
    mean speed in the body's own frame and mean turning rate, measured from the root's
    world rotation) and writes a BVH file on the source skeleton
-   (:func:`kinetology.write_bvh`); :mod:`praxicon.body_motion` does step 5's measuring.
+   (:func:`kinetology.write_bvh`; an ASF skeleton's ``axis`` pre-rotations, which BVH cannot
+   hold, turned into its angles by :func:`kinetology.bvh_writer.without_axes`);
+   :mod:`praxicon.body_motion` does step 5's measuring.
 
 :meth:`Generated.round_trip` segments the generated motion again and says, per
 channel (or per actuator), whether its kineteme string is the morpheme repeated
@@ -38,7 +40,7 @@ import numpy as np
 
 from .body_motion import animate, body_of, performances_of, whole_cycle
 from .jsonvalues import as_dict
-from .records import ActionRecord, Praxicon
+from .records import ActionRecord, Praxicon, _count
 from .store import load
 
 __all__ = ["Generated", "Method", "generate", "generate_motion", "derive_copies",
@@ -133,6 +135,19 @@ class Generated:
     cycle: int = 1
     origin: str = "grammar"
     performances: int = 0
+
+    def __repr__(self) -> str:  # a summary, not the dataclass dump of the motion's values
+        m = self.motion
+        made = (f"from the grammar, {self.repeat} cop{'y' if self.repeat == 1 else 'ies'}"
+                + (f" of {self.cycle} morphemes" if self.cycle > 1 else "")
+                + f", {_count(len(self.channels), 'channel')} of "
+                  f"{_count(len(self.actuators), 'actuator')}"
+                if self.origin == "grammar" else
+                f"from the course of {_count(self.performances, 'performance')}, played "
+                + ("once" if self.repeat == 1 else f"{self.repeat} times"))
+        size = f"{_count(m.frames, 'frame')} at {m.frame_rate:g} fps" if m is not None else \
+            "no motion"
+        return f"<Generated {self.action!r}: {size}, {made}>"
 
     def resegmented(self) -> dict[str, tuple[str, ...]]:
         """Per generated channel, its kineteme string when the motion is segmented again."""
@@ -441,9 +456,8 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
         period *= tempo
     if source_motion is None:
         source_motion = kinetology.read(record.skeleton_source)
+    # an ASF skeleton is kept (the viewer draws it); the BVH file re-expresses its angles
     skeleton = source_motion.skeleton
-    if skeleton is not None and any(any(j.axis) for j in skeleton.joints):
-        skeleton = None  # an ASF skeleton: BVH cannot hold its axes, write angles on a star
     channels = source_motion.channels
     pose = dict(record.mean_pose)
     body = body_of(record, channels, set(usable), period, style, performances)
@@ -539,6 +553,8 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None =
     >>> generated = generate(work / "px", "m.bye", repeat=1, output=work / "bye.bvh")
     >>> generated.motion.frames > 0, (work / "bye.bvh").exists()
     (True, True)
+    >>> generated  # doctest: +ELLIPSIS
+    <Generated 'm.bye': ... frames at 30 fps, from the grammar, 1 copy, ... channels of ... actuators>
     >>> active = generate(work / "px", "m.bye", repeat=1, style="active")
     >>> generate(work / "px", "m.bye", style="sad")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
@@ -549,13 +565,19 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None =
     """
     import kinetology
 
+    if plot is not None:  # a picture matplotlib cannot write: said before any work
+        from .pictures import check_picture
+
+        check_picture(plot)
     record = (folder if isinstance(folder, Praxicon) else load(folder))[action]
     grammar = has_grammar(record)
     if repeat is None:
         repeat = 3 if grammar else 1
     motion, words, methods = generate_motion(record, repeat, style=style)
-    if output is not None:
-        kinetology.write_bvh(motion, output)
+    if output is not None:  # on the source skeleton, an ASF one's axes turned into angles
+        from kinetology.bvh_writer import without_axes
+
+        kinetology.write_bvh(without_axes(motion), output)
     owners = {c: j.name for j in record.joints for c in j.channels}
     result = Generated(motion, action, repeat, record.actuators, tuple(words), words,
                        as_dict(record.segmentation), methods, owners,

@@ -28,6 +28,7 @@ import numpy as np
 
 from .description import (OWN_KINDS, DescriptionError, common_table, describe_table,
                           feature_rows, probabilities, score_model, scores)
+from .records import _count
 
 __all__ = ["Span", "Timeline", "parse", "describe_windows", "windows"]
 
@@ -54,6 +55,11 @@ class Timeline:
     source: str
     duration: float
     spans: tuple[Span, ...]
+
+    def __repr__(self) -> str:  # a summary; text() has every span
+        actions = {s.action for s in self.spans if s.action}
+        return (f"<Timeline {self.source!r}: {self.duration:.2f} s in {_count(len(self.spans), 'span')} "
+                f"of {_count(len(actions), 'action')}>")
 
     def labels(self, times) -> list[str | None]:
         """The action at each of ``times`` (seconds)."""

@@ -27,7 +27,7 @@ from .records import ActionRecord, Praxicon
 from .store import actuator_matrix, load
 
 __all__ = ["draw_actuator_matrix", "draw_morphemes", "draw_shared_patterns",
-           "draw_generated", "draw_praxicon"]
+           "draw_generated", "draw_praxicon", "check_picture"]
 
 
 
@@ -40,6 +40,30 @@ def _pyplot():
     import matplotlib.pyplot as plt
 
     return plt
+
+
+def check_picture(path) -> str:
+    """The suffix of ``path`` when matplotlib can write a picture there, else ValueError (one
+    line): checked before anything is drawn or written.
+
+    Examples
+    --------
+    >>> check_picture("walk.PNG")
+    '.png'
+    >>> check_picture("walk.bvh")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: walk.bvh: matplotlib cannot write '.bvh' pictures; give one of .avif, .eps, ...
+    """
+    _pyplot()
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    suffix = Path(path).suffix.lower()
+    known = sorted(f".{s}" for s in FigureCanvasBase.get_supported_filetypes())
+    if suffix not in known:
+        raise ValueError(f"{path}: matplotlib cannot write {suffix or 'a file without a suffix'!r}"
+                         f" pictures; give one of {', '.join(known)}")
+    return suffix
 
 
 def _save(fig, path) -> Path:

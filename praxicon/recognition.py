@@ -42,6 +42,7 @@ from .description import (DescriptionError, Descriptions, feature_rows, mahalano
                           model_scores, own_columns, _part, probabilities, score_model)
 from .feature_groups import feature_groups, group_distances, telling_groups
 from .features import feature_joint
+from .records import _count
 
 __all__ = ["Recognition", "recognise", "recognise_many", "feature_matrix", "JointReason"]
 
@@ -82,6 +83,14 @@ class Recognition:
     excess_group: str = ""  # which group that is
     lacking: tuple[tuple[str, tuple[str, ...]], ...] = ()  # per action shown: joints not here
     unshared: tuple[str, ...] = ()  # actions sharing no joint with the motion
+
+    def __repr__(self) -> str:  # a summary, not the dataclass dump of every reason
+        best = dict(self.ranking).get(self.action) if self.action else None
+        answer = f"{self.action} (p={best:.3f})" if self.action else "none of these"
+        missing = f", {_count(len(self.missing), 'joint')} missing" if self.missing else ""
+        return (f"<Recognition {self.source!r}: {answer}, distance {self.penalty:.3f} per "
+                f"feature (threshold {self.threshold:.3f}), "
+                f"{_count(len(self.ranking), 'action')} ranked{missing}>")
 
     def explain(self, joints: int = 4) -> str:
         """The reasons, as text: per shown action the joints that decided it."""

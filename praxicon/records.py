@@ -134,6 +134,10 @@ class Settings:
                         value["min_performances"])
 
 
+def _count(n: int, noun: str) -> str:
+    return f"{n} {noun}{'' if n == 1 else 's'}"
+
+
 def _Json(value, where: str, what: str) -> Fields:
     """Typed access to a JSON object whose errors are :class:`PraxiconError` s."""
     return Fields(value, where, what, PraxiconError)
@@ -284,6 +288,8 @@ class ActionRecord:
     ...                  performances=(PerformanceRecord("a.bvh", used=True),))
     >>> r.learnt, ActionRecord.from_json(r.to_json()) == r
     (False, True)
+    >>> r
+    <ActionRecord 'm.wave': failed (1 usable performance), 1 performance>
     """
 
     name: str
@@ -329,6 +335,25 @@ class ActionRecord:
     def morphemes(self) -> dict[str, ChannelMorpheme]:
         """Every actuator channel's morpheme, channel -> morpheme, actuators in order."""
         return {c: m for joint in self.joints for c, m in joint.morphemes}
+
+    def __repr__(self) -> str:  # a summary, not the dataclass dump of the system and pose
+        used = sum(bool(p.used) for p in self.performances)
+        takes = _count(len(self.performances), "performance")
+        if not self.learnt:
+            return f"<ActionRecord {self.name!r}: failed ({self.reason}), {takes}>"
+        joints = ", ".join(self.actuators[:4]) + (", ..." if len(self.actuators) > 4 else "")
+        return (f"<ActionRecord {self.name!r}: learnt from {used} of {takes}, "
+                f"{_count(len(self.actuators), 'actuator')} ({joints or 'none'}), "
+                f"{_count(len(self.morphemes()), 'morpheme')}>")
+
+    def __str__(self) -> str:  # the summary, then one line per actuator (at most six)
+        lines = [repr(self)]
+        for joint in self.joints[:6]:
+            lines.append(f"  {joint.name}: " + "; ".join(
+                f"{c.rsplit('.', 1)[-1]} {' '.join(m.kinetemes)}" for c, m in joint.morphemes))
+        if len(self.joints) > 6:
+            lines.append(f"  ... and {len(self.joints) - 6} more actuators")
+        return "\n".join(lines)
 
     def to_json(self) -> dict:
         """The record as plain JSON values (what ``records/ACTION.json`` holds)."""
@@ -411,6 +436,9 @@ class Praxicon:
     >>> px = Praxicon((ActionRecord("m.a", "m", "a"),), Settings.make(), ("m.csv",))
     >>> px.names, px["m.a"].learnt, px.counts
     (('m.a',), False, {'actions': 1, 'learnt': 0, 'failed': 1})
+    >>> print(px)
+    <Praxicon: 0 actions learnt of 1, 1 dataset, inducer pal, no descriptions>
+      failed: m.a
     >>> Praxicon.from_json(px.to_json()) == px
     True
     """
@@ -441,6 +469,24 @@ class Praxicon:
         learnt = sum(a.learnt for a in self.actions)
         return {"actions": len(self.actions), "learnt": learnt,
                 "failed": len(self.actions) - learnt}
+
+    def __repr__(self) -> str:  # a summary, not the dataclass dump of every record
+        described = (f"descriptions format {self.descriptions.actions[0].version}"
+                     if self.descriptions is not None and self.descriptions.actions
+                     else "no descriptions")
+        return (f"<Praxicon: {self.counts['learnt']} actions learnt of {len(self.actions)}, "
+                f"{_count(len(self.datasets), 'dataset')}, inducer {self.settings.inducer}, "
+                f"{described}>")
+
+    def __str__(self) -> str:  # the summary, then the learnt and the failed actions by name
+        lines = [repr(self)]
+        for what, names in (("learnt", [a.name for a in self.actions if a.learnt]),
+                            ("failed", [a.name for a in self.actions if not a.learnt])):
+            if names:
+                shown = ", ".join(names[:4]) + (f" and {len(names) - 4} more"
+                                                if len(names) > 4 else "")
+                lines.append(f"  {what}: {shown}")
+        return "\n".join(lines)
 
     def __getitem__(self, name: str) -> ActionRecord:
         for action in self.actions:

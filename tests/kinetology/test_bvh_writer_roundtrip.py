@@ -12,6 +12,8 @@ from kinetology.bvh import parse_bvh
 from kinetology.bvh_writer import MAX_DEPTH, format_bvh, write_bvh
 from kinetology.motion import Joint, Skeleton
 
+from kinetology_fixtures import MOCAP, needs_mocap
+
 
 def _motion(joints, values, rate=30.0):
     channels = tuple(c for j in joints for c in j.channels)
@@ -105,3 +107,38 @@ def test_a_deep_chain_writes_as_deep_as_it_reads(tmp_path):
     assert read(path).column(f"j{MAX_DEPTH}.rx").tolist() == [float(MAX_DEPTH)]
     with pytest.raises(ValueError, match="nested 3000 deep"):
         format_bvh(chain(3001))
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.sampled_from(["XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX"]),
+       st.lists(st.floats(-180, 180), min_size=9, max_size=9))
+def test_euler_angles_give_back_every_rotation(order, values):
+    from kinetology.kinematics import euler_angles, rotation_matrices
+
+    angles = np.array(values).reshape(3, 3)  # three frames; gimbal lock included
+    angles[:, 1] = np.clip(angles[:, 1], -90, 90)
+    angles[0, 1] = 90.0
+    matrices = rotation_matrices({a: angles[:, i] for i, a in enumerate(order)}, order, 3)
+    found = euler_angles(matrices, order)
+    again = rotation_matrices({a: found[:, i] for i, a in enumerate(order)}, order, 3)
+    assert np.abs(again - matrices).max() < 1e-9
+
+
+@needs_mocap
+def test_an_asf_take_is_written_on_its_own_skeleton(tmp_path):
+    from kinetology.bvh_writer import without_axes
+    from kinetology.kinematics import forward_kinematics
+
+    amc = read(MOCAP / "cmu-01_01-pair" / "01_01.amc")
+    amc = Motion(amc.values[:240], amc.channels, amc.frame_rate, amc.skeleton, amc.source)
+    with pytest.raises(ValueError, match="without_axes"):
+        format_bvh(amc)
+    plain = without_axes(amc)
+    assert not any(any(j.axis) for j in plain.skeleton.joints)
+    assert plain.skeleton.names == amc.skeleton.names
+    assert np.abs(forward_kinematics(plain) - forward_kinematics(amc)).max() < 1e-9
+    back = read(write_bvh(plain, tmp_path / "01_01.bvh"))
+    assert np.allclose([j.offset for j in back.skeleton.joints],
+                       [j.offset for j in amc.skeleton.joints], atol=1e-6)  # six decimals
+    assert np.abs(forward_kinematics(back) - forward_kinematics(amc)).max() < 1e-4
+    assert without_axes(back) is back  # nothing to do on a BVH skeleton

@@ -258,3 +258,22 @@ def test_the_floor_is_fixed_in_the_world():
     assert np.allclose(panel.pose(0), panel.pose(29), atol=1e-3)
     first, last = panel.floor(0), panel.floor(29)
     assert first.shape == last.shape == (10, 2, 2) and not np.allclose(first, last)
+
+
+def test_the_command_counts_frames_in_words(tmp_path, capsys):
+    from kinetology.bvh_writer import write_bvh
+    one, many = write_bvh(_leg(1), tmp_path / "one.bvh"), write_bvh(_leg(20), tmp_path / "m.bvh")
+    assert main(["view", str(one), str(many), "-o", str(tmp_path / "x.html")]) == 0
+    assert capsys.readouterr().out.strip() == (f"{tmp_path / 'x.html'}: one.bvh: 1 frame at 30 "
+                                               f"fps, m.bvh: 20 frames at 30 fps")
+
+
+def test_player_and_panel_reprs_are_one_short_line():
+    player = view({"real": _leg(400), "one": _leg(1)})
+    assert repr(player) == ("<Player of 2 motions at 30 fps, 400 steps: real (400 frames, "
+                            "3 joints), one (1 frame, 3 joints)>")
+    assert repr(player.panels[1]) == "<Panel 'one': 1 frame of 3 joints at 30 fps (every frame)>"
+    assert str(player) == repr(player)
+    long = view(_leg(3000, rate=120.0), max_frames=500)
+    assert repr(long.panels[0]) == ("<Panel 'leg.bvh': 500 frames of 3 joints at 20 fps "
+                                    "(1 frame in 6)>")

@@ -101,3 +101,61 @@ def test_installed_entry_point_adds_psgs_praxicon():
     from psgs.cli import build_parser
 
     assert "praxicon" in build_parser().format_help()
+
+
+def test_generate_checks_every_output_before_writing_any(manifest, tmp_path, capsys,
+                                                         monkeypatch):
+    out = tmp_path / "px"
+    assert main(["build", str(manifest), "-o", str(out), "--no-progress",
+                 "--param", "min_copies=3"]) == 0
+    capsys.readouterr()
+    bvh, plot, page = tmp_path / "g.bvh", tmp_path / "g.png", tmp_path / "g.html"
+    for options, words in [
+        (["-o", str(bvh), "--view", str(tmp_path / "g.pdf")], "cannot write '.pdf'"),
+        (["-o", str(tmp_path / "g.txt")], "give -o a .bvh file"),
+        (["-o", str(bvh), "--plot", str(tmp_path / "g.bvh2")], "cannot write '.bvh2' pictures"),
+    ]:
+        assert main(["generate", str(out), "moves.wave", "--repeat", "1", *options]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and words in err[0], err
+        assert sorted(p.name for p in tmp_path.glob("g.*")) == []
+    # a motion the viewer cannot draw (here: its skeleton taken away) is said before the BVH
+    # file and the plot are written, not after
+    import praxicon.generation as generation
+
+    real = generation.generate_motion
+
+    def without_skeleton(*args, **kwargs):
+        motion, words, methods = real(*args, **kwargs)
+        return motion.select(motion.channels), words, methods
+
+    monkeypatch.setattr(generation, "generate_motion", without_skeleton)
+    assert main(["generate", str(out), "moves.wave", "--repeat", "1", "-o", str(bvh),
+                 "--plot", str(plot), "--view", str(page)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "no skeleton to draw" in err[0], err
+    assert sorted(p.name for p in tmp_path.glob("g.*")) == []
+    monkeypatch.setattr(generation, "generate_motion", real)
+    assert main(["generate", str(out), "moves.wave", "--repeat", "1", "-o", str(bvh),
+                 "--plot", str(plot), "--view", str(page)]) == 0
+    assert sorted(p.name for p in tmp_path.glob("g.*")) == ["g.bvh", "g.html", "g.png"]
+
+
+def test_generate_view_labels_panels_by_file_name(manifest, tmp_path, capsys):
+    out = tmp_path / "px"
+    assert main(["build", str(manifest), "-o", str(out), "--no-progress",
+                 "--param", "min_copies=3"]) == 0
+    page = tmp_path / "w.html"
+    assert main(["generate", str(out), "moves.wave", "--repeat", "1", "-o",
+                 str(tmp_path / "w.bvh"), "--view", str(page)]) == 0
+    text = page.read_text()
+    data = json.loads(re.search(r'<script type="application/json" class="data">(.*?)</script>',
+                                text, re.S).group(1))
+    # the panel's title is the file's name, short enough to sit beside the other panel
+    assert [p["label"] for p in data["panels"]] == ["performance (wave_1.bvh)", "generated"]
+    # the whole path is in the page's title (the browser's tab)
+    first = manifest.parent / "wave_1.bvh"
+    title = re.search(r"<title>(.*?)</title>", text).group(1)
+    assert title == f"{first} beside generated:moves.wave"
+    assert capsys.readouterr().out.splitlines()[-1] == \
+        f"{page}: performance (wave_1.bvh) beside generated"
