@@ -3,11 +3,9 @@
 Every string's section (:mod:`~psgs.induce.pal.sections`, its longest exact
 repeat) with fewer than one chance repeat as long expected in its string is a
 second candidate beside its motif; sections are synchronised in time as
-motifs are (step 3) and form their own groups, a section in step with none
-a group of its own (the other strings are read at its copies, where their
-longest repeat need not be), each kept only when the group as one event
-beats ``alpha`` (:mod:`~psgs.induce.pal.in_step`: one string's short repeat
-is no evidence, several at the same times are). A string can
+motifs are (step 3) and form their own groups, each kept only when the group
+as one event beats ``alpha`` (:mod:`~psgs.induce.pal.in_step`: one string's
+short repeat is no evidence, several at the same times are). A string can
 then be in a motif group (steps 4-6) and in a section group. Both kinds are
 ranked by one significance,
 :func:`~psgs.induce.pal.sections.repeat_significance` at the copies'
@@ -88,15 +86,11 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
             found.dropped[i] = WEAK_COPIES
     weighed = [(sum(weights[i] for i in g), 0, k, g) for k, g in enumerate(motif_groups)]
     sectioned, readings = [], []
-    # a section in step with no other still leads a group: the others are read at its
-    # copies, where their own longest repeat may not be (a chance repeat elsewhere, as long)
-    alone = [[i] for i in candidates if not partners[i]]
-    for group in sync_groups(candidates, partners) + alone:
+    for group in sync_groups(candidates, partners):
         significance, members = group_significance(strings, sections, intervals, follows,
                                                    group, partners, level)
         for i in group:
-            # (a section alone that no string joined was in step with nothing)
-            if (significance > level or i not in members) and partners[i]:
+            if significance > level or i not in members:
                 found.dropped.setdefault(i, CHANCE_IN_STEP)
         if significance <= level:
             # ranked as the motif groups are, by its members' significances summed, each
