@@ -240,14 +240,15 @@ def _as_close(per_copy: list[tuple[tuple[float, float], np.ndarray, np.ndarray]]
 
     The sets are ranked by their distance plus their mismatch while they are few (4096 or
     fewer); past that, copy by copy by the distance alone (``A`` and ``H`` the products of
-    each copy's own), which bounds the union of that ranking as well.
+    each copy's own: a ranking of its own, chosen by the sets' number alone, before the
+    string is read).
     """
     if not per_copy:
         return 0.0
     sizes = [len(b) for _, b, _ in per_copy]
     if len(per_copy) > 1 and math.prod(sizes) > 1 << 12:
         return sum(_as_close([one], slack) for one in per_copy)
-    (first_b, first_e), begins, ends = per_copy[0]
+    (first_b, first_e), _, _ = per_copy[0]
     # every set's offsets: one window per copy (the sets as the rows of a grid)
     grids = np.meshgrid(*[np.arange(k) for k in sizes], indexing="ij")
     rows = [g.ravel() for g in grids]
