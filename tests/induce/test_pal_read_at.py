@@ -41,9 +41,9 @@ def _every_candidate(string: Timed, lead: np.ndarray, follow):
                                   [starts[s + shift], ends[s + length - 1 + shift]]])
                 if not all(spans_pair(w, c) for w, c in zip(where.tolist(), lead.tolist())):
                     continue
-                motif = codes[s:s + length].copy()
-                if _cycles(motif):
+                if _cycles(codes, (s, s + shift), length):
                     continue
+                motif = codes[s:s + length].copy()
                 section = Section(motif, np.array([s, s + shift], dtype=np.int64), 0.0)
                 weight = in_step_significance(string, section, where, lead, follow)
                 if best is None or weight < best[0]:

@@ -171,13 +171,19 @@ def in_step_significance(string: Timed, section: Section, copies: np.ndarray, le
     (``q`` the match rate, ``r`` the follow rate or ``q``), and ``1 - r^(c-1)`` that the
     symbols before them do not (a repeat counted once, at its left end; 1 when a copy
     could open the string). A copy pairs with a lead copy when the two share half of the
-    time they cover together; its distance to it is the time outside the shared part. Of
-    the sets of windows of ``L`` symbols pairing copy by copy with the lead copies these
-    pair with (a copy pairing with none: any window), ``A`` lie as close in all (their
-    distances summed) as these copies do. ``H`` is what choosing that distance after
-    seeing it costs: the sum over the distances ``d`` of the sets at ``d`` over the sets at
-    ``d`` or nearer (the union over every set of the chance that it is as strong; at most
-    ``1 + ln`` of the sets). ``copies`` and ``lead`` are (copies, 2) arrays of times.
+    time they cover together; its distance to it is the time outside the shared part (how
+    far its start and its end lie from the lead copy's). Of the sets of windows of ``L``
+    symbols pairing copy by copy with the lead copies these pair with (a copy pairing with
+    none: any window), ``A`` lie as close as these copies do: their distances summed, plus
+    their **mismatch**, how far each copy's start and end lie off the lead's otherwise
+    than the first copy's do (summed over the copies after the first). Copies played at the
+    same times as the lead's keep its shift between them, and the symbols that agree by
+    chance around a section move the edges of all its copies alike, so a repeat off the
+    lead's copies by the same amount in each is nearer than one off by different amounts.
+    ``H`` is what choosing that closeness after seeing it costs: the sum over the closeness
+    ``d`` of the sets at ``d`` over the sets at ``d`` or nearer (the union over every set
+    of the chance that it is as strong; at most ``1 + ln`` of the sets). ``copies`` and
+    ``lead`` are (copies, 2) arrays of times.
 
     Examples
     --------
@@ -186,9 +192,9 @@ def in_step_significance(string: Timed, section: Section, copies: np.ndarray, le
     >>> section = Section(codes[1:5], np.array([1, 6]), -1.0)
     >>> same = np.array([[1.0, 5.0], [6.0, 10.0]])
     >>> round(in_step_significance(string, section, same, same, None), 2)  # one place
-    -3.08
+    -3.11
     >>> round(in_step_significance(string, section, same, same + 1, None), 2)  # more
-    -2.19
+    -2.33
     """
     length = len(section.motif)
     q = string.match_rate
@@ -202,7 +208,9 @@ def in_step_significance(string: Timed, section: Section, copies: np.ndarray, le
     ends = string.ends[length - 1:]
     slack = 1e-9 * max(1.0, float(np.max(np.abs(copies))))
     anywhere, opens = 0.0, False
-    per_copy = []  # (its distance, the distances of every window pairing as it does)
+    # per copy that pairs: its offsets from its lead copy (start, end) and those of every
+    # window pairing as it does
+    per_copy: list[tuple[tuple[float, float], np.ndarray, np.ndarray]] = []
     for a, b in copies.tolist():
         closest = None
         for lo, hi in lead.tolist():
@@ -214,37 +222,54 @@ def in_step_significance(string: Timed, section: Section, copies: np.ndarray, le
             anywhere += math.log10(len(begins))  # it could be any window
             opens = True
             continue
-        apart, lo, hi = closest
+        _, lo, hi = closest
         shared = np.minimum(ends, hi) - np.maximum(begins, lo)
         union = np.maximum(ends, hi) - np.minimum(begins, lo)
         pairs = (shared > 0) & (2 * shared >= union)
-        per_copy.append((apart, (union - shared)[pairs]))
+        per_copy.append(((a - lo, b - hi), begins[pairs] - lo, ends[pairs] - hi))
         opens = opens or bool(pairs[0])
     left = 0.0 if opens else math.log10(max(1e-300, 1 - r ** (c - 1)))
     return anywhere + _as_close(per_copy, slack) + chance + left
 
 
-def _as_close(per_copy: list[tuple[float, np.ndarray]], slack: float) -> float:
-    """log10 of ``A * H`` (:func:`in_step_significance`) for copies at the distances given,
-    each of which could have been at any of the distances listed with it.
+def _as_close(per_copy: list[tuple[tuple[float, float], np.ndarray, np.ndarray]],
+              slack: float) -> float:
+    """log10 of ``A * H`` (:func:`in_step_significance`) for copies at the offsets given
+    from their lead copies (start, end), each of which could have been any of the windows
+    whose offsets are listed with it.
 
-    The sets are closer by their distances summed while they are few (4096 or fewer); past
-    that, copy by copy (``A`` and ``H`` the products of each copy's own), which bounds the
-    same union.
+    The sets are ranked by their distance plus their mismatch while they are few (4096 or
+    fewer); past that, copy by copy by the distance alone (``A`` and ``H`` the products of
+    each copy's own: a ranking of its own, chosen by the sets' number alone, before the
+    string is read).
     """
     if not per_copy:
         return 0.0
-    sizes = [len(d) for _, d in per_copy]
-    if math.prod(sizes) > 1 << 12:
+    sizes = [len(b) for _, b, _ in per_copy]
+    if len(per_copy) > 1 and math.prod(sizes) > 1 << 12:
         return sum(_as_close([one], slack) for one in per_copy)
-    sums = np.zeros(1)
-    for _, distances in per_copy:
-        sums = (sums[:, None] + distances[None, :]).ravel()
-    observed = sum(apart for apart, _ in per_copy)
-    near = max(1, int(np.count_nonzero(sums <= observed + slack)))
-    # choosing the distance after seeing it: the union over the sets of the chance each
-    # is as strong, sum over the distances d of (sets at d) / (sets at d or nearer)
-    _, counts = np.unique(np.round(sums / slack), return_counts=True)
+    (first_b, first_e), _, _ = per_copy[0]
+    # every set's offsets: one window per copy (the sets as the rows of a grid)
+    grids = np.meshgrid(*[np.arange(k) for k in sizes], indexing="ij")
+    rows = [g.ravel() for g in grids]
+    distance = np.zeros(len(rows[0]))
+    mismatch = np.zeros(len(rows[0]))
+    observed_d = observed_m = 0.0
+    for k, ((db, de), begins, ends) in enumerate(per_copy):
+        b, e = begins[rows[k]], ends[rows[k]]
+        distance += np.abs(b) + np.abs(e)
+        observed_d += abs(db) + abs(de)
+        if k:
+            b0, e0 = per_copy[0][1][rows[0]], per_copy[0][2][rows[0]]
+            mismatch += np.abs(b - b0) + np.abs(e - e0)
+            observed_m += abs(db - first_b) + abs(de - first_e)
+    # (the sets' keys on a grid of ``slack``, so that float sums of the times do not part
+    # equal keys)
+    keys = np.round((mismatch + distance) / slack)
+    near = max(1, int(np.count_nonzero(keys <= round((observed_m + observed_d) / slack))))
+    # choosing the key after seeing it: the union over the sets of the chance each is as
+    # strong, sum over the keys k of (sets at k) / (sets at k or nearer)
+    _, counts = np.unique(keys, return_counts=True)
     return math.log10(near) + math.log10(float(np.sum(counts / np.cumsum(counts))))
 
 
@@ -359,9 +384,9 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None
             if order > best_order:
                 continue  # (at most as light as the best, and after it)
         length, s, shift = lengths[order], ats[order], shifted[order]
-        motif = codes[s:s + length].copy()
-        if _cycles(motif):
+        if _cycles(codes, (s, s + shift), length):
             continue
+        motif = codes[s:s + length].copy()
         where = np.array([[starts[s], ends[s + length - 1]],
                           [starts[s + shift], ends[s + length - 1 + shift]]])
         section = Section(motif, np.array([s, s + shift], dtype=np.int64), 0.0)

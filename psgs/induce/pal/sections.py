@@ -253,8 +253,8 @@ def find_section(codes: np.ndarray, copies: int, longest: int, match_rate: float
     taken from the left. At most ``longest`` symbols; None when no window of
     two symbols or more repeats so, when none is long enough for its
     significance to reach ``level`` (log10; 0 looks at every length), or when
-    the longest is a cycle (it repeats itself at a shift of half its length
-    or less: ``x y z x y z``). ``follow`` and ``low``: the string's
+    the longest is a cycle (its copies are parts of one block played over and
+    over, :func:`_cycles`). ``follow`` and ``low``: the string's
     :func:`follow_rate` and the shortest length worth a look, when known.
 
     Examples
@@ -276,7 +276,7 @@ def find_section(codes: np.ndarray, copies: int, longest: int, match_rate: float
     low = _longest_repeated(codes, copies, low, high)
     starts = _repeated(codes, low, copies)
     motif = codes[starts[0]:starts[0] + low].copy()
-    if _cycles(motif):
+    if _cycles(codes, starts, low):
         # a cycle (a block played over and over) is what the digram search and the
         # period mode are for; as a section it would only be that block's copies again
         return None
@@ -311,10 +311,17 @@ def _longest_repeated(codes: np.ndarray, copies: int, low: int, high: int) -> in
     return low
 
 
-def _cycles(motif: np.ndarray) -> bool:
-    """Whether ``motif`` repeats itself at a shift of half its length or less (a cycle)."""
-    length = len(motif)
-    return any(np.array_equal(motif[p:], motif[:-p]) for p in range(1, length // 2 + 1))
+def _cycles(codes: np.ndarray, starts, length: int) -> bool:
+    """Whether the copies of ``length`` symbols at ``starts`` are parts of one cycle: their
+    window repeats itself at a shift ``p`` of half its length or less (``x y z x y z``) and
+    so does the whole stretch from the first copy's start to the last one's end (one block
+    played over and over). A window that repeats itself but whose copies lie apart, other
+    symbols between them, is a section as any other."""
+    first, last = int(starts[0]), int(starts[-1]) + length
+    motif = codes[first:first + length]
+    stretch = codes[first:last]
+    return any(np.array_equal(motif[p:], motif[:-p]) and np.array_equal(stretch[p:], stretch[:-p])
+               for p in range(1, length // 2 + 1))
 
 
 def _shortest(n: int, copies: int, match_rate: float, follow: float, level: float,
