@@ -11,6 +11,10 @@ skipped when it is absent) are in the repository's top-level ``conftest.py``, wh
 reach the doctests of the packages too.
 """
 
+import os
+import tempfile
+from pathlib import Path
+
 from hypothesis import HealthCheck, settings
 
 settings.register_profile(
@@ -33,16 +37,99 @@ settings.load_profile("ci")
 
 
 def pytest_sessionstart(session):
-    """Build the compiled engines (kinetology's segmentation, PAL's motif search) before any
-    test is timed.
+    """Start building the compiled engines (kinetology's segmentation, PAL's motif search)
+    before any test is timed.
 
     numba compiles them on first use: 4-6 s for kinetology's and about 20 s for PAL's with an
     empty cache (a fresh install, as in CI), which would otherwise land on whichever test uses
-    them first and push it past the suite's 15 s a test. Here each is built once per process
-    before the tests (or found in numba's cache); without numba there is nothing to build.
+    them first and push it past the suite's 15 s a test. Each process that runs tests builds
+    them (or finds them in numba's cache) once, after its collection (see
+    :func:`pytest_collection_finish`). Under pytest-xdist the controller runs no test: it
+    forks one builder at the start, which fills numba's cache while the workers start and
+    collect, the one compilation on a core of its own (each worker compiling for itself
+    would double the work; the controller compiling before the workers start left a core
+    idle for half a minute).
     """
+    if _is_xdist_controller(session.config) and _warm_wanted():
+        _start_builder()
+
+
+def pytest_collection_finish(session):
+    """Build the compiled engines in this process, after the builder (if any) has filled
+    numba's cache: loading them from there takes a second or two, compiling them again 25 s.
+    Without numba there is nothing to build."""
+    if session.config.option.collectonly or not session.items or not _warm_wanted():
+        return
+    _wait_for_builder()
     _warm_kinetology()
     _warm_pal()
+
+
+#: The environment variable naming the lock file the builder holds while it compiles.
+_BUILDER_LOCK = "PSGS_TESTS_NUMBA_BUILDER_LOCK"
+
+
+def _warm_wanted() -> bool:
+    # a test that runs pytest on a copy of this file in a subprocess (the hypothesis
+    # profiles) sets this: its probe uses no compiled engine
+    return os.environ.get("PSGS_TESTS_NO_WARM_UP") != "1"
+
+
+def _is_xdist_controller(config) -> bool:
+    return (getattr(config.option, "dist", "no") != "no"
+            and not hasattr(config, "workerinput"))
+
+
+def _start_builder():
+    """Fork a process that compiles the engines into numba's cache, holding a lock (a
+    ``flock`` on a file named by :data:`_BUILDER_LOCK`, inherited by the workers) until it
+    ends. Forked rather than started afresh, so that it imports the very modules (and so
+    fills the very cache) the workers will; where there is no fork or no ``flock``, there is
+    no builder and every worker compiles for itself."""
+    try:
+        import fcntl
+        import multiprocessing
+        context = multiprocessing.get_context("fork")
+    except (ImportError, ValueError):
+        return
+    fd, path = tempfile.mkstemp(prefix="psgs-numba-builder-", suffix=".lock")
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)  # the fork shares this lock and keeps it while it runs
+        _BUILDER.append(context.Process(target=_build, name="psgs-numba-builder", daemon=True))
+        _BUILDER[0].start()
+    finally:
+        os.close(fd)  # only the builder holds the lock now
+    os.environ[_BUILDER_LOCK] = path
+
+
+def _build():
+    _warm_kinetology()
+    _warm_pal()
+
+
+def _wait_for_builder():
+    path = os.environ.get(_BUILDER_LOCK)
+    if not path:
+        return
+    import fcntl
+    try:
+        with open(path) as lock:
+            fcntl.flock(lock, fcntl.LOCK_SH)  # returns once the builder has ended
+    except OSError:
+        pass
+
+
+def pytest_sessionfinish(session):
+    """Remove the builder's lock file (the builder ended long before)."""
+    if _BUILDER:
+        _BUILDER[0].join()
+        path = os.environ.pop(_BUILDER_LOCK, None)
+        if path:
+            Path(path).unlink(missing_ok=True)
+
+
+#: The builder process of this controller (at most one).
+_BUILDER: list = []
 
 
 def _warm_kinetology():
