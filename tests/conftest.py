@@ -45,27 +45,27 @@ def pytest_sessionstart(session):
     them first and push it past the suite's 15 s a test. Each process that runs tests builds
     them (or finds them in numba's cache) once, after its collection (see
     :func:`pytest_collection_finish`). Under pytest-xdist the controller runs no test: it
-    forks one builder at the start, which fills numba's cache while the workers start and
-    collect, the one compilation on a core of its own (each worker compiling for itself
-    would double the work; the controller compiling before the workers start left a core
-    idle for half a minute).
+    forks builders at the start, which fill numba's cache while the workers start and
+    collect, so that the compilation is done once and beside the workers' start (each
+    worker compiling for itself would double the work; the controller compiling before the
+    workers started left a core idle for half a minute).
     """
     if _is_xdist_controller(session.config) and _warm_wanted():
-        _start_builder()
+        _start_builders()
 
 
 def pytest_collection_finish(session):
-    """Build the compiled engines in this process, after the builder (if any) has filled
+    """Build the compiled engines in this process, after the builders (if any) have filled
     numba's cache: loading them from there takes a second or two, compiling them again 25 s.
     Without numba there is nothing to build."""
     if session.config.option.collectonly or not session.items or not _warm_wanted():
         return
-    _wait_for_builder()
+    _wait_for_builders()
     _warm_kinetology()
     _warm_pal()
 
 
-#: The environment variable naming the lock file the builder holds while it compiles.
+#: The environment variable naming the lock file the builders hold while they compile.
 _BUILDER_LOCK = "PSGS_TESTS_NUMBA_BUILDER_LOCK"
 
 
@@ -80,12 +80,12 @@ def _is_xdist_controller(config) -> bool:
             and not hasattr(config, "workerinput"))
 
 
-def _start_builder():
-    """Fork a process that compiles the engines into numba's cache, holding a lock (a
-    ``flock`` on a file named by :data:`_BUILDER_LOCK`, inherited by the workers) until it
-    ends. Forked rather than started afresh, so that it imports the very modules (and so
-    fills the very cache) the workers will; where there is no fork or no ``flock``, there is
-    no builder and every worker compiles for itself."""
+def _start_builders():
+    """Fork the builders, one for PAL's engines and one for kinetology's, that compile them
+    into numba's cache holding a lock (a ``flock`` on the file named by :data:`_BUILDER_LOCK`,
+    which the workers inherit) until both end. Forked rather than started afresh, so that
+    they import the very modules (and so fill the very cache) the workers will; where there
+    is no fork or no ``flock``, there is no builder and every worker compiles for itself."""
     try:
         import fcntl
         import multiprocessing
@@ -94,42 +94,39 @@ def _start_builder():
         return
     fd, path = tempfile.mkstemp(prefix="psgs-numba-builder-", suffix=".lock")
     try:
-        fcntl.flock(fd, fcntl.LOCK_EX)  # the fork shares this lock and keeps it while it runs
-        _BUILDER.append(context.Process(target=_build, name="psgs-numba-builder", daemon=True))
-        _BUILDER[0].start()
+        fcntl.flock(fd, fcntl.LOCK_EX)  # each fork shares this lock and keeps it while it runs
+        for warm in (_warm_pal, _warm_kinetology):  # two cores: the two at once
+            _BUILDERS.append(context.Process(target=warm, name="psgs-numba-builder", daemon=True))
+            _BUILDERS[-1].start()
     finally:
-        os.close(fd)  # only the builder holds the lock now
+        os.close(fd)  # only the builders hold the lock now
     os.environ[_BUILDER_LOCK] = path
 
 
-def _build():
-    _warm_kinetology()
-    _warm_pal()
-
-
-def _wait_for_builder():
+def _wait_for_builders():
     path = os.environ.get(_BUILDER_LOCK)
     if not path:
         return
     import fcntl
     try:
         with open(path) as lock:
-            fcntl.flock(lock, fcntl.LOCK_SH)  # returns once the builder has ended
+            fcntl.flock(lock, fcntl.LOCK_SH)  # returns once both builders have ended
     except OSError:
         pass
 
 
 def pytest_sessionfinish(session):
-    """Remove the builder's lock file (the builder ended long before)."""
-    if _BUILDER:
-        _BUILDER[0].join()
+    """Remove the builders' lock file (they ended long before)."""
+    if _BUILDERS:
+        for builder in _BUILDERS:
+            builder.join()
         path = os.environ.pop(_BUILDER_LOCK, None)
         if path:
             Path(path).unlink(missing_ok=True)
 
 
-#: The builder process of this controller (at most one).
-_BUILDER: list = []
+#: The builder processes this controller started.
+_BUILDERS: list = []
 
 
 def _warm_kinetology():
