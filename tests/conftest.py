@@ -50,7 +50,8 @@ def pytest_sessionstart(session):
     worker compiling for itself would double the work; the controller compiling before the
     workers started left a core idle for half a minute).
     """
-    if _is_xdist_controller(session.config) and _warm_wanted():
+    config = session.config
+    if _is_xdist_controller(config) and not config.option.collectonly and _warm_wanted():
         _start_builders()
 
 
