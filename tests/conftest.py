@@ -83,10 +83,11 @@ def _is_xdist_controller(config) -> bool:
 
 def _start_builders():
     """Fork the builders, one for PAL's engines and one for kinetology's, that compile them
-    into numba's cache holding a lock (a ``flock`` on the file named by :data:`_BUILDER_LOCK`,
-    which the workers inherit) until both end. Forked rather than started afresh, so that
-    they import the very modules (and so fill the very cache) the workers will; where there
-    is no fork or no ``flock``, there is no builder and every worker compiles for itself."""
+    into numba's cache holding a lock (a ``flock`` on a file, whose name the workers find in
+    the environment variable :data:`_BUILDER_LOCK`) until both end. Forked rather than
+    started afresh, so that they import the very modules (and so fill the very cache) the
+    workers will; where there is no fork or no ``flock``, there is no builder and every
+    worker compiles for itself."""
     try:
         import fcntl
         import multiprocessing
