@@ -105,14 +105,27 @@ def _start_builders():
     os.environ[_BUILDER_LOCK] = path
 
 
+#: The longest a worker waits for the builders (then it compiles what it needs itself).
+_BUILDER_WAIT = 300.0
+
+
 def _wait_for_builders():
     path = os.environ.get(_BUILDER_LOCK)
     if not path:
         return
     import fcntl
+    import time
+    deadline = time.monotonic() + _BUILDER_WAIT
     try:
         with open(path) as lock:
-            fcntl.flock(lock, fcntl.LOCK_SH)  # returns once both builders have ended
+            while True:  # the lock is free once both builders have ended
+                try:
+                    fcntl.flock(lock, fcntl.LOCK_SH | fcntl.LOCK_NB)
+                    return
+                except BlockingIOError:
+                    if time.monotonic() > deadline:
+                        return
+                    time.sleep(0.1)
     except OSError:
         pass
 
