@@ -3,13 +3,23 @@
 import sys
 import subprocess
 
-from hypothesis import given, settings, strategies as st, find
+from hypothesis import Phase, given, settings, strategies as st
+from hypothesis import find as _find
 
 import psgs
 import psgs.strategies as pst
 from psgs.model import PCGS, PSGS, Grammar, Nonterminal, Query, Terminal
 
 FAST = settings(max_examples=60, deadline=None)
+# find() shrinks to the smallest value that satisfies its condition; the explain phase after
+# the shrink only annotates a failure's report (which parts could vary) and leaves the value
+# found as it is, at several times the cost of the shrink itself
+FIND = settings(phases=[phase for phase in Phase if phase is not Phase.explain])
+
+
+def find(strategy, condition):
+    """hypothesis' find, without the explain phase (:data:`FIND`)."""
+    return _find(strategy, condition, settings=FIND)
 
 
 def productive(g: Grammar) -> set:

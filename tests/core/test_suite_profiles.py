@@ -16,13 +16,7 @@ from pathlib import Path
 import pytest
 from hypothesis import settings
 
-import psgs
-
 TESTS = Path(__file__).resolve().parents[1]
-# the probe imports the psgs this process imported (a checkout or the installed copy): the
-# conftest's warm-up then finds numba's compiled engines in that copy's cache instead of
-# compiling them again for another copy (some 25 s in a fresh virtual environment)
-SOURCE = str(Path(psgs.__file__).resolve().parents[1])
 
 PROBE = '''
 from hypothesis import settings
@@ -49,9 +43,10 @@ def test_the_ci_profile_is_loaded_by_default():
 def test_the_profile_option_overrides_the_default(tmp_path, option, expected):
     shutil.copy(TESTS / "conftest.py", tmp_path / "conftest.py")
     (tmp_path / "test_probe.py").write_text(PROBE)
-    path = os.pathsep.join(filter(None, (SOURCE, os.environ.get("PYTHONPATH"))))
+    # the probe runs no compiled engine: the copy need not build them (tests/conftest.py)
+    env = {**os.environ, "PSGS_TESTS_NO_WARM_UP": "1"}
     done = subprocess.run([sys.executable, "-m", "pytest", "-q", "-s", "-p", "no:cacheprovider",
                            "test_probe.py", *option], cwd=tmp_path, capture_output=True,
-                          text=True, timeout=120, env={**os.environ, "PYTHONPATH": path})
+                          text=True, timeout=120, env=env)
     assert done.returncode == 0, done.stdout + done.stderr
     assert f"PROFILE {expected}" in done.stdout
