@@ -20,6 +20,19 @@ _ROLE_COLOURS = {"matched": "#2ca02c", "still but should move": "#1f5fbf",
                  "moves but should be still": "#d62728", "differs": "#f2a30f"}
 
 
+def _short(action: str) -> str:
+    """An action's name without its dataset (``dataset.content[.style]``): the content and the
+    style both, for actions of one content in several styles differ by the style alone and
+    actions of one style by the content alone.
+
+    Examples
+    --------
+    >>> _short("bandai-namco-2-subset.walk-turn-left.masculine"), _short("m.wave")
+    ('walk-turn-left.masculine', 'wave')
+    """
+    return action.split(".", 1)[-1]
+
+
 def _pyplot():
     from .pictures import _pyplot as pyplot
 
@@ -30,7 +43,7 @@ def draw_timeline(timeline, motion, path, *, channels: int = 6) -> Path:
     """Draw ``timeline`` over the ``channels`` joint angles of ``motion`` that move most.
 
     Each span is a band in its action's colour (grey hatching: none of these), labelled with
-    the action's name. Returns the path written.
+    the action's name without its dataset (content and style). Returns the path written.
     """
     from kinetology.segmentation import unwrap
 
@@ -49,7 +62,7 @@ def draw_timeline(timeline, motion, path, *, channels: int = 6) -> Path:
             ax.axvspan(span.start, span.stop, color="0.85", hatch="//", alpha=0.5, lw=0)
         else:
             ax.axvspan(span.start, span.stop, color=colours[span.action], alpha=0.25, lw=0)
-            ax.text((span.start + span.stop) / 2, 1.01, span.action.rsplit(".", 1)[-1],
+            ax.text((span.start + span.stop) / 2, 1.01, _short(span.action),
                     transform=ax.get_xaxis_transform(), ha="center", va="bottom", fontsize=8)
     for k in order:
         ax.plot(t, values[:, k] - np.median(values[:, k]), lw=0.8,
@@ -80,7 +93,7 @@ def draw_explanation(recognition, path, *, joints: int = 12) -> Path:
         top = sorted(reasons, key=lambda r: -r.penalty)[:joints][::-1]
         ax.barh([r.joint for r in top], [r.penalty for r in top],
                 color=[_ROLE_COLOURS[r.role] for r in top])
-        ax.set_title(f"{name.rsplit('.', 1)[-1]} (p={probability[name]:.2f})", fontsize=9)
+        ax.set_title(f"{_short(name)} (p={probability[name]:.2f})", fontsize=9)
         ax.set_xlabel("distance term")
         ax.tick_params(labelsize=7)
     handles = [plt.Rectangle((0, 0), 1, 1, color=c) for c in _ROLE_COLOURS.values()]
