@@ -570,6 +570,13 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None =
 
         check_picture(plot)
     record = (folder if isinstance(folder, Praxicon) else load(folder))[action]
+    source = record.skeleton_source
+    if source is not None and not Path(source).is_file():
+        # the records keep the performances' paths as build was given them
+        raise ValueError(f"{source}: no such file: the skeleton of {action!r} is read from its "
+                         f"first performance, at the path build was given (a relative one is "
+                         f"relative to the folder build ran in: run from there, or build from "
+                         f"absolute paths)")
     grammar = has_grammar(record)
     if repeat is None:
         repeat = 3 if grammar else 1

@@ -307,3 +307,12 @@ def test_a_real_gesture_without_repetition_generates_from_its_takes(tmp_path):
     assert angry.performances == 1 and angry.motion.frames == 110
     with pytest.raises(ValueError, match="no performance of style 'sad'"):
         generate(tmp_path / "px", "guide.guide", style="sad")
+
+
+def test_a_moved_performance_is_named_with_where_it_was_read_from(manifest, tmp_path):
+    out = tmp_path / "px"
+    build(read_dataset(manifest), out, progress=False, log=lambda s: None)
+    for f in (tmp_path / "data").glob("*"):  # the takes move after the build
+        f.rename(f.with_name("moved-" + f.name))
+    with pytest.raises(ValueError, match=r"no such file: the skeleton of 'moves\.wave' .* rel"):
+        generate(out, "moves.wave", repeat=1)
