@@ -230,8 +230,9 @@ def _add_commands(sub) -> None:
                       help="picture format (default svg: sharp at any zoom, and a system's "
                            "graph is written without rasterising tens of thousands of pixels)")
     draw.add_argument("--workers", type=positive_int, default=None, metavar="N",
-                      help="run up to N Graphviz dot programs at once (default: the number "
-                           "of cores, at most 4)")
+                      help="run up to N Graphviz dot programs at once, or without Graphviz "
+                           "N processes drawing with matplotlib (default: the number of cores, "
+                           "at most 4)")
     draw.set_defaults(run=run_draw)
 
     gen = sub.add_parser("generate", help="generate an action's motion as BVH",

@@ -253,7 +253,9 @@ def draw_praxicon(folder, out, *, fmt: str = "svg", progress=None,
     spent (rasterising it costs ``dot`` about six times its layout). ``progress``,
     when given, is called with ``(done, total, picture)`` as the per-action pictures
     are drawn. With Graphviz, up to ``workers`` ``dot`` programs (default: the number
-    of cores, at most 4) lay out and rasterise systems while the morphemes are drawn.
+    of cores, at most 4) lay out and rasterise systems while the morphemes are drawn;
+    without it, ``workers`` processes draw the systems with matplotlib (the same bytes as
+    ``workers=1``, which draws them all in this process).
     matplotlib's layout warnings (a title wider than its figure) are kept inside:
     they say nothing a reader of the pictures can act on.
 
@@ -278,12 +280,20 @@ def draw_praxicon(folder, out, *, fmt: str = "svg", progress=None,
         return _draw_all(folder, Path(out), fmt, progress, workers)
 
 
+def _system_picture(text: str, source: str, path: Path, engine: str = "matplotlib") -> Path:
+    """A system's picture from its record's own text (the .psgs file beside it is a copy); a
+    plain function of its arguments, so that a worker process can draw it."""
+    from psgs import loads
+    from psgs.draw import draw
+
+    return draw(loads(text, source=source), path, max_steps=60, engine=engine)
+
+
 def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> list[Path]:
     import os
     from concurrent.futures import ThreadPoolExecutor
 
-    from psgs import loads
-    from psgs.draw import draw, graphviz_available
+    from psgs.draw import graphviz_available
     from psgs.errors import ValidationError
 
     praxicon = _praxicon(folder)  # read once: a damaged folder is one error before any picture
@@ -304,9 +314,8 @@ def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> lis
         done += 1
 
     def system(action, engine: str) -> Path:
-        # the system from the record's own text (the .psgs file beside it is a copy)
-        return draw(loads(action.system, source=action.file),
-                    out / "systems" / f"{action.name}.{fmt}", max_steps=60, engine=engine)
+        return _system_picture(action.system, action.file,
+                               out / "systems" / f"{action.name}.{fmt}", engine)
 
     def by_dot(action) -> Path | None:
         try:
@@ -315,11 +324,27 @@ def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> lis
             return None  # dot gave up on this layout: matplotlib draws it below
 
     # dot runs as its own program, so threads overlap its layouts with the morphemes'
-    # matplotlib (which stays on this thread: pyplot is not thread-safe)
+    # matplotlib (which stays on this thread: pyplot is not thread-safe); without dot,
+    # matplotlib draws the systems too, in processes of their own (its labels' layout is the
+    # time, one core each)
     dot = graphviz_available() and drawn
-    pool = ThreadPoolExecutor(max_workers=workers or min(4, os.cpu_count() or 1)) if dot else None
+    many = workers or min(4, os.cpu_count() or 1)
+    pool = None
+    if dot:
+        pool = ThreadPoolExecutor(max_workers=many)
+        pending = [pool.submit(by_dot, a) for a in drawn]
+    elif many > 1 and len(drawn) > 1:
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor
+
+        # spawn: a fresh interpreter on every platform, nothing inherited but the arguments
+        pool = ProcessPoolExecutor(max_workers=min(many, len(drawn)),
+                                   mp_context=multiprocessing.get_context("spawn"))
+        pending = [pool.submit(_system_picture, a.system, a.file,
+                               out / "systems" / f"{a.name}.{fmt}") for a in drawn]
+    else:
+        pending = []
     try:
-        pending = [pool.submit(by_dot, a) for a in drawn] if pool is not None else []
         morphemes = []
         for action in drawn:
             tell(f"morphemes of {action.name}")

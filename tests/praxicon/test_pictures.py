@@ -57,6 +57,20 @@ def test_psgs_draw_cli(tmp_path, capsys):
     assert err == [f"psgs: error: {tmp_path / 'g.txt'}: draw writes .svg or .png, not '.txt'"]
 
 
+def test_without_graphviz_worker_processes_draw_the_same_systems(manifest, tmp_path,
+                                                                  monkeypatch):
+    import psgs.draw
+
+    monkeypatch.setattr(psgs.draw, "graphviz_available", lambda: False)
+    build(read_dataset(manifest), tmp_path / "px", progress=False, log=lambda s: None)
+    serial = draw_praxicon(tmp_path / "px", tmp_path / "one", workers=1)
+    parallel = draw_praxicon(tmp_path / "px", tmp_path / "two", workers=2)
+    assert [p.relative_to(tmp_path / "one") for p in serial] == \
+        [p.relative_to(tmp_path / "two") for p in parallel]
+    for a, b in zip(serial, parallel):  # SVG bytes: ids salted, no date
+        assert a.read_bytes() == b.read_bytes(), a.name
+
+
 def test_praxicon_pictures_and_shared_patterns(manifest, tmp_path):
     build(read_dataset(manifest), tmp_path / "px", progress=False, log=lambda s: None)
     told = []
