@@ -402,6 +402,20 @@ def has_grammar(record: ActionRecord) -> bool:
     return bool(record.actuators and record.system)
 
 
+def _source_motion(record: ActionRecord):
+    """The take whose skeleton and channels generation writes on: the record's first
+    performance, read at the path build was given (the records keep it as given)."""
+    import kinetology
+
+    try:
+        return kinetology.read(record.skeleton_source)
+    except FileNotFoundError:
+        raise ValueError(f"{record.skeleton_source}: no such file: the skeleton of "
+                         f"{record.name!r} is read from its first performance, at the path "
+                         f"build was given (a relative one is relative to the folder build ran "
+                         f"in: run from there, or build from absolute paths)") from None
+
+
 def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
                     style: str | None = None):
     """The generated :class:`kinetology.Motion` of one action record, its words, its methods.
@@ -437,7 +451,7 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
         from .acyclic import performed_motion
 
         if source_motion is None:
-            source_motion = kinetology.read(record.skeleton_source)
+            source_motion = _source_motion(record)
         motion, _ = performed_motion(record, repeat, source_motion, style)
         return motion, {}, {}
     system = loads(record.system, source=record.file)
@@ -455,7 +469,7 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
                                         performances)
         period *= tempo
     if source_motion is None:
-        source_motion = kinetology.read(record.skeleton_source)
+        source_motion = _source_motion(record)
     # an ASF skeleton is kept (the viewer draws it); the BVH file re-expresses its angles
     skeleton = source_motion.skeleton
     channels = source_motion.channels
@@ -570,13 +584,6 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None =
 
         check_picture(plot)
     record = (folder if isinstance(folder, Praxicon) else load(folder))[action]
-    source = record.skeleton_source
-    if source is not None and not Path(source).is_file():
-        # the records keep the performances' paths as build was given them
-        raise ValueError(f"{source}: no such file: the skeleton of {action!r} is read from its "
-                         f"first performance, at the path build was given (a relative one is "
-                         f"relative to the folder build ran in: run from there, or build from "
-                         f"absolute paths)")
     grammar = has_grammar(record)
     if repeat is None:
         repeat = 3 if grammar else 1
