@@ -340,10 +340,10 @@ def _matplotlib(system, forest: Forest | None):
         width = cell_w - 0.15
         y0 = (top - (row + 1) * band) * height
         share = tree_h / (tree_h + rule_h)
-        rules_h = band * (1 - share) * 0.9 * height
+        rules = (left, y0, width, band * (1 - share) * 0.9 * height)
         low = -tall + 0.4  # the cell's rules from y=1 (the name) down to one row per rule
-        cell = _cell(ax, (left, y0, width, rules_h), (0.0, 1.0), (low, 1.0))
-        clip = _inches_box(ax, (left, y0, width, rules_h))
+        cell = _cell(ax, rules, (0.0, 1.0), (low, 1.0))
+        clip = _inches_box(ax, rules)
         ax.text(0.5, 0.8, grammar.name, ha="center", va="center", fontweight="bold",
                 fontsize=8, color=colour, transform=cell)
         for r, rule in enumerate(grammar.rules):
@@ -404,14 +404,11 @@ def _render(system, forest: Forest | None, fmt: str, engine: str) -> bytes:
     import io
 
     if engine == "graphviz" or (engine == "auto" and graphviz_available()):
-        try:
-            import graphviz
-        except ImportError:  # asked for by name after a plain install: say what it needs
+        if not graphviz_available():  # asked for by name: say what it needs
             raise MissingDependency("engine='graphviz' needs the graphviz package (pip install "
-                                    "'psgs[praxicon]') and Graphviz's dot program") from None
-        if shutil.which("dot") is None:
-            raise MissingDependency("engine='graphviz' needs Graphviz's dot program on the PATH "
+                                    "'psgs[praxicon]') and Graphviz's dot program on the PATH "
                                     "(apt-get install graphviz, brew install graphviz)")
+        import graphviz
 
         try:
             return _graphviz(system, forest).pipe(format=fmt, quiet=True)
