@@ -44,13 +44,13 @@ def _read_motion(path: str):
 
 
 def _check_pictures(plot) -> None:
-    # before any work: without the praxicon extra a --plot would fail only after the answers
-    # were printed, and as a traceback
+    # before any work: without the praxicon extra (or with a suffix matplotlib cannot write)
+    # a --plot would fail only after the answers were printed, and as a traceback
     if plot:
-        from .pictures import _pyplot
+        from .pictures import check_picture
 
         try:
-            _pyplot()
+            check_picture(plot)
         except ValueError as exc:
             raise ValidationError(str(exc)) from None
 
