@@ -313,9 +313,11 @@ def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> lis
             progress(done, total, what)
         done += 1
 
+    def target(action) -> Path:
+        return out / "systems" / f"{action.name}.{fmt}"
+
     def system(action, engine: str) -> Path:
-        return _system_picture(action.system, action.file,
-                               out / "systems" / f"{action.name}.{fmt}", engine)
+        return _system_picture(action.system, action.file, target(action), engine)
 
     def by_dot(action) -> Path | None:
         try:
@@ -340,8 +342,7 @@ def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> lis
         # spawn: a fresh interpreter on every platform, nothing inherited but the arguments
         pool = ProcessPoolExecutor(max_workers=min(many, len(drawn)),
                                    mp_context=multiprocessing.get_context("spawn"))
-        pending = [pool.submit(_system_picture, a.system, a.file,
-                               out / "systems" / f"{a.name}.{fmt}") for a in drawn]
+        pending = [pool.submit(_system_picture, a.system, a.file, target(a)) for a in drawn]
     else:
         pending = []
     try:
