@@ -309,6 +309,20 @@ def performances_of(record, style: str | None = None) -> list:
     return out
 
 
+def _source_take(record):
+    """The take whose skeleton and channels generation writes on: the record's first
+    performance, read at the path build was given (the records keep it as given)."""
+    import kinetology
+
+    try:
+        return kinetology.read(record.skeleton_source)
+    except FileNotFoundError:
+        raise ValueError(f"{record.skeleton_source}: no such file: the skeleton of "
+                         f"{record.name!r} is read from its first performance, at the path "
+                         f"build was given (a relative one is relative to the folder build ran "
+                         f"in: run from there, or build from absolute paths)") from None
+
+
 def _still(motions, channels) -> bool:
     return all(float(np.abs(m.column(c)).max()) < 1e-6 for m in motions for c in channels
                if c in m.channels)

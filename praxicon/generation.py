@@ -38,7 +38,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .body_motion import animate, body_of, performances_of, whole_cycle
+from .body_motion import _source_take, animate, body_of, performances_of, whole_cycle
 from .jsonvalues import as_dict
 from .records import ActionRecord, Praxicon, _count
 from .store import load
@@ -402,20 +402,6 @@ def has_grammar(record: ActionRecord) -> bool:
     return bool(record.actuators and record.system)
 
 
-def _source_motion(record: ActionRecord):
-    """The take whose skeleton and channels generation writes on: the record's first
-    performance, read at the path build was given (the records keep it as given)."""
-    import kinetology
-
-    try:
-        return kinetology.read(record.skeleton_source)
-    except FileNotFoundError:
-        raise ValueError(f"{record.skeleton_source}: no such file: the skeleton of "
-                         f"{record.name!r} is read from its first performance, at the path "
-                         f"build was given (a relative one is relative to the folder build ran "
-                         f"in: run from there, or build from absolute paths)") from None
-
-
 def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
                     style: str | None = None):
     """The generated :class:`kinetology.Motion` of one action record, its words, its methods.
@@ -451,7 +437,7 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
         from .acyclic import performed_motion
 
         if source_motion is None:
-            source_motion = _source_motion(record)
+            source_motion = _source_take(record)
         motion, _ = performed_motion(record, repeat, source_motion, style)
         return motion, {}, {}
     system = loads(record.system, source=record.file)
@@ -469,7 +455,7 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
                                         performances)
         period *= tempo
     if source_motion is None:
-        source_motion = _source_motion(record)
+        source_motion = _source_take(record)
     # an ASF skeleton is kept (the viewer draws it); the BVH file re-expresses its angles
     skeleton = source_motion.skeleton
     channels = source_motion.channels
