@@ -15,7 +15,8 @@ from psgs.induce.pal.sections import Section, _cycles
 
 def _every_candidate(string: Timed, lead: np.ndarray, follow):
     """The oracle: every maximal run between the two copies' segments at every shift, each
-    of its windows that pairs with both copies weighed, the first of the lightest kept."""
+    of its windows and its part under the lead's copies that pairs with both copies
+    weighed, the first of the lightest kept."""
     codes, starts, ends = string.codes, string.starts, string.ends
     n = len(codes)
     segments = in_step.lead_segments(string, lead)
@@ -36,7 +37,15 @@ def _every_candidate(string: Timed, lead: np.ndarray, follow):
             if (begin == lo and lo > 0) or (end == hi and hi < n - shift):
                 continue
             length = min(end - begin, shift)
-            for s in range(begin, end - length + 1):
+            windows = [(s, length, True) for s in range(begin, end - length + 1)]
+            # the run's part under the lead's copies: each position's segment under the
+            # first copy and its partner's under the second, at most a shift long
+            under = [p for p in range(begin, end) if p in first and p + shift in second]
+            if under:
+                cut = (under[0], min(under[-1] + 1, under[0] + shift) - under[0])
+                if cut != (begin, end - begin) and cut[1] >= 2:
+                    windows.append((*cut, False))
+            for s, length, maximal in windows:
                 where = np.array([[starts[s], ends[s + length - 1]],
                                   [starts[s + shift], ends[s + length - 1 + shift]]])
                 if not all(spans_pair(w, c) for w, c in zip(where.tolist(), lead.tolist())):
@@ -45,8 +54,8 @@ def _every_candidate(string: Timed, lead: np.ndarray, follow):
                     continue
                 motif = codes[s:s + length].copy()
                 section = Section(motif, np.array([s, s + shift], dtype=np.int64), 0.0)
-                weight = in_step_significance(string, section, where, lead, follow)
-                if best is None or weight < best[0]:
+                weight = in_step_significance(string, section, where, lead, follow, maximal)
+                if weight < np.inf and (best is None or weight < best[0]):
                     best = (weight, section)
     return best
 

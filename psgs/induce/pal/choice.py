@@ -3,9 +3,11 @@
 Every string's section (:mod:`~psgs.induce.pal.sections`, its longest exact
 repeat) with fewer than one chance repeat as long expected in its string is a
 second candidate beside its motif; sections are synchronised in time as
-motifs are (step 3) and form their own groups, each kept only when the group
-as one event beats ``alpha`` (:mod:`~psgs.induce.pal.in_step`: one string's
-short repeat is no evidence, several at the same times are). A string can
+motifs are (step 3), their copies pairing off at one shift
+(:func:`~psgs.induce.pal.in_step.keeps_shift`), and form their own groups,
+each kept only when the group as one event beats ``alpha``
+(:mod:`~psgs.induce.pal.in_step`: one string's short repeat is no evidence,
+several at the same times are). A string can
 then be in a motif group (steps 4-6) and in a section group. Both kinds are
 ranked by one significance,
 :func:`~psgs.induce.pal.sections.repeat_significance` at the copies'
@@ -31,7 +33,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .motifs import Timed
-from .in_step import group_significance, spans_pair
+from .in_step import group_significance, keeps_shift, spans_pair
 from .pooling import sync_groups
 from .sections import (Section, copy_agreements, find_sections, follow_rate,
                        repeat_significance)
@@ -73,7 +75,10 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
     partners: dict[int, list[int]] = {i: [] for i in candidates}
     for k, a in enumerate(candidates):
         for b in candidates[k + 1:]:
-            if coincide(intervals[a], intervals[b], conf.min_copies, conf.sync_fraction):
+            # in step: copies that pair off, at one shift (a chance repeat inside long
+            # copies pairs with them too, but lies off them by a different amount in each)
+            if coincide(intervals[a], intervals[b], conf.min_copies, conf.sync_fraction) \
+                    and keeps_shift(intervals[a], intervals[b]):
                 partners[a].append(b)
                 partners[b].append(a)
     found.section_partners = partners
@@ -103,16 +108,24 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
             sectioned.append(sorted(members))
             readings.append(members)
     taken: dict[int, tuple[int, int]] = {}  # string -> (kind, group) it is a component of
+    beside = math.log10(max(len(strings) - 1, 1))
+
+    def beside_section(j: int, i: int) -> bool:
+        # whether motif member ``j`` stays in step with its mate ``i`` that a section group
+        # took: ``j`` beats chance among the other strings, as a section group's members
+        # must, and keeps that group's shift (a chance repeat inside a section's long
+        # copies pairs with them too, but lies off them by a different amount in each)
+        return weights[j] + beside <= level and keeps_shift(
+            np.asarray(found.occurrences[j]), section_copies(strings[i], readings[taken[i][1]][i]))
+
     for _, kind, k, group in sorted(weighed, key=lambda w: w[:3]):
         free = [i for i in group if i not in taken]
         # a motif group keeps a lone member when the rest of it are components already
         # (taken by a stronger group, so still in step with it), or when it was one alone;
-        # when a section group took them, the member must beat chance among the other
-        # strings as a section group's members must
-        beside = math.log10(max(len(strings) - 1, 1))
+        # when a section group took them, only beside that section (``beside_section``)
         if len(free) >= 2 or (kind == 0 and free and all(
                 i in free or (i in taken and (taken[i][0] == 0 or all(
-                    weights[j] + beside <= level for j in free)))
+                    beside_section(j, i) for j in free)))
                 for i in found.groups[k])):
             taken.update((i, (kind, k)) for i in free)
     for i in list(found.patterns):
@@ -151,8 +164,10 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
         left.setdefault(taken[i], []).append(i)
     for (kind, k), members in left.items():
         mates = [] if kind else [j for j in found.groups[k] if j != members[0]]
-        if len(members) == 1 and (kind or (mates and not any(j in found.patterns
-                                                               for j in mates))):
+        left_in = [j for j in mates if j in found.patterns]
+        # (a mate left in a section group keeps it only beside that section)
+        if len(members) == 1 and (kind or (mates and not left_in) or not all(
+                taken[j][0] == 0 or beside_section(members[0], j) for j in left_in)):
             i = members[0]
             del found.patterns[i], found.occurrences[i], found.spans[i], found.agreements[i]
             found.joined.pop(i, None)
@@ -224,6 +239,11 @@ def coincide(a: np.ndarray, b: np.ndarray, copies: int, fraction: float = 1.0) -
             near += 1
     count = min(count, len(b_list))
     return count >= copies and count >= fraction * max(len(a), len(b))
+
+
+def section_copies(string: Timed, section: Section) -> np.ndarray:
+    """The times of a section's copies in ``string``, a (copies, 2) array."""
+    return string.intervals(section.starts, len(section.motif))
 
 
 def motif_weight(string: Timed, pattern: tuple[int, ...],

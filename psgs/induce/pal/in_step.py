@@ -21,7 +21,12 @@ member is kept only when its own ``T_j`` beats chance among the other
 strings (``T_j + log10(N - 1) <= log10(alpha)``), so that no random string is
 carried in by the others' strength. A string is read at the lead's copies
 (:func:`read_at`), not only at its own section: its longest repeat may be a
-chance repeat elsewhere, as long as the section or longer.
+chance repeat elsewhere, as long as the section or longer. Copies in step keep
+the lead's shift between them (to within the string's typical segment); a
+string that fails at the lead's copies is read again where the lead and its
+members all are (symbols agreeing by chance around the lead's copies make
+them reach past the repeat the others play), and the lead itself is read
+where it and its closest member both are.
 """
 
 from __future__ import annotations
@@ -110,14 +115,31 @@ def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.n
         if weight + math.log10(total - 1) <= level:
             joined[j] = found
             weights.append(weight)
+    if joined and len(lead_copies) == 2:
+        # a lead's copies may reach past the repeat the others play (symbols around its
+        # copies agreeing by chance), which puts an exact member off them: every string
+        # not yet in is read again where the lead and its members all are
+        core = _core([lead_copies] + [strings[j].intervals(f.starts, len(f.motif))
+                                      for j, f in joined.items()])
+        for j in range(total) if core is not None else ():
+            if j == lead or j in joined:
+                continue
+            again = read_at(strings[j], core, follows[j])
+            if again is not None and again[0] + math.log10(total - 1) <= level:
+                joined[j] = again[1]
+                weights.append(again[0])
     if not joined:
         return math.inf, {}
-    # the lead must be in step beyond chance too, read at the copies of the member it is
-    # most in step with: else a chance repeat inside the others' long copies would lead
-    # them; it is reported as read there
+    # the lead must be in step beyond chance too, read where it and the member it is most
+    # in step with both are (the member's copies may reach past the lead's by chance
+    # agreement, as the lead's past the member's): else a chance repeat of the others'
+    # would lead them; it is reported as read there
     again = None
     for mate, found in joined.items():
         at = strings[mate].intervals(found.starts, len(found.motif))
+        if len(at) == 2 and len(lead_copies) == 2:
+            core = _core([at, lead_copies])
+            at = at if core is None else core
         here = read_at(strings[lead], at, follows[lead]) if len(at) == 2 else (
             in_step_significance(strings[lead], section, lead_copies, at, follows[lead]),
             section)
@@ -129,6 +151,14 @@ def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.n
     significance = (lead_significance(strings[lead], section, follows[lead]) + sum(weights)
                     + math.log10(total) + log10_choose(total - 1, m - 1))
     return significance, {lead: again[1], **joined}
+
+
+def _core(copies: list[np.ndarray]) -> np.ndarray | None:
+    """Where every one of these pairs of copies is: each copy's times shared by all, or
+    None when some copy shares none."""
+    core = np.column_stack((np.max([c[:, 0] for c in copies if len(c) == 2], axis=0),
+                            np.min([c[:, 1] for c in copies if len(c) == 2], axis=0)))
+    return core if np.all(core[:, 1] > core[:, 0]) else None
 
 
 def lead_significance(string: Timed, section: Section, follow: float | None) -> float:
@@ -163,9 +193,9 @@ def lead_significance(string: Timed, section: Section, follow: float | None) -> 
 
 
 def in_step_significance(string: Timed, section: Section, copies: np.ndarray, lead: np.ndarray,
-                         follow: float | None) -> float:
+                         follow: float | None, maximal: bool = True) -> float:
     """``log10(A * H * P * (1 - r^(c-1)))``: a section's exact copies, lying as close to
-    the lead's copies as they do, by chance.
+    the lead's copies as they do, by chance; ``inf`` when they do not keep the lead's shift.
 
     ``P = (q r^(L-1))^(c-1)``, the chance that ``c`` windows of ``L`` symbols agree
     (``q`` the match rate, ``r`` the follow rate or ``q``), and ``1 - r^(c-1)`` that the
@@ -182,8 +212,16 @@ def in_step_significance(string: Timed, section: Section, copies: np.ndarray, le
     lead's copies by the same amount in each is nearer than one off by different amounts.
     ``H`` is what choosing that closeness after seeing it costs: the sum over the closeness
     ``d`` of the sets at ``d`` over the sets at ``d`` or nearer (the union over every set
-    of the chance that it is as strong; at most ``1 + ln`` of the sets). ``copies`` and
-    ``lead`` are (copies, 2) arrays of times.
+    of the chance that it is as strong; at most ``1 + ln`` of the sets). Only copies **in
+    step** are weighed: their mismatch at most, per copy after the first, the string's
+    median segment under the lead's copies or an eighth of the shortest lead copy,
+    whichever is more (a symbol's worth of rhythm, a note held longer at a section's end;
+    exact repeats at the same times have none), since copies played at the same times keep
+    the lead's shift and a repeat at a shift of its own is no repeat in step, however near
+    (the sets counted are still every set pairing as the copies do, so that the test is
+    chosen no more finely than before the copies were seen). ``copies`` and
+    ``lead`` are (copies, 2) arrays of times; ``maximal``: the copies are a maximal run of
+    agreement (the symbols before them disagree), not a part of one.
 
     Examples
     --------
@@ -195,6 +233,8 @@ def in_step_significance(string: Timed, section: Section, copies: np.ndarray, le
     -3.11
     >>> round(in_step_significance(string, section, same, same + 1, None), 2)  # more
     -2.33
+    >>> in_step_significance(string, section, same, same + [[0], [1]], None)  # off the shift
+    inf
     """
     length = len(section.motif)
     q = string.match_rate
@@ -228,15 +268,23 @@ def in_step_significance(string: Timed, section: Section, copies: np.ndarray, le
         pairs = (shared > 0) & (2 * shared >= union)
         per_copy.append(((a - lo, b - hi), begins[pairs] - lo, ends[pairs] - hi))
         opens = opens or bool(pairs[0])
-    left = 0.0 if opens else math.log10(max(1e-300, 1 - r ** (c - 1)))
-    return anywhere + _as_close(per_copy, slack) + chance + left
+    left = 0.0 if opens or not maximal else math.log10(max(1e-300, 1 - r ** (c - 1)))
+    # copies in step keep the lead's shift, each copy after the first to within the
+    # string's typical segment or an eighth of the lead's copy (a note held longer at a
+    # section's end), or they are not in step at all
+    under = (string.starts < lead[:, 1].max()) & (string.ends > lead[:, 0].min())
+    durations = (string.ends - string.starts)[under]
+    tolerance = (c - 1) * max(float(np.median(durations)) if len(durations) else 0.0,
+                              float(np.min(lead[:, 1] - lead[:, 0])) / 8)
+    return anywhere + _as_close(per_copy, slack, tolerance) + chance + left
 
 
 def _as_close(per_copy: list[tuple[tuple[float, float], np.ndarray, np.ndarray]],
-              slack: float) -> float:
+              slack: float, tolerance: float = math.inf) -> float:
     """log10 of ``A * H`` (:func:`in_step_significance`) for copies at the offsets given
     from their lead copies (start, end), each of which could have been any of the windows
-    whose offsets are listed with it.
+    whose offsets are listed with it; ``inf`` when the copies' mismatch is over
+    ``tolerance`` (not in step).
 
     The sets are ranked by their distance plus their mismatch while they are few (4096 or
     fewer); past that, copy by copy by the distance alone (``A`` and ``H`` the products of
@@ -265,6 +313,8 @@ def _as_close(per_copy: list[tuple[tuple[float, float], np.ndarray, np.ndarray]]
             observed_m += abs(db - first_b) + abs(de - first_e)
     # (the sets' keys on a grid of ``slack``, so that float sums of the times do not part
     # equal keys)
+    if observed_m > tolerance + slack:
+        return math.inf  # (off the lead's shift: not in step)
     keys = np.round((mismatch + distance) / slack)
     near = max(1, int(np.count_nonzero(keys <= round((observed_m + observed_d) / slack))))
     # choosing the key after seeing it: the union over the sets of the chance each is as
@@ -298,9 +348,10 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None
     chance (:func:`in_step_significance`), or None.
 
     Every maximal run of agreeing symbols between a window at the first copy and one at
-    the second (all shifts between the segments under them) that pairs with both copies,
-    does not overlap itself and is no cycle. Among equally unlikely ones, the first in
-    the order of the shifts and then of the runs.
+    the second (all shifts between the segments under them), and each run's part under
+    the two copies where the run reaches past them, that pairs with both copies, does not
+    overlap itself, is no cycle and keeps the lead's shift; None when none is in step.
+    Among equally unlikely ones, the first in the order of the shifts and then of the runs.
 
     The runs of every shift are found at once (shifts as the rows of one array), and
     the candidates weighed from the least bound on their weight up (the bound is their
@@ -359,25 +410,40 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None
         cum = np.cumsum(count)
         at = np.repeat(begin, count) + np.arange(int(cum[-1]) if len(cum) else 0) - np.repeat(
             cum - count, count)
+        # and the part of each run under the lead's copies: a run may reach far past them
+        # (symbols around the copies agreeing by chance) or be one block played over and
+        # over, where the lead's copies mark a section of it (not maximal: no left end)
+        cut_at = np.maximum(np.maximum(begin, first[0]), second[0] - shift)
+        cut_end = np.minimum(np.minimum(end, first[-1] + 1), second[-1] + 1 - shift)
+        cut_end = np.minimum(cut_end, cut_at + shift)
+        cut = ((cut_at > begin) | (cut_end < end)) & (cut_end - cut_at >= 2)
+        cut_at, cut_shift = cut_at[cut], shift[cut]
+        cut_length = cut_end[cut] - cut_at
+        cut_pairs = (_pairs_with(starts[cut_at], ends[cut_at + cut_length - 1], a1, b1)
+                     & _pairs_with(starts[cut_at + cut_shift],
+                                   ends[cut_at + cut_length - 1 + cut_shift], a2, b2))
         length, shift = np.repeat(length, count), np.repeat(shift, count)
         pairs = (_pairs_with(starts[at], ends[at + length - 1], a1, b1)
                  & _pairs_with(starts[at + shift], ends[at + length - 1 + shift], a2, b2))
-        found.append((length[pairs], at[pairs], shift[pairs]))
+        found.append((length[pairs], at[pairs], shift[pairs], np.zeros(len(at), bool)[pairs]))
+        found.append((cut_length[cut_pairs], cut_at[cut_pairs], cut_shift[cut_pairs],
+                      np.ones(len(cut_at), bool)[cut_pairs]))
     lengths = np.concatenate([f[0] for f in found]).tolist()
     if not lengths:
         return None
     ats = np.concatenate([f[1] for f in found]).tolist()
     shifted = np.concatenate([f[2] for f in found]).tolist()
+    clipped = np.concatenate([f[3] for f in found]).tolist()
     q = string.match_rate
     r = q if follow is None else follow
-    bounds: dict[int, float] = {}
-    for length in set(lengths):
+    bounds: dict[tuple[int, bool], float] = {}
+    for length, inner in set(zip(lengths, clipped)):
         # in_step_significance's chance term at two copies, and its least left-end term
-        bounds[length] = (-math.inf if q <= 0 or r <= 0 else
-                          (math.log10(q) + (length - 1) * math.log10(r))
-                          + math.log10(max(1e-300, 1 - r)))
+        bounds[length, inner] = (-math.inf if q <= 0 or r <= 0 else
+                                 (math.log10(q) + (length - 1) * math.log10(r))
+                                 + (0.0 if inner else math.log10(max(1e-300, 1 - r))))
     best, best_order = None, -1
-    for bound, order in sorted((bounds[length], k) for k, length in enumerate(lengths)):
+    for bound, order in sorted((bounds[key], k) for k, key in enumerate(zip(lengths, clipped))):
         if best is not None and bound >= best[0]:
             if bound > best[0]:
                 break  # (every candidate left is at least as heavy)
@@ -390,10 +456,12 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None
         where = np.array([[starts[s], ends[s + length - 1]],
                           [starts[s + shift], ends[s + length - 1 + shift]]])
         section = Section(motif, np.array([s, s + shift], dtype=np.int64), 0.0)
-        weight = in_step_significance(string, section, where, lead, follow)
-        if best is None or weight < best[0] or (weight == best[0] and order < best_order):
+        weight = in_step_significance(string, section, where, lead, follow,
+                                      maximal=not clipped[order])
+        if weight < math.inf and (best is None or weight < best[0]
+                                  or (weight == best[0] and order < best_order)):
             best, best_order = (weight, section), order
-    return best
+    return best  # (None when no candidate keeps the lead's shift)
 
 
 def _pairs_with(begins: np.ndarray, ends: np.ndarray, lo: float, hi: float) -> np.ndarray:
@@ -409,3 +477,31 @@ def spans_pair(copy, lead) -> bool:
     shared, union = min(b, d) - max(a, c), max(b, d) - min(a, c)
     return shared > 0 and 2 * shared >= union
 
+
+def keeps_shift(copies: np.ndarray, others: np.ndarray) -> bool:
+    """Whether ``copies`` pair off with two or more of ``others`` (each pair sharing half of
+    the time the two cover together) and lie off them by one amount: the start's offset
+    and the end's, over the pairs, each within half the median of the pairs' shorter copy.
+
+    Copies played in step with others keep their shift between copies; a chance repeat
+    inside long copies pairs with them too, but at a shift of its own.
+
+    Examples
+    --------
+    >>> section = np.array([[9.0, 25.0], [27.0, 43.0]])
+    >>> keeps_shift(np.array([[10.0, 25.0], [28.0, 43.0]]), section)
+    True
+    >>> keeps_shift(np.array([[9.0, 17.0], [34.0, 42.0]]), section)  # shift 25, not 18
+    False
+    """
+    offsets, lengths = [], []
+    for a, b in copies.tolist():
+        for c, d in others.tolist():
+            if spans_pair((a, b), (c, d)):
+                offsets.append((a - c, b - d))
+                lengths.append(min(b - a, d - c))
+                break
+    if len(offsets) < 2:
+        return False
+    spread = np.ptp(np.asarray(offsets), axis=0)
+    return bool(np.all(spread <= np.median(lengths) / 2))
