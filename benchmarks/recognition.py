@@ -504,6 +504,8 @@ def _bound_row(taken, recall: float = 0.9):
     margin, mine, right = (np.array(v) for v in zip(*taken))
     known = lambda bias: float((right & (margin >= bias))[~mine].mean())  # noqa: E731
     ranked = np.sort(margin[mine])
+    if not len(ranked):  # no take of the left-out content tested
+        return float("nan"), known(0.0), float("nan")
     bias = ranked[min(len(ranked) - 1, int(np.ceil(recall * len(ranked))) - 1)]
     return float((margin[mine] < 0).mean()), known(0.0), known(np.nextafter(bias, np.inf))
 
@@ -938,12 +940,13 @@ def main(argv=None) -> int:
                     continue
                 # the left-out content's recall stands where a rule's none-of-these would
                 recall, known, favoured = _bound_row(taken)
-                row = {"protocol": bound, "method": method, "takes": len(taken),
+                left = sum(mine for _, mine, _ in taken)
+                row = {"protocol": bound, "method": method, "takes": int(left),
                        "none_of_these": recall, "closed_accuracy": known,
                        "known_at_recall_0.9": favoured}
                 rows.append(row)
                 say(f"{bound:16s} {method:10s} C-recall={recall:.3f} known={known:.3f}  "
-                    f"(answers={len(taken)}, left-out {sum(m for _, m, _ in taken)}); "
+                    f"(answers={len(taken)}, left-out {left}); "
                     f"biased to C-recall 0.9: known={favoured:.3f}")
     for protocol, run in (("cmu-parse", lambda: parse_cmu(results)),
                           ("joined-parse", lambda: parse_joined(results, d1))):
