@@ -29,26 +29,17 @@ this module runs the closed-set protocols and parsing, and prints every row.
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 import time
 from collections import defaultdict
 
-os.environ.setdefault("NUMBA_NUM_THREADS", "1")
-os.environ.setdefault("OMP_NUM_THREADS", "1")
-
-import warnings  # noqa: E402
+# first: it runs every method on one thread (set before numpy and numba load) and loads the
+# praxicon package from the repository, not benchmarks/praxicon.py; then the open set's part
+from recognition_methods import METHODS, _resampled, read_bandai, series  # isort: skip
 
 import numpy as np  # noqa: E402
 
-# aeon warns once per fit that some channels of some takes barely move (a joint held still):
-# true of motion capture, and the same for every run, so it is not printed hundreds of times
-warnings.filterwarnings("ignore", message="Data seen by instance of MiniRocket")
-
 from _common import DATA, DOCS, IMG, MOCAP, require, write_csv  # noqa: E402
-# the takes, the peers' input and the classifiers (which also load the praxicon package from
-# the repository, not benchmarks/praxicon.py), and the open set's protocols
-from recognition_methods import METHODS, _resampled, read_bandai, series  # noqa: E402
 from recognition_open import report_open_sets, run_open_sets  # noqa: E402
 
 

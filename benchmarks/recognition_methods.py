@@ -9,17 +9,28 @@ Shared by :mod:`recognition` (the closed-set protocols, parsing, the command) an
 
 from __future__ import annotations
 
-import importlib.machinery
-import importlib.util
-import re
-import sys
-from collections import defaultdict
-from dataclasses import dataclass
-from pathlib import Path
+import os
 
-import numpy as np
+# one thread per method, as the CPU per take is measured (before numpy and numba load)
+os.environ.setdefault("NUMBA_NUM_THREADS", "1")
+os.environ.setdefault("OMP_NUM_THREADS", "1")
 
-from _common import REPO
+import importlib.machinery  # noqa: E402
+import importlib.util  # noqa: E402
+import re  # noqa: E402
+import sys  # noqa: E402
+import warnings  # noqa: E402
+from collections import defaultdict  # noqa: E402
+from dataclasses import dataclass  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from _common import REPO  # noqa: E402
+
+# aeon warns once per fit that some channels of some takes barely move (a joint held still):
+# true of motion capture, and the same for every run, so it is not printed hundreds of times
+warnings.filterwarnings("ignore", message="Data seen by instance of MiniRocket")
 
 # benchmarks/praxicon.py sits first on the import path and would be imported as "praxicon":
 # the package is loaded from the repository (as benchmarks/praxicon.py itself does)

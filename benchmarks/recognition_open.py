@@ -6,16 +6,25 @@ feature-group test at several levels, every group read, a pairwise test on top),
 rejection as an analyst would calibrate it on held-out known takes (DTW 1-NN's nearest
 distance, MiniRocket's top score), and the bound: the same split classified by every method
 with the left-out content learnt too. :func:`run_open_sets` runs the protocols'
-splits and :func:`report_open_sets` prints their rows; ``recognition.py`` calls both.
+splits and :func:`report_open_sets` prints their rows; ``recognition.py`` calls both, and
+running this file prints the open-set rows alone (as ``recognition.py --only open-set
+--no-docs`` does)::
+
+    flock /tmp/heavy.lock python benchmarks/recognition_open.py [--only open-d1] [--no-peers]
 """
 
 from __future__ import annotations
 
+import argparse
+import sys
 from collections import defaultdict
 
-import numpy as np
+# first: one thread per method and the praxicon package from the repository (see there)
+from recognition_methods import _resampled, read_bandai, series  # isort: skip
 
-from recognition_methods import _resampled, series
+import numpy as np  # noqa: E402
+
+from _common import MOCAP, require  # noqa: E402
 
 # -- the praxicon's rules ----------------------------------------------------------------------
 _MARGINS = (1.0, 1.5, 2.0)  # the whole-vector threshold: x the worst held-out training take
@@ -401,3 +410,25 @@ def report_open_sets(results, say) -> list[dict]:
                 f"(answers={len(taken)}, left-out {left}); "
                 f"biased to C-recall 0.9: known={favoured:.3f}")
     return rows
+
+
+def main(argv=None) -> int:
+    """The open-set rows alone, without writing the docs."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--only", choices=("open-d1", "open-d2"), default=None,
+                        help="one dataset's part (default both)")
+    parser.add_argument("--no-peers", action="store_true", help="the praxicon alone")
+    args = parser.parse_args(argv)
+    require("praxicon")
+    want = (lambda p: args.only is None and p == "open-set" or p == args.only)  # noqa: E731
+    d1 = read_bandai(MOCAP / "bandai-namco-1") if want("open-d1") or want("open-set") else None
+    d2 = read_bandai(MOCAP / "bandai-namco-2-subset") if want("open-d2") or want("open-set") \
+        else None
+    results = defaultdict(lambda: defaultdict(float, truth=[], pred=[], f1=[]))
+    run_open_sets(results, d1, d2, want, {}, peers=not args.no_peers)
+    report_open_sets(results, lambda line: print(line, flush=True))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
