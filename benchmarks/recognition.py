@@ -13,171 +13,37 @@ every take resampled to 64 steps) and a nearest centroid on each joint's angle r
 Protocols: Bandai dataset 1 leave one style out; the dataset-2 subset in style (takes 1-3
 learn, 4-5 test) and leave one style out; open set (one content left out of the learning: its
 takes must come back "none of these"; DTW 1-NN and MiniRocket with a rejection threshold
-calibrated on held-out known takes beside the praxicon); parsing cmu-mocap6 leave one
+calibrated on held-out known takes beside the praxicon; and the bound: the same splits
+classified by every method with the left-out content learnt too); parsing cmu-mocap6 leave one
 sequence out (frame accuracy and segment F1) and recordings joined from three takes of
 different Bandai dataset-1 contents (time precision and recall of the spans, absent actions
 reported), each against a sliding-window MiniRocket. CPU per take is ``time.process_time``
 of classifying the test takes (features included, reading the files not), divided by their
 number.
+
+The takes, the peers' input and the four classifiers are in ``recognition_methods.py``, the
+open set (its protocols, rules, the peers' readings and the bound) in ``recognition_open.py``;
+this module runs the closed-set protocols and parsing, and prints every row.
 """
 
 from __future__ import annotations
 
 import argparse
-import os
-import re
 import sys
 import time
 from collections import defaultdict
-from dataclasses import dataclass
-from pathlib import Path
 
-os.environ.setdefault("NUMBA_NUM_THREADS", "1")
-os.environ.setdefault("OMP_NUM_THREADS", "1")
-
-import warnings  # noqa: E402
+# first: it runs every method on one thread (set before numpy and numba load) and loads the
+# praxicon package from the repository, not benchmarks/praxicon.py; then the open set's part
+from recognition_methods import METHODS, _resampled, read_bandai, series  # isort: skip
 
 import numpy as np  # noqa: E402
 
-# aeon warns once per fit that some channels of some takes barely move (a joint held still):
-# true of motion capture, and the same for every run, so it is not printed hundreds of times
-warnings.filterwarnings("ignore", message="Data seen by instance of MiniRocket")
-
-import importlib.machinery  # noqa: E402
-import importlib.util  # noqa: E402
-
-from _common import DATA, DOCS, IMG, MOCAP, REPO, require, write_csv  # noqa: E402
-
-# benchmarks/praxicon.py sits first on the import path and would be imported as "praxicon":
-# the package is loaded from the repository (as benchmarks/praxicon.py itself does)
-_SPEC = importlib.machinery.PathFinder.find_spec("praxicon", [str(REPO)])
-if _SPEC is not None and "praxicon" not in sys.modules:
-    sys.modules["praxicon"] = importlib.util.module_from_spec(_SPEC)
-    _SPEC.loader.exec_module(sys.modules["praxicon"])
-
-_NAME = re.compile(r"^dataset-\d+_(?P<content>.+?)_(?P<style>[^_]+)_(?P<take>\d+)$")
+from _common import DATA, DOCS, IMG, MOCAP, require, write_csv  # noqa: E402
+from recognition_open import report_open_sets, run_open_sets  # noqa: E402
 
 
-@dataclass(frozen=True)
-class Take:
-    content: str
-    style: str
-    take: int
-    motion: object
-
-
-def read_bandai(folder: Path) -> list[Take]:
-    import kinetology
-
-    out = []
-    if not (folder / "data").is_dir():
-        raise SystemExit(f"{folder}: no such dataset (the shared data is read from "
-                         f"../shared/data/mocap beside the repository)")
-    for path in sorted((folder / "data").glob("*.bvh")):
-        m = _NAME.match(path.stem)
-        out.append(Take(m["content"], m["style"], int(m["take"]), kinetology.read(path)))
-    return out
-
-
-# -- the peers' input: the same channels the descriptions read ----------------------------------
-def series(motion, rate: float = 10.0) -> np.ndarray:
-    """Frames x channels at ``rate`` fps: non-root rotations and the root's local velocities."""
-    from kinetology.segmentation import smooth, unwrap
-    from praxicon.features import _ROTATIONS, _root_joints, root_motion
-
-    roots = _root_joints(motion)
-    cols = [c for c, ch in enumerate(motion.channels)
-            if ch.rpartition(".")[2] in _ROTATIONS and ch.rpartition(".")[0] not in roots]
-    x = smooth(unwrap(motion.values[:, cols].astype(float)), motion.frame_rate, 0.05)
-    if roots:
-        x = np.concatenate([x[:-1], root_motion(motion, roots)], axis=1)
-    step = max(1, int(round(motion.frame_rate / rate)))
-    return np.ascontiguousarray(x[::step])
-
-
-def _resampled(x: np.ndarray, length: int) -> np.ndarray:
-    t = np.linspace(0, len(x) - 1, length)
-    return np.stack([np.interp(t, np.arange(len(x)), x[:, c]) for c in range(x.shape[1])])
-
-
-# -- classifiers: fit(train motions, labels) -> predict(test motions) ---------------------------
-def praxicon_fit(motions, labels, styles=None):
-    """The praxicon's descriptions; with ``styles``, one action per content and style (as
-    ``psgs praxicon build`` groups the dataset-2 subset), the answer's content counted."""
-    from praxicon.description import describe
-
-    groups = defaultdict(list)
-    for i, (m, y) in enumerate(zip(motions, labels)):
-        groups[y if styles is None else f"{y}|{styles[i]}"].append(m)
-    descriptions = describe(groups)
-
-    def predict(test):
-        from praxicon.recognition import recognise_many
-        found = recognise_many(descriptions, test, explain=0)
-        return ([r.ranking[0][0].split("|")[0] for r in found],
-                [r.action.split("|")[0] if r.action else None for r in found])
-    return predict
-
-
-def dtw_fit(motions, labels):
-    from dtaidistance import dtw_ndim
-
-    train = [series(m) for m in motions]
-    scale = np.concatenate(train).std(axis=0) + 1e-9  # every channel on one scale
-
-    def predict(test):
-        out = []
-        for m in test:
-            q = series(m) / scale
-            d = [dtw_ndim.distance_fast(q, t / scale, use_pruning=True) for t in train]
-            out.append(labels[int(np.argmin(d))])
-        return out, out
-    return predict
-
-
-def minirocket_fit(motions, labels, length: int = 64):
-    from aeon.classification.convolution_based import MiniRocketClassifier
-
-    x = np.stack([_resampled(series(m, 30.0), length) for m in motions])
-    model = MiniRocketClassifier(random_state=0, n_jobs=1).fit(x, np.array(labels))
-
-    def predict(test):
-        z = np.stack([_resampled(series(m, 30.0), length) for m in test])
-        out = list(model.predict(z))
-        return out, out
-    return predict
-
-
-def _ranges(motion) -> np.ndarray:
-    x = series(motion, 30.0)
-    joints = defaultdict(float)
-    from praxicon.features import _ROTATIONS, _root_joints
-    roots = _root_joints(motion)
-    names = [ch.rpartition(".")[0] for ch in motion.channels
-             if ch.rpartition(".")[2] in _ROTATIONS and ch.rpartition(".")[0] not in roots]
-    r = np.percentile(x, 95, axis=0) - np.percentile(x, 5, axis=0)
-    for name, value in zip(names, r):
-        joints[name] = max(joints[name], value)
-    return np.array([joints[j] for j in sorted(joints)])
-
-
-def centroid_fit(motions, labels):
-    x = np.stack([_ranges(m) for m in motions])
-    names = sorted(set(labels))
-    centroids = np.stack([x[[y == n for y in labels]].mean(axis=0) for n in names])
-
-    def predict(test):
-        z = np.stack([_ranges(m) for m in test])
-        d = ((z[:, None, :] - centroids[None]) ** 2).sum(axis=2)
-        out = [names[i] for i in d.argmin(axis=1)]
-        return out, out
-    return predict
-
-
-METHODS = {"praxicon": praxicon_fit, "dtw-1nn": dtw_fit, "minirocket": minirocket_fit,
-           "range-centroid": centroid_fit}
-
-
+# -- the closed-set protocols ------------------------------------------------------------------
 def run_split(results, protocol, train, test, methods=METHODS):
     """Fit and predict every method on one split; accumulate predictions and CPU."""
     labels = [t.content for t in train]
@@ -215,213 +81,6 @@ def summarise(results, protocol, methods=METHODS):
     return rows
 
 
-# -- open set ----------------------------------------------------------------------------------
-_MARGINS = (1.0, 1.5, 2.0)  # the whole-vector threshold: x the worst held-out training take
-_LEVELS = (0.1, 0.01, 0.001, 0.0001)  # the feature-group test: how often a known take fails it
-
-
-def open_set(results, protocol, train, test, *, by_style: bool = False):
-    """One content left out of the learning: its test takes should come back None.
-
-    Counted for the whole-vector threshold alone (``_MARGINS`` times the worst left-out
-    training take; 1.5 is the praxicon's) and for it with the feature-group test at each of
-    ``_LEVELS`` (0.01 is the praxicon's), so the trade-off between rejecting the unknown and
-    keeping the known is printed, not one chosen point. Features are computed once per split.
-    With ``by_style`` one action is learnt per content and style (as ``psgs praxicon build``
-    groups a dataset with several takes of each pair) and the answer's content counted.
-    """
-    from praxicon.description import (_MARGIN, GROUP_LEVEL, common_table, describe_table,
-                                      feature_rows, score_model, scores)
-    from praxicon.recognition import _excess, feature_matrix
-
-    groups = defaultdict(list)
-    for t in train:
-        groups[f"{t.content}|{t.style}" if by_style else t.content].append(t.motion)
-    order, table = common_table({c: feature_rows(m) for c, m in groups.items()})
-    known = {t.content for t in train}
-    x = None
-    for level in _LEVELS:
-        d = describe_table(table, order, level=level)
-        if x is None:
-            columns, x, _ = feature_matrix(d, [t.motion for t in test])
-            features = [d.spread.features[i] for i in columns]
-        fitted = score_model(d, columns)
-        dist, score = scores(d, x, columns, fitted=fitted)
-        best = score.argmin(axis=1)
-        penalty = dist[np.arange(len(x)), best] / len(columns)
-        excess, _ = _excess(d, features, x, best, fitted)
-        rules = {f"groups a={level:g}": (penalty <= d.spread.threshold) & (excess <= 1.0)}
-        if level == GROUP_LEVEL:  # every group read, not only those that tell actions apart
-            every, _ = _excess(d, features, x, best, fitted, telling=False)
-            rules[f"every group a={level:g}"] = (penalty <= d.spread.threshold) & (every <= 1.0)
-        if level == _LEVELS[0]:
-            rules.update({f"whole x{m:g}": penalty <= d.spread.threshold / _MARGIN * m
-                          for m in _MARGINS})
-        if level == GROUP_LEVEL and not by_style:
-            # a pairwise test on top: how far the take lies from its best action towards the
-            # runner-up, against how far held-out known takes lay (tried, not the praxicon's)
-            runner = np.where(np.arange(score.shape[1])[None] == best[:, None], np.inf,
-                              score).argmin(axis=1)
-            towards = _towards(fitted, dist, best, runner)
-            held = _towards_held_out(table, order)
-            for q in _PAIR_QUANTILES:
-                rules[f"groups+pair q={q:g}"] = rules[f"groups a={level:g}"] & (
-                    towards <= np.quantile(held, q))
-        for name, accept in rules.items():
-            r = results[protocol, name]
-            for t, b, ok in zip(test, best, accept):
-                decided = d.names[b].split("|")[0] if ok else None
-                _tally(r, t.content, known, decided)
-                if name == f"groups a={GROUP_LEVEL:g}":
-                    # what the praxicon's own rule answered, per left-out content and per
-                    # known take it got wrong: where the open set fails
-                    detail = results[protocol, "detail"]
-                    if t.content not in known:
-                        detail.setdefault("left-out", {}).setdefault(t.content, []).append(
-                            decided)
-                    elif decided != t.content:
-                        detail.setdefault("known-wrong", {}).setdefault(
-                            f"{t.content} {t.style}_{t.take:03d}", []).append(decided)
-
-
-_PAIR_QUANTILES = (0.9, 0.99)  # the pairwise test: share of held-out known takes it keeps
-
-
-def _towards(fitted, dist, best, other) -> np.ndarray:
-    """Per take, how many shared standard deviations it lies from its best action's mean
-    towards ``other``'s along the line between the two means: from the shared squared
-    distances alone, ``(d_best - d_other + D²) / 2D`` with ``D`` the means' distance."""
-    from praxicon.description import distances
-
-    gap = np.array([distances(fitted.means[o][None], fitted.means[b][None], fitted.parts)[0, 0]
-                    for b, o in zip(best, other)])
-    gap = np.sqrt(np.maximum(gap, 1e-12))
-    i = np.arange(len(best))
-    return (dist[i, best] - dist[i, other] + gap ** 2) / (2 * gap)
-
-
-def _towards_held_out(table, order, folds: int = 5) -> np.ndarray:
-    """:func:`_towards` of the training takes, each scored by descriptions learnt without
-    its fold, for those ranked right (towards their runner-up): what known takes do."""
-    from praxicon.description import describe_table, score_model, scores
-
-    out = []
-    columns = np.arange(len(order))
-    for fold in range(folds):
-        learn = {c: v[np.arange(len(v)) % folds != fold] for c, v in table.items()}
-        d = describe_table({c: v for c, v in learn.items() if len(v)}, order)
-        fitted = score_model(d, columns)
-        for c, v in table.items():
-            v = v[np.arange(len(v)) % folds == fold]
-            if not len(v) or c not in d.names:
-                continue
-            dist, score = scores(d, v, columns, fitted=fitted)
-            best = score.argmin(axis=1)
-            right = best == d.names.index(c)
-            if right.any():
-                runner = np.where(np.arange(score.shape[1])[None] == best[:, None], np.inf,
-                                  score).argmin(axis=1)
-                out.extend(_towards(fitted, dist[right], best[right], runner[right]))
-    return np.array(out) if out else np.array([np.inf])
-
-
-def _open_detail(protocol, results) -> str:
-    """One line per protocol at the praxicon's level: per left-out content its takes answered
-    none of these and the commonest other answer, and the known takes answered wrongly (how
-    many splits, and as what)."""
-    from collections import Counter
-
-    detail = results[protocol, "detail"]
-    parts = []
-    for content, answers in sorted(detail.get("left-out", {}).items()):
-        taken = Counter(a for a in answers if a is not None).most_common(1)
-        parts.append(f"{content} {sum(a is None for a in answers)}/{len(answers)}"
-                     + (f" (else {taken[0][0]} {taken[0][1]})" if taken else ""))
-    wrong = [f"{k} x{len(v)} as {Counter(map(str, v)).most_common(1)[0][0]}"
-             for k, v in sorted(detail.get("known-wrong", {}).items())]
-    return (f"{protocol:16s} at a=0.01: none of these per left-out content: " + ", ".join(parts)
-            + "; known takes wrong: " + (", ".join(wrong) or "none"))
-
-
-# -- the peers on the open set: a rejection threshold calibrated on held-out known takes --------
-_PEER_QUANTILES = (0.9, 0.95, 0.99, 1.0)  # share of held-out known takes a peer's threshold keeps
-
-
-def _dtw_matrix(takes, cache: dict) -> np.ndarray:
-    """Every pair's DTW distance over ``takes`` (the same scaled series as the 1-NN peer),
-    computed once per dataset and read by every open-set split."""
-    key = id(takes)
-    if key not in cache:
-        from dtaidistance import dtw_ndim
-
-        xs = [series(t.motion) for t in takes]
-        scale = np.concatenate(xs).std(axis=0) + 1e-9
-        d = dtw_ndim.distance_matrix_fast([np.ascontiguousarray(x / scale) for x in xs],
-                                          parallel=False)
-        cache[key] = (np.where(np.isfinite(d), d, d.T) if np.isinf(d).any() else d,
-                      {id(t): i for i, t in enumerate(takes)})
-    return cache[key]
-
-
-def peer_open_set(results, protocol, takes, train, test, cache: dict, folds: int = 5):
-    """The open set as an analyst would do it with the peers: DTW 1-NN answers none of these
-    when the nearest training take is further than the held-out known takes' nearest
-    distances allow (each training take's nearest other training take), MiniRocket when its
-    ridge head's top score is below what held-out known takes got (``folds``-fold on the
-    training takes). One threshold per quantile of ``_PEER_QUANTILES``: the share of held-out
-    known takes the threshold keeps, so the trade-off is printed as for the praxicon."""
-    from sklearn.linear_model import RidgeClassifierCV
-    from sklearn.model_selection import KFold
-    from sklearn.pipeline import make_pipeline
-    from sklearn.preprocessing import StandardScaler
-
-    known = {t.content for t in train}
-    labels = np.array([t.content for t in train])
-    answers = {}
-    d, index = _dtw_matrix(takes, cache)
-    tr = np.array([index[id(t)] for t in train])
-    te = np.array([index[id(t)] for t in test])
-    own = d[np.ix_(tr, tr)].copy()
-    np.fill_diagonal(own, np.inf)
-    held = own.min(axis=1)
-    near = d[np.ix_(te, tr)]
-    nearest, dist = labels[near.argmin(axis=1)], near.min(axis=1)
-    for q in _PEER_QUANTILES:
-        limit = np.quantile(held, q)
-        answers[f"dtw-1nn q={q:g}"] = [y if s <= limit else None for y, s in zip(nearest, dist)]
-
-    from aeon.transformations.collection.convolution_based import MiniRocket
-
-    x = np.stack([_resampled(series(t.motion, 30.0), 64) for t in train])
-    z = np.stack([_resampled(series(t.motion, 30.0), 64) for t in test])
-    head = lambda: make_pipeline(StandardScaler(with_mean=False),  # noqa: E731
-                                 RidgeClassifierCV(alphas=np.logspace(-3, 3, 10)))
-    rocket = MiniRocket(random_state=0, n_jobs=1).fit(x)
-    fx, fz = rocket.transform(x), rocket.transform(z)
-    top_held = np.empty(len(train))
-    for fit_i, out_i in KFold(folds, shuffle=True, random_state=0).split(fx):
-        model = head().fit(fx[fit_i], labels[fit_i])
-        top_held[out_i] = model.decision_function(fx[out_i]).max(axis=1)
-    model = head().fit(fx, labels)
-    score = model.decision_function(fz)
-    best, top = model.classes_[score.argmax(axis=1)], score.max(axis=1)
-    for q in _PEER_QUANTILES:
-        limit = np.quantile(top_held, 1 - q)
-        answers[f"minirocket q={q:g}"] = [y if s >= limit else None for y, s in zip(best, top)]
-    for name, decided in answers.items():
-        r = results[protocol, name]
-        for t, a in zip(test, decided):
-            _tally(r, t.content, known, a)
-
-
-def _tally(counts: dict, content: str, known, decided) -> None:
-    """One open-set answer counted: a known take right, or a left-out take rejected (None)."""
-    if content in known:
-        counts["known"] += 1
-        counts["known_right"] += int(decided == content)
-    else:
-        counts["unknown"] += 1
-        counts["rejected"] += int(decided is None)
 
 
 # -- parsing -----------------------------------------------------------------------------------
@@ -444,12 +103,10 @@ def _cut(motion, start, stop):
                   motion.source)
 
 
-_PEERS = [True]  # --no-peers (a quick check of the praxicon alone) sets it False
-
-
-def _window_peer(takes: dict, window: float, hop: float, length: int = 64):
-    """Sliding-window MiniRocket: fit on the training takes' windows, label every window."""
-    if not _PEERS[0]:
+def _window_peer(takes: dict, window: float, hop: float, length: int = 64, *, peers=True):
+    """Sliding-window MiniRocket: fit on the training takes' windows, label every window
+    (``peers=False``: no peer, every window unlabelled)."""
+    if not peers:
         return lambda motion: (np.array([0.0]), [None])
     from aeon.classification.convolution_based import MiniRocketClassifier
     from praxicon.parsing import windows
@@ -508,7 +165,7 @@ def segment_f1(truth, found, step):
     return 2 * precision * recall / (precision + recall) if hit else 0.0
 
 
-def parse_cmu(results, window=2.0, hop=0.25):
+def parse_cmu(results, window=2.0, hop=0.25, *, peers=True):
     import kinetology
     from praxicon.parsing import describe_windows, parse
 
@@ -535,7 +192,7 @@ def parse_cmu(results, window=2.0, hop=0.25):
         began = time.process_time()
         found = parse(descriptions, motion, hop=hop).labels(times)
         cpu_ours = time.process_time() - began
-        peer = _window_peer(takes, window, hop)
+        peer = _window_peer(takes, window, hop, peers=peers)
         began = time.process_time()
         centres, labels = peer(motion)
         other = _peer_labels(centres, labels, times)
@@ -576,7 +233,8 @@ def _joined(takes, rng):
 _OWN_VARIANTS = (("none", ()), ("drift+sway", ("drift", "energy")))
 
 
-def parse_joined(results, data, per_style: int = 4, window=2.0, hop=0.25):
+def parse_joined(results, data, per_style: int = 4, window=2.0, hop=0.25, *,
+                 peers=True):
     from praxicon.parsing import describe_windows, parse
 
     rng = np.random.default_rng(0)
@@ -590,7 +248,7 @@ def parse_joined(results, data, per_style: int = 4, window=2.0, hop=0.25):
         if len(contents) < 3:
             continue
         descriptions = describe_windows(train, window=window, hop=hop)
-        peer = _window_peer(train, window, hop)
+        peer = _window_peer(train, window, hop, peers=peers)
         for _ in range(per_style):
             chosen = rng.choice(contents, 3, replace=False)
             takes = [next(t for t in mine if t.content == c) for c in chosen]
@@ -742,7 +400,7 @@ def main(argv=None) -> int:
     parser.add_argument("--no-peers", action="store_true",
                         help="parsing and the open set without their peers (a quick check)")
     args = parser.parse_args(argv)
-    _PEERS[0] = not args.no_peers
+    peers = not args.no_peers
     require("praxicon")
     methods = {k: METHODS[k] for k in args.methods.split(",")}
     want = (lambda p: args.only is None or p in args.only)
@@ -788,66 +446,11 @@ def main(argv=None) -> int:
             f"{row['min_recall']:.2f} cpu={row['cpu_ms_per_take']:.2f} ms/take "
             f"(x{row['cpu_vs_dtw']:.2f} DTW)  worst: "
             + ", ".join(f"{c} {v:.2f}" for c, v in worst))
-    if want("open-set") or want("open-d2"):
-        for content in sorted({t.content for t in d2}):
-            for protocol, by_style in (("open-d2-in-style", False),
-                                       ("open-d2-in-style-per-style", True)):
-                open_set(results, protocol,
-                         [t for t in d2 if t.take <= 3 and t.content != content],
-                         [t for t in d2 if t.take > 3], by_style=by_style)
-            if _PEERS[0]:
-                peer_open_set(results, "open-d2-in-style", d2,
-                              [t for t in d2 if t.take <= 3 and t.content != content],
-                              [t for t in d2 if t.take > 3], peer_cache)
-    if want("open-set") or want("open-d1"):
-        many = sorted(c for c in {t.content for t in d1} if sum(t.content == c for t in d1) >= 10)
-        for i, style in enumerate(sorted({t.style for t in d1})):
-            content = many[i % len(many)]
-            open_set(results, "open-d1-loso",
-                     [t for t in d1 if t.style != style and t.content != content],
-                     [t for t in d1 if t.style == style])
-            if _PEERS[0]:
-                peer_open_set(results, "open-d1-loso", d1,
-                              [t for t in d1 if t.style != style and t.content != content],
-                              [t for t in d1 if t.style == style], peer_cache)
-        # in style on dataset 1: only walk has two takes of each style, so its second takes are
-        # the known ones (their first takes learnt); every other content is left out in turn
-        # with all its styles, each of them learnt from the other contents
-        for content in many:
-            if content == "walk":
-                continue
-            open_set(results, "open-d1-in-style",
-                     [t for t in d1 if t.content != content and t.take == 1],
-                     [t for t in d1 if t.content == content
-                      or (t.take == 2 and t.content == "walk")])
-            if _PEERS[0]:
-                peer_open_set(results, "open-d1-in-style", d1,
-                              [t for t in d1 if t.content != content and t.take == 1],
-                              [t for t in d1 if t.content == content
-                               or (t.take == 2 and t.content == "walk")], peer_cache)
+    run_open_sets(results, d1, d2, want, peer_cache, peers=peers)
     if want("open-set") or want("open-d1") or want("open-d2"):
-        rules = ([f"whole x{m:g}" for m in _MARGINS] + [f"groups a={v:g}" for v in _LEVELS]
-                 + ["every group a=0.01"]
-                 + [f"groups+pair q={q:g}" for q in _PAIR_QUANTILES]
-                 + [f"{peer} q={q:g}" for peer in ("dtw-1nn", "minirocket")
-                    for q in _PEER_QUANTILES])
-        for protocol in ("open-d2-in-style", "open-d2-in-style-per-style", "open-d1-in-style",
-                         "open-d1-loso"):
-            for method in rules:
-                r = results[protocol, method]
-                if not r["unknown"]:
-                    continue
-                row = {"protocol": protocol, "method": method, "takes": int(r["unknown"]),
-                       "none_of_these": r["rejected"] / r["unknown"],
-                       "closed_accuracy": r["known_right"] / r["known"]}
-                rows.append(row)
-                say(f"{protocol:16s} {method:18s} left-out takes={row['takes']} none-of-these="
-                    f"{row['none_of_these']:.3f}  known takes={int(r['known'])} accuracy with "
-                    f"rejection={row['closed_accuracy']:.3f}")
-            if results[protocol, "detail"].get("left-out"):
-                say(_open_detail(protocol, results))
-    for protocol, run in (("cmu-parse", lambda: parse_cmu(results)),
-                          ("joined-parse", lambda: parse_joined(results, d1))):
+        rows += report_open_sets(results, say)
+    for protocol, run in (("cmu-parse", lambda: parse_cmu(results, peers=peers)),
+                          ("joined-parse", lambda: parse_joined(results, d1, peers=peers))):
         if not want(protocol):
             continue
         run()
@@ -890,7 +493,8 @@ def main(argv=None) -> int:
                   "cpu_ms_per_take", "cpu_vs_dtw", "none_of_these", "closed_accuracy",
                   "frame_accuracy", "segment_f1", "recordings", "time_precision",
                   "time_recall", "absent_reported", "recordings_with_absent", "actions",
-                  "train_takes", "praxicon", "dtw-1nn", "d2-in-style", "d2-loso", "d1-loso"]
+                  "train_takes", "praxicon", "dtw-1nn", "d2-in-style", "d2-loso", "d1-loso",
+                  "known_at_recall_0.9"]
         write_csv(DATA / "recognition.csv", header,
                   [[_fmt(r.get(h, "")) if not isinstance(r.get(h, ""), float)
                     else f"{r[h]:.4f}" for h in header] for r in rows])
