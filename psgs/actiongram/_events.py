@@ -122,6 +122,9 @@ def _strings(records: Sequence[tuple], label: Callable[[int], str], gaps: str,
         name = _text(stream, "stream", k)
         event = (_time(onset, "onset", k), k, _time(duration, "duration", k),
                  _text(symbol, "symbol", k))
+        if not math.isfinite(event[0] + event[2]):
+            raise _RowError(k, f"its end, onset {_shown(onset)} plus duration "
+                               f"{_shown(duration)}, is past the largest time a float holds")
         streams.setdefault(name, []).append(event)
     strings, durations, starts = {}, {}, {}
     for name, events in streams.items():
@@ -197,17 +200,19 @@ def read_csv(cls, path: str | Path, *, gaps: str = "rest", rest_symbol: str = "_
                           f"{','.join(FIELDS)})", source=source, line=1)
     where = [header.index(f) for f in FIELDS]
     records, lines = [], []
-    try:
+    ended = reader.line_num  # (a row starts on the line after the one before ends: a quoted
+    try:                     # cell may hold line breaks, and the reader counts to the row's end)
         for row in reader:
+            line, ended = ended + 1, reader.line_num
             if not any(cell.strip() for cell in row):
                 continue
             if len(row) < len(header):
                 raise FormatError(f"{len(row)} cells, the header has {len(header)}",
-                                  source=source, line=reader.line_num)
+                                  source=source, line=line)
             stream, onset, duration, symbol = (row[i].strip() for i in where)
-            records.append((stream, _number(onset, "onset", source, reader.line_num),
-                            _number(duration, "duration", source, reader.line_num), symbol))
-            lines.append(reader.line_num)
+            records.append((stream, _number(onset, "onset", source, line),
+                            _number(duration, "duration", source, line), symbol))
+            lines.append(line)
     except csv.Error as exc:
         raise FormatError(f"not CSV: {exc}", source=source, line=reader.line_num) from None
     if not records:

@@ -114,6 +114,7 @@ def test_integer_streams_and_symbols_are_written_in_decimal_and_mappings_are_row
     ([("s", 0, 1, "a"), ("s", math.nan, 1, "a")], "row 1: onset must be finite"),
     ([("s", 0, math.inf, "a")], "row 0: duration must be finite"),
     ([("s", 0, 0, "a")], "row 0: duration must be positive"),
+    ([("s", 0, 1, "a"), ("s", 1e308, 1e308, "b")], "row 1: its end"),  # (past float's range)
     ([("s", 0, "1", "a")], "row 0: duration must be a number"),
     ([("s", 0, 2, "a"), ("t", 0, 1, "a"), ("s", 1, 1, "b")], "row 2: overlaps row 0"),
     ([("s", 0, 1, "#4")], "row 0: symbol '#4' must have no white space"),
@@ -256,6 +257,8 @@ def test_induce_reads_an_events_file(tmp_path, capsys):
     ("stream,onset,duration,symbol\ns,0,1,a\ns,0.5,1,b\n", ":3:", "overlaps line 2"),
     ("stream,onset,duration,symbol\ns,0,1,a\ns,x,1,b\n", ":3:", "onset 'x' is not a number"),
     ("stream,onset,duration,symbol\ns,0,nan,a\n", ":2:", "duration must be finite"),
+    # a quoted cell holding a line break: the row is named by the line it starts on
+    ('stream,onset,duration,symbol\ns,0,1,a\n"s\nx",1,1,b\n', ":3:", "stream"),
     ("stream,onset,symbol\ns,0,a\n", ":1:", "no column 'duration'"),
     ("stream,onset,duration,symbol\ns,0,1\n", ":2:", "3 cells"),
     ("stream,onset,duration,symbol\n", ":1:", "no events"),
