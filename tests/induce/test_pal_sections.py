@@ -89,7 +89,8 @@ def _exactly_right(seed: int, sectioned: int, spurious: int, length: int, letter
 # lengthened by chance agreement as a chance repeat inside it; a section that repeats
 # itself (acadbacadba, facdfacd) left out as a cycle; a member read only at a lead whose
 # copies reach past the section; a chance repeat inside a section's copies at a shift of
-# its own named beside it
+# its own named beside it; two sections each reaching past the repeat they share, on
+# other sides, each off the other's copies
 @example(996762, 2, 8, 9, 4)
 @example(212642, 2, 12, 9, 4)
 @example(249899, 2, 12, 11, 4)
@@ -103,6 +104,7 @@ def _exactly_right(seed: int, sectioned: int, spurious: int, length: int, letter
 @example(262313, 2, 12, 8, 4)
 @example(952231, 5, 13, 16, 9)
 @example(422294, 2, 7, 14, 5)
+@example(261232, 2, 13, 8, 4)  # two strings, each section reaching past the shared one
 def test_pal_names_exactly_the_sectioned_strings_with_both_copies(seed, sectioned, spurious,
                                                                    length, letters):
     assert _exactly_right(seed, sectioned, spurious, length, letters)

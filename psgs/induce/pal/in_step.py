@@ -87,7 +87,80 @@ def group_significance(strings: list[Timed], sections: list, intervals: dict[int
             at = strings[lead].intervals(section.starts, len(section.motif))
             best = min(best, _led_by(strings, lead, section, at, follows, [], sections,
                                      intervals, level), key=lambda b: b[0])
+    if best[0] > level:
+        # two partners whose copies each reach past the repeat they share, on other sides,
+        # are each off the other's copies: weighed as one event where both are
+        best = min(best, _paired(strings, sections, intervals, follows, group, partners,
+                                 level), key=lambda b: b[0])
     return best
+
+
+def _paired(strings: list[Timed], sections: list, intervals: dict[int, np.ndarray],
+            follows: list[float | None], group: list[int], partners: dict[int, list[int]],
+            level: float) -> tuple[float, dict[int, Section]]:
+    """The strongest pair of partners in ``group`` read where both their sections are, as one
+    event (:func:`pair_significance`), every other string read there as a member must be."""
+    total = len(strings)
+    best: tuple[float, dict[int, Section]] = (math.inf, {})
+    for a in group:
+        for b in partners[a]:
+            if b <= a or b not in group or len(intervals[a]) != 2 or len(intervals[b]) != 2:
+                continue
+            core = _core([intervals[a], intervals[b]])
+            readings = {i: read_at(strings[i], core, follows[i]) for i in (a, b)} \
+                if core is not None else {}
+            if len(readings) < 2 or any(r is None for r in readings.values()):
+                continue
+            # only what the two share counts: each string's symbols inside the shared copy
+            # (its own section reaching past it is its own repeat, weighed in its own string)
+            shared = [int(np.count_nonzero((strings[i].starts >= core[0, 0] - 1e-9)
+                                           & (strings[i].ends <= core[0, 1] + 1e-9)))
+                      for i in (a, b)]
+            if min(shared) < 2:
+                continue
+            weight = (pair_significance([strings[i] for i in (a, b)], shared,
+                                        [follows[i] for i in (a, b)])
+                      + log10_choose(total, 2))
+            if weight > level or weight >= best[0]:
+                continue
+            members = {i: r[1] for i, r in readings.items()}
+            for j in range(total):
+                if j in members:
+                    continue
+                again = read_at(strings[j], core, follows[j])
+                if again is not None and again[0] + math.log10(total - 1) <= level:
+                    members[j] = again[1]
+                    weight += again[0]
+            best = (weight, members)
+    return best
+
+
+def pair_significance(strings: list[Timed], lengths: list[int], follows: list[float | None]
+                      ) -> float:
+    """log10 of the expected number of pairs of windows at which two random strings both
+    repeat themselves exactly, over ``lengths`` symbols each, at one shift.
+
+    The shared repeat is placed once, in time: ``C(K, 2)`` ways, ``K = n - L + 1`` windows in
+    the string that has the more of them; each string agrees with itself there with chance
+    ``q r^(L-1)`` (its match rate, its follow rate or the match rate). No left-end term: the
+    place is where both agree, not where either's repeat begins.
+
+    Examples
+    --------
+    >>> codes = np.array([0, 1, 2, 3, 0, 1, 2, 3, 1, 3, 0, 2])
+    >>> string = Timed.from_codes(codes, np.ones(12), 0.0)
+    >>> round(pair_significance([string, string], [4, 4], [None, None]), 2)
+    -3.26
+    """
+    places = max(log10_choose(len(s.codes) - length + 1, 2) for s, length in zip(strings, lengths))
+    chance = 0.0
+    for string, length, follow in zip(strings, lengths, follows):
+        q = string.match_rate
+        r = q if follow is None else follow
+        if q <= 0 or r <= 0:
+            return -math.inf
+        chance += math.log10(q) + (length - 1) * math.log10(r)
+    return places + chance
 
 
 def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.ndarray,
