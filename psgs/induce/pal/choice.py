@@ -70,8 +70,7 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
                              [s.match_rate for s in strings], SCREEN, follows)
     found.sections = sections
     candidates = [i for i, s in enumerate(sections) if s is not None and s.significance <= SCREEN]
-    intervals = {i: strings[i].intervals(sections[i].starts, len(sections[i].motif))
-                 for i in candidates}
+    intervals = {i: strings[i].copy_times(sections[i]) for i in candidates}
     partners: dict[int, list[int]] = {i: [] for i in candidates}
     for k, a in enumerate(candidates):
         for b in candidates[k + 1:]:
@@ -116,7 +115,7 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
         # must, and keeps that group's shift (a chance repeat inside a section's long
         # copies pairs with them too, but lies off them by a different amount in each)
         return weights[j] + beside <= level and keeps_shift(
-            np.asarray(found.occurrences[j]), section_copies(strings[i], readings[taken[i][1]][i]))
+            np.asarray(found.occurrences[j]), strings[i].copy_times(readings[taken[i][1]][i]))
 
     for _, kind, k, group in sorted(weighed, key=lambda w: w[:3]):
         free = [i for i in group if i not in taken]
@@ -239,11 +238,6 @@ def coincide(a: np.ndarray, b: np.ndarray, copies: int, fraction: float = 1.0) -
             near += 1
     count = min(count, len(b_list))
     return count >= copies and count >= fraction * max(len(a), len(b))
-
-
-def section_copies(string: Timed, section: Section) -> np.ndarray:
-    """The times of a section's copies in ``string``, a (copies, 2) array."""
-    return string.intervals(section.starts, len(section.motif))
 
 
 def motif_weight(string: Timed, pattern: tuple[int, ...],

@@ -51,8 +51,7 @@ def find_candidates(strings: list[Timed], conf: ContentConf) -> ContentResult:
     motifs = find_motifs([s.codes for s in strings], conf)
     candidates = [i for i, m in enumerate(motifs)
                   if m is not None and m.significance <= math.log10(conf.alpha)]
-    intervals = {i: strings[i].intervals(motifs[i].starts, len(motifs[i].motif))
-                 for i in candidates}
+    intervals = {i: strings[i].copy_times(motifs[i]) for i in candidates}
     partners: dict[int, list[int]] = {i: [] for i in candidates}
     for i, j in synchronised_pairs([intervals[i] for i in candidates], conf):
         a, b = candidates[i], candidates[j]

@@ -66,8 +66,7 @@ def group_significance(strings: list[Timed], sections: list, intervals: dict[int
     >>> strings = [Timed.from_codes(c, np.ones(len(c)), 0.0) for c in codes]
     >>> rates = [s.match_rate for s in strings]
     >>> sections = [find_section(c, 2, 40, q) for c, q in zip(codes, rates)]
-    >>> times = {i: s.intervals(x.starts, len(x.motif)) for i, (s, x) in
-    ...          enumerate(zip(strings, sections))}
+    >>> times = {i: s.copy_times(x) for i, (s, x) in enumerate(zip(strings, sections))}
     >>> significance, members = group_significance(strings, sections, times, [None, None],
     ...                                            [0, 1], {0: [1], 1: [0]}, -2.0)
     >>> sorted(members), significance < -2.0
@@ -84,7 +83,7 @@ def group_significance(strings: list[Timed], sections: list, intervals: dict[int
     # read at
     for lead, section in list(best[1].items()):
         if section is not sections[lead]:
-            at = strings[lead].intervals(section.starts, len(section.motif))
+            at = strings[lead].copy_times(section)
             best = min(best, _led_by(strings, lead, section, at, follows, [], sections,
                                      intervals, level), key=lambda b: b[0])
     if best[0] > level:
@@ -192,8 +191,7 @@ def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.n
         # a lead's copies may reach past the repeat the others play (symbols around its
         # copies agreeing by chance), which puts an exact member off them: every string
         # not yet in is read again where the lead and its members all are
-        core = _core([lead_copies] + [strings[j].intervals(f.starts, len(f.motif))
-                                      for j, f in joined.items()])
+        core = _core([lead_copies] + [strings[j].copy_times(f) for j, f in joined.items()])
         for j in range(total) if core is not None else ():
             if j == lead or j in joined:
                 continue
@@ -209,7 +207,7 @@ def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.n
     # would lead them; it is reported as read there
     again = None
     for mate, found in joined.items():
-        at = strings[mate].intervals(found.starts, len(found.motif))
+        at = strings[mate].copy_times(found)
         if len(at) == 2 and len(lead_copies) == 2:
             core = _core([at, lead_copies])
             at = at if core is None else core

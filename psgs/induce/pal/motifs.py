@@ -71,6 +71,11 @@ class Timed:
         """(k, 2) array: the time span of each copy of a motif of ``length`` symbols."""
         return np.column_stack((self.starts[copy_starts], self.ends[copy_starts + length - 1]))
 
+    def copy_times(self, found) -> np.ndarray:
+        """:meth:`intervals` of a repeat found in this string (a :class:`Motif` or a
+        section: its copies' ``starts`` and its ``motif``)."""
+        return self.intervals(found.starts, len(found.motif))
+
 
 @dataclass(frozen=True)
 class Motif:

@@ -209,7 +209,7 @@ def relocate(string: Timed, pattern: tuple[int, ...], conf: ContentConf) -> np.n
     grown = grow(codes, motif, found, string.match_rate, string.distinct, conf)
     if grown is None:
         return string.intervals(found, len(motif))
-    return string.intervals(grown.starts, len(grown.motif))
+    return string.copy_times(grown)
 
 
 @dataclass(frozen=True)
