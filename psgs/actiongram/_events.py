@@ -200,8 +200,10 @@ def read_csv(cls, path: str | Path, *, gaps: str = "rest", rest_symbol: str = "_
                           f"{','.join(FIELDS)})", source=source, line=1)
     where = [header.index(f) for f in FIELDS]
     records, lines = [], []
-    ended = reader.line_num  # (a row starts on the line after the one before ends: a quoted
-    try:                     # cell may hold line breaks, and the reader counts to the row's end)
+    # a row starts on the line after the one before ends: a quoted cell may hold line
+    # breaks, and the reader counts to the row's end
+    ended = reader.line_num
+    try:
         for row in reader:
             line, ended = ended + 1, reader.line_num
             if not any(cell.strip() for cell in row):
