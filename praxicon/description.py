@@ -44,11 +44,13 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
 from psgs.errors import PSGSError
 
+from .feature_choice import choose_features
 from .feature_groups import feature_groups, group_distances
 from .features import FeatureError, feature_joint, motion_features
 # the model and its scores live in .scoring; the names below are this module's as well, for
@@ -438,14 +440,16 @@ def _calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
 
 def describe_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
                    window: float = 0.0, rank: int = _RANK, sources=None,
-                   level: float = GROUP_LEVEL) -> Descriptions:
+                   level: float = GROUP_LEVEL, calibrate: bool = True) -> Descriptions:
     """Descriptions from feature rows (``{action: takes x features}``), sorted by name.
 
     A NaN in an action's column means the action lacks that feature (its takes are of another
     skeleton, :func:`common_table`): the action keeps the features all its rows have, and
     must have a joint among them. ``sources`` (``{action: per row the take it comes from}``,
     for windows) keeps each take's rows together when the threshold is calibrated; ``level``
-    is how often a known take may fail the feature-group test.
+    is how often a known take may fail the feature-group test. Without ``calibrate`` there is
+    no "none of these" (an infinite threshold, no group limits): descriptions that only rank,
+    learnt without the five more models the calibration learns.
     """
     names = sorted(table)
     groups = [np.asarray(table[n], dtype=float) for n in names]
@@ -467,7 +471,7 @@ def describe_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
     scale, means, factors, noise = _fit_spread(groups, rank, floors)
     spread = Spread(tuple(features), _floats(scale), tuple(_floats(f) for f in factors),
                     _floats(noise), math.inf, 1.0, window)
-    threshold, temperature, limits = _calibrate(
+    threshold, temperature, limits = (math.inf, 1.0, ()) if not calibrate else _calibrate(
         groups, rank, None if sources is None else [sources[n] for n in names], floors,
         features=features, level=level)
     spread = Spread(spread.features, spread.scale, spread.factors, spread.noise, threshold,
@@ -510,12 +514,16 @@ def common_table(rows: dict[str, list[dict[str, float]]]):
 
 
 def describe(takes: dict[str, list], *, rank: int = _RANK,
-             level: float = GROUP_LEVEL) -> Descriptions:
+             level: float = GROUP_LEVEL, groups: dict[str, list] | None = None,
+             choose: bool = True) -> Descriptions:
     """Descriptions of every action from its takes (``{name: [Motion, ...]}``).
 
     Each action keeps the features all its takes have: actions learnt from different
     skeletons keep their own joints (an action's takes must share one). ``level``: how often
-    a known take may be answered "none of these" by the feature-group test.
+    a known take may be answered "none of these" by the feature-group test. With ``choose``
+    the kinds of features are chosen by how well held-out takes are recognised
+    (:func:`praxicon.feature_choice.choose_features`; ``groups``, per action each take's
+    style or performer, holds a group's takes out together).
 
     Examples
     --------
@@ -525,6 +533,18 @@ def describe(takes: dict[str, list], *, rank: int = _RANK,
     >>> d.names, [a.takes for a in d.actions], len(d.spread.features) == len(d.actions[0].mean)
     (('a', 'b'), [2, 2], True)
     """
+    if groups is not None:
+        for name, motions in takes.items():
+            if len(groups.get(name, ())) != len(motions):
+                raise DescriptionError(f"action {name!r}: groups name "
+                                       f"{len(groups.get(name, ()))} takes' groups, it has "
+                                       f"{len(motions)} takes")
     rows = {name: feature_rows(motions) for name, motions in takes.items()}
     order, table = common_table(rows)
+    if choose:  # each fold's descriptions only rank: no calibration
+        chosen = choose_features(table, order, partial(describe_table, rank=rank,
+                                                       calibrate=False), groups=groups)
+        if chosen != order:
+            columns = [order.index(f) for f in chosen]
+            order, table = chosen, {n: t[:, columns] for n, t in table.items()}
     return describe_table(table, order, rank=rank, level=level)

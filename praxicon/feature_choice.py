@@ -1,0 +1,163 @@
+"""Which kinds of features describe a set of actions, chosen by how well held-out takes are
+recognised.
+
+A kind of feature can tell actions apart in one collection and mostly carry style in
+another: in a walk-and-turn family performed in seven styles, a pose is much of what a style
+changes, while among seventeen different actions the poses are what tells a bow from a wave.
+So no kind is left out for good. :func:`choose_features` holds takes out of the learning in
+folds (the takes of one group together, when the caller knows the groups: a style, a
+performer, a session, so that a fold asks what a new style asks), ranks them with
+descriptions learnt from the rest, and leaves out the one kind whose absence answers more
+held-out takes right than every feature does. A tie keeps every feature, and so do takes too
+few to hold any out.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+
+import numpy as np
+
+from psgs.errors import PSGSError
+
+from .scoring import scores
+
+#: learns descriptions that rank takes from ``{action: takes x features}`` and the features'
+#: names (:func:`praxicon.description.describe` hands in ``describe_table`` uncalibrated)
+Learner = Callable[[dict, tuple], object]
+
+__all__ = ["FEATURE_KINDS", "choose_features", "feature_kind"]
+
+#: the kinds a description may leave out, in the order a tie between them is broken
+FEATURE_KINDS = ("pose", "energy", "spread", "shape", "tempo", "root")
+_FOLDS = 5  # folds when no groups are given: each action's takes dealt out in turn
+
+
+def feature_kind(feature: str) -> str:
+    """The kind of a feature: ``pose``, ``energy``, ``spread``, ``shape`` (a joint's
+    course over the take), ``tempo`` or ``root`` (the root's drift, sway and turn).
+
+    Examples
+    --------
+    >>> [feature_kind(f) for f in ("Neck.rx:posec", "Neck.rx:shape2", "Hips.turny:drift",
+    ...                            "tempo")]
+    ['pose', 'shape', 'root', 'tempo']
+    """
+    if feature == "tempo":
+        return "tempo"
+    if ".travel" in feature or ".turn" in feature:
+        return "root"
+    kind = feature.rsplit(":", 1)[-1].rstrip("0123456789")
+    return "pose" if kind == "posec" else kind
+
+
+def _folds(table: Mapping[str, np.ndarray], groups) -> dict[str, np.ndarray]:
+    """Per action, each take's fold: its group's, or dealt out in turn."""
+    if groups is None:
+        return {a: np.arange(len(rows)) % _FOLDS for a, rows in table.items()}
+    labels = sorted({str(g) for a in table for g in groups[a]})
+    return {a: np.array([labels.index(str(g)) for g in groups[a]], dtype=int)
+            for a in table}
+
+
+def _held_out_right(table, features, keep, folds, learn: Learner) -> int | None:
+    """How many takes held out fold by fold the descriptions ``learn`` makes from the rest
+    rank first as their own action, over the features ``keep`` marks (None: a fold's takes
+    cannot be described over them)."""
+
+    right = 0
+    names = list(table)
+    kept = tuple(f for f, k in zip(features, keep) if k)
+    for fold in sorted({int(f) for a in names for f in folds[a]}):
+        # an action all of whose takes are in this fold is not learnt in it, nor asked for
+        learnt = {a: table[a][folds[a] != fold][:, keep] for a in names}
+        learnt = {a: rows for a, rows in learnt.items() if len(rows)}
+        tested = [(a, table[a][folds[a] == fold][:, keep]) for a in learnt]
+        if len(learnt) < 2 or not any(len(rows) for _, rows in tested):
+            continue
+        try:
+            d = learn(learnt, kept)
+        except PSGSError:  # (a DescriptionError: these takes share no joint)
+            return None
+        index = {f: i for i, f in enumerate(d.spread.features)}
+        at = np.array([index.get(f, -1) for f in kept])
+        rows = np.vstack([r for _, r in tested])
+        truth = np.array([a for a, r in tested for _ in range(len(r))])
+        # scored over the features a take has (another skeleton's are NaN), the takes with
+        # the same ones at once
+        usable = ~np.isnan(rows) & (at >= 0)
+        for pattern in {tuple(u) for u in usable}:
+            mask = np.array(pattern, dtype=bool)
+            these = (usable == mask).all(axis=1)
+            _, score = scores(d, rows[these][:, mask], at[mask])
+            right += int((np.array(d.names)[score.argmin(axis=1)] == truth[these]).sum())
+    return right
+
+
+def choose_features(table: Mapping[str, np.ndarray], features: Sequence[str],
+                    learn: Learner, *, groups: Mapping[str, Sequence] | None = None
+                    ) -> tuple[str, ...]:
+    """The features that describe the actions: every one, or all but one kind when leaving
+    that kind out recognises more held-out takes.
+
+    Parameters
+    ----------
+    table : mapping of str to ndarray
+        Per action its takes x ``features`` (NaN where the action lacks a feature), as
+        :func:`praxicon.description.common_table` gives.
+    features : sequence of str
+        The columns' names.
+    learn : callable
+        ``learn(table, features)`` gives descriptions learnt from a fold's takes, which
+        rank takes (``functools.partial(describe_table, calibrate=False)``, as
+        :func:`praxicon.description.describe` hands in).
+    groups : mapping of str to sequence, optional
+        Per action, each take's group (a style, a performer): a group's takes are held out
+        together. Without it, each action's takes are dealt into five folds in turn.
+
+    Returns
+    -------
+    tuple of str
+        The chosen features, in the order of ``features``.
+
+    Examples
+    --------
+    Two actions told apart by their energies, in six styles of three takes each; each
+    style holds its own pose, so a pose learnt from some styles says nothing of a new one:
+
+    >>> from functools import partial
+    >>> import numpy as np
+    >>> from praxicon.description import describe_table
+    >>> learn = partial(describe_table, calibrate=False)
+    >>> rng = np.random.default_rng(0)
+    >>> features = ("a.rx:pose", "b.rx:pose", "a.rx:energy", "b.rx:energy")
+    >>> styles = np.repeat(np.arange(6), 3)
+    >>> def takes(energy):
+    ...     pose = rng.normal(0, 4, (6, 2))[styles] + rng.normal(0, 0.2, (18, 2))
+    ...     return np.column_stack([pose, rng.normal(energy, 1.0, (18, 2))])
+    >>> table = {"fast": takes(2.0), "slow": takes(0.0)}
+    >>> choose_features(table, features, learn, groups={"fast": styles, "slow": styles})
+    ('a.rx:energy', 'b.rx:energy')
+
+    Held out without the styles, a style's other takes are learnt, its pose with them:
+
+    >>> choose_features(table, features, learn)
+    ('a.rx:pose', 'b.rx:pose', 'a.rx:energy', 'b.rx:energy')
+    """
+    features = tuple(features)
+    kinds = [feature_kind(f) for f in features]
+    folds = _folds(table, groups)
+    if len({int(f) for a in table for f in folds[a]}) < 2:
+        return features  # nothing can be held out
+    every = np.ones(len(features), dtype=bool)
+    best, best_right = features, _held_out_right(table, features, every, folds, learn)
+    if best_right is None:
+        return features
+    for kind in FEATURE_KINDS:
+        keep = np.array([k != kind for k in kinds])
+        if keep.all() or not keep.any():
+            continue
+        right = _held_out_right(table, features, keep, folds, learn)
+        if right is not None and right > best_right:
+            best, best_right = tuple(f for f, k in zip(features, keep) if k), right
+    return best
