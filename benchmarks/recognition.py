@@ -31,7 +31,7 @@ from __future__ import annotations
 import argparse
 import sys
 import time
-from collections import defaultdict
+from collections import Counter, defaultdict
 
 # first: it runs every method on one thread (set before numpy and numba load) and loads the
 # praxicon package from the repository, not benchmarks/praxicon.py; then the open set's part
@@ -60,6 +60,8 @@ def run_split(results, protocol, train, test, methods=METHODS):
         ranked, decided = predict([t.motion for t in test])
         cpu = time.process_time() - began
         r = results[protocol, name]
+        if hasattr(predict, "left_out"):
+            r.setdefault("left_out", []).append(predict.left_out)
         r["truth"] += [t.content for t in test]
         r["pred"] += list(ranked)
         r["cpu"] += cpu
@@ -77,7 +79,8 @@ def summarise(results, protocol, methods=METHODS):
         rows.append({"protocol": protocol, "method": name, "takes": int(r["n"]),
                      "accuracy": float((truth == pred).mean()),
                      "min_recall": min(recall.values()),
-                     "cpu_ms_per_take": 1000 * r["cpu"] / r["n"], "recall": recall})
+                     "cpu_ms_per_take": 1000 * r["cpu"] / r["n"], "recall": recall,
+                     "left_out": r.get("left_out")})
     return rows
 
 
@@ -330,12 +333,10 @@ def pictures(data, say, style="active", contents=("walk", "byebye", "bow")):
 
 
 def _kind(feature: str) -> str:
-    if feature == "tempo":
-        return "tempo"
-    if ".travel" in feature or ".turn" in feature:
-        return "root drift and sway"
-    kind = feature.rsplit(":", 1)[-1].rstrip("0123456789")
-    return {"posec": "pose"}.get(kind, kind)
+    from praxicon.feature_choice import feature_kind
+
+    kind = feature_kind(feature)
+    return "root drift and sway" if kind == "root" else kind
 
 
 def ablation(say, d1, d2):
@@ -446,6 +447,10 @@ def main(argv=None) -> int:
             f"{row['min_recall']:.2f} cpu={row['cpu_ms_per_take']:.2f} ms/take "
             f"(x{row['cpu_vs_dtw']:.2f} DTW)  worst: "
             + ", ".join(f"{c} {v:.2f}" for c, v in worst))
+        if row.get("left_out"):
+            kinds = Counter(row["left_out"])
+            say(f"{row['protocol']:12s} {row['method']:15s} kinds of features left out by the "
+                f"choice, splits: " + ", ".join(f"{k} {n}" for k, n in sorted(kinds.items())))
     run_open_sets(results, d1, d2, want, peer_cache, peers=peers)
     if want("open-set") or want("open-d1") or want("open-d2"):
         rows += report_open_sets(results, say)

@@ -84,21 +84,28 @@ def _resampled(x: np.ndarray, length: int) -> np.ndarray:
     return np.stack([np.interp(t, np.arange(len(x)), x[:, c]) for c in range(x.shape[1])])
 
 # -- classifiers: fit(train motions, labels) -> predict(test motions) ---------------------------
-def praxicon_fit(motions, labels, styles=None):
-    """The praxicon's descriptions; with ``styles``, one action per content and style (as
+def praxicon_fit(motions, labels, styles=None, *, per_style: bool = False):
+    """The praxicon's descriptions, the kinds of features chosen with each style's takes
+    held out together (``styles``); with ``per_style``, one action per content and style (as
     ``psgs praxicon build`` groups the dataset-2 subset), the answer's content counted."""
     from praxicon.description import describe
+    from praxicon.feature_choice import FEATURE_KINDS, feature_kind
 
-    groups = defaultdict(list)
+    groups, held = defaultdict(list), defaultdict(list)
     for i, (m, y) in enumerate(zip(motions, labels)):
-        groups[y if styles is None else f"{y}|{styles[i]}"].append(m)
-    descriptions = describe(groups)
+        name = f"{y}|{styles[i]}" if per_style else y
+        groups[name].append(m)
+        held[name].append(None if styles is None else styles[i])
+    descriptions = describe(groups, groups=None if styles is None else held)
 
     def predict(test):
         from praxicon.recognition import recognise_many
         found = recognise_many(descriptions, test, explain=0)
         return ([r.ranking[0][0].split("|")[0] for r in found],
                 [r.action.split("|")[0] if r.action else None for r in found])
+    # the kind of features the choice left out (every kind is among a Bandai take's features)
+    predict.left_out = ",".join(sorted(set(FEATURE_KINDS) - {
+        feature_kind(f) for f in descriptions.spread.features})) or "none"
     return predict
 
 
@@ -157,5 +164,6 @@ def centroid_fit(motions, labels):
     return predict
 
 
+praxicon_fit.needs_styles = True  # the split's styles: what the feature choice holds out
 METHODS = {"praxicon": praxicon_fit, "dtw-1nn": dtw_fit, "minirocket": minirocket_fit,
            "range-centroid": centroid_fit}

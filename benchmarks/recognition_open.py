@@ -18,6 +18,7 @@ from __future__ import annotations
 import argparse
 import sys
 from collections import defaultdict
+from functools import partial
 
 # first: one thread per method and the praxicon package from the repository (see there)
 from recognition_methods import _resampled, read_bandai, series  # isort: skip
@@ -45,10 +46,20 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
                                       feature_rows, score_model, scores)
     from praxicon.recognition import _excess, feature_matrix
 
-    groups = defaultdict(list)
+    from praxicon.feature_choice import choose_features
+
+    groups, styles = defaultdict(list), defaultdict(list)
     for t in train:
-        groups[f"{t.content}|{t.style}" if by_style else t.content].append(t.motion)
+        name = f"{t.content}|{t.style}" if by_style else t.content
+        groups[name].append(t.motion)
+        styles[name].append(t.style)
     order, table = common_table({c: feature_rows(m) for c, m in groups.items()})
+    # the kinds of features chosen as the praxicon chooses them (describe), each style held
+    # out together
+    chosen = choose_features(table, order, partial(describe_table, calibrate=False),
+                             groups=styles)
+    table = {c: rows[:, [order.index(f) for f in chosen]] for c, rows in table.items()}
+    order = chosen
     known = {t.content for t in train}
     x = None
     for level in _LEVELS:
@@ -277,10 +288,12 @@ def open_bound(results, protocol, takes, train, taught, test, cache, *, by_style
         learn = train + [t for t in taught if t.style not in fold]
         ask = [t for t in asked if t.content in known or not fold or t.style in fold]
         labels = np.array([t.content for t in learn])
-        groups = defaultdict(list)
+        groups, styles = defaultdict(list), defaultdict(list)
         for t in learn:
-            groups[f"{t.content}|{t.style}" if by_style else t.content].append(t.motion)
-        d = describe(groups)
+            name = f"{t.content}|{t.style}" if by_style else t.content
+            groups[name].append(t.motion)
+            styles[name].append(t.style)
+        d = describe(groups, groups=styles)
         columns, x, _ = feature_matrix(d, [t.motion for t in ask])
         # every method's scores, higher better, with the content each column answers
         found = {"praxicon": (-scores(d, x, columns)[1], [n.split("|")[0] for n in d.names])}
