@@ -43,6 +43,7 @@ from __future__ import annotations
 
 import json
 import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from functools import partial
 
@@ -50,7 +51,7 @@ import numpy as np
 
 from psgs.errors import PSGSError
 
-from .feature_choice import choose_features
+from .feature_choice import choose_features, groups_problem
 from .feature_groups import feature_groups, group_distances
 from .features import FeatureError, feature_joint, motion_features
 # the model and its scores live in .scoring; the names below are this module's as well, for
@@ -69,6 +70,10 @@ __all__ = ["FORMAT_VERSION", "ActionDescription", "Spread", "Descriptions", "des
 #: action keeps its own features, which need not be the spread's, so that actions learnt from
 #: different skeletons keep their joints; before, only the features every take had were kept).
 FORMAT_VERSION = 4
+#: Bumped when how descriptions are learnt changes but what they hold does not: a praxicon
+#: keeps reading its descriptions, and a build learns them again (2: the kinds of features are
+#: chosen by held-out recognition, ``praxicon.feature_choice``).
+LEARNING = 2
 _RANK = 16  # shared directions of variation kept (fewer when there are fewer takes)
 _MARGIN = 1.5  # the "none of these" threshold: this times the worst held-out training take
 _FOLDS = 5  # held-out folds of the calibration
@@ -514,16 +519,40 @@ def common_table(rows: dict[str, list[dict[str, float]]]):
 
 
 def describe(takes: dict[str, list], *, rank: int = _RANK,
-             level: float = GROUP_LEVEL, groups: dict[str, list] | None = None,
+             level: float = GROUP_LEVEL, groups: Mapping[str, Sequence] | None = None,
              choose: bool = True) -> Descriptions:
-    """Descriptions of every action from its takes (``{name: [Motion, ...]}``).
+    """Descriptions of every action from its takes.
 
     Each action keeps the features all its takes have: actions learnt from different
-    skeletons keep their own joints (an action's takes must share one). ``level``: how often
-    a known take may be answered "none of these" by the feature-group test. With ``choose``
-    the kinds of features are chosen by how well held-out takes are recognised
-    (:func:`praxicon.feature_choice.choose_features`; ``groups``, per action each take's
-    style or performer, holds a group's takes out together).
+    skeletons keep their own joints (an action's takes must share one).
+
+    Parameters
+    ----------
+    takes : dict of str to list of Motion
+        Per action its takes.
+    rank : int
+        The shared directions of variation kept.
+    level : float
+        How often a known take may be answered "none of these" by the feature-group test.
+    groups : mapping of str to sequence, optional
+        Per action, each take's group (a style, a performer; any hashable value, compared
+        by equality): the choice of features holds a group's takes out together, which asks
+        what a new style asks. Groups that each hold whole actions leave nothing to hold
+        out, and every feature is kept. Without it, each action's takes are dealt into five
+        folds in the order given. Checked even without ``choose``.
+    choose : bool
+        Choose the kinds of features by how well held-out takes are recognised
+        (:func:`praxicon.feature_choice.choose_features`); without it, every feature.
+
+    Returns
+    -------
+    Descriptions
+
+    Raises
+    ------
+    DescriptionError
+        When the takes cannot be described (no takes, no joint in common) or ``groups``
+        does not give one hashable group per take of every action.
 
     Examples
     --------
@@ -532,13 +561,19 @@ def describe(takes: dict[str, list], *, rank: int = _RANK,
     ...               "b": [synthetic_motion(2, (1,), seed=s) for s in (3, 4)]})
     >>> d.names, [a.takes for a in d.actions], len(d.spread.features) == len(d.actions[0].mean)
     (('a', 'b'), [2, 2], True)
+
+    With each take's style, so that the choice holds a style out at a time:
+
+    >>> d = describe({"a": [synthetic_motion(2, (0,), seed=s) for s in (1, 2, 3, 4)],
+    ...               "b": [synthetic_motion(2, (1,), seed=s) for s in (5, 6, 7, 8)]},
+    ...              groups={"a": ["x", "y", "x", "y"], "b": ["x", "y", "x", "y"]})
+    >>> d.names
+    ('a', 'b')
     """
-    if groups is not None:
-        for name, motions in takes.items():
-            if len(groups.get(name, ())) != len(motions):
-                raise DescriptionError(f"action {name!r}: groups name "
-                                       f"{len(groups.get(name, ()))} takes' groups, it has "
-                                       f"{len(motions)} takes")
+    problem = None if groups is None else groups_problem(
+        {name: len(motions) for name, motions in takes.items()}, groups)
+    if problem:
+        raise DescriptionError(problem)
     rows = {name: feature_rows(motions) for name, motions in takes.items()}
     order, table = common_table(rows)
     if choose:  # each fold's descriptions only rank: no calibration
@@ -548,3 +583,4 @@ def describe(takes: dict[str, list], *, rank: int = _RANK,
             columns = [order.index(f) for f in chosen]
             order, table = chosen, {n: t[:, columns] for n, t in table.items()}
     return describe_table(table, order, rank=rank, level=level)
+

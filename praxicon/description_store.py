@@ -13,7 +13,7 @@ import hashlib
 import json
 from pathlib import Path
 
-from .description import FORMAT_VERSION, DescriptionError, Descriptions
+from .description import FORMAT_VERSION, LEARNING, DescriptionError, Descriptions
 from .records import REBUILD, Praxicon, PraxiconError, check_index
 
 __all__ = ["FILE", "descriptions_key", "read_descriptions",
@@ -26,9 +26,10 @@ _FORMAT = "praxicon-descriptions-file"
 
 def descriptions_key(praxicon: Praxicon) -> str:
     """What a praxicon's descriptions are learnt from: its learnt actions with their input
-    keys, and the descriptions' format version (a change of either learns them again)."""
+    keys, the descriptions' format version and how they are learnt (a change of any learns
+    them again)."""
     learnt = [(a.name, praxicon.key(a.name)) for a in praxicon.actions if a.learnt]
-    text = json.dumps({"version": FORMAT_VERSION, "actions": learnt})
+    text = json.dumps({"version": FORMAT_VERSION, "learning": LEARNING, "actions": learnt})
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 

@@ -26,7 +26,7 @@ from .scoring import scores
 #: names (:func:`praxicon.description.describe` hands in ``describe_table`` uncalibrated)
 Learner = Callable[[dict, tuple], object]
 
-__all__ = ["FEATURE_KINDS", "choose_features", "feature_kind"]
+__all__ = ["FEATURE_KINDS", "choose_features", "feature_kind", "groups_problem"]
 
 #: the kinds a description may leave out, in the order a tie between them is broken
 FEATURE_KINDS = ("pose", "energy", "spread", "shape", "tempo", "root")
@@ -36,6 +36,17 @@ _FOLDS = 5  # folds when no groups are given: each action's takes dealt out in t
 def feature_kind(feature: str) -> str:
     """The kind of a feature: ``pose``, ``energy``, ``spread``, ``shape`` (a joint's
     course over the take), ``tempo`` or ``root`` (the root's drift, sway and turn).
+
+    Parameters
+    ----------
+    feature : str
+        A feature's name, as :func:`praxicon.features.motion_features` gives it.
+
+    Returns
+    -------
+    str
+        Its kind (the part after the last ``:``, its digits dropped, ``posec`` read as
+        ``pose``; the root's travel and turning features and the tempo by name).
 
     Examples
     --------
@@ -51,21 +62,54 @@ def feature_kind(feature: str) -> str:
     return "pose" if kind == "posec" else kind
 
 
+def groups_problem(takes: Mapping[str, int], groups) -> str | None:
+    """What is wrong with ``groups`` for actions of ``takes`` (``{action: number of takes}``)
+    as :func:`choose_features` reads them, or None: one hashable group per take of every
+    action.
+
+    Examples
+    --------
+    >>> groups_problem({"a": 2}, {"a": ["x", "y"]}) is None
+    True
+    >>> groups_problem({"a": 2, "b": 1}, {"a": ["x", "y"]})
+    "groups: no groups for action 'b'"
+    """
+    if not isinstance(groups, Mapping):
+        return f"groups must map each action to its takes' groups, not {type(groups).__name__}"
+    for name, count in takes.items():
+        if name not in groups:
+            return f"groups: no groups for action {name!r}"
+        given = groups[name]
+        if isinstance(given, (str, bytes)) or not isinstance(given, (Sequence, np.ndarray)):
+            return (f"groups of action {name!r}: a sequence of one group per take, not "
+                    f"{type(given).__name__}")
+        if len(given) != count:
+            return f"groups of action {name!r}: {len(given)} given for {count} takes"
+        for g in given:
+            try:
+                hash(g)
+            except TypeError:
+                return (f"groups of action {name!r}: {g!r} is not hashable (a group is "
+                        f"compared by equality)")
+    return None
+
+
 def _folds(table: Mapping[str, np.ndarray], groups) -> dict[str, np.ndarray]:
-    """Per action, each take's fold: its group's, or dealt out in turn."""
+    """Per action, each take's fold: its group's (groups compared by equality, numbered as
+    they first appear), or dealt out in turn."""
     if groups is None:
         return {a: np.arange(len(rows)) % _FOLDS for a, rows in table.items()}
-    labels = sorted({str(g) for a in table for g in groups[a]})
-    return {a: np.array([labels.index(str(g)) for g in groups[a]], dtype=int)
+    number: dict = {}
+    return {a: np.array([number.setdefault(g, len(number)) for g in groups[a]], dtype=int)
             for a in table}
 
 
-def _held_out_right(table, features, keep, folds, learn: Learner) -> int | None:
+def _held_out_right(table, features, keep, folds, learn: Learner) -> tuple[int, int] | None:
     """How many takes held out fold by fold the descriptions ``learn`` makes from the rest
-    rank first as their own action, over the features ``keep`` marks (None: a fold's takes
-    cannot be described over them)."""
+    rank first as their own action, and how many were asked, over the features ``keep``
+    marks (None: a fold's takes cannot be described over them)."""
 
-    right = 0
+    right = asked = 0
     names = list(table)
     kept = tuple(f for f, k in zip(features, keep) if k)
     for fold in sorted({int(f) for a in names for f in folds[a]}):
@@ -77,8 +121,8 @@ def _held_out_right(table, features, keep, folds, learn: Learner) -> int | None:
             continue
         try:
             d = learn(learnt, kept)
-        except PSGSError:  # (a DescriptionError: these takes share no joint)
-            return None
+        except PSGSError:  # a DescriptionError (which this module cannot import: it
+            return None      # imports this one), e.g. these features hold no joint
         index = {f: i for i, f in enumerate(d.spread.features)}
         at = np.array([index.get(f, -1) for f in kept])
         rows = np.vstack([r for _, r in tested])
@@ -91,7 +135,8 @@ def _held_out_right(table, features, keep, folds, learn: Learner) -> int | None:
             these = (usable == mask).all(axis=1)
             _, score = scores(d, rows[these][:, mask], at[mask])
             right += int((np.array(d.names)[score.argmin(axis=1)] == truth[these]).sum())
-    return right
+        asked += len(rows)
+    return right, asked
 
 
 def choose_features(table: Mapping[str, np.ndarray], features: Sequence[str],
@@ -112,8 +157,11 @@ def choose_features(table: Mapping[str, np.ndarray], features: Sequence[str],
         rank takes (``functools.partial(describe_table, calibrate=False)``, as
         :func:`praxicon.description.describe` hands in).
     groups : mapping of str to sequence, optional
-        Per action, each take's group (a style, a performer): a group's takes are held out
-        together. Without it, each action's takes are dealt into five folds in turn.
+        Per action, each take's group (a style, a performer; compared by equality): a
+        group's takes are held out together, one fold per group, so many groups cost as
+        many fits of every candidate. Groups that each hold whole actions leave nothing to
+        ask, and every feature is kept. Without it, each action's takes are dealt into five
+        folds in the order given.
 
     Returns
     -------
@@ -150,14 +198,16 @@ def choose_features(table: Mapping[str, np.ndarray], features: Sequence[str],
     if len({int(f) for a in table for f in folds[a]}) < 2:
         return features  # nothing can be held out
     every = np.ones(len(features), dtype=bool)
-    best, best_right = features, _held_out_right(table, features, every, folds, learn)
-    if best_right is None:
+    counted = _held_out_right(table, features, every, folds, learn)
+    if counted is None or counted[1] == 0:
+        # nothing held out could be asked (groups that each hold whole actions): no evidence
         return features
+    best, best_right = features, counted[0]
     for kind in FEATURE_KINDS:
         keep = np.array([k != kind for k in kinds])
         if keep.all() or not keep.any():
             continue
-        right = _held_out_right(table, features, keep, folds, learn)
-        if right is not None and right > best_right:
-            best, best_right = tuple(f for f, k in zip(features, keep) if k), right
+        counted = _held_out_right(table, features, keep, folds, learn)
+        if counted is not None and counted[0] > best_right:
+            best, best_right = tuple(f for f, k in zip(features, keep) if k), counted[0]
     return best

@@ -8,9 +8,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from kinetology import synthetic_motion
-from praxicon.description import DescriptionError, describe, describe_table
-from praxicon.feature_choice import (FEATURE_KINDS, _folds, _held_out_right, choose_features,
-                                     feature_kind)
+from praxicon.description import (DescriptionError, common_table, describe,
+                                  describe_table, feature_rows, scores)
+from praxicon.feature_choice import FEATURE_KINDS, choose_features, feature_kind
 
 LEARN = partial(describe_table, calibrate=False)
 FEATURES = ("a.rx:pose", "a.rx:posec", "a.rx:energy", "a.rx:spread", "a.rx:shape0",
@@ -32,33 +32,74 @@ def tables(draw):
     means = rng.normal(0, draw(st.sampled_from([0.3, 1.0, 3.0])), (actions, len(FEATURES)))
     table = {f"act{k}": means[k] + rng.normal(0, 1, (takes, len(FEATURES)))
              for k in range(actions)}
-    styles = draw(st.booleans())
-    groups = {a: [i % 3 for i in range(takes)] for a in table} if styles else None
+    if draw(st.booleans()):  # the last action of another skeleton: it lacks joint b
+        table[f"act{actions - 1}"][:, [i for i, f in enumerate(FEATURES)
+                                       if f.startswith("b.")]] = np.nan
+    styles = draw(st.sampled_from([None, 2, 3]))
+    groups = None if styles is None else {a: [f"s{i % styles}" for i in range(takes)]
+                                          for a in table}
     return table, groups
 
 
-@settings(max_examples=25, deadline=None, derandomize=True)
+def _oracle_right(table, features, kind, groups):
+    """Held-out takes ranked right with ``kind`` left out, one take at a time, by public
+    functions only (None: a fold cannot be described)."""
+    keep = [i for i, f in enumerate(features) if feature_kind(f) != kind]
+    kept = tuple(features[i] for i in keep)
+    fold_of = {a: (list(groups[a]) if groups else [i % 5 for i in range(len(rows))])
+               for a, rows in table.items()}
+    right = 0
+    for fold in {f for a in table for f in fold_of[a]}:
+        learnt = {a: rows[[f != fold for f in fold_of[a]]][:, keep] for a, rows in table.items()}
+        learnt = {a: rows for a, rows in learnt.items() if len(rows)}
+        if len(learnt) < 2:
+            continue
+        try:
+            d = describe_table(learnt, kept, calibrate=False)
+        except DescriptionError:
+            return None
+        for a in learnt:
+            for row in table[a][[f == fold for f in fold_of[a]]][:, keep]:
+                has = [d.spread.features.index(f) for f, v in zip(kept, row)
+                       if not np.isnan(v) and f in d.spread.features]
+                values = [v for f, v in zip(kept, row)
+                          if not np.isnan(v) and f in d.spread.features]
+                _, score = scores(d, np.array([values]), np.array(has))
+                right += d.names[int(np.argmin(score[0]))] == a
+    return right
+
+
+@settings(max_examples=20, deadline=None, derandomize=True)
 @given(tables())
 def test_the_choice_is_every_feature_or_all_but_the_kind_that_recognises_most(drawn):
-    # the oracle: every candidate's held-out count, computed one by one
     table, groups = drawn
     chosen = choose_features(table, FEATURES, LEARN, groups=groups)
-    folds = _folds(table, groups)
-    kinds = np.array([feature_kind(f) for f in FEATURES])
-    every = _held_out_right(table, FEATURES, np.ones(len(FEATURES), bool), folds, LEARN)
-    counts = {kind: _held_out_right(table, FEATURES, kinds != kind, folds, LEARN)
-              for kind in FEATURE_KINDS}
-    best = max([c for c in counts.values() if c is not None], default=None)
-    if every is None or best is None or best <= every:
+    every = _oracle_right(table, FEATURES, None, groups)
+    counts = {k: _oracle_right(table, FEATURES, k, groups) for k in FEATURE_KINDS}
+    better = [k for k in FEATURE_KINDS if counts[k] is not None and every is not None
+              and counts[k] > every]
+    if not better:
         assert chosen == FEATURES
     else:
-        left_out = {feature_kind(f) for f in FEATURES} - {feature_kind(f) for f in chosen}
-        assert len(left_out) == 1
-        (kind,) = left_out
-        assert counts[kind] == best  # the first of the best, in FEATURE_KINDS order
-        assert all(counts[k] is None or counts[k] < best
-                   for k in FEATURE_KINDS[:FEATURE_KINDS.index(kind)])
+        best = max(counts[k] for k in better)
+        kind = next(k for k in better if counts[k] == best)  # the first in FEATURE_KINDS
         assert chosen == tuple(f for f in FEATURES if feature_kind(f) != kind)
+
+
+@settings(max_examples=15, deadline=None, derandomize=True)
+@given(tables(), st.randoms(use_true_random=False))
+def test_the_choice_does_not_depend_on_the_order_of_actions_or_takes_or_group_names(drawn, rnd):
+    table, groups = drawn
+    chosen = choose_features(table, FEATURES, LEARN, groups=groups)
+    reversed_table = dict(reversed(table.items()))
+    assert choose_features(reversed_table, FEATURES, LEARN, groups=groups) == chosen
+    if groups is not None:  # folds by group: the takes' order and the groups' names are free
+        names = {g: ("renamed", k) for k, g in enumerate(sorted({g for v in groups.values()
+                                                                   for g in v}))}
+        order = {a: rnd.sample(range(len(rows)), len(rows)) for a, rows in table.items()}
+        shuffled = {a: rows[order[a]] for a, rows in table.items()}
+        regrouped = {a: [names[groups[a][i]] for i in order[a]] for a in table}
+        assert choose_features(shuffled, FEATURES, LEARN, groups=regrouped) == chosen
 
 
 def test_takes_too_few_to_hold_out_keep_every_feature():
@@ -69,33 +110,63 @@ def test_takes_too_few_to_hold_out_keep_every_feature():
 
 
 def test_a_kind_that_only_carries_style_is_left_out_when_styles_are_held_out():
-    # the energies tell the actions apart; each style holds its own pose
-    rng = np.random.default_rng(3)
-    styles = np.repeat(np.arange(6), 3)
+    # the energies tell the actions apart; each style holds its own pose, so a pose learnt
+    # from some styles says nothing of a new one. Over 30 draws: held out a style at a time
+    # the poses are left out in most (measured 25 of 30), and nothing else ever is
     features = ("a.rx:pose", "b.rx:pose", "a.rx:energy", "b.rx:energy")
+    styles = np.repeat(np.arange(6), 3)
+    outcomes = []
+    for seed in range(30):
+        rng = np.random.default_rng(seed)
 
-    def takes(energy):
-        pose = rng.normal(0, 4, (6, 2))[styles] + rng.normal(0, 0.2, (18, 2))
-        return np.column_stack([pose, rng.normal(energy, 1.0, (18, 2))])
+        def takes(energy):
+            pose = rng.normal(0, 4, (6, 2))[styles] + rng.normal(0, 0.2, (18, 2))
+            return np.column_stack([pose, rng.normal(energy, 1.0, (18, 2))])
 
-    table = {"fast": takes(2.0), "slow": takes(0.0)}
-    assert choose_features(table, features, LEARN, groups={"fast": styles, "slow": styles}) == (
-        "a.rx:energy", "b.rx:energy")
-
-
-def test_describe_keeps_what_the_choice_keeps_and_can_keep_everything():
-    takes = {"a": [synthetic_motion(2, (0,), seed=s) for s in (1, 2, 3)],
-             "b": [synthetic_motion(2, (1,), seed=s) for s in (4, 5, 6)]}
-    every = describe(takes, choose=False).spread.features
-    chosen = describe(takes).spread.features
-    assert set(chosen) <= set(every)
-    left_out = {feature_kind(f) for f in every} - {feature_kind(f) for f in chosen}
-    assert len(left_out) <= 1
-    assert not set(chosen) & {f for f in every if feature_kind(f) in left_out}
+        table = {"fast": takes(2.0), "slow": takes(0.0)}
+        outcomes.append(choose_features(table, features, LEARN,
+                                        groups={"fast": styles, "slow": styles}))
+    assert set(outcomes) <= {features, ("a.rx:energy", "b.rx:energy")}
+    assert outcomes.count(("a.rx:energy", "b.rx:energy")) >= 18
 
 
-def test_groups_that_do_not_name_every_take_are_a_clear_error():
+def _motions():
+    return {"a": [synthetic_motion(2, (0,), seed=s, noise=0.1 * s) for s in (1, 2, 3, 4)],
+            "b": [synthetic_motion(2, (1,), seed=s, noise=0.1 * s) for s in (5, 6, 7, 8)]}
+
+
+@pytest.mark.parametrize("groups", [None, {"a": ["x", "y", "x", "y"], "b": ["x", "y", "x", "y"]},
+                                    {"a": [1, 1, 2, 2], "b": [1, 2, 2, 1]}])
+def test_describe_keeps_what_the_choice_keeps(groups):
+    takes = _motions()
+    order, table = common_table({n: feature_rows(m) for n, m in takes.items()})
+    chosen = choose_features(table, order, LEARN, groups=groups)
+    assert describe(takes, groups=groups).spread.features == chosen
+    every = describe(takes, groups=groups, choose=False)
+    assert every.spread.features == order
+    assert every == describe_table(table, order)
+
+
+def test_groups_that_each_hold_whole_actions_keep_every_feature():
+    # one action per style: holding a style out leaves nothing of its actions to ask
+    takes = _motions()
+    order, table = common_table({n: feature_rows(m) for n, m in takes.items()})
+    whole = {"a": ["x"] * 4, "b": ["y"] * 4}
+    assert choose_features(table, order, LEARN, groups=whole) == order
+
+
+@pytest.mark.parametrize("groups, message", [
+    ({"a": ["x", "y"], "b": ["x"]}, "groups of action 'b': 1 given for 2 takes"),
+    ({"a": ["x", "y"]}, "groups: no groups for action 'b'"),
+    (["x", "y"], "groups must map each action to its takes' groups, not list"),
+    ({"a": "xy", "b": ["x", "y"]}, "groups of action 'a': a sequence of one group per take"),
+    ({"a": 2, "b": ["x", "y"]}, "groups of action 'a': a sequence of one group per take"),
+    ({"a": [["x"], "y"], "b": ["x", "y"]}, r"groups of action 'a': \['x'\] is not hashable"),
+])
+def test_groups_that_do_not_name_every_take_are_a_clear_error(groups, message):
     takes = {"a": [synthetic_motion(2, (0,), seed=s) for s in (1, 2)],
              "b": [synthetic_motion(2, (1,), seed=s) for s in (3, 4)]}
-    with pytest.raises(DescriptionError, match="action 'b': groups name 1 takes' groups, it has 2"):
-        describe(takes, groups={"a": ["x", "y"], "b": ["x"]})
+    with pytest.raises(DescriptionError, match=message):
+        describe(takes, groups=groups)
+    with pytest.raises(DescriptionError, match=message):
+        describe(takes, groups=groups, choose=False)
