@@ -31,6 +31,9 @@ __all__ = ["FEATURE_KINDS", "choose_features", "feature_kind", "groups_problem"]
 #: the kinds a description may leave out, in the order a tie between them is broken
 FEATURE_KINDS = ("pose", "energy", "spread", "shape", "tempo", "root")
 _FOLDS = 5  # folds when no groups are given: each action's takes dealt out in turn
+#: at most this many folds with groups: more groups are dealt into them in turn (a group's
+#: takes still together), so a group per take costs 20 fits of each candidate, not one a take
+MAX_FOLDS = 20
 
 
 def feature_kind(feature: str) -> str:
@@ -100,8 +103,8 @@ def _folds(table: Mapping[str, np.ndarray], groups) -> dict[str, np.ndarray]:
     if groups is None:
         return {a: np.arange(len(rows)) % _FOLDS for a, rows in table.items()}
     number: dict = {}
-    return {a: np.array([number.setdefault(g, len(number)) for g in groups[a]], dtype=int)
-            for a in table}
+    return {a: np.array([number.setdefault(g, len(number)) % MAX_FOLDS for g in groups[a]],
+                        dtype=int) for a in table}
 
 
 def _held_out_right(table, features, keep, folds, learn: Learner) -> tuple[int, int] | None:
@@ -158,9 +161,9 @@ def choose_features(table: Mapping[str, np.ndarray], features: Sequence[str],
         :func:`praxicon.description.describe` hands in).
     groups : mapping of str to sequence, optional
         Per action, each take's group (a style, a performer; compared by equality): a
-        group's takes are held out together, one fold per group, so many groups cost as
-        many fits of every candidate. Groups that each hold whole actions leave nothing to
-        ask, and every feature is kept. Without it, each action's takes are dealt into five
+        group's takes are held out together, one fold per group (up to ``MAX_FOLDS``; more
+        groups are dealt into that many folds in the order they first appear). Groups that
+        each hold whole actions leave nothing to ask, and every feature is kept. Without it, each action's takes are dealt into five
         folds in the order given.
 
     Returns

@@ -170,3 +170,17 @@ def test_groups_that_do_not_name_every_take_are_a_clear_error(groups, message):
         describe(takes, groups=groups)
     with pytest.raises(DescriptionError, match=message):
         describe(takes, groups=groups, choose=False)
+
+
+def test_a_group_per_take_is_held_out_in_at_most_max_folds():
+    from praxicon.feature_choice import MAX_FOLDS, _folds
+
+    rng = np.random.default_rng(1)
+    table = {"a": rng.normal(0, 1, (30, len(FEATURES))), "b": rng.normal(1, 1, (30, len(FEATURES)))}
+    groups = {a: [f"{a}{i}" for i in range(30)] for a in table}
+    folds = _folds(table, groups)
+    assert len({int(f) for v in folds.values() for f in v}) == MAX_FOLDS
+    small = {a: [i % 3 for i in range(30)] for a in table}  # fewer groups: one fold each
+    assert {int(f) for v in _folds(table, small).values() for f in v} == {0, 1, 2}
+    assert choose_features(table, FEATURES, LEARN, groups=groups) in (
+        FEATURES, *[tuple(f for f in FEATURES if feature_kind(f) != k) for k in FEATURE_KINDS])
