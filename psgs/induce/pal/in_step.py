@@ -123,13 +123,10 @@ def _paired(strings: list[Timed], sections: list, intervals: dict[int, np.ndarra
             if weight > level or weight >= best[0]:
                 continue
             members = {i: r[1] for i, r in readings.items()}
-            for j in range(total):
-                if j in members:
-                    continue
-                again = read_at(strings[j], core, follows[j])
-                if again is not None and again[0] + math.log10(total - 1) <= level:
-                    members[j] = again[1]
-                    weight += again[0]
+            for j, (again, found) in _read_the_rest(strings, core, follows, members,
+                                                    level).items():
+                members[j] = found
+                weight += again
             best = (weight, members)
     return best
 
@@ -192,13 +189,11 @@ def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.n
         # copies agreeing by chance), which puts an exact member off them: every string
         # not yet in is read again where the lead and its members all are
         core = _core([lead_copies] + [strings[j].copy_times(f) for j, f in joined.items()])
-        for j in range(total) if core is not None else ():
-            if j == lead or j in joined:
-                continue
-            again = read_at(strings[j], core, follows[j])
-            if again is not None and again[0] + math.log10(total - 1) <= level:
-                joined[j] = again[1]
-                weights.append(again[0])
+        if core is not None:
+            for j, (again, found) in _read_the_rest(strings, core, follows, {lead, *joined},
+                                                    level).items():
+                joined[j] = found
+                weights.append(again)
     if not joined:
         return math.inf, {}
     # the lead must be in step beyond chance too, read where it and the member it is most
@@ -222,6 +217,21 @@ def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.n
     significance = (lead_significance(strings[lead], section, follows[lead]) + sum(weights)
                     + math.log10(total) + log10_choose(total - 1, m - 1))
     return significance, {lead: again[1], **joined}
+
+
+def _read_the_rest(strings: list[Timed], core: np.ndarray, follows: list[float | None],
+                   taken, level: float) -> dict[int, tuple[float, Section]]:
+    """Every string not in ``taken`` read at ``core`` (two copies' times) that is in step
+    there beyond chance among the other strings, as a member must be: ``{string: (its
+    significance, the repeat read)}``, in string order."""
+    beside = math.log10(len(strings) - 1)
+    out = {}
+    for j in range(len(strings)):
+        if j not in taken:
+            again = read_at(strings[j], core, follows[j])
+            if again is not None and again[0] + beside <= level:
+                out[j] = again
+    return out
 
 
 def _core(copies: list[np.ndarray]) -> np.ndarray | None:
