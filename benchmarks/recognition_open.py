@@ -18,7 +18,6 @@ from __future__ import annotations
 import argparse
 import sys
 from collections import defaultdict
-from functools import partial
 
 # first: one thread per method and the praxicon package from the repository (see there)
 from recognition_methods import _resampled, read_bandai, series  # isort: skip
@@ -42,11 +41,9 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
     With ``by_style`` one action is learnt per content and style (as ``psgs praxicon build``
     groups a dataset with several takes of each pair) and the answer's content counted.
     """
-    from praxicon.description import (_MARGIN, GROUP_LEVEL, common_table, describe_table,
-                                      feature_rows, score_model, scores)
+    from praxicon.description import (_MARGIN, GROUP_LEVEL, chosen_table, common_table,
+                                      describe_table, feature_rows, score_model, scores)
     from praxicon.recognition import _excess, feature_matrix
-
-    from praxicon.feature_choice import choose_features
 
     groups, styles = defaultdict(list), defaultdict(list)
     for t in train:
@@ -54,12 +51,8 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
         groups[name].append(t.motion)
         styles[name].append(t.style)
     order, table = common_table({c: feature_rows(m) for c, m in groups.items()})
-    # the kinds of features chosen as the praxicon chooses them (describe), each style held
-    # out together
-    chosen = choose_features(table, order, partial(describe_table, calibrate=False),
-                             groups=styles)
-    table = {c: rows[:, [order.index(f) for f in chosen]] for c, rows in table.items()}
-    order = chosen
+    # the kinds of features chosen as describe chooses them, each style held out together
+    order, table = chosen_table(table, order, groups=styles)
     known = {t.content for t in train}
     x = None
     for level in _LEVELS:

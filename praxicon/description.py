@@ -62,7 +62,7 @@ from .scoring import (_NOISE_FLOOR, _PRIOR_TAKES, OWN_KINDS, ScoreModel,  # noqa
                       precision_parts, probabilities, score_model, scores)
 
 __all__ = ["FORMAT_VERSION", "ActionDescription", "Spread", "Descriptions", "describe",
-           "describe_table", "DescriptionError",
+           "describe_table", "chosen_table", "DescriptionError",
            "GROUP_LEVEL", "OWN_KINDS", "own_columns", "own_terms", "scores", "ScoreModel",
            "score_model"]
 
@@ -576,11 +576,20 @@ def describe(takes: dict[str, list], *, rank: int = _RANK,
         raise DescriptionError(problem)
     rows = {name: feature_rows(motions) for name, motions in takes.items()}
     order, table = common_table(rows)
-    if choose:  # each fold's descriptions only rank: no calibration
-        chosen = choose_features(table, order, partial(describe_table, rank=rank,
-                                                       calibrate=False), groups=groups)
-        if chosen != order:
-            columns = [order.index(f) for f in chosen]
-            order, table = chosen, {n: t[:, columns] for n, t in table.items()}
+    if choose:
+        order, table = chosen_table(table, order, groups=groups, rank=rank)
     return describe_table(table, order, rank=rank, level=level)
+
+
+def chosen_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
+                 groups=None, rank: int = _RANK):
+    """``(features, table)`` keeping only the features
+    :func:`~praxicon.feature_choice.choose_features` chooses (``groups`` as in
+    :func:`describe`; each fold's descriptions only rank: no calibration)."""
+    chosen = choose_features(table, features, partial(describe_table, rank=rank,
+                                                      calibrate=False), groups=groups)
+    if chosen == tuple(features):
+        return tuple(features), table
+    columns = [features.index(f) for f in chosen]
+    return chosen, {n: t[:, columns] for n, t in table.items()}
 
