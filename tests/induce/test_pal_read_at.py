@@ -7,7 +7,7 @@ import pytest
 
 from psgs import Actiongram
 from psgs.induce import PAL
-from psgs.induce.pal import in_step
+from psgs.induce.pal import in_step, shift_runs
 from psgs.induce.pal.in_step import in_step_significance, read_at, spans_pair
 from psgs.induce.pal.motifs import Timed
 from psgs.induce.pal.sections import Section, _cycles
@@ -67,25 +67,59 @@ def _same(a, b) -> bool:
             and a[1].starts.tolist() == b[1].starts.tolist())
 
 
+def _short(seed: int) -> tuple[Timed, np.ndarray]:
+    """A short string over two or three letters and two lead copies' times."""
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(6, 40))
+    codes = rng.integers(0, int(rng.integers(2, 4)), n)
+    durations = np.ones(n) if seed % 3 else rng.choice([0.5, 1.0, 1.5], n)
+    string = Timed.from_codes(codes, durations, 0.0)
+    if seed % 2:  # copies on segment edges
+        a, length = int(rng.integers(0, n // 2)), int(rng.integers(2, n // 2 + 1))
+        b = int(rng.integers(a + 1, n - length + 1)) if a + 1 < n - length + 1 else a + 1
+        lead = np.array([[string.starts[min(a, n - 1)], string.ends[min(a + length, n) - 1]],
+                         [string.starts[min(b, n - 1)], string.ends[min(b + length, n) - 1]]])
+    else:
+        lead = np.sort(rng.uniform(0, float(string.ends[-1]), 4)).reshape(2, 2)
+    return string, lead
+
+
 @pytest.mark.parametrize("follow", [None, 0.5, 0.99])
 def test_read_at_is_the_lightest_of_every_candidate(follow):
     # short strings over two or three letters: many runs at many shifts, and ties; a
     # follow rate near 1 makes the left-end term (the part of the bound that is not the
     # chance agreement) large enough to matter
     for seed in range(1200):
-        rng = np.random.default_rng(seed)
-        n = int(rng.integers(6, 40))
-        codes = rng.integers(0, int(rng.integers(2, 4)), n)
-        durations = np.ones(n) if seed % 3 else rng.choice([0.5, 1.0, 1.5], n)
-        string = Timed.from_codes(codes, durations, 0.0)
-        if seed % 2:  # copies on segment edges
-            a, length = int(rng.integers(0, n // 2)), int(rng.integers(2, n // 2 + 1))
-            b = int(rng.integers(a + 1, n - length + 1)) if a + 1 < n - length + 1 else a + 1
-            lead = np.array([[string.starts[min(a, n - 1)], string.ends[min(a + length, n) - 1]],
-                             [string.starts[min(b, n - 1)], string.ends[min(b + length, n) - 1]]])
-        else:
-            lead = np.sort(rng.uniform(0, float(string.ends[-1]), 4)).reshape(2, 2)
+        string, lead = _short(seed)
         assert _same(read_at(string, lead, follow), _every_candidate(string, lead, follow)), seed
+
+
+@pytest.mark.parametrize("follow", [None, 0.99])
+def test_every_run_found_from_equal_windows_gives_the_grids_answer(follow, monkeypatch):
+    # windows of two symbols find every run the grid does: on the same draws, many ties
+    # among them, the runs' candidates must keep the grid's order
+    monkeypatch.setattr(in_step, "_GRID_CELLS", 0)
+    monkeypatch.setattr(in_step, "_RUN_FLOORS", (2,))
+    monkeypatch.setattr(in_step, "grid_runs", None)  # (never reached)
+    for seed in range(600):
+        string, lead = _short(seed)
+        assert _same(read_at(string, lead, follow), _every_candidate(string, lead, follow)), seed
+
+
+@pytest.mark.parametrize("block", [40, 200])
+def test_runs_from_equal_windows_keep_the_grids_order_block_by_block(block, monkeypatch):
+    # the grid is filled a block of shifts at a time and its candidates are ordered block
+    # by block (which breaks ties between equally light ones): with small blocks, the runs
+    # found from windows of two symbols must give the grid's answer on every draw
+    monkeypatch.setattr(shift_runs, "_BLOCK_CELLS", block)
+    for seed in range(600):
+        string, lead = _short(seed)
+        for follow in (None, 0.99):
+            monkeypatch.setattr(in_step, "_GRID_CELLS", 1 << 40)
+            grid = read_at(string, lead, follow)
+            monkeypatch.setattr(in_step, "_GRID_CELLS", 0)
+            monkeypatch.setattr(in_step, "_RUN_FLOORS", (2,))
+            assert _same(read_at(string, lead, follow), grid), (seed, follow)
 
 
 def _actiongram(seed: int) -> Actiongram:
@@ -110,3 +144,49 @@ def test_inductions_are_the_same_as_with_every_candidate_weighed(seed, monkeypat
     fast = PAL(min_copies=2).induce(ag)
     monkeypatch.setattr(in_step, "read_at", _every_candidate)
     assert PAL(min_copies=2).induce(ag) == fast
+
+
+def _planted(seed: int) -> tuple[Timed, np.ndarray, float | None]:
+    """A string over two to four letters repeating a stretch of 6 to 15 symbols, and lead
+    copies at (or half a beat off) the stretch's two times."""
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(50, 120))
+    codes = rng.integers(0, int(rng.integers(2, 5)), n)
+    length = int(rng.integers(6, 16))
+    a = int(rng.integers(0, n // 3))
+    b = int(rng.integers(a + length, n - length))
+    codes[b:b + length] = codes[a:a + length]
+    durations = np.ones(n) if seed % 3 else rng.choice([0.5, 1.0, 1.5], n)
+    string = Timed.from_codes(codes, durations, 0.0)
+    lead = np.array([[string.starts[a], string.ends[a + length - 1]],
+                     [string.starts[b], string.ends[b + length - 1]]])
+    if seed % 2:
+        lead = lead + rng.integers(-1, 2, (2, 2)) * 0.5
+    return string, lead, [None, 0.5, 0.9][seed % 3]
+
+
+@pytest.mark.parametrize("floors", [(6,), (10, 4)])
+def test_the_long_runs_first_give_the_lightest_of_every_candidate(floors, monkeypatch):
+    # long copies are searched for long runs from equal windows before the grid of every
+    # shift: forced here on short strings, the answer must still be the oracle's, and the
+    # long runs alone must answer in most draws (else the test would only see the grid)
+    monkeypatch.setattr(in_step, "_GRID_CELLS", 0)
+    monkeypatch.setattr(in_step, "_RUN_FLOORS", floors)
+    grids = []
+    grid_runs = in_step.grid_runs
+    monkeypatch.setattr(in_step, "grid_runs", lambda frame: grids.append(1) or grid_runs(frame))
+    for seed in range(150):
+        string, lead, follow = _planted(seed)
+        assert _same(read_at(string, lead, follow), _every_candidate(string, lead, follow)), seed
+    assert len(grids) < 100
+
+
+def test_colliding_window_hashes_fall_back_to_the_grid(monkeypatch):
+    # every window given one hash: the runs built from them fail the symbol-by-symbol check
+    # (or are too many pairs), and the grid answers
+    monkeypatch.setattr(in_step, "_GRID_CELLS", 0)
+    monkeypatch.setattr(shift_runs, "_window_hashes",
+                        lambda codes, length: np.zeros(len(codes) - length + 1, np.uint64))
+    for seed in range(40):
+        string, lead, follow = _planted(seed)
+        assert _same(read_at(string, lead, follow), _every_candidate(string, lead, follow)), seed

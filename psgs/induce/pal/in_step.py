@@ -37,6 +37,7 @@ import numpy as np
 
 from .motifs import Timed
 from .sections import Section, _cycles
+from .shift_runs import Frame, candidates, grid_runs, long_runs
 from .statistics import log10_choose
 
 __all__: list[str] = []  # private: choice.py is the caller
@@ -423,6 +424,12 @@ def lead_segments(string: Timed, lead: np.ndarray) -> tuple[np.ndarray, np.ndarr
     return first, second
 
 
+#: grids of more shifts-by-positions than this are first searched for long runs alone
+_GRID_CELLS = 1 << 16
+#: the shortest runs that search looks for, tried in turn before the grid
+_RUN_FLOORS = (48, 12)
+
+
 def read_at(string: Timed, lead: np.ndarray, follow: float | None
             ) -> tuple[float, Section] | None:
     """The exact repeat of ``string`` at two lead copies' times that is least likely by
@@ -440,7 +447,12 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None
     :func:`in_step_significance` are counts, at least one, and the symbols before the
     copies disagree with chance ``1 - r`` at the least); the search stops at the first
     bound no lighter than the best weight found: the same repeat as weighing every
-    candidate in the order of the shifts.
+    candidate in the order of the shifts. On long copies (a grid of more than
+    ``_GRID_CELLS`` shifts by positions) the runs of 48, then 12, symbols or more are
+    found first from equal windows (:mod:`~psgs.induce.pal.shift_runs`) and weighed alone;
+    their best is the answer when every shorter run's least bound is heavier, as it is
+    when the copies share a long repeat (a movement's section played twice: 23 s to under
+    1 s on a quartet of 8,000 to 12,000 notes a voice).
 
     Examples
     --------
@@ -450,9 +462,8 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None
     >>> found.motif.tolist(), found.starts.tolist()
     ([1, 2, 3, 4], [1, 6])
     """
-    codes, starts, ends = string.codes, string.starts, string.ends
+    codes = string.codes
     n = len(codes)
-    (a1, b1), (a2, b2) = lead.tolist()
     segments = lead_segments(string, lead)
     if segments is None:
         return None
@@ -463,58 +474,37 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None
     width = max(0, min(n - low, int(first[-1]) + reach + 1) - lo)
     if top < low or width < 2:
         return None
-    # every shift's maximal runs of agreement at once, shifts as rows (a block of rows at
-    # a time, so that a long string's block stays small): a run from ``begin`` to ``end``
-    # at a shift is a row's stretch of True
-    found = []  # (lengths, starts, shifts) of the candidates, in the order of the shifts
-    position = lo + np.arange(width)
-    rows = max(1, (1 << 22) // (width + 2))
-    for block in range(low, top + 1, rows):
-        shifts = np.arange(block, min(top, block + rows - 1) + 1)
-        his = np.minimum(n - shifts, int(first[-1]) + reach + 1)
-        inside = position[None, :] < his[:, None]
-        other = np.minimum(position[None, :] + shifts[:, None], n - 1)
-        grid = np.zeros((len(shifts), width + 2), dtype=np.int8)
-        grid[:, 1:-1] = inside & (codes[position][None, :] == codes[other])
-        steps = np.diff(grid, axis=1)
-        row, begin = np.nonzero(steps == 1)
-        end = np.nonzero(steps == -1)[1] + lo
-        begin = begin + lo
-        shift, hi = shifts[row], his[row]
-        # (cut by the range looked at: not maximal)
-        keep = (end - begin >= 2) & ~((begin == lo) & (lo > 0)) & ~((end == hi) & (hi < n - shift))
-        begin, end, shift = begin[keep], end[keep], shift[keep]
-        # a run longer than the shift holds copies of the shift's length that do not
-        # overlap (copies that touch, and chance agreement after the second)
-        length = np.minimum(end - begin, shift)
-        count = end - length - begin + 1
-        cum = np.cumsum(count)
-        at = np.repeat(begin, count) + np.arange(int(cum[-1]) if len(cum) else 0) - np.repeat(
-            cum - count, count)
-        # and the part of each run under the lead's copies: a run may reach far past them
-        # (symbols around the copies agreeing by chance) or be one block played over and
-        # over, where the lead's copies mark a section of it (not maximal: no left end)
-        cut_at = np.maximum(np.maximum(begin, first[0]), second[0] - shift)
-        cut_end = np.minimum(np.minimum(end, first[-1] + 1), second[-1] + 1 - shift)
-        cut_end = np.minimum(cut_end, cut_at + shift)
-        cut = ((cut_at > begin) | (cut_end < end)) & (cut_end - cut_at >= 2)
-        cut_at, cut_shift = cut_at[cut], shift[cut]
-        cut_length = cut_end[cut] - cut_at
-        cut_pairs = (_pairs_with(starts[cut_at], ends[cut_at + cut_length - 1], a1, b1)
-                     & _pairs_with(starts[cut_at + cut_shift],
-                                   ends[cut_at + cut_length - 1 + cut_shift], a2, b2))
-        length, shift = np.repeat(length, count), np.repeat(shift, count)
-        pairs = (_pairs_with(starts[at], ends[at + length - 1], a1, b1)
-                 & _pairs_with(starts[at + shift], ends[at + length - 1 + shift], a2, b2))
-        found.append((length[pairs], at[pairs], shift[pairs], np.zeros(len(at), bool)[pairs]))
-        found.append((cut_length[cut_pairs], cut_at[cut_pairs], cut_shift[cut_pairs],
-                      np.ones(len(cut_at), bool)[cut_pairs]))
-    lengths = np.concatenate([f[0] for f in found]).tolist()
+    frame = Frame(string, lead, first, second, reach, low, top, lo, width)
+    q = string.match_rate
+    r = q if follow is None else follow
+    if width * (top - low + 1) > _GRID_CELLS and q > 0 and 0 < r < 1:
+        # long copies: the grid of every shift by every position is most of the cost, and
+        # only long runs can be the lightest. The runs of ``floor`` symbols or more, found
+        # from equal windows, are weighed first; when every shorter run's least bound is
+        # heavier than the best of them, the grid could not give another answer (the
+        # search below stops at the first bound no lighter than the best, and the longer
+        # runs' candidates keep their order among themselves)
+        for floor in _RUN_FLOORS:
+            runs = long_runs(frame, floor)
+            if runs is None:
+                break  # (too many equal windows, or a hash collision: the grid decides)
+            best = _lightest(frame, candidates(frame, *runs), follow)
+            shorter = (math.log10(q) + (floor - 2) * math.log10(r)
+                       + math.log10(max(1e-300, 1 - r)))
+            # (with windows of two symbols every run is found: the grid's answer, None too)
+            if floor <= 2 or (best is not None and shorter > best[0]):
+                return best
+    return _lightest(frame, candidates(frame, *grid_runs(frame)), follow)
+
+def _lightest(frame: Frame, candidates, follow: float | None
+              ) -> tuple[float, Section] | None:
+    """The lightest candidate in step (:func:`in_step_significance`), the first among
+    equals, weighed from the least bound on their weight up."""
+    lengths, ats, shifted, clipped = candidates
     if not lengths:
         return None
-    ats = np.concatenate([f[1] for f in found]).tolist()
-    shifted = np.concatenate([f[2] for f in found]).tolist()
-    clipped = np.concatenate([f[3] for f in found]).tolist()
+    string, lead = frame.string, frame.lead
+    codes, starts, ends = string.codes, string.starts, string.ends
     q = string.match_rate
     r = q if follow is None else follow
     bounds: dict[tuple[int, bool], float] = {}
@@ -543,13 +533,6 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None
                                   or (weight == best[0] and order < best_order)):
             best, best_order = (weight, section), order
     return best  # (None when no candidate keeps the lead's shift)
-
-
-def _pairs_with(begins: np.ndarray, ends: np.ndarray, lo: float, hi: float) -> np.ndarray:
-    """:func:`spans_pair` of every span ``(begins[k], ends[k])`` with ``(lo, hi)``."""
-    shared = np.minimum(ends, hi) - np.maximum(begins, lo)
-    union = np.maximum(ends, hi) - np.minimum(begins, lo)
-    return (shared > 0) & (2 * shared >= union)
 
 
 def spans_pair(copy, lead) -> bool:

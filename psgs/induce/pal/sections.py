@@ -320,8 +320,13 @@ def _cycles(codes: np.ndarray, starts, length: int) -> bool:
     first, last = int(starts[0]), int(starts[-1]) + length
     motif = codes[first:first + length]
     stretch = codes[first:last]
+    # (the shifts whose first few symbols already differ are passed over at once: most
+    # are, and a long window has many shifts to try)
+    shifts = np.arange(1, length // 2 + 1)
+    for j in range(min(8, length - length // 2)):
+        shifts = shifts[motif[shifts + j] == motif[j]]
     return any(np.array_equal(motif[p:], motif[:-p]) and np.array_equal(stretch[p:], stretch[:-p])
-               for p in range(1, length // 2 + 1))
+               for p in shifts.tolist())
 
 
 def _shortest(n: int, copies: int, match_rate: float, follow: float, level: float,
