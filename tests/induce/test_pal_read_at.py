@@ -13,10 +13,10 @@ from psgs.induce.pal.motifs import Timed
 from psgs.induce.pal.sections import Section, _cycles
 
 
-def _every_candidate(string: Timed, lead: np.ndarray, follow):
+def _every_candidate(string: Timed, lead: np.ndarray, follow, need=None):
     """The oracle: every maximal run between the two copies' segments at every shift, each
     of its windows and its part under the lead's copies that pairs with both copies
-    weighed, the first of the lightest kept."""
+    weighed, the first of the lightest kept (None when it is heavier than ``need``)."""
     codes, starts, ends = string.codes, string.starts, string.ends
     n = len(codes)
     segments = in_step.lead_segments(string, lead)
@@ -57,7 +57,7 @@ def _every_candidate(string: Timed, lead: np.ndarray, follow):
                 weight = in_step_significance(string, section, where, lead, follow, maximal)
                 if weight < np.inf and (best is None or weight < best[0]):
                     best = (weight, section)
-    return best
+    return None if need is not None and best is not None and best[0] > need else best
 
 
 def _same(a, b) -> bool:
@@ -190,3 +190,18 @@ def test_colliding_window_hashes_fall_back_to_the_grid(monkeypatch):
     for seed in range(40):
         string, lead, follow = _planted(seed)
         assert _same(read_at(string, lead, follow), _every_candidate(string, lead, follow)), seed
+
+
+@pytest.mark.parametrize("need", [-1.5, -3.0])
+def test_a_reading_asked_to_be_as_light_as_need_is_the_oracles_or_none(need, monkeypatch):
+    # a caller that keeps only readings as light as ``need`` gets the same reading when it
+    # is, and None when it is not, though on long copies only runs that could be that
+    # light are looked for
+    monkeypatch.setattr(in_step, "_GRID_CELLS", 0)
+    answered = 0
+    for seed in range(150):
+        string, lead, follow = _planted(seed)
+        expected = _every_candidate(string, lead, follow, need)
+        assert _same(read_at(string, lead, follow, need), expected), seed
+        answered += expected is not None
+    assert 20 < answered < 150  # (both answers seen)

@@ -166,6 +166,9 @@ def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.n
     """:func:`group_significance` with one lead read at ``lead_copies``: every other string
     read there (its own section too when it is one of the lead's ``partners``)."""
     total = len(strings)
+    # (a member's reading counts only this light or lighter: the lightest of the rest
+    # need not be found)
+    need = level - math.log10(total - 1)
     joined: dict[int, Section] = {}
     weights = []
     for j in range(total):
@@ -176,7 +179,7 @@ def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.n
             readings.append((in_step_significance(strings[j], sections[j], intervals[j],
                                                   lead_copies, follows[j]), sections[j]))
         if len(lead_copies) == 2:
-            again = read_at(strings[j], lead_copies, follows[j])
+            again = read_at(strings[j], lead_copies, follows[j], need)
             if again is not None:
                 readings.append(again)
         if not readings:
@@ -207,7 +210,7 @@ def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.n
         if len(at) == 2 and len(lead_copies) == 2:
             core = _core([at, lead_copies])
             at = at if core is None else core
-        here = read_at(strings[lead], at, follows[lead]) if len(at) == 2 else (
+        here = read_at(strings[lead], at, follows[lead], need) if len(at) == 2 else (
             in_step_significance(strings[lead], section, lead_copies, at, follows[lead]),
             section)
         if here is not None and (again is None or here[0] < again[0]):
@@ -229,7 +232,7 @@ def _read_the_rest(strings: list[Timed], core: np.ndarray, follows: list[float |
     out = {}
     for j in range(len(strings)):
         if j not in taken:
-            again = read_at(strings[j], core, follows[j])
+            again = read_at(strings[j], core, follows[j], level - beside)
             if again is not None and again[0] + beside <= level:
                 out[j] = again
     return out
@@ -430,7 +433,7 @@ _GRID_CELLS = 1 << 16
 _RUN_FLOORS = (48, 12)
 
 
-def read_at(string: Timed, lead: np.ndarray, follow: float | None
+def read_at(string: Timed, lead: np.ndarray, follow: float | None, need: float | None = None
             ) -> tuple[float, Section] | None:
     """The exact repeat of ``string`` at two lead copies' times that is least likely by
     chance (:func:`in_step_significance`), or None.
@@ -452,7 +455,10 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None
     found first from equal windows (:mod:`~psgs.induce.pal.shift_runs`) and weighed alone;
     their best is the answer when every shorter run's least bound is heavier, as it is
     when the copies share a long repeat (a movement's section played twice: 23 s to under
-    1 s on a quartet of 8,000 to 12,000 notes a voice).
+    1 s on a quartet of 8,000 to 12,000 notes a voice). With ``need`` (log10), a
+    caller that keeps only readings that light says so: the answer is the same when it
+    is that light and None otherwise, and on long copies only the runs whose least bound
+    reaches ``need`` are looked for.
 
     Examples
     --------
@@ -475,25 +481,46 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None
     if top < low or width < 2:
         return None
     frame = Frame(string, lead, first, second, reach, low, top, lo, width)
+    best = _read_runs(frame, follow, need)
+    return best if need is None or (best is not None and best[0] <= need) else None
+
+
+def _read_runs(frame: Frame, follow: float | None, need: float | None
+               ) -> tuple[float, Section] | None:
+    """:func:`read_at`'s search: the lightest candidate, or (with ``need``) possibly None
+    when none is as light as ``need``."""
+    string, n = frame.string, len(frame.string.codes)
     q = string.match_rate
     r = q if follow is None else follow
-    if width * (top - low + 1) > _GRID_CELLS and q > 0 and 0 < r < 1:
-        # long copies: the grid of every shift by every position is most of the cost, and
-        # only long runs can be the lightest. The runs of ``floor`` symbols or more, found
-        # from equal windows, are weighed first; when every shorter run's least bound is
-        # heavier than the best of them, the grid could not give another answer (the
-        # search below stops at the first bound no lighter than the best, and the longer
-        # runs' candidates keep their order among themselves)
-        for floor in _RUN_FLOORS:
-            runs = long_runs(frame, floor)
-            if runs is None:
-                break  # (too many equal windows, or a hash collision: the grid decides)
-            best = _lightest(frame, candidates(frame, *runs), follow)
-            shorter = (math.log10(q) + (floor - 2) * math.log10(r)
-                       + math.log10(max(1e-300, 1 - r)))
-            # (with windows of two symbols every run is found: the grid's answer, None too)
-            if floor <= 2 or (best is not None and shorter > best[0]):
-                return best
+    if frame.width * (frame.top - frame.low + 1) <= _GRID_CELLS or q <= 0 or not 0 < r < 1:
+        return _lightest(frame, candidates(frame, *grid_runs(frame)), follow)
+    if need is not None:
+        # a candidate of ``length`` symbols weighs at least its bound (the chance agreement
+        # and the least left-end term): only runs as long as the first whose bound reaches
+        # ``need`` can be kept, and among them the lightest is the lightest of all
+        floor = 2
+        while (math.log10(q) + (floor - 1) * math.log10(r) + math.log10(max(1e-300, 1 - r))
+               > need and floor <= n):
+            floor += 1
+        runs = long_runs(frame, floor)
+        if runs is not None:
+            return _lightest(frame, candidates(frame, *runs), follow)
+    # long copies: the grid of every shift by every position is most of the cost, and
+    # only long runs can be the lightest. The runs of ``floor`` symbols or more, found
+    # from equal windows, are weighed first; when every shorter run's least bound is
+    # heavier than the best of them, the grid could not give another answer (the
+    # search stops at the first bound no lighter than the best, and the longer runs'
+    # candidates keep their order among themselves)
+    for floor in _RUN_FLOORS:
+        runs = long_runs(frame, floor)
+        if runs is None:
+            break  # (too many equal windows, or a hash collision: the grid decides)
+        best = _lightest(frame, candidates(frame, *runs), follow)
+        shorter = (math.log10(q) + (floor - 2) * math.log10(r)
+                   + math.log10(max(1e-300, 1 - r)))
+        # (with windows of two symbols every run is found: the grid's answer, None too)
+        if floor <= 2 or (best is not None and shorter > best[0]):
+            return best
     return _lightest(frame, candidates(frame, *grid_runs(frame)), follow)
 
 def _lightest(frame: Frame, candidates, follow: float | None

@@ -26,7 +26,7 @@ __all__: list[str] = []  # private: in_step.py is the caller
 #: the grid is filled this many cells at a time, at most
 _BLOCK_CELLS = 1 << 22
 #: at most this many pairs of equal windows are followed (else the grid)
-_MAX_PAIRS = 1 << 22
+_MAX_PAIRS = 1 << 20
 
 
 @dataclass(frozen=True)
