@@ -8,7 +8,8 @@ import pytest
 from psgs import Actiongram
 from psgs.induce import PAL
 from psgs.induce.pal import in_step, shift_runs
-from psgs.induce.pal.in_step import in_step_significance, read_at, spans_pair
+from psgs.induce.pal.in_step import in_step_significance, read_at
+from psgs.induce.pal.pairing import lead_segments, spans_pair
 from psgs.induce.pal.motifs import Timed
 from psgs.induce.pal.sections import Section, _cycles
 
@@ -19,7 +20,7 @@ def _every_candidate(string: Timed, lead: np.ndarray, follow, need=None):
     weighed, the first of the lightest kept (None when it is heavier than ``need``)."""
     codes, starts, ends = string.codes, string.starts, string.ends
     n = len(codes)
-    segments = in_step.lead_segments(string, lead)
+    segments = lead_segments(string, lead)
     if segments is None:
         return None
     first, second = segments
@@ -205,3 +206,29 @@ def test_a_reading_asked_to_be_as_light_as_need_is_the_oracles_or_none(need, mon
         assert _same(read_at(string, lead, follow, need), expected), seed
         answered += expected is not None
     assert 20 < answered < 150  # (both answers seen)
+
+
+def test_cycles_is_its_definition_on_random_and_periodic_windows():
+    # the shifts are tried short ones first, then only where the first symbols agree: the
+    # verdict must be the definition's, shift by shift, on windows that are cycles and not
+    def defined(codes, starts, length):
+        first, last = int(starts[0]), int(starts[-1]) + length
+        motif, stretch = codes[first:first + length], codes[first:last]
+        return any(np.array_equal(motif[p:], motif[:-p])
+                   and np.array_equal(stretch[p:], stretch[:-p])
+                   for p in range(1, length // 2 + 1))
+
+    rng = np.random.default_rng(3)
+    seen = set()
+    for _ in range(3000):
+        period, n = int(rng.integers(1, 25)), int(rng.integers(4, 160))
+        codes = np.resize(rng.integers(0, 4, period), n)
+        noisy = rng.random(n) < rng.choice([0.0, 0.01, 0.3])
+        codes[noisy] = rng.integers(0, 4, int(noisy.sum()))
+        length = int(rng.integers(2, n // 2 + 1))
+        a = int(rng.integers(0, n - 2 * length + 1))
+        b = int(rng.integers(a + length, n - length + 1))
+        verdict = _cycles(codes, (a, b), length)
+        assert verdict == defined(codes, (a, b), length)
+        seen.add(verdict)
+    assert seen == {True, False}

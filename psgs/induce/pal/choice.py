@@ -4,7 +4,7 @@ Every string's section (:mod:`~psgs.induce.pal.sections`, its longest exact
 repeat) with fewer than one chance repeat as long expected in its string is a
 second candidate beside its motif; sections are synchronised in time as
 motifs are (step 3), their copies pairing off at one shift
-(:func:`~psgs.induce.pal.in_step.keeps_shift`), and form their own groups,
+(:func:`~psgs.induce.pal.pairing.keeps_shift`), and form their own groups,
 each kept only when the group as one event beats ``alpha``
 (:mod:`~psgs.induce.pal.in_step`: one string's short repeat is no evidence,
 several at the same times are). A string can
@@ -33,7 +33,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .motifs import Timed
-from .in_step import group_significance, keeps_shift, spans_pair
+from .in_step import group_significance
+from .pairing import keeps_shift, spans_pair
 from .pooling import sync_groups
 from .sections import (Section, copy_agreements, find_sections, follow_rate,
                        repeat_significance)

@@ -36,6 +36,7 @@ import math
 import numpy as np
 
 from .motifs import Timed
+from .pairing import lead_segments
 from .sections import Section, _cycles
 from .shift_runs import Frame, candidates, grid_runs, long_runs
 from .statistics import log10_choose
@@ -167,8 +168,9 @@ def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.n
     read there (its own section too when it is one of the lead's ``partners``)."""
     total = len(strings)
     # (a member's reading counts only this light or lighter: the lightest of the rest
-    # need not be found)
-    need = level - math.log10(total - 1)
+    # need not be found; the slack keeps every reading the test below keeps, whatever the
+    # float sum's rounding)
+    need = level - math.log10(total - 1) + _SLACK if total > 1 else -math.inf
     joined: dict[int, Section] = {}
     weights = []
     for j in range(total):
@@ -232,7 +234,7 @@ def _read_the_rest(strings: list[Timed], core: np.ndarray, follows: list[float |
     out = {}
     for j in range(len(strings)):
         if j not in taken:
-            again = read_at(strings[j], core, follows[j], level - beside)
+            again = read_at(strings[j], core, follows[j], level - beside + _SLACK)
             if again is not None and again[0] + beside <= level:
                 out[j] = again
     return out
@@ -408,25 +410,8 @@ def _as_close(per_copy: list[tuple[tuple[float, float], np.ndarray, np.ndarray]]
     return math.log10(near) + math.log10(float(np.sum(counts / np.cumsum(counts))))
 
 
-def lead_segments(string: Timed, lead: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
-    """The indices of ``string``'s segments that overlap each of the lead's two copies
-    (``lead``: their ``[[start, end], [start, end]]`` times), or ``None`` when a copy
-    overlaps none.
-
-    Examples
-    --------
-    >>> string = Timed.from_codes(np.array([5, 1, 2, 6]), np.ones(4), 0.0)
-    >>> [s.tolist() for s in lead_segments(string, np.array([[0.5, 2.0], [3.0, 4.0]]))]
-    [[0, 1], [3]]
-    """
-    (a1, b1), (a2, b2) = lead.tolist()
-    first = np.flatnonzero((string.starts < b1) & (string.ends > a1))
-    second = np.flatnonzero((string.starts < b2) & (string.ends > a2))
-    if len(first) == 0 or len(second) == 0:
-        return None
-    return first, second
-
-
+#: what a caller adds to the weight it needs (its own test, a sum, may round either way)
+_SLACK = 1e-9
 #: grids of more shifts-by-positions than this are first searched for long runs alone
 _GRID_CELLS = 1 << 16
 #: the shortest runs that search looks for, tried in turn before the grid
@@ -442,7 +427,9 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None, need: float |
     the second (all shifts between the segments under them), and each run's part under
     the two copies where the run reaches past them, that pairs with both copies, does not
     overlap itself, is no cycle and keeps the lead's shift; None when none is in step.
-    Among equally unlikely ones, the first in the order of the shifts and then of the runs.
+    Among equally unlikely ones, the first in the grid's order: block by block of shifts
+    (a block's shifts in order, their runs in order, each run's windows before the parts
+    of the block's runs under the lead's copies).
 
     The runs of every shift are found at once (shifts as the rows of one array), and
     the candidates weighed from the least bound on their weight up (the bound is their
@@ -494,17 +481,19 @@ def _read_runs(frame: Frame, follow: float | None, need: float | None
     r = q if follow is None else follow
     if frame.width * (frame.top - frame.low + 1) <= _GRID_CELLS or q <= 0 or not 0 < r < 1:
         return _lightest(frame, candidates(frame, *grid_runs(frame)), follow)
+    # (a candidate weighed in one pass keeps its weight in the next: a string that plays
+    # one short block over and over gives the same cycles to every pass)
+    weighed: dict = {}
     if need is not None:
         # a candidate of ``length`` symbols weighs at least its bound (the chance agreement
         # and the least left-end term): only runs as long as the first whose bound reaches
         # ``need`` can be kept, and among them the lightest is the lightest of all
         floor = 2
-        while (math.log10(q) + (floor - 1) * math.log10(r) + math.log10(max(1e-300, 1 - r))
-               > need and floor <= n):
+        while _least_bound(q, r, floor) > need and floor <= n:
             floor += 1
         runs = long_runs(frame, floor)
         if runs is not None:
-            return _lightest(frame, candidates(frame, *runs), follow)
+            return _lightest(frame, candidates(frame, *runs), follow, weighed)
     # long copies: the grid of every shift by every position is most of the cost, and
     # only long runs can be the lightest. The runs of ``floor`` symbols or more, found
     # from equal windows, are weighed first; when every shorter run's least bound is
@@ -515,19 +504,26 @@ def _read_runs(frame: Frame, follow: float | None, need: float | None
         runs = long_runs(frame, floor)
         if runs is None:
             break  # (too many equal windows, or a hash collision: the grid decides)
-        best = _lightest(frame, candidates(frame, *runs), follow)
-        shorter = (math.log10(q) + (floor - 2) * math.log10(r)
-                   + math.log10(max(1e-300, 1 - r)))
+        best = _lightest(frame, candidates(frame, *runs), follow, weighed)
         # (with windows of two symbols every run is found: the grid's answer, None too)
-        if floor <= 2 or (best is not None and shorter > best[0]):
+        if floor <= 2 or (best is not None and _least_bound(q, r, floor - 1) > best[0]):
             return best
-    return _lightest(frame, candidates(frame, *grid_runs(frame)), follow)
+    return _lightest(frame, candidates(frame, *grid_runs(frame)), follow, weighed)
 
-def _lightest(frame: Frame, candidates, follow: float | None
+
+def _least_bound(q: float, r: float, length: int) -> float:
+    """The least weight a candidate of ``length`` symbols can have (``0 < r < 1``, ``q >
+    0``): its chance agreement at two copies and the least left-end term."""
+    return math.log10(q) + (length - 1) * math.log10(r) + math.log10(1 - r)
+
+
+def _lightest(frame: Frame, found, follow: float | None, weighed: dict | None = None
               ) -> tuple[float, Section] | None:
     """The lightest candidate in step (:func:`in_step_significance`), the first among
-    equals, weighed from the least bound on their weight up."""
-    lengths, ats, shifted, clipped = candidates
+    equals, weighed from the least bound on their weight up; ``weighed`` keeps each
+    candidate's weight (inf: a cycle, or not in step) for another pass."""
+    lengths, ats, shifted, clipped = found
+    weighed = {} if weighed is None else weighed
     if not lengths:
         return None
     string, lead = frame.string, frame.lead
@@ -548,51 +544,20 @@ def _lightest(frame: Frame, candidates, follow: float | None
             if order > best_order:
                 continue  # (at most as light as the best, and after it)
         length, s, shift = lengths[order], ats[order], shifted[order]
-        if _cycles(codes, (s, s + shift), length):
-            continue
-        motif = codes[s:s + length].copy()
-        where = np.array([[starts[s], ends[s + length - 1]],
-                          [starts[s + shift], ends[s + length - 1 + shift]]])
-        section = Section(motif, np.array([s, s + shift], dtype=np.int64), 0.0)
-        weight = in_step_significance(string, section, where, lead, follow,
-                                      maximal=not clipped[order])
+        key = (length, s, shift, clipped[order])
+        if key in weighed:
+            weight, section = weighed[key]
+        elif _cycles(codes, (s, s + shift), length):
+            weight, section = weighed.setdefault(key, (math.inf, None))
+        else:
+            motif = codes[s:s + length].copy()
+            where = np.array([[starts[s], ends[s + length - 1]],
+                              [starts[s + shift], ends[s + length - 1 + shift]]])
+            section = Section(motif, np.array([s, s + shift], dtype=np.int64), 0.0)
+            weight = in_step_significance(string, section, where, lead, follow,
+                                          maximal=not clipped[order])
+            weighed[key] = (weight, section)
         if weight < math.inf and (best is None or weight < best[0]
                                   or (weight == best[0] and order < best_order)):
             best, best_order = (weight, section), order
     return best  # (None when no candidate keeps the lead's shift)
-
-
-def spans_pair(copy, lead) -> bool:
-    """Whether two time spans share half of the time the two cover together."""
-    (a, b), (c, d) = copy, lead
-    shared, union = min(b, d) - max(a, c), max(b, d) - min(a, c)
-    return shared > 0 and 2 * shared >= union
-
-
-def keeps_shift(copies: np.ndarray, others: np.ndarray) -> bool:
-    """Whether ``copies`` pair off with two or more of ``others`` (each pair sharing half of
-    the time the two cover together) and lie off them by one amount: the start's offset
-    and the end's, over the pairs, each within half the median of the pairs' shorter copy.
-
-    Copies played in step with others keep their shift between copies; a chance repeat
-    inside long copies pairs with them too, but at a shift of its own.
-
-    Examples
-    --------
-    >>> section = np.array([[9.0, 25.0], [27.0, 43.0]])
-    >>> keeps_shift(np.array([[10.0, 25.0], [28.0, 43.0]]), section)
-    True
-    >>> keeps_shift(np.array([[9.0, 17.0], [34.0, 42.0]]), section)  # shift 25, not 18
-    False
-    """
-    offsets, lengths = [], []
-    for a, b in copies.tolist():
-        for c, d in others.tolist():
-            if spans_pair((a, b), (c, d)):
-                offsets.append((a - c, b - d))
-                lengths.append(min(b - a, d - c))
-                break
-    if len(offsets) < 2:
-        return False
-    spread = np.ptp(np.asarray(offsets), axis=0)
-    return bool(np.all(spread <= np.median(lengths) / 2))

@@ -320,13 +320,20 @@ def _cycles(codes: np.ndarray, starts, length: int) -> bool:
     first, last = int(starts[0]), int(starts[-1]) + length
     motif = codes[first:first + length]
     stretch = codes[first:last]
-    # (the shifts whose first few symbols already differ are passed over at once: most
-    # are, and a long window has many shifts to try)
-    shifts = np.arange(1, length // 2 + 1)
+
+    def repeats_at(p: int) -> bool:
+        return bool(np.array_equal(motif[p:], motif[:-p])
+                    and np.array_equal(stretch[p:], stretch[:-p]))
+
+    # the short shifts one by one (a block of a few symbols played over and over is found
+    # at once); the longer ones only where their first few symbols agree: most do not, and
+    # a long window has many shifts to try
+    if any(repeats_at(p) for p in range(1, min(8, length // 2) + 1)):
+        return True
+    shifts = np.arange(9, length // 2 + 1)
     for j in range(min(8, length - length // 2)):
         shifts = shifts[motif[shifts + j] == motif[j]]
-    return any(np.array_equal(motif[p:], motif[:-p]) and np.array_equal(stretch[p:], stretch[:-p])
-               for p in shifts.tolist())
+    return any(repeats_at(p) for p in shifts.tolist())
 
 
 def _shortest(n: int, copies: int, match_rate: float, follow: float, level: float,

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .motifs import Timed
+from .pairing import _pairs_with
 from .sections import _window_hashes
 
 __all__: list[str] = []  # private: in_step.py is the caller
@@ -185,10 +186,3 @@ def candidates(frame: Frame, begin: np.ndarray, end: np.ndarray, shift: np.ndarr
     order = np.argsort(2 * block + clipped, kind="stable")
     return (lengths[order].tolist(), ats[order].tolist(), shifts[order].tolist(),
             clipped[order].tolist())
-
-
-def _pairs_with(begins: np.ndarray, ends: np.ndarray, lo: float, hi: float) -> np.ndarray:
-    """:func:`~psgs.induce.pal.in_step.spans_pair` of every span ``(begins[k], ends[k])`` with ``(lo, hi)``."""
-    shared = np.minimum(ends, hi) - np.maximum(begins, lo)
-    union = np.maximum(ends, hi) - np.minimum(begins, lo)
-    return (shared > 0) & (2 * shared >= union)
