@@ -236,3 +236,52 @@ def test_cycles_is_its_definition_on_random_and_periodic_windows():
         assert verdict == defined(codes, (a, b), length)
         seen.add(verdict)
     assert seen == {True, False}
+
+
+def test_the_runs_checked_a_few_symbols_at_a_time_give_the_same_answer(monkeypatch):
+    # the runs found from equal windows are checked symbol by symbol in batches (their
+    # symbols together may be many times the pairs): batches of one run, or a few symbols,
+    # must find what one batch does, and a run a hash collision made up must still fail
+    monkeypatch.setattr(in_step, "_GRID_CELLS", 0)
+    monkeypatch.setattr(in_step, "_RUN_FLOORS", (6,))
+    for size in (1, 9):
+        monkeypatch.setattr(shift_runs, "_CHECK_SYMBOLS", size)
+        for seed in range(60):
+            string, lead, follow = _planted(seed)
+            assert _same(read_at(string, lead, follow), _every_candidate(string, lead, follow))
+    # (a window's symbols summed: windows that agree hash alike, and many that do not)
+    monkeypatch.setattr(shift_runs, "_window_hashes", lambda codes, length: np.convolve(
+        codes.astype(np.int64), np.ones(length, np.int64), "valid").astype(np.uint64))
+    for seed in range(60):
+        string, lead, follow = _planted(seed)
+        assert _same(read_at(string, lead, follow), _every_candidate(string, lead, follow))
+
+
+def test_a_made_up_run_in_the_last_batch_is_caught(monkeypatch):
+    # one pair of windows made equal by a collision, at the largest shift (the last run in
+    # order), with one run a batch: the check must reach it and refuse the runs
+    from psgs.induce.pal.sections import _window_hashes
+
+    monkeypatch.setattr(shift_runs, "_CHECK_SYMBOLS", 1)
+    tried = 0
+    for seed in range(60):
+        string, lead, _ = _planted(seed)
+        frame = in_step._frame_of(string, lead)
+        floor, codes = 6, string.codes
+        if frame is None or shift_runs.long_runs(frame, floor) is None:
+            continue
+        p, shift = frame.lo, frame.top
+        if p + floor > frame.his(np.array([shift]))[0] or np.array_equal(
+                codes[p:p + floor], codes[p + shift:p + shift + floor]):
+            continue
+
+        def colliding(window_codes, length, p=p, shift=shift):
+            hashes = _window_hashes(window_codes, length).copy()
+            hashes[shift] = hashes[0]  # (positions from frame.lo)
+            return hashes
+
+        monkeypatch.setattr(shift_runs, "_window_hashes", colliding)
+        assert shift_runs.long_runs(frame, floor) is None, seed
+        monkeypatch.setattr(shift_runs, "_window_hashes", _window_hashes)
+        tried += 1
+    assert tried >= 20

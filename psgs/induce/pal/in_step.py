@@ -455,8 +455,19 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None, need: float |
     >>> found.motif.tolist(), found.starts.tolist()
     ([1, 2, 3, 4], [1, 6])
     """
-    codes = string.codes
-    n = len(codes)
+    frame = _frame_of(string, lead)
+    if frame is None:
+        return None
+    best = _read_runs(frame, follow, need)
+    return best if need is None or (best is not None and best[0] <= need) else None
+
+
+def _frame_of(string: Timed, lead: np.ndarray) -> Frame | None:
+    """What :func:`read_at` looks at, or None when a copy overlaps no segment or there is
+    no shift or position to look at: every shift that takes a segment under the first
+    copy to one under the second, and every position within ``reach`` segments of the
+    first copy (as many as lie under both copies)."""
+    n = len(string.codes)
     segments = lead_segments(string, lead)
     if segments is None:
         return None
@@ -467,9 +478,7 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None, need: float |
     width = max(0, min(n - low, int(first[-1]) + reach + 1) - lo)
     if top < low or width < 2:
         return None
-    frame = Frame(string, lead, first, second, reach, low, top, lo, width)
-    best = _read_runs(frame, follow, need)
-    return best if need is None or (best is not None and best[0] <= need) else None
+    return Frame(string, lead, first, second, reach, low, top, lo, width)
 
 
 def _read_runs(frame: Frame, follow: float | None, need: float | None

@@ -28,6 +28,8 @@ __all__: list[str] = []  # private: in_step.py is the caller
 _BLOCK_CELLS = 1 << 22
 #: at most this many pairs of equal windows are followed (else the grid)
 _MAX_PAIRS = 1 << 20
+#: the runs found are checked symbol by symbol this many symbols at a time, at most
+_CHECK_SYMBOLS = 1 << 22
 
 
 @dataclass(frozen=True)
@@ -132,12 +134,20 @@ def long_runs(frame: Frame, floor: int
     begin = p[starts_]
     end = p[np.concatenate((starts_[1:], [len(p)])) - 1] + floor
     shift = shift[starts_]
-    # every run checked symbol by symbol (a window's hash stands for its symbols)
+    # every run checked symbol by symbol (a window's hash stands for its symbols), a batch
+    # of runs at a time: the runs' symbols together may be ``floor`` times the pairs
     sizes = end - begin
-    at = np.repeat(begin, sizes) + np.arange(int(sizes.sum())) - np.repeat(
-        np.cumsum(sizes) - sizes, sizes)
-    if not np.array_equal(codes[at], codes[at + np.repeat(shift, sizes)]):
-        return None
+    reach = np.cumsum(sizes)
+    done = 0
+    while done < len(sizes):
+        upto = max(done + 1, int(np.searchsorted(reach, reach[done] - sizes[done] + _CHECK_SYMBOLS,
+                                                 side="right")))
+        part = sizes[done:upto]
+        at = np.repeat(begin[done:upto], part) + np.arange(int(part.sum())) - np.repeat(
+            np.cumsum(part) - part, part)
+        if not np.array_equal(codes[at], codes[at + np.repeat(shift[done:upto], part)]):
+            return None
+        done = upto
     return begin, end, shift
 
 
