@@ -116,7 +116,7 @@ def long_runs(frame: Frame, floor: int
     if int(later.sum()) > _MAX_PAIRS:
         return None
     left = np.repeat(np.arange(len(order)), later)
-    right = left + 1 + (np.arange(len(left)) - np.repeat(np.cumsum(later) - later, later))
+    right = _ranges(np.arange(len(order)) + 1, later)
     p, other = order[left] + lo, order[right] + lo
     shift = other - p
     # a window pair lies on the grid when its shift is looked at and both its windows lie
@@ -143,8 +143,7 @@ def long_runs(frame: Frame, floor: int
         upto = max(done + 1, int(np.searchsorted(reach, reach[done] - sizes[done] + _CHECK_SYMBOLS,
                                                  side="right")))
         part = sizes[done:upto]
-        at = np.repeat(begin[done:upto], part) + np.arange(int(part.sum())) - np.repeat(
-            np.cumsum(part) - part, part)
+        at = _ranges(begin[done:upto], part)
         if not np.array_equal(codes[at], codes[at + np.repeat(shift[done:upto], part)]):
             return None
         done = upto
@@ -167,9 +166,7 @@ def candidates(frame: Frame, begin: np.ndarray, end: np.ndarray, shift: np.ndarr
     # overlap (copies that touch, and chance agreement after the second)
     length = np.minimum(end - begin, shift)
     count = end - length - begin + 1
-    cum = np.cumsum(count)
-    at = np.repeat(begin, count) + np.arange(int(cum[-1]) if len(cum) else 0) - np.repeat(
-        cum - count, count)
+    at = _ranges(begin, count)
     # and the part of each run under the lead's copies: a run may reach far past them
     # (symbols around the copies agreeing by chance) or be one block played over and
     # over, where the lead's copies mark a section of it (not maximal: no left end)
@@ -196,3 +193,15 @@ def candidates(frame: Frame, begin: np.ndarray, end: np.ndarray, shift: np.ndarr
     order = np.argsort(2 * block + clipped, kind="stable")
     return (lengths[order].tolist(), ats[order].tolist(), shifts[order].tolist(),
             clipped[order].tolist())
+
+
+def _ranges(begins: np.ndarray, sizes: np.ndarray) -> np.ndarray:
+    """``begins[k], begins[k] + 1, ..., begins[k] + sizes[k] - 1`` for every ``k``, in order.
+
+    Examples
+    --------
+    >>> _ranges(np.array([3, 10]), np.array([2, 3])).tolist()
+    [3, 4, 10, 11, 12]
+    """
+    total = int(sizes.sum())
+    return np.repeat(begins, sizes) + np.arange(total) - np.repeat(np.cumsum(sizes) - sizes, sizes)
