@@ -437,7 +437,7 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None, need: float |
     :func:`in_step_significance` are counts, at least one, and the symbols before the
     copies disagree with chance ``1 - r`` at the least); the search stops at the first
     bound no lighter than the best weight found: the same repeat as weighing every
-    candidate in the order of the shifts. On long copies (a grid of more than
+    candidate in that order. On long copies (a grid of more than
     ``_GRID_CELLS`` shifts by positions) the runs of 48, then 12, symbols or more are
     found first from equal windows (:mod:`~psgs.induce.pal.shift_runs`) and weighed alone;
     their best is the answer when every shorter run's least bound is heavier, as it is
@@ -498,7 +498,7 @@ def _read_runs(frame: Frame, follow: float | None, need: float | None
         # and the least left-end term): only runs as long as the first whose bound reaches
         # ``need`` can be kept, and among them the lightest is the lightest of all
         floor = 2
-        while _least_bound(q, r, floor) > need and floor <= n:
+        while _bound(q, r, floor) > need and floor <= n:
             floor += 1
         runs = long_runs(frame, floor)
         if runs is not None:
@@ -515,15 +515,19 @@ def _read_runs(frame: Frame, follow: float | None, need: float | None
             break  # (too many equal windows, or a hash collision: the grid decides)
         best = _lightest(frame, candidates(frame, *runs), follow, weighed)
         # (with windows of two symbols every run is found: the grid's answer, None too)
-        if floor <= 2 or (best is not None and _least_bound(q, r, floor - 1) > best[0]):
+        if floor <= 2 or (best is not None and _bound(q, r, floor - 1) > best[0]):
             return best
     return _lightest(frame, candidates(frame, *grid_runs(frame)), follow, weighed)
 
 
-def _least_bound(q: float, r: float, length: int) -> float:
-    """The least weight a candidate of ``length`` symbols can have (``0 < r < 1``, ``q >
-    0``): its chance agreement at two copies and the least left-end term."""
-    return math.log10(q) + (length - 1) * math.log10(r) + math.log10(1 - r)
+def _bound(q: float, r: float, length: int, inner: bool = False) -> float:
+    """The least weight a candidate of ``length`` symbols can have (``q`` the match rate,
+    ``r`` the follow rate): :func:`in_step_significance`'s chance term at two copies, and its
+    least left-end term unless the candidate is a run's ``inner`` part (no left end)."""
+    if q <= 0 or r <= 0:
+        return -math.inf
+    return ((math.log10(q) + (length - 1) * math.log10(r))
+            + (0.0 if inner else math.log10(max(1e-300, 1 - r))))
 
 
 def _lightest(frame: Frame, found, follow: float | None, weighed: dict | None = None
@@ -539,12 +543,7 @@ def _lightest(frame: Frame, found, follow: float | None, weighed: dict | None = 
     codes, starts, ends = string.codes, string.starts, string.ends
     q = string.match_rate
     r = q if follow is None else follow
-    bounds: dict[tuple[int, bool], float] = {}
-    for length, inner in set(zip(lengths, clipped)):
-        # in_step_significance's chance term at two copies, and its least left-end term
-        bounds[length, inner] = (-math.inf if q <= 0 or r <= 0 else
-                                 (math.log10(q) + (length - 1) * math.log10(r))
-                                 + (0.0 if inner else math.log10(max(1e-300, 1 - r))))
+    bounds = {key: _bound(q, r, *key) for key in set(zip(lengths, clipped))}
     best, best_order = None, -1
     for bound, order in sorted((bounds[key], k) for k, key in enumerate(zip(lengths, clipped))):
         if best is not None and bound >= best[0]:
