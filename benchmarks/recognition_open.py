@@ -31,6 +31,17 @@ _MARGINS = (1.0, 1.5, 2.0)  # the whole-vector threshold: x the worst held-out t
 _LEVELS = (0.1, 0.01, 0.001, 0.0001)  # the feature-group test: how often a known take fails it
 
 
+def _grouped(takes, by_style: bool):
+    """Per action (a content, or with ``by_style`` a content and a style) its takes' motions
+    and their styles, what the praxicon learns from and holds out by."""
+    groups, styles = defaultdict(list), defaultdict(list)
+    for t in takes:
+        name = f"{t.content}|{t.style}" if by_style else t.content
+        groups[name].append(t.motion)
+        styles[name].append(t.style)
+    return groups, styles
+
+
 def open_set(results, protocol, train, test, *, by_style: bool = False):
     """One content left out of the learning: its test takes should come back None.
 
@@ -45,11 +56,7 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
                                       describe_table, feature_rows, score_model, scores)
     from praxicon.recognition import _excess, feature_matrix
 
-    groups, styles = defaultdict(list), defaultdict(list)
-    for t in train:
-        name = f"{t.content}|{t.style}" if by_style else t.content
-        groups[name].append(t.motion)
-        styles[name].append(t.style)
+    groups, styles = _grouped(train, by_style)
     order, table = common_table({c: feature_rows(m) for c, m in groups.items()})
     # the kinds of features chosen as describe chooses them, each style held out together
     order, table = chosen_table(table, order, groups=styles)
@@ -281,11 +288,7 @@ def open_bound(results, protocol, takes, train, taught, test, cache, *, by_style
         learn = train + [t for t in taught if t.style not in fold]
         ask = [t for t in asked if t.content in known or not fold or t.style in fold]
         labels = np.array([t.content for t in learn])
-        groups, styles = defaultdict(list), defaultdict(list)
-        for t in learn:
-            name = f"{t.content}|{t.style}" if by_style else t.content
-            groups[name].append(t.motion)
-            styles[name].append(t.style)
+        groups, styles = _grouped(learn, by_style)
         d = describe(groups, groups=styles)
         columns, x, _ = feature_matrix(d, [t.motion for t in ask])
         # every method's scores, higher better, with the content each column answers
