@@ -33,6 +33,7 @@ from pathlib import Path
 
 import lark
 
+from ._foundation.files import decode_utf8, read_text
 from .errors import FormatError, ValidationError
 from .model import IDLE, PCGS, PSGS, Grammar, Nonterminal, Query, Rule, Terminal
 __all__ = ["loads", "load", "example_names", "example_path", "ACTIONGRAM_SUFFIXES"]
@@ -103,7 +104,7 @@ def loads(text: str | bytes, source: str = "<string>") -> PSGS | PCGS:
     psgs.errors.FormatError: broken.psgs:1:...
     """
     if isinstance(text, (bytes, bytearray)):
-        text = _decode(bytes(text), source)
+        text = decode_utf8(bytes(text), source)
     if not isinstance(text, str):
         raise TypeError(f"loads expects text, not {type(text).__name__}")
     if text.startswith("\ufeff"):
@@ -221,21 +222,7 @@ def load(path: str | PathLike, *, kind: str | None = None):
 
         return _read_file(path)
     path = example_path(path)
-    data = Path(path).read_bytes()
-    source = str(path)
-    return loads(_decode(data, source), source=source)
-
-
-def _decode(data: bytes, source: str) -> str:
-    try:
-        return data.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        line_start = data.rfind(b"\n", 0, exc.start) + 1
-        line = data.count(b"\n", 0, exc.start) + 1
-        column = len(data[line_start:exc.start].decode("utf-8", errors="replace")) + 1
-        raise FormatError(f"not UTF-8 text: byte 0x{data[exc.start]:02x} cannot be decoded "
-                          f"(is this a binary file?)", source=source, line=line,
-                          column=column) from None
+    return loads(read_text(path), source=str(path))
 
 
 def _syntax_error(exc: lark.exceptions.UnexpectedInput, text: str, source: str) -> FormatError:

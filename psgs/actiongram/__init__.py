@@ -48,6 +48,7 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from .._foundation.files import read_text
 from ..errors import FormatError
 from ._checks import (_bad_duration, _bad_name, _bad_symbol, _check_times_advance, _finite,
                       _format_number, _plain_durations, _shown)
@@ -565,15 +566,8 @@ def _read_file(path: str | Path) -> Actiongram:
     (('lknee', 'rknee'), (1.0, 1.0, 2.5, 1.0))
     """
     path = Path(path)
-    data = path.read_bytes()
-    try:
-        text = data.decode("utf-8-sig")  # a leading byte-order mark is not part of the first name
-    except UnicodeDecodeError as exc:
-        body = exc.object  # the bytes after any byte-order mark: exc.start indexes these
-        line = body.count(b"\n", 0, exc.start) + 1
-        column = exc.start - (body.rfind(b"\n", 0, exc.start) + 1) + 1
-        raise FormatError(f"not UTF-8 text (byte {body[exc.start]:#04x})", source=str(path),
-                          line=line, column=column) from None
+    # a leading byte-order mark is not part of the first name
+    text = read_text(path, signature=True)
     if path.suffix.lower() == ".json":
         actiongram = Actiongram.from_json(text, source=str(path))
     else:

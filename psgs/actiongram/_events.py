@@ -22,6 +22,7 @@ import sys
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 
+from .._foundation.files import read_text
 from ..errors import FormatError, ValidationError
 from ._checks import _bad_name, _bad_symbol, _shown
 
@@ -181,11 +182,7 @@ def read_csv(cls, path: str | Path, *, gaps: str = "rest", rest_symbol: str = "_
     order; other columns are ignored). Errors are FormatErrors naming the file and line."""
     _check_options(gaps, rest_symbol)
     source = str(path)
-    try:
-        text = Path(path).read_bytes().decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise FormatError(f"not UTF-8 text (byte {exc.object[exc.start]:#04x})",
-                          source=source) from None
+    text = read_text(path, signature=True)
     reader = csv.reader(io.StringIO(text, newline=""))
     try:
         header = [cell.strip() for cell in next(reader)]

@@ -24,7 +24,7 @@ PACKAGES = ("psgs", "kinetology", "praxicon")  # praxicon: a package another bra
 # At the bottom, the foundation every package of the distribution shares (errors, the
 # command-line shell, lazy names, the engine selector).
 FOUNDATION = ("psgs.errors", "psgs._foundation", "psgs._foundation.shell",
-              "psgs._foundation.lazy", "psgs._foundation.engines")
+              "psgs._foundation.lazy", "psgs._foundation.engines", "psgs._foundation.files")
 CORE_TIERS = (
     (*FOUNDATION, "psgs.budget", "psgs.names"),
     ("psgs.model",),
@@ -37,7 +37,7 @@ CORE_TIERS = (
 # Beside the core: readers, writers and exporters of the model, needing nothing above it.
 BESIDE = ("psgs.format", "psgs.writing", "psgs.lark_export", "psgs.graph")
 # (psgs.load and psgs.dump read and write actiongrams too, so format and writing may import it)
-BESIDE_MAY_IMPORT = ("psgs.errors", "psgs.names", "psgs.model", "psgs.writing",
+BESIDE_MAY_IMPORT = (*FOUNDATION, "psgs.names", "psgs.model", "psgs.writing",
                      "psgs.actiongram")
 #: What kinetology may import from psgs: the actiongram (what it makes) and the foundation
 #: every package of the distribution shares (errors, command-line shell, lazy names, engines),

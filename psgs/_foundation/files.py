@@ -1,0 +1,106 @@
+"""Reading an input file whole: no more bytes than its size, strict UTF-8 with the place.
+
+Every reader of the distribution (grammars, actiongrams, events tables, motion capture,
+praxicon folders) reads its file through :func:`read_bytes`, so that a path to a device or a
+pipe (``/dev/zero``, a FIFO) is refused at once instead of read until memory runs out, and
+through :func:`decode_utf8`, so that bytes that are not UTF-8 are an error at their line and
+column instead of replaced without a word.
+"""
+
+from __future__ import annotations
+
+import errno
+import os
+import stat
+
+from psgs.errors import FormatError
+
+__all__ = ["read_bytes", "decode_utf8", "read_text"]
+
+
+def read_bytes(path) -> bytes:
+    """The bytes of the regular file ``path``: at most its size, read once.
+
+    Raises
+    ------
+    FormatError
+        When ``path`` is not a regular file (a device, a pipe, a socket): its size says
+        nothing of how much it would give.
+    OSError
+        As :func:`open` does for a missing file or a folder (``IsADirectoryError``), so the
+        callers' handling of those stays as it is.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "a.txt"
+    >>> _ = path.write_bytes(b"abc")
+    >>> read_bytes(path)
+    b'abc'
+    >>> read_bytes("/dev/zero")
+    Traceback (most recent call last):
+    ...
+    psgs.errors.FormatError: /dev/zero: not a regular file (a device, a pipe or a socket): its size cannot be known, so it is not read
+    """
+    name = os.fspath(path)
+    # non-blocking, so that opening a FIFO with no writer does not wait for one
+    handle = os.open(name, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+    try:
+        info = os.fstat(handle)
+        if stat.S_ISDIR(info.st_mode):
+            raise IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR), name)
+        if not stat.S_ISREG(info.st_mode):
+            raise FormatError("not a regular file (a device, a pipe or a socket): its size "
+                              "cannot be known, so it is not read", source=str(name))
+        chunks, left = [], info.st_size
+        while left > 0:
+            chunk = os.read(handle, min(left, 1 << 24))
+            if not chunk:  # the file shrank while it was read: what is there is all there is
+                break
+            chunks.append(chunk)
+            left -= len(chunk)
+        return b"".join(chunks)
+    finally:
+        os.close(handle)
+
+
+def decode_utf8(data: bytes, source: str, *, signature: bool = False) -> str:
+    """``data`` as UTF-8 text, or a :class:`~psgs.errors.FormatError` at the first byte that
+    is not, with its line and column (counted in characters).
+
+    ``signature=True`` drops a leading byte-order mark (``utf-8-sig``), which spreadsheet
+    programs write and which is no part of the first word.
+
+    Examples
+    --------
+    >>> decode_utf8(b"a\\nb\\xffc", "x.txt")
+    Traceback (most recent call last):
+    ...
+    psgs.errors.FormatError: x.txt:2:2: not UTF-8 text: byte 0xff cannot be decoded (is this a binary file?)
+    >>> decode_utf8(b"\\xef\\xbb\\xbfname", "x.csv", signature=True)
+    'name'
+    """
+    body = data[3:] if signature and data.startswith(b"\xef\xbb\xbf") else data
+    try:
+        return body.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line_start = body.rfind(b"\n", 0, exc.start) + 1
+        line = body.count(b"\n", 0, exc.start) + 1
+        column = len(body[line_start:exc.start].decode("utf-8", errors="replace")) + 1
+        raise FormatError(f"not UTF-8 text: byte 0x{body[exc.start]:02x} cannot be decoded "
+                          f"(is this a binary file?)", source=source, line=line,
+                          column=column) from None
+
+
+def read_text(path, *, signature: bool = False) -> str:
+    """:func:`read_bytes` then :func:`decode_utf8`, the file's name as the source.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "a.txt"
+    >>> _ = path.write_text("héllo", encoding="utf-8")
+    >>> read_text(path)
+    'héllo'
+    """
+    return decode_utf8(read_bytes(path), str(os.fspath(path)), signature=signature)
