@@ -50,7 +50,8 @@ class Terminal:
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name or _BAD_TERMINAL.search(self.name):
             raise ValidationError(
-                f"terminal {self.name!r} must be non-empty text without white space")
+                f"terminal {self.name!r} must be non-empty text without white space or control "
+                f"characters")
 
     def __str__(self) -> str:
         return self.name

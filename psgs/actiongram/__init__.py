@@ -49,7 +49,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .._foundation.files import read_text
-from ..errors import FormatError
+from ..errors import FormatError, ValidationError
 from ._checks import (_bad_duration, _bad_name, _bad_symbol, _check_times_advance, _finite,
                       _format_number, _plain_durations, _shown)
 from ._events import GAPS
@@ -204,6 +204,11 @@ class Actiongram:
         starts = starts or {}
         displacements = displacements or {}
         actuators = actuators or {}
+        for what, given in (("strings", strings), ("durations", durations), ("starts", starts),
+                            ("displacements", displacements), ("actuators", actuators)):
+            if not isinstance(given, Mapping):  # a list of strings has no names to give them
+                raise ValidationError(f"{what} must map each string's name to its values, "
+                                      f"not be a {type(given).__name__}")
         for extra in (*durations, *starts):  # in the order given: the same error every run
             if extra not in strings:
                 raise FormatError(f"durations or starts given for unknown string "

@@ -10,6 +10,7 @@ import math
 import re
 
 from ..errors import FormatError
+from ..names import _BAD_TERMINAL
 
 __all__: list[str] = []  # private helpers
 
@@ -48,8 +49,9 @@ def _bad_token(text: str, what: str) -> str | None:
     """Why non-empty ``text`` cannot be a token of the text format (a ``what``), or None."""
     if _not_unicode(text):
         return f"{what} {_shown(text)} is not valid Unicode (a lone surrogate)"
-    if any(ch.isspace() for ch in text) or "@" in text or ":" in text or text.startswith("#"):
-        return f"{what} {_shown(text)} must have no white space, '@' or ':' and not start with '#'"
+    if _BAD_TERMINAL.search(text) or "@" in text or ":" in text or text.startswith("#"):
+        return (f"{what} {_shown(text)} must have no white space, control character, '@' or "
+                f"':' and not start with '#'")
     return None
 
 

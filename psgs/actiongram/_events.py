@@ -63,7 +63,10 @@ def _text(value: object, what: str, index: int) -> str:
 def _time(value: object, what: str, index: int) -> float:
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise _RowError(index, f"{what} must be a number, not {_shown(value)}")
-    number = float(value)
+    try:
+        number = float(value)
+    except OverflowError:  # an int past the floats (10**400): no time a float can hold
+        number = math.inf
     if not math.isfinite(number):
         raise _RowError(index, f"{what} must be finite, not {_shown(value)}")
     if number < 0 if what == "onset" else number <= 0:
@@ -126,6 +129,10 @@ def _strings(records: Sequence[tuple], label: Callable[[int], str], gaps: str,
         if not math.isfinite(event[0] + event[2]):
             raise _RowError(k, f"its end, onset {_shown(onset)} plus duration "
                                f"{_shown(duration)}, is past the largest time a float holds")
+        if event[0] + event[2] == event[0]:
+            raise _RowError(k, f"duration {_shown(duration)} vanishes beside onset "
+                               f"{_shown(onset)}: a float cannot tell the event's end from "
+                               f"its start")
         streams.setdefault(name, []).append(event)
     strings, durations, starts = {}, {}, {}
     for name, events in streams.items():
@@ -179,7 +186,8 @@ def from_events(cls, rows, *, gaps: str = "rest", rest_symbol: str = "_",
 def read_csv(cls, path: str | Path, *, gaps: str = "rest", rest_symbol: str = "_",
              keep_repeats: bool = False):
     """The actiongram of a CSV events file, header ``stream,onset,duration,symbol`` (in any
-    order; other columns are ignored). Errors are FormatErrors naming the file and line."""
+    order; other columns are ignored, but every row has as many cells as the header, and no
+    column is named twice). Errors are FormatErrors naming the file and line."""
     _check_options(gaps, rest_symbol)
     source = str(path)
     text = read_text(path, signature=True)
@@ -195,6 +203,10 @@ def read_csv(cls, path: str | Path, *, gaps: str = "rest", rest_symbol: str = "_
     if missing:
         raise FormatError(f"the header has no column {missing[0]!r} (it needs "
                           f"{','.join(FIELDS)})", source=source, line=1)
+    twice = [f for f in FIELDS if header.count(f) > 1]
+    if twice:  # which of the two is meant cannot be known
+        raise FormatError(f"the header names column {twice[0]!r} twice", source=source,
+                          line=1)
     where = [header.index(f) for f in FIELDS]
     records, lines = [], []
     # a row starts on the line after the one before ends: a quoted cell may hold line
@@ -205,7 +217,7 @@ def read_csv(cls, path: str | Path, *, gaps: str = "rest", rest_symbol: str = "_
             line, ended = ended + 1, reader.line_num
             if not any(cell.strip() for cell in row):
                 continue
-            if len(row) < len(header):
+            if len(row) != len(header):  # a cell more would be dropped without a word
                 raise FormatError(f"{len(row)} cells, the header has {len(header)}",
                                   source=source, line=line)
             stream, onset, duration, symbol = (row[i].strip() for i in where)

@@ -48,6 +48,9 @@ def strip_comment(line: str, source: str, line_no: int) -> str:
     return line[:at]
 
 
+# the control characters that are not white space (those separate tokens)
+_CONTROL = re.compile(r"[\x00-\x08\x0e-\x1b\x7f]")
+
 def read_text(cls, text: str, source: str):
     """The actiongram (of class ``cls``) that ``text`` holds; FormatError at its place."""
     names, symbol_rows, duration_rows, origins = [], [], [], []
@@ -58,6 +61,10 @@ def read_text(cls, text: str, source: str):
     keep_repeats = False
     for line_no, raw in enumerate(text.splitlines(), start=1):
         line = strip_comment(raw, source, line_no)
+        control = _CONTROL.search(line)
+        if control:  # no symbol or name may hold one (a NUL would reach the grammar unseen)
+            raise FormatError(f"control character U+{ord(control.group()):04X} in the text",
+                              source=source, line=line_no, column=control.start() + 1)
         if not line.strip():
             continue
         if line.strip() == KEEP_REPEATS:

@@ -10,6 +10,7 @@ With ``--nearest``: 0 distance 0, 1 a distance above 0 (or none within
 from __future__ import annotations
 
 import dataclasses
+import sys
 
 from ..errors import ValidationError
 from ..model import PCGS, PSGS, Terminal
@@ -100,7 +101,13 @@ def run_check(args) -> int:
         print(f"no: {result.reason}")
         return NO
     print(f"unknown: {result.reason} (budget: {result.bound})")
+    _name_bound(result.bound, result.reason)
     return UNKNOWN
+
+
+def _name_bound(bound, reason) -> None:
+    """The bound a search stopped at, on stderr (as every command's exit status 3 says)."""
+    print(f"psgs: the search stopped at its bound {bound}: {reason}", file=sys.stderr)
 
 
 def _run_nearest(system, words, args) -> int:
@@ -118,6 +125,8 @@ def _run_nearest(system, words, args) -> int:
             print(f"{name}:")
             for line in aligned(given, found, edits):
                 print(f"  {line}")
+    if result.bound is not None:
+        _name_bound(result.bound, result.reason)
     if result.distance is None:
         return NO if result.exact else UNKNOWN
     if not result.exact:

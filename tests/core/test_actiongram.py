@@ -7,7 +7,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import psgs
-from psgs import Actiongram, FormatError
+from psgs import Actiongram, FormatError, ValidationError
 
 
 def test_from_strings_merges_equal_neighbours_and_adds_durations():
@@ -346,3 +346,18 @@ def test_a_lone_surrogate_is_rejected_so_to_text_can_be_written(where):
     with pytest.raises(FormatError, match="lone surrogate"):
         Actiongram.from_strings({"\ud800" if where == "name" else "a":
                                  ["a" if where == "name" else "\ud800"]})
+
+
+def test_a_control_character_is_an_error_at_its_line_and_column(tmp_path):
+    path = tmp_path / "nul.txt"
+    path.write_bytes(b"a: x y\nb: x\x00 y\n")
+    with pytest.raises(FormatError, match=r"nul.txt:2:5: control character U\+0000"):
+        psgs.load(path, kind="actiongram")
+    with pytest.raises(FormatError, match="control character"):
+        Actiongram.from_strings({"a": ["x\x07"]})
+
+
+@pytest.mark.parametrize("strings", [["ab"], None, "ab"])
+def test_strings_not_named_are_a_validation_error(strings):
+    with pytest.raises(ValidationError, match="must map each string's name"):
+        Actiongram.from_strings(strings)

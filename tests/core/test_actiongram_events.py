@@ -263,6 +263,12 @@ def test_induce_reads_an_events_file(tmp_path, capsys):
     ("stream,onset,duration,symbol\ns,0,1\n", ":2:", "3 cells"),
     ("stream,onset,duration,symbol\n", ":1:", "no events"),
     ("", ":1:", "empty file"),
+    # a cell past the header's would be dropped without a word; a column twice is ambiguous
+    ("stream,onset,duration,symbol\ns,0,1,a,extra\n", ":2:", "5 cells, the header has 4"),
+    ("stream,stream,onset,duration,symbol\ns,t,0,1,a\n", ":1:", "'stream' twice"),
+    # an end a float cannot tell from its start; a NUL in a symbol
+    ("stream,onset,duration,symbol\ns,0,1,a\ns,1e300,1,b\n", ":3:", "vanishes beside onset"),
+    ("stream,onset,duration,symbol\ns,0,1,a\x00\n", ":2:", "control character"),
 ])
 def test_induce_events_errors_name_the_line(tmp_path, capsys, content, where, words):
     from psgs.cli import main
@@ -272,6 +278,20 @@ def test_induce_events_errors_name_the_line(tmp_path, capsys, content, where, wo
     assert main(["induce", "--events", str(path)]) == 2
     err = capsys.readouterr().err.strip()
     assert f"{path}{where}" in err and words in err and "\n" not in err
+
+
+def test_a_huge_integer_or_a_vanishing_duration_is_a_validation_error_naming_the_row():
+    with pytest.raises(ValidationError, match="^row 0: onset must be finite"):
+        Actiongram.from_events([("a", 10 ** 400, 1, "x")])
+    with pytest.raises(ValidationError, match="^row 1: duration 1 vanishes beside onset"):
+        Actiongram.from_events([("a", 0, 1, "y"), ("a", 1e300, 1, "x")])
+
+
+def test_a_device_is_refused_not_read(capsys):
+    from psgs.cli import main
+
+    assert main(["induce", "--events", "/dev/zero"]) == 2
+    assert "not a regular file" in capsys.readouterr().err
 
 
 def test_event_options_need_events(capsys):

@@ -61,6 +61,14 @@ def test_a_bound_gives_a_note_on_stderr_and_status_3(capsys):
     assert all(line.startswith("(") for line in out.splitlines())
 
 
+@pytest.mark.parametrize("nearest", [[], ["--nearest"]])
+def test_check_at_its_bound_names_it_on_stderr_and_status_3(capsys, nearest):
+    word = " ".join("a" * 30 + "b" * 30 + "c" * 30)
+    status, out, err = run(capsys, "check", *nearest, "--max-steps", "5", "pcgs_abc", word)
+    assert status == 3 and out
+    assert err.strip().splitlines() == [err.strip()] and "bound max_steps" in err
+
+
 def test_trace_prints_a_witness_under_each_tuple(capsys):
     status, out, _ = run(capsys, "derive", GAMMA, "--enumerate", "--max-length", "32",
                          "--trace")
