@@ -10,7 +10,6 @@ import math
 import re
 
 from ..errors import FormatError
-from ..names import _BAD_TERMINAL
 
 __all__: list[str] = []  # private helpers
 
@@ -32,6 +31,9 @@ def _not_unicode(text: str) -> bool:
     return False
 
 
+# the characters a grammar's terminal refuses (psgs.names, above this layer), so that every
+# symbol of an actiongram can be a terminal of the grammar learnt from it
+_SPACE_OR_CONTROL = re.compile(r"[\s\x00-\x1f\x7f]")
 _PLAIN_NAME = re.compile(r"[!-~]+")  # printable ASCII without white space: the common case
 
 
@@ -49,7 +51,7 @@ def _bad_token(text: str, what: str) -> str | None:
     """Why non-empty ``text`` cannot be a token of the text format (a ``what``), or None."""
     if _not_unicode(text):
         return f"{what} {_shown(text)} is not valid Unicode (a lone surrogate)"
-    if _BAD_TERMINAL.search(text) or "@" in text or ":" in text or text.startswith("#"):
+    if _SPACE_OR_CONTROL.search(text) or "@" in text or ":" in text or text.startswith("#"):
         return (f"{what} {_shown(text)} must have no white space, control character, '@' or "
                 f"':' and not start with '#'")
     return None
