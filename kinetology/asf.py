@@ -23,8 +23,9 @@ from types import MappingProxyType
 
 import numpy as np
 
-from .motion import Joint, Motion, MotionFormatError, Skeleton, build_motion
-from .textblocks import parse_rows
+from ._amc_frames import frame_layout, indent as _indent
+from .motion import Joint, Motion, MotionFormatError, Skeleton, build_motion, file_text
+from .textblocks import parse_rows, token_column
 
 __all__ = ["AsfSkeleton", "read_asf", "parse_asf", "read_amc", "parse_amc", "find_asf"]
 
@@ -120,7 +121,7 @@ def read_asf(path: str | Path) -> AsfSkeleton:
     ('root', 'femur', 'femur.end')
     """
     path = Path(path)
-    return parse_asf(path.read_text(encoding="utf-8", errors="replace"), source=str(path))
+    return parse_asf(file_text(path), source=str(path))
 
 
 def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
@@ -162,16 +163,21 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
     def fail(message, number, column=1):
         raise MotionFormatError(message, source=source, line=number, column=column)
 
-    def numbers(parts, count, number):
-        if len(parts) < count:
-            fail(f"expected {count} numbers, found {len(parts)}", number)
-        try:
-            values = tuple(float(p) for p in parts[:count])
-        except ValueError:
-            fail(f"expected numbers, found {' '.join(parts[:count])!r}", number)
-        if not all(np.isfinite(values)):
-            fail("number is not finite", number)
-        return values
+    def numbers(parts, count, number, raw):
+        """``parts[1:count + 1]`` as floats; an error names the column in ``raw``."""
+        given = parts[1:count + 1]
+        if len(given) < count:
+            fail(f"expected {count} numbers, found {len(given)}", number)
+        values = []
+        for k, part in enumerate(given, 1):
+            try:
+                value = float(part)
+            except ValueError:
+                fail(f"expected a number, found {part!r}", number, token_column(raw, k))
+            if not np.isfinite(value):
+                fail(f"number {part!r} is not finite", number, token_column(raw, k))
+            values.append(value)
+        return tuple(values)
 
     for number, raw in enumerate(lines, 1):
         line = raw.split("#", 1)[0].strip()
@@ -184,7 +190,7 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
         parts = line.split()
         key = parts[0].lower()
         if section == "units" and key == "length":
-            scale = numbers(parts[1:], 1, number)[0]
+            scale = numbers(parts, 1, number, raw)[0]
         elif section == "units" and key == "angle":
             if len(parts) < 2 or parts[1].lower() not in ("deg", "rad"):
                 fail(f"angle unit must be deg or rad, not {' '.join(parts[1:])!r}", number)
@@ -200,7 +206,7 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
                     fail("root axis needs an order such as XYZ", number)
                 root["axis"] = _axis_order(parts[1], fail, number)
             elif key in ("position", "orientation"):
-                root[key] = numbers(parts[1:], 3, number)
+                root[key] = numbers(parts, 3, number, raw)
         elif section == "bonedata":
             if key == "begin":
                 current = {"dof": (), "axis": (0.0, 0.0, 0.0), "order": "XYZ",
@@ -208,18 +214,23 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
             elif key == "end":
                 if current is None or "name" not in current:
                     fail("bone without a name", number)
+                twin = bones.get(current["name"])
+                if twin is not None:  # the second would replace the first without a word
+                    fail(f"two bones are named {current['name']!r} (the first at line "
+                         f"{twin['name_at'][0]})", *current["name_at"])
                 bones[current["name"]] = current
                 current = None
             elif current is None:
                 fail(f"{parts[0]!r} outside a begin/end bone block", number)
             elif key == "name":
                 current["name"] = parts[1] if len(parts) > 1 else fail("bone name missing", number)
+                current["name_at"] = (number, token_column(raw, 1))
             elif key == "direction":
-                current["direction"] = numbers(parts[1:], 3, number)
+                current["direction"] = numbers(parts, 3, number, raw)
             elif key == "length":
-                current["length"] = numbers(parts[1:], 1, number)[0]
+                current["length"] = numbers(parts, 1, number, raw)[0]
             elif key == "axis":
-                current["axis"] = numbers(parts[1:], 3, number)
+                current["axis"] = numbers(parts, 3, number, raw)
                 current["order"] = _axis_order(parts[4] if len(parts) > 4 else "XYZ", fail,
                                                number)
             elif key == "dof":
@@ -353,7 +364,8 @@ def read_amc(path: str | Path, asf: str | Path | AsfSkeleton | None = "auto",
     Raises
     ------
     MotionFormatError
-        For a malformed AMC, ASF or key file, naming ``file:line:col``.
+        For a malformed AMC, ASF or key file, naming ``file:line:col`` (see
+        :func:`parse_amc`); for a file that is not UTF-8 or not a regular file.
     FileNotFoundError
         When a file does not exist.
 
@@ -399,7 +411,7 @@ def read_amc(path: str | Path, asf: str | Path | AsfSkeleton | None = "auto",
     elif isinstance(asf, (str, Path)):
         asf = read_asf(asf)
     dofs = asf.dofs if asf is not None else _key_file_dofs(path.with_name("SkeletonJoints.key"))
-    return parse_amc(path.read_text(encoding="utf-8", errors="replace"), dofs=dofs,
+    return parse_amc(file_text(path), dofs=dofs,
                      skeleton=asf.skeleton if asf is not None else None, source=str(path),
                      frame_rate=frame_rate)
 
@@ -408,8 +420,7 @@ def _key_file_dofs(path: Path) -> dict | None:
     if not path.is_file():
         return None
     dofs = {}
-    text = path.read_text(encoding="utf-8", errors="replace")
-    for number, line in enumerate(_without_bom(text).splitlines(), 1):
+    for number, line in enumerate(file_text(path).splitlines(), 1):
         parts = line.split()
         if parts:
             if not set(p.lower() for p in parts[1:]) <= _DOFS:
@@ -422,6 +433,11 @@ def _key_file_dofs(path: Path) -> dict | None:
 def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None = None,
               source: str = "<amc>", frame_rate: float = _DEFAULT_FRAME_RATE) -> Motion:
     """Parse AMC text. ``dofs`` (bone -> dof names) names the channels and checks counts.
+
+    Frame 1's bone lines set the order every frame repeats; no bone appears twice in a frame.
+    Frames are numbered one after another from the first frame's number (usually 1): a
+    jump or a repeat would lose or double frames without a word, so it is an error at the
+    number's line and column.
 
     Parameters
     ----------
@@ -455,6 +471,10 @@ def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None 
     Traceback (most recent call last):
     ...
     kinetology.motion.MotionFormatError: bad.amc:4:...
+    >>> parse_amc("1\\nroot 1 2 3 0 0 0\\n3\\nroot 1 2 4 0 0 0\\n", source="gap.amc")
+    Traceback (most recent call last):
+    ...
+    kinetology.motion.MotionFormatError: gap.amc:3:1: expected frame number 2, found '3' (frames are numbered one after another from 1)
     """
     lines = _without_bom(text).splitlines()
     start = 0
@@ -472,33 +492,7 @@ def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None 
     def line_of(i: int) -> int:
         return start + i + 1
 
-    if not data[0].strip().isdigit():
-        raise MotionFormatError(f"expected a frame number, found {data[0].strip()[:30]!r}",
-                                source=source, line=line_of(0), column=1)
-    per_frame = 1
-    while per_frame < len(data) and not data[per_frame].strip().isdigit():
-        per_frame += 1
-    for i in range(1, per_frame):
-        if not data[i].strip():  # a blank line inside a frame (blank lines only lead or trail)
-            raise MotionFormatError("expected a bone line, found an empty line", source=source,
-                                    line=line_of(i), column=1)
-    bones = [ln.split(None, 1)[0] for ln in data[1:per_frame]]
-    if len(set(bones)) != len(bones):
-        raise MotionFormatError("a bone appears twice in frame 1", source=source,
-                                line=line_of(1))
-    heads = [ln.split(None, 1)[0] if ln.strip() else "" for ln in data]
-    expected = ([None] + bones) * (len(data) // per_frame + 1)
-    for i, head in enumerate(heads):
-        slot = i % per_frame
-        ok = head.isdigit() if slot == 0 else head == expected[i]
-        if not ok:
-            what = "a frame number" if slot == 0 else f"bone {expected[i]!r}"
-            raise MotionFormatError(f"expected {what}, found {head or 'an empty line'!r}",
-                                    source=source, line=line_of(i), column=1)
-    if len(data) % per_frame:
-        raise MotionFormatError(f"last frame is truncated (it has {len(data) % per_frame - 1} "
-                                f"of {per_frame - 1} bone lines)", source=source,
-                                line=line_of(len(data) - 1))
+    bones, per_frame = frame_layout(data, source, start + 1)
     frames = len(data) // per_frame
     columns, names, slots = [], [], []  # slots: the frame line (1..) of each column
     for b, bone in enumerate(bones):
@@ -508,14 +502,15 @@ def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None 
         if dofs is not None:
             if bone not in dofs:
                 raise MotionFormatError(f"bone {bone!r} is not in the skeleton", source=source,
-                                        line=line_of(slot))
+                                        line=line_of(slot), column=_indent(data[slot], 0) + 1)
             bone_dofs = dofs[bone]
         else:
             width = len(rows[0].split())
             bone_dofs = (("tx", "ty", "tz", "rx", "ry", "rz") if bone == "root" and width == 6
                          else tuple(str(k + 1) for k in range(width)))
         block = parse_rows(rows, len(bone_dofs), source=source,
-                           line_of=lambda i, s=slot: line_of(s + i * per_frame))
+                           line_of=lambda i, s=slot: line_of(s + i * per_frame),
+                           indent_of=lambda i, s=slot: _indent(data[s + i * per_frame], 1))
         columns.append(block)
         names.extend(f"{bone}.{d}" for d in bone_dofs)
         slots.extend([slot] * len(bone_dofs))
@@ -527,10 +522,13 @@ def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None 
         with np.errstate(over="ignore"):
             converted = np.degrees(values[:, rotation])
         if not np.isfinite(converted).all():  # 1e307 radians is finite, its degrees are not
-            row, k = np.argwhere(~np.isfinite(converted))[0]
+            row, k = (int(n) for n in np.argwhere(~np.isfinite(converted))[0])
             col = rotation[k]
+            at = slots[col] + row * per_frame
             raise MotionFormatError(f"{names[col]}: {values[row, col]:g} radians is too large "
-                                    f"to convert to degrees", source=source,
-                                    line=line_of(slots[col] + int(row) * per_frame))
+                                    f"to convert to degrees", source=source, line=line_of(at),
+                                    column=token_column(data[at],
+                                                        1 + col - slots.index(slots[col])))
         values[:, rotation] = converted
     return build_motion(values, tuple(names), frame_rate, skeleton, source, {"format": "amc"})
+

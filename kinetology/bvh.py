@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .motion import Joint, Motion, MotionFormatError, Skeleton, build_motion
+from .motion import Joint, Motion, MotionFormatError, Skeleton, build_motion, file_text
 from .textblocks import parse_rows
 
 __all__ = ["read_bvh", "parse_bvh"]
@@ -31,8 +31,9 @@ def read_bvh(path: str | Path) -> Motion:
 
     Every joint's channels become columns named ``joint.tx`` .. ``joint.rz`` in file
     order; the frame rate is ``1 / Frame Time``, rounded when within 0.01 of a whole number
-    (``0.0083333`` is 120 fps). Bytes that are not UTF-8 are replaced, then reported where
-    they break the syntax.
+    (``0.0083333`` is 120 fps). The file must be UTF-8 (a byte that is not is an error at its
+    line and column, never replaced: it would rename a joint), and a path to a device or a
+    pipe is refused before anything is read.
 
     Parameters
     ----------
@@ -47,7 +48,8 @@ def read_bvh(path: str | Path) -> Motion:
     Raises
     ------
     MotionFormatError
-        For malformed text, naming ``file:line:col``.
+        For malformed text, naming ``file:line:col``; for a file that is not UTF-8 or not a
+        regular file.
     FileNotFoundError
         When the file does not exist.
 
@@ -74,7 +76,7 @@ def read_bvh(path: str | Path) -> Motion:
     (3, 120.0, ('knee', 'knee.end'))
     """
     path = Path(path)
-    return parse_bvh(path.read_text(encoding="utf-8", errors="replace"), source=str(path))
+    return parse_bvh(file_text(path), source=str(path))
 
 
 def parse_bvh(text: str, source: str = "<bvh>") -> Motion:
@@ -121,13 +123,14 @@ def parse_bvh(text: str, source: str = "<bvh>") -> Motion:
     if tokens.peek().upper() == "ROOT":
         tokens.fail("only one ROOT is supported")
     tokens.expect("MOTION")
-    frames = _read_header_number(lines, tokens, "Frames:", source, integer=True)
-    frames_line = tokens.line_index
-    frame_time = _read_header_number(lines, tokens, "Frame Time:", source, integer=False)
+    frames, frames_at = _read_header_number(lines, tokens, "Frames:", source, integer=True)
+    frame_time, time_at = _read_header_number(lines, tokens, "Frame Time:", source,
+                                              integer=False)
     # nan, inf, 0 and a time so small that its rate overflows (1e-320) are all unreadable
     if not (math.isfinite(frame_time) and frame_time > 0 and math.isfinite(1.0 / frame_time)):
         raise MotionFormatError(f"frame time must be a positive finite number of seconds, "
-                                f"not {frame_time}", source=source, line=tokens.line_index)
+                                f"not {frame_time}", source=source, line=time_at[0],
+                                column=time_at[1])
     first_data = tokens.line_index + 1
     body = [ln for ln in lines[first_data - 1:]]
     # trailing blank lines are common; anything else beyond the frames is an error
@@ -137,7 +140,7 @@ def parse_bvh(text: str, source: str = "<bvh>") -> Motion:
     if values.shape[0] != frames:
         raise MotionFormatError(
             f"header says {frames} frames but {values.shape[0]} frame lines follow",
-            source=source, line=frames_line)
+            source=source, line=frames_at[0], column=frames_at[1])
     skeleton = Skeleton(tuple(joints), length_unit="BVH file units")
     rate = 1.0 / frame_time
     # "Frame Time: .0083333" means 120 fps; below 1 fps (a frame every 100 s) rounding would
@@ -148,26 +151,32 @@ def parse_bvh(text: str, source: str = "<bvh>") -> Motion:
 
 
 def _read_header_number(lines, tokens, label: str, source: str, *, integer: bool):
+    """The number after ``label`` on the next header line, and its ``(line, column)``."""
     index = tokens.line_index  # 1-based line of the current token position
     # the header lines follow MOTION; skip blank lines
     while index < len(lines) and not lines[index].strip():
         index += 1
     if index >= len(lines):
         raise MotionFormatError(f"file ends before '{label}'", source=source, line=len(lines))
-    line = lines[index].strip()
+    text = lines[index]
+    line = text.strip()
     if not line.lower().startswith(label.lower()):
         raise MotionFormatError(f"expected '{label}', found {line[:40]!r}", source=source,
-                                line=index + 1, column=1)
-    raw = line[len(label):].strip()
+                                line=index + 1, column=len(text) - len(text.lstrip()) + 1)
+    after = text.lstrip()[len(label):]  # the file's text after the label, to the line's end
+    raw = after.strip()
+    # where the number starts (or the label ends when there is none), counted in the file
+    at = (index + 1, len(text) - len(after.lstrip()) + 1 if raw else len(text) - len(after) + 1)
     try:
         value = int(raw) if integer else float(raw)
     except ValueError:
         raise MotionFormatError(f"'{label}' needs a number, not {raw!r}", source=source,
-                                line=index + 1, column=len(label) + 2) from None
+                                line=at[0], column=at[1]) from None
     if integer and value < 0:
-        raise MotionFormatError(f"negative frame count {value}", source=source, line=index + 1)
+        raise MotionFormatError(f"negative frame count {value}", source=source, line=at[0],
+                                column=at[1])
     tokens.line_index = index + 1
-    return value
+    return value, at
 
 
 def _read_joint(tokens, joints, channels, parent, end_site=False, name=None):

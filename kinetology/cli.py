@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
+from psgs._foundation.files import read_bytes
 from psgs._foundation.shell import positive_float, run, version, with_exit_status_help
 from psgs.errors import ValidationError
 
@@ -180,7 +181,8 @@ def _cmd_compress(args) -> int:
 def _cmd_decompress(args) -> int:
     from .codec import decompress
 
-    motion = decompress(Path(args.file).read_bytes(), source=args.file)
+    # read_bytes: a device or a pipe (/dev/zero) is refused, not read until memory runs out
+    motion = decompress(read_bytes(args.file), source=args.file)
     lines = ["time," + ",".join(motion.channels)]
     t = np.arange(motion.frames) / motion.frame_rate
     for time, row in zip(t, motion.values):

@@ -32,7 +32,7 @@ from psgs.errors import ValidationError
 
 from .codec import compress, decompress
 from .kinematics import forward_kinematics, joint_angle
-from .motion import Motion, MotionFormatError
+from .motion import Motion, MotionFormatError, file_text
 from .segmentation import DEFAULTS, STATES, smooth, states, unwrap
 
 __all__ = ["codec_point", "CMU_ANGLES", "CMU_BVH_ANGLES", "BANDAI_ANGLES", "angle_table",
@@ -368,10 +368,7 @@ def mocap6_performances(folder: str | Path, *, min_seconds: float = 2.0):
 
 def _labels(path: Path) -> np.ndarray:
     """The labels of a ``truelabels`` file: whole numbers 1 .. 6, one per tenth of a second."""
-    try:
-        text = path.read_text(encoding="utf-8")
-    except UnicodeDecodeError as error:
-        raise MotionFormatError(f"not UTF-8 text ({error.reason})", source=str(path)) from None
+    text = file_text(path)  # a device refused, bytes that are not UTF-8 an error at line:col
     labels = []
     for number, line in enumerate(text.splitlines(), 1):
         column = 1

@@ -24,7 +24,7 @@ from pathlib import Path
 
 from psgs.errors import ValidationError
 
-from .motion import MotionFormatError
+from .motion import MotionFormatError, file_text
 
 __all__ = ["Span", "MOCAP6_ACTIONS", "read_cmu_truelabels", "read_bandai_json", "spans_of"]
 
@@ -107,7 +107,7 @@ def read_cmu_truelabels(path: str | Path, frame_rate: float = 120.0) -> tuple[Sp
         raise ValidationError(f"frame rate must be positive, not {frame_rate!r}")
     step = FRAMES_PER_LABEL / frame_rate
     labels: list[int] = []
-    for number, line in enumerate(path.read_text(errors="replace").splitlines(), 1):
+    for number, line in enumerate(file_text(path).splitlines(), 1):
         for match in re.finditer(r"\S+", line):
             token = match.group()
             # ASCII digits only, and few: int() refuses other Unicode digits ("²") and
@@ -134,7 +134,7 @@ def _label_names(cfg: Path, index: object, kind: str, source: Path) -> str:
                                 source=str(source))
     if not cfg.is_file():
         raise MotionFormatError(f"no label list {cfg} for the {kind} index", source=str(source))
-    names = [re.sub(r"^dataset-\d+_", "", ln.strip()) for ln in cfg.read_text().splitlines()
+    names = [re.sub(r"^dataset-\d+_", "", ln.strip()) for ln in file_text(cfg).splitlines()
              if ln.strip()]
     if not 0 <= index < len(names):
         raise MotionFormatError(f"{kind} index {index} is outside {cfg.name} "
@@ -143,15 +143,17 @@ def _label_names(cfg: Path, index: object, kind: str, source: Path) -> str:
 
 
 def _bvh_duration(bvh: Path) -> float:
+    """The length in seconds the ``Frames:`` and ``Frame Time:`` lines of ``bvh`` give."""
+    # file_text refuses a device or a pipe (/dev/zero has no line end to stop at) and reads a
+    # file no further than its size; only the header is decoded, not the frames after it
     frames = frame_time = None
-    with bvh.open(errors="replace") as handle:
-        for number, line in enumerate(handle, 1):
-            stripped = line.strip()
-            if stripped.startswith("Frames:"):
-                frames = stripped.split(":", 1)[1]
-            elif stripped.startswith("Frame Time:"):
-                frame_time = stripped.split(":", 1)[1]
-                break
+    for line in file_text(bvh, until=b"Frame Time:").splitlines():
+        stripped = line.strip()
+        if stripped.startswith("Frames:"):
+            frames = stripped.split(":", 1)[1]
+        elif stripped.startswith("Frame Time:"):
+            frame_time = stripped.split(":", 1)[1]
+            break
     try:
         duration = int(frames) * float(frame_time)
     except (TypeError, ValueError, OverflowError):
@@ -198,8 +200,9 @@ def read_bandai_json(path: str | Path, duration: float | None = None) -> tuple[S
     bye normal 3.7
     """
     path = Path(path)
+    text = file_text(path)  # outside the try: its own errors are located already
     try:
-        record = json.loads(path.read_text(errors="replace"))
+        record = json.loads(text)
     except json.JSONDecodeError as exc:
         raise MotionFormatError(f"not JSON: {exc.msg}", source=str(path), line=exc.lineno,
                                 column=exc.colno) from None

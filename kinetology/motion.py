@@ -9,14 +9,17 @@ needs. The array is read-only: a motion never changes after it is built.
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
 from types import MappingProxyType
 
 import numpy as np
 
+from psgs._foundation.files import decode_utf8, read_bytes
 from psgs.errors import FormatError, NotFound, ValidationError
 
-__all__ = ["MotionFormatError", "Joint", "Skeleton", "Motion", "AXES", "build_motion"]
+__all__ = ["MotionFormatError", "Joint", "Skeleton", "Motion", "AXES", "build_motion",
+           "file_text"]
 
 #: Channel axes, in the order a joint's channels are listed.
 AXES = ("tx", "ty", "tz", "rx", "ry", "rz")
@@ -283,3 +286,53 @@ def build_motion(values, channels, frame_rate, skeleton=None, source="<motion>",
         return Motion(values, channels, frame_rate, skeleton, source, meta or {})
     except ValueError as exc:
         raise MotionFormatError(str(exc), source=source) from None
+
+
+def file_text(path, *, until: bytes | None = None) -> str:
+    """The text of a motion or label file, as every kinetology reader reads one.
+
+    Through :func:`psgs._foundation.files.read_bytes` and ``decode_utf8``: a device or a
+    pipe (``/dev/zero``) is refused before a byte is read, a regular file is read once and no
+    further than its size, and its bytes must be UTF-8 (a leading byte-order mark is dropped). A byte that is not
+    UTF-8 is an error at its line and column, never replaced: a replaced byte in a joint's
+    name would rename the joint without a word.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    until : bytes, optional
+        Only the text up to the end of the first line holding these bytes (all of it when
+        none does): a header, without decoding the frames after it.
+
+    Returns
+    -------
+    str
+        Its text.
+
+    Raises
+    ------
+    MotionFormatError
+        For a file that is not a regular file, or bytes that are not UTF-8 (``file:line:col``).
+    FileNotFoundError, IsADirectoryError
+        As :func:`open` raises them.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "hips.bvh"
+    >>> _ = path.write_bytes(b"ROOT Hips\\nJOINT H\\xe4ps\\n")
+    >>> file_text(path)
+    Traceback (most recent call last):
+    ...
+    kinetology.motion.MotionFormatError: ...hips.bvh:2:8: not UTF-8 text: byte 0xe4 cannot be decoded (is this a binary file?)
+    """
+    try:
+        data = read_bytes(path)
+        if until is not None and (at := data.find(until)) >= 0:
+            end = data.find(b"\n", at)
+            data = data[:end] if end >= 0 else data
+        return decode_utf8(data, os.fspath(path), signature=True)
+    except FormatError as exc:  # the shared reader's error, as the readers document theirs
+        raise MotionFormatError(exc.message, source=exc.source, line=exc.line,
+                                column=exc.column) from None

@@ -2,17 +2,22 @@
 
 from __future__ import annotations
 
+import itertools
+import re
 from collections.abc import Callable
 
 import numpy as np
 
 from .motion import MotionFormatError
 
-__all__ = ["parse_rows"]
+__all__ = ["parse_rows", "token_column"]
+
+_TOKEN = re.compile(r"\S+")
 
 
 def parse_rows(lines: list[str], width: int, *, source: str, first_line: int = 1,
-               line_of: Callable[[int], int] | None = None) -> np.ndarray:
+               line_of: Callable[[int], int] | None = None,
+               indent_of: Callable[[int], int] | None = None) -> np.ndarray:
     """Parse ``lines`` (each ``width`` numbers) into a ``len(lines) x width`` array.
 
     One vectorised pass (``str.split`` then one ``numpy`` conversion) when the
@@ -34,6 +39,9 @@ def parse_rows(lines: list[str], width: int, *, source: str, first_line: int = 1
     line_of : callable, optional
         ``line_of(i)`` is the file line number of ``lines[i]`` (for blocks whose lines are not
         consecutive in the file); overrides ``first_line``.
+    indent_of : callable, optional
+        ``indent_of(i)`` is the number of characters of its file line before ``lines[i]``
+        (an AMC bone's name), so that a column is the file's; called only to raise.
 
     Returns
     -------
@@ -43,9 +51,9 @@ def parse_rows(lines: list[str], width: int, *, source: str, first_line: int = 1
     Raises
     ------
     MotionFormatError
-        Naming the file, the first bad line and (for a value that is not a number) its column:
-        a line with the wrong count of numbers, a value that is not a number, or one that is
-        not finite.
+        Naming the file, the first bad line and column: a line with the wrong count of
+        numbers (column 1), a value that is not a number or one that is not finite (its
+        column).
 
     Examples
     --------
@@ -56,9 +64,16 @@ def parse_rows(lines: list[str], width: int, *, source: str, first_line: int = 1
     Traceback (most recent call last):
     ...
     kinetology.motion.MotionFormatError: walk.amc:11:3: not a number: 'x'
+    >>> parse_rows(["1 2", "3 inf"], 2, source="walk.amc", first_line=10)
+    Traceback (most recent call last):
+    ...
+    kinetology.motion.MotionFormatError: walk.amc:11:3: value 2 is not finite (inf)
     """
     def where(i: int) -> int:
         return line_of(i) if line_of is not None else first_line + i
+
+    def column(i: int, k: int) -> int:  # of the k-th value of lines[i], in the file's line
+        return token_column(lines[i], k) + (indent_of(i) if indent_of is not None else 0)
 
     tokens = " ".join(lines).split()
     values = None
@@ -74,16 +89,27 @@ def parse_rows(lines: list[str], width: int, *, source: str, first_line: int = 1
                 raise MotionFormatError(f"expected {width} number{'s' * (width != 1)}, "
                                         f"found {len(parts)}",
                                         source=source, line=where(i), column=1)
-            for part in parts:
+            for k, part in enumerate(parts):
                 try:
                     float(part)
                 except ValueError:
                     raise MotionFormatError(f"not a number: {part!r}", source=source,
-                                            line=where(i),
-                                            column=line.find(part) + 1) from None
+                                            line=where(i), column=column(i, k)) from None
         raise MotionFormatError("malformed numbers", source=source, line=where(0))
     if not np.isfinite(values).all():
-        row, col = np.argwhere(~np.isfinite(values))[0]
+        row, col = (int(n) for n in np.argwhere(~np.isfinite(values))[0])
         raise MotionFormatError(f"value {col + 1} is not finite ({lines[row].split()[col]})",
-                                source=source, line=where(int(row)))
+                                source=source, line=where(row), column=column(row, col))
     return values
+
+
+def token_column(line: str, k: int) -> int:
+    """The column (from 1) where the ``k``-th white-space separated token of ``line`` starts
+    (``k`` from 0); found only when an error names it, so reading stays one pass.
+
+    Examples
+    --------
+    >>> token_column("  root 1  nan", 2)
+    11
+    """
+    return next(itertools.islice(_TOKEN.finditer(line), k, None)).start() + 1

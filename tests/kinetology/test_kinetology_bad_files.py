@@ -1,0 +1,200 @@
+"""Bad motion and label files a fuzzer found: each one clear error at its place, never a
+device read without end, a replaced byte, an overflowing rate, an empty actiongram for a
+take too short to segment, frames silently lost or doubled, or a value's column left out.
+
+Every input is a small mutation of the readers' test files, built in ``tmp_path``.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+
+import pytest
+
+import kinetology
+from kinetology import MotionFormatError
+from kinetology.asf import parse_amc, parse_asf
+from kinetology.bvh import parse_bvh, read_bvh
+from kinetology.cli import main
+from kinetology.evaluation import mocap6_performances
+from kinetology.labels import read_bandai_json, read_cmu_truelabels
+
+from test_kinetology_readers import SMALL_AMC, SMALL_ASF, SMALL_BVH
+
+needs_devices = pytest.mark.skipif(not os.path.exists("/dev/null"), reason="needs /dev/null")
+
+
+def _device(tmp_path, name):
+    """A link named like a motion file to /dev/null: before, it read as an empty file."""
+    link = tmp_path / name
+    link.symlink_to("/dev/null")
+    return link
+
+
+def _bandai(tmp_path):
+    """A Bandai Namco take: data/NAME.json and .bvh, cfg/ with the label lists."""
+    (tmp_path / "cfg").mkdir(parents=True)
+    (tmp_path / "cfg" / "content_label.txt").write_text("dataset-1_walk\n")
+    (tmp_path / "cfg" / "style_label.txt").write_text("dataset-1_normal\n")
+    (tmp_path / "data").mkdir()
+    label = tmp_path / "data" / "dataset-1_walk_normal_001.json"
+    label.write_text(json.dumps({"content": 0, "style": 0}))
+    label.with_suffix(".bvh").write_text(SMALL_BVH)
+    return label
+
+
+# ---- 1. a device (or pipe) is refused before it is read, by every reader of a user's file
+@needs_devices
+@pytest.mark.parametrize("name, read", [
+    ("take.bvh", kinetology.read),
+    ("take.asf", kinetology.read_asf),
+    ("t.txt", read_cmu_truelabels),
+    ("label.json", read_bandai_json),
+])
+def test_a_device_is_refused_by_every_reader(tmp_path, name, read):
+    link = _device(tmp_path, name)
+    with pytest.raises(MotionFormatError, match="not a regular file") as err:
+        read(link)
+    assert err.value.source == str(link)
+
+
+@needs_devices
+def test_a_device_as_an_amc_file_or_beside_a_label_is_refused(tmp_path):
+    (tmp_path / "s.asf").write_text(SMALL_ASF)
+    with pytest.raises(MotionFormatError, match="not a regular file"):
+        kinetology.read(_device(tmp_path, "s_1.amc"))
+    label = _bandai(tmp_path / "set")
+    label.with_suffix(".bvh").unlink()
+    take = _device(label.parent, label.with_suffix(".bvh").name)  # it gives the duration
+    with pytest.raises(MotionFormatError, match="no take dataset-1_walk_normal_001.bvh"):
+        read_bandai_json(label)
+    from kinetology.labels import _bvh_duration  # its header was read line by line, unbounded
+    with pytest.raises(MotionFormatError, match="not a regular file"):
+        _bvh_duration(take)
+    cfg = label.parent.parent / "cfg" / "style_label.txt"
+    cfg.unlink()
+    cfg.symlink_to("/dev/null")
+    with pytest.raises(MotionFormatError, match="no label list .*style_label.txt"):
+        read_bandai_json(label, duration=1.0)
+
+
+@needs_devices
+def test_a_device_as_mocap6_labels_or_a_kin_file_is_one_line_exit_2(tmp_path, capsys):
+    (tmp_path / "amc").mkdir()
+    (tmp_path / "truelabels").mkdir()
+    (tmp_path / "amc" / "13_29.amc").write_text(SMALL_AMC)
+    (tmp_path / "truelabels" / "13_29.txt").symlink_to("/dev/null")
+    with pytest.raises(MotionFormatError, match="not a regular file"):
+        mocap6_performances(tmp_path)
+    assert main(["decompress", str(_device(tmp_path, "x.kin"))]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "x.kin: not a regular file" in err, err
+
+
+# ---- 2. bytes that are not UTF-8 are an error at their line and column, never replaced
+@pytest.mark.parametrize("name, data, where", [
+    ("j.bvh", SMALL_BVH.encode().replace(b"JOINT Knee", b"JOINT Kn\xe9e"), (6, 11)),
+    ("s.asf", SMALL_ASF.encode().replace(b"name tibia", b"name t\xffbia"), (19, 12)),
+    ("t.txt", b"1 1\n1 \xb2\n", (2, 3)),
+    ("l.json", b'{"content": 0, "style": "\xe9"}', (1, 26)),
+])
+def test_bytes_that_are_not_utf8_are_located(tmp_path, name, data, where):
+    path = tmp_path / name
+    path.write_bytes(data)
+    read = {".bvh": read_bvh, ".asf": kinetology.read_asf, ".txt": read_cmu_truelabels,
+            ".json": read_bandai_json}[path.suffix]
+    with pytest.raises(MotionFormatError, match="not UTF-8") as err:
+        read(path)
+    assert (err.value.source, err.value.line, err.value.column) == (str(path), *where)
+
+
+def test_a_latin1_bone_in_an_amc_frame_is_located(tmp_path):
+    (tmp_path / "s.asf").write_text(SMALL_ASF)
+    amc = tmp_path / "s_1.amc"
+    amc.write_bytes(SMALL_AMC.encode().replace(b"femur 90", b"f\xe9mur 90"))
+    with pytest.raises(MotionFormatError, match="byte 0xe9") as err:
+        kinetology.read(amc)
+    assert (err.value.line, err.value.column) == (9, 2)
+
+
+# ---- 5. AMC frames numbered one after another; a bone twice is named, at its line
+@pytest.mark.parametrize("old, new, line, found", [
+    ("\n2\n", "\n1000000000000\n", 7, "'1000000000000'"),
+    ("\n2\n", "\n1\n", 7, "'1'"),
+    ("\n2\n", "\n-2\n", 7, "'-2'"),
+    ("\n2\n", "\n3\n", 7, "'3'"),
+])
+def test_amc_frame_numbers_must_follow_one_another(old, new, line, found):
+    asf = parse_asf(SMALL_ASF)
+    with pytest.raises(MotionFormatError, match=f"expected frame number 2, found {found}") \
+            as err:
+        parse_amc(SMALL_AMC.replace(old, new), dofs=asf.dofs, source="n.amc")
+    assert (err.value.line, err.value.column) == (line, 1)
+
+
+def test_amc_frames_may_start_at_another_number_and_pad_with_zeros():
+    asf = parse_asf(SMALL_ASF)
+    text = SMALL_AMC.replace("\n1\n", "\n0\n").replace("\n2\n", "\n01\n")
+    assert parse_amc(text, dofs=asf.dofs).frames == 2
+
+
+def test_a_bone_twice_in_the_first_amc_frame_is_named_at_its_line():
+    bad = SMALL_AMC.replace("tibia 0 0\n", "tibia 0 0\n  femur 1\n", 1)
+    with pytest.raises(MotionFormatError,
+                       match=r"bone 'femur' appears twice in frame 1 \(first at line 5\)") as err:
+        parse_amc(bad, source="d.amc")
+    assert (err.value.line, err.value.column) == (7, 3)
+
+
+def test_two_asf_bones_of_one_name_are_named_at_the_second():
+    bad = SMALL_ASF.replace("name tibia", "name femur")
+    with pytest.raises(MotionFormatError,
+                       match=r"two bones are named 'femur' \(the first at line 11\)") as err:
+        parse_asf(bad, "d.asf")
+    assert (err.value.line, err.value.column) == (19, 11)
+
+
+# ---- 6. a value that is not finite (or not a number) is located at its column
+@pytest.mark.parametrize("token", ["nan", "inf", "-inf", "1e999"])
+def test_a_bvh_value_that_is_not_finite_names_its_column(token):
+    bad = SMALL_BVH.replace("1 0 0 0 0 0 90 0 0", f"1 0 0 0 0 0 90 {token} 0")
+    with pytest.raises(MotionFormatError, match=f"value 8 is not finite") as err:
+        parse_bvh(bad, "v.bvh")
+    assert (err.value.line, err.value.column) == (20, 16)
+
+
+@pytest.mark.parametrize("old, new, message, line, column", [
+    ("femur 90", "femur   nan", "value 1 is not finite", 9, 9),
+    ("root 0 0 0 0 0 0\nfemur 90", "root 0 0 0 0 inf 0\nfemur 90", "value 5 is not finite", 8,
+     14),
+    ("femur 90", " femur x", "not a number: 'x'", 9, 8),
+])
+def test_an_amc_value_is_located_in_the_file_not_after_the_bone(old, new, message, line,
+                                                                  column):
+    asf = parse_asf(SMALL_ASF)
+    with pytest.raises(MotionFormatError, match=message) as err:
+        parse_amc(SMALL_AMC.replace(old, new), dofs=asf.dofs, source="v.amc")
+    assert (err.value.line, err.value.column) == (line, column)
+
+
+def test_radians_too_large_name_their_column():
+    with pytest.raises(MotionFormatError, match="too large to convert") as err:
+        parse_amc(":RADIANS\n1\nroot 0 0 0 0 0 0\n2\nroot 0 0 0 0 1e307 0\n", source="r.amc")
+    assert (err.value.line, err.value.column) == (5, 14)
+
+
+@pytest.mark.parametrize("old, new, message, column", [
+    ("Frames: 3", "Frames: -5", "negative frame count -5", 9),
+    ("Frames: 3", "  Frames:  many", "'Frames:' needs a number, not 'many'", 12),
+])
+def test_header_numbers_name_their_column(old, new, message, column):
+    with pytest.raises(MotionFormatError, match=message) as err:
+        parse_bvh(SMALL_BVH.replace(old, new), "h.bvh")
+    assert (err.value.line, err.value.column) == (17, column)
+
+
+def test_an_asf_number_that_is_not_finite_names_its_column():
+    with pytest.raises(MotionFormatError, match="number 'inf' is not finite") as err:
+        parse_asf(SMALL_ASF.replace("direction 0 -1 0", "direction 0 inf 0", 1), "n.asf")
+    assert (err.value.line, err.value.column) == (12, 18)
