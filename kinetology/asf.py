@@ -23,8 +23,11 @@ from types import MappingProxyType
 
 import numpy as np
 
+from psgs.errors import ValidationError
+
 from ._amc_frames import frame_layout, indent as _indent
-from .motion import Joint, Motion, MotionFormatError, Skeleton, build_motion, file_text
+from .motion import (FRAME_RATE_RANGE, Joint, Motion, MotionFormatError, Skeleton, build_motion,
+                     file_text)
 from .textblocks import parse_rows, token_column
 
 __all__ = ["AsfSkeleton", "read_asf", "parse_asf", "read_amc", "parse_amc", "find_asf"]
@@ -354,7 +357,8 @@ def read_amc(path: str | Path, asf: str | Path | AsfSkeleton | None = "auto",
         The skeleton: found by :func:`find_asf` (``"auto"``), read from a path, given, or
         none.
     frame_rate : float, default 120.0
-        AMC files do not state their rate; 120 fps is the CMU database's.
+        AMC files do not state their rate; 120 fps is the CMU database's. From 0.1 to
+        10,000 fps (:data:`~kinetology.motion.FRAME_RATE_RANGE`, as a BVH file's frame time).
 
     Returns
     -------
@@ -366,6 +370,8 @@ def read_amc(path: str | Path, asf: str | Path | AsfSkeleton | None = "auto",
     MotionFormatError
         For a malformed AMC, ASF or key file, naming ``file:line:col`` (see
         :func:`parse_amc`); for a file that is not UTF-8 or not a regular file.
+    ValidationError
+        For a frame rate outside :data:`~kinetology.motion.FRAME_RATE_RANGE`.
     FileNotFoundError
         When a file does not exist.
 
@@ -451,7 +457,7 @@ def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None 
     source : str, default "<amc>"
         The name errors give.
     frame_rate : float, default 120.0
-        Frames per second.
+        Frames per second, from 0.1 to 10,000 (:data:`~kinetology.motion.FRAME_RATE_RANGE`).
 
     Returns
     -------
@@ -461,6 +467,8 @@ def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None 
     ------
     MotionFormatError
         For malformed text, naming ``source:line:col``.
+    ValidationError
+        For a frame rate outside :data:`~kinetology.motion.FRAME_RATE_RANGE`.
 
     Examples
     --------
@@ -476,6 +484,10 @@ def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None 
     ...
     kinetology.motion.MotionFormatError: gap.amc:3:1: expected frame number 2, found '3' (frames are numbered one after another from 1)
     """
+    slowest, fastest = FRAME_RATE_RANGE
+    if not slowest <= frame_rate <= fastest:  # nan fails both comparisons
+        raise ValidationError(f"frame rate {frame_rate!r} is outside {slowest:g} .. "
+                              f"{fastest:g} frames a second")
     lines = _without_bom(text).splitlines()
     start = 0
     degrees = True

@@ -16,14 +16,18 @@ from pathlib import Path
 
 import numpy as np
 
-from .motion import Joint, Motion, MotionFormatError, Skeleton, build_motion, file_text
+from .motion import (FRAME_RATE_RANGE, Joint, Motion, MotionFormatError, Skeleton, build_motion,
+                     file_text)
 from .textblocks import parse_rows
 
-__all__ = ["read_bvh", "parse_bvh"]
+__all__ = ["read_bvh", "parse_bvh", "FRAME_TIME_RANGE"]
 
 _CHANNEL_AXES = {"xposition": "tx", "yposition": "ty", "zposition": "tz",
                  "xrotation": "rx", "yrotation": "ry", "zrotation": "rz"}
 _TOKEN = re.compile(r"\S+")
+#: The frame times (seconds) a BVH file may state, bounds included: 0.0001 s to 10 s, the
+#: frame rates of :data:`~kinetology.motion.FRAME_RATE_RANGE` (10,000 fps to 0.1 fps).
+FRAME_TIME_RANGE = (1 / FRAME_RATE_RANGE[1], 1 / FRAME_RATE_RANGE[0])
 
 
 def read_bvh(path: str | Path) -> Motion:
@@ -31,7 +35,11 @@ def read_bvh(path: str | Path) -> Motion:
 
     Every joint's channels become columns named ``joint.tx`` .. ``joint.rz`` in file
     order; the frame rate is ``1 / Frame Time``, rounded when within 0.01 of a whole number
-    (``0.0083333`` is 120 fps). The file must be UTF-8 (a byte that is not is an error at its
+    (``0.0083333`` is 120 fps). The frame time must lie in :data:`FRAME_TIME_RANGE`, from
+    0.0001 s (10,000 fps, beyond high-speed optical capture) to 10 s (0.1 fps, slower than
+    any key-framed animation): a time outside it is an error at its line and column, since
+    velocities grow with the rate and accelerations with its square, and ``Frame Time:
+    1e-300`` overflowed both. The file must be UTF-8 (a byte that is not is an error at its
     line and column, never replaced: it would rename a joint), and a path to a device or a
     pipe is refused before anything is read.
 
@@ -126,11 +134,17 @@ def parse_bvh(text: str, source: str = "<bvh>") -> Motion:
     frames, frames_at = _read_header_number(lines, tokens, "Frames:", source, integer=True)
     frame_time, time_at = _read_header_number(lines, tokens, "Frame Time:", source,
                                               integer=False)
-    # nan, inf, 0 and a time so small that its rate overflows (1e-320) are all unreadable
-    if not (math.isfinite(frame_time) and frame_time > 0 and math.isfinite(1.0 / frame_time)):
+    # nan, inf and 0 are no time at all; a time far below capture's (1e-300 s) gives a rate
+    # whose square, in every acceleration, overflows, and 1e-320 s a rate that is inf itself
+    if not (math.isfinite(frame_time) and frame_time > 0):
         raise MotionFormatError(f"frame time must be a positive finite number of seconds, "
                                 f"not {frame_time}", source=source, line=time_at[0],
                                 column=time_at[1])
+    shortest, longest = FRAME_TIME_RANGE
+    if not shortest <= frame_time <= longest:
+        raise MotionFormatError(f"frame time {frame_time:g} s is outside {shortest:g} .. "
+                                f"{longest:g} s ({1 / longest:g} to {1 / shortest:g} frames a "
+                                f"second)", source=source, line=time_at[0], column=time_at[1])
     first_data = tokens.line_index + 1
     body = [ln for ln in lines[first_data - 1:]]
     # trailing blank lines are common; anything else beyond the frames is an error

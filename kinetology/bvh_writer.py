@@ -19,7 +19,9 @@ of one name (end sites named as they read back); an end site not named
 ``parent.end`` (the name a reader gives it); a channel not named
 ``joint.axis`` after its own joint; a rotation order other than the one the
 ``CHANNELS`` line implies (the reader takes it from there); a non-finite
-offset; joints nested more than :data:`MAX_DEPTH` deep. The values are
+offset; joints nested more than :data:`MAX_DEPTH` deep; a frame rate outside
+:data:`~kinetology.motion.FRAME_RATE_RANGE` (0.1 to 10,000 fps, the frame times
+the reader accepts). The values are
 written in the order the file lists the channels, which is the skeleton's
 depth-first order even when the skeleton lists its joints otherwise. Numbers
 of 10^15 or more are written in exponent form, and the frame time with as
@@ -36,7 +38,7 @@ import numpy as np
 
 from psgs.errors import ValidationError
 
-from .motion import Joint, Motion, Skeleton
+from .motion import FRAME_RATE_RANGE, Joint, Motion, Skeleton
 
 __all__ = ["write_bvh", "format_bvh", "star_skeleton", "without_axes"]
 
@@ -127,6 +129,10 @@ def _number(value: float) -> str:
 
 def _frame_time(rate: float) -> str:
     """The frame time as the reader turns it back into ``rate`` (8 decimals when enough)."""
+    slowest, fastest = FRAME_RATE_RANGE
+    if not slowest <= rate <= fastest:  # the reader refuses its frame time
+        raise ValidationError(f"frame rate {rate:g} fps is outside {slowest:g} .. {fastest:g} "
+                              f"fps, the rates a BVH file is read at")
     seconds = 1.0 / rate
     for text in (f"{seconds:.8f}", repr(seconds)):
         back = 1.0 / float(text) if float(text) > 0 else math.inf

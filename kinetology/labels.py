@@ -24,6 +24,7 @@ from pathlib import Path
 
 from psgs.errors import ValidationError
 
+from .bvh import FRAME_TIME_RANGE
 from .motion import MotionFormatError, file_text
 
 __all__ = ["Span", "MOCAP6_ACTIONS", "read_cmu_truelabels", "read_bandai_json", "spans_of"]
@@ -163,6 +164,10 @@ def _bvh_duration(bvh: Path) -> float:
         raise MotionFormatError(f"'Frames: {frames.strip()}' and 'Frame Time: "
                                 f"{frame_time.strip()}' give no length to label",
                                 source=str(bvh))
+    shortest, longest = FRAME_TIME_RANGE
+    if not shortest <= float(frame_time) <= longest:  # the take itself would not read
+        raise MotionFormatError(f"'Frame Time: {frame_time.strip()}' is outside "
+                                f"{shortest:g} .. {longest:g} s", source=str(bvh))
     return duration
 
 

@@ -19,10 +19,15 @@ from psgs._foundation.files import decode_utf8, read_bytes
 from psgs.errors import FormatError, NotFound, ValidationError
 
 __all__ = ["MotionFormatError", "Joint", "Skeleton", "Motion", "AXES", "build_motion",
-           "file_text"]
+           "file_text", "FRAME_RATE_RANGE"]
 
 #: Channel axes, in the order a joint's channels are listed.
 AXES = ("tx", "ty", "tz", "rx", "ry", "rz")
+#: The frame rates (frames per second, bounds included) a motion file may have: a BVH file's
+#: ``Frame Time`` from 0.0001 s to 10 s, an AMC file's ``frame_rate=``. Beyond high-speed
+#: capture (10,000 fps) velocities grow with the rate and accelerations with its square until
+#: they overflow (``Frame Time: 1e-300``); below 0.1 fps no capture or key-framing goes.
+FRAME_RATE_RANGE = (0.1, 10_000.0)
 _MESSAGE_LIMIT = 200  # characters of an error message, so that it stays one readable line
 
 

@@ -19,6 +19,7 @@ from kinetology.bvh import parse_bvh, read_bvh
 from kinetology.cli import main
 from kinetology.evaluation import mocap6_performances
 from kinetology.labels import read_bandai_json, read_cmu_truelabels
+from psgs.errors import ValidationError
 
 from test_kinetology_readers import SMALL_AMC, SMALL_ASF, SMALL_BVH
 
@@ -118,6 +119,35 @@ def test_a_latin1_bone_in_an_amc_frame_is_located(tmp_path):
     assert (err.value.line, err.value.column) == (9, 2)
 
 
+# ---- 3. a frame time outside 0.0001 .. 10 s is an error at its line and column
+def test_a_label_beside_a_take_of_an_absurd_frame_time_is_refused(tmp_path):
+    label = _bandai(tmp_path)
+    take = label.with_suffix(".bvh")
+    take.write_text(SMALL_BVH.replace("Frame Time: 0.0333333", "Frame Time: 1e-300"))
+    with pytest.raises(MotionFormatError, match=r"'Frame Time: 1e-300' is outside 0.0001"):
+        read_bandai_json(label)
+
+
+@pytest.mark.parametrize("frame_time", ["1e-300", "1e-320", "0.00009", "10.5", "1e300"])
+def test_a_frame_time_outside_the_range_is_located(frame_time):
+    bad = SMALL_BVH.replace("Frame Time: 0.0333333", f"Frame Time:   {frame_time}")
+    with pytest.raises(MotionFormatError, match=r"outside 0.0001 \.\. 10 s") as err:
+        parse_bvh(bad, "ft.bvh")
+    assert (err.value.line, err.value.column) == (18, 15)
+
+
+@pytest.mark.parametrize("frame_time, rate", [("0.0001", 10_000.0), ("10", 0.1)])
+def test_the_ends_of_the_frame_time_range_read(frame_time, rate):
+    m = parse_bvh(SMALL_BVH.replace("Frame Time: 0.0333333", f"Frame Time: {frame_time}"))
+    assert m.frame_rate == rate
+
+
+@pytest.mark.parametrize("rate", [1e300, 20_000.0, 0.01, float("nan")])
+def test_an_amc_frame_rate_outside_the_range_is_refused(rate):
+    with pytest.raises(ValidationError, match="outside 0.1 .. 10000 frames a second"):
+        parse_amc(SMALL_AMC, frame_rate=rate)
+
+
 # ---- 5. AMC frames numbered one after another; a bone twice is named, at its line
 @pytest.mark.parametrize("old, new, line, found", [
     ("\n2\n", "\n1000000000000\n", 7, "'1000000000000'"),
@@ -159,7 +189,7 @@ def test_two_asf_bones_of_one_name_are_named_at_the_second():
 @pytest.mark.parametrize("token", ["nan", "inf", "-inf", "1e999"])
 def test_a_bvh_value_that_is_not_finite_names_its_column(token):
     bad = SMALL_BVH.replace("1 0 0 0 0 0 90 0 0", f"1 0 0 0 0 0 90 {token} 0")
-    with pytest.raises(MotionFormatError, match=f"value 8 is not finite") as err:
+    with pytest.raises(MotionFormatError, match="value 8 is not finite") as err:
         parse_bvh(bad, "v.bvh")
     assert (err.value.line, err.value.column) == (20, 16)
 
