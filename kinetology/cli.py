@@ -61,16 +61,37 @@ def _add_params(parser, *, codec: bool = False) -> None:
                             help=f"{_PARAM_HELP[name]} (default {default:g})")
 
 
-def _read(args, path: str):
-    """Read a motion file, with ``--frame-rate`` for AMC (a BVH file states its own rate)."""
+#: Frames a motion needs to be segmented (segment, compress, evaluate, plot): a frame's state
+#: is the sign of its velocity and its acceleration, and an acceleration takes three frames.
+MIN_FRAMES = 3
+
+
+def _read(args, path: str, *, enough: bool = True):
+    """Read a motion file, with ``--frame-rate`` for AMC (a BVH file states its own rate);
+    ``enough``: refuse one of fewer than :data:`MIN_FRAMES` frames."""
     from .readers import read
     rate = getattr(args, "frame_rate", None)
     if rate is None:
-        return read(path)
-    if Path(path).suffix.lower() != ".amc":
+        motion = read(path)
+    elif Path(path).suffix.lower() != ".amc":
         raise MotionFormatError("--frame-rate applies to AMC files; a BVH file states its own "
                                 "frame time", source=path)
-    return read(path, frame_rate=rate)
+    else:
+        motion = read(path, frame_rate=rate)
+    if enough:
+        _enough_frames(motion, path, args)
+    return motion
+
+
+def _enough_frames(motion, path: str, args, span: str = "") -> None:
+    """One line, not an empty actiongram (or a traceback), for a motion too short to segment."""
+    if motion.frames < MIN_FRAMES:
+        command = getattr(args, "kinetology_command", None) or args.command
+        raise MotionFormatError(
+            f"{span.strip() + ': ' if span else ''}{motion.frames} "
+            f"frame{'s' * (motion.frames != 1)}, but {command} needs at least {MIN_FRAMES} (a "
+            f"state is the sign of a velocity and an acceleration, and an acceleration takes "
+            f"{MIN_FRAMES} frames)", source=path)
 
 
 def _params(args, names) -> dict:
@@ -111,6 +132,7 @@ def _cmd_segment(args) -> int:
             motion = cut(motion, args.start, args.stop)
             first, last = motion.meta["cut"]
             span = f" from {first:g} s to {last:g} s"
+            _enough_frames(motion, name, args, span)
         motions.append(motion)
         spans.append(span)
     if several:  # performances of one action: the same strings in every actiongram
@@ -189,7 +211,7 @@ def _cmd_decompress(args) -> int:
         lines.append(f"{time:.6g}," + ",".join(f"{v:.4f}" for v in row))
     _write("\n".join(lines) + "\n", args.output)
     if args.against:
-        original = _read(args, args.against)
+        original = _read(args, args.against, enough=False)  # compared, not segmented
         if original.values.shape != motion.values.shape:
             raise MotionFormatError(f"{args.against} has shape {original.values.shape}, the "
                                     f"decoded motion {motion.values.shape}", source=args.file)

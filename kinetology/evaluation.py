@@ -62,6 +62,11 @@ def codec_point(motion: Motion, original_size: int, **params) -> dict:
     dict
         ``bytes``, ``percent``, ``mae``, ``mae_angles`` and ``max_error``.
 
+    Raises
+    ------
+    ValidationError
+        For a motion without frames (no error to measure).
+
     Examples
     --------
     >>> import kinetology
@@ -72,6 +77,8 @@ def codec_point(motion: Motion, original_size: int, **params) -> dict:
     >>> point["percent"] < 100 and point["mae"] <= point["max_error"]
     True
     """
+    if not motion.frames:  # no error to average, nor a largest one
+        raise ValidationError(f"{motion.source}: 0 frames, no reconstruction error to measure")
     data = compress(motion, **params)
     decoded = decompress(data)
     error = np.abs(decoded.values - motion.values)

@@ -10,14 +10,15 @@ from __future__ import annotations
 import json
 import os
 
+import numpy as np
 import pytest
 
 import kinetology
-from kinetology import MotionFormatError
+from kinetology import Motion, MotionFormatError
 from kinetology.asf import parse_amc, parse_asf
 from kinetology.bvh import parse_bvh, read_bvh
 from kinetology.cli import main
-from kinetology.evaluation import mocap6_performances
+from kinetology.evaluation import codec_point, mocap6_performances
 from kinetology.labels import read_bandai_json, read_cmu_truelabels
 from psgs.errors import ValidationError
 
@@ -146,6 +147,46 @@ def test_the_ends_of_the_frame_time_range_read(frame_time, rate):
 def test_an_amc_frame_rate_outside_the_range_is_refused(rate):
     with pytest.raises(ValidationError, match="outside 0.1 .. 10000 frames a second"):
         parse_amc(SMALL_AMC, frame_rate=rate)
+
+
+# ---- 4. a take too short to segment is one line and exit status 2, not an empty actiongram
+def _bvh_of(tmp_path, frames):
+    head = SMALL_BVH[: SMALL_BVH.index("Frames:")]
+    rows = "".join(f"{k} 0 0 0 0 0 {10 * k} 0 0\n" for k in range(frames))
+    path = tmp_path / f"f{frames}.bvh"
+    path.write_text(f"{head}Frames: {frames}\nFrame Time: 0.0333333\n{rows}")
+    return path
+
+
+@pytest.mark.parametrize("command", ["segment", "compress", "evaluate"])
+@pytest.mark.parametrize("frames", [0, 1, 2])
+def test_too_few_frames_is_one_line_and_exit_2(tmp_path, capsys, command, frames):
+    path = _bvh_of(tmp_path, frames)
+    out = tmp_path / "out.kin"
+    assert main([command, str(path)] + (["-o", str(out)] if command == "compress" else [])) \
+        == 2
+    captured = capsys.readouterr()
+    assert captured.out == "" and not out.exists()
+    (line,) = captured.err.splitlines()
+    plural = "s" * (frames != 1)
+    assert line == (f"kinetology: error: {path}: {frames} frame{plural}, but {command} needs "
+                    f"at least 3 (a state is the sign of a velocity and an acceleration, and "
+                    f"an acceleration takes 3 frames)")
+
+
+def test_three_frames_segment_and_a_short_cut_is_refused(tmp_path, capsys):
+    path = _bvh_of(tmp_path, 3)
+    assert main(["segment", str(path)]) == 0
+    assert "Knee.rz:" in capsys.readouterr().out
+    long = _bvh_of(tmp_path, 30)
+    assert main(["segment", str(long), "--start", "0.5", "--stop", "0.55"]) == 2
+    err = capsys.readouterr().err
+    assert f"{long}: from 0.5 s to 0.5333" in err and "1 frame, but segment needs" in err
+
+
+def test_codec_point_of_no_frames_is_a_validation_error():
+    with pytest.raises(ValidationError, match="0 frames"):
+        codec_point(Motion(np.zeros((0, 1)), ("a.rx",), 30.0, source="empty.bvh"), 100)
 
 
 # ---- 5. AMC frames numbered one after another; a bone twice is named, at its line
