@@ -18,6 +18,7 @@ from concurrent.futures import Executor, Future, ProcessPoolExecutor, as_complet
 from dataclasses import dataclass, replace
 from pathlib import Path
 
+from psgs._foundation.files import read_text
 from psgs.errors import MissingDependency
 
 from .datasets import Action, DatasetError
@@ -25,6 +26,7 @@ from .learn import Settings, input_key, learn_action
 from .description import DescriptionError
 from .description_store import (FILE, descriptions_key, descriptions_text,
                                 read_descriptions_file)
+from .jsonvalues import read_json
 from .records import ActionRecord, PerformanceRecord, Praxicon, PraxiconError, name_problem
 from .store import read_records, write_atomic, write_index, write_record, write_shared
 
@@ -169,6 +171,12 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
 
     def finish(action: Action, record: ActionRecord, seconds: float) -> None:
         nonlocal index_written
+        before = done.get(action.name)
+        if record.learnt or (before is not None and before[1].learnt):
+            # the learnt actions change: the descriptions of the old ones go first, so that
+            # a build interrupted now leaves a folder without descriptions (which load reads,
+            # and recognise names the command for), not with another folder's
+            (out / FILE).unlink(missing_ok=True)
         write_record(out, record, keys[action.name])
         records[action.name] = record
         timings[action.name] = seconds
@@ -270,9 +278,10 @@ def _described(out: Path, praxicon: Praxicon, log) -> Praxicon:
     if found is not None and found[2] == key:
         takes, windows = found[0], found[1]
     else:
+        # not left in place while they are learnt anew: an interruption then leaves none
+        (out / FILE).unlink(missing_ok=True)
         learnt = describe_praxicon(praxicon, log=log)
-        if learnt is None:
-            (out / FILE).unlink(missing_ok=True)  # none that would describe other actions
+        if learnt is None:  # and none that would describe other actions
             return praxicon
         takes, windows = learnt
         write_atomic(out / FILE, descriptions_text(takes, windows, key))
@@ -282,10 +291,10 @@ def _described(out: Path, praxicon: Praxicon, log) -> Praxicon:
 def _repair(out: Path, record: ActionRecord, key: str) -> None:
     """Rewrite what the record says is on disk where it is not (a deleted ``ACTION.psgs``)."""
     psgs_path = out / f"{record.name}.psgs"
-    try:
-        intact = (psgs_path.read_text(encoding="utf-8") == record.system) if record.system \
+    try:  # read_text refuses a device or a pipe in its place: rewritten, not read without end
+        intact = (read_text(psgs_path) == record.system) if record.system \
             else not psgs_path.exists()
-    except (OSError, UnicodeDecodeError):
+    except (OSError, ValueError):  # ValueError: not UTF-8, not a regular file
         intact = False
     if not intact:
         write_record(out, record, key)
@@ -365,11 +374,9 @@ def _crashed(action: Action, exc: BaseException) -> ActionRecord:
 
 def _old_timings(out: Path) -> dict[str, float]:
     """The timings of earlier builds, when ``timings.json`` holds what it should."""
-    import json
-
     try:
-        old = json.loads((out / "timings.json").read_text(encoding="utf-8"))
-    except (OSError, ValueError, RecursionError):  # damaged: the timings start again
+        old = read_json(out / "timings.json", ValueError)
+    except ValueError:  # missing or damaged: the timings start again
         return {}
     if not isinstance(old, dict):
         return {}

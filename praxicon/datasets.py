@@ -32,7 +32,8 @@ from collections import defaultdict
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from psgs.errors import PSGSError
+from psgs._foundation.files import decode_utf8, read_bytes
+from psgs.errors import FormatError, PSGSError
 
 __all__ = ["Performance", "Action", "read_dataset", "read_datasets", "DatasetError"]
 
@@ -203,10 +204,12 @@ class _Lines:
 
 
 def _manifest_text(path: Path) -> str:
+    # read_bytes: a device or a pipe named as a manifest is refused, not read without end;
+    # decode_utf8: bytes that are not UTF-8 are named at their line and column
     try:
-        return path.read_bytes().decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise DatasetError(f"{_shown_path(path)}: not UTF-8 text (byte {exc.start + 1})") from None
+        return decode_utf8(read_bytes(path), _shown_path(path))
+    except FormatError as exc:
+        raise DatasetError(str(exc)) from None
     except OSError as exc:
         raise DatasetError(f"{_shown_path(path)}: cannot be read ({exc.strerror or exc})") \
             from None

@@ -14,10 +14,10 @@ import json
 from pathlib import Path
 
 from .description import FORMAT_VERSION, LEARNING, DescriptionError, Descriptions
-from .records import REBUILD, Praxicon, PraxiconError, check_index
+from .jsonvalues import read_json
+from .records import REBUILD, Praxicon, PraxiconError
 
-__all__ = ["FILE", "descriptions_key", "read_descriptions",
-           "read_descriptions_file", "descriptions_text"]
+__all__ = ["FILE", "descriptions_key", "read_descriptions_file", "descriptions_text"]
 
 #: The file's name inside a praxicon folder.
 FILE = "descriptions.json"
@@ -42,19 +42,20 @@ def descriptions_text(takes: Descriptions, windows: Descriptions, key: str = "")
 def read_descriptions_file(folder):
     """``(takes, windows, key)`` from ``folder/descriptions.json``; ``None`` when it has none.
 
+    The whole-take descriptions must be of whole takes (``window`` 0), the window
+    descriptions of windows.
+
     Raises
     ------
     PraxiconError
-        One line: the file is damaged, or holds descriptions of another version (naming the
-        command that rebuilds them).
+        One line naming the file (and the line and column of what is not JSON, or the field):
+        the file is damaged, or holds descriptions of another version (naming the command
+        that rebuilds them).
     """
     path = Path(folder) / FILE
-    try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
+    if not path.exists() and not path.is_symlink():
         return None
-    except (OSError, UnicodeDecodeError, ValueError, RecursionError) as exc:
-        raise PraxiconError(f"{path}: not JSON ({type(exc).__name__})") from None
+    data = read_json(path, PraxiconError)
     if not isinstance(data, dict) or data.get("format") != _FORMAT:
         raise PraxiconError(f"{path}: not a praxicon descriptions file")
     if data.get("version") != FORMAT_VERSION:
@@ -62,45 +63,21 @@ def read_descriptions_file(folder):
                             f"psgs reads version {FORMAT_VERSION} (learn them again: "
                             f"'{REBUILD}' resumes the build and describes its actions)")
     key = data.get("key", "")
-    try:
-        return (Descriptions.from_dict(data["takes"]), Descriptions.from_dict(data["windows"]),
-                key if isinstance(key, str) else "")
-    except (KeyError, TypeError, ValueError, RecursionError) as exc:
-        raise PraxiconError(f"{path}: {str(exc).splitlines()[0] if str(exc) else exc!r}") \
-            from None
-
-
-def read_descriptions(folder, *, windows: bool = False) -> Descriptions:
-    """The descriptions a praxicon folder holds (whole takes, or ``windows`` for parsing).
-
-    Reads only the index's header and ``descriptions.json`` (not every record): what
-    recognising from a folder needs.
-
-    Raises
-    ------
-    DescriptionError
-        One line: the folder does not exist, is not a praxicon (or one of another version),
-        has no descriptions or damaged ones (naming the command that learns them).
-    """
-    folder = Path(folder)
-    if not folder.exists():
-        raise DescriptionError(f"{folder}: no such praxicon folder")
-    where = folder / "index.json"
-    try:
-        index = json.loads(where.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise DescriptionError(f"{folder}: not a praxicon folder (no praxicon index "
-                               f"index.json; build one with '{REBUILD}')") from None
-    except (OSError, UnicodeDecodeError, ValueError, RecursionError) as exc:
-        raise DescriptionError(f"{where}: not a praxicon index ({type(exc).__name__})") \
-            from None
-    try:
-        check_index(index, str(where))
-        found = read_descriptions_file(folder)
-    except PraxiconError as exc:
-        raise DescriptionError(str(exc)) from None
-    if found is None:
-        raise DescriptionError(f"{folder / FILE}: no descriptions in this praxicon (learn "
-                               f"them: '{REBUILD}' resumes the build and describes its "
-                               f"actions)")
-    return found[1] if windows else found[0]
+    if not isinstance(key, str):
+        raise PraxiconError(f"{path}: 'key' must be text (what the descriptions were learnt "
+                            f"from), not {type(key).__name__}")
+    found = []
+    for part, windowed in (("takes", False), ("windows", True)):
+        try:
+            if part not in data:
+                raise DescriptionError(f"no {part!r}")
+            described = Descriptions.from_dict(data[part])
+        except (DescriptionError, RecursionError) as exc:
+            text = str(exc) if isinstance(exc, DescriptionError) else "nests too deeply"
+            raise PraxiconError(f"{path}: {part}: {text}") from None
+        if bool(described.spread.window) != windowed:
+            raise PraxiconError(f"{path}: {part}: spread: 'window' must be "
+                                f"{'a window length' if windowed else '0 (whole takes)'}, "
+                                f"not {described.spread.window!r}")
+        found.append(described)
+    return found[0], found[1], key

@@ -8,7 +8,50 @@ file and the key, never a ``KeyError`` or ``TypeError``.
 
 from __future__ import annotations
 
-__all__ = ["Fields", "freeze", "thaw", "as_dict", "pairs"]
+import json
+
+from psgs._foundation.files import read_bytes, decode_utf8
+from psgs.errors import FormatError
+
+__all__ = ["Fields", "freeze", "thaw", "as_dict", "pairs", "read_json"]
+
+
+def read_json(path, error: type[Exception], missing: str | None = None):
+    """The JSON value in the file ``path``; whatever is wrong is one ``error`` line naming the
+    file (and the line and column of text that is not UTF-8 or not JSON).
+
+    ``missing`` is the message for a file that does not exist (default ``PATH: missing``).
+    Read through :func:`psgs._foundation.files.read_bytes`, so a device or a pipe in place of
+    the file is refused instead of read until memory runs out.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "x.json"
+    >>> _ = path.write_text('{"a": 1,\\n "b": }')
+    >>> read_json(path, ValueError)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: .../x.json:2:7: not JSON (Expecting value)
+    """
+    try:
+        text = decode_utf8(read_bytes(path), str(path))
+    except FileNotFoundError:
+        raise error(missing or f"{path}: missing") from None
+    except FormatError as exc:  # not a regular file, or not UTF-8 (with the place)
+        raise error(str(exc)) from None
+    except OSError as exc:
+        raise error(f"{path}: cannot be read ({exc.strerror or exc})") from None
+    except ValueError as exc:  # a NUL byte in the path
+        raise error(f"{path}: cannot be read ({exc})") from None
+    try:
+        return json.loads(text)
+    except RecursionError:
+        raise error(f"{path}: nests too deeply to be a praxicon file") from None
+    except json.JSONDecodeError as exc:
+        raise error(f"{path}:{exc.lineno}:{exc.colno}: not JSON ({exc.msg})") from None
+    except ValueError as exc:  # e.g. an integer of more digits than Python converts
+        raise error(f"{path}: not JSON ({exc})") from None
 
 
 class Fields:

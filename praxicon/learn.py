@@ -26,6 +26,9 @@ from pathlib import Path
 
 import numpy as np
 
+from psgs._foundation.files import read_bytes
+from psgs.errors import FormatError
+
 from .datasets import Action, Performance
 from .jsonvalues import freeze
 from .records import (FORMAT_VERSION, ActionRecord, ChannelMorpheme, JointRecord,
@@ -50,10 +53,13 @@ def _file_digest(path: str) -> str:
 
 @functools.lru_cache(maxsize=64)
 def _digest(path: str, size: int, mtime_ns: int) -> str:
+    # read_bytes: a device or a pipe named as a take is refused, not read without end
     try:
-        return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+        return hashlib.sha256(read_bytes(path)).hexdigest()
     except OSError as exc:
         return f"unreadable: {exc.strerror or exc}"
+    except FormatError as exc:
+        return f"unreadable: {exc.message}"
 
 
 def input_key(action: Action, settings: Settings) -> str:

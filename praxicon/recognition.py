@@ -129,7 +129,7 @@ class Recognition:
 
 def _descriptions(source, *, windows: bool = False) -> Descriptions:
     if isinstance(source, (str, Path)):
-        from .description_store import read_descriptions
+        from .store import read_descriptions
         return read_descriptions(source, windows=windows)
     if isinstance(source, Descriptions):
         return source

@@ -21,7 +21,7 @@ from __future__ import annotations
 from psgs.errors import ValidationError
 
 from .description import DescriptionError
-from .description_store import read_descriptions
+from .store import read_descriptions
 
 __all__ = ["register_recognise"]
 

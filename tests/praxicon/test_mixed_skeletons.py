@@ -126,7 +126,7 @@ def test_round_trip_build_load_recognise_equals_memory(px):
     the folder, the loaded praxicon and the in-memory descriptions give the same answers."""
     import kinetology
     from praxicon import load
-    from praxicon.description_store import read_descriptions
+    from praxicon.store import read_descriptions
     from praxicon.parsing import describe_windows, parse
 
     loaded = load(px)
@@ -199,7 +199,7 @@ def test_descriptions_of_the_old_format_are_learnt_again(px, tmp_path):
 
     from praxicon import build, read_dataset
     from praxicon.description import DescriptionError
-    from praxicon.description_store import read_descriptions
+    from praxicon.store import read_descriptions
 
     old = tmp_path / "old"
     shutil.copytree(px, old)

@@ -119,24 +119,29 @@ def test_bad_input_is_one_line_exit_2(px, tmp_path, capsys):
 
     assert "no such praxicon folder" in _error(capsys, ["recognise", str(tmp_path / "none"),
                                                         str(px / "new7.bvh")])
-    assert "praxicon index" in _error(capsys, ["recognise", str(tmp_path), str(px / "new7.bvh")])
+    assert "no index.json" in _error(capsys, ["recognise", str(tmp_path), str(px / "new7.bvh")])
     assert "no such file" in _error(capsys, ["recognise", str(px), str(tmp_path / "x.bvh")])
     one = _take(9, True, False)
     write_bvh(Motion(one.values[:1], one.channels, 30.0, one.skeleton), tmp_path / "one.bvh")
     assert "1 frame;" in _error(capsys, ["recognise", str(px), str(tmp_path / "one.bvh")])
-    old = tmp_path / "old"
-    old.mkdir()
-    (old / "index.json").write_text((px / "index.json").read_text())
+    old = _copy(px, tmp_path / "old")
     data = json.loads((px / "descriptions.json").read_text())
     data["version"] = 0
     (old / "descriptions.json").write_text(json.dumps(data))
     assert "psgs praxicon build" in _error(capsys, ["recognise", str(old),
                                                     str(px / "new7.bvh")])
-    bare = tmp_path / "bare"
-    bare.mkdir()
-    (bare / "index.json").write_text((px / "index.json").read_text())
+    bare = _copy(px, tmp_path / "bare")
+    (bare / "descriptions.json").unlink()
     assert "psgs praxicon build" in _error(capsys, ["parse", str(bare),
                                                     str(px / "new7.bvh")])
+
+
+def _copy(px: Path, to: Path) -> Path:
+    """The praxicon folder's files (not the takes beside them) copied to ``to``."""
+    import shutil
+
+    shutil.copytree(px, to, ignore=shutil.ignore_patterns("*.bvh", "*.png"))
+    return to
 
 
 def test_missing_joints_named_on_stderr(px, tmp_path, capsys):
@@ -187,7 +192,7 @@ def test_folder_round_trip_equals_in_memory(px):
     import kinetology
     from praxicon import load
     from praxicon.description import describe
-    from praxicon.description_store import read_descriptions
+    from praxicon.store import read_descriptions
     from praxicon.parsing import describe_windows
     from praxicon.recognition import recognise_many
 

@@ -1,0 +1,187 @@
+"""Reading a praxicon folder: ``load``, ``recognise`` and ``parse`` read it one way and refuse
+a damaged one with the same line, naming the file and the field; and what the commands check
+before any work.
+
+Each damage is one the fuzzer or an audit found answered, hung or raised a traceback."""
+
+from __future__ import annotations
+
+import json
+import math
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from praxicon import PraxiconError, build, load, read_dataset
+from praxicon.cli import main
+from praxicon.description import DescriptionError, Descriptions
+from praxicon.store import read_descriptions
+
+from praxicon_fixtures import take
+
+
+def _take(seed: int, arm: bool, leg: bool, seconds: float = 5.0, rate: float = 30.0):
+    """A take whose arm or leg swings (the other still), every joint present."""
+    from kinetology import Motion
+    from kinetology.bvh_writer import star_skeleton
+
+    rng = np.random.default_rng(seed)
+    t = np.arange(int(seconds * rate)) / rate
+    phase = 2 * np.pi * t / (1 + 0.05 * (seed % 3))
+    channels = ("hips.rz", "arm.rx", "arm.rz", "leg.rx", "head.ry")
+    noise = [0.3 * rng.standard_normal(t.size) for _ in channels]
+    values = np.column_stack([
+        noise[0],
+        (40 * np.sin(phase) if arm else 0 * t) + noise[1],
+        (25 * np.sin(phase + 0.7) if arm else 0 * t) + noise[2],
+        (30 * np.sin(phase + 2) if leg else 0 * t) + noise[3],
+        noise[4]])
+    return Motion(values, channels, rate, star_skeleton(channels), f"take{seed}")
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory) -> Path:
+    """A praxicon of two actions (m.wave, m.step) with its descriptions, and a new wave."""
+    from kinetology import write_bvh
+
+    root = tmp_path_factory.mktemp("checks")
+    rows = ["action,file"]
+    for name, arm, leg, seeds in (("wave", True, False, (1, 2, 3)),
+                                  ("step", False, True, (4, 5, 6))):
+        for seed in seeds:
+            path = root / "takes" / f"{name}{seed}.bvh"
+            path.parent.mkdir(exist_ok=True)
+            write_bvh(_take(seed, arm, leg), path)
+            rows.append(f"{name},{path}")
+    (root / "m.csv").write_text("\n".join(rows) + "\n")
+    result = build(read_dataset(root / "m.csv"), root / "px", progress=False,
+                   log=lambda s: None)
+    assert result.praxicon.descriptions is not None
+    write_bvh(_take(7, True, False), root / "new.bvh")
+    return root
+
+
+@pytest.fixture
+def px(built, tmp_path) -> Path:
+    """A copy of the built praxicon folder, to damage."""
+    return Path(shutil.copytree(built / "px", tmp_path / "px"))
+
+
+def _edit(path: Path, change) -> None:
+    data = json.loads(path.read_text())
+    change(data)
+    path.write_text(json.dumps(data))  # NaN and Infinity written as JSON's extensions
+
+
+def _run(capsys, argv) -> tuple[int, str, str]:
+    capsys.readouterr()
+    status = main(argv)
+    captured = capsys.readouterr()
+    return status, captured.out, captured.err
+
+
+def _refused(capsys, argv) -> str:
+    """The one error line of a command that must refuse before printing any answer."""
+    status, out, err = _run(capsys, argv)
+    assert status == 2 and out == "", (status, out, err)
+    (line,) = err.splitlines()
+    assert line.startswith("psgs: error: ") and "Traceback" not in err
+    return line[len("psgs: error: "):]
+
+
+def _every_reader_refuses(capsys, built, folder, message) -> str:
+    """load, read_descriptions, recognise and parse (API and command) refuse ``folder`` with
+    one line holding ``message``; the line."""
+    from praxicon import parse, recognise
+
+    with pytest.raises(PraxiconError) as info:
+        load(folder)
+    said = str(info.value)
+    assert message in said and "\n" not in said
+    for windows in (False, True):
+        with pytest.raises(DescriptionError, match=None) as again:
+            read_descriptions(folder, windows=windows)
+        assert str(again.value) == said
+    for call in (recognise, parse):
+        with pytest.raises(DescriptionError):
+            call(folder, built / "new.bvh")
+    for command in ("recognise", "parse"):
+        assert _refused(capsys, [command, str(folder), str(built / "new.bvh")]) == said
+    return said
+
+
+# -- recognise and parse read the folder as load does -----------------------------------------
+def _index(change):
+    return lambda folder: _edit(folder / "index.json", change)
+
+
+def _twice(index):
+    index["actions"].append(index["actions"][0])
+
+
+FOLDERS = {
+    "actions not a list": (_index(lambda i: i.update(actions="m.wave")),
+                           "index.json: 'actions' must be a list of records"),
+    "action listed twice": (_index(_twice), "index.json: action 'm.step' is listed twice"),
+    "name out of the folder": (_index(lambda i: i["actions"][0].update(name="../m.step")),
+                               "index.json: action 1: action name '../m.step' cannot be a "
+                               "file name (it holds '/')"),
+    "no actions listed": (_index(lambda i: i.update(actions=[])),
+                          "takes: describes 'm.step', which index.json does not list"),
+    "record missing": (lambda f: (f / "records" / "m.wave.json").unlink(),
+                       "records/m.wave.json: missing"),
+    "record empty": (lambda f: (f / "records" / "m.wave.json").write_text(""),
+                     "records/m.wave.json:1:1: not JSON (Expecting value)"),
+    "record cut": (lambda f: (f / "records" / "m.wave.json").write_text(
+        (f / "records" / "m.wave.json").read_text()[:200]), "records/m.wave.json:"),
+    "index cut": (lambda f: (f / "index.json").write_text((f / "index.json").read_text()[:300]),
+                  "index.json:"),
+}
+
+
+@pytest.mark.parametrize("damage", list(FOLDERS))
+def test_recognise_and_parse_refuse_what_load_refuses(built, px, capsys, damage):
+    spoil, message = FOLDERS[damage]
+    spoil(px)
+    _every_reader_refuses(capsys, built, px, message)
+
+
+def test_a_cut_index_names_its_line_and_column(built, px, capsys):
+    text = (px / "index.json").read_text()
+    (px / "index.json").write_text(text[:text.index('"datasets"') + 12])
+    said = _every_reader_refuses(capsys, built, px, "index.json:")
+    line = text[:text.index('"datasets"')].count("\n") + 1
+    assert said.startswith(f"{px / 'index.json'}:{line}:") and ": not JSON (" in said
+
+
+def test_the_sound_folder_is_read_by_every_reader(built, capsys):
+    """The control: the undamaged folder answers."""
+    status, out, err = _run(capsys, ["recognise", str(built / "px"), str(built / "new.bvh")])
+    assert status == 0 and ": m.wave " in out and err == ""
+    status, out, err = _run(capsys, ["parse", str(built / "px"), str(built / "new.bvh")])
+    assert status == 0 and "m.wave" in out and err == ""
+
+
+# -- the build never leaves descriptions of other records --------------------------------------
+def test_an_interrupted_build_leaves_no_stale_descriptions(built, px, monkeypatch):
+    """A resumed build that learns an action again and is interrupted before it describes the
+    actions leaves a folder load reads (without descriptions), not one it refuses."""
+    import praxicon.builder as builder
+    from praxicon.learn import Settings
+
+    real, calls = builder.learn_action, []
+
+    def once(action, settings):  # learns the first action, then Ctrl-C
+        calls.append(action.name)
+        if len(calls) > 1:
+            raise KeyboardInterrupt
+        return real(action, settings)
+
+    monkeypatch.setattr(builder, "learn_action", once)
+    with pytest.raises(KeyboardInterrupt):  # other settings: every action is learnt again
+        build(read_dataset(built / "m.csv"), px, settings=Settings.make(min_performances=3),
+              progress=False, log=lambda s: None)
+    assert not (px / "descriptions.json").exists()
+    assert load(px).descriptions is None
