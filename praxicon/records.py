@@ -32,9 +32,9 @@ from psgs.errors import NotFound, PSGSError
 from .description import DescriptionError, Descriptions
 from .jsonvalues import Fields, as_dict, freeze, pairs as _pairs
 
-__all__ = ["FORMAT", "FORMAT_VERSION", "REBUILD", "PraxiconError", "PerformanceRecord",
-           "ChannelMorpheme", "JointRecord", "ActionRecord", "Praxicon", "Settings", "check_index",
-           "name_problem", "MAX_NAME_BYTES"]
+__all__ = ["FORMAT", "FORMAT_VERSION", "REBUILD", "FRAME_RATES", "PraxiconError",
+           "PerformanceRecord", "ChannelMorpheme", "JointRecord", "ActionRecord", "Praxicon",
+           "Settings", "check_index", "name_problem", "MAX_NAME_BYTES"]
 
 #: The ``"format"`` of a praxicon's ``index.json``.
 FORMAT = "psgs-praxicon"
@@ -42,6 +42,10 @@ FORMAT = "psgs-praxicon"
 FORMAT_VERSION = 3
 #: The command that rebuilds a praxicon folder (named by every "other version" error).
 REBUILD = "psgs praxicon build DATASET... -o FOLDER"
+#: Lowest and highest frame rate (frames per second) a learnt record may hold: motion capture
+#: is recorded at 24 to a few hundred fps (the shared data at 30 and 120); generation makes
+#: rate x seconds frames, so a rate far outside is a damaged record, not a recording.
+FRAME_RATES = (1.0, 1000.0)
 #: Longest action name in bytes (UTF-8): it names the action's files, which with ``.json``
 #: and a temporary suffix must stay within the 255 bytes file systems allow.
 MAX_NAME_BYTES = 200
@@ -416,10 +420,18 @@ class ActionRecord:
                    verdict=j.text("verdict", True) or "", inducer=j.text("inducer", True),
                    params=_pairs(j.object("params", True)), system=j.text("system", True),
                    component_names=tuple(sorted(names.items())),
-                   frame_rate=j.number("frame_rate"),
+                   frame_rate=_frame_rate(j),
                    skeleton_source=j.text("skeleton_source"),
                    all_joints=j.texts("all_joints"), mean_pose=tuple(sorted(pose.items())),
                    segmentation=_pairs(j.object("segmentation", True)))
+
+
+def _frame_rate(j: Fields) -> float:
+    rate = j.number("frame_rate")
+    if not FRAME_RATES[0] <= rate <= FRAME_RATES[1]:  # NaN is neither
+        raise j._bad("frame_rate", f"frames per second from {FRAME_RATES[0]:g} to "
+                                   f"{FRAME_RATES[1]:g}")
+    return rate
 
 
 @dataclass(frozen=True)

@@ -185,3 +185,31 @@ def test_an_interrupted_build_leaves_no_stale_descriptions(built, px, monkeypatc
               progress=False, log=lambda s: None)
     assert not (px / "descriptions.json").exists()
     assert load(px).descriptions is None
+
+
+# -- a record's frame rate ---------------------------------------------------------------------
+@pytest.mark.parametrize("rate", [-30, 0, 0.5, 5000, 1e308, math.inf, math.nan])
+def test_a_record_frame_rate_out_of_range_names_the_file_and_field(built, px, capsys, rate):
+    # 1e308 made generation loop over as many steps; inf and NaN raised tracebacks
+    _edit(px / "records" / "m.wave.json", lambda d: d["record"].update(frame_rate=rate))
+    said = _every_reader_refuses(capsys, built, px, "records/m.wave.json: 'frame_rate' must be "
+                                                    "frames per second from 1 to 1000, not ")
+    assert _refused(capsys, ["generate", str(px), "m.wave", "-o", str(px / "w.bvh")]) == said
+    assert not (px / "w.bvh").exists()
+
+
+def test_takes_outside_the_frame_rates_are_left_out_so_the_praxicon_loads(tmp_path):
+    """What load refuses, the build never writes: a take at 0.5 fps costs that take."""
+    from kinetology import write_bvh
+
+    rows = ["action,file"]
+    for seed in (1, 2):
+        write_bvh(take(seed, seconds=60.0, rate=0.5), tmp_path / f"slow{seed}.bvh")
+        rows.append(f"slow,slow{seed}.bvh")
+    (tmp_path / "m.csv").write_text("\n".join(rows) + "\n")
+    result = build(read_dataset(tmp_path / "m.csv"), tmp_path / "px", progress=False,
+                   log=lambda s: None)
+    record = load(tmp_path / "px")["m.slow"]
+    assert result.failed == ("m.slow",) and not record.learnt
+    assert [p.endswith("0.5 frames per second; a praxicon keeps motion of 1 to 1000")
+            for p in record.problems] == [True, True]

@@ -57,7 +57,8 @@ def records(draw):
         params=freeze(draw(st.dictionaries(st.text(max_size=4), json_values, max_size=3))),
         system=draw(st.none() | st.text(max_size=30)),
         component_names=tuple(sorted((c, c.replace(".", "_")) for c in channels)),
-        frame_rate=draw(floats), skeleton_source=draw(names), all_joints=tuple(joints),
+        frame_rate=draw(st.floats(1.0, 1000.0)), skeleton_source=draw(names),
+        all_joints=tuple(joints),
         mean_pose=tuple(sorted((c, draw(floats)) for c in channels)),
         segmentation=freeze(draw(st.dictionaries(st.text(max_size=4), json_scalars,
                                                  max_size=3))))
