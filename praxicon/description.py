@@ -51,6 +51,7 @@ import numpy as np
 
 from psgs.errors import PSGSError
 
+from ._description_json import FieldError, action_fields, check_format, spread_fields
 from .feature_choice import choose_features, groups_problem
 from .feature_groups import feature_groups, group_distances
 from .features import FeatureError, feature_joint, motion_features
@@ -125,9 +126,7 @@ class ActionDescription:
     @classmethod
     def from_dict(cls, data: dict) -> "ActionDescription":
         """The description :meth:`to_dict` wrote (another format or version: a clear error)."""
-        _check(data, "praxicon-action-description")
-        return cls(str(data["name"]), tuple(data["features"]), _floats(data["mean"]),
-                   _floats(data["spread"]), int(data["takes"]), float(data["window"]))
+        return cls(*_fields(action_fields, data))
 
     @classmethod
     def from_json(cls, text: str) -> "ActionDescription":
@@ -175,13 +174,10 @@ class Spread:
     @classmethod
     def from_dict(cls, data: dict) -> "Spread":
         """The spread :meth:`to_dict` wrote."""
-        _check(data, "praxicon-spread")
-        return cls(tuple(data["features"]), _floats(data["scale"]),
-                   tuple(_floats(f) for f in data["factors"]), _floats(data["noise"]),
-                   float(data["threshold"]), float(data["temperature"]), float(data["window"]),
-                   FORMAT_VERSION,
-                   # descriptions written before the group test have none: no group test
-                   tuple((str(g), float(v)) for g, v in data.get("limits", [])))
+        features, scale, factors, noise, threshold, temperature, window, limits = \
+            _fields(spread_fields, data)
+        return cls(features, scale, factors, noise, threshold, temperature, window,
+                   FORMAT_VERSION, limits)
 
 
 @dataclass(frozen=True)
@@ -246,20 +242,35 @@ class Descriptions:
     @classmethod
     def from_dict(cls, data: dict) -> "Descriptions":
         """The descriptions :meth:`to_dict` wrote (another version: a clear error)."""
-        _check(data, "praxicon-descriptions")
-        try:
-            return cls(tuple(ActionDescription.from_dict(a) for a in data["actions"]),
-                       Spread.from_dict(data["spread"]))
-        except (KeyError, TypeError, ValueError, OverflowError) as exc:  # Overflow: float(10**400)
-            if isinstance(exc, DescriptionError):
-                raise
-            raise DescriptionError(f"malformed praxicon descriptions ({type(exc).__name__}: "
-                                   f"{exc})") from None
+        _fields(check_format, data, "praxicon-descriptions")
+        listed = data.get("actions")
+        if not isinstance(listed, list) or not listed:
+            raise DescriptionError("'actions' must be a list of action descriptions, one or "
+                                   "more")
+        spread = Spread.from_dict(data.get("spread"))
+        actions = tuple(ActionDescription.from_dict(a) for a in listed)
+        names = [a.name for a in actions]
+        for a in actions:
+            if names.count(a.name) > 1:
+                raise DescriptionError(f"action {a.name!r} is described twice")
+            if a.window != spread.window:  # parse cuts windows of the spread's length
+                raise DescriptionError(f"action {a.name!r}: 'window' {a.window:g} is not the "
+                                       f"spread's {spread.window:g}")
+        return cls(actions, spread)
 
     @classmethod
     def from_json(cls, text: str) -> "Descriptions":
         """The descriptions :meth:`to_json` wrote (another version: a clear error)."""
         return cls.from_dict(_loads(text))
+
+
+def _fields(read, data, *args):
+    """``read(data, *args, FORMAT_VERSION)`` (:mod:`praxicon._description_json`), its
+    errors this module's."""
+    try:
+        return read(data, *args, FORMAT_VERSION)
+    except FieldError as exc:
+        raise DescriptionError(str(exc)) from None
 
 
 def _loads(text: str) -> dict:
@@ -271,18 +282,6 @@ def _loads(text: str) -> dict:
     if not isinstance(data, dict):
         raise DescriptionError("not a praxicon description (a JSON object expected)")
     return data
-
-
-def _check(data: dict, kind: str) -> None:
-    if not isinstance(data, dict):
-        raise DescriptionError(f"not a {kind} (a JSON object expected)")
-    if data.get("format") != kind:
-        raise DescriptionError(f"not a {kind} (format {data.get('format')!r})")
-    if data.get("version") != FORMAT_VERSION:
-        raise DescriptionError(f"{kind} of version {data.get('version')!r}; this psgs reads "
-                               f"version {FORMAT_VERSION}: learn the descriptions again "
-                               f"(psgs praxicon build ... -o PX resumes the build and "
-                               f"describes its actions)")
 
 
 def _scale_floors(features) -> np.ndarray:

@@ -42,8 +42,8 @@ def descriptions_text(takes: Descriptions, windows: Descriptions, key: str = "")
 def read_descriptions_file(folder):
     """``(takes, windows, key)`` from ``folder/descriptions.json``; ``None`` when it has none.
 
-    The whole-take descriptions must be of whole takes (``window`` 0), the window
-    descriptions of windows.
+    Every field is checked (:mod:`praxicon._description_json`); the whole-take descriptions
+    must be of whole takes (``window`` 0), the window descriptions of windows.
 
     Raises
     ------

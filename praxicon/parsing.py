@@ -28,6 +28,7 @@ import numpy as np
 
 from .description import (OWN_KINDS, DescriptionError, common_table, describe_table,
                           feature_rows, probabilities, score_model, scores)
+from ._description_json import WINDOWS
 from .records import _count
 
 __all__ = ["Span", "Timeline", "parse", "describe_windows", "windows"]
@@ -106,8 +107,12 @@ def describe_windows(takes: dict[str, list], *, window: float = _WINDOW, hop: fl
     """Window descriptions of every action, learnt from the windows of its takes.
 
     The windows of a take start every ``2 * hop`` seconds; the descriptions' ``window`` is the
-    window length, which :func:`parse` cuts recordings into.
+    window length, which :func:`parse` cuts recordings into: from 0.1 to 60 seconds
+    (what a praxicon reads back).
     """
+    if not (isinstance(window, (int, float)) and WINDOWS[0] <= window <= WINDOWS[1]):
+        raise DescriptionError(f"a window of {window!r} seconds: windows are {WINDOWS[0]:g} to "
+                               f"{WINDOWS[1]:g} seconds long")
     rows, sources = {}, {}
     for name, motions in takes.items():
         cuts = [(k, w) for k, m in enumerate(motions) for w in windows(m, window, 2 * hop)[1]]

@@ -213,3 +213,92 @@ def test_takes_outside_the_frame_rates_are_left_out_so_the_praxicon_loads(tmp_pa
     assert result.failed == ("m.slow",) and not record.learnt
     assert [p.endswith("0.5 frames per second; a praxicon keeps motion of 1 to 1000")
             for p in record.problems] == [True, True]
+
+
+# -- descriptions.json, every field ------------------------------------------------------------
+def _set(part, where, key, value):
+    """A change of ``descriptions.json``: in ``part`` (takes or windows), in the spread or in
+    every action (``where``), ``key`` set to ``value`` (a callable: of the old value)."""
+    def change(data):
+        places = [data[part]["spread"]] if where == "spread" else data[part]["actions"]
+        for place in places:
+            place[key] = value(place[key]) if callable(value) else value
+    return change
+
+
+def _first(value):
+    return lambda old: [value, *old[1:]]
+
+
+DESCRIPTIONS = {
+    "temperature 0": (_set("takes", "spread", "temperature", 0),
+                      "takes: spread: 'temperature' must be above 0, not 0.0"),
+    "temperature -1": (_set("windows", "spread", "temperature", -1),
+                       "windows: spread: 'temperature' must be above 0, not -1.0"),
+    "temperature inf": (_set("takes", "spread", "temperature", math.inf),
+                        "takes: spread: 'temperature' must be a finite number, not inf"),
+    "scale inf": (_set("takes", "spread", "scale", _first(math.inf)),
+                  "takes: spread: 'scale' must be finite numbers: value 1 is inf"),
+    "scale 0": (_set("windows", "spread", "scale", _first(0.0)),
+                "windows: spread: 'scale' must be numbers above 0: value 1 is 0.0"),
+    "noise 0": (_set("takes", "spread", "noise", _first(0.0)),
+                "takes: spread: 'noise' must be numbers above 0: value 1 is 0.0"),
+    "mean NaN": (_set("takes", "actions", "mean", _first(math.nan)),
+                 "takes: action 'm.step': 'mean' must be finite numbers: value 1 is nan"),
+    "spread negative": (_set("windows", "actions", "spread", _first(-1.0)),
+                        "windows: action 'm.step': 'spread' must be numbers from 0: value 1 "
+                        "is -1.0"),
+    "mean cut": (_set("takes", "actions", "mean", lambda old: old[:3]),
+                 "takes: action 'm.step': 'mean' has 3 values for"),
+    "factors cut": (_set("windows", "spread", "factors", lambda old: [old[0][:3]]),
+                    "windows: spread: row 1 of 'factors' has 3 values for"),
+    "threshold NaN": (_set("takes", "spread", "threshold", math.nan),
+                      "takes: spread: 'threshold' must be a finite number, not nan"),
+    "limit negative": (_set("takes", "spread", "limits", lambda old: [[old[0][0], -1.0]]),
+                       "takes: spread: 'limits' must be numbers above 0: value 1 is -1.0"),
+    "takes 0": (_set("takes", "actions", "takes", 0),
+                "takes: action 'm.step': 'takes' must be a whole number from 1, not 0"),
+    "window negative": (lambda d: (_set("windows", "spread", "window", -2.0)(d),
+                                   _set("windows", "actions", "window", -2.0)(d)),
+                        "windows: spread: 'window' must be 0 (whole takes) or 0.1 to 60 "
+                        "seconds, not -2.0"),
+    "window huge": (lambda d: (_set("windows", "spread", "window", 1e300)(d),
+                               _set("windows", "actions", "window", 1e300)(d)),
+                    "'window' must be 0 (whole takes) or 0.1 to 60 seconds, not 1e+300"),
+    "window tiny": (lambda d: (_set("windows", "spread", "window", 1e-300)(d),
+                               _set("windows", "actions", "window", 1e-300)(d)),
+                    "'window' must be 0 (whole takes) or 0.1 to 60 seconds, not 1e-300"),
+    "window of whole takes": (lambda d: (_set("takes", "spread", "window", 2.0)(d),
+                                         _set("takes", "actions", "window", 2.0)(d)),
+                              "takes: spread: 'window' must be 0 (whole takes), not 2.0"),
+    "action's window not the spread's": (_set("windows", "actions", "window", 1.0),
+                                         "windows: action 'm.step': 'window' 1 is not the "
+                                         "spread's 2"),
+    "action twice": (lambda d: d["takes"]["actions"].append(d["takes"]["actions"][0]),
+                     "takes: action 'm.step' is described twice"),
+    "action not in the index": (lambda d: d["takes"]["actions"][0].update(name="m.ghost"),
+                                "takes: describes 'm.ghost', which index.json does not list "
+                                "as a learnt action (learn the descriptions again: 'psgs "
+                                "praxicon build"),
+    "key of other records": (lambda d: d.update(key="0" * 64),
+                             "descriptions.json: 'key' is not the key of this folder's learnt "
+                             "actions: the descriptions were learnt from other records"),
+    "key not text": (lambda d: d.update(key=5), "descriptions.json: 'key' must be text"),
+}
+
+
+@pytest.mark.parametrize("damage", list(DESCRIPTIONS))
+def test_damaged_descriptions_name_the_file_and_the_field(built, px, capsys, damage):
+    change, message = DESCRIPTIONS[damage]
+    _edit(px / "descriptions.json", change)
+    said = _every_reader_refuses(capsys, built, px, message)
+    assert said.startswith(f"{px / 'descriptions.json'}: ")
+
+
+def test_descriptions_read_from_a_dict_are_checked_too(built):
+    """``Descriptions.from_dict`` (what ``Praxicon.from_json`` reads) is checked the same way:
+    a factors row of the wrong length was a reshape ValueError in parse."""
+    data = json.loads((built / "px" / "descriptions.json").read_text())["windows"]
+    data["spread"]["factors"] = [[1.0, 1.0, 1.0]]
+    with pytest.raises(DescriptionError, match="spread: row 1 of 'factors' has 3 values for"):
+        Descriptions.from_dict(data)

@@ -1,0 +1,182 @@
+"""Descriptions read from their JSON values, every field checked before anything uses it.
+
+:meth:`~praxicon.description.Descriptions.from_dict` (and the action's and the spread's) read
+through :func:`action_fields` and :func:`spread_fields`, so that a damaged
+``descriptions.json`` is one :class:`~praxicon.description.DescriptionError` naming the field,
+not a reshape error deep in the scores or a NaN probability printed as an answer. What is
+checked is what the scores rely on: one value per feature in every per-feature list, a
+shared direction per row of ``factors`` over every feature, every number finite (the
+threshold may be infinite: descriptions learnt without calibration answer every motion),
+scales, noise and temperature above zero, spreads and group limits not below it, and window
+lengths within :data:`WINDOWS`.
+
+The checks raise :class:`FieldError`, which :mod:`praxicon.description` (which this module
+must not import: it reads through this one) turns into its ``DescriptionError``.
+
+>>> spread_fields({"format": "praxicon-spread", "version": 4, "features": ["a"],
+...                "scale": [1.0], "factors": [], "noise": [0.0], "threshold": 1.0,
+...                "temperature": 1.0, "window": 0.0}, 4)
+Traceback (most recent call last):
+...
+praxicon._description_json.FieldError: spread: 'noise' must be numbers above 0: value 1 is 0.0
+"""
+
+from __future__ import annotations
+
+import math
+
+__all__ = ["WINDOWS", "FieldError", "check_format", "action_fields", "spread_fields",
+           "check_window"]
+
+#: Shortest and longest window (seconds) window descriptions may be learnt from and parse
+#: cuts a recording into: under 0.1 s a window is a few frames at the usual capture rates
+#: (3 at 30 fps), with no movement in it to tell; over a minute it holds many actions, and
+#: parsing it gives one span. The build learns 2-second windows.
+WINDOWS = (0.1, 60.0)
+
+
+class FieldError(ValueError):
+    """A description's field that is missing or out of its range (one line naming it)."""
+
+
+_error = FieldError
+
+
+def _shown(value) -> str:
+    text = repr(value)
+    return text if len(text) <= 40 else type(value).__name__
+
+
+def check_format(data, kind: str, version: int) -> None:
+    """A :class:`FieldError` unless ``data`` is a JSON object of format ``kind`` and
+    descriptions version ``version``."""
+    if not isinstance(data, dict):
+        raise _error(f"not a {kind} (a JSON object expected, not {type(data).__name__})")
+    if data.get("format") != kind:
+        raise _error(f"not a {kind} (format {_shown(data.get('format'))})")
+    if data.get("version") != version:
+        raise _error(f"{kind} of version {_shown(data.get('version'))}; this psgs reads "
+                     f"version {version}: learn the descriptions again (psgs praxicon "
+                     f"build ... -o PX resumes the build and describes its actions)")
+
+
+def _need(data: dict, key: str, where: str):
+    if key not in data:
+        raise _error(f"{where}no {key!r}")
+    return data[key]
+
+
+def _number(data: dict, key: str, where: str, *, above: float | None = None,
+            infinite: bool = False) -> float:
+    value = _need(data, key, where)
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise _error(f"{where}{key!r} must be a number, not {_shown(value)}")
+    try:
+        value = float(value)
+    except OverflowError:  # an integer of 400 digits
+        raise _error(f"{where}{key!r} must be a finite number, not an integer of "
+                     f"{len(str(value))} digits") from None
+    if math.isnan(value) or (math.isinf(value) and not (infinite and value > 0)):
+        raise _error(f"{where}{key!r} must be a finite number, not {value!r}")
+    if above is not None and not value > above:
+        raise _error(f"{where}{key!r} must be above {above:g}, not {value!r}")
+    return value
+
+
+def _texts(data: dict, key: str, where: str) -> tuple[str, ...]:
+    value = _need(data, key, where)
+    if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+        raise _error(f"{where}{key!r} must be a list of text")
+    if not value:
+        raise _error(f"{where}{key!r} is empty")
+    if len(set(value)) != len(value):
+        twice = next(v for v in value if value.count(v) > 1)
+        raise _error(f"{where}{key!r} names {twice!r} twice")
+    return tuple(value)
+
+
+def _numbers(value, key: str, where: str, count: int, *, least: float | None = None,
+             strict: bool = False) -> tuple[float, ...]:
+    """``count`` finite numbers (at least ``least``, above it when ``strict``)."""
+    if not isinstance(value, list) or any(isinstance(v, bool) or not isinstance(v, (int, float))
+                                          for v in value):
+        raise _error(f"{where}{key!r} must be a list of numbers")
+    if len(value) != count:
+        raise _error(f"{where}{key!r} has {len(value)} values for {count} features")
+    out = []
+    for i, v in enumerate(value):
+        try:
+            v = float(v)
+        except OverflowError:
+            v = math.inf
+        if not math.isfinite(v):
+            raise _error(f"{where}{key!r} must be finite numbers: value {i + 1} is {v!r}")
+        if least is not None and (v <= least if strict else v < least):
+            raise _error(f"{where}{key!r} must be numbers {'above' if strict else 'from'} "
+                         f"{least:g}: value {i + 1} is {v!r}")
+        out.append(v)
+    return tuple(out)
+
+
+def check_window(window: float, where: str = "") -> float:
+    """``window`` when it is 0 (whole takes) or a window length within :data:`WINDOWS`.
+
+    Examples
+    --------
+    >>> check_window(2.0), check_window(0.0)
+    (2.0, 0.0)
+    >>> check_window(1e300, "spread: ")
+    Traceback (most recent call last):
+    ...
+    praxicon._description_json.FieldError: spread: 'window' must be 0 (whole takes) or 0.1 to 60 seconds, not 1e+300
+    """
+    if window != 0.0 and not WINDOWS[0] <= window <= WINDOWS[1]:
+        raise _error(f"{where}'window' must be 0 (whole takes) or {WINDOWS[0]:g} to "
+                     f"{WINDOWS[1]:g} seconds, not {window!r}")
+    return window
+
+
+def action_fields(data, version: int) -> tuple:
+    """``(name, features, mean, spread, takes, window)`` of an action description's JSON
+    value (of descriptions version ``version``), each checked."""
+    check_format(data, "praxicon-action-description", version)
+    name = _need(data, "name", "action: ")
+    if not isinstance(name, str) or not name:
+        raise _error(f"action: 'name' must be text, not {_shown(name)}")
+    where = f"action {name!r}: "
+    features = _texts(data, "features", where)
+    mean = _numbers(_need(data, "mean", where), "mean", where, len(features))
+    spread = _numbers(_need(data, "spread", where), "spread", where, len(features), least=0.0)
+    takes = _need(data, "takes", where)
+    if isinstance(takes, bool) or not isinstance(takes, int) or takes < 1:
+        raise _error(f"{where}'takes' must be a whole number from 1, not {_shown(takes)}")
+    window = check_window(_number(data, "window", where), where)
+    return name, features, mean, spread, takes, window
+
+
+def spread_fields(data, version: int) -> tuple:
+    """``(features, scale, factors, noise, threshold, temperature, window, limits)`` of a
+    spread's JSON value (of descriptions version ``version``), each checked."""
+    check_format(data, "praxicon-spread", version)
+    where = "spread: "
+    features = _texts(data, "features", where)
+    n = len(features)
+    scale = _numbers(_need(data, "scale", where), "scale", where, n, least=0.0, strict=True)
+    rows = _need(data, "factors", where)
+    if not isinstance(rows, list):
+        raise _error(f"{where}'factors' must be a list of rows of numbers")
+    factors = tuple(_numbers(r, "factors", f"{where}row {i + 1} of ", n)
+                    for i, r in enumerate(rows))
+    noise = _numbers(_need(data, "noise", where), "noise", where, n, least=0.0, strict=True)
+    threshold = _number(data, "threshold", where, above=0.0, infinite=True)
+    temperature = _number(data, "temperature", where, above=0.0)
+    window = check_window(_number(data, "window", where), where)
+    # descriptions written before the group test have no limits: no group test
+    limits = data.get("limits", [])
+    if not isinstance(limits, list) or not all(
+            isinstance(p, list) and len(p) == 2 and isinstance(p[0], str) for p in limits):
+        raise _error(f"{where}'limits' must be a list of [group, number] pairs")
+    bounds = _numbers([v for _, v in limits], "limits", where, len(limits), least=0.0,
+                      strict=True)
+    return (features, scale, factors, noise, threshold, temperature, window,
+            tuple((g, v) for (g, _), v in zip(limits, bounds)))
