@@ -51,16 +51,25 @@ class Span:
 
 @dataclass(frozen=True)
 class Timeline:
-    """A recording parsed into spans, in time order, covering ``0 .. duration``."""
+    """A recording parsed into spans, in time order, covering ``0 .. duration``.
+
+    ``missing`` names the joints of the actions the spans name that the recording lacks (of
+    the closest action when no span names one), as :attr:`Recognition.missing
+    <praxicon.recognition.Recognition.missing>` does for a take: the windows were scored over
+    the joints the recording has.
+    """
 
     source: str
     duration: float
     spans: tuple[Span, ...]
+    missing: tuple[str, ...] = ()
 
     def __repr__(self) -> str:  # a summary; text() has every span
         actions = {s.action for s in self.spans if s.action}
-        return (f"<Timeline {self.source!r}: {self.duration:.2f} s in {_count(len(self.spans), 'span')} "
-                f"of {_count(len(actions), 'action')}>")
+        missing = f", {_count(len(self.missing), 'joint')} missing" if self.missing else ""
+        return (f"<Timeline {self.source!r}: {self.duration:.2f} s in "
+                f"{_count(len(self.spans), 'span')} of {_count(len(actions), 'action')}"
+                f"{missing}>")
 
     def labels(self, times) -> list[str | None]:
         """The action at each of ``times`` (seconds)."""
@@ -195,4 +204,16 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
         spans.append(Span(round(float(edges[i]), 6), round(float(edges[j + 1]), 6),
                           names[path[i]], round(float(p[i:j + 1, path[i]].mean()), 6)))
         i = j + 1
-    return Timeline(getattr(motion, "source", "<motion>"), float(motion.duration), tuple(spans))
+    named = {s.action for s in spans if s.action}
+    if not named:  # no span names an action: the one closest over the windows, as recognise
+        named = {names[int(np.argmax(np.where(fitted.compared, p[:, :-1].mean(axis=0), -1)))]}
+    return Timeline(getattr(motion, "source", "<motion>"), float(motion.duration), tuple(spans),
+                    _lacking(descriptions, named, {spread.features[c] for c in columns}))
+
+
+def _lacking(descriptions, actions, here) -> tuple[str, ...]:
+    """The joints of ``actions``' features not among the features ``here`` (sorted)."""
+    from .features import feature_joint
+
+    return tuple(sorted({feature_joint(f) for a in descriptions.actions if a.name in actions
+                         for f in a.features if f not in here} - {"*"}))

@@ -92,6 +92,8 @@ def run_recognise(args) -> int:
 
 
 def run_parse(args) -> int:
+    import sys
+
     from .parsing import parse
 
     try:
@@ -104,6 +106,9 @@ def run_parse(args) -> int:
         timeline = parse(descriptions, motion)
     except DescriptionError as exc:
         raise ValidationError(str(exc))
+    if timeline.missing:  # as recognise says it: the windows were scored without them
+        print(f"{args.file}: recognised without the joints it lacks: "
+              f"{', '.join(timeline.missing)}", file=sys.stderr)
     print(timeline.text())
     if args.plot:
         from .recognition_pictures import draw_timeline

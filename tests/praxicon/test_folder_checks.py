@@ -302,3 +302,23 @@ def test_descriptions_read_from_a_dict_are_checked_too(built):
     data["spread"]["factors"] = [[1.0, 1.0, 1.0]]
     with pytest.raises(DescriptionError, match="spread: row 1 of 'factors' has 3 values for"):
         Descriptions.from_dict(data)
+
+
+# -- parse names the joints the recording lacks ------------------------------------------------
+def test_parse_names_the_joints_it_lacks_as_recognise_does(built, tmp_path, capsys):
+    from kinetology import read, write_bvh
+    from praxicon import parse
+
+    full = read(built / "new.bvh")
+    write_bvh(full.select([c for c in full.channels if not c.startswith("leg.")]),
+              tmp_path / "noleg.bvh")
+    timeline = parse(built / "px", tmp_path / "noleg.bvh")
+    assert timeline.missing == ("leg",) and "1 joint missing" in repr(timeline)
+    assert parse(built / "px", full).missing == ()
+    said = {}
+    for command in ("recognise", "parse"):
+        status, out, err = _run(capsys, [command, str(built / "px"), str(tmp_path / "noleg.bvh")])
+        assert status == 0 and "m.wave" in out
+        said[command] = err
+    assert said["parse"] == said["recognise"] == \
+        f"{tmp_path / 'noleg.bvh'}: recognised without the joints it lacks: leg\n"
