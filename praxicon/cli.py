@@ -80,14 +80,16 @@ def _check_outputs(args) -> None:
     error after the BVH file (or the plot) is already on disk."""
     from kinetology.viewer import check_output
 
-    from .pictures import check_picture
+    from .pictures import check_folder, check_picture
 
     if Path(args.output).suffix.lower() != ".bvh":
         _bad(f"{args.output}: the motion is written as BVH; give -o a .bvh file")
+    check_folder(args.output, "the motion")
     if args.plot is not None:
         check_picture(args.plot)
     if args.view is not None:
         check_output(args.view)
+        check_folder(args.view, "the player")
 
 
 def run_generate(args) -> int:

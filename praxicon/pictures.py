@@ -27,7 +27,7 @@ from .records import ActionRecord, Praxicon
 from .store import actuator_matrix, load
 
 __all__ = ["draw_actuator_matrix", "draw_morphemes", "draw_shared_patterns",
-           "draw_generated", "draw_praxicon", "check_picture"]
+           "draw_generated", "draw_praxicon", "check_picture", "check_folder"]
 
 
 
@@ -46,6 +46,9 @@ def check_picture(path) -> str:
     """The suffix of ``path`` when matplotlib can write a picture there, else ValueError (one
     line): checked before anything is drawn or written.
 
+    Its folder must exist and be writable (the answers a picture goes with are not printed
+    first, to end in an error for the picture alone), and ``path`` must not be a folder.
+
     Examples
     --------
     >>> check_picture("walk.PNG")
@@ -54,6 +57,10 @@ def check_picture(path) -> str:
     Traceback (most recent call last):
     ...
     ValueError: walk.bvh: matplotlib cannot write '.bvh' pictures; give one of .avif, .eps, ...
+    >>> check_picture("/nonexistent/dir/walk.png")
+    Traceback (most recent call last):
+    ...
+    ValueError: /nonexistent/dir/walk.png: no folder /nonexistent/dir to write the picture into
     """
     _pyplot()
     from matplotlib.backend_bases import FigureCanvasBase
@@ -63,7 +70,34 @@ def check_picture(path) -> str:
     if suffix not in known:
         raise ValueError(f"{path}: matplotlib cannot write {suffix or 'a file without a suffix'!r}"
                          f" pictures; give one of {', '.join(known)}")
+    check_folder(path, "the picture")
     return suffix
+
+
+def check_folder(path, what: str = "the file") -> None:
+    """ValueError (one line) unless ``path`` can be written: its folder exists, is a folder
+    and is writable, and ``path`` itself is not a folder.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> check_folder(tempfile.gettempdir())  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: ...: a folder, not the file
+    """
+    import os
+
+    path = Path(path)
+    folder = path.parent
+    if path.is_dir():
+        raise ValueError(f"{path}: a folder, not {what}")
+    if not folder.exists():
+        raise ValueError(f"{path}: no folder {folder} to write {what} into")
+    if not folder.is_dir():
+        raise ValueError(f"{path}: {folder} is not a folder")
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise ValueError(f"{path}: the folder {folder} is not writable")
 
 
 def _save(fig, path) -> Path:

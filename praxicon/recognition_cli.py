@@ -9,11 +9,13 @@ the folder, :mod:`praxicon.description_store`). The commands (added to ``psgs pr
   ``--plot`` (one file) the picture of them;
 * ``psgs praxicon parse PX FILE [--plot PNG]``: the recording's timeline of spans.
 
-Bad input (a folder that is not a praxicon, descriptions of another version, an empty or
-one-frame motion, a path that does not exist, a motion that shares no joint with any learnt
-action) is one line on stderr and exit status 2; a motion whose skeleton lacks some of its best
-action's joints is recognised over the joints it has, and those joints are named on stderr
-(actions learnt from another skeleton, sharing no joint with it, are ranked last).
+Bad input (a folder that is not a praxicon or that ``praxicon.load`` refuses, descriptions of
+another version or damaged, an empty or one-frame motion, a path that does not exist, a
+motion that shares no joint with any learnt action, a ``--plot`` into a folder that is not
+there) is one line on stderr and exit status 2, before any answer; a motion whose skeleton
+lacks some of its best action's joints (for ``parse``, of the actions its spans name) is
+recognised over the joints it has, and those joints are named on stderr (actions learnt from
+another skeleton, sharing no joint with it, are ranked last).
 """
 
 from __future__ import annotations
@@ -44,8 +46,8 @@ def _read_motion(path: str):
 
 
 def _check_pictures(plot) -> None:
-    # before any work: without the praxicon extra (or with a suffix matplotlib cannot write)
-    # a --plot would fail only after the answers were printed, and as a traceback
+    # before any work: without the praxicon extra, with a suffix matplotlib cannot write or
+    # into a folder that is not there, a --plot would fail only after the answers were printed
     if plot:
         from .pictures import check_picture
 
@@ -60,14 +62,14 @@ def run_recognise(args) -> int:
 
     from .recognition import recognise_many
 
-    try:
-        descriptions = read_descriptions(args.praxicon)
-    except DescriptionError as exc:
-        raise ValidationError(str(exc))
     if args.plot and len(args.files) != 1:
         raise ValidationError(f"--plot draws one recognition's explanation: give one FILE "
                               f"(got {len(args.files)})")
     _check_pictures(args.plot)
+    try:
+        descriptions = read_descriptions(args.praxicon)
+    except DescriptionError as exc:
+        raise ValidationError(str(exc))
     motions = [_read_motion(f) for f in args.files]
     try:
         found = recognise_many(descriptions, motions,
@@ -96,11 +98,11 @@ def run_parse(args) -> int:
 
     from .parsing import parse
 
+    _check_pictures(args.plot)
     try:
         descriptions = read_descriptions(args.praxicon, windows=True)
     except DescriptionError as exc:
         raise ValidationError(str(exc))
-    _check_pictures(args.plot)
     motion = _read_motion(args.file)
     try:
         timeline = parse(descriptions, motion)

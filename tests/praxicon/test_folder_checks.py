@@ -322,3 +322,22 @@ def test_parse_names_the_joints_it_lacks_as_recognise_does(built, tmp_path, caps
         said[command] = err
     assert said["parse"] == said["recognise"] == \
         f"{tmp_path / 'noleg.bvh'}: recognised without the joints it lacks: leg\n"
+
+
+# -- outputs' folders, checked before any work -------------------------------------------------
+@pytest.mark.parametrize("where", ["missing", "a file"])
+def test_a_plot_into_no_folder_is_refused_before_any_answer(built, tmp_path, capsys, where):
+    folder = tmp_path / "nowhere"
+    if where == "a file":
+        folder.write_text("x")
+    plot = folder / "x.png"
+    expected = (f"{plot}: no folder {folder} to write the picture into" if where == "missing"
+                else f"{plot}: {folder} is not a folder")
+    for command in ("recognise", "parse"):
+        assert _refused(capsys, [command, str(built / "px"), str(built / "new.bvh"),
+                                 "--plot", str(plot)]) == expected
+    assert _refused(capsys, ["generate", str(built / "px"), "m.wave", "-o",
+                             str(tmp_path / "w.bvh"), "--plot", str(plot)]) == expected
+    assert _refused(capsys, ["generate", str(built / "px"), "m.wave", "-o",
+                             str(folder / "w.bvh")]).startswith(f"{folder / 'w.bvh'}: ")
+    assert not (tmp_path / "w.bvh").exists()
