@@ -242,11 +242,19 @@ def _read_manifest(path: Path) -> list[Action]:
             if missing:
                 raise DatasetError(f"{_shown_path(path)}:1: manifest needs columns action,file "
                                    f"(missing {', '.join(sorted(missing))})")
+            names = list(reader.fieldnames or ())
+            twice = sorted({n for n in names if names.count(n) > 1})
+            if twice:  # which of the two is meant cannot be known
+                raise DatasetError(f"{_shown_path(path)}:1: the header names column "
+                                   f"{twice[0]!r} twice")
             rows = [(f"{_shown_path(path)}:{lines.number}", row) for row in reader]
         except csv.Error as exc:  # e.g. a field longer than the csv module's limit
             raise DatasetError(f"{_shown_path(path)}:{lines.number}: {exc}") from None
     groups: dict[str, list[Performance]] = defaultdict(list)
     for where, row in rows:
+        if None in row:  # cells past the header's, which would be dropped without a word
+            raise DatasetError(f"{where}: {len(row) - 1 + len(row[None])} cells, the header "
+                               f"has {len(row) - 1}")
         action, file = row.get("action"), row.get("file")
         if not action or not file:
             raise DatasetError(f"{where}: action and file are required")

@@ -64,6 +64,11 @@ def px(built, tmp_path):
     ("m.csv", "action,file\nbye!,a.bvh\nbye,b.bvh\n",
      "actions 'bye' and 'bye!' are both named 'm.bye'"),
     ("m.csv", "action,file\n" + "x" * 300 + ",a.bvh\n", "is 302 bytes long; at most 200"),
+    # a cell past the header's would be dropped without a word; a column twice is ambiguous
+    ("m.csv", "action,file\nwave,a.bvh\nwave,b.bvh,extra,more\n", "m.csv:3: 4 cells, the "
+                                                                   "header has 2"),
+    ("m.csv", "action,file,action\nwave,a.bvh,run\n", "m.csv:1: the header names column "
+                                                        "'action' twice"),
 ])
 def test_a_bad_manifest_is_one_dataset_error(tmp_path, name, content, message):
     path = tmp_path / name
