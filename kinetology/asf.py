@@ -159,6 +159,7 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
             "position": (0.0, 0.0, 0.0), "orientation": (0.0, 0.0, 0.0)}
     bones: dict[str, dict] = {}
     children: dict[str, list[str]] = {}
+    named_at: dict[str, int] = {}  # bone -> the :hierarchy line naming it as a child
     current: dict | None = None
     scale = 1.0
     radians = False  # ':units angle rad': axis and orientation angles given in radians
@@ -249,6 +250,10 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
                 if child not in bones:
                     fail(f"hierarchy names unknown bone {child!r}", number,
                          raw.find(child) + 1)
+                if child in named_at:  # two parents, or a cycle: no tree to place
+                    fail(f"hierarchy gives bone {child!r} a parent twice (first at line "
+                         f"{named_at[child]})", number, raw.find(child) + 1)
+                named_at[child] = number
     if not bones:
         raise MotionFormatError("no :bonedata bones", source=source)
     if radians:

@@ -226,6 +226,16 @@ def test_two_asf_bones_of_one_name_are_named_at_the_second():
     assert (err.value.line, err.value.column) == (19, 11)
 
 
+@pytest.mark.parametrize("link", ["root tibia", "tibia femur"])
+def test_a_bone_given_a_parent_twice_or_in_a_cycle_is_named_at_its_line(link):
+    bad = SMALL_ASF.replace("    femur tibia\n", f"    femur tibia\n    {link}\n")
+    child = link.split()[1]
+    with pytest.raises(MotionFormatError, match=rf"hierarchy gives bone '{child}' a parent "
+                                                r"twice \(first at line 2[78]\)") as err:
+        parse_asf(bad, "h.asf")
+    assert err.value.line == 29
+
+
 # ---- 6. a value that is not finite (or not a number) is located at its column
 @pytest.mark.parametrize("token", ["nan", "inf", "-inf", "1e999"])
 def test_a_bvh_value_that_is_not_finite_names_its_column(token):
