@@ -23,6 +23,7 @@ from types import MappingProxyType
 
 import numpy as np
 
+from psgs._foundation.text import decimal, split_lines
 from psgs.errors import ValidationError
 
 from ._amc_frames import frame_layout, indent as _indent
@@ -153,7 +154,7 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
     ...
     kinetology.motion.MotionFormatError: empty.asf: no :bonedata bones
     """
-    lines = _without_bom(text).splitlines()
+    lines = split_lines(_without_bom(text))
     section = None
     root = {"order": ("tx", "ty", "tz", "rx", "ry", "rz"), "axis": "XYZ",
             "position": (0.0, 0.0, 0.0), "orientation": (0.0, 0.0, 0.0)}
@@ -176,6 +177,8 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
         for k, part in enumerate(given, 1):
             try:
                 value = float(part)
+                if decimal(part) is None:  # float() takes '1_0' and other scripts' digits
+                    raise ValueError(part)
             except ValueError:
                 fail(f"expected a number, found {part!r}", number, token_column(raw, k))
             if not np.isfinite(value):
@@ -431,7 +434,7 @@ def _key_file_dofs(path: Path) -> dict | None:
     if not path.is_file():
         return None
     dofs = {}
-    for number, line in enumerate(file_text(path).splitlines(), 1):
+    for number, line in enumerate(split_lines(file_text(path)), 1):
         parts = line.split()
         if parts:
             if not set(p.lower() for p in parts[1:]) <= _DOFS:
@@ -493,7 +496,7 @@ def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None 
     if not slowest <= frame_rate <= fastest:  # nan fails both comparisons
         raise ValidationError(f"frame rate {frame_rate!r} is outside {slowest:g} .. "
                               f"{fastest:g} frames a second")
-    lines = _without_bom(text).splitlines()
+    lines = split_lines(_without_bom(text))
     start = 0
     degrees = True
     while start < len(lines) and (not lines[start].strip() or lines[start].lstrip()[0] in "#:"):

@@ -16,6 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
+from psgs._foundation.text import decimal, split_lines
+
 from .motion import (FRAME_RATE_RANGE, Joint, Motion, MotionFormatError, Skeleton, build_motion,
                      file_text)
 from .textblocks import parse_rows
@@ -115,7 +117,7 @@ def parse_bvh(text: str, source: str = "<bvh>") -> Motion:
     """
     if text.startswith("\ufeff"):  # a UTF-8 byte-order mark is not part of the first word
         text = text[1:]
-    lines = text.splitlines()
+    lines = split_lines(text)
     tokens = _HierarchyTokens(lines, source)
     tokens.expect("HIERARCHY")
     joints: list[Joint] = []
@@ -183,6 +185,8 @@ def _read_header_number(lines, tokens, label: str, source: str, *, integer: bool
     at = (index + 1, len(text) - len(after.lstrip()) + 1 if raw else len(text) - len(after) + 1)
     try:
         value = int(raw) if integer else float(raw)
+        if decimal(raw) is None:  # int() and float() take '1_0' and other scripts' digits
+            raise ValueError(raw)
     except ValueError:
         raise MotionFormatError(f"'{label}' needs a number, not {raw!r}", source=source,
                                 line=at[0], column=at[1]) from None
@@ -218,6 +222,8 @@ def _read_joint(tokens, joints, channels, parent, end_site=False, name=None):
             count_text = tokens.next("channel count")
             try:
                 count = int(count_text)
+                if decimal(count_text) is None:
+                    raise ValueError(count_text)
             except ValueError:
                 tokens.fail(f"channel count must be an integer, not {count_text!r}")
             names = []
@@ -295,6 +301,8 @@ class _HierarchyTokens:
         token = self.next("a number")
         try:
             value = float(token)
+            if decimal(token) is None:  # float() takes '1_0' and other scripts' digits
+                raise ValueError(token)
         except ValueError:
             self.fail(f"expected a number, found {token!r}")
         if not np.isfinite(value):

@@ -8,6 +8,8 @@ from collections.abc import Callable
 
 import numpy as np
 
+from psgs._foundation.text import decimal
+
 from .motion import MotionFormatError
 
 __all__ = ["parse_rows", "token_column"]
@@ -75,9 +77,11 @@ def parse_rows(lines: list[str], width: int, *, source: str, first_line: int = 1
     def column(i: int, k: int) -> int:  # of the k-th value of lines[i], in the file's line
         return token_column(lines[i], k) + (indent_of(i) if indent_of is not None else 0)
 
-    tokens = " ".join(lines).split()
+    joined = " ".join(lines)
+    tokens = joined.split()
     values = None
-    if len(tokens) == width * len(lines):
+    # numpy, as float(), takes '1_0' and other scripts' digits: such text goes the slow way
+    if len(tokens) == width * len(lines) and joined.isascii() and "_" not in joined:
         try:
             values = np.array(tokens, dtype=float).reshape(len(lines), width)
         except ValueError:
@@ -90,12 +94,11 @@ def parse_rows(lines: list[str], width: int, *, source: str, first_line: int = 1
                                         f"found {len(parts)}",
                                         source=source, line=where(i), column=1)
             for k, part in enumerate(parts):
-                try:
-                    float(part)
-                except ValueError:
+                if decimal(part) is None:
                     raise MotionFormatError(f"not a number: {part!r}", source=source,
-                                            line=where(i), column=column(i, k)) from None
-        raise MotionFormatError("malformed numbers", source=source, line=where(0))
+                                            line=where(i), column=column(i, k))
+        # every token is a decimal number (the text held other white space, say)
+        values = np.array(tokens, dtype=float).reshape(len(lines), width)
     if not np.isfinite(values).all():
         row, col = (int(n) for n in np.argwhere(~np.isfinite(values))[0])
         raise MotionFormatError(f"value {col + 1} is not finite ({lines[row].split()[col]})",

@@ -13,7 +13,7 @@ from ..errors import FormatError
 
 __all__: list[str] = []  # private helpers
 
-_NUMBER = re.compile(r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?\Z")
+_NUMBER = re.compile(r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?\Z", re.ASCII)
 
 
 def _shown(value: object, limit: int = 40) -> str:

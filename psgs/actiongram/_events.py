@@ -23,6 +23,7 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 
 from .._foundation.files import read_text
+from .._foundation.text import decimal
 from ..errors import FormatError, ValidationError
 from ._checks import _bad_name, _bad_symbol, _shown
 
@@ -191,7 +192,8 @@ def read_csv(cls, path: str | Path, *, gaps: str = "rest", rest_symbol: str = "_
     _check_options(gaps, rest_symbol)
     source = str(path)
     text = read_text(path, signature=True)
-    reader = csv.reader(io.StringIO(text, newline=""))
+    # strict: a quote left open or text after a closing quote is an error, not read on
+    reader = csv.reader(io.StringIO(text, newline=""), strict=True)
     try:
         header = [cell.strip() for cell in next(reader)]
     except StopIteration:
@@ -217,7 +219,8 @@ def read_csv(cls, path: str | Path, *, gaps: str = "rest", rest_symbol: str = "_
             line, ended = ended + 1, reader.line_num
             if not any(cell.strip() for cell in row):
                 continue
-            if len(row) != len(header):  # a cell more would be dropped without a word
+            if len(row) < len(header) or any(cell.strip() for cell in row[len(header):]):
+                # a cell more would be dropped without a word (empty ones pad a spreadsheet's)
                 raise FormatError(f"{len(row)} cells, the header has {len(header)}",
                                   source=source, line=line)
             stream, onset, duration, symbol = (row[i].strip() for i in where)
@@ -237,11 +240,11 @@ def read_csv(cls, path: str | Path, *, gaps: str = "rest", rest_symbol: str = "_
 
 
 def _number(text: str, what: str, source: str, line: int) -> float:
-    try:
-        return float(text)
-    except ValueError:
+    value = decimal(text)  # not float(): it takes '1_0' and digits of other scripts
+    if value is None:
         raise FormatError(f"{what} {_shown(text)} is not a number", source=source,
-                          line=line) from None
+                          line=line)
+    return value
 
 
 def to_events(actiongram, rest_symbol: str | None = None) -> tuple[tuple[str, float, float, str],

@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import re
 
+from .._foundation.text import split_lines
 from ..errors import FormatError
 from ._checks import _bad_name, _read_number, _shown
 from ._extras import DIRECTIVE as _DIRECTIVE
@@ -48,8 +49,9 @@ def strip_comment(line: str, source: str, line_no: int) -> str:
     return line[:at]
 
 
-# the control characters that are not white space (those separate tokens)
-_CONTROL = re.compile(r"[\x00-\x08\x0e-\x1b\x7f]")
+# every control character but the tab, and the characters str.splitlines breaks lines at
+# (lines break at "\n" only, so an error names the line an editor shows)
+_CONTROL = re.compile("[\x00-\x08\x0b-\x1f\x7f\x85\u2028\u2029]")
 
 def read_text(cls, text: str, source: str):
     """The actiongram (of class ``cls``) that ``text`` holds; FormatError at its place."""
@@ -59,7 +61,7 @@ def read_text(cls, text: str, source: str):
     edges: list[tuple[str, str | None]] = []
     where: dict[str, int] = {}
     keep_repeats = False
-    for line_no, raw in enumerate(text.splitlines(), start=1):
+    for line_no, raw in enumerate(split_lines(text), start=1):
         line = strip_comment(raw, source, line_no)
         control = _CONTROL.search(line)
         if control:  # no symbol or name may hold one (a NUL would reach the grammar unseen)

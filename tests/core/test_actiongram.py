@@ -361,3 +361,14 @@ def test_a_control_character_is_an_error_at_its_line_and_column(tmp_path):
 def test_strings_not_named_are_a_validation_error(strings):
     with pytest.raises(ValidationError, match="must map each string's name"):
         Actiongram.from_strings(strings)
+
+
+@pytest.mark.parametrize("breaker", ["\x0b", "\x0c", "\x1c", "\x85", "\u2028", "\u2029", "\r"])
+def test_a_character_splitlines_breaks_at_is_an_error_on_its_own_line(breaker):
+    # str.splitlines would read the one line as two, and name a line the file does not have
+    with pytest.raises(FormatError, match=r"t.txt:2:7: control character U\+"):
+        Actiongram.from_text(f"a: x y\nb: p q{breaker}c: r s\n", source="t.txt")
+
+
+def test_windows_line_ends_still_read():
+    assert Actiongram.from_text("a: x y\r\nb: p q\r\n").names == ("a", "b")

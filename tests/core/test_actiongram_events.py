@@ -269,6 +269,10 @@ def test_induce_reads_an_events_file(tmp_path, capsys):
     # an end a float cannot tell from its start; a NUL in a symbol
     ("stream,onset,duration,symbol\ns,0,1,a\ns,1e300,1,b\n", ":3:", "vanishes beside onset"),
     ("stream,onset,duration,symbol\ns,0,1,a\x00\n", ":2:", "control character"),
+    # float() would read these as 10 and 12; a quote left open would swallow the rest
+    ("stream,onset,duration,symbol\ns,1_0,1,a\n", ":2:", "onset '1_0' is not a number"),
+    ("stream,onset,duration,symbol\ns,\uff11\uff12,1,a\n", ":2:", "is not a number"),
+    ('stream,onset,duration,symbol\ns,0,1,a\ns,1,1,"b\n', ":3:", "not CSV"),
 ])
 def test_induce_events_errors_name_the_line(tmp_path, capsys, content, where, words):
     from psgs.cli import main
@@ -285,6 +289,12 @@ def test_a_huge_integer_or_a_vanishing_duration_is_a_validation_error_naming_the
         Actiongram.from_events([("a", 10 ** 400, 1, "x")])
     with pytest.raises(ValidationError, match="^row 1: duration 1 vanishes beside onset"):
         Actiongram.from_events([("a", 0, 1, "y"), ("a", 1e300, 1, "x")])
+
+
+def test_empty_cells_past_the_header_pad_a_row_and_are_no_error(tmp_path):
+    path = tmp_path / "padded.csv"
+    path.write_text("stream,onset,duration,symbol\ns,0,1,a,,\ns,1,1,b, ,\n")
+    assert read_events_csv(path).string("s") == ("a", "b")
 
 
 def test_a_device_is_refused_not_read(capsys):

@@ -24,7 +24,8 @@ PACKAGES = ("psgs", "kinetology", "praxicon")  # praxicon: a package another bra
 # At the bottom, the foundation every package of the distribution shares (errors, the
 # command-line shell, lazy names, the engine selector).
 FOUNDATION = ("psgs.errors", "psgs._foundation", "psgs._foundation.shell",
-              "psgs._foundation.lazy", "psgs._foundation.engines", "psgs._foundation.files")
+              "psgs._foundation.lazy", "psgs._foundation.engines", "psgs._foundation.files",
+              "psgs._foundation.text")
 CORE_TIERS = (
     (*FOUNDATION, "psgs.budget", "psgs.names"),
     ("psgs.model",),

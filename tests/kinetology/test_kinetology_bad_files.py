@@ -236,6 +236,21 @@ def test_a_bone_given_a_parent_twice_or_in_a_cycle_is_named_at_its_line(link):
     assert err.value.line == 29
 
 
+@pytest.mark.parametrize("token", ["1_0", "\uff11\uff12", "\u0661\u0662"])
+def test_a_number_float_would_take_but_no_file_means_is_not_a_number(token):
+    # float() reads '1_0' as 10 and digits of other scripts as digits; a data file means neither
+    with pytest.raises(MotionFormatError, match="not a number"):
+        parse_bvh(SMALL_BVH.replace("0 0 0 0 0", f"0 0 {token} 0 0", 1), "n.bvh")
+
+
+def test_a_form_feed_is_no_line_break_for_the_line_numbers():
+    text = SMALL_BVH.replace("JOINT Knee", "JOINT Kn\x0cee", 1)
+    line = next(n for n, ln in enumerate(text.split("\n"), 1) if "\x0c" in ln)
+    with pytest.raises(MotionFormatError) as err:
+        parse_bvh(text, "f.bvh")
+    assert err.value.line == line
+
+
 # ---- 6. a value that is not finite (or not a number) is located at its column
 @pytest.mark.parametrize("token", ["nan", "inf", "-inf", "1e999"])
 def test_a_bvh_value_that_is_not_finite_names_its_column(token):
