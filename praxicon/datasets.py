@@ -252,7 +252,9 @@ def _read_manifest(path: Path) -> list[Action]:
             raise DatasetError(f"{_shown_path(path)}:{lines.number}: {exc}") from None
     groups: dict[str, list[Performance]] = defaultdict(list)
     for where, row in rows:
-        if None in row:  # cells past the header's, which would be dropped without a word
+        if any(str(cell).strip() for cell in row.get(None, ())):
+            # cells past the header's, which would be dropped without a word (empty ones
+            # pad a spreadsheet's rows)
             raise DatasetError(f"{where}: {len(row) - 1 + len(row[None])} cells, the header "
                                f"has {len(row) - 1}")
         action, file = row.get("action"), row.get("file")

@@ -81,6 +81,11 @@ def test_a_bad_manifest_is_one_dataset_error(tmp_path, name, content, message):
     assert message in str(info.value) and "\n" not in str(info.value)
 
 
+def test_empty_cells_past_the_header_pad_a_manifest_row(tmp_path):
+    (tmp_path / "m.csv").write_text("action,file\nwave,a.bvh,,\n")
+    assert [a.content for a in read_dataset(tmp_path / "m.csv")] == ["wave"]
+
+
 def test_names_that_become_one_are_refused_by_the_command_too(tmp_path, capsys):
     (tmp_path / "m.csv").write_text("action,file\nwave left,a.bvh\nwave-left,b.bvh\n")
     assert main(["build", str(tmp_path / "m.csv"), "-o", str(tmp_path / "px")]) == 2
