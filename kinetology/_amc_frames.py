@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import re
 
+from psgs._foundation.text import decimal
+
 from .motion import MotionFormatError
 
 __all__ = ["frame_layout", "indent"]
@@ -80,6 +82,9 @@ def frame_layout(data: list[str], source: str, first_line: int) -> tuple[list[st
         if not data[i].strip():  # a blank line inside a frame (blank lines only lead or trail)
             fail("expected a bone line, found an empty line", i, 1)
         bone = data[i].split(None, 1)[0]
+        if decimal(bone) is not None:  # a number where frame 2's should be ('2.0', '1e0')
+            fail(f"expected frame number {first + 1}, found {data[i].strip()[:30]!r} (frames "
+                 f"are numbered one after another from {first})", i)
         if bone in seen:  # its second line would be read as the next frame's bone
             fail(f"bone {bone!r} appears twice in frame {first} (first at line "
                  f"{first_line + seen[bone]})", i)

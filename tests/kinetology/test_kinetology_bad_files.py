@@ -195,6 +195,8 @@ def test_codec_point_of_no_frames_is_a_validation_error():
     ("\n2\n", "\n1\n", 7, "'1'"),
     ("\n2\n", "\n-2\n", 7, "'-2'"),
     ("\n2\n", "\n3\n", 7, "'3'"),
+    # not a frame number by its form, but a number where one belongs (it was read as a bone)
+    ("\n2\n", "\n2.0\n", 7, "'2.0'"),
 ])
 def test_amc_frame_numbers_must_follow_one_another(old, new, line, found):
     asf = parse_asf(SMALL_ASF)
