@@ -36,7 +36,9 @@ def _read_motion(path: str):
         motion = kinetology.read(path)
     except FileNotFoundError:
         raise ValidationError(f"{path}: no such file")
-    except (OSError, PSGSError) as exc:  # unreadable, or not motion: one line
+    except OSError as exc:  # unreadable: the file and why, as every command says it
+        raise ValidationError(f"{path}: {exc.strerror or exc}")
+    except PSGSError as exc:  # not motion: one line
         raise ValidationError(str(exc).splitlines()[0])
     if motion.frames < 3:
         plural = "s" if motion.frames != 1 else ""

@@ -121,6 +121,9 @@ def test_bad_input_is_one_line_exit_2(px, tmp_path, capsys):
                                                         str(px / "new7.bvh")])
     assert "no index.json" in _error(capsys, ["recognise", str(tmp_path), str(px / "new7.bvh")])
     assert "no such file" in _error(capsys, ["recognise", str(px), str(tmp_path / "x.bvh")])
+    (tmp_path / "folder.bvh").mkdir()  # unreadable as a file: said as every command says it
+    assert f"{tmp_path / 'folder.bvh'}: Is a directory" in _error(
+        capsys, ["recognise", str(px), str(tmp_path / "folder.bvh")])
     one = _take(9, True, False)
     write_bvh(Motion(one.values[:1], one.channels, 30.0, one.skeleton), tmp_path / "one.bvh")
     assert "1 frame;" in _error(capsys, ["recognise", str(px), str(tmp_path / "one.bvh")])
