@@ -92,6 +92,12 @@ def _check_outputs(args) -> None:
         check_folder(args.view, "the player")
 
 
+def _shaping_progress(done: int, total: int, channel: str) -> None:
+    # one line rewritten in place on stderr (a channel at 120 fps can take seconds)
+    print(f"\rgenerating channel {done}/{total}: {channel:<40}", end="", file=sys.stderr,
+          flush=True)
+
+
 def run_generate(args) -> int:
     from kinetology.bvh_writer import format_bvh, without_axes
 
@@ -102,7 +108,11 @@ def run_generate(args) -> int:
     try:
         _check_outputs(args)
         praxicon = load(args.praxicon)
-        result = generate(praxicon, args.action, repeat=args.repeat, style=args.style)
+        live = not args.no_progress and sys.stderr.isatty()
+        result = generate(praxicon, args.action, repeat=args.repeat, style=args.style,
+                          progress=_shaping_progress if live else None)
+        if live:
+            print(file=sys.stderr)
         # everything that can fail is made in memory first: the files are written together
         player, shown = (_beside_a_performance(praxicon, result) if args.view is not None
                          else (None, ()))
@@ -250,6 +260,8 @@ def _add_commands(sub) -> None:
                           "played K times one after the other (default once)")
     gen.add_argument("-o", "--output", required=True, metavar="OUT.bvh",
                      help="the BVH file to write")
+    gen.add_argument("--no-progress", action="store_true",
+                     help="no progress line (shown only when stderr is a terminal)")
     gen.add_argument("--style", default=None, metavar="STYLE",
                      help="generate that style of the action: a word of its performances' "
                           "file names (Bandai's dataset-2_walk_elderly_001.bvh is style "

@@ -403,7 +403,7 @@ def has_grammar(record: ActionRecord) -> bool:
 
 
 def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
-                    style: str | None = None):
+                    style: str | None = None, progress=None):
     """The generated :class:`kinetology.Motion` of one action record, its words, its methods.
 
     Returns ``(motion, words, methods)``: the motion, per generated channel its merged
@@ -489,6 +489,8 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
         values[:, channels.index(channel)] = curve - curve.mean() + centre.get(channel, 0.0)
         derived[channel] = sequence
         methods[channel] = method
+        if progress is not None:  # each channel's correction may take seconds at 120 fps
+            progress(len(derived), len(usable), channel)
     # a morpheme that only rises (or only falls) drifts: on a root rotation, an Euler flip
     drifting = {c for c, m in usable.items() if len({_RISING[k] for k in m.kinetemes}) == 1}
     animate(values, channels, body, set(derived), rate, period * cycle, drifting)
@@ -499,7 +501,7 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
 
 def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None = None,
              output: str | Path | None = None, plot: str | Path | None = None,
-             style: str | None = None) -> Generated:
+             style: str | None = None, progress=None) -> Generated:
     """Generate ``repeat`` copies of ``action`` from the praxicon in ``folder``.
 
     An action with a grammar system is derived from it (the module's steps). A learnt
@@ -528,6 +530,8 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None =
         tempo and each actuator channel's amplitude are the style's performances'
         against all of them (:func:`style_scales`), the other joints and the root's
         course are those performances' alone. Default: every performance together.
+    progress : callable, optional
+        Called as ``progress(done, total, channel)`` after each actuator channel is made.
 
     Returns
     -------
@@ -573,7 +577,7 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None =
     grammar = has_grammar(record)
     if repeat is None:
         repeat = 3 if grammar else 1
-    motion, words, methods = generate_motion(record, repeat, style=style)
+    motion, words, methods = generate_motion(record, repeat, style=style, progress=progress)
     if output is not None:  # on the source skeleton, an ASF one's axes turned into angles
         from kinetology.bvh_writer import without_axes
 

@@ -134,8 +134,12 @@ def test_generated_bvh_reads_back_with_kinetology_and_an_independent_reader(mani
 
     build(read_dataset(manifest), tmp_path / "px", progress=False, log=lambda s: None)
     out = tmp_path / "wave.bvh"
+    seen = []
     generated = generate(tmp_path / "px", "moves.wave", repeat=3, output=out,
-                         plot=tmp_path / "wave.png")
+                         plot=tmp_path / "wave.png", progress=lambda *a: seen.append(a))
+    # one call per generated channel, counting up to all of them
+    assert [c for _, _, c in seen] == list(generated.channels)
+    assert [(d, t) for d, t, _ in seen] == [(k + 1, len(seen)) for k in range(len(seen))]
     back = kinetology.read(out)
     assert back.channels == generated.motion.channels
     assert np.abs(back.values - generated.motion.values).max() < 0.01
