@@ -164,6 +164,11 @@ def _segment_spans(args, channels) -> int:
     motion = _read(args, args.files[0])
     spans = spans_of(args.labels, motion.frame_rate)
     parts = from_spans(motion, spans, args.label, min_seconds=args.min_seconds)
+    short = [p for p in parts if p.frames < MIN_FRAMES]  # no acceleration to segment by
+    if short:
+        print(f"kinetology: left out {len(short)} span{'s' * (len(short) != 1)} of fewer than "
+              f"{MIN_FRAMES} frames in {args.labels}", file=sys.stderr)
+        parts = [p for p in parts if p.frames >= MIN_FRAMES]
     if not parts:
         raise ValidationError(f"no span{' labelled ' + repr(args.label) if args.label else ''} of "
                          f"at least {args.min_seconds:g} s in {args.labels}")

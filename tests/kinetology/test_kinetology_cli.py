@@ -209,6 +209,20 @@ def test_segment_labels_writes_one_actiongram_per_labelled_span(small_bvh, tmp_p
     assert "no span labelled 'Squat'" in capsys.readouterr().err
 
 
+def test_segment_labels_leaves_out_a_span_too_short_to_segment_and_says_so(small_bvh, tmp_path,
+                                                                          capsys, monkeypatch):
+    import kinetology.labels
+    from kinetology.labels import Span
+
+    # a label file may hold a span of a frame or two (its own rate, a cut take's end)
+    spans = (Span("ArmCircle", 0.0, 0.01), Span("ArmCircle", 0.5, 1.5))
+    monkeypatch.setattr(kinetology.labels, "spans_of", lambda path, rate: spans)
+    out = tmp_path / "spans"
+    assert main(["segment", str(small_bvh), "--labels", "any.txt", "-o", f"{out}/"]) == 0
+    assert [p.name for p in out.iterdir()] == ["small-ArmCircle-1.actiongram"]
+    assert "left out 1 span of fewer than 3 frames" in capsys.readouterr().err
+
+
 @needs_mocap
 def test_segment_labels_of_a_real_mocap6_take(tmp_path, capsys):
     folder = MOCAP / "cmu-mocap6"
