@@ -160,6 +160,11 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
     for name, why in sorted(damaged.items()):
         if name in keys:
             log(f"{why}: learnt again")
+    if todo:
+        # the learnt actions may change: the old descriptions go before any learning, so that
+        # a build interrupted at any moment leaves a folder without descriptions (which load
+        # reads, and recognise names the command for), never one describing other records
+        (out / FILE).unlink(missing_ok=True)
     learnt, failed = [], [n for n in skipped if not records[n].learnt]
     dataset_list = tuple(str(d) for d in (datasets or sorted({a.dataset for a in actions})))
 
@@ -171,12 +176,6 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
 
     def finish(action: Action, record: ActionRecord, seconds: float) -> None:
         nonlocal index_written
-        before = done.get(action.name)
-        if record.learnt or (before is not None and before[1].learnt):
-            # the learnt actions change: the descriptions of the old ones go first, so that
-            # a build interrupted now leaves a folder without descriptions (which load reads,
-            # and recognise names the command for), not with another folder's
-            (out / FILE).unlink(missing_ok=True)
         write_record(out, record, keys[action.name])
         records[action.name] = record
         timings[action.name] = seconds

@@ -207,7 +207,8 @@ def _manifest_text(path: Path) -> str:
     # read_bytes: a device or a pipe named as a manifest is refused, not read without end;
     # decode_utf8: bytes that are not UTF-8 are named at their line and column
     try:
-        return decode_utf8(read_bytes(path), _shown_path(path))
+        # signature: a spreadsheet's "CSV UTF-8" starts with a byte-order mark
+        return decode_utf8(read_bytes(path), _shown_path(path), signature=True)
     except FormatError as exc:
         raise DatasetError(str(exc)) from None
     except OSError as exc:
@@ -243,8 +244,8 @@ def _read_manifest(path: Path) -> list[Action]:
                 raise DatasetError(f"{_shown_path(path)}:1: manifest needs columns action,file "
                                    f"(missing {', '.join(sorted(missing))})")
             names = list(reader.fieldnames or ())
-            twice = sorted({n for n in names if names.count(n) > 1})
-            if twice:  # which of the two is meant cannot be known
+            twice = sorted({n for n in names if n and n.strip() and names.count(n) > 1})
+            if twice:  # which of the two is meant cannot be known (blank ones pad a sheet's)
                 raise DatasetError(f"{_shown_path(path)}:1: the header names column "
                                    f"{twice[0]!r} twice")
             rows = [(f"{_shown_path(path)}:{lines.number}", row) for row in reader]

@@ -27,6 +27,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from kinetology.motion import FRAME_RATE_RANGE
 from psgs.errors import NotFound, PSGSError
 
 from .description import DescriptionError, Descriptions
@@ -42,10 +43,11 @@ FORMAT = "psgs-praxicon"
 FORMAT_VERSION = 3
 #: The command that rebuilds a praxicon folder (named by every "other version" error).
 REBUILD = "psgs praxicon build DATASET... -o FOLDER"
-#: Lowest and highest frame rate (frames per second) a learnt record may hold: motion capture
-#: is recorded at 24 to a few hundred fps (the shared data at 30 and 120); generation makes
-#: rate x seconds frames, so a rate far outside is a damaged record, not a recording.
-FRAME_RATES = (1.0, 1000.0)
+#: Lowest and highest frame rate (frames per second) a learnt record may hold: the rates
+#: kinetology reads motion at (motion capture records at 24 fps to a few kHz; the shared data
+#: at 30 and 120); generation makes rate x seconds frames, so a rate far outside is a damaged
+#: record, not a recording.
+FRAME_RATES = FRAME_RATE_RANGE
 #: Longest action name in bytes (UTF-8): it names the action's files, which with ``.json``
 #: and a temporary suffix must stay within the 255 bytes file systems allow.
 MAX_NAME_BYTES = 200

@@ -81,8 +81,11 @@ def test_a_bad_manifest_is_one_dataset_error(tmp_path, name, content, message):
     assert message in str(info.value) and "\n" not in str(info.value)
 
 
-def test_empty_cells_past_the_header_pad_a_manifest_row(tmp_path):
-    (tmp_path / "m.csv").write_text("action,file\nwave,a.bvh,,\n")
+@pytest.mark.parametrize("text", ["action,file\nwave,a.bvh,,\n",
+                                  # a spreadsheet pads its header too, and may start with a BOM
+                                  "\ufeffaction,file,,\nwave,a.bvh,,\nwave,b.bvh,,\n"])
+def test_empty_cells_past_the_header_pad_a_manifest_row(tmp_path, text):
+    (tmp_path / "m.csv").write_text(text, encoding="utf-8")
     assert [a.content for a in read_dataset(tmp_path / "m.csv")] == ["wave"]
 
 

@@ -19,8 +19,6 @@ from praxicon.cli import main
 from praxicon.description import DescriptionError, Descriptions
 from praxicon.store import read_descriptions
 
-from praxicon_fixtures import take
-
 
 def _take(seed: int, arm: bool, leg: bool, seconds: float = 5.0, rate: float = 30.0):
     """A take whose arm or leg swings (the other still), every joint present."""
@@ -165,7 +163,8 @@ def test_the_sound_folder_is_read_by_every_reader(built, capsys):
 
 
 # -- the build never leaves descriptions of other records --------------------------------------
-def test_an_interrupted_build_leaves_no_stale_descriptions(built, px, monkeypatch):
+@pytest.mark.parametrize("after", [0, 1])  # Ctrl-C before any action is learnt, or after one
+def test_an_interrupted_build_leaves_no_stale_descriptions(built, px, monkeypatch, after):
     """A resumed build that learns an action again and is interrupted before it describes the
     actions leaves a folder load reads (without descriptions), not one it refuses."""
     import praxicon.builder as builder
@@ -175,7 +174,7 @@ def test_an_interrupted_build_leaves_no_stale_descriptions(built, px, monkeypatc
 
     def once(action, settings):  # learns the first action, then Ctrl-C
         calls.append(action.name)
-        if len(calls) > 1:
+        if len(calls) > after:
             raise KeyboardInterrupt
         return real(action, settings)
 
@@ -188,31 +187,14 @@ def test_an_interrupted_build_leaves_no_stale_descriptions(built, px, monkeypatc
 
 
 # -- a record's frame rate ---------------------------------------------------------------------
-@pytest.mark.parametrize("rate", [-30, 0, 0.5, 5000, 1e308, math.inf, math.nan])
+@pytest.mark.parametrize("rate", [-30, 0, 0.05, 20000, 1e308, math.inf, math.nan])
 def test_a_record_frame_rate_out_of_range_names_the_file_and_field(built, px, capsys, rate):
     # 1e308 made generation loop over as many steps; inf and NaN raised tracebacks
     _edit(px / "records" / "m.wave.json", lambda d: d["record"].update(frame_rate=rate))
     said = _every_reader_refuses(capsys, built, px, "records/m.wave.json: 'frame_rate' must be "
-                                                    "frames per second from 1 to 1000, not ")
+                                                    "frames per second from 0.1 to 10000, not ")
     assert _refused(capsys, ["generate", str(px), "m.wave", "-o", str(px / "w.bvh")]) == said
     assert not (px / "w.bvh").exists()
-
-
-def test_takes_outside_the_frame_rates_are_left_out_so_the_praxicon_loads(tmp_path):
-    """What load refuses, the build never writes: a take at 0.5 fps costs that take."""
-    from kinetology import write_bvh
-
-    rows = ["action,file"]
-    for seed in (1, 2):
-        write_bvh(take(seed, seconds=60.0, rate=0.5), tmp_path / f"slow{seed}.bvh")
-        rows.append(f"slow,slow{seed}.bvh")
-    (tmp_path / "m.csv").write_text("\n".join(rows) + "\n")
-    result = build(read_dataset(tmp_path / "m.csv"), tmp_path / "px", progress=False,
-                   log=lambda s: None)
-    record = load(tmp_path / "px")["m.slow"]
-    assert result.failed == ("m.slow",) and not record.learnt
-    assert [p.endswith("0.5 frames per second; a praxicon keeps motion of 1 to 1000")
-            for p in record.problems] == [True, True]
 
 
 # -- descriptions.json, every field ------------------------------------------------------------
