@@ -249,13 +249,13 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
             if key in ("begin", "end"):
                 continue
             children.setdefault(parts[0], []).extend(parts[1:])
-            for child in parts[1:]:
+            for k, child in enumerate(parts[1:], 1):
                 if child not in bones:
                     fail(f"hierarchy names unknown bone {child!r}", number,
-                         raw.find(child) + 1)
+                         token_column(raw, k))
                 if child in named_at:  # two parents, or a cycle: no tree to place
                     fail(f"hierarchy gives bone {child!r} a parent twice (first at line "
-                         f"{named_at[child]})", number, raw.find(child) + 1)
+                         f"{named_at[child]})", number, token_column(raw, k))
                 named_at[child] = number
     if not bones:
         raise MotionFormatError("no :bonedata bones", source=source)

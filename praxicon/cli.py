@@ -94,7 +94,7 @@ def _check_outputs(args) -> None:
 
 def _shaping_progress(done: int, total: int, channel: str) -> None:
     # one line rewritten in place on stderr (a channel at 120 fps can take seconds)
-    print(f"\rgenerating channel {done}/{total}: {channel:<40}", end="", file=sys.stderr,
+    print(f"\rgenerated channel {done}/{total}: {channel:<40}", end="", file=sys.stderr,
           flush=True)
 
 
@@ -109,10 +109,12 @@ def run_generate(args) -> int:
         _check_outputs(args)
         praxicon = load(args.praxicon)
         live = not args.no_progress and sys.stderr.isatty()
-        result = generate(praxicon, args.action, repeat=args.repeat, style=args.style,
-                          progress=_shaping_progress if live else None)
-        if live:
-            print(file=sys.stderr)
+        try:
+            result = generate(praxicon, args.action, repeat=args.repeat, style=args.style,
+                              progress=_shaping_progress if live else None)
+        finally:  # the progress line ends before any answer or error is printed
+            if live:
+                print(file=sys.stderr)
         # everything that can fail is made in memory first: the files are written together
         player, shown = (_beside_a_performance(praxicon, result) if args.view is not None
                          else (None, ()))

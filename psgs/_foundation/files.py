@@ -1,10 +1,10 @@
 """Reading an input file whole: no more bytes than its size, strict UTF-8 with the place.
 
 Every reader of the distribution (grammars, actiongrams, events tables, motion capture,
-praxicon folders) reads its file through :func:`read_bytes`, so that a path to a device or a
-pipe (``/dev/zero``, a FIFO) is refused at once instead of read until memory runs out, and
-through :func:`decode_utf8`, so that bytes that are not UTF-8 are an error at their line and
-column instead of replaced without a word.
+praxicon folders) reads its file through :func:`read_bytes`, so that a path to a device
+(``/dev/zero``) is refused at once instead of read until memory runs out and a pipe is read
+to a stated limit at most; and through :func:`decode_utf8`, so that bytes that are not UTF-8
+are an error at their line and column instead of replaced without a word.
 """
 
 from __future__ import annotations
@@ -15,17 +15,23 @@ import stat
 
 from psgs.errors import FormatError
 
-__all__ = ["read_bytes", "decode_utf8", "read_text"]
+__all__ = ["read_bytes", "decode_utf8", "read_text", "PIPE_LIMIT"]
+
+
+#: The most a pipe (``<(cmd)``, a FIFO) is read: its size is not known before it ends.
+PIPE_LIMIT = 1 << 30
 
 
 def read_bytes(path) -> bytes:
-    """The bytes of the regular file ``path``: at most its size, read once.
+    """The bytes of the file ``path``: a regular file at most its size, read once; a pipe
+    (a FIFO, the ``/dev/fd/N`` of a shell's ``<(cmd)``) to its end, at most
+    :data:`PIPE_LIMIT` bytes.
 
     Raises
     ------
     FormatError
-        When ``path`` is not a regular file (a device, a pipe, a socket): its size says
-        nothing of how much it would give.
+        When ``path`` is a device or a socket (``/dev/zero`` never ends: its size says
+        nothing of how much it would give), or a pipe gives more than :data:`PIPE_LIMIT`.
     OSError
         As :func:`open` does for a missing file or a folder (``IsADirectoryError``), so the
         callers' handling of those stays as it is.
@@ -40,28 +46,43 @@ def read_bytes(path) -> bytes:
     >>> read_bytes("/dev/zero")
     Traceback (most recent call last):
     ...
-    psgs.errors.FormatError: /dev/zero: not a regular file (a device, a pipe or a socket): its size cannot be known, so it is not read
+    psgs.errors.FormatError: /dev/zero: not a regular file but a device or a socket: its size cannot be known, so it is not read
     """
     name = os.fspath(path)
-    # non-blocking, so that opening a FIFO with no writer does not wait for one
-    handle = os.open(name, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+    # non-blocking, so that opening a FIFO with no writer does not wait for one; binary, so
+    # that Windows neither turns CRLF into LF nor stops at a Ctrl-Z
+    handle = os.open(name, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0)
+                     | getattr(os, "O_BINARY", 0))
     try:
         info = os.fstat(handle)
         if stat.S_ISDIR(info.st_mode):
             raise IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR), name)
+        if stat.S_ISFIFO(info.st_mode):
+            if hasattr(os, "set_blocking"):
+                os.set_blocking(handle, True)  # now wait for the writer's data
+            return _read(handle, PIPE_LIMIT + 1, name, pipe=True)
         if not stat.S_ISREG(info.st_mode):
-            raise FormatError("not a regular file (a device, a pipe or a socket): its size "
-                              "cannot be known, so it is not read", source=str(name))
-        chunks, left = [], info.st_size
-        while left > 0:
-            chunk = os.read(handle, min(left, 1 << 24))
-            if not chunk:  # the file shrank while it was read: what is there is all there is
-                break
-            chunks.append(chunk)
-            left -= len(chunk)
-        return b"".join(chunks)
+            raise FormatError("not a regular file but a device or a socket: its size cannot "
+                              "be known, so it is not read", source=str(name))
+        return _read(handle, info.st_size, name, pipe=False)
     finally:
         os.close(handle)
+
+
+def _read(handle: int, most: int, name, *, pipe: bool) -> bytes:
+    """Up to ``most`` bytes of ``handle``, to its end; a pipe that gives them all is too long
+    (``most`` is one past the limit)."""
+    chunks, left = [], most
+    while left > 0:
+        chunk = os.read(handle, min(left, 1 << 24))
+        if not chunk:  # the end (a regular file that shrank while read: what is there is all)
+            break
+        chunks.append(chunk)
+        left -= len(chunk)
+    if pipe and left == 0:
+        raise FormatError(f"the pipe gave more than {PIPE_LIMIT:,} bytes: not read further",
+                          source=str(name))
+    return b"".join(chunks)
 
 
 def decode_utf8(data: bytes, source: str, *, signature: bool = False) -> str:

@@ -21,7 +21,8 @@ DECIMAL = re.compile(r"[+-]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf(?:inity)
 
 
 def split_lines(text: str) -> list[str]:
-    """The lines of ``text``, broken at ``\\n`` only, a ``\\r`` before it dropped.
+    """The lines of ``text``, broken at ``\\n`` only, a ``\\r`` before it dropped; a text with
+    no ``\\n`` at all but a ``\\r`` is one of the old Mac's, broken at ``\\r``.
 
     Examples
     --------
@@ -29,7 +30,11 @@ def split_lines(text: str) -> list[str]:
     ['a b', 'c\\x0cd']
     >>> "c\\x0cd".splitlines()
     ['c', 'd']
+    >>> split_lines("a\\rb\\r")
+    ['a', 'b']
     """
+    if "\r" in text and "\n" not in text:
+        text = text.replace("\r", "\n")
     lines = text.split("\n")
     if lines and lines[-1] == "":
         lines.pop()  # the break that ends the last line starts no line of its own

@@ -125,7 +125,7 @@ def _run_nearest(system, words, args) -> int:
             print(f"{name}:")
             for line in aligned(given, found, edits):
                 print(f"  {line}")
-    if result.bound is not None:
+    if not result.exact and result.bound is not None:  # a definite answer names no bound
         _name_bound(result.bound, result.reason)
     if result.distance is None:
         return NO if result.exact else UNKNOWN
