@@ -175,11 +175,8 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
             fail(f"expected {count} numbers, found {len(given)}", number)
         values = []
         for k, part in enumerate(given, 1):
-            try:
-                value = float(part)
-                if decimal(part) is None:  # float() takes '1_0' and other scripts' digits
-                    raise ValueError(part)
-            except ValueError:
+            value = decimal(part)  # not float(): it takes '1_0' and other scripts' digits
+            if value is None:
                 fail(f"expected a number, found {part!r}", number, token_column(raw, k))
             if not np.isfinite(value):
                 fail(f"number {part!r} is not finite", number, token_column(raw, k))

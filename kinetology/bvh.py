@@ -42,8 +42,8 @@ def read_bvh(path: str | Path) -> Motion:
     any key-framed animation): a time outside it is an error at its line and column, since
     velocities grow with the rate and accelerations with its square, and ``Frame Time:
     1e-300`` overflowed both. The file must be UTF-8 (a byte that is not is an error at its
-    line and column, never replaced: it would rename a joint), and a path to a device or a
-    pipe is refused before anything is read.
+    line and column, never replaced: it would rename a joint), and a path to a device is
+    refused before anything is read.
 
     Parameters
     ----------
@@ -299,11 +299,8 @@ class _HierarchyTokens:
 
     def number(self) -> float:
         token = self.next("a number")
-        try:
-            value = float(token)
-            if decimal(token) is None:  # float() takes '1_0' and other scripts' digits
-                raise ValueError(token)
-        except ValueError:
+        value = decimal(token)  # not float(): it takes '1_0' and other scripts' digits
+        if value is None:
             self.fail(f"expected a number, found {token!r}")
         if not np.isfinite(value):
             self.fail(f"offset {token!r} is not finite")

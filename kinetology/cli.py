@@ -208,7 +208,7 @@ def _cmd_compress(args) -> int:
 def _cmd_decompress(args) -> int:
     from .codec import decompress
 
-    # read_bytes: a device or a pipe (/dev/zero) is refused, not read until memory runs out
+    # read_bytes: a device (/dev/zero) is refused, not read until memory runs out
     motion = decompress(read_bytes(args.file), source=args.file)
     lines = ["time," + ",".join(motion.channels)]
     t = np.arange(motion.frames) / motion.frame_rate

@@ -145,7 +145,7 @@ def _label_names(cfg: Path, index: object, kind: str, source: Path) -> str:
 
 def _bvh_duration(bvh: Path) -> float:
     """The length in seconds the ``Frames:`` and ``Frame Time:`` lines of ``bvh`` give."""
-    # file_text refuses a device or a pipe (/dev/zero has no line end to stop at) and reads a
+    # file_text refuses a device (/dev/zero has no line end to stop at) and reads a
     # file no further than its size; only the header is decoded, not the frames after it
     frames = frame_time = None
     for line in file_text(bvh, until=b"Frame Time:").splitlines():

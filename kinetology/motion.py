@@ -296,10 +296,10 @@ def build_motion(values, channels, frame_rate, skeleton=None, source="<motion>",
 def file_text(path, *, until: bytes | None = None) -> str:
     """The text of a motion or label file, as every kinetology reader reads one.
 
-    Through :func:`psgs._foundation.files.read_bytes` and ``decode_utf8``: a device or a
-    pipe (``/dev/zero``) is refused before a byte is read, a regular file is read once and no
-    further than its size, and its bytes must be UTF-8 (a leading byte-order mark is dropped). A byte that is not
-    UTF-8 is an error at its line and column, never replaced: a replaced byte in a joint's
+    Through :func:`psgs._foundation.files.read_bytes` and ``decode_utf8``: a device
+    (``/dev/zero``) is refused before a byte is read, a regular file is read once and no
+    further than its size (a pipe to its end, 1 GiB at most), and its bytes must be UTF-8 (a
+    leading byte-order mark is dropped). A byte that is not UTF-8 is an error at its line and column, never replaced: a replaced byte in a joint's
     name would rename the joint without a word.
 
     Parameters

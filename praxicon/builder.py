@@ -290,7 +290,7 @@ def _described(out: Path, praxicon: Praxicon, log) -> Praxicon:
 def _repair(out: Path, record: ActionRecord, key: str) -> None:
     """Rewrite what the record says is on disk where it is not (a deleted ``ACTION.psgs``)."""
     psgs_path = out / f"{record.name}.psgs"
-    try:  # read_text refuses a device or a pipe in its place: rewritten, not read without end
+    try:  # read_text refuses a device in its place: rewritten, not read without end
         intact = (read_text(psgs_path) == record.system) if record.system \
             else not psgs_path.exists()
     except (OSError, ValueError):  # ValueError: not UTF-8, not a regular file

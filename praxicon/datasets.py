@@ -204,7 +204,7 @@ class _Lines:
 
 
 def _manifest_text(path: Path) -> str:
-    # read_bytes: a device or a pipe named as a manifest is refused, not read without end;
+    # read_bytes: a device named as a manifest is refused, not read without end;
     # decode_utf8: bytes that are not UTF-8 are named at their line and column
     try:
         # signature: a spreadsheet's "CSV UTF-8" starts with a byte-order mark

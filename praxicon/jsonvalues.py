@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import json
 
-from psgs._foundation.files import read_bytes, decode_utf8
+from psgs._foundation.files import read_text
 from psgs.errors import FormatError
 
 __all__ = ["Fields", "freeze", "thaw", "as_dict", "pairs", "read_json"]
@@ -21,8 +21,8 @@ def read_json(path, error: type[Exception], missing: str | None = None):
     file (and the line and column of text that is not UTF-8 or not JSON).
 
     ``missing`` is the message for a file that does not exist (default ``PATH: missing``).
-    Read through :func:`psgs._foundation.files.read_bytes`, so a device or a pipe in place of
-    the file is refused instead of read until memory runs out.
+    Read through :func:`psgs._foundation.files.read_text`, so a device in place of the file
+    is refused instead of read until memory runs out.
 
     Examples
     --------
@@ -35,7 +35,7 @@ def read_json(path, error: type[Exception], missing: str | None = None):
     ValueError: .../x.json:2:7: not JSON (Expecting value)
     """
     try:
-        text = decode_utf8(read_bytes(path), str(path))
+        text = read_text(path)
     except FileNotFoundError:
         raise error(missing or f"{path}: missing") from None
     except FormatError as exc:  # not a regular file, or not UTF-8 (with the place)

@@ -31,7 +31,7 @@ from psgs.errors import FormatError
 
 from .datasets import Action, Performance
 from .jsonvalues import freeze
-from .records import (FORMAT_VERSION, FRAME_RATES, ActionRecord, ChannelMorpheme, JointRecord,
+from .records import (FORMAT_VERSION, ActionRecord, ChannelMorpheme, JointRecord,
                       PerformanceRecord, Settings)
 
 __all__ = ["Settings", "learn_action", "input_key"]
@@ -53,7 +53,7 @@ def _file_digest(path: str) -> str:
 
 @functools.lru_cache(maxsize=64)
 def _digest(path: str, size: int, mtime_ns: int) -> str:
-    # read_bytes: a device or a pipe named as a take is refused, not read without end
+    # read_bytes: a device named as a take is refused, not read without end
     try:
         return hashlib.sha256(read_bytes(path)).hexdigest()
     except OSError as exc:
@@ -111,9 +111,6 @@ def _load_performance(perf: Performance):
         return None, f"{perf.file}: unreadable file (no such file)"
     except (OSError, ValueError) as exc:
         return None, f"{perf.file}: unreadable file ({_one_line(exc)})"
-    if not FRAME_RATES[0] <= motion.frame_rate <= FRAME_RATES[1]:  # a record must load back
-        return None, (f"{perf.file}: {motion.frame_rate:g} frames per second; a praxicon keeps "
-                      f"motion of {FRAME_RATES[0]:g} to {FRAME_RATES[1]:g}")
     if perf.stop is not None and perf.stop > motion.duration + _LABEL_SLACK:
         return None, (f"{perf.label or perf.file}: label span {perf.start or 0:g}-{perf.stop:g} s ends "
                       f"after the motion ({motion.duration:g} s): the label file does not match "

@@ -8,7 +8,7 @@ a copy of another's:
 * :mod:`psgs._foundation.lazy`: a package's names imported on first use;
 * :mod:`psgs._foundation.engines`: choosing between numpy's array passes and numba's
   compiled loops;
-* :mod:`psgs._foundation.files`: reading an input file whole (no device or pipe, strict UTF-8);
+* :mod:`psgs._foundation.files`: reading an input file whole (no device, a pipe to a limit, strict UTF-8);
 * :mod:`psgs._foundation.text`: its lines as an editor counts them, its numbers as written.
 
 The error tree is :mod:`psgs.errors` (public: users catch its classes). These modules import

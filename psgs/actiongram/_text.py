@@ -53,6 +53,7 @@ def strip_comment(line: str, source: str, line_no: int) -> str:
 # (lines break at "\n" only, so an error names the line an editor shows)
 _CONTROL = re.compile("[\x00-\x08\x0b-\x1f\x7f\x85\u2028\u2029]")
 
+
 def read_text(cls, text: str, source: str):
     """The actiongram (of class ``cls``) that ``text`` holds; FormatError at its place."""
     names, symbol_rows, duration_rows, origins = [], [], [], []
