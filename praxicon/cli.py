@@ -10,7 +10,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from psgs._foundation.shell import key_values, positive_int
+from psgs._foundation.shell import NO, key_values, positive_int
 from psgs.errors import ValidationError
 
 __all__ = ["register", "main"]
@@ -53,6 +53,12 @@ def run_build(args) -> int:
     print(f"praxicon: {counts['actions']} actions, {counts['learnt']} learnt, "
           f"{counts['failed']} failed ({len(result.skipped)} already done) -> "
           f"{args.output}/index.json")
+    if counts["actions"] and not counts["learnt"]:
+        # the folder is written (the failures are its record), but there is nothing to use:
+        # a script chaining build and recognise learns it here, not from the next command
+        print(f"praxicon: no action learnt: every one of the {counts['actions']} failed "
+              f"(each reason is a line above and in {args.output}/index.json)", file=sys.stderr)
+        return NO
     return 0
 
 

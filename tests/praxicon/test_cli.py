@@ -56,6 +56,25 @@ def test_build_draw_generate(manifest, tmp_path, capsys):
     assert page.count("generated") >= 1 and "<script" in page
 
 
+def test_build_that_learns_nothing_exits_1_and_still_writes_the_folder(tmp_path, capsys):
+    from praxicon_fixtures import write_manifest
+
+    data = tmp_path / "data"
+    data.mkdir()
+    lonely = write_manifest(data, {"wave": [1], "step": [4]})  # one take each: both fail
+    out = tmp_path / "px"
+    assert main(["build", str(lonely), "-o", str(out), "--no-progress"]) == 1
+    captured = capsys.readouterr()
+    assert "2 actions, 0 learnt, 2 failed" in captured.out
+    assert captured.err.rstrip().splitlines()[-1].startswith(
+        "praxicon: no action learnt: every one of the 2 failed")
+    index = json.loads((out / "index.json").read_text())
+    assert len(index["actions"]) == 2  # the failures are recorded all the same
+    # one action learnt is a build that did something: 0
+    write_manifest(data, {"wave": [1, 2, 3], "step": [4]})
+    assert main(["build", str(lonely), "-o", str(out), "--no-progress"]) == 0
+
+
 def test_generate_a_style(manifest, tmp_path, capsys):
     out = tmp_path / "px"
     assert main(["build", str(manifest), "-o", str(out), "--no-progress",
