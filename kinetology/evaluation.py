@@ -28,6 +28,7 @@ from types import MappingProxyType
 
 import numpy as np
 
+from psgs._foundation.text import split_lines
 from psgs.errors import ValidationError
 
 from .codec import compress, decompress
@@ -377,7 +378,7 @@ def _labels(path: Path) -> np.ndarray:
     """The labels of a ``truelabels`` file: whole numbers 1 .. 6, one per tenth of a second."""
     text = file_text(path)  # a device refused, bytes that are not UTF-8 an error at line:col
     labels = []
-    for number, line in enumerate(text.splitlines(), 1):
+    for number, line in enumerate(split_lines(text), 1):
         column = 1
         for word in line.split():
             column = line.index(word, column - 1) + 1

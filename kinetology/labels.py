@@ -22,6 +22,7 @@ import re
 from dataclasses import dataclass
 from pathlib import Path
 
+from psgs._foundation.text import split_lines
 from psgs.errors import ValidationError
 
 from .bvh import FRAME_TIME_RANGE
@@ -108,7 +109,7 @@ def read_cmu_truelabels(path: str | Path, frame_rate: float = 120.0) -> tuple[Sp
         raise ValidationError(f"frame rate must be positive, not {frame_rate!r}")
     step = FRAMES_PER_LABEL / frame_rate
     labels: list[int] = []
-    for number, line in enumerate(file_text(path).splitlines(), 1):
+    for number, line in enumerate(split_lines(file_text(path)), 1):
         for match in re.finditer(r"\S+", line):
             token = match.group()
             # ASCII digits only, and few: int() refuses other Unicode digits ("²") and
@@ -135,7 +136,7 @@ def _label_names(cfg: Path, index: object, kind: str, source: Path) -> str:
                                 source=str(source))
     if not cfg.is_file():
         raise MotionFormatError(f"no label list {cfg} for the {kind} index", source=str(source))
-    names = [re.sub(r"^dataset-\d+_", "", ln.strip()) for ln in file_text(cfg).splitlines()
+    names = [re.sub(r"^dataset-\d+_", "", ln.strip()) for ln in split_lines(file_text(cfg))
              if ln.strip()]
     if not 0 <= index < len(names):
         raise MotionFormatError(f"{kind} index {index} is outside {cfg.name} "
@@ -148,7 +149,7 @@ def _bvh_duration(bvh: Path) -> float:
     # file_text refuses a device (/dev/zero has no line end to stop at) and reads a
     # file no further than its size; only the header is decoded, not the frames after it
     frames = frame_time = None
-    for line in file_text(bvh, until=b"Frame Time:").splitlines():
+    for line in split_lines(file_text(bvh, until=b"Frame Time:")):
         stripped = line.strip()
         if stripped.startswith("Frames:"):
             frames = stripped.split(":", 1)[1]

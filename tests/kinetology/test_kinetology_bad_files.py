@@ -253,6 +253,19 @@ def test_a_form_feed_is_no_line_break_for_the_line_numbers():
     assert err.value.line == line
 
 
+
+@pytest.mark.parametrize("brk", ["\x0c", "\u2028", "\x85"])
+def test_a_label_file_breaks_lines_at_newlines_only(brk, tmp_path):
+    # str.splitlines would break at these too, and the bad label be named a line too far
+    from kinetology.evaluation import _labels
+
+    path = tmp_path / "t.txt"
+    path.write_text(f"1 1{brk}1\n2 x 2\n", encoding="utf-8")
+    for read in (read_cmu_truelabels, _labels):
+        with pytest.raises(MotionFormatError) as err:
+            read(path)
+        assert (err.value.line, err.value.column) == (2, 3), read
+
 # ---- 6. a value that is not finite (or not a number) is located at its column
 @pytest.mark.parametrize("token", ["nan", "inf", "-inf", "1e999"])
 def test_a_bvh_value_that_is_not_finite_names_its_column(token):
