@@ -51,7 +51,8 @@ import numpy as np
 
 from psgs.errors import PSGSError
 
-from ._description_json import FieldError, action_fields, check_format, spread_fields
+from ._description_json import (FieldError, action_fields, check_format, check_window,
+                                spread_fields)
 from .feature_choice import choose_features, groups_problem
 from .feature_groups import feature_groups, group_distances
 from .features import FeatureError, feature_joint, motion_features
@@ -455,6 +456,13 @@ def describe_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
     no "none of these" (an infinite threshold, no group limits): descriptions that only rank,
     learnt without the five more models the calibration learns.
     """
+    # what from_dict would refuse is refused here, not after a dump that cannot be loaded
+    if isinstance(window, bool) or not isinstance(window, (int, float)):
+        raise DescriptionError(f"'window' must be a number, not {window!r}")
+    try:
+        window = check_window(float(window))
+    except FieldError as exc:
+        raise DescriptionError(str(exc)) from None
     names = sorted(table)
     groups = [np.asarray(table[n], dtype=float) for n in names]
     if not groups:

@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from kinetology import synthetic_motion
-from praxicon.description import (DescriptionError, common_table, describe,
+from praxicon.description import (DescriptionError, Descriptions, common_table, describe,
                                   describe_table, feature_rows, scores)
 from praxicon.feature_choice import FEATURE_KINDS, choose_features, feature_kind
 
@@ -184,3 +184,13 @@ def test_a_group_per_take_is_held_out_in_at_most_max_folds():
     assert {int(f) for v in _folds(table, small).values() for f in v} == {0, 1, 2}
     assert choose_features(table, FEATURES, LEARN, groups=groups) in (
         FEATURES, *[tuple(f for f in FEATURES if feature_kind(f) != k) for k in FEATURE_KINDS])
+
+
+@pytest.mark.parametrize("window", [120.0, 0.01, -1.0, float("nan"), "2"])
+def test_describe_table_refuses_a_window_from_dict_would_not_read_back(window):
+    takes = _motions()
+    order, table = common_table({n: feature_rows(m) for n, m in takes.items()})
+    with pytest.raises(DescriptionError, match="'window' must be"):
+        describe_table(table, order, window=window, calibrate=False)
+    learnt = describe_table(table, order, window=2.0, calibrate=False)
+    assert Descriptions.from_dict(learnt.to_dict()) == learnt  # what it makes, it reads back
