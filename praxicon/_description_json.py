@@ -130,6 +130,8 @@ def check_window(window: float, where: str = "") -> float:
     ...
     praxicon._description_json.FieldError: spread: 'window' must be 0 (whole takes) or 0.1 to 60 seconds, not 1e+300
     """
+    if isinstance(window, bool) or not isinstance(window, (int, float)):
+        raise _error(f"{where}'window' must be a number, not {_shown(window)}")
     if window != 0.0 and not WINDOWS[0] <= window <= WINDOWS[1]:
         raise _error(f"{where}'window' must be 0 (whole takes) or {WINDOWS[0]:g} to "
                      f"{WINDOWS[1]:g} seconds, not {window!r}")

@@ -456,11 +456,8 @@ def describe_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
     no "none of these" (an infinite threshold, no group limits): descriptions that only rank,
     learnt without the five more models the calibration learns.
     """
-    # what from_dict would refuse is refused here, not after a dump that cannot be loaded
-    if isinstance(window, bool) or not isinstance(window, (int, float)):
-        raise DescriptionError(f"'window' must be a number, not {window!r}")
-    try:
-        window = check_window(float(window))
+    try:  # what from_dict would refuse is refused here, not after a dump that cannot be loaded
+        window = float(check_window(window))
     except FieldError as exc:
         raise DescriptionError(str(exc)) from None
     names = sorted(table)
