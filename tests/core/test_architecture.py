@@ -36,10 +36,11 @@ CORE_TIERS = (
     ("psgs.search", "psgs.enumeration"),
 )
 # Beside the core: readers, writers and exporters of the model, needing nothing above it.
-BESIDE = ("psgs.format", "psgs.writing", "psgs.lark_export", "psgs.graph")
+BESIDE = ("psgs.format", "psgs._format_reader", "psgs.writing", "psgs.lark_export",
+          "psgs.graph")
 # (psgs.load and psgs.dump read and write actiongrams too, so format and writing may import it)
 BESIDE_MAY_IMPORT = (*FOUNDATION, "psgs.names", "psgs.model", "psgs.writing",
-                     "psgs.actiongram")
+                     "psgs.actiongram", "psgs._format_reader")
 #: What kinetology may import from psgs: the actiongram (what it makes) and the foundation
 #: every package of the distribution shares (errors, command-line shell, lazy names, engines),
 #: each module named.
