@@ -10,7 +10,9 @@ needs. The array is read-only: a motion never changes after it is built.
 from __future__ import annotations
 
 import os
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
+from numbers import Real
 from types import MappingProxyType
 
 import numpy as np
@@ -186,8 +188,11 @@ class Motion:
     Raises
     ------
     ValueError
-        When ``values`` is not two-dimensional, its columns and ``channels`` disagree, names
-        repeat, a value is not finite or the frame rate is not positive.
+        (a :class:`psgs.errors.ValidationError`) When ``values`` is not a two-dimensional array
+        of real numbers (complex, bool, strings and objects are refused), its columns and
+        ``channels`` disagree, names repeat or are not strings, a value is not finite, the
+        frame rate is not a positive number, or ``skeleton``, ``source`` or ``meta`` is not of
+        its type.
 
     Examples
     --------
@@ -210,10 +215,17 @@ class Motion:
     meta: dict = field(default_factory=dict)  # read-only after construction (format, truth)
 
     def __post_init__(self) -> None:
-        values = np.array(self.values, dtype=float, copy=True)
+        values = _real_array(self.values)
         if values.ndim != 2:
             raise ValidationError(f"motion values must be frames x channels, got shape {values.shape}")
+        if isinstance(self.channels, str) or not isinstance(self.channels, Iterable):
+            # a string would be split into one-letter channel names
+            raise ValidationError(f"channels must be a sequence of names, not "
+                                  f"{type(self.channels).__name__}")
         channels = tuple(self.channels)
+        if not all(isinstance(name, str) for name in channels):
+            bad = next(name for name in channels if not isinstance(name, str))
+            raise ValidationError(f"channel names must be strings, not {bad!r}")
         if values.shape[1] != len(channels):
             raise ValidationError(f"{len(channels)} channel names for {values.shape[1]} columns")
         if len(set(channels)) != len(channels):
@@ -221,14 +233,29 @@ class Motion:
         if not np.isfinite(values).all():
             frame, column = np.argwhere(~np.isfinite(values))[0]
             raise ValidationError(f"value at frame {frame}, channel {channels[column]!r} is not finite")
+        # a string or a bool is no rate: float("30") and float(True) would take either
+        if isinstance(self.frame_rate, bool) or not isinstance(self.frame_rate, Real):
+            raise ValidationError(f"frame rate must be a number, not {self.frame_rate!r}")
         rate = float(self.frame_rate)
         if not np.isfinite(rate) or rate <= 0:
             raise ValidationError(f"frame rate must be positive, not {self.frame_rate!r}")
+        if self.skeleton is not None and not isinstance(self.skeleton, Skeleton):
+            raise ValidationError(f"skeleton must be a Skeleton or None, not "
+                                  f"{type(self.skeleton).__name__}")
+        if not isinstance(self.source, (str, os.PathLike)):
+            raise ValidationError(f"source must be a string, not {type(self.source).__name__}")
+        meta = {} if self.meta is None else self.meta
+        if not isinstance(meta, Mapping):
+            raise ValidationError(f"meta must be a mapping, not {type(meta).__name__}")
         values.setflags(write=False)
+        # a view of a read-only array cannot be made writeable again (the array that owns its
+        # memory could be, with setflags), so "read-only" holds for whoever has the motion
+        values = values.view()
         object.__setattr__(self, "values", values)
         object.__setattr__(self, "channels", channels)
         object.__setattr__(self, "frame_rate", rate)
-        object.__setattr__(self, "meta", MappingProxyType(dict(self.meta)))
+        object.__setattr__(self, "source", os.fspath(self.source))
+        object.__setattr__(self, "meta", MappingProxyType(dict(meta)))
 
     @property
     def frames(self) -> int:
@@ -269,6 +296,23 @@ class Motion:
     def __repr__(self) -> str:
         return (f"Motion({self.source!r}, {self.frames} frames x {len(self.channels)} channels "
                 f"at {self.frame_rate:g} fps)")
+
+
+def _real_array(values) -> np.ndarray:
+    """``values`` as a new float array; a :class:`ValidationError` for anything but real numbers.
+
+    ``np.array(values, dtype=float)`` alone would read the strings ``"1.5"`` as numbers, drop
+    the imaginary part of complex values with only a warning, and answer a ragged list or an
+    object array with numpy's own errors that do not say which argument was wrong.
+    """
+    try:
+        given = np.asarray(values)
+    except (TypeError, ValueError) as exc:  # a ragged list of rows
+        raise ValidationError(f"motion values must be an array of numbers: {exc}") from None
+    if given.dtype.kind not in "iuf":
+        raise ValidationError(f"motion values must be real numbers, not {given.dtype} "
+                              f"({type(values).__name__})")
+    return np.array(given, dtype=float, copy=True)
 
 
 def build_motion(values, channels, frame_rate, skeleton=None, source="<motion>",

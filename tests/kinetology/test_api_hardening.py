@@ -1,0 +1,73 @@
+"""The public API refuses a wrong type or value with one ValidationError naming it.
+
+A demanding caller's mistakes (a string for a number, a bool for a rate, complex or object
+values, a huge count) must not reach numpy's own errors, a silent wrong answer or an
+unbounded allocation.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import kinetology
+from kinetology import Motion
+from psgs.errors import ValidationError
+
+CHANNELS = ("a.rx", "b.rx")
+
+
+def small() -> Motion:
+    return kinetology.synthetic_motion(2, (0,), repetitions=2)
+
+
+@pytest.mark.parametrize("values, what", [
+    (np.zeros((5, 2)) + 1j, "complex"),                   # the imaginary part was dropped
+    (np.array([["a", "b"]] * 5, dtype=object), "object"),
+    ([["1", "2"]] * 5, "<U1"),                            # strings were read as numbers
+    (np.zeros((5, 2), dtype=bool), "bool"),
+    ([[1.0, 2.0], [3.0]], "array of numbers"),            # ragged
+])
+def test_motion_values_must_be_real_numbers(values, what):
+    with pytest.raises(ValidationError, match=f"motion values must be .*{what}"):
+        Motion(values, CHANNELS, 30.0)
+
+
+@pytest.mark.parametrize("rate", ["30", None, True, 1j, np.array([30.0])])
+def test_motion_frame_rate_must_be_a_number(rate):
+    with pytest.raises(ValidationError, match="frame rate must be a number"):
+        Motion(np.zeros((5, 2)), CHANNELS, rate)
+
+
+@pytest.mark.parametrize("channels, match", [
+    ("ab", "channels must be a sequence of names"),   # was split into 'a', 'b'
+    (None, "channels must be a sequence of names"),
+    ((1, 2), "channel names must be strings"),
+])
+def test_motion_channels_must_be_names(channels, match):
+    with pytest.raises(ValidationError, match=match):
+        Motion(np.zeros((5, 2)), channels, 30.0)
+
+
+@pytest.mark.parametrize("extra, match", [
+    (("skeleton",), "skeleton must be a Skeleton"),
+    ((None, 5), "source must be a string"),
+    ((None, "x", [1]), "meta must be a mapping"),
+])
+def test_motion_other_fields_have_their_types(extra, match):
+    with pytest.raises(ValidationError, match=match):
+        Motion(np.zeros((5, 2)), CHANNELS, 30.0, *extra)
+
+
+def test_motion_meta_none_is_empty_and_int_values_are_numbers():
+    motion = Motion(np.zeros((5, 2), dtype=int), CHANNELS, 30, None, "x", None)
+    assert dict(motion.meta) == {} and motion.values.dtype == float
+
+
+def test_motion_values_cannot_be_made_writeable_again():
+    motion = Motion(np.zeros((5, 2)), CHANNELS, 30.0)
+    with pytest.raises(ValueError):
+        motion.values.setflags(write=True)
+    with pytest.raises(ValueError):
+        motion.values[0, 0] = 1.0
+    assert motion.values.sum() == 0
