@@ -51,7 +51,7 @@ def read_system(text: str, source: str) -> PSGS | PCGS:
 
     Examples
     --------
-    >>> read_system('psgs S\ncomponent G start S\n  p: S -> "a"\n', "s.psgs").name
+    >>> read_system('psgs S\\ncomponent G start S\\n  p: S -> "a"\\n', "s.psgs").name
     'S'
     """
     builder = _Builder(source)
