@@ -41,7 +41,8 @@ def gaussian_kernel(frame_rate: float, sigma: float, frames: int) -> tuple[int, 
     (18, 37, True)
     """
     sigma_frames = sigma * frame_rate
-    radius = max(1, int(np.ceil(3 * sigma_frames)))
+    # bounded by the take before int(): a sigma of 1e308 s is infinitely many frames
+    radius = max(1, int(np.ceil(min(3 * sigma_frames, frames))))
     radius = min(radius, frames - 1)
     return radius, _weights(sigma_frames, radius)
 

@@ -21,7 +21,7 @@ from psgs._foundation.files import decode_utf8, read_bytes
 from psgs.errors import FormatError, NotFound, ValidationError
 
 __all__ = ["MotionFormatError", "Joint", "Skeleton", "Motion", "AXES", "build_motion",
-           "file_text", "FRAME_RATE_RANGE"]
+           "file_text", "FRAME_RATE_RANGE", "check_number", "real_array"]
 
 #: Channel axes, in the order a joint's channels are listed.
 AXES = ("tx", "ty", "tz", "rx", "ry", "rz")
@@ -215,7 +215,7 @@ class Motion:
     meta: dict = field(default_factory=dict)  # read-only after construction (format, truth)
 
     def __post_init__(self) -> None:
-        values = _real_array(self.values)
+        values = real_array(self.values)
         if values.ndim != 2:
             raise ValidationError(f"motion values must be frames x channels, got shape {values.shape}")
         if isinstance(self.channels, str) or not isinstance(self.channels, Iterable):
@@ -298,7 +298,20 @@ class Motion:
                 f"at {self.frame_rate:g} fps)")
 
 
-def _real_array(values) -> np.ndarray:
+def check_number(value, name: str, *, positive: bool = False) -> float:
+    """``value`` as a float, or a :class:`ValidationError` naming ``name``: it must be a real
+    number (a string or a bool is not: ``float("2")`` and ``True`` would pass for one), finite,
+    and not negative (positive when ``positive``)."""
+    if isinstance(value, bool) or not isinstance(value, Real):
+        raise ValidationError(f"{name} must be a number, not {value!r}")
+    number = float(value)
+    if not np.isfinite(number) or number < 0 or (positive and number == 0):
+        raise ValidationError(f"{name} must be a {'positive' if positive else 'non-negative'} "
+                              f"number, not {value!r}")
+    return number
+
+
+def real_array(values, name: str = "motion values") -> np.ndarray:
     """``values`` as a new float array; a :class:`ValidationError` for anything but real numbers.
 
     ``np.array(values, dtype=float)`` alone would read the strings ``"1.5"`` as numbers, drop
@@ -308,9 +321,9 @@ def _real_array(values) -> np.ndarray:
     try:
         given = np.asarray(values)
     except (TypeError, ValueError) as exc:  # a ragged list of rows
-        raise ValidationError(f"motion values must be an array of numbers: {exc}") from None
+        raise ValidationError(f"{name} must be an array of numbers: {exc}") from None
     if given.dtype.kind not in "iuf":
-        raise ValidationError(f"motion values must be real numbers, not {given.dtype} "
+        raise ValidationError(f"{name} must be real numbers, not {given.dtype} "
                               f"({type(values).__name__})")
     return np.array(given, dtype=float, copy=True)
 

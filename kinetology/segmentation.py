@@ -40,6 +40,7 @@ angle over it (degrees; the channel's unit for translations), and each channel a
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from numbers import Real
 from types import MappingProxyType
 from typing import Mapping
 
@@ -50,7 +51,7 @@ from psgs.errors import ValidationError
 from ._engines import select
 from ._kinetemes import round_half_even, smooth_channels
 from .joints import actuator_map, skeleton_parents
-from .motion import Motion
+from .motion import Motion, check_number, real_array
 
 __all__ = ["STATES", "DEFAULTS", "smooth", "unwrap", "derivatives", "significant_sign",
            "channel_deadbands", "states", "Segmentation", "segments", "segment"]
@@ -95,7 +96,11 @@ def unwrap(values: np.ndarray, period: float = DEFAULTS["unwrap"]) -> np.ndarray
     >>> unwrap(np.array([170.0, 179.0, -178.0, -170.0]))
     array([170., 179., 182., 190.])
     """
-    values = np.asarray(values, dtype=float)
+    values = real_array(values, "values")
+    if values.ndim == 0:
+        raise ValidationError("values must have a time axis (axis 0), not be one number")
+    if isinstance(period, bool) or not isinstance(period, Real) or np.isnan(period):
+        raise ValidationError(f"period must be a number, not {period!r}")  # NaN: all NaN
     if period <= 0 or values.shape[0] < 2:
         return values.copy()
     return np.unwrap(values, period=period, axis=0)
@@ -282,7 +287,12 @@ def states(values: np.ndarray, frame_rate: float, *, smoothing: float = DEFAULTS
     >>> "".join(STATES[c] for c in codes[[5, 35, 65, 95]])
     'GRYB'
     """
-    values = np.asarray(values, dtype=float)
+    check_number(frame_rate, "frame_rate", positive=True)
+    _check(dict(smoothing=smoothing, velocity_deadband=velocity_deadband, unwrap=unwrap,
+                acceleration_deadband=acceleration_deadband, relative_deadband=relative_deadband))
+    values = real_array(values, "values")
+    if not np.isfinite(values).all():  # a NaN would be read as a still frame, without a word
+        raise ValidationError("values must be finite numbers")
     one_channel = values.ndim == 1
     if one_channel:
         values = values[:, None]
@@ -414,8 +424,7 @@ def _check(params: dict) -> dict:
                         f"(known: {', '.join(DEFAULTS)})")
     merged = {**DEFAULTS, **params}
     for name, value in merged.items():
-        if not np.isfinite(value) or value < 0:
-            raise ValidationError(f"{name} must be a non-negative number, not {value!r}")
+        check_number(value, name)
     return merged
 
 
@@ -480,6 +489,10 @@ def segments(motion: Motion, channels=None, *, engine: str = "auto", **params) -
     ...
     psgs.errors.ValidationError: engine must be one of 'auto', 'numpy', 'numba', not 'fortran'
     """
+    if not isinstance(motion, Motion):
+        raise ValidationError(f"motion must be a Motion, not {type(motion).__name__}")
+    if isinstance(channels, str):  # would be split into one-letter channel names
+        raise ValidationError(f"channels must be a sequence of names, not the string {channels!r}")
     use = select(engine, motion.values.size)
     p = _check(params)
     names, smoothed = _smoothed(motion, channels, p, use)

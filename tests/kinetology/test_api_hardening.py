@@ -71,3 +71,52 @@ def test_motion_values_cannot_be_made_writeable_again():
     with pytest.raises(ValueError):
         motion.values[0, 0] = 1.0
     assert motion.values.sum() == 0
+
+
+@pytest.mark.parametrize("value", ["1", None, True, float("nan"), -1.0])
+@pytest.mark.parametrize("name", ["smoothing", "velocity_deadband", "min_range"])
+def test_segmentation_parameters_are_non_negative_numbers(name, value):
+    with pytest.raises(ValidationError, match=name):
+        kinetology.segments(small(), **{name: value})
+
+
+def test_a_huge_smoothing_is_the_whole_take_not_an_overflow():
+    motion = small()
+    whole = kinetology.segments(motion, smoothing=1e308)
+    assert [b.tolist() for b in whole.borders] == \
+        [b.tolist() for b in kinetology.segments(motion, smoothing=1e6).borders]
+
+
+@pytest.mark.parametrize("motion, channels, match", [
+    (None, None, "motion must be a Motion"),
+    (np.zeros((5, 2)), None, "motion must be a Motion"),
+    ("self", "j0.rx", "channels must be a sequence of names"),
+])
+def test_segments_checks_its_motion_and_channels(motion, channels, match):
+    with pytest.raises(ValidationError, match=match):
+        kinetology.segments(small() if isinstance(motion, str) else motion, channels)
+
+
+@pytest.mark.parametrize("values, rate, options, match", [
+    (np.array([0.0, 1.0, np.nan, 3.0, 4.0]), 30.0, {}, "values must be finite"),  # was: still
+    (np.zeros(10) + 1j, 30.0, {}, "values must be real numbers"),
+    (np.array(["a"] * 10, dtype=object), 30.0, {}, "values must be real numbers"),
+    (np.arange(10.0), 0.0, {}, "frame_rate must be a positive"),                 # was: still
+    (np.arange(10.0), float("nan"), {}, "frame_rate"),
+    (np.arange(10.0), "30", {}, "frame_rate must be a number"),
+    (np.arange(10.0), 30.0, {"smoothing": -1.0}, "smoothing"),                  # was accepted
+])
+def test_states_checks_its_input(values, rate, options, match):
+    with pytest.raises(ValidationError, match=match):
+        kinetology.states(values, rate, **options)
+
+
+@pytest.mark.parametrize("values, period, match", [
+    (np.arange(5.0), "360", "period must be a number"),
+    (np.arange(5.0), float("nan"), "period must be a number"),     # was all NaN after frame 0
+    (np.array(["a"] * 3, dtype=object), 360.0, "values must be real numbers"),
+    (np.float64(3.0), 360.0, "time axis"),
+])
+def test_unwrap_checks_its_input(values, period, match):
+    with pytest.raises(ValidationError, match=match):
+        kinetology.unwrap(values, period)
