@@ -132,6 +132,7 @@ def _settings(params: dict) -> dict:
     p = {**CODEC_DEFAULTS, **params}
     for name, value in p.items():
         if not (isinstance(value, (int, float, np.floating, np.integer))
+                and not isinstance(value, bool)  # True is no quantum of 1 degree
                 and np.isfinite(value) and value >= 0):
             raise ValidationError(f"{name} must be a non-negative number, not {value!r}")
     if not p["quantum"] > 0:

@@ -66,7 +66,8 @@ def unwrap(values: np.ndarray, channels) -> np.ndarray:
 def _smooth(signal: np.ndarray, sigma_frames: float) -> np.ndarray:
     if sigma_frames <= 0 or signal.size < 2:
         return signal.astype(float, copy=True)
-    radius = min(max(1, int(np.ceil(3 * sigma_frames))), signal.size - 1)
+    # bounded by the signal before int(): a sigma of 1e308 s is infinitely many frames
+    radius = min(max(1, int(np.ceil(min(3 * sigma_frames, signal.size)))), signal.size - 1)
     kernel = _weights(sigma_frames, radius)  # the segmentation's: the same on every CPU
     padded = np.pad(signal, radius, mode="reflect", reflect_type="odd")
     out = np.zeros(signal.size)

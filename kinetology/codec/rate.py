@@ -120,6 +120,7 @@ def compress_to(motion: Motion, max_error: float) -> Compressed:
     (0.3, True)
     """
     if not (isinstance(max_error, (int, float, np.floating, np.integer))
+            and not isinstance(max_error, bool)  # True is no bound of 1 degree
             and np.isfinite(max_error) and max_error > 0):
         raise ValidationError(f"max_error must be a positive number of degrees, not {max_error!r}")
     max_error = float(max_error)

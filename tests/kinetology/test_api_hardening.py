@@ -120,3 +120,25 @@ def test_states_checks_its_input(values, rate, options, match):
 def test_unwrap_checks_its_input(values, period, match):
     with pytest.raises(ValidationError, match=match):
         kinetology.unwrap(values, period)
+
+
+@pytest.mark.parametrize("options, match", [
+    ({"quantum": True}, "quantum must be a non-negative number"),    # was a 1-degree quantum
+    ({"residual_step": True}, "residual_step"),
+    ({"max_error": True}, "max_error must be a positive number"),    # was a 1-degree bound
+])
+def test_compress_refuses_a_bool_for_a_number(options, match):
+    with pytest.raises(ValidationError, match=match):
+        kinetology.compress(small(), **options)
+
+
+@pytest.mark.parametrize("motion", [None, np.zeros((5, 2))])
+def test_compress_refuses_what_is_not_a_motion(motion):
+    with pytest.raises(ValidationError, match="motion must be a Motion"):
+        kinetology.compress(motion)
+
+
+def test_compress_with_a_huge_smoothing_decodes():
+    motion = small()
+    back = kinetology.decompress(kinetology.compress(motion, smoothing=1e308))
+    assert back.frames == motion.frames
