@@ -15,12 +15,15 @@ are enumerated by :mod:`psgs.enumeration`.
 
 from __future__ import annotations
 
+import math
+import operator
 import random
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import Union
 
 from .analysis import moves
+from .budget import check_count
 from .errors import ValidationError
 from .model import IDLE, PCGS, PSGS, Form, Nonterminal, Query, Terminal, resolve_tuple
 from .notation import format_configuration, format_form, short, show_tuple, spaced
@@ -69,7 +72,11 @@ def _require_system(system: object) -> None:
 
 
 def _check_configuration(system: _System, configuration: Sequence[Form]) -> Configuration:
-    configuration = tuple(tuple(f) for f in configuration)
+    try:
+        configuration = tuple(tuple(f) for f in configuration)
+    except TypeError:  # None, a number, a lone symbol: not forms
+        raise ValidationError(f"a configuration is a sequence of forms, one per component, "
+                              f"not {short(repr(configuration))}") from None
     if len(configuration) != len(system.components):
         raise ValidationError(f"a configuration of this system has {len(system.components)} "
                               f"forms, not {len(configuration)}")
@@ -427,8 +434,9 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
     ----------
     system : PSGS or PCGS
         The system.
-    seed : int or other hashable
-        Seeds a private ``random.Random``; the same seed gives the same derivation.
+    seed : int, float or str
+        Seeds a private ``random.Random``; the same seed gives the same derivation (so not
+        ``None``, which would seed from the operating system, nor a NaN).
     max_steps : int, default 10_000
         Stop after this many steps.
     max_form_length : int, default 100_000
@@ -443,7 +451,8 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
     Raises
     ------
     ValidationError
-        When a bound is not a positive whole number or ``system`` is not a grammar system.
+        When a bound is not a whole number ≥ 0, ``seed`` is not one of the above, or
+        ``system`` is not a grammar system.
 
     Examples
     --------
@@ -457,9 +466,9 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
     ('open', 2, True)
     """
     _require_system(system)
-    if max_steps < 0:
-        raise ValidationError("max_steps must be at least 0")
-    rng = random.Random(seed)
+    check_count(max_steps, "max_steps", minimum=0)
+    check_count(max_form_length, "max_form_length", minimum=0)
+    rng = random.Random(_checked_seed(seed))
     configuration = initial_configuration(system)
     steps: list[Step] = []
     bound = reason = None
@@ -478,4 +487,17 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
         steps.append(step)
         configuration = step.after
     return Derivation(system, tuple(steps), bound=bound, reason=reason)
+
+
+def _checked_seed(seed):
+    """The seed ``random.Random`` gets; a ValidationError for one that would not repeat."""
+    # random.Random(None) seeds from the operating system and hashes a NaN by its identity, so
+    # either would give another derivation on every call; a numpy integer is taken as its value
+    if isinstance(seed, (str, bytes, bytearray)) or (
+            isinstance(seed, float) and math.isfinite(seed)):
+        return seed
+    if not isinstance(seed, (bool, float)) and hasattr(seed, "__index__"):
+        return operator.index(seed)
+    raise ValidationError(f"seed must be an integer, a finite number or a string, not "
+                          f"{short(repr(seed))}")
 
