@@ -164,9 +164,21 @@ def context_free_words(grammar: Grammar, max_length: int, *, rules: Iterable[Rul
     >>> [sorted("".join(map(str, w)) for w in words) for words in by_length], bound
     ([[''], [], ['ab'], [], ['aabb']], None)
     """
+    if not isinstance(grammar, Grammar):
+        raise ValidationError(f"expected a Grammar, not {type(grammar).__name__}")
+    check_count(max_length, "max_length", minimum=0)
+    check_count(max_words, "max_words")
     check_seconds(max_seconds, optional=True)
-    rules = tuple(grammar.rules if rules is None else rules)
+    rules = grammar.rules if rules is None else rules
+    if isinstance(rules, Rule) or not isinstance(rules, Iterable):
+        raise ValidationError(f"rules must be an iterable of Rule values, not {rules!r}")
+    rules = tuple(rules)
+    for rule in rules:
+        if not isinstance(rule, Rule):
+            raise ValidationError(f"rules must hold Rule values, not {rule!r}")
     start = grammar.start if start is None else start
+    if not isinstance(start, Nonterminal):
+        raise ValidationError(f"start must be a Nonterminal, not {start!r}")
     return _words_by_length(grammar, max_length, rules, start, max_words,
                             Budget(max_seconds, every=32))
 

@@ -51,3 +51,27 @@ def test_applicable_steps_refuses_a_configuration_that_is_no_sequence(gamma, con
         psgs.applicable_steps(gamma, configuration)
     with pytest.raises(ValidationError, match="configuration"):
         psgs.derivation.apply_tuple(gamma, configuration, gamma.sync[0])
+
+
+@pytest.mark.parametrize("kwargs, name", [
+    ({"max_length": None}, "max_length"), ({"max_length": "8"}, "max_length"),
+    ({"max_length": 2.5}, "max_length"), ({"max_length": math.inf}, "max_length"),
+    ({"max_length": -1}, "max_length"), ({"max_length": True}, "max_length"),
+    ({"max_words": None}, "max_words"), ({"max_words": 0}, "max_words"),
+    ({"max_words": math.nan}, "max_words"), ({"max_words": "9"}, "max_words"),
+    ({"rules": 3}, "rules"), ({"rules": "r1"}, "rules"), ({"rules": [None]}, "rules"),
+    ({"start": [1]}, "start"), ({"start": "S"}, "start"),
+])
+def test_context_free_words_refuses_bad_arguments(gamma, kwargs, name):
+    from psgs.enumeration import context_free_words
+
+    arguments = {"max_length": 8} | kwargs
+    with pytest.raises(ValidationError, match=name):
+        context_free_words(gamma.components[0], **arguments)
+
+
+def test_context_free_words_refuses_what_is_no_grammar(gamma):
+    from psgs.enumeration import context_free_words
+
+    with pytest.raises(ValidationError, match="Grammar"):
+        context_free_words(gamma, 8)
