@@ -6,14 +6,21 @@ comes from ``numpy.random.default_rng(seed)``: one seed, one motion.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+from numbers import Integral
+
 import numpy as np
 
 from psgs.errors import ValidationError
 
-from .motion import Motion
+from .motion import Motion, check_number
 from .segmentation import smooth
 
-__all__ = ["synthetic_motion"]
+__all__ = ["synthetic_motion", "MAX_SAMPLES"]
+
+#: The most samples (frames x joints) a synthetic motion may have: 512 MiB of values, a
+#: hundred times the largest benchmark's walk (100,000 frames x 62 channels).
+MAX_SAMPLES = 1 << 26
 
 
 def synthetic_motion(joints: int = 6, patterned=(0, 1, 2), *, repetitions: int = 8,
@@ -59,8 +66,11 @@ def synthetic_motion(joints: int = 6, patterned=(0, 1, 2), *, repetitions: int =
     Raises
     ------
     ValueError
-        When ``joints``, ``repetitions``, ``period`` or ``frame_rate`` is not positive,
-        ``jitter`` is outside ``[0, 1)`` or a patterned index is not a joint.
+        (a :class:`psgs.errors.ValidationError`) When ``joints``, ``repetitions`` or ``seed``
+        is not an integer (bools are not), ``period`` or ``frame_rate`` is not a positive
+        number, ``amplitude`` or ``noise`` a non-negative one, ``jitter`` is outside
+        ``[0, 1)``, a patterned index is not a joint, or the motion would have more than
+        :data:`MAX_SAMPLES` samples.
 
     Examples
     --------
@@ -70,13 +80,31 @@ def synthetic_motion(joints: int = 6, patterned=(0, 1, 2), *, repetitions: int =
     >>> m.frames == synthetic_motion(4, (0, 2), seed=1).frames and len(m.meta["repetition_starts"])
     8
     """
-    if joints < 1 or repetitions < 1 or period <= 0 or frame_rate <= 0:
-        raise ValidationError("joints, repetitions, period and frame_rate must be positive")
+    for name, value in (("joints", joints), ("repetitions", repetitions), ("seed", seed)):
+        # int(1.7), int("3") and True would each pass for a count; seed None for a seed that is
+        # none (a new motion every call)
+        if isinstance(value, bool) or not isinstance(value, Integral):
+            raise ValidationError(f"{name} must be an integer, not {value!r}")
+    for name, value in (("period", period), ("frame_rate", frame_rate)):
+        check_number(value, name, positive=True)
+    for name, value in (("amplitude", amplitude), ("noise", noise), ("jitter", jitter)):
+        check_number(value, name)
+    if joints < 1 or repetitions < 1 or seed < 0:
+        raise ValidationError("joints and repetitions must be positive, seed not negative")
     if not 0 <= jitter < 1:
         raise ValidationError(f"jitter must be in [0, 1), not {jitter}")
+    # checked before anything is drawn: repetitions=10**9 or period=1e9 asked for terabytes
+    if max(repetitions, repetitions * period * (1 + jitter) * frame_rate * joints) > MAX_SAMPLES:
+        raise ValidationError(f"joints x repetitions x period x frame_rate asks for more than "
+                              f"{MAX_SAMPLES} samples")
+    if isinstance(patterned, str) or not isinstance(patterned, Iterable):  # "01" was (0, 1)
+        raise ValidationError(f"patterned must be joint indices, not {patterned!r}")
+    patterned = tuple(patterned)
+    if any(isinstance(j, bool) or not isinstance(j, Integral) or not 0 <= j < joints
+           for j in patterned):
+        raise ValidationError(f"patterned joints must be integers in 0..{joints - 1}, "
+                              f"not {patterned!r}")
     patterned = tuple(sorted(set(int(j) for j in patterned)))
-    if any(not 0 <= j < joints for j in patterned):
-        raise ValidationError(f"patterned joints must be in 0..{joints - 1}")
     rng = np.random.default_rng(seed)
     lengths = period * (1 + jitter * rng.uniform(-1, 1, repetitions))
     total = float(lengths.sum())

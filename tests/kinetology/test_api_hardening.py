@@ -142,3 +142,35 @@ def test_compress_with_a_huge_smoothing_decodes():
     motion = small()
     back = kinetology.decompress(kinetology.compress(motion, smoothing=1e308))
     assert back.frames == motion.frames
+
+
+@pytest.mark.parametrize("options, match", [
+    ({"joints": "6"}, "joints must be an integer"),
+    ({"joints": True}, "joints must be an integer"),
+    ({"repetitions": 1.5}, "repetitions must be an integer"),
+    ({"seed": None}, "seed must be an integer"),              # was a new motion every call
+    ({"seed": -1}, "seed not negative"),
+    ({"period": float("nan")}, "period must be a positive number"),
+    ({"period": "1"}, "period must be a number"),
+    ({"frame_rate": "120"}, "frame_rate must be a number"),
+    ({"noise": -1.0}, "noise must be a non-negative number"),
+    ({"patterned": None}, "patterned must be joint indices"),
+    ({"patterned": "01"}, "patterned must be joint indices"),  # was joints 0 and 1
+    ({"patterned": (0, "a")}, "patterned joints must be integers"),
+    ({"patterned": (1.7,)}, "patterned joints must be integers"),  # was joint 1
+])
+def test_synthetic_motion_checks_its_arguments(options, match):
+    with pytest.raises(ValidationError, match=match):
+        kinetology.synthetic_motion(**options)
+
+
+@pytest.mark.parametrize("options", [{"repetitions": 10**9}, {"joints": 10**9},
+                                     {"period": 1e9}, {"frame_rate": 1e9}])
+def test_synthetic_motion_refuses_before_allocating_without_bound(options):
+    with pytest.raises(ValidationError, match="samples"):
+        kinetology.synthetic_motion(**options)
+
+
+def test_synthetic_motion_is_the_same_for_the_same_seed():
+    a, b = kinetology.synthetic_motion(seed=3), kinetology.synthetic_motion(seed=3)
+    assert a.values.tobytes() == b.values.tobytes() and a.meta == b.meta
