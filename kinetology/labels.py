@@ -20,6 +20,7 @@ from __future__ import annotations
 import json
 import re
 from dataclasses import dataclass
+from numbers import Real
 from pathlib import Path
 
 from psgs._foundation.text import split_lines
@@ -63,6 +64,12 @@ class Span:
     style: str | None = None
 
     def __post_init__(self) -> None:
+        if not isinstance(self.label, str) or not isinstance(self.style, (str, type(None))):
+            raise ValidationError(f"span label and style must be strings, not {self.label!r}, "
+                                  f"{self.style!r}")
+        if any(isinstance(t, bool) or not isinstance(t, Real) for t in (self.start, self.stop)):
+            raise ValidationError(f"span {self.label!r}: start and stop must be numbers of "
+                                  f"seconds, not {self.start!r}, {self.stop!r}")
         if not (0 <= self.start < self.stop):
             raise ValidationError(f"span {self.label!r}: need 0 <= start < stop, got "
                              f"{self.start!r}..{self.stop!r}")

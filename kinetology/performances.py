@@ -7,6 +7,8 @@ time span out of a motion; :func:`performances` gathers them from files or from 
 
 from __future__ import annotations
 
+from numbers import Real
+from os import PathLike
 from pathlib import Path
 from typing import Iterable
 
@@ -15,7 +17,7 @@ import numpy as np
 from psgs.errors import ValidationError
 
 from .labels import Span
-from .motion import Motion
+from .motion import Motion, check_number
 
 __all__ = ["cut", "performances", "from_files", "from_spans", "segment_performances"]
 
@@ -51,6 +53,11 @@ def cut(motion: Motion, start: float | None = None, stop: float | None = None) -
     >>> cut(m, 0.2, 0.5).column("knee.rx")
     array([2., 3., 4.])
     """
+    if not isinstance(motion, Motion):
+        raise ValidationError(f"motion must be a Motion, not {type(motion).__name__}")
+    for name, value in (("start", start), ("stop", stop)):  # float("2") and True would pass
+        if value is not None and (isinstance(value, bool) or not isinstance(value, Real)):
+            raise ValidationError(f"{name} must be a number of seconds, not {value!r}")
     length = motion.duration
     begin = 0.0 if start is None else float(start)
     end = length if stop is None else float(stop)
@@ -133,8 +140,11 @@ def from_spans(motion: Motion, spans: Iterable[Span], label: str | None = None, 
     >>> [p.frames for p in from_spans(m, spans, "a")]
     [10, 10]
     """
+    check_number(min_seconds, "min_seconds")  # NaN kept no span, without a word
     out = []
     for span in spans:
+        if not isinstance(span, Span):
+            raise ValidationError(f"spans must hold Span values, not {type(span).__name__}")
         if (label is None or span.label == label) and span.duration >= min_seconds:
             part = cut(motion, span.start, min(span.stop, motion.duration))
             out.append(Motion(part.values, part.channels, part.frame_rate, part.skeleton,
@@ -179,6 +189,10 @@ def performances(*sources, spans: Iterable[Span] | None = None, label: str | Non
     """
     from .readers import read
 
+    for source in sources:
+        if not isinstance(source, (Motion, str, PathLike)):
+            raise ValidationError(f"a performance is a Motion or a file's path, not "
+                                  f"{type(source).__name__}")
     motions = [s if isinstance(s, Motion) else read(s) for s in sources]
     if spans is None:
         return tuple(motions)
@@ -228,7 +242,13 @@ def segment_performances(motions, channels=None, *, engine: str = "auto", **para
     from ._engines import select
     from .segmentation import _check, _segmentation, _smoothed
 
+    if isinstance(motions, Motion) or not isinstance(motions, Iterable):
+        raise ValidationError(f"motions must be a sequence of Motion values, not "
+                              f"{type(motions).__name__}")
     motions = tuple(motions)
+    for motion in motions:
+        if not isinstance(motion, Motion):
+            raise ValidationError(f"motions must hold Motion values, not {type(motion).__name__}")
     if not motions:
         return ()
     use = select(engine, sum(m.values.size for m in motions))

@@ -174,3 +174,51 @@ def test_synthetic_motion_refuses_before_allocating_without_bound(options):
 def test_synthetic_motion_is_the_same_for_the_same_seed():
     a, b = kinetology.synthetic_motion(seed=3), kinetology.synthetic_motion(seed=3)
     assert a.values.tobytes() == b.values.tobytes() and a.meta == b.meta
+
+
+@pytest.mark.parametrize("args, match", [
+    ((None, 0.0, 1.0), "motion must be a Motion"),
+    (("self", "0", "1"), "start must be a number"),           # was read as 0 and 1 seconds
+    (("self", True, 1.5), "start must be a number"),
+])
+def test_cut_checks_its_arguments(args, match):
+    motion, *times = args
+    with pytest.raises(ValidationError, match=match):
+        kinetology.cut(small() if isinstance(motion, str) else motion, *times)
+
+
+@pytest.mark.parametrize("args, match", [
+    (("x", "0", "1"), "start and stop must be numbers"),
+    (("x", True, 2), "start and stop must be numbers"),
+    ((None, 0, 1), "label and style must be strings"),
+    (("x", 0, 1, 5), "label and style must be strings"),
+])
+def test_span_checks_its_fields(args, match):
+    with pytest.raises(ValidationError, match=match):
+        kinetology.Span(*args)
+
+
+@pytest.mark.parametrize("options, match", [
+    ({"spans": [1]}, "spans must hold Span values"),
+    ({"spans": [kinetology.Span("a", 0, 1)], "min_seconds": float("nan")}, "min_seconds"),
+    ({"spans": [kinetology.Span("a", 0, 1)], "min_seconds": "1"}, "min_seconds"),
+])
+def test_performances_checks_spans_and_min_seconds(options, match):
+    with pytest.raises(ValidationError, match=match):
+        kinetology.performances(small(), **options)
+
+
+def test_performances_refuses_a_source_that_is_no_file_or_motion():
+    with pytest.raises(ValidationError, match="a Motion or a file's path"):
+        kinetology.performances(5)
+
+
+@pytest.mark.parametrize("motions, match", [
+    (None, "motions must be a sequence"),
+    ("motion", "motions must be a sequence"),      # one Motion, not a sequence of them
+    ([None], "motions must hold Motion values"),
+])
+def test_segment_performances_checks_its_motions(motions, match):
+    motions = small() if motions == "motion" else motions
+    with pytest.raises(ValidationError, match=match):
+        kinetology.segment_performances(motions)
