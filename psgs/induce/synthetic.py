@@ -47,11 +47,16 @@ import numpy as np
 
 from ..actiongram import Actiongram
 from ..errors import ValidationError
+from .conf import check_number
 
-__all__ = ["Synthetic", "generate", "success", "vote_margin", "PAPER_POINTS"]
+__all__ = ["Synthetic", "generate", "success", "vote_margin", "PAPER_POINTS", "MAX_SYMBOLS"]
 
 #: The paper's reported success rates (noise level -> share of actiongrams).
 PAPER_POINTS = {0.0: 1.0, 0.07: 1.0, 0.10: 0.96}
+#: The most symbols :func:`generate` draws (letters, templates and strings together): a
+#: hundred times the largest benchmark's actiongram, so a mistyped size is an error, not a
+#: machine out of memory.
+MAX_SYMBOLS = 100_000_000
 
 
 @dataclass(frozen=True)
@@ -173,9 +178,10 @@ def generate(seed: int, noise: float = 0.0, *, strings: int = 20, alphabet: int 
     Raises
     ------
     ValidationError
-        For a negative or non-integer seed, noise outside 0..1, more patterned
-        strings than strings or templates, or sizes for which no string can be
-        drawn (fewer than 4 letters, ...).
+        For a negative or non-integer seed, noise outside 0..1, a size that is not a
+        whole number, more patterned strings than strings or templates, sizes for
+        which no string can be drawn (fewer than 4 letters, ...), or sizes that make
+        more than :data:`MAX_SYMBOLS` symbols.
 
     Examples
     --------
@@ -187,8 +193,21 @@ def generate(seed: int, noise: float = 0.0, *, strings: int = 20, alphabet: int 
     """
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
         raise ValidationError(f"seed must be a non-negative integer, not {seed!r}")
-    if not 0 <= noise <= 1:
-        raise ValidationError(f"noise must be between 0 and 1, not {noise!r}")
+    check_number("noise", noise, low=0, high=1)
+    sizes = dict(strings=strings, alphabet=alphabet, patterned=patterned, templates=templates,
+                 template_length=template_length, copies=copies, gap=gap)
+    for name, value in sizes.items():
+        check_number(name, int(value) if isinstance(value, np.integer) else value, low=0,
+                     integer=True)
+    for name, flag in (("irregular_gaps", irregular_gaps), ("unequal_lengths", unequal_lengths)):
+        if not isinstance(flag, (bool, np.bool_)):
+            raise ValidationError(f"{name} must be True or False, not {flag!r}")
+    # what the draw holds at once: the letters, the templates and every string's symbols
+    symbols = (alphabet + templates * template_length + strings * max(
+        copies * (template_length + (4 if irregular_gaps else gap)), 130))
+    if symbols > MAX_SYMBOLS:
+        raise ValidationError(f"these sizes make about {symbols:.3g} symbols, more than "
+                              f"{MAX_SYMBOLS:,} (MAX_SYMBOLS)")
     if patterned > min(strings, templates):
         raise ValidationError("patterned must not exceed strings or templates")
     if durations not in ("unit", "random"):

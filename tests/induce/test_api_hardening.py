@@ -1,0 +1,45 @@
+"""Bad arguments to psgs.induce: one ValidationError naming the parameter, never a TypeError
+from numpy or a draw that runs until memory does."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from psgs.errors import ValidationError
+from psgs.induce.synthetic import generate
+
+_SIZES = ("strings", "alphabet", "patterned", "templates", "template_length", "copies", "gap")
+
+
+@pytest.mark.parametrize("value", [None, "3", 2.5, math.nan, math.inf, True, -1])
+@pytest.mark.parametrize("name", _SIZES)
+def test_generate_refuses_a_size_that_is_no_whole_number(name, value):
+    with pytest.raises(ValidationError, match=name):
+        generate(0, **{name: value})
+
+
+@pytest.mark.parametrize("value", [None, "0.1", math.nan, True, -0.1, 1.5])
+def test_generate_refuses_a_noise_that_is_no_share(value):
+    with pytest.raises(ValidationError, match="noise"):
+        generate(0, value)
+
+
+@pytest.mark.parametrize("name", ["alphabet", "templates", "template_length", "copies",
+                                  "strings", "gap"])
+def test_generate_refuses_sizes_it_could_not_hold_before_drawing(name):
+    # each of these once ran until memory ran out (or numpy overflowed) instead of refusing
+    with pytest.raises(ValidationError, match="MAX_SYMBOLS"):
+        generate(0, **{name: 10 ** 12})
+
+
+@pytest.mark.parametrize("name", ["irregular_gaps", "unequal_lengths"])
+def test_generate_refuses_a_flag_that_is_no_bool(name):
+    with pytest.raises(ValidationError, match=name):
+        generate(0, **{name: "yes"})
+
+
+def test_generate_takes_numpy_sizes_as_before():
+    np = pytest.importorskip("numpy")
+    assert generate(1, np.float64(0.1), copies=np.int64(10)) == generate(1, 0.1, copies=10)
