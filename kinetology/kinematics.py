@@ -11,11 +11,13 @@ equal the offsets; adding the two would double every bone).
 
 from __future__ import annotations
 
+from numbers import Integral
+
 import numpy as np
 
 from psgs.errors import ValidationError
 
-from .motion import Motion, MotionFormatError
+from .motion import Motion, MotionFormatError, real_array
 
 __all__ = ["axis_rotation", "rotation_matrices", "euler_angles", "local_rotation",
            "forward_kinematics",
@@ -187,6 +189,8 @@ def forward_kinematics(motion: Motion) -> np.ndarray:
     >>> np.round(positions[1, 2], 6)    # the foot: rotated about x, from -y to -z
     array([  0., -10., -10.])
     """
+    if not isinstance(motion, Motion):
+        raise ValidationError(f"motion must be a Motion, not {type(motion).__name__}")
     skeleton = motion.skeleton
     if skeleton is None:
         raise ValidationError(f"{motion.source}: no skeleton, so no forward kinematics "
@@ -250,6 +254,14 @@ def joint_angle(positions: np.ndarray, a: int, b: int, c: int) -> np.ndarray:
     >>> joint_angle(straight_then_bent, 0, 1, 2)
     array([180.,  90.])
     """
+    positions = real_array(positions, "positions")
+    if positions.ndim != 3 or positions.shape[2] not in (2, 3):
+        raise ValidationError(f"positions must be frames x joints x 2 or 3, not {positions.shape}")
+    for name, index in (("a", a), ("b", b), ("c", c)):
+        if isinstance(index, bool) or not isinstance(index, Integral) or \
+                not -positions.shape[1] <= index < positions.shape[1]:
+            raise ValidationError(f"joint index {name} must be an integer below "
+                                  f"{positions.shape[1]} (the joints), not {index!r}")
     u = positions[:, a] - positions[:, b]
     v = positions[:, c] - positions[:, b]
     cos = np.einsum("fi,fi->f", u, v) / np.maximum(

@@ -30,9 +30,11 @@ from __future__ import annotations
 import html
 import json
 import math
+import os
 import shutil
 from dataclasses import dataclass
 from functools import cached_property
+from numbers import Integral, Real
 from importlib import resources
 from pathlib import Path
 from typing import Iterable, Mapping, Sequence
@@ -361,6 +363,9 @@ def check_output(path: str | Path) -> str:
     ...
     kinetology.viewer.ViewError: walk.pdf: cannot write '.pdf'; give one of .html, .gif, .mp4
     """
+    if not isinstance(path, (str, os.PathLike)):
+        raise ViewError(f"the output must be a file's path, not {type(path).__name__}",
+                        source="kinetology.view")
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix not in SUFFIXES:
@@ -514,15 +519,31 @@ def view(motions: Motion | Sequence[Motion] | Mapping[str, Motion],
     kinetology.viewer.ViewError: leg.png: cannot write '.png'; give one of .html, .gif, .mp4
     """
     if output is not None:
-        check_output(Path(output))  # before any work: a bad suffix fails at once
+        check_output(output)  # before any work: a bad suffix fails at once
     if isinstance(motions, Motion):
         motions = [motions]
+    if isinstance(motions, str) or not isinstance(motions, Iterable):
+        raise ViewError(f"motions must be a Motion, a sequence or a mapping of them, not "
+                        f"{type(motions).__name__}", source="kinetology.view")
     named = dict(motions) if isinstance(motions, Mapping) else _titled(motions)
     if not named:
         raise ViewError("no motion to show", source="kinetology.view")
-    if max_rate <= 0 or max_frames < 1:
-        raise ViewError(f"max_rate must be positive and max_frames at least 1, not "
+    for label, motion in named.items():
+        if not isinstance(motion, Motion):
+            raise ViewError(f"panel {label!r} is a {type(motion).__name__}, not a Motion",
+                            source="kinetology.view")
+    # a string or a bool would pass for a number (or fail in a comparison), NaN every test
+    if isinstance(max_rate, bool) or not isinstance(max_rate, Real) or not max_rate > 0 or \
+            isinstance(max_frames, bool) or not isinstance(max_frames, Integral) or \
+            not max_rate < math.inf or max_frames < 1:
+        raise ViewError(f"max_rate must be a positive number and max_frames an integer at least 1, not "
                         f"{max_rate!r} and {max_frames!r}", source="kinetology.view")
+    if actuators is not None and (isinstance(actuators, str) or not isinstance(actuators, Iterable)):
+        raise ViewError(f"actuators must be a collection of joint names, not {actuators!r}",
+                        source="kinetology.view")  # a string was taken letter by letter
+    if not (isinstance(kinetemes, bool) and isinstance(follow, bool)):
+        raise ViewError(f"kinetemes and follow must be True or False, not {kinetemes!r} and "
+                        f"{follow!r}", source="kinetology.view")
     per_panel = actuators if isinstance(actuators, Mapping) else \
         {label: actuators for label in named}
     unknown = set(per_panel) - set(named)

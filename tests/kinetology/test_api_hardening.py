@@ -222,3 +222,45 @@ def test_segment_performances_checks_its_motions(motions, match):
     motions = small() if motions == "motion" else motions
     with pytest.raises(ValidationError, match=match):
         kinetology.segment_performances(motions)
+
+
+def with_skeleton() -> Motion:
+    from kinetology.bvh_writer import star_skeleton
+    m = kinetology.synthetic_motion(3, (0,), repetitions=2)
+    return Motion(m.values, m.channels, m.frame_rate, star_skeleton(m.channels))
+
+
+@pytest.mark.parametrize("positions, indices, match", [
+    (np.zeros((3, 2, 3)), (0, 1, 5), "joint index c must be an integer below 2"),
+    (np.zeros((3, 3, 3)), (0, 1, 1.5), "joint index c"),
+    (np.zeros((3, 3, 3)), (True, 1, 2), "joint index a"),
+    (np.zeros((3, 3)), (0, 1, 2), "positions must be frames x joints x 2 or 3"),
+    (np.zeros((3, 3, 3), dtype=complex), (0, 1, 2), "positions must be real numbers"),
+])
+def test_joint_angle_checks_its_input(positions, indices, match):
+    from kinetology import joint_angle
+    with pytest.raises(ValidationError, match=match):
+        joint_angle(positions, *indices)
+
+
+def test_forward_kinematics_refuses_what_is_not_a_motion():
+    with pytest.raises(ValidationError, match="motion must be a Motion"):
+        kinetology.forward_kinematics(None)
+
+
+@pytest.mark.parametrize("motions, options, match", [
+    (None, {}, "motions must be a Motion, a sequence or a mapping"),
+    ([None], {}, "is a NoneType, not a Motion"),
+    ("self", {"max_rate": "30"}, "max_rate must be a positive number"),
+    ("self", {"max_frames": 1.5}, "max_frames an integer"),
+    ("self", {"max_frames": True}, "max_frames an integer"),
+    ("self", {"max_rate": float("inf")}, "max_rate must be a positive number"),
+    ("self", {"actuators": 5}, "actuators must be a collection"),
+    ("self", {"actuators": "j0"}, "actuators must be a collection"),   # was 'j', '0'
+    ("self", {"kinetemes": "no"}, "kinetemes and follow must be True or False"),  # was True
+    ("self", {"output": 5}, "the output must be a file's path"),
+])
+def test_view_checks_its_arguments(motions, options, match):
+    motions = with_skeleton() if isinstance(motions, str) else motions
+    with pytest.raises(kinetology.ViewError, match=match):
+        kinetology.view(motions, **options)
