@@ -49,9 +49,9 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .._foundation.files import read_text
-from ..errors import FormatError, ValidationError
+from ..errors import FormatError, NotFound, ValidationError
 from ._checks import (_bad_duration, _bad_name, _bad_symbol, _check_times_advance, _finite,
-                      _format_number, _plain_durations, _shown)
+                      _format_number, _plain_durations, _shown, _tuple_of)
 from ._events import GAPS
 from ._extras import _merge, default_actuator, normalise_extras
 
@@ -94,8 +94,8 @@ class Actiongram:
     FormatError
         For an empty or repeated name, a symbol that is not text, a duration that is not
         positive and finite, or strings and durations of different lengths.
-    ValueError
-        When an optional field (displacements, actuators) has not one entry per string.
+    ValidationError
+        For a field that is no sequence, or has not one entry per string.
 
     Examples
     --------
@@ -120,12 +120,13 @@ class Actiongram:
     keep_repeats: bool = False
 
     def __post_init__(self) -> None:
-        names = tuple(self.names)
-        symbols = tuple(tuple(s) for s in self.symbols)
-        durations = tuple(tuple(d) for d in self.segment_durations)
-        origins = tuple(self.origins) if self.origins else (0.0,) * len(names)
+        names = _tuple_of(self.names, "names")
+        symbols = _tuple_of(self.symbols, "symbols", rows=True)
+        durations = _tuple_of(self.segment_durations, "segment_durations", rows=True)
+        origins = _tuple_of(self.origins, "origins") if self.origins else (0.0,) * len(names)
         if not (len(names) == len(symbols) == len(durations) == len(origins)):
-            raise ValueError("names, symbols, durations and origins must have one entry per string")
+            raise ValidationError("names, symbols, durations and origins must have one entry "
+                                  "per string")
         if not isinstance(self.keep_repeats, bool):
             raise FormatError(f"keep_repeats must be True or False, not {_shown(self.keep_repeats)}")
         seen: set[str] = set()
@@ -205,7 +206,8 @@ class Actiongram:
         displacements = displacements or {}
         actuators = actuators or {}
         for what, given in (("strings", strings), ("durations", durations), ("starts", starts),
-                            ("displacements", displacements), ("actuators", actuators)):
+                            ("displacements", displacements), ("actuators", actuators),
+                            ("skeleton", skeleton or {})):
             if not isinstance(given, Mapping):  # a list of strings has no names to give them
                 raise ValidationError(f"{what} must map each string's name to its values, "
                                       f"not be a {type(given).__name__}")
@@ -219,13 +221,15 @@ class Actiongram:
                                   f"{_shown(extra)}")
         names, symbol_rows, duration_rows, origins = [], [], [], []
         for name, syms in strings.items():
-            syms = tuple(syms)
-            durs = tuple(durations[name]) if name in durations else (1.0,) * len(syms)
+            syms = _tuple_of(syms, f"strings[{_shown(name)}]")
+            durs = _tuple_of(durations[name], f"durations[{_shown(name)}]") \
+                if name in durations else (1.0,) * len(syms)
             names.append(name)
             symbol_rows.append(syms)
             duration_rows.append(durs)
             origins.append(starts.get(name, 0.0))
-        disp_rows = tuple(tuple(displacements[n]) if n in displacements else None for n in names)
+        disp_rows = tuple(_tuple_of(displacements[n], f"displacements[{_shown(n)}]")
+                          if n in displacements else None for n in names)
         owner = tuple(actuators[n] if n in actuators else default_actuator(n)
                       if isinstance(n, str) else n for n in names)
         edges = tuple((skeleton or {}).items())
@@ -260,8 +264,9 @@ class Actiongram:
 
         Raises
         ------
-        ValueError
-            For codes that are not 1-D integers within the alphabet.
+        ValidationError
+            For codes that are not 1-D integers within the alphabet, or an argument of the
+            wrong kind (a mapping expected).
         FormatError
             As :meth:`from_strings` (and for a symbol of the alphabet that cannot be one).
 
@@ -455,7 +460,7 @@ class Actiongram:
         try:
             return self.names.index(name)
         except ValueError:
-            raise KeyError(f"no string named {name!r}") from None
+            raise NotFound(f"no string named {_shown(name)}") from None
 
     def string(self, name: str) -> tuple[str, ...]:
         """The symbols of string ``name``."""
@@ -463,7 +468,7 @@ class Actiongram:
 
     def subset(self, names: Iterable[str]) -> "Actiongram":
         """The actiongram of the named strings only, in the order given (skeleton kept whole)."""
-        picks = [self.index(n) for n in names]
+        picks = [self.index(n) for n in _tuple_of(names, "names")]
         return Actiongram(tuple(self.names[i] for i in picks),
                           tuple(self.symbols[i] for i in picks),
                           tuple(self.segment_durations[i] for i in picks),
@@ -501,7 +506,7 @@ class Actiongram:
 
     def parent(self, actuator: str) -> str | None:
         """The parent of ``actuator`` in the skeleton (None for a root or an unknown actuator)."""
-        return self.skeleton.get(actuator)
+        return next((p for c, p in self.skeleton_edges if c == actuator), None)
 
     def neighbours(self, actuator: str) -> tuple[str, ...]:
         """The skeleton neighbours of ``actuator`` (its parent, then its children), one hop."""

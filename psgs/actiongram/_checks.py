@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 import re
 
-from ..errors import FormatError
+from ..errors import FormatError, ValidationError
 
 __all__: list[str] = []  # private helpers
 
@@ -20,6 +20,16 @@ def _shown(value: object, limit: int = 40) -> str:
     """``repr(value)``, cut to about ``limit`` characters so one bad token keeps errors one line."""
     text = repr(value)
     return text if len(text) <= limit else text[:limit - 5] + "...'" + f" ({len(str(value))} chars)"
+
+
+def _tuple_of(value: object, what: str, rows: bool = False) -> tuple:
+    """``value`` as a tuple (each item a tuple too when ``rows``); a ValidationError naming
+    ``what`` for one that is no sequence (None, a number), not Python's TypeError."""
+    try:
+        return tuple(tuple(row) for row in value) if rows else tuple(value)
+    except TypeError:
+        kind = "a sequence of sequences" if rows else "a sequence"
+        raise ValidationError(f"{what} must be {kind}, not {_shown(value)}") from None
 
 
 def _not_unicode(text: str) -> bool:

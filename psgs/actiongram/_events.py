@@ -175,6 +175,8 @@ def from_events(cls, rows, *, gaps: str = "rest", rest_symbol: str = "_",
                 keep_repeats: bool = False, columns: Mapping[str, str] | None = None):
     """:meth:`psgs.Actiongram.from_events` (its docstring says what each argument does)."""
     _check_options(gaps, rest_symbol)
+    if columns is not None and not isinstance(columns, Mapping):
+        raise ValidationError(f"columns must map a field to a column name, not {_shown(columns)}")
     records, labels = _records(rows, dict(columns or {}))
     label = lambda k: f"row {labels[k]!r}"  # noqa: E731 - the index a user gave, as given
     try:

@@ -9,8 +9,8 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Sequence
 
-from ..errors import FormatError
-from ._checks import _bad_name, _finite, _shown
+from ..errors import FormatError, ValidationError
+from ._checks import _bad_name, _finite, _shown, _tuple_of
 
 
 def _bad_displacement(value: object) -> str | None:
@@ -108,9 +108,10 @@ def normalise_extras(value, names: tuple[str, ...], symbols: tuple[tuple[str, ..
     ``symbols`` are the strings before equal neighbours merge (a merged run's
     displacements add up).
     """
-    displacements = tuple(value.segment_displacements) or (None,) * len(names)
+    displacements = (_tuple_of(value.segment_displacements, "segment_displacements")
+                     or (None,) * len(names))
     if len(displacements) != len(names):
-        raise ValueError("segment_displacements must have one entry per string")
+        raise ValidationError("segment_displacements must have one entry per string")
     rows: list[tuple[float, ...] | None] = []
     for name, syms, disps in zip(names, symbols, displacements):
         if disps is None:
@@ -141,11 +142,11 @@ def normalise_extras(value, names: tuple[str, ...], symbols: tuple[tuple[str, ..
 
 def normalise_actuators(value, names: tuple[str, ...]) -> None:
     """Validate ``value.string_actuators`` (one valid name per string; () the defaults)."""
-    actuators = tuple(value.string_actuators)
+    actuators = _tuple_of(value.string_actuators, "string_actuators")
     if not actuators:
         actuators = tuple(default_actuator(n) if isinstance(n, str) else n for n in names)
     if len(actuators) != len(names):
-        raise ValueError("string_actuators must have one entry per string")
+        raise ValidationError("string_actuators must have one entry per string")
     for name, actuator in zip(names, actuators):
         problem = _bad_name(actuator)
         if problem:
@@ -157,8 +158,9 @@ def normalise_skeleton(value) -> None:
     """Validate ``value.skeleton_edges``: (actuator, parent or None) pairs, no cycle."""
     edges: list[tuple[str, str | None]] = []
     parent_of: dict[str, str | None] = {}
-    for edge in value.skeleton_edges:
-        if isinstance(edge, (str, bytes)) or len(tuple(edge)) != 2:
+    for edge in _tuple_of(value.skeleton_edges, "skeleton_edges"):
+        if isinstance(edge, (str, bytes)) or not isinstance(edge, Iterable) \
+                or len(tuple(edge)) != 2:
             raise FormatError(f"a skeleton entry must be (actuator, parent), not {_shown(edge)}")
         child, parent = tuple(edge)
         for joint in (child,) if parent is None else (child, parent):

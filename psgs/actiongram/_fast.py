@@ -12,12 +12,12 @@ every merged result, is exactly the public constructor's.
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 
 import numpy as np
 
-from ..errors import FormatError
-from ._checks import _bad_name, _bad_symbol, _shown
+from ..errors import FormatError, ValidationError
+from ._checks import _bad_name, _bad_symbol, _shown, _tuple_of
 from ._extras import default_actuator, normalise_actuators, normalise_skeleton
 
 __all__: list[str] = []  # private: Actiongram.from_codes is the interface
@@ -30,8 +30,8 @@ def _plain_rows(rows: Mapping, kind: str) -> dict[str, np.ndarray] | None:
     out = {}
     for name, row in rows.items():
         if not isinstance(row, np.ndarray):  # a list: Python numbers only (no bool)
-            row = tuple(row)
-            if not set(map(type, row)) <= {int, float}:
+            row = tuple(row) if isinstance(row, Iterable) else None
+            if row is None or not set(map(type, row)) <= {int, float}:
                 return None
         try:
             array = np.asarray(row)
@@ -61,7 +61,13 @@ def _lists(rows: Mapping | None) -> Mapping | None:
 def build(cls, codes: Mapping, alphabet: Sequence[str], durations: Mapping | None,
           displacements: Mapping | None, actuators: Mapping | None, skeleton: Mapping | None):
     """An :class:`~psgs.Actiongram` equal to ``from_strings`` of the decoded codes."""
-    alphabet = tuple(alphabet)
+    for what, given in (("codes", codes), ("durations", durations),
+                        ("displacements", displacements), ("actuators", actuators),
+                        ("skeleton", skeleton)):
+        if not isinstance(given, Mapping) and (what == "codes" or given is not None):
+            raise ValidationError(f"{what} must map each string's name to its values, "
+                                  f"not be a {type(given).__name__}")
+    alphabet = _tuple_of(alphabet, "alphabet")
     for sym in alphabet:
         problem = _bad_symbol(sym)
         if problem:
@@ -70,9 +76,9 @@ def build(cls, codes: Mapping, alphabet: Sequence[str], durations: Mapping | Non
     for name, row in codes.items():
         row = np.asarray(row)
         if row.ndim != 1 or (row.size and row.dtype.kind not in "iu"):
-            raise ValueError(f"codes of {_shown(name)} must be a 1-D array of integers")
+            raise ValidationError(f"codes of {_shown(name)} must be a 1-D array of integers")
         if row.size and (row.min() < 0 or row.max() >= len(alphabet)):
-            raise ValueError(f"codes of {_shown(name)} must index the alphabet "
+            raise ValidationError(f"codes of {_shown(name)} must index the alphabet "
                              f"(0 to {len(alphabet) - 1})")
         rows[name] = row.astype(np.intp, copy=False)
     lookup = np.array(alphabet + ("",), dtype=object)  # "" keeps it 1-D of str

@@ -12,7 +12,7 @@ import json
 import re
 
 from .._foundation.text import split_lines
-from ..errors import FormatError
+from ..errors import FormatError, ValidationError
 from ._checks import _bad_name, _read_number, _shown
 from ._extras import DIRECTIVE as _DIRECTIVE
 from ._extras import default_actuator
@@ -56,6 +56,8 @@ _CONTROL = re.compile("[\x00-\x08\x0b-\x1f\x7f\x85\u2028\u2029]")
 
 def read_text(cls, text: str, source: str):
     """The actiongram (of class ``cls``) that ``text`` holds; FormatError at its place."""
+    if not isinstance(text, str):
+        raise ValidationError(f"from_text reads a str, not {type(text).__name__}")
     names, symbol_rows, duration_rows, origins = [], [], [], []
     disp_rows: list[tuple[float, ...] | None] = []
     owner: dict[str, str] = {}
@@ -155,6 +157,8 @@ def read_text(cls, text: str, source: str):
 
 def read_json(cls, text: str, source: str):
     """The actiongram (of class ``cls``) that the JSON ``text`` holds; FormatError if none."""
+    if not isinstance(text, (str, bytes, bytearray)):  # what json.loads reads
+        raise ValidationError(f"from_json reads a str or bytes, not {type(text).__name__}")
     try:
         data = json.loads(text)
     except json.JSONDecodeError as exc:

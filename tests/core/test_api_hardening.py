@@ -75,3 +75,94 @@ def test_context_free_words_refuses_what_is_no_grammar(gamma):
 
     with pytest.raises(ValidationError, match="Grammar"):
         context_free_words(gamma, 8)
+
+
+# ---------------------------------------------------------------- actiongrams
+_NOT_SEQUENCES = [None, 3, math.nan, True, object()]
+
+
+@pytest.mark.parametrize("value", _NOT_SEQUENCES)
+@pytest.mark.parametrize("what", ["strings", "durations", "displacements"])
+def test_from_strings_refuses_a_string_value_that_is_no_sequence(what, value):
+    strings = {"a": value} if what == "strings" else {"a": "x"}
+    extra = {} if what == "strings" else {what: {"a": value}}
+    with pytest.raises(ValidationError, match=what):
+        psgs.Actiongram.from_strings(strings, **extra)
+
+
+@pytest.mark.parametrize("skeleton", ["a", 3, [("a", None)], object()])
+def test_from_strings_refuses_a_skeleton_that_is_no_mapping(skeleton):
+    with pytest.raises(ValidationError, match="skeleton"):
+        psgs.Actiongram.from_strings({"a": "x"}, skeleton=skeleton)
+
+
+@pytest.mark.parametrize("value", _NOT_SEQUENCES)
+@pytest.mark.parametrize("field", range(7))
+def test_the_constructor_refuses_a_field_that_is_no_sequence(field, value):
+    fields = [("x",), (("a",),), ((1.0,),), (0.0,), (), (), ()]
+    fields[field] = value
+    if field >= 3 and not value:  # an empty optional field is its default
+        return
+    with pytest.raises(ValidationError):
+        psgs.Actiongram(*fields)
+
+
+def test_the_constructor_says_fields_of_different_lengths_as_a_validation_error():
+    with pytest.raises(ValidationError, match="one entry per string"):
+        psgs.Actiongram(("x", "y"), (("a",),), ((1.0,),))
+
+
+@pytest.mark.parametrize("text", [None, 3, b"a: x", ["a: x"]])
+def test_from_text_refuses_what_is_no_str(text):
+    with pytest.raises(ValidationError, match="from_text"):
+        psgs.Actiongram.from_text(text)
+
+
+@pytest.mark.parametrize("text", [None, 3, ["{}"]])
+def test_from_json_refuses_what_is_no_text(text):
+    with pytest.raises(ValidationError, match="from_json"):
+        psgs.Actiongram.from_json(text)
+
+
+def test_from_json_still_reads_bytes():
+    ag = psgs.Actiongram.from_strings({"a": "xy"})
+    assert psgs.Actiongram.from_json(ag.to_json().encode()) == ag
+
+
+@pytest.mark.parametrize("kwargs, name", [
+    ({"codes": None}, "codes"), ({"codes": [[0, 1]]}, "codes"), ({"alphabet": None}, "alphabet"),
+    ({"alphabet": 3}, "alphabet"), ({"durations": 3}, "durations"),
+    ({"durations": {"a": None}}, "durations"), ({"durations": {"a": 3}}, "durations"),
+    ({"skeleton": "a"}, "skeleton"), ({"codes": {"a": [0, 9]}}, "codes"),
+    ({"codes": {"a": [0.5]}}, "codes"),
+])
+def test_from_codes_refuses_bad_arguments(kwargs, name):
+    arguments = {"codes": {"a": [0, 1]}, "alphabet": "xy"} | kwargs
+    codes, alphabet = arguments.pop("codes"), arguments.pop("alphabet")
+    with pytest.raises(ValidationError, match=name):
+        psgs.Actiongram.from_codes(codes, alphabet, **arguments)
+
+
+@pytest.mark.parametrize("columns", ["stream", 3, ["stream"]])
+def test_from_events_refuses_columns_that_are_no_mapping(columns):
+    with pytest.raises(ValidationError, match="columns"):
+        psgs.Actiongram.from_events([("s", 0, 1, "a")], columns=columns)
+
+
+@pytest.mark.parametrize("name", [None, 3, "nope", ("a",)])
+def test_a_missing_string_is_not_found(name):
+    ag = psgs.Actiongram.from_strings({"a": "xy"})
+    for look_up in (ag.index, ag.string, ag.displacements, ag.actuator):
+        with pytest.raises(psgs.errors.NotFound, match="no string named"):
+            look_up(name)
+
+
+@pytest.mark.parametrize("names", [None, 3, object()])
+def test_subset_refuses_names_that_are_no_sequence(names):
+    with pytest.raises(ValidationError, match="names"):
+        psgs.Actiongram.from_strings({"a": "xy"}).subset(names)
+
+
+def test_parent_of_an_unhashable_actuator_is_none():
+    ag = psgs.Actiongram.from_strings({"a.x": "xy"}, skeleton={"a": "b", "b": None})
+    assert ag.parent([]) is None and ag.parent("a") == "b"
