@@ -18,7 +18,7 @@ from types import MappingProxyType
 from typing import Literal, Union
 
 from .errors import ValidationError
-from .names import _BAD_TERMINAL, _require_identifier, is_identifier
+from .names import _BAD_TERMINAL, _as_tuple, _require_identifier, is_identifier
 
 __all__ = [
     "Terminal", "Nonterminal", "Query", "Symbol", "Word", "Form", "Rule", "Grammar",
@@ -148,7 +148,7 @@ def as_word(value: str | Iterable[str | Terminal]) -> Word:
     if isinstance(value, str):
         return tuple(Terminal(ch) for ch in value)
     out = []
-    for item in value:
+    for item in _as_tuple(value, "a word"):
         if isinstance(item, Terminal):
             out.append(item)
         elif isinstance(item, str):
@@ -187,7 +187,7 @@ class Rule:
         if not isinstance(self.lhs, Nonterminal):
             raise ValidationError(
                 f"rule {self.label}: left-hand side must be a nonterminal, not {self.lhs!r}")
-        rhs = tuple(self.rhs)
+        rhs = _as_tuple(self.rhs, f"rule {self.label}: the right-hand side")
         for sym in rhs:
             if not isinstance(sym, (Terminal, Nonterminal, Query)):
                 raise ValidationError(f"rule {self.label}: {sym!r} is not a symbol")
@@ -232,7 +232,7 @@ class Grammar:
         if not isinstance(self.start, Nonterminal):
             raise ValidationError(f"component {self.name}: start symbol must be a nonterminal, "
                                   f"not {self.start!r}")
-        rules = tuple(self.rules)
+        rules = _as_tuple(self.rules, f"component {self.name}: rules")
         object.__setattr__(self, "rules", rules)
         seen_labels: dict[str, Rule] = {}
         seen_bodies: dict[tuple, Rule] = {}
@@ -371,7 +371,7 @@ def resolve_tuple(components: Sequence[Grammar], raw: object, name: str = "the t
 
 
 def _check_components(kind: str, components: Sequence[Grammar]) -> tuple[Grammar, ...]:
-    components = tuple(components)
+    components = _as_tuple(components, f"a {kind}'s components")
     if not components:
         raise ValidationError(f"a {kind} needs at least one component")
     names = set()
@@ -491,7 +491,7 @@ class PSGS(_Components):
                                       f"(found {min(g.queries, key=str)})")
         tuples = []
         seen = set()
-        for t_index, raw in enumerate(self.sync, start=1):
+        for t_index, raw in enumerate(_as_tuple(self.sync, "sync"), start=1):
             entries = resolve_tuple(components, raw, f"tuple {t_index}")
             if all(e is None for e in entries):
                 raise ValidationError(f"tuple {t_index} idles in every component")

@@ -1,12 +1,14 @@
 """Which text can name a nonterminal, component, rule or system, and which can be a terminal.
 
 The one place these character rules are written, below :mod:`psgs.model` (which builds the values)
-and the text format (which reads them).
+and the text format (which reads them); beside them, the model's one check that a field given
+as a sequence is one.
 """
 
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable
 
 from .errors import ValidationError
 
@@ -31,3 +33,11 @@ def _require_identifier(name: object, what: str) -> None:
     if not is_identifier(name):
         raise ValidationError(
             f"{what} {name!r} is not a valid name (letters, digits and _, not starting with a digit)")
+
+
+def _as_tuple(value: object, what: str) -> tuple:
+    """``value`` as a tuple; a ValidationError naming ``what`` for a value that is no
+    sequence (None, a number), where ``tuple()`` would raise a TypeError naming no field."""
+    if isinstance(value, Iterable):
+        return tuple(value)
+    raise ValidationError(f"{what} must be a sequence, not {value!r}")

@@ -166,3 +166,20 @@ def test_subset_refuses_names_that_are_no_sequence(names):
 def test_parent_of_an_unhashable_actuator_is_none():
     ag = psgs.Actiongram.from_strings({"a.x": "xy"}, skeleton={"a": "b", "b": None})
     assert ag.parent([]) is None and ag.parent("a") == "b"
+
+
+# ---------------------------------------------------------------- the model's values
+@pytest.mark.parametrize("value", [None, 3, math.nan, True, object()])
+def test_model_values_refuse_a_field_that_is_no_sequence(value):
+    from psgs.model import PCGS, PSGS, Grammar, Nonterminal, Rule, as_word
+
+    S = Nonterminal("S")
+    g = Grammar("G", S, (Rule("r", S, ()),))
+    for make, what in ((lambda: Rule("r", S, value), "right-hand side"),
+                       (lambda: Grammar("G", S, value), "rules"),
+                       (lambda: PSGS(value), "components"),
+                       (lambda: PCGS(value), "components"),
+                       (lambda: PSGS((g,), value), "sync"),
+                       (lambda: as_word(value), "word")):
+        with pytest.raises(ValidationError, match=what):
+            make()
