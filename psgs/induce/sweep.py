@@ -9,11 +9,14 @@ job, so ``jobs`` worker processes share the work cell by cell.
 
 from __future__ import annotations
 
+import numbers
 import time
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 
+from ..errors import ValidationError
+from .conf import check_number
 from .registry import get
 from .synthetic import generate, success
 
@@ -108,7 +111,9 @@ def noise_sweep(levels: Iterable[float], trials: int, *, inducers: Sequence[str]
     Raises
     ------
     ValidationError
-        For an unknown inducer or parameter, or arguments ``generate`` refuses.
+        For an unknown inducer or parameter, arguments ``generate`` refuses, a level that is
+        no number from 0 to 1, ``trials`` or ``jobs`` that is not a whole number ≥ 1, or an
+        argument of the wrong kind (``inducers`` a single string, ``params`` no mapping).
 
     Examples
     --------
@@ -116,14 +121,15 @@ def noise_sweep(levels: Iterable[float], trials: int, *, inducers: Sequence[str]
     >>> [(r.inducer, r.successes) for r in rows]
     [('pal', 2), ('sequential', 0)]
     """
-    params = params or {}
-    variant = dict(variant or {})
+    levels, inducers, params, variant = _checked(levels, trials, inducers, params, seed,
+                                                 variant, jobs, progress)
     seeds = list(range(seed, seed + trials))
     cells = [(name, dict(params.get(name, {})), float(level), seeds, variant)
              for name in inducers for level in levels]
     results = []
     if jobs > 1 and len(cells) > 1:
-        with ProcessPoolExecutor(max_workers=jobs) as pool:
+        # a worker per cell at most: the pool forks all its workers at once
+        with ProcessPoolExecutor(max_workers=min(jobs, len(cells))) as pool:
             for k, out in enumerate(pool.map(_trial_batch, cells), start=1):
                 results.append(out)
                 if progress:
@@ -134,3 +140,31 @@ def noise_sweep(levels: Iterable[float], trials: int, *, inducers: Sequence[str]
             if progress:
                 progress(k, len(cells))
     return [SweepRow(*cell) for cell in results]
+
+
+def _checked(levels, trials, inducers, params, seed, variant, jobs, progress):
+    """noise_sweep's arguments checked before any trial runs (a bad one found after hours of
+    trials would lose them): the levels, inducer names and mappings, as tuples and dicts."""
+    check_number("trials", trials, low=1, integer=True)
+    check_number("jobs", jobs, low=1, integer=True)
+    if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0:
+        raise ValidationError(f"seed must be a non-negative integer, not {seed!r}")
+    if isinstance(levels, (str, bytes)) or not isinstance(levels, Iterable):
+        raise ValidationError(f"levels must be a sequence of noise levels, not {levels!r}")
+    levels = tuple(levels)
+    for level in levels:
+        check_number("noise level", level, low=0, high=1)
+    if isinstance(inducers, (str, bytes)) or not isinstance(inducers, Iterable):
+        raise ValidationError(f"inducers must be a sequence of inducer names, not {inducers!r}")
+    inducers = tuple(inducers)
+    for name, given in (("params", params), ("variant", variant)):
+        if given is not None and not isinstance(given, Mapping):
+            raise ValidationError(f"{name} must be a mapping, not {given!r}")
+    params = dict(params or {})
+    for name, given in params.items():
+        if not isinstance(given, Mapping):
+            raise ValidationError(f"params[{name!r}] must map parameter names to values, "
+                                  f"not {given!r}")
+    if progress is not None and not callable(progress):
+        raise ValidationError(f"progress must be callable, not {progress!r}")
+    return levels, inducers, params, dict(variant or {})

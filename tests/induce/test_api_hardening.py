@@ -43,3 +43,32 @@ def test_generate_refuses_a_flag_that_is_no_bool(name):
 def test_generate_takes_numpy_sizes_as_before():
     np = pytest.importorskip("numpy")
     assert generate(1, np.float64(0.1), copies=np.int64(10)) == generate(1, 0.1, copies=10)
+
+
+# ---------------------------------------------------------------- noise_sweep
+@pytest.mark.parametrize("kwargs, name", [
+    ({"trials": 0}, "trials"), ({"trials": -2}, "trials"), ({"trials": None}, "trials"),
+    ({"trials": 2.5}, "trials"), ({"trials": True}, "trials"),
+    ({"levels": 0.1}, "levels"), ({"levels": "0.1"}, "levels"), ({"levels": None}, "levels"),
+    ({"levels": ["0.1"]}, "noise level"), ({"levels": [math.nan]}, "noise level"),
+    ({"levels": [True]}, "noise level"), ({"levels": [1.5]}, "noise level"),
+    ({"inducers": "sequential"}, "inducers"), ({"inducers": None}, "inducers"),
+    ({"params": 3}, "params"), ({"params": {"sequential": 2}}, "params"),
+    ({"variant": "random"}, "variant"), ({"seed": None}, "seed"), ({"seed": "0"}, "seed"),
+    ({"jobs": 0}, "jobs"), ({"jobs": None}, "jobs"), ({"progress": 3}, "progress"),
+])
+def test_noise_sweep_refuses_bad_arguments_before_any_trial(kwargs, name):
+    from psgs.induce.sweep import noise_sweep
+
+    arguments = {"levels": [0.0], "trials": 1, "inducers": ("sequential",)} | kwargs
+    levels, trials = arguments.pop("levels"), arguments.pop("trials")
+    with pytest.raises(ValidationError, match=name):
+        noise_sweep(levels, trials, **arguments)
+
+
+def test_noise_sweep_takes_a_numpy_seed_and_a_generator_of_levels():
+    np = pytest.importorskip("numpy")
+    from psgs.induce.sweep import noise_sweep
+
+    rows = noise_sweep((x for x in [0.0]), 1, inducers=["sequential"], seed=np.int64(2))
+    assert [(r.inducer, r.noise, r.trials) for r in rows] == [("sequential", 0.0, 1)]
