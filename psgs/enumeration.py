@@ -340,7 +340,8 @@ def language(system, max_length: int, *, max_configurations: int = 200_000,
     method : {None, "search", "filter"}
         PSGS only; None chooses by mode (see above).
     **membership_options
-        Filter: passed to :func:`psgs.accepts`.
+        Filter: ``max_states``, ``max_steps`` or ``check_witness``, passed to
+        :func:`psgs.accepts`; any other name is a ValidationError.
 
     Returns
     -------
@@ -378,6 +379,14 @@ def language(system, max_length: int, *, max_configurations: int = 200_000,
             raise ValidationError(f"{name} must be a whole number ≥ 1, not {value!r}")
     check_seconds(max_seconds, optional=True)
     check_count(max_symbols, "max_symbols")
+    # checked here, not by the first accepts call: with no candidate tuple there is none, and
+    # a misspelt budget would be ignored in silence
+    for name, value in membership_options.items():
+        if name not in _MEMBERSHIP_OPTIONS:
+            raise ValidationError(f"unknown option {name!r}; language takes "
+                                  f"{', '.join(_MEMBERSHIP_OPTIONS)} for accepts")
+        if name != "check_witness":
+            check_count(value, name)
     clock = Budget(max_seconds, max_symbols, every=32)
     if method not in (None, "search", "filter"):
         raise ValidationError(f"method must be 'search' or 'filter', not {method!r}")
@@ -401,6 +410,10 @@ def language(system, max_length: int, *, max_configurations: int = 200_000,
         return _psgs_filter(system, max_length, max_words, max_candidates, membership_options,
                             clock)
     raise ValidationError(f"expected a PSGS, a PCGS or a Grammar, not {type(system).__name__}")
+
+
+#: What language hands on to :func:`psgs.accepts` (its own budgets cover the rest).
+_MEMBERSHIP_OPTIONS = ("max_states", "max_steps", "check_witness")
 
 
 def _grammar_language(grammar: Grammar, max_length: int, max_words: int,

@@ -183,3 +183,21 @@ def test_model_values_refuse_a_field_that_is_no_sequence(value):
                        (lambda: as_word(value), "word")):
         with pytest.raises(ValidationError, match=what):
             make()
+
+
+@pytest.mark.parametrize("method, length", [("filter", 16), ("filter", 32), ("search", 32)])
+def test_language_refuses_an_option_accepts_does_not_take(gamma, method, length):
+    # at length 16 there is no candidate tuple, so accepts never saw the misspelt budget
+    with pytest.raises(ValidationError, match="max_state"):
+        psgs.language(gamma, length, method=method, max_state=10)
+
+
+@pytest.mark.parametrize("value", [-1, 0, None, 2.5, True])
+def test_language_checks_a_membership_budget_before_any_candidate(gamma, value):
+    with pytest.raises(ValidationError, match="max_states"):
+        psgs.language(gamma, 16, method="filter", max_states=value)
+
+
+def test_language_hands_on_the_options_accepts_takes(gamma):
+    found = psgs.language(gamma, 32, method="filter", max_states=20_000, check_witness=False)
+    assert found.complete and len(found) == 1
