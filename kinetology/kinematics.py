@@ -246,6 +246,12 @@ def joint_angle(positions: np.ndarray, a: int, b: int, c: int) -> np.ndarray:
     numpy.ndarray
         Degrees in ``[0, 180]``, one per frame (a zero-length segment counts as 90°).
 
+    Raises
+    ------
+    ValueError
+        (ValidationError) Positions that are not frames x joints x 2 or 3 real numbers, or an
+        index that is not an integer naming a joint.
+
     Examples
     --------
     >>> import numpy as np

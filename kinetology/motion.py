@@ -301,7 +301,17 @@ class Motion:
 def check_number(value, name: str, *, positive: bool = False) -> float:
     """``value`` as a float, or a :class:`ValidationError` naming ``name``: it must be a real
     number (a string or a bool is not: ``float("2")`` and ``True`` would pass for one), finite,
-    and not negative (positive when ``positive``)."""
+    and not negative (positive when ``positive``).
+
+    Examples
+    --------
+    >>> check_number(2, "smoothing")
+    2.0
+    >>> check_number("2", "smoothing")
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: smoothing must be a number, not '2'
+    """
     if isinstance(value, bool) or not isinstance(value, Real):
         raise ValidationError(f"{name} must be a number, not {value!r}")
     number = float(value)
@@ -317,6 +327,15 @@ def real_array(values, name: str = "motion values") -> np.ndarray:
     ``np.array(values, dtype=float)`` alone would read the strings ``"1.5"`` as numbers, drop
     the imaginary part of complex values with only a warning, and answer a ragged list or an
     object array with numpy's own errors that do not say which argument was wrong.
+
+    Examples
+    --------
+    >>> real_array([[1, 2]]).dtype
+    dtype('float64')
+    >>> real_array(np.ones(2) + 1j, "values")
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: values must be real numbers, not complex128 (ndarray)
     """
     try:
         given = np.asarray(values)

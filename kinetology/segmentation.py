@@ -91,6 +91,11 @@ def unwrap(values: np.ndarray, period: float = DEFAULTS["unwrap"]) -> np.ndarray
     numpy.ndarray
         The angles with every jump of more than ``period / 2`` removed.
 
+    Raises
+    ------
+    ValueError
+        (ValidationError) Values that are not real numbers or have no time axis; a NaN period.
+
     Examples
     --------
     >>> unwrap(np.array([170.0, 179.0, -178.0, -170.0]))
@@ -278,6 +283,12 @@ def states(values: np.ndarray, frame_rate: float, *, smoothing: float = DEFAULTS
     -------
     numpy.ndarray of int8
         The state code of every frame, the shape of ``values``.
+
+    Raises
+    ------
+    ValueError
+        (ValidationError) Values that are not finite real numbers, a frame rate that is not a
+        positive number, a parameter that is not a non-negative one.
 
     Examples
     --------
