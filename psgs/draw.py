@@ -94,13 +94,18 @@ def parse_forest(system: PSGS, derivation=None, *, seed: int = 0,
     >>> "".join(f.leaves(0)) in {"abcdbcad" * k for k in range(1, 20)}
     True
     """
-    from .derivation import random_derivation
+    from .derivation import Derivation, random_derivation
 
     if not isinstance(system, PSGS):
         raise ValidationError("a forest of parse trees is drawn for a PSGS; a PCGS "
                               "communicates forms between components")
     if derivation is None:
         derivation = random_derivation(system, seed, max_steps=max_steps)
+    elif not isinstance(derivation, Derivation):
+        raise ValidationError(f"derivation must be a Derivation, not {type(derivation).__name__}")
+    elif derivation.system != system:
+        # another system's steps would be drawn under this one's axioms, without an error
+        raise ValidationError("derivation is a derivation of another system")
     labels: list[str] = []
     children: list[list[int]] = []
     rules: list[str | None] = []
@@ -145,6 +150,8 @@ def sync_edges(system: PSGS | PCGS) -> tuple[tuple[tuple[str, str], tuple[str, s
     >>> sync_edges(counting)
     ((('G1', 'p1'), ('G2', 'q1'), 0), (('G1', 'p2'), ('G2', 'q2'), 1))
     """
+    if not isinstance(system, (PSGS, PCGS)):
+        raise ValidationError(f"sync_edges takes a PSGS or a PCGS, not {type(system).__name__}")
     names = system.component_names
     edges = []
     if isinstance(system, PSGS):

@@ -103,6 +103,9 @@ def get(name: str, **params) -> Inducer:
     ...
     psgs.errors.ValidationError: inducer pal has no parameter 'colour' (its parameters: ...)
     """
+    if not isinstance(name, str):  # a list is no name, and a dict lookup would say unhashable
+        raise ValidationError(f"an inducer is named by a str, not {name!r}; available: "
+                              f"{', '.join(available())}")
     plugins = _plugins()
     if name in _BUILT_IN:
         if name in plugins:

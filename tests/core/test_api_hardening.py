@@ -201,3 +201,32 @@ def test_language_checks_a_membership_budget_before_any_candidate(gamma, value):
 def test_language_hands_on_the_options_accepts_takes(gamma):
     found = psgs.language(gamma, 32, method="filter", max_states=20_000, check_witness=False)
     assert found.complete and len(found) == 1
+
+
+# ---------------------------------------------------------------- drawing, inducers by name
+def test_parse_forest_refuses_a_derivation_of_another_system(gamma):
+    from psgs.draw import parse_forest
+
+    counting = psgs.load("counting")
+    with pytest.raises(ValidationError, match="another system"):
+        parse_forest(gamma, psgs.random_derivation(counting, 0))
+    with pytest.raises(ValidationError, match="Derivation"):
+        parse_forest(gamma, "S1 => a")
+    assert parse_forest(gamma, psgs.random_derivation(gamma, 3)).components == ("G1", "G2",
+                                                                                 "G3", "G4")
+
+
+@pytest.mark.parametrize("system", [None, "paper_example", 3])
+def test_sync_edges_refuses_what_is_no_system(system):
+    from psgs.draw import sync_edges
+
+    with pytest.raises(ValidationError, match="PSGS or a PCGS"):
+        sync_edges(system)
+
+
+@pytest.mark.parametrize("name", [None, 3, ["pal"], {"pal": 1}])
+def test_get_refuses_a_name_that_is_no_str(name):
+    from psgs.induce import get
+
+    with pytest.raises(ValidationError, match="named by a str"):
+        get(name)
