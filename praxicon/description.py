@@ -49,11 +49,10 @@ from functools import partial
 
 import numpy as np
 
-from psgs.errors import PSGSError
-
+from ._arguments import DescriptionError, described
 from ._description_json import (FieldError, action_fields, check_format, check_window,
                                 spread_fields)
-from .feature_choice import choose_features, groups_problem
+from .feature_choice import choose_features
 from .feature_groups import feature_groups, group_distances
 from .features import FeatureError, feature_joint, motion_features
 # the model and its scores live in .scoring; the names below are this module's as well, for
@@ -81,10 +80,6 @@ _MARGIN = 1.5  # the "none of these" threshold: this times the worst held-out tr
 _FOLDS = 5  # held-out folds of the calibration
 #: How often a known take may fail the feature-group test (over all groups together).
 GROUP_LEVEL = 0.01
-
-
-class DescriptionError(PSGSError, ValueError):
-    """Descriptions that cannot be made, read or used (one line, naming what to do)."""
 
 
 def _floats(values) -> tuple[float, ...]:
@@ -533,11 +528,11 @@ def describe(takes: dict[str, list], *, rank: int = _RANK,
     Parameters
     ----------
     takes : dict of str to list of Motion
-        Per action its takes.
+        Per action (a string) its takes.
     rank : int
-        The shared directions of variation kept.
+        The shared directions of variation kept (0 or more).
     level : float
-        How often a known take may be answered "none of these" by the feature-group test.
+        How often (0 < level < 1) a known take may be answered "none of these" (group test).
     groups : mapping of str to sequence, optional
         Per action, each take's group (a style, a performer; any hashable value, compared
         by equality): the choice of features holds a group's takes out together, which asks
@@ -555,8 +550,9 @@ def describe(takes: dict[str, list], *, rank: int = _RANK,
     Raises
     ------
     DescriptionError
-        When the takes cannot be described (no takes, no joint in common) or ``groups``
-        does not give one hashable group per take of every action.
+        When the takes cannot be described (no takes, no joint in common, not names to
+        motions), ``groups`` does not give one hashable group per take of every action, or
+        ``rank``, ``level`` or ``choose`` is out of its type or range.
 
     Examples
     --------
@@ -574,10 +570,7 @@ def describe(takes: dict[str, list], *, rank: int = _RANK,
     >>> d.names
     ('a', 'b')
     """
-    problem = None if groups is None else groups_problem(
-        {name: len(motions) for name, motions in takes.items()}, groups)
-    if problem:
-        raise DescriptionError(problem)
+    takes = described(takes, rank, level, choose, groups)
     rows = {name: feature_rows(motions) for name, motions in takes.items()}
     order, table = common_table(rows)
     if choose:

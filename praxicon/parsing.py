@@ -22,10 +22,12 @@ answer covers the ``hop`` around its centre, so spans follow the motion to withi
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
+from ._arguments import kinds_of, real_number
 from .description import (OWN_KINDS, DescriptionError, common_table, describe_table,
                           feature_rows, probabilities, score_model, scores)
 from ._description_json import WINDOWS
@@ -119,7 +121,9 @@ def describe_windows(takes: dict[str, list], *, window: float = _WINDOW, hop: fl
     window length, which :func:`parse` cuts recordings into: from 0.1 to 60 seconds
     (what a praxicon reads back).
     """
-    if not (isinstance(window, (int, float)) and WINDOWS[0] <= window <= WINDOWS[1]):
+    real_number(hop, "hop", above=0.0)  # 0 or less was one window a frame, without a word
+    if isinstance(window, bool) or not (isinstance(window, (int, float))
+                                        and WINDOWS[0] <= window <= WINDOWS[1]):
         raise DescriptionError(f"a window of {window!r} seconds: windows are {WINDOWS[0]:g} to "
                                f"{WINDOWS[1]:g} seconds long")
     rows, sources = {}, {}
@@ -170,6 +174,11 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
     """
     from .recognition import _descriptions, _motion, feature_matrix
 
+    # a hop of 0 or less was one window a frame, a NaN or negative switch cost a timeline of
+    # nonsense, without a word (an infinite cost is allowed: the recording is one action)
+    real_number(hop, "hop", above=0.0)
+    real_number(switch, "switch", least=0.0, most=math.inf)
+    own = kinds_of(own)
     descriptions = _descriptions(praxicon, windows=True)
     if not descriptions.spread.window:
         raise DescriptionError("parse needs window descriptions (describe_windows; "

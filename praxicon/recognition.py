@@ -38,6 +38,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ._arguments import motion_of, motions_of, whole_number
 from .description import (DescriptionError, Descriptions, feature_rows, mahalanobis_terms,
                           model_scores, own_columns, _part, probabilities, score_model)
 from .feature_groups import feature_groups, group_distances, telling_groups
@@ -140,10 +141,7 @@ def _descriptions(source, *, windows: bool = False) -> Descriptions:
 
 
 def _motion(source):
-    if isinstance(source, (str, Path)):
-        import kinetology
-        return kinetology.read(source)
-    return source
+    return motion_of(source)  # a Motion, or read from its file; anything else is refused
 
 
 def feature_matrix(descriptions: Descriptions, motions, *, shape: bool = True):
@@ -216,7 +214,8 @@ def recognise_many(praxicon, motions, *, explain: int = 3) -> list[Recognition]:
     if any(a.window for a in descriptions.actions):
         raise DescriptionError("these are window descriptions (for parse); recognise needs the "
                                "whole-take descriptions")
-    motions = [_motion(m) for m in motions]
+    whole_number(explain, "explain")
+    motions = motions_of(motions)
     rows = feature_rows(motions)
     out: list = [None] * len(motions)
     for indices, columns, x in _by_features(descriptions, rows):

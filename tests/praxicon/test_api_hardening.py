@@ -1,0 +1,128 @@
+"""describe, recognise and parse refuse a wrong argument with one DescriptionError naming it.
+
+Before, a motion that was None reached the feature code (AttributeError), a rank given as a
+string numpy (TypeError), and a level of 2, a hop of 0 or a NaN switch cost gave an answer
+without a word.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from kinetology import Motion, synthetic_motion
+from praxicon.description import DescriptionError, describe
+from praxicon.parsing import describe_windows, parse
+from praxicon.recognition import recognise, recognise_many
+
+
+@pytest.fixture(scope="module")
+def takes():
+    return {"a": [synthetic_motion(2, (0,), seed=s) for s in (1, 2)],
+            "b": [synthetic_motion(2, (1,), seed=s) for s in (3, 4)]}
+
+
+@pytest.fixture(scope="module")
+def described(takes):
+    return describe(takes)
+
+
+@pytest.fixture(scope="module")
+def windows():
+    return describe_windows({"a": [synthetic_motion(2, (0,), seed=s, repetitions=4) for s in (1, 2)],
+                             "b": [synthetic_motion(2, (1,), seed=s, repetitions=4) for s in (3, 4)]})
+
+
+@pytest.mark.parametrize("make, match", [
+    (lambda t: None, "takes must map each action's name"),
+    (lambda t: list(t["a"]), "takes must map each action's name"),
+    (lambda t: {"a": [None], "b": t["b"]}, "must be kinetology.Motion values"),
+    (lambda t: {"a": t["a"][0], "b": t["b"]}, "must be a sequence of motions"),
+    (lambda t: {1: t["a"], 2: t["b"]}, "an action's name must be a string"),
+])
+def test_describe_checks_its_takes(takes, make, match):
+    with pytest.raises(DescriptionError, match=match):
+        describe(make(takes))
+
+
+@pytest.mark.parametrize("options, match", [
+    ({"rank": -1}, "rank must be an integer"),
+    ({"rank": 1.5}, "rank must be an integer"),
+    ({"rank": "16"}, "rank must be an integer"),
+    ({"rank": True}, "rank must be an integer"),
+    ({"level": 2.0}, "level must be a number above 0 and below 1"),     # was accepted
+    ({"level": 0.0}, "level must be a number above 0"),                 # was a division by 0
+    ({"level": float("nan")}, "level must be a number"),
+    ({"level": "0.01"}, "level must be a number"),
+    ({"choose": "no"}, "choose must be True or False"),                 # "no" was true
+])
+def test_describe_checks_its_options(takes, options, match):
+    with pytest.raises(DescriptionError, match=match):
+        describe(takes, **options)
+
+
+def test_describe_reads_a_generator_of_takes_once(takes):
+    from_lists = describe(takes, choose=False)
+    from_generators = describe({n: (m for m in ms) for n, ms in takes.items()}, choose=False)
+    assert from_generators == from_lists
+
+
+@pytest.mark.parametrize("motion", [None, np.zeros((10, 2)), 5])
+def test_recognise_and_parse_refuse_what_is_no_motion(described, windows, motion):
+    with pytest.raises(DescriptionError, match="a motion must be a kinetology.Motion"):
+        recognise(described, motion)
+    with pytest.raises(DescriptionError, match="a motion must be a kinetology.Motion"):
+        parse(windows, motion)
+
+
+@pytest.mark.parametrize("motions", [None, "motion"])
+def test_recognise_many_wants_a_sequence_of_motions(described, motions):
+    motions = synthetic_motion(2, (0,), seed=9) if motions == "motion" else motions
+    with pytest.raises(DescriptionError, match="motions must be a sequence of motions"):
+        recognise_many(described, motions)
+
+
+@pytest.mark.parametrize("explain", [-1, 1.5, "3", True, None])
+def test_recognise_checks_explain(described, explain):
+    with pytest.raises(DescriptionError, match="explain must be an integer"):
+        recognise(described, synthetic_motion(2, (0,), seed=9), explain=explain)
+
+
+def recording() -> Motion:
+    a, b = synthetic_motion(2, (0,), seed=7), synthetic_motion(2, (1,), seed=8)
+    return Motion(np.concatenate([a.values, b.values]), a.channels, a.frame_rate)
+
+
+@pytest.mark.parametrize("options, match", [
+    ({"hop": 0.0}, "hop must be a finite number above 0"),    # was a window every frame
+    ({"hop": -1.0}, "hop must be a finite number above 0"),
+    ({"hop": float("nan")}, "hop must be a finite number"),
+    ({"hop": "0.25"}, "hop must be a finite number"),
+    ({"switch": -1.0}, "switch must be a number at least 0"),  # was a timeline of nonsense
+    ({"switch": float("nan")}, "switch must be a number at least 0"),
+    ({"switch": "10"}, "switch must be a number"),
+    ({"own": None}, "own must be a sequence of feature kinds"),
+    ({"own": "drift"}, "own must be a sequence of feature kinds"),
+])
+def test_parse_checks_its_options(windows, options, match):
+    with pytest.raises(DescriptionError, match=match):
+        parse(windows, recording(), **options)
+
+
+def test_parse_with_an_infinite_switch_cost_is_one_action(windows):
+    assert len({s.action for s in parse(windows, recording(), switch=float("inf")).spans}) == 1
+
+
+@pytest.mark.parametrize("options, match", [
+    ({"hop": 0.0}, "hop must be a finite number above 0"),
+    ({"window": True}, "a window of True seconds"),            # was a window of 1 s
+])
+def test_describe_windows_checks_its_options(takes, options, match):
+    with pytest.raises(DescriptionError, match=match):
+        describe_windows(takes, **options)
+
+
+def test_recognise_and_parse_give_the_same_answer_twice(described, windows):
+    motion = synthetic_motion(2, (0,), seed=9)
+    assert recognise(described, motion) == recognise(described, motion)
+    assert parse(windows, recording()) == parse(windows, recording())
