@@ -364,7 +364,13 @@ class Derivation:
     reason: str | None = None
 
     def __post_init__(self) -> None:
+        _require_system(self.system)
+        if not isinstance(self.steps, Iterable):
+            raise ValidationError(f"steps must be a sequence of Step values, not {self.steps!r}")
         steps = tuple(self.steps)
+        for k, step in enumerate(steps, start=1):
+            if not isinstance(step, Step):
+                raise ValidationError(f"step {k} is not a Step: {short(repr(step))}")
         object.__setattr__(self, "steps", steps)
         configurations = tuple(self.configurations)
         if not configurations:
@@ -378,6 +384,12 @@ class Derivation:
         for k, step in enumerate(steps):
             if step.before != configurations[k] or step.after != configurations[k + 1]:
                 raise ValidationError(f"step {k + 1} does not join configurations {k} and {k + 1}")
+        # another system's steps would pass the joins above and read as this system's words
+        width = len(self.system.components)
+        for k, configuration in enumerate(configurations):
+            if len(configuration) != width:
+                raise ValidationError(f"configuration {k} has {len(configuration)} forms but "
+                                      f"the system has {width} components")
 
     @property
     def result(self) -> Configuration:

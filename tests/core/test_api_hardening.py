@@ -230,3 +230,19 @@ def test_get_refuses_a_name_that_is_no_str(name):
 
     with pytest.raises(ValidationError, match="named by a str"):
         get(name)
+
+
+def test_a_derivation_refuses_steps_of_another_system(gamma):
+    from psgs.derivation import Derivation
+
+    counting = psgs.random_derivation(psgs.load("counting"), 0)
+    with pytest.raises(ValidationError, match="4 components"):
+        Derivation(gamma, counting.steps)
+    with pytest.raises(ValidationError, match="Step"):
+        Derivation(gamma, [1])
+    with pytest.raises(ValidationError, match="steps"):
+        Derivation(gamma, None)
+    with pytest.raises(ValidationError, match="PSGS or a PCGS"):
+        Derivation(None, ())
+    own = psgs.random_derivation(gamma, 1)
+    assert Derivation(gamma, own.steps) == Derivation(gamma, own.steps, own.configurations)
