@@ -44,7 +44,10 @@ from .records import ActionRecord, Praxicon, _count
 from .store import load
 
 __all__ = ["Generated", "Method", "generate", "generate_motion", "derive_copies",
-           "has_grammar", "is_smooth_cycle", "style_scales"]
+           "has_grammar", "is_smooth_cycle", "style_scales", "MAX_REPEAT"]
+
+#: The most copies one call makes: the time grows with their square (10,000: 30 s; 10**9 hung).
+MAX_REPEAT = 1000
 
 _RISING = {"B": 1.0, "G": 1.0, "R": -1.0, "Y": -1.0}
 # kineteme changes a smooth angle can make: one sign flips, and a velocity sign flips only
@@ -429,10 +432,12 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     import kinetology
     from psgs import loads
 
+    if not isinstance(record, ActionRecord):
+        raise ValueError(f"record must be an ActionRecord, not {type(record).__name__}")
     if not record.learnt:
         raise ValueError(f"action {record.name!r} was not learnt: {record.reason}")
-    if not isinstance(repeat, int) or repeat < 1:
-        raise ValueError(f"repeat must be a whole number >= 1, not {repeat!r}")
+    if isinstance(repeat, bool) or not isinstance(repeat, int) or not 1 <= repeat <= MAX_REPEAT:
+        raise ValueError(f"repeat must be a whole number from 1 to {MAX_REPEAT}, not {repeat!r}")
     if not has_grammar(record):  # a one-off gesture: its performances' course, played
         from .acyclic import performed_motion
 
@@ -517,8 +522,8 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None =
     action : str
         An action name of its index.
     repeat : int, optional
-        How many synchronised copies (default 3); of an action without a grammar, how many
-        times its gesture is played one after the other (default 1).
+        How many synchronised copies (default 3, at most :data:`MAX_REPEAT`); of an action
+        without a grammar, how many times its gesture is played in a row (default 1).
     output : str or Path, optional
         Write the motion there as BVH.
     plot : str or Path, optional

@@ -126,3 +126,36 @@ def test_recognise_and_parse_give_the_same_answer_twice(described, windows):
     motion = synthetic_motion(2, (0,), seed=9)
     assert recognise(described, motion) == recognise(described, motion)
     assert parse(windows, recording()) == parse(windows, recording())
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory):
+    from praxicon import build, read_dataset
+    from praxicon_fixtures import write_manifest
+
+    data = tmp_path_factory.mktemp("data")
+    manifest = write_manifest(data, {"wave": [1, 2, 3], "step": [4, 5, 6]})
+    return build(read_dataset(manifest), data / "px", progress=False).praxicon
+
+
+@pytest.mark.parametrize("repeat", [10**9, 10**5, 1001, True, 0, 1.5, "2"])
+def test_generate_refuses_a_repeat_out_of_range_at_once(built, repeat):
+    from praxicon.generation import MAX_REPEAT, generate
+
+    with pytest.raises(ValueError, match=f"repeat must be a whole number from 1 to {MAX_REPEAT}"):
+        generate(built, built.names[0], repeat=repeat)   # 10**9 never returned, True was 1
+
+
+def test_generate_gives_the_same_motion_twice(built):
+    from praxicon.generation import generate
+
+    first = generate(built, built.names[0], repeat=2)
+    assert first.motion.values.tobytes() == \
+        generate(built, built.names[0], repeat=2).motion.values.tobytes()
+
+
+def test_generate_motion_refuses_what_is_no_record():
+    from praxicon.generation import generate_motion
+
+    with pytest.raises(ValueError, match="record must be an ActionRecord"):
+        generate_motion(None, 2)
