@@ -28,7 +28,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from kinetology.motion import FRAME_RATE_RANGE
-from psgs.errors import NotFound, PSGSError
+from psgs.errors import NotFound, PSGSError, ValidationError
 
 from .description import DescriptionError, Descriptions
 from .jsonvalues import Fields, as_dict, freeze, pairs as _pairs
@@ -104,6 +104,19 @@ class Settings:
     segmentation: tuple[tuple[str, object], ...] = ()
     min_performances: int = 2
 
+    def __post_init__(self) -> None:
+        # a dict given for params would be shared with the caller, who could change the
+        # settings of a praxicon already built; a string or a bool is no count
+        pairs = all(isinstance(v, tuple) and all(isinstance(p, tuple) and len(p) == 2
+                                                 and isinstance(p[0], str) for p in v)
+                    for v in (self.params, self.segmentation))
+        count = self.min_performances
+        if not (isinstance(self.inducer, str) and pairs and isinstance(count, int)
+                and not isinstance(count, bool) and count >= 1):
+            raise ValidationError(f"settings need an inducer's name, params and segmentation as "
+                                  f"(name, value) pairs (Settings.make takes dicts) and "
+                                  f"min_performances of at least 1, not {self!r}")
+
     @classmethod
     def make(cls, inducer: str = "pal", params: dict | None = None,
              segmentation: dict | None = None, min_performances: int = 2) -> "Settings":
@@ -136,8 +149,11 @@ class Settings:
             raise PraxiconError(f"{where}: 'settings' must hold inducer, params, segmentation "
                                 f"and min_performances")
         # JSON lists come back as lists; the settings made from a command line hold the same
-        return cls.make(value["inducer"], value["params"], value["segmentation"],
-                        value["min_performances"])
+        try:
+            return cls.make(value["inducer"], value["params"], value["segmentation"],
+                            value["min_performances"])
+        except ValidationError as exc:  # min_performances 0: the folder's error, as the rest
+            raise PraxiconError(f"{where}: {exc}") from None
 
 
 def _count(n: int, noun: str) -> str:

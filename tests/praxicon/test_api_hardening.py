@@ -159,3 +159,24 @@ def test_generate_motion_refuses_what_is_no_record():
 
     with pytest.raises(ValueError, match="record must be an ActionRecord"):
         generate_motion(None, 2)
+
+
+@pytest.mark.parametrize("options", [
+    {"inducer": 5}, {"min_performances": -1}, {"min_performances": "2"},
+    {"min_performances": True}, {"params": {"min_copies": 3}},   # a dict shared with the caller
+    {"segmentation": (("smoothing",),)},
+])
+def test_settings_check_their_fields(options):
+    from praxicon import Settings
+    from psgs.errors import ValidationError
+
+    with pytest.raises(ValidationError, match="settings need an inducer's name"):
+        Settings(**options)
+
+
+def test_settings_of_a_folder_with_no_performances_needed_are_the_folders_error():
+    from praxicon import PraxiconError, Settings
+
+    with pytest.raises(PraxiconError, match="index.json: settings need"):
+        Settings.from_dict({"inducer": "pal", "params": {}, "segmentation": {},
+                            "min_performances": 0}, "index.json")
