@@ -17,7 +17,10 @@ gives the same list.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
+
+from psgs.errors import ValidationError
 
 from .records import ActionRecord, ChannelMorpheme, JointRecord, Praxicon
 
@@ -80,6 +83,12 @@ def shared_patterns(praxicon, *, min_length: int = 4, min_actions: int = 2) -> l
     -------
     list of SharedPattern
 
+    Raises
+    ------
+    ValueError
+        (ValidationError) ``min_length`` or ``min_actions`` that is no whole number of at
+        least 1, or records that are not ActionRecords.
+
     Examples
     --------
     >>> def action(name, channel, kinetemes):
@@ -90,7 +99,14 @@ def shared_patterns(praxicon, *, min_length: int = 4, min_actions: int = 2) -> l
     >>> [(p.joint, " ".join(p.kinetemes), p.actions) for p in shared_patterns(records)]
     [('arm', 'B G R Y', ('a', 'b'))]
     """
+    for name, count in (("min_length", min_length), ("min_actions", min_actions)):
+        # 0 or less made patterns of no kineteme or slices of the wrong end, without a word
+        if isinstance(count, bool) or not isinstance(count, int) or count < 1:
+            raise ValidationError(f"{name} must be a whole number of at least 1, not {count!r}")
     records = praxicon.actions if isinstance(praxicon, Praxicon) else praxicon
+    records = tuple(records) if isinstance(records, Iterable) else None
+    if records is None or not all(isinstance(r, ActionRecord) for r in records):
+        raise ValidationError("shared_patterns reads a Praxicon or its ActionRecords")
     holders: dict[str, dict[tuple[str, ...], set[tuple[str, str]]]] = {}
     wholes: set[tuple[str, ...]] = set()  # patterns that are a whole cycle (read cyclically)
     for action in records:

@@ -155,6 +155,14 @@ def write_shared(out: Path, praxicon: Praxicon) -> None:
                  dump_json([p.to_dict() for p in shared_patterns(praxicon)]))
 
 
+def _folder(folder) -> Path:
+    """``folder`` as a Path; one that is no path (None, a number) is the folder's error, not
+    the TypeError of ``Path(None)``."""
+    if not isinstance(folder, (str, os.PathLike)):
+        raise PraxiconError(f"a praxicon folder is a path, not {type(folder).__name__}")
+    return Path(folder)
+
+
 def dump(praxicon: Praxicon, folder: str | Path) -> None:
     """Write ``praxicon`` into ``folder``: every record and system, the index, the actuator
     matrix and the shared patterns (what :func:`load` reads back as an equal value).
@@ -172,10 +180,12 @@ def dump(praxicon: Praxicon, folder: str | Path) -> None:
     >>> load(folder) == px
     True
     """
+    if not isinstance(praxicon, Praxicon):
+        raise PraxiconError(f"dump writes a Praxicon, not {type(praxicon).__name__}")
     problems = [p for p in map(name_problem, praxicon.names) if p]
     if problems:
         raise PraxiconError(problems[0])
-    folder = Path(folder)
+    folder = _folder(folder)
     for record in praxicon.actions:
         write_record(folder, record, praxicon.key(record.name))
     write_index(folder, praxicon)
@@ -214,7 +224,7 @@ def load(folder: str | Path) -> Praxicon:
     ...
     praxicon.records.PraxiconError: ...: not a praxicon folder (no index.json; build one with 'psgs praxicon build DATASET... -o FOLDER')
     """
-    folder = Path(folder)
+    folder = _folder(folder)
     if not folder.exists():
         raise PraxiconError(f"{folder}: no such praxicon folder")
     if not folder.is_dir():

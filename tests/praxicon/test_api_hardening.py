@@ -180,3 +180,42 @@ def test_settings_of_a_folder_with_no_performances_needed_are_the_folders_error(
     with pytest.raises(PraxiconError, match="index.json: settings need"):
         Settings.from_dict({"inducer": "pal", "params": {}, "segmentation": {},
                             "min_performances": 0}, "index.json")
+
+
+@pytest.mark.parametrize("folder", [None, 5])
+def test_load_and_dump_refuse_a_folder_that_is_no_path(built, folder):
+    from praxicon import PraxiconError, dump, load
+
+    with pytest.raises(PraxiconError, match="a praxicon folder is a path"):
+        load(folder)
+    with pytest.raises(PraxiconError, match="a praxicon folder is a path"):
+        dump(built, folder)
+
+
+def test_dump_refuses_what_is_no_praxicon(tmp_path):
+    from praxicon import PraxiconError, dump
+
+    with pytest.raises(PraxiconError, match="dump writes a Praxicon"):
+        dump(None, tmp_path / "px")
+
+
+@pytest.mark.parametrize("options, match", [
+    ({"min_length": 0}, "min_length must be a whole number of at least 1"),   # was accepted
+    ({"min_length": -1}, "min_length must be a whole number"),   # patterns of 7 kinetemes
+    ({"min_length": "4"}, "min_length must be a whole number"),
+    ({"min_actions": True}, "min_actions must be a whole number"),
+])
+def test_shared_patterns_checks_its_counts(built, options, match):
+    from praxicon import shared_patterns
+    from psgs.errors import ValidationError
+
+    with pytest.raises(ValidationError, match=match):
+        shared_patterns(built, **options)
+
+
+def test_shared_patterns_refuses_what_is_no_record():
+    from praxicon import shared_patterns
+    from psgs.errors import ValidationError
+
+    with pytest.raises(ValidationError, match="reads a Praxicon or its ActionRecords"):
+        shared_patterns(None)
