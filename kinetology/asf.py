@@ -18,6 +18,7 @@ else they are ``bone.1``, ``bone.2`` .. (``root`` gets ``tx ty tz rx ry rz``).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from numbers import Real
 from pathlib import Path
 from types import MappingProxyType
 
@@ -28,7 +29,7 @@ from psgs.errors import ValidationError
 
 from ._amc_frames import frame_layout, indent as _indent
 from .motion import (FRAME_RATE_RANGE, Joint, Motion, MotionFormatError, Skeleton, build_motion,
-                     file_text)
+                     as_path, file_text)
 from .textblocks import parse_rows, token_column
 
 __all__ = ["AsfSkeleton", "read_asf", "parse_asf", "read_amc", "parse_amc", "find_asf"]
@@ -124,7 +125,7 @@ def read_asf(path: str | Path) -> AsfSkeleton:
     >>> read_asf(folder / "07.asf").skeleton.names
     ('root', 'femur', 'femur.end')
     """
-    path = Path(path)
+    path = as_path(path)
     return parse_asf(file_text(path), source=str(path))
 
 
@@ -415,12 +416,15 @@ def read_amc(path: str | Path, asf: str | Path | AsfSkeleton | None = "auto",
     >>> walk.column("femur.rx").tolist(), walk.skeleton.names
     ([10.0, 20.0], ('root', 'femur', 'femur.end'))
     """
-    path = Path(path)
+    path = as_path(path)
     if isinstance(asf, str) and asf == "auto":
         found = find_asf(path)
         asf = read_asf(found) if found is not None else None
     elif isinstance(asf, (str, Path)):
         asf = read_asf(asf)
+    elif asf is not None and not isinstance(asf, AsfSkeleton):
+        raise ValidationError(f"asf must be 'auto', a path, an AsfSkeleton or None, not "
+                              f"{type(asf).__name__}")
     dofs = asf.dofs if asf is not None else _key_file_dofs(path.with_name("SkeletonJoints.key"))
     return parse_amc(file_text(path), dofs=dofs,
                      skeleton=asf.skeleton if asf is not None else None, source=str(path),
@@ -489,6 +493,8 @@ def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None 
     ...
     kinetology.motion.MotionFormatError: gap.amc:3:1: expected frame number 2, found '3' (frames are numbered one after another from 1)
     """
+    if isinstance(frame_rate, bool) or not isinstance(frame_rate, Real):  # "120" was a TypeError
+        raise ValidationError(f"frame rate must be a number, not {frame_rate!r}")
     slowest, fastest = FRAME_RATE_RANGE
     if not slowest <= frame_rate <= fastest:  # nan fails both comparisons
         raise ValidationError(f"frame rate {frame_rate!r} is outside {slowest:g} .. "

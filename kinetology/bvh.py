@@ -19,7 +19,7 @@ import numpy as np
 from psgs._foundation.text import decimal, split_lines
 
 from .motion import (FRAME_RATE_RANGE, Joint, Motion, MotionFormatError, Skeleton, build_motion,
-                     file_text)
+                     as_path, file_text)
 from .textblocks import parse_rows
 
 __all__ = ["read_bvh", "parse_bvh", "FRAME_TIME_RANGE"]
@@ -85,7 +85,7 @@ def read_bvh(path: str | Path) -> Motion:
     >>> knee.frames, knee.frame_rate, knee.skeleton.names
     (3, 120.0, ('knee', 'knee.end'))
     """
-    path = Path(path)
+    path = as_path(path)
     return parse_bvh(file_text(path), source=str(path))
 
 

@@ -38,7 +38,7 @@ import numpy as np
 
 from psgs.errors import ValidationError
 
-from .motion import FRAME_RATE_RANGE, Joint, Motion, Skeleton
+from .motion import FRAME_RATE_RANGE, Joint, Motion, Skeleton, as_path
 
 __all__ = ["write_bvh", "format_bvh", "star_skeleton", "without_axes"]
 
@@ -197,6 +197,8 @@ def format_bvh(motion: Motion) -> str:
     >>> text.splitlines()[:5]
     ['HIERARCHY', 'ROOT knee', '{', '  OFFSET 0 0 0', '  CHANNELS 1 Xrotation']
     """
+    if not isinstance(motion, Motion):
+        raise ValidationError(f"motion must be a Motion, not {type(motion).__name__}")
     skeleton = motion.skeleton or star_skeleton(motion.channels)
     listed = [c for j in skeleton.joints for c in j.channels]
     if sorted(listed) != sorted(motion.channels):
@@ -284,6 +286,6 @@ def write_bvh(motion: Motion, path: str | Path) -> Path:
     >>> read(out).values.tolist()
     [[1.25, -3.0], [2.0, 4.5]]
     """
-    path = Path(path)
+    path = as_path(path)
     path.write_text(format_bvh(motion), encoding="utf-8")
     return path

@@ -27,7 +27,7 @@ from psgs._foundation.text import split_lines
 from psgs.errors import ValidationError
 
 from .bvh import FRAME_TIME_RANGE
-from .motion import MotionFormatError, file_text
+from .motion import MotionFormatError, as_path, check_number, file_text
 
 __all__ = ["Span", "MOCAP6_ACTIONS", "read_cmu_truelabels", "read_bandai_json", "spans_of"]
 
@@ -111,9 +111,8 @@ def read_cmu_truelabels(path: str | Path, frame_rate: float = 120.0) -> tuple[Sp
     >>> [(s.label, s.start, s.stop) for s in read_cmu_truelabels(p)]
     [('JumpJack', 0.0, 0.3), ('ArmCircle', 0.3, 0.5)]
     """
-    path = Path(path)
-    if not frame_rate > 0:
-        raise ValidationError(f"frame rate must be positive, not {frame_rate!r}")
+    path = as_path(path)
+    check_number(frame_rate, "frame rate", positive=True)  # "120" or True: no rate
     step = FRAMES_PER_LABEL / frame_rate
     labels: list[int] = []
     for number, line in enumerate(split_lines(file_text(path)), 1):
@@ -212,7 +211,7 @@ def read_bandai_json(path: str | Path, duration: float | None = None) -> tuple[S
     ...     print("bye normal 3.7")
     bye normal 3.7
     """
-    path = Path(path)
+    path = as_path(path)
     text = file_text(path)  # outside the try: its own errors are located already
     try:
         record = json.loads(text)
@@ -232,6 +231,8 @@ def read_bandai_json(path: str | Path, duration: float | None = None) -> tuple[S
     content = _label_names(cfg / "content_label.txt", record["content"], "content", path)
     style = (_label_names(cfg / "style_label.txt", record["style"], "style", path)
              if "style" in record else None)
+    if duration is not None:  # float("3") would take a string for seconds
+        check_number(duration, "duration", positive=True)
     if duration is None:
         bvh = path.with_suffix(".bvh")
         if not bvh.is_file():
@@ -267,7 +268,7 @@ def spans_of(path: str | Path, frame_rate: float = 120.0) -> tuple[Span, ...]:
     ...
     kinetology.motion.MotionFormatError: labels.csv: unknown label format '.csv'; expected .txt (CMU mocap6 truelabels) or .json (Bandai Namco)
     """
-    path = Path(path)
+    path = as_path(path)
     if path.suffix.lower() == ".json":
         return read_bandai_json(path)
     if path.suffix.lower() == ".txt":

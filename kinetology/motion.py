@@ -13,6 +13,7 @@ import os
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from numbers import Real
+from pathlib import Path
 from types import MappingProxyType
 
 import numpy as np
@@ -21,7 +22,7 @@ from psgs._foundation.files import decode_utf8, read_bytes
 from psgs.errors import FormatError, NotFound, ValidationError
 
 __all__ = ["MotionFormatError", "Joint", "Skeleton", "Motion", "AXES", "build_motion",
-           "file_text", "FRAME_RATE_RANGE", "check_number", "real_array"]
+           "file_text", "FRAME_RATE_RANGE", "check_number", "real_array", "as_path"]
 
 #: Channel axes, in the order a joint's channels are listed.
 AXES = ("tx", "ty", "tz", "rx", "ry", "rz")
@@ -319,6 +320,25 @@ def check_number(value, name: str, *, positive: bool = False) -> float:
         raise ValidationError(f"{name} must be a {'positive' if positive else 'non-negative'} "
                               f"number, not {value!r}")
     return number
+
+
+def as_path(path, name: str = "path") -> Path:
+    """``path`` as a :class:`~pathlib.Path`; a :class:`ValidationError` naming ``name`` when it
+    is no path (None, a number), not the ``TypeError`` of ``Path(None)``.
+
+    Examples
+    --------
+    >>> as_path("walk.bvh").name
+    'walk.bvh'
+    >>> as_path(None)
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: path must be a file's path (str or os.PathLike), not NoneType
+    """
+    if not isinstance(path, (str, os.PathLike)):
+        raise ValidationError(f"{name} must be a file's path (str or os.PathLike), not "
+                              f"{type(path).__name__}")
+    return Path(path)
 
 
 def real_array(values, name: str = "motion values") -> np.ndarray:

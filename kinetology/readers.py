@@ -6,7 +6,7 @@ from pathlib import Path
 
 from .asf import read_amc
 from .bvh import read_bvh
-from .motion import Motion, MotionFormatError
+from .motion import Motion, MotionFormatError, as_path
 
 __all__ = ["read", "SUFFIXES"]
 
@@ -68,7 +68,7 @@ def read(path: str | Path, **options) -> Motion:
     ...
     kinetology.motion.MotionFormatError: ...knee.c3d: unknown motion format '.c3d'; expected one of .bvh, .amc
     """
-    path = Path(path)
+    path = as_path(path)
     suffix = path.suffix.lower()
     if suffix == ".bvh":
         return read_bvh(path, **options)

@@ -264,3 +264,56 @@ def test_view_checks_its_arguments(motions, options, match):
     motions = with_skeleton() if isinstance(motions, str) else motions
     with pytest.raises(kinetology.ViewError, match=match):
         kinetology.view(motions, **options)
+
+
+@pytest.mark.parametrize("path", [None, 5])
+@pytest.mark.parametrize("reader", ["read", "read_bvh", "read_amc", "read_asf",
+                                    "read_cmu_truelabels", "read_bandai_json"])
+def test_readers_refuse_a_path_that_is_no_path(reader, path):
+    with pytest.raises(ValidationError, match="path must be a file's path"):
+        getattr(kinetology, reader)(path)
+
+
+def test_write_bvh_checks_its_motion_and_path(tmp_path):
+    with pytest.raises(ValidationError, match="path must be a file's path"):
+        kinetology.write_bvh(with_skeleton(), None)
+    with pytest.raises(ValidationError, match="motion must be a Motion"):
+        kinetology.write_bvh(None, tmp_path / "x.bvh")
+
+
+SMALL_AMC = "1\nroot 1 2 3 0 0 0\n2\nroot 1 2 4 0 0 0\n"
+
+
+@pytest.mark.parametrize("rate", ["120", True])   # "120" was a TypeError, True 1 fps
+def test_an_amc_frame_rate_must_be_a_number(tmp_path, rate):
+    path = tmp_path / "t.amc"
+    path.write_text(SMALL_AMC)
+    with pytest.raises(ValidationError, match="frame rate must be a number"):
+        kinetology.read_amc(path, asf=None, frame_rate=rate)
+
+
+def test_read_amc_refuses_an_asf_of_the_wrong_type(tmp_path):
+    path = tmp_path / "t.amc"
+    path.write_text(SMALL_AMC)
+    with pytest.raises(ValidationError, match="asf must be 'auto', a path, an AsfSkeleton"):
+        kinetology.read_amc(path, asf=5)
+
+
+@pytest.mark.parametrize("rate", ["120", True, float("inf")])
+def test_a_truelabels_frame_rate_must_be_a_positive_number(tmp_path, rate):
+    path = tmp_path / "t.txt"
+    path.write_text("1 1 1 5 5\n")
+    with pytest.raises(ValidationError, match="frame rate must be a"):
+        kinetology.read_cmu_truelabels(path, frame_rate=rate)
+
+
+@pytest.mark.parametrize("duration", ["3", -1.0, float("nan")])   # "3" was 3 seconds
+def test_a_bandai_duration_must_be_a_positive_number(tmp_path, duration):
+    cfg, data = tmp_path / "cfg", tmp_path / "data"
+    cfg.mkdir(), data.mkdir()
+    (cfg / "content_label.txt").write_text("bye\n")
+    (cfg / "style_label.txt").write_text("sad\n")
+    path = data / "dataset-1_bye_sad_001.json"
+    path.write_text('{"content": 0, "style": 0}')
+    with pytest.raises(ValidationError, match="duration must be a"):
+        kinetology.read_bandai_json(path, duration=duration)
