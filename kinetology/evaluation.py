@@ -23,6 +23,7 @@ from __future__ import annotations
 
 from collections import Counter
 from dataclasses import dataclass
+from numbers import Integral
 from pathlib import Path
 from types import MappingProxyType
 
@@ -39,7 +40,10 @@ from .segmentation import DEFAULTS, STATES, smooth, states, unwrap
 __all__ = ["codec_point", "CMU_ANGLES", "CMU_BVH_ANGLES", "BANDAI_ANGLES", "angle_table",
            "ViewInvariance", "view_invariance",
            "MOCAP6_ACTIONS", "Performance", "mocap6_performances", "describe",
-           "reproducibility", "selectivity"]
+           "reproducibility", "selectivity", "MAX_VIEWS"]
+
+#: The most viewpoints :func:`view_invariance` takes (one every 0.1 degree).
+MAX_VIEWS = 3600
 
 
 def codec_point(motion: Motion, original_size: int, **params) -> dict:
@@ -259,8 +263,12 @@ def view_invariance(motion: Motion, triple: tuple[str, str, str], *, views: int 
     >>> result.agreement_per_view.round(2)
     array([1.  , 0.25, 1.  , 0.25])
     """
-    if int(views) != views or views < 1:
-        raise ValidationError(f"views must be a positive whole number, not {views!r}")
+    # each view is a frames-long row of states: 10**9 views asked for gigabytes
+    if isinstance(views, bool) or not isinstance(views, Integral) or not 1 <= views <= MAX_VIEWS:
+        raise ValidationError(f"views must be a whole number from 1 to {MAX_VIEWS}, not {views!r}")
+    if isinstance(triple, str) or len(tuple(triple)) != 3 or up_axis not in (0, 1, 2):
+        raise ValidationError(f"triple must name three joints and up_axis be 0, 1 or 2, not "
+                              f"{triple!r} and {up_axis!r}")
     positions = forward_kinematics(motion)
     index = [motion.skeleton.index(name) for name in triple]
     angle3 = joint_angle(positions, *index)

@@ -17,6 +17,8 @@ from __future__ import annotations
 from types import MappingProxyType
 from typing import Iterable, Mapping
 
+from psgs.errors import ValidationError
+
 from .motion import Motion
 
 __all__ = ["CMU_PARENTS", "dot_actuator", "actuator_map", "skeleton_parents"]
@@ -73,6 +75,11 @@ def actuator_map(motion: Motion, channels: Iterable[str] | None = None) -> dict[
     dict
         ``{channel: joint}`` in the order given.
 
+    Raises
+    ------
+    ValueError
+        (ValidationError) When ``motion`` is no Motion or ``channels`` is one string.
+
     Examples
     --------
     >>> import numpy as np
@@ -80,6 +87,10 @@ def actuator_map(motion: Motion, channels: Iterable[str] | None = None) -> dict[
     >>> actuator_map(m)
     {'lfemur.rx': 'lfemur', 'lfemur.ry': 'lfemur'}
     """
+    if not isinstance(motion, Motion):
+        raise ValidationError(f"motion must be a Motion, not {type(motion).__name__}")
+    if isinstance(channels, str):  # would be mapped letter by letter
+        raise ValidationError(f"channels must be a collection of names, not {channels!r}")
     owner = {}
     if motion.skeleton is not None:
         for joint in motion.skeleton.joints:
@@ -108,6 +119,11 @@ def skeleton_parents(motion: Motion, actuators: Iterable[str]) -> dict[str, str 
     dict
         ``{joint: parent or None}``, empty when the hierarchy is unknown.
 
+    Raises
+    ------
+    ValueError
+        (ValidationError) When ``actuators`` is one string.
+
     Examples
     --------
     >>> import numpy as np
@@ -115,6 +131,8 @@ def skeleton_parents(motion: Motion, actuators: Iterable[str]) -> dict[str, str 
     >>> skeleton_parents(m, ["lfemur", "ltibia"])
     {'lfemur': None, 'ltibia': 'lfemur'}
     """
+    if isinstance(actuators, str):  # would be read letter by letter
+        raise ValidationError(f"actuators must be a collection of names, not {actuators!r}")
     wanted = list(dict.fromkeys(actuators))
     parent_of: Mapping[str, str | None]
     if motion.skeleton is not None:

@@ -317,3 +317,28 @@ def test_a_bandai_duration_must_be_a_positive_number(tmp_path, duration):
     path.write_text('{"content": 0, "style": 0}')
     with pytest.raises(ValidationError, match="duration must be a"):
         kinetology.read_bandai_json(path, duration=duration)
+
+
+def test_actuator_map_and_skeleton_parents_refuse_one_string():
+    motion = small()
+    with pytest.raises(ValidationError, match="channels must be a collection"):
+        kinetology.actuator_map(motion, "j0.rx")          # was {'j': 'j', '0': '0', ...}
+    with pytest.raises(ValidationError, match="actuators must be a collection"):
+        kinetology.skeleton_parents(motion, "j0")
+    with pytest.raises(ValidationError, match="motion must be a Motion"):
+        kinetology.actuator_map(None)
+
+
+@pytest.mark.parametrize("options, match", [
+    ({"views": 10**9}, "views must be a whole number from 1 to"),   # gigabytes before
+    ({"views": True}, "views must be a whole number"),
+    ({"views": "4"}, "views must be a whole number"),
+    ({"triple": ("j0", "j1")}, "triple must name three joints"),   # a TypeError before
+    ({"up_axis": 5}, "up_axis be 0, 1 or 2"),
+])
+def test_view_invariance_checks_its_arguments(options, match):
+    from kinetology.evaluation import view_invariance
+
+    arguments = {"triple": ("j0", "j1", "j2"), **options}
+    with pytest.raises(ValidationError, match=match):
+        view_invariance(with_skeleton(), **arguments)
