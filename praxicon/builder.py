@@ -12,14 +12,16 @@ next build picks up from there.
 
 from __future__ import annotations
 
+import os
 import sys
 import time
+from collections.abc import Iterable
 from concurrent.futures import Executor, Future, ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, replace
 from pathlib import Path
 
 from psgs._foundation.files import read_text
-from psgs.errors import MissingDependency
+from psgs.errors import MissingDependency, ValidationError
 
 from .datasets import Action, DatasetError
 from .learn import Settings, input_key, learn_action
@@ -73,6 +75,9 @@ def executor_for(workers: int | None = None, scheduler=None):
         client = scheduler if isinstance(scheduler, Client) else Client(scheduler)
         executor = client.get_executor()
         return executor, (lambda: None) if client is scheduler else client.close
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
+                                or workers < 1):  # "2" failed in a comparison, True was 1
+        raise ValidationError(f"workers must be a whole number of at least 1, not {workers!r}")
     if workers is not None and workers > 1:
         pool = ProcessPoolExecutor(max_workers=workers)
         return pool, lambda: pool.shutdown(cancel_futures=True)
@@ -115,6 +120,9 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
     ------
     DatasetError
         When two actions have the same name (one record would overwrite the other).
+    ValueError
+        (ValidationError) When ``actions`` are not :class:`~praxicon.datasets.Action` values
+        or ``out`` is no path.
 
     Examples
     --------
@@ -126,6 +134,11 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
     >>> r.failed, r.praxicon["m.wave"].problems[0].endswith("unreadable file (no such file)")
     (('m.wave',), True)
     """
+    actions = list(actions) if isinstance(actions, Iterable) else None
+    if actions is None or not all(isinstance(a, Action) for a in actions):
+        raise ValidationError("build learns a list of praxicon.Action (read_dataset makes one)")
+    if not isinstance(out, (str, os.PathLike)):
+        raise ValidationError(f"out must be a folder's path, not {type(out).__name__}")
     names = [a.name for a in actions]
     twice = sorted({n for n in names if names.count(n) > 1})
     if twice:

@@ -26,6 +26,7 @@ from __future__ import annotations
 import csv
 import io
 import math
+import os
 import re
 import tomllib
 from collections import defaultdict
@@ -280,6 +281,8 @@ def _read_manifest(path: Path) -> list[Action]:
 def _parse_group_by(group_by: str | None) -> tuple[str, ...] | None:
     if group_by is None:
         return None
+    if not isinstance(group_by, str):  # an AttributeError on .split before
+        raise DatasetError(f"--group-by must be 'content' or 'content,style', not {group_by!r}")
     parts = tuple(p.strip() for p in group_by.split(","))
     if parts not in (("content",), ("content", "style")):
         raise DatasetError(f"--group-by must be 'content' or 'content,style', not {group_by!r}")
@@ -317,6 +320,9 @@ def read_dataset(path: str | Path, group_by: str | None = None) -> list[Action]:
     >>> [(a.name, len(a.performances)) for a in read_dataset(d / "m.csv")]
     [('m.wave', 2)]
     """
+    if not isinstance(path, (str, os.PathLike)):
+        raise DatasetError(f"a dataset is a folder's or a manifest's path, not "
+                           f"{type(path).__name__}")
     path = Path(path)
     parts = _parse_group_by(group_by)
     if path.is_dir() and (path / "cfg" / "content_label.txt").is_file():

@@ -17,6 +17,7 @@ Kineteme colours follow their letters: ``B`` blue, ``G`` green, ``R`` red,
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import numpy as np
@@ -62,6 +63,8 @@ def check_picture(path) -> str:
     ...
     ValueError: /nonexistent/dir/walk.png: no folder /nonexistent/dir to write the picture into
     """
+    if not isinstance(path, (str, os.PathLike)):  # Path(5) is a TypeError
+        raise ValueError(f"a picture is written to a file's path, not {type(path).__name__}")
     _pyplot()
     from matplotlib.backend_bases import FigureCanvasBase
 

@@ -26,6 +26,7 @@ import csv
 import io
 import json
 import os
+from collections.abc import Iterable
 from dataclasses import replace
 from pathlib import Path
 
@@ -110,6 +111,9 @@ def actuator_matrix(records) -> tuple[list[str], list[str], list[list[int]]]:
     (['a'], ['hips', 'arm', 'leg'], [[0, 1, 0]])
     """
     records = records.actions if isinstance(records, Praxicon) else records
+    records = tuple(records) if isinstance(records, Iterable) else None
+    if records is None or not all(isinstance(r, ActionRecord) for r in records):
+        raise PraxiconError("actuator_matrix reads a Praxicon or its ActionRecords")
     learnt = [r for r in records if r.learnt]
     joints: list[str] = []
     for r in learnt:

@@ -219,3 +219,48 @@ def test_shared_patterns_refuses_what_is_no_record():
 
     with pytest.raises(ValidationError, match="reads a Praxicon or its ActionRecords"):
         shared_patterns(None)
+
+
+@pytest.mark.parametrize("actions, out, match", [
+    (None, "px", "build learns a list of praxicon.Action"),
+    ("abc", "px", "build learns a list of praxicon.Action"),   # an AttributeError before
+    ([], None, "out must be a folder's path"),
+])
+def test_build_checks_its_actions_and_folder(tmp_path, actions, out, match):
+    from praxicon import build
+    from psgs.errors import ValidationError
+
+    with pytest.raises(ValidationError, match=match):
+        build(actions, tmp_path / out if isinstance(out, str) else out, progress=False)
+
+
+@pytest.mark.parametrize("workers", [-1, 0, "2", True])
+def test_executor_for_checks_workers(workers):
+    from praxicon import executor_for
+    from psgs.errors import ValidationError
+
+    with pytest.raises(ValidationError, match="workers must be a whole number"):
+        executor_for(workers)
+
+
+def test_read_dataset_checks_its_path_and_grouping(tmp_path):
+    from praxicon import DatasetError, read_dataset
+
+    with pytest.raises(DatasetError, match="a dataset is a folder's or a manifest's path"):
+        read_dataset(None)
+    with pytest.raises(DatasetError, match="--group-by must be"):
+        read_dataset(tmp_path, group_by=5)
+
+
+def test_actuator_matrix_refuses_what_is_no_record():
+    from praxicon import PraxiconError, actuator_matrix
+
+    with pytest.raises(PraxiconError, match="reads a Praxicon or its ActionRecords"):
+        actuator_matrix(None)
+
+
+def test_generate_refuses_a_plot_that_is_no_path(built):
+    from praxicon.generation import generate
+
+    with pytest.raises(ValueError, match="a picture is written to a file's path"):
+        generate(built, built.names[0], repeat=1, plot=5)
