@@ -76,8 +76,18 @@ def input_key(action: Action, settings: Settings) -> str:
     return hashlib.sha256(text.encode()).hexdigest()
 
 
-@functools.lru_cache(maxsize=8)  # one file holds several labelled performances (cmu-mocap6)
 def _read(path: str):
+    # cached by size and modification time too, as the digest: keyed by the path alone, a
+    # take changed in place was learnt again (its digest changed) from the motion read before
+    try:
+        stat = Path(path).stat()
+    except (OSError, ValueError):  # kinetology.read says what is wrong with it
+        return _read_file(path, None, None)
+    return _read_file(path, stat.st_size, stat.st_mtime_ns)
+
+
+@functools.lru_cache(maxsize=8)  # one file holds several labelled performances (cmu-mocap6)
+def _read_file(path: str, size: int | None, mtime_ns: int | None):
     import kinetology
 
     return kinetology.read(path)

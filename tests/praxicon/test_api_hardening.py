@@ -264,3 +264,21 @@ def test_generate_refuses_a_plot_that_is_no_path(built):
 
     with pytest.raises(ValueError, match="a picture is written to a file's path"):
         generate(built, built.names[0], repeat=1, plot=5)
+
+
+def test_a_take_changed_in_place_is_read_again(tmp_path):
+    """A second build in one process reads a take rewritten since the first, as a new process
+    would: the cache of read takes was keyed by the path alone."""
+    from kinetology import write_bvh
+    from praxicon import build, learn, read_dataset
+    from praxicon_fixtures import take, write_manifest
+
+    manifest = write_manifest(tmp_path, {"wave": [1, 2, 3]})
+    first = build(read_dataset(manifest), tmp_path / "px1", progress=False).praxicon
+    write_bvh(take(9, seconds=4.0), tmp_path / "wave_1.bvh")
+    again = build(read_dataset(manifest), tmp_path / "px2", progress=False).praxicon
+    for cached in (getattr(learn, "_read_file", None), learn._read):   # as a new process
+        getattr(cached, "cache_clear", lambda: None)()
+    fresh = build(read_dataset(manifest), tmp_path / "px3", progress=False).praxicon
+    name = first.names[0]
+    assert again[name].joints == fresh[name].joints != first[name].joints
