@@ -72,3 +72,19 @@ def test_noise_sweep_takes_a_numpy_seed_and_a_generator_of_levels():
 
     rows = noise_sweep((x for x in [0.0]), 1, inducers=["sequential"], seed=np.int64(2))
     assert [(r.inducer, r.noise, r.trials) for r in rows] == [("sequential", 0.0, 1)]
+
+
+# ---------------------------------------------------------------- build_system
+@pytest.mark.parametrize("patterns", [None, 3, "arm", [], [("arm",)], [("arm", 3)],
+                                      ["arm"], [("arm", ("a",), "extra")]])
+def test_build_system_refuses_what_is_no_sequence_of_pairs(patterns):
+    from psgs.induce.base import build_system
+
+    with pytest.raises(ValidationError, match="pattern"):
+        build_system(patterns)
+
+
+def test_build_system_reads_a_pattern_from_any_iterable():
+    from psgs.induce.base import build_system
+
+    assert build_system([("arm", iter("ab"))]) == build_system([("arm", ("a", "b"))])

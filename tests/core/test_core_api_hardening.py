@@ -246,3 +246,16 @@ def test_a_derivation_refuses_steps_of_another_system(gamma):
         Derivation(None, ())
     own = psgs.random_derivation(gamma, 1)
     assert Derivation(gamma, own.steps) == Derivation(gamma, own.steps, own.configurations)
+
+
+@pytest.mark.parametrize("value", ["no", 0, 1, [], math.nan])
+def test_accepts_refuses_a_check_witness_that_is_no_bool(gamma, value):
+    words = ["abcdbcad", "bcadabcd", "cdabcdab", "abcdbcad"]
+    with pytest.raises(ValidationError, match="check_witness"):
+        psgs.accepts(gamma, words, check_witness=value)
+
+
+@pytest.mark.parametrize("path", [None, 3, ["a.psgs"]])
+def test_dump_refuses_a_path_that_is_no_path(gamma, path):
+    with pytest.raises(ValidationError, match="path"):
+        psgs.dump(gamma, path)
