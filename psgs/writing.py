@@ -91,7 +91,7 @@ def dump(value, path: str | PathLike) -> None:
     Raises
     ------
     ValidationError
-        For a value that is neither.
+        For a value that is neither, or a path that is no str or PathLike.
 
     Examples
     --------
@@ -108,6 +108,8 @@ def dump(value, path: str | PathLike) -> None:
     >>> psgs.load(folder / "walk.json") == walk
     True
     """
+    if not isinstance(path, (str, PathLike)):  # pathlib's TypeError would name no argument
+        raise ValidationError(f"dump writes to a path (a str or PathLike), not {path!r}")
     if isinstance(value, (PSGS, PCGS)):
         text = dumps(value)
     else:

@@ -107,7 +107,7 @@ def accepts(system: PSGS | PCGS, words, *, max_states: int = 200_000,
     ------
     ValidationError
         When ``words`` does not fit the system (a word per component), a word holds something
-        that is not a terminal, or a budget is not positive.
+        that is not a terminal, a budget is not positive, or ``check_witness`` is no bool.
 
     Examples
     --------
@@ -125,6 +125,8 @@ def accepts(system: PSGS | PCGS, words, *, max_states: int = 200_000,
             raise ValidationError(f"{name} must be a positive integer, not {value!r}")
     if not _is_seconds(max_seconds):
         raise ValidationError(f"max_seconds must be a positive number, not {max_seconds!r}")
+    if check_witness is not None and not isinstance(check_witness, bool):  # "no" is truthy
+        raise ValidationError(f"check_witness must be True, False or None, not {check_witness!r}")
     if isinstance(system, PCGS):
         result = accepts_pcgs(system, as_word(words), max_steps=max_steps,
                               max_states=max_states, budget=budget)
