@@ -491,7 +491,8 @@ def build_system(patterns: Sequence[tuple[str, tuple[str, ...]]], *, synchronise
     Raises
     ------
     ValidationError
-        For an empty pattern (or names the model refuses).
+        For no pattern at all, an empty pattern, an entry that is no (name, pattern) pair
+        (or names the model refuses).
 
     Examples
     --------
@@ -500,6 +501,7 @@ def build_system(patterns: Sequence[tuple[str, tuple[str, ...]]], *, synchronise
     >>> bool(psgs.accepts(system, ["abab", "xx"])), bool(psgs.accepts(system, ["abab", "x"]))
     (True, False)
     """
+    patterns = _checked_patterns(patterns)
     terminal_names = {s for _, p in patterns for s in p}
     prefix = "N"
     while any(t.startswith(prefix + "_") or t.startswith("S" + prefix + "_")
@@ -534,3 +536,20 @@ def build_system(patterns: Sequence[tuple[str, tuple[str, ...]]], *, synchronise
         for level in range(depth):
             sync.append(tuple(c[level] if level < len(c) else None for c in chains))
     return PSGS(tuple(grammars), tuple(sync), mode="parallel", name=name)
+
+
+def _checked_patterns(patterns) -> tuple[tuple[str, tuple], ...]:
+    """build_system's pairs as a tuple; a ValidationError for what is none (a TypeError, or
+    max() of no chain, deep in the building otherwise)."""
+    if isinstance(patterns, (str, bytes)) or not isinstance(patterns, Iterable):
+        raise ValidationError(f"patterns must be a sequence of (component, pattern) pairs, "
+                              f"not {patterns!r}")
+    pairs = tuple(patterns)
+    if not pairs:
+        raise ValidationError("build_system needs at least one (component, pattern) pair")
+    for pair in pairs:
+        if isinstance(pair, (str, bytes)) or not isinstance(pair, Sequence) or len(pair) != 2 \
+                or not isinstance(pair[1], Iterable):
+            raise ValidationError(f"each entry of patterns is a (component, pattern) pair, "
+                                  f"not {pair!r}")
+    return tuple((name, tuple(pattern)) for name, pattern in pairs)
