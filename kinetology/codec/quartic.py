@@ -32,6 +32,10 @@ from itertools import product
 
 import numpy as np
 
+from psgs.errors import ValidationError
+
+from ..motion import real_array
+
 __all__ = ["basis", "reconstruct", "fit_knots"]
 
 
@@ -190,6 +194,12 @@ def reconstruct(knots: np.ndarray, codes: np.ndarray, values: np.ndarray) -> np.
     numpy.ndarray
         One value per frame (``knots[-1] + 1`` of them).
 
+    Raises
+    ------
+    ValueError
+        (ValidationError) Knots that are not whole frames rising from 0, codes that are not
+        one state 0..3 per segment, values that are not one finite number per knot.
+
     Examples
     --------
     A rise (``B``, speeding up) then a slowing rise (``G``) from 0 to 10 degrees:
@@ -198,12 +208,32 @@ def reconstruct(knots: np.ndarray, codes: np.ndarray, values: np.ndarray) -> np.
     >>> curve.shape, [round(float(curve[f]), 9) for f in (0, 5, 10)]
     ((11,), [0.0, 4.0, 10.0])
     """
-    knots = np.asarray(knots)
+    knots, codes, values = _checked(knots, codes, values)
     if knots.size == 1:
         return np.full(1, float(values[0]))
-    seg, u, w = _design(knots, np.asarray(codes))
-    values = np.asarray(values, dtype=float)
+    seg, u, w = _design(knots, codes)
     return values[seg] * u + values[seg + 1] * w
+
+
+def _checked(knots, codes, values):
+    """The three arrays of :func:`reconstruct`, or one ValidationError: knots that are not
+    whole frames rising from 0, codes that are not one state (0..3) per segment or knot values
+    that are not one finite number per knot gave numpy's errors, a curve of NaN, or a curve
+    read from the wrong rows without a word."""
+    knots, codes = np.asarray(knots), np.asarray(codes)
+    values = real_array(values, "values")
+    if knots.ndim != 1 or not knots.size or knots.dtype.kind not in "iu" or knots[0] != 0 \
+            or np.any(np.diff(knots) < 1):
+        raise ValidationError("knots must be whole frames rising from 0, not "
+                              f"{np.array2string(knots, threshold=8)}")
+    if codes.shape != (knots.size - 1,) or (codes.size and (
+            codes.dtype.kind not in "iu" or codes.min() < 0 or codes.max() > 3)):
+        raise ValidationError(f"codes must be one state 0..3 for each of the {knots.size - 1} "
+                              f"segments, not {np.array2string(codes, threshold=8)}")
+    if values.shape != knots.shape or not np.isfinite(values).all():
+        raise ValidationError(f"values must be one finite number for each of the {knots.size} "
+                              f"knots")
+    return knots, codes, values
 
 
 def fit_knots(knots, codes, signal) -> np.ndarray:

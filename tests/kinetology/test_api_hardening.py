@@ -342,3 +342,16 @@ def test_view_invariance_checks_its_arguments(options, match):
     arguments = {"triple": ("j0", "j1", "j2"), **options}
     with pytest.raises(ValidationError, match=match):
         view_invariance(with_skeleton(), **arguments)
+
+
+@pytest.mark.parametrize("knots, codes, values, match", [
+    ([0, 10], [0, 1], [0.0, 1.0], "codes must be one state 0..3 for each of the 1"),  # was read
+    ([0, 10], [7], [0.0, 1.0], "codes must be one state 0..3"),                     # was read
+    ([10, 0], [0], [0.0, 1.0], "knots must be whole frames rising from 0"),
+    ([0, 10.5], [0], [0.0, 1.0], "knots must be whole frames"),
+    ([0, 10], [0], [0.0, np.nan], "values must be one finite number"),             # was all NaN
+    ([0, 10], [0], [0.0, 1.0, 2.0], "values must be one finite number for each of the 2"),
+])
+def test_reconstruct_checks_its_arrays(knots, codes, values, match):
+    with pytest.raises(ValidationError, match=match):
+        kinetology.reconstruct(np.array(knots), np.array(codes), np.array(values))
