@@ -78,6 +78,11 @@ class Budget:
 
     def __init__(self, seconds: float | None = None, max_symbols: int | None = None, *,
                  every: int = 256) -> None:
+        # a NaN deadline compares false with every time: a search on it would never stop
+        check_seconds(seconds, "seconds", optional=True)
+        if max_symbols is not None:
+            check_count(max_symbols, "max_symbols")
+        check_count(every, "every")
         self.seconds = seconds
         self.deadline = None if seconds is None else time.monotonic() + seconds
         self.max_symbols = max_symbols

@@ -118,7 +118,6 @@ def accepts(system: PSGS | PCGS, words, *, max_states: int = 200_000,
     >>> accepts(system, ["aaa", "bbb"]).answer, accepts(system, ["aaa", "bb"]).answer
     ('yes', 'no')
     """
-    budget = Budget(max_seconds if _is_seconds(max_seconds) else 1.0, max_symbols, every=32)
     for name, value in (("max_states", max_states), ("max_steps", max_steps),
                         ("max_symbols", max_symbols)):
         if isinstance(value, bool) or not isinstance(value, int) or value < 1:
@@ -127,6 +126,7 @@ def accepts(system: PSGS | PCGS, words, *, max_states: int = 200_000,
         raise ValidationError(f"max_seconds must be a positive number, not {max_seconds!r}")
     if check_witness is not None and not isinstance(check_witness, bool):  # "no" is truthy
         raise ValidationError(f"check_witness must be True, False or None, not {check_witness!r}")
+    budget = Budget(max_seconds, max_symbols, every=32)
     if isinstance(system, PCGS):
         result = accepts_pcgs(system, as_word(words), max_steps=max_steps,
                               max_states=max_states, budget=budget)

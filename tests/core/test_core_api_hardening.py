@@ -259,3 +259,16 @@ def test_accepts_refuses_a_check_witness_that_is_no_bool(gamma, value):
 def test_dump_refuses_a_path_that_is_no_path(gamma, path):
     with pytest.raises(ValidationError, match="path"):
         psgs.dump(gamma, path)
+
+
+@pytest.mark.parametrize("kwargs, name", [
+    ({"seconds": math.nan}, "seconds"), ({"seconds": -1}, "seconds"), ({"seconds": "5"}, "seconds"),
+    ({"seconds": True}, "seconds"), ({"max_symbols": 0}, "max_symbols"),
+    ({"max_symbols": 2.5}, "max_symbols"), ({"every": 0}, "every"), ({"every": None}, "every"),
+])
+def test_a_budget_refuses_bounds_it_could_not_keep(kwargs, name):
+    # a NaN deadline compares false with every time: the search it bounds never stops
+    from psgs.budget import Budget
+
+    with pytest.raises(ValidationError, match=name):
+        Budget(**kwargs)
