@@ -27,6 +27,7 @@ import csv
 import io
 import math
 import os
+from numbers import Real
 import re
 import tomllib
 from collections import defaultdict
@@ -63,6 +64,18 @@ class Performance:
     stop: float | None = None
     label: str | None = None
 
+    def __post_init__(self) -> None:
+        # made in Python, not read from a manifest (whose reader says the same per line): a
+        # path that is no string, a time that is a string or NaN, or a stop before the start
+        # went on to the learner, or failed there with a TypeError
+        times = [t for t in (self.start, self.stop) if t is not None]
+        if not (isinstance(self.file, str) and isinstance(self.label, (str, type(None)))
+                and all(isinstance(t, Real) and not isinstance(t, bool) and 0 <= t < math.inf
+                        for t in times)
+                and (len(times) < 2 or self.start < self.stop)):
+            raise DatasetError(f"a performance is a file's path (a string) and, optionally, "
+                               f"start < stop in seconds >= 0, not {self!r}")
+
     def to_dict(self) -> dict:
         """The performance as plain JSON values (for index.json)."""
         return {"file": self.file, "start": self.start, "stop": self.stop, "label": self.label}
@@ -78,6 +91,15 @@ class Action:
     style: str | None = None
     performances: tuple[Performance, ...] = ()
     problems: tuple[str, ...] = field(default=())
+
+    def __post_init__(self) -> None:
+        names = (self.name, self.dataset, self.content)
+        if not (all(isinstance(n, str) for n in names) and isinstance(self.style, (str, type(None)))
+                and isinstance(self.performances, tuple)  # a list would be shared and mutable
+                and all(isinstance(p, Performance) for p in self.performances)
+                and isinstance(self.problems, tuple)):
+            raise DatasetError(f"an action is a name, dataset and content (strings) and a tuple "
+                               f"of Performance values, not {self!r}")
 
 
 def _name_part(text: str) -> str:

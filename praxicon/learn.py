@@ -27,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from psgs._foundation.files import read_bytes
-from psgs.errors import FormatError
+from psgs.errors import FormatError, ValidationError
 
 from .datasets import Action, Performance
 from .jsonvalues import freeze
@@ -221,8 +221,12 @@ def learn_action(action: Action, settings: Settings) -> tuple[ActionRecord, floa
     performances whose channels differ from the others' are listed in ``record.problems``
     (each costs its performance only); with fewer than ``settings.min_performances`` usable
     performances, or when the inducer fails, ``record.status`` is ``"failed"`` and
-    ``record.reason`` says why.
+    ``record.reason`` says why. An ``action`` that is no :class:`Action` or ``settings`` that
+    are no :class:`Settings` are a ValidationError.
     """
+    if not (isinstance(action, Action) and isinstance(settings, Settings)):
+        raise ValidationError(f"learn_action learns an Action with Settings, not "
+                              f"{type(action).__name__} and {type(settings).__name__}")
     began = time.perf_counter()
     motions, used, problems = _load_all(action)
     base = ActionRecord(

@@ -282,3 +282,36 @@ def test_a_take_changed_in_place_is_read_again(tmp_path):
     fresh = build(read_dataset(manifest), tmp_path / "px3", progress=False).praxicon
     name = first.names[0]
     assert again[name].joints == fresh[name].joints != first[name].joints
+
+
+@pytest.mark.parametrize("args", [
+    (None,), ("x.bvh", "0", "1"), ("x.bvh", 5.0, 1.0), ("x.bvh", float("nan"), 1.0),
+    ("x.bvh", True, 2.0), ("x.bvh", None, None, 5),
+])
+def test_a_performance_made_in_python_is_checked(args):
+    from praxicon import DatasetError, Performance
+
+    with pytest.raises(DatasetError, match="a performance is a file's path"):
+        Performance(*args)
+
+
+@pytest.mark.parametrize("args, options", [
+    ((None, "d", "a"), {}),
+    (("a", "d", "a"), {"performances": ["x.bvh"]}),
+    (("a", "d", "a"), {"performances": []}),    # a list: shared with the caller, mutable
+])
+def test_an_action_made_in_python_is_checked(args, options):
+    from praxicon import Action, DatasetError
+
+    with pytest.raises(DatasetError, match="an action is a name, dataset and content"):
+        Action(*args, **options)
+
+
+def test_learn_action_checks_its_arguments():
+    from praxicon import Action, Settings, learn_action
+    from psgs.errors import ValidationError
+
+    with pytest.raises(ValidationError, match="learn_action learns an Action with Settings"):
+        learn_action(None, Settings())
+    with pytest.raises(ValidationError, match="learn_action learns an Action with Settings"):
+        learn_action(Action("a", "d", "a"), None)
