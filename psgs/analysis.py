@@ -20,6 +20,7 @@ import heapq
 import math
 from collections.abc import Callable, Hashable, Iterable, Mapping, Sequence
 
+from .errors import ValidationError
 from .model import IDLE, PSGS, Nonterminal, Query, Rule, SyncTuple, Terminal
 
 __all__ = ["min_yields", "least_sums", "reachable", "strongly_connected", "usable_rules",
@@ -215,6 +216,7 @@ def usable_rules(system: PSGS) -> tuple[tuple[Rule, ...], ...]:
     >>> [len(rules) for rules in usable_rules(gamma)]
     [8, 8, 6, 8]
     """
+    _require_psgs(system, "usable_rules")
     if system.unsynchronised == "free":
         return tuple(g.rules for g in system.components)
     return tuple(tuple(r for r in g.rules if r in synced)
@@ -237,6 +239,7 @@ def moves(system: PSGS) -> tuple[SyncTuple, ...]:
     >>> len(moves(gamma)) - len(gamma.sync)      # the unsynchronised rules, each alone
     2
     """
+    _require_psgs(system, "moves")
     out = list(system.sync)
     if system.unsynchronised == "free":
         n = len(system.components)
@@ -244,3 +247,8 @@ def moves(system: PSGS) -> tuple[SyncTuple, ...]:
             for rule in rules:
                 out.append(tuple(rule if j == i else IDLE for j in range(n)))
     return tuple(out)
+
+
+def _require_psgs(system: object, what: str) -> None:
+    if not isinstance(system, PSGS):  # a PCGS has no sync tuples: an AttributeError deep in
+        raise ValidationError(f"{what} takes a PSGS, not {type(system).__name__}")

@@ -257,6 +257,8 @@ def grammar_to_lark(grammar: Grammar, system: PSGS | PCGS | None = None) -> str:
     >>> text == psgs.to_lark(gamma.components[0])["G1"]
     True
     """
+    if not isinstance(grammar, Grammar):
+        raise ValidationError(f"grammar_to_lark exports a Grammar, not {type(grammar).__name__}")
     useful = _useful_rules(grammar)
     lines = _header(grammar, system)
     if not useful:

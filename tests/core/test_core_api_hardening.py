@@ -272,3 +272,17 @@ def test_a_budget_refuses_bounds_it_could_not_keep(kwargs, name):
 
     with pytest.raises(ValidationError, match=name):
         Budget(**kwargs)
+
+
+@pytest.mark.parametrize("value", [None, "G1", 3])
+def test_lower_level_exports_and_analyses_refuse_what_is_no_grammar_or_system(gamma, value):
+    from psgs.analysis import moves, usable_rules
+    from psgs.lark_export import grammar_to_lark
+
+    with pytest.raises(ValidationError, match="Grammar"):
+        grammar_to_lark(value)
+    for analyse in (moves, usable_rules):
+        with pytest.raises(ValidationError, match="PSGS"):
+            analyse(value)
+    with pytest.raises(ValidationError, match="PSGS"):
+        usable_rules(psgs.load("pcgs_abc"))
