@@ -319,6 +319,7 @@ def success(induction, truth: Synthetic) -> bool:
     >>> success(Sequential().induce(case.actiongram), case)  # it keeps random strings too
     False
     """
+    _require_truth(truth)
     if set(induction.components) != set(truth.components):
         return False
     return all(tuple(induction.patterns[n]) == truth.patterns[n] for n in truth.components)
@@ -354,6 +355,7 @@ def vote_margin(truth: Synthetic) -> int:
     >>> vote_margin(generate(seed=1, noise=0.4)) < 10
     True
     """
+    _require_truth(truth)
     ag = truth.actiongram
     copies = len(truth.windows)
     worst = copies
@@ -375,3 +377,9 @@ def vote_margin(truth: Synthetic) -> int:
             wrong = max((c for sym, c in counts.items() if sym != true), default=0)
             worst = min(worst, counts.get(true, 0) - wrong)
     return worst
+
+
+def _require_truth(truth: object) -> None:
+    if not isinstance(truth, Synthetic):  # an AttributeError from inside otherwise
+        raise ValidationError(f"truth must be a Synthetic (from generate), not "
+                              f"{type(truth).__name__}")

@@ -88,3 +88,15 @@ def test_build_system_reads_a_pattern_from_any_iterable():
     from psgs.induce.base import build_system
 
     assert build_system([("arm", iter("ab"))]) == build_system([("arm", ("a", "b"))])
+
+
+@pytest.mark.parametrize("truth", [None, "s01", generate(seed=1).actiongram])
+def test_success_and_vote_margin_refuse_what_is_no_synthetic_case(truth):
+    from psgs.induce import Sequential
+    from psgs.induce.synthetic import success, vote_margin
+
+    case = generate(seed=1)
+    with pytest.raises(ValidationError, match="Synthetic"):
+        success(Sequential().induce(case.actiongram), truth)
+    with pytest.raises(ValidationError, match="Synthetic"):
+        vote_margin(truth)
