@@ -355,3 +355,14 @@ def test_view_invariance_checks_its_arguments(options, match):
 def test_reconstruct_checks_its_arrays(knots, codes, values, match):
     with pytest.raises(ValidationError, match=match):
         kinetology.reconstruct(np.array(knots), np.array(codes), np.array(values))
+
+
+@pytest.mark.parametrize("most", [-1, "5", True, 1.5])
+def test_decompress_max_samples_must_be_a_whole_number(most):
+    with pytest.raises(ValidationError, match="max_samples must be a whole number"):
+        kinetology.decompress(kinetology.compress(small()), max_samples=most)
+
+
+def test_decompress_takes_a_huge_max_samples():
+    data = kinetology.compress(small())
+    assert kinetology.decompress(data, max_samples=10**30).frames == small().frames  # overflowed
