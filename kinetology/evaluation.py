@@ -34,7 +34,7 @@ from psgs.errors import ValidationError
 
 from .codec import compress, decompress
 from .kinematics import forward_kinematics, joint_angle
-from .motion import Motion, MotionFormatError, file_text
+from .motion import Motion, MotionFormatError, check_number, file_text
 from .segmentation import DEFAULTS, STATES, smooth, states, unwrap
 
 __all__ = ["codec_point", "CMU_ANGLES", "CMU_BVH_ANGLES", "BANDAI_ANGLES", "angle_table",
@@ -70,7 +70,8 @@ def codec_point(motion: Motion, original_size: int, **params) -> dict:
     Raises
     ------
     ValidationError
-        For a motion without frames (no error to measure).
+        For a motion without frames (no error to measure), or an ``original_size`` that is not
+        a positive number.
 
     Examples
     --------
@@ -84,6 +85,7 @@ def codec_point(motion: Motion, original_size: int, **params) -> dict:
     """
     if not motion.frames:  # no error to average, nor a largest one
         raise ValidationError(f"{motion.source}: 0 frames, no reconstruction error to measure")
+    check_number(original_size, "original_size", positive=True)  # the percent's denominator
     data = compress(motion, **params)
     decoded = decompress(data)
     error = np.abs(decoded.values - motion.values)
@@ -420,6 +422,11 @@ def describe(codes: np.ndarray, signal: np.ndarray, *, min_range: float = 5.0) -
     str
         ``"still"``, ``"irregular"`` or the most frequent cycle, e.g. ``"BGRY"``.
 
+    Raises
+    ------
+    ValidationError
+        When ``codes`` and ``signal`` are not one channel each, of one length.
+
     Examples
     --------
     >>> import numpy as np
@@ -432,6 +439,10 @@ def describe(codes: np.ndarray, signal: np.ndarray, *, min_range: float = 5.0) -
     >>> describe(codes[:75], swing[:75])
     'irregular'
     """
+    codes, signal = np.asarray(codes), np.asarray(signal)
+    if codes.ndim != 1 or codes.shape != signal.shape:  # a 2-D pair read as "still"
+        raise ValidationError(f"codes and signal must be one channel each, of one length, not "
+                              f"{codes.shape} and {signal.shape}")
     if signal.size == 0 or np.ptp(signal) < min_range:
         return "still"
     starts = np.concatenate(([0], np.flatnonzero(codes[1:] != codes[:-1]) + 1))

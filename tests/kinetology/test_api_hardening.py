@@ -366,3 +366,22 @@ def test_decompress_max_samples_must_be_a_whole_number(most):
 def test_decompress_takes_a_huge_max_samples():
     data = kinetology.compress(small())
     assert kinetology.decompress(data, max_samples=10**30).frames == small().frames  # overflowed
+
+
+@pytest.mark.parametrize("size", [0, -5, "100", True])   # 0 was a ZeroDivisionError
+def test_codec_point_checks_the_original_size(size):
+    from kinetology.evaluation import codec_point
+
+    with pytest.raises(ValidationError, match="original_size"):
+        codec_point(small(), size)
+
+
+@pytest.mark.parametrize("codes, signal", [
+    (np.zeros((3, 3), dtype=int), np.zeros(3)),           # was "still"
+    (np.zeros(3, dtype=int), np.arange(5.0) * 10),         # was read without a word
+])
+def test_evaluation_describe_wants_one_channel_of_one_length(codes, signal):
+    from kinetology.evaluation import describe
+
+    with pytest.raises(ValidationError, match="one channel each, of one length"):
+        describe(codes, signal)
