@@ -100,3 +100,18 @@ def test_success_and_vote_margin_refuse_what_is_no_synthetic_case(truth):
         success(Sequential().induce(case.actiongram), truth)
     with pytest.raises(ValidationError, match="Synthetic"):
         vote_margin(truth)
+
+
+# ---------------------------------------------------------------- edge actiongrams
+@pytest.mark.parametrize("performances", [1, 2])
+@pytest.mark.parametrize("name", ["pal", "pal_motion", "pal_content", "sequential"])
+def test_an_actiongram_of_no_string_learns_nothing_without_an_error(name, performances):
+    from psgs import Actiongram
+    from psgs.induce import get
+
+    empty = Actiongram.from_strings({})
+    data = empty if performances == 1 else [empty] * performances
+    if name == "pal_content" and performances > 1:
+        return  # the paper's learner reads one actiongram
+    found = get(name).induce(data)
+    assert found.components == () and found.system is None

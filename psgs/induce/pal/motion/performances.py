@@ -59,6 +59,8 @@ def learn_motion(takes: tuple[Actiongram, ...], conf: MotionConf) -> MotionResul
     first = takes[0]
     joints = [JointEvidence(a, tuple(first.index(c) for c in first.channels(a)))
               for a in first.actuators]
+    if not first.names:  # no string: nothing repeats, and the arrays below have no channel
+        return MotionResult(NO_REPETITION, joints, None, list(codes))
     segments = np.array([[len(s) for s in ag.symbols] for ag in takes], dtype=float)
     paths = np.array([(g.speed.sum(axis=1) * g.step) for g in grids])  # (takes, channels)
     for j in joints:
