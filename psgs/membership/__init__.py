@@ -128,9 +128,10 @@ def accepts(system: PSGS | PCGS, words, *, max_states: int = 200_000,
         raise ValidationError(f"check_witness must be True, False or None, not {check_witness!r}")
     budget = Budget(max_seconds, max_symbols, every=32)
     if isinstance(system, PCGS):
-        result = accepts_pcgs(system, as_word(words), max_steps=max_steps,
-                              max_states=max_states, budget=budget)
-        total = len(words)
+        word = as_word(words)  # the count from the word read: an iterator has no len()
+        result = accepts_pcgs(system, word, max_steps=max_steps, max_states=max_states,
+                              budget=budget)
+        total = len(word)
     elif isinstance(system, PSGS):
         tuple_of_words = _coerce_words(system, words)
         # The search keeps a deep stack and a large visited set alive while allocating many

@@ -286,3 +286,8 @@ def test_lower_level_exports_and_analyses_refuse_what_is_no_grammar_or_system(ga
             analyse(value)
     with pytest.raises(ValidationError, match="PSGS"):
         usable_rules(psgs.load("pcgs_abc"))
+
+
+def test_accepts_reads_a_pcgs_word_from_an_iterator():
+    system = psgs.load("pcgs_abc")
+    assert psgs.accepts(system, iter("abc")).answer == psgs.accepts(system, "abc").answer
