@@ -105,6 +105,9 @@ def check_folder(path, what: str = "the file") -> None:
 
 def _save(fig, path) -> Path:
     plt = _pyplot()
+    if not isinstance(path, (str, os.PathLike)):  # Path(5) is a TypeError
+        plt.close(fig)
+        raise ValueError(f"a picture is written to a file's path, not {type(path).__name__}")
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     # no date in the metadata: the same praxicon gives the same picture bytes
@@ -220,6 +223,8 @@ def draw_shared_patterns(folder, path, *, most: int = 30, **options) -> Path:
     """The ``most`` sub-patterns shared by the most actions, with the actions (Fig. 13)."""
     from .shared import shared_patterns
 
+    if isinstance(most, bool) or not isinstance(most, int) or most < 1:  # -1 cut the last
+        raise ValueError(f"most must be a whole number of at least 1, not {most!r}")
     plt = _pyplot()
     patterns = sorted(shared_patterns(_praxicon(folder), **options),
                       key=lambda p: (-len(p.actions), -len(p.kinetemes)))[:most]
@@ -308,8 +313,9 @@ def draw_praxicon(folder, out, *, fmt: str = "svg", progress=None,
     """
     import warnings
 
-    if workers is not None and workers < 1:
-        raise ValueError(f"workers must be at least 1, not {workers}")
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
+                                or workers < 1):  # "2" failed in a comparison
+        raise ValueError(f"workers must be at least 1, not {workers!r}")
     with warnings.catch_warnings():
         warnings.filterwarnings("ignore", category=UserWarning, module="matplotlib")
         warnings.filterwarnings("ignore", message=".*tight_layout.*")

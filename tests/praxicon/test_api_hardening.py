@@ -315,3 +315,28 @@ def test_learn_action_checks_its_arguments():
         learn_action(None, Settings())
     with pytest.raises(ValidationError, match="learn_action learns an Action with Settings"):
         learn_action(Action("a", "d", "a"), None)
+
+
+@pytest.mark.parametrize("most", [-1, 0, "5", True])   # -1 left the last pattern out
+def test_draw_shared_patterns_checks_most(built, tmp_path, most):
+    pytest.importorskip("matplotlib")
+    from praxicon import draw_shared_patterns
+
+    with pytest.raises(ValueError, match="most must be a whole number of at least 1"):
+        draw_shared_patterns(built, tmp_path / "s.png", most=most)
+
+
+def test_a_drawing_refuses_a_path_that_is_no_path(built):
+    pytest.importorskip("matplotlib")
+    from praxicon import draw_actuator_matrix
+
+    with pytest.raises(ValueError, match="a picture is written to a file's path"):
+        draw_actuator_matrix(built, 5)
+
+
+def test_draw_praxicon_checks_workers(built, tmp_path):
+    pytest.importorskip("matplotlib")
+    from praxicon import draw_praxicon
+
+    with pytest.raises(ValueError, match="workers must be at least 1, not '2'"):
+        draw_praxicon(built, tmp_path / "all", workers="2")
