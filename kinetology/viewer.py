@@ -41,7 +41,7 @@ from typing import Iterable, Mapping, Sequence
 
 import numpy as np
 
-from .motion import Motion, MotionFormatError
+from .motion import Motion, MotionFormatError, check_number
 from .plotting import STATE_COLOURS, STILL_COLOUR
 
 __all__ = ["SUFFIXES", "ViewError", "Panel", "Player", "view", "motion_html", "check_output"]
@@ -268,6 +268,13 @@ class Player:
     panels: tuple[Panel, ...]
     frame_rate: float
 
+    def __post_init__(self) -> None:  # no panel failed in max(), a string rate in its repr
+        if not (isinstance(self.panels, tuple) and self.panels
+                and all(isinstance(p, Panel) for p in self.panels)):
+            raise ViewError("a player needs a tuple of one or more Panel values",
+                            source="kinetology.Player")
+        check_number(self.frame_rate, "frame_rate", positive=True)
+
     def __repr__(self) -> str:  # a summary, not every panel's positions
         shown = ", ".join(f"{p.label} ({_count(p.frames, 'frame')}, "
                           f"{_count(len(p.joints), 'joint')})" for p in self.panels)
@@ -284,6 +291,9 @@ class Player:
         """The kept frame that panel ``panel`` shows at slider step ``tick`` (the last frame
         once its motion has ended)."""
         p = self.panels[panel]
+        if isinstance(tick, bool) or not isinstance(tick, Integral) or tick < 0:  # -1 was frame -1
+            raise ViewError(f"tick must be a whole number from 0, not {tick!r}",
+                            source="kinetology.Player")
         return min(int(math.floor(tick * p.frame_rate / self.frame_rate + 1e-9)), p.frames - 1)
 
     def to_html(self, *, title: str | None = None) -> str:

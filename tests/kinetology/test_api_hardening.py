@@ -385,3 +385,16 @@ def test_evaluation_describe_wants_one_channel_of_one_length(codes, signal):
 
     with pytest.raises(ValidationError, match="one channel each, of one length"):
         describe(codes, signal)
+
+
+def test_player_checks_its_panels_rate_and_ticks():
+    player = kinetology.view(with_skeleton())
+    with pytest.raises(kinetology.ViewError, match="a tuple of one or more Panel values"):
+        kinetology.Player((), 30.0)                         # max() of nothing before
+    with pytest.raises(ValidationError, match="frame_rate must be a"):
+        kinetology.Player(player.panels, "30")
+    with pytest.raises(ValidationError, match="frame_rate must be a"):
+        kinetology.Player(player.panels, -1.0)                # was accepted
+    with pytest.raises(kinetology.ViewError, match="tick must be a whole number from 0"):
+        player.frame_of(0, -1)                              # was frame -1
+    assert player.frame_of(0, 10**9) == player.panels[0].frames - 1
