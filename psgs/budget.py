@@ -11,6 +11,7 @@ search adds the size of what it keeps (states × form size, in symbols) with
 
 from __future__ import annotations
 
+import math
 import time
 
 from .errors import BoundReached, ValidationError
@@ -84,7 +85,9 @@ class Budget:
             check_count(max_symbols, "max_symbols")
         check_count(every, "every")
         self.seconds = seconds
-        self.deadline = None if seconds is None else time.monotonic() + seconds
+        # an int past a float's range is an unbounded wait, as inf is (the sum would overflow)
+        self.deadline = None if seconds is None else \
+            time.monotonic() + (seconds if seconds < 1e300 else math.inf)
         self.max_symbols = max_symbols
         self.held = 0
         self._count = 0

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import gc
 import math
+import sys
 from collections import deque
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -119,7 +120,7 @@ def _show(x) -> str:
 def _check_budgets(max_errors, max_states, max_seconds, max_steps, max_symbols) -> None:
     if max_errors is not None:
         if isinstance(max_errors, bool) or not isinstance(max_errors, (int, float)) or \
-                not math.isfinite(max_errors) or max_errors < 0:
+                not abs(max_errors) <= sys.float_info.max or max_errors < 0:  # NaN, inf, 10**400
             raise ValidationError(f"max_errors must be a finite number ≥ 0 or None, "
                                   f"not {max_errors!r}")
     for name, value in (("max_states", max_states), ("max_steps", max_steps),

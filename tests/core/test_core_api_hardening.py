@@ -291,3 +291,12 @@ def test_lower_level_exports_and_analyses_refuse_what_is_no_grammar_or_system(ga
 def test_accepts_reads_a_pcgs_word_from_an_iterator():
     system = psgs.load("pcgs_abc")
     assert psgs.accepts(system, iter("abc")).answer == psgs.accepts(system, "abc").answer
+
+
+def test_an_int_past_a_floats_range_is_no_overflow_error(gamma):
+    # math.isfinite(10**400) and time.monotonic() + 10**400 raise OverflowError
+    words = ["abcdbcad", "bcadabcd", "cdabcdab", "abcdbcad"]
+    with pytest.raises(ValidationError, match="max_errors"):
+        psgs.nearest(gamma, words, max_errors=10 ** 400)
+    assert psgs.accepts(gamma, words, max_seconds=10 ** 400).answer == "yes"
+    assert psgs.language(gamma, 8, max_seconds=10 ** 400).complete

@@ -115,3 +115,13 @@ def test_an_actiongram_of_no_string_learns_nothing_without_an_error(name, perfor
         return  # the paper's learner reads one actiongram
     found = get(name).induce(data)
     assert found.components == () and found.system is None
+
+
+@pytest.mark.parametrize("name", ["min_copies", "alpha", "max_pattern"])
+def test_a_parameter_past_a_floats_range_is_a_validation_error(name):
+    from psgs.induce import PAL
+
+    with pytest.raises(ValidationError, match=name):
+        PAL(**{name: 10 ** 400})
+    with pytest.raises(ValidationError, match="copies"):
+        generate(0, copies=10 ** 400)
