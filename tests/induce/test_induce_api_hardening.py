@@ -125,3 +125,22 @@ def test_a_parameter_past_a_floats_range_is_a_validation_error(name):
         PAL(**{name: 10 ** 400})
     with pytest.raises(ValidationError, match="copies"):
         generate(0, copies=10 ** 400)
+
+
+# ---------------------------------------------------------------- locate
+@pytest.mark.parametrize("method", ["joints", "pattern"])
+@pytest.mark.parametrize("name, value", [
+    ("threshold", None), ("threshold", "x"), ("threshold", math.nan), ("threshold", math.inf),
+    ("threshold", 2.0), ("threshold", True), ("threshold", 10 ** 400),
+    ("min_speed", "x"), ("min_speed", math.nan), ("min_speed", -1), ("min_speed", None),
+    ("min_share", "x"), ("min_share", math.nan), ("min_share", -1), ("min_share", 2.0),
+])
+def test_locate_checks_every_level_whichever_method_reads_it(method, name, value):
+    # threshold is read by the pattern method only, min_share by the joints method only:
+    # a bad value was ignored by the other, or a TypeError deep in numpy
+    from psgs import Actiongram
+    from psgs.induce import PAL, locate
+
+    ag = Actiongram.from_strings({"a": "abababab", "b": "abababab"})
+    with pytest.raises(ValidationError, match=name):
+        locate(PAL().induce(ag), ag, method=method, **{name: value})

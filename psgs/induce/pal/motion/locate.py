@@ -25,6 +25,7 @@ import numpy as np
 from ....actiongram import Actiongram
 from ....errors import ValidationError
 from ....model import PSGS, Nonterminal
+from ...conf import check_number
 from ...results import Induction
 from ..period import track_windows
 from .conf import MotionConf
@@ -108,8 +109,9 @@ def locate(learned: Induction | PSGS, actiongram: Actiongram, *, threshold: floa
     ------
     ValidationError
         When ``learned`` has no component, or none of its components is a
-        string of ``actiongram``; when a scale is not finite and positive, or
-        ``repeats`` is below 1. A tempo whose pattern is longer than the new
+        string of ``actiongram``; when a scale is not finite and positive,
+        ``repeats`` is below 1, or ``threshold`` (at most 1), ``min_speed`` (0 or
+        more) or ``min_share`` (0 to 1) is no finite number. A tempo whose pattern is longer than the new
         motion is skipped before it is sampled (it fits nowhere).
     TypeError
         When the arguments are not of these types.
@@ -129,6 +131,11 @@ def locate(learned: Induction | PSGS, actiongram: Actiongram, *, threshold: floa
     if method not in ("auto", "joints", "pattern"):
         raise ValidationError(f"method must be auto, joints or pattern, not {method!r}")
     scales = _checked_scales(scales)
+    # each is read by one method only: checked for both, so a bad one is never ignored
+    check_number("threshold", threshold, high=1)  # an agreement above 1 is never met
+    check_number("min_speed", min_speed, low=0)
+    if min_share is not None:
+        check_number("min_share", min_share, low=0, high=1)
     if repeats is not None and (isinstance(repeats, bool) or not isinstance(repeats, int)
                                 or repeats < 1):
         raise ValidationError(f"repeats must be a whole number of at least 1, not {repeats!r}")
