@@ -11,6 +11,7 @@ script on a word.
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
@@ -25,7 +26,8 @@ __all__ = ["EditCosts", "Edit", "apply_edits", "edit_costs"]
 def _number(value, what: str) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise ValidationError(f"{what} must be a number, not {value!r}")
-    if not math.isfinite(value) or value < 0:
+    # abs() <= the largest float: not NaN nor inf, nor an int math.isfinite would overflow on
+    if not abs(value) <= sys.float_info.max or value < 0:
         raise ValidationError(f"{what} must be a finite number ≥ 0, not {value!r}")
     return value
 

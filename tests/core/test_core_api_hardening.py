@@ -300,3 +300,10 @@ def test_an_int_past_a_floats_range_is_no_overflow_error(gamma):
         psgs.nearest(gamma, words, max_errors=10 ** 400)
     assert psgs.accepts(gamma, words, max_seconds=10 ** 400).answer == "yes"
     assert psgs.language(gamma, 8, max_seconds=10 ** 400).complete
+
+
+@pytest.mark.parametrize("key", ["insert", "delete", "substitute"])
+def test_an_edit_cost_past_a_floats_range_is_a_validation_error(gamma, key):
+    words = ["abcdbcad", "bcadabcd", "cdabcdab", "abcdbcaX"]
+    with pytest.raises(ValidationError, match=key):
+        psgs.nearest(gamma, words, costs={key: 10 ** 400})
