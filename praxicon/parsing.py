@@ -23,6 +23,7 @@ answer covers the ``hop`` around its centre, so spans follow the motion to withi
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -97,8 +98,6 @@ def windows(motion, window: float = _WINDOW, hop: float = _HOP):
     >>> starts[:3], cuts[0].duration
     ([0.0, 0.5, 1.0], 1.0)
     """
-    from kinetology import Motion
-
     if motion.frames < 3:
         raise DescriptionError(f"{motion.source}: {motion.frames} frames; parsing needs at "
                                f"least 3")
@@ -109,9 +108,27 @@ def windows(motion, window: float = _WINDOW, hop: float = _HOP):
     starts = list(range(0, motion.frames - size + 1, step))
     if starts[-1] != motion.frames - size:
         starts.append(motion.frames - size)
-    return ([s / motion.frame_rate for s in starts],
-            [Motion(motion.values[s:s + size], motion.channels, motion.frame_rate,
-                    motion.skeleton, motion.source) for s in starts])
+    return [s / motion.frame_rate for s in starts], _Windows(motion, tuple(starts), size)
+
+
+class _Windows(Sequence):
+    """The windows of one motion, each made when it is read: made at once, they held
+    ``window / hop`` copies of the whole recording (8 at the defaults, 240 for 2-second windows
+    a frame apart at 120 fps), while parse reads one at a time."""
+
+    def __init__(self, motion, starts: tuple[int, ...], size: int) -> None:
+        self._motion, self._starts, self._size = motion, starts, size
+
+    def __len__(self) -> int:
+        return len(self._starts)
+
+    def __getitem__(self, index):
+        from kinetology import Motion
+
+        if isinstance(index, slice):
+            return [self[i] for i in range(*index.indices(len(self)))]
+        s, m = self._starts[index], self._motion
+        return Motion(m.values[s:s + self._size], m.channels, m.frame_rate, m.skeleton, m.source)
 
 
 def describe_windows(takes: dict[str, list], *, window: float = _WINDOW, hop: float = _HOP):

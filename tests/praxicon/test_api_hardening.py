@@ -340,3 +340,27 @@ def test_draw_praxicon_checks_workers(built, tmp_path):
 
     with pytest.raises(ValueError, match="workers must be at least 1, not '2'"):
         draw_praxicon(built, tmp_path / "all", workers="2")
+
+
+def test_parse_holds_one_window_at_a_time():
+    """Windows a frame apart were all made before any was read: window/hop copies of the
+    recording at once (240 for 2-second windows at 120 fps)."""
+    import time
+    import tracemalloc
+
+    takes = {"a": [synthetic_motion(20, (0, 1), seed=s, repetitions=4) for s in (1, 2)],
+             "b": [synthetic_motion(20, (2, 3), seed=s, repetitions=4) for s in (3, 4)]}
+    recording = synthetic_motion(20, (0, 1), seed=7, repetitions=14)
+    windows = describe_windows(takes)
+    tracemalloc.start()
+    try:
+        began = time.perf_counter()
+        parse(windows, recording, hop=1 / 120)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    size = int(round(windows.spread.window * recording.frame_rate))
+    all_windows = (recording.frames - size) * size * len(recording.channels) * 8
+    # made at once they alone were all_windows bytes (the peak was 1.4 times that); one at a
+    # time the peak is the features of every window, about a third
+    assert peak < 0.75 * all_windows, (peak, all_windows, time.perf_counter() - began)
