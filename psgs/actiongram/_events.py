@@ -253,6 +253,8 @@ def to_events(actiongram, rest_symbol: str | None = None) -> tuple[tuple[str, fl
                                                                    ...]:
     """:meth:`psgs.Actiongram.to_events`: one ``(stream, onset, duration, symbol)`` per
     segment, string by string, leaving out segments of ``rest_symbol`` when it is given."""
+    if rest_symbol is not None and _bad_symbol(rest_symbol):  # a number matched no symbol
+        raise ValidationError(f"rest_symbol: {_bad_symbol(rest_symbol)}")
     out = []
     starts = actiongram.starts
     for name, syms, durs in zip(actiongram.names, actiongram.symbols,

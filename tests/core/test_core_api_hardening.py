@@ -307,3 +307,12 @@ def test_an_edit_cost_past_a_floats_range_is_a_validation_error(gamma, key):
     words = ["abcdbcad", "bcadabcd", "cdabcdab", "abcdbcaX"]
     with pytest.raises(ValidationError, match=key):
         psgs.nearest(gamma, words, costs={key: 10 ** 400})
+
+
+@pytest.mark.parametrize("rest", [0, 1.5, ["_"], ""])
+def test_to_events_refuses_a_rest_symbol_that_is_no_symbol(rest):
+    # a number never equals a symbol: every rest was kept, silently
+    ag = psgs.Actiongram.from_events([("s", 0, 1, "a"), ("s", 2, 1, "b")])
+    with pytest.raises(ValidationError, match="rest_symbol"):
+        ag.to_events(rest)
+    assert len(ag.to_events("_")) == 2 and len(ag.to_events()) == 3
