@@ -286,6 +286,9 @@ class Motion:
 
     def select(self, channels) -> "Motion":
         """A motion with only ``channels`` (in that order) and no skeleton."""
+        if isinstance(channels, str) or not isinstance(channels, Iterable):  # "a.rx": a, ., r, x
+            raise ValidationError(f"channels must be a sequence of names, not {channels!r}")
+        channels = tuple(channels)
         columns = [self.index(c) for c in channels]
         return Motion(self.values[:, columns], tuple(channels), self.frame_rate, None,
                       self.source, self.meta)

@@ -398,3 +398,14 @@ def test_player_checks_its_panels_rate_and_ticks():
     with pytest.raises(kinetology.ViewError, match="tick must be a whole number from 0"):
         player.frame_of(0, -1)                              # was frame -1
     assert player.frame_of(0, 10**9) == player.panels[0].frames - 1
+
+
+@pytest.mark.parametrize("channels", [None, "a.rx", 5])
+def test_motion_select_wants_a_sequence_of_names(channels):
+    with pytest.raises(ValidationError, match="channels must be a sequence of names"):
+        Motion(np.zeros((5, 2)), CHANNELS, 30.0).select(channels)
+
+
+def test_motion_select_reads_a_generator_once():
+    motion = Motion(np.arange(10.0).reshape(5, 2), CHANNELS, 30.0)
+    assert motion.select(c for c in ("b.rx",)).channels == ("b.rx",)
