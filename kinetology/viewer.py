@@ -555,7 +555,7 @@ def view(motions: Motion | Sequence[Motion] | Mapping[str, Motion],
         raise ViewError(f"kinetemes and follow must be True or False, not {kinetemes!r} and "
                         f"{follow!r}", source="kinetology.view")
     per_panel = actuators if isinstance(actuators, Mapping) else \
-        {label: actuators for label in named}
+        dict.fromkeys(named, None if actuators is None else tuple(actuators))  # read once
     unknown = set(per_panel) - set(named)
     if unknown:
         raise ViewError(f"actuators given for {', '.join(map(repr, sorted(unknown)))}, which "

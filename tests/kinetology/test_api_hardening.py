@@ -409,3 +409,9 @@ def test_motion_select_wants_a_sequence_of_names(channels):
 def test_motion_select_reads_a_generator_once():
     motion = Motion(np.arange(10.0).reshape(5, 2), CHANNELS, 30.0)
     assert motion.select(c for c in ("b.rx",)).channels == ("b.rx",)
+
+
+def test_view_reads_a_generator_of_actuators_once_for_every_panel():
+    motion = with_skeleton()
+    player = kinetology.view({"a": motion, "b": motion}, actuators=(j for j in ["j0"]))
+    assert player.panels[0].actuators == player.panels[1].actuators   # the second had none
