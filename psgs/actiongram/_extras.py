@@ -40,6 +40,8 @@ def default_actuator(name: str) -> str:
     >>> default_actuator("arm.x"), default_actuator("body"), default_actuator(".x")
     ('arm', 'body', '.x')
     """
+    if not isinstance(name, str):
+        raise ValidationError(f"a string's name is a str, not {_shown(name)}")
     head = name.split(".", 1)[0]
     return head if head else name
 

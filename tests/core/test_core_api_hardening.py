@@ -316,3 +316,11 @@ def test_to_events_refuses_a_rest_symbol_that_is_no_symbol(rest):
     with pytest.raises(ValidationError, match="rest_symbol"):
         ag.to_events(rest)
     assert len(ag.to_events("_")) == 2 and len(ag.to_events()) == 3
+
+
+@pytest.mark.parametrize("name", [None, 3, ["arm.x"]])
+def test_default_actuator_refuses_a_name_that_is_no_str(name):
+    from psgs.actiongram import default_actuator
+
+    with pytest.raises(ValidationError, match="name"):
+        default_actuator(name)
