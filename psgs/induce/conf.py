@@ -281,6 +281,8 @@ class Conf:
         >>> D.pick({"rounds": 4, "colour": "red"}).rounds
         4
         """
+        if not isinstance(source, (Conf, Mapping)):  # dict() of a list of pairs would do too
+            raise ValidationError(f"pick reads a Conf or a mapping, not {source!r}")
         values = source.as_dict() if isinstance(source, Conf) else dict(source)
         return cls(**{k: values[k] for k in cls.names() if k in values})
 

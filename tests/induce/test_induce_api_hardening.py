@@ -144,3 +144,11 @@ def test_locate_checks_every_level_whichever_method_reads_it(method, name, value
     ag = Actiongram.from_strings({"a": "abababab", "b": "abababab"})
     with pytest.raises(ValidationError, match=name):
         locate(PAL().induce(ag), ag, method=method, **{name: value})
+
+
+@pytest.mark.parametrize("source", [None, 3, [("min_copies", 4)]])
+def test_conf_pick_refuses_what_is_no_table_or_mapping(source):
+    from psgs.induce.pal.conf import ContentConf
+
+    with pytest.raises(ValidationError, match="pick"):
+        ContentConf.pick(source)
