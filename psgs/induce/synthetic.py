@@ -52,7 +52,7 @@ from .conf import check_number
 __all__ = ["Synthetic", "generate", "success", "vote_margin", "PAPER_POINTS", "MAX_SYMBOLS"]
 
 #: The paper's reported success rates (noise level -> share of actiongrams).
-PAPER_POINTS = {0.0: 1.0, 0.07: 1.0, 0.10: 0.96}
+PAPER_POINTS = MappingProxyType({0.0: 1.0, 0.07: 1.0, 0.10: 0.96})  # read-only: shared
 #: The most symbols :func:`generate` draws (letters, templates and strings together): a
 #: hundred times the largest benchmark's actiongram, so a mistyped size is an error, not a
 #: machine out of memory.

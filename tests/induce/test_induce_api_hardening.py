@@ -152,3 +152,11 @@ def test_conf_pick_refuses_what_is_no_table_or_mapping(source):
 
     with pytest.raises(ValidationError, match="pick"):
         ContentConf.pick(source)
+
+
+def test_the_papers_points_are_read_only():
+    from psgs.induce.synthetic import PAPER_POINTS
+
+    with pytest.raises(TypeError):
+        PAPER_POINTS[0.0] = 0.5  # type: ignore[index]
+    assert PAPER_POINTS[0.10] == 0.96 and list(PAPER_POINTS) == [0.0, 0.07, 0.10]
