@@ -139,6 +139,13 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
         raise ValidationError("build learns a list of praxicon.Action (read_dataset makes one)")
     if not isinstance(out, (str, os.PathLike)):
         raise ValidationError(f"out must be a folder's path, not {type(out).__name__}")
+    if isinstance(datasets, str) or not (settings is None or isinstance(settings, Settings)):
+        # a string of datasets was one dataset a letter; a string of settings failed in a worker
+        raise ValidationError(f"datasets must be a list of names and settings a Settings, not "
+                              f"{datasets!r} and {settings!r}")
+    given, executor = executor, _as_executor(executor)
+    if executor is not None and not callable(getattr(executor, "submit", None)):
+        raise ValidationError(f"executor must be an Executor or a Dask client, not {given!r}")
     names = [a.name for a in actions]
     twice = sorted({n for n in names if names.count(n) > 1})
     if twice:
@@ -147,7 +154,6 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     settings = settings or Settings.make()
-    executor = _as_executor(executor)
     bar = _bar(0, False)
     log = log or (lambda line: bar.write(f"praxicon: {line}"))
     refused = []

@@ -364,3 +364,16 @@ def test_parse_holds_one_window_at_a_time():
     # made at once they alone were all_windows bytes (the peak was 1.4 times that); one at a
     # time the peak is the features of every window, about a third
     assert peak < 0.75 * all_windows, (peak, all_windows, time.perf_counter() - began)
+
+
+@pytest.mark.parametrize("options, match", [
+    ({"datasets": "abc"}, "datasets must be a list of names"),   # was datasets a, b and c
+    ({"settings": "pal"}, "settings a Settings"),                 # an AttributeError before
+    ({"executor": "x"}, "executor must be an Executor"),
+])
+def test_build_checks_its_options(tmp_path, options, match):
+    from praxicon import build
+    from psgs.errors import ValidationError
+
+    with pytest.raises(ValidationError, match=match):
+        build([], tmp_path / "px", progress=False, **options)
