@@ -267,7 +267,8 @@ def view_invariance(motion: Motion, triple: tuple[str, str, str], *, views: int 
     """
     # each view is a frames-long row of states: 10**9 views asked for gigabytes
     if isinstance(views, bool) or not isinstance(views, Integral) or not 1 <= views <= MAX_VIEWS:
-        raise ValidationError(f"views must be a whole number from 1 to {MAX_VIEWS}, not {views!r}")
+        raise ValidationError(f"views must be a positive whole number, at most {MAX_VIEWS}, "
+                              f"not {views!r}")
     if isinstance(triple, str) or len(tuple(triple)) != 3 or up_axis not in (0, 1, 2):
         raise ValidationError(f"triple must name three joints and up_axis be 0, 1 or 2, not "
                               f"{triple!r} and {up_axis!r}")
