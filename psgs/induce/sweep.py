@@ -152,8 +152,9 @@ def _checked(levels, trials, inducers, params, seed, variant, jobs, progress):
     if isinstance(levels, (str, bytes)) or not isinstance(levels, Iterable):
         raise ValidationError(f"levels must be a sequence of noise levels, not {levels!r}")
     levels = tuple(levels)
-    for level in levels:
-        check_number("noise level", level, low=0, high=1)
+    for level in levels:  # numpy's float32 and integers are numbers too, as float() read them
+        real = isinstance(level, numbers.Real) and not isinstance(level, (bool, int, float))
+        check_number("noise level", float(level) if real else level, low=0, high=1)
     if isinstance(inducers, (str, bytes)) or not isinstance(inducers, Iterable):
         raise ValidationError(f"inducers must be a sequence of inducer names, not {inducers!r}")
     inducers = tuple(inducers)

@@ -160,3 +160,11 @@ def test_the_papers_points_are_read_only():
     with pytest.raises(TypeError):
         PAPER_POINTS[0.0] = 0.5  # type: ignore[index]
     assert PAPER_POINTS[0.10] == 0.96 and list(PAPER_POINTS) == [0.0, 0.07, 0.10]
+
+
+def test_noise_sweep_takes_numpy_levels_of_any_float_width():
+    np = pytest.importorskip("numpy")
+    from psgs.induce.sweep import noise_sweep
+
+    rows = noise_sweep(np.zeros(1, dtype=np.float32), 1, inducers=("sequential",))
+    assert [r.noise for r in rows] == [0.0]
