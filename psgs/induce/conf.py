@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import numbers
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import TypeVar
@@ -33,7 +34,7 @@ from typing import TypeVar
 from ..errors import ValidationError
 
 __all__ = ["Conf", "Number", "Choice", "Parameter", "parameter", "check_number", "check_choice",
-           "union"]
+           "union", "plain_number"]
 
 C = TypeVar("C", bound="Conf")
 
@@ -88,6 +89,21 @@ def _finite(value: int | float) -> bool:
         return math.isfinite(value)
     except OverflowError:
         return False
+
+
+def plain_number(value: object) -> object:
+    """A numpy scalar as the Python number it holds (``np.float32(0.5)`` -> ``0.5``); any
+    other value as it is, for :func:`check_number` to judge.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> plain_number(np.float32(0.5)), plain_number(np.int64(3)), plain_number("x")
+    (0.5, 3, 'x')
+    """
+    if isinstance(value, (bool, int, float)) or not isinstance(value, numbers.Real):
+        return value
+    return int(value) if isinstance(value, numbers.Integral) else float(value)
 
 
 def check_choice(name: str, value: object, choices: Sequence[str]) -> None:

@@ -16,7 +16,7 @@ from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 
 from ..errors import ValidationError
-from .conf import check_number
+from .conf import check_number, plain_number
 from .registry import get
 from .synthetic import generate, success
 
@@ -153,8 +153,7 @@ def _checked(levels, trials, inducers, params, seed, variant, jobs, progress):
         raise ValidationError(f"levels must be a sequence of noise levels, not {levels!r}")
     levels = tuple(levels)
     for level in levels:  # numpy's float32 and integers are numbers too, as float() read them
-        real = isinstance(level, numbers.Real) and not isinstance(level, (bool, int, float))
-        check_number("noise level", float(level) if real else level, low=0, high=1)
+        check_number("noise level", plain_number(level), low=0, high=1)
     if isinstance(inducers, (str, bytes)) or not isinstance(inducers, Iterable):
         raise ValidationError(f"inducers must be a sequence of inducer names, not {inducers!r}")
     inducers = tuple(inducers)

@@ -47,7 +47,7 @@ import numpy as np
 
 from ..actiongram import Actiongram
 from ..errors import ValidationError
-from .conf import check_number
+from .conf import check_number, plain_number
 
 __all__ = ["Synthetic", "generate", "success", "vote_margin", "PAPER_POINTS", "MAX_SYMBOLS"]
 
@@ -193,12 +193,11 @@ def generate(seed: int, noise: float = 0.0, *, strings: int = 20, alphabet: int 
     """
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
         raise ValidationError(f"seed must be a non-negative integer, not {seed!r}")
-    check_number("noise", noise, low=0, high=1)
+    check_number("noise", plain_number(noise), low=0, high=1)
     sizes = dict(strings=strings, alphabet=alphabet, patterned=patterned, templates=templates,
                  template_length=template_length, copies=copies, gap=gap)
     for name, value in sizes.items():
-        check_number(name, int(value) if isinstance(value, np.integer) else value, low=0,
-                     integer=True)
+        check_number(name, plain_number(value), low=0, integer=True)
     for name, flag in (("irregular_gaps", irregular_gaps), ("unequal_lengths", unequal_lengths)):
         if not isinstance(flag, (bool, np.bool_)):
             raise ValidationError(f"{name} must be True or False, not {flag!r}")

@@ -168,3 +168,16 @@ def test_noise_sweep_takes_numpy_levels_of_any_float_width():
 
     rows = noise_sweep(np.zeros(1, dtype=np.float32), 1, inducers=("sequential",))
     assert [r.noise for r in rows] == [0.0]
+
+
+def test_numpy_scalars_are_numbers_to_generate_and_locate():
+    np = pytest.importorskip("numpy")
+    from psgs import Actiongram
+    from psgs.induce import PAL, locate
+
+    assert generate(1, np.float32(0.25)) == generate(1, float(np.float32(0.25)))
+    ag = Actiongram.from_strings({"a": "abababab", "b": "abababab"})
+    learned = PAL().induce(ag)
+    assert locate(learned, ag, method="pattern", threshold=np.float32(0.5), min_speed=np.int64(0),
+                  min_share=np.float32(0.4)) == locate(learned, ag, method="pattern",
+                                                       threshold=0.5, min_speed=0)

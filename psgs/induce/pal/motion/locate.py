@@ -25,7 +25,7 @@ import numpy as np
 from ....actiongram import Actiongram
 from ....errors import ValidationError
 from ....model import PSGS, Nonterminal
-from ...conf import check_number
+from ...conf import check_number, plain_number
 from ...results import Induction
 from ..period import track_windows
 from .conf import MotionConf
@@ -132,10 +132,10 @@ def locate(learned: Induction | PSGS, actiongram: Actiongram, *, threshold: floa
         raise ValidationError(f"method must be auto, joints or pattern, not {method!r}")
     scales = _checked_scales(scales)
     # each is read by one method only: checked for both, so a bad one is never ignored
-    check_number("threshold", threshold, high=1)  # an agreement above 1 is never met
-    check_number("min_speed", min_speed, low=0)
+    check_number("threshold", plain_number(threshold), high=1)  # above 1: never met
+    check_number("min_speed", plain_number(min_speed), low=0)
     if min_share is not None:
-        check_number("min_share", min_share, low=0, high=1)
+        check_number("min_share", plain_number(min_share), low=0, high=1)
     if repeats is not None and (isinstance(repeats, bool) or not isinstance(repeats, int)
                                 or repeats < 1):
         raise ValidationError(f"repeats must be a whole number of at least 1, not {repeats!r}")
