@@ -12,6 +12,7 @@ search adds the size of what it keeps (states × form size, in symbols) with
 from __future__ import annotations
 
 import math
+import numbers
 import time
 
 from .errors import BoundReached, ValidationError
@@ -49,7 +50,8 @@ def check_count(value, name: str, minimum: int = 1) -> None:
     ...
     psgs.errors.ValidationError: max_states must be a whole number ≥ 1, not 0
     """
-    if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
+    # numbers.Integral: a numpy integer (a count read from an array) is a whole number too
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < minimum:
         raise ValidationError(f"{name} must be a whole number ≥ {minimum}, not {value!r}")
 
 

@@ -27,6 +27,7 @@ value), ``depth_first`` (the walk of the PSGS searches), ``schedule_search``
 from __future__ import annotations
 
 import gc
+import numbers
 
 from ..budget import Budget
 from ..errors import ValidationError
@@ -120,7 +121,7 @@ def accepts(system: PSGS | PCGS, words, *, max_states: int = 200_000,
     """
     for name, value in (("max_states", max_states), ("max_steps", max_steps),
                         ("max_symbols", max_symbols)):
-        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+        if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 1:
             raise ValidationError(f"{name} must be a positive integer, not {value!r}")
     if not _is_seconds(max_seconds):
         raise ValidationError(f"max_seconds must be a positive number, not {max_seconds!r}")

@@ -324,3 +324,21 @@ def test_default_actuator_refuses_a_name_that_is_no_str(name):
 
     with pytest.raises(ValidationError, match="name"):
         default_actuator(name)
+
+
+def test_bounds_take_a_numpy_integer_as_the_whole_number_it_is():
+    import numpy as np
+
+    from psgs import accepts, language, load
+    from psgs.derivation import random_derivation
+
+    gamma = load("paper_example")
+    a = random_derivation(gamma, 3, max_steps=np.int64(5))
+    assert a == random_derivation(gamma, 3, max_steps=5)
+    counting = load("counting")
+    word = sorted(language(counting, 3))[0]
+    assert accepts(counting, word, max_states=np.int32(1000)).answer == \
+        accepts(counting, word, max_states=1000).answer
+    assert language(counting, np.int64(3)) == language(counting, 3)
+    with pytest.raises(ValidationError, match="max_steps"):
+        random_derivation(gamma, 3, max_steps=np.float64(5.0))
