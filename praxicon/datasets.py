@@ -93,9 +93,13 @@ class Action:
     problems: tuple[str, ...] = field(default=())
 
     def __post_init__(self) -> None:
+        for name in ("performances", "problems"):  # a list given is copied: not shared, frozen
+            value = getattr(self, name)
+            if isinstance(value, list):
+                object.__setattr__(self, name, tuple(value))
         names = (self.name, self.dataset, self.content)
         if not (all(isinstance(n, str) for n in names) and isinstance(self.style, (str, type(None)))
-                and isinstance(self.performances, tuple)  # a list would be shared and mutable
+                and isinstance(self.performances, tuple)
                 and all(isinstance(p, Performance) for p in self.performances)
                 and isinstance(self.problems, tuple)):
             raise DatasetError(f"an action is a name, dataset and content (strings) and a tuple "

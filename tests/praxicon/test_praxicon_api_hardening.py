@@ -298,13 +298,22 @@ def test_a_performance_made_in_python_is_checked(args):
 @pytest.mark.parametrize("args, options", [
     ((None, "d", "a"), {}),
     (("a", "d", "a"), {"performances": ["x.bvh"]}),
-    (("a", "d", "a"), {"performances": []}),    # a list: shared with the caller, mutable
+    (("a", "d", "a"), {"performances": "x.bvh"}),
 ])
 def test_an_action_made_in_python_is_checked(args, options):
     from praxicon import Action, DatasetError
 
     with pytest.raises(DatasetError, match="an action is a name, dataset and content"):
         Action(*args, **options)
+
+
+def test_an_action_keeps_a_copy_of_the_list_it_is_given():
+    from praxicon import Action, Performance
+
+    given = [Performance("x.bvh")]
+    action = Action("a", "d", "a", performances=given, problems=["p"])
+    given.append(Performance("y.bvh"))  # the caller's list is the caller's
+    assert action.performances == (Performance("x.bvh"),) and action.problems == ("p",)
 
 
 def test_learn_action_checks_its_arguments():
