@@ -428,7 +428,8 @@ class Derivation:
 
 
 def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
-                      max_form_length: int = 100_000) -> Derivation:
+                      max_form_length: int = 100_000,
+                      max_symbols: int = 10_000_000) -> Derivation:
     """A derivation from the axioms taking uniformly random applicable steps (seeded).
 
     Each step is drawn uniformly among :func:`applicable_steps` (the same
@@ -437,10 +438,15 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
 
     It stops when the configuration is terminal (``status == "terminal"``),
     when no step applies (``"blocked"``), or at a bound: ``max_steps`` steps,
-    or a form longer than ``max_form_length`` symbols (parallel rewriting
-    can double a form at every step). The bound hit is named in
-    ``Derivation.bound`` (``"max_steps"`` or ``"max_form_length"``) and
-    described in ``Derivation.reason``. The same seed always gives the same derivation.
+    a form longer than ``max_form_length`` symbols (parallel rewriting
+    can double a form at every step), or configurations holding more than
+    ``max_symbols`` symbols together (the derivation keeps every configuration
+    it passes, so a form that grows by one symbol a step holds the square of
+    the steps: 50 million symbols, 400 MB, at 10,000 steps). The bound hit is
+    named in ``Derivation.bound`` (``"max_steps"``, ``"max_form_length"`` or
+    ``"max_symbols"``) and described in ``Derivation.reason``. The same seed
+    always gives the same derivation, and a derivation stopped at a bound is the
+    start of the one a larger bound allows.
 
     Parameters
     ----------
@@ -453,6 +459,9 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
         Stop after this many steps.
     max_form_length : int, default 100_000
         Stop once a form is longer than this.
+    max_symbols : int, default 10_000_000
+        Stop before the configurations kept (the axioms' and every step's result)
+        would hold more symbols than this, summed (a pointer each: ~80 MB).
 
     Returns
     -------
@@ -480,10 +489,12 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
     _require_system(system)
     check_count(max_steps, "max_steps", minimum=0)
     check_count(max_form_length, "max_form_length", minimum=0)
+    check_count(max_symbols, "max_symbols", minimum=1)
     rng = random.Random(_checked_seed(seed))
     configuration = initial_configuration(system)
     steps: list[Step] = []
     bound = reason = None
+    held = sum(len(f) for f in configuration)
     while not is_terminal_configuration(system, configuration):
         if len(steps) >= max_steps:
             bound, reason = "max_steps", f"stopped after {max_steps} steps (max_steps)"
@@ -495,6 +506,12 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
             break
         step = random_step(system, configuration, rng)
         if step is None:
+            break
+        held += sum(len(f) for f in step.after)
+        if held > max_symbols:  # the step is drawn, and let go: the memory bound holds
+            bound = "max_symbols"
+            reason = (f"stopped before the configurations kept would hold more than "
+                      f"{max_symbols} symbols (max_symbols)")
             break
         steps.append(step)
         configuration = step.after

@@ -220,6 +220,37 @@ def test_random_derivation_stops_when_forms_explode():
     assert len(d) == 10  # 2**10 = 1024 symbols
 
 
+
+def test_random_derivation_holds_at_most_max_symbols_and_says_so():
+    # a form that grows a symbol a step: the configurations kept hold the square of the steps
+    grow = one_component([Rule("r1", S, (a, S))], sync=[("r1",)])
+    d = random_derivation(grow, 0, max_symbols=5_000)
+    held = [sum(len(f) for f in c) for c in d.configurations]
+    assert d.bound == "max_symbols" and d.status == "open" and "5000 symbols" in d.reason
+    assert sum(held) <= 5_000 < sum(held) + held[-1] + 1  # one step more would pass it
+    assert len(d) == 98  # 1 + 2 + ... + 99 = 4,950 symbols; 100 more would be 5,050
+    # with the default bound, 10,000 steps of it would hold 50 million symbols (400 MB)
+    default = random_derivation(grow, 0)
+    assert default.bound == "max_symbols" and len(default) < 4_500
+    with pytest.raises(ValidationError, match="max_symbols"):
+        random_derivation(grow, 0, max_symbols=0)
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(data=st.data())
+def test_a_derivation_stopped_at_max_symbols_starts_the_one_a_larger_bound_allows(data):
+    system = data.draw(_systems())
+    seed = data.draw(st.integers(0, 2**16))
+    small = data.draw(st.integers(1, 60))
+    whole = random_derivation(system, seed, max_steps=30, max_form_length=40)
+    cut = random_derivation(system, seed, max_steps=30, max_form_length=40, max_symbols=small)
+    assert cut.steps == whole.steps[:len(cut.steps)]
+    if cut.bound == "max_symbols":  # the step it let go was drawn: the other one took it
+        assert len(cut.steps) < len(whole.steps)
+    else:
+        assert cut == whole
+
+
 # ---------------------------------------------------------------- properties
 def _systems():
     from psgs.strategies import psgs_systems
