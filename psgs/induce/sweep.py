@@ -145,8 +145,8 @@ def noise_sweep(levels: Iterable[float], trials: int, *, inducers: Sequence[str]
 def _checked(levels, trials, inducers, params, seed, variant, jobs, progress):
     """noise_sweep's arguments checked before any trial runs (a bad one found after hours of
     trials would lose them): the levels, inducer names and mappings, as tuples and dicts."""
-    check_number("trials", trials, low=1, integer=True)
-    check_number("jobs", jobs, low=1, integer=True)
+    check_number("trials", plain_number(trials), low=1, integer=True)  # np.int64 as before
+    check_number("jobs", plain_number(jobs), low=1, integer=True)
     if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or seed < 0:
         raise ValidationError(f"seed must be a non-negative integer, not {seed!r}")
     if isinstance(levels, (str, bytes)) or not isinstance(levels, Iterable):

@@ -39,6 +39,7 @@ template; at a tie only luck can.
 
 from __future__ import annotations
 
+import numbers
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
@@ -199,7 +200,8 @@ def generate(seed: int, noise: float = 0.0, *, strings: int = 20, alphabet: int 
     for name, value in sizes.items():
         check_number(name, plain_number(value), low=0, integer=True)
     for name, flag in (("irregular_gaps", irregular_gaps), ("unequal_lengths", unequal_lengths)):
-        if not isinstance(flag, (bool, np.bool_)):
+        # 0 and 1 are flags too (they were read as such before the check), "yes" is not
+        if not isinstance(flag, (bool, np.bool_, numbers.Integral)) or flag not in (0, 1):
             raise ValidationError(f"{name} must be True or False, not {flag!r}")
     # what the draw holds at once: the letters, the templates and every string's symbols
     symbols = (alphabet + templates * template_length + strings * max(

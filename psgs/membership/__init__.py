@@ -50,6 +50,13 @@ def _is_seconds(value) -> bool:
     return not isinstance(value, bool) and isinstance(value, (int, float)) and value > 0
 
 
+def _flag(value) -> bool:
+    """True for a yes-or-no value: a bool, numpy's bool, 0 or 1 (not "no", which is truthy)."""
+    if getattr(value, "shape", None) == () and getattr(value, "dtype", None) == bool:
+        return True  # numpy's bool scalar (no numbers.Number)
+    return isinstance(value, numbers.Number) and value in (True, False)
+
+
 def accepts(system: PSGS | PCGS, words, *, max_states: int = 200_000,
             max_seconds: float = 30.0, max_steps: int = 200,
             max_symbols: int = MAX_SYMBOLS, check_witness: bool | None = None) -> Acceptance:
@@ -125,7 +132,7 @@ def accepts(system: PSGS | PCGS, words, *, max_states: int = 200_000,
             raise ValidationError(f"{name} must be a positive integer, not {value!r}")
     if not _is_seconds(max_seconds):
         raise ValidationError(f"max_seconds must be a positive number, not {max_seconds!r}")
-    if check_witness is not None and not isinstance(check_witness, bool):  # "no" is truthy
+    if check_witness is not None and not _flag(check_witness):  # "no" is truthy
         raise ValidationError(f"check_witness must be True, False or None, not {check_witness!r}")
     budget = Budget(max_seconds, max_symbols, every=32)
     if isinstance(system, PCGS):

@@ -248,11 +248,19 @@ def test_a_derivation_refuses_steps_of_another_system(gamma):
     assert Derivation(gamma, own.steps) == Derivation(gamma, own.steps, own.configurations)
 
 
-@pytest.mark.parametrize("value", ["no", 0, 1, [], math.nan])
+@pytest.mark.parametrize("value", ["no", 2, [], math.nan])
 def test_accepts_refuses_a_check_witness_that_is_no_bool(gamma, value):
     words = ["abcdbcad", "bcadabcd", "cdabcdab", "abcdbcad"]
     with pytest.raises(ValidationError, match="check_witness"):
         psgs.accepts(gamma, words, check_witness=value)
+
+
+@pytest.mark.parametrize("value", [0, 1, "numpy"])
+def test_accepts_takes_a_check_witness_of_zero_one_or_a_numpy_bool(gamma, value):
+    if value == "numpy":
+        value = pytest.importorskip("numpy").bool_(True)
+    words = ["abcdbcad", "bcadabcd", "cdabcdab", "abcdbcad"]
+    assert psgs.accepts(gamma, words, check_witness=value).answer == "yes"
 
 
 @pytest.mark.parametrize("path", [None, 3, ["a.psgs"]])

@@ -36,8 +36,11 @@ def test_generate_refuses_sizes_it_could_not_hold_before_drawing(name):
 
 @pytest.mark.parametrize("name", ["irregular_gaps", "unequal_lengths"])
 def test_generate_refuses_a_flag_that_is_no_bool(name):
-    with pytest.raises(ValidationError, match=name):
-        generate(0, **{name: "yes"})
+    for value in ("yes", 2, 0.5):
+        with pytest.raises(ValidationError, match=name):
+            generate(0, **{name: value})
+    # 0 and 1 were read as flags before the check, and still are
+    assert generate(0, **{name: 1}) == generate(0, **{name: True})
 
 
 def test_generate_takes_numpy_sizes_as_before():
@@ -72,6 +75,10 @@ def test_noise_sweep_takes_a_numpy_seed_and_a_generator_of_levels():
 
     rows = noise_sweep((x for x in [0.0]), 1, inducers=["sequential"], seed=np.int64(2))
     assert [(r.inducer, r.noise, r.trials) for r in rows] == [("sequential", 0.0, 1)]
+    # trials and jobs counted in numpy, as a script reading them from an array has them
+    again = noise_sweep([0.0], np.int64(1), inducers=["sequential"], seed=2, jobs=np.int32(1))
+    assert [(r.inducer, r.noise, r.trials, r.successes) for r in again] == \
+        [(r.inducer, r.noise, r.trials, r.successes) for r in rows]  # all but the seconds
 
 
 # ---------------------------------------------------------------- build_system
