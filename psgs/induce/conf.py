@@ -297,9 +297,14 @@ class Conf:
         >>> D.pick({"rounds": 4, "colour": "red"}).rounds
         4
         """
-        if not isinstance(source, (Conf, Mapping)):  # dict() of a list of pairs would do too
-            raise ValidationError(f"pick reads a Conf or a mapping, not {source!r}")
-        values = source.as_dict() if isinstance(source, Conf) else dict(source)
+        if isinstance(source, Conf):
+            values = source.as_dict()
+        else:  # a mapping, or (name, value) pairs as dict() reads them (``d.items()``)
+            try:
+                values = dict(source)
+            except (TypeError, ValueError):
+                raise ValidationError(f"pick reads a Conf, a mapping or (name, value) pairs, "
+                                      f"not {source!r}") from None
         return cls(**{k: values[k] for k in cls.names() if k in values})
 
     def as_dict(self) -> dict[str, object]:

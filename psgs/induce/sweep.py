@@ -158,8 +158,10 @@ def _checked(levels, trials, inducers, params, seed, variant, jobs, progress):
         raise ValidationError(f"inducers must be a sequence of inducer names, not {inducers!r}")
     inducers = tuple(inducers)
     for name, given in (("params", params), ("variant", variant)):
-        if given is not None and not isinstance(given, Mapping):
-            raise ValidationError(f"{name} must be a mapping, not {given!r}")
+        try:  # a mapping, or (name, value) pairs as dict() reads them
+            dict(given or {})
+        except (TypeError, ValueError):
+            raise ValidationError(f"{name} must be a mapping, not {given!r}") from None
     params = dict(params or {})
     for name, given in params.items():
         if not isinstance(given, Mapping):

@@ -153,12 +153,24 @@ def test_locate_checks_every_level_whichever_method_reads_it(method, name, value
         locate(PAL().induce(ag), ag, method=method, **{name: value})
 
 
-@pytest.mark.parametrize("source", [None, 3, [("min_copies", 4)]])
+@pytest.mark.parametrize("source", [None, 3, "min_copies", [("min_copies",)]])
 def test_conf_pick_refuses_what_is_no_table_or_mapping(source):
     from psgs.induce.pal.conf import ContentConf
 
     with pytest.raises(ValidationError, match="pick"):
         ContentConf.pick(source)
+
+
+def test_conf_pick_and_noise_sweep_read_name_value_pairs_as_dict_does():
+    from psgs.induce.pal.conf import ContentConf
+    from psgs.induce.sweep import noise_sweep
+
+    wanted = {"min_copies": 4}
+    assert ContentConf.pick([("min_copies", 4)]) == ContentConf.pick(wanted) == \
+        ContentConf.pick(wanted.items())
+    rows = noise_sweep([0.0], 1, inducers=["sequential"], variant=[("strings", 6)])
+    same = noise_sweep([0.0], 1, inducers=["sequential"], variant={"strings": 6})
+    assert [(r.trials, r.successes) for r in rows] == [(r.trials, r.successes) for r in same]
 
 
 def test_the_papers_points_are_read_only():
