@@ -171,7 +171,7 @@ def load(path: str | PathLike, *, kind: str | None = None):
         For malformed text or bytes that are not UTF-8, naming ``path:line:col``; for an
         actiongram file that holds no string.
     ValidationError
-        For another ``kind``.
+        For another ``kind``, or a ``path`` that is no str or os.PathLike.
     FileNotFoundError
         When the file does not exist (and is no example's name).
 
@@ -186,6 +186,8 @@ def load(path: str | PathLike, *, kind: str | None = None):
     """
     if kind not in (None, "system", "actiongram"):
         raise ValidationError(f"kind must be None, 'system' or 'actiongram', not {kind!r}")
+    if not isinstance(path, (str, PathLike)):  # pathlib's TypeError would name no argument
+        raise ValidationError(f"load reads a path (a str or os.PathLike), not {path!r}")
     if kind == "actiongram" or (kind is None
                                 and Path(path).suffix.lower() in ACTIONGRAM_SUFFIXES):
         from .actiongram import _read_file

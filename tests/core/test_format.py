@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 import psgs
 import psgs.strategies as pst
 from psgs import (IDLE, PCGS, PSGS, FormatError, Grammar, Nonterminal, Query, Rule, Terminal,
-                  dumps, load, loads)
+                  ValidationError, dumps, load, loads)
 
 REPO = Path(__file__).resolve().parents[2]
 GRAMMAR_FILES = sorted((REPO / "grammars").glob("*.psgs"))
@@ -431,3 +431,9 @@ def test_pcgs_round_trip_with_keywords_as_names(shape, returning, data):
     master = data.draw(st.sampled_from([g.name for g in components]))
     system = PCGS(tuple(components), returning=returning, master=master, name=shape.name)
     assert loads(dumps(system)) == system
+
+
+@pytest.mark.parametrize("path", [None, 3, ["a.psgs"], b"a.psgs"])
+def test_load_refuses_what_is_no_path_naming_it(path):
+    with pytest.raises(ValidationError, match="load reads a path"):
+        load(path)
