@@ -22,6 +22,7 @@ complete cycle occurs.
 from __future__ import annotations
 
 from collections import Counter
+from collections.abc import Iterable
 from dataclasses import dataclass
 from numbers import Integral
 from pathlib import Path
@@ -242,7 +243,8 @@ def view_invariance(motion: Motion, triple: tuple[str, str, str], *, views: int 
     Raises
     ------
     ValueError
-        When ``views`` is not a positive whole number or the motion has no skeleton.
+        When ``views`` is not a positive whole number, ``triple`` not three joints, ``up_axis``
+        no axis (0, 1, 2, or -1 for 2) or the motion has no skeleton.
     KeyError
         When a joint of ``triple`` is not in the skeleton.
 
@@ -269,9 +271,13 @@ def view_invariance(motion: Motion, triple: tuple[str, str, str], *, views: int 
     if isinstance(views, bool) or not isinstance(views, Integral) or not 1 <= views <= MAX_VIEWS:
         raise ValidationError(f"views must be a positive whole number, at most {MAX_VIEWS}, "
                               f"not {views!r}")
-    if isinstance(triple, str) or len(tuple(triple)) != 3 or up_axis not in (0, 1, 2):
-        raise ValidationError(f"triple must name three joints and up_axis be 0, 1 or 2, not "
-                              f"{triple!r} and {up_axis!r}")
+    given = triple  # a generator is read once, here
+    triple = tuple(triple) if isinstance(triple, Iterable) and not isinstance(triple, str) else ()
+    if len(triple) != 3:
+        raise ValidationError(f"triple must name three joints, not {given!r}")
+    if not isinstance(up_axis, Integral) or up_axis not in (0, 1, 2, -1):  # -2, -3: up horizontal
+        raise ValidationError(f"up_axis must be 0, 1 or 2, not {up_axis!r}")
+    up_axis = up_axis % 3
     positions = forward_kinematics(motion)
     index = [motion.skeleton.index(name) for name in triple]
     angle3 = joint_angle(positions, *index)

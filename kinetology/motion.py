@@ -12,7 +12,7 @@ from __future__ import annotations
 import os
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
-from numbers import Real
+from numbers import Integral, Real
 from pathlib import Path
 from types import MappingProxyType
 
@@ -323,6 +323,20 @@ def check_number(value, name: str, *, positive: bool = False) -> float:
         raise ValidationError(f"{name} must be a {'positive' if positive else 'non-negative'} "
                               f"number, not {value!r}")
     return number
+
+
+def is_whole(value) -> bool:
+    """True for a whole number: an int or numpy integer, or a float holding one (``3.0``, which
+    ``int()`` read before the checks); not a bool, a string, NaN or infinity.
+
+    Examples
+    --------
+    >>> is_whole(3), is_whole(np.int64(3)), is_whole(3.0), is_whole(3.5), is_whole(True)
+    (True, True, True, False, False)
+    """
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, Real):
+        return False
+    return isinstance(value, Integral) or float(value).is_integer()
 
 
 def as_path(path, name: str = "path") -> Path:

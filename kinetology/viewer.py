@@ -34,13 +34,13 @@ import os
 import shutil
 from dataclasses import dataclass
 from functools import cached_property
-from numbers import Integral, Real
 from importlib import resources
 from pathlib import Path
 from typing import Iterable, Mapping, Sequence
 
 import numpy as np
 
+from ._viewer_checks import panels_problem, tick_problem, view_problem
 from .motion import Motion, MotionFormatError, check_number
 from .plotting import STATE_COLOURS, STILL_COLOUR
 
@@ -269,10 +269,10 @@ class Player:
     frame_rate: float
 
     def __post_init__(self) -> None:  # no panel failed in max(), a string rate in its repr
-        if not (isinstance(self.panels, tuple) and self.panels
-                and all(isinstance(p, Panel) for p in self.panels)):
-            raise ViewError("a player needs a tuple of one or more Panel values",
-                            source="kinetology.Player")
+        if isinstance(self.panels, Iterable) and not isinstance(self.panels, str):
+            object.__setattr__(self, "panels", tuple(self.panels))  # a list, as before
+        if problem := panels_problem(self.panels, Panel):
+            raise ViewError(problem, source="kinetology.Player")
         check_number(self.frame_rate, "frame_rate", positive=True)
 
     def __repr__(self) -> str:  # a summary, not every panel's positions
@@ -291,9 +291,8 @@ class Player:
         """The kept frame that panel ``panel`` shows at slider step ``tick`` (the last frame
         once its motion has ended)."""
         p = self.panels[panel]
-        if isinstance(tick, bool) or not isinstance(tick, Integral) or tick < 0:  # -1 was frame -1
-            raise ViewError(f"tick must be a whole number from 0, not {tick!r}",
-                            source="kinetology.Player")
+        if problem := tick_problem(tick):  # 3.0 is a whole number, as before
+            raise ViewError(problem, source="kinetology.Player")
         return min(int(math.floor(tick * p.frame_rate / self.frame_rate + 1e-9)), p.frames - 1)
 
     def to_html(self, *, title: str | None = None) -> str:
@@ -477,9 +476,9 @@ def view(motions: Motion | Sequence[Motion] | Mapping[str, Motion],
     kinetemes : bool, default True
         Colour joints by their current state (False: every joint grey, no segmentation run).
     max_rate : float, default 30
-        Most frames per second kept.
+        Most frames per second kept (``inf``: every frame).
     max_frames : int, default 500
-        Most frames kept per motion (the step grows for longer motions).
+        Most frames kept per motion (the step grows for longer motions; ``inf``: no cap).
     follow : bool, default True
         The camera follows the body over the floor (False: it looks at the middle of the
         path, so the whole path is in the picture and the body smaller).
@@ -542,18 +541,12 @@ def view(motions: Motion | Sequence[Motion] | Mapping[str, Motion],
         if not isinstance(motion, Motion):
             raise ViewError(f"panel {label!r} is a {type(motion).__name__}, not a Motion",
                             source="kinetology.view")
-    # a string or a bool would pass for a number (or fail in a comparison), NaN every test
-    if isinstance(max_rate, bool) or not isinstance(max_rate, Real) or not max_rate > 0 or \
-            isinstance(max_frames, bool) or not isinstance(max_frames, Integral) or \
-            not max_rate < math.inf or max_frames < 1:
-        raise ViewError(f"max_rate must be a positive number and max_frames an integer at least 1, not "
-                        f"{max_rate!r} and {max_frames!r}", source="kinetology.view")
+    if problem := view_problem(max_rate, max_frames, kinetemes, follow):
+        raise ViewError(problem, source="kinetology.view")
+    kinetemes, follow = bool(kinetemes), bool(follow)  # numpy bools too, as before
     if actuators is not None and (isinstance(actuators, str) or not isinstance(actuators, Iterable)):
         raise ViewError(f"actuators must be a collection of joint names, not {actuators!r}",
                         source="kinetology.view")  # a string was taken letter by letter
-    if not (isinstance(kinetemes, bool) and isinstance(follow, bool)):
-        raise ViewError(f"kinetemes and follow must be True or False, not {kinetemes!r} and "
-                        f"{follow!r}", source="kinetology.view")
     per_panel = actuators if isinstance(actuators, Mapping) else \
         dict.fromkeys(named, None if actuators is None else tuple(actuators))  # read once
     unknown = set(per_panel) - set(named)

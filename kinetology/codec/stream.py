@@ -52,13 +52,12 @@ from __future__ import annotations
 import lzma
 import struct
 from dataclasses import dataclass
-from numbers import Integral
 
 import numpy as np
 
 from psgs.errors import ValidationError
 
-from ..motion import MotionFormatError
+from ..motion import MotionFormatError, is_whole
 from .varint import VarintError, decode
 from .varint import encode as varints
 
@@ -220,10 +219,11 @@ def read(data: bytes, source: str, max_samples: int | None = None) -> Layout:
         samples_limit = max(MIN_SAMPLES, SAMPLES_PER_BYTE * len(data))
         body_limit = max(MIN_BODY, BODY_PER_BYTE * len(data))
     else:
-        # int("5") and True passed for a count, 10**30 overflowed numpy's sizes
-        if isinstance(max_samples, bool) or not isinstance(max_samples, Integral) or \
-                max_samples < 0:
-            raise ValidationError(f"max_samples must be a whole number, not {max_samples!r}")
+        # int("5") and True passed for a count, 10**30 overflowed numpy's sizes; 1e6 and
+        # np.int64 are whole numbers, as int() read them before
+        if not is_whole(max_samples) or max_samples < 0:
+            raise ValidationError(f"max_samples must be a whole number of samples, 0 or more, "
+                                  f"not {max_samples!r}")
         samples_limit = min(int(max_samples), 1 << 56)  # 32 bytes each: still a size lzma takes
         body_limit = max(MIN_BODY, BODY_PER_BYTE * len(data), 32 * samples_limit + (1 << 16))
     if data[:4] == MAGIC:

@@ -252,12 +252,15 @@ def test_forward_kinematics_refuses_what_is_not_a_motion():
     (None, {}, "motions must be a Motion, a sequence or a mapping"),
     ([None], {}, "is a NoneType, not a Motion"),
     ("self", {"max_rate": "30"}, "max_rate must be a positive number"),
-    ("self", {"max_frames": 1.5}, "max_frames an integer"),
-    ("self", {"max_frames": True}, "max_frames an integer"),
-    ("self", {"max_rate": float("inf")}, "max_rate must be a positive number"),
+    ("self", {"max_frames": 1.5}, "max_frames must be a whole number"),  # 2 frames were kept
+    ("self", {"max_frames": True}, "max_frames must be a whole number"),
+    ("self", {"max_rate": float("nan")}, "max_rate must be a positive number"),
     ("self", {"actuators": 5}, "actuators must be a collection"),
     ("self", {"actuators": "j0"}, "actuators must be a collection"),   # was 'j', '0'
-    ("self", {"kinetemes": "no"}, "kinetemes and follow must be True or False"),  # was True
+    ("self", {"kinetemes": "no"}, "^kinetology.view: kinetemes must be True or False, not 'no'$"),
+    ("self", {"follow": 1}, "^kinetology.view: follow must be True or False, not 1$"),
+    ("self", {"max_frames": "5"}, "^kinetology.view: max_frames must be a whole number of at "
+     r"least 1 \(inf: no cap\), not '5'$"),
     ("self", {"output": 5}, "the output must be a file's path"),
 ])
 def test_view_checks_its_arguments(motions, options, match):
@@ -333,8 +336,11 @@ def test_actuator_map_and_skeleton_parents_refuse_one_string():
     ({"views": 10**9}, "views must be a positive whole number, at most 3600"),  # gigabytes
     ({"views": True}, "views must be a positive whole number"),
     ({"views": "4"}, "views must be a positive whole number"),
-    ({"triple": ("j0", "j1")}, "triple must name three joints"),   # a TypeError before
-    ({"up_axis": 5}, "up_axis be 0, 1 or 2"),
+    ({"triple": ("j0", "j1")}, "^triple must name three joints, not "),   # a TypeError before
+    ({"up_axis": 5}, "^up_axis must be 0, 1 or 2, not 5$"),
+    ({"up_axis": -2}, "^up_axis must be 0, 1 or 2, not -2$"),  # the up axis was horizontal
+    ({"up_axis": 1.0}, "up_axis must be 0, 1 or 2"),           # an IndexError before
+    ({"views": 4.0}, "views must be a positive whole number"),  # a TypeError from numpy before
 ])
 def test_view_invariance_checks_its_arguments(options, match):
     from kinetology.evaluation import view_invariance
@@ -359,8 +365,15 @@ def test_reconstruct_checks_its_arrays(knots, codes, values, match):
 
 @pytest.mark.parametrize("most", [-1, "5", True, 1.5])
 def test_decompress_max_samples_must_be_a_whole_number(most):
-    with pytest.raises(ValidationError, match="max_samples must be a whole number"):
+    with pytest.raises(ValidationError, match="max_samples must be a whole number of samples, "
+                                              "0 or more, not "):
         kinetology.decompress(kinetology.compress(small()), max_samples=most)
+
+
+@pytest.mark.parametrize("most", [1e6, np.int64(10**6), np.float64(1e6), 10.0**30])
+def test_decompress_takes_a_whole_number_of_any_type(most):   # int() read them before
+    data = kinetology.compress(small())
+    assert kinetology.decompress(data, max_samples=most).frames == small().frames
 
 
 def test_decompress_takes_a_huge_max_samples():
@@ -389,8 +402,10 @@ def test_evaluation_describe_wants_one_channel_of_one_length(codes, signal):
 
 def test_player_checks_its_panels_rate_and_ticks():
     player = kinetology.view(with_skeleton())
-    with pytest.raises(kinetology.ViewError, match="a tuple of one or more Panel values"):
+    with pytest.raises(kinetology.ViewError, match=r"one or more Panel values, not \(\)"):
         kinetology.Player((), 30.0)                         # max() of nothing before
+    with pytest.raises(kinetology.ViewError, match="one or more Panel values, not 5"):
+        kinetology.Player(5, 30.0)
     with pytest.raises(ValidationError, match="frame_rate must be a"):
         kinetology.Player(player.panels, "30")
     with pytest.raises(ValidationError, match="frame_rate must be a"):
@@ -415,3 +430,56 @@ def test_view_reads_a_generator_of_actuators_once_for_every_panel():
     motion = with_skeleton()
     player = kinetology.view({"a": motion, "b": motion}, actuators=(j for j in ["j0"]))
     assert player.panels[0].actuators == player.panels[1].actuators   # the second had none
+
+
+def test_view_takes_what_it_took_before_its_checks():
+    motion, html = with_skeleton(), lambda player: player.to_html()
+    every = html(kinetology.view(motion, max_rate=10**6, max_frames=10**6))
+    assert html(kinetology.view(motion, max_rate=float("inf"))) == every  # no rate cap
+    assert html(kinetology.view(motion, max_rate=float("inf"), max_frames=float("inf"))) == every
+    assert html(kinetology.view(motion, max_frames=20.0)) == html(kinetology.view(motion,
+                                                                                  max_frames=20))
+    assert html(kinetology.view(motion, kinetemes=np.bool_(False), follow=np.bool_(False))) == \
+        html(kinetology.view(motion, kinetemes=False, follow=False))  # follow was kept as np.bool_
+
+
+def test_the_view_command_takes_an_infinite_max_rate(tmp_path):
+    from kinetology.cli import main
+
+    take = tmp_path / "t.bvh"
+    kinetology.write_bvh(with_skeleton(), take)
+    assert main(["view", str(take), "-o", str(tmp_path / "t.html"), "--max-rate", "inf"]) == 0
+
+
+def test_a_player_takes_a_list_of_panels_and_a_whole_float_tick():
+    player = kinetology.view(with_skeleton())
+    again = kinetology.Player(list(player.panels), player.frame_rate)
+    assert again.panels == player.panels and isinstance(again.panels, tuple)
+    assert again.frame_of(0, 3.0) == player.frame_of(0, 3) == player.frame_of(0, np.int64(3))
+    with pytest.raises(kinetology.ViewError, match="tick must be a whole number from 0, not 3.5"):
+        player.frame_of(0, 3.5)
+
+
+def test_view_invariance_reads_a_generator_once_and_takes_up_axis_minus_one():
+    from kinetology.evaluation import view_invariance
+
+    motion, names = with_skeleton(), ("j0", "j1", "j2")
+    listed = view_invariance(motion, names, views=4)
+    once = view_invariance(motion, (n for n in names), views=4)   # a TypeError before
+    assert np.array_equal(once.agreement_per_view, listed.agreement_per_view)
+    last = view_invariance(motion, names, views=4, up_axis=-1)    # axis 2, as it was
+    assert np.array_equal(last.agreement_per_view,
+                          view_invariance(motion, names, views=4, up_axis=2).agreement_per_view)
+
+
+def test_joint_angle_keeps_float32():
+    from kinetology import joint_angle
+
+    rng = np.random.default_rng(1)
+    positions = rng.normal(size=(50, 3, 3)).astype(np.float32)
+    angles = joint_angle(positions, 0, 1, 2)
+    assert angles.dtype == np.float32                           # float64 after the check
+    u, v = positions[:, 0] - positions[:, 1], positions[:, 2] - positions[:, 1]
+    cos = np.einsum("fi,fi->f", u, v) / np.maximum(
+        np.linalg.norm(u, axis=1) * np.linalg.norm(v, axis=1), 1e-12)
+    assert np.array_equal(angles, np.degrees(np.arccos(np.clip(cos, -1.0, 1.0))))

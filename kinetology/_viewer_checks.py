@@ -1,0 +1,53 @@
+"""The argument checks of :func:`kinetology.view` and :class:`kinetology.Player` (kept here:
+viewer.py is at the line cap).
+
+Each returns the problem in words, for the caller's :class:`~kinetology.viewer.ViewError`, or
+None. What worked before the checks keeps working: an infinite ``max_rate`` or ``max_frames``
+(no cap), a whole-number float where a count is asked (``100.0``), numpy bools for the flags.
+"""
+
+from __future__ import annotations
+
+import math
+from numbers import Real
+
+import numpy as np
+
+from .motion import is_whole
+
+
+def shown(value, limit: int = 60) -> str:
+    """``repr(value)``, cut to ``limit`` characters."""
+    text = repr(value)
+    return text if len(text) <= limit else text[:limit - 3] + "..."
+
+
+def view_problem(max_rate, max_frames, kinetemes, follow) -> str | None:
+    """What is wrong with view's options, naming the one option (None: nothing)."""
+    # a string or a bool would pass for a number (or fail in a comparison), NaN every test
+    if isinstance(max_rate, (bool, np.bool_)) or not isinstance(max_rate, Real) or \
+            not max_rate > 0:
+        return f"max_rate must be a positive number (inf: no cap), not {shown(max_rate)}"
+    # 1.5 kept 2 frames: a count of frames is a whole number (or inf: no cap)
+    if not (is_whole(max_frames) or max_frames == math.inf) or max_frames < 1:
+        return f"max_frames must be a whole number of at least 1 (inf: no cap), not " \
+               f"{shown(max_frames)}"
+    for name, value in (("kinetemes", kinetemes), ("follow", follow)):
+        if not isinstance(value, (bool, np.bool_)):  # "no" was true
+            return f"{name} must be True or False, not {shown(value)}"
+    return None
+
+
+def panels_problem(panels, panel_type) -> str | None:
+    """What is wrong with a player's panels: one or more ``panel_type`` values (None: nothing)."""
+    if not (isinstance(panels, tuple) and panels
+            and all(isinstance(p, panel_type) for p in panels)):
+        return f"a player needs one or more Panel values, not {shown(panels)}"
+    return None
+
+
+def tick_problem(tick) -> str | None:
+    """What is wrong with a slider step: a whole number from 0 (None: nothing)."""
+    if not is_whole(tick) or tick < 0:  # -1 was frame -1
+        return f"tick must be a whole number from 0, not {shown(tick)}"
+    return None
