@@ -15,6 +15,7 @@ from pathlib import Path
 
 from psgs.errors import PSGSError
 
+from ._values import is_flag, shown
 from .feature_choice import groups_problem
 
 __all__ = ["DescriptionError", "motion_of", "motions_of", "takes_of", "whole_number",
@@ -97,10 +98,11 @@ def real_number(value, name: str, *, above: float | None = None, least: float | 
 
 
 def flag(value, name: str) -> bool:
-    """``value`` when it is True or False (a string such as ``"no"`` is true)."""
-    if not isinstance(value, bool):
-        raise DescriptionError(f"{name} must be True or False, not {value!r}")
-    return value
+    """``value`` as a bool when it is True or False, numpy's too (a string such as ``"no"`` is
+    true)."""
+    if not is_flag(value):
+        raise DescriptionError(f"{name} must be True or False, not {shown(value)}")
+    return bool(value)
 
 
 def kinds_of(kinds, name: str = "own") -> tuple[str, ...]:

@@ -37,6 +37,8 @@ from pathlib import Path
 from psgs._foundation.files import decode_utf8, read_bytes
 from psgs.errors import FormatError, PSGSError
 
+from ._values import shown
+
 __all__ = ["Performance", "Action", "read_dataset", "read_datasets", "DatasetError"]
 
 _CMU_FRAME_RATE = 120.0  # the AMC files' rate; a label covers 12 frames (1/10 s)
@@ -54,7 +56,8 @@ class DatasetError(PSGSError, ValueError):
 
 @dataclass(frozen=True)
 class Performance:
-    """One performance of an action: ``file``, optionally cut to ``start``..``stop`` seconds.
+    """One performance of an action: ``file`` (a string; a ``pathlib.Path`` given is kept as
+    its string), optionally cut to ``start``..``stop`` seconds.
 
     ``label`` says where the cut came from (e.g. ``truelabels/13_29.txt``), for the index.
     """
@@ -67,14 +70,13 @@ class Performance:
     def __post_init__(self) -> None:
         # made in Python, not read from a manifest (whose reader says the same per line): a
         # path that is no string, a time that is a string or NaN, or a stop before the start
-        # went on to the learner, or failed there with a TypeError
-        times = [t for t in (self.start, self.stop) if t is not None]
-        if not (isinstance(self.file, str) and isinstance(self.label, (str, type(None)))
-                and all(isinstance(t, Real) and not isinstance(t, bool) and 0 <= t < math.inf
-                        for t in times)
-                and (len(times) < 2 or self.start < self.stop)):
-            raise DatasetError(f"a performance is a file's path (a string) and, optionally, "
-                               f"start < stop in seconds >= 0, not {self!r}")
+        # went on to the learner, or failed there with a TypeError. A pathlib.Path is kept as
+        # the string the records, the index and the learner's cache keys hold.
+        if isinstance(self.file, os.PathLike):
+            object.__setattr__(self, "file", os.fspath(self.file))
+        problem = _performance_problem(self)
+        if problem:
+            raise DatasetError(f"a performance's {problem}")
 
     def to_dict(self) -> dict:
         """The performance as plain JSON values (for index.json)."""
@@ -97,13 +99,33 @@ class Action:
             value = getattr(self, name)
             if isinstance(value, list):
                 object.__setattr__(self, name, tuple(value))
-        names = (self.name, self.dataset, self.content)
-        if not (all(isinstance(n, str) for n in names) and isinstance(self.style, (str, type(None)))
-                and isinstance(self.performances, tuple)
-                and all(isinstance(p, Performance) for p in self.performances)
-                and isinstance(self.problems, tuple)):
-            raise DatasetError(f"an action is a name, dataset and content (strings) and a tuple "
-                               f"of Performance values, not {self!r}")
+        for name in ("name", "dataset", "content", "style"):
+            value = getattr(self, name)
+            if not (isinstance(value, str) or (name == "style" and value is None)):
+                raise DatasetError(f"an action's {name} must be a string, not {shown(value)}")
+        if not (isinstance(self.performances, tuple)
+                and all(isinstance(p, Performance) for p in self.performances)):
+            raise DatasetError(f"an action's performances must be a tuple (or a list) of "
+                               f"Performance values, not {shown(self.performances)}")
+        if not isinstance(self.problems, tuple):
+            raise DatasetError(f"an action's problems must be a tuple (or a list) of strings, "
+                               f"not {shown(self.problems)}")
+
+
+def _performance_problem(p: Performance) -> str | None:
+    """What is wrong with a performance made in Python, after "a performance's" (or None)."""
+    if not isinstance(p.file, str):
+        return f"file must be a path (a string or a pathlib.Path), not {shown(p.file)}"
+    if not isinstance(p.label, (str, type(None))):
+        return f"label must be a string or None, not {shown(p.label)}"
+    for name in ("start", "stop"):
+        t = getattr(p, name)
+        if t is not None and not (isinstance(t, Real) and not isinstance(t, bool)
+                                  and 0 <= t < math.inf):
+            return f"{name} must be a number of seconds, 0 or more, or None, not {shown(t)}"
+    if p.start is not None and p.stop is not None and not p.start < p.stop:
+        return f"start must come before its stop, not {shown(p.start)} and {shown(p.stop)}"
+    return None
 
 
 def _name_part(text: str) -> str:

@@ -24,6 +24,7 @@ import numpy as np
 
 from kinetology.plotting import STATE_COLOURS
 
+from ._values import is_count, shown as _shown
 from .records import ActionRecord, Praxicon
 from .store import actuator_matrix, load
 
@@ -223,8 +224,8 @@ def draw_shared_patterns(folder, path, *, most: int = 30, **options) -> Path:
     """The ``most`` sub-patterns shared by the most actions, with the actions (Fig. 13)."""
     from .shared import shared_patterns
 
-    if isinstance(most, bool) or not isinstance(most, int) or most < 1:  # -1 cut the last
-        raise ValueError(f"most must be a whole number of at least 1, not {most!r}")
+    if not is_count(most):  # -1 cut the last; np.int64 is a whole number, as before
+        raise ValueError(f"most must be a whole number of at least 1, not {_shown(most)}")
     plt = _pyplot()
     patterns = sorted(shared_patterns(_praxicon(folder), **options),
                       key=lambda p: (-len(p.actions), -len(p.kinetemes)))[:most]
@@ -313,9 +314,8 @@ def draw_praxicon(folder, out, *, fmt: str = "svg", progress=None,
     """
     import warnings
 
-    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
-                                or workers < 1):  # "2" failed in a comparison
-        raise ValueError(f"workers must be at least 1, not {workers!r}")
+    if workers is not None and not is_count(workers):  # "2" failed in a comparison
+        raise ValueError(f"workers must be at least 1, not {_shown(workers)}")
     with warnings.catch_warnings():
         warnings.filterwarnings("ignore", category=UserWarning, module="matplotlib")
         warnings.filterwarnings("ignore", message=".*tight_layout.*")

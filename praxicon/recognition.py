@@ -196,7 +196,7 @@ def _reasons(features, terms, x_row, mean) -> tuple[JointReason, ...]:
     return tuple(out)
 
 
-def recognise_many(praxicon, motions, *, explain: int = 3) -> list[Recognition]:
+def recognise_many(praxicon, motions, *, explain: int | None = 3) -> list[Recognition]:
     """:func:`recognise` for many motions in one call (features once, one matrix of scores
     per skeleton among the motions).
 
@@ -214,7 +214,8 @@ def recognise_many(praxicon, motions, *, explain: int = 3) -> list[Recognition]:
     if any(a.window for a in descriptions.actions):
         raise DescriptionError("these are window descriptions (for parse); recognise needs the "
                                "whole-take descriptions")
-    whole_number(explain, "explain")
+    if explain is not None:  # None: every action explained (order[:None]), as before
+        whole_number(explain, "explain")
     motions = motions_of(motions)
     rows = feature_rows(motions)
     out: list = [None] * len(motions)
@@ -319,7 +320,7 @@ def _excess(descriptions, features, x, best, fitted, *, telling: bool = True):
                                zip(ratio.argmax(axis=1), ratio)]
 
 
-def recognise(praxicon, motion, *, explain: int = 3) -> Recognition:
+def recognise(praxicon, motion, *, explain: int | None = 3) -> Recognition:
     """Which of the praxicon's actions ``motion`` is, or None for none of these.
 
     Parameters
@@ -328,8 +329,9 @@ def recognise(praxicon, motion, *, explain: int = 3) -> Recognition:
         The learnt actions.
     motion : kinetology.Motion or path
         The take (at least 3 frames).
-    explain : int, default 3
-        For how many of the best actions the per-joint reasons are kept.
+    explain : int or None, default 3
+        For how many of the best actions the per-joint reasons are kept (None: for every
+        action).
 
     Returns
     -------

@@ -30,6 +30,7 @@ from dataclasses import dataclass
 from kinetology.motion import FRAME_RATE_RANGE
 from psgs.errors import NotFound, PSGSError, ValidationError
 
+from ._values import settings_fields
 from .description import DescriptionError, Descriptions
 from .jsonvalues import Fields, as_dict, freeze, pairs as _pairs
 
@@ -95,8 +96,9 @@ class PraxiconError(PSGSError, ValueError):
 class Settings:
     """How every action is learnt: the inducer by name and its parameters, segmentation.
 
-    ``min_performances`` (2): an action with fewer usable performances fails
-    with that reason (one performance cannot show what repeats across them).
+    ``params`` and ``segmentation`` are (name, value) pairs (a list of them or a dict is kept
+    as a tuple of pairs). ``min_performances`` (2): an action with fewer usable performances
+    fails with that reason (one performance cannot show what repeats across them).
     """
 
     inducer: str = "pal"
@@ -105,17 +107,11 @@ class Settings:
     min_performances: int = 2
 
     def __post_init__(self) -> None:
-        # a dict given for params would be shared with the caller, who could change the
-        # settings of a praxicon already built; a string or a bool is no count
-        pairs = all(isinstance(v, tuple) and all(isinstance(p, tuple) and len(p) == 2
-                                                 and isinstance(p[0], str) for p in v)
-                    for v in (self.params, self.segmentation))
-        count = self.min_performances
-        if not (isinstance(self.inducer, str) and pairs and isinstance(count, int)
-                and not isinstance(count, bool) and count >= 1):
-            raise ValidationError(f"settings need an inducer's name, params and segmentation as "
-                                  f"(name, value) pairs (Settings.make takes dicts) and "
-                                  f"min_performances of at least 1, not {self!r}")
+        # copied into tuples (a list or a dict given is not shared with the caller, who could
+        # change the settings of a praxicon already built); np.int64 kept as the int it holds
+        for name, value in zip(("params", "segmentation", "min_performances"), settings_fields(
+                self.inducer, self.params, self.segmentation, self.min_performances)):
+            object.__setattr__(self, name, value)
 
     @classmethod
     def make(cls, inducer: str = "pal", params: dict | None = None,

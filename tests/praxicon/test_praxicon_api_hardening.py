@@ -7,6 +7,8 @@ without a word.
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 
@@ -82,10 +84,22 @@ def test_recognise_many_wants_a_sequence_of_motions(described, motions):
         recognise_many(described, motions)
 
 
-@pytest.mark.parametrize("explain", [-1, 1.5, "3", True, None])
+@pytest.mark.parametrize("explain", [-1, 1.5, "3", True])
 def test_recognise_checks_explain(described, explain):
     with pytest.raises(DescriptionError, match="explain must be an integer"):
         recognise(described, synthetic_motion(2, (0,), seed=9), explain=explain)
+
+
+def test_recognise_explains_every_action_when_explain_is_none(described):
+    motion = synthetic_motion(2, (0,), seed=9)
+    every = recognise(described, motion, explain=None)     # order[:None] before the check
+    assert every == recognise(described, motion, explain=len(described.actions))
+    assert len(every.reasons) == len(described.actions) > len(recognise(described, motion,
+                                                                        explain=1).reasons)
+
+
+def test_describe_takes_a_numpy_bool(takes):
+    assert describe(takes, choose=np.bool_(False)) == describe(takes, choose=False)
 
 
 def recording() -> Motion:
@@ -163,15 +177,31 @@ def test_generate_motion_refuses_what_is_no_record():
 
 @pytest.mark.parametrize("options", [
     {"inducer": 5}, {"min_performances": -1}, {"min_performances": "2"},
-    {"min_performances": True}, {"params": {"min_copies": 3}},   # a dict shared with the caller
-    {"segmentation": (("smoothing",),)},
+    {"min_performances": True}, {"segmentation": (("smoothing",),)}, {"params": "ab"},
 ])
 def test_settings_check_their_fields(options):
     from praxicon import Settings
     from psgs.errors import ValidationError
 
-    with pytest.raises(ValidationError, match="settings need an inducer's name"):
+    (name, value), = options.items()
+    with pytest.raises(ValidationError, match=f"^settings need (an )?{name}.* not "
+                                              f"{re.escape(repr(value))}$"):
         Settings(**options)
+
+
+def test_settings_take_pairs_in_a_list_a_dict_and_numpy_counts():
+    import json
+
+    from praxicon import Settings
+
+    made = Settings.make(params={"k": 3, "a": 1}, min_performances=3)
+    for given in (Settings("pal", [("a", 1), ("k", 3)], (), 3),        # refused by the check
+                  Settings("pal", [["a", 1], ["k", 3]], [], 3),
+                  Settings("pal", {"k": 3, "a": 1}, {}, 3),             # copied, not shared
+                  Settings.make(params={"k": 3, "a": 1}, min_performances=np.int64(3))):
+        assert given == made and hash(given) == hash(made)
+        assert json.dumps(given.to_dict()) == json.dumps(made.to_dict())
+        assert type(given.min_performances) is int and given.params == (("a", 1), ("k", 3))
 
 
 def test_settings_of_a_folder_with_no_performances_needed_are_the_folders_error():
@@ -243,6 +273,17 @@ def test_executor_for_checks_workers(workers):
         executor_for(workers)
 
 
+def test_numpy_integers_are_whole_numbers(built, tmp_path):
+    from praxicon import executor_for, shared_patterns
+
+    assert executor_for(np.int64(1))[0] is None                 # refused by the check
+    pool, close = executor_for(np.int64(2))
+    close()
+    assert pool is not None
+    assert shared_patterns(built, min_length=np.int64(2), min_actions=np.int64(1)) == \
+        shared_patterns(built, min_length=2, min_actions=1)
+
+
 def test_read_dataset_checks_its_path_and_grouping(tmp_path):
     from praxicon import DatasetError, read_dataset
 
@@ -284,27 +325,60 @@ def test_a_take_changed_in_place_is_read_again(tmp_path):
     assert again[name].joints == fresh[name].joints != first[name].joints
 
 
-@pytest.mark.parametrize("args", [
-    (None,), ("x.bvh", "0", "1"), ("x.bvh", 5.0, 1.0), ("x.bvh", float("nan"), 1.0),
-    ("x.bvh", True, 2.0), ("x.bvh", None, None, 5),
+@pytest.mark.parametrize("args, match", [
+    ((None,), "file must be a path"), (("x.bvh", "0", "1"), "start must be a number"),
+    (("x.bvh", 5.0, 1.0), "start must come before its stop, not 5.0 and 1.0"),
+    (("x.bvh", float("nan"), 1.0), "start must be a number of seconds, 0 or more, or None, "
+                                   "not nan"),
+    (("x.bvh", True, 2.0), "start must be"), (("x.bvh", 0.0, -1), "stop must be"),
+    (("x.bvh", None, None, 5), "label must be a string or None, not 5"),
+    ((b"x.bvh",), "file must be a path"),
 ])
-def test_a_performance_made_in_python_is_checked(args):
+def test_a_performance_made_in_python_is_checked(args, match):
     from praxicon import DatasetError, Performance
 
-    with pytest.raises(DatasetError, match="a performance is a file's path"):
+    with pytest.raises(DatasetError, match="^a performance's " + match):
         Performance(*args)
 
 
-@pytest.mark.parametrize("args, options", [
-    ((None, "d", "a"), {}),
-    (("a", "d", "a"), {"performances": ["x.bvh"]}),
-    (("a", "d", "a"), {"performances": "x.bvh"}),
+def test_a_performance_takes_a_pathlib_path_as_its_string(tmp_path):
+    from pathlib import Path
+
+    from praxicon import Action, Performance, Settings
+    from praxicon.learn import input_key
+
+    given = Performance(Path("takes") / "a.bvh", 0.5, 2.0)   # refused by the check
+    assert given == Performance("takes/a.bvh", 0.5, 2.0) and type(given.file) is str
+    settings = Settings.make()
+    assert input_key(Action("a", "d", "a", performances=(given,)), settings) == \
+        input_key(Action("a", "d", "a", performances=(Performance("takes/a.bvh", 0.5, 2.0),)),
+                  settings)
+
+
+@pytest.mark.parametrize("args, options, match", [
+    ((None, "d", "a"), {}, "an action's name must be a string, not None"),
+    (("a", "d", "a", 5), {}, "an action's style must be a string, not 5"),
+    (("a", "d", "a"), {"performances": ["x.bvh"]}, "an action's performances must be a tuple"),
+    (("a", "d", "a"), {"performances": "x.bvh"}, "an action's performances must be a tuple"),
+    (("a", "d", "a"), {"problems": "p"}, "an action's problems must be a tuple"),
 ])
-def test_an_action_made_in_python_is_checked(args, options):
+def test_an_action_made_in_python_is_checked(args, options, match):
     from praxicon import Action, DatasetError
 
-    with pytest.raises(DatasetError, match="an action is a name, dataset and content"):
+    with pytest.raises(DatasetError, match=match):
         Action(*args, **options)
+
+
+def test_an_action_error_shows_a_short_value():
+    from praxicon import Action, DatasetError, Performance
+
+    many = [Performance(f"take_{i:03d}.bvh", 0.0, 1.0) for i in range(200)]
+    with pytest.raises(DatasetError) as error:
+        Action("a", "d", "a", performances=many + ["x.bvh"])
+    assert len(str(error.value)) < 200               # the whole repr: 14,660 characters
+    with pytest.raises(DatasetError) as error:
+        Action(None, "d", "a", performances=many)
+    assert str(error.value) == "an action's name must be a string, not None"
 
 
 def test_an_action_keeps_a_copy_of_the_list_it_is_given():
@@ -341,6 +415,25 @@ def test_a_drawing_refuses_a_path_that_is_no_path(built):
 
     with pytest.raises(ValueError, match="a picture is written to a file's path"):
         draw_actuator_matrix(built, 5)
+
+
+def test_the_drawings_take_numpy_integers(built, tmp_path):
+    pytest.importorskip("matplotlib")
+    from praxicon import draw_praxicon, draw_shared_patterns
+
+    def outcome(draw, *args, **options):
+        try:
+            return draw(*args, **options).name
+        except ValueError as exc:
+            return str(exc)
+
+    assert outcome(draw_shared_patterns, built, tmp_path / "a.png", most=np.int64(5)) == \
+        outcome(draw_shared_patterns, built, tmp_path / "a.png", most=5)
+    with pytest.raises(Exception) as numpy_count:
+        draw_praxicon(tmp_path / "none", tmp_path / "all", workers=np.int64(1))
+    with pytest.raises(Exception) as int_count:
+        draw_praxicon(tmp_path / "none", tmp_path / "all", workers=1)
+    assert str(numpy_count.value) == str(int_count.value)      # the folder's error, not workers
 
 
 def test_draw_praxicon_checks_workers(built, tmp_path):
