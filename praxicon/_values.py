@@ -32,6 +32,14 @@ def shown(value, limit: int = 60) -> str:
     return text if len(text) <= limit else text[:limit - 3] + "..."
 
 
+def not_all(given, items, kind) -> str:
+    """The end of a message refusing ``given`` (read into ``items``, None when it is no
+    iterable) for holding something other than ``kind`` values: that value, shown short."""
+    if items is None:
+        return f"not {shown(given)}"
+    return f"not one holding {shown(next(i for i in items if not isinstance(i, kind)))}"
+
+
 def _pairs_of(value, name: str) -> tuple:
     # a list of pairs worked before the check, a dict too (sorted here, as Settings.make does)
     items = list(value.items()) if isinstance(value, Mapping) else value

@@ -23,7 +23,7 @@ from pathlib import Path
 from psgs._foundation.files import read_text
 from psgs.errors import MissingDependency, ValidationError
 
-from ._values import is_count, shown
+from ._values import is_count, not_all, shown
 from .datasets import Action, DatasetError
 from .learn import Settings, input_key, learn_action
 from .description import DescriptionError
@@ -134,15 +134,16 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
     >>> r.failed, r.praxicon["m.wave"].problems[0].endswith("unreadable file (no such file)")
     (('m.wave',), True)
     """
-    actions = list(actions) if isinstance(actions, Iterable) else None
+    given, actions = actions, list(actions) if isinstance(actions, Iterable) else None
     if actions is None or not all(isinstance(a, Action) for a in actions):
-        raise ValidationError("build learns a list of praxicon.Action (read_dataset makes one)")
+        raise ValidationError(f"build learns a list of praxicon.Action (read_dataset makes one), "
+                              f"{not_all(given, actions, Action)}")
     if not isinstance(out, (str, os.PathLike)):
         raise ValidationError(f"out must be a folder's path, not {type(out).__name__}")
-    if isinstance(datasets, str) or not (settings is None or isinstance(settings, Settings)):
-        # a string of datasets was one dataset a letter; a string of settings failed in a worker
-        raise ValidationError(f"datasets must be a list of names and settings a Settings, not "
-                              f"{datasets!r} and {settings!r}")
+    if isinstance(datasets, str):  # one dataset a letter
+        raise ValidationError(f"datasets must be a list of names, not {shown(datasets)}")
+    if not (settings is None or isinstance(settings, Settings)):  # a string failed in a worker
+        raise ValidationError(f"settings must be a Settings, not {shown(settings)}")
     given, executor = executor, _as_executor(executor)
     if executor is not None and not callable(getattr(executor, "submit", None)):
         raise ValidationError(f"executor must be an Executor or a Dask client, not {given!r}")

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 from psgs.errors import ValidationError
 
-from ._values import is_count, shown
+from ._values import is_count, not_all, shown
 from .records import ActionRecord, ChannelMorpheme, JointRecord, Praxicon
 
 __all__ = ["SharedPattern", "shared_patterns"]
@@ -108,7 +108,8 @@ def shared_patterns(praxicon, *, min_length: int = 4, min_actions: int = 2) -> l
     records = praxicon.actions if isinstance(praxicon, Praxicon) else praxicon
     records = tuple(records) if isinstance(records, Iterable) else None
     if records is None or not all(isinstance(r, ActionRecord) for r in records):
-        raise ValidationError("shared_patterns reads a Praxicon or its ActionRecords")
+        raise ValidationError(f"shared_patterns reads a Praxicon or its ActionRecords, "
+                              f"{not_all(praxicon, records, ActionRecord)}")
     holders: dict[str, dict[tuple[str, ...], set[tuple[str, str]]]] = {}
     wholes: set[tuple[str, ...]] = set()  # patterns that are a whole cycle (read cyclically)
     for action in records:

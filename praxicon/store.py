@@ -30,6 +30,7 @@ from collections.abc import Iterable
 from dataclasses import replace
 from pathlib import Path
 
+from ._values import not_all
 from .records import (REBUILD, ActionRecord, Praxicon, PraxiconError, Settings, check_index,
                       name_problem)
 from .description import DescriptionError, Descriptions
@@ -110,10 +111,11 @@ def actuator_matrix(records) -> tuple[list[str], list[str], list[list[int]]]:
     >>> actuator_matrix([a])
     (['a'], ['hips', 'arm', 'leg'], [[0, 1, 0]])
     """
-    records = records.actions if isinstance(records, Praxicon) else records
+    given, records = records, records.actions if isinstance(records, Praxicon) else records
     records = tuple(records) if isinstance(records, Iterable) else None
     if records is None or not all(isinstance(r, ActionRecord) for r in records):
-        raise PraxiconError("actuator_matrix reads a Praxicon or its ActionRecords")
+        raise PraxiconError(f"actuator_matrix reads a Praxicon or its ActionRecords, "
+                            f"{not_all(given, records, ActionRecord)}")
     learnt = [r for r in records if r.learnt]
     joints: list[str] = []
     for r in learnt:

@@ -247,13 +247,16 @@ def test_shared_patterns_refuses_what_is_no_record():
     from praxicon import shared_patterns
     from psgs.errors import ValidationError
 
-    with pytest.raises(ValidationError, match="reads a Praxicon or its ActionRecords"):
+    with pytest.raises(ValidationError, match="^shared_patterns reads a Praxicon or its "
+                                              "ActionRecords, not None$"):
         shared_patterns(None)
+    with pytest.raises(ValidationError, match="ActionRecords, not one holding 'x'$"):
+        shared_patterns(["x"])
 
 
 @pytest.mark.parametrize("actions, out, match", [
-    (None, "px", "build learns a list of praxicon.Action"),
-    ("abc", "px", "build learns a list of praxicon.Action"),   # an AttributeError before
+    (None, "px", r"^build learns a list of praxicon.Action \(read_dataset makes one\), not None$"),
+    ("abc", "px", "build learns a list .*, not one holding 'a'$"),  # an AttributeError before
     ([], None, "out must be a folder's path"),
 ])
 def test_build_checks_its_actions_and_folder(tmp_path, actions, out, match):
@@ -296,8 +299,10 @@ def test_read_dataset_checks_its_path_and_grouping(tmp_path):
 def test_actuator_matrix_refuses_what_is_no_record():
     from praxicon import PraxiconError, actuator_matrix
 
-    with pytest.raises(PraxiconError, match="reads a Praxicon or its ActionRecords"):
+    with pytest.raises(PraxiconError, match="reads a Praxicon or its ActionRecords, not None$"):
         actuator_matrix(None)
+    with pytest.raises(PraxiconError, match="ActionRecords, not one holding 5$"):
+        actuator_matrix(iter([5]))
 
 
 def test_generate_refuses_a_plot_that_is_no_path(built):
@@ -469,8 +474,8 @@ def test_parse_holds_one_window_at_a_time():
 
 
 @pytest.mark.parametrize("options, match", [
-    ({"datasets": "abc"}, "datasets must be a list of names"),   # was datasets a, b and c
-    ({"settings": "pal"}, "settings a Settings"),                 # an AttributeError before
+    ({"datasets": "abc"}, "^datasets must be a list of names, not 'abc'$"),  # a, b and c
+    ({"settings": "pal"}, "^settings must be a Settings, not 'pal'$"),  # an AttributeError
     ({"executor": "x"}, "executor must be an Executor"),
 ])
 def test_build_checks_its_options(tmp_path, options, match):
