@@ -89,7 +89,9 @@ class Timeline:
 
 def windows(motion, window: float = _WINDOW, hop: float = _HOP):
     """The motion cut into windows: ``(starts in seconds, motions)``; a motion shorter than
-    one window is one window.
+    one window is one window. ``motions`` is a read-only sequence whose windows are made as
+    they are read (``list(motions)`` makes them all), so that a long recording is not held
+    once per window.
 
     Examples
     --------
