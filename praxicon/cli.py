@@ -263,9 +263,9 @@ def _add_commands(sub) -> None:
     gen.add_argument("praxicon", metavar="DIR", help="a praxicon folder")
     gen.add_argument("action", metavar="ACTION", help="an action name of its index")
     gen.add_argument("--repeat", type=positive_int, default=None, metavar="K",
-                     help="how many synchronised copies (default 3, at most 1000); an action with no "
-                          "synchronised repetition (no grammar) is its performances' course, "
-                          "played K times one after the other (default once)")
+                     help="how many synchronised copies (default 3, at most 1000); an action "
+                          "with no synchronised repetition (no grammar) is its performances' "
+                          "course, played K times one after the other (default once)")
     gen.add_argument("-o", "--output", required=True, metavar="OUT.bvh",
                      help="the BVH file to write")
     gen.add_argument("--no-progress", action="store_true",
