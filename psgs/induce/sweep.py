@@ -157,16 +157,17 @@ def _checked(levels, trials, inducers, params, seed, variant, jobs, progress):
     if isinstance(inducers, (str, bytes)) or not isinstance(inducers, Iterable):
         raise ValidationError(f"inducers must be a sequence of inducer names, not {inducers!r}")
     inducers = tuple(inducers)
+    read = {}
     for name, given in (("params", params), ("variant", variant)):
-        try:  # a mapping, or (name, value) pairs as dict() reads them
-            dict(given or {})
+        try:  # a mapping, or (name, value) pairs as dict() reads them, read once (an iterator)
+            read[name] = dict(given or {})
         except (TypeError, ValueError):
             raise ValidationError(f"{name} must be a mapping, not {given!r}") from None
-    params = dict(params or {})
+    params = read["params"]
     for name, given in params.items():
         if not isinstance(given, Mapping):
             raise ValidationError(f"params[{name!r}] must map parameter names to values, "
                                   f"not {given!r}")
     if progress is not None and not callable(progress):
         raise ValidationError(f"progress must be callable, not {progress!r}")
-    return levels, inducers, params, dict(variant or {})
+    return levels, inducers, params, read["variant"]

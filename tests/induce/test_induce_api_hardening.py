@@ -161,16 +161,21 @@ def test_conf_pick_refuses_what_is_no_table_or_mapping(source):
         ContentConf.pick(source)
 
 
-def test_conf_pick_and_noise_sweep_read_name_value_pairs_as_dict_does():
+def test_conf_pick_and_noise_sweep_read_name_value_pairs_as_dict_does(monkeypatch):
+    from psgs.induce import sweep
     from psgs.induce.pal.conf import ContentConf
-    from psgs.induce.sweep import noise_sweep
 
     wanted = {"min_copies": 4}
     assert ContentConf.pick([("min_copies", 4)]) == ContentConf.pick(wanted) == \
         ContentConf.pick(wanted.items())
-    rows = noise_sweep([0.0], 1, inducers=["sequential"], variant=[("strings", 6)])
-    same = noise_sweep([0.0], 1, inducers=["sequential"], variant={"strings": 6})
-    assert [(r.trials, r.successes) for r in rows] == [(r.trials, r.successes) for r in same]
+    asked = []  # what each trial's actiongram was drawn with
+    drawn = sweep.generate
+    monkeypatch.setattr(sweep, "generate", lambda **kw: asked.append(kw) or drawn(**kw))
+    pairs = (("strings", 6), ("copies", 3))
+    for variant in (list(pairs), iter(pairs), dict(pairs)):  # an iterator is read once
+        asked.clear()
+        sweep.noise_sweep([0.0], 1, inducers=["sequential"], variant=variant)
+        assert [(kw["strings"], kw["copies"]) for kw in asked] == [(6, 3)], variant
 
 
 def test_the_papers_points_are_read_only():
