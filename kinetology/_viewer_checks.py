@@ -29,7 +29,8 @@ def view_problem(max_rate, max_frames, kinetemes, follow) -> str | None:
             not max_rate > 0:
         return f"max_rate must be a positive number (inf: no cap), not {shown(max_rate)}"
     # 1.5 kept 2 frames: a count of frames is a whole number (or inf: no cap)
-    if not (is_whole(max_frames) or max_frames == math.inf) or max_frames < 1:
+    if not (is_whole(max_frames) or (isinstance(max_frames, Real) and max_frames == math.inf)) \
+            or max_frames < 1:
         return f"max_frames must be a whole number of at least 1 (inf: no cap), not " \
                f"{shown(max_frames)}"
     for name, value in (("kinetemes", kinetemes), ("follow", follow)):

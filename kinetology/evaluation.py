@@ -275,7 +275,8 @@ def view_invariance(motion: Motion, triple: tuple[str, str, str], *, views: int 
     triple = tuple(triple) if isinstance(triple, Iterable) and not isinstance(triple, str) else ()
     if len(triple) != 3:
         raise ValidationError(f"triple must name three joints, not {given!r}")
-    if not isinstance(up_axis, Integral) or up_axis not in (0, 1, 2, -1):  # -2, -3: up horizontal
+    if isinstance(up_axis, (bool, np.bool_)) or not isinstance(up_axis, Integral) \
+            or up_axis not in (0, 1, 2, -1):  # -2, -3: up horizontal; True an index of no axis
         raise ValidationError(f"up_axis must be 0, 1 or 2, not {up_axis!r}")
     up_axis = up_axis % 3
     positions = forward_kinematics(motion)

@@ -260,8 +260,9 @@ def joint_angle(positions: np.ndarray, a: int, b: int, c: int) -> np.ndarray:
     >>> joint_angle(straight_then_bent, 0, 1, 2)
     array([180.,  90.])
     """
-    # an array of numbers is read as it is (float32 positions give float32 degrees, as before)
-    if not (isinstance(positions, np.ndarray) and positions.dtype.kind in "iuf"):
+    # an array of floats is read as it is (float32 positions give float32 degrees, as before);
+    # integers become floats (unsigned ones would wrap around when subtracted)
+    if not (isinstance(positions, np.ndarray) and positions.dtype.kind == "f"):
         positions = real_array(positions, "positions")
     if positions.ndim != 3 or positions.shape[2] not in (2, 3):
         raise ValidationError(f"positions must be frames x joints x 2 or 3, not {positions.shape}")

@@ -106,7 +106,7 @@ def windows(motion, window: float = _WINDOW, hop: float = _HOP):
     size = max(3, int(round(window * motion.frame_rate)))
     step = max(1, int(round(hop * motion.frame_rate)))
     if motion.frames <= size:
-        return [0.0], [motion]
+        return [0.0], (motion,)
     starts = list(range(0, motion.frames - size + 1, step))
     if starts[-1] != motion.frames - size:
         starts.append(motion.frames - size)

@@ -254,6 +254,7 @@ def test_forward_kinematics_refuses_what_is_not_a_motion():
     ("self", {"max_rate": "30"}, "max_rate must be a positive number"),
     ("self", {"max_frames": 1.5}, "max_frames must be a whole number"),  # 2 frames were kept
     ("self", {"max_frames": True}, "max_frames must be a whole number"),
+    ("self", {"max_frames": np.array([5, 6])}, "max_frames must be a whole number"),
     ("self", {"max_rate": float("nan")}, "max_rate must be a positive number"),
     ("self", {"actuators": 5}, "actuators must be a collection"),
     ("self", {"actuators": "j0"}, "actuators must be a collection"),   # was 'j', '0'
@@ -340,6 +341,7 @@ def test_actuator_map_and_skeleton_parents_refuse_one_string():
     ({"up_axis": 5}, "^up_axis must be 0, 1 or 2, not 5$"),
     ({"up_axis": -2}, "^up_axis must be 0, 1 or 2, not -2$"),  # the up axis was horizontal
     ({"up_axis": 1.0}, "up_axis must be 0, 1 or 2"),           # an IndexError before
+    ({"up_axis": True}, "up_axis must be 0, 1 or 2"),          # a boolean mask of no axis
     ({"views": 4.0}, "views must be a positive whole number"),  # a TypeError from numpy before
 ])
 def test_view_invariance_checks_its_arguments(options, match):
@@ -483,3 +485,12 @@ def test_joint_angle_keeps_float32():
     cos = np.einsum("fi,fi->f", u, v) / np.maximum(
         np.linalg.norm(u, axis=1) * np.linalg.norm(v, axis=1), 1e-12)
     assert np.array_equal(angles, np.degrees(np.arccos(np.clip(cos, -1.0, 1.0))))
+
+
+def test_joint_angle_of_unsigned_integer_positions_does_not_wrap_around():
+    from kinetology import joint_angle
+
+    positions = np.array([[[20, 20, 0], [20, 21, 0], [21, 22, 0]]])  # a bend of 135 degrees
+    expected = joint_angle(positions.astype(float), 0, 1, 2)
+    assert np.allclose(joint_angle(positions.astype(np.uint8), 0, 1, 2), expected)
+    assert np.allclose(expected, [135.0])
