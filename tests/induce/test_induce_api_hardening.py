@@ -205,3 +205,19 @@ def test_numpy_scalars_are_numbers_to_generate_and_locate():
     assert locate(learned, ag, method="pattern", threshold=np.float32(0.5), min_speed=np.int64(0),
                   min_share=np.float32(0.4)) == locate(learned, ag, method="pattern",
                                                        threshold=0.5, min_speed=0)
+
+
+def test_pal_stops_voting_once_a_round_leaves_every_copy_where_it_was(monkeypatch):
+    # rounds=10**6 voted a million times over copies that no longer moved (hours of CPU)
+    from psgs.induce import PAL
+    from psgs.induce.pal import content
+    from psgs.induce.synthetic import generate
+
+    calls = []
+    pooled = content.pooled_windows
+    monkeypatch.setattr(content, "pooled_windows", lambda *a: calls.append(1) or pooled(*a))
+    actiongram = generate(3, 0.2).actiongram
+    many = PAL(rounds=10**6).induce(actiongram)
+    assert len(calls) < 100
+    assert many.occurrences == PAL(rounds=2).induce(actiongram).occurrences == \
+        PAL(rounds=40).induce(actiongram).occurrences

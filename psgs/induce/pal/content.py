@@ -71,19 +71,23 @@ def pool_groups(strings: list[Timed], found: ContentResult, conf: ContentConf) -
         located = {i: intervals[i] for i in group}
         earlier = np.zeros((0, 2))
         members = list(group)
-        for round_ in range(conf.rounds):
-            if round_ + 1 < conf.rounds:
-                windows = pooled_windows([located[i] for i in members], conf.window_support)
-                earlier = windows
-                votes = {i: v for i in members if (v := vote(strings[i], windows)) is not None}
-                kept_columns = trim(votes, conf.edge_share, conf.column_alpha) if votes else {}
-                # locate each member's copies again with its voted pattern
-                for i, (first, last) in kept_columns.items():
-                    pattern = pooled_pattern(strings[i], votes[i])
-                    again = relocate(strings[i], pattern[first:last], conf)
-                    if again is not None:
-                        located[i] = again
-                continue
+        # the rounds before the last vote, then locate each member again with its vote; once
+        # a round leaves every member where it was, every round left would repeat it
+        for _ in range(conf.rounds - 1):
+            before = {i: located[i] for i in members}
+            windows = pooled_windows([located[i] for i in members], conf.window_support)
+            earlier = windows
+            votes = {i: v for i in members if (v := vote(strings[i], windows)) is not None}
+            kept_columns = trim(votes, conf.edge_share, conf.column_alpha) if votes else {}
+            # locate each member's copies again with its voted pattern
+            for i, (first, last) in kept_columns.items():
+                pattern = pooled_pattern(strings[i], votes[i])
+                again = relocate(strings[i], pattern[first:last], conf)
+                if again is not None:
+                    located[i] = again
+            if all(np.array_equal(located[i], before[i]) for i in members):
+                break
+        for _ in range(1):  # the last round (a loop of one: a group left alone leaves it)
             # every member must repeat in the shared windows itself, not only overlap
             # them in time (a random string's chance motif can); windows are redrawn
             # without the members that do not

@@ -75,7 +75,8 @@ class ContentPAL(Inducer):
         How many of a string's most frequent digrams are grown into motifs.
     rounds : int, default 2
         Rounds of pooling; after each but the last, every member's copies are located again
-        with its voted pattern.
+        with its voted pattern (at most: a round that moves no copy ends the voting, since
+        every round after it would repeat it).
     joins_copies : int, default 4
         A string outside every group joins one when, read in the group's windows, at least
         this many of its copies have the common length and half of their columns agree,
