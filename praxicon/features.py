@@ -208,8 +208,11 @@ def motion_features(motion, *, shape: bool = True) -> tuple[tuple[str, ...], np.
              ("spread", np.log1p(high - low)),
              ("energy", np.log1p(np.sqrt(np.mean(speed ** 2, axis=0))))]
     if shape:
-        table += [(f"shape{i}", q.mean(axis=0) - median)
-                  for i, q in enumerate(np.array_split(x, 4))]
+        # three frames split in four leave a quarter empty (a NaN feature): each quarter is
+        # then a frame, the last one twice
+        quarters = np.array_split(x, 4) if len(x) >= 4 else [x[[min(i, len(x) - 1)]]
+                                                             for i in range(4)]
+        table += [(f"shape{i}", q.mean(axis=0) - median) for i, q in enumerate(quarters)]
     names: list[str] = []
     values: list[float] = []
     for k, c in enumerate(columns):

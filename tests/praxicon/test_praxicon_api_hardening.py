@@ -484,3 +484,20 @@ def test_build_checks_its_options(tmp_path, options, match):
 
     with pytest.raises(ValidationError, match=match):
         build([], tmp_path / "px", progress=False, **options)
+
+
+def test_a_three_frame_motion_has_a_shape_and_no_nan_feature():
+    import warnings
+
+    from kinetology import Motion, synthetic_motion
+    from praxicon.features import motion_features
+
+    m = synthetic_motion(2, (0,), repetitions=1, seed=1)
+    short = Motion(m.values[:3], m.channels, m.frame_rate, m.skeleton, m.source)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # numpy's "Mean of empty slice" on a quarter of no frame
+        names, values = motion_features(short)
+    assert np.isfinite(values).all()
+    shape = [v for n, v in zip(names, values) if n.startswith("j0.rx:shape")]
+    x = dict(zip(names, values))
+    assert len(shape) == 4 and x["j0.rx:shape3"] == x["j0.rx:shape2"]  # the last frame twice
