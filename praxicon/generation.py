@@ -1,16 +1,15 @@
-"""Motion generated back from an action's grammar system (the paper's claim that an action's grammar system generates its motion).
+"""Motion generated back from an action's grammar system (the paper: a grammar generates it).
 
 For an action of a praxicon, :func:`generate`:
 
 1. derives ``K`` synchronised copies from the action's grammar system (the
    recursive axiom tuple applied ``K - 1`` times, then the rest in order), so
    each component's word is its morpheme repeated ``K`` times;
-2. gives each kineteme its learnt duration and angular displacement. The
-   copies of all components are kept in step: each channel's durations are
-   scaled to the action's period (the median over channels of one copy's
-   duration). A displacement takes the sign its state implies (``B``, ``G``
-   rise; ``R``, ``Y`` fall), and a copy's rises and falls are scaled to cancel,
-   so the joint returns where it started each cycle instead of drifting;
+2. gives each kineteme its learnt duration and angular displacement. The copies of all
+   components are kept in step: each channel's durations are scaled to the action's period
+   (the median over channels of one copy's duration). A displacement takes the sign its state
+   implies (``B``, ``G`` rise; ``R``, ``Y`` fall), and a copy's rises and falls are scaled to
+   cancel, so the joint returns where it started each cycle instead of drifting;
 3. reconstructs each joint angle from those knots with kinetology's quartic,
    jerk-minimising decoder (:func:`kinetology.codec.reconstruct`), around the
    performances' mean angle;
@@ -18,13 +17,12 @@ For an action of a praxicon, :func:`generate`:
    give back its morpheme ``K`` times, corrects it with the frame-domain layer of
    :mod:`praxicon.shaping` (segments lengthened within the period, or
    displacements scaled up past ``min_range``, where that is what it takes);
-5. gives every other channel the performances' mean cycle, phase-aligned to the
-   generated channel that moves most, moves the root as the performances do (their
-   mean speed in the body's own frame and mean turning rate, measured from the root's
-   world rotation) and writes a BVH file on the source skeleton
-   (:func:`kinetology.write_bvh`; an ASF skeleton's ``axis`` pre-rotations, which BVH cannot
-   hold, turned into its angles by :func:`kinetology.bvh_writer.without_axes`);
-   :mod:`praxicon.body_motion` does step 5's measuring.
+5. gives every other channel the performances' mean cycle, phase-aligned to the generated
+   channel that moves most, moves the root as the performances do (their mean speed in the
+   body's own frame and mean turning rate, from the root's world rotation: measured by
+   :mod:`praxicon.body_motion`) and writes a BVH file on the source skeleton
+   (:func:`kinetology.write_bvh`; an ASF skeleton's ``axis`` pre-rotations, which BVH
+   cannot hold, turned into its angles by :func:`kinetology.bvh_writer.without_axes`).
 
 :meth:`Generated.round_trip` segments the generated motion again and says, per
 channel (or per actuator), whether its kineteme string is the morpheme repeated
@@ -38,6 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ._values import is_count
 from .body_motion import _source_take, animate, body_of, performances_of, whole_cycle
 from .jsonvalues import as_dict
 from .records import ActionRecord, Praxicon, _count
@@ -436,8 +435,10 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
         raise ValueError(f"record must be an ActionRecord, not {type(record).__name__}")
     if not record.learnt:
         raise ValueError(f"action {record.name!r} was not learnt: {record.reason}")
-    if isinstance(repeat, bool) or not isinstance(repeat, int) or not 1 <= repeat <= MAX_REPEAT:
+    if not is_count(repeat) or repeat > MAX_REPEAT:  # a numpy integer is a count too
         raise ValueError(f"repeat must be a whole number from 1 to {MAX_REPEAT}, not {repeat!r}")
+    if progress is not None and not callable(progress):  # else a TypeError after a channel
+        raise ValueError(f"progress must be callable, not {progress!r}")
     if not has_grammar(record):  # a one-off gesture: its performances' course, played
         from .acyclic import performed_motion
 
@@ -527,17 +528,16 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None =
     output : str or Path, optional
         Write the motion there as BVH.
     plot : str or Path, optional
-        Save a picture of the first actuator channel: a performance beside the
-        generated motion.
+        Save a picture of the first actuator channel: a performance beside the generated motion.
     style : str, optional
-        Generate that style of the action: a word of its performances' file names
-        (Bandai Namco's ``dataset-2_walk_elderly_001.bvh`` is style ``elderly``). Its
-        tempo and each actuator channel's amplitude are the style's performances'
-        against all of them (:func:`style_scales`), the other joints and the root's
-        course are those performances' alone. Default: every performance together.
+        Generate that style of the action: a word of its performances' file names (Bandai
+        Namco's ``dataset-2_walk_elderly_001.bvh`` is style ``elderly``). Its tempo and each
+        actuator channel's amplitude are the style's performances' against all of them
+        (:func:`style_scales`), the other joints and the root's course are those
+        performances' alone. Default: every performance together.
     progress : callable, optional
         Called as ``progress(done, total, channel)`` after each actuator channel is made.
-
+    
     Returns
     -------
     Generated
@@ -545,8 +545,8 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None =
     Raises
     ------
     ValueError
-        When the action is unknown, was not learnt, has nothing to generate (no grammar and
-        no performance that reads), or has no performance of ``style``.
+        When the action is unknown, was not learnt, has nothing to generate (no grammar and no
+        performance that reads), has no performance of ``style``, or an argument is wrong.
 
     Examples
     --------

@@ -501,3 +501,15 @@ def test_a_three_frame_motion_has_a_shape_and_no_nan_feature():
     shape = [v for n, v in zip(names, values) if n.startswith("j0.rx:shape")]
     x = dict(zip(names, values))
     assert len(shape) == 4 and x["j0.rx:shape3"] == x["j0.rx:shape2"]  # the last frame twice
+
+
+
+def test_generate_refuses_a_progress_that_cannot_be_called_before_any_work(built):
+    from praxicon.generation import generate
+
+    with pytest.raises(ValueError, match="progress must be callable"):
+        generate(built, built.names[0], repeat=1, progress="x")  # a TypeError after a channel
+    # a numpy integer is a count of copies, as an int is
+    np_repeat = generate(built, built.names[0], repeat=np.int64(2), progress=lambda *a: None)
+    assert np_repeat.motion.values.tobytes() == \
+        generate(built, built.names[0], repeat=2).motion.values.tobytes()
