@@ -21,19 +21,42 @@ its first rule uses only terminals and later nonterminals.
 
 from __future__ import annotations
 
+import numbers
 from collections.abc import Sequence
 
 from hypothesis import strategies as st
+from hypothesis.errors import InvalidArgument
 
 from .model import PCGS, PSGS, Grammar, Nonterminal, Query, Rule, Terminal
 
 __all__ = [
     "terminals", "nonterminals", "symbols", "grammars", "psgs_systems", "pcgs_systems",
-    "derivations", "derivable_words", "near_misses", "actiongrams",
+    "derivations", "derivable_words", "near_misses", "actiongrams", "MAX_SIZE",
 ]
 
 DEFAULT_ALPHABET = ("a", "b", "c")
 DEFAULT_NAMES = ("S", "A", "B", "C", "D", "E")
+#: The largest size a strategy draws up to (components, rules, strings, steps...): a size of
+#: None or 10**9 drew until memory ran out.
+MAX_SIZE = 10_000
+
+
+def _sizes(**sizes) -> None:
+    """Each ``name=(value, least)`` a whole number from ``least`` to :data:`MAX_SIZE`, else
+    hypothesis's InvalidArgument naming it (raised when the strategy first draws, as
+    hypothesis's own strategies check theirs)."""
+    for name, (value, least) in sizes.items():
+        if isinstance(value, bool) or not isinstance(value, numbers.Integral) \
+                or not least <= value <= MAX_SIZE:
+            raise InvalidArgument(f"{name} must be a whole number from {least} to {MAX_SIZE}, "
+                                  f"not {value!r}")
+
+
+def _names(name: str, value) -> tuple[str, ...]:
+    """A non-empty sequence of strings (a string: its characters, as ``tuple()`` reads it)."""
+    if not isinstance(value, Sequence) or not value or not all(isinstance(v, str) for v in value):
+        raise InvalidArgument(f"{name} must be a non-empty sequence of strings, not {value!r}")
+    return tuple(value)
 
 
 def terminals(alphabet: Sequence[str] = DEFAULT_ALPHABET) -> st.SearchStrategy[Terminal]:
@@ -154,9 +177,11 @@ def grammars(draw, *, name: str = "G", max_nonterminals: int = 3, max_rules: int
     >>> all(rule.rhs for rule in g.rules)
     True
     """
+    _sizes(max_nonterminals=(max_nonterminals, 1), max_rules=(max_rules, 1),
+           max_rhs=(max_rhs, 0))
+    alphabet = _names("alphabet", alphabet)
     count = draw(st.integers(1, max(1, min(max_nonterminals, len(DEFAULT_NAMES)))))
     names = [Nonterminal(n + suffix) for n in DEFAULT_NAMES[:count]]
-    alphabet = tuple(alphabet)
     min_rhs = 0 if allow_epsilon else 1
 
     def body(allowed_nts: list[Nonterminal], allow_queries: bool):
@@ -248,6 +273,8 @@ def psgs_systems(draw, *, min_components: int = 1, max_components: int = 3,
     >>> [g.name for g in system.components], system.mode
     (['G1', 'G2'], 'single')
     """
+    _sizes(min_components=(min_components, 1), max_components=(max_components, min_components),
+           max_tuples=(max_tuples, 0))
     n = draw(st.integers(min_components, max_components))
     components = tuple(
         draw(grammars(name=f"G{i}", suffix=str(i), max_nonterminals=max_nonterminals,
@@ -299,6 +326,7 @@ def pcgs_systems(draw, *, min_components: int = 1, max_components: int = 3,
     >>> system.master, system.returning
     ('G1', True)
     """
+    _sizes(min_components=(min_components, 1), max_components=(max_components, min_components))
     n = draw(st.integers(min_components, max_components))
     central = draw(st.booleans()) if centralised is None else centralised
     names = [f"G{i}" for i in range(1, n + 1)]
@@ -353,6 +381,7 @@ def derivations(draw, system, *, max_steps: int = 30, max_form_length: int = 40,
     from .derivation import (Derivation, applicable_steps, initial_configuration,
                              is_terminal_configuration)
 
+    _sizes(max_steps=(max_steps, 0), max_form_length=(max_form_length, 0))
     configuration = initial_configuration(system)
     steps = []
     length = draw(st.integers(0, max_steps))
@@ -500,7 +529,9 @@ def actiongrams(draw, *, min_strings: int = 1, max_strings: int = 4, max_length:
     """
     from .actiongram import Actiongram
 
-    alphabet = tuple(alphabet)
+    _sizes(min_strings=(min_strings, 1), max_strings=(max_strings, min_strings),
+           max_length=(max_length, 1))
+    alphabet = _names("alphabet", alphabet)
     count = draw(st.integers(min_strings, max_strings))
     strings, times = {}, {}
     for k in range(1, count + 1):

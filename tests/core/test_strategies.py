@@ -3,6 +3,7 @@
 import sys
 import subprocess
 
+import pytest
 from hypothesis import Phase, given, settings, strategies as st
 from hypothesis import find as _find
 
@@ -174,3 +175,28 @@ def test_actiongrams_have_no_repeated_neighbours(actiongram):
     for row in actiongram.symbols:
         assert 1 <= len(row) <= 6
         assert all(a != b for a, b in zip(row, row[1:]))
+
+
+@pytest.mark.parametrize("strategy, options, name", [
+    ("pcgs_systems", {"max_components": None}, "max_components"),   # ran out of memory
+    ("psgs_systems", {"max_components": 10**9}, "max_components"),
+    ("psgs_systems", {"min_components": 3, "max_components": 2}, "max_components"),
+    ("grammars", {"max_rules": True}, "max_rules"),
+    ("grammars", {"alphabet": ()}, "alphabet"),
+    ("grammars", {"alphabet": [1, 2]}, "alphabet"),
+    ("actiongrams", {"max_strings": 0}, "max_strings"),
+    ("actiongrams", {"max_length": "5"}, "max_length"),
+])
+def test_a_strategy_names_a_size_or_alphabet_it_cannot_draw(strategy, options, name):
+    from hypothesis import find
+    from hypothesis.errors import InvalidArgument
+
+    with pytest.raises(InvalidArgument, match=name):
+        find(getattr(pst, strategy)(**options), lambda value: True)
+
+
+def test_an_alphabet_given_as_one_string_is_its_letters_as_before():
+    from hypothesis import find
+
+    drawn = find(pst.grammars(alphabet="xy", allow_epsilon=False), lambda g: True)
+    assert {s.name for r in drawn.rules for s in r.rhs} <= {"x", "y", "S"}
