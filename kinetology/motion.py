@@ -10,6 +10,7 @@ needs. The array is read-only: a motion never changes after it is built.
 from __future__ import annotations
 
 import os
+import sys
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from numbers import Integral, Real
@@ -323,6 +324,25 @@ def check_number(value, name: str, *, positive: bool = False) -> float:
         raise ValidationError(f"{name} must be a {'positive' if positive else 'non-negative'} "
                               f"number, not {value!r}")
     return number
+
+
+def check_rate(values: np.ndarray, frame_rate: float) -> None:
+    """A :class:`ValidationError` when differencing ``values`` (frames first, finite) at
+    ``frame_rate`` would overflow: an acceleration is up to the values' size times the rate
+    squared, and past the floats' range segmentation read inf and NaN as one still segment.
+
+    Examples
+    --------
+    >>> check_rate(np.array([[0.0], [90.0]]), 3e6)
+    >>> check_rate(np.array([[0.0], [90.0]]), 1e300)
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: frame rate 1e+300 fps is too high to difference values up to 90: their velocities and accelerations overflow
+    """
+    size = float(max(values.max(), -values.min())) if values.size else 0.0  # no |values| copy
+    if not 4.0 * max(size, 1.0) * frame_rate * frame_rate < sys.float_info.max / 16:
+        raise ValidationError(f"frame rate {frame_rate:g} fps is too high to difference values "
+                              f"up to {size:g}: their velocities and accelerations overflow")
 
 
 def is_whole(value) -> bool:

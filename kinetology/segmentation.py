@@ -51,7 +51,7 @@ from psgs.errors import ValidationError
 from ._engines import select
 from ._kinetemes import round_half_even, smooth_channels
 from .joints import actuator_map, skeleton_parents
-from .motion import Motion, check_number, real_array
+from .motion import Motion, check_number, check_rate, real_array
 
 __all__ = ["STATES", "DEFAULTS", "smooth", "unwrap", "derivatives", "significant_sign",
            "channel_deadbands", "states", "Segmentation", "segments", "segment"]
@@ -308,6 +308,7 @@ def states(values: np.ndarray, frame_rate: float, *, smoothing: float = DEFAULTS
     if one_channel:
         values = values[:, None]
     values = _unwrap(values, unwrap)
+    check_rate(values, frame_rate)
     out = np.empty(values.shape, dtype=np.int8)
     use = select(engine, values.size)
     if values.shape[0]:
@@ -442,12 +443,11 @@ def _check(params: dict) -> dict:
 def segments(motion: Motion, channels=None, *, engine: str = "auto", **params) -> Segmentation:
     """Segment ``channels`` of ``motion`` (default: every angle channel, not ``t*``).
 
-    Parameters (defaults in :data:`DEFAULTS`): ``smoothing`` (Gaussian sigma in
-    seconds; larger merges quick wiggles), ``velocity_deadband`` (deg/s) and
-    ``acceleration_deadband`` (deg/s²) (larger: fewer, longer segments),
-    ``min_range`` (deg; channels whose smoothed range is smaller are still and
-    left out; 0 keeps every channel), ``unwrap`` (period in degrees of the
-    rotation channels, unwrapped before smoothing; 0 turns it off).
+    Parameters (defaults in :data:`DEFAULTS`): ``smoothing`` (Gaussian sigma in seconds;
+    larger merges quick wiggles), ``velocity_deadband`` (deg/s) and ``acceleration_deadband``
+    (deg/s²) (larger: fewer, longer segments), ``min_range`` (deg; channels whose smoothed range
+    is smaller are still and left out; 0 keeps every channel), ``unwrap`` (period in degrees of
+    the rotation channels, unwrapped before smoothing; 0 turns it off).
 
     Parameters
     ----------
@@ -507,6 +507,7 @@ def segments(motion: Motion, channels=None, *, engine: str = "auto", **params) -
     use = select(engine, motion.values.size)
     p = _check(params)
     names, smoothed = _smoothed(motion, channels, p, use)
+    check_rate(smoothed, motion.frame_rate)
     moving = (use.row_ranges(smoothed) >= p["min_range"]) if motion.frames else \
         np.zeros(len(names), bool)
     return _segmentation(motion, names, smoothed, moving, p, use)

@@ -494,3 +494,18 @@ def test_joint_angle_of_unsigned_integer_positions_does_not_wrap_around():
     expected = joint_angle(positions.astype(float), 0, 1, 2)
     assert np.allclose(joint_angle(positions.astype(np.uint8), 0, 1, 2), expected)
     assert np.allclose(expected, [135.0])
+
+
+@pytest.mark.parametrize("rate", [1e300, 1e180])
+def test_a_frame_rate_whose_accelerations_overflow_is_named_not_one_still_segment(rate):
+    from kinetology.segmentation import segments, states
+
+    values = 30 * np.sin(np.arange(400) * 0.5)[:, None]
+    motion = Motion(values, ("j.rx",), rate)   # 1e300: one segment, inf and NaN read as still
+    for run in (lambda: segments(motion), lambda: states(values[:, 0], rate),
+                lambda: kinetology.segment(motion)):
+        with pytest.raises(ValidationError, match="accelerations overflow"):
+            run()
+    # a megahertz signal, far from it, segments as before
+    fast = segments(Motion(values, ("j.rx",), 3e6), smoothing=0.0)
+    assert fast.segment_count > 100
