@@ -19,6 +19,7 @@ import io
 import math
 import numbers
 import sys
+from array import array
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 
@@ -212,7 +213,9 @@ def read_csv(cls, path: str | Path, *, gaps: str = "rest", rest_symbol: str = "_
         raise FormatError(f"the header names column {twice[0]!r} twice", source=source,
                           line=1)
     where = [header.index(f) for f in FIELDS]
-    records, lines = [], []
+    # a row's stream and symbol are one of few names: one string each, not one per row, and
+    # line numbers in an array, so that a long file costs little more than what it describes
+    records, lines, names = [], array("q"), {}
     # a row starts on the line after the one before ends: a quoted cell may hold line
     # breaks, and the reader counts to the row's end
     ended = reader.line_num
@@ -226,8 +229,10 @@ def read_csv(cls, path: str | Path, *, gaps: str = "rest", rest_symbol: str = "_
                 raise FormatError(f"{len(row)} cells, the header has {len(header)}",
                                   source=source, line=line)
             stream, onset, duration, symbol = (row[i].strip() for i in where)
-            records.append((stream, _number(onset, "onset", source, line),
-                            _number(duration, "duration", source, line), symbol))
+            records.append((names.setdefault(stream, stream),
+                            _number(onset, "onset", source, line),
+                            _number(duration, "duration", source, line),
+                            names.setdefault(symbol, symbol)))
             lines.append(line)
     except csv.Error as exc:
         raise FormatError(f"not CSV: {exc}", source=source, line=reader.line_num) from None

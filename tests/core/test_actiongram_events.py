@@ -327,3 +327,14 @@ def test_performances_padded_to_the_same_strings_keep_their_repeats():
     padded = same_strings([a, b])
     assert [p.keep_repeats for p in padded] == [True, True]
     assert padded[0].string("knee") == ("a", "a", "b")
+
+
+def test_a_name_read_from_many_rows_is_held_once(tmp_path):
+    # one string per row was most of what a long events file cost in memory (symbols of two
+    # letters: a one-letter string is one object in CPython anyway)
+    path = tmp_path / "long.csv"
+    rows = [f"{'ab'[k % 2]},{k // 2},1,{'CDE'[k % 3]}4" for k in range(600)]
+    path.write_text("stream,onset,duration,symbol\n" + "\n".join(rows) + "\n")
+    ag = read_events_csv(path)
+    symbols = [s for name in ag.names for s in ag.string(name)]
+    assert len(symbols) == 600 and len({id(s) for s in symbols}) == 3
