@@ -117,7 +117,8 @@ def run_generate(args) -> int:
         live = not args.no_progress and sys.stderr.isatty()
         try:
             result = generate(praxicon, args.action, repeat=args.repeat, style=args.style,
-                              progress=_shaping_progress if live else None)
+                              progress=_shaping_progress if live else None,
+                              workers=args.workers)
         finally:  # the progress line ends before any answer or error is printed
             if live:
                 print(file=sys.stderr)
@@ -270,6 +271,9 @@ def _add_commands(sub) -> None:
                      help="the BVH file to write")
     gen.add_argument("--no-progress", action="store_true",
                      help="no progress line (shown only when stderr is a terminal)")
+    gen.add_argument("--workers", type=positive_int, default=1, metavar="N",
+                     help="make N channels at once (threads: the correction's linear "
+                          "programmes on N cores; the motion is the same); default 1")
     gen.add_argument("--style", default=None, metavar="STYLE",
                      help="generate that style of the action: a word of its performances' "
                           "file names (Bandai's dataset-2_walk_elderly_001.bvh is style "

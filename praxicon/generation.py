@@ -37,6 +37,8 @@ from pathlib import Path
 import numpy as np
 
 from ._values import is_count
+from .channel_curve import SMOOTH_STEPS as _SMOOTH_STEPS
+from .channel_curve import Method, channel_curves
 from .body_motion import _source_take, animate, body_of, performances_of, whole_cycle
 from .jsonvalues import as_dict
 from .records import ActionRecord, Praxicon, _count
@@ -49,9 +51,6 @@ __all__ = ["Generated", "Method", "generate", "generate_motion", "derive_copies"
 MAX_REPEAT = 1000
 
 _RISING = {"B": 1.0, "G": 1.0, "R": -1.0, "Y": -1.0}
-# kineteme changes a smooth angle can make: one sign flips, and a velocity sign flips only
-# where the acceleration pushes it that way (a maximum is G -> R, a minimum Y -> B)
-_SMOOTH_STEPS = {("B", "G"), ("G", "B"), ("G", "R"), ("R", "Y"), ("Y", "R"), ("Y", "B")}
 
 
 def is_smooth_cycle(kinetemes) -> bool:
@@ -244,119 +243,6 @@ def _balanced(kinetemes, displacements) -> np.ndarray:
     return d
 
 
-def _resegment(curve, rate, params, channel) -> tuple[str, ...]:
-    """The kineteme string the segmentation reads from one generated channel."""
-    import kinetology
-
-    found = kinetology.segments(kinetology.Motion(curve[:, None], (channel,), rate), **params)
-    return found.symbols(0) if found.channels else ()
-
-
-def _fit_lengths(knots, frames: int) -> np.ndarray:
-    """Segment lengths >= 1 frame adding up to ``frames - 1`` (the last frame ends the last)."""
-    lengths = np.maximum(np.diff(knots), 1)
-    while lengths.sum() > frames - 1 and lengths.max() > 1:  # rounding: from the longest
-        lengths[int(np.argmax(lengths))] -= 1
-    lengths[-1] += max(0, frames - 1 - int(lengths.sum()))
-    return lengths
-
-
-# minimum segment lengths (frames) tried when the learnt durations are too short for the
-# changes a morpheme makes: a quiet return to zero speed before a change of both signs
-# takes a few frames at any amplitude
-_MINIMUM_FRAMES = (4, 8)
-_HARD_FRAMES = (10, 16, 24)  # likewise for the segments beside a change of both signs
-_REACH = 1.25  # a generated channel's smoothed range is at least this many times min_range
-
-
-def _channel_curve(knots, sequence, steps, frames, rate, params, channel):
-    """One channel's curve and how it was made: the quartic alone, or with a correction.
-
-    The quartic, jerk-minimising reconstruction of the knots is the base. When
-    segmenting it again does not give ``sequence``, the correction layer
-    (:func:`praxicon.shaping.shape`) moves it, as little as it can, until it does; when
-    that has no answer at the learnt durations, segments shorter than a few frames
-    are lengthened (frames taken from the longest segments, so the channel keeps the
-    action's period) and the correction tried again.
-    """
-    from kinetology.codec import reconstruct
-    from kinetology.segmentation import DEFAULTS, STATES, smooth
-
-    from .shaping import lengthened, shape
-
-    settings = {**DEFAULTS, **params}
-
-    codes = np.array([STATES.index(k) for k in sequence], dtype=np.int8)
-    knot_values = np.concatenate(([0.0], np.cumsum(steps)))
-    lengths = _fit_lengths(knots, frames)
-    bounds = np.concatenate(([0], np.cumsum(lengths)))
-    base = reconstruct(bounds, codes, knot_values)
-    # a channel whose smoothed range is under the segmentation's min_range is "still" and has
-    # no kinetemes at all: such a morpheme's displacements are scaled up to 1.25 times it
-    reach = float(np.ptp(smooth(base, rate, settings["smoothing"])))
-    scale = 1.0
-    if reach < _REACH * settings["min_range"]:
-        scale = _REACH * settings["min_range"] / max(reach, 1e-9)
-        knot_values = knot_values * scale
-        base = reconstruct(bounds, codes, knot_values)
-    want = tuple(sequence)
-    if _resegment(base, rate, params, channel) == want:
-        return base, Method("quartic", 0.0, 0, scale)
-    status = "no answer"
-    # the segments beside a change a smooth angle cannot make (_SMOOTH_STEPS) are where the
-    # correction needs time: lengthened first, then every segment
-    steps_made = list(zip(sequence, sequence[1:]))
-    hard = np.zeros(len(sequence), bool)
-    for i, step in enumerate(steps_made):
-        if step not in _SMOOTH_STEPS:
-            hard[i] = hard[i + 1] = True
-    tries = [(1, None)] + [(m, hard) for m in _HARD_FRAMES if hard.any()] + \
-        [(m, None) for m in _MINIMUM_FRAMES]
-    for minimum, which in tries:
-        if minimum > 1:
-            longer = lengthened(lengths, minimum, which)
-            if longer is None or np.array_equal(longer, lengths):
-                continue
-            bounds = np.concatenate(([0], np.cumsum(longer)))
-            base = reconstruct(bounds, codes, knot_values)
-        shaped = shape(base, bounds, sequence, rate, params)
-        if shaped.status == "solved" and _resegment(shaped.curve, rate, params, channel) == want:
-            return shaped.curve, Method("corrected", shaped.change,
-                                        minimum if minimum > 1 else 0, scale)
-        status = shaped.status if shaped.status != "solved" else "re-segments otherwise"
-    return reconstruct(np.concatenate(([0], np.cumsum(lengths))), codes, knot_values), \
-        Method(f"failed: {status}", 0.0, 0, scale)
-
-
-@dataclass(frozen=True)
-class Method:
-    """How one generated channel was made.
-
-    Attributes
-    ----------
-    kind : str
-        ``"quartic"`` (the reconstruction alone re-segments exactly), ``"corrected"``
-        (the correction layer was needed) or ``"failed: REASON"``.
-    change : float
-        Largest change of the correction, degrees (0 for the quartic alone).
-    minimum_frames : int
-        When segments had to be lengthened to at least this many frames; 0 otherwise.
-    scale : float
-        The factor the learnt displacements were multiplied by (1: as learnt), when
-        the channel would otherwise move less than the segmentation's ``min_range``.
-
-    Examples
-    --------
-    >>> Method("corrected", 0.4, 10)
-    Method(kind='corrected', change=0.4, minimum_frames=10, scale=1.0)
-    """
-
-    kind: str
-    change: float
-    minimum_frames: int
-    scale: float = 1.0
-
-
 def style_scales(record, channels, period: float, style: str, rate: float, performances=None):
     """How a style's performances differ from all of an action's: (tempo, amplitude per channel).
 
@@ -405,7 +291,7 @@ def has_grammar(record: ActionRecord) -> bool:
 
 
 def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
-                    style: str | None = None, progress=None):
+                    style: str | None = None, progress=None, workers: int = 1):
     """The generated :class:`kinetology.Motion` of one action record, its words, its methods.
 
     Returns ``(motion, words, methods)``: the motion, per generated channel its merged
@@ -426,7 +312,7 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     An action without a grammar system (:func:`has_grammar`: no synchronised repetition)
     is its performances' mean course instead, warped to one time base and played
     ``repeat`` times (:func:`praxicon.acyclic.performed_motion`); its words and methods
-    are empty.
+    are empty. ``workers`` channels are made at once (threads; the motion is the same).
     """
     import kinetology
     from psgs import loads
@@ -439,6 +325,8 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
         raise ValueError(f"repeat must be a whole number from 1 to {MAX_REPEAT}, not {repeat!r}")
     if progress is not None and not callable(progress):  # else a TypeError after a channel
         raise ValueError(f"progress must be callable, not {progress!r}")
+    if not is_count(workers):
+        raise ValueError(f"workers must be a whole number of at least 1, not {workers!r}")
     if not has_grammar(record):  # a one-off gesture: its performances' course, played
         from .acyclic import performed_motion
 
@@ -475,9 +363,9 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     frames = int(round(copies * period * rate)) + 1
     centre = {**pose, **(body.centre or {})}  # the root's rotation: heading-free means
     values = np.tile([pose.get(c, 0.0) for c in channels], (frames, 1))
-    derived, methods = {}, {}
     params = as_dict(record.segmentation)
     component = dict(record.component_names)
+    jobs, sequences = [], {}
     for channel, morpheme in usable.items():
         word = words.get(component.get(channel, channel))
         kinetemes = morpheme.kinetemes
@@ -491,12 +379,15 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
             amplitude.get(channel, 1.0)
         sequence, durations, steps = _merge_runs(kinetemes * copies, durations, steps)
         knots = np.round(np.concatenate(([0.0], np.cumsum(durations))) * rate).astype(int)
-        curve, method = _channel_curve(knots, sequence, steps, frames, rate, params, channel)
+        jobs.append((channel, (knots, sequence, steps, frames, rate, params, channel)))
+        sequences[channel] = sequence
+    # each channel's correction may take seconds at 120 fps: progress as each is made
+    made = channel_curves(jobs, workers, progress)
+    derived, methods = {}, {}
+    for channel, _ in jobs:  # in the channels' order, however many were made at once
+        curve, methods[channel] = made[channel]
         values[:, channels.index(channel)] = curve - curve.mean() + centre.get(channel, 0.0)
-        derived[channel] = sequence
-        methods[channel] = method
-        if progress is not None:  # each channel's correction may take seconds at 120 fps
-            progress(len(derived), len(usable), channel)
+        derived[channel] = sequences[channel]
     # a morpheme that only rises (or only falls) drifts: on a root rotation, an Euler flip
     drifting = {c for c, m in usable.items() if len({_RISING[k] for k in m.kinetemes}) == 1}
     animate(values, channels, body, set(derived), rate, period * cycle, drifting)
@@ -507,7 +398,7 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
 
 def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None = None,
              output: str | Path | None = None, plot: str | Path | None = None,
-             style: str | None = None, progress=None) -> Generated:
+             style: str | None = None, progress=None, workers: int = 1) -> Generated:
     """Generate ``repeat`` copies of ``action`` from the praxicon in ``folder``.
 
     An action with a grammar system is derived from it (the module's steps). A learnt
@@ -537,6 +428,10 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None =
         performances' alone. Default: every performance together.
     progress : callable, optional
         Called as ``progress(done, total, channel)`` after each actuator channel is made.
+    workers : int, default 1
+        Actuator channels made at once, in threads: the correction layer's linear programmes
+        run on that many cores (at 120 fps they take most of the time); the motion is the same
+        for any number.
     
     Returns
     -------
@@ -582,7 +477,8 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None =
     grammar = has_grammar(record)
     if repeat is None:
         repeat = 3 if grammar else 1
-    motion, words, methods = generate_motion(record, repeat, style=style, progress=progress)
+    motion, words, methods = generate_motion(record, repeat, style=style, progress=progress,
+                                             workers=workers)
     if output is not None:  # on the source skeleton, an ASF one's axes turned into angles
         from kinetology.bvh_writer import without_axes
 

@@ -513,3 +513,14 @@ def test_generate_refuses_a_progress_that_cannot_be_called_before_any_work(built
     np_repeat = generate(built, built.names[0], repeat=np.int64(2), progress=lambda *a: None)
     assert np_repeat.motion.values.tobytes() == \
         generate(built, built.names[0], repeat=2).motion.values.tobytes()
+
+
+def test_generate_in_threads_makes_the_same_motion(built):
+    from praxicon.generation import generate
+
+    one = generate(built, built.names[0], repeat=2)
+    two = generate(built, built.names[0], repeat=2, workers=2)
+    assert two.motion.values.tobytes() == one.motion.values.tobytes()
+    assert two.methods == one.methods and two.words == one.words
+    with pytest.raises(ValueError, match="workers must be a whole number"):
+        generate(built, built.names[0], repeat=1, workers=0)
