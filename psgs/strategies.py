@@ -38,7 +38,7 @@ DEFAULT_ALPHABET = ("a", "b", "c")
 DEFAULT_NAMES = ("S", "A", "B", "C", "D", "E")
 #: The largest size a strategy draws up to (components, rules, strings, steps...): a size of
 #: None or 10**9 drew until memory ran out.
-MAX_SIZE = 10_000
+MAX_SIZE = 1_000_000
 
 
 def _sizes(**sizes) -> None:
@@ -53,10 +53,15 @@ def _sizes(**sizes) -> None:
 
 
 def _names(name: str, value) -> tuple[str, ...]:
-    """A non-empty sequence of strings (a string: its characters, as ``tuple()`` reads it)."""
-    if not isinstance(value, Sequence) or not value or not all(isinstance(v, str) for v in value):
+    """The strings ``tuple()`` reads from ``value`` (a string: its characters; a set, a numpy
+    array, dict keys...), at least one."""
+    try:
+        names = tuple(value)
+    except TypeError:
+        names = ()
+    if not names or not all(isinstance(v, str) for v in names):
         raise InvalidArgument(f"{name} must be a non-empty sequence of strings, not {value!r}")
-    return tuple(value)
+    return names
 
 
 def terminals(alphabet: Sequence[str] = DEFAULT_ALPHABET) -> st.SearchStrategy[Terminal]:
@@ -177,7 +182,7 @@ def grammars(draw, *, name: str = "G", max_nonterminals: int = 3, max_rules: int
     >>> all(rule.rhs for rule in g.rules)
     True
     """
-    _sizes(max_nonterminals=(max_nonterminals, 1), max_rules=(max_rules, 1),
+    _sizes(max_nonterminals=(max_nonterminals, 0), max_rules=(max_rules, 0),  # 0: clamped
            max_rhs=(max_rhs, 0))
     alphabet = _names("alphabet", alphabet)
     count = draw(st.integers(1, max(1, min(max_nonterminals, len(DEFAULT_NAMES)))))
@@ -381,7 +386,7 @@ def derivations(draw, system, *, max_steps: int = 30, max_form_length: int = 40,
     from .derivation import (Derivation, applicable_steps, initial_configuration,
                              is_terminal_configuration)
 
-    _sizes(max_steps=(max_steps, 0), max_form_length=(max_form_length, 0))
+    _sizes(max_steps=(max_steps, 0))  # max_form_length only stops a derivation: any bound
     configuration = initial_configuration(system)
     steps = []
     length = draw(st.integers(0, max_steps))
@@ -529,7 +534,7 @@ def actiongrams(draw, *, min_strings: int = 1, max_strings: int = 4, max_length:
     """
     from .actiongram import Actiongram
 
-    _sizes(min_strings=(min_strings, 1), max_strings=(max_strings, min_strings),
+    _sizes(min_strings=(min_strings, 0), max_strings=(max_strings, min_strings),
            max_length=(max_length, 1))
     alphabet = _names("alphabet", alphabet)
     count = draw(st.integers(min_strings, max_strings))

@@ -184,7 +184,7 @@ def test_actiongrams_have_no_repeated_neighbours(actiongram):
     ("grammars", {"max_rules": True}, "max_rules"),
     ("grammars", {"alphabet": ()}, "alphabet"),
     ("grammars", {"alphabet": [1, 2]}, "alphabet"),
-    ("actiongrams", {"max_strings": 0}, "max_strings"),
+    ("actiongrams", {"max_strings": -1}, "max_strings"),
     ("actiongrams", {"max_length": "5"}, "max_length"),
 ])
 def test_a_strategy_names_a_size_or_alphabet_it_cannot_draw(strategy, options, name):
@@ -200,3 +200,18 @@ def test_an_alphabet_given_as_one_string_is_its_letters_as_before():
 
     drawn = find(pst.grammars(alphabet="xy", allow_epsilon=False), lambda g: True)
     assert {s.name for r in drawn.rules for s in r.rhs} <= {"x", "y", "S"}
+
+
+def test_what_drew_before_the_checks_still_draws():
+    import math
+
+    import numpy as np
+    from hypothesis import find
+
+    system = find(pst.psgs_systems(max_components=1), lambda s: True)
+    for strategy in (pst.grammars(alphabet=np.array(["x", "y"])), pst.grammars(alphabet={"x"}),
+                     pst.grammars(max_nonterminals=0, max_rules=0),
+                     pst.actiongrams(min_strings=0, max_strings=0),
+                     pst.derivations(system, max_form_length=math.inf),
+                     pst.derivations(system, max_steps=20_000, max_form_length=100_000)):
+        assert find(strategy, lambda value: True) is not None
