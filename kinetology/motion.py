@@ -340,7 +340,9 @@ def check_rate(values: np.ndarray, frame_rate: float) -> None:
     psgs.errors.ValidationError: frame rate 1e+300 fps is too high to difference values up to 90: their velocities and accelerations overflow
     """
     size = float(max(values.max(), -values.min())) if values.size else 0.0  # no |values| copy
-    if not 4.0 * max(size, 1.0) * frame_rate * frame_rate < sys.float_info.max / 16:
+    # central differences: a velocity is at most 2 size rate (at the ends), an acceleration
+    # twice that rate; all zero, nothing overflows
+    if size and not 4.0 * size * frame_rate * frame_rate < sys.float_info.max / 2:
         raise ValidationError(f"frame rate {frame_rate:g} fps is too high to difference values "
                               f"up to {size:g}: their velocities and accelerations overflow")
 

@@ -308,13 +308,12 @@ def states(values: np.ndarray, frame_rate: float, *, smoothing: float = DEFAULTS
     if one_channel:
         values = values[:, None]
     values = _unwrap(values, unwrap)
-    check_rate(values, frame_rate)
     out = np.empty(values.shape, dtype=np.int8)
     use = select(engine, values.size)
     if values.shape[0]:
-        borders, codes, _ = use.segment_columns(use.smooth_channels(values, frame_rate,
-                                                                    smoothing),
-                                                frame_rate, velocity_deadband,
+        smoothed = use.smooth_channels(values, frame_rate, smoothing)  # what is differenced
+        check_rate(smoothed, frame_rate)
+        borders, codes, _ = use.segment_columns(smoothed, frame_rate, velocity_deadband,
                                                 acceleration_deadband, relative_deadband)
         for c, (ends, code) in enumerate(zip(borders, codes)):
             out[:, c] = np.repeat(code, np.diff(ends))

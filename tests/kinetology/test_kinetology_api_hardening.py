@@ -506,6 +506,9 @@ def test_a_frame_rate_whose_accelerations_overflow_is_named_not_one_still_segmen
                 lambda: kinetology.segment(motion)):
         with pytest.raises(ValidationError, match="accelerations overflow"):
             run()
-    # a megahertz signal, far from it, segments as before
+    # a megahertz signal, far from it, segments as before; so do still values at any rate,
+    # and small angles as fast as their accelerations stay finite
     fast = segments(Motion(values, ("j.rx",), 3e6), smoothing=0.0)
     assert fast.segment_count > 100
+    assert (states(np.zeros(50), 1e160) == 0).all() and states(np.zeros(0), 1e160).size == 0
+    assert len(set(states(1e-3 * np.sin(np.arange(50)), 2e153).tolist())) > 1
