@@ -161,8 +161,12 @@ def channel_curves(jobs, workers: int = 1, progress=None) -> dict:
         return out
     with ThreadPoolExecutor(workers) as pool:
         running = {pool.submit(channel_curve, *arguments): name for name, arguments in jobs}
-        for future in as_completed(running):
-            out[running[future]] = future.result()
-            if progress is not None:
-                progress(len(out), len(jobs), running[future])
+        try:
+            for future in as_completed(running):
+                out[running[future]] = future.result()
+                if progress is not None:
+                    progress(len(out), len(jobs), running[future])
+        except BaseException:  # an error or Ctrl-C: the channels not started are not made
+            pool.shutdown(wait=False, cancel_futures=True)
+            raise
     return out

@@ -524,3 +524,25 @@ def test_generate_in_threads_makes_the_same_motion(built):
     assert two.methods == one.methods and two.words == one.words
     with pytest.raises(ValueError, match="workers must be a whole number"):
         generate(built, built.names[0], repeat=1, workers=0)
+
+
+def test_channels_made_in_threads_stop_at_the_first_error(monkeypatch):
+    import threading
+
+    from praxicon import channel_curve as module
+
+    started, release = [], threading.Event()
+
+    def curve(name, *rest):
+        started.append(name)
+        if name == "bad":
+            raise RuntimeError("no curve")
+        release.wait(1)  # the good ones would take long: they must not all be waited for
+        return name, None
+
+    monkeypatch.setattr(module, "channel_curve", curve)
+    jobs = [("bad", ("bad",))] + [(f"c{k}", (f"c{k}",)) for k in range(20)]
+    with pytest.raises(RuntimeError, match="no curve"):
+        module.channel_curves(jobs, workers=2)
+    release.set()
+    assert len(started) < len(jobs)  # the channels not started were cancelled
