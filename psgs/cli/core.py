@@ -77,6 +77,9 @@ def register(subparsers) -> None:
     derive.add_argument("--seed", type=int, default=0, help="seed of --random (default 0)")
     derive.add_argument("--max-steps", type=positive_int, default=10_000, metavar="K",
                         help="--random stops after K steps (default 10000)")
+    derive.add_argument("--max-symbols", type=positive_int, default=10_000_000, metavar="N",
+                        help="--random stops before its configurations would hold N symbols "
+                             "together (default 10000000)")
     derive.add_argument("--max-length", type=natural, default=None, metavar="L",
                         help="--enumerate: total length bound (needed)")
     derive.add_argument("--max-configurations", type=positive_int, default=200_000, metavar="N",
@@ -177,7 +180,8 @@ def _witness(system: PSGS | PCGS, words) -> str:
 def _random(system: PSGS | PCGS, args) -> int:
     from ..derivation import random_derivation
     from ..notation import format_configuration
-    derivation = random_derivation(system, args.seed, max_steps=args.max_steps)
+    derivation = random_derivation(system, args.seed, max_steps=args.max_steps,
+                                   max_symbols=args.max_symbols)
     if args.trace:
         print(format_configuration(derivation.configurations[0], system))
         for step in derivation.steps:

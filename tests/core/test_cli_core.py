@@ -109,6 +109,15 @@ def test_random_that_hits_max_steps_says_so(capsys):
     assert status == 3 and "max_steps" in err and out.count(" ⇒ ") == 2
 
 
+def test_random_that_hits_max_symbols_says_so(capsys, tmp_path):
+    path = tmp_path / "grow.psgs"
+    path.write_text('psgs Grow\ncomponent G start S\n  p: S -> "a" S\nsync\n  (p)\n',
+                    encoding="utf-8")
+    status, out, err = run(capsys, "derive", str(path), "--random", "--max-symbols", "10")
+    # (S), (aS), (aaS), (aaaS) hold 1 + 2 + 3 + 4 = 10 symbols; one step more would pass it
+    assert status == 3 and "max_symbols" in err and out.count(" ⇒ ") == 3
+
+
 def test_a_blocked_derivation_says_so(capsys, tmp_path):
     path = tmp_path / "blocked.psgs"
     path.write_text('psgs B\nunsynchronised strict\ncomponent G start S\n  p: S -> A\n'
