@@ -6,14 +6,16 @@ and an error named a line the file does not have; :func:`split_lines` breaks at 
 (a ``\\r`` before it is part of the line break). Python's :func:`float` also takes ``1_0``
 (10) and digits of any script (``١٢``, ``１２``), which no data file means; :func:`decimal`
 takes the ASCII decimal form only (and ``inf``/``nan``, which the readers then refuse with a
-message of their own).
+message of their own). :func:`finite` is :func:`math.isfinite` for any number a caller gives,
+an int past the floats included.
 """
 
 from __future__ import annotations
 
+import math
 import re
 
-__all__ = ["split_lines", "decimal", "DECIMAL"]
+__all__ = ["split_lines", "decimal", "DECIMAL", "finite"]
 
 #: A number as data files write it: ASCII digits, an optional point and exponent; or inf/nan.
 DECIMAL = re.compile(r"[+-]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf(?:inity)?|nan)\Z",
@@ -50,3 +52,18 @@ def decimal(text: str) -> float | None:
     (-1500.0, None, None, True)
     """
     return float(text) if DECIMAL.match(text) else None
+
+
+def finite(value: int | float) -> bool:
+    """Whether ``value`` is a finite number a float can hold: :func:`math.isfinite`, but
+    False for an int past the floats (``10**400``) instead of an OverflowError.
+
+    Examples
+    --------
+    >>> finite(1.5), finite(float("nan")), finite(10**400)
+    (True, False, False)
+    """
+    try:
+        return math.isfinite(value)
+    except OverflowError:
+        return False

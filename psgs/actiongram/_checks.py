@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 import re
 
+from .._foundation.text import finite as _finite
 from ..errors import FormatError, ValidationError
 
 __all__: list[str] = []  # private helpers
@@ -65,14 +66,6 @@ def _bad_token(text: str, what: str) -> str | None:
         return (f"{what} {_shown(text)} must have no white space, control character, '@' or "
                 f"':' and not start with '#'")
     return None
-
-
-def _finite(value: int | float) -> bool:
-    """``math.isfinite``, False for an int too large for a float (instead of OverflowError)."""
-    try:
-        return math.isfinite(value)
-    except OverflowError:
-        return False
 
 
 def _bad_symbol(symbol: object) -> str | None:

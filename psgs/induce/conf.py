@@ -25,12 +25,12 @@ psgs.errors.ValidationError: how must be one of fast, exact, not 'slow'
 from __future__ import annotations
 
 import dataclasses
-import math
 import numbers
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import TypeVar
 
+from .._foundation.text import finite
 from ..errors import ValidationError
 
 __all__ = ["Conf", "Number", "Choice", "Parameter", "parameter", "check_number", "check_choice",
@@ -73,22 +73,13 @@ def check_number(name: str, value: object, *, low: float | None = None, high: fl
     if isinstance(value, bool) or not isinstance(value, ok_type):
         kind = "an integer" if integer else "a number"
         raise ValidationError(f"parameter {name} must be {kind}, not {value!r}")
-    if not _finite(value):  # NaN passes every comparison below
+    if not finite(value):  # NaN passes every comparison below; 10**400 is no float
         raise ValidationError(f"parameter {name} must be a finite number, not {value!r}")
     if low is not None and (value <= low if low_open else value < low):
         raise ValidationError(f"parameter {name} must be {'>' if low_open else '>='} {low}, "
                               f"not {value!r}")
     if high is not None and value > high:
         raise ValidationError(f"parameter {name} must be <= {high}, not {value!r}")
-
-
-def _finite(value: int | float) -> bool:
-    """Whether ``value`` is a finite float or an int a float can hold (math.isfinite raises
-    OverflowError for an int past 1.8e308, and the phases compute with floats)."""
-    try:
-        return math.isfinite(value)
-    except OverflowError:
-        return False
 
 
 def plain_number(value: object) -> object:

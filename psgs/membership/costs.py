@@ -10,12 +10,12 @@ script on a word.
 
 from __future__ import annotations
 
-import sys
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Literal
 
+from .._foundation.text import finite
 from ..errors import ValidationError
 from ..model import Terminal, Word, as_word
 
@@ -25,8 +25,7 @@ __all__ = ["EditCosts", "Edit", "apply_edits", "edit_costs"]
 def _number(value, what: str) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise ValidationError(f"{what} must be a number, not {value!r}")
-    # abs() <= the largest float: not NaN nor inf, nor an int math.isfinite would overflow on
-    if not abs(value) <= sys.float_info.max or value < 0:
+    if not finite(value) or value < 0:  # not NaN nor inf, nor an int past the floats
         raise ValidationError(f"{what} must be a finite number ≥ 0, not {value!r}")
     return value
 

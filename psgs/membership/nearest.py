@@ -14,11 +14,11 @@ from __future__ import annotations
 
 import gc
 import math
-import sys
 from collections import deque
 from dataclasses import dataclass, field
 from functools import cached_property
 
+from .._foundation.text import finite
 from ..analysis import usable_rules
 from ..budget import Budget, check_count, check_seconds
 from ..errors import BoundReached, ValidationError
@@ -120,7 +120,7 @@ def _show(x) -> str:
 def _check_budgets(max_errors, max_states, max_seconds, max_steps, max_symbols) -> None:
     if max_errors is not None:
         if isinstance(max_errors, bool) or not isinstance(max_errors, (int, float)) or \
-                not abs(max_errors) <= sys.float_info.max or max_errors < 0:  # NaN, inf, 10**400
+                not finite(max_errors) or max_errors < 0:  # NaN, inf, 10**400
             raise ValidationError(f"max_errors must be a finite number ≥ 0 or None, "
                                   f"not {max_errors!r}")
     for name, value in (("max_states", max_states), ("max_steps", max_steps),
