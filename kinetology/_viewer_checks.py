@@ -13,13 +13,7 @@ from numbers import Real
 
 import numpy as np
 
-from .motion import is_whole
-
-
-def shown(value, limit: int = 60) -> str:
-    """``repr(value)``, cut to ``limit`` characters."""
-    text = repr(value)
-    return text if len(text) <= limit else text[:limit - 3] + "..."
+from .motion import is_whole, shown
 
 
 def view_problem(max_rate, max_frames, kinetemes, follow) -> str | None:

@@ -23,7 +23,7 @@ from psgs._foundation.files import decode_utf8, read_bytes
 from psgs.errors import FormatError, NotFound, ValidationError
 
 __all__ = ["MotionFormatError", "Joint", "Skeleton", "Motion", "AXES", "build_motion",
-           "file_text", "FRAME_RATE_RANGE", "check_number", "real_array", "as_path"]
+           "file_text", "FRAME_RATE_RANGE", "check_number", "real_array", "as_path", "shown"]
 
 #: Channel axes, in the order a joint's channels are listed.
 AXES = ("tx", "ty", "tz", "rx", "ry", "rz")
@@ -345,6 +345,19 @@ def check_rate(values: np.ndarray, frame_rate: float) -> None:
     if size and not 4.0 * size * frame_rate * frame_rate < sys.float_info.max / 2:
         raise ValidationError(f"frame rate {frame_rate:g} fps is too high to difference values "
                               f"up to {size:g}: their velocities and accelerations overflow")
+
+
+def shown(value, limit: int = 60) -> str:
+    """``repr(value)``, cut to ``limit`` characters: a value in an error message keeps it one
+    line, however long the value.
+
+    Examples
+    --------
+    >>> shown("abc"), shown(list(range(100)), 20)
+    ("'abc'", '[0, 1, 2, 3, 4, 5...')
+    """
+    text = repr(value)
+    return text if len(text) <= limit else text[:limit - 3] + "..."
 
 
 def is_whole(value) -> bool:

@@ -1,8 +1,8 @@
 """Small tests of argument values the checks of praxicon share (no praxicon imports here).
 
 A whole number is any integer, numpy's too (``np.int64(3)`` worked wherever ``3`` did before
-the checks), never a bool; a flag is a bool or a numpy bool. :func:`shown` keeps a message to a
-line when the value given is a long sequence.
+the checks), never a bool; a flag is a bool or a numpy bool. ``shown`` (kinetology's) keeps a
+message to a line when the value given is a long sequence.
 """
 
 from __future__ import annotations
@@ -12,6 +12,7 @@ from numbers import Integral
 
 import numpy as np
 
+from kinetology.motion import shown
 from psgs.errors import ValidationError
 
 
@@ -24,12 +25,6 @@ def is_count(value, least: int = 1) -> bool:
 def is_flag(value) -> bool:
     """True for True or False, numpy's too."""
     return isinstance(value, (bool, np.bool_))
-
-
-def shown(value, limit: int = 60) -> str:
-    """``repr(value)``, cut to ``limit`` characters."""
-    text = repr(value)
-    return text if len(text) <= limit else text[:limit - 3] + "..."
 
 
 def not_all(given, items, kind) -> str:

@@ -223,16 +223,10 @@ def _optional_seconds(value, where: str) -> float | None:
     try:
         seconds = float(value)
     except (TypeError, ValueError, OverflowError):
-        raise DatasetError(f"{where}: start/stop must be seconds, not {_shown(value)}") from None
+        raise DatasetError(f"{where}: start/stop must be seconds, not {shown(value)}") from None
     if isinstance(value, bool) or not (seconds >= 0 and math.isfinite(seconds)):
-        raise DatasetError(f"{where}: start/stop must be seconds >= 0, not {_shown(value)}")
+        raise DatasetError(f"{where}: start/stop must be seconds >= 0, not {shown(value)}")
     return seconds
-
-
-def _shown(value) -> str:
-    """``repr(value)``, cut short: a manifest's field can be as long as the file."""
-    text = repr(value)
-    return text if len(text) <= 60 else f"{text[:57]}..."
 
 
 class _Lines:
@@ -283,7 +277,7 @@ def _read_manifest(path: Path) -> list[Action]:
         for where, entry in rows:
             if not isinstance(entry, dict):
                 raise DatasetError(f"{where}: a [[performance]] table expected, not "
-                                   f"{_shown(entry)}")
+                                   f"{shown(entry)}")
     else:
         lines = _Lines(text)
         reader = csv.DictReader(lines)
@@ -312,7 +306,7 @@ def _read_manifest(path: Path) -> list[Action]:
             raise DatasetError(f"{where}: action and file are required")
         if not isinstance(action, str) or not isinstance(file, str):
             raise DatasetError(f"{where}: action and file must be text, not "
-                               f"{_shown(action if not isinstance(action, str) else file)}")
+                               f"{shown(action if not isinstance(action, str) else file)}")
         file_path = Path(file) if Path(file).is_absolute() else path.parent / file
         start = _optional_seconds(row.get("start"), where)
         stop = _optional_seconds(row.get("stop"), where)
