@@ -22,7 +22,6 @@ Two methods for a PSGS (see ``docs/derivation.md``):
 from __future__ import annotations
 
 import math
-import numbers
 import re
 from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
@@ -371,14 +370,11 @@ def language(system, max_length: int, *, max_configurations: int = 200_000,
     >>> ("abcdbcad", "bcadabcd", "cdabcdab", "abcdbcad") in found
     True
     """
-    if isinstance(max_length, bool) or not isinstance(max_length, numbers.Integral) \
-            or max_length < 0:
-        raise ValidationError(f"max_length must be a whole number ≥ 0, not {max_length!r}")
+    check_count(max_length, "max_length", minimum=0)
     for name, value in (("max_configurations", max_configurations),
                         ("max_form_length", max_form_length),
                         ("max_candidates", max_candidates), ("max_words", max_words)):
-        if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 1:
-            raise ValidationError(f"{name} must be a whole number ≥ 1, not {value!r}")
+        check_count(value, name)
     check_seconds(max_seconds, optional=True)
     check_count(max_symbols, "max_symbols")
     # checked here, not by the first accepts call: with no candidate tuple there is none, and
