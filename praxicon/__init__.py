@@ -36,6 +36,7 @@ _LAZY = {
     "Settings": "records", "learn_action": "learn",
     "build": "builder", "BuildResult": "builder", "executor_for": "builder",
     "load": "store", "dump": "store", "actuator_matrix": "store",
+    "verify": "integrity", "repair": "integrity", "Verification": "integrity",
     "Praxicon": "records", "ActionRecord": "records", "JointRecord": "records",
     "ChannelMorpheme": "records", "PerformanceRecord": "records", "PraxiconError": "records",
     "shared_patterns": "shared",

@@ -1,4 +1,4 @@
-"""``psgs praxicon build|draw|generate|recognise|parse``: the praxicon's command line.
+"""``psgs praxicon build|draw|generate|verify|recognise|parse``: the praxicon's command line.
 
 Reached from ``psgs`` through the entry-point group ``psgs.commands``
 (``praxicon = "praxicon.cli:register"``), and without an install as
@@ -215,6 +215,26 @@ def _save_player(player, shown, output) -> None:
         player.save(output)
 
 
+def run_verify(args) -> int:
+    from .integrity import repair, verify
+
+    try:
+        found = repair(args.praxicon) if args.repair else verify(args.praxicon)
+    except ValueError as exc:  # a folder load refuses: its line, status 2
+        _bad(str(exc))
+    for problem in found.problems:
+        print(problem)
+    done = "repaired; " if args.repair else ""
+    if found.intact:
+        print(f"{found.folder}: {done}whole: {found.checked} files as its records give",
+              file=sys.stderr)
+        return 0
+    print(f"{found.folder}: {done}{len(found.problems)} problem(s)"
+          + ("" if args.repair else " (--repair writes the derived files again from the records)"),
+          file=sys.stderr)
+    return NO
+
+
 def _add_commands(sub) -> None:
     build = sub.add_parser("build", help="learn every action of one or more datasets",
                            description="Learn every action of the datasets into a praxicon "
@@ -285,19 +305,30 @@ def _add_commands(sub) -> None:
                           "(.html, .gif or .mp4: kinetology view)")
     gen.set_defaults(run=run_generate)
 
+    check = sub.add_parser("verify", help="check every file of a praxicon against its records",
+                           description="Compare every file of a praxicon folder with what its "
+                                       "records give (the systems, the actuator matrix, the "
+                                       "shared patterns, the index, the descriptions) and name "
+                                       "stray files: one line per problem on stdout.")
+    check.add_argument("praxicon", metavar="DIR", help="a praxicon folder")
+    check.add_argument("--repair", action="store_true",
+                       help="write the derived files again from the records first")
+    check.set_defaults(run=run_verify)
+
     from .recognition_cli import register_recognise  # recognise, parse
 
     register_recognise(sub)
 
 
 def register(subparsers) -> None:
-    """Add ``praxicon`` (build, draw, generate, recognise, parse) to psgs's subcommands."""
+    """Add ``praxicon`` (build, draw, generate, verify, recognise, parse) to psgs's
+    subcommands."""
     parser = subparsers.add_parser("praxicon", help="every action's morphology, at scale",
-                                   description="Build, draw, generate, recognise and parse "
-                                               "with a praxicon.")
+                                   description="Build, draw, generate, verify, recognise and "
+                                               "parse with a praxicon.")
     sub = parser.add_subparsers(dest="praxicon_command", metavar="COMMAND",
-                                help="build, draw, generate, recognise or parse (COMMAND --help "
-                                     "for its options)")
+                                help="build, draw, generate, verify, recognise or parse "
+                                     "(COMMAND --help for its options)")
     sub.required = True
     _add_commands(sub)
 

@@ -30,7 +30,8 @@ exit status (the same for every psgs and kinetology command):
   0    yes / done
   1    no: check: the words are not in the language; derive: the random derivation is
        blocked, or --enumerate found no word up to --max-length; praxicon build: no
-       action was learnt (every one failed; the folder records why)
+       action was learnt (every one failed; the folder records why); praxicon verify:
+       a file of the folder is not what its records give
   2    usage or input error: a bad option, a file that cannot be read or is malformed
        (one line on stderr, never a traceback)
   3    a bound was hit or the answer is unknown: a search or derivation stopped at a

@@ -26,7 +26,7 @@ def test_praxicon_page_example_runs(capsys):
     finally:
         os.chdir(cwd)
     out = capsys.readouterr().out.splitlines()
-    assert out == ["bye.byebye ok True", "True ('joint_Root', 'Hips')"]
+    assert out == ["bye.byebye ok True", "True ('joint_Root', 'Hips')", "True"]
 
 
 def test_praxicon_page_is_linked_from_the_index():

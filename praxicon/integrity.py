@@ -1,0 +1,227 @@
+"""Is a praxicon folder whole? Every file it holds, against what its records give.
+
+:func:`~praxicon.store.load` reads and checks ``index.json``, every record and
+``descriptions.json``; the other files of a folder (the ``.psgs`` systems, ``actuators.csv``,
+``shared.json``) are derived from the records and never read back, so damage to them (a file
+cut short by a full disk, a hand edit, a copy that lost a file) would go unnoticed until
+someone reads them with another tool. :func:`verify` writes the folder again, in memory, from
+what ``load`` read (as :func:`~praxicon.store.dump` would, byte for byte as ``build`` writes
+it) and compares every file; it also reads ``timings.json`` and names files that are no part
+of the praxicon (a record or system of an action the index does not list, a temporary file
+left by an interrupted write). :func:`repair` writes the derived files again from the records.
+
+What this cannot see: a record that is well formed but was changed (its values are checked
+for type and range when it is read, and a record is what the other files are derived from;
+only learning the action again from its takes tells what it should hold).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+from psgs._foundation.files import read_bytes
+from psgs.errors import FormatError
+
+from .jsonvalues import read_json
+from .records import PraxiconError
+from .store import dump, load
+
+__all__ = ["Verification", "verify", "repair"]
+
+#: What ``write_atomic`` names a file while it is written (``.NAME.PID.tmp``).
+_TEMPORARY = re.compile(r"^\..+\.\d+\.tmp$")
+
+
+@dataclass(frozen=True)
+class Verification:
+    """What :func:`verify` found in a praxicon folder.
+
+    Attributes
+    ----------
+    folder : str
+        The folder verified.
+    checked : int
+        How many files were compared with what the records give (and ``timings.json``).
+    problems : tuple of str
+        One line per damaged, missing or stray file, naming the file (and for a file that
+        differs, the first line that does), sorted by file; empty for a whole folder.
+    """
+
+    folder: str
+    checked: int
+    problems: tuple[str, ...]
+
+    @property
+    def intact(self) -> bool:
+        """True when no problem was found."""
+        return not self.problems
+
+
+def _expected(praxicon) -> dict[str, bytes]:
+    """Every file ``dump`` writes for ``praxicon``, by its path in the folder."""
+    with tempfile.TemporaryDirectory(prefix="psgs-verify-") as work:
+        dump(praxicon, work)
+        root = Path(work)
+        return {p.relative_to(root).as_posix(): p.read_bytes()
+                for p in sorted(root.rglob("*")) if p.is_file()}
+
+
+def _first_difference(found: bytes, expected: bytes) -> str:
+    """``line N, column C: ...`` where ``found`` and ``expected`` first part."""
+    if expected.startswith(found):  # cut short (a full disk, an interrupted copy)
+        return (f"cut short: ends at line {_lines(found)} of the {_lines(expected)} the "
+                f"records give")
+    found_lines, expected_lines = found.split(b"\n"), expected.split(b"\n")
+    for number, (a, b) in enumerate(zip(found_lines, expected_lines), start=1):
+        if a != b:
+            a_text, b_text = (x.decode("utf-8", errors="backslashreplace") for x in (a, b))
+            column = next((i for i, (x, y) in enumerate(zip(a_text, b_text)) if x != y),
+                          min(len(a_text), len(b_text)))
+            start = max(0, column - 20)
+            return (f"line {number}, column {column + 1}: {_shown(a_text, start)} where the "
+                    f"records give {_shown(b_text, start)}")
+    return f"line {_lines(expected) + 1}: more than the records give"
+
+
+def _lines(data: bytes) -> int:
+    """How many lines ``data`` holds (a last line without its newline counts)."""
+    return data.count(b"\n") + (not data.endswith(b"\n"))
+
+
+def _shown(text: str, start: int) -> str:
+    """``text`` from ``start``, cut to 60 characters, as a repr (with ... where cut)."""
+    shown = text[start:start + 60]
+    return repr(("..." if start else "") + shown + ("..." if len(text) > start + 60 else ""))
+
+
+def _compare(folder: Path, name: str, expected: bytes) -> str | None:
+    """The problem with ``folder/name`` against ``expected``, or None."""
+    path = folder / name
+    if not path.exists():
+        return f"{path}: missing"
+    try:
+        found = read_bytes(path)
+    except (OSError, FormatError) as exc:
+        return f"{path}: cannot be read ({getattr(exc, 'strerror', None) or exc})"
+    if found == expected:
+        return None
+    return f"{path}: differs from what the records give ({_first_difference(found, expected)})"
+
+
+def _timings(folder: Path, names: set[str]) -> str | None:
+    """The problem with ``timings.json`` (absent is none: it holds wall times only)."""
+    path = folder / "timings.json"
+    if not path.exists():
+        return None
+    try:
+        value = read_json(path, PraxiconError)
+    except PraxiconError as exc:
+        return str(exc)
+    if not isinstance(value, dict):
+        return f"{path}: not an object of seconds per action"
+    for name, seconds in sorted(value.items()):
+        if name not in names:
+            return f"{path}: {name!r} is no action of index.json"
+        if isinstance(seconds, bool) or not isinstance(seconds, (int, float)) \
+                or not math.isfinite(seconds) or seconds < 0:
+            return f"{path}: {name!r}: seconds must be a number 0 or more, not {seconds!r}"
+    return None
+
+
+def _strays(folder: Path, expected: dict[str, bytes]) -> list[str]:
+    """Files where a praxicon keeps its own that are not of this one: a record or system of
+    an action the index does not list, a temporary file of an interrupted write."""
+    problems = []
+    candidates = [*folder.glob("*.psgs"), *(folder / "records").glob("*.json"),
+                  *folder.glob(".*.tmp"), *(folder / "records").glob(".*.tmp")]
+    for path in sorted(set(candidates)):
+        name = path.relative_to(folder).as_posix()
+        if name in expected:
+            continue
+        if _TEMPORARY.match(path.name):
+            problems.append(f"{path}: a temporary file left by an interrupted write")
+        elif path.suffix == ".psgs":
+            problems.append(f"{path}: the system of no learnt action of index.json")
+        else:
+            problems.append(f"{path}: the record of no action of index.json")
+    return problems
+
+
+def verify(folder) -> Verification:
+    """Check every file of a praxicon folder against what its records give.
+
+    Parameters
+    ----------
+    folder : str or Path
+        A praxicon folder (made by ``psgs praxicon build``).
+
+    Returns
+    -------
+    Verification
+        ``intact`` when every file is as ``build`` writes it for the folder's records;
+        otherwise one line per file that is missing, differs (with its first differing
+        line), cannot be read, or is stray.
+
+    Raises
+    ------
+    PraxiconError
+        When :func:`~praxicon.load` refuses the folder (its index, a record or the
+        descriptions damaged): the same line ``load`` gives.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from praxicon.records import ActionRecord, Praxicon, Settings
+    >>> folder = Path(tempfile.mkdtemp()) / "px"
+    >>> dump(Praxicon((ActionRecord("m.a", "m", "a", reason="no takes"),),
+    ...               Settings.make()), folder)
+    >>> verify(folder).intact
+    True
+    >>> _ = (folder / "actuators.csv").write_text("action\\nm.b\\n")
+    >>> print(*verify(folder).problems)  # doctest: +ELLIPSIS
+    /.../px/actuators.csv: differs from what the records give (line 2, column 1: 'm.b' where the records give '')
+    """
+    praxicon = load(folder)
+    folder = Path(folder)
+    expected = _expected(praxicon)
+    problems = [p for p in (_compare(folder, name, data) for name, data in expected.items())
+                if p]
+    timing = _timings(folder, set(praxicon.names))
+    problems += [timing] if timing else []
+    problems += _strays(folder, expected)
+    checked = len(expected) + (folder / "timings.json").exists()
+    return Verification(str(folder), checked, tuple(sorted(problems)))
+
+
+def repair(folder) -> Verification:
+    """Write a praxicon folder's derived files again from its records, then verify it.
+
+    What :func:`~praxicon.load` reads (the index's names and settings, every record, the
+    descriptions) is what the files are written from, so a folder ``load`` refuses is not
+    repaired (the :class:`PraxiconError` says why; ``psgs praxicon build`` learns a damaged
+    record again). Stray files and a damaged ``timings.json`` are left as they are and
+    still reported: they may be someone's.
+
+    Returns
+    -------
+    Verification
+        The folder verified after the repair.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from praxicon.records import ActionRecord, Praxicon, Settings
+    >>> folder = Path(tempfile.mkdtemp()) / "px"
+    >>> dump(Praxicon((ActionRecord("m.a", "m", "a", reason="no takes"),),
+    ...               Settings.make()), folder)
+    >>> (folder / "shared.json").unlink()
+    >>> verify(folder).intact, repair(folder).intact
+    (False, True)
+    """
+    dump(load(folder), folder)
+    return verify(folder)
+
