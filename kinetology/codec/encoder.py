@@ -204,7 +204,8 @@ def _base_values(frames: int, channels) -> np.ndarray:
         if codes.size == 0:
             out[:, c] = steps[0] * quantum
         else:
-            out[:, c] = reconstruct(knots, codes, steps * quantum)
+            # the stream's frames are bounded by what its size (or max_samples) allows
+            out[:, c] = reconstruct(knots, codes, steps * quantum, max_frames=None)
     return out
 
 

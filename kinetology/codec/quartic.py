@@ -34,7 +34,12 @@ import numpy as np
 
 from psgs.errors import ValidationError
 
-from ..motion import real_array
+from ..motion import is_whole, real_array, shown
+
+#: The longest curve :func:`reconstruct` makes unless told otherwise (``max_frames=``): 2^26
+#: frames, 512 MiB of floats, six days at 120 frames a second. Knots a frame of 10^12 asked
+#: for that many values and ran out of memory instead of saying why.
+MAX_FRAMES = 1 << 26
 
 __all__ = ["basis", "reconstruct", "fit_knots"]
 
@@ -177,7 +182,8 @@ def _polynomial(s: np.ndarray, coefficients: np.ndarray) -> np.ndarray:
     return out
 
 
-def reconstruct(knots: np.ndarray, codes: np.ndarray, values: np.ndarray) -> np.ndarray:
+def reconstruct(knots: np.ndarray, codes: np.ndarray, values: np.ndarray, *,
+                max_frames: int | None = MAX_FRAMES) -> np.ndarray:
     """The decoded curve of one channel from its knots, segment states and knot values.
 
     Parameters
@@ -188,6 +194,9 @@ def reconstruct(knots: np.ndarray, codes: np.ndarray, values: np.ndarray) -> np.
         State code (0..3 for ``B G R Y``) of each of the ``len(knots) - 1`` segments.
     values : array_like of float
         The angle at every knot.
+    max_frames : int or None, optional
+        The most frames the curve may have (default :data:`MAX_FRAMES`; None: no bound, the
+        caller has bounded the knots).
 
     Returns
     -------
@@ -198,7 +207,8 @@ def reconstruct(knots: np.ndarray, codes: np.ndarray, values: np.ndarray) -> np.
     ------
     ValueError
         (ValidationError) Knots that are not whole frames rising from 0, codes that are not
-        one state 0..3 per segment, values that are not one finite number per knot.
+        one state 0..3 per segment, values that are not one finite number per knot, a last
+        knot at or past ``max_frames``.
 
     Examples
     --------
@@ -209,6 +219,14 @@ def reconstruct(knots: np.ndarray, codes: np.ndarray, values: np.ndarray) -> np.
     ((11,), [0.0, 4.0, 10.0])
     """
     knots, codes, values = _checked(knots, codes, values)
+    if max_frames is not None:
+        if not is_whole(max_frames) or max_frames < 1:
+            raise ValidationError(f"max_frames must be a whole number ≥ 1 or None, not "
+                                  f"{shown(max_frames)}")
+        if knots[-1] >= max_frames:
+            raise ValidationError(f"the last knot at frame {int(knots[-1])} asks for a curve of "
+                                  f"{int(knots[-1]) + 1} frames, more than max_frames="
+                                  f"{max_frames} (pass a larger max_frames, or None)")
     if knots.size == 1:
         return np.full(1, float(values[0]))
     seg, u, w = _design(knots, codes)

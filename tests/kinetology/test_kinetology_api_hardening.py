@@ -365,6 +365,22 @@ def test_reconstruct_checks_its_arrays(knots, codes, values, match):
         kinetology.reconstruct(np.array(knots), np.array(codes), np.array(values))
 
 
+def test_reconstruct_refuses_a_curve_past_max_frames_before_allocating_it():
+    from kinetology.codec.quartic import MAX_FRAMES
+
+    far = np.array([0, 10**12])  # a MemoryError (7 TiB asked) before
+    with pytest.raises(ValidationError, match=f"asks for a curve of {10**12 + 1} frames, "
+                                              f"more than max_frames={MAX_FRAMES}"):
+        kinetology.reconstruct(far, np.array([0]), np.array([0.0, 1.0]))
+    with pytest.raises(ValidationError, match="more than max_frames=10 "):
+        kinetology.reconstruct([0, 5, 10], [0, 1], [0.0, 4.0, 10.0], max_frames=10)
+    curve = kinetology.reconstruct([0, 5, 10], [0, 1], [0.0, 4.0, 10.0], max_frames=11)
+    assert np.array_equal(curve, kinetology.reconstruct([0, 5, 10], [0, 1], [0.0, 4.0, 10.0],
+                                                        max_frames=None))
+    with pytest.raises(ValidationError, match="max_frames must be a whole number ≥ 1"):
+        kinetology.reconstruct([0, 5, 10], [0, 1], [0.0, 4.0, 10.0], max_frames=1.5)
+
+
 @pytest.mark.parametrize("most", [-1, "5", True, 1.5])
 def test_decompress_max_samples_must_be_a_whole_number(most):
     with pytest.raises(ValidationError, match="max_samples must be a whole number of samples, "
