@@ -1,0 +1,182 @@
+"""The spread every action shares and the "none of these" calibration, fitted from feature
+tables: the per-feature scale, the shared directions of variation and what is left per
+feature (:func:`fit_spread`), and the threshold, temperature and feature-group limits read
+from held-out training takes (:func:`calibrate`). :mod:`praxicon.description` turns what
+these return into :class:`~praxicon.description.Descriptions`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .feature_groups import feature_groups, group_distances
+from .scoring import (_NOISE_FLOOR, _PRIOR_TAKES, _action_variances, _part, _score_model,
+                      model_scores, own_columns, probabilities)
+
+__all__ = ["fit_spread", "calibrate", "group_limits", "scale_floors", "GROUP_LEVEL"]
+
+_RANK = 16  # shared directions of variation kept (fewer when there are fewer takes)
+_MARGIN = 1.5  # the "none of these" threshold: this times the worst held-out training take
+_FOLDS = 5  # held-out folds of the calibration
+#: How often a known take may fail the feature-group test (over all groups together).
+GROUP_LEVEL = 0.01
+
+
+def scale_floors(features) -> np.ndarray:
+    """The smallest scale of each feature: a degree (or a degree per second, a length unit per
+    second) for angles and rates, 10 % for the log ranges and energies, 5 % of the tempo.
+
+    A joint that never moves in training has a near-zero spread; divided by it, a tenth of a
+    degree in a new take would count as a thousand standard deviations.
+    """
+    floors = {"spread": 0.1, "energy": 0.1, "tempo": 0.05}
+    return np.array([floors.get(f.rsplit(":", 1)[-1].rstrip("0123456789"), 1.0)
+                     for f in features])
+
+
+def _blocks(has: np.ndarray):
+    """Features grouped by which actions have them (``has``: actions x features):
+    ``(columns, actions)`` per group, one group when every action has every feature."""
+    same: dict[bytes, list[int]] = {}
+    for c in range(has.shape[1]):
+        same.setdefault(has[:, c].tobytes(), []).append(c)
+    return [(np.array(c), np.flatnonzero(has[:, c[0]])) for c in same.values()]
+
+
+def fit_spread(groups: list[np.ndarray], rank: int, floors=None):
+    """Scale, means, shared factors and noise of takes-x-features ``groups``, one per action
+    (NaN columns: features the action lacks, learnt from another skeleton).
+
+    A feature's scale and variance come from the actions that have it; the residuals of the
+    others are 0, so no direction of variation links features no take has together, and each
+    feature's column is weighed by its own degrees of freedom.
+    """
+    has = np.array([~np.isnan(g).any(axis=0) for g in groups])
+    scale = np.ones(groups[0].shape[1])  # a feature no action has is never read
+    for columns, actions in _blocks(has):
+        if len(actions) == len(groups) and len(columns) == len(scale):
+            scale = np.concatenate(groups).std(axis=0)
+        elif len(actions):
+            scale[columns] = np.concatenate([groups[a][:, columns] for a in actions]).std(axis=0)
+    scale = np.maximum(scale, 1e-9 if floors is None else floors)
+    means = np.array([g.mean(axis=0) for g in groups])
+    residuals = np.concatenate([np.where(h, (g - m) / scale, 0.0)
+                                for g, m, h in zip(groups, means, has)])
+    dof = max(1, sum(len(g) - 1 for g in groups))
+    per = np.maximum(1, ((np.array([len(g) for g in groups])[:, None] - 1) * has).sum(axis=0))
+    variance = (residuals ** 2).sum(axis=0) / per
+    r = max(0, min(rank, dof - 1, residuals.shape[1] - 1))
+    _, singular, vt = np.linalg.svd(residuals / np.sqrt(per), full_matrices=False)
+    eigen = singular ** 2
+    rest = float(eigen[r:].sum() / max(1, residuals.shape[1] - r))
+    factors = vt[:r] * np.sqrt(np.maximum(eigen[:r] - rest, 0.0))[:, None]
+    noise = np.maximum(variance - (factors ** 2).sum(axis=0), max(_NOISE_FLOOR, rest))
+    # a variance read from few takes is mostly luck: shrink each feature's towards the mean
+    # over features, as if _PRIOR_TAKES more takes had shown the typical spread
+    typical = noise[has.any(axis=0)].mean()  # over the features some action has
+    noise = (per * noise + _PRIOR_TAKES * typical) / (per + _PRIOR_TAKES)
+    return scale, means, factors, noise
+
+
+def group_limits(held: np.ndarray, level: float, sizes) -> np.ndarray:
+    """Per feature group (columns of ``held``: held-out takes x groups; ``sizes``: features
+    per group) the distance a known
+    take exceeds in any group with probability ``level`` (Bonferroni over the groups).
+
+    Held-out distances are heavy-tailed (a style that stoops moves the spine a lot), so no
+    chi-squared law fits them; the tail above the median is taken as exponential, its scale
+    the mean excess over the median, which a few dozen takes estimate steadily where their
+    largest value would not (the largest of n takes is exceeded by a new one with
+    probability 1/(n+1) per group).
+    """
+    tested = ~np.isnan(held)  # NaN: a take whose action lacks the group (another skeleton)
+    # Bonferroni over the groups a take is tested on: per group, those of the takes that have it
+    count = np.where(tested, tested.sum(axis=1, keepdims=True), 0).max(axis=0)
+    columns = [h[t] for h, t in zip(held.T, tested.T)]
+    median = np.array([np.median(h) if len(h) else np.nan for h in columns])
+    excess = np.array([float((h[h > m] - m).mean()) if np.any(h > m) else 0.0
+                       for h, m in zip(columns, median)])
+    factor = np.array([math.log(max(1.0, 0.5 * c / level)) for c in count])
+    limit = median + excess * factor
+    # never under one of the action's own standard deviations per feature: held-out takes that
+    # all agree exactly (a tempo every training take shares) would otherwise allow nothing
+    return np.maximum(limit, sizes)  # NaN (no held-out take has the group): no limit
+
+
+def calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
+               folds: int = _FOLDS, *, features, level: float = GROUP_LEVEL):
+    """Threshold and temperature from held-out training takes (``folds``-fold).
+
+    Every take is scored by a model learnt without it (its action's mean *and* the shared
+    spread), as an unseen take would be, over its action's features (:func:`model_scores`, as
+    recognition scores a motion); an action with a single take cannot be held out.
+    The threshold is ``_MARGIN`` times the largest distance per feature such a take got; the
+    group limits from each group's held-out distances to its own action, in
+    that action's own spread (:func:`group_limits`); the temperature the one (a power of 2)
+    whose probabilities, from the score actions are ranked by (:func:`scores`), fit the
+    held-out takes best.
+    ``sources`` (per action, per row: the take a row comes from) keeps the windows of one take
+    in one fold, so that a take is never scored by a model that saw another piece of it.
+    """
+    if sources is None:
+        sources = [np.arange(len(g)) for g in groups]
+    else:  # takes numbered in order, so that a take's fold does not depend on its id
+        sources = [np.unique(np.asarray(s), return_inverse=True)[1] for s in sources]
+    moved, ranked, truth, grouped, compared = [], [], [], [], []
+    features = tuple(features)
+    parts_of = feature_groups(features)
+    has = [~np.isnan(g).any(axis=0) for g in groups]
+    for fold in range(folds):
+        out = [s % folds == fold for s in sources]
+        train = [g[~o] for g, o in zip(groups, out)]
+        if any(len(t) == 0 for t in train):
+            keep = [a for a, t in enumerate(train) if len(t)]
+        else:
+            keep = list(range(len(groups)))
+        if len(keep) < 1:
+            continue
+        scale, means, factors, noise = fit_spread([train[a] for a in keep], rank, floors)
+        variance = _action_variances(
+            np.array([(((train[a] - m) / scale) ** 2).sum(axis=0)
+                      for a, m in zip(keep, means)]), [len(train[a]) for a in keep])
+        models: dict[bytes, tuple] = {}  # one per set of features (a skeleton's actions)
+        for k, a in enumerate(keep):
+            held = groups[a][out[a]]
+            if not len(held):
+                continue
+            if parts_of:
+                grouped.append(group_distances(held, means[k], variance[k], scale, parts_of))
+            key = has[a].tobytes()
+            if key not in models:
+                columns = np.flatnonzero(has[a])
+                models[key] = (columns, _score_model(columns, features, scale, noise, factors,
+                                                     means, variance),
+                               own_columns([features[c] for c in columns]))
+            columns, model, own = models[key]
+            # ranked as recognition ranks: own-spread terms added
+            shared, score = model_scores(model, _part(held, None, columns), own)
+            # rows must share one set of actions: pad the actions left out with +inf
+            pad = np.full((len(held), len(groups) - len(keep)), np.inf)
+            moved.extend(np.concatenate([shared, pad], axis=1))
+            ranked.extend(np.concatenate([score, pad], axis=1))
+            truth.extend([k] * len(held))
+            compared.extend([len(columns)] * len(held))
+    if not moved:
+        return math.inf, 1.0, ()
+    limits = (group_limits(np.concatenate(grouped), level,
+                             np.array([len(c) for c in parts_of.values()], dtype=float))
+              if grouped else ())
+    limits = tuple((g, float(v)) for g, v in zip(parts_of, limits) if not math.isnan(v))
+    dist = np.array(moved)
+    nearest = dist[np.arange(len(truth)), truth] / np.array(compared)
+    threshold = float(nearest.max() * _MARGIN)
+    best, best_loss = 1.0, math.inf
+    score = np.array(ranked)
+    for temperature in 2.0 ** np.arange(0, 12):
+        p = probabilities(score, temperature)[np.arange(len(truth)), truth]
+        loss = float(-np.log(np.maximum(p, 1e-300)).mean())
+        if loss < best_loss - 1e-12:
+            best, best_loss = float(temperature), loss
+    return threshold, best, limits
