@@ -57,7 +57,8 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
     from praxicon.recognition import _excess, feature_matrix
 
     groups, styles = _grouped(train, by_style)
-    order, table = common_table({c: feature_rows(m) for c, m in groups.items()})
+    rows = {c: feature_rows(m) for c, m in groups.items()}
+    order, table = common_table(rows)
     # the kinds of features chosen as describe chooses them, each style held out together
     order, table = chosen_table(table, order, groups=styles)
     known = {t.content for t in train}
@@ -73,6 +74,11 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
         penalty = dist[np.arange(len(x)), best] / len(columns)
         excess, _ = _excess(d, features, x, best, fitted)
         rules = {f"groups a={level:g}": (penalty <= d.spread.threshold) & (excess <= 1.0)}
+        if by_style:
+            # the praxicon's rule: a content's styles, a family, decide none of these for
+            # their members (describe's families); each style's own test beside it
+            rules[f"own style a={level:g}"] = rules[f"groups a={level:g}"]
+            rules[f"groups a={level:g}"] = _family_accepts(d, rows, test, best, level)
         if level == GROUP_LEVEL:  # every group read, not only those that tell actions apart
             every, _ = _excess(d, features, x, best, fitted, telling=False)
             rules[f"every group a={level:g}"] = (penalty <= d.spread.threshold) & (every <= 1.0)
@@ -104,6 +110,21 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
                     elif decided != t.content:
                         detail.setdefault("known-wrong", {}).setdefault(
                             f"{t.content} {t.style}_{t.take:03d}", []).append(decided)
+
+
+def _family_accepts(d, rows, test, best, level) -> np.ndarray:
+    """Per test take: accepted by the family (the content) of its best action, as
+    :func:`praxicon.recognition.recognise_many` decides for a praxicon built per style."""
+    from dataclasses import replace
+
+    from praxicon.description import family_descriptions, feature_rows
+    from praxicon.recognition import family_verdicts
+
+    families, of = family_descriptions(rows, {n: n.split("|")[0] for n in rows}, level=level)
+    d = replace(d, families=families, family_of=tuple(of[n] for n in d.names))
+    verdicts = family_verdicts(d, feature_rows([t.motion for t in test]),
+                               [d.names[b] for b in best])
+    return np.array([verdicts[i].accepted for i in range(len(test))])
 
 
 _PAIR_QUANTILES = (0.9, 0.99)  # the pairwise test: share of held-out known takes it keeps
@@ -384,7 +405,7 @@ def report_open_sets(results, say) -> list[dict]:
     praxicon's answers per left-out content, the bound), and their CSV rows."""
     rows = []
     rules = ([f"whole x{m:g}" for m in _MARGINS] + [f"groups a={v:g}" for v in _LEVELS]
-             + ["every group a=0.01"]
+             + [f"own style a={v:g}" for v in _LEVELS] + ["every group a=0.01"]
              + [f"groups+pair q={q:g}" for q in _PAIR_QUANTILES]
              + [f"{peer} q={q:g}" for peer in ("dtw-1nn", "minirocket")
                 for q in _PEER_QUANTILES])

@@ -279,7 +279,11 @@ def describe_praxicon(praxicon: Praxicon, *, log=print):
         log("no learnt action with a readable performance: nothing to recognise with")
         return None
     try:
-        return describe(takes), describe_windows(takes)
+        # the styles of one content (an action per content and style) form a family, which
+        # decides "none of these" for its members
+        families = {a.name: f"{a.dataset}.{a.content}" for a in praxicon.actions
+                    if a.name in takes}
+        return describe(takes, families=families), describe_windows(takes)
     except DescriptionError as exc:
         log(f"descriptions not learnt: {exc}")
         return None

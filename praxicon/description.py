@@ -44,7 +44,7 @@ from __future__ import annotations
 import json
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import partial
 
 import numpy as np
@@ -67,14 +67,16 @@ from .scoring import (_NOISE_FLOOR, _PRIOR_TAKES, OWN_KINDS, ScoreModel,  # noqa
                       precision_parts, probabilities, score_model, scores)
 
 __all__ = ["FORMAT_VERSION", "ActionDescription", "Spread", "Descriptions", "describe",
-           "describe_table", "chosen_table", "DescriptionError",
+           "describe_table", "chosen_table", "family_descriptions", "DescriptionError",
            "GROUP_LEVEL", "OWN_KINDS", "own_columns", "own_terms", "scores", "ScoreModel",
            "score_model"]
 
-#: Bumped when what a description holds or how features are computed changes (4: each
-#: action keeps its own features, which need not be the spread's, so that actions learnt from
-#: different skeletons keep their joints; before, only the features every take had were kept).
-FORMAT_VERSION = 4
+#: Bumped when what a description holds or how features are computed changes (5: the
+#: descriptions of families, several actions that are styles of one content, decide "none of
+#: these" for their members; 4: each action keeps its own features, which need not be the
+#: spread's, so that actions learnt from different skeletons keep their joints; before, only
+#: the features every take had were kept).
+FORMAT_VERSION = 5
 #: Bumped when how descriptions are learnt changes but what they hold does not: a praxicon
 #: keeps reading its descriptions, and a build learns them again (2: the kinds of features are
 #: chosen by held-out recognition, ``praxicon.feature_choice``).
@@ -177,12 +179,22 @@ class Spread:
 
 @dataclass(frozen=True)
 class Descriptions:
-    """Every action's description and their shared spread: what recognition reads."""
+    """Every action's description and their shared spread: what recognition reads.
+
+    ``families``: when several actions are styles of one content (a praxicon built one action
+    per content and style), descriptions of the families, each family's takes pooled (and
+    every other action as its own family, named by its name), which decide "none of these"
+    for a family's members; ``family_of`` names each action's family (``""``: an action
+    alone, decided by its own description). See :func:`describe`'s ``families``.
+    """
 
     actions: tuple[ActionDescription, ...]
     spread: Spread
+    families: "Descriptions | None" = None
+    family_of: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
+        self._check_families()
         known = set(self.spread.features)
         for a in self.actions:
             if not (len(a.features) == len(a.mean) == len(a.spread)):
@@ -192,6 +204,31 @@ class Descriptions:
                 extra = sorted(set(a.features) - known)[:3]
                 raise DescriptionError(f"action {a.name!r} has features the spread has not "
                                        f"({', '.join(extra)})")
+
+    def _check_families(self) -> None:
+        if self.families is None:
+            if self.family_of:
+                raise DescriptionError("'family_of' without the families' descriptions")
+            return
+        if not isinstance(self.families, Descriptions):
+            raise DescriptionError(f"families must be Descriptions, not "
+                                   f"{type(self.families).__name__}")
+        if self.families.families is not None:
+            raise DescriptionError("the families' descriptions have families of their own")
+        if len(self.family_of) != len(self.actions):
+            raise DescriptionError(f"'family_of' names {len(self.family_of)} families for "
+                                   f"{len(self.actions)} actions")
+        named = set(self.families.names)
+        for a, f in zip(self.actions, self.family_of):
+            wanted = f or a.name  # an action alone is its own family
+            if wanted not in named:
+                raise DescriptionError(f"action {a.name!r}: no description of its family "
+                                       f"{wanted!r}")
+            if f and self.family_of.count(f) < 2:
+                raise DescriptionError(f"action {a.name!r}: family {f!r} has one member "
+                                       f"(an action alone has the family '')")
+        if self.families.spread.window != self.spread.window:
+            raise DescriptionError("the families' descriptions are of other windows")
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -227,8 +264,11 @@ class Descriptions:
 
     def to_dict(self) -> dict:
         """Plain JSON values (floats kept exactly)."""
-        return {"format": "praxicon-descriptions", "version": FORMAT_VERSION,
-                "actions": [a.to_dict() for a in self.actions], "spread": self.spread.to_dict()}
+        out = {"format": "praxicon-descriptions", "version": FORMAT_VERSION,
+               "actions": [a.to_dict() for a in self.actions], "spread": self.spread.to_dict()}
+        if self.families is not None:
+            out.update(families=self.families.to_dict(), family_of=list(self.family_of))
+        return out
 
     def to_json(self) -> str:
         """JSON text; floats come back exactly from :meth:`from_json`."""
@@ -251,7 +291,19 @@ class Descriptions:
             if a.window != spread.window:  # parse cuts windows of the spread's length
                 raise DescriptionError(f"action {a.name!r}: 'window' {a.window:g} is not the "
                                        f"spread's {spread.window:g}")
-        return cls(actions, spread)
+        if "families" not in data:
+            return cls(actions, spread)
+        family_of = data.get("family_of")
+        if not isinstance(family_of, list) or not all(isinstance(f, str) for f in family_of):
+            raise DescriptionError("'family_of' must be a list of family names, one per action")
+        families = data["families"]
+        if isinstance(families, dict) and "families" in families:
+            raise DescriptionError("the families' descriptions have families of their own")
+        try:
+            families = cls.from_dict(families)
+        except DescriptionError as exc:
+            raise DescriptionError(f"families: {exc}") from None
+        return cls(actions, spread, families, tuple(family_of))
 
     @classmethod
     def from_json(cls, text: str) -> "Descriptions":
@@ -360,7 +412,7 @@ def common_table(rows: dict[str, list[dict[str, float]]]):
 
 def describe(takes: dict[str, list], *, rank: int = _RANK,
              level: float = GROUP_LEVEL, groups: Mapping[str, Sequence] | None = None,
-             choose: bool = True) -> Descriptions:
+             choose: bool = True, families: Mapping[str, str] | None = None) -> Descriptions:
     """Descriptions of every action from its takes.
 
     Each action keeps the features all its takes have: actions learnt from different
@@ -383,6 +435,14 @@ def describe(takes: dict[str, list], *, rank: int = _RANK,
     choose : bool
         Choose the kinds of features by how well held-out takes are recognised
         (:func:`praxicon.feature_choice.choose_features`); without it, every feature.
+    families : mapping of str to str, optional
+        Per action the family it belongs to (an action not named: a family of its own): the
+        actions of one family are styles of one content (``bandai-namco-2.walk.elderly`` and
+        ``bandai-namco-2.walk.active`` of family ``bandai-namco-2.walk``). Recognition ranks
+        the actions, and "none of these" is decided for a family's member by the family's
+        description (:func:`family_descriptions`): a new take of a learnt content in a
+        learnt style differs from that style's few takes more than they differ from each
+        other, but lies among the content's styles.
 
     Returns
     -------
@@ -416,7 +476,69 @@ def describe(takes: dict[str, list], *, rank: int = _RANK,
     order, table = common_table(rows)
     if choose:
         order, table = chosen_table(table, order, groups=groups, rank=rank)
-    return describe_table(table, order, rank=rank, level=level)
+    out = describe_table(table, order, rank=rank, level=level)
+    if families is None:
+        return out
+    described_families, family_of = family_descriptions(rows, families, rank=rank,
+                                                        level=level, choose=choose)
+    if described_families is None:
+        return out
+    return replace(out, families=described_families,
+                   family_of=tuple(family_of[n] for n in out.names))
+
+
+def family_descriptions(rows: dict[str, list], families: Mapping[str, str], *,
+                        rank: int = _RANK, level: float = GROUP_LEVEL, choose: bool = True):
+    """``(descriptions of the families, {action: its family or ""})`` from each action's
+    feature rows (:func:`feature_rows`); ``(None, ...)`` when no family has two actions.
+
+    A family's takes are its members' takes together (the choice of features holds a member
+    out at a time, as a style not learnt); an action alone is its own family, named by its
+    own name and learnt from its takes alone, so that the families' "none of these" reads
+    the groups that tell a family from every other learnt content.
+
+    Examples
+    --------
+    >>> rows = {"a.x": [{"j.rx:pose": 0.0, "tempo": 1.0}, {"j.rx:pose": 0.2, "tempo": 1.1}],
+    ...         "a.y": [{"j.rx:pose": 1.0, "tempo": 1.0}, {"j.rx:pose": 1.1, "tempo": 0.9}],
+    ...         "b": [{"j.rx:pose": 9.0, "tempo": 2.0}, {"j.rx:pose": 9.3, "tempo": 2.1}]}
+    >>> d, of = family_descriptions(rows, {"a.x": "a", "a.y": "a"}, choose=False)
+    >>> d.names, [a.takes for a in d.actions], of
+    (('a', 'b'), [4, 2], {'a.x': 'a', 'a.y': 'a', 'b': ''})
+    """
+    if not isinstance(families, Mapping):
+        raise DescriptionError(f"families must map action names to family names, not "
+                               f"{type(families).__name__}")
+    members: dict[str, list[str]] = {}
+    for name in rows:
+        if name not in families:
+            continue
+        family = families[name]
+        if not isinstance(family, str) or not family:
+            raise DescriptionError(f"action {name!r}: its family must be a name, not "
+                                   f"{family!r}")
+        members.setdefault(family, []).append(name)
+    for name in rows:  # an action not named is a family of its own, named by its name
+        if name not in families:
+            if name in members:
+                raise DescriptionError(f"family {name!r} has the name of another action")
+            members[name] = [name]
+    of = {n: f if len(m) > 1 else "" for f, m in members.items() for n in m}
+    if not any(len(m) > 1 for m in members.values()):
+        return None, of
+    table_rows, groups = {}, {}
+    for family, names in members.items():
+        key = family if len(names) > 1 else names[0]
+        if key in table_rows or (len(names) > 1 and key in rows and key not in names):
+            raise DescriptionError(f"family {family!r} has the name of another action")
+        table_rows[key] = [r for n in names for r in rows[n]]
+        # a member held out at a time; an action alone dealt into five folds, as without groups
+        groups[key] = ([n for n in names for _ in rows[n]] if len(names) > 1
+                       else [f"{key}#{i % 5}" for i in range(len(rows[key]))])
+    order, table = common_table(table_rows)
+    if choose:
+        order, table = chosen_table(table, order, groups=groups, rank=rank)
+    return describe_table(table, order, rank=rank, level=level), of
 
 
 def chosen_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,

@@ -33,7 +33,7 @@ True
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -45,7 +45,8 @@ from .feature_groups import feature_groups, group_distances, telling_groups
 from .features import feature_joint
 from .records import _count
 
-__all__ = ["Recognition", "recognise", "recognise_many", "feature_matrix", "JointReason"]
+__all__ = ["Recognition", "recognise", "recognise_many", "feature_matrix", "JointReason",
+           "family_verdicts", "FamilyVerdict"]
 
 
 @dataclass(frozen=True)
@@ -84,6 +85,7 @@ class Recognition:
     excess_group: str = ""  # which group that is
     lacking: tuple[tuple[str, tuple[str, ...]], ...] = ()  # per action shown: joints not here
     unshared: tuple[str, ...] = ()  # actions sharing no joint with the motion
+    family: str = ""  # the family whose description decided none of these ("": the action's)
 
     def __repr__(self) -> str:  # a summary, not the dataclass dump of every reason
         best = dict(self.ranking).get(self.action) if self.action else None
@@ -97,6 +99,9 @@ class Recognition:
         """The reasons, as text: per shown action the joints that decided it."""
         lines = [f"{self.source}: {self.action or 'none of these'} (distance {self.penalty:.3f}"
                  f" per feature, threshold {self.threshold:.3f})"]
+        if self.family:
+            lines.append(f"  none of these decided by the family {self.family} (the styles "
+                         f"of one content together)")
         if self.excess_group:
             lines.append(f"  furthest feature group: {self.excess_group}, {self.excess:.2f} x "
                          f"its limit (none of these above 1)")
@@ -223,6 +228,59 @@ def recognise_many(praxicon, motions, *, explain: int | None = 3) -> list[Recogn
         found = _recognise(descriptions, [motions[i] for i in indices], columns, x, explain)
         for i, r in zip(indices, found):
             out[i] = r
+    if descriptions.families is None:
+        return out
+    best = [r.ranking[0][0] for r in out]
+    for i, verdict in family_verdicts(descriptions, rows, best).items():
+        out[i] = replace(out[i], action=best[i] if verdict.accepted else None,
+                         penalty=verdict.penalty, threshold=verdict.threshold,
+                         excess=verdict.excess, excess_group=verdict.group,
+                         family=verdict.family)
+    return out
+
+
+@dataclass(frozen=True)
+class FamilyVerdict:
+    """"None of these" decided by a family's description: whether the take is accepted, the
+    family, its distance per feature and threshold, its worst group over its limit."""
+
+    family: str
+    accepted: bool
+    penalty: float
+    threshold: float
+    excess: float
+    group: str
+
+
+def family_verdicts(descriptions: Descriptions, rows, best) -> dict[int, FamilyVerdict]:
+    """Per motion whose best action ``best[i]`` is a member of a family
+    (``descriptions.family_of``), the verdict of that family's description: the test the
+    action's own description would make (its distance per feature under the threshold and
+    no telling feature group past its limit), made with the family's.
+
+    ``rows`` are the motions' feature rows (:func:`~praxicon.description.feature_rows`);
+    motions whose best action is alone in its family are left out of the answer.
+    """
+    families = descriptions.families
+    if families is None:
+        return {}
+    of = dict(zip(descriptions.names, descriptions.family_of))
+    index = {n: k for k, n in enumerate(families.names)}
+    wanted = [i for i, b in enumerate(best) if of.get(b)]
+    out = {}
+    for indices, columns, x in _by_features(families, [rows[i] for i in wanted]):
+        features = [families.spread.features[c] for c in columns]
+        fitted = score_model(families, columns)
+        dist, _ = model_scores(fitted, x, own_columns(features))
+        chosen = np.array([index[of[best[wanted[k]]]] for k in indices], dtype=int)
+        excess, group = _excess(families, features, x, chosen, fitted)
+        penalty = dist[np.arange(len(indices)), chosen] / max(1, len(columns))
+        for k, (i, f) in enumerate(zip(indices, chosen)):
+            out[wanted[i]] = FamilyVerdict(
+                families.names[f], bool(penalty[k] <= families.spread.threshold
+                                        and excess[k] <= 1.0),
+                float(penalty[k]), float(families.spread.threshold), float(excess[k]),
+                group[k])
     return out
 
 
