@@ -78,7 +78,8 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
             # the praxicon's rule: a content's styles, a family, decide none of these for
             # their members (describe's families); each style's own test beside it
             rules[f"own style a={level:g}"] = rules[f"groups a={level:g}"]
-            rules[f"groups a={level:g}"] = _family_accepts(d, rows, test, best, level)
+            rules[f"groups a={level:g}"] = _family_accepts(d, rows, test, best, level,
+                                                           rules[f"own style a={level:g}"])
         if level == GROUP_LEVEL:  # every group read, not only those that tell actions apart
             every, _ = _excess(d, features, x, best, fitted, telling=False)
             rules[f"every group a={level:g}"] = (penalty <= d.spread.threshold) & (every <= 1.0)
@@ -112,19 +113,23 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
                             f"{t.content} {t.style}_{t.take:03d}", []).append(decided)
 
 
-def _family_accepts(d, rows, test, best, level) -> np.ndarray:
+def _family_accepts(d, rows, test, best, level, own) -> np.ndarray:
     """Per test take: accepted by the family (the content) of its best action, as
-    :func:`praxicon.recognition.recognise_many` decides for a praxicon built per style."""
+    :func:`praxicon.recognition.recognise_many` decides for a praxicon built per style
+    (``own``: each action's own verdict, kept for an action alone in its family)."""
     from dataclasses import replace
 
     from praxicon.description import family_descriptions, feature_rows
     from praxicon.recognition import family_verdicts
 
     families, of = family_descriptions(rows, {n: n.split("|")[0] for n in rows}, level=level)
+    if families is None:
+        return own
     d = replace(d, families=families, family_of=tuple(of[n] for n in d.names))
     verdicts = family_verdicts(d, feature_rows([t.motion for t in test]),
                                [d.names[b] for b in best])
-    return np.array([verdicts[i].accepted for i in range(len(test))])
+    return np.array([verdicts[i].accepted if i in verdicts else bool(own[i])
+                     for i in range(len(test))])
 
 
 _PAIR_QUANTILES = (0.9, 0.99)  # the pairwise test: share of held-out known takes it keeps

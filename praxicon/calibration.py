@@ -106,7 +106,7 @@ def group_limits(held: np.ndarray, level: float, sizes) -> np.ndarray:
 
 
 def calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
-               folds: int = _FOLDS, *, features, level: float = GROUP_LEVEL):
+              folds: int = _FOLDS, *, features, level: float = GROUP_LEVEL):
     """Threshold and temperature from held-out training takes (``folds``-fold).
 
     Every take is scored by a model learnt without it (its action's mean *and* the shared
@@ -166,7 +166,7 @@ def calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
     if not moved:
         return math.inf, 1.0, ()
     limits = (group_limits(np.concatenate(grouped), level,
-                             np.array([len(c) for c in parts_of.values()], dtype=float))
+                           np.array([len(c) for c in parts_of.values()], dtype=float))
               if grouped else ())
     limits = tuple((g, float(v)) for g, v in zip(parts_of, limits) if not math.isnan(v))
     dist = np.array(moved)

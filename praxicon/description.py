@@ -206,10 +206,17 @@ class Descriptions:
                                        f"({', '.join(extra)})")
 
     def _check_families(self) -> None:
+        if not isinstance(self.family_of, tuple) or not all(
+                isinstance(f, str) for f in self.family_of):
+            raise DescriptionError(f"'family_of' must be a tuple of family names, not "
+                                   f"{self.family_of!r:.60}")
         if self.families is None:
             if self.family_of:
                 raise DescriptionError("'family_of' without the families' descriptions")
             return
+        if self.spread.window:
+            raise DescriptionError("window descriptions have no families (parsing reads "
+                                   "each action's own)")
         if not isinstance(self.families, Descriptions):
             raise DescriptionError(f"families must be Descriptions, not "
                                    f"{type(self.families).__name__}")
@@ -292,6 +299,8 @@ class Descriptions:
                 raise DescriptionError(f"action {a.name!r}: 'window' {a.window:g} is not the "
                                        f"spread's {spread.window:g}")
         if "families" not in data:
+            if "family_of" in data:
+                raise DescriptionError("'family_of' without the families' descriptions")
             return cls(actions, spread)
         family_of = data.get("family_of")
         if not isinstance(family_of, list) or not all(isinstance(f, str) for f in family_of):

@@ -4,11 +4,13 @@
 ``descriptions.json``; the other files of a folder (the ``.psgs`` systems, ``actuators.csv``,
 ``shared.json``) are derived from the records and never read back, so damage to them (a file
 cut short by a full disk, a hand edit, a copy that lost a file) would go unnoticed until
-someone reads them with another tool. :func:`verify` writes the folder again, in memory, from
-what ``load`` read (as :func:`~praxicon.store.dump` would, byte for byte as ``build`` writes
-it) and compares every file; it also reads ``timings.json`` and names files that are no part
-of the praxicon (a record or system of an action the index does not list, a temporary file
-left by an interrupted write). :func:`repair` writes the derived files again from the records.
+someone reads them with another tool. :func:`verify` writes the folder again into a temporary
+folder from what ``load`` read (:func:`~praxicon.store.dump`, byte for byte as ``build``
+writes it) and compares every file; it also reads ``timings.json``, names files that are no
+part of the praxicon (a record or system of an action the index does not list, a temporary
+file left by an interrupted write) and a folder of learnt actions without the descriptions
+recognition reads. :func:`repair` writes every file ``dump`` writes again from what ``load``
+read.
 
 What this cannot see: a record that is well formed but was changed (its values are checked
 for type and range when it is read, and a record is what the other files are derived from;
@@ -19,15 +21,14 @@ from __future__ import annotations
 
 import math
 import re
+import stat
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
-from psgs._foundation.files import read_bytes
-from psgs.errors import FormatError
-
 from .jsonvalues import read_json
-from .records import PraxiconError
+from .description_store import FILE
+from .records import REBUILD, PraxiconError
 from .store import dump, load
 
 __all__ = ["Verification", "verify", "repair"]
@@ -71,10 +72,17 @@ def _expected(praxicon) -> dict[str, bytes]:
 
 
 def _first_difference(found: bytes, expected: bytes) -> str:
-    """``line N, column C: ...`` where ``found`` and ``expected`` first part."""
+    """``line N, column C: ...`` where ``found`` and ``expected`` first part (``found`` holds
+    at most one byte more than ``expected``: what it holds past that was not read)."""
+    if not found:
+        return f"empty; the records give {_lines(expected)} lines"
     if expected.startswith(found):  # cut short (a full disk, an interrupted copy)
+        if found + b"\n" == expected:
+            return "the last line's newline is missing"
         return (f"cut short: ends at line {_lines(found)} of the {_lines(expected)} the "
                 f"records give")
+    if found.startswith(expected):
+        return f"longer than the records give: more after line {_lines(expected)}"
     found_lines, expected_lines = found.split(b"\n"), expected.split(b"\n")
     for number, (a, b) in enumerate(zip(found_lines, expected_lines), start=1):
         if a != b:
@@ -84,7 +92,7 @@ def _first_difference(found: bytes, expected: bytes) -> str:
             start = max(0, column - 20)
             return (f"line {number}, column {column + 1}: {_shown(a_text, start)} where the "
                     f"records give {_shown(b_text, start)}")
-    return f"line {_lines(expected) + 1}: more than the records give"
+    return "differs"  # not reached: files equal line for line would be equal or a prefix
 
 
 def _lines(data: bytes) -> int:
@@ -104,9 +112,14 @@ def _compare(folder: Path, name: str, expected: bytes) -> str | None:
     if not path.exists():
         return f"{path}: missing"
     try:
-        found = read_bytes(path)
-    except (OSError, FormatError) as exc:
-        return f"{path}: cannot be read ({getattr(exc, 'strerror', None) or exc})"
+        if not stat.S_ISREG(path.stat().st_mode):
+            return f"{path}: not a file"
+        # no more than one byte past what the records give: a file grown to gigabytes is
+        # "longer", not read whole
+        with open(path, "rb") as handle:
+            found = handle.read(len(expected) + 1)
+    except OSError as exc:
+        return f"{path}: cannot be read ({exc.strerror or exc})"
     if found == expected:
         return None
     return f"{path}: differs from what the records give ({_first_difference(found, expected)})"
@@ -127,8 +140,10 @@ def _timings(folder: Path, names: set[str]) -> str | None:
         if name not in names:
             return f"{path}: {name!r} is no action of index.json"
         if isinstance(seconds, bool) or not isinstance(seconds, (int, float)) \
-                or not math.isfinite(seconds) or seconds < 0:
-            return f"{path}: {name!r}: seconds must be a number 0 or more, not {seconds!r}"
+                or (isinstance(seconds, float) and not math.isfinite(seconds)) or seconds < 0:
+            shown = repr(seconds)
+            shown = shown if len(shown) <= 40 else shown[:37] + "..."
+            return f"{path}: {name!r}: seconds must be a number 0 or more, not {shown}"
     return None
 
 
@@ -181,9 +196,9 @@ def verify(folder) -> Verification:
     ...               Settings.make()), folder)
     >>> verify(folder).intact
     True
-    >>> _ = (folder / "actuators.csv").write_text("action\\nm.b\\n")
+    >>> _ = (folder / "actuators.csv").write_text("actions\\n")
     >>> print(*verify(folder).problems)  # doctest: +ELLIPSIS
-    /.../px/actuators.csv: differs from what the records give (line 2, column 1: 'm.b' where the records give '')
+    /.../px/actuators.csv: differs from what the records give (line 1, column 7: 'actions' where the records give 'action')
     """
     praxicon = load(folder)
     folder = Path(folder)
@@ -192,19 +207,31 @@ def verify(folder) -> Verification:
                 if p]
     timing = _timings(folder, set(praxicon.names))
     problems += [timing] if timing else []
+    if praxicon.descriptions is None and any(a.learnt for a in praxicon.actions):
+        problems.append(f"{folder / FILE}: missing: recognise and parse cannot read the "
+                        f"folder (learn the descriptions: '{REBUILD}' resumes the build)")
     problems += _strays(folder, expected)
     checked = len(expected) + (folder / "timings.json").exists()
     return Verification(str(folder), checked, tuple(sorted(problems)))
 
 
 def repair(folder) -> Verification:
-    """Write a praxicon folder's derived files again from its records, then verify it.
+    """Write every file of a praxicon folder again from what :func:`~praxicon.load` reads,
+    then verify it.
 
-    What :func:`~praxicon.load` reads (the index's names and settings, every record, the
-    descriptions) is what the files are written from, so a folder ``load`` refuses is not
-    repaired (the :class:`PraxiconError` says why; ``psgs praxicon build`` learns a damaged
-    record again). Stray files and a damaged ``timings.json`` are left as they are and
-    still reported: they may be someone's.
+    The index's names and settings, every record and the descriptions are what the files
+    are written from, so a folder ``load`` refuses is not repaired (the
+    :class:`PraxiconError` says why; ``psgs praxicon build`` learns a damaged record again);
+    the derived files are written anew, and the index, records and descriptions in the
+    canonical form ``build`` writes (a key ``load`` does not read, added by hand to a
+    record, is dropped). Stray files, a damaged ``timings.json`` and missing descriptions
+    are left as they are and still reported.
+
+    Raises
+    ------
+    PraxiconError
+        The line ``load`` gives for a folder it refuses, or a file that cannot be written
+        (a folder in its place).
 
     Returns
     -------
@@ -222,6 +249,11 @@ def repair(folder) -> Verification:
     >>> verify(folder).intact, repair(folder).intact
     (False, True)
     """
-    dump(load(folder), folder)
+    praxicon = load(folder)
+    try:
+        dump(praxicon, folder)
+    except OSError as exc:  # a folder in a file's place, a full disk: the file's line
+        raise PraxiconError(f"{exc.filename}: cannot be written ({exc.strerror or exc})") \
+            from None
     return verify(folder)
 

@@ -43,11 +43,19 @@ __all__ = ["load", "dump", "actuator_matrix", "write_atomic", "dump_json",
            "write_record", "read_records", "write_index", "write_shared", "read_descriptions"]
 
 def write_atomic(path: Path, text: str) -> None:
-    """Write ``text`` to ``path`` through a temporary file and a rename."""
+    """Write ``text`` to ``path`` through a temporary file and a rename.
+
+    An error (a folder in the file's place, a full disk) is an ``OSError`` naming ``path``,
+    and the temporary file is removed: it would be a stray file of the folder.
+    """
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    tmp.write_text(text, encoding="utf-8", newline="\n")
-    os.replace(tmp, path)
+    try:
+        tmp.write_text(text, encoding="utf-8", newline="\n")
+        os.replace(tmp, path)
+    except OSError as exc:
+        tmp.unlink(missing_ok=True)
+        raise OSError(exc.errno, exc.strerror, str(path)) from None
 
 
 def dump_json(value) -> str:

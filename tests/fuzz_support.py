@@ -357,9 +357,17 @@ def praxicon_seed():
     def described(window: float) -> Descriptions:
         spread = Spread(features, (10.0, 20.0, 5.0, 0.5), ((0.5, -0.25, 0.125, 0.0),),
                         (0.25, 0.5, 0.75, 1.0), 9.5, 1.5, window, limits=groups)
-        return Descriptions(tuple(ActionDescription(a.name, features, (1.0, 2.0, -3.0, 0.5),
-                                                    (0.5, 1.0, 0.25, 0.125), 2, window)
-                                  for a in actions if a.learnt), spread)
+        described = Descriptions(tuple(ActionDescription(a.name, features,
+                                                         (1.0, 2.0, -3.0, 0.5),
+                                                         (0.5, 1.0, 0.25, 0.125), 2, window)
+                                       for a in actions if a.learnt), spread)
+        if window:
+            return described
+        # the whole takes' with a family of both learnt actions, so that the fuzzing of
+        # descriptions.json reaches the families' fields too
+        family = Descriptions((ActionDescription("moves.m", features, (1.0, 2.0, -3.0, 0.5),
+                                                 (0.75, 1.5, 0.5, 0.25), 4),), spread)
+        return Descriptions(described.actions, spread, family, ("moves.m", "moves.m"))
 
     return Praxicon(tuple(actions), settings, ("moves.csv",), tuple(keys), described(0.0),
                     described(2.0))

@@ -113,8 +113,35 @@ def test_damaged_families_are_refused(described, change, match):
 def test_family_of_without_families_is_refused(described):
     with pytest.raises(DescriptionError, match="'family_of' without the families"):
         replace(described, families=None)
+    data = json.loads(described.to_json())
+    del data["families"]
+    with pytest.raises(DescriptionError, match="'family_of' without the families"):
+        Descriptions.from_dict(data)
     with pytest.raises(DescriptionError, match="families must be Descriptions, not dict"):
         replace(described, families={})
+
+
+@pytest.mark.parametrize("family_of", [["a", "a", ""], "aa", ("a", "a", None)])
+def test_family_of_is_a_tuple_of_names(described, family_of):
+    with pytest.raises(DescriptionError, match="'family_of' must be a tuple of family names"):
+        replace(described, family_of=family_of)
+
+
+def test_window_descriptions_have_no_families(described):
+    windows = replace(described.spread, window=2.0)
+    with pytest.raises(DescriptionError, match="window descriptions have no families"):
+        replace(described, spread=windows,
+                actions=tuple(replace(a, window=2.0) for a in described.actions),
+                families=replace(described.families, spread=windows, actions=tuple(
+                    replace(a, window=2.0) for a in described.families.actions)))
+
+
+def test_a_family_answers_none_of_these_for_a_take_unlike_its_members(described):
+    odd = synthetic_motion(4, (0, 1, 2, 3), period=0.3, amplitude=90.0, seed=60,
+                           repetitions=6, frame_rate=30.0)
+    (found,) = recognise_many(described, [odd])
+    assert found.ranking[0][0].startswith("a.") and found.family == "a"
+    assert found.action is None and found.penalty > found.threshold
 
 
 def test_the_build_groups_the_styles_of_a_content(monkeypatch):

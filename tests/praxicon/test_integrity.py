@@ -181,3 +181,57 @@ def test_the_command_exits_0_1_2_and_repairs(seed_folder, tmp_path, capsys):
                                                f"records give")
     assert _run([str(tmp_path / "nowhere")]) == 2
     assert "no such praxicon folder" in capsys.readouterr().err
+
+
+def test_a_timing_too_large_for_a_float_is_a_number(seed_folder, tmp_path):
+    folder = _copy(seed_folder, tmp_path)
+    (folder / "timings.json").write_text('{"moves.step": 1' + "0" * 400 + "}")
+    assert verify(folder).intact  # a whole number of seconds, however large
+    (folder / "timings.json").write_text('{"moves.step": -1' + "0" * 400 + "}")
+    (problem,) = verify(folder).problems
+    assert problem.endswith("seconds must be a number 0 or more, not -100000000000000000000"
+                            "000000000000000...")
+
+
+def test_a_file_grown_long_is_read_no_further_than_the_records_give(seed_folder, tmp_path):
+    folder = _copy(seed_folder, tmp_path)
+    path = folder / "moves.step.psgs"
+    expected = path.read_bytes()
+    with open(path, "ab") as handle:
+        handle.truncate(1 << 40)  # a sparse terabyte: read whole, it would take the memory
+    (problem,) = verify(folder).problems
+    lines = expected.count(b"\n")
+    assert problem == (f"{path}: differs from what the records give (longer than the records "
+                       f"give: more after line {lines})")
+
+
+@pytest.mark.parametrize("data, why", [
+    (b"", "empty; the records give"),
+    (None, "the last line's newline is missing"),
+])
+def test_an_empty_file_and_a_lost_last_newline_are_named(seed_folder, tmp_path, data, why):
+    folder = _copy(seed_folder, tmp_path)
+    path = folder / "shared.json"
+    path.write_bytes(path.read_bytes()[:-1] if data is None else data)
+    (problem,) = verify(folder).problems
+    assert why in problem
+
+
+def test_a_folder_in_a_files_place_is_named_and_repair_leaves_no_temporary_file(
+        seed_folder, tmp_path):
+    folder = _copy(seed_folder, tmp_path)
+    (folder / "shared.json").unlink()
+    (folder / "shared.json").mkdir()
+    assert verify(folder).problems == (f"{folder / 'shared.json'}: not a file",)
+    with pytest.raises(PraxiconError, match=r"shared\.json: cannot be written"):
+        repair(folder)
+    assert not list(folder.glob(".*.tmp"))
+
+
+def test_learnt_actions_without_their_descriptions_are_named(seed_folder, tmp_path):
+    folder = _copy(seed_folder, tmp_path)
+    (folder / "descriptions.json").unlink()
+    (problem,) = verify(folder).problems
+    assert problem.startswith(f"{folder / 'descriptions.json'}: missing: recognise and parse "
+                              f"cannot read the folder")
+    assert repair(folder).problems == (problem,)  # not made up from nothing
