@@ -113,7 +113,7 @@ def run_generate(args) -> int:
 
     try:
         _check_outputs(args)
-        praxicon = load(args.praxicon)
+        praxicon = load(args.praxicon, descriptions=False)  # generation reads the records
         live = not args.no_progress and sys.stderr.isatty()
         try:
             result = generate(praxicon, args.action, repeat=args.repeat, style=args.style,

@@ -473,7 +473,9 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None =
         from .pictures import check_picture
 
         check_picture(plot)
-    record = (folder if isinstance(folder, Praxicon) else load(folder))[action]
+    # generation reads the records only: descriptions of another version do not stop it
+    record = (folder if isinstance(folder, Praxicon)
+              else load(folder, descriptions=False))[action]
     grammar = has_grammar(record)
     if repeat is None:
         repeat = 3 if grammar else 1

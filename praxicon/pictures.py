@@ -122,7 +122,8 @@ def _save(fig, path) -> Path:
 
 
 def _praxicon(praxicon) -> Praxicon:
-    return praxicon if isinstance(praxicon, Praxicon) else load(praxicon)
+    # the pictures read the records only: descriptions of another version do not stop them
+    return praxicon if isinstance(praxicon, Praxicon) else load(praxicon, descriptions=False)
 
 
 def draw_actuator_matrix(folder, path) -> Path:

@@ -30,6 +30,8 @@ from collections.abc import Iterable
 from dataclasses import replace
 from pathlib import Path
 
+import numpy as np
+
 from ._values import not_all
 from .records import (REBUILD, ActionRecord, Praxicon, PraxiconError, Settings, check_index,
                       name_problem)
@@ -209,13 +211,18 @@ def dump(praxicon: Praxicon, folder: str | Path) -> None:
             praxicon.descriptions, praxicon.window_descriptions, descriptions_key(praxicon)))
 
 
-def load(folder: str | Path) -> Praxicon:
+def load(folder: str | Path, *, descriptions: bool = True) -> Praxicon:
     """The praxicon in ``folder`` (made by ``psgs praxicon build``), every record in full.
 
     Parameters
     ----------
     folder : str or Path
         A praxicon folder.
+    descriptions : bool, default True
+        Also read ``descriptions.json`` (what recognition and parsing read). Without it the
+        praxicon has no descriptions and the file is not read at all: generation and the
+        pictures need only the records, so a folder whose descriptions are of another
+        version (learnt by another psgs) still generates and draws.
 
     Returns
     -------
@@ -239,6 +246,8 @@ def load(folder: str | Path) -> Praxicon:
     praxicon.records.PraxiconError: ...: not a praxicon folder (no index.json; build one with 'psgs praxicon build DATASET... -o FOLDER')
     """
     folder = _folder(folder)
+    if not isinstance(descriptions, (bool, np.bool_)):
+        raise PraxiconError(f"descriptions must be True or False, not {descriptions!r}")
     if not folder.exists():
         raise PraxiconError(f"{folder}: no such praxicon folder")
     if not folder.is_dir():
@@ -270,6 +279,8 @@ def load(folder: str | Path) -> Praxicon:
         if key:  # "" is what dump writes for a record whose inputs are not known
             keys.append((name, key))
     praxicon = Praxicon(tuple(records), settings, tuple(datasets), tuple(keys))
+    if not descriptions:
+        return praxicon
     described = read_descriptions_file(folder)
     if described is None:
         return praxicon

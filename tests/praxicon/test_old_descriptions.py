@@ -1,0 +1,55 @@
+"""A folder whose descriptions are of another version: recognition refuses it with the command
+that learns them again; generation and the pictures, which read the records only, do not."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from fuzz_support import praxicon_seed
+from praxicon import dump, load
+from praxicon.records import PraxiconError
+
+
+@pytest.fixture()
+def old_folder(tmp_path):
+    folder = tmp_path / "px"
+    dump(praxicon_seed(), folder)
+    path = folder / "descriptions.json"
+    data = json.loads(path.read_text())
+    data["version"] = 4  # as psgs wrote it before families
+    path.write_text(json.dumps(data))
+    return folder
+
+
+def test_load_refuses_old_descriptions_unless_told_not_to_read_them(old_folder):
+    with pytest.raises(PraxiconError, match="descriptions of version 4, this psgs reads "
+                                            "version 5 .*resumes the build"):
+        load(old_folder)
+    px = load(old_folder, descriptions=False)
+    assert px.descriptions is None and px.window_descriptions is None
+    assert px.actions == praxicon_seed().actions
+
+
+def test_the_pictures_read_a_folder_with_old_descriptions(old_folder, tmp_path):
+    from praxicon import draw_actuator_matrix
+
+    path = draw_actuator_matrix(old_folder, tmp_path / "matrix.svg")
+    assert path.stat().st_size > 0
+
+
+def test_generation_loads_without_the_descriptions(old_folder):
+    from praxicon import generate
+
+    # the seed's takes are not on disk: generation gets past the folder to the action's
+    # skeleton file, which is what it reads next
+    with pytest.raises(ValueError, match="^step_0.bvh: no such file: the skeleton of "
+                                         "'moves.step' is read from its first performance"):
+        generate(old_folder, "moves.step", repeat=1)
+
+
+@pytest.mark.parametrize("value", [None, "no", 1])
+def test_the_flag_is_a_bool(old_folder, value):
+    with pytest.raises(PraxiconError, match="descriptions must be True or False"):
+        load(old_folder, descriptions=value)
