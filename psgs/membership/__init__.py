@@ -29,7 +29,7 @@ from __future__ import annotations
 import gc
 import numbers
 
-from ..budget import Budget
+from ..budget import Budget, check_count
 from ..errors import ValidationError
 from ..model import PCGS, PSGS, as_word
 from .nearest import Nearest, nearest
@@ -128,8 +128,7 @@ def accepts(system: PSGS | PCGS, words, *, max_states: int = 200_000,
     """
     for name, value in (("max_states", max_states), ("max_steps", max_steps),
                         ("max_symbols", max_symbols)):
-        if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 1:
-            raise ValidationError(f"{name} must be a positive integer, not {value!r}")
+        check_count(value, name)  # the bounds' one check, as nearest's
     if not _is_seconds(max_seconds):
         raise ValidationError(f"max_seconds must be a positive number, not {max_seconds!r}")
     if check_witness is not None and not _flag(check_witness):  # "no" is truthy
