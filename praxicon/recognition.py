@@ -241,8 +241,8 @@ def recognise_many(praxicon, motions, *, explain: int | None = 3) -> list[Recogn
 
 @dataclass(frozen=True)
 class FamilyVerdict:
-    """"None of these" decided by a family's description: whether the take is accepted, the
-    family, its distance per feature and threshold, its worst group over its limit."""
+    """The "none of these" decision of a family's description: whether the take is accepted,
+    the family, its distance per feature and threshold, its worst group over its limit."""
 
     family: str
     accepted: bool
@@ -260,6 +260,20 @@ def family_verdicts(descriptions: Descriptions, rows, best) -> dict[int, FamilyV
 
     ``rows`` are the motions' feature rows (:func:`~praxicon.description.feature_rows`);
     motions whose best action is alone in its family are left out of the answer.
+
+    Examples
+    --------
+    >>> from kinetology import synthetic_motion
+    >>> from praxicon.description import describe, feature_rows
+    >>> takes = {name: [synthetic_motion(3, joints, period=period, seed=s) for s in seeds]
+    ...          for name, joints, period, seeds in (("a.slow", (0,), 1.3, (1, 2, 3)),
+    ...                                              ("a.fast", (0,), 0.8, (4, 5, 6)),
+    ...                                              ("b", (2,), 1.0, (7, 8, 9)))}
+    >>> d = describe(takes, families={"a.slow": "a", "a.fast": "a"})
+    >>> new = [synthetic_motion(3, (0,), period=1.0, seed=10), synthetic_motion(3, (2,), seed=11)]
+    >>> verdicts = family_verdicts(d, feature_rows(new), ["a.slow", "b"])
+    >>> sorted(verdicts), verdicts[0].family  # b is alone: decided by its own description
+    ([0], 'a')
     """
     families = descriptions.families
     if families is None:
