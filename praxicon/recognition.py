@@ -100,7 +100,7 @@ class Recognition:
         lines = [f"{self.source}: {self.action or 'none of these'} (distance {self.penalty:.3f}"
                  f" per feature, threshold {self.threshold:.3f})"]
         if self.family:
-            lines.append(f"  none of these decided by the family {self.family} (the styles "
+            lines.append(f"  'none of these' tested by the family {self.family} (the styles "
                          f"of one content together)")
         if self.excess_group:
             lines.append(f"  furthest feature group: {self.excess_group}, {self.excess:.2f} x "

@@ -68,7 +68,7 @@ def test_a_members_none_of_these_is_its_familys_verdict(described, new):
             assert r.family == "a" == v.family
             assert r.action == (best[i] if v.accepted else None)
             assert (r.penalty, r.threshold, r.excess) == (v.penalty, v.threshold, v.excess)
-            assert "decided by the family a" in r.explain()
+            assert "'none of these' tested by the family a (" in r.explain()
         else:  # an action alone keeps its own test
             assert (r.action, r.family, r.penalty, r.excess) == (p.action, "", p.penalty,
                                                                    p.excess)
