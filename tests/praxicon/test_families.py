@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from kinetology import synthetic_motion
+from praxicon_fixtures import SHARED, needs_mocap
 from praxicon.description import (DescriptionError, Descriptions, describe,
                                   family_descriptions, feature_rows)
 from praxicon.recognition import family_verdicts, recognise_many
@@ -166,3 +167,31 @@ def test_the_build_groups_the_styles_of_a_content(monkeypatch):
     assert describe_praxicon(Praxicon(actions, Settings.make()), log=lambda _: None) is None
     assert seen == {"d.walk.happy": "d.walk", "d.walk.sad": "d.walk", "d.run.happy": "d.run"}
     assert np.array_equal(sorted(seen), sorted(a.name for a in actions))
+
+
+@needs_mocap()
+def test_a_bandai_folder_built_per_style_recognises_through_its_families(tmp_path):
+    """End to end on the shared data: two contents in two styles, takes 1-3 built (one
+    action per content and style), a take 4 of each recognised from the folder."""
+    import shutil
+
+    from praxicon import build, load, read_dataset, recognise
+
+    source = SHARED / "bandai-namco-2-subset"
+    folder = tmp_path / "bandai-small"
+    (folder / "data").mkdir(parents=True)
+    shutil.copytree(source / "cfg", folder / "cfg")
+    pairs = [(c, s) for c in ("run", "walk") for s in ("active", "normal")]
+    for content, style in pairs:
+        for take in (1, 2, 3):
+            for suffix in (".bvh", ".json"):
+                name = f"dataset-2_{content}_{style}_{take:03d}{suffix}"
+                (folder / "data" / name).symlink_to(source / "data" / name)
+    build(read_dataset(folder), tmp_path / "px", progress=False)
+    px = load(tmp_path / "px")
+    assert px.descriptions.family_of == ("bandai-small.run",) * 2 + ("bandai-small.walk",) * 2
+    for content, style in pairs:
+        found = recognise(tmp_path / "px", source / "data" /
+                          f"dataset-2_{content}_{style}_004.bvh")
+        assert found.family == f"bandai-small.{content}"
+        assert found.action == f"bandai-small.{content}.{style}"
