@@ -7,6 +7,7 @@ Reached from ``psgs`` through the entry-point group ``psgs.commands``
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 
@@ -118,7 +119,8 @@ def run_generate(args) -> int:
         try:
             result = generate(praxicon, args.action, repeat=args.repeat, style=args.style,
                               progress=_shaping_progress if live else None,
-                              workers=args.workers)
+                              # the cores, at most 4, as draw's default
+                              workers=args.workers or min(4, os.cpu_count() or 1))
         finally:  # the progress line ends before any answer or error is printed
             if live:
                 print(file=sys.stderr)
@@ -291,9 +293,10 @@ def _add_commands(sub) -> None:
                      help="the BVH file to write")
     gen.add_argument("--no-progress", action="store_true",
                      help="no progress line (shown only when stderr is a terminal)")
-    gen.add_argument("--workers", type=positive_int, default=1, metavar="N",
+    gen.add_argument("--workers", type=positive_int, default=None, metavar="N",
                      help="make N channels at once (threads: the correction's linear "
-                          "programmes on N cores; the motion is the same); default 1")
+                          "programmes on N cores; the motion is the same whatever N); "
+                          "default: the number of cores, at most 4")
     gen.add_argument("--style", default=None, metavar="STYLE",
                      help="generate that style of the action: a word of its performances' "
                           "file names (Bandai's dataset-2_walk_elderly_001.bvh is style "

@@ -178,3 +178,27 @@ def test_generate_view_labels_panels_by_file_name(manifest, tmp_path, capsys):
     assert title == f"{first} beside generated:moves.wave"
     assert capsys.readouterr().out.splitlines()[-1] == \
         f"{page}: performance (wave_1.bvh) beside generated"
+
+
+def test_generate_makes_as_many_channels_at_once_as_there_are_cores(manifest, tmp_path,
+                                                                   monkeypatch):
+    """The command's default --workers is the number of cores, at most 4 (as draw's);
+    the motion is the same whatever the number
+    (test_generate_in_threads_makes_the_same_motion)."""
+    import os
+
+    import praxicon.generation as generation
+
+    out = tmp_path / "px"
+    assert main(["build", str(manifest), "-o", str(out), "--no-progress"]) == 0
+    asked = []
+
+    def fake(*args, workers=1, **kwargs):
+        asked.append(workers)
+        raise ValueError("stop")
+
+    monkeypatch.setattr(generation, "generate", fake)
+    for extra, wanted in (([], min(4, os.cpu_count() or 1)), (["--workers", "3"], 3)):
+        assert main(["generate", str(out), "moves.wave", "-o", str(tmp_path / "w.bvh"),
+                     *extra]) == 2
+        assert asked.pop() == wanted
