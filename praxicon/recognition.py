@@ -43,7 +43,7 @@ from .description import (DescriptionError, Descriptions, feature_rows, mahalano
                           model_scores, own_columns, _part, probabilities, score_model)
 from .feature_groups import feature_groups, group_distances, telling_groups
 from .features import feature_joint
-from .records import _count
+from .records import REBUILD, Praxicon, _count
 
 __all__ = ["Recognition", "recognise", "recognise_many", "feature_matrix", "JointReason",
            "family_verdicts", "FamilyVerdict"]
@@ -65,7 +65,8 @@ class Recognition:
     ``ranking`` holds ``(action, probability)`` best first: the probabilities come from one
     log-likelihood per action, on one scale, and sum to 1 over the praxicon's actions.
     ``penalty`` is the best action's squared Mahalanobis distance per feature and
-    ``threshold`` the largest it may be for an answer other than None; ``missing`` names the
+    ``threshold`` the largest it may be for an answer other than None (when ``family`` is
+    set, these and ``excess`` are the family's, whose test decided); ``missing`` names the
     best-ranked action's joints the motion lacks (recognised over the joints it has),
     ``lacking`` the same per action shown, and ``unshared`` the actions that share no joint
     with the motion (ranked last, probability 0: learnt from another skeleton); ``reasons``
@@ -142,7 +143,11 @@ def _descriptions(source, *, windows: bool = False) -> Descriptions:
     found = getattr(source, "window_descriptions" if windows else "descriptions", None)
     if isinstance(found, Descriptions):  # a typed praxicon value
         return found
-    raise DescriptionError("recognise needs a praxicon (folder or value) or Descriptions")
+    who = "parse" if windows else "recognise"
+    if isinstance(source, Praxicon):  # read without them, or built before they were learnt
+        raise DescriptionError(f"{who}: this praxicon holds no descriptions (load(folder) "
+                               f"reads them; '{REBUILD}' learns them)")
+    raise DescriptionError(f"{who} needs a praxicon (folder or value) or Descriptions")
 
 
 def _motion(source):

@@ -30,9 +30,7 @@ from collections.abc import Iterable
 from dataclasses import replace
 from pathlib import Path
 
-import numpy as np
-
-from ._values import not_all
+from ._values import is_flag, not_all, shown
 from .records import (REBUILD, ActionRecord, Praxicon, PraxiconError, Settings, check_index,
                       name_problem)
 from .description import DescriptionError, Descriptions
@@ -233,9 +231,11 @@ def load(folder: str | Path, *, descriptions: bool = True) -> Praxicon:
     PraxiconError
         One line naming the file: a path that does not exist, a folder that is not a
         praxicon, a praxicon of another format version (the line names the command that
-        rebuilds it), a damaged index, record or ``descriptions.json`` (the line and column
-        of what is not JSON; the field of a value out of its range), or descriptions
-        learnt from other records than the folder's (left by an interrupted build).
+        rebuilds it), a damaged index or record, or (unless ``descriptions=False``) a damaged
+        ``descriptions.json`` (the line and column of what is not JSON; the field of a value
+        out of its range), descriptions of another format, or descriptions learnt from other
+        records than the folder's (left by an interrupted build); ``descriptions`` that is
+        not True or False.
 
     Examples
     --------
@@ -246,8 +246,8 @@ def load(folder: str | Path, *, descriptions: bool = True) -> Praxicon:
     praxicon.records.PraxiconError: ...: not a praxicon folder (no index.json; build one with 'psgs praxicon build DATASET... -o FOLDER')
     """
     folder = _folder(folder)
-    if not isinstance(descriptions, (bool, np.bool_)):
-        raise PraxiconError(f"descriptions must be True or False, not {descriptions!r}")
+    if not is_flag(descriptions):
+        raise PraxiconError(f"descriptions must be True or False, not {shown(descriptions)}")
     if not folder.exists():
         raise PraxiconError(f"{folder}: no such praxicon folder")
     if not folder.is_dir():

@@ -178,6 +178,8 @@ def test_a_bandai_folder_built_per_style_recognises_through_its_families(tmp_pat
     from praxicon import build, load, read_dataset, recognise
 
     source = SHARED / "bandai-namco-2-subset"
+    if not source.is_dir():
+        pytest.skip("../shared/data/mocap/bandai-namco-2-subset is absent")
     folder = tmp_path / "bandai-small"
     (folder / "data").mkdir(parents=True)
     shutil.copytree(source / "cfg", folder / "cfg")
@@ -186,8 +188,8 @@ def test_a_bandai_folder_built_per_style_recognises_through_its_families(tmp_pat
         for take in (1, 2, 3):
             for suffix in (".bvh", ".json"):
                 name = f"dataset-2_{content}_{style}_{take:03d}{suffix}"
-                (folder / "data" / name).symlink_to(source / "data" / name)
-    build(read_dataset(folder), tmp_path / "px", progress=False)
+                shutil.copyfile(source / "data" / name, folder / "data" / name)
+    build(read_dataset(folder, group_by="content,style"), tmp_path / "px", progress=False)
     px = load(tmp_path / "px")
     assert px.descriptions.family_of == ("bandai-small.run",) * 2 + ("bandai-small.walk",) * 2
     for content, style in pairs:

@@ -53,3 +53,15 @@ def test_generation_loads_without_the_descriptions(old_folder):
 def test_the_flag_is_a_bool(old_folder, value):
     with pytest.raises(PraxiconError, match="descriptions must be True or False"):
         load(old_folder, descriptions=value)
+
+
+def test_recognise_and_parse_say_a_praxicon_read_without_descriptions_has_none(old_folder):
+    from kinetology import synthetic_motion
+    from praxicon import parse, recognise
+    from praxicon.description import DescriptionError
+
+    px = load(old_folder, descriptions=False)
+    for name, call in (("recognise", recognise), ("parse", parse)):
+        with pytest.raises(DescriptionError, match=f"^{name}: this praxicon holds no "
+                                                   f"descriptions \\(load\\(folder\\) reads"):
+            call(px, synthetic_motion(3, seed=1))
