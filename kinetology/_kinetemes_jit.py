@@ -23,12 +23,12 @@ Without numba this module still imports (the functions are then plain Python, wh
 from __future__ import annotations
 
 import math
-import os
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
 from psgs._foundation.engines import jit as _jit
+from psgs._foundation.engines import usable_cores
 
 from ._kinetemes import _PERCENTILE_SAMPLES, gaussian_kernel, pad_odd
 
@@ -324,9 +324,7 @@ def thread_count(channels: int, frames: int) -> int:
     ``NUMBA_NUM_THREADS``), one for small takes, and at least two channels a thread."""
     if channels * frames < _THREADED_SAMPLES:
         return 1
-    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else \
-        (os.cpu_count() or 1)
-    return max(1, min(cores, numba.config.NUMBA_NUM_THREADS, channels // 2))
+    return max(1, min(usable_cores(), numba.config.NUMBA_NUM_THREADS, channels // 2))
 
 
 def _in_threads(threads: int, job) -> list:

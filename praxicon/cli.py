@@ -7,10 +7,10 @@ Reached from ``psgs`` through the entry-point group ``psgs.commands``
 
 from __future__ import annotations
 
-import os
 import sys
 from pathlib import Path
 
+from psgs._foundation.engines import usable_cores
 from psgs._foundation.shell import NO, key_values, positive_int
 from psgs.errors import ValidationError
 
@@ -120,7 +120,7 @@ def run_generate(args) -> int:
             result = generate(praxicon, args.action, repeat=args.repeat, style=args.style,
                               progress=_shaping_progress if live else None,
                               # the cores, at most 4, as draw's default
-                              workers=args.workers or min(4, os.cpu_count() or 1))
+                              workers=args.workers or min(4, usable_cores()))
         finally:  # the progress line ends before any answer or error is printed
             if live:
                 print(file=sys.stderr)

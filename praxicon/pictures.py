@@ -334,9 +334,9 @@ def _system_picture(text: str, source: str, path: Path, engine: str = "matplotli
 
 
 def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> list[Path]:
-    import os
     from concurrent.futures import ThreadPoolExecutor
 
+    from psgs._foundation.engines import usable_cores
     from psgs.draw import graphviz_available
     from psgs.errors import ValidationError
 
@@ -374,7 +374,7 @@ def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> lis
     # matplotlib draws the systems too, in processes of their own (its labels' layout is the
     # time, one core each)
     dot = graphviz_available() and drawn
-    many = workers or min(4, os.cpu_count() or 1)
+    many = workers or min(4, usable_cores())
     pool = None
     if dot:
         pool = ThreadPoolExecutor(max_workers=many)

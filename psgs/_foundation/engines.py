@@ -15,6 +15,7 @@ once per installed copy) is announced on stderr by one line.
 
 from __future__ import annotations
 
+import os
 import sys
 from collections.abc import Callable
 from functools import lru_cache
@@ -22,7 +23,7 @@ from typing import TypeVar
 
 from ..errors import MissingDependency, ValidationError
 
-__all__ = ["ENGINES", "resolve", "select", "for_input", "jit", "numba_missing"]
+__all__ = ["ENGINES", "resolve", "select", "for_input", "jit", "numba_missing", "usable_cores"]
 
 #: The engine names every algorithm with two engines accepts.
 ENGINES = ("auto", "numpy", "numba")
@@ -242,3 +243,20 @@ def jit(function: F) -> F:
     import numba
 
     return numba.njit(cache=True, nogil=True)(function)
+
+
+def usable_cores() -> int:
+    """How many CPUs this process may run on: its affinity where the system has one (a
+    container or ``taskset`` limits it below the machine's count), else the machine's.
+
+    Every default number of threads or processes starts from this, so that none asks for
+    more cores than the process has.
+
+    Examples
+    --------
+    >>> usable_cores() >= 1
+    True
+    """
+    if hasattr(os, "sched_getaffinity"):
+        return max(1, len(os.sched_getaffinity(0)))
+    return os.cpu_count() or 1

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import functools
 import math
-import os
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
@@ -12,7 +11,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..._foundation.engines import select
+from ..._foundation.engines import select, usable_cores
 from .statistics import log10_binom_sf, log10_poisson_sf, scan_threshold
 
 if TYPE_CHECKING:
@@ -249,7 +248,7 @@ def _search_all(jit, flat, bounds, sizes, stats, conf):
             float(conf.conserve), float(conf.match_fraction), float(conf.scan_alpha),
             conf.max_pattern) + out
     middle = int(np.searchsorted(bounds, len(flat) / 2))
-    if len(flat) < _THREADED_SYMBOLS or (os.cpu_count() or 1) < 2 or not 0 < middle < count:
+    if len(flat) < _THREADED_SYMBOLS or usable_cores() < 2 or not 0 < middle < count:
         jit.search_strings(flat, bounds, 0, count, *args)
         return out
     with ThreadPoolExecutor(2) as pool:  # the kernel releases the GIL (nogil)
