@@ -189,11 +189,16 @@ def test_a_bandai_folder_built_per_style_recognises_through_its_families(tmp_pat
             for suffix in (".bvh", ".json"):
                 name = f"dataset-2_{content}_{style}_{take:03d}{suffix}"
                 shutil.copyfile(source / "data" / name, folder / "data" / name)
-    build(read_dataset(folder, group_by="content,style"), tmp_path / "px", progress=False)
+    built = build(read_dataset(folder, group_by="content,style"), tmp_path / "px",
+                  progress=False)
     px = load(tmp_path / "px")
+    assert px == built.praxicon  # the families come back from the folder as learnt
     assert px.descriptions.family_of == ("bandai-small.run",) * 2 + ("bandai-small.walk",) * 2
     for content, style in pairs:
         found = recognise(tmp_path / "px", source / "data" /
                           f"dataset-2_{content}_{style}_004.bvh")
         assert found.family == f"bandai-small.{content}"
         assert found.action == f"bandai-small.{content}.{style}"
+        # the same answer from the praxicon in memory, every number equal
+        assert found == recognise(built.praxicon, source / "data" /
+                                  f"dataset-2_{content}_{style}_004.bvh")
