@@ -501,10 +501,10 @@ def family_descriptions(rows: dict[str, list], families: Mapping[str, str], *,
     """``(descriptions of the families, {action: its family or ""})`` from each action's
     feature rows (:func:`feature_rows`); ``(None, ...)`` when no family has two actions.
 
-    A family's takes are its members' takes together (the choice of features holds a member
-    out at a time, as a style not learnt); an action alone is its own family, named by its
-    own name and learnt from its takes alone, so that the families' "none of these" reads
-    the groups that tell a family from every other learnt content.
+    A family's takes are its members' takes together (the choice of features holds whole
+    members out, as styles not learnt, in five folds); an action alone is its own family,
+    named by its own name and learnt from its takes alone, so that the families' "none of
+    these" reads the groups that tell a family from every other learnt content.
 
     Examples
     --------
