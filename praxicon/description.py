@@ -57,6 +57,7 @@ from ._description_json import (FieldError, action_fields, check_format, check_w
 from .calibration import (_FOLDS, _MARGIN, _RANK, GROUP_LEVEL, fit_spread,  # noqa: F401
                           group_limits, scale_floors)
 from .calibration import calibrate as _calibrate
+from .feature_choice import _FOLDS as _CHOICE_FOLDS
 from .feature_choice import choose_features
 from .features import FeatureError, feature_joint, motion_features
 # the model and its scores live in .scoring; the names below are this module's as well, for
@@ -544,9 +545,9 @@ def family_descriptions(rows: dict[str, list], families: Mapping[str, str], *,
         # five folds, as without groups: a family's members dealt into them (a member held
         # out whole, as a style not learnt), an action alone's takes dealt in turn; a fold per
         # member made 20 folds on the shared data, four times the time for the same choice
-        groups[key] = ([f"fold {k % _FOLDS}" for k, n in enumerate(names) for _ in rows[n]]
-                       if len(names) > 1 else
-                       [f"fold {i % _FOLDS}" for i in range(len(rows[key]))])
+        groups[key] = ([f"fold {k % _CHOICE_FOLDS}" for k, n in enumerate(names)
+                        for _ in rows[n]] if len(names) > 1 else
+                       [f"fold {i % _CHOICE_FOLDS}" for i in range(len(rows[key]))])
     order, table = common_table(table_rows)
     if choose:
         order, table = chosen_table(table, order, groups=groups, rank=rank)

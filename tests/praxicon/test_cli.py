@@ -185,9 +185,8 @@ def test_generate_makes_as_many_channels_at_once_as_there_are_cores(manifest, tm
     """The command's default --workers is the number of cores, at most 4 (as draw's);
     the motion is the same whatever the number
     (test_generate_in_threads_makes_the_same_motion)."""
-    import os
-
     import praxicon.generation as generation
+    from psgs._foundation.engines import usable_cores
 
     out = tmp_path / "px"
     assert main(["build", str(manifest), "-o", str(out), "--no-progress"]) == 0
@@ -198,7 +197,7 @@ def test_generate_makes_as_many_channels_at_once_as_there_are_cores(manifest, tm
         raise ValueError("stop")
 
     monkeypatch.setattr(generation, "generate", fake)
-    for extra, wanted in (([], min(4, os.cpu_count() or 1)), (["--workers", "3"], 3)):
+    for extra, wanted in (([], min(4, usable_cores())), (["--workers", "3"], 3)):
         assert main(["generate", str(out), "moves.wave", "-o", str(tmp_path / "w.bvh"),
                      *extra]) == 2
         assert asked.pop() == wanted
