@@ -20,6 +20,7 @@ only learning the action again from its takes tells what it should hold).
 from __future__ import annotations
 
 import math
+import os
 import re
 import stat
 import tempfile
@@ -166,6 +167,20 @@ def _strays(folder: Path, expected: dict[str, bytes]) -> list[str]:
     return problems
 
 
+def _loaded(folder):
+    """``(praxicon, "")`` as :func:`~praxicon.load` reads ``folder``; when only its
+    descriptions are refused (damaged, of another format, learnt from other records),
+    ``(praxicon without them, load's line)``, so that every other file is still checked.
+    Anything else ``load`` refuses is its :class:`PraxiconError`."""
+    try:
+        return load(folder), ""
+    except PraxiconError as exc:
+        path = Path(folder) / FILE if isinstance(folder, (str, os.PathLike)) else None
+        if path is None or not str(exc).startswith(f"{path}:"):
+            raise
+        return load(folder, descriptions=False), str(exc)
+
+
 def verify(folder) -> Verification:
     """Check every file of a praxicon folder against what its records give.
 
@@ -184,8 +199,9 @@ def verify(folder) -> Verification:
     Raises
     ------
     PraxiconError
-        When :func:`~praxicon.load` refuses the folder (its index, a record or the
-        descriptions damaged): the same line ``load`` gives.
+        When :func:`~praxicon.load` refuses the folder's index or a record: the same line
+        ``load`` gives (descriptions it refuses are one of the problems, and every other file
+        is still checked).
 
     Examples
     --------
@@ -200,14 +216,16 @@ def verify(folder) -> Verification:
     >>> print(*verify(folder).problems)  # doctest: +ELLIPSIS
     /.../px/actuators.csv: differs from what the records give (line 1, column 7: 'actions' where the records give 'action')
     """
-    praxicon = load(folder)
+    praxicon, refused = _loaded(folder)
     folder = Path(folder)
     expected = _expected(praxicon)
     problems = [p for p in (_compare(folder, name, data) for name, data in expected.items())
                 if p]
     timing = _timings(folder, set(praxicon.names))
     problems += [timing] if timing else []
-    if praxicon.descriptions is None and any(a.learnt for a in praxicon.actions):
+    if refused:
+        problems.append(refused)
+    elif praxicon.descriptions is None and any(a.learnt for a in praxicon.actions):
         problems.append(f"{folder / FILE}: missing: recognise and parse cannot read the "
                         f"folder (learn the descriptions: '{REBUILD}' resumes the build)")
     problems += _strays(folder, expected)
@@ -220,8 +238,10 @@ def repair(folder) -> Verification:
     then verify it.
 
     The index's names and settings, every record and the descriptions are what the files
-    are written from, so a folder ``load`` refuses is not repaired (the
-    :class:`PraxiconError` says why; ``psgs praxicon build`` learns a damaged record again);
+    are written from, so a folder whose index or records ``load`` refuses is not repaired
+    (the :class:`PraxiconError` says why; ``psgs praxicon build`` learns a damaged record
+    again), and descriptions it refuses (damaged, of an older format) are left as they are
+    and reported (``build`` into the folder learns them again);
     the derived files are written anew, and the index, records and descriptions in the
     canonical form ``build`` writes (a key ``load`` does not read, added by hand to a
     record, is dropped). Stray files, a damaged ``timings.json`` and missing descriptions
@@ -249,7 +269,7 @@ def repair(folder) -> Verification:
     >>> verify(folder).intact, repair(folder).intact
     (False, True)
     """
-    praxicon = load(folder)
+    praxicon, _ = _loaded(folder)  # refused descriptions are left as they are
     try:
         dump(praxicon, folder)
     except OSError as exc:  # a folder in a file's place, a full disk: the file's line

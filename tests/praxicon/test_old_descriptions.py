@@ -65,3 +65,27 @@ def test_recognise_and_parse_say_a_praxicon_read_without_descriptions_has_none(o
         with pytest.raises(DescriptionError, match=f"^{name}: this praxicon holds no "
                                                    f"descriptions \\(load\\(folder\\) reads"):
             call(px, synthetic_motion(3, seed=1))
+
+
+def test_verify_reports_old_descriptions_and_checks_every_other_file(old_folder):
+    from praxicon import repair, verify
+
+    (old_folder / "shared.json").unlink()
+    old = (old_folder / "descriptions.json").read_bytes()
+    found = verify(old_folder)
+    assert found.problems == (
+        f"{old_folder / 'descriptions.json'}: descriptions of version 4, this psgs reads "
+        f"version 5 (learn them again: 'psgs praxicon build DATASET... -o FOLDER' resumes the "
+        f"build and describes its actions)",
+        f"{old_folder / 'shared.json'}: missing")
+    mended = repair(old_folder)  # the derived files again; the descriptions left for build
+    assert mended.problems == found.problems[:1]
+    assert (old_folder / "descriptions.json").read_bytes() == old
+
+
+def test_verify_still_refuses_a_folder_whose_records_load_refuses(old_folder):
+    from praxicon import verify
+
+    (old_folder / "records" / "moves.wave.json").write_text("[]")
+    with pytest.raises(PraxiconError, match=r"moves\.wave\.json: not a praxicon record file"):
+        verify(old_folder)
