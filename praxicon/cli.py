@@ -231,9 +231,9 @@ def run_verify(args) -> int:
         print(f"{found.folder}: {done}whole: {found.checked} files as its records give",
               file=sys.stderr)
         return 0
-    print(f"{found.folder}: {done}{len(found.problems)} problem(s)"
-          + ("" if args.repair else " (--repair writes the derived files again from the records)"),
-          file=sys.stderr)
+    hint = (f" ({found.repairable} of them --repair writes again from the records)"
+            if found.repairable and not args.repair else "")
+    print(f"{found.folder}: {done}{len(found.problems)} problem(s){hint}", file=sys.stderr)
     return NO
 
 

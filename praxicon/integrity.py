@@ -51,11 +51,15 @@ class Verification:
     problems : tuple of str
         One line per damaged, missing or stray file, naming the file (and for a file that
         differs, the first line that does), sorted by file; empty for a whole folder.
+    repairable : int
+        How many of the problems :func:`repair` mends: files missing or differing from what
+        the records give (not stray files, timings or descriptions ``load`` refuses).
     """
 
     folder: str
     checked: int
     problems: tuple[str, ...]
+    repairable: int = 0  # how many of the problems repair mends (files missing or differing)
 
     @property
     def intact(self) -> bool:
@@ -221,6 +225,8 @@ def verify(folder) -> Verification:
     expected = _expected(praxicon)
     problems = [p for p in (_compare(folder, name, data) for name, data in expected.items())
                 if p]
+    repairable = sum(p.endswith(": missing") or ": differs from what the records give" in p
+                     for p in problems)
     timing = _timings(folder, set(praxicon.names))
     problems += [timing] if timing else []
     if refused:
@@ -230,7 +236,7 @@ def verify(folder) -> Verification:
                         f"folder (learn the descriptions: '{REBUILD}' resumes the build)")
     problems += _strays(folder, expected)
     checked = len(expected) + (folder / "timings.json").exists()
-    return Verification(str(folder), checked, tuple(sorted(problems)))
+    return Verification(str(folder), checked, tuple(sorted(problems)), repairable)
 
 
 def repair(folder) -> Verification:

@@ -175,7 +175,7 @@ def test_the_command_exits_0_1_2_and_repairs(seed_folder, tmp_path, capsys):
     assert _run([str(folder)]) == 1
     out, err = capsys.readouterr()
     assert out == f"{folder / 'shared.json'}: missing\n"
-    assert "1 problem(s) (--repair writes the derived files again" in err
+    assert err.endswith("1 problem(s) (1 of them --repair writes again from the records)\n")
     assert _run([str(folder), "--repair"]) == 0
     assert capsys.readouterr().err.strip() == (f"{folder}: repaired; whole: 9 files as its "
                                                f"records give")
@@ -235,3 +235,14 @@ def test_learnt_actions_without_their_descriptions_are_named(seed_folder, tmp_pa
     assert problem.startswith(f"{folder / 'descriptions.json'}: missing: recognise and parse "
                               f"cannot read the folder")
     assert repair(folder).problems == (problem,)  # not made up from nothing
+
+
+def test_repairable_counts_the_files_repair_mends(seed_folder, tmp_path):
+    folder = _copy(seed_folder, tmp_path)
+    (folder / "shared.json").unlink()
+    (folder / "actuators.csv").write_text("action\n")
+    (folder / "moves.jump.psgs").write_text("stray")
+    (folder / "timings.json").write_text("[]")
+    found = verify(folder)
+    assert len(found.problems) == 4 and found.repairable == 2
+    assert repair(folder).repairable == 0
