@@ -242,7 +242,7 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
         write_shared(out, result)
     # the build's last step: what recognition and parsing read, learnt from every learnt
     # action's performances together (the actions share one spread)
-    result = _described(out, result, log)
+    result = _described(out, result, log, announce=progress)
     return BuildResult(result, tuple(sorted(learnt)), tuple(sorted(skipped)),
                        tuple(sorted(failed)), tuple(refused))
 
@@ -289,9 +289,11 @@ def describe_praxicon(praxicon: Praxicon, *, log=print):
         return None
 
 
-def _described(out: Path, praxicon: Praxicon, log) -> Praxicon:
+def _described(out: Path, praxicon: Praxicon, log, announce: bool = False) -> Praxicon:
     """``praxicon`` with its descriptions: the folder's when they were learnt from the same
-    actions, else learnt now and written (``descriptions.json``)."""
+    actions, else learnt now and written (``descriptions.json``); ``announce``: say so on
+    stderr first (after the progress bar it is the build's one silent step, 15 s on the
+    shared data)."""
     key = descriptions_key(praxicon)
     try:
         found = read_descriptions_file(out)
@@ -303,6 +305,10 @@ def _described(out: Path, praxicon: Praxicon, log) -> Praxicon:
     else:
         # not left in place while they are learnt anew: an interruption then leaves none
         (out / FILE).unlink(missing_ok=True)
+        if announce:
+            count = sum(a.learnt for a in praxicon.actions)
+            print(f"praxicon: describing the {count} learnt action(s) for recognise and "
+                  f"parse ...", file=sys.stderr, flush=True)
         learnt = describe_praxicon(praxicon, log=log)
         if learnt is None:  # and none that would describe other actions
             return praxicon

@@ -201,3 +201,16 @@ def test_generate_makes_as_many_channels_at_once_as_there_are_cores(manifest, tm
         assert main(["generate", str(out), "moves.wave", "-o", str(tmp_path / "w.bvh"),
                      *extra]) == 2
         assert asked.pop() == wanted
+
+
+def test_the_build_says_when_it_describes_the_actions(manifest, tmp_path, capsys):
+    """After the progress bar, learning the descriptions is announced (a silent step of
+    seconds on a large praxicon); not again when a resumed build keeps them."""
+    out = tmp_path / "px"
+    assert main(["build", str(manifest), "-o", str(out)]) == 0
+    assert "praxicon: describing the 2 learnt action(s) for recognise and parse ..." \
+        in capsys.readouterr().err
+    assert main(["build", str(manifest), "-o", str(out)]) == 0
+    assert "describing" not in capsys.readouterr().err
+    assert main(["build", str(manifest), "-o", str(tmp_path / "quiet"), "--no-progress"]) == 0
+    assert "describing" not in capsys.readouterr().err
