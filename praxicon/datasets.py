@@ -12,9 +12,9 @@ span of it or the whole take). Three layouts are read out of the box:
   ``12t .. 12t+11``, read by :func:`kinetology.read_cmu_truelabels`); each run of
   one label lasting ``MIN_SPAN_SECONDS`` or more is one performance of that exercise.
 * a **manifest**, CSV (columns ``action,file,start,stop``; start/stop in seconds,
-  optional, empty = the whole take) or TOML (``[[performance]]`` tables with the
-  same keys), for any other database. Relative file paths are relative to the
-  manifest's folder.
+  optional, empty = the whole take; an optional ``style`` column) or TOML
+  (``[[performance]]`` tables with the same keys), for any other database. Relative
+  file paths are relative to the manifest's folder; styles group as a Bandai folder's.
 
 A problem found while reading (a label file that disagrees with its motion, an
 unreadable label file) never stops the reading: it is kept in the action's
@@ -157,12 +157,7 @@ def _read_bandai(root: Path, group_by: tuple[str, ...] | None) -> list[Action]:
         problem = _bandai_label_problem(path, content, style)
         takes.append((content, style, None if problem else Performance(_shown_path(path)),
                       problem))
-    if group_by is None:  # content,style where most styles have several takes, else content
-        per_pair: dict[tuple[str, str], int] = defaultdict(int)
-        for content, style, _, _ in takes:
-            per_pair[content, style] += 1
-        several = sum(n >= 2 for n in per_pair.values())
-        group_by = ("content", "style") if 2 * several > len(per_pair) else ("content",)
+    group_by = _grouping([(content, style) for content, style, _, _ in takes], group_by)
     groups: dict[tuple[str, str | None], list] = defaultdict(list)
     for content, style, perf, problem in takes:
         key = (content, style if "style" in group_by else None)
@@ -175,6 +170,19 @@ def _read_bandai(root: Path, group_by: tuple[str, ...] | None) -> list[Action]:
                               tuple(p for p, _ in members if p is not None),
                               tuple(q for _, q in members if q)))
     return actions
+
+
+def _grouping(pairs, group_by: tuple[str, ...] | None) -> tuple[str, ...]:
+    """``group_by``, or by default ``("content", "style")`` where most of the takes'
+    (content, style) ``pairs`` have several takes, else ``("content",)`` (a pair of one take
+    would be an action of a single performance)."""
+    if group_by is not None:
+        return group_by
+    per_pair: dict[tuple, int] = defaultdict(int)
+    for pair in pairs:
+        per_pair[pair] += 1
+    several = sum(n >= 2 for n in per_pair.values())
+    return ("content", "style") if 2 * several > len(per_pair) else ("content",)
 
 
 def _bandai_label_problem(path: Path, content: str, style: str) -> str | None:
@@ -259,7 +267,7 @@ def _manifest_text(path: Path) -> str:
             from None
 
 
-def _read_manifest(path: Path) -> list[Action]:
+def _read_manifest(path: Path, group_by: tuple[str, ...] | None = None) -> list[Action]:
     rows: list[tuple[str, dict]] = []
     text = _manifest_text(path)
     if path.suffix.lower() == ".toml":
@@ -294,7 +302,7 @@ def _read_manifest(path: Path) -> list[Action]:
             rows = [(f"{_shown_path(path)}:{lines.number}", row) for row in reader]
         except csv.Error as exc:  # e.g. a field longer than the csv module's limit
             raise DatasetError(f"{_shown_path(path)}:{lines.number}: {exc}") from None
-    groups: dict[str, list[Performance]] = defaultdict(list)
+    takes: list[tuple[str, str | None, Performance]] = []
     for where, row in rows:
         if any(str(cell).strip() for cell in row.get(None, ())):
             # cells past the header's, which would be dropped without a word (empty ones
@@ -312,11 +320,22 @@ def _read_manifest(path: Path) -> list[Action]:
         stop = _optional_seconds(row.get("stop"), where)
         if start is not None and stop is not None and stop <= start:
             raise DatasetError(f"{where}: stop {stop} is not after start {start}")
-        groups[str(action)].append(Performance(_shown_path(file_path), start, stop,
-                                               _shown_path(path)))
+        style = row.get("style")
+        if style is not None and not isinstance(style, str):
+            raise DatasetError(f"{where}: style must be text, not {shown(style)}")
+        takes.append((str(action), style.strip() or None if style else None,
+                      Performance(_shown_path(file_path), start, stop, _shown_path(path))))
+    # a style column groups as a Bandai folder's styles do (one action per action and style
+    # where most pairs have several performances); without one, an action a row names
+    group_by = _grouping([(a, s) for a, s, _ in takes], group_by)
+    groups: dict[tuple[str, str | None], list[Performance]] = defaultdict(list)
+    for action, style, performance in takes:
+        groups[action, style if "style" in group_by else None].append(performance)
     dataset = path.stem
-    return [Action(f"{_name_part(dataset)}.{_name_part(a)}", dataset, a, None, tuple(p))
-            for a, p in sorted(groups.items())]
+    return [Action(".".join(_name_part(p) for p in (dataset, a, style) if p), dataset, a, style,
+                   tuple(p))
+            for (a, style), p in sorted(groups.items(), key=lambda kv: (kv[0][0],
+                                                                        kv[0][1] or ""))]
 
 
 # -- entry points ------------------------------------------------------------------------------
@@ -339,7 +358,8 @@ def read_dataset(path: str | Path, group_by: str | None = None) -> list[Action]:
     path : str or Path
         A Bandai-style folder, a cmu-mocap6 folder, or a ``.csv``/``.toml`` manifest.
     group_by : {"content", "content,style"}, optional
-        For datasets with styles: one action per content, or per content and style.
+        For datasets with styles (a Bandai folder's file names, a manifest's ``style``
+        column): one action per content, or per content and style.
         Default: ``"content,style"`` when most (content, style) pairs have several
         takes (Bandai dataset 2), else ``"content"`` (Bandai dataset 1 has one take
         of most pairs, so a (content, style) action would be a single performance).
@@ -372,7 +392,7 @@ def read_dataset(path: str | Path, group_by: str | None = None) -> list[Action]:
     if path.is_dir() and (path / "amc").is_dir() and (path / "truelabels").is_dir():
         return _checked_names(_read_cmu_mocap6(path, parts), path)
     if path.is_file() and path.suffix.lower() in (".csv", ".toml"):
-        return _checked_names(_read_manifest(path), path)
+        return _checked_names(_read_manifest(path, parts), path)
     if not path.exists():
         raise DatasetError(f"{_shown_path(path)}: no such file or folder")
     raise DatasetError(f"{_shown_path(path)}: not a known dataset layout (a Bandai folder with "

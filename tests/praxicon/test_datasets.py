@@ -29,6 +29,47 @@ def test_toml_manifest(tmp_path):
     assert [(p.start, p.stop) for p in action.performances] == [(1.5, 3.0), (None, None)]
 
 
+def test_a_manifest_style_column_groups_as_a_bandai_folders_styles(tmp_path):
+    (tmp_path / "m.csv").write_text(
+        "action,file,style\nwalk,a.bvh,happy\nwalk,b.bvh, happy\nwalk,c.bvh,sad\n"
+        "walk,d.bvh,sad\nrun,e.bvh,\nrun,f.bvh,\n")
+    by_style = read_dataset(tmp_path / "m.csv")  # most pairs have several: per style
+    assert [(a.name, a.content, a.style, len(a.performances)) for a in by_style] == [
+        ("m.run", "run", None, 2), ("m.walk.happy", "walk", "happy", 2),
+        ("m.walk.sad", "walk", "sad", 2)]
+    by_content = read_dataset(tmp_path / "m.csv", "content")
+    assert [(a.name, a.style, len(a.performances)) for a in by_content] == [
+        ("m.run", None, 2), ("m.walk", None, 4)]
+    (tmp_path / "n.toml").write_text(
+        '[[performance]]\naction = "wave"\nfile = "a.bvh"\nstyle = "calm"\n'
+        '[[performance]]\naction = "wave"\nfile = "b.bvh"\nstyle = "calm"\n')
+    (wave,) = read_dataset(tmp_path / "n.toml")
+    assert (wave.name, wave.content, wave.style) == ("n.wave.calm", "wave", "calm")
+    (tmp_path / "o.toml").write_text('[[performance]]\naction = "wave"\nfile = "a.bvh"\n'
+                                     'style = 3\n')
+    with pytest.raises(DatasetError, match="performance 1: style must be text, not 3"):
+        read_dataset(tmp_path / "o.toml")
+
+
+def test_a_manifest_built_per_style_has_families(tmp_path):
+    """The styles a manifest names become families, as a Bandai folder's do."""
+    from praxicon import build, load
+    from praxicon_fixtures import write_manifest
+
+    data = tmp_path / "data"
+    data.mkdir()
+    path = write_manifest(data, {"wave": [1, 2, 3, 4], "step": [5, 6, 7, 8]})
+    lines = path.read_text().splitlines()
+    rows = [f"{line},{'calm' if int(line.split('_')[1].split('.')[0]) % 2 else 'brisk'}"
+            for line in lines[1:]]
+    path.write_text("\n".join([lines[0] + ",style", *rows]) + "\n")
+    build(read_dataset(path), tmp_path / "px", progress=False, log=lambda line: None)
+    px = load(tmp_path / "px")
+    assert px.names == ("moves.step.brisk", "moves.step.calm", "moves.wave.brisk",
+                        "moves.wave.calm")
+    assert px.descriptions.family_of == ("moves.step",) * 2 + ("moves.wave",) * 2
+
+
 @pytest.mark.parametrize("text, message", [
     ("file\na.bvh\n", "manifest needs columns action,file"),
     ("action,file,start,stop\nwave,a.bvh,two,\n", "start/stop must be seconds"),
