@@ -20,23 +20,18 @@ only learning the action again from its takes tells what it should hold).
 from __future__ import annotations
 
 import math
-import os
-import re
 import stat
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
-from .jsonvalues import read_json
+from ._values import shown
 from .description_store import FILE
+from .jsonvalues import read_json
 from .records import REBUILD, PraxiconError
-from .store import dump, load
+from .store import TEMPORARY_NAME, dump, load
 
 __all__ = ["Verification", "verify", "repair"]
-
-#: What ``write_atomic`` names a file while it is written (``.NAME.PID.tmp``).
-_TEMPORARY = re.compile(r"^\..+\.\d+\.tmp$")
-
 
 @dataclass(frozen=True)
 class Verification:
@@ -111,23 +106,25 @@ def _shown(text: str, start: int) -> str:
     return repr(("..." if start else "") + shown + ("..." if len(text) > start + 60 else ""))
 
 
-def _compare(folder: Path, name: str, expected: bytes) -> str | None:
-    """The problem with ``folder/name`` against ``expected``, or None."""
+def _compare(folder: Path, name: str, expected: bytes) -> tuple[str, bool] | None:
+    """The problem with ``folder/name`` against ``expected`` and whether :func:`repair`
+    mends it (a file missing or differing; not one that cannot be written over), or None."""
     path = folder / name
     if not path.exists():
-        return f"{path}: missing"
+        return f"{path}: missing", True
     try:
         if not stat.S_ISREG(path.stat().st_mode):
-            return f"{path}: not a file"
+            return f"{path}: not a file", False
         # no more than one byte past what the records give: a file grown to gigabytes is
         # "longer", not read whole
         with open(path, "rb") as handle:
             found = handle.read(len(expected) + 1)
     except OSError as exc:
-        return f"{path}: cannot be read ({exc.strerror or exc})"
+        return f"{path}: cannot be read ({exc.strerror or exc})", False
     if found == expected:
         return None
-    return f"{path}: differs from what the records give ({_first_difference(found, expected)})"
+    return (f"{path}: differs from what the records give "
+            f"({_first_difference(found, expected)})"), True
 
 
 def _timings(folder: Path, names: set[str]) -> str | None:
@@ -146,9 +143,8 @@ def _timings(folder: Path, names: set[str]) -> str | None:
             return f"{path}: {name!r} is no action of index.json"
         if isinstance(seconds, bool) or not isinstance(seconds, (int, float)) \
                 or (isinstance(seconds, float) and not math.isfinite(seconds)) or seconds < 0:
-            shown = repr(seconds)
-            shown = shown if len(shown) <= 40 else shown[:37] + "..."
-            return f"{path}: {name!r}: seconds must be a number 0 or more, not {shown}"
+            return (f"{path}: {name!r}: seconds must be a number 0 or more, not "
+                    f"{shown(seconds, 40)}")
     return None
 
 
@@ -162,7 +158,7 @@ def _strays(folder: Path, expected: dict[str, bytes]) -> list[str]:
         name = path.relative_to(folder).as_posix()
         if name in expected:
             continue
-        if _TEMPORARY.match(path.name):
+        if TEMPORARY_NAME.match(path.name):
             problems.append(f"{path}: a temporary file left by an interrupted write")
         elif path.suffix == ".psgs":
             problems.append(f"{path}: the system of no learnt action of index.json")
@@ -175,13 +171,11 @@ def _loaded(folder):
     """``(praxicon, "")`` as :func:`~praxicon.load` reads ``folder``; when only its
     descriptions are refused (damaged, of another format, learnt from other records),
     ``(praxicon without them, load's line)``, so that every other file is still checked.
-    Anything else ``load`` refuses is its :class:`PraxiconError`."""
+    Anything else ``load`` refuses is its :class:`PraxiconError` (read without the
+    descriptions, the folder is refused again, by what is wrong with it)."""
     try:
         return load(folder), ""
     except PraxiconError as exc:
-        path = Path(folder) / FILE if isinstance(folder, (str, os.PathLike)) else None
-        if path is None or not str(exc).startswith(f"{path}:"):
-            raise
         return load(folder, descriptions=False), str(exc)
 
 
@@ -223,10 +217,10 @@ def verify(folder) -> Verification:
     praxicon, refused = _loaded(folder)
     folder = Path(folder)
     expected = _expected(praxicon)
-    problems = [p for p in (_compare(folder, name, data) for name, data in expected.items())
-                if p]
-    repairable = sum(p.endswith(": missing") or ": differs from what the records give" in p
-                     for p in problems)
+    compared = [c for c in (_compare(folder, name, data) for name, data in expected.items())
+                if c]
+    problems = [problem for problem, _ in compared]
+    repairable = sum(mendable for _, mendable in compared)
     timing = _timings(folder, set(praxicon.names))
     problems += [timing] if timing else []
     if refused:

@@ -26,6 +26,7 @@ import csv
 import io
 import json
 import os
+import re
 from collections.abc import Iterable
 from dataclasses import replace
 from pathlib import Path
@@ -39,8 +40,13 @@ from .description_store import (FILE, descriptions_key, descriptions_text,
 from .jsonvalues import read_json
 from .shared import shared_patterns
 
-__all__ = ["load", "dump", "actuator_matrix", "write_atomic", "dump_json",
+__all__ = ["load", "dump", "actuator_matrix", "write_atomic", "TEMPORARY_NAME", "dump_json",
            "write_record", "read_records", "write_index", "write_shared", "read_descriptions"]
+
+#: What :func:`write_atomic` names a file while it writes it (``.NAME.PID.tmp``): one left in
+#: a folder is an interrupted write's.
+TEMPORARY_NAME = re.compile(r"^\..+\.\d+\.tmp$")
+
 
 def write_atomic(path: Path, text: str) -> None:
     """Write ``text`` to ``path`` through a temporary file and a rename.
