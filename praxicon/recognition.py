@@ -292,15 +292,23 @@ def family_verdicts(descriptions: Descriptions, rows, best) -> dict[int, FamilyV
         fitted = score_model(families, columns)
         dist, _ = model_scores(fitted, x, own_columns(features))
         chosen = np.array([index[of[best[wanted[k]]]] for k in indices], dtype=int)
-        excess, group = _excess(families, features, x, chosen, fitted)
-        penalty = dist[np.arange(len(indices)), chosen] / max(1, len(columns))
+        accepted, penalty, excess, group = _tested(families, features, x, chosen, fitted, dist)
         for k, (i, f) in enumerate(zip(indices, chosen)):
-            out[wanted[i]] = FamilyVerdict(
-                families.names[f], bool(penalty[k] <= families.spread.threshold
-                                        and excess[k] <= 1.0),
-                float(penalty[k]), float(families.spread.threshold), float(excess[k]),
-                group[k])
+            out[wanted[i]] = FamilyVerdict(families.names[f], bool(accepted[k]),
+                                           float(penalty[k]), float(families.spread.threshold),
+                                           float(excess[k]), group[k])
     return out
+
+
+def _tested(descriptions, features, x, best, fitted, dist):
+    """The "none of these" test of each motion against its ``best`` action (``dist``: the
+    shared distances, motions x actions): ``(accepted, penalty, excess, group)``, accepted
+    where the distance per feature is within the threshold and no telling feature group
+    (:func:`_excess`) is past its limit."""
+    excess, group = _excess(descriptions, features, x, best, fitted)
+    penalty = dist[np.arange(len(best)), best] / max(1, len(features))
+    accepted = (penalty <= descriptions.spread.threshold) & (excess <= 1.0)
+    return accepted, penalty, excess, group
 
 
 def _by_features(descriptions: Descriptions, rows):
@@ -330,7 +338,8 @@ def _recognise(descriptions: Descriptions, motions, columns, x, explain: int):
     per_feature = dist / len(columns)
     names = descriptions.names
     best_of = p.argmax(axis=1) if len(p) else np.zeros(0, dtype=int)
-    excess, excess_group = _excess(descriptions, features, x, best_of, fitted)
+    accepted, _, excess, excess_group = _tested(descriptions, features, x, best_of, fitted,
+                                                dist)
     here = set(features)
     lacking = [tuple(sorted({feature_joint(f) for f in a.features if f not in here} - {"*"}))
                for a in descriptions.actions]
@@ -340,9 +349,8 @@ def _recognise(descriptions: Descriptions, motions, columns, x, explain: int):
     for i, motion in enumerate(motions):
         order = np.argsort(-p[i], kind="stable")
         order = np.concatenate([order[compared[order]], order[~compared[order]]])
-        best = int(order[0])
-        action = (names[best] if per_feature[i, best] <= spread.threshold
-                  and excess[i] <= 1.0 else None)
+        best = int(order[0])  # best_of[i]: an action not compared has probability 0
+        action = names[best] if accepted[i] else None
         reasons, tempos, drifts = [], [], []
         for a in order[:explain]:
             if not compared[a]:
