@@ -22,6 +22,13 @@ def is_count(value, least: int = 1) -> bool:
         and value >= least
 
 
+def check_count(value, name: str) -> None:
+    """A :class:`ValidationError` unless ``value`` is a whole number of at least 1
+    (:func:`is_count`), naming ``name`` and the value shown short."""
+    if not is_count(value):
+        raise ValidationError(f"{name} must be a whole number of at least 1, not {shown(value)}")
+
+
 def is_flag(value) -> bool:
     """True for True or False, numpy's too."""
     return isinstance(value, (bool, np.bool_))

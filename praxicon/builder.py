@@ -23,7 +23,7 @@ from pathlib import Path
 from psgs._foundation.files import read_text
 from psgs.errors import MissingDependency, ValidationError
 
-from ._values import is_count, not_all, shown
+from ._values import check_count, not_all, shown
 from .datasets import Action, DatasetError
 from .learn import Settings, input_key, learn_action
 from .description import DescriptionError
@@ -76,8 +76,8 @@ def executor_for(workers: int | None = None, scheduler=None):
         client = scheduler if isinstance(scheduler, Client) else Client(scheduler)
         executor = client.get_executor()
         return executor, (lambda: None) if client is scheduler else client.close
-    if workers is not None and not is_count(workers):  # "2" failed in a comparison, True was 1
-        raise ValidationError(f"workers must be a whole number of at least 1, not {shown(workers)}")
+    if workers is not None:  # "2" failed in a comparison, True was 1
+        check_count(workers, "workers")
     if workers is not None and workers > 1:
         pool = ProcessPoolExecutor(max_workers=workers)
         return pool, lambda: pool.shutdown(cancel_futures=True)

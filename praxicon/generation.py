@@ -36,7 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._values import is_count
+from ._values import check_count, is_count
 from .channel_curve import SMOOTH_STEPS as _SMOOTH_STEPS
 from .channel_curve import Method, channel_curves
 from .body_motion import _source_take, animate, body_of, performances_of, whole_cycle
@@ -325,8 +325,7 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
         raise ValueError(f"repeat must be a whole number from 1 to {MAX_REPEAT}, not {repeat!r}")
     if progress is not None and not callable(progress):  # else a TypeError after a channel
         raise ValueError(f"progress must be callable, not {progress!r}")
-    if not is_count(workers):
-        raise ValueError(f"workers must be a whole number of at least 1, not {workers!r}")
+    check_count(workers, "workers")
     if not has_grammar(record):  # a one-off gesture: its performances' course, played
         from .acyclic import performed_motion
 

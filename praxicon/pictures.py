@@ -24,7 +24,7 @@ import numpy as np
 
 from kinetology.plotting import STATE_COLOURS
 
-from ._values import is_count, shown as _shown
+from ._values import check_count, is_count, shown as _shown
 from .records import ActionRecord, Praxicon
 from .store import actuator_matrix, load
 
@@ -225,8 +225,7 @@ def draw_shared_patterns(folder, path, *, most: int = 30, **options) -> Path:
     """The ``most`` sub-patterns shared by the most actions, with the actions (Fig. 13)."""
     from .shared import shared_patterns
 
-    if not is_count(most):  # -1 cut the last; np.int64 is a whole number, as before
-        raise ValueError(f"most must be a whole number of at least 1, not {_shown(most)}")
+    check_count(most, "most")  # -1 cut the last; np.int64 is a whole number, as before
     plt = _pyplot()
     patterns = sorted(shared_patterns(_praxicon(folder), **options),
                       key=lambda p: (-len(p.actions), -len(p.kinetemes)))[:most]

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 from psgs.errors import ValidationError
 
-from ._values import is_count, not_all, shown
+from ._values import check_count, not_all
 from .records import ActionRecord, ChannelMorpheme, JointRecord, Praxicon
 
 __all__ = ["SharedPattern", "shared_patterns"]
@@ -102,9 +102,7 @@ def shared_patterns(praxicon, *, min_length: int = 4, min_actions: int = 2) -> l
     """
     for name, count in (("min_length", min_length), ("min_actions", min_actions)):
         # 0 or less made patterns of no kineteme or slices of the wrong end, without a word
-        if not is_count(count):  # np.int64 too, as before
-            raise ValidationError(f"{name} must be a whole number of at least 1, not "
-                                  f"{shown(count)}")
+        check_count(count, name)  # np.int64 too, as before
     records = praxicon.actions if isinstance(praxicon, Praxicon) else praxicon
     records = tuple(records) if isinstance(records, Iterable) else None
     if records is None or not all(isinstance(r, ActionRecord) for r in records):
