@@ -23,7 +23,8 @@ from psgs._foundation.files import decode_utf8, read_bytes
 from psgs.errors import FormatError, NotFound, ValidationError
 
 __all__ = ["MotionFormatError", "Joint", "Skeleton", "Motion", "AXES", "build_motion",
-           "file_text", "FRAME_RATE_RANGE", "check_number", "real_array", "as_path", "shown"]
+           "file_text", "FRAME_RATE_RANGE", "check_number", "real_array", "as_path", "shown",
+           "channel_names"]
 
 #: Channel axes, in the order a joint's channels are listed.
 AXES = ("tx", "ty", "tz", "rx", "ry", "rz")
@@ -220,11 +221,7 @@ class Motion:
         values = real_array(self.values)
         if values.ndim != 2:
             raise ValidationError(f"motion values must be frames x channels, got shape {values.shape}")
-        if isinstance(self.channels, str) or not isinstance(self.channels, Iterable):
-            # a string would be split into one-letter channel names
-            raise ValidationError(f"channels must be a sequence of names, not "
-                                  f"{type(self.channels).__name__}")
-        channels = tuple(self.channels)
+        channels = channel_names(self.channels)
         if not all(isinstance(name, str) for name in channels):
             bad = next(name for name in channels if not isinstance(name, str))
             raise ValidationError(f"channel names must be strings, not {bad!r}")
@@ -287,9 +284,7 @@ class Motion:
 
     def select(self, channels) -> "Motion":
         """A motion with only ``channels`` (in that order) and no skeleton."""
-        if isinstance(channels, str) or not isinstance(channels, Iterable):  # "a.rx": a, ., r, x
-            raise ValidationError(f"channels must be a sequence of names, not {channels!r}")
-        channels = tuple(channels)
+        channels = channel_names(channels)
         columns = [self.index(c) for c in channels]
         return Motion(self.values[:, columns], tuple(channels), self.frame_rate, None,
                       self.source, self.meta)
@@ -345,6 +340,24 @@ def check_rate(values: np.ndarray, frame_rate: float) -> None:
     if size and not 4.0 * size * frame_rate * frame_rate < sys.float_info.max / 2:
         raise ValidationError(f"frame rate {frame_rate:g} fps is too high to difference values "
                               f"up to {size:g}: their velocities and accelerations overflow")
+
+
+def channel_names(channels) -> tuple:
+    """``channels`` as a tuple, or a :class:`ValidationError` when it is no sequence of names:
+    one string would be split into one-letter names (``"a.rx"``: ``a``, ``.``, ``r``, ``x``).
+
+    Examples
+    --------
+    >>> channel_names(["a.rx", "b.rx"])
+    ('a.rx', 'b.rx')
+    >>> channel_names("a.rx")
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: channels must be a sequence of names, not 'a.rx'
+    """
+    if isinstance(channels, str) or not isinstance(channels, Iterable):
+        raise ValidationError(f"channels must be a sequence of names, not {shown(channels)}")
+    return tuple(channels)
 
 
 def shown(value, limit: int = 60) -> str:

@@ -51,7 +51,7 @@ from psgs.errors import ValidationError
 from ._engines import select
 from ._kinetemes import round_half_even, smooth_channels
 from .joints import actuator_map, skeleton_parents
-from .motion import Motion, check_number, check_rate, real_array
+from .motion import Motion, channel_names, check_number, check_rate, real_array
 
 __all__ = ["STATES", "DEFAULTS", "smooth", "unwrap", "derivatives", "significant_sign",
            "channel_deadbands", "states", "Segmentation", "segments", "segment"]
@@ -501,8 +501,8 @@ def segments(motion: Motion, channels=None, *, engine: str = "auto", **params) -
     """
     if not isinstance(motion, Motion):
         raise ValidationError(f"motion must be a Motion, not {type(motion).__name__}")
-    if isinstance(channels, str):  # would be split into one-letter channel names
-        raise ValidationError(f"channels must be a sequence of names, not the string {channels!r}")
+    if channels is not None:  # one string would be split into one-letter names
+        channels = channel_names(channels)
     use = select(engine, motion.values.size)
     p = _check(params)
     names, smoothed = _smoothed(motion, channels, p, use)
