@@ -38,7 +38,7 @@ import numpy as np
 
 from psgs.errors import ValidationError
 
-from .motion import FRAME_RATE_RANGE, Joint, Motion, Skeleton, as_path
+from .motion import FRAME_RATE_RANGE, Joint, Motion, Skeleton, as_path, check_motion
 
 __all__ = ["write_bvh", "format_bvh", "star_skeleton", "without_axes"]
 
@@ -197,8 +197,7 @@ def format_bvh(motion: Motion) -> str:
     >>> text.splitlines()[:5]
     ['HIERARCHY', 'ROOT knee', '{', '  OFFSET 0 0 0', '  CHANNELS 1 Xrotation']
     """
-    if not isinstance(motion, Motion):
-        raise ValidationError(f"motion must be a Motion, not {type(motion).__name__}")
+    check_motion(motion)
     skeleton = motion.skeleton or star_skeleton(motion.channels)
     listed = [c for j in skeleton.joints for c in j.channels]
     if sorted(listed) != sorted(motion.channels):

@@ -19,7 +19,7 @@ from typing import Iterable, Mapping
 
 from psgs.errors import ValidationError
 
-from .motion import Motion
+from .motion import Motion, check_motion
 
 __all__ = ["CMU_PARENTS", "dot_actuator", "actuator_map", "skeleton_parents"]
 
@@ -87,8 +87,7 @@ def actuator_map(motion: Motion, channels: Iterable[str] | None = None) -> dict[
     >>> actuator_map(m)
     {'lfemur.rx': 'lfemur', 'lfemur.ry': 'lfemur'}
     """
-    if not isinstance(motion, Motion):
-        raise ValidationError(f"motion must be a Motion, not {type(motion).__name__}")
+    check_motion(motion)
     if isinstance(channels, str):  # would be mapped letter by letter
         raise ValidationError(f"channels must be a collection of names, not {channels!r}")
     owner = {}

@@ -17,7 +17,7 @@ import numpy as np
 
 from psgs.errors import ValidationError
 
-from .motion import Motion, MotionFormatError, real_array
+from .motion import Motion, MotionFormatError, check_motion, real_array
 
 __all__ = ["axis_rotation", "rotation_matrices", "euler_angles", "local_rotation",
            "forward_kinematics",
@@ -189,8 +189,7 @@ def forward_kinematics(motion: Motion) -> np.ndarray:
     >>> np.round(positions[1, 2], 6)    # the foot: rotated about x, from -y to -z
     array([  0., -10., -10.])
     """
-    if not isinstance(motion, Motion):
-        raise ValidationError(f"motion must be a Motion, not {type(motion).__name__}")
+    check_motion(motion)
     skeleton = motion.skeleton
     if skeleton is None:
         raise ValidationError(f"{motion.source}: no skeleton, so no forward kinematics "

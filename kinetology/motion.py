@@ -24,7 +24,7 @@ from psgs.errors import FormatError, NotFound, ValidationError
 
 __all__ = ["MotionFormatError", "Joint", "Skeleton", "Motion", "AXES", "build_motion",
            "file_text", "FRAME_RATE_RANGE", "check_number", "real_array", "as_path", "shown",
-           "channel_names"]
+           "channel_names", "check_motion"]
 
 #: Channel axes, in the order a joint's channels are listed.
 AXES = ("tx", "ty", "tz", "rx", "ry", "rz")
@@ -340,6 +340,21 @@ def check_rate(values: np.ndarray, frame_rate: float) -> None:
     if size and not 4.0 * size * frame_rate * frame_rate < sys.float_info.max / 2:
         raise ValidationError(f"frame rate {frame_rate:g} fps is too high to difference values "
                               f"up to {size:g}: their velocities and accelerations overflow")
+
+
+def check_motion(motion) -> None:
+    """A :class:`ValidationError` unless ``motion`` is a :class:`Motion` (a path, an array or
+    None reached the work and failed there with another error).
+
+    Examples
+    --------
+    >>> check_motion("walk.bvh")
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: motion must be a Motion, not str
+    """
+    if not isinstance(motion, Motion):
+        raise ValidationError(f"motion must be a Motion, not {type(motion).__name__}")
 
 
 def channel_names(channels) -> tuple:

@@ -17,7 +17,7 @@ import numpy as np
 from psgs.errors import ValidationError
 
 from .labels import Span
-from .motion import Motion, check_number
+from .motion import Motion, check_motion, check_number
 
 __all__ = ["cut", "performances", "from_files", "from_spans", "segment_performances"]
 
@@ -53,8 +53,7 @@ def cut(motion: Motion, start: float | None = None, stop: float | None = None) -
     >>> cut(m, 0.2, 0.5).column("knee.rx")
     array([2., 3., 4.])
     """
-    if not isinstance(motion, Motion):
-        raise ValidationError(f"motion must be a Motion, not {type(motion).__name__}")
+    check_motion(motion)
     for name, value in (("start", start), ("stop", stop)):  # float("2") and True would pass
         if value is not None and (isinstance(value, bool) or not isinstance(value, Real)):
             raise ValidationError(f"{name} must be a number of seconds, not {value!r}")

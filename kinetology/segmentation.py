@@ -51,7 +51,8 @@ from psgs.errors import ValidationError
 from ._engines import select
 from ._kinetemes import round_half_even, smooth_channels
 from .joints import actuator_map, skeleton_parents
-from .motion import Motion, channel_names, check_number, check_rate, real_array
+from .motion import (Motion, channel_names, check_motion, check_number, check_rate,
+                     real_array)
 
 __all__ = ["STATES", "DEFAULTS", "smooth", "unwrap", "derivatives", "significant_sign",
            "channel_deadbands", "states", "Segmentation", "segments", "segment"]
@@ -499,8 +500,7 @@ def segments(motion: Motion, channels=None, *, engine: str = "auto", **params) -
     ...
     psgs.errors.ValidationError: engine must be one of 'auto', 'numpy', 'numba', not 'fortran'
     """
-    if not isinstance(motion, Motion):
-        raise ValidationError(f"motion must be a Motion, not {type(motion).__name__}")
+    check_motion(motion)
     if channels is not None:  # one string would be split into one-letter names
         channels = channel_names(channels)
     use = select(engine, motion.values.size)

@@ -30,9 +30,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from psgs.errors import ValidationError
-
-from ..motion import Motion
+from ..motion import Motion, check_motion
 from .encoder import (CODEC_DEFAULTS, Compressed, compress_with, decompress, encode_segments,
                       mean_errors)
 from .knots import PINNED
@@ -91,8 +89,7 @@ def compress(motion: Motion, max_error: float | None = None, **params) -> Compre
     >>> len(compress(m)) < len(data)      # the defaults: the base alone, coarser
     True
     """
-    if not isinstance(motion, Motion):
-        raise ValidationError(f"motion must be a Motion, not {type(motion).__name__}")
+    check_motion(motion)
     if max_error is not None and params:
         raise TypeError(f"max_error chooses the settings itself; drop "
                         f"{', '.join(sorted(params))}")
