@@ -87,28 +87,27 @@ def pool_groups(strings: list[Timed], found: ContentResult, conf: ContentConf) -
                     located[i] = again
             if all(np.array_equal(located[i], before[i]) for i in members):
                 break
-        for _ in range(1):  # the last round (a loop of one: a group left alone leaves it)
-            # every member must repeat in the shared windows itself, not only overlap
-            # them in time (a random string's chance motif can); windows are redrawn
-            # without the members that do not
-            for _ in range(len(group)):
-                windows = with_earlier(pooled_windows([located[i] for i in members],
-                                                      conf.window_support), earlier)
-                votes = {i: v for i in members
-                         if (v := vote(strings[i], windows)) is not None
-                         and repeats_in_windows(strings[i], v, conf, conf.min_copies,
-                                                beyond_chance=False)}
-                for i in members:
-                    if i not in votes:
-                        dropped[i] = DROPPED_IN_WINDOWS
-                if len(votes) == len(members) or len(votes) < 2:
-                    break
-                members = sorted(votes)
-            if len(votes) < 2:
-                for i in votes:
-                    dropped[i] = LEFT_ALONE
-                votes = {}
+        # the last round: every member must repeat in the shared windows itself, not only
+        # overlap them in time (a random string's chance motif can); windows are redrawn
+        # without the members that do not
+        for _ in range(len(group)):
+            windows = with_earlier(pooled_windows([located[i] for i in members],
+                                                  conf.window_support), earlier)
+            votes = {i: v for i in members
+                     if (v := vote(strings[i], windows)) is not None
+                     and repeats_in_windows(strings[i], v, conf, conf.min_copies,
+                                            beyond_chance=False)}
+            for i in members:
+                if i not in votes:
+                    dropped[i] = DROPPED_IN_WINDOWS
+            if len(votes) == len(members) or len(votes) < 2:
                 break
+            members = sorted(votes)
+        if len(votes) < 2:  # a group left alone leaves it
+            for i in votes:
+                dropped[i] = LEFT_ALONE
+            votes = {}
+        else:
             together = locate_together(strings, votes, conf)
             if together is not None:
                 # a copy damaged in most members passes no joint scan; its window stays
