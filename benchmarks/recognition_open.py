@@ -53,7 +53,8 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
     groups a dataset with several takes of each pair) and the answer's content counted.
     """
     from praxicon.description import (_MARGIN, GROUP_LEVEL, chosen_table, common_table,
-                                      describe_table, feature_rows, score_model, scores)
+                                      describe_table, feature_rows, held_together,
+                                      score_model, scores)
     from praxicon.recognition import _excess, feature_matrix
 
     groups, styles = _grouped(train, by_style)
@@ -64,7 +65,8 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
     known = {t.content for t in train}
     x = None
     for level in _LEVELS:
-        d = describe_table(table, order, level=level)
+        # calibrated as describe calibrates: each style's takes held out together
+        d = describe_table(table, order, level=level, sources=held_together(styles))
         if x is None:
             columns, x, _ = feature_matrix(d, [t.motion for t in test])
             features = [d.spread.features[i] for i in columns]

@@ -68,9 +68,9 @@ from .scoring import (_NOISE_FLOOR, _PRIOR_TAKES, OWN_KINDS, ScoreModel,  # noqa
                       precision_parts, probabilities, score_model, scores)
 
 __all__ = ["FORMAT_VERSION", "ActionDescription", "Spread", "Descriptions", "describe",
-           "describe_table", "chosen_table", "family_descriptions", "DescriptionError",
-           "GROUP_LEVEL", "OWN_KINDS", "own_columns", "own_terms", "scores", "ScoreModel",
-           "score_model"]
+           "describe_table", "chosen_table", "family_descriptions", "held_together",
+           "DescriptionError", "GROUP_LEVEL", "OWN_KINDS", "own_columns", "own_terms", "scores",
+           "ScoreModel", "score_model"]
 
 #: Bumped when what a description holds or how features are computed changes (5: the
 #: descriptions of families, several actions that are styles of one content, decide "none of
@@ -79,9 +79,10 @@ __all__ = ["FORMAT_VERSION", "ActionDescription", "Spread", "Descriptions", "des
 #: the features every take had were kept).
 FORMAT_VERSION = 5
 #: Bumped when how descriptions are learnt changes but what they hold does not: a praxicon
-#: keeps reading its descriptions, and a build learns them again (2: the kinds of features are
-#: chosen by held-out recognition, ``praxicon.feature_choice``).
-LEARNING = 2
+#: keeps reading its descriptions, and a build learns them again (3: the flight feature, its
+#: group always read, and a group's takes held out together in the calibration; 2: the kinds
+#: of features are chosen by held-out recognition, ``praxicon.feature_choice``).
+LEARNING = 3
 
 
 def _floats(values) -> tuple[float, ...]:
@@ -349,8 +350,9 @@ def describe_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
     A NaN in an action's column means the action lacks that feature (its takes are of another
     skeleton, :func:`common_table`): the action keeps the features all its rows have, and
     must have a joint among them. ``sources`` (``{action: per row the take it comes from}``,
-    for windows) keeps each take's rows together when the threshold is calibrated; ``level``
-    is how often a known take may fail the feature-group test. Without ``calibrate`` there is
+    for windows; or its group, :func:`held_together`) keeps those rows together when the
+    threshold is calibrated; ``level`` is how often a known take may fail the feature-group
+    test. Without ``calibrate`` there is
     no "none of these" (an infinite threshold, no group limits): descriptions that only rank,
     learnt without the five more models the calibration learns.
     """
@@ -438,10 +440,11 @@ def describe(takes: dict[str, list], *, rank: int = _RANK,
         How often (0 < level < 1) a known take may be answered "none of these" (group test).
     groups : mapping of str to sequence, optional
         Per action, each take's group (a style, a performer; any hashable value, compared
-        by equality): the choice of features holds a group's takes out together, which asks
-        what a new style asks. Groups that each hold whole actions leave nothing to hold
-        out, and every feature is kept. Without it, each action's takes are dealt into five
-        folds in the order given. Checked even without ``choose``.
+        by equality): the choice of features, and the calibration of "none of these", hold a
+        group's takes out together, which asks what a new style asks (:func:`held_together`).
+        Groups that each hold whole actions leave nothing to hold out, and every feature is
+        kept. Without it, each action's takes are dealt into five folds in the order given.
+        Checked even without ``choose``.
     choose : bool
         Choose the kinds of features by how well held-out takes are recognised
         (:func:`praxicon.feature_choice.choose_features`); without it, every feature.
@@ -486,7 +489,8 @@ def describe(takes: dict[str, list], *, rank: int = _RANK,
     order, table = common_table(rows)
     if choose:
         order, table = chosen_table(table, order, groups=groups, rank=rank)
-    out = describe_table(table, order, rank=rank, level=level)
+    out = describe_table(table, order, rank=rank, level=level,
+                         sources=None if groups is None else held_together(groups))
     if families is None:
         return out
     described_families, family_of = family_descriptions(rows, families, rank=rank,
@@ -502,10 +506,11 @@ def family_descriptions(rows: dict[str, list], families: Mapping[str, str], *,
     """``(descriptions of the families, {action: its family or ""})`` from each action's
     feature rows (:func:`feature_rows`); ``(None, ...)`` when no family has two actions.
 
-    A family's takes are its members' takes together (the choice of features holds whole
-    members out, as styles not learnt, in five folds); an action alone is its own family,
-    named by its own name and learnt from its takes alone, so that the families' "none of
-    these" reads the groups that tell a family from every other learnt content.
+    A family's takes are its members' takes together (the choice of features and the
+    calibration of "none of these" hold whole members out, as styles not learnt, in five
+    folds); an action alone is its own family, named by its own name and learnt from its
+    takes alone, so that the families' "none of these" reads the groups that tell a family
+    from every other learnt content.
 
     Examples
     --------
@@ -551,7 +556,27 @@ def family_descriptions(rows: dict[str, list], families: Mapping[str, str], *,
     order, table = common_table(table_rows)
     if choose:
         order, table = chosen_table(table, order, groups=groups, rank=rank)
-    return describe_table(table, order, rank=rank, level=level), of
+    return describe_table(table, order, rank=rank, level=level,
+                          sources=held_together(groups)), of
+
+
+def held_together(groups: Mapping[str, Sequence]) -> dict[str, np.ndarray]:
+    """Per action, each take's calibration fold key: its group's (in the order the groups
+    first appear), so that the "none of these" limits are read from takes of groups the
+    model did not see, as the choice of features reads them; an action whose takes are all
+    of one group has nothing to hold out together, and its takes are dealt out one by one.
+
+    Examples
+    --------
+    >>> {k: v.tolist() for k, v in held_together({"a": ["x", "y", "x"], "b": ["z", "z"]}).items()}
+    {'a': [0, 1, 0], 'b': [0, 1]}
+    """
+    out = {}
+    for name, per in groups.items():
+        codes = {g: k for k, g in enumerate(dict.fromkeys(per))}
+        out[name] = (np.array([codes[g] for g in per]) if len(codes) > 1
+                     else np.arange(len(per)))
+    return out
 
 
 def chosen_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,

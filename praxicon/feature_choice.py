@@ -38,7 +38,8 @@ MAX_FOLDS = 20
 
 def feature_kind(feature: str) -> str:
     """The kind of a feature: ``pose``, ``energy``, ``spread``, ``shape`` (a joint's
-    course over the take), ``tempo`` or ``root`` (the root's drift, sway and turn).
+    course over the take), ``tempo`` or ``root`` (the root's drift, sway and turn, and the
+    body's flight).
 
     Parameters
     ----------
@@ -49,17 +50,17 @@ def feature_kind(feature: str) -> str:
     -------
     str
         Its kind (the part after the last ``:``, its digits dropped, ``posec`` read as
-        ``pose``; the root's travel and turning features and the tempo by name).
+        ``pose``; the root's travel and turning features, the flight and the tempo by name).
 
     Examples
     --------
     >>> [feature_kind(f) for f in ("Neck.rx:posec", "Neck.rx:shape2", "Hips.turny:drift",
-    ...                            "tempo")]
-    ['pose', 'shape', 'root', 'tempo']
+    ...                            "tempo", "flight")]
+    ['pose', 'shape', 'root', 'tempo', 'root']
     """
     if feature == "tempo":
         return "tempo"
-    if ".travel" in feature or ".turn" in feature:
+    if ".travel" in feature or ".turn" in feature or feature == "flight":
         return "root"
     kind = feature.rsplit(":", 1)[-1].rstrip("0123456789")
     return "pose" if kind == "posec" else kind

@@ -13,12 +13,19 @@ import numpy as np
 
 from .features import feature_joint
 
-__all__ = ["feature_groups", "group_distances", "telling_groups"]
+__all__ = ["ALWAYS_READ", "feature_groups", "group_distances", "telling_groups"]
+
+_WHOLE_BODY = ("tempo", "flight")  # take-wide features, each a group of its own
+#: Groups the "none of these" test reads even where every learnt action looks alike in them:
+#: a learnt set that never leaves the ground (walks and turns alone) is no run, however fast
+#: or slow; a take that flies is none of them, where a style's sideways drift or tempo is
+#: still most likely the action it ranked as.
+ALWAYS_READ = ("flight",)
 
 
 def feature_groups(features) -> dict[str, np.ndarray]:
     """The columns of each feature group: a joint's features, each of the root's travel and
-    turning features alone, the tempo (the units a deviation concentrates in).
+    turning features alone, the flight, the tempo (the units a deviation concentrates in).
 
     A joint's features move together (a pose, its range and its speed are one movement), but
     the root's are separate quantities a gait is defined by: a turn's heading rate is one
@@ -44,7 +51,7 @@ def feature_groups(features) -> dict[str, np.ndarray]:
         root = ".travel" in f or ".turn" in f
         if root and f.endswith(":drift") and f.rsplit(":", 1)[0] in turned:
             continue
-        key = f if f == "tempo" or root else feature_joint(f)
+        key = f if f in _WHOLE_BODY or root else feature_joint(f)
         out.setdefault(key, []).append(i)
     return {k: np.array(v, dtype=int) for k, v in out.items()}
 
@@ -59,7 +66,7 @@ def telling_groups(means, variance, scale, groups: dict[str, np.ndarray], bound)
     there. The group test reads only the groups that do tell; with a single action there is
     nothing to tell it from, and every group is read. Another action that lacks a group (NaN
     means: learnt from another skeleton) cannot be told apart in it; a group no other action
-    has is read, as with a single action.
+    has is read, as with a single action. The groups of :data:`ALWAYS_READ` are always read.
 
     Examples
     --------
@@ -78,6 +85,7 @@ def telling_groups(means, variance, scale, groups: dict[str, np.ndarray], bound)
         known = ~np.isnan(far)
         out[a] = np.where(known, far, -np.inf).max(axis=0) > 1.0
         out[a] |= ~known.any(axis=0)
+    out[:, [k for k, g in enumerate(groups) if g in ALWAYS_READ]] = True
     return out
 
 

@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 
 from kinetology import synthetic_motion
 from praxicon.description import (DescriptionError, Descriptions, common_table, describe,
-                                  describe_table, feature_rows, scores)
+                                  describe_table, feature_rows, held_together, scores)
 from praxicon.feature_choice import FEATURE_KINDS, choose_features, feature_kind
 
 LEARN = partial(describe_table, calibrate=False)
@@ -144,7 +144,20 @@ def test_describe_keeps_what_the_choice_keeps(groups):
     assert describe(takes, groups=groups).spread.features == chosen
     every = describe(takes, groups=groups, choose=False)
     assert every.spread.features == order
-    assert every == describe_table(table, order)
+    # the calibration holds a group's takes out together, as the choice does
+    assert every == describe_table(table, order,
+                                   sources=None if groups is None else held_together(groups))
+
+
+def test_calibration_holds_a_groups_takes_out_together():
+    takes = _motions()
+    groups = {"a": ["x", "y", "x", "y"], "b": ["x", "y", "x", "y"]}
+    order, table = common_table({n: feature_rows(m) for n, m in takes.items()})
+    by_group = describe(takes, groups=groups, choose=False)
+    # two groups: two folds, each take scored by a model that saw none of its group's takes
+    assert by_group == describe_table(table, order, sources={n: np.array([0, 1, 0, 1])
+                                                             for n in takes})
+    assert by_group.spread.threshold != describe_table(table, order).spread.threshold
 
 
 def test_groups_that_each_hold_whole_actions_keep_every_feature():
