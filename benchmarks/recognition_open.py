@@ -52,9 +52,9 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
     With ``by_style`` one action is learnt per content and style (as ``psgs praxicon build``
     groups a dataset with several takes of each pair) and the answer's content counted.
     """
+    from praxicon.calibration import held_together
     from praxicon.description import (_MARGIN, GROUP_LEVEL, chosen_table, common_table,
-                                      describe_table, feature_rows, held_together,
-                                      score_model, scores)
+                                      describe_table, feature_rows, score_model, scores)
     from praxicon.recognition import _excess, feature_matrix
 
     groups, styles = _grouped(train, by_style)

@@ -1,21 +1,25 @@
 """The spread every action shares and the "none of these" calibration, fitted from feature
 tables: the per-feature scale, the shared directions of variation and what is left per
 feature (:func:`fit_spread`), and the threshold, temperature and feature-group limits read
-from held-out training takes (:func:`calibrate`). :mod:`praxicon.description` turns what
-these return into :class:`~praxicon.description.Descriptions`.
+from held-out training takes (:func:`calibrate`, its folds keeping a style's takes together
+by :func:`held_together`). :mod:`praxicon.description` turns what these return into
+:class:`~praxicon.description.Descriptions`.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from ._arguments import DescriptionError
 from .feature_groups import feature_groups, group_distances
 from .scoring import (_NOISE_FLOOR, _PRIOR_TAKES, _action_variances, _part, _score_model,
                       model_scores, own_columns, probabilities)
 
-__all__ = ["fit_spread", "calibrate", "group_limits", "scale_floors", "GROUP_LEVEL"]
+__all__ = ["fit_spread", "calibrate", "group_limits", "held_together", "scale_floors",
+           "GROUP_LEVEL"]
 
 _RANK = 16  # shared directions of variation kept (fewer when there are fewer takes)
 _MARGIN = 1.5  # the "none of these" threshold: this times the worst held-out training take
@@ -26,12 +30,16 @@ GROUP_LEVEL = 0.01
 
 def scale_floors(features) -> np.ndarray:
     """The smallest scale of each feature: a degree (or a degree per second, a length unit per
-    second) for angles and rates, 10 % for the log ranges and energies, 5 % of the tempo.
+    second) for angles and rates, 10 % for the log ranges and energies, 5 % of the tempo, 1
+    for the flight's log share.
 
     A joint that never moves in training has a near-zero spread; divided by it, a tenth of a
     degree in a new take would count as a thousand standard deviations.
     """
-    floors = {"spread": 0.1, "energy": 0.1, "tempo": 0.05}
+    # the flight's log share spans about 2.4 from never to half the time off the ground: a
+    # floor of 1 makes it tell flying from not flying, not how much (0.25, tried, let four
+    # more runs of a style not learnt pass as walks when run was not learnt: docs/praxicon.md)
+    floors = {"spread": 0.1, "energy": 0.1, "tempo": 0.05, "flight": 1.0}
     return np.array([floors.get(f.rsplit(":", 1)[-1].rstrip("0123456789"), 1.0)
                      for f in features])
 
@@ -117,13 +125,15 @@ def calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
     that action's own spread (:func:`group_limits`); the temperature the one (a power of 2)
     whose probabilities, from the score actions are ranked by (:func:`scores`), fit the
     held-out takes best.
-    ``sources`` (per action, per row: the take a row comes from) keeps the windows of one take
-    in one fold, so that a take is never scored by a model that saw another piece of it.
+    ``sources`` (per action, per row: a fold key, a whole number from 0; a row is held out in
+    fold ``key % folds``) keeps rows of one key in one fold: the windows of one take, so that
+    a take is never scored by a model that saw another piece of it, or the takes of one
+    style, numbered alike across actions, so that a fold holds a style out of every action.
     """
     if sources is None:
         sources = [np.arange(len(g)) for g in groups]
-    else:  # takes numbered in order, so that a take's fold does not depend on its id
-        sources = [np.unique(np.asarray(s), return_inverse=True)[1] for s in sources]
+    else:
+        sources = [np.asarray(s, dtype=int) for s in sources]
     moved, ranked, truth, grouped, compared = [], [], [], [], []
     features = tuple(features)
     parts_of = feature_groups(features)
@@ -180,3 +190,45 @@ def calibrate(groups: list[np.ndarray], rank: int, sources=None, floors=None,
         if loss < best_loss - 1e-12:
             best, best_loss = float(temperature), loss
     return threshold, best, limits
+
+
+def held_together(groups: Mapping[str, Sequence]) -> dict[str, np.ndarray]:
+    """Each take's calibration fold key, so that a group's takes are held out together.
+
+    Parameters
+    ----------
+    groups : mapping of str to sequence
+        Per action, each take's group (hashable, compared by equality), as
+        :func:`describe` takes them.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        Per action, per take, its group's number, the groups numbered as they first appear
+        over every action (so that fold ``k`` holds one style out of every action, as the
+        choice of features holds it); an action whose takes are all of one group has nothing
+        to hold out together, and its takes are numbered one by one.
+
+    Raises
+    ------
+    DescriptionError
+        When a group is not hashable.
+
+    Examples
+    --------
+    >>> keys = held_together({"a": ["x", "y", "x"], "b": ["y", "z"], "c": ["w", "w"]})
+    >>> {k: v.tolist() for k, v in keys.items()}
+    {'a': [0, 1, 0], 'b': [1, 2], 'c': [0, 1]}
+    """
+    number: dict = {}
+    out = {}
+    for name, per in groups.items():
+        try:
+            if len(set(per)) < 2:
+                out[name] = np.arange(len(per))
+                continue
+            out[name] = np.array([number.setdefault(g, len(number)) for g in per], dtype=int)
+        except TypeError:
+            raise DescriptionError(f"action {name!r}: a group of its takes is not hashable "
+                                   f"(groups are compared by equality)") from None
+    return out

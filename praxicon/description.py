@@ -57,6 +57,7 @@ from ._description_json import (FieldError, action_fields, check_format, check_w
 from .calibration import (_FOLDS, _MARGIN, _RANK, GROUP_LEVEL, fit_spread,  # noqa: F401
                           group_limits, scale_floors)
 from .calibration import calibrate as _calibrate
+from .calibration import held_together
 from .feature_choice import _FOLDS as _CHOICE_FOLDS
 from .feature_choice import choose_features
 from .features import FeatureError, feature_joint, motion_features
@@ -68,8 +69,8 @@ from .scoring import (_NOISE_FLOOR, _PRIOR_TAKES, OWN_KINDS, ScoreModel,  # noqa
                       precision_parts, probabilities, score_model, scores)
 
 __all__ = ["FORMAT_VERSION", "ActionDescription", "Spread", "Descriptions", "describe",
-           "describe_table", "chosen_table", "family_descriptions", "held_together",
-           "DescriptionError", "GROUP_LEVEL", "OWN_KINDS", "own_columns", "own_terms", "scores",
+           "describe_table", "chosen_table", "family_descriptions", "DescriptionError",
+           "GROUP_LEVEL", "OWN_KINDS", "own_columns", "own_terms", "scores",
            "ScoreModel", "score_model"]
 
 #: Bumped when what a description holds or how features are computed changes (5: the
@@ -349,12 +350,13 @@ def describe_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
 
     A NaN in an action's column means the action lacks that feature (its takes are of another
     skeleton, :func:`common_table`): the action keeps the features all its rows have, and
-    must have a joint among them. ``sources`` (``{action: per row the take it comes from}``,
-    for windows; or its group, :func:`held_together`) keeps those rows together when the
+    must have a joint among them. ``sources`` (``{action: per row a fold key}``: for windows
+    the take a row comes from, numbered from 0; for takes their group's number,
+    :func:`~praxicon.calibration.held_together`) keeps rows of one key together when the
     threshold is calibrated; ``level`` is how often a known take may fail the feature-group
-    test. Without ``calibrate`` there is
-    no "none of these" (an infinite threshold, no group limits): descriptions that only rank,
-    learnt without the five more models the calibration learns.
+    test. Without ``calibrate`` there is no "none of these" (an infinite threshold, no group
+    limits): descriptions that only rank, learnt without the five more models the calibration
+    learns.
     """
     try:  # what from_dict would refuse is refused here, not after a dump that cannot be loaded
         window = float(check_window(window))
@@ -441,10 +443,10 @@ def describe(takes: dict[str, list], *, rank: int = _RANK,
     groups : mapping of str to sequence, optional
         Per action, each take's group (a style, a performer; any hashable value, compared
         by equality): the choice of features, and the calibration of "none of these", hold a
-        group's takes out together, which asks what a new style asks (:func:`held_together`).
-        Groups that each hold whole actions leave nothing to hold out, and every feature is
-        kept. Without it, each action's takes are dealt into five folds in the order given.
-        Checked even without ``choose``.
+        group's takes out together, which asks what a new style asks
+        (:func:`~praxicon.calibration.held_together`). Groups that each hold whole actions
+        leave nothing to hold out, and every feature is kept. Without it, each action's takes
+        are dealt into five folds in the order given. Checked even without ``choose``.
     choose : bool
         Choose the kinds of features by how well held-out takes are recognised
         (:func:`praxicon.feature_choice.choose_features`); without it, every feature.
@@ -558,25 +560,6 @@ def family_descriptions(rows: dict[str, list], families: Mapping[str, str], *,
         order, table = chosen_table(table, order, groups=groups, rank=rank)
     return describe_table(table, order, rank=rank, level=level,
                           sources=held_together(groups)), of
-
-
-def held_together(groups: Mapping[str, Sequence]) -> dict[str, np.ndarray]:
-    """Per action, each take's calibration fold key: its group's (in the order the groups
-    first appear), so that the "none of these" limits are read from takes of groups the
-    model did not see, as the choice of features reads them; an action whose takes are all
-    of one group has nothing to hold out together, and its takes are dealt out one by one.
-
-    Examples
-    --------
-    >>> {k: v.tolist() for k, v in held_together({"a": ["x", "y", "x"], "b": ["z", "z"]}).items()}
-    {'a': [0, 1, 0], 'b': [0, 1]}
-    """
-    out = {}
-    for name, per in groups.items():
-        codes = {g: k for k, g in enumerate(dict.fromkeys(per))}
-        out[name] = (np.array([codes[g] for g in per]) if len(codes) > 1
-                     else np.arange(len(per)))
-    return out
 
 
 def chosen_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,

@@ -38,8 +38,8 @@ MAX_FOLDS = 20
 
 def feature_kind(feature: str) -> str:
     """The kind of a feature: ``pose``, ``energy``, ``spread``, ``shape`` (a joint's
-    course over the take), ``tempo`` or ``root`` (the root's drift, sway and turn, and the
-    body's flight).
+    course over the take), ``tempo``, ``root`` (the root's drift, sway and turn) or
+    ``flight`` (the body's, never left out: the "none of these" test always reads it).
 
     Parameters
     ----------
@@ -56,11 +56,13 @@ def feature_kind(feature: str) -> str:
     --------
     >>> [feature_kind(f) for f in ("Neck.rx:posec", "Neck.rx:shape2", "Hips.turny:drift",
     ...                            "tempo", "flight")]
-    ['pose', 'shape', 'root', 'tempo', 'root']
+    ['pose', 'shape', 'root', 'tempo', 'flight']
     """
     if feature == "tempo":
         return "tempo"
-    if ".travel" in feature or ".turn" in feature or feature == "flight":
+    if feature == "flight":
+        return "flight"
+    if ".travel" in feature or ".turn" in feature:
         return "root"
     kind = feature.rsplit(":", 1)[-1].rstrip("0123456789")
     return "pose" if kind == "posec" else kind

@@ -149,7 +149,9 @@ def describe_windows(takes: dict[str, list], *, window: float = _WINDOW, hop: fl
     for name, motions in takes.items():
         cuts = [(k, w) for k, m in enumerate(motions) for w in windows(m, window, 2 * hop)[1]]
         rows[name] = feature_rows([w for _, w in cuts], shape=False)
-        sources[name] = np.array([k for k, _ in cuts])
+        # the takes that give windows numbered in order: a take's fold is its place among them
+        number: dict[int, int] = {}
+        sources[name] = np.array([number.setdefault(k, len(number)) for k, _ in cuts])
     order, table = common_table(rows)
     return describe_table(table, order, window=window, sources=sources)
 

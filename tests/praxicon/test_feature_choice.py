@@ -8,8 +8,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from kinetology import synthetic_motion
+from praxicon.calibration import held_together
 from praxicon.description import (DescriptionError, Descriptions, common_table, describe,
-                                  describe_table, feature_rows, held_together, scores)
+                                  describe_table, feature_rows, scores)
 from praxicon.feature_choice import FEATURE_KINDS, choose_features, feature_kind
 
 LEARN = partial(describe_table, calibrate=False)
@@ -207,3 +208,15 @@ def test_describe_table_refuses_a_window_from_dict_would_not_read_back(window):
         describe_table(table, order, window=window, calibrate=False)
     learnt = describe_table(table, order, window=2.0, calibrate=False)
     assert Descriptions.from_dict(learnt.to_dict()) == learnt  # what it makes, it reads back
+
+
+def test_held_together_numbers_a_style_alike_in_every_action():
+    # fold k holds one style out of every action, whichever actions have it; a group that is
+    # NaN is unequal to every other, a group that cannot be hashed a clear error
+    keys = held_together({"a": ["x", "y", "z"], "b": ["z", "y", "y"], "c": ["q", "q"]})
+    assert {k: v.tolist() for k, v in keys.items()} == {"a": [0, 1, 2], "b": [2, 1, 1],
+                                                       "c": [0, 1]}
+    nan = held_together({"a": np.array([1.0, np.nan, 1.0, np.nan])})["a"].tolist()
+    assert nan[0] == nan[2] and len(set(nan)) == 3
+    with pytest.raises(DescriptionError, match="not hashable"):
+        held_together({"a": [["x"], ["y"]]})

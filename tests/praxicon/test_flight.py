@@ -15,13 +15,17 @@ from praxicon.feature_groups import ALWAYS_READ, feature_groups, telling_groups
 from praxicon.features import flight_share, motion_features
 
 
-def _hopping(flying, lift: float, scale: float, offset: float):
-    """A hip and a straight leg (thigh 4, shin 5, in units of ``scale``), standing on the
-    ground at height ``offset`` but in the frames of ``flying``, where the hip is ``lift``
-    leg lengths higher; it walks along x meanwhile."""
+def _hopping(flying, lift: float, scale: float, offset, swing=None):
+    """A hip and a straight leg (thigh 4, shin 5, in units of ``scale``) whose foot stands on
+    the ground at height ``offset`` (a number, or one per frame: a floor that tilts) while the
+    thigh swings by ``swing`` degrees, the hip as high as the swing lets it be; in the frames
+    of ``flying`` the hip is ``lift`` leg lengths higher. It walks along x meanwhile."""
     leg = 9 * scale
-    rows = [f"{0.3 * k * scale:.9f} {offset + leg + lift * leg * bool(up):.9f} 0 0 0"
-            for k, up in enumerate(flying)]
+    floor = np.broadcast_to(np.asarray(offset, dtype=float), (len(flying),))
+    swing = np.zeros(len(flying)) if swing is None else np.asarray(swing, dtype=float)
+    # the thigh's rotation turns the 5-long bone below it: the foot is 4 + 5 cos(swing) down
+    hip = floor + scale * (4 + 5 * np.cos(np.radians(swing))) + lift * leg * np.asarray(flying)
+    rows = [f"{0.3 * k * scale:.9f} {hip[k]:.9f} 0 {swing[k]:.9f} 0" for k in range(len(hip))]
     return parse_bvh(f"""HIERARCHY
 ROOT Hips
 {{ OFFSET 0 0 0
@@ -41,27 +45,93 @@ Frame Time: 0.0333333
 
 
 @settings(max_examples=40, deadline=None)
-@given(st.data(), st.integers(10, 90), st.floats(0.1, 0.6), st.floats(0.01, 100.0),
+@given(st.data(), st.integers(10, 150), st.floats(0.1, 0.6), st.floats(0.01, 100.0),
        st.floats(-500.0, 500.0))
 def test_flight_is_the_share_of_frames_off_the_ground(data, frames, lift, scale, offset):
-    # oracle: the frames drawn as flying; the ground (every frame's lowest point in the frames
-    # standing, more than 2 % of them) and the heights move and scale with the body
-    standing = data.draw(st.integers(max(3, frames // 10), frames))
-    flying = np.zeros(frames, dtype=bool)
-    order = data.draw(st.permutations(range(frames)))
-    flying[list(order[:frames - standing])] = True
-    motion = _hopping(flying, lift, scale, offset)
+    # oracle: the frames drawn as flying, the foot on the ground in every other frame (one in
+    # five at least, so that every second of the take shows the ground); the ground and the
+    # heights move and scale with the body
+    flying = np.array(data.draw(st.lists(st.booleans(), min_size=frames, max_size=frames)))
+    flying[::5] = False
+    swing = np.array(data.draw(st.lists(st.floats(0.0, 30.0), min_size=frames,
+                                        max_size=frames)))
+    swing[:2] = 0.0, 20.0  # the hip moves up and down: a body, not a board slid on the floor
+    motion = _hopping(flying, lift, scale, offset, swing)
     assert flight_share(motion, ["Hips"]) == pytest.approx(flying.mean())
     features = dict(zip(*motion_features(motion)))
     assert features["flight"] == pytest.approx(math.log(flying.mean() + 0.1))
 
 
-def test_a_motion_without_a_skeleton_has_no_flight():
-    from kinetology import synthetic_motion
+@pytest.mark.parametrize("rise", [-3.0, 3.0])
+def test_a_floor_that_tilts_is_no_flight(rise):
+    # a walk of 4 s over a floor rising (or falling) three times the 4 % that counts as off
+    # the ground: read against one ground for the whole take, half its frames flew
+    frames = 120
+    thigh = 20 * np.sin(np.arange(frames) / 5)
+    floor = np.linspace(0.0, rise * 0.04 * 9, frames)
+    walk = _hopping(np.zeros(frames, dtype=bool), 0.0, 1.0, floor, thigh)
+    assert flight_share(walk, ["Hips"]) == 0.0
+    hops = np.arange(frames) % 10 >= 6
+    assert flight_share(_hopping(hops, 0.2, 1.0, floor, thigh), ["Hips"]) == pytest.approx(0.4)
 
-    motion = synthetic_motion(3, (0,), seed=1)
-    assert motion.skeleton is None or flight_share(motion, []) is None
-    assert "flight" not in motion_features(synthetic_motion(3, (0,), seed=1))[0]
+
+def test_a_point_that_carries_the_travel_along_the_floor_is_not_the_body():
+    # a top joint at floor level that only travels (as some exports carry the root's motion)
+    # would be the lowest point in every frame, and the body never off the ground
+    rows = [f"{0.3 * k:.6f} {11 + 2 * (k % 4 == 1):.6f} 0" for k in range(40)]
+    motion = parse_bvh("""HIERARCHY
+ROOT root
+{ OFFSET 0 0 0
+  CHANNELS 1 Xposition
+  JOINT Hips
+  { OFFSET 0 0 0
+    CHANNELS 1 Yposition
+    JOINT shin
+    { OFFSET 0 -10 0
+      CHANNELS 1 Xrotation
+      End Site
+      { OFFSET 0 -1 0 } } } }
+MOTION
+Frames: 40
+Frame Time: 0.0333333
+""" + "\n".join(rows) + "\n")
+    assert flight_share(motion, ["root", "Hips"]) == pytest.approx(0.25)
+
+
+def test_offsets_too_large_to_place_the_points_give_no_flight():
+    # each offset is a finite number, their sum is not: the points cannot be placed, and the
+    # take is described without its flight rather than refused
+    rows = [f"{0.3 * k:.6f} {11 + (k % 3):.6f} 0 {10.0 * k:.6f} 0" for k in range(12)]
+    motion = parse_bvh("""HIERARCHY
+ROOT Hips
+{ OFFSET 0 0 0
+  CHANNELS 3 Xposition Yposition Zposition
+  JOINT thigh
+  { OFFSET 0 -1.5e308 0
+    CHANNELS 1 Xrotation
+    JOINT shin
+    { OFFSET 0 -1.5e308 0
+      CHANNELS 1 Xrotation
+      End Site
+      { OFFSET 0 0 0 } } } }
+MOTION
+Frames: 12
+Frame Time: 0.0333333
+""" + "\n".join(rows) + "\n")
+    assert flight_share(motion, ["Hips"]) is None
+    names = motion_features(motion)[0]
+    assert "flight" not in names and "tempo" in names
+
+
+def test_a_motion_without_a_skeleton_has_no_flight():
+    from kinetology import Motion
+
+    t = np.arange(60) / 30
+    values = np.column_stack([30 * t, 90 + 5 * np.sin(8 * t), 0 * t, 20 * np.sin(8 * t)])
+    motion = Motion(values, ("Hips.tx", "Hips.ty", "Hips.tz", "knee.rx"), 30.0)
+    names = motion_features(motion)[0]
+    assert any(n.startswith("Hips.travel") for n in names)  # a moving root: root features
+    assert "flight" not in names and flight_share(motion, ["Hips"]) is None
 
 
 def test_flight_is_a_group_of_its_own_and_always_read():
