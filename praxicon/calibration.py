@@ -36,8 +36,8 @@ def scale_floors(features) -> np.ndarray:
     A joint that never moves in training has a near-zero spread; divided by it, a tenth of a
     degree in a new take would count as a thousand standard deviations.
     """
-    # the flight's log share spans about 2.4 from never to half the time off the ground: a
-    # floor of 1 makes it tell flying from not flying, not how much (0.25, tried, let four
+    # the flight's log share spans about 1.8 from never to half the time off the ground (2.4 to
+    # always): a floor of 1 makes it tell flying from not flying, not how much (0.25, tried, let four
     # more runs of a style not learnt pass as walks when run was not learnt: docs/praxicon.md)
     floors = {"spread": 0.1, "energy": 0.1, "tempo": 0.05, "flight": 1.0}
     return np.array([floors.get(f.rsplit(":", 1)[-1].rstrip("0123456789"), 1.0)
@@ -199,7 +199,7 @@ def held_together(groups: Mapping[str, Sequence]) -> dict[str, np.ndarray]:
     ----------
     groups : mapping of str to sequence
         Per action, each take's group (hashable, compared by equality), as
-        :func:`describe` takes them.
+        :func:`~praxicon.description.describe` takes them.
 
     Returns
     -------
@@ -207,7 +207,8 @@ def held_together(groups: Mapping[str, Sequence]) -> dict[str, np.ndarray]:
         Per action, per take, its group's number, the groups numbered as they first appear
         over every action (so that fold ``k`` holds one style out of every action, as the
         choice of features holds it); an action whose takes are all of one group has nothing
-        to hold out together, and its takes are numbered one by one.
+        to hold out together, and its takes are numbered one by one; an action whose groups
+        would all fall in one of the ``_FOLDS`` folds has its groups numbered as its own.
 
     Raises
     ------
@@ -224,11 +225,17 @@ def held_together(groups: Mapping[str, Sequence]) -> dict[str, np.ndarray]:
     out = {}
     for name, per in groups.items():
         try:
-            if len(set(per)) < 2:
-                out[name] = np.arange(len(per))
-                continue
-            out[name] = np.array([number.setdefault(g, len(number)) for g in per], dtype=int)
+            keys = np.array([number.setdefault(g, len(number)) for g in per], dtype=int)
+            own = {g: k for k, g in enumerate(dict.fromkeys(per))}
         except TypeError:
             raise DescriptionError(f"action {name!r}: a group of its takes is not hashable "
                                    f"(groups are compared by equality)") from None
+        if len(own) < 2:
+            out[name] = np.arange(len(per))
+        elif len(set((keys % _FOLDS).tolist())) < 2:
+            # its groups all fall in one fold among every action's: numbered as its own, or
+            # none of its takes would be scored
+            out[name] = np.array([own[g] for g in per], dtype=int)
+        else:
+            out[name] = keys
     return out

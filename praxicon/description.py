@@ -383,7 +383,8 @@ def describe_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
     spread = Spread(tuple(features), _floats(scale), tuple(_floats(f) for f in factors),
                     _floats(noise), math.inf, 1.0, window)
     threshold, temperature, limits = (math.inf, 1.0, ()) if not calibrate else _calibrate(
-        groups, rank, None if sources is None else [sources[n] for n in names], floors,
+        groups, rank, None if sources is None else [_fold_keys(n, sources, len(g))
+                                                    for n, g in zip(names, groups)], floors,
         features=features, level=level)
     spread = Spread(spread.features, spread.scale, spread.factors, spread.noise, threshold,
                     temperature, window, FORMAT_VERSION, limits)
@@ -422,6 +423,16 @@ def common_table(rows: dict[str, list[dict[str, float]]]):
     order = tuple(dict.fromkeys(f for n, per in rows.items() for f in per[0] if f in kept[n]))
     return order, {n: np.array([[r[f] if f in kept[n] else math.nan for f in order]
                                 for r in per]) for n, per in rows.items()}
+
+
+def _fold_keys(name: str, sources, rows: int) -> np.ndarray:
+    """``sources[name]`` checked: one whole number from 0 per row (a calibration fold key)."""
+    keys = np.asarray(sources.get(name) if isinstance(sources, Mapping) else None)
+    if keys.shape != (rows,) or (rows and not (np.issubdtype(keys.dtype, np.integer)
+                                               and keys.min() >= 0)):
+        raise DescriptionError(f"action {name!r}: sources must give each of its {rows} rows a "
+                               f"whole number from 0 (the fold key its row is held out by)")
+    return keys.astype(int)
 
 
 def describe(takes: dict[str, list], *, rank: int = _RANK,

@@ -168,7 +168,7 @@ def flight_share(motion, chain: list[str]) -> float | None:
 
     A run leaves the ground between steps and a walk never does: on the shared data the walks
     and turns keep to it (0-3 % of their frames off it, a brisk walk's toe-off), most styles'
-    runs fly 35-53 % of theirs, an exhausted run 4-18 %, and an elderly run, which shuffles,
+    runs fly 33-53 % of theirs, an exhausted run 4-18 %, and an elderly run, which shuffles,
     hardly ever (under 1 %). A take that flies is no walk even when every learnt action is one.
 
     Parameters
@@ -188,15 +188,16 @@ def flight_share(motion, chain: list[str]) -> float | None:
     Notes
     -----
     The ground is where the body's lowest point is, read locally: per second of the take
-    (``_GROUND_SPAN``) the frame at the 2nd percentile of the frames' lowest points,
-    interpolated from such frame to such frame (and on as between the nearest two before the
-    first and after the last), so that a floor that tilts or a height that drifts
-    over a long take is not read as flight (CMU subject 02's second walk rises 1.6 units in
-    2.5 s, 4 % of its hips' height being 0.68). A frame flies when its lowest
-    point is higher than ``_GROUND`` of the hips' height (its median over the take, above the
-    ground) over the ground. Points whose height never changes are not the body: a top joint
-    fixed at the origin, or one carrying the travel along the floor. The points are placed a
-    block of ``_FLIGHT_BLOCK`` frames at a time, so a long take's joint positions are never
+    (``_GROUND_SPAN``) the frame at the 2nd percentile of the frames' lowest points (the third
+    lowest at least, so that a glitch of a frame or two does not set it), interpolated from
+    such frame to such frame (and on, before the first and after the last, as to the nearest
+    such frame half a second away or more; level where there is none), so that a floor that
+    tilts or a height that drifts over a long take is not read as flight (CMU subject 02's
+    second walk rises 1.6 units in 2.5 s, 4 % of its hips' height being 0.68). A frame flies
+    when its lowest point is higher than ``_GROUND`` of the hips' height (its median over the
+    take, above the ground) over the ground. Points whose height never changes are not the
+    body: a top joint fixed at the origin, or one carrying the travel along the floor. The
+    points are placed a block of ``_FLIGHT_BLOCK`` frames at a time, so a long take's joint positions are never
     all held at once.
 
     Examples
@@ -228,7 +229,7 @@ def flight_share(motion, chain: list[str]) -> float | None:
     from kinetology.kinematics import forward_kinematics
 
     skeleton = motion.skeleton
-    if skeleton is None or not chain or chain[-1] not in skeleton.names:
+    if skeleton is None or not chain or chain[-1] not in skeleton.names or not motion.frames:
         return None
     hip = skeleton.index(chain[-1])
     heights = []
@@ -239,9 +240,10 @@ def flight_share(motion, chain: list[str]) -> float | None:
             heights.append(forward_kinematics(block)[:, :, _UP])
         except MotionFormatError:
             return None
-    height = np.concatenate(heights)
+    height = np.concatenate(heights) if heights else np.zeros((0, len(skeleton.names)))
     with np.errstate(over="ignore", invalid="ignore"):
-        body = height.max(axis=0) - height.min(axis=0) > 0
+        reach = height.max(axis=0, initial=0.0) - height.min(axis=0, initial=0.0)
+        body = reach > 1e-9 * max(1.0, float(np.abs(height).max(initial=0.0)))
     if not body.any():
         return None
     lowest = height[:, body].min(axis=1)
@@ -249,16 +251,23 @@ def flight_share(motion, chain: list[str]) -> float | None:
     edges = list(range(0, len(lowest), span)) + [len(lowest)]
     if len(edges) > 2 and edges[-1] - edges[-2] < span / 2:
         del edges[-2]  # a last piece under half a second is read with the one before
-    # per piece its frame at the 2nd percentile of the lowest points, placed at that frame's
+    # per piece its frame at the 2nd percentile of the lowest points (the third lowest at
+    # least, so that a frame or two of glitch do not set the ground), placed at that frame's
     # time (not the piece's middle: on a rising floor a piece's low is at its start)
-    at = np.array([a + int(np.argsort(lowest[a:b], kind="stable")[int(0.02 * (b - a))])
-                   for a, b in zip(edges[:-1], edges[1:])])
+    at = np.array([a + int(np.argsort(lowest[a:b], kind="stable")[
+        min(b - a - 1, max(2, int(0.02 * (b - a))))]) for a, b in zip(edges[:-1], edges[1:])])
     frames = np.arange(len(lowest))
     ground = np.interp(frames, at, lowest[at])
-    if len(at) > 1:  # before the first such frame and after the last the floor goes on as between
-        for ends, (i, j) in ((frames < at[0], (0, 1)), (frames > at[-1], (-2, -1))):
-            slope = (lowest[at[j]] - lowest[at[i]]) / (at[j] - at[i])
-            ground[ends] = lowest[at[i]] + slope * (frames[ends] - at[i])
+    # before the first such frame and after the last the floor goes on as it does to the
+    # nearest such frame half a second or more away (two frames side by side would stretch
+    # a step's jitter over a second); level where there is none
+    for ends, near, others in ((frames < at[0], at[0], at[1:]),
+                               (frames > at[-1], at[-1], at[:-1])):
+        far = others[np.abs(others - near) >= span / 2]
+        if ends.any() and len(far):
+            other = far[0] if near == at[0] else far[-1]
+            slope = (lowest[other] - lowest[near]) / (other - near)
+            ground[ends] = lowest[near] + slope * (frames[ends] - near)
     hips = float(np.median(height[:, hip] - ground))
     return float(np.mean(lowest > ground + _GROUND * max(hips, 0.0)))
 

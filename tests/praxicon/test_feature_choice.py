@@ -220,3 +220,26 @@ def test_held_together_numbers_a_style_alike_in_every_action():
     assert nan[0] == nan[2] and len(set(nan)) == 3
     with pytest.raises(DescriptionError, match="not hashable"):
         held_together({"a": [["x"], ["y"]]})
+
+
+def test_groups_that_would_share_one_fold_are_numbered_as_the_actions_own():
+    # six styles in one action and two in another that fall 5 apart: numbered among all,
+    # the second action's takes would all be held out in one fold and never scored
+    keys = held_together({"a": [f"s{k}" for k in range(6)], "b": ["s0", "s5", "s0", "s5"]})
+    assert keys["a"].tolist() == [0, 1, 2, 3, 4, 5] and keys["b"].tolist() == [0, 1, 0, 1]
+
+
+@pytest.mark.parametrize("keys", [[0, 1, 2], [0, 1, 2, -1], ["a", "b", "c", "d"], [0.5] * 4])
+def test_fold_keys_that_are_not_one_whole_number_a_row_are_one_clear_error(keys):
+    takes = _motions()
+    order, table = common_table({n: feature_rows(m) for n, m in takes.items()})
+    sources = {n: np.arange(len(t)) for n, t in table.items()}
+    sources[next(iter(table))] = np.array(keys)
+    with pytest.raises(DescriptionError, match="whole number from 0"):
+        describe_table(table, order, sources=sources)
+
+
+def test_the_choice_never_leaves_the_flight_out():
+    from praxicon.feature_choice import feature_kind
+
+    assert feature_kind("flight") == "flight" and "flight" not in FEATURE_KINDS

@@ -169,3 +169,31 @@ def test_walks_and_turns_alone_answer_a_run_none_of_these():
     assert all(r.excess_group == "flight" for r in runs)
     known = recognise_many(px, [m for c in contents for m in takes(c, "normal", (4, 5))])
     assert [r.action for r in known] == [c for c in contents for _ in (4, 5)]
+
+
+def test_a_frame_or_two_of_glitch_does_not_set_the_ground():
+    # a walk whose lowest point dips far below the floor in two frames: read as the ground,
+    # the frames around them would all have flown
+    frames = 120
+    floor = np.zeros(frames)
+    floor[[40, 41]] = -3.0
+    walk = _hopping(np.zeros(frames, dtype=bool), 0.0, 1.0, floor,
+                    20 * np.sin(np.arange(frames) / 5))
+    assert flight_share(walk, ["Hips"]) == 0.0
+
+
+@needs_mocap()
+def test_the_shared_walks_keep_to_the_ground_and_most_runs_fly():
+    from kinetology import read_bvh
+    from praxicon.features import _root_joints
+
+    shares = {}
+    for path in sorted((SHARED / "bandai-namco-2-subset" / "data").glob("*.bvh")):
+        _, content, style, _ = path.stem.split("_")
+        motion = read_bvh(path)
+        shares.setdefault((content, style), []).append(flight_share(motion, _root_joints(motion)))
+    walks = [v for (c, _), vs in shares.items() if c != "run" for v in vs]
+    assert len(walks) == 105 and max(walks) < 0.035  # 4 frames of 133 at most
+    flying = [min(vs) for (c, s), vs in shares.items() if c == "run" and s not in
+              ("elderly", "exhausted")]
+    assert len(flying) == 5 and min(flying) >= 0.3
