@@ -197,8 +197,8 @@ def flight_share(motion, chain: list[str]) -> float | None:
     when its lowest point is higher than ``_GROUND`` of the hips' height (its median over the
     take, above the ground) over the ground. Points whose height never changes are not the
     body: a top joint fixed at the origin, or one carrying the travel along the floor. The
-    points are placed a block of ``_FLIGHT_BLOCK`` frames at a time, so a long take's joint positions are never
-    all held at once.
+    points are placed a block of ``_FLIGHT_BLOCK`` frames at a time, so a long take's joint
+    positions are never all held at once.
 
     Examples
     --------
@@ -240,10 +240,10 @@ def flight_share(motion, chain: list[str]) -> float | None:
             heights.append(forward_kinematics(block)[:, :, _UP])
         except MotionFormatError:
             return None
-    height = np.concatenate(heights) if heights else np.zeros((0, len(skeleton.names)))
+    height = np.concatenate(heights)  # a motion has a frame at least (checked above)
     with np.errstate(over="ignore", invalid="ignore"):
-        reach = height.max(axis=0, initial=0.0) - height.min(axis=0, initial=0.0)
-        body = reach > 1e-9 * max(1.0, float(np.abs(height).max(initial=0.0)))
+        reach = height.max(axis=0) - height.min(axis=0)
+        body = reach > 1e-9 * max(1.0, float(np.abs(height).max()))
     if not body.any():
         return None
     lowest = height[:, body].min(axis=1)

@@ -75,22 +75,24 @@ def test_a_floor_that_tilts_is_no_flight(rise):
     assert flight_share(_hopping(hops, 0.2, 1.0, floor, thigh), ["Hips"]) == pytest.approx(0.4)
 
 
-def test_a_point_that_carries_the_travel_along_the_floor_is_not_the_body():
-    # a top joint at floor level that only travels (as some exports carry the root's motion)
-    # would be the lowest point in every frame, and the body never off the ground
-    rows = [f"{0.3 * k:.6f} {11 + 2 * (k % 4 == 1):.6f} 0" for k in range(40)]
-    motion = parse_bvh("""HIERARCHY
+@pytest.mark.parametrize("level", [0.0, -5.0, 3.0])
+def test_a_point_that_carries_the_travel_along_the_floor_is_not_the_body(level):
+    # a top joint at one height that only travels (as some exports carry the root's motion),
+    # at the floor, under it or over it, would be the lowest point in every frame, and the
+    # body never off the ground
+    rows = [f"{0.3 * k:.6f} {11 - level + 2 * (k % 4 == 1):.6f} 0" for k in range(40)]
+    motion = parse_bvh(f"""HIERARCHY
 ROOT root
-{ OFFSET 0 0 0
+{{ OFFSET 0 {level} 0
   CHANNELS 1 Xposition
   JOINT Hips
-  { OFFSET 0 0 0
+  {{ OFFSET 0 0 0
     CHANNELS 1 Yposition
     JOINT shin
-    { OFFSET 0 -10 0
+    {{ OFFSET 0 -10 0
       CHANNELS 1 Xrotation
       End Site
-      { OFFSET 0 -1 0 } } } }
+      {{ OFFSET 0 -1 0 }} }} }} }}
 MOTION
 Frames: 40
 Frame Time: 0.0333333
