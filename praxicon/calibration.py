@@ -36,9 +36,10 @@ def scale_floors(features) -> np.ndarray:
     A joint that never moves in training has a near-zero spread; divided by it, a tenth of a
     degree in a new take would count as a thousand standard deviations.
     """
-    # the flight's log share spans about 1.8 from never to half the time off the ground (2.4 to
-    # always): a floor of 1 makes it tell flying from not flying, not how much (0.25, tried, let four
-    # more runs of a style not learnt pass as walks when run was not learnt: docs/praxicon.md)
+    # the flight's log share spans about 1.8 from never to half the time off the ground (2.4
+    # to always): a floor of 1 makes it tell flying from not flying, not how much (0.25,
+    # tried, let four more runs of a style not learnt pass as walks when run was not learnt:
+    # docs/praxicon.md)
     floors = {"spread": 0.1, "energy": 0.1, "tempo": 0.05, "flight": 1.0}
     return np.array([floors.get(f.rsplit(":", 1)[-1].rstrip("0123456789"), 1.0)
                      for f in features])

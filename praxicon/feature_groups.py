@@ -15,7 +15,6 @@ from .features import feature_joint
 
 __all__ = ["ALWAYS_READ", "feature_groups", "group_distances", "telling_groups"]
 
-_WHOLE_BODY = ("tempo", "flight")  # take-wide features, each a group of its own
 #: Groups the "none of these" test reads even where every learnt action looks alike in them:
 #: a learnt set that never leaves the ground (walks and turns alone) is no run, however fast
 #: or slow; a take that flies is none of them, where a style's sideways drift or tempo is
@@ -51,7 +50,8 @@ def feature_groups(features) -> dict[str, np.ndarray]:
         root = ".travel" in f or ".turn" in f
         if root and f.endswith(":drift") and f.rsplit(":", 1)[0] in turned:
             continue
-        key = f if f in _WHOLE_BODY or root else feature_joint(f)
+        joint = feature_joint(f)  # "*": a take-wide feature (the tempo, the flight)
+        key = f if root or joint == "*" else joint
         out.setdefault(key, []).append(i)
     return {k: np.array(v, dtype=int) for k, v in out.items()}
 
