@@ -272,6 +272,16 @@ def flight_share(motion, chain: list[str]) -> float | None:
     return float(np.mean(lowest > ground + _GROUND * max(hips, 0.0)))
 
 
+def share_of_flight(value: float) -> float:
+    """The share of frames off the ground a ``flight`` feature's value stands for (the
+    feature is ``log(share + 0.1)``; a mean of such values reads back as a share too).
+
+    >>> round(share_of_flight(math.log(0.35 + 0.1)), 6)
+    0.35
+    """
+    return max(0.0, math.exp(value) - _FLIGHT_FLOOR)
+
+
 def motion_features(motion, *, shape: bool = True) -> tuple[tuple[str, ...], np.ndarray]:
     """The feature vector of a whole motion: names and values (see the module's description).
 

@@ -42,7 +42,7 @@ from ._arguments import motion_of, motions_of, whole_number
 from .description import (DescriptionError, Descriptions, feature_rows, mahalanobis_terms,
                           model_scores, own_columns, _part, probabilities, score_model)
 from .feature_groups import feature_groups, group_distances, telling_groups
-from .features import feature_joint
+from .features import feature_joint, share_of_flight
 from .records import REBUILD, Praxicon, _count
 
 __all__ = ["Recognition", "recognise", "recognise_many", "feature_matrix", "JointReason",
@@ -87,6 +87,10 @@ class Recognition:
     lacking: tuple[tuple[str, tuple[str, ...]], ...] = ()  # per action shown: joints not here
     unshared: tuple[str, ...] = ()  # actions sharing no joint with the motion
     family: str = ""  # the family whose description decided none of these ("": the action's)
+    #: per action shown that has the flight: its distance term and the share of its takes'
+    #: frames off the ground it stands for (``exp(mean) - 0.1``, the feature read back)
+    flight: tuple[tuple[str, float, float], ...] = ()
+    off_ground: float | None = None  # the share of the motion's frames off the ground
 
     def __repr__(self) -> str:  # a summary, not the dataclass dump of every reason
         best = dict(self.ranking).get(self.action) if self.action else None
@@ -106,14 +110,20 @@ class Recognition:
         if self.excess_group:
             lines.append(f"  furthest feature group: {self.excess_group}, {self.excess:.2f} x "
                          f"its limit (none of these above 1)")
+        if self.off_ground is not None:
+            lines.append(f"  off the ground in {100 * self.off_ground:.0f} % of its frames")
         if self.missing:
             lines.append(f"  missing joints (recognised without them): "
                          f"{', '.join(self.missing)}")
         probability = dict(self.ranking)
         tempo, drift, lacking = dict(self.tempo), dict(self.drift), dict(self.lacking)
+        flight = {name: (term, share) for name, term, share in self.flight}
         for name, reasons in self.reasons:
+            flies = (f", flight term {flight[name][0]:.2f} (its takes typically off the ground "
+                     f"{100 * flight[name][1]:.0f} %)" if name in flight else "")
             lines.append(f"  {name}: p={probability[name]:.3f}, tempo term "
-                         f"{tempo.get(name, 0.0):.2f}, drift terms {drift.get(name, 0.0):.2f}")
+                         f"{tempo.get(name, 0.0):.2f}, drift terms {drift.get(name, 0.0):.2f}"
+                         f"{flies}")
             if lacking.get(name):
                 lines.append(f"    lacks the action's joints: {', '.join(lacking[name])}")
             matched = [r.joint for r in sorted(reasons, key=lambda r: r.penalty)
@@ -345,13 +355,14 @@ def _recognise(descriptions: Descriptions, motions, columns, x, explain: int):
                for a in descriptions.actions]
     unshared = tuple(names[a] for a in np.flatnonzero(~compared))
     n = len(columns)
+    flies = features.index("flight") if "flight" in features else None
     out = []
     for i, motion in enumerate(motions):
         order = np.argsort(-p[i], kind="stable")
         order = np.concatenate([order[compared[order]], order[~compared[order]]])
         best = int(order[0])  # best_of[i]: an action not compared has probability 0
         action = names[best] if accepted[i] else None
-        reasons, tempos, drifts = [], [], []
+        reasons, tempos, drifts, flights = [], [], [], []
         for a in order[:explain]:
             if not compared[a]:
                 break
@@ -367,12 +378,19 @@ def _recognise(descriptions: Descriptions, motions, columns, x, explain: int):
             # the drift's part of the shared distance and of the action's own-spread term
             drifts.append((names[a], round(float(terms[drift].sum() + score[i, a]
                                                  - dist[i, a]), 3)))
+            flight = [k for k, f in enumerate(shown) if f == "flight"]
+            if flight:  # the feature is log(share + 0.1): read back as a share
+                flights.append((names[a], round(float(terms[flight].sum()), 3),
+                                round(share_of_flight(float(mean[flight[0]])), 4)))
         out.append(Recognition(
             getattr(motion, "source", "<motion>"), action,
             tuple((names[a], float(p[i, a])) for a in order),
             float(per_feature[i, best]), float(spread.threshold), lacking[best],
             tuple(reasons), tuple(tempos), tuple(drifts), float(excess[i]), excess_group[i],
-            tuple((names[a], lacking[a]) for a in order[:explain] if compared[a]), unshared))
+            tuple((names[a], lacking[a]) for a in order[:explain] if compared[a]), unshared,
+            flight=tuple(flights),
+            off_ground=None if flies is None else round(share_of_flight(float(x[i, flies])),
+                                                        4)))
     return out
 
 

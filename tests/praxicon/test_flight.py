@@ -155,6 +155,7 @@ def test_walks_and_turns_alone_answer_a_run_none_of_these():
     # takes still are what they are (the dataset-2 subset, takes 1-3 of four styles learn)
     from praxicon.description import describe
     from praxicon.recognition import recognise_many
+    from praxicon.features import _root_joints
     from kinetology import read_bvh
 
     data = SHARED / "bandai-namco-2-subset" / "data"
@@ -166,9 +167,19 @@ def test_walks_and_turns_alone_answer_a_run_none_of_these():
 
     px = describe({c: [m for s in styles for m in takes(c, s, (1, 2, 3))] for c in contents},
                   groups={c: [s for s in styles for _ in range(3)] for c in contents})
-    runs = recognise_many(px, [m for s in ("normal", "masculine") for m in takes("run", s, (4,))])
+    run_takes = [m for s in ("normal", "masculine") for m in takes("run", s, (4,))]
+    runs = recognise_many(px, run_takes)
     assert [r.action for r in runs] == [None, None]
     assert all(r.excess_group == "flight" for r in runs)
+    for run, motion in zip(runs, run_takes):  # the explanation says how far the run flies
+        share = run.off_ground  # and how far a walk or a turn does
+        assert share == pytest.approx(flight_share(motion, _root_joints(motion)), abs=1e-4)
+        assert share > 0.1
+        assert f"off the ground in {100 * share:.0f} % of its frames" in run.explain()
+        terms = {name: (term, typical) for name, term, typical in run.flight}
+        assert set(terms) == {name for name, _ in run.reasons}
+        assert all(term > 1.0 and typical < 0.035 for term, typical in terms.values())
+        assert f"flight term {terms[run.ranking[0][0]][0]:.2f}" in run.explain()
     known = recognise_many(px, [m for c in contents for m in takes(c, "normal", (4, 5))])
     assert [r.action for r in known] == [c for c in contents for _ in (4, 5)]
 

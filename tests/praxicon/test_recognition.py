@@ -51,6 +51,13 @@ def test_unseen_movement_is_none_of_these(px):
     assert "none of these" in found.explain()
 
 
+def test_a_motion_without_a_skeleton_is_explained_without_a_flight(px):
+    # synthetic motions carry no skeleton: no point of the body to lift off the ground
+    found = recognise(px, synthetic_motion(4, (0,), seed=1, noise=0.45, repetitions=5))
+    assert found.off_ground is None and found.flight == ()
+    assert "off the ground" not in found.explain() and "flight term" not in found.explain()
+
+
 def test_explanation_names_the_extra_joint(px):
     """A one-hand take against the two-hand action: the other hand should move and does not."""
     found = recognise(px, synthetic_motion(4, (0,), seed=1, noise=0.45, repetitions=5))
