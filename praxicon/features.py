@@ -274,12 +274,18 @@ def flight_share(motion, chain: list[str]) -> float | None:
 
 def share_of_flight(value: float) -> float:
     """The share of frames off the ground a ``flight`` feature's value stands for (the
-    feature is ``log(share + 0.1)``; a mean of such values reads back as a share too).
+    feature is ``log(share + 0.1)``), clipped at 0; NaN stays NaN.
+
+    A mean of such values reads back as a typical share, not the mean share: a geometric
+    mean shifted by 0.1, below the mean (shares 0 and 0.5 read back as 0.145).
 
     >>> round(share_of_flight(math.log(0.35 + 0.1)), 6)
     0.35
+    >>> round(share_of_flight((math.log(0.1) + math.log(0.6)) / 2), 3)
+    0.145
     """
-    return max(0.0, math.exp(value) - _FLIGHT_FLOOR)
+    share = math.exp(value) - _FLIGHT_FLOOR
+    return 0.0 if share < 0 else share  # a NaN compares false: it stays NaN
 
 
 def motion_features(motion, *, shape: bool = True) -> tuple[tuple[str, ...], np.ndarray]:

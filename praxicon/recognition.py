@@ -88,9 +88,13 @@ class Recognition:
     unshared: tuple[str, ...] = ()  # actions sharing no joint with the motion
     family: str = ""  # the family whose description decided none of these ("": the action's)
     #: per action shown that has the flight: its distance term and the share of its takes'
-    #: frames off the ground it stands for (``exp(mean) - 0.1``, the feature read back)
+    #: frames off the ground its mean stands for (``max(0, exp(mean) - 0.1)``, the feature
+    #: read back: a typical share, below the mean share)
     flight: tuple[tuple[str, float, float], ...] = ()
-    off_ground: float | None = None  # the share of the motion's frames off the ground
+    #: the share of the motion's frames off the ground; None when the flight is not among the
+    #: features compared (the motion has no skeleton, no action of the praxicon has the flight,
+    #: or it could not be read)
+    off_ground: float | None = None
 
     def __repr__(self) -> str:  # a summary, not the dataclass dump of every reason
         best = dict(self.ranking).get(self.action) if self.action else None

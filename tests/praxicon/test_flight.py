@@ -154,9 +154,9 @@ def test_walks_and_turns_alone_answer_a_run_none_of_these():
     # its flight; a run is none of them all the same, whatever its style, and their own new
     # takes still are what they are (the dataset-2 subset, takes 1-3 of four styles learn)
     from praxicon.description import describe
-    from praxicon.recognition import recognise_many
+    from praxicon.recognition import feature_matrix, recognise_many
     from praxicon.features import _root_joints
-    from kinetology import read_bvh
+    from kinetology import Motion, read_bvh
 
     data = SHARED / "bandai-namco-2-subset" / "data"
     styles = ("active", "normal", "feminine", "youthful")
@@ -180,6 +180,18 @@ def test_walks_and_turns_alone_answer_a_run_none_of_these():
         assert set(terms) == {name for name, _ in run.reasons}
         assert all(term > 1.0 and typical < 0.035 for term, typical in terms.values())
         assert f"flight term {terms[run.ranking[0][0]][0]:.2f}" in run.explain()
+        # the flight's term is part of the shared distance: the joints' terms, the tempo's
+        # and the flight's sum to it (the terms are rounded to 3 decimals)
+        name = run.ranking[0][0]
+        columns = feature_matrix(px, [motion])[0]
+        total = (sum(r.penalty for r in dict(run.reasons)[name]) + dict(run.tempo)[name]
+                 + terms[name][0])
+        assert total == pytest.approx(run.penalty * len(columns), abs=0.1)
+    # the same run without its skeleton: no body to lift, the flight not compared
+    bare = recognise_many(px, [Motion(m.values, m.channels, m.frame_rate, None, m.source)
+                               for m in run_takes])
+    assert all(r.off_ground is None and r.flight == () for r in bare)
+    assert all("off the ground" not in r.explain() for r in bare)
     known = recognise_many(px, [m for c in contents for m in takes(c, "normal", (4, 5))])
     assert [r.action for r in known] == [c for c in contents for _ in (4, 5)]
 
