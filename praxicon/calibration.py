@@ -31,7 +31,7 @@ GROUP_LEVEL = 0.01
 def scale_floors(features) -> np.ndarray:
     """The smallest scale of each feature: a degree (or a degree per second, a length unit per
     second) for angles and rates, 10 % for the log ranges and energies, 5 % of the tempo, 1
-    for the flight's log share.
+    for the flight's log share and the pace's log.
 
     A joint that never moves in training has a near-zero spread; divided by it, a tenth of a
     degree in a new take would count as a thousand standard deviations.
@@ -40,7 +40,9 @@ def scale_floors(features) -> np.ndarray:
     # to always): a floor of 1 makes it tell flying from not flying, not how much (0.25,
     # tried, let four more runs of a style not learnt pass as walks when run was not learnt:
     # docs/praxicon.md)
-    floors = {"spread": 0.1, "energy": 0.1, "tempo": 0.05, "flight": 1.0}
+    # the pace's log spans about 4 from standing (-3) to a dash (1.6): a floor of 1 makes it
+    # tell travelling from standing and a walk's pace from a dash's, not a style's from another
+    floors = {"spread": 0.1, "energy": 0.1, "tempo": 0.05, "flight": 1.0, "pace": 1.0}
     return np.array([floors.get(f.rsplit(":", 1)[-1].rstrip("0123456789"), 1.0)
                      for f in features])
 

@@ -80,10 +80,11 @@ __all__ = ["FORMAT_VERSION", "ActionDescription", "Spread", "Descriptions", "des
 #: the features every take had were kept).
 FORMAT_VERSION = 5
 #: Bumped when how descriptions are learnt changes but what they hold does not: a praxicon
-#: keeps reading its descriptions, and a build learns them again (3: the flight feature, its
+#: keeps reading its descriptions, and a build learns them again (4: the pace feature, its
+#: group always read; 3: the flight feature, its
 #: group always read, and a group's takes held out together in the calibration; 2: the kinds
 #: of features are chosen by held-out recognition, ``praxicon.feature_choice``).
-LEARNING = 3
+LEARNING = 4
 
 
 def _floats(values) -> tuple[float, ...]:

@@ -38,8 +38,9 @@ MAX_FOLDS = 20
 
 def feature_kind(feature: str) -> str:
     """The kind of a feature: ``pose``, ``energy``, ``spread``, ``shape`` (a joint's
-    course over the take), ``tempo``, ``root`` (the root's drift, sway and turn) or
-    ``flight`` (the body's, never left out: the "none of these" test always reads it).
+    course over the take), ``tempo``, ``root`` (the root's drift, sway and turn),
+    ``flight`` or ``pace`` (the body's against the ground, never left out: the "none of
+    these" test always reads them).
 
     Parameters
     ----------
@@ -50,18 +51,19 @@ def feature_kind(feature: str) -> str:
     -------
     str
         Its kind (the part after the last ``:``, its digits dropped, ``posec`` read as
-        ``pose``; the root's travel and turning features, the flight and the tempo by name).
+        ``pose``; the root's travel and turning features, the flight, the pace and the tempo
+        by name).
 
     Examples
     --------
     >>> [feature_kind(f) for f in ("Neck.rx:posec", "Neck.rx:shape2", "Hips.turny:drift",
-    ...                            "tempo", "flight")]
-    ['pose', 'shape', 'root', 'tempo', 'flight']
+    ...                            "tempo", "flight", "pace")]
+    ['pose', 'shape', 'root', 'tempo', 'flight', 'pace']
     """
     if feature == "tempo":
         return "tempo"
-    if feature == "flight":
-        return "flight"
+    if feature in ("flight", "pace"):
+        return feature
     if ".travel" in feature or ".turn" in feature:
         return "root"
     kind = feature.rsplit(":", 1)[-1].rstrip("0123456789")

@@ -18,13 +18,16 @@ __all__ = ["ALWAYS_READ", "feature_groups", "group_distances", "telling_groups"]
 #: Groups the "none of these" test reads even where every learnt action looks alike in them:
 #: a learnt set that never leaves the ground (walks and turns alone) is no run, however fast
 #: or slow; a take that flies is none of them, where a style's sideways drift or tempo is
-#: still most likely the action it ranked as.
-ALWAYS_READ = ("flight",)
+#: still most likely the action it ranked as. Likewise a learnt set of gaits alone is no action
+#: performed in place (a punch that steps on the spot is no walk), and actions performed in
+#: place alone no gait: the pace is read too.
+ALWAYS_READ = ("flight", "pace")
 
 
 def feature_groups(features) -> dict[str, np.ndarray]:
     """The columns of each feature group: a joint's features, each of the root's travel and
-    turning features alone, the flight, the tempo (the units a deviation concentrates in).
+    turning features alone, the flight, the pace, the tempo (the units a deviation
+    concentrates in).
 
     A joint's features move together (a pose, its range and its speed are one movement), but
     the root's are separate quantities a gait is defined by: a turn's heading rate is one
@@ -50,7 +53,7 @@ def feature_groups(features) -> dict[str, np.ndarray]:
         root = ".travel" in f or ".turn" in f
         if root and f.endswith(":drift") and f.rsplit(":", 1)[0] in turned:
             continue
-        joint = feature_joint(f)  # "*": a take-wide feature (the tempo, the flight)
+        joint = feature_joint(f)  # "*": a take-wide feature (the tempo, the flight, the pace)
         key = f if root or joint == "*" else joint
         out.setdefault(key, []).append(i)
     return {k: np.array(v, dtype=int) for k, v in out.items()}

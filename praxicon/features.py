@@ -7,8 +7,9 @@ whose position moves): its travel and turning velocities in its own frame, mean 
 turn's heading rate, the speed of travel) and RMS of the rest (bobbing, swaying); for whole
 takes also, per local axis, the largest signed turn from the take's first frame (a turn performed
 and then partly undone still turned that far). The take's flight: the share of its frames in
-which no point of the body is on the ground (log), where a skeleton gives the points. And the
-take's tempo: the period of its summed joint speed (log seconds).
+which no point of the body is on the ground (log), and its pace: how far the body travels a
+second, in its hips' heights (log), where a skeleton gives the points. And the take's tempo:
+the period of its summed joint speed (log seconds).
 """
 
 from __future__ import annotations
@@ -19,7 +20,7 @@ import numpy as np
 
 from psgs.errors import PSGSError
 
-__all__ = ["motion_features", "feature_joint", "flight_share", "FeatureError"]
+__all__ = ["motion_features", "feature_joint", "flight_share", "travel_pace", "FeatureError"]
 
 _ROTATIONS = ("rx", "ry", "rz")
 _TRANSLATIONS = ("tx", "ty", "tz")
@@ -31,6 +32,9 @@ _FLIGHT_BLOCK = 4096  # frames placed at once by the flight's forward kinematics
 # added to the share before its logarithm: a share of 0 is a number too, and a frame or two
 # off the ground (a brisk walk's toe-off, 1 frame in 30) is not made far from none
 _FLIGHT_FLOOR = 0.1
+# hips' heights a second added to the pace before its logarithm: a body standing or stepping
+# on the spot drifts 0.01-0.2 a second, which is one "in place", not a range of logs
+_PACE_FLOOR = 0.05
 
 
 class FeatureError(PSGSError, ValueError):
@@ -38,7 +42,7 @@ class FeatureError(PSGSError, ValueError):
 
 
 def feature_joint(feature: str) -> str:
-    """The joint a feature belongs to (``"*"`` for the take-wide tempo and flight)."""
+    """The joint a feature belongs to (``"*"`` for the take-wide tempo, flight and pace)."""
     channel = feature.rsplit(":", 1)[0]
     return channel.split(".", 1)[0] if "." in channel else "*"
 
@@ -86,15 +90,24 @@ def _joint_transform(motion, joint: str):
     return rot, pos
 
 
-def root_motion(motion, chain: list[str]) -> np.ndarray:
-    """Frames-1 x 6: the root chain's velocity and turning rate (deg/s) in its own frame."""
+def _chain_pose(motion, chain: list[str]) -> tuple[np.ndarray, np.ndarray]:
+    """Per frame the root chain's rotation and position (smoothed), parent to child."""
     rot = np.broadcast_to(np.eye(3), (motion.frames, 3, 3)).copy()
     pos = np.zeros((motion.frames, 3))
     for joint in chain:  # compose parent to child: p += R t_child, R = R R_child
         r, t = _joint_transform(motion, joint)
         pos = pos + np.einsum("tij,tj->ti", rot, t)
         rot = rot @ r
-    rate = motion.frame_rate
+    return rot, pos
+
+
+def root_motion(motion, chain: list[str]) -> np.ndarray:
+    """Frames-1 x 6: the root chain's velocity and turning rate (deg/s) in its own frame."""
+    return _root_series(*_chain_pose(motion, chain), motion.frame_rate)
+
+
+def _root_series(rot: np.ndarray, pos: np.ndarray, rate: float) -> np.ndarray:
+    """:func:`root_motion` from the chain's pose (:func:`_chain_pose`)."""
     velocity = np.einsum("tji,tj->ti", rot[:-1], np.diff(pos, axis=0)) * rate
     step = np.einsum("tji,tjk->tik", rot[:-1], rot[1:])  # R_t^T R_t+1: the turn in one frame
     turning = np.degrees(np.stack([step[:, 2, 1] - step[:, 1, 2], step[:, 0, 2] - step[:, 2, 0],
@@ -137,7 +150,8 @@ def _excursions(turning: np.ndarray, frame_rate: float) -> np.ndarray:
     return angle[far, np.arange(turning.shape[1])]
 
 
-def _root_features(motion, chain: list[str], *, course: bool = True) -> list[tuple[str, float]]:
+def _root_features(motion, chain: list[str], *, course: bool = True,
+                   pose=None) -> list[tuple[str, float]]:
     """The root's travel and turning in its own frame, whichever way the body faces.
 
     The root chain's velocity and angular velocity are expressed in its own frame (so a walk
@@ -148,7 +162,8 @@ def _root_features(motion, chain: list[str], *, course: bool = True) -> list[tup
     ``course`` also each axis's turn excursion (:func:`_excursions`): like the quarter means it
     reads the course of a whole take, which a window of a recording cut anywhere does not have.
     """
-    series = root_motion(motion, chain)
+    series = (root_motion(motion, chain) if pose is None
+              else _root_series(*pose, motion.frame_rate))
     out = []
     for k, kind in enumerate(("travel", "turn")):
         part = series[:, 3 * k:3 * k + 3]
@@ -225,6 +240,20 @@ def flight_share(motion, chain: list[str]) -> float | None:
     >>> flight_share(hop, ["Hips"])
     0.25
     """
+    read = _ground(motion, chain)
+    return None if read is None else _flight(read)
+
+
+def _flight(read: tuple[np.ndarray, np.ndarray, float]) -> float:
+    """The share of frames off the ground, from :func:`_ground`'s reading."""
+    lowest, ground, hips = read
+    return float(np.mean(lowest > ground + _GROUND * max(hips, 0.0)))
+
+
+def _ground(motion, chain: list[str]) -> tuple[np.ndarray, np.ndarray, float] | None:
+    """Per frame the body's lowest point and the ground under it, and the hips' height above
+    the ground (their median over the take), as :func:`flight_share` reads them; None where
+    it gives none."""
     from kinetology import Motion, MotionFormatError
     from kinetology.kinematics import forward_kinematics
 
@@ -269,7 +298,75 @@ def flight_share(motion, chain: list[str]) -> float | None:
             slope = (lowest[other] - lowest[near]) / (other - near)
             ground[ends] = lowest[near] + slope * (frames[ends] - near)
     hips = float(np.median(height[:, hip] - ground))
-    return float(np.mean(lowest > ground + _GROUND * max(hips, 0.0)))
+    return lowest, ground, hips
+
+
+def travel_pace(motion, chain: list[str]) -> float | None:
+    """How fast the body travels over the ground: hips' heights a second.
+
+    A gait goes somewhere and an action performed in place does not, whatever its steps: on
+    the shared data the walks and turns travel 0.4-2.3 hips' heights a second, the runs
+    1.4-4.6, the dashes 2.8-5.1, and the bows, waves, guides, calls and punches 0.01-0.2
+    (stepping on the spot, swaying; a kick or a slash that steps into it 0.2-0.6). Measured in
+    the body's own size, the pace reads the same in centimetres or inches and on a child's body
+    or a giant's.
+
+    Parameters
+    ----------
+    motion : kinetology.Motion
+        A take with a skeleton whose vertical axis is y.
+    chain : list of str
+        The root chain (its composed position is where the body is; its last joint's height
+        above the ground, the hips', is the unit).
+
+    Returns
+    -------
+    float or None
+        The mean horizontal distance the root chain covers in a second (in a take shorter than
+        a second, from its first frame to its last), over the hips' median height above the
+        ground (read as :func:`flight_share` reads it); None where that gives none or the hips
+        are not above the ground.
+
+    Examples
+    --------
+    A body of a hip and a swinging foot that travels 2 units a second, its hip 11 units above the
+    foot's lowest point:
+
+    >>> from kinetology.bvh import parse_bvh
+    >>> text = "\\n".join(f"0 11 {0.1 * k:.1f} 0 {10 * (k % 2)}" for k in range(40))
+    >>> walk = parse_bvh('''HIERARCHY
+    ... ROOT Hips
+    ... { OFFSET 0 0 0
+    ...   CHANNELS 4 Xposition Yposition Zposition Xrotation
+    ...   JOINT foot
+    ...   { OFFSET 0 -10 0
+    ...     CHANNELS 1 Xrotation
+    ...     End Site
+    ...     { OFFSET 0 -1 0 } } }
+    ... MOTION
+    ... Frames: 40
+    ... Frame Time: 0.05
+    ... ''' + text)
+    >>> round(travel_pace(walk, ["Hips"]), 3)
+    0.182
+    """
+    read = _ground(motion, chain)
+    return None if read is None else _pace(motion, read[2], _chain_pose(motion, chain)[1])
+
+
+def _pace(motion, hips: float, pos: np.ndarray) -> float | None:
+    """:func:`travel_pace` from the hips' height and the root chain's positions."""
+    if not hips > 0:
+        return None
+    flat = np.delete(pos, _UP, axis=1)
+    span = max(1, int(round(motion.frame_rate)))  # a second: a step's sway averages out
+    if motion.frames > span:
+        covered = (np.linalg.norm(flat[span:] - flat[:-span], axis=1).mean()
+                   * motion.frame_rate / span)
+    else:
+        covered = (np.linalg.norm(flat[-1] - flat[0]) * motion.frame_rate
+                   / max(1, motion.frames - 1))
+    return float(covered / hips)
 
 
 def share_of_flight(value: float) -> float:
@@ -286,6 +383,18 @@ def share_of_flight(value: float) -> float:
     """
     share = math.exp(value) - _FLIGHT_FLOOR
     return 0.0 if share < 0 else share  # a NaN compares false: it stays NaN
+
+
+def pace_of(value: float) -> float:
+    """The pace (hips' heights a second) a ``pace`` feature's value stands for (the feature
+    is ``log(pace + 0.05)``), clipped at 0; NaN stays NaN. A mean of such values reads back
+    as a typical pace, below the mean pace (as :func:`share_of_flight`'s).
+
+    >>> round(pace_of(math.log(1.2 + 0.05)), 6)
+    1.2
+    """
+    pace = math.exp(value) - _PACE_FLOOR
+    return 0.0 if pace < 0 else pace  # a NaN compares false: it stays NaN
 
 
 def motion_features(motion, *, shape: bool = True) -> tuple[tuple[str, ...], np.ndarray]:
@@ -305,8 +414,9 @@ def motion_features(motion, *, shape: bool = True) -> tuple[tuple[str, ...], np.
     names : tuple of str
         ``channel:kind`` (kinds pose and posec: the median's sine and cosine, spread, energy,
         shape0..3; the root's ``travel*``/``turn*`` drift and energy, and ``turn*`` excursion),
-        ``flight`` (with a skeleton and a root that moves; :func:`flight_share`, as
-        ``log(share + 0.1)``) and ``tempo``.
+        ``flight`` and ``pace`` (with a skeleton and a root that moves; :func:`flight_share`,
+        as ``log(share + 0.1)``, and :func:`travel_pace`, as ``log(pace + 0.05)``) and
+        ``tempo``.
     values : numpy.ndarray
 
     Raises
@@ -354,13 +464,18 @@ def motion_features(motion, *, shape: bool = True) -> tuple[tuple[str, ...], np.
             names.append(f"{motion.channels[c]}:{kind}")
             values.append(float(column[k]))
     if roots:
-        for name, value in _root_features(motion, roots, course=shape):
+        pose = _chain_pose(motion, roots)  # the travel's features and the pace read it both
+        for name, value in _root_features(motion, roots, course=shape, pose=pose):
             names.append(name)
             values.append(value)
-        share = flight_share(motion, roots)
-        if share is not None:
+        read = _ground(motion, roots)
+        if read is not None:
             names.append("flight")
-            values.append(math.log(share + _FLIGHT_FLOOR))
+            values.append(math.log(_flight(read) + _FLIGHT_FLOOR))
+            pace = _pace(motion, read[2], pose[1])
+            if pace is not None:
+                names.append("pace")
+                values.append(math.log(pace + _PACE_FLOOR))
     if columns:
         names.append("tempo")
         values.append(math.log(_tempo(speed.sum(axis=1), rate)))

@@ -42,7 +42,7 @@ from ._arguments import motion_of, motions_of, whole_number
 from .description import (DescriptionError, Descriptions, feature_rows, mahalanobis_terms,
                           model_scores, own_columns, _part, probabilities, score_model)
 from .feature_groups import feature_groups, group_distances, telling_groups
-from .features import feature_joint, share_of_flight
+from .features import feature_joint, pace_of, share_of_flight
 from .records import REBUILD, Praxicon, _count
 
 __all__ = ["Recognition", "recognise", "recognise_many", "feature_matrix", "JointReason",
@@ -95,6 +95,11 @@ class Recognition:
     #: features compared (the motion has no skeleton, no action of the praxicon has the flight,
     #: or it could not be read)
     off_ground: float | None = None
+    #: per action shown that has the pace: its distance term and the pace its mean stands for
+    #: (hips' heights a second, ``max(0, exp(mean) - 0.05)``: a typical pace)
+    pace: tuple[tuple[str, float, float], ...] = ()
+    #: how fast the motion travels, hips' heights a second; None as ``off_ground``
+    travel: float | None = None
 
     def __repr__(self) -> str:  # a summary, not the dataclass dump of every reason
         best = dict(self.ranking).get(self.action) if self.action else None
@@ -116,18 +121,23 @@ class Recognition:
                          f"its limit (none of these above 1)")
         if self.off_ground is not None:
             lines.append(f"  off the ground in {100 * self.off_ground:.0f} % of its frames")
+        if self.travel is not None:
+            lines.append(f"  travels {self.travel:.2f} hips' heights a second")
         if self.missing:
             lines.append(f"  missing joints (recognised without them): "
                          f"{', '.join(self.missing)}")
         probability = dict(self.ranking)
         tempo, drift, lacking = dict(self.tempo), dict(self.drift), dict(self.lacking)
         flight = {name: (term, share) for name, term, share in self.flight}
+        pace = {name: (term, value) for name, term, value in self.pace}
         for name, reasons in self.reasons:
-            flies = (f", flight term {flight[name][0]:.2f} (its takes typically off the ground "
+            flies = (f", flight term {_term(flight[name][0])} (its takes typically off the ground "
                      f"{100 * flight[name][1]:.0f} %)" if name in flight else "")
+            goes = (f", pace term {_term(pace[name][0])} (its takes typically {pace[name][1]:.2f} "
+                    f"hips' heights a second)" if name in pace else "")
             lines.append(f"  {name}: p={probability[name]:.3f}, tempo term "
-                         f"{tempo.get(name, 0.0):.2f}, drift terms {drift.get(name, 0.0):.2f}"
-                         f"{flies}")
+                         f"{_term(tempo.get(name, 0.0))}, drift terms {_term(drift.get(name, 0.0))}"
+                         f"{flies}{goes}")
             if lacking.get(name):
                 lines.append(f"    lacks the action's joints: {', '.join(lacking[name])}")
             matched = [r.joint for r in sorted(reasons, key=lambda r: r.penalty)
@@ -185,6 +195,11 @@ def feature_matrix(descriptions: Descriptions, motions, *, shape: bool = True):
                     for p in present)
     x = np.array([[row[wanted[i]] for i in columns] for row in rows], dtype=float)
     return columns, x.reshape(len(rows), len(columns)), missing
+
+
+def _term(value: float) -> str:
+    """A term to two decimals, never ``-0.00`` (a term may be a hair under 0)."""
+    return f"{round(value, 2) + 0.0:.2f}"
 
 
 def _energies(features, values) -> dict[str, float]:
@@ -360,13 +375,14 @@ def _recognise(descriptions: Descriptions, motions, columns, x, explain: int):
     unshared = tuple(names[a] for a in np.flatnonzero(~compared))
     n = len(columns)
     flies = features.index("flight") if "flight" in features else None
+    goes = features.index("pace") if "pace" in features else None
     out = []
     for i, motion in enumerate(motions):
         order = np.argsort(-p[i], kind="stable")
         order = np.concatenate([order[compared[order]], order[~compared[order]]])
         best = int(order[0])  # best_of[i]: an action not compared has probability 0
         action = names[best] if accepted[i] else None
-        reasons, tempos, drifts, flights = [], [], [], []
+        reasons, tempos, drifts, flights, paces = [], [], [], [], []
         for a in order[:explain]:
             if not compared[a]:
                 break
@@ -386,6 +402,10 @@ def _recognise(descriptions: Descriptions, motions, columns, x, explain: int):
             if flight:  # the feature is log(share + 0.1): read back as a share
                 flights.append((names[a], round(float(terms[flight].sum()), 3),
                                 round(share_of_flight(float(mean[flight[0]])), 4)))
+            pace = [k for k, f in enumerate(shown) if f == "pace"]
+            if pace:  # log(pace + 0.05), read back likewise
+                paces.append((names[a], round(float(terms[pace].sum()), 3),
+                              round(pace_of(float(mean[pace[0]])), 4)))
         out.append(Recognition(
             getattr(motion, "source", "<motion>"), action,
             tuple((names[a], float(p[i, a])) for a in order),
@@ -394,7 +414,9 @@ def _recognise(descriptions: Descriptions, motions, columns, x, explain: int):
             tuple((names[a], lacking[a]) for a in order[:explain] if compared[a]), unshared,
             flight=tuple(flights),
             off_ground=None if flies is None else round(share_of_flight(float(x[i, flies])),
-                                                        4)))
+                                                        4),
+            pace=tuple(paces),
+            travel=None if goes is None else round(pace_of(float(x[i, goes])), 4)))
     return out
 
 

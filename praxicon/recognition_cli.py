@@ -129,7 +129,7 @@ def register_recognise(sub) -> None:
     r.add_argument("praxicon", metavar="PX", help="a praxicon folder")
     r.add_argument("files", nargs="+", metavar="FILE", help="a .bvh or .amc motion file")
     r.add_argument("--explain", action="store_true",
-                   help="also the joints that decided it, tempo, drift and flight")
+                   help="also the joints that decided it, tempo, drift, flight and pace")
     r.add_argument("--plot", default=None, metavar="PNG",
                    help="also draw the explanation: per best action its joints' distance "
                         "terms (one FILE)")

@@ -140,7 +140,7 @@ def test_flight_is_a_group_of_its_own_and_always_read():
     groups = feature_groups(["Hips.travelz:drift", "flight", "tempo", "knee.rx:pose"])
     assert {k: v.tolist() for k, v in groups.items()} == {
         "Hips.travelz:drift": [0], "flight": [1], "tempo": [2], "knee": [3]}
-    assert ALWAYS_READ == ("flight",)
+    assert ALWAYS_READ == ("flight", "pace")
     # two actions alike in every group: none tells them apart, but the flight is read
     means = np.zeros((2, 4))
     tells = telling_groups(means, np.ones((2, 4)), np.ones(4), groups, np.ones(4))
@@ -180,17 +180,18 @@ def test_walks_and_turns_alone_answer_a_run_none_of_these():
         assert set(terms) == {name for name, _ in run.reasons}
         assert all(term > 1.0 and typical < 0.035 for term, typical in terms.values())
         assert f"flight term {terms[run.ranking[0][0]][0]:.2f}" in run.explain()
-        # the flight's term is part of the shared distance: the joints' terms, the tempo's
-        # and the flight's sum to it (the terms are rounded to 3 decimals)
+        # the flight's term is part of the shared distance: the joints' terms, the tempo's,
+        # the flight's and the pace's sum to it (the terms are rounded to 3 decimals)
         name = run.ranking[0][0]
         columns = feature_matrix(px, [motion])[0]
         total = (sum(r.penalty for r in dict(run.reasons)[name]) + dict(run.tempo)[name]
-                 + terms[name][0])
+                 + terms[name][0] + dict((n, t) for n, t, _ in run.pace)[name])
         assert total == pytest.approx(run.penalty * len(columns), abs=0.1)
     # the same run without its skeleton: no body to lift, the flight not compared
     bare = recognise_many(px, [Motion(m.values, m.channels, m.frame_rate, None, m.source)
                                for m in run_takes])
-    assert all(r.off_ground is None and r.flight == () for r in bare)
+    assert all(r.off_ground is None and r.flight == () and r.travel is None and r.pace == ()
+               for r in bare)
     assert all("off the ground" not in r.explain() for r in bare)
     known = recognise_many(px, [m for c in contents for m in takes(c, "normal", (4, 5))])
     assert [r.action for r in known] == [c for c in contents for _ in (4, 5)]
