@@ -33,8 +33,10 @@ _FLIGHT_BLOCK = 4096  # frames placed at once by the flight's forward kinematics
 # off the ground (a brisk walk's toe-off, 1 frame in 30) is not made far from none
 _FLIGHT_FLOOR = 0.1
 # hips' heights a second added to the pace before its logarithm: a body standing or stepping
-# on the spot drifts 0.01-0.2 a second, which is one "in place", not a range of logs
+# on the spot drifts 0.01-0.2 a second, which the floor keeps within about 1.5 of one another
+# on the log scale, where a walk is 2 to 3.5 above them
 _PACE_FLOOR = 0.05
+_PACE_UNIT = 0.25  # the hips are the pace's unit where at least this share of the body's height
 
 
 class FeatureError(PSGSError, ValueError):
@@ -244,16 +246,16 @@ def flight_share(motion, chain: list[str]) -> float | None:
     return None if read is None else _flight(read)
 
 
-def _flight(read: tuple[np.ndarray, np.ndarray, float]) -> float:
+def _flight(read: tuple[np.ndarray, np.ndarray, float, float]) -> float:
     """The share of frames off the ground, from :func:`_ground`'s reading."""
-    lowest, ground, hips = read
+    lowest, ground, hips, _ = read
     return float(np.mean(lowest > ground + _GROUND * max(hips, 0.0)))
 
 
-def _ground(motion, chain: list[str]) -> tuple[np.ndarray, np.ndarray, float] | None:
-    """Per frame the body's lowest point and the ground under it, and the hips' height above
-    the ground (their median over the take), as :func:`flight_share` reads them; None where
-    it gives none."""
+def _ground(motion, chain: list[str]) -> tuple[np.ndarray, np.ndarray, float, float] | None:
+    """Per frame the body's lowest point and the ground under it, the hips' height above the
+    ground and the body's (the highest point's; medians over the take), as
+    :func:`flight_share` reads them; None where it gives none."""
     from kinetology import Motion, MotionFormatError
     from kinetology.kinematics import forward_kinematics
 
@@ -298,7 +300,9 @@ def _ground(motion, chain: list[str]) -> tuple[np.ndarray, np.ndarray, float] | 
             slope = (lowest[other] - lowest[near]) / (other - near)
             ground[ends] = lowest[near] + slope * (frames[ends] - near)
     hips = float(np.median(height[:, hip] - ground))
-    return lowest, ground, hips
+    with np.errstate(over="ignore", invalid="ignore"):
+        tallest = float(np.median(height[:, body].max(axis=1) - ground))
+    return lowest, ground, hips, tallest
 
 
 def travel_pace(motion, chain: list[str]) -> float | None:
@@ -324,8 +328,9 @@ def travel_pace(motion, chain: list[str]) -> float | None:
     float or None
         The mean horizontal distance the root chain covers in a second (in a take shorter than
         a second, from its first frame to its last), over the hips' median height above the
-        ground (read as :func:`flight_share` reads it); None where that gives none or the hips
-        are not above the ground.
+        ground (read as :func:`flight_share` reads it); None where that gives none, where the
+        chain's last joint is not a quarter of the body's height above the ground (a top joint
+        that carries the travel along the floor is no unit) or where the positions overflow.
 
     Examples
     --------
@@ -351,22 +356,26 @@ def travel_pace(motion, chain: list[str]) -> float | None:
     0.182
     """
     read = _ground(motion, chain)
-    return None if read is None else _pace(motion, read[2], _chain_pose(motion, chain)[1])
+    return None if read is None else _pace(motion, read, _chain_pose(motion, chain)[1])
 
 
-def _pace(motion, hips: float, pos: np.ndarray) -> float | None:
-    """:func:`travel_pace` from the hips' height and the root chain's positions."""
-    if not hips > 0:
+def _pace(motion, read, pos: np.ndarray) -> float | None:
+    """:func:`travel_pace` from :func:`_ground`'s reading and the root chain's positions."""
+    hips, tallest = read[2], read[3]
+    # the unit is the chain's last joint's height: where that is no good share of the body's
+    # (a chain that ends at a top joint carrying the travel along the floor) there is none
+    if not hips > _PACE_UNIT * tallest:
         return None
-    flat = np.delete(pos, _UP, axis=1)
-    span = max(1, int(round(motion.frame_rate)))  # a second: a step's sway averages out
-    if motion.frames > span:
-        covered = (np.linalg.norm(flat[span:] - flat[:-span], axis=1).mean()
-                   * motion.frame_rate / span)
-    else:
-        covered = (np.linalg.norm(flat[-1] - flat[0]) * motion.frame_rate
-                   / max(1, motion.frames - 1))
-    return float(covered / hips)
+    with np.errstate(over="ignore", invalid="ignore"):
+        flat = np.delete(pos, _UP, axis=1) / hips  # in hips' heights before any square
+        span = max(1, int(round(motion.frame_rate)))  # a second: a step's sway averages out
+        if motion.frames > span:
+            pace = (np.linalg.norm(flat[span:] - flat[:-span], axis=1).mean()
+                    * motion.frame_rate / span)
+        else:
+            pace = (np.linalg.norm(flat[-1] - flat[0]) * motion.frame_rate
+                    / max(1, motion.frames - 1))
+    return float(pace) if np.isfinite(pace) else None
 
 
 def share_of_flight(value: float) -> float:
@@ -472,7 +481,7 @@ def motion_features(motion, *, shape: bool = True) -> tuple[tuple[str, ...], np.
         if read is not None:
             names.append("flight")
             values.append(math.log(_flight(read) + _FLIGHT_FLOOR))
-            pace = _pace(motion, read[2], pose[1])
+            pace = _pace(motion, read, pose[1])
             if pace is not None:
                 names.append("pace")
                 values.append(math.log(pace + _PACE_FLOOR))

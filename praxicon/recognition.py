@@ -198,7 +198,11 @@ def feature_matrix(descriptions: Descriptions, motions, *, shape: bool = True):
 
 
 def _term(value: float) -> str:
-    """A term to two decimals, never ``-0.00`` (a term may be a hair under 0)."""
+    """A term to two decimals, never ``-0.00`` (a term may be a hair under 0).
+
+    >>> _term(-0.001), _term(2.046)
+    ('0.00', '2.05')
+    """
     return f"{round(value, 2) + 0.0:.2f}"
 
 

@@ -50,7 +50,7 @@ Frame Time: {1 / rate:.9f}
 
 
 @settings(max_examples=40, deadline=None)
-@given(seconds=st.floats(1.5, 6.0), rate=st.sampled_from([24.0, 30.0, 60.0, 120.0]),
+@given(seconds=st.floats(1.5, 6.0), rate=st.sampled_from([7.5, 24.0, 29.97, 30.0, 60.0, 120.0]),
        legs=st.floats(0.0, 4.0), heading=st.floats(-180.0, 180.0),
        scale=st.floats(0.01, 100.0), floor=st.floats(-500.0, 500.0))
 def test_the_pace_is_the_travel_a_second_over_the_hips_height(seconds, rate, legs, heading,
@@ -78,6 +78,39 @@ def test_a_motion_without_a_skeleton_has_no_pace():
     assert "pace" not in motion_features(bare)[0] and "pace" in motion_features(motion)[0]
 
 
+def test_a_top_joint_on_the_floor_is_no_unit():
+    # the travel carried by a top joint at floor level (it jitters, so it is the chain's last
+    # moving joint) and the hips above it without a translation: that joint's height is no
+    # length to measure a pace in
+    frames, rate = 90, 30.0
+    t = np.arange(frames) / rate
+    swing = 20 * np.sin(2 * np.pi * t)
+    rows = [f"{9 * t[k]:.9f} {1e-3 * (k % 2):.9f} 0 0 {swing[k]:.9f}" for k in range(frames)]
+    motion = parse_bvh(f"""HIERARCHY
+ROOT joint_Root
+{{ OFFSET 0 0 0
+  CHANNELS 3 Xposition Yposition Zposition
+  JOINT Hips
+  {{ OFFSET 0 9 0
+    CHANNELS 1 Xrotation
+    JOINT leg
+    {{ OFFSET 0 -4 0
+      CHANNELS 1 Xrotation
+      End Site
+      {{ OFFSET 0 -5 0 }} }} }} }}
+MOTION
+Frames: {frames}
+Frame Time: {1 / rate:.9f}
+""" + "\n".join(rows) + "\n")
+    from praxicon.features import _root_joints
+
+    assert _root_joints(motion) == ["joint_Root"]
+    assert travel_pace(motion, ["joint_Root"]) is None
+    assert "pace" not in motion_features(motion)[0]
+    # the same body with the hips as the chain's last joint has a pace
+    assert travel_pace(motion, ["joint_Root", "Hips"]) == pytest.approx(1.0, rel=0.05)
+
+
 def test_the_pace_is_a_log_beside_the_flight():
     motion, median = _walker(3.0, 30.0, 18.0, 30.0, 1.0)
     names, values = motion_features(motion)
@@ -102,7 +135,11 @@ def test_a_praxicon_of_actions_in_place_answers_a_walk_none_of_these():
                                 for s, h in ((0.8, 0.0), (1.2, 90.0), (1.5, -45.0))])
     assert [w.action for w in walks] == [None, None, None]
     assert all(w.excess_group == "pace" for w in walks)
-    assert all(w.travel > 0.5 for w in walks)
+    for walk in walks:  # the explanation says how fast the walk goes and the actions do not
+        assert walk.travel > 0.5
+        assert f"travels {walk.travel:.2f} hips' heights a second" in walk.explain()
+        typical = {name: value for name, _, value in walk.pace}
+        assert set(typical) == {"sway", "still"} and all(0 <= v < 0.1 for v in typical.values())
     known = recognise_many(px, [take(3.0, 1.0, 30), take(0.0, 1.0, 31)])
     assert [k.action for k in known] == ["sway", "still"]
 
