@@ -393,7 +393,7 @@ def _fmt(x, digits=3):
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--only", action="append", default=None,
-                        help="d1-loso, d2-in-style, d2-loso, open-set (open-d1, open-d2: one dataset's "
+                        help="d1-loso, d2-in-style, d2-loso, d2-to-d1, open-set (open-d1, open-d2: one dataset's "
                              "part), cmu-parse, joined-parse, "
                              "growth, ablation, pictures (repeatable; default all)")
     parser.add_argument("--methods", default=",".join(METHODS))
@@ -415,10 +415,10 @@ def main(argv=None) -> int:
     d1 = d2 = None
     peer_cache = {}  # the peers' DTW distances, once per dataset
     if want("d2-in-style") or want("d2-loso") or want("open-set") or want("open-d2") or \
-            want("ablation"):
+            want("ablation") or want("d2-to-d1"):
         d2 = read_bandai(MOCAP / "bandai-namco-2-subset")
     if want("d1-loso") or want("open-set") or want("open-d1") or want("joined-parse") or want("growth") or \
-            want("pictures") or want("ablation"):
+            want("pictures") or want("ablation") or want("d2-to-d1"):
         d1 = read_bandai(MOCAP / "bandai-namco-1")
     if want("d1-loso"):
         for style in sorted({t.style for t in d1}):
@@ -434,6 +434,12 @@ def main(argv=None) -> int:
             run_split(results, "d2-loso", [t for t in d2 if t.style != style],
                       [t for t in d2 if t.style == style], methods)
         rows += summarise(results, "d2-loso", methods)
+    if want("d2-to-d1"):
+        # another dataset's performer and styles: every take of the subset learns, dataset 1's
+        # walks and runs (the contents the two share by name) are asked
+        run_split(results, "d2-to-d1", d2, [t for t in d1 if t.content in {u.content for u in d2}],
+                  methods)
+        rows += summarise(results, "d2-to-d1", methods)
     for row in rows:
         best_peer = max((r["accuracy"] for r in rows if r["protocol"] == row["protocol"]
                          and r["method"] not in ("praxicon",)), default=float("nan"))
