@@ -29,6 +29,31 @@ def take(seed: int, seconds: float = 6.0, rate: float = 30.0, period: float = 1.
     return Motion(values, CHANNELS, rate, star_skeleton(CHANNELS), f"take{seed}")
 
 
+def leg_body(x, hip, z, swing, scale: float, frame_time: str):
+    """A hip and a straight leg (thigh 4, shin 5, in units of ``scale``): per frame the hip at
+    ``x``, ``hip`` (height), ``z`` and the thigh turned ``swing`` degrees about x, which turns
+    the shin below it (the foot is ``scale * (4 + 5 cos(swing))`` under the hip)."""
+    from kinetology.bvh import parse_bvh
+
+    rows = [f"{x[k]:.9f} {hip[k]:.9f} {z[k]:.9f} {swing[k]:.9f} 0" for k in range(len(hip))]
+    return parse_bvh(f"""HIERARCHY
+ROOT Hips
+{{ OFFSET 0 0 0
+  CHANNELS 3 Xposition Yposition Zposition
+  JOINT thigh
+  {{ OFFSET 0 {-4 * scale} 0
+    CHANNELS 1 Xrotation
+    JOINT shin
+    {{ OFFSET 0 {-5 * scale} 0
+      CHANNELS 1 Xrotation
+      End Site
+      {{ OFFSET 0 0 0 }} }} }} }}
+MOTION
+Frames: {len(hip)}
+Frame Time: {frame_time}
+""" + "\n".join(rows) + "\n")
+
+
 def write_manifest(folder: Path, actions: dict[str, list[int]], missing: bool = False) -> Path:
     """BVH takes and a CSV manifest: ``actions`` maps an action to its takes' seeds."""
     from kinetology import write_bvh

@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from kinetology.bvh import parse_bvh
-from praxicon_fixtures import SHARED, needs_mocap
+from praxicon_fixtures import SHARED, leg_body, needs_mocap
 from praxicon.feature_groups import ALWAYS_READ, feature_groups, telling_groups
 from praxicon.features import flight_share, motion_features
 
@@ -25,23 +25,8 @@ def _hopping(flying, lift: float, scale: float, offset, swing=None):
     swing = np.zeros(len(flying)) if swing is None else np.asarray(swing, dtype=float)
     # the thigh's rotation turns the 5-long bone below it: the foot is 4 + 5 cos(swing) down
     hip = floor + scale * (4 + 5 * np.cos(np.radians(swing))) + lift * leg * np.asarray(flying)
-    rows = [f"{0.3 * k * scale:.9f} {hip[k]:.9f} 0 {swing[k]:.9f} 0" for k in range(len(hip))]
-    return parse_bvh(f"""HIERARCHY
-ROOT Hips
-{{ OFFSET 0 0 0
-  CHANNELS 3 Xposition Yposition Zposition
-  JOINT thigh
-  {{ OFFSET 0 {-4 * scale} 0
-    CHANNELS 1 Xrotation
-    JOINT shin
-    {{ OFFSET 0 {-5 * scale} 0
-      CHANNELS 1 Xrotation
-      End Site
-      {{ OFFSET 0 0 0 }} }} }} }}
-MOTION
-Frames: {len(flying)}
-Frame Time: 0.0333333
-""" + "\n".join(rows) + "\n")
+    still = np.zeros(len(flying))
+    return leg_body(0.3 * scale * np.arange(len(flying)), hip, still, swing, scale, "0.0333333")
 
 
 @settings(max_examples=40, deadline=None)

@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 
 from kinetology import Motion
 from kinetology.bvh import parse_bvh
-from praxicon_fixtures import SHARED, needs_mocap
+from praxicon_fixtures import SHARED, leg_body, needs_mocap
 from praxicon.features import motion_features, travel_pace
 
 
@@ -30,23 +30,7 @@ def _walker(seconds: float, rate: float, speed: float, heading: float, scale: fl
     h = np.radians(heading)
     x = along * np.cos(h) - side * np.sin(h)
     z = along * np.sin(h) + side * np.cos(h)
-    rows = [f"{x[k]:.9f} {hip[k]:.9f} {z[k]:.9f} {swing[k]:.9f} 0" for k in range(frames)]
-    return parse_bvh(f"""HIERARCHY
-ROOT Hips
-{{ OFFSET 0 0 0
-  CHANNELS 3 Xposition Yposition Zposition
-  JOINT thigh
-  {{ OFFSET 0 {-4 * scale} 0
-    CHANNELS 1 Xrotation
-    JOINT shin
-    {{ OFFSET 0 {-5 * scale} 0
-      CHANNELS 1 Xrotation
-      End Site
-      {{ OFFSET 0 0 0 }} }} }} }}
-MOTION
-Frames: {frames}
-Frame Time: {1 / rate:.9f}
-""" + "\n".join(rows) + "\n"), float(np.median(hip - floor))
+    return leg_body(x, hip, z, swing, scale, f"{1 / rate:.9f}"), float(np.median(hip - floor))
 
 
 @settings(max_examples=40, deadline=None)
