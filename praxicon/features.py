@@ -152,8 +152,8 @@ def _excursions(turning: np.ndarray, frame_rate: float) -> np.ndarray:
     return angle[far, np.arange(turning.shape[1])]
 
 
-def _root_features(motion, chain: list[str], *, course: bool = True,
-                   pose=None) -> list[tuple[str, float]]:
+def _root_features(motion, chain: list[str], pose, *,
+                   course: bool = True) -> list[tuple[str, float]]:
     """The root's travel and turning in its own frame, whichever way the body faces.
 
     The root chain's velocity and angular velocity are expressed in its own frame (so a walk
@@ -164,8 +164,7 @@ def _root_features(motion, chain: list[str], *, course: bool = True,
     ``course`` also each axis's turn excursion (:func:`_excursions`): like the quarter means it
     reads the course of a whole take, which a window of a recording cut anywhere does not have.
     """
-    series = (root_motion(motion, chain) if pose is None
-              else _root_series(*pose, motion.frame_rate))
+    series = _root_series(*pose, motion.frame_rate)  # pose: the chain's (_chain_pose)
     out = []
     for k, kind in enumerate(("travel", "turn")):
         part = series[:, 3 * k:3 * k + 3]
@@ -474,7 +473,7 @@ def motion_features(motion, *, shape: bool = True) -> tuple[tuple[str, ...], np.
             values.append(float(column[k]))
     if roots:
         pose = _chain_pose(motion, roots)  # the travel's features and the pace read it both
-        for name, value in _root_features(motion, roots, course=shape, pose=pose):
+        for name, value in _root_features(motion, roots, pose, course=shape):
             names.append(name)
             values.append(value)
         read = _ground(motion, roots)

@@ -197,6 +197,11 @@ def feature_matrix(descriptions: Descriptions, motions, *, shape: bool = True):
     return columns, x.reshape(len(rows), len(columns)), missing
 
 
+#: the take-wide features of the body against the ground, each read back from its log into
+#: its own unit (a share of the frames, hips' heights a second) for the explanation
+_BODY = {"flight": share_of_flight, "pace": pace_of}
+
+
 def _term(value: float) -> str:
     """A term to two decimals, never ``-0.00`` (a term may be a hair under 0).
 
@@ -378,15 +383,14 @@ def _recognise(descriptions: Descriptions, motions, columns, x, explain: int):
                for a in descriptions.actions]
     unshared = tuple(names[a] for a in np.flatnonzero(~compared))
     n = len(columns)
-    flies = features.index("flight") if "flight" in features else None
-    goes = features.index("pace") if "pace" in features else None
     out = []
     for i, motion in enumerate(motions):
         order = np.argsort(-p[i], kind="stable")
         order = np.concatenate([order[compared[order]], order[~compared[order]]])
         best = int(order[0])  # best_of[i]: an action not compared has probability 0
         action = names[best] if accepted[i] else None
-        reasons, tempos, drifts, flights, paces = [], [], [], [], []
+        reasons, tempos, drifts = [], [], []
+        body: dict[str, list] = {f: [] for f in _BODY}
         for a in order[:explain]:
             if not compared[a]:
                 break
@@ -402,25 +406,21 @@ def _recognise(descriptions: Descriptions, motions, columns, x, explain: int):
             # the drift's part of the shared distance and of the action's own-spread term
             drifts.append((names[a], round(float(terms[drift].sum() + score[i, a]
                                                  - dist[i, a]), 3)))
-            flight = [k for k, f in enumerate(shown) if f == "flight"]
-            if flight:  # the feature is log(share + 0.1): read back as a share
-                flights.append((names[a], round(float(terms[flight].sum()), 3),
-                                round(share_of_flight(float(mean[flight[0]])), 4)))
-            pace = [k for k, f in enumerate(shown) if f == "pace"]
-            if pace:  # log(pace + 0.05), read back likewise
-                paces.append((names[a], round(float(terms[pace].sum()), 3),
-                              round(pace_of(float(mean[pace[0]])), 4)))
+            for feature, read_back in _BODY.items():
+                if feature in shown:
+                    k = shown.index(feature)
+                    body[feature].append((names[a], round(float(terms[k]), 3),
+                                          round(read_back(float(mean[k])), 4)))
+        own = {feature: round(read_back(float(x[i, features.index(feature)])), 4)
+               if feature in here else None for feature, read_back in _BODY.items()}
         out.append(Recognition(
             getattr(motion, "source", "<motion>"), action,
             tuple((names[a], float(p[i, a])) for a in order),
             float(per_feature[i, best]), float(spread.threshold), lacking[best],
             tuple(reasons), tuple(tempos), tuple(drifts), float(excess[i]), excess_group[i],
             tuple((names[a], lacking[a]) for a in order[:explain] if compared[a]), unshared,
-            flight=tuple(flights),
-            off_ground=None if flies is None else round(share_of_flight(float(x[i, flies])),
-                                                        4),
-            pace=tuple(paces),
-            travel=None if goes is None else round(pace_of(float(x[i, goes])), 4)))
+            flight=tuple(body["flight"]), off_ground=own["flight"],
+            pace=tuple(body["pace"]), travel=own["pace"]))
     return out
 
 
