@@ -375,7 +375,9 @@ def _recognise(descriptions: Descriptions, motions, columns, x, explain: int):
     p = probabilities(score, spread.temperature)
     per_feature = dist / len(columns)
     names = descriptions.names
-    best_of = p.argmax(axis=1) if len(p) else np.zeros(0, dtype=int)
+    # ranked by the score, not by its probability: far from every action, the probabilities
+    # of all but the best underflow to 0 and would leave the rest in the order learnt
+    best_of = score.argmin(axis=1) if len(score) else np.zeros(0, dtype=int)
     accepted, _, excess, excess_group = _tested(descriptions, features, x, best_of, fitted,
                                                 dist)
     here = set(features)
@@ -385,9 +387,9 @@ def _recognise(descriptions: Descriptions, motions, columns, x, explain: int):
     n = len(columns)
     out = []
     for i, motion in enumerate(motions):
-        order = np.argsort(-p[i], kind="stable")
+        order = np.argsort(score[i], kind="stable")
         order = np.concatenate([order[compared[order]], order[~compared[order]]])
-        best = int(order[0])  # best_of[i]: an action not compared has probability 0
+        best = int(order[0])  # best_of[i]: an action not compared has an infinite score
         action = names[best] if accepted[i] else None
         reasons, tempos, drifts = [], [], []
         body: dict[str, list] = {f: [] for f in _BODY}

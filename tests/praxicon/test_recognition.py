@@ -313,3 +313,21 @@ def test_drift_is_also_scored_in_each_actions_own_spread():
     found = recognise(px, _gait(21.0, 700))
     assert found.ranking[0][0] == "turn-left" and found.penalty == pytest.approx(
         shared[0, 0] / len(columns))
+
+
+def test_the_ranking_follows_the_scores_where_the_probabilities_underflow(px):
+    # at a tiny temperature every probability but the best's is 0.0: the order of the rest
+    # must still be that of the scores, not the order the actions were learnt in
+    from dataclasses import replace
+
+    from praxicon.recognition import feature_matrix
+    from praxicon.scoring import scores
+
+    sharp = replace(px, spread=replace(px.spread, temperature=1e-6))
+    new = [synthetic_motion(4, (2,), seed=3, noise=0.45, repetitions=5),
+           synthetic_motion(4, (0,), seed=1, noise=0.45, repetitions=5)]
+    columns, x, _ = feature_matrix(sharp, new)
+    _, score = scores(sharp, x, columns)
+    for r, s in zip(recognise_many(sharp, new), score):
+        assert [p for _, p in r.ranking][1:] == [0.0, 0.0]  # underflowed: no order in them
+        assert [name for name, _ in r.ranking] == [sharp.names[a] for a in np.argsort(s)]
