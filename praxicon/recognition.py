@@ -63,7 +63,9 @@ class Recognition:
     """What a motion is: ``action`` (or None: none of these) and every action's score.
 
     ``ranking`` holds ``(action, probability)`` best first: the probabilities come from one
-    log-likelihood per action, on one scale, and sum to 1 over the praxicon's actions.
+    log-likelihood per action, on one scale, and sum to 1 over the praxicon's actions; the
+    order is that of the log-likelihoods, also where the probabilities of the actions far
+    behind the best round to 0.
     ``penalty`` is the best action's squared Mahalanobis distance per feature and
     ``threshold`` the largest it may be for an answer other than None (when ``family`` is
     set, these and ``excess`` are the family's, whose test decided); ``missing`` names the
