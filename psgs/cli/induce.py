@@ -192,10 +192,13 @@ def run_induce(args) -> int:
                    f"{args.inducer} find them?")
         out.append("(Try: psgs synth --noise 0.2 --seed 3 -o ag.txt && psgs induce ag.txt)")
         out.append("")
-    takes = f" ({len(performances)} performances)" if performances and len(performances) > 1 \
-        else ""
+    read = performances if performances else [actiongram]
+    # every performance counts, not the first one's alone: the strings any of them has, and
+    # the symbols of all of them
+    strings = len(dict.fromkeys(n for p in read for n in p.names))
+    takes = f" ({len(read)} performances)" if len(read) > 1 else ""
     out.append(f"{result.inducer}: {len(result.components)} component(s) of "
-               f"{len(actiongram)} strings, {actiongram.total_symbols} symbols{takes}, "
+               f"{strings} strings, {sum(p.total_symbols for p in read)} symbols{takes}, "
                f"in {seconds * 1000:.0f} ms")
     out.extend(_found_lines(result, truth, full=args.full))
     dropped: dict[str, int] = {}

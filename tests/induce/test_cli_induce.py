@@ -137,3 +137,14 @@ def test_bench_noise_checks_its_output_path_before_running(tmp_path, capsys, fla
     assert main(["bench", "noise", "--trials", "1", "--levels", "0", flag, str(target)]) == 2
     captured = capsys.readouterr()
     assert "not a file in an existing directory" in captured.err and "cells" not in captured.err
+
+
+def test_several_performances_are_counted_whole(tmp_path, capsys):
+    # the summary line counts every performance's strings and symbols, not the first one's
+    first, second = tmp_path / "a.txt", tmp_path / "b.txt"
+    first.write_text("x: a b c a b c a b c\n")
+    second.write_text("x: a b c a b c\ny: p q p q p q\n")
+    for order in ((first, second), (second, first)):
+        assert main(["induce", *map(str, order)]) == 0
+        line = capsys.readouterr().out.splitlines()[0]
+        assert "of 2 strings, 21 symbols (2 performances)" in line, line
