@@ -151,6 +151,10 @@ def run_induce(args) -> int:
     from ..induce.synthetic import generate
 
     inducer = get(args.inducer, **key_values(args.param))
+    out_path = args.output
+    if out_path and (Path(out_path).is_dir() or not Path(out_path).resolve().parent.is_dir()):
+        # said now, not after the induction ran
+        raise ValidationError(f"{out_path}: not a file in an existing directory")
     truth = None
     if args.file and args.example:
         raise ValidationError("give FILE or --example, not both")

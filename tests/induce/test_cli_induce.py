@@ -63,11 +63,13 @@ def test_induce_sequential_with_params(tmp_path, capsys):
     (["induce", "--example", "--inducer", "sequential", "--param", "min_count=x"],
      "parameter min_count must be an integer"),
     (["induce", "{missing}"], "No such file"),
+    (["induce", "--example", "-o", "{missing}/x.psgs"], "not a file in an existing directory"),
+    (["induce", "--example", "-o", "{folder}"], "not a file in an existing directory"),
 ])
 def test_bad_input_is_one_line_and_status_2(tmp_path, capsys, argv, words):
     bad = tmp_path / "bad.txt"
     bad.write_text("x: a b\ny: a b@z\n")
-    argv = [a.format(bad=bad, missing=tmp_path / "missing.txt") for a in argv]
+    argv = [a.format(bad=bad, missing=tmp_path / "missing.txt", folder=tmp_path) for a in argv]
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and words in err and "Traceback" not in err
