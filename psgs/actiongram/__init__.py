@@ -312,7 +312,8 @@ class Actiongram:
             they merge into one.
         columns : mapping of str to str, optional
             Your key or column name for each of ``stream``, ``onset``, ``duration``,
-            ``symbol`` (``{"stream": "voice", "symbol": "pitch"}``).
+            ``symbol`` (``{"stream": "voice", "symbol": "pitch"}``); a key that is none of
+            these is a ValidationError.
 
         Returns
         -------

@@ -178,6 +178,10 @@ def from_events(cls, rows, *, gaps: str = "rest", rest_symbol: str = "_",
     _check_options(gaps, rest_symbol)
     if columns is not None and not isinstance(columns, Mapping):
         raise ValidationError(f"columns must map a field to a column name, not {_shown(columns)}")
+    unknown = [k for k in (columns or {}) if k not in FIELDS]
+    if unknown:  # a misspelt field was ignored, and the column it named never read
+        raise ValidationError(f"columns maps {_shown(unknown[0])}, which is no field: the "
+                              f"fields are {', '.join(FIELDS)}")
     records, labels = _records(rows, dict(columns or {}))
     label = lambda k: f"row {labels[k]!r}"  # noqa: E731 - the index a user gave, as given
     try:

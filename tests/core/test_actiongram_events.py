@@ -109,6 +109,12 @@ def test_integer_streams_and_symbols_are_written_in_decimal_and_mappings_are_row
     assert ag.strings == {"1": ("60", "62")}
 
 
+def test_a_column_mapped_from_no_field_is_refused():
+    # a misspelt field ("note" for "symbol") was ignored, and the table read without it
+    with pytest.raises(ValidationError, match="'note', which is no field: the fields are stream"):
+        Actiongram.from_events([("a", 0, 1, "x")], columns={"note": "symbol"})
+
+
 @pytest.mark.parametrize("rows, words", [
     ([("s", -1, 1, "a")], "row 0: onset must be 0 or more"),
     ([("s", 0, 1, "a"), ("s", math.nan, 1, "a")], "row 1: onset must be finite"),
