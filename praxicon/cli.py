@@ -99,6 +99,19 @@ def _check_outputs(args) -> None:
         check_folder(args.view, "the player")
 
 
+def _check_system(praxicon, args) -> None:
+    """The action's record is named, with the command that learns it again, when its system
+    does not parse (``load`` leaves the systems unparsed; the ``.psgs`` file beside it is a
+    copy, which the error named before)."""
+    from .store import system_problem
+
+    if args.action in praxicon.names:
+        problem = system_problem(praxicon[args.action],
+                                 Path(args.praxicon) / "records" / f"{args.action}.json")
+        if problem:
+            _bad(problem)
+
+
 def _shaping_progress(done: int, total: int, channel: str) -> None:
     # one line rewritten in place on stderr (a channel at 120 fps can take seconds)
     print(f"\rgenerated channel {done}/{total}: {channel:<40}", end="", file=sys.stderr,
@@ -115,6 +128,7 @@ def run_generate(args) -> int:
     try:
         _check_outputs(args)
         praxicon = load(args.praxicon, descriptions=False)  # generation reads the records
+        _check_system(praxicon, args)
         live = not args.no_progress and sys.stderr.isatty()
         try:
             result = generate(praxicon, args.action, repeat=args.repeat, style=args.style,

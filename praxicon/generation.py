@@ -42,7 +42,7 @@ from .channel_curve import Method, channel_curves
 from .body_motion import _source_take, animate, body_of, performances_of, whole_cycle
 from .jsonvalues import as_dict
 from .records import ActionRecord, Praxicon, _count
-from .store import load
+from .store import load, system_problem
 
 __all__ = ["Generated", "Method", "generate", "generate_motion", "derive_copies",
            "has_grammar", "is_smooth_cycle", "style_scales", "MAX_REPEAT"]
@@ -333,7 +333,11 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
             source_motion = _source_take(record)
         motion, _ = performed_motion(record, repeat, source_motion, style)
         return motion, {}, {}
-    system = loads(record.system, source=record.file)
+    try:
+        system = loads(record.system, source=record.file)
+    except ValueError as exc:  # the record's text: the record is what is damaged, not the copy
+        raise ValueError(system_problem(record, f"the record of {record.name!r}")
+                         or str(exc)) from None
     usable = {c: m for c, m in record.morphemes().items() if m.durations and m.displacements}
     if not usable:
         raise ValueError(f"action {record.name!r}: no morpheme has durations and "

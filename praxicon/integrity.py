@@ -9,8 +9,10 @@ folder from what ``load`` read (:func:`~praxicon.store.dump`, byte for byte as `
 writes it) and compares every file; it also reads ``timings.json``, names files that are no
 part of the praxicon (a record or system of an action the index does not list, a temporary
 file left by an interrupted write) and a folder of learnt actions without the descriptions
-recognition reads. :func:`repair` writes every file ``dump`` writes again from what ``load``
-read.
+recognition reads; and it parses every record's system, which ``load`` leaves unparsed (a
+record whose system does not parse is named; its ``.psgs`` file, a copy of the system as it
+was learnt, is not compared with it). :func:`repair` writes every file ``dump`` writes again
+from what ``load`` read, and writes nothing while a record's system does not parse.
 
 What this cannot see: a record that is well formed but was changed (its values are checked
 for type and range when it is read, and a record is what the other files are derived from;
@@ -29,7 +31,7 @@ from ._values import shown
 from .description_store import FILE
 from .jsonvalues import read_json
 from .records import REBUILD, PraxiconError
-from .store import TEMPORARY_NAME, dump, load
+from .store import TEMPORARY_NAME, dump, load, system_problem
 
 __all__ = ["Verification", "verify", "repair"]
 
@@ -179,6 +181,24 @@ def _loaded(folder):
         return load(folder, descriptions=False), str(exc)
 
 
+def _damaged_systems(folder: Path, praxicon) -> dict[str, str]:
+    """Per record whose system does not parse, its file's path in the folder -> the line
+    naming it (:func:`~praxicon.store.system_problem`)."""
+    problems = {}
+    for record in praxicon.actions:
+        name = f"records/{record.name}.json"
+        problem = system_problem(record, folder / name)
+        if problem:
+            problems[name] = problem
+    return problems
+
+
+def _written_from(damaged: dict[str, str]) -> set[str]:
+    """The files of the folder written from the damaged records: the records themselves and
+    their ``.psgs`` files."""
+    return {*damaged, *(f"{Path(n).stem}.psgs" for n in damaged)}
+
+
 def verify(folder) -> Verification:
     """Check every file of a praxicon folder against what its records give.
 
@@ -192,7 +212,7 @@ def verify(folder) -> Verification:
     Verification
         ``intact`` when every file is as ``build`` writes it for the folder's records;
         otherwise one line per file that is missing, differs (with its first differing
-        line), cannot be read, or is stray.
+        line), cannot be read, or is stray, and per record whose system does not parse.
 
     Raises
     ------
@@ -217,9 +237,13 @@ def verify(folder) -> Verification:
     praxicon, refused = _loaded(folder)
     folder = Path(folder)
     expected = _expected(praxicon)
-    compared = [c for c in (_compare(folder, name, data) for name, data in expected.items())
-                if c]
-    problems = [problem for problem, _ in compared]
+    # a damaged record and its .psgs file are not compared: the record is what is wrong, and
+    # "--repair writes it again" would copy the damage over a file that may be intact
+    damaged = _damaged_systems(folder, praxicon)
+    skipped = _written_from(damaged)
+    compared = [c for c in (_compare(folder, name, data) for name, data in expected.items()
+                            if name not in skipped) if c]
+    problems = [problem for problem, _ in compared] + list(damaged.values())
     repairable = sum(mendable for _, mendable in compared)
     timing = _timings(folder, set(praxicon.names))
     problems += [timing] if timing else []
@@ -240,8 +264,9 @@ def repair(folder) -> Verification:
     The index's names and settings, every record and the descriptions are what the files
     are written from, so a folder whose index or records ``load`` refuses is not repaired
     (the :class:`PraxiconError` says why; ``psgs praxicon build`` learns a damaged record
-    again), and descriptions it refuses (damaged, of an older format) are left as they are
-    and reported (``build`` into the folder learns them again);
+    again), nor one holding a record whose system does not parse (its ``.psgs`` file would be
+    written from that text), and descriptions it refuses (damaged, of an older format) are
+    left as they are and reported (``build`` into the folder learns them again);
     the derived files are written anew, and the index, records and descriptions in the
     canonical form ``build`` writes (a key ``load`` does not read, added by hand to a
     record, is dropped). Stray files, a damaged ``timings.json`` and missing descriptions
@@ -250,8 +275,9 @@ def repair(folder) -> Verification:
     Raises
     ------
     PraxiconError
-        The line ``load`` gives for a folder it refuses, or a file that cannot be written
-        (a folder in its place).
+        The line ``load`` gives for a folder it refuses, the line naming a record whose
+        system does not parse (nothing is written), or a file that cannot be written (a
+        folder in its place).
 
     Returns
     -------
@@ -270,6 +296,10 @@ def repair(folder) -> Verification:
     (False, True)
     """
     praxicon, _ = _loaded(folder)  # refused descriptions are left as they are
+    damaged = sorted(_damaged_systems(Path(folder), praxicon).values())
+    if damaged:
+        others = f" ({len(damaged) - 1} other record(s) too)" if len(damaged) > 1 else ""
+        raise PraxiconError(f"{damaged[0]}; nothing repaired{others}")
     try:
         dump(praxicon, folder)
     except OSError as exc:  # a folder in a file's place, a full disk: the file's line

@@ -332,6 +332,20 @@ def _system_picture(text: str, source: str, path: Path, engine: str = "matplotli
     return draw(loads(text, source=source), path, max_steps=60, engine=engine)
 
 
+def _check_systems(folder, praxicon: Praxicon) -> None:
+    """ValueError naming the first record whose system does not parse, before any picture:
+    ``load`` leaves the systems unparsed, and a damaged one stopped the drawing at its
+    picture, naming the ``.psgs`` file (which holds a copy, maybe intact) as the culprit."""
+    from .store import system_problem
+
+    for action in praxicon.actions:
+        where = (f"the record of {action.name!r}" if isinstance(folder, Praxicon)
+                 else Path(folder) / "records" / f"{action.name}.json")
+        problem = system_problem(action, where)
+        if problem:
+            raise ValueError(problem)
+
+
 def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> list[Path]:
     from concurrent.futures import ThreadPoolExecutor
 
@@ -340,6 +354,7 @@ def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> lis
     from psgs.errors import ValidationError
 
     praxicon = _praxicon(folder)  # read once: a damaged folder is one error before any picture
+    _check_systems(folder, praxicon)
     written = [draw_actuator_matrix(praxicon, out / f"actuators.{fmt}")]
     try:
         written.append(draw_shared_patterns(praxicon, out / f"shared.{fmt}"))

@@ -41,7 +41,8 @@ from .jsonvalues import read_json
 from .shared import shared_patterns
 
 __all__ = ["load", "dump", "actuator_matrix", "write_atomic", "TEMPORARY_NAME", "dump_json",
-           "write_record", "read_records", "write_index", "write_shared", "read_descriptions"]
+           "write_record", "read_records", "write_index", "write_shared", "read_descriptions",
+           "system_problem"]
 
 #: What :func:`write_atomic` names a file while it writes it (``.NAME.PID.tmp``): one left in
 #: a folder is an interrupted write's.
@@ -93,15 +94,59 @@ def _stored_record(path: Path, name: str | None = None) -> tuple[str, ActionReco
     return value["key"], record
 
 
+def system_problem(record: ActionRecord, where, *, advice: bool = True) -> str | None:
+    """Why ``record``'s system text does not parse, as one line naming ``where`` (its record
+    file) and, with ``advice``, what learns it again; None for a system that parses (or a
+    record without one).
+
+    :func:`load` does not parse the systems (0.7 s for the shared data's 47, seven times what
+    recognition spends reading the folder), so a record whose ``system`` was damaged passes
+    it; what writes or trusts a system (resume, :func:`praxicon.verify`,
+    :func:`praxicon.repair`, the pictures, generation) asks here. The ``.psgs`` file beside
+    it is a copy of that text: the record is what is damaged, and only learning the action
+    again makes its system.
+
+    Examples
+    --------
+    >>> from praxicon.records import ActionRecord
+    >>> problem = system_problem(ActionRecord("m.a", "m", "a", system="garbage"), "a.json")
+    >>> print(problem[:73])
+    a.json: 'system' does not parse (line 1, column 1: expected a first line
+    >>> problem.endswith("the record is damaged ('psgs praxicon build DATASET... -o FOLDER' "
+    ...                  "into the folder learns the action again)")
+    True
+    """
+    if not record.system:
+        return None
+    from psgs import loads
+    from psgs.errors import PSGSError
+
+    try:
+        loads(record.system, source=str(where))
+    except (PSGSError, ValueError) as exc:
+        line, column = getattr(exc, "line", None), getattr(exc, "column", None)
+        place = f"line {line}, column {column}: " if line and column else ""
+        said = f"{where}: 'system' does not parse ({place}{getattr(exc, 'message', exc)})"
+        return said + (f": the record is damaged ('{REBUILD}' into the folder learns the "
+                       f"action again)" if advice else "")
+    return None
+
+
 def read_records(out: Path) -> tuple[dict[str, tuple[str, ActionRecord]], dict[str, str]]:
     """What resume can trust in ``out/records``: name -> (input key, record), and per record
-    file it cannot trust, its action's name -> why (that action is learnt again)."""
+    file it cannot trust, its action's name -> why (that action is learnt again). A record
+    whose system does not parse is one it cannot trust: resume would write that text over
+    the action's ``.psgs`` file."""
     found, damaged = {}, {}
     for path in sorted((out / "records").glob("*.json")):
         try:
             key, record = _stored_record(path)
         except PraxiconError as exc:
             damaged[path.stem] = str(exc)
+            continue
+        problem = system_problem(record, path, advice=False)  # resume says "learnt again"
+        if problem:
+            damaged[path.stem] = problem
             continue
         found[record.name] = (key, record)
     return found, damaged
