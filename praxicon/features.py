@@ -430,7 +430,9 @@ def motion_features(motion, *, shape: bool = True) -> tuple[tuple[str, ...], np.
     Raises
     ------
     FeatureError
-        When the motion has fewer than 3 frames.
+        When the motion has fewer than 3 frames, or a feature is not finite (a value of the
+        motion too large to compute with: an energy's square past the float range), naming
+        the motion's source and the feature.
 
     Examples
     --------
@@ -439,11 +441,30 @@ def motion_features(motion, *, shape: bool = True) -> tuple[tuple[str, ...], np.
     >>> names[:3], len(names) == len(values)
     (('j0.rx:pose', 'j0.rx:posec', 'j0.rx:spread'), True)
     """
-    from kinetology.segmentation import smooth, unwrap
-
     if motion.frames < 3:
         raise FeatureError(f"{motion.source}: {motion.frames} frames; a description needs "
                                f"at least 3")
+    # a motion's values are finite, but one too large (a position of 1e300) overflows a square
+    # or a sum of its features: silenced here, the feature it made refused below, so that no
+    # NaN reaches a description or a score
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        names, values = _features(motion, shape)
+    bad = np.flatnonzero(~np.isfinite(values))
+    if len(bad):
+        # the largest value is where to look in the file (frames counted from 0, as the
+        # motion's own checks count them)
+        frame, column = np.unravel_index(np.abs(motion.values).argmax(), motion.values.shape)
+        raise FeatureError(f"{motion.source}: feature {names[bad[0]]} is not finite "
+                           f"({values[bad[0]]}): a value of the motion is too large to compute "
+                           f"with (its largest: {motion.values[frame, column]:g}, "
+                           f"{motion.channels[column]} at frame {frame})")
+    return names, values
+
+
+def _features(motion, shape: bool) -> tuple[tuple[str, ...], np.ndarray]:
+    """:func:`motion_features` of a motion of 3 frames or more, non-finite values and all."""
+    from kinetology.segmentation import smooth, unwrap
+
     rate = motion.frame_rate
     roots = _root_joints(motion)
     columns = [c for c, channel in enumerate(motion.channels)

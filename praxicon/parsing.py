@@ -130,7 +130,10 @@ class _Windows(Sequence):
         if isinstance(index, slice):
             return [self[i] for i in range(*index.indices(len(self)))]
         s, m = self._starts[index], self._motion
-        return Motion(m.values[s:s + self._size], m.channels, m.frame_rate, m.skeleton, m.source)
+        # named by where it starts: what is said of it (a feature too large to compute, at a
+        # frame of the window) is then found in the recording
+        return Motion(m.values[s:s + self._size], m.channels, m.frame_rate, m.skeleton,
+                      f"{m.source} (the window from {s / m.frame_rate:.2f} s)")
 
 
 def describe_windows(takes: dict[str, list], *, window: float = _WINDOW, hop: float = _HOP):
@@ -192,6 +195,12 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
     Returns
     -------
     Timeline
+
+    Raises
+    ------
+    DescriptionError
+        As :func:`~praxicon.recognition.recognise` says it; a window's error names the
+        recording and where the window starts (``FILE (the window from 1.25 s): ...``).
     """
     from .recognition import _descriptions, _motion, feature_matrix
 
