@@ -172,13 +172,68 @@ def _score_model(columns, names, scale, noise, factors, means, variance) -> Scor
 
 
 def score_model(descriptions: "Descriptions", columns) -> ScoreModel:
-    """The :class:`ScoreModel` of ``descriptions`` on ``columns``."""
+    """The :class:`ScoreModel` of ``descriptions`` on ``columns``.
+
+    Raises
+    ------
+    DescriptionError
+        When a number of the descriptions is beyond what the scores can compute with (a mean
+        of 1e308: its square, in the spread's units, is past the float range), naming it and
+        the command that learns the descriptions again: every score was NaN.
+    """
     spread = descriptions.spread
-    return _score_model(columns, spread.features, np.asarray(spread.scale),
-                        np.asarray(spread.noise),
-                        np.asarray(spread.factors, dtype=float).reshape(-1, len(spread.scale)),
-                        descriptions.aligned("mean"),
-                        action_variances(descriptions, np.arange(len(spread.features))))
+    columns = np.asarray(columns, dtype=int)
+    scale, noise = np.asarray(spread.scale), np.asarray(spread.noise)
+    factors = np.asarray(spread.factors, dtype=float).reshape(-1, len(spread.scale))
+    means = descriptions.aligned("mean")
+    # a number too large overflows here and in every score: silenced, and said below
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        variance = action_variances(descriptions, np.arange(len(spread.features)))
+        problem = _overflowing(descriptions, columns, means / scale, variance, noise, factors)
+        m = None
+        if not problem:
+            try:
+                m = _score_model(columns, spread.features, scale, noise, factors, means,
+                                 variance)
+            except np.linalg.LinAlgError:  # the shared directions' matrix has no inverse
+                pass
+            if m is None or not all(np.isfinite(inner).all()
+                                    for _, _, (*_, inner) in m.blocks):
+                problem = "the spread's shared directions ('factors') have no finite precision"
+    if problem:
+        from ._arguments import DescriptionError
+        from .records import REBUILD
+
+        raise DescriptionError(f"the praxicon's descriptions overflow the scores: {problem} "
+                               f"(learn the descriptions again: '{REBUILD}')")
+    return m
+
+
+def _overflowing(descriptions, columns, scaled, variance, noise, factors) -> str:
+    """The first number of the descriptions on ``columns`` the scores cannot compute with,
+    said as ``the ... is VALUE`` ("" when there is none): a mean whose square in the spread's
+    units (``scaled``: actions x features) is not finite, an action's own variance that is
+    not, a scale or a noise whose inverse's square is not, or a shared direction whose square
+    is not."""
+    spread = descriptions.spread
+    names, scale = spread.features, np.asarray(spread.scale)
+    # the spread's first: a scale too small makes every mean too large in its units
+    for kind, bad, number in (("scale", ~np.isfinite((1.0 / scale[columns]) ** 2), scale),
+                              ("noise", ~np.isfinite((1.0 / noise[columns]) ** 2), noise),
+                              ("factors", ~np.isfinite((factors[:, columns] ** 2).sum(axis=0)),
+                               np.abs(factors).max(axis=0, initial=0.0))):
+        if bad.any():
+            c = columns[np.flatnonzero(bad)[0]]
+            return f"the spread's {kind} of feature {names[c]} is {number[c]:g}"
+    has = ~np.isnan(scaled[:, columns])  # NaN: a feature the action lacks
+    for kind, bad in (("mean", ~np.isfinite(scaled[:, columns] ** 2)),
+                      ("spread", ~np.isfinite(variance[:, columns]))):
+        bad = np.argwhere(bad & has)
+        if len(bad):
+            action, c = descriptions.actions[bad[0][0]], columns[bad[0][1]]
+            number = getattr(action, kind)[action.features.index(names[c])]
+            return f"the {kind} of {action.name}'s feature {names[c]} is {number:g}"
+    return ""
 
 
 def _part(a: np.ndarray, rows=None, columns=None) -> np.ndarray:

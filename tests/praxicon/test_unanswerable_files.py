@@ -2,17 +2,21 @@
 
 A value too large to compute with (finite: the file reads) made every answer NaN, with NumPy's
 overflow warnings and exit status 0; now it is one line naming the file and the feature, exit
-status 2, and a DescriptionError from the API.
+status 2, and a DescriptionError from the API. Descriptions holding a number the scores cannot
+compute with are one error naming it and the command that learns them again.
 """
 
 from __future__ import annotations
 
+import dataclasses
+import json
+import shutil
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from praxicon import parse, recognise, recognise_many
+from praxicon import load, parse, recognise, recognise_many
 from praxicon.cli import main
 from praxicon.description import DescriptionError
 from praxicon_fixtures import leg_body
@@ -113,3 +117,53 @@ def test_the_api_raises_the_line_the_command_prints(built):
         with pytest.raises(DescriptionError, match="is not finite") as info:
             call(built / "px", huge)
         assert str(info.value).startswith(begins) and "\n" not in str(info.value)
+
+
+def test_descriptions_in_memory_too_large_to_score_with_are_one_error(built):
+    """A mean of 1e200 squares past the float range: every score was NaN; now recognise and
+    parse name the action, the feature and the command that learns the descriptions again."""
+    px = load(built / "px")
+    for descriptions, call in ((px.descriptions, recognise), (px.window_descriptions, parse)):
+        walk = descriptions.actions[descriptions.names.index("m.walk")]
+        damaged = dataclasses.replace(descriptions, actions=tuple(
+            dataclasses.replace(a, mean=(1e200, *a.mean[1:])) if a is walk else a
+            for a in descriptions.actions))
+        with pytest.raises(DescriptionError) as info:
+            call(damaged, built / "new.bvh")
+        assert str(info.value) == (
+            f"the praxicon's descriptions overflow the scores: the mean of m.walk's feature "
+            f"{walk.features[0]} is 1e+200 (learn the descriptions again: 'psgs praxicon build "
+            f"DATASET... -o FOLDER')")
+
+
+# -- descriptions.json holding a number the scores cannot compute with -------------------------
+@pytest.mark.parametrize("part, where, key, value, said", [
+    ("takes", "actions", "mean", 1e308, "the mean of m.stay's feature thigh.rx:pose is 1e+308"),
+    ("windows", "actions", "spread", 1e200,
+     "the spread of m.stay's feature thigh.rx:pose is 1e+200"),
+    ("takes", "spread", "noise", 1e-300, "the spread's noise of feature thigh.rx:pose is 1e-300"),
+    ("windows", "spread", "factors", 1e200,
+     "the spread's factors of feature thigh.rx:pose is 1e+200"),
+])
+def test_descriptions_json_too_large_to_score_with_is_one_error(built, tmp_path, capsys, part,
+                                                               where, key, value, said):
+    """Every finite number reads back (a description round-trips every float), but one whose
+    square (or its inverse's) is past the float range made every probability NaN ("p=nan",
+    "inf x its limit"); now it is one line naming it and the command that learns the
+    descriptions again, before any answer, and the DescriptionError of the API."""
+    px = Path(shutil.copytree(built / "px", tmp_path / "px"))
+    data = json.loads((px / "descriptions.json").read_text())
+    place = data[part]["spread"] if where == "spread" else data[part]["actions"][0]
+    if key == "factors":
+        place[key][0] = [value, *place[key][0][1:]]
+    else:
+        place[key] = [value, *place[key][1:]]
+    (px / "descriptions.json").write_text(json.dumps(data))
+    message = (f"the praxicon's descriptions overflow the scores: {said} (learn the "
+               f"descriptions again: 'psgs praxicon build DATASET... -o FOLDER')")
+    command, call = ("recognise", recognise) if part == "takes" else ("parse", parse)
+    assert _refused(capsys, [command, str(px), str(built / "new.bvh"),
+                             *([str(built / "new2.bvh")] if part == "takes" else [])]) == message
+    with pytest.raises(DescriptionError) as info:
+        call(px, built / "new.bvh")
+    assert str(info.value) == message
