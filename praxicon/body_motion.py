@@ -21,6 +21,7 @@ Every function is pure: motions in, arrays out.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -266,20 +267,42 @@ def style_of(file) -> list[str]:
     >>> style_of("data/dataset-2_walk-turn-left_elderly_003.bvh")
     ['dataset-2', 'walk-turn-left', 'elderly', '003']
     """
-    from pathlib import Path
-
     return Path(str(file)).stem.split("_")
 
 
-def missing_style(record, style: str) -> ValueError:
-    """The error for a style no performance of ``record`` has, naming the styles there are.
+#: Where a recorded path is read from (the records keep the paths build was given).
+RELATIVE = ("a relative path is relative to the folder build ran in: run from there, or build "
+            "from absolute paths")
 
-    The styles named are the words that tell the performances' file names apart (take
-    numbers aside).
+
+def missing_style(record, style: str) -> ValueError:
+    """The error for a style none of ``record``'s performances read gives.
+
+    When performances of that style were learnt from but none could be read (a relative path
+    read from another folder, a file moved), the error names one and why, not "no such
+    style". Else it names the styles there are: the words that tell the performances' file
+    names apart (take numbers aside), and the action's own style (an action of one style,
+    whose file names differ by their take numbers only).
     """
+    import kinetology
+
+    own = [record.performances[i] for i in record.learnt_from or range(len(record.performances))
+           if style in style_of(record.performances[i].file)]
+    if own:
+        file = own[0].file
+        try:
+            kinetology.read(file)
+            why = "too short, or not on the channels of the other performances"
+        except FileNotFoundError:
+            why = "no such file" + ("" if Path(file).is_absolute() else f"; {RELATIVE}")
+        except Exception as exc:  # not a motion it reads: what kinetology says, on one line
+            why = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        return ValueError(f"action {record.name!r}: its performances of style {style!r} "
+                          f"cannot be read ({file}: {why})")
     names = [style_of(p.file) for p in record.performances]
-    styles = sorted({n[i] for n in names for i in range(len(n))
-                     if not n[i].isdigit() and any(len(o) <= i or o[i] != n[i] for o in names)})
+    styles = {n[i] for n in names for i in range(len(n))
+              if not n[i].isdigit() and any(len(o) <= i or o[i] != n[i] for o in names)}
+    styles = sorted(styles | ({record.style} if record.style else set()))
     return ValueError(f"action {record.name!r} has no performance of style {style!r}"
                       + (f" (styles: {', '.join(styles)})" if styles else ""))
 
