@@ -99,6 +99,22 @@ def _check_outputs(args) -> None:
         check_folder(args.view, "the player")
 
 
+def _check_skeleton(praxicon, args) -> None:
+    """A player draws bones: an action whose skeleton source is an AMC file without its ASF
+    (read as angles, with no skeleton) is refused before any work; the player failed only
+    after the motion was generated, and no BVH file was written."""
+    from kinetology.asf import find_asf
+
+    if args.view is None or args.action not in praxicon.names:
+        return  # no player, or generate's own line for an unknown action
+    record = praxicon[args.action]
+    source = Path(record.skeleton_source or "")
+    if source.suffix.lower() == ".amc" and source.is_file() and find_asf(source) is None:
+        _bad(f"{args.view}: no skeleton to draw: {args.action!r} is on the skeleton of "
+             f"{record.skeleton_source}, an AMC file without its ASF (generate it without "
+             f"--view)")
+
+
 def _check_system(praxicon, args) -> None:
     """The action's record is named, with the command that learns it again, when its system
     does not parse (``load`` leaves the systems unparsed; the ``.psgs`` file beside it is a
@@ -128,6 +144,7 @@ def run_generate(args) -> int:
     try:
         _check_outputs(args)
         praxicon = load(args.praxicon, descriptions=False)  # generation reads the records
+        _check_skeleton(praxicon, args)
         _check_system(praxicon, args)
         live = not args.no_progress and sys.stderr.isatty()
         try:
