@@ -32,6 +32,7 @@ from ._arguments import kinds_of, real_number
 from .description import (OWN_KINDS, DescriptionError, common_table, describe_table,
                           feature_rows, probabilities, score_model, scores)
 from ._description_json import WINDOWS
+from .scoring import overflow_reason, unscored
 from .records import _count
 
 __all__ = ["Span", "Timeline", "parse", "describe_windows", "windows"]
@@ -222,7 +223,14 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
         raise DescriptionError(f"{getattr(motion, 'source', '<motion>')}: the motion shares "
                                f"no joint with the praxicon's actions")
     spread = descriptions.spread
-    _, dist = scores(descriptions, x, columns, kinds=own, fitted=fitted)
+    with np.errstate(over="ignore", invalid="ignore"):  # an overflow: said just below
+        shared, dist = scores(descriptions, x, columns, kinds=own, fitted=fitted)
+    lost = np.flatnonzero(unscored(fitted, shared, dist))
+    if len(lost):  # a window too large to score: no span of it can be told
+        why = overflow_reason(fitted, x[lost[0]], [spread.features[c] for c in columns],
+                              descriptions.names)
+        raise DescriptionError(f"{getattr(motion, 'source', '<motion>')} (the window from "
+                               f"{starts[lost[0]]:.2f} s): {why}")
     # "none of these" is one more state, at the threshold's distance: an action wins a window
     # only where it is nearer than that and nearer than every other action
     dist = np.concatenate([dist, np.full((len(dist), 1), spread.threshold * len(columns))],

@@ -43,6 +43,7 @@ from .description import (DescriptionError, Descriptions, feature_rows, mahalano
                           model_scores, own_columns, _part, probabilities, score_model)
 from .feature_groups import feature_groups, group_distances, telling_groups
 from .features import feature_joint, pace_of, share_of_flight
+from .scoring import overflow_reason, unscored
 from .records import REBUILD, Praxicon, _count
 
 __all__ = ["Recognition", "recognise", "recognise_many", "feature_matrix", "JointReason",
@@ -250,6 +251,9 @@ def recognise_many(praxicon, motions, *, explain: int | None = 3) -> list[Recogn
     """:func:`recognise` for many motions in one call (features once, one matrix of scores
     per skeleton among the motions).
 
+    Raises the :class:`~praxicon.description.DescriptionError` of the first motion, in the
+    order given, that cannot be recognised (as :func:`recognise` says it).
+
     Examples
     --------
     >>> from kinetology import synthetic_motion
@@ -260,6 +264,31 @@ def recognise_many(praxicon, motions, *, explain: int | None = 3) -> list[Recogn
     ...                                        synthetic_motion(2, (1,), seed=2, noise=0.4)])]
     ['a', 'b']
     """
+    out = _recognitions(praxicon, motions, explain=explain)
+    for r in out:  # the first motion that cannot be recognised, as one error
+        if isinstance(r, DescriptionError):
+            raise r
+    return out
+
+
+def _recognitions(praxicon, motions, *, explain: int | None = 3) -> list:
+    """:func:`recognise_many`, where a motion that cannot be recognised (too few frames, a
+    feature that is not finite, no joint shared with the praxicon, scores that overflow) has
+    its :class:`~praxicon.description.DescriptionError` in its place, so that the others are
+    still recognised in the one call (``psgs praxicon recognise`` answers every good file). A
+    praxicon that cannot be read still raises.
+
+    Examples
+    --------
+    >>> from kinetology import Motion, synthetic_motion
+    >>> from praxicon.description import describe
+    >>> px = describe({"a": [synthetic_motion(2, (0,), seed=1, noise=n) for n in (0.2, 0.6)],
+    ...                "b": [synthetic_motion(2, (1,), seed=2, noise=n) for n in (0.2, 0.6)]})
+    >>> good = synthetic_motion(2, (0,), seed=1, noise=0.4)
+    >>> short = Motion(good.values[:2], good.channels, good.frame_rate, source="short")
+    >>> [getattr(r, "action", str(r)) for r in _recognitions(px, [short, good])]
+    ['short: 2 frames; a description needs at least 3', 'a']
+    """
     descriptions = _descriptions(praxicon)
     if any(a.window for a in descriptions.actions):
         raise DescriptionError("these are window descriptions (for parse); recognise needs the "
@@ -267,20 +296,32 @@ def recognise_many(praxicon, motions, *, explain: int | None = 3) -> list[Recogn
     if explain is not None:  # None: every action explained (order[:None]), as before
         whole_number(explain, "explain")
     motions = motions_of(motions)
-    rows = feature_rows(motions)
     out: list = [None] * len(motions)
-    for indices, columns, x in _by_features(descriptions, rows):
-        found = _recognise(descriptions, [motions[i] for i in indices], columns, x, explain)
-        for i, r in zip(indices, found):
-            out[i] = r
+    rows = {}
+    for i, motion in enumerate(motions):  # one motion's features at a time: each may fail
+        try:
+            rows[i] = feature_rows([motion])[0]
+        except DescriptionError as exc:
+            out[i] = exc
+    read = list(rows)
+    for indices, columns, x in _by_features(descriptions, list(rows.values())):
+        found = _recognise(descriptions, [motions[read[k]] for k in indices], columns, x,
+                           explain)
+        for k, r in zip(indices, found):
+            out[read[k]] = r
     if descriptions.families is None:
         return out
-    best = [r.ranking[0][0] for r in out]
-    for i, verdict in family_verdicts(descriptions, rows, best).items():
-        out[i] = replace(out[i], action=best[i] if verdict.accepted else None,
+    ranked = [i for i in read if isinstance(out[i], Recognition)]
+    best = [out[i].ranking[0][0] for i in ranked]
+    verdicts, overflows = _family_verdicts(descriptions, [rows[i] for i in ranked], best)
+    for k, verdict in verdicts.items():
+        i = ranked[k]
+        out[i] = replace(out[i], action=best[k] if verdict.accepted else None,
                          penalty=verdict.penalty, threshold=verdict.threshold,
                          excess=verdict.excess, excess_group=verdict.group,
                          family=verdict.family)
+    for k, reason in overflows.items():
+        out[ranked[k]] = DescriptionError(f"{out[ranked[k]].source}: {reason}")
     return out
 
 
@@ -320,35 +361,50 @@ def family_verdicts(descriptions: Descriptions, rows, best) -> dict[int, FamilyV
     >>> sorted(verdicts), verdicts[0].family  # b is alone: decided by its own description
     ([0], 'a')
     """
+    out, overflows = _family_verdicts(descriptions, rows, best)
+    for i, reason in overflows.items():
+        raise DescriptionError(f"motion {i + 1}: {reason}")
+    return out
+
+
+def _family_verdicts(descriptions: Descriptions, rows, best):
+    """:func:`family_verdicts`, and per motion whose scores against the families overflow
+    (left out of the verdicts) the reason (:func:`~praxicon.scoring.overflow_reason`)."""
     families = descriptions.families
     if families is None:
-        return {}
+        return {}, {}
     of = dict(zip(descriptions.names, descriptions.family_of))
     index = {n: k for k, n in enumerate(families.names)}
     wanted = [i for i, b in enumerate(best) if of.get(b)]
-    out = {}
+    out, overflows = {}, {}
     for indices, columns, x in _by_features(families, [rows[i] for i in wanted]):
         features = [families.spread.features[c] for c in columns]
         fitted = score_model(families, columns)
-        dist, _ = model_scores(fitted, x, own_columns(features))
         chosen = np.array([index[of[best[wanted[k]]]] for k in indices], dtype=int)
-        accepted, penalty, excess, group = _tested(families, features, x, chosen, fitted, dist)
+        with np.errstate(over="ignore", invalid="ignore"):  # an overflow: said per motion
+            dist, _ = model_scores(fitted, x, own_columns(features))
+            accepted, penalty, excess, group, lost = _tested(families, features, x, chosen,
+                                                             fitted, dist)
         for k, (i, f) in enumerate(zip(indices, chosen)):
+            if lost[k]:
+                overflows[wanted[i]] = overflow_reason(fitted, x[k], features, families.names)
+                continue
             out[wanted[i]] = FamilyVerdict(families.names[f], bool(accepted[k]),
                                            float(penalty[k]), float(families.spread.threshold),
                                            float(excess[k]), group[k])
-    return out
+    return out, overflows
 
 
 def _tested(descriptions, features, x, best, fitted, dist):
     """The "none of these" test of each motion against its ``best`` action (``dist``: the
-    shared distances, motions x actions): ``(accepted, penalty, excess, group)``, accepted
-    where the distance per feature is within the threshold and no telling feature group
-    (:func:`_excess`) is past its limit."""
-    excess, group = _excess(descriptions, features, x, best, fitted)
+    shared distances, motions x actions): ``(accepted, penalty, excess, group, lost)``,
+    accepted where the distance per feature is within the threshold and no telling feature
+    group (:func:`_excess`) is past its limit; ``lost`` where a distance is not finite (an
+    overflow: the motion cannot be scored)."""
+    excess, group, lost = _excess(descriptions, features, x, best, fitted)
     penalty = dist[np.arange(len(best)), best] / max(1, len(features))
     accepted = (penalty <= descriptions.spread.threshold) & (excess <= 1.0)
-    return accepted, penalty, excess, group
+    return accepted, penalty, excess, group, lost | unscored(fitted, dist)
 
 
 def _by_features(descriptions: Descriptions, rows):
@@ -365,23 +421,29 @@ def _by_features(descriptions: Descriptions, rows):
 
 
 def _recognise(descriptions: Descriptions, motions, columns, x, explain: int):
-    """:func:`recognise_many` for motions that have the same ``columns`` of the features."""
+    """:func:`recognise_many` for motions that have the same ``columns`` of the features: per
+    motion its :class:`Recognition`, or the error that says why it cannot have one."""
     spread = descriptions.spread
     features = [spread.features[i] for i in columns]
     fitted = score_model(descriptions, columns)
     compared = fitted.compared
-    if not compared.any():
-        raise DescriptionError(f"{getattr(motions[0], 'source', '<motion>')}: the motion "
-                               f"shares no joint with the praxicon's actions")
-    dist, score = model_scores(fitted, x, own_columns(features))
-    p = probabilities(score, spread.temperature)
-    per_feature = dist / len(columns)
+    if not compared.any():  # each motion of this skeleton answered by its own error
+        return [DescriptionError(f"{getattr(m, 'source', '<motion>')}: the motion shares no "
+                                 f"joint with the praxicon's actions") for m in motions]
+    # a feature too large to score overflows a square or a product (NaN, inf): silenced
+    # here, and such a motion answered by its error below, the others as they are
+    with np.errstate(over="ignore", invalid="ignore"):
+        dist, score = model_scores(fitted, x, own_columns(features))
+        p = probabilities(score, spread.temperature)
+        per_feature = dist / len(columns)
+        # ranked by the score, not by its probability: far from every action, the
+        # probabilities of all but the best underflow to 0 and would leave the rest in the
+        # order learnt
+        best_of = score.argmin(axis=1) if len(score) else np.zeros(0, dtype=int)
+        accepted, _, excess, excess_group, lost = _tested(descriptions, features, x, best_of,
+                                                          fitted, dist)
+    lost |= unscored(fitted, score)
     names = descriptions.names
-    # ranked by the score, not by its probability: far from every action, the probabilities
-    # of all but the best underflow to 0 and would leave the rest in the order learnt
-    best_of = score.argmin(axis=1) if len(score) else np.zeros(0, dtype=int)
-    accepted, _, excess, excess_group = _tested(descriptions, features, x, best_of, fitted,
-                                                dist)
     here = set(features)
     lacking = [tuple(sorted({feature_joint(f) for f in a.features if f not in here} - {"*"}))
                for a in descriptions.actions]
@@ -389,6 +451,10 @@ def _recognise(descriptions: Descriptions, motions, columns, x, explain: int):
     n = len(columns)
     out = []
     for i, motion in enumerate(motions):
+        if lost[i]:
+            out.append(DescriptionError(f"{getattr(motion, 'source', '<motion>')}: "
+                                        f"{overflow_reason(fitted, x[i], features, names)}"))
+            continue
         order = np.argsort(score[i], kind="stable")
         order = np.concatenate([order[compared[order]], order[~compared[order]]])
         best = int(order[0])  # best_of[i]: an action not compared has an infinite score
@@ -430,7 +496,8 @@ def _recognise(descriptions: Descriptions, motions, columns, x, explain: int):
 
 def _excess(descriptions, features, x, best, fitted, *, telling: bool = True):
     """Per motion: its best action's worst feature group over that group's calibrated limit
-    (0 and "" when the descriptions have no limits), and the group's name.
+    (0 and "" when the descriptions have no limits), the group's name, and whether a group's
+    distance overflowed (the motion cannot be scored).
 
     Only the groups that tell the best action apart from another learnt action are read
     (:func:`~praxicon.feature_groups.telling_groups`; ``telling=False``: every group, as the
@@ -439,7 +506,7 @@ def _excess(descriptions, features, x, best, fitted, *, telling: bool = True):
     limits = dict(descriptions.spread.limits)
     groups = {g: c for g, c in feature_groups(features).items() if g in limits}
     if not groups or not len(x):
-        return np.zeros(len(x)), [""] * len(x)
+        return np.zeros(len(x)), [""] * len(x), np.zeros(len(x), dtype=bool)
     bound = np.maximum(np.array([limits[g] for g in groups]), 1e-12)
     # told apart from the actions the motion is compared with (those sharing a joint with it)
     tells = np.ones((len(fitted.means), len(groups)), dtype=bool)
@@ -447,14 +514,17 @@ def _excess(descriptions, features, x, best, fitted, *, telling: bool = True):
         compared = np.flatnonzero(fitted.compared)
         tells[compared] = telling_groups(fitted.means[compared], fitted.variance[compared],
                                          fitted.scale, groups, bound)
-    ratio = np.stack([group_distances(x[i], fitted.means[b], fitted.variance[b], fitted.scale,
-                                      groups)[0] / bound * tells[b]
-                      for i, b in enumerate(best)])
+    far = np.stack([group_distances(x[i], fitted.means[b], fitted.variance[b], fitted.scale,
+                                    groups)[0] for i, b in enumerate(best)])
+    # a sum of squares that overflowed is inf (NaN: a group the best action lacks), read
+    # before a group not read (x 0) turns it into a NaN
+    lost = np.isinf(far).any(axis=1)
+    ratio = far / bound * tells[best]
     ratio = np.where(np.isnan(ratio), 0.0, ratio)  # a group the best action lacks: not read
     names = list(groups)
     # no group read (none tells the best action apart): no group to name
     return ratio.max(axis=1), [names[k] if r[k] > 0 else "" for k, r in
-                               zip(ratio.argmax(axis=1), ratio)]
+                               zip(ratio.argmax(axis=1), ratio)], lost
 
 
 def recognise(praxicon, motion, *, explain: int | None = 3) -> Recognition:
@@ -479,7 +549,10 @@ def recognise(praxicon, motion, *, explain: int | None = 3) -> Recognition:
     DescriptionError
         When the motion has fewer than 3 frames or shares no joint with any of the
         praxicon's actions (an action that shares none, learnt from another skeleton, is
-        ranked last with probability 0 and named in ``Recognition.unshared``).
+        ranked last with probability 0 and named in ``Recognition.unshared``), when a value
+        of it is too large to compute with (a feature that is not finite, or distances that
+        overflow: the feature is named), or when the descriptions hold a number the scores
+        cannot compute with (named, with the command that learns them again).
 
     Examples
     --------

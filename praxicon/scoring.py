@@ -24,7 +24,8 @@ import numpy as np
 
 from .features import feature_joint
 
-__all__ = ["OWN_KINDS", "own_columns", "own_terms", "scores", "ScoreModel", "score_model"]
+__all__ = ["OWN_KINDS", "own_columns", "own_terms", "scores", "ScoreModel", "score_model",
+           "unscored", "overflow_reason"]
 
 _NOISE_FLOOR = 0.05  # smallest per-feature variance left, in scaled units
 _PRIOR_TAKES = 10.0  # pseudo-takes of typical spread each feature's own spread is shrunk to
@@ -277,6 +278,57 @@ def model_scores(m: ScoreModel, x, own) -> tuple[np.ndarray, np.ndarray]:
         return shared, shared + raw
     best = np.where(compared, raw, np.inf).min(axis=1, keepdims=True)
     return shared, shared + np.where(compared, raw - best, 0.0)
+
+
+def unscored(m: ScoreModel, *scored) -> np.ndarray:
+    """Per motion (a row of each of ``scored``, motions x actions): whether a number of it
+    against an action compared is not finite (an action not compared is infinitely far by
+    design). Finite features and descriptions can still overflow a square or a product of
+    the scores; the callers silence that and refuse the motions this names.
+
+    Examples
+    --------
+    >>> m = ScoreModel(np.arange(1), np.zeros((2, 1)), (), np.ones((2, 1)), np.ones(1),
+    ...                ((np.array([0]), np.array([0]), ()),))  # action 1 not compared
+    >>> unscored(m, np.array([[1.0, np.inf], [np.nan, 2.0]])).tolist()
+    [False, True]
+    """
+    compared = m.compared
+    out = np.zeros(len(scored[0]), dtype=bool)
+    for values in scored:
+        out |= ~np.isfinite(np.asarray(values)[:, compared]).all(axis=1)
+    return out
+
+
+def overflow_reason(m: ScoreModel, row, features, names) -> str:
+    """Why a motion's scores (``row``: its features on ``m``'s columns, named ``features``)
+    are not finite: the feature furthest from a compared action's mean (``names``: the
+    actions') in the spread's units, and which is too large to compute with, the motion's
+    value or the action's mean (then the descriptions are to be learnt again).
+
+    Examples
+    --------
+    >>> m = ScoreModel(np.arange(2), np.array([[0.0, 1.0]]), (), np.ones((1, 2)), np.ones(2),
+    ...                ((np.array([0]), np.arange(2), ()),))
+    >>> print(overflow_reason(m, np.array([0.5, 1e200]), ["a.rx:pose", "a.rx:energy"],
+    ...                       ["wave"]))  # doctest: +NORMALIZE_WHITESPACE
+    its feature a.rx:energy is 1e+200, too large to score: its distances to the learnt
+    actions overflow
+    """
+    from .records import REBUILD
+
+    with np.errstate(over="ignore", invalid="ignore"):
+        far = np.abs((np.asarray(row) - m.means) / m.scale)
+    far[~m.compared] = np.nan  # an action not compared is scored over none of these
+    far = np.where(np.isnan(far), -np.inf, far)  # NaN: a feature the action lacks
+    a, k = np.unravel_index(int(np.argmax(far)), far.shape)
+    value, mean = float(row[k]), float(m.means[a, k])
+    if abs(value) >= abs(mean):
+        return (f"its feature {features[k]} is {value:g}, too large to score: its distances to "
+                f"the learnt actions overflow")
+    return (f"the description of {names[a]} has a mean of {mean:g} for its feature "
+            f"{features[k]}, too large to score: the distances overflow (learn the "
+            f"descriptions again: '{REBUILD}')")
 
 
 def scores(descriptions: "Descriptions", x, columns, *, kinds=OWN_KINDS,

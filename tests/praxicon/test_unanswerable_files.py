@@ -119,6 +119,19 @@ def test_the_api_raises_the_line_the_command_prints(built):
         assert str(info.value).startswith(begins) and "\n" not in str(info.value)
 
 
+def test_finite_features_whose_distances_overflow_are_refused(built, capsys):
+    """Travelling 3e154 units a second, every feature is finite but its square is not: the
+    scores overflowed to NaN, now the feature is named."""
+    fast = built / "fast.bvh"
+    said = _refused(capsys, ["recognise", str(built / "px"), str(fast)])
+    assert said == (f"{fast}: its feature Hips.travelx:drift is 3e+154, too large to score: "
+                    f"its distances to the learnt actions overflow")
+    said = _refused(capsys, ["parse", str(built / "px"), str(fast)])
+    assert said.startswith(f"{fast} (the window from 0.00 s): its feature Hips.travelx:drift")
+    with pytest.raises(DescriptionError, match="too large to score"):
+        recognise(built / "px", fast)
+
+
 def test_descriptions_in_memory_too_large_to_score_with_are_one_error(built):
     """A mean of 1e200 squares past the float range: every score was NaN; now recognise and
     parse name the action, the feature and the command that learns the descriptions again."""
@@ -134,6 +147,23 @@ def test_descriptions_in_memory_too_large_to_score_with_are_one_error(built):
             f"the praxicon's descriptions overflow the scores: the mean of m.walk's feature "
             f"{walk.features[0]} is 1e+200 (learn the descriptions again: 'psgs praxicon build "
             f"DATASET... -o FOLDER')")
+
+
+def test_a_family_verdict_that_overflows_is_an_error():
+    from kinetology import synthetic_motion
+    from praxicon.description import describe, feature_rows
+    from praxicon.recognition import family_verdicts
+
+    takes = {name: [synthetic_motion(3, joints, period=period, seed=s) for s in seeds]
+             for name, joints, period, seeds in (("a.slow", (0,), 1.3, (1, 2, 3)),
+                                                 ("a.fast", (0,), 0.8, (4, 5, 6)),
+                                                 ("b", (2,), 1.0, (7, 8, 9)))}
+    d = describe(takes, families={"a.slow": "a", "a.fast": "a"})
+    (row,) = feature_rows([synthetic_motion(3, (0,), period=1.0, seed=10)])
+    feature = next(iter(row))
+    row[feature] = 1e200
+    with pytest.raises(DescriptionError, match=f"motion 1: its feature {feature} is 1e"):
+        family_verdicts(d, [row], ["a.slow"])
 
 
 # -- descriptions.json holding a number the scores cannot compute with -------------------------
@@ -167,3 +197,13 @@ def test_descriptions_json_too_large_to_score_with_is_one_error(built, tmp_path,
     with pytest.raises(DescriptionError) as info:
         call(px, built / "new.bvh")
     assert str(info.value) == message
+
+
+def test_recognise_many_raises_for_the_first_motion_it_cannot_answer(built):
+    """The first in the order given, whichever skeleton it has (the motions are recognised
+    per skeleton)."""
+    with pytest.raises(DescriptionError, match="fast.bvh: its feature Hips.travelx:drift"):
+        recognise_many(built / "px", [built / "new.bvh", built / "fast.bvh",
+                                      built / "other.bvh"])
+    with pytest.raises(DescriptionError, match="other.bvh: the motion shares no joint"):
+        recognise_many(built / "px", [built / "other.bvh", built / "fast.bvh"])
