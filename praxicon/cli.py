@@ -40,6 +40,9 @@ def run_build(args) -> int:
         actions = read_datasets(args.datasets, args.group_by)
     except DatasetError as exc:
         _bad(str(exc))
+    if not actions:  # an empty folder of status 0 would be what a script chains on
+        _bad(f"{', '.join(args.datasets)}: no action to learn in "
+             f"{'it' if len(args.datasets) == 1 else 'them'}")
     settings = Settings.make(args.inducer, params, segmentation, args.min_performances)
     try:
         executor, close = executor_for(args.workers, args.scheduler)

@@ -325,6 +325,10 @@ def _read_manifest(path: Path, group_by: tuple[str, ...] | None = None) -> list[
             raise DatasetError(f"{where}: style must be text, not {shown(style)}")
         takes.append((str(action), style.strip() or None if style else None,
                       Performance(_shown_path(file_path), start, stop, _shown_path(path))))
+    if not takes:  # an action is its rows: a build of none would be an empty folder
+        raise DatasetError(f"{_shown_path(path)}: no actions in it (no "
+                           + ("[[performance]] table)" if path.suffix.lower() == ".toml"
+                              else "row under the header: one per performance)"))
     # a style column groups as a Bandai folder's styles do (one action per action and style
     # where most pairs have several performances); without one, an action a row names
     group_by = _grouping([(a, s) for a, s, _ in takes], group_by)
@@ -372,7 +376,8 @@ def read_dataset(path: str | Path, group_by: str | None = None) -> list[Action]:
     Raises
     ------
     DatasetError
-        When ``path`` is none of the layouts, or a manifest is malformed.
+        When ``path`` is none of the layouts, or a manifest is malformed or lists no
+        performance.
 
     Examples
     --------

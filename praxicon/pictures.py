@@ -126,6 +126,12 @@ def _praxicon(praxicon) -> Praxicon:
     return praxicon if isinstance(praxicon, Praxicon) else load(praxicon, descriptions=False)
 
 
+def _named(folder) -> str:
+    """What an error calls the praxicon drawn: its folder, or for a loaded one no repr of
+    every count and setting."""
+    return "the praxicon" if isinstance(folder, Praxicon) else str(folder)
+
+
 def draw_actuator_matrix(folder, path) -> Path:
     """Actions x joints, a filled cell where the joint is an actuator (Fig. 10).
 
@@ -147,7 +153,7 @@ def draw_actuator_matrix(folder, path) -> Path:
     plt = _pyplot()
     names, joints, rows = actuator_matrix(_praxicon(folder))
     if not names:
-        raise ValueError(f"{folder}: no learnt action to draw")
+        raise ValueError(f"{_named(folder)}: no learnt action to draw")
     matrix = np.array(rows, dtype=float)
     fig, ax = plt.subplots(figsize=(2 + 0.22 * len(joints), 1.2 + 0.2 * len(names)))
     ax.imshow(matrix, cmap="Greys", vmin=0, vmax=1.4, aspect="auto", interpolation="nearest")
@@ -230,7 +236,7 @@ def draw_shared_patterns(folder, path, *, most: int = 30, **options) -> Path:
     patterns = sorted(shared_patterns(_praxicon(folder), **options),
                       key=lambda p: (-len(p.actions), -len(p.kinetemes)))[:most]
     if not patterns:
-        raise ValueError(f"{folder}: no sub-pattern is shared by several actions")
+        raise ValueError(f"{_named(folder)}: no sub-pattern is shared by several actions")
     fig, ax = plt.subplots(figsize=(10, 0.8 + 0.3 * len(patterns)))
     longest = max(len(p.kinetemes) for p in patterns)
     _runs(ax, [(y, p.kinetemes, [0.25] * len(p.kinetemes)) for y, p in enumerate(patterns)],
@@ -354,6 +360,8 @@ def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> lis
     from psgs.errors import ValidationError
 
     praxicon = _praxicon(folder)  # read once: a damaged folder is one error before any picture
+    if not any(a.learnt for a in praxicon.actions):
+        raise ValueError(f"{_named(folder)}: no learnt action to draw")
     _check_systems(folder, praxicon)
     written = [draw_actuator_matrix(praxicon, out / f"actuators.{fmt}")]
     try:

@@ -5,8 +5,12 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+import pytest
+
 from fuzz_support import praxicon_seed
-from praxicon import dump
+from praxicon import dump, read_dataset
+from praxicon.datasets import DatasetError
+from praxicon.records import ActionRecord, Praxicon, Settings
 from psgs.cli import main
 
 
@@ -19,6 +23,32 @@ def _one_line(captured) -> str:
     lines = captured.err.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("psgs: error: "), captured.err
     return lines[0][len("psgs: error: "):]
+
+
+@pytest.mark.parametrize("name, text, why", [
+    ("e.csv", "action,file\n", "no row under the header: one per performance"),
+    ("e.csv", "action,file,start,stop\n\n", "no row under the header: one per performance"),
+    ("e.toml", "", "no [[performance]] table"),
+])
+def test_a_manifest_without_actions_is_refused_before_the_folder(tmp_path, capsys, name, text,
+                                                                 why):
+    manifest = tmp_path / name
+    manifest.write_text(text)
+    out = tmp_path / "px"
+    status, captured = _run(["build", manifest, "-o", out, "--no-progress"], capsys)
+    assert status == 2
+    assert _one_line(captured) == f"{manifest}: no actions in it ({why})"
+    assert not out.exists() and captured.out == ""
+    with pytest.raises(DatasetError, match="no actions in it"):
+        read_dataset(manifest)
+
+
+def test_draw_names_the_folder_without_a_learnt_action(tmp_path, capsys):
+    folder = tmp_path / "px"
+    dump(Praxicon((ActionRecord("m.a", "m", "a", reason="no takes"),), Settings.make()), folder)
+    status, captured = _run(["draw", folder, "-o", tmp_path / "img"], capsys)
+    assert status == 2 and _one_line(captured) == f"{folder}: no learnt action to draw"
+    assert not (tmp_path / "img").exists()
 
 
 def test_view_of_an_action_on_no_skeleton_is_refused_before_any_work(tmp_path, capsys,
