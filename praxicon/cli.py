@@ -24,6 +24,9 @@ def _bad(message: str):
 def run_build(args) -> int:
     from psgs.induce import get
 
+    from kinetology.motion import check_number
+    from kinetology.segmentation import DEFAULTS
+
     from .builder import build, executor_for
     from .datasets import DatasetError, read_datasets
     from .learn import Settings
@@ -31,11 +34,15 @@ def run_build(args) -> int:
     params = key_values(args.param, "--param")
     segmentation = key_values(args.segment, "--segment")
     get(args.inducer, **params)  # an unknown inducer or parameter: one line, now
-    from kinetology.segmentation import DEFAULTS
-
     unknown = sorted(set(segmentation) - set(DEFAULTS))
     if unknown:
         _bad(f"--segment {unknown[0]}: unknown (known: {', '.join(DEFAULTS)})")
+    # the values as kinetology checks them: else every action of the build fails on them
+    for key, value in segmentation.items():
+        try:
+            check_number(value, key)
+        except ValueError as exc:
+            _bad(f"--segment {exc}")
     try:
         actions = read_datasets(args.datasets, args.group_by)
     except DatasetError as exc:

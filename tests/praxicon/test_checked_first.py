@@ -43,6 +43,22 @@ def test_a_manifest_without_actions_is_refused_before_the_folder(tmp_path, capsy
         read_dataset(manifest)
 
 
+@pytest.mark.parametrize("value, why", [
+    ("smoothing=-1", "smoothing must be a non-negative number, not -1"),
+    ("smoothing=nan", "smoothing must be a non-negative number, not nan"),
+    ("unwrap=maybe", "unwrap must be a number, not 'maybe'"),
+    ("min_range=true", "min_range must be a number, not True"),
+])
+def test_a_bad_segment_value_is_refused_before_any_action(tmp_path, capsys, value, why):
+    manifest = tmp_path / "m.csv"
+    manifest.write_text("action,file\nwave,a.bvh\nwave,b.bvh\n")
+    out = tmp_path / "px"
+    status, captured = _run(["build", manifest, "-o", out, "--no-progress", "--segment", value],
+                            capsys)
+    assert status == 2 and _one_line(captured) == f"--segment {why}"
+    assert not out.exists()
+
+
 def test_draw_names_the_folder_without_a_learnt_action(tmp_path, capsys):
     folder = tmp_path / "px"
     dump(Praxicon((ActionRecord("m.a", "m", "a", reason="no takes"),), Settings.make()), folder)
