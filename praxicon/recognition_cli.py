@@ -10,22 +10,30 @@ the folder, :mod:`praxicon.description_store`). The commands (added to ``psgs pr
 * ``psgs praxicon parse PX FILE [--plot PNG]``: the recording's timeline of spans.
 
 Bad input (a folder that is not a praxicon or that ``praxicon.load`` refuses, descriptions of
-another version or damaged, an empty or one-frame motion, a path that does not exist, a
-motion that shares no joint with any learnt action, a ``--plot`` into a folder that is not
-there) is one line on stderr and exit status 2, before any answer; a motion whose skeleton
-lacks some of its best action's joints (for ``parse``, of the actions its spans name) is
-recognised over the joints it has, and those joints are named on stderr (actions learnt from
-another skeleton, sharing no joint with it, are ranked last).
+another version or damaged, a ``--plot`` into a folder that is not there) is one line on
+stderr and exit status 2, before any answer. A FILE that cannot be answered for (an empty or
+one-frame motion, a path that does not exist, a value too large to compute with, a motion
+that shares no joint with any learnt action) is one line on stderr naming it: ``parse``
+stops there; ``recognise`` still answers every other FILE (recognised together, in one
+call) and exits with status 2 at the end. A motion whose skeleton lacks some of its best
+action's joints (for ``parse``, of the actions its spans name) is recognised over the joints
+it has, and those joints are named on stderr (actions learnt from another skeleton, sharing
+no joint with it, are ranked last).
 """
 
 from __future__ import annotations
 
+from psgs._foundation.shell import ERROR
 from psgs.errors import ValidationError
 
 from .description import DescriptionError
 from .store import read_descriptions
 
 __all__ = ["register_recognise"]
+
+#: how the shell every psgs command runs in begins an error line (``python -m praxicon``
+#: runs in it too); recognise says a FILE's error itself and goes on to the next FILE
+_ERROR = "psgs: error: "
 
 
 def _read_motion(path: str):
@@ -62,7 +70,7 @@ def _check_pictures(plot) -> None:
 def run_recognise(args) -> int:
     import sys
 
-    from .recognition import recognise_many
+    from .recognition import Recognition, _recognitions
 
     if args.plot and len(args.files) != 1:
         raise ValidationError(f"--plot draws one recognition's explanation: give one FILE "
@@ -72,13 +80,26 @@ def run_recognise(args) -> int:
         descriptions = read_descriptions(args.praxicon)
     except DescriptionError as exc:
         raise ValidationError(str(exc))
-    motions = [_read_motion(f) for f in args.files]
+    # every FILE read first, its error kept in its place; the readable ones recognised
+    # together (features once, one matrix of scores), each unanswerable one said in its turn
+    found: list = []
+    for file in args.files:
+        try:
+            found.append(_read_motion(file))
+        except ValidationError as exc:
+            found.append(exc)
+    readable = [k for k, m in enumerate(found) if not isinstance(m, ValidationError)]
     try:
-        found = recognise_many(descriptions, motions,
-                               explain=3 if args.explain or args.plot else 0)
-    except DescriptionError as exc:
+        answers = _recognitions(descriptions, [found[k] for k in readable],
+                                explain=3 if args.explain or args.plot else 0)
+    except DescriptionError as exc:  # of the praxicon, not of a FILE: no answer at all
         raise ValidationError(str(exc))
+    for k, r in zip(readable, answers):
+        found[k] = r
     for file, r in zip(args.files, found):
+        if not isinstance(r, Recognition):
+            print(f"{_ERROR}{r}", file=sys.stderr)
+            continue
         if r.missing:
             print(f"{file}: recognised without the joints it lacks: {', '.join(r.missing)}",
                   file=sys.stderr)
@@ -88,6 +109,8 @@ def run_recognise(args) -> int:
         print(f"{file}: {answer} {p:.3f}{runner}")
         if args.explain:
             print(r.explain())
+    if not all(isinstance(r, Recognition) for r in found):
+        return ERROR  # every other FILE answered; the status says one was not
     if args.plot:
         from .recognition_pictures import draw_explanation
         draw_explanation(found[0], args.plot)
@@ -125,7 +148,9 @@ def register_recognise(sub) -> None:
     """Add ``recognise`` and ``parse`` to the ``psgs praxicon`` subcommands."""
     r = sub.add_parser("recognise", help="which learnt action each motion file is",
                        description="One line per file: the best action (or none of these), "
-                                   "its probability and the runner-up.")
+                                   "its probability and the runner-up. A file that cannot be "
+                                   "recognised is one error line on stderr instead; the other "
+                                   "files are still answered, and the exit status is then 2.")
     r.add_argument("praxicon", metavar="PX", help="a praxicon folder")
     r.add_argument("files", nargs="+", metavar="FILE", help="a .bvh or .amc motion file")
     r.add_argument("--explain", action="store_true",

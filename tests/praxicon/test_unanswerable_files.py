@@ -3,7 +3,9 @@
 A value too large to compute with (finite: the file reads) made every answer NaN, with NumPy's
 overflow warnings and exit status 0; now it is one line naming the file and the feature, exit
 status 2, and a DescriptionError from the API. Descriptions holding a number the scores cannot
-compute with are one error naming it and the command that learns them again.
+compute with are one error naming it and the command that learns them again. ``recognise``
+given several files answers every good one, recognised together, says one line per bad one,
+and exits 2 at the end.
 """
 
 from __future__ import annotations
@@ -197,6 +199,37 @@ def test_descriptions_json_too_large_to_score_with_is_one_error(built, tmp_path,
     with pytest.raises(DescriptionError) as info:
         call(px, built / "new.bvh")
     assert str(info.value) == message
+
+
+# -- several files, some bad --------------------------------------------------------------------
+def test_recognise_answers_every_good_file_and_names_every_bad_one(built, capsys, monkeypatch):
+    import praxicon.recognition as recognition
+
+    batches = []
+    inner = recognition._recognise
+
+    def counted(descriptions, motions, *args):
+        batches.append(sorted(Path(m.source).name for m in motions))
+        return inner(descriptions, motions, *args)
+
+    good = [str(built / "new.bvh"), str(built / "new2.bvh")]
+    bad = {name: str(built / name) for name in ("empty.bvh", "huge.bvh", "missing.bvh",
+                                                "other.bvh", "fast.bvh")}
+    status, alone, err = _run(capsys, ["recognise", str(built / "px"), *good])
+    assert status == 0 and err == "" and len(alone.splitlines()) == 2
+    monkeypatch.setattr(recognition, "_recognise", counted)
+    files = [bad["empty.bvh"], good[0], bad["huge.bvh"], bad["missing.bvh"], bad["other.bvh"],
+             good[1], bad["fast.bvh"]]
+    status, out, err = _run(capsys, ["recognise", str(built / "px"), *files])
+    assert status == 2
+    assert out == alone  # the same answers, as when the good files are given alone
+    lines = err.splitlines()  # one per bad file, in the order given
+    named = [f for f in files if f not in good]
+    assert len(lines) == len(named) and "Traceback" not in err
+    assert all(line.startswith(f"psgs: error: {f}") for line, f in zip(lines, named))
+    assert "no such file" in lines[2] and "shares no joint" in lines[3]
+    # the files whose features were computed recognised together: one call per skeleton
+    assert sorted(batches) == [["fast.bvh", "new.bvh", "new2.bvh"], ["other.bvh"]]
 
 
 def test_recognise_many_raises_for_the_first_motion_it_cannot_answer(built):
