@@ -13,6 +13,7 @@ next build picks up from there.
 from __future__ import annotations
 
 import os
+import signal
 import sys
 import time
 from collections.abc import Iterable
@@ -33,7 +34,8 @@ from .jsonvalues import read_json
 from .records import ActionRecord, PerformanceRecord, Praxicon, PraxiconError, name_problem
 from .store import read_records, write_atomic, write_index, write_record, write_shared
 
-__all__ = ["build", "BuildResult", "executor_for", "describe_praxicon"]
+__all__ = ["build", "BuildResult", "executor_for", "describe_praxicon", "ignore_interrupts",
+           "stop_pool"]
 
 
 @dataclass(frozen=True)
@@ -61,11 +63,37 @@ class BuildResult:
                 f"{len(self.failed)} failed{refused}; {self.praxicon!r}>")
 
 
+def ignore_interrupts() -> None:
+    """A worker process's initializer: Ctrl-C (SIGINT, sent to the whole process group) is
+    left to the process that started the pool, which cancels the work, leaves its files
+    whole and stops the workers (:func:`stop_pool`); a worker waiting for work printed a
+    traceback of its own before ``psgs: interrupted``."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def stop_pool(pool: ProcessPoolExecutor) -> None:
+    """Stop ``pool`` now: nothing more starts, and its workers end without finishing what
+    they do (they ignore Ctrl-C, so a shutdown waited for every action being learnt)."""
+    terminate = getattr(pool, "terminate_workers", None)  # Python 3.14
+    if callable(terminate):
+        terminate()
+        return
+    # before 3.14 the pool names its processes only in _processes (shutdown clears it)
+    processes = list((getattr(pool, "_processes", None) or {}).values())
+    pool.shutdown(wait=False, cancel_futures=True)
+    for process in processes:
+        process.terminate()
+    for process in processes:
+        process.join()
+
+
 def executor_for(workers: int | None = None, scheduler=None):
     """An executor: a Dask client's (``scheduler`` an address or a Client), N processes, or None.
 
     Returns ``(executor, close)``; call ``close()`` when done (it shuts down only
-    what this function started).
+    what this function started), ``close(stop=True)`` when the build was interrupted or
+    failed: N processes then end at once, without finishing what they learn (they ignore
+    Ctrl-C, which is this process's to handle: :func:`ignore_interrupts`).
     """
     if scheduler is not None:
         try:
@@ -75,13 +103,21 @@ def executor_for(workers: int | None = None, scheduler=None):
                              "'psgs[dask]')") from None
         client = scheduler if isinstance(scheduler, Client) else Client(scheduler)
         executor = client.get_executor()
-        return executor, (lambda: None) if client is scheduler else client.close
+        return executor, ((lambda stop=False: None) if client is scheduler
+                          else (lambda stop=False: client.close()))
     if workers is not None:  # "2" failed in a comparison, True was 1
         check_count(workers, "workers")
     if workers is not None and workers > 1:
-        pool = ProcessPoolExecutor(max_workers=workers)
-        return pool, lambda: pool.shutdown(cancel_futures=True)
-    return None, lambda: None
+        pool = ProcessPoolExecutor(max_workers=workers, initializer=ignore_interrupts)
+
+        def close(stop: bool = False) -> None:
+            if stop:
+                stop_pool(pool)
+            else:
+                pool.shutdown(cancel_futures=True)
+
+        return pool, close
+    return None, lambda stop=False: None
 
 
 def _as_executor(executor):

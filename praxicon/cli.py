@@ -58,8 +58,10 @@ def run_build(args) -> int:
     try:
         result = build(actions, args.output, settings=settings, executor=executor,
                        progress=not args.no_progress, datasets=args.datasets)
-    finally:
-        close()
+    except BaseException:  # Ctrl-C or an error: the workers end now, not after their action
+        close(stop=True)
+        raise
+    close()
     counts = result.praxicon.counts
     print(f"praxicon: {counts['actions']} actions, {counts['learnt']} learnt, "
           f"{counts['failed']} failed ({len(result.skipped)} already done) -> "

@@ -353,7 +353,7 @@ def _check_systems(folder, praxicon: Praxicon) -> None:
 
 
 def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> list[Path]:
-    from concurrent.futures import ThreadPoolExecutor
+    from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 
     from psgs._foundation.engines import usable_cores
     from psgs.draw import graphviz_available
@@ -403,11 +403,14 @@ def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> lis
         pending = [pool.submit(by_dot, a) for a in drawn]
     elif many > 1 and len(drawn) > 1:
         import multiprocessing
-        from concurrent.futures import ProcessPoolExecutor
 
-        # spawn: a fresh interpreter on every platform, nothing inherited but the arguments
+        from .builder import ignore_interrupts
+
+        # spawn: a fresh interpreter on every platform, nothing inherited but the arguments;
+        # Ctrl-C is this process's to handle (the workers would print their tracebacks)
         pool = ProcessPoolExecutor(max_workers=min(many, len(drawn)),
-                                   mp_context=multiprocessing.get_context("spawn"))
+                                   mp_context=multiprocessing.get_context("spawn"),
+                                   initializer=ignore_interrupts)
         pending = [pool.submit(_system_picture, a.system, a.file, target(a)) for a in drawn]
     else:
         pending = []
@@ -422,6 +425,12 @@ def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> lis
             tell(f"system of {action.name}")
             path = future.result() if future is not None else None
             written += [picture, path or system(action, "matplotlib")]
+    except BaseException:
+        if isinstance(pool, ProcessPoolExecutor):  # workers ignoring Ctrl-C are stopped now
+            from .builder import stop_pool
+
+            stop_pool(pool)
+        raise
     finally:
         if pool is not None:
             pool.shutdown(cancel_futures=True)

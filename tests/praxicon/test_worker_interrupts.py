@@ -1,0 +1,146 @@
+"""Ctrl-C with worker processes: the workers ignore SIGINT (the process that started them
+handles it), so none prints a traceback, and they are stopped at once rather than waited for."""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+from pathlib import Path
+
+import pytest
+
+from praxicon_fixtures import write_manifest
+
+#: The build, run as its own program: every action a worker learns takes a minute, so that at
+#: the interrupt one worker is busy and the other waits for work (the one that printed a
+#: traceback), and a parent that waited for its workers would not be done in time.
+SCRIPT = textwrap.dedent("""
+    import signal, sys, time
+
+    import praxicon.builder
+    from praxicon.learn import learn_action
+
+
+    def slow(action, settings):
+        time.sleep(60)
+        return learn_action(action, settings)
+
+
+    if __name__ == "__main__":
+        signal.signal(signal.SIGINT, signal.default_int_handler)  # not inherited as ignored
+        praxicon.builder.learn_action = slow
+        from psgs.cli import main
+
+        sys.exit(main(["praxicon", "build", sys.argv[1], "-o", sys.argv[2], "--workers", "2",
+                       "--no-progress"]))
+""")
+
+
+def _workers(pid: int) -> list[int]:
+    """The processes forked from ``pid`` (its command line; not the resource tracker's)."""
+    own = Path(f"/proc/{pid}/cmdline").read_bytes()
+    found = []
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            parent = int(stat.read_text().rsplit(")", 1)[1].split()[1])
+            if parent == pid and (stat.parent / "cmdline").read_bytes() == own:
+                found.append(int(stat.parent.name))
+        except (OSError, IndexError, ValueError):
+            continue  # a process that ended meanwhile
+    return found
+
+
+def _ignores_sigint(pid: int) -> bool:
+    try:
+        status = Path(f"/proc/{pid}/status").read_text()
+    except OSError:
+        return False
+    mask = next(line.split()[1] for line in status.splitlines() if line.startswith("SigIgn:"))
+    return bool(int(mask, 16) & (1 << (signal.SIGINT - 1)))
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux")
+                    or multiprocessing.get_start_method() != "fork",
+                    reason="reads /proc; the workers are the build's forks")
+def test_ctrl_c_prints_no_worker_traceback_and_stops_at_once(tmp_path):
+    manifest = write_manifest(tmp_path, {"wave": [1, 2]})
+    script = tmp_path / "build.py"
+    script.write_text(SCRIPT)
+    out = tmp_path / "px"
+    root = str(Path(__file__).resolve().parents[2])  # the praxicon under test, not an install
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(
+        [root, *filter(None, [os.environ.get("PYTHONPATH")])])}
+    started = time.monotonic()
+    build = subprocess.Popen([sys.executable, str(script), str(manifest), str(out)],
+                             stderr=subprocess.PIPE, text=True, start_new_session=True,
+                             cwd=root, env=env)
+    try:
+        deadline = time.monotonic() + 6
+        while time.monotonic() < deadline:  # both workers up, past their initializer
+            workers = _workers(build.pid)
+            if len(workers) == 2 and all(map(_ignores_sigint, workers)):
+                break
+            time.sleep(0.02)
+        os.killpg(build.pid, signal.SIGINT)  # what Ctrl-C sends: the whole process group
+        _, err = build.communicate(timeout=max(1.0, 12 - (time.monotonic() - started)))
+    finally:
+        if build.poll() is None:
+            os.killpg(build.pid, signal.SIGKILL)
+            build.wait()
+    assert "Traceback" not in err, err
+    assert build.returncode == 130 and err.strip().splitlines()[-1] == "psgs: interrupted"
+    assert (out / "index.json").is_file()  # the folder of what was done, as before
+
+
+def test_the_build_pool_workers_ignore_sigint():
+    from praxicon.builder import executor_for
+
+    pool, close = executor_for(2)
+    try:
+        assert pool.submit(signal.getsignal, signal.SIGINT).result() == signal.SIG_IGN
+    finally:
+        close()
+
+
+def test_the_drawing_pool_ignores_sigint_and_is_stopped_when_interrupted(tmp_path,
+                                                                         monkeypatch):
+    import concurrent.futures
+
+    import psgs.draw
+    from fuzz_support import praxicon_seed
+    from praxicon import dump
+    from praxicon.builder import ignore_interrupts
+    from praxicon.pictures import draw_praxicon
+
+    made, pids = [], set()
+
+    class Pool(concurrent.futures.ProcessPoolExecutor):
+        def __init__(self, *args, **kwargs):
+            made.append(kwargs.get("initializer"))
+            super().__init__(*args, **kwargs)
+
+        def submit(self, *args, **kwargs):
+            future = super().submit(*args, **kwargs)
+            pids.update(self._processes)  # spawned as work is submitted
+            return future
+
+    monkeypatch.setattr(concurrent.futures, "ProcessPoolExecutor", Pool)
+    monkeypatch.setattr(psgs.draw, "graphviz_available", lambda: False)
+    dump(praxicon_seed(), tmp_path / "px")
+
+    def interrupt(done, total, what):  # Ctrl-C while the workers draw the systems
+        raise KeyboardInterrupt
+
+    started = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        draw_praxicon(tmp_path / "px", tmp_path / "img", workers=2, progress=interrupt)
+    assert made == [ignore_interrupts] and len(pids) == 2
+    for pid in pids:  # stopped and reaped, not left drawing (active_children() can still list
+        with pytest.raises(ProcessLookupError):  # one the pool's own thread reaped)
+            os.kill(pid, 0)
+    assert time.monotonic() - started < 10
