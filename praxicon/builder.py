@@ -158,7 +158,7 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
         When two actions have the same name (one record would overwrite the other).
     ValueError
         (ValidationError) When ``actions`` are not :class:`~praxicon.datasets.Action` values
-        or ``out`` is no path.
+        or ``out`` is no path or a file.
 
     Examples
     --------
@@ -189,6 +189,8 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
         raise DatasetError(f"two actions are named {twice[0]!r}: one record would overwrite "
                            f"the other")
     out = Path(out)
+    if out.exists() and not out.is_dir():  # else mkdir's bare "File exists"
+        raise ValidationError(f"{out}: a file, not a praxicon folder")
     out.mkdir(parents=True, exist_ok=True)
     settings = settings or Settings.make()
     bar = _bar(0, False)

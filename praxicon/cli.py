@@ -88,7 +88,8 @@ def run_draw(args) -> int:
                                 progress=_draw_progress, workers=args.workers)
     except ValueError as exc:
         _bad(str(exc))
-    print(f"\rdrew {len(written)} pictures into {args.output}" + " " * 70, file=sys.stderr)
+    pictures = "picture" if len(written) == 1 else "pictures"
+    print(f"\rdrew {len(written)} {pictures} into {args.output}" + " " * 70, file=sys.stderr)
     for path in written:
         print(path)
     return 0

@@ -359,6 +359,8 @@ def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> lis
     from psgs.draw import graphviz_available
     from psgs.errors import ValidationError
 
+    if out.exists() and not out.is_dir():  # else mkdir's bare "File exists"
+        raise ValueError(f"{out}: a file, not a folder for the pictures")
     praxicon = _praxicon(folder)  # read once: a damaged folder is one error before any picture
     if not any(a.learnt for a in praxicon.actions):
         raise ValueError(f"{_named(folder)}: no learnt action to draw")

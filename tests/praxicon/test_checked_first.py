@@ -59,12 +59,36 @@ def test_a_bad_segment_value_is_refused_before_any_action(tmp_path, capsys, valu
     assert not out.exists()
 
 
+def test_an_output_that_is_a_file_is_named_as_one(tmp_path, capsys):
+    afile = tmp_path / "afile"
+    afile.write_text("mine")
+    manifest = tmp_path / "m.csv"
+    manifest.write_text("action,file\nwave,a.bvh\n")
+    status, captured = _run(["build", manifest, "-o", afile], capsys)
+    assert status == 2 and _one_line(captured) == f"{afile}: a file, not a praxicon folder"
+    dump(praxicon_seed(), tmp_path / "px")
+    status, captured = _run(["draw", tmp_path / "px", "-o", afile], capsys)
+    assert status == 2 and _one_line(captured) == f"{afile}: a file, not a folder for the pictures"
+    assert afile.read_text() == "mine"
+
+
 def test_draw_names_the_folder_without_a_learnt_action(tmp_path, capsys):
     folder = tmp_path / "px"
     dump(Praxicon((ActionRecord("m.a", "m", "a", reason="no takes"),), Settings.make()), folder)
     status, captured = _run(["draw", folder, "-o", tmp_path / "img"], capsys)
     assert status == 2 and _one_line(captured) == f"{folder}: no learnt action to draw"
     assert not (tmp_path / "img").exists()
+
+
+def test_one_picture_is_one_picture(tmp_path, capsys):
+    # a learnt action without actuators has no morphemes or system to draw: the matrix alone
+    seed = praxicon_seed().actions[1]
+    alone = replace(seed, actuators=(), joints=(), system=None, component_names=())
+    folder = tmp_path / "px"
+    dump(Praxicon((alone,), Settings.make()), folder)
+    status, captured = _run(["draw", folder, "-o", tmp_path / "img"], capsys)
+    assert status == 0 and captured.out.splitlines() == [str(tmp_path / "img" / "actuators.svg")]
+    assert f"drew 1 picture into {tmp_path / 'img'}" in captured.err
 
 
 def test_view_of_an_action_on_no_skeleton_is_refused_before_any_work(tmp_path, capsys,
