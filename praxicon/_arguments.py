@@ -13,22 +13,12 @@ from collections.abc import Iterable, Mapping
 from numbers import Integral, Real
 from pathlib import Path
 
-from psgs.errors import PSGSError
-
+from ._errors import DescriptionError
 from ._values import is_flag, shown
 from .feature_choice import groups_problem
 
 __all__ = ["DescriptionError", "motion_of", "motions_of", "takes_of", "whole_number",
            "real_number", "flag", "kinds_of", "described"]
-
-
-class DescriptionError(PSGSError, ValueError):
-    """Descriptions that cannot be made, read or used (one line, naming what to do)."""
-
-
-# praxicon.description's error (it imports it from here, so that these checks can raise it
-# without importing that module back): named there in tracebacks and pickles
-DescriptionError.__module__ = "praxicon.description"
 
 
 def motion_of(source):

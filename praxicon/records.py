@@ -30,6 +30,7 @@ from dataclasses import dataclass
 from kinetology.motion import FRAME_RATE_RANGE
 from psgs.errors import NotFound, PSGSError, ValidationError
 
+from ._errors import REBUILD
 from ._values import settings_fields
 from .description import DescriptionError, Descriptions
 from .jsonvalues import Fields, as_dict, freeze, pairs as _pairs
@@ -42,8 +43,6 @@ __all__ = ["FORMAT", "FORMAT_VERSION", "REBUILD", "FRAME_RATES", "PraxiconError"
 FORMAT = "psgs-praxicon"
 #: The version of what a record holds (see the module's versioning rule).
 FORMAT_VERSION = 3
-#: The command that rebuilds a praxicon folder (named by every "other version" error).
-REBUILD = "psgs praxicon build DATASET... -o FOLDER"
 #: Lowest and highest frame rate (frames per second) a learnt record may hold: the rates
 #: kinetology reads motion at (motion capture records at 24 fps to a few kHz; the shared data
 #: at 30 and 120); generation makes rate x seconds frames, so a rate far outside is a damaged

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._errors import REBUILD, DescriptionError
 from .features import feature_joint
 
 __all__ = ["OWN_KINDS", "own_columns", "own_terms", "scores", "ScoreModel", "score_model",
@@ -202,9 +203,6 @@ def score_model(descriptions: "Descriptions", columns) -> ScoreModel:
                                     for _, _, (*_, inner) in m.blocks):
                 problem = "the spread's shared directions ('factors') have no finite precision"
     if problem:
-        from ._arguments import DescriptionError
-        from .records import REBUILD
-
         raise DescriptionError(f"the praxicon's descriptions overflow the scores: {problem} "
                                f"(learn the descriptions again: '{REBUILD}')")
     return m
@@ -315,8 +313,6 @@ def overflow_reason(m: ScoreModel, row, features, names) -> str:
     its feature a.rx:energy is 1e+200, too large to score: its distances to the learnt
     actions overflow
     """
-    from .records import REBUILD
-
     with np.errstate(over="ignore", invalid="ignore"):
         far = np.abs((np.asarray(row) - m.means) / m.scale)
     far[~m.compared] = np.nan  # an action not compared is scored over none of these
