@@ -289,7 +289,9 @@ def _add_commands(sub) -> None:
                        help="a Bandai folder, a cmu-mocap6 folder, or a .csv/.toml manifest")
     build.add_argument("-o", "--output", required=True, metavar="DIR",
                        help="the praxicon folder (made when missing; a build there resumes)")
+    # the metavar spelt out: argparse's own '{content,content,style}' reads as three choices
     build.add_argument("--group-by", choices=("content", "content,style"), default=None,
+                       metavar="content|content,style",
                        help="one action per content, or per content and style (default: "
                             "content,style where most styles have several takes)")
     build.add_argument("--inducer", default="pal", help="the inducer by name (default pal)")

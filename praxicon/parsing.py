@@ -83,9 +83,11 @@ class Timeline:
         return [self.spans[i].action for i in index]
 
     def text(self) -> str:
-        """One line per span: start, stop, action, score."""
-        return "\n".join(f"{s.start:8.2f} {s.stop:8.2f}  {s.action or '-':24s} {s.score:.3f}"
-                         for s in self.spans)
+        """One line per span: start, stop, action, score (the actions' column as wide as the
+        longest name, 24 characters at least, so that the scores line up)."""
+        width = max([24, *(len(s.action) for s in self.spans if s.action)])
+        return "\n".join(f"{s.start:8.2f} {s.stop:8.2f}  {s.action or '-':{width}s} "
+                         f"{s.score:.3f}" for s in self.spans)
 
 
 def windows(motion, window: float = _WINDOW, hop: float = _HOP):

@@ -331,3 +331,13 @@ def test_the_ranking_follows_the_scores_where_the_probabilities_underflow(px):
     for r, s in zip(recognise_many(sharp, new), score):
         assert [p for _, p in r.ranking][1:] == [0.0, 0.0]  # underflowed: no order in them
         assert [name for name, _ in r.ranking] == [sharp.names[a] for a in np.argsort(s)]
+
+
+def test_a_timeline_lines_its_scores_up_under_long_action_names():
+    from praxicon.parsing import Span, Timeline
+
+    names = ["walk", "bandai-namco-2-subset.walk-turn-right.masculine", None]
+    timeline = Timeline("rec", 3.0, tuple(Span(float(i), i + 1.0, n, 0.5)
+                                          for i, n in enumerate(names)), ())
+    lines = timeline.text().splitlines()
+    assert len({line.rindex("0.500") for line in lines}) == 1, lines
