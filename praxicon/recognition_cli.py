@@ -67,6 +67,17 @@ def _check_pictures(plot) -> None:
             raise ValidationError(str(exc)) from None
 
 
+def _lacking(file, motion, missing) -> str:
+    """The line naming the joints a motion lacks; where its channels are numbered (an AMC file
+    read without its ASF names them ``bone.1``, ``bone.2``, ...), it says so: the joints are
+    there, under names no action was learnt with."""
+    line = f"{file}: recognised without the joints it lacks: {', '.join(missing)}"
+    if any(c.rpartition(".")[2].isdigit() for c in motion.channels):
+        line += (" (its channels are numbered, not named: an AMC file read without its ASF; "
+                 "put the .asf file beside it)")
+    return line
+
+
 def run_recognise(args) -> int:
     import sys
 
@@ -94,15 +105,15 @@ def run_recognise(args) -> int:
                                 explain=3 if args.explain or args.plot else 0)
     except DescriptionError as exc:  # of the praxicon, not of a FILE: no answer at all
         raise ValidationError(str(exc))
+    motions = list(found)
     for k, r in zip(readable, answers):
         found[k] = r
-    for file, r in zip(args.files, found):
+    for file, r, motion in zip(args.files, found, motions):
         if not isinstance(r, Recognition):
             print(f"{_ERROR}{r}", file=sys.stderr)
             continue
         if r.missing:
-            print(f"{file}: recognised without the joints it lacks: {', '.join(r.missing)}",
-                  file=sys.stderr)
+            print(_lacking(file, motion, r.missing), file=sys.stderr)
         (best, p), *rest = r.ranking
         runner = f", runner-up {rest[0][0]} {rest[0][1]:.3f}" if rest else ""
         answer = r.action if r.action else f"none of these (closest {best})"
@@ -134,8 +145,7 @@ def run_parse(args) -> int:
     except DescriptionError as exc:
         raise ValidationError(str(exc))
     if timeline.missing:  # as recognise says it: the windows were scored without them
-        print(f"{args.file}: recognised without the joints it lacks: "
-              f"{', '.join(timeline.missing)}", file=sys.stderr)
+        print(_lacking(args.file, motion, timeline.missing), file=sys.stderr)
     print(timeline.text())
     if args.plot:
         from .recognition_pictures import draw_timeline

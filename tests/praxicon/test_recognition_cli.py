@@ -232,3 +232,21 @@ def test_plot_without_matplotlib_names_the_extra_before_any_answer(px, monkeypat
     capsys.readouterr()
     assert run(["recognise", str(px), str(px / "new7.bvh"), "--plot", "x.png"]) == 2
     assert capsys.readouterr().out == ""  # no answer printed before the error
+
+
+def test_joints_lacked_by_numbered_channels_are_said_to_be_an_amc_without_its_asf():
+    # an AMC file read without its ASF names its channels bone.1, bone.2: its joints are
+    # there, under names no action was learnt with, and the line says what to do
+    import numpy as np
+
+    from kinetology import Motion
+    from praxicon.recognition_cli import _lacking
+
+    values = np.zeros((3, 2))
+    numbered = Motion(values, ("root.rx", "lowerback.1"), 120.0, source="copy.amc")
+    named = Motion(values, ("root.rx", "lowerback.rx"), 120.0, source="walk.amc")
+    assert _lacking("copy.amc", numbered, ("lowerback",)).endswith(
+        "(its channels are numbered, not named: an AMC file read without its ASF; put the "
+        ".asf file beside it)")
+    assert _lacking("walk.amc", named, ("head",)) == \
+        "walk.amc: recognised without the joints it lacks: head"
