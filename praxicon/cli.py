@@ -216,7 +216,9 @@ def _report_performed(args, result) -> None:
     times = "once" if result.repeat == 1 else f"{result.repeat} times, one after the other"
     print(f"{args.output}: {result.motion.frames} frames at {result.motion.frame_rate:g} fps, "
           f"the action played {times} ({each} frames"
-          + ("" if result.repeat == 1 else " each") + ")"
+          # each copy's last frame is the next one's first: 3 x 358 frames make 1072
+          + ("" if result.repeat == 1 else " each, a frame shared where one meets the next")
+          + ")"
           + (f", style {args.style}" if args.style else ""))
     if result.performances == 1:
         how = "its one performance's channels, on its own clock"

@@ -284,7 +284,8 @@ def test_the_command_line_says_an_action_was_generated_from_its_performances(
                  str(tmp_path / "p.bvh"), "--repeat", "2"]) == 0
     printed = capsys.readouterr().out.splitlines()
     assert printed[0] == (f"{tmp_path / 'p.bvh'}: 239 frames at 30 fps, the action played "
-                          f"2 times, one after the other (120 frames each)")
+                          f"2 times, one after the other (120 frames each, a frame shared "
+                          f"where one meets the next)")
     assert printed[1].startswith("generated from the course of 3 performances, not from a "
                                  "grammar: no synchronised repetition was found")
     assert printed[2] == "segmented again: no symbolic round trip (there is no morpheme to " \
