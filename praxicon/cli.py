@@ -83,10 +83,18 @@ def _draw_progress(done: int, total: int, name: str) -> None:
 def run_draw(args) -> int:
     from .pictures import draw_praxicon
 
+    drawn: list[int] = []  # whether the progress line was started
+
+    def progress(done: int, total: int, name: str) -> None:
+        drawn.append(done)
+        _draw_progress(done, total, name)
+
     try:
         written = draw_praxicon(args.praxicon, args.output, fmt=args.format,
-                                progress=_draw_progress, workers=args.workers)
+                                progress=progress, workers=args.workers)
     except ValueError as exc:
+        if drawn:  # the error on a line of its own, not at the end of the progress line
+            print(file=sys.stderr)
         _bad(str(exc))
     pictures = "picture" if len(written) == 1 else "pictures"
     print(f"\rdrew {len(written)} {pictures} into {args.output}" + " " * 70, file=sys.stderr)

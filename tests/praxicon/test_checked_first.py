@@ -115,3 +115,19 @@ def test_view_of_an_action_on_no_skeleton_is_refused_before_any_work(tmp_path, c
                                    f"skeleton of {amc}, an AMC file without its ASF (generate "
                                    f"it without --view)")
     assert not bvh.exists() and not page.exists()
+
+
+def test_an_error_while_drawing_is_on_a_line_of_its_own(tmp_path, capsys, monkeypatch):
+    # an error after the progress line started ("drawing 3/9: ...", no newline) was printed
+    # at that line's end
+    import praxicon.pictures
+
+    def fails_midway(praxicon, output, *, progress, **kwargs):
+        progress(0, 9, "actuators")
+        raise ValueError("bad.psgs:1:1: no system")
+
+    monkeypatch.setattr(praxicon.pictures, "draw_praxicon", fails_midway)
+    dump(praxicon_seed(), tmp_path / "px")
+    status, captured = _run(["draw", tmp_path / "px", "-o", tmp_path / "img"], capsys)
+    assert status == 2
+    assert captured.err.splitlines()[-1] == "psgs: error: bad.psgs:1:1: no system"
