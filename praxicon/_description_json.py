@@ -157,8 +157,9 @@ def action_fields(data, version: int) -> tuple:
 
 
 def spread_fields(data, version: int) -> tuple:
-    """``(features, scale, factors, noise, threshold, temperature, window, limits)`` of a
-    spread's JSON value (of descriptions version ``version``), each checked."""
+    """``(features, scale, factors, noise, threshold, temperature, window, limits, tail)`` of
+    a spread's JSON value (of descriptions version ``version``), each checked (a ``tail`` of
+    null, or none, is infinite: Gaussian likelihoods)."""
     check_format(data, "praxicon-spread", version)
     where = "spread: "
     features = _texts(data, "features", where)
@@ -180,5 +181,7 @@ def spread_fields(data, version: int) -> tuple:
         raise _error(f"{where}'limits' must be a list of [group, number] pairs")
     bounds = _numbers([v for _, v in limits], "limits", where, len(limits), least=0.0,
                       strict=True)
+    tail = data.get("tail")
+    tail = math.inf if tail is None else _number(data, "tail", where, above=0.0)
     return (features, scale, factors, noise, threshold, temperature, window,
-            tuple((g, v) for (g, _), v in zip(limits, bounds)))
+            tuple((g, v) for (g, _), v in zip(limits, bounds)), tail)

@@ -73,12 +73,12 @@ __all__ = ["FORMAT_VERSION", "ActionDescription", "Spread", "Descriptions", "des
            "GROUP_LEVEL", "OWN_KINDS", "own_columns", "own_terms", "scores",
            "ScoreModel", "score_model"]
 
-#: Bumped when what a description holds or how features are computed changes (5: the
-#: descriptions of families, several actions that are styles of one content, decide "none of
+#: Bumped when what a description holds or how features are computed changes (6: the
+#: spread's ``tail``, heavy-tailed likelihoods for whole takes; 5: the descriptions of families, several actions that are styles of one content, decide "none of
 #: these" for their members; 4: each action keeps its own features, which need not be the
 #: spread's, so that actions learnt from different skeletons keep their joints; before, only
 #: the features every take had were kept).
-FORMAT_VERSION = 5
+FORMAT_VERSION = 6
 #: Bumped when how descriptions are learnt changes but what they hold does not: a praxicon
 #: keeps reading its descriptions, and a build learns them again (4: the pace feature, its
 #: group always read; 3: the flight feature, its
@@ -159,6 +159,7 @@ class Spread:
     window: float = 0.0
     version: int = FORMAT_VERSION
     limits: tuple[tuple[str, float], ...] = ()  # per feature group: its largest distance
+    tail: float = math.inf  # of the likelihoods (scoring.log_likelihoods): inf is Gaussian
 
     def __repr__(self) -> str:  # a summary, not the factors
         return (f"<Spread: {len(self.features)} features, {len(self.factors)} shared "
@@ -170,15 +171,16 @@ class Spread:
                 "features": list(self.features), "scale": list(self.scale),
                 "factors": [list(f) for f in self.factors], "noise": list(self.noise),
                 "threshold": self.threshold, "temperature": self.temperature,
-                "window": self.window, "limits": [[g, v] for g, v in self.limits]}
+                "window": self.window, "limits": [[g, v] for g, v in self.limits],
+                "tail": None if math.isinf(self.tail) else self.tail}
 
     @classmethod
     def from_dict(cls, data: dict) -> "Spread":
         """The spread :meth:`to_dict` wrote."""
-        features, scale, factors, noise, threshold, temperature, window, limits = \
+        features, scale, factors, noise, threshold, temperature, window, limits, tail = \
             _fields(spread_fields, data)
         return cls(features, scale, factors, noise, threshold, temperature, window,
-                   FORMAT_VERSION, limits)
+                   FORMAT_VERSION, limits, tail)
 
 
 @dataclass(frozen=True)
@@ -383,12 +385,13 @@ def describe_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
     scale, means, factors, noise = fit_spread(groups, rank, floors)
     spread = Spread(tuple(features), _floats(scale), tuple(_floats(f) for f in factors),
                     _floats(noise), math.inf, 1.0, window)
-    threshold, temperature, limits = (math.inf, 1.0, ()) if not calibrate else _calibrate(
-        groups, rank, None if sources is None else [_fold_keys(n, sources, len(g))
-                                                    for n, g in zip(names, groups)], floors,
-        features=features, level=level)
+    # a window's likelihoods stay Gaussian: parse's costs are its distances at a temperature
+    threshold, temperature, limits, tail = (math.inf, 1.0, (), math.inf) if not calibrate \
+        else _calibrate(groups, rank, None if sources is None else
+                        [_fold_keys(n, sources, len(g)) for n, g in zip(names, groups)],
+                        floors, features=features, level=level, tailed=not window)
     spread = Spread(spread.features, spread.scale, spread.factors, spread.noise, threshold,
-                    temperature, window, FORMAT_VERSION, limits)
+                    temperature, window, FORMAT_VERSION, limits, tail)
     actions = tuple(ActionDescription(n, tuple(f for f, k in zip(features, h) if k),
                                       _floats(m[h]), _floats(g.std(axis=0)[h]), len(g), window)
                     for n, g, m, h in zip(names, groups, means, has))

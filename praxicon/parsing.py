@@ -32,7 +32,7 @@ from ._arguments import kinds_of, real_number
 from .description import (OWN_KINDS, DescriptionError, common_table, describe_table,
                           feature_rows, probabilities, score_model, scores)
 from ._description_json import WINDOWS
-from .scoring import overflow_reason, unscored
+from .scoring import log_likelihoods, overflow_reason, unscored
 from .records import _count
 
 __all__ = ["Span", "Timeline", "parse", "describe_windows", "windows"]
@@ -237,9 +237,9 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
     # only where it is nearer than that and nearer than every other action
     dist = np.concatenate([dist, np.full((len(dist), 1), spread.threshold * len(columns))],
                           axis=1)
-    costs = 0.5 * dist / spread.temperature
+    costs = -log_likelihoods(dist, spread.temperature, spread.tail)
     path = _viterbi(costs, switch)
-    p = probabilities(dist, spread.temperature)
+    p = probabilities(dist, spread.temperature, spread.tail)
     names = [*descriptions.names, None]
     half = min(window, motion.duration) / 2
     centres = np.array(starts) + half

@@ -434,7 +434,7 @@ def _recognise(descriptions: Descriptions, motions, columns, x, explain: int):
     # here, and such a motion answered by its error below, the others as they are
     with np.errstate(over="ignore", invalid="ignore"):
         dist, score = model_scores(fitted, x, own_columns(features))
-        p = probabilities(score, spread.temperature)
+        p = probabilities(score, spread.temperature, spread.tail)
         per_feature = dist / len(columns)
         # ranked by the score, not by its probability: far from every action, the
         # probabilities of all but the best underflow to 0 and would leave the rest in the

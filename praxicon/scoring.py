@@ -18,6 +18,7 @@ one scale (:func:`model_scores`); one that shares no joint is not compared.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -26,6 +27,7 @@ from ._errors import REBUILD, DescriptionError
 from .features import feature_joint
 
 __all__ = ["OWN_KINDS", "own_columns", "own_terms", "scores", "ScoreModel", "score_model",
+           "log_likelihoods", "probabilities",
            "unscored", "overflow_reason"]
 
 _NOISE_FLOOR = 0.05  # smallest per-feature variance left, in scaled units
@@ -72,9 +74,31 @@ def distances(x: np.ndarray, means: np.ndarray, parts) -> np.ndarray:
     return out
 
 
-def probabilities(dist: np.ndarray, temperature: float) -> np.ndarray:
-    """Posterior probabilities (equal priors) from squared distances at ``temperature``."""
-    logits = -0.5 * dist / temperature
+def log_likelihoods(dist: np.ndarray, temperature: float, tail: float = math.inf):
+    """Each action's log-likelihood (up to one constant) from its squared distance: Gaussian,
+    ``-dist / (2 temperature)``, with an infinite ``tail``; else heavy-tailed,
+    ``-(tail / (2 temperature)) log(1 + dist / tail)``, which is the Gaussian's where ``dist``
+    is small against ``tail`` and grows as the log of the distance beyond it (the likelihood of
+    a scale mixture of Gaussians, as Student's t is). Both fall as the distance grows, so the
+    actions' order is the distances' either way.
+
+    Examples
+    --------
+    >>> d = np.array([[1.0, 4.0]])
+    >>> log_likelihoods(d, 1.0).tolist(), log_likelihoods(d, 1.0, 1e12).round(6).tolist()
+    ([[-0.5, -2.0]], [[-0.5, -2.0]])
+    >>> log_likelihoods(d, 1.0, 1.0).round(3).tolist()  # log 2 / 2, log 5 / 2
+    [[-0.347, -0.805]]
+    """
+    if math.isinf(tail):
+        return -0.5 * dist / temperature
+    return -(0.5 * tail / temperature) * np.log1p(dist / tail)
+
+
+def probabilities(dist: np.ndarray, temperature: float, tail: float = math.inf) -> np.ndarray:
+    """Posterior probabilities (equal priors) from squared distances: their
+    :func:`log_likelihoods` at ``temperature`` and ``tail``, normalised."""
+    logits = log_likelihoods(dist, temperature, tail)
     logits -= logits.max(axis=-1, keepdims=True)
     p = np.exp(logits)
     return p / p.sum(axis=-1, keepdims=True)

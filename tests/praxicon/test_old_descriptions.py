@@ -9,6 +9,7 @@ import pytest
 
 from fuzz_support import praxicon_seed
 from praxicon import dump, load
+from praxicon.description import FORMAT_VERSION
 from praxicon.records import PraxiconError
 
 
@@ -25,7 +26,7 @@ def old_folder(tmp_path):
 
 def test_load_refuses_old_descriptions_unless_told_not_to_read_them(old_folder):
     with pytest.raises(PraxiconError, match="descriptions of version 4, this psgs reads "
-                                            "version 5 .*resumes the build"):
+                                            f"version {FORMAT_VERSION} .*resumes the build"):
         load(old_folder)
     px = load(old_folder, descriptions=False)
     assert px.descriptions is None and px.window_descriptions is None
@@ -75,7 +76,7 @@ def test_verify_reports_old_descriptions_and_checks_every_other_file(old_folder)
     found = verify(old_folder)
     assert found.problems == (
         f"{old_folder / 'descriptions.json'}: descriptions of version 4, this psgs reads "
-        f"version 5 (learn them again: 'psgs praxicon build DATASET... -o FOLDER' resumes the "
+        f"version {FORMAT_VERSION} (learn them again: 'psgs praxicon build DATASET... -o FOLDER' resumes the "
         f"build and describes its actions)",
         f"{old_folder / 'shared.json'}: missing")
     mended = repair(old_folder)  # the derived files again; the descriptions left for build

@@ -22,7 +22,7 @@ def test_every_praxicon_value_has_a_short_repr(manifest, tmp_path):
     px = load(tmp_path / "px")
     assert px == result.praxicon  # equality is the fields', untouched by the reprs
     assert _one_line(px) == ("<Praxicon: 2 actions learnt of 4, 1 dataset, inducer pal, "
-                             "descriptions format 5>")
+                             "descriptions format 6>")
     assert str(px).splitlines() == [repr(px), "  learnt: moves.step, moves.wave",
                                     "  failed: moves.alone, moves.ghost"]
     assert _one_line(result) == (f"<BuildResult: {len(result.learnt)} learnt, 0 already done, "
