@@ -64,6 +64,8 @@ def run_split(results, protocol, train, test, methods=METHODS):
             r.setdefault("left_out", []).append(predict.left_out)
         r["truth"] += [t.content for t in test]
         r["pred"] += list(ranked)
+        if hasattr(predict, "probabilities"):
+            r.setdefault("probabilities", []).extend(predict.probabilities)
         r["cpu"] += cpu
         r["n"] += len(test)
 
@@ -80,8 +82,28 @@ def summarise(results, protocol, methods=METHODS):
                      "accuracy": float((truth == pred).mean()),
                      "min_recall": min(recall.values()),
                      "cpu_ms_per_take": 1000 * r["cpu"] / r["n"], "recall": recall,
-                     "left_out": r.get("left_out")})
+                     "left_out": r.get("left_out"),
+                     **calibration(r.get("probabilities"), truth, pred)})
     return rows
+
+
+def calibration(probabilities, truth, pred, bins: int = 10) -> dict:
+    """How well a method's probabilities say how often it is right: the mean probability of
+    its answer (``confidence``, against the accuracy), the expected calibration error over
+    ``bins`` equal bins of that probability (``ece``) and the mean negative log probability of
+    the true content (``nll``, a probability under 1e-300 counted as 1e-300). Empty for a
+    method without probabilities."""
+    if not probabilities:
+        return {}
+    best = np.array([p.get(a, 0.0) for p, a in zip(probabilities, pred)])
+    right = np.asarray(truth) == np.asarray(pred)
+    bin_of = np.minimum((best * bins).astype(int), bins - 1)
+    ece = sum(float(np.mean(bin_of == b)) * abs(float(right[bin_of == b].mean())
+                                               - float(best[bin_of == b].mean()))
+              for b in range(bins) if np.any(bin_of == b))
+    nll = float(np.mean([-np.log(max(p.get(t, 0.0), 1e-300))
+                         for p, t in zip(probabilities, truth)]))
+    return {"confidence": float(best.mean()), "ece": ece, "nll": nll}
 
 
 
@@ -454,6 +476,11 @@ def main(argv=None) -> int:
         # every class's recall, the lowest first (docs/data/recognition_recall.csv holds them)
         say(f"{'':12s} {'':15s} recall: " + ", ".join(
             f"{c} {v:.2f}" for c, v in sorted(row["recall"].items(), key=lambda kv: kv[1])))
+        if "ece" in row:
+            say(f"{row['protocol']:12s} {row['method']:15s} calibration: the probability of its "
+                f"answer {row['confidence']:.3f} on average against accuracy "
+                f"{row['accuracy']:.3f}, expected calibration error {row['ece']:.3f}, the true "
+                f"content's -log p {row['nll']:.3f}")
         if row.get("left_out"):
             kinds = Counter(row["left_out"])
             say(f"{row['protocol']:12s} {row['method']:15s} kinds of features left out by the "
@@ -506,7 +533,7 @@ def main(argv=None) -> int:
                   "frame_accuracy", "segment_f1", "recordings", "time_precision",
                   "time_recall", "absent_reported", "recordings_with_absent", "actions",
                   "train_takes", "praxicon", "dtw-1nn", "d2-in-style", "d2-loso", "d1-loso",
-                  "known_at_recall_0.9"]
+                  "known_at_recall_0.9", "confidence", "ece", "nll"]
         write_csv(DATA / "recognition.csv", header,
                   [[_fmt(r.get(h, "")) if not isinstance(r.get(h, ""), float)
                     else f"{r[h]:.4f}" for h in header] for r in rows])

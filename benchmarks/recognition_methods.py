@@ -101,6 +101,14 @@ def praxicon_fit(motions, labels, styles=None, *, per_style: bool = False):
     def predict(test):
         from praxicon.recognition import recognise_many
         found = recognise_many(descriptions, test, explain=0)
+        # each content's probability (a content's styles summed where actions are per style):
+        # what the calibration of the ranking is measured on
+        predict.probabilities = []
+        for r in found:
+            by_content = defaultdict(float)
+            for name, p in r.ranking:
+                by_content[name.split("|")[0]] += p
+            predict.probabilities.append(dict(by_content))
         return ([r.ranking[0][0].split("|")[0] for r in found],
                 [r.action.split("|")[0] if r.action else None for r in found])
     # the kind of features the choice left out (every kind is among a Bandai take's features)
