@@ -74,7 +74,7 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
         dist, score = scores(d, x, columns, fitted=fitted)
         best = score.argmin(axis=1)
         penalty = dist[np.arange(len(x)), best] / len(columns)
-        excess, _ = _excess(d, features, x, best, fitted)
+        excess, _, _ = _excess(d, features, x, best, fitted)
         rules = {f"groups a={level:g}": (penalty <= d.spread.threshold) & (excess <= 1.0)}
         if by_style:
             # the praxicon's rule: a content's styles, a family, decide none of these for
@@ -83,7 +83,7 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
             rules[f"groups a={level:g}"] = _family_accepts(d, rows, test, best, level,
                                                            rules[f"own style a={level:g}"])
         if level == GROUP_LEVEL:  # every group read, not only those that tell actions apart
-            every, _ = _excess(d, features, x, best, fitted, telling=False)
+            every, _, _ = _excess(d, features, x, best, fitted, telling=False)
             rules[f"every group a={level:g}"] = (penalty <= d.spread.threshold) & (every <= 1.0)
         if level == _LEVELS[0]:
             rules.update({f"whole x{m:g}": penalty <= d.spread.threshold / _MARGIN * m
