@@ -157,8 +157,11 @@ def _enumerate(system: PSGS | PCGS, args) -> int:
         if args.trace:
             print("  " + _witness(system, words), file=out)
     if not found.complete:
-        print(f"psgs: the enumeration is incomplete: {found.reason}; the words above are those "
-              f"found up to length {args.max_length}", file=sys.stderr)
+        # not "the words up to length L": a budget can stop it before any tuple is checked
+        said = ("the words above are those it found" if len(found)
+                else "it found no word")
+        print(f"psgs: the enumeration is incomplete: {found.reason}; {said} before it stopped, "
+              f"not every word up to length {args.max_length}", file=sys.stderr)
         return INCOMPLETE
     if not len(found):  # say so: an empty stdout with status 0 looked like success
         print(f"psgs: no word up to length {args.max_length}", file=sys.stderr)

@@ -59,6 +59,9 @@ def test_a_bound_gives_a_note_on_stderr_and_status_3(capsys):
     assert status == 3
     assert len(err.strip().splitlines()) == 1 and "max_configurations" in err
     assert all(line.startswith("(") for line in out.splitlines())
+    # it does not claim the words up to the length bound, and says when it found none
+    said = "the words above are those it found" if out else "it found no word"
+    assert f"{said} before it stopped, not every word up to length 30" in err
 
 
 @pytest.mark.parametrize("nearest", [[], ["--nearest"]])
