@@ -6,15 +6,26 @@ from .._foundation.shell import natural, positive_int
 
 
 def run_draw(args) -> int:
-    from ..draw import draw, graphviz_available
-    from ..format import load
+    import sys
 
-    system = load(args.file)
+    from ..derivation import random_derivation
+    from ..draw import draw, graphviz_available
+    from ..model import PSGS
+    from .core import load_system
+
+    system = load_system(args.file)  # a nonterminal without a rule warned of, as show does
     engine = args.engine
     path = draw(system, args.output, seed=args.seed, max_steps=args.max_steps, engine=engine)
     used = "graphviz" if engine == "graphviz" or (engine == "auto" and graphviz_available()) \
         else "matplotlib"
     print(f"{path} ({used})")
+    if isinstance(system, PSGS):
+        # the trees drawn are those of this derivation: unfinished where it did not end
+        derivation = random_derivation(system, args.seed, max_steps=args.max_steps)
+        if derivation.status != "terminal":
+            print(f"psgs: note: the derivation drawn (seed {args.seed}) is {derivation.status}"
+                  f"{': ' + derivation.reason if derivation.reason else ''}; its parse trees "
+                  f"are unfinished", file=sys.stderr)
     return 0
 
 

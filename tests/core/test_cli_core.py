@@ -371,3 +371,21 @@ def test_resource_limits_are_one_line_not_a_traceback(capsys, monkeypatch, error
     assert kinetology_cli.main(["segment", "x.bvh"]) == status
     err = capsys.readouterr().err
     assert words in err and len(err.splitlines()) == 1
+
+
+def test_draw_says_when_the_derivation_it_draws_did_not_end(tmp_path, capsys):
+    # a blocked derivation's trees were drawn unfinished without a word, and a nonterminal
+    # without a rule was not warned of, as show and derive warn of it
+    path = tmp_path / "stuck.psgs"
+    path.write_text('psgs Stuck\nmode parallel\ncomponent G start S\n  p: S -> "a" X\n',
+                    encoding="utf-8")
+    status, out, err = run(capsys, "draw", str(path), "-o", str(tmp_path / "s.svg"),
+                           "--engine", "matplotlib")
+    assert status == 0 and out.strip() == f"{tmp_path / 's.svg'} (matplotlib)"
+    assert err.splitlines() == [
+        f"psgs: warning: {path}: nonterminal X of component G has no rule, so a form holding "
+        f"it never becomes terminal",
+        "psgs: note: the derivation drawn (seed 0) is blocked; its parse trees are unfinished"]
+    status, _, err = run(capsys, "draw", "paper_example", "-o", str(tmp_path / "g.svg"),
+                         "--engine", "matplotlib")
+    assert status == 0 and err == ""
