@@ -74,7 +74,8 @@ def register(subparsers) -> None:
                      help="one random derivation (the default)")
     how.add_argument("--enumerate", action="store_true",
                      help="every word up to --max-length, in order of size")
-    derive.add_argument("--seed", type=int, default=0, help="seed of --random (default 0)")
+    derive.add_argument("--seed", type=natural, default=0,
+                        help="seed of --random, a whole number from 0 (default 0)")
     derive.add_argument("--max-steps", type=positive_int, default=10_000, metavar="K",
                         help="--random stops after K steps (default 10000)")
     derive.add_argument("--max-symbols", type=positive_int, default=10_000_000, metavar="N",
@@ -214,7 +215,11 @@ def run_export(args) -> int:
             print(f"// ===== {name}.lark =====")
             print(text, end="")
         return 0
+    if not args.output.strip():  # '' was the current directory, without a word
+        raise ValidationError("-o needs a folder name (-o . for the current one)")
     directory = Path(args.output)
+    if directory.exists() and not directory.is_dir():
+        raise ValidationError(f"{directory}: a file, not a folder for the .lark files")
     directory.mkdir(parents=True, exist_ok=True)
     for name, text in grammars.items():
         path = directory / f"{name}.lark"

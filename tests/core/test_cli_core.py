@@ -389,3 +389,17 @@ def test_draw_says_when_the_derivation_it_draws_did_not_end(tmp_path, capsys):
     status, _, err = run(capsys, "draw", "paper_example", "-o", str(tmp_path / "g.svg"),
                          "--engine", "matplotlib")
     assert status == 0 and err == ""
+
+
+def test_export_and_derive_refuse_what_they_used_to_take_in_silence(capsys, tmp_path):
+    afile = tmp_path / "afile"
+    afile.write_text("mine")
+    for argv, words in ((["export", "counting", "-o", ""], "-o needs a folder name"),
+                        (["export", "counting", "-o", str(afile)],
+                         "a file, not a folder for the .lark files")):
+        status, out, err = run(capsys, *argv)
+        assert status == 2 and not out and words in err, (argv, err)
+    assert afile.read_text() == "mine"
+    with pytest.raises(SystemExit) as stop:  # a usage error, as draw's --seed -1 is
+        main(["derive", "counting", "--random", "--seed", "-1"])
+    assert stop.value.code == 2 and "--seed: -1 is negative" in capsys.readouterr().err
