@@ -33,7 +33,7 @@ import numpy as np
 from psgs._foundation.text import split_lines
 from psgs.errors import ValidationError
 
-from .codec import compress, decompress
+from .codec import absolute_errors, compress, decompress, mean_errors
 from .kinematics import forward_kinematics, joint_angle
 from .motion import Motion, MotionFormatError, check_number, file_text
 from .segmentation import DEFAULTS, STATES, smooth, states, unwrap
@@ -52,7 +52,9 @@ def codec_point(motion: Motion, original_size: int, **params) -> dict:
 
     ``mae`` is the mean absolute error over all channels and frames (root
     translations included, in file units), ``mae_angles`` over angle
-    channels only, ``max_error`` the largest absolute error.
+    channels only (over all channels when there is none), ``max_error`` the
+    largest absolute error; rotation channels are compared modulo 360°
+    (:func:`kinetology.codec.mean_errors`).
 
     Parameters
     ----------
@@ -89,12 +91,12 @@ def codec_point(motion: Motion, original_size: int, **params) -> dict:
     check_number(original_size, "original_size", positive=True)  # the percent's denominator
     data = compress(motion, **params)
     decoded = decompress(data)
-    error = np.abs(decoded.values - motion.values)
-    angle_columns = [i for i, c in enumerate(motion.channels)
-                     if c.rsplit(".", 1)[-1] not in ("tx", "ty", "tz")]
+    # rotation channels modulo 360°, as compress reports: the decoder returns unwrapped angles
+    # (181° for a file's -179°), the same angle, not an error of 360°
+    error = absolute_errors(motion, decoded)
+    angles, every = mean_errors(motion, decoded)
     return {"bytes": len(data), "percent": 100.0 * len(data) / original_size,
-            "mae": float(error.mean()), "mae_angles": float(error[:, angle_columns].mean()),
-            "max_error": float(error.max())}
+            "mae": every, "mae_angles": angles, "max_error": float(error.max())}
 
 
 #: Joint angles of the CMU (ASF) skeleton as (end, vertex, end) joint triples.

@@ -13,6 +13,7 @@ import numpy as np
 
 from psgs.errors import MissingDependency, ValidationError
 
+from .codec.knots import is_rotation
 from .motion import Motion
 from .segmentation import DEFAULTS, STATES, states
 
@@ -132,7 +133,8 @@ def plot_reconstruction(original: Motion, decoded: Motion, channel: str, *, star
     original, decoded : Motion
         The motion and its reconstruction (e.g. ``kinetology.decompress(kinetology.compress(m))``).
     channel : str
-        The channel to draw (the title gives its mean absolute error in the window).
+        The channel to draw (the title gives its mean absolute error in the window, modulo
+        360° for a rotation channel).
     start : float, default 0.0
         Start of the time window drawn, seconds.
     stop : float, optional
@@ -164,6 +166,10 @@ def plot_reconstruction(original: Motion, decoded: Motion, channel: str, *, star
     plt = _pyplot()
     t, window = _window(original.frames, original.frame_rate, start, stop)
     a, b = original.column(channel), decoded.column(channel)
+    if is_rotation(channel):
+        # the decoder returns unwrapped angles (181° for the file's -179°), the same angle: the
+        # decoded curve is drawn on the original's turn, so its distance is the error mod 360°
+        b = a + ((b - a + 180.0) % 360.0 - 180.0)
     fig, ax = plt.subplots(figsize=(9, 3))
     ax.plot(t[window], a[window], color="black", lw=1.5, label="original")
     ax.plot(t[window], b[window], color="#d62728", lw=1.2, ls="--", label="reconstructed")

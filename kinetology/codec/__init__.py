@@ -31,14 +31,14 @@ from __future__ import annotations
 import numpy as np
 
 from ..motion import Motion, check_motion
-from .encoder import (CODEC_DEFAULTS, Compressed, compress_with, decompress, encode_segments,
-                      mean_errors)
+from .encoder import (CODEC_DEFAULTS, Compressed, absolute_errors, compress_with, decompress,
+                      encode_segments, mean_errors)
 from .knots import PINNED
 from .quartic import basis, fit_knots, reconstruct
 from .rate import compress_to
 
-__all__ = ["compress", "decompress", "Compressed", "mean_errors", "encode_segments",
-           "reconstruct", "basis", "fit_knots", "CODEC_DEFAULTS", "PINNED"]
+__all__ = ["compress", "decompress", "Compressed", "mean_errors", "absolute_errors",
+           "encode_segments", "reconstruct", "basis", "fit_knots", "CODEC_DEFAULTS", "PINNED"]
 
 
 def compress(motion: Motion, max_error: float | None = None, **params) -> Compressed:

@@ -13,8 +13,8 @@ from . import entropy, residual, stream
 from .knots import PINNED, channel_knots, is_rotation, unwrap
 from .quartic import fit_knots, reconstruct
 
-__all__ = ["CODEC_DEFAULTS", "Compressed", "compress_with", "decompress", "encode_segments",
-           "mean_errors"]
+__all__ = ["CODEC_DEFAULTS", "Compressed", "absolute_errors", "compress_with", "decompress",
+           "encode_segments", "mean_errors"]
 
 #: Settings of :func:`kinetology.codec.compress` without ``max_error``: the pinned
 #: segmentation, the knot quantum (degrees), and no residual layer
@@ -77,16 +77,59 @@ class Compressed(bytes):
         return self._report[3]
 
 
-def _errors(original: np.ndarray, decoded: np.ndarray, channels) -> tuple[float, float]:
-    if original.size == 0:
-        return 0.0, 0.0
-    difference = decoded - original
+def _absolute(original: np.ndarray, decoded: np.ndarray, channels) -> np.ndarray:
+    """|decoded - original| per frame and channel, rotation channels modulo 360°."""
+    difference = np.asarray(decoded, dtype=float) - original
     rotation = [c for c, name in enumerate(channels) if is_rotation(name)]
     if rotation:  # an angle 360° off is the same angle
         difference[:, rotation] = (difference[:, rotation] + 180.0) % 360.0 - 180.0
-    error = np.abs(difference)
+    return np.abs(difference)
+
+
+def _errors(original: np.ndarray, decoded: np.ndarray, channels) -> tuple[float, float]:
+    if original.size == 0:
+        return 0.0, 0.0
+    error = _absolute(original, decoded, channels)
+    rotation = [c for c, name in enumerate(channels) if is_rotation(name)]
     angles = error[:, rotation] if rotation else error
     return float(angles.mean()), float(error.mean())
+
+
+def absolute_errors(original: Motion, decoded: Motion) -> np.ndarray:
+    """Absolute error of a decoded motion per frame and channel, frames x channels.
+
+    Rotation channels (``rx``, ``ry``, ``rz``) are compared modulo 360°, as in
+    :func:`mean_errors` (the decoder returns unwrapped angles: 181° for a file's
+    -179°); other channels (root translations) are plain differences.
+
+    Parameters
+    ----------
+    original, decoded : Motion
+        Two motions with the same channels and frame count.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``|decoded - original|``, frames x channels.
+
+    Raises
+    ------
+    ValueError
+        When the channels or frame counts differ.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from kinetology import Motion
+    >>> a = Motion(np.array([[-179.0, 1.0]]), ("neck.rz", "root.tx"), 120)
+    >>> b = Motion(np.array([[181.5, 361.0]]), ("neck.rz", "root.tx"), 120)
+    >>> absolute_errors(a, b)
+    array([[  0.5, 360. ]])
+    """
+    if original.channels != decoded.channels or original.frames != decoded.frames:
+        raise ValidationError("the two motions differ in channels or frame count")
+    return _absolute(np.asarray(original.values, dtype=float), decoded.values,
+                     original.channels)
 
 
 def mean_errors(original: Motion, decoded: Motion) -> tuple[float, float]:
