@@ -282,6 +282,7 @@ def _cmd_evaluate(args) -> int:
 def _cmd_plot(args) -> int:
     from . import plotting
 
+    plotting.check_output(args.output)  # matplotlib refuses a suffix only once the work is done
     motion = _read(args, args.file)
     params = _params(args, DEFAULTS)
     params.pop("min_range", None)

@@ -7,6 +7,7 @@ it is missing.
 
 from __future__ import annotations
 
+from pathlib import Path
 from types import MappingProxyType
 
 import numpy as np
@@ -18,7 +19,8 @@ from .motion import Motion
 from .segmentation import DEFAULTS, STATES, states
 
 __all__ = ["STATE_COLOURS", "STILL_COLOUR", "plot_states", "plot_reconstruction", "plot_view_invariance",
-           "plot_reproducibility", "plot_selectivity", "plot_rate_distortion", "save"]
+           "plot_reproducibility", "plot_selectivity", "plot_rate_distortion", "check_output",
+           "save"]
 
 #: Colours of the four states (B blue, G green, R red, Y yellow).
 STATE_COLOURS = MappingProxyType({"B": "#1f5fd6", "G": "#2ca02c", "R": "#d62728",
@@ -383,6 +385,49 @@ def plot_rate_distortion(curves: dict, paper=(3.698, 0.823)):
     ax.legend(fontsize=8)
     fig.tight_layout()
     return fig
+
+
+def check_output(path) -> str:
+    """The suffix of ``path`` when matplotlib writes pictures of that format, else
+    :class:`~psgs.errors.ValidationError` naming the file: checked before any work is done.
+
+    Parameters
+    ----------
+    path : str or Path
+        Where a picture is to be written.
+
+    Returns
+    -------
+    str
+        The suffix, lower case (``".png"``).
+
+    Raises
+    ------
+    ValidationError
+        For a suffix matplotlib does not write (or none).
+    MissingDependency
+        When matplotlib is not installed.
+
+    Examples
+    --------
+    >>> check_output("knee.PNG")
+    '.png'
+    >>> check_output("knee.txt")
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: knee.txt: cannot write '.txt'; give one of .png, .svg, .pdf, ...
+    """
+    _pyplot()
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    suffix = Path(path).suffix.lower()
+    known = FigureCanvasBase.get_supported_filetypes()
+    if suffix[1:] not in known:  # matplotlib's own refusal comes after the work, as a traceback
+        first = ["png", "svg", "pdf"]
+        names = first + sorted(set(known) - set(first))
+        raise ValidationError(f"{path}: cannot write {suffix or 'a file without a suffix'!r}; "
+                              f"give one of {', '.join('.' + n for n in names)}")
+    return suffix
 
 
 def save(fig, path) -> None:
