@@ -182,16 +182,23 @@ class _Reader:
         n = self.varint()
         return (n >> 1) if not n & 1 else -((n + 1) >> 1)
 
+    def short(self, count: int, what: str):
+        """Fail at the byte where the data runs out (not where the read began), saying how
+        much was wanted from where: a file cut anywhere inside a part read the same before."""
+        start, self.pos = self.pos, len(self.data)
+        self.fail(f"data ends {what}: {count} bytes wanted from byte {start}, "
+                  f"{self.pos - start} there")
+
     def double(self) -> float:
         if self.pos + 8 > len(self.data):
-            self.fail("data ends inside a float")
+            self.short(8, "inside a float")
         (value,) = struct.unpack_from("<d", self.data, self.pos)
         self.pos += 8
         return value
 
     def raw(self, count: int) -> bytes:
         if self.pos + count > len(self.data):
-            self.fail("data ends early")
+            self.short(count, "early")
         chunk = self.data[self.pos:self.pos + count]
         self.pos += count
         return chunk

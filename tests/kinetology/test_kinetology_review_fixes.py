@@ -65,3 +65,31 @@ def test_reconstruction_plot_title_and_curve_are_modulo_360():
     assert np.abs(original - shown).max() < 5  # drawn on the original's turn
     import matplotlib.pyplot as plt
     plt.close(fig)
+
+
+# -- 2. a picture format matplotlib does not write ------------------------------------------
+
+@pytest.mark.parametrize("kind", ["states", "reconstruction", "view"])
+@pytest.mark.parametrize("name", ["p.txt", "p.xyz", "p"])
+def test_plot_refuses_an_unknown_suffix_in_one_line_before_reading(tmp_path, capsys, kind,
+                                                                   name):
+    pytest.importorskip("matplotlib")
+    # the input does not exist: the output's suffix is refused before any work
+    argv = ["plot", str(tmp_path / "missing.bvh"), "--channel", "lknee", "--kind", kind,
+            "-o", str(tmp_path / name)]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "Traceback" not in err
+    assert str(tmp_path / name) in err and ".png, .svg, .pdf" in err
+    assert not (tmp_path / name).exists()
+
+
+# -- 8. a truncated .kin file ---------------------------------------------------------------
+
+def test_a_truncated_kin_file_names_the_byte_it_ends_at(tmp_path):
+    from kinetology import MotionFormatError
+
+    data = bytes(kinetology.compress(kinetology.synthetic_motion(3, seed=0)))
+    for cut in (len(data) // 2, len(data) - 1):
+        with pytest.raises(MotionFormatError, match=rf"at byte {cut} of the file"):
+            kinetology.decompress(data[:cut], source="cut.kin")
