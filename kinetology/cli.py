@@ -11,6 +11,7 @@ statuses, printed at the end of every ``--help``); it is also ``psgs kinetology 
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from pathlib import Path
 
@@ -105,25 +106,56 @@ def _write(text: str, out: str | None) -> None:
         Path(out).write_text(text)
 
 
+def _is_folder(output: str) -> bool:
+    """Whether ``-o`` names a folder: ``DIR/`` or an existing directory."""
+    return output.endswith(("/", os.sep)) or Path(output).is_dir()
+
+
+def _segment_checks(args) -> list[str] | None:
+    """The channels asked for (None: every angle); the options' refusals, before any work."""
+    channels = None
+    if args.channels:
+        channels = [c for item in args.channels for c in item.split(",") if c]
+        if not channels:  # an empty list segmented nothing: an actiongram of its header alone
+            raise ValidationError(f"--channels {' '.join(args.channels)!r} names no channel")
+    if not args.labels:  # they choose among the spans of a label file, and there is none
+        given = [o for o, v in (("--label", args.label), ("--min-seconds", args.min_seconds))
+                 if v is not None]
+        if given:
+            raise ValidationError(f"{' and '.join(given)} choose{'s' * (len(given) == 1)} "
+                                  f"among the spans of --labels LABELS, which is not given")
+    return channels
+
+
+def _refuse_empty(grams, names, args, channels) -> None:
+    """No actiongram without strings: psgs refuses to read one (``empty actiongram``)."""
+    for name, ag in zip(names, grams):
+        if not len(ag):
+            limit = args.min_range if args.min_range is not None else DEFAULTS["min_range"]
+            which = "none of the --channels given" if channels else "no angle channel"
+            raise MotionFormatError(f"no channel left to segment: {which} moves by --min-range "
+                                    f"{limit:g} degrees or more; nothing written", source=name)
+
+
 def _cmd_segment(args) -> int:
     from .performances import cut, segment_performances
     from .segmentation import segment
 
-    channels = None
-    if args.channels:
-        channels = [c for item in args.channels for c in item.split(",") if c]
+    channels = _segment_checks(args)
+    if args.labels:
+        return _segment_spans(args, channels)
     several = len(args.files) > 1
     out_dir = None
-    if several or (args.output and (args.output.endswith("/") or Path(args.output).is_dir())):
+    if several or (args.output and _is_folder(args.output)):
         if not args.output or args.output == "-":
             raise ValidationError("several files make one actiongram each: give -o DIR/")
+        if not _is_folder(args.output):  # a file name was made a folder of that name
+            raise ValidationError(f"-o {args.output}: several files make one actiongram "
+                                  f"each, in a folder: give -o {args.output}/")
         out_dir = Path(args.output)
-        out_dir.mkdir(parents=True, exist_ok=True)
     names = [Path(f).stem for f in args.files]
     if out_dir is not None and len(set(names)) != len(names):
         raise ValidationError("two files share a name; their actiongrams would overwrite each other")
-    if args.labels:
-        return _segment_spans(args, channels)
     motions, spans = [], []
     for name in args.files:
         motion = _read(args, name)
@@ -139,6 +171,9 @@ def _cmd_segment(args) -> int:
         grams = segment_performances(motions, channels, **_params(args, DEFAULTS))
     else:
         grams = [segment(motions[0], channels, **_params(args, DEFAULTS))]
+    _refuse_empty(grams, args.files, args, channels)
+    if out_dir is not None:
+        out_dir.mkdir(parents=True, exist_ok=True)
     for name, motion, span, ag in zip(args.files, motions, spans, grams):
         header = (f"# kinetology segment {Path(name).name}{span}: {motion.frames} frames at "
                   f"{motion.frame_rate:g} fps; states B(+,+) G(+,-) R(-,-) Y(-,+) of "
@@ -159,11 +194,15 @@ def _segment_spans(args, channels) -> int:
 
     if len(args.files) != 1 or not args.output or args.output == "-":
         raise ValidationError("--labels cuts one take into performances: give one FILE and -o DIR/")
+    if not _is_folder(args.output):  # a file name was made a folder of that name
+        raise ValidationError(f"-o {args.output}: --labels writes one actiongram per span, in a "
+                              f"folder: give -o {args.output}/")
     if args.start is not None or args.stop is not None:
         raise ValidationError("--labels and --start/--stop do not go together")
+    min_seconds = args.min_seconds if args.min_seconds is not None else 0.0
     motion = _read(args, args.files[0])
     spans = spans_of(args.labels, motion.frame_rate)
-    parts = from_spans(motion, spans, args.label, min_seconds=args.min_seconds)
+    parts = from_spans(motion, spans, args.label, min_seconds=min_seconds)
     short = [p for p in parts if p.frames < MIN_FRAMES]  # no acceleration to segment by
     if short:
         print(f"kinetology: left out {len(short)} span{'s' * (len(short) != 1)} of fewer than "
@@ -171,11 +210,12 @@ def _segment_spans(args, channels) -> int:
         parts = [p for p in parts if p.frames >= MIN_FRAMES]
     if not parts:
         raise ValidationError(f"no span{' labelled ' + repr(args.label) if args.label else ''} of "
-                         f"at least {args.min_seconds:g} s in {args.labels}")
+                         f"at least {min_seconds:g} s in {args.labels}")
+    grams = segment_performances(parts, channels, **_params(args, DEFAULTS))
+    _refuse_empty(grams, args.files * len(parts), args, channels)
     out_dir = Path(args.output)
     out_dir.mkdir(parents=True, exist_ok=True)
     count: dict[str, int] = {}
-    grams = segment_performances(parts, channels, **_params(args, DEFAULTS))
     for part, ag in zip(parts, grams):
         label = part.meta["label"]
         count[label] = count.get(label, 0) + 1
@@ -324,7 +364,7 @@ def _add_commands(sub) -> None:
     p.add_argument("--labels", help="label file of the take (CMU mocap6 truelabels .txt or "
                                     "Bandai Namco .json): one actiongram per labelled span")
     p.add_argument("--label", help="with --labels: only spans with this label")
-    p.add_argument("--min-seconds", type=float, default=0.0,
+    p.add_argument("--min-seconds", type=float, default=None,
                    help="with --labels: leave out spans shorter than this (default 0)")
     p.add_argument("-o", "--output", help="output file (default: stdout); with several files "
                                           "a folder, DIR/, holding NAME.actiongram per file")

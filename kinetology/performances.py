@@ -14,7 +14,7 @@ from typing import Iterable
 
 import numpy as np
 
-from psgs.errors import ValidationError
+from psgs.errors import NotFound, ValidationError
 
 from .labels import Span
 from .motion import Motion, check_motion, check_number
@@ -264,6 +264,13 @@ def segment_performances(motions, channels=None, *, engine: str = "auto", **para
     union = [c for c in order if c in moving]
     out = []
     for motion, (names, values) in zip(motions, smoothed):
+        present = set(motion.channels)
+        lacking = [n for n in union if n not in present] if channels is None else []
+        if lacking:  # no channel was asked for: the takes differ, no name was misspelt
+            more = f" and {len(lacking) - 3} more" if len(lacking) > 3 else ""
+            raise NotFound(f"the motions have different channels: {motion.source} lacks "
+                           f"{', '.join(lacking[:3])}{more} of {motions[0].source} (performances "
+                           f"of one action need the same channels)")
         for name in union:
             motion.index(name)  # KeyError naming a channel this take lacks
         rows = {n: i for i, n in enumerate(names)}
