@@ -250,35 +250,50 @@ def _cmd_decompress(args) -> int:
 
     # read_bytes: a device (/dev/zero) is refused, not read until memory runs out
     motion = decompress(read_bytes(args.file), source=args.file)
+    if args.against:  # compared before the CSV is written: a mismatch is an error, not a tail
+        original = _read(args, args.against, enough=False)  # compared, not segmented
+        if original.values.shape != motion.values.shape:
+            raise MotionFormatError(f"{args.against} has shape {original.values.shape}, the "
+                                    f"decoded motion {motion.values.shape}", source=args.file)
+        if original.channels != motion.channels:
+            original = original.select(motion.channels)  # NotFound naming a missing channel
     lines = ["time," + ",".join(motion.channels)]
     t = np.arange(motion.frames) / motion.frame_rate
     for time, row in zip(t, motion.values):
         lines.append(f"{time:.6g}," + ",".join(f"{v:.4f}" for v in row))
     _write("\n".join(lines) + "\n", args.output)
     if args.against:
-        original = _read(args, args.against, enough=False)  # compared, not segmented
-        if original.values.shape != motion.values.shape:
-            raise MotionFormatError(f"{args.against} has shape {original.values.shape}, the "
-                                    f"decoded motion {motion.values.shape}", source=args.file)
         from .codec import mean_errors
-        angles, every = mean_errors(original.select(motion.channels) if
-                                    original.channels != motion.channels else original, motion)
+        angles, every = mean_errors(original, motion)
         print(f"mean absolute error {every:.4f} over all channels, {angles:.4f} deg over "
               f"angles (rotation channels compared modulo 360)", file=sys.stderr)
     return 0
 
 
 def _cmd_evaluate(args) -> int:
-    from .evaluation import (angle_table, codec_point, mocap6_performances, reproducibility,
-                             selectivity, view_invariance)
+    from .evaluation import (MAX_VIEWS, angle_table, codec_point, mocap6_performances,
+                             reproducibility, selectivity, view_invariance)
+    from .codec import CODEC_DEFAULTS
+    from .segmentation import _check as check_parameters
     from .segmentation import segments
 
+    if not args.files and not args.mocap6:
+        raise MotionFormatError("nothing to evaluate: give motion files and/or --mocap6 DIR",
+                                source="kinetology evaluate")
+    if not 1 <= args.views <= MAX_VIEWS:  # refused before the report, not after it
+        raise ValidationError(f"--views must be a whole number from 1 to {MAX_VIEWS}, not "
+                              f"{args.views}")
     params = _params(args, DEFAULTS)
-    for name in args.files:
-        motion = _read(args, name)
+    check_parameters(params)
+    # every file read (and cmu-mocap6 with it) before the first line of the report: a bad
+    # file is then one line of error, not the tail of a report
+    motions = [_read(args, name) for name in args.files]
+    mocap6 = mocap6_performances(args.mocap6) if args.mocap6 else None
+    for name, motion in zip(args.files, motions):
         seg = segments(motion, **params)
+        # the codec's own settings only: it always unwraps, and keeps every channel
         point = codec_point(motion, Path(name).stat().st_size,
-                            **{k: v for k, v in params.items() if k != "min_range"})
+                            **{k: v for k, v in params.items() if k in CODEC_DEFAULTS})
         print(f"{name}: {motion.frames} frames, {len(motion.channels)} channels at "
               f"{motion.frame_rate:g} fps")
         durations = [seg.durations(c) for c in range(len(seg.channels))]
@@ -299,33 +314,36 @@ def _cmd_evaluate(args) -> int:
                   + ", ".join(scores))
         else:
             print("  view-invariance: needs a skeleton with CMU or Bandai Namco joint names")
-    if args.mocap6:
-        motions, perfs = mocap6_performances(args.mocap6)
-        first = next(iter(motions.values()))
+    if mocap6 is not None:
+        takes, perfs = mocap6
+        first = next(iter(takes.values()))
         channels = [c for c in first.channels if c.rsplit(".", 1)[-1] not in ("tx", "ty", "tz")]
-        table = reproducibility(motions, perfs, channels, **params)
+        table = reproducibility(takes, perfs, channels, **params)
         print(f"reproducibility ({args.mocap6}, {len(perfs)} performances): mean over channels")
         for action, row in table.items():
             mean = np.mean([v[0] for v in row.values()])
             print(f"  {action}: {100 * mean:.1f}% ({next(iter(row.values()))[2]} performances)")
-        sel = selectivity(motions, perfs, channels, **params)
+        sel = selectivity(takes, perfs, channels, **params)
         print(f"selectivity: nearest performance of the same action "
               f"{100 * sel['nearest_neighbour_accuracy']:.1f}% (chance "
               f"{100 * sel['chance']:.1f}%); channels described differently, mean over "
               f"action pairs {100 * np.mean(list(sel['pairwise'].values())):.1f}%")
-    if not args.files and not args.mocap6:
-        raise MotionFormatError("nothing to evaluate: give motion files and/or --mocap6 DIR",
-                                source="kinetology evaluate")
     return 0
 
 
 def _cmd_plot(args) -> int:
     from . import plotting
 
+    from .codec import CODEC_DEFAULTS
+
     plotting.check_output(args.output)  # matplotlib refuses a suffix only once the work is done
-    motion = _read(args, args.file)
     params = _params(args, DEFAULTS)
     params.pop("min_range", None)
+    foreign = sorted(set(params) - set(CODEC_DEFAULTS))  # compress raised a TypeError for them
+    if args.kind == "reconstruction" and foreign:
+        raise ValidationError(f"--kind reconstruction: the codec has no setting "
+                              f"{', '.join('--' + n.replace('_', '-') for n in foreign)}")
+    motion = _read(args, args.file)
     if args.kind == "states":
         fig = plotting.plot_states(motion, args.channel, start=args.start, stop=args.stop,
                                    **params)
