@@ -6,6 +6,8 @@ from pathlib import Path
 
 import numpy as np
 
+from psgs._foundation.shell import positive_float
+
 from .viewer import _count, check_output, view
 
 __all__ = ["register"]
@@ -14,12 +16,12 @@ __all__ = ["register"]
 def _run(args) -> int:
     from .readers import read
 
+    from .cli import frame_rate_options
+
     check_output(Path(args.output))
-    motions = []
-    for name in args.files:
-        options = {"frame_rate": args.frame_rate} if args.frame_rate and \
-            Path(name).suffix.lower() == ".amc" else {}
-        motions.append(read(name, **options))
+    # --frame-rate with a BVH file is refused, as by the other commands, before any reading
+    options = [frame_rate_options(args, name) for name in args.files]
+    motions = [read(name, **o) for name, o in zip(args.files, options)]
     actuators = [a for item in args.actuators or () for a in item.split(",") if a]
     player = view(motions, args.output, actuators=actuators or None,
                   kinetemes=not args.no_kinetemes, max_rate=args.max_rate,
@@ -69,6 +71,7 @@ def register(subparsers) -> None:
                    help="most frames per second kept (default 30)")
     p.add_argument("--max-frames", type=int, default=500, metavar="N",
                    help="most frames kept per file (default 500)")
-    p.add_argument("--frame-rate", type=float, default=None, metavar="FPS",
-                   help="frames per second of AMC files (default 120, the CMU rate)")
+    p.add_argument("--frame-rate", type=positive_float, default=None, metavar="FPS",
+                   help="frames per second of AMC files (default 120, the CMU rate; an error "
+                        "with a BVH file, which states its own)")
     p.set_defaults(run=_run)

@@ -67,18 +67,23 @@ def _add_params(parser, *, codec: bool = False) -> None:
 MIN_FRAMES = 3
 
 
+def frame_rate_options(args, path: str) -> dict:
+    """``read``'s options for ``path``: ``--frame-rate`` for an AMC file; with any other file
+    an error rather than silently ignored (a BVH file states its own frame time)."""
+    rate = getattr(args, "frame_rate", None)
+    if rate is None:
+        return {}
+    if Path(path).suffix.lower() != ".amc":
+        raise MotionFormatError("--frame-rate applies to AMC files; a BVH file states its own "
+                                "frame time", source=path)
+    return {"frame_rate": rate}
+
+
 def _read(args, path: str, *, enough: bool = True):
     """Read a motion file, with ``--frame-rate`` for AMC (a BVH file states its own rate);
     ``enough``: refuse one of fewer than :data:`MIN_FRAMES` frames."""
     from .readers import read
-    rate = getattr(args, "frame_rate", None)
-    if rate is None:
-        motion = read(path)
-    elif Path(path).suffix.lower() != ".amc":
-        raise MotionFormatError("--frame-rate applies to AMC files; a BVH file states its own "
-                                "frame time", source=path)
-    else:
-        motion = read(path, frame_rate=rate)
+    motion = read(path, **frame_rate_options(args, path))
     if enough:
         _enough_frames(motion, path, args)
     return motion

@@ -38,7 +38,8 @@ def read(path: str | Path, **options) -> Motion:
     Raises
     ------
     MotionFormatError
-        For another suffix, or a malformed file (naming ``file:line:col``).
+        For another suffix, a malformed file (naming ``file:line:col``), or ``frame_rate=``
+        or ``asf=`` with a BVH file.
     FileNotFoundError
         When the file does not exist.
 
@@ -67,10 +68,19 @@ def read(path: str | Path, **options) -> Motion:
     Traceback (most recent call last):
     ...
     kinetology.motion.MotionFormatError: ...knee.c3d: unknown motion format '.c3d'; expected one of .bvh, .amc
+    >>> read(path, frame_rate=30)
+    Traceback (most recent call last):
+    ...
+    kinetology.motion.MotionFormatError: ...knee.bvh: frame_rate applies to AMC files; ...
     """
     path = as_path(path)
     suffix = path.suffix.lower()
     if suffix == ".bvh":
+        amc_only = sorted({"frame_rate", "asf"} & set(options))
+        if amc_only:  # read_bvh's TypeError ('unexpected keyword argument') said not why
+            verb = "applies" if len(amc_only) == 1 else "apply"
+            raise MotionFormatError(f"{' and '.join(amc_only)} {verb} to AMC files; a BVH file "
+                                    f"states its own frame time and skeleton", source=str(path))
         return read_bvh(path, **options)
     if suffix == ".amc":
         return read_amc(path, **options)
