@@ -42,7 +42,7 @@ __all__ = ["Acceptance", "accepts", "EAGER_REPLAY_LIMIT", "MAX_SYMBOLS", "Neares
 
 #: Words of at most this many symbols in all get their witness replayed at once.
 EAGER_REPLAY_LIMIT = 2000
-#: The default memory bound of a search, in symbols kept (states × form size).
+#: The default memory bound of a search, in symbols kept (states × form size, and chart items).
 MAX_SYMBOLS = 10_000_000
 
 
@@ -70,8 +70,9 @@ def accepts(system: PSGS | PCGS, words, *, max_states: int = 200_000,
     wall-clock time (default 30), giving ``"unknown"`` with the budget named.
     The clock starts before the grammar analysis, so ``max_seconds`` covers
     everything the caller waits for. ``max_symbols`` bounds memory: the
-    states a search keeps, counted as states × form size in symbols
-    (default :data:`MAX_SYMBOLS`, about 0.7 GB in the PSGS search).
+    states a search keeps, counted as states × form size in symbols, and
+    what the parse charts keep (default :data:`MAX_SYMBOLS`, about 0.7 GB in
+    the PSGS search).
 
     ``bound`` of an ``"unknown"`` answer is the name of the budget that ran
     out (``"max_seconds"``, ``"max_states"``, ``"max_symbols"`` or, PCGS only,
@@ -100,7 +101,7 @@ def accepts(system: PSGS | PCGS, words, *, max_states: int = 200_000,
     max_seconds : float, default 30.0
         Budget of wall-clock time.
     max_symbols : int, default MAX_SYMBOLS
-        Budget of memory: states kept times their size in symbols.
+        Budget of memory: states kept times their size in symbols, and the charts' items.
     max_steps : int, default 200
         PCGS only: the longest derivation searched.
     check_witness : bool or None, default None

@@ -41,6 +41,9 @@ from ..model import Grammar, Nonterminal, Rule, Terminal
 UNBOUNDED = 1 << 60
 #: How many unknown children one evaluation of an item notes before it stops looking further.
 _MISSING_PER_PASS = 64
+#: What the chart counts against ``max_symbols`` per memo entry and per entry of its stack: the
+#: item's three ints (the error chart counts its memo entries the same way).
+ITEM_SYMBOLS = 3
 
 
 class CompiledGrammar:
@@ -235,7 +238,16 @@ class CompiledGrammar:
 
 
 class Chart:
-    """Which nonterminals derive which spans of one word (computed on demand)."""
+    """Which nonterminals derive which spans of one word (computed on demand).
+
+    What it keeps counts against the budget's ``max_symbols``
+    (:meth:`~psgs.budget.Budget.hold`): :data:`ITEM_SYMBOLS` per memo entry,
+    the boundaries of each cached split (both kept, in ``held``) and, while a
+    question is resolved, :data:`ITEM_SYMBOLS` per entry of the resolution
+    stack. On a grammar as ambiguous as ``S → S S | a`` the chart is CYK's,
+    quadratic in the word's length, so a long word stops at the memory bound,
+    named, instead of growing until the clock runs out.
+    """
 
     def __init__(self, compiled: CompiledGrammar, word: Sequence[int],
                  budget: Budget | None = None) -> None:
@@ -245,6 +257,9 @@ class Chart:
         self.memo: dict[tuple[int, int, int], bool] = {}
         self.budget = budget if budget is not None else Budget()
         self._split_cache: dict[tuple[int, int, int], tuple[tuple[int, ...], ...]] = {}
+        # what the chart keeps, in symbols: a search that starts its count afresh (a new
+        # round) starts it from the charts' held, as the chart outlives the round
+        self.held = 0
 
     # ---------------------------------------------------------- queries
     def derives(self, a: int, i: int, j: int) -> bool:
@@ -271,9 +286,15 @@ class Chart:
         if cached is None:
             cached = tuple(self._enumerate(rule, i, j, proper=False, missing=None))
             self._split_cache[key] = cached
+            # up to L + 1 splits of a span of length L under a two-symbol body, kept
+            self._hold(1 + sum(map(len, cached)))
         return cached
 
     # ---------------------------------------------------------- machinery
+    def _hold(self, symbols: int) -> None:
+        self.held += symbols
+        self.budget.hold(symbols)
+
     def _symbol_ok(self, s: int, p: int, q: int, missing: list | None) -> bool | None:
         if s < 0:
             return q == p + 1 and self.word[p] == ~s
@@ -430,7 +451,14 @@ class Chart:
     def _resolve(self, root: tuple[int, int, int]) -> None:
         stack = [root]
         memo = self.memo
-        tick = self.budget.tick
+        budget = self.budget
+        tick = budget.tick
+        hold = self._hold
+        # the stack holds each item's unknown children until they are resolved, the same
+        # child once per item that asked for it, so it can outgrow the memo: its highest size
+        # is counted while it lives
+        counted = 1
+        budget.hold(ITEM_SYMBOLS)
         while stack:
             key = stack[-1]
             if key in memo:
@@ -441,6 +469,11 @@ class Chart:
             value = self._evaluate(key, missing)
             if value is None:
                 stack.extend(missing)
+                if len(stack) > counted:
+                    budget.hold(ITEM_SYMBOLS * (len(stack) - counted))
+                    counted = len(stack)
             else:
                 memo[key] = value
+                hold(ITEM_SYMBOLS)
                 stack.pop()
+        budget.held -= ITEM_SYMBOLS * counted  # the stack is gone; the memo stays counted

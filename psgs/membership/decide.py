@@ -82,8 +82,8 @@ def accepts_psgs(system: PSGS, words: tuple[Word, ...], max_states: int,
     except BoundReached as stop:
         explored = search.explored if search is not None else 0
         if stop.bound == "max_symbols":
-            reason = (f"the search kept {budget.held} symbols in its states, more than "
-                      f"max_symbols={budget.max_symbols} ({explored} states)")
+            reason = (f"the parse charts and the search kept {budget.held} symbols, more "
+                      f"than max_symbols={budget.max_symbols} ({explored} states)")
         else:
             reason = (f"the search ran out of time after {budget.seconds:g} s "
                       f"({explored} states)")

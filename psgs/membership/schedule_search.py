@@ -308,7 +308,8 @@ class _ScheduleSearch:
         cap = 4
         explored = 0
         while True:
-            self.budget.held = 0  # the previous round's visited set is gone
+            # the previous round's visited set is gone; the charts are kept
+            self.budget.held = sum(chart.held for chart in self.charts)
             result, explored, capped = self._run_capped(cap, explored)
             if result is not None:
                 return result
