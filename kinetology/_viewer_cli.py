@@ -16,7 +16,7 @@ __all__ = ["register"]
 def _run(args) -> int:
     from .readers import read
 
-    from .cli import frame_rate_options
+    from ._frame_rate_option import frame_rate_options
 
     check_output(Path(args.output))
     # --frame-rate with a BVH file is refused, as by the other commands, before any reading

@@ -21,6 +21,7 @@ from psgs._foundation.files import read_bytes
 from psgs._foundation.shell import positive_float, run, version, with_exit_status_help
 from psgs.errors import ValidationError
 
+from ._frame_rate_option import frame_rate_options
 from .motion import MotionFormatError
 from .segmentation import DEFAULTS
 
@@ -65,18 +66,6 @@ def _add_params(parser, *, codec: bool = False) -> None:
 #: Frames a motion needs to be segmented (segment, compress, evaluate, plot): a frame's state
 #: is the sign of its velocity and its acceleration, and an acceleration takes three frames.
 MIN_FRAMES = 3
-
-
-def frame_rate_options(args, path: str) -> dict:
-    """``read``'s options for ``path``: ``--frame-rate`` for an AMC file; with any other file
-    an error rather than silently ignored (a BVH file states its own frame time)."""
-    rate = getattr(args, "frame_rate", None)
-    if rate is None:
-        return {}
-    if Path(path).suffix.lower() != ".amc":
-        raise MotionFormatError("--frame-rate applies to AMC files; a BVH file states its own "
-                                "frame time", source=path)
-    return {"frame_rate": rate}
 
 
 def _read(args, path: str, *, enough: bool = True):
