@@ -213,6 +213,39 @@ def positive_float(text: str) -> float:
     return value
 
 
+def non_negative_float(text: str) -> float:
+    """A finite number >= 0 (a distance, a count of errors).
+
+    Parameters
+    ----------
+    text : str
+        The option's text.
+
+    Returns
+    -------
+    float
+        The number.
+
+    Raises
+    ------
+    argparse.ArgumentTypeError
+        For text that is not a finite number of 0 or more.
+
+    Examples
+    --------
+    >>> non_negative_float("0")
+    0.0
+    >>> non_negative_float("-1")
+    Traceback (most recent call last):
+    ...
+    argparse.ArgumentTypeError: -1 is negative
+    """
+    value = _number(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"{text} is negative")
+    return value
+
+
 def share(text: str) -> float:
     """A number from 0 to 1 (noise levels, fractions).
 

@@ -14,7 +14,7 @@ import sys
 
 from ..errors import ValidationError
 from ..model import PCGS, PSGS, Terminal
-from .._foundation.shell import INCOMPLETE, NO, OK, positive_float, positive_int
+from .._foundation.shell import INCOMPLETE, NO, OK, non_negative_float, positive_float, positive_int
 from ._types import grammar_file
 
 YES, UNKNOWN = OK, INCOMPLETE
@@ -46,7 +46,7 @@ def register(subparsers) -> None:
                        help="print the distance to the language, a nearest word tuple and the "
                             "edits under the input (exit 0 at distance 0, 1 above, 3 when a "
                             "budget ran out)")
-    check.add_argument("--max-errors", type=float, default=None, metavar="D",
+    check.add_argument("--max-errors", type=non_negative_float, default=None, metavar="D",
                        help="with --nearest: look no further than distance D")
     check.set_defaults(run=run_check)
 

@@ -403,3 +403,12 @@ def test_export_and_derive_refuse_what_they_used_to_take_in_silence(capsys, tmp_
     with pytest.raises(SystemExit) as stop:  # a usage error, as draw's --seed -1 is
         main(["derive", "counting", "--random", "--seed", "-1"])
     assert stop.value.code == 2 and "--seed: -1 is negative" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("value, words", [("-1", "-1 is negative"),
+                                          ("nan", "'nan' is not a finite number")])
+def test_check_max_errors_is_a_usage_error_in_the_option_s_words(capsys, value, words):
+    # it was the library's message, 'max_errors must be a finite number ≥ 0 or None'
+    with pytest.raises(SystemExit) as stop:
+        main(["check", "counting", "a a", "b b", "--nearest", "--max-errors", value])
+    assert stop.value.code == 2 and f"argument --max-errors: {words}" in capsys.readouterr().err
