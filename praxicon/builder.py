@@ -313,18 +313,39 @@ def describe_praxicon(praxicon: Praxicon, *, log=print):
                 motions.append(motion)
         if motions:
             takes[action.name] = motions
-    if not takes:
-        log("no learnt action with a readable performance: nothing to recognise with")
-        return None
-    try:
-        # the styles of one content (an action per content and style) form a family, which
-        # decides "none of these" for its members
-        families = {a.name: f"{a.dataset}.{a.content}" for a in praxicon.actions
-                    if a.name in takes}
-        return describe(takes, families=families), describe_windows(takes)
-    except DescriptionError as exc:
-        log(f"descriptions not learnt: {exc}")
-        return None
+    while True:
+        if not takes:
+            log("no learnt action with a readable performance: nothing to recognise with")
+            return None
+        try:
+            # the styles of one content (an action per content and style) form a family,
+            # which decides "none of these" for its members
+            families = {a.name: f"{a.dataset}.{a.content}" for a in praxicon.actions
+                        if a.name in takes}
+            return describe(takes, families=families), describe_windows(takes)
+        except DescriptionError as exc:
+            culprit = _take_named(takes, str(exc))
+            if culprit is None:
+                log(f"descriptions not learnt: {exc}")
+                return None
+            # one take that cannot be described (a value too large to compute with) is left
+            # out, as an unreadable one is, and the others described without it
+            name, k = culprit
+            log(f"{name}: not described from {exc}")  # the error begins with the take
+            del takes[name][k]
+            if not takes[name]:
+                del takes[name]
+
+
+def _take_named(takes: dict[str, list], message: str) -> tuple[str, int] | None:
+    """The action and index of the take a feature error names at its start (its source, or
+    a window of it), or None."""
+    for name, motions in takes.items():
+        for k, motion in enumerate(motions):
+            source = str(motion.source)
+            if message.startswith((f"{source}: feature ", f"{source} (the window from")):
+                return name, k
+    return None
 
 
 def _described(out: Path, praxicon: Praxicon, log, announce: bool = False) -> Praxicon:

@@ -449,16 +449,26 @@ def motion_features(motion, *, shape: bool = True) -> tuple[tuple[str, ...], np.
     # NaN reaches a description or a score
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         names, values = _features(motion, shape)
-    bad = np.flatnonzero(~np.isfinite(values))
+    # finite but past _LARGEST_FEATURE is refused too: descriptions and distances square the
+    # features, and such a square (or a sum of them, or a spread over takes) is not finite
+    with np.errstate(invalid="ignore"):
+        bad = np.flatnonzero(~(np.abs(values) <= _LARGEST_FEATURE))
     if len(bad):
         # the largest value is where to look in the file (frames counted from 0, as the
         # motion's own checks count them)
         frame, column = np.unravel_index(np.abs(motion.values).argmax(), motion.values.shape)
-        raise FeatureError(f"{motion.source}: feature {names[bad[0]]} is not finite "
-                           f"({values[bad[0]]}): a value of the motion is too large to compute "
+        value = values[bad[0]]
+        said = "not finite" if not np.isfinite(value) else "too large to square"
+        raise FeatureError(f"{motion.source}: feature {names[bad[0]]} is {said} "
+                           f"({value:g}): a value of the motion is too large to compute "
                            f"with (its largest: {motion.values[frame, column]:g}, "
                            f"{motion.channels[column]} at frame {frame})")
     return names, values
+
+
+#: The largest feature a description takes: its square, summed over a thousand features or
+#: taken as a spread over takes, stays finite (doubles reach 1.8e308)
+_LARGEST_FEATURE = 1e150
 
 
 def _features(motion, shape: bool) -> tuple[tuple[str, ...], np.ndarray]:
