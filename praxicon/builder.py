@@ -93,7 +93,10 @@ def executor_for(workers: int | None = None, scheduler=None):
     Returns ``(executor, close)``; call ``close()`` when done (it shuts down only
     what this function started), ``close(stop=True)`` when the build was interrupted or
     failed: N processes then end at once, without finishing what they learn (they ignore
-    Ctrl-C, which is this process's to handle: :func:`ignore_interrupts`).
+    Ctrl-C, which is this process's to handle: :func:`ignore_interrupts`). ``close()``
+    called while an exception is being handled (in a ``finally`` after Ctrl-C) stops them
+    too: a shutdown would wait for every action being learnt, and a second Ctrl-C could not
+    end that wait.
     """
     if scheduler is not None:
         try:
@@ -111,7 +114,7 @@ def executor_for(workers: int | None = None, scheduler=None):
         pool = ProcessPoolExecutor(max_workers=workers, initializer=ignore_interrupts)
 
         def close(stop: bool = False) -> None:
-            if stop:
+            if stop or sys.exc_info()[0] is not None:
                 stop_pool(pool)
             else:
                 pool.shutdown(cancel_futures=True)

@@ -144,3 +144,21 @@ def test_the_drawing_pool_ignores_sigint_and_is_stopped_when_interrupted(tmp_pat
         with pytest.raises(ProcessLookupError):  # one the pool's own thread reaped)
             os.kill(pid, 0)
     assert time.monotonic() - started < 10
+
+
+def test_closing_the_pool_while_an_exception_is_handled_does_not_wait_for_the_work():
+    # library code closes the pool in a finally after Ctrl-C: a shutdown waited for every
+    # action being learnt, the workers ignoring SIGINT, and a second Ctrl-C hung for good
+    from praxicon.builder import executor_for
+
+    pool, close = executor_for(2)
+    busy = pool.submit(time.sleep, 60)
+    workers = list(pool._processes.values())  # noqa: SLF001 - the processes to check
+    started = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        try:
+            raise KeyboardInterrupt
+        finally:
+            close()
+    assert time.monotonic() - started < 10 and busy.done()
+    assert workers and not any(w.is_alive() for w in workers)
