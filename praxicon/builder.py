@@ -316,7 +316,7 @@ def describe_praxicon(praxicon: Praxicon, *, log=print):
                 motions.append(motion)
         if motions:
             takes[action.name] = motions
-    while True:
+    for retry in (True, False):
         if not takes:
             log("no learnt action with a readable performance: nothing to recognise with")
             return None
@@ -327,28 +327,36 @@ def describe_praxicon(praxicon: Praxicon, *, log=print):
                         if a.name in takes}
             return describe(takes, families=families), describe_windows(takes)
         except DescriptionError as exc:
-            culprit = _take_named(takes, str(exc))
-            if culprit is None:
+            # a take whose features cannot be computed (a value too large to compute with)
+            # is left out, as an unreadable one is, and the others described without it;
+            # each take is read again only now, so a build that describes pays nothing more
+            left_out = _undescribable(takes) if retry else {}
+            if not left_out:
                 log(f"descriptions not learnt: {exc}")
                 return None
-            # one take that cannot be described (a value too large to compute with) is left
-            # out, as an unreadable one is, and the others described without it
-            name, k = culprit
-            log(f"{name}: not described from {exc}")  # the error begins with the take
-            del takes[name][k]
-            if not takes[name]:
-                del takes[name]
+            for (name, k), problem in sorted(left_out.items(), reverse=True):
+                log(f"{name}: not described from {problem}")  # the problem names the take
+                del takes[name][k]
+                if not takes[name]:
+                    del takes[name]
+    return None  # pragma: no cover - the second pass returns or says why
 
 
-def _take_named(takes: dict[str, list], message: str) -> tuple[str, int] | None:
-    """The action and index of the take a feature error names at its start (its source, or
-    a window of it), or None."""
+def _undescribable(takes: dict[str, list]) -> dict[tuple[str, int], str]:
+    """Per take (its action and place) whose own or whose windows' features cannot be
+    computed, why: found take by take, since takes cut from one file share its name."""
+    from .description import feature_rows
+    from .parsing import _HOP, _WINDOW, windows
+
+    out = {}
     for name, motions in takes.items():
         for k, motion in enumerate(motions):
-            source = str(motion.source)
-            if message.startswith((f"{source}: feature ", f"{source} (the window from")):
-                return name, k
-    return None
+            try:
+                feature_rows([motion])
+                feature_rows(list(windows(motion, _WINDOW, 2 * _HOP)[1]))
+            except DescriptionError as exc:
+                out[name, k] = str(exc)
+    return out
 
 
 def _described(out: Path, praxicon: Praxicon, log, announce: bool = False) -> Praxicon:
