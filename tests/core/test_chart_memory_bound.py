@@ -34,18 +34,18 @@ import json, sys, time
 sys.path.insert(0, {repo!r})
 import psgs
 from psgs.cli import main
-start = time.monotonic()
+start = time.process_time()  # the child's CPU: a loaded machine does not stretch it
 if {cli!r}:
     import contextlib, io
     out = io.StringIO()
     with contextlib.redirect_stdout(out), contextlib.redirect_stderr(io.StringIO()):
-        status = main(["check", {grammar!r}, "a" * {n}, "--max-seconds", "8"])
+        status = main(["check", {grammar!r}, "a" * {n}, "--max-seconds", "60"])
     answer = [status, out.getvalue()]
 else:
     result = psgs.accepts(psgs.load({grammar!r}), "a" * {n}, max_symbols={symbols},
-                          max_seconds=8)
+                          max_seconds=60)
     answer = [result.answer, result.bound, result.reason]
-seconds = time.monotonic() - start
+seconds = time.process_time() - start
 peak = next(int(line.split()[1]) for line in open("/proc/self/status")
             if line.startswith("VmHWM:"))
 print(json.dumps([answer, seconds, peak / 1024]))
@@ -57,7 +57,7 @@ def run_child(tmp_path: Path, *, cli: bool, symbols: int = 0):
     grammar.write_text(GROW, encoding="utf-8")
     code = CHILD.format(repo=str(REPO), cli=cli, grammar=str(grammar), n=LONG, symbols=symbols)
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                          timeout=60, check=True)
+                          timeout=120, check=True)
     return json.loads(done.stdout)
 
 
@@ -66,7 +66,7 @@ def test_a_long_word_stops_at_max_symbols_with_a_small_peak(tmp_path):
                                                           symbols=1_000_000)
     assert answer == "unknown" and bound == "max_symbols", reason
     assert "max_symbols=1000000" in reason and "0 states" in reason
-    assert seconds < 5  # measured 0.23 s; before, the clock (8 s) ran out first
+    assert seconds < 5  # CPU; measured 0.23 s; before, it ran on until the clock ran out
     assert peak_mb < 250, peak_mb  # measured 51 MB; before, 1,038 MB at the 6 s mark
 
 
@@ -74,7 +74,7 @@ def test_psgs_check_on_the_reviewed_input_stays_under_the_documented_bound(tmp_p
     """The review's command at the default max_symbols: about 0.4 GB, named, in seconds."""
     (status, out), seconds, peak_mb = run_child(tmp_path, cli=True)
     assert status == 3 and "(budget: max_symbols)" in out, out
-    assert seconds < 7  # measured 2.1 s; before, it stopped at --max-seconds (8)
+    assert seconds < 7  # CPU; measured 2.1 s; before, it ran on until --max-seconds
     assert peak_mb < 700, peak_mb  # docs/membership.md: about 0.7 GB; measured 382 MB
 
 
