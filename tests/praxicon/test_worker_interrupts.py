@@ -80,14 +80,16 @@ def test_ctrl_c_prints_no_worker_traceback_and_stops_at_once(tmp_path):
                              stderr=subprocess.PIPE, text=True, start_new_session=True,
                              cwd=root, env=env)
     try:
-        deadline = time.monotonic() + 6
+        deadline = time.monotonic() + 10
         while time.monotonic() < deadline:  # both workers up, past their initializer
             workers = _workers(build.pid)
             if len(workers) == 2 and all(map(_ignores_sigint, workers)):
                 break
             time.sleep(0.02)
+        else:  # an interrupt before the build started would test nothing of the pool
+            pytest.fail("the build's two workers did not start within 10 s")
         os.killpg(build.pid, signal.SIGINT)  # what Ctrl-C sends: the whole process group
-        _, err = build.communicate(timeout=max(1.0, 12 - (time.monotonic() - started)))
+        _, err = build.communicate(timeout=max(1.0, 14 - (time.monotonic() - started)))
     finally:
         if build.poll() is None:
             os.killpg(build.pid, signal.SIGKILL)
