@@ -240,6 +240,18 @@ def _overflowing(descriptions, columns, scaled, variance, noise, factors) -> str
     is not."""
     spread = descriptions.spread
     names, scale = spread.features, np.asarray(spread.scale)
+    # the likelihoods' first: a temperature or a tail whose inverse's square is not finite
+    # (or a tail too large over the temperature) makes every log-likelihood infinite and
+    # every probability NaN
+    with np.errstate(over="ignore"):
+        for kind, number, usable in (
+                ("temperature", spread.temperature,
+                 np.isfinite((1.0 / np.float64(spread.temperature)) ** 2)),
+                ("tail", spread.tail, math.isinf(spread.tail) or bool(
+                    np.isfinite((1.0 / np.float64(spread.tail)) ** 2)
+                    and np.isfinite(np.float64(spread.tail) / spread.temperature)))):
+            if not usable:
+                return f"the spread's {kind} is {number:g}"
     # the spread's first: a scale too small makes every mean too large in its units
     for kind, bad, number in (("scale", ~np.isfinite((1.0 / scale[columns]) ** 2), scale),
                               ("noise", ~np.isfinite((1.0 / noise[columns]) ** 2), noise),

@@ -112,3 +112,17 @@ def test_a_tail_that_is_no_positive_number_is_refused_naming_it(takes, bad):
                                     '"tail": ' + ("1e400" if bad == 1e400 else json.dumps(bad)))
     with pytest.raises(DescriptionError, match="tail"):
         Spread.from_dict(json.loads(text))
+
+
+@pytest.mark.parametrize("field, value", [("tail", 1e-310), ("tail", 1e-200),
+                                          ("temperature", 1e-310)])
+def test_a_tail_or_temperature_too_small_to_score_with_is_named(takes, field, value):
+    # accepted by the reader (a positive number), they made every probability NaN
+    from dataclasses import replace
+
+    from praxicon.recognition import recognise
+
+    d = describe(takes)
+    bad = replace(d, spread=replace(d.spread, **{field: value}))
+    with pytest.raises(DescriptionError, match=f"the spread's {field} is {value:g}"):
+        recognise(bad, synthetic_motion(4, (0,), seed=50, noise=0.3, repetitions=5))
