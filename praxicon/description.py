@@ -21,8 +21,9 @@ as a walk's missing heading drift against a turn whose drift is tight, drowns in
 all features but stands out in its group. It reads only the groups that tell the action apart
 from another learnt action (:func:`~praxicon.feature_groups.telling_groups`). Actions are
 ranked by the shared distance plus the root drift's distance in each action's own spread
-(:func:`scores`); probabilities are those scores' likelihoods at the ``temperature`` that fits
-the left-out training takes best.
+(:func:`scores`); probabilities are those scores' likelihoods at the ``temperature`` and the
+``tail`` (infinite: Gaussian; :func:`~praxicon.scoring.log_likelihoods`) that fit the left-out
+training takes best.
 
 Actions need not share a skeleton. Each action keeps the features every one of its takes has
 (``ActionDescription.features``: its joints are its takes'), and the spread covers every
