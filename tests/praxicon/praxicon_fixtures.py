@@ -83,3 +83,23 @@ def manifest(tmp_path) -> Path:
 
 def needs_mocap():
     return pytest.mark.skipif(not SHARED.is_dir(), reason="../shared/data/mocap is absent")
+
+
+def run_praxicon(capsys, argv) -> tuple[int, str, str]:
+    """``psgs praxicon ARGV`` in this process: its status, stdout and stderr."""
+    from praxicon.cli import main
+
+    capsys.readouterr()
+    status = main(argv)
+    captured = capsys.readouterr()
+    return status, captured.out, captured.err
+
+
+def refused(capsys, argv) -> str:
+    """The one error line (without ``psgs: error: ``) of a command that must refuse before
+    printing any answer."""
+    status, out, err = run_praxicon(capsys, argv)
+    assert status == 2 and out == "", (status, out, err)
+    (line,) = err.splitlines()
+    assert line.startswith("psgs: error: ") and "Traceback" not in err
+    return line[len("psgs: error: "):]

@@ -15,9 +15,9 @@ import numpy as np
 import pytest
 
 from praxicon import PraxiconError, build, load, read_dataset
-from praxicon.cli import main
 from praxicon.description import DescriptionError, Descriptions
 from praxicon.store import read_descriptions
+from praxicon_fixtures import refused as _refused, run_praxicon as _run
 
 
 def _take(seed: int, arm: bool, leg: bool, seconds: float = 5.0, rate: float = 30.0):
@@ -71,22 +71,6 @@ def _edit(path: Path, change) -> None:
     data = json.loads(path.read_text())
     change(data)
     path.write_text(json.dumps(data))  # NaN and Infinity written as JSON's extensions
-
-
-def _run(capsys, argv) -> tuple[int, str, str]:
-    capsys.readouterr()
-    status = main(argv)
-    captured = capsys.readouterr()
-    return status, captured.out, captured.err
-
-
-def _refused(capsys, argv) -> str:
-    """The one error line of a command that must refuse before printing any answer."""
-    status, out, err = _run(capsys, argv)
-    assert status == 2 and out == "", (status, out, err)
-    (line,) = err.splitlines()
-    assert line.startswith("psgs: error: ") and "Traceback" not in err
-    return line[len("psgs: error: "):]
 
 
 def _every_reader_refuses(capsys, built, folder, message) -> str:

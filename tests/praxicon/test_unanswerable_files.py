@@ -19,9 +19,8 @@ import numpy as np
 import pytest
 
 from praxicon import load, parse, recognise, recognise_many
-from praxicon.cli import main
 from praxicon.description import DescriptionError
-from praxicon_fixtures import leg_body
+from praxicon_fixtures import leg_body, refused as _refused, run_praxicon as _run
 
 # an overflow was a RuntimeWarning on stderr before the NaN answer: none may be left
 pytestmark = pytest.mark.filterwarnings("error::RuntimeWarning")
@@ -77,22 +76,6 @@ def built(tmp_path_factory) -> Path:
     write_bvh(Motion(np.random.default_rng(3).normal(0, 5, (150, 2)), channels, _RATE,
                      star_skeleton(channels)), root / "other.bvh")
     return root
-
-
-def _run(capsys, argv) -> tuple[int, str, str]:
-    capsys.readouterr()
-    status = main(argv)
-    captured = capsys.readouterr()
-    return status, captured.out, captured.err
-
-
-def _refused(capsys, argv) -> str:
-    """The one error line (without ``psgs: error: ``) of a command that answers nothing."""
-    status, out, err = _run(capsys, argv)
-    assert status == 2 and out == "", (status, out, err)
-    (line,) = err.splitlines()
-    assert line.startswith("psgs: error: ") and "Traceback" not in err
-    return line[len("psgs: error: "):]
 
 
 # -- a value too large to compute with ---------------------------------------------------------
