@@ -126,8 +126,7 @@ def absolute_errors(original: Motion, decoded: Motion) -> np.ndarray:
     >>> absolute_errors(a, b)
     array([[  0.5, 360. ]])
     """
-    if original.channels != decoded.channels or original.frames != decoded.frames:
-        raise ValidationError("the two motions differ in channels or frame count")
+    _check_pair(original, decoded)
     return _absolute(np.asarray(original.values, dtype=float), decoded.values,
                      original.channels)
 
@@ -162,9 +161,14 @@ def mean_errors(original: Motion, decoded: Motion) -> tuple[float, float]:
     >>> mean_errors(a, b)
     (0.5, 0.5)
     """
+    _check_pair(original, decoded)
+    return _errors(np.array(original.values), np.array(decoded.values), original.channels)
+
+
+def _check_pair(original: Motion, decoded: Motion) -> None:
+    """What comparing a motion with its decoded copy needs: one channel list, one length."""
     if original.channels != decoded.channels or original.frames != decoded.frames:
         raise ValidationError("the two motions differ in channels or frame count")
-    return _errors(np.array(original.values), np.array(decoded.values), original.channels)
 
 
 def _settings(params: dict) -> dict:
