@@ -243,16 +243,14 @@ def _overflowing(descriptions, columns, scaled, variance, noise, factors) -> str
     # the likelihoods' first: a temperature or a tail whose inverse's square is not finite
     # (or a tail too large over the temperature) makes every log-likelihood infinite and
     # every probability NaN
+    temperature, tail = spread.temperature, spread.tail
     with np.errstate(over="ignore"):
-        for kind, number, usable in (
-                ("temperature", spread.temperature,
-                 np.isfinite((1.0 / np.float64(spread.temperature)) ** 2)),
-                ("tail", spread.tail, math.isinf(spread.tail) or bool(
-                    np.isfinite((1.0 / np.float64(spread.tail)) ** 2)
-                    and np.isfinite(np.float64(spread.tail) / spread.temperature)))):
-            if not usable:
-                return f"the spread's {kind} is {number:g}"
-    # the spread's first: a scale too small makes every mean too large in its units
+        if not np.isfinite((1.0 / np.float64(temperature)) ** 2):
+            return f"the spread's temperature is {temperature:g}"
+        if math.isfinite(tail) and not (np.isfinite((1.0 / np.float64(tail)) ** 2)
+                                        and np.isfinite(np.float64(tail) / temperature)):
+            return f"the spread's tail is {tail:g}"
+    # then the spread's features: a scale too small makes every mean too large in its units
     for kind, bad, number in (("scale", ~np.isfinite((1.0 / scale[columns]) ** 2), scale),
                               ("noise", ~np.isfinite((1.0 / noise[columns]) ** 2), noise),
                               ("factors", ~np.isfinite((factors[:, columns] ** 2).sum(axis=0)),
