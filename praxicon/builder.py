@@ -346,14 +346,14 @@ def _undescribable(takes: dict[str, list]) -> dict[tuple[str, int], str]:
     """Per take (its action and place) whose own or whose windows' features cannot be
     computed, why: found take by take, since takes cut from one file share its name."""
     from .description import feature_rows
-    from .parsing import _HOP, _WINDOW, windows
+    from .parsing import learning_windows
 
     out = {}
     for name, motions in takes.items():
         for k, motion in enumerate(motions):
             try:
                 feature_rows([motion])
-                feature_rows(list(windows(motion, _WINDOW, 2 * _HOP)[1]))
+                feature_rows(list(learning_windows(motion)))
             except DescriptionError as exc:
                 out[name, k] = str(exc)
     return out

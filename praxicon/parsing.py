@@ -35,7 +35,8 @@ from ._description_json import WINDOWS
 from .scoring import log_likelihoods, overflow_reason, unscored
 from .records import _count
 
-__all__ = ["Span", "Timeline", "parse", "describe_windows", "windows"]
+__all__ = ["Span", "Timeline", "parse", "describe_windows", "windows",
+           "learning_windows"]
 
 _WINDOW = 2.0  # seconds: about two cycles of a gait or a wave
 _HOP = 0.25  # seconds between window starts
@@ -139,6 +140,20 @@ class _Windows(Sequence):
                       f"{m.source} (the window from {s / m.frame_rate:.2f} s)")
 
 
+def learning_windows(motion, window: float = _WINDOW, hop: float = _HOP):
+    """The windows of a take that :func:`describe_windows` learns from: they start every
+    ``2 * hop`` seconds (a recording is parsed every ``hop``).
+
+    Examples
+    --------
+    >>> from kinetology import synthetic_motion
+    >>> take = synthetic_motion(2, (0,), repetitions=3, seed=1)  # 3 s
+    >>> len(learning_windows(take, 1.0, 0.25)), len(windows(take, 1.0, 0.25)[1])
+    (6, 10)
+    """
+    return windows(motion, window, 2 * hop)[1]
+
+
 def describe_windows(takes: dict[str, list], *, window: float = _WINDOW, hop: float = _HOP):
     """Window descriptions of every action, learnt from the windows of its takes.
 
@@ -153,7 +168,7 @@ def describe_windows(takes: dict[str, list], *, window: float = _WINDOW, hop: fl
                                f"{WINDOWS[1]:g} seconds long")
     rows, sources = {}, {}
     for name, motions in takes.items():
-        cuts = [(k, w) for k, m in enumerate(motions) for w in windows(m, window, 2 * hop)[1]]
+        cuts = [(k, w) for k, m in enumerate(motions) for w in learning_windows(m, window, hop)]
         rows[name] = feature_rows([w for _, w in cuts], shape=False)
         # the takes that give windows numbered in order: a take's fold is its place among them
         number: dict[int, int] = {}
