@@ -47,7 +47,21 @@ _CODEC_HELP = {
 }
 
 
-def _add_params(parser, *, codec: bool = False) -> None:
+#: What the segmentation options mean to ``plot`` where it differs from ``segment``: the codec
+#: (``--kind reconstruction``) has no min_range, relative dead band or unwrapping, and a view
+#: angle is compared whatever its range.
+_PLOT_NOTES = {
+    "min_range": "--kind states: a channel moving less than this many degrees is still (segment "
+                 "leaves it out) and drawn grey, without states; an error with reconstruction "
+                 "and view",
+    "relative_deadband": _PARAM_HELP["relative_deadband"] + "; not with --kind reconstruction",
+    "unwrap": _PARAM_HELP["unwrap"] + "; not with --kind reconstruction",
+}
+
+
+def _add_params(parser, *, codec: bool = False, notes=None) -> None:
+    """The segmentation options (or with ``codec`` the codec's); ``notes``: help texts that
+    replace :data:`_PARAM_HELP`'s for this command."""
     if codec:  # the codec pins its own settings: its defaults, not the segmentation's
         from .codec import CODEC_DEFAULTS
         for name, default in CODEC_DEFAULTS.items():
@@ -60,7 +74,8 @@ def _add_params(parser, *, codec: bool = False) -> None:
         return
     for name, default in DEFAULTS.items():
         parser.add_argument(f"--{name.replace('_', '-')}", dest=name, type=float, default=None,
-                            help=f"{_PARAM_HELP[name]} (default {default:g})")
+                            help=f"{(notes or _PARAM_HELP).get(name, _PARAM_HELP[name])} "
+                                 f"(default {default:g})")
 
 
 #: Frames a motion needs to be segmented (segment, compress, evaluate, plot): a frame's state
@@ -332,7 +347,9 @@ def _cmd_plot(args) -> int:
 
     plotting.check_output(args.output)  # matplotlib refuses a suffix only once the work is done
     params = _params(args, DEFAULTS)
-    params.pop("min_range", None)
+    if args.kind == "view" and "min_range" in params:  # it was dropped without a word
+        raise ValidationError("--kind view: --min-range does not apply (the angle's states "
+                              "are compared in every view whatever its range); drop it")
     foreign = sorted(set(params) - set(CODEC_DEFAULTS))  # compress raised a TypeError for them
     if args.kind == "reconstruction" and foreign:
         raise ValidationError(f"--kind reconstruction: the codec has no setting "
@@ -418,7 +435,7 @@ def _add_commands(sub) -> None:
     p.add_argument("--start", type=float, default=0.0, help="seconds")
     p.add_argument("--stop", type=float, default=None, help="seconds")
     p.add_argument("-o", "--output", required=True, help="image file (.png, .svg, .pdf)")
-    _add_params(p)
+    _add_params(p, notes=_PLOT_NOTES)
     p.set_defaults(run=_cmd_plot)
     from ._viewer_cli import register as register_view  # kinetology view: the skeleton player
     register_view(sub)

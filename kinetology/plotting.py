@@ -16,7 +16,7 @@ from psgs.errors import MissingDependency, ValidationError
 
 from .codec.knots import is_rotation
 from .motion import Motion
-from .segmentation import DEFAULTS, STATES, states
+from .segmentation import DEFAULTS, STATES, segments, states
 
 __all__ = ["STATE_COLOURS", "STILL_COLOUR", "plot_states", "plot_reconstruction", "plot_view_invariance",
            "plot_reproducibility", "plot_selectivity", "plot_rate_distortion", "check_output",
@@ -80,7 +80,10 @@ def plot_states(motion: Motion, channel: str, *, start: float = 0.0, stop: float
     stop : float, optional
         End of the time window drawn, seconds (default: the end of the motion).
     **params
-        Segmentation parameters (:data:`kinetology.segmentation.DEFAULTS`).
+        Segmentation parameters (:data:`kinetology.segmentation.DEFAULTS`). A channel whose
+        smoothed range is below ``min_range`` is still, as :func:`kinetology.segment` leaves
+        it out of the actiongram: it is drawn grey (:data:`STILL_COLOUR`) and the title says
+        so.
 
     Returns
     -------
@@ -105,6 +108,10 @@ def plot_states(motion: Motion, channel: str, *, start: float = 0.0, stop: float
     >>> fig.axes[0].get_xlabel()
     'time (s)'
     >>> save(fig, Path(tempfile.mkdtemp()) / "figure.png")
+    >>> still = plot_states(walk, "j0.rx", min_range=1e6)
+    >>> still.axes[0].get_title().startswith("j0.rx: still")
+    True
+    >>> save(still, Path(tempfile.mkdtemp()) / "still.png")
     """
     plt = _pyplot()
     p = {k: v for k, v in {**DEFAULTS, **params}.items() if k != "min_range"}
@@ -112,18 +119,30 @@ def plot_states(motion: Motion, channel: str, *, start: float = 0.0, stop: float
     t, window = _window(motion.frames, motion.frame_rate, start, stop)
     code = states(signal, motion.frame_rate, **p)
     fig, ax = plt.subplots(figsize=(9, 3))
-    for k, letter in enumerate(STATES):
-        mask = code == k
-        mask[1:] |= code[:-1] == k  # include the next frame, so segments touch
-        masked = np.where(mask & window, signal, np.nan)
-        ax.plot(t, masked, color=STATE_COLOURS[letter], lw=2.2, label=letter)
+    if _is_still(motion, channel, params):
+        ax.plot(t[window], signal[window], color=STILL_COLOUR, lw=2.2, label="still")
+        title = (f"{channel}: still (moves less than min_range "
+                 f"{params.get('min_range', DEFAULTS['min_range']):g} deg), no states")
+    else:
+        for k, letter in enumerate(STATES):
+            mask = code == k
+            mask[1:] |= code[:-1] == k  # include the next frame, so segments touch
+            masked = np.where(mask & window, signal, np.nan)
+            ax.plot(t, masked, color=STATE_COLOURS[letter], lw=2.2, label=letter)
+        title = f"{channel}: states B (θ'>0, θ''>0) G (+,-) R (-,-) Y (-,+)"
     ax.set_xlim(t[window][0], t[window][-1])
     ax.set_xlabel("time (s)")
     ax.set_ylabel(f"{channel} (deg)")
     ax.legend(ncol=4, loc="upper right", fontsize=8)
-    ax.set_title(f"{channel}: states B (θ'>0, θ''>0) G (+,-) R (-,-) Y (-,+)")
+    ax.set_title(title)
     fig.tight_layout()
     return fig
+
+
+def _is_still(motion: Motion, channel: str, params: dict) -> bool:
+    """Whether ``segment`` would leave ``channel`` out as still (the same rule: its smoothed,
+    unwrapped range below ``min_range``), so the picture shows what the actiongram holds."""
+    return bool(segments(motion, [channel], **params).still)
 
 
 def plot_reconstruction(original: Motion, decoded: Motion, channel: str, *, start: float = 0.0,
