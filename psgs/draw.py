@@ -441,14 +441,18 @@ def _render(system, forest: Forest | None, fmt: str, engine: str) -> bytes:
     return buffer.getvalue()
 
 
-def _forest_or_none(system, seed: int, max_steps: int) -> Forest | None:
-    return parse_forest(system, seed=seed, max_steps=max_steps) if isinstance(system, PSGS) \
-        else None
+def _forest_or_none(system, derivation, seed: int, max_steps: int) -> Forest | None:
+    """The parse trees of a PSGS's derivation (given, or drawn with ``seed``); None for a PCGS."""
+    if isinstance(system, PSGS):
+        return parse_forest(system, derivation, seed=seed, max_steps=max_steps)
+    if derivation is not None:
+        raise ValidationError("a PCGS is drawn without parse trees: give no derivation")
+    return None
 
 
 def to_svg(system: PSGS | PCGS, *, seed: int = 0, max_steps: int = 200,
-           engine: str = "auto") -> str:
-    """The picture of :func:`draw` as SVG text.
+           engine: str = "auto", derivation=None) -> str:
+    """The picture of :func:`draw` as SVG text (its parameters are :func:`draw`'s).
 
     Examples
     --------
@@ -458,12 +462,12 @@ def to_svg(system: PSGS | PCGS, *, seed: int = 0, max_steps: int = 200,
     >>> svg.startswith("<?xml"), "<svg" in svg
     (True, True)
     """
-    forest = _forest_or_none(system, seed, max_steps)
+    forest = _forest_or_none(system, derivation, seed, max_steps)
     return _render(system, forest, "svg", engine).decode("utf-8")
 
 
 def draw(system: PSGS | PCGS, path: str | Path, *, seed: int = 0, max_steps: int = 200,
-         engine: str = "auto") -> Path:
+         engine: str = "auto", derivation=None) -> Path:
     """Draw the forest of parse trees of a derived word and the synchronisation graph.
 
     Parameters
@@ -476,6 +480,9 @@ def draw(system: PSGS | PCGS, path: str | Path, *, seed: int = 0, max_steps: int
         The random derivation whose word is drawn.
     engine : {"auto", "graphviz", "matplotlib"}
         ``auto``: Graphviz when :func:`graphviz_available`, else matplotlib.
+    derivation : psgs.Derivation, optional
+        A derivation of ``system`` (a PSGS) to draw instead of the random one of ``seed``
+        and ``max_steps``: a caller that also reports on it derives it once.
 
     Returns
     -------
@@ -484,7 +491,8 @@ def draw(system: PSGS | PCGS, path: str | Path, *, seed: int = 0, max_steps: int
     Raises
     ------
     ValidationError
-        For a suffix other than ``.svg``/``.png`` or an unknown engine.
+        For a suffix other than ``.svg``/``.png``, an unknown engine, or a derivation of
+        another system (or of a PCGS).
 
     Examples
     --------
@@ -500,7 +508,7 @@ def draw(system: PSGS | PCGS, path: str | Path, *, seed: int = 0, max_steps: int
         raise ValidationError(f"{path}: draw writes .svg or .png, not {path.suffix or 'no suffix'!r}")
     if engine not in ("auto", "graphviz", "matplotlib"):
         raise ValidationError(f"engine must be auto, graphviz or matplotlib, not {engine!r}")
-    forest = _forest_or_none(system, seed, max_steps)
+    forest = _forest_or_none(system, derivation, seed, max_steps)
     path.write_bytes(_render(system, forest, fmt, engine))
     return path
 

@@ -15,17 +15,18 @@ def run_draw(args) -> int:
 
     system = load_system(args.file)  # a nonterminal without a rule warned of, as show does
     engine = args.engine
-    path = draw(system, args.output, seed=args.seed, max_steps=args.max_steps, engine=engine)
+    # the derivation whose trees are drawn, made once: the note below says whether it ended
+    derivation = random_derivation(system, args.seed, max_steps=args.max_steps) \
+        if isinstance(system, PSGS) else None
+    path = draw(system, args.output, engine=engine, derivation=derivation)
     used = "graphviz" if engine == "graphviz" or (engine == "auto" and graphviz_available()) \
         else "matplotlib"
     print(f"{path} ({used})")
-    if isinstance(system, PSGS):
-        # the trees drawn are those of this derivation: unfinished where it did not end
-        derivation = random_derivation(system, args.seed, max_steps=args.max_steps)
-        if derivation.status != "terminal":
-            print(f"psgs: note: the derivation drawn (seed {args.seed}) is {derivation.status}"
-                  f"{': ' + derivation.reason if derivation.reason else ''}; its parse trees "
-                  f"are unfinished", file=sys.stderr)
+    # the trees drawn are those of this derivation: unfinished where it did not end
+    if derivation is not None and derivation.status != "terminal":
+        print(f"psgs: note: the derivation drawn (seed {args.seed}) is {derivation.status}"
+              f"{': ' + derivation.reason if derivation.reason else ''}; its parse trees "
+              f"are unfinished", file=sys.stderr)
     return 0
 
 

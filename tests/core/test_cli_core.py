@@ -391,6 +391,33 @@ def test_draw_says_when_the_derivation_it_draws_did_not_end(tmp_path, capsys):
     assert status == 0 and err == ""
 
 
+def test_draw_derives_the_word_it_draws_once(tmp_path, capsys, monkeypatch):
+    # the note on an unfinished derivation came from a second derivation of the same seed
+    import psgs.derivation as derivation
+
+    made = []
+    real = derivation.random_derivation
+
+    def counted(*args, **kwargs):
+        made.append(args)
+        return real(*args, **kwargs)
+    monkeypatch.setattr(derivation, "random_derivation", counted)
+    status, _, _ = run(capsys, "draw", "paper_example", "-o", str(tmp_path / "g.svg"),
+                       "--engine", "matplotlib", "--seed", "3")
+    assert status == 0 and len(made) == 1
+
+
+def test_draw_takes_the_derivation_it_draws():
+    from psgs.derivation import random_derivation
+    from psgs.draw import to_svg
+
+    gamma = psgs.load(GAMMA)
+    drawn = to_svg(gamma, derivation=random_derivation(gamma, 5), engine="matplotlib")
+    assert drawn == to_svg(gamma, seed=5, engine="matplotlib")
+    with pytest.raises(psgs.ValidationError, match="a PCGS is drawn without parse trees"):
+        to_svg(psgs.load("pcgs_abc"), derivation=random_derivation(gamma, 5))
+
+
 def test_export_and_derive_refuse_what_they_used_to_take_in_silence(capsys, tmp_path):
     afile = tmp_path / "afile"
     afile.write_text("mine")
