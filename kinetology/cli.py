@@ -211,7 +211,8 @@ def _segment_spans(args, channels) -> int:
     min_seconds = args.min_seconds if args.min_seconds is not None else 0.0
     motion = _read(args, args.files[0])
     spans = spans_of(args.labels, motion.frame_rate)
-    parts = from_spans(motion, spans, args.label, min_seconds=min_seconds)
+    parts = from_spans(motion, spans, args.label, min_seconds=min_seconds,
+                       source=args.labels)
     short = [p for p in parts if p.frames < MIN_FRAMES]  # no acceleration to segment by
     if short:
         print(f"kinetology: left out {len(short)} span{'s' * (len(short) != 1)} of fewer than "

@@ -17,9 +17,10 @@ import numpy as np
 from psgs.errors import NotFound, ValidationError
 
 from .labels import Span
-from .motion import Motion, check_motion, check_number
+from .motion import Motion, MotionFormatError, check_motion, check_number
 
-__all__ = ["cut", "performances", "from_files", "from_spans", "segment_performances"]
+__all__ = ["cut", "performances", "from_files", "from_spans", "segment_performances",
+           "overshoot", "OVERSHOOT"]
 
 
 def cut(motion: Motion, start: float | None = None, stop: float | None = None) -> Motion:
@@ -110,9 +111,46 @@ def from_files(paths: Iterable[str | Path], **options) -> tuple[Motion, ...]:
     return tuple(read(p, **options) for p in paths)
 
 
+#: How far, in seconds, labels may reach past the end of their take (at least; see
+#: :func:`overshoot`): the labels' own rounding, not labels of another take. CMU mocap6 labels
+#: one block of 12 frames at a time and its truelabels run up to one block (0.1 s) past their
+#: takes; the Bandai Namco JSON spans end within 0.05 s of theirs.
+OVERSHOOT = 0.15
+
+
+def overshoot(motion: Motion) -> float:
+    """Seconds labels may reach past the end of ``motion``: :data:`OVERSHOOT`, or one label
+    block of 12 frames when that is longer (a take read at a lower frame rate).
+
+    Parameters
+    ----------
+    motion : Motion
+        The take.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> overshoot(Motion(np.zeros((4, 1)), ("knee.rx",), 120.0))
+    0.15
+    >>> overshoot(Motion(np.zeros((4, 1)), ("knee.rx",), 30.0))
+    0.4
+    """
+    from .labels import FRAMES_PER_LABEL
+
+    return max(OVERSHOOT, FRAMES_PER_LABEL / motion.frame_rate)
+
+
 def from_spans(motion: Motion, spans: Iterable[Span], label: str | None = None, *,
-               min_seconds: float = 0.0) -> tuple[Motion, ...]:
+               min_seconds: float = 0.0, source: str | None = None) -> tuple[Motion, ...]:
     """One performance per labelled span of one take.
+
+    Spans may reach up to :func:`overshoot` seconds past the end of the take (the labels'
+    rounding): they are cut at its end, and a span lying wholly in that margin, which holds
+    no frame, is left out. Labels reaching further are of another take: an error.
 
     Parameters
     ----------
@@ -125,11 +163,19 @@ def from_spans(motion: Motion, spans: Iterable[Span], label: str | None = None, 
         Keep only spans with this label (default: all).
     min_seconds : float
         Leave out spans shorter than this.
+    source : str, optional
+        The label file the spans come from, named in the error.
 
     Returns
     -------
     tuple of Motion
         In time order; each ``meta`` has ``"label"`` and ``"cut"``.
+
+    Raises
+    ------
+    MotionFormatError
+        A span reaching more than :func:`overshoot` seconds past the end of the take (the
+        message names ``source``, the time reached and the take's duration).
 
     Examples
     --------
@@ -138,17 +184,38 @@ def from_spans(motion: Motion, spans: Iterable[Span], label: str | None = None, 
     >>> spans = [Span("a", 0.0, 1.0), Span("b", 1.0, 2.0), Span("a", 2.0, 3.0)]
     >>> [p.frames for p in from_spans(m, spans, "a")]
     [10, 10]
+    >>> from_spans(m, [Span("a", 0.0, 4.5)], source="labels.txt")
+    Traceback (most recent call last):
+    ...
+    kinetology.motion.MotionFormatError: labels.txt: the labels reach 4.5 s, past the end of the take <motion> (3 s; 1.2 s past it at most): labels of another take?
     """
     check_number(min_seconds, "min_seconds")  # NaN kept no span, without a word
-    out = []
+    spans = tuple(spans)
     for span in spans:
         if not isinstance(span, Span):
             raise ValidationError(f"spans must hold Span values, not {type(span).__name__}")
+    _check_reach(motion, spans, source)
+    out = []
+    for span in spans:
+        if span.start >= motion.duration:  # in the rounding margin past the end: no frame
+            continue
         if (label is None or span.label == label) and span.duration >= min_seconds:
             part = cut(motion, span.start, min(span.stop, motion.duration))
             out.append(Motion(part.values, part.channels, part.frame_rate, part.skeleton,
                               part.source, {**part.meta, "label": span.label}))
     return tuple(out)
+
+
+def _check_reach(motion: Motion, spans: tuple[Span, ...], source: str | None) -> None:
+    """Refuse spans reaching past the take by more than its rounding margin: they label
+    another, longer take, and cutting them at this one's end would lose that unseen."""
+    reach = max((span.stop for span in spans), default=0.0)
+    margin = overshoot(motion)
+    if reach > motion.duration + margin:
+        raise MotionFormatError(
+            f"the labels reach {reach:g} s, past the end of the take {Path(motion.source).name} "
+            f"({motion.duration:g} s; {margin:g} s past it at most): labels of another take?",
+            source=source or "the spans")
 
 
 def performances(*sources, spans: Iterable[Span] | None = None, label: str | None = None,

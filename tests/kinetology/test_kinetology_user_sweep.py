@@ -54,3 +54,45 @@ def test_plot_refuses_min_range_where_it_means_nothing(tmp_path, capsys, kind, s
                  "--kind", kind, "--min-range", "5", "-o", str(out)]) == 2
     assert says in _one_line(capsys)
     assert not out.exists()
+
+
+# -- label files of another take ------------------------------------------------------------
+
+def test_segment_refuses_labels_reaching_past_the_take_naming_the_file(tmp_path, capsys):
+    take = _write_bvh(tmp_path / "take.bvh")  # 240 frames at 120 fps: 2 s
+    labels = tmp_path / "other.txt"  # one label per 1/10 s: 3 s of labels
+    labels.write_text(" ".join(["1"] * 10 + ["5"] * 20) + "\n")
+    out = tmp_path / "spans"
+    assert main(["segment", str(take), "--labels", str(labels), "-o", f"{out}/"]) == 2
+    err = _one_line(capsys)
+    assert f"{labels}: the labels reach 3 s, past the end of the take take.bvh (2 s" in err
+    assert not out.exists()
+
+
+def test_segment_takes_labels_within_their_rounding_past_the_end(tmp_path, capsys):
+    take = _write_bvh(tmp_path / "take.bvh", frames=228)  # 1.9 s; the labels' last block is
+    labels = tmp_path / "take.txt"  # past it, and it starts a new label: no frame, left out
+    labels.write_text(" ".join(["1"] * 10 + ["5"] * 9 + ["1"]) + "\n")
+    out = tmp_path / "spans"
+    assert main(["segment", str(take), "--labels", str(labels), "-o", f"{out}/"]) == 0
+    assert sorted(p.name for p in out.iterdir()) == ["take-ArmCircle-1.actiongram",
+                                                      "take-JumpJack-1.actiongram"]
+
+
+@needs_mocap
+def test_every_shared_label_file_fits_its_take():
+    import kinetology
+    from kinetology.labels import spans_of
+    from kinetology.performances import from_spans
+
+    pairs = [(t, t.parent.parent / "amc" / f"{t.stem}.amc")
+             for t in sorted((MOCAP / "cmu-mocap6" / "truelabels").glob("*.txt"))]
+    for dataset in ("bandai-namco-1", "bandai-namco-2-subset"):
+        pairs += [(j, j.with_suffix(".bvh"))
+                  for j in sorted((MOCAP / dataset / "data").glob("*.json"))]
+    pairs = [(labels, take) for labels, take in pairs if take.is_file()]
+    assert len(pairs) > 300
+    for labels, take in pairs:
+        motion = kinetology.read(take)
+        parts = from_spans(motion, spans_of(labels, motion.frame_rate), source=str(labels))
+        assert sum(p.frames for p in parts) == motion.frames, labels
