@@ -6,6 +6,7 @@ every actiongram has; :class:`psgs.Actiongram` is the only user.
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Iterable, Sequence
 
@@ -136,7 +137,11 @@ def normalise_extras(value, names: tuple[str, ...], symbols: tuple[tuple[str, ..
         elif value.keep_repeats:
             rows.append(tuple(map(float, disps)))
         else:
-            rows.append(_merge_displacements(syms, disps))
+            merged = _merge_displacements(syms, disps)
+            if not all(map(math.isfinite, merged)):  # finite each, too large once added
+                raise FormatError(f"string {_shown(name)}: its displacements overflow (equal "
+                                  f"neighbours merged add up to more than a float can hold)")
+            rows.append(merged)
     object.__setattr__(value, "segment_displacements", tuple(rows))
     normalise_actuators(value, names)
     normalise_skeleton(value)

@@ -337,6 +337,17 @@ def test_durations_that_vanish_are_rejected_from_python_too():
         0.0, 1e-9)
 
 
+def test_displacements_that_overflow_when_equal_neighbours_merge_are_rejected():
+    # each is finite, their sum is not: the actiongram loaded, and its text did not read back
+    with pytest.raises(FormatError, match="string 's': its displacements overflow"):
+        Actiongram.from_text("s: a@1~1e308 a@1~1e308 b@1~0\n", source="s.txt")
+    with pytest.raises(FormatError, match="displacements overflow"):
+        Actiongram.from_strings({"s": "aa"}, displacements={"s": [-1e308, -1e308]})
+    kept = Actiongram.from_strings({"s": "aa"}, displacements={"s": [1e308, 1e308]},
+                                   keep_repeats=True)
+    assert Actiongram.from_text(kept.to_text()) == kept
+
+
 @pytest.mark.parametrize("where", ["name", "symbol"])
 def test_a_lone_surrogate_is_rejected_so_to_text_can_be_written(where):
     name, symbol = ("\\ud800", "a") if where == "name" else ("a", "\\ud800")
