@@ -63,6 +63,10 @@ def read_text(cls, text: str, source: str):
     owner: dict[str, str] = {}
     edges: list[tuple[str, str | None]] = []
     where: dict[str, int] = {}
+    # (line, column) of each string, each %parent edge and each %actuator entry, in order
+    string_places: list[tuple[int, int]] = []
+    edge_places: list[tuple[int, int]] = []
+    owner_places: list[tuple[int, int]] = []
     keep_repeats = False
     for line_no, raw in enumerate(split_lines(text), start=1):
         line = strip_comment(raw, source, line_no)
@@ -76,7 +80,11 @@ def read_text(cls, text: str, source: str):
             keep_repeats = True
             continue
         if _DIRECTIVE.match(line):
+            counts = len(owner), len(edges)
             _read_directive(line, source, line_no, owner, edges)
+            place = (line_no, len(line) - len(line.lstrip()) + 1)
+            owner_places.extend([place] * (len(owner) - counts[0]))
+            edge_places.extend([place] * (len(edges) - counts[1]))
             continue
         head, colon, body = line.partition(":")
         if not colon:
@@ -100,6 +108,7 @@ def read_text(cls, text: str, source: str):
             raise FormatError(f"actuator {_shown(name)} already given on line {where[name]}",
                               source=source, line=line_no, column=name_col)
         where[name] = line_no
+        string_places.append((line_no, name_col))
         syms, durs, disps = [], [], []
         offset = len(head) + 1
         for match in re.finditer(r"\S+", body):
@@ -143,16 +152,64 @@ def read_text(cls, text: str, source: str):
         duration_rows.append(tuple(durs))
         origins.append(origin)
         disp_rows.append(tuple(disps) if disps else None)
-    for name in owner:
+    for name, (line_no, column) in zip(owner, owner_places):
         if name not in where:
             raise FormatError(f"%actuator names unknown string {_shown(name)}",
-                              source=source)
+                              source=source, line=line_no, column=column)
     actuators = tuple(owner.get(n, default_actuator(n)) for n in names)
+
+    def build(strings: slice, skeleton: int):
+        """The actiongram of the ``strings`` and the first ``skeleton`` parent lines."""
+        return cls(tuple(names[strings]), tuple(symbol_rows[strings]),
+                   tuple(duration_rows[strings]), tuple(origins[strings]),
+                   tuple(disp_rows[strings]), actuators[strings], tuple(edges[:skeleton]),
+                   keep_repeats)
+
     try:
-        return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins),
-                   tuple(disp_rows), actuators, tuple(edges), keep_repeats)
-    except FormatError as exc:  # a bad skeleton or actuator: name the file
-        raise FormatError(exc.message, source=source) from None
+        return build(slice(None), len(edges))
+    except FormatError as exc:  # found by the checks of the whole value, which name no line
+        raise _placed(exc, build, string_places, edge_places, source) from None
+
+
+def _first_refused(count: int, build) -> tuple[int, FormatError] | None:
+    """The least ``k`` (1 to ``count``) for which ``build(k)`` raises, with its error; None
+    when ``build(count)`` does not. Once refused, every longer prefix is."""
+    try:
+        build(count)
+        return None
+    except FormatError as exc:
+        refused, error = count, exc
+    low = 0  # build(low) is accepted, build(refused) is not
+    while refused - low > 1:
+        middle = (low + refused) // 2
+        try:
+            build(middle)
+            low = middle
+        except FormatError as exc:
+            refused, error = middle, exc
+    return refused, error
+
+
+def _placed(error: FormatError, build, string_places: list[tuple[int, int]],
+            edge_places: list[tuple[int, int]], source: str) -> FormatError:
+    """``error``, the whole actiongram's, as the error of the first line that
+    ``build(strings, skeleton)`` refuses, at that line.
+
+    A string's checks read that string alone, so each is built alone, in order; the
+    skeleton's read its parent lines together (a cycle takes several), so the first line at
+    fault ends the shortest run of them that is refused.
+    """
+    for k, (line, column) in enumerate(string_places):
+        try:
+            build(slice(k, k + 1), 0)
+        except FormatError as exc:
+            return FormatError(exc.message, source=source, line=line, column=column)
+    found = _first_refused(len(edge_places), lambda k: build(slice(0), k))
+    if found is None:  # every part accepted alone (not met): the file as a whole
+        return FormatError(error.message, source=source)
+    k, error = found
+    line, column = edge_places[k - 1]
+    return FormatError(error.message, source=source, line=line, column=column)
 
 
 def read_json(cls, text: str, source: str):

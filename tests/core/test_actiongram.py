@@ -252,10 +252,10 @@ def test_text_form_of_the_extras_reads_and_round_trips():
     ("a: B@1~2 G", "f.txt:1:10: give a displacement (sym@D~X) for every symbol"),
     ("a: B@~2", "f.txt:1:5: unknown duration syntax"),
     ("%parent a: b c", "f.txt:1:1: %parent a: one parent, not 2"),
-    ("%parent a: b\n%parent b: a", "f.txt: skeleton: the parents of 'a' form a cycle"),
-    ("%actuator j: zz\na: x", "f.txt: %actuator names unknown string 'zz'"),
+    ("%parent a: b\n%parent b: a", "f.txt:2:1: skeleton: the parents of 'a' form a cycle"),
+    ("%actuator j: zz\na: x", "f.txt:1:1: %actuator names unknown string 'zz'"),
     ("%actuator j: a\n%actuator k: a\na: x", "f.txt:2:1: string 'a' is given an actuator twice"),
-    ("%parent a:\n%parent a: b", "f.txt: skeleton: 'a' is given a parent twice"),
+    ("%parent a:\n%parent a: b", "f.txt:2:1: skeleton: 'a' is given a parent twice"),
     ("%parent  : b", "f.txt:1:1: %parent: an actuator name must be non-empty text"),
 ])
 def test_bad_extras_in_text_are_one_line_format_errors(text, words):
@@ -335,6 +335,23 @@ def test_durations_that_vanish_are_rejected_from_python_too():
     # small durations beside a small start are fine
     assert Actiongram.from_strings({"s": "ab"}, durations={"s": [1e-9, 1e-9]}).starts["s"] == (
         0.0, 1e-9)
+
+
+@pytest.mark.parametrize("text, place, words", [
+    ("hip: a\ns@1e15: a@1e-9 b@1e-9\n", "2:1", "duration 1e-09 of symbol 1 vanishes"),
+    ("hip: a\n  s@1e308: a@1e308\n", "2:3", "string 's': its times overflow"),
+    ("hip: a\ns: a@1~1e308 a@1~1e308\n", "2:1", "its displacements overflow"),
+    ("hip: a\n%parent x: y\nknee: b\n%parent x: z\n", "4:1", "'x' is given a parent twice"),
+    ("%parent x: x\nhip: a\n", "1:1", "'x' is its own parent"),
+    ("%parent a: b\n%parent b: c\n%parent c: a\nhip: a\n", "3:1", "form a cycle"),
+    ("%parent a: b@c\nhip: a\n", "1:1", "actuator name 'b@c' must have no"),
+    ("hip: a\n%actuator j: hip\n%actuator k: nope\n", "3:1", "unknown string 'nope'"),
+])
+def test_what_the_text_form_refuses_as_a_whole_is_named_at_its_line(text, place, words):
+    # these were found once every line was read, and named the file alone
+    with pytest.raises(FormatError) as caught:
+        Actiongram.from_text(text, source="f.txt")
+    assert str(caught.value).startswith(f"f.txt:{place}: ") and words in str(caught.value)
 
 
 def test_displacements_that_overflow_when_equal_neighbours_merge_are_rejected():
