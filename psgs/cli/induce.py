@@ -152,6 +152,8 @@ def run_induce(args) -> int:
 
     inducer = get(args.inducer, **key_values(args.param))
     out_path = args.output
+    if out_path == "":  # else taken for no -o at all: nothing written, without a word
+        raise ValidationError("-o needs a file name")
     if out_path and (Path(out_path).is_dir() or not Path(out_path).resolve().parent.is_dir()):
         # said now, not after the induction ran
         raise ValidationError(f"{out_path}: not a file in an existing directory")

@@ -65,6 +65,8 @@ def test_induce_sequential_with_params(tmp_path, capsys):
     (["induce", "{missing}"], "No such file"),
     (["induce", "--example", "-o", "{missing}/x.psgs"], "not a file in an existing directory"),
     (["induce", "--example", "-o", "{folder}"], "not a file in an existing directory"),
+    # an empty name wrote nothing, without a word
+    (["induce", "--example", "-o", ""], "-o needs a file name"),
 ])
 def test_bad_input_is_one_line_and_status_2(tmp_path, capsys, argv, words):
     bad = tmp_path / "bad.txt"
