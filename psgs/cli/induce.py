@@ -40,7 +40,7 @@ def register(subparsers) -> None:
     induce.add_argument("file", metavar="FILE", nargs="*",
                         help="an actiongram file; several files are performances of one action "
                              "(learnt from together, never joined)")
-    induce.add_argument("--events", metavar="FILE.csv",
+    induce.add_argument("--events", metavar="FILE.csv", action="append",
                         help="learn from an events table instead: a CSV file with a header row "
                              "stream,onset,duration,symbol (one row an event, in any order)")
     induce.add_argument("--gaps", choices=GAPS,
@@ -104,11 +104,14 @@ def _load_events(args):
 
     if args.file or args.example:
         raise ValidationError("give --events, FILE or --example, not two of them")
+    if len(args.events) > 1:  # (appended: the last alone would be read, the rest dropped)
+        raise ValidationError(f"give --events once (one table holds every stream), not "
+                              f"{len(args.events)} times")
     # an option not given is left out, so the reader's own defaults apply (None: not given)
     given = {key: value for key, value in (("gaps", args.gaps),
                                            ("rest_symbol", args.rest_symbol))
              if value is not None}
-    return read_events_csv(args.events, keep_repeats=args.keep_repeats, **given)
+    return read_events_csv(args.events[0], keep_repeats=args.keep_repeats, **given)
 
 
 # -- psgs induce -------------------------------------------------------------------------

@@ -67,11 +67,17 @@ def test_induce_sequential_with_params(tmp_path, capsys):
     (["induce", "--example", "-o", "{folder}"], "not a file in an existing directory"),
     # an empty name wrote nothing, without a word
     (["induce", "--example", "-o", ""], "-o needs a file name"),
+    # the last one was read, the others dropped without a word
+    (["induce", "--events", "{table}", "--events", "{table}"],
+     "give --events once (one table holds every stream), not 2 times"),
 ])
 def test_bad_input_is_one_line_and_status_2(tmp_path, capsys, argv, words):
     bad = tmp_path / "bad.txt"
     bad.write_text("x: a b\ny: a b@z\n")
-    argv = [a.format(bad=bad, missing=tmp_path / "missing.txt", folder=tmp_path) for a in argv]
+    table = tmp_path / "t.csv"
+    table.write_text("stream,onset,duration,symbol\nx,0,1,a\n")
+    argv = [a.format(bad=bad, missing=tmp_path / "missing.txt", folder=tmp_path, table=table)
+            for a in argv]
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and words in err and "Traceback" not in err
