@@ -33,6 +33,21 @@ def view_problem(max_rate, max_frames, kinetemes, follow) -> str | None:
     return None
 
 
+#: The farthest a joint may lie from the origin to be drawn, in file units: the page and the
+#: GIF measure bones and the body's size by their squares, which overflow past 1e154 (a file
+#: of 1e307s gave a page of NaN and Infinity that no browser reads, and a GIF a traceback).
+MAX_POSITION = 1e150
+
+
+def positions_problem(positions: np.ndarray) -> str | None:
+    """What keeps joint positions (frames x joints x 3) from being drawn (None: nothing)."""
+    peak = float(np.max(np.abs(positions), initial=0.0))
+    if not peak <= MAX_POSITION:  # NaN too
+        return (f"joint positions reach {peak:.3g} units, too far to draw (at most "
+                f"{MAX_POSITION:g}: lengths are measured by their squares)")
+    return None
+
+
 def panels_problem(panels, panel_type) -> str | None:
     """What is wrong with a player's panels: one or more ``panel_type`` values (None: nothing)."""
     if not (isinstance(panels, tuple) and panels

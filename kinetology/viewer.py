@@ -40,7 +40,7 @@ from typing import Iterable, Mapping, Sequence
 
 import numpy as np
 
-from ._viewer_checks import panels_problem, tick_problem, view_problem
+from ._viewer_checks import panels_problem, positions_problem, tick_problem, view_problem
 from .motion import Motion, MotionFormatError, check_number
 from .plotting import STATE_COLOURS, STILL_COLOUR
 
@@ -445,6 +445,8 @@ def _panel(label: str, motion: Motion, actuators, kinetemes: bool, max_rate: flo
     kept = Motion(motion.values[::step], motion.channels, motion.frame_rate / step,
                   motion.skeleton, motion.source)
     positions = forward_kinematics(kept)
+    if problem := positions_problem(positions):
+        raise ViewError(problem, source=motion.source)
     positions.setflags(write=False)
     joints = motion.skeleton.joints
     states = _joint_states(motion, step, params) if kinetemes else \

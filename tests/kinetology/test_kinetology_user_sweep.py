@@ -96,3 +96,26 @@ def test_every_shared_label_file_fits_its_take():
         motion = kinetology.read(take)
         parts = from_spans(motion, spans_of(labels, motion.frame_rate), source=str(labels))
         assert sum(p.frames for p in parts) == motion.frames, labels
+
+
+# -- the viewer ------------------------------------------------------------------------------
+
+def _far_bvh(path, position: float = 1e300):
+    """A take whose root travels ``position`` units away: finite, but its squares are not."""
+    rows = "\n".join(f"{position if k % 2 else 0} 0 0 {10 * k}" for k in range(6))
+    path.write_text("HIERARCHY\nROOT hip\n{ OFFSET 0 0 0\n  CHANNELS 4 Xposition Yposition "
+                    "Zposition Xrotation\n  JOINT knee\n  { OFFSET 0 -10 0\n    End Site\n"
+                    "    { OFFSET 0 -10 0 } } }\n"
+                    f"MOTION\nFrames: 6\nFrame Time: 0.0333333\n{rows}\n")
+    return path
+
+
+@pytest.mark.parametrize("suffix", [".html", ".gif"])
+def test_view_refuses_positions_too_far_to_draw(tmp_path, capsys, suffix):
+    if suffix == ".gif":
+        pytest.importorskip("matplotlib")
+    take, out = _far_bvh(tmp_path / "far.bvh"), tmp_path / f"far{suffix}"
+    assert main(["view", str(take), "-o", str(out)]) == 2
+    assert f"{take}: joint positions reach 1e+300 units, too far to draw" in _one_line(capsys)
+    assert not out.exists()  # the page held NaN and Infinity, which no browser reads
+    assert main(["view", str(_far_bvh(tmp_path / "near.bvh", 1e6)), "-o", str(out)]) == 0
