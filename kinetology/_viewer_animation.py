@@ -12,8 +12,31 @@ import numpy as np
 
 from .plotting import STATE_COLOURS, STILL_COLOUR as _STILL
 
-__all__ = ["animate"]
+__all__ = ["animate", "GIF_LONGEST", "MP4_SLOWEST"]
 
+#: The longest a GIF shows a frame, seconds: its delay is a 16-bit count of hundredths.
+GIF_LONGEST = 655.35
+#: The fewest frames a second ffmpeg writes an MP4 at (measured: 1e-5 fps wrote, 1e-6 failed).
+MP4_SLOWEST = 1e-5
+
+
+def _pace(player, suffix: str, path: Path) -> float:
+    """The frames per second the file plays at: the player's, when the format holds it.
+
+    A single frame's duration shows nothing: it is written at the slowest rate the format
+    holds. More frames slower than that are a :class:`~kinetology.viewer.ViewError` (Pillow
+    raised an OverflowError for a GIF, ffmpeg failed on an MP4, each with a traceback).
+    """
+    from .viewer import ViewError
+
+    slowest = 1 / GIF_LONGEST if suffix == ".gif" else MP4_SLOWEST
+    if player.frame_rate >= slowest:
+        return player.frame_rate
+    if player.ticks == 1:
+        return slowest
+    raise ViewError(f"{player.frame_rate:g} frames a second is slower than a {suffix} plays "
+                    f"(at least {slowest:.3g}): keep more frames (a larger max rate or max "
+                    f"frames) or write .html", source=str(path))
 
 
 def animate(player, path: Path, suffix: str, *, dpi: int = 72) -> None:
@@ -24,6 +47,7 @@ def animate(player, path: Path, suffix: str, *, dpi: int = 72) -> None:
     from matplotlib.collections import LineCollection
     from matplotlib.figure import Figure
 
+    rate = _pace(player, suffix, path)  # before any drawing
     n = len(player.panels)
     fig = Figure(figsize=(2.6 * n, 3.4), dpi=dpi)
     FigureCanvasAgg(fig)
@@ -70,14 +94,14 @@ def animate(player, path: Path, suffix: str, *, dpi: int = 72) -> None:
         return []
 
     if suffix == ".gif":
-        _gif(fig, update, player, path)
+        _gif(fig, update, player, path, rate)
         return
-    movie = animation.FuncAnimation(fig, update, frames=player.ticks,
-                                    interval=1000 / player.frame_rate, blit=False)
-    movie.save(str(path), writer=animation.FFMpegWriter(fps=player.frame_rate), dpi=dpi)
+    movie = animation.FuncAnimation(fig, update, frames=player.ticks, interval=1000 / rate,
+                                    blit=False)
+    movie.save(str(path), writer=animation.FFMpegWriter(fps=rate), dpi=dpi)
 
 
-def _gif(fig, update, player, path: Path) -> None:
+def _gif(fig, update, player, path: Path, rate: float) -> None:
     """The frames drawn by matplotlib, written by Pillow with one palette for all of them:
     a picture of a few flat colours, so a small file (matplotlib's own PillowWriter stores
     every frame in full colour, several times larger) with no dithering noise."""
@@ -98,4 +122,4 @@ def _gif(fig, update, player, path: Path) -> None:
         image = Image.fromarray(np.asarray(fig.canvas.buffer_rgba())[..., :3])
         frames.append(image.quantize(palette=palette, dither=Image.Dither.NONE))
     frames[0].save(path, format="GIF", save_all=True, append_images=frames[1:], loop=0,
-                   duration=round(1000 / player.frame_rate), optimize=True)
+                   duration=round(1000 / rate), optimize=True)

@@ -3,10 +3,15 @@ its fix (plot's --min-range, label files of another take, ...)."""
 
 from __future__ import annotations
 
+import shutil
+
 import numpy as np
 import pytest
 
+import kinetology
+
 from kinetology.cli import main
+from kinetology.viewer import ViewError
 
 from kinetology_fixtures import MOCAP, needs_mocap
 from test_kinetology_review_fixes import _write_bvh
@@ -119,3 +124,32 @@ def test_view_refuses_positions_too_far_to_draw(tmp_path, capsys, suffix):
     assert f"{take}: joint positions reach 1e+300 units, too far to draw" in _one_line(capsys)
     assert not out.exists()  # the page held NaN and Infinity, which no browser reads
     assert main(["view", str(_far_bvh(tmp_path / "near.bvh", 1e6)), "-o", str(out)]) == 0
+
+
+def _slow_leg(frames: int):
+    """A knee bending at 0.1 fps, the slowest rate a motion may have."""
+    from kinetology import Joint, Motion, Skeleton
+
+    leg = Skeleton((Joint("hip", None, (0, 0, 0), ("hip.rx",)),
+                    Joint("knee", 0, (0, -10, 0), ("knee.rx",)),
+                    Joint("foot", 1, (0, -10, 0), end_site=True)))
+    knee = 45 + 40 * np.sin(np.arange(frames) / 50)
+    return Motion(np.column_stack([0 * knee, knee]), ("hip.rx", "knee.rx"), 0.1, leg, "leg")
+
+
+@pytest.mark.parametrize("suffix, frames", [(".gif", 200), (".mp4", 30_000)])
+def test_view_writes_one_frame_at_any_rate_and_refuses_frames_too_slow(tmp_path, capsys,
+                                                                       suffix, frames):
+    pytest.importorskip("matplotlib")
+    if suffix == ".mp4" and shutil.which("ffmpeg") is None:
+        pytest.skip("ffmpeg is not installed")
+    take, out = str(_write_bvh(tmp_path / "take.bvh", frames=12)), tmp_path / f"v{suffix}"
+    # one frame kept: its duration shows nothing (Pillow's OverflowError, ffmpeg's failure)
+    assert main(["view", take, "-o", str(out), "--max-rate", "1e-300"]) == 0
+    assert "1 frame at 1e-300 fps" in capsys.readouterr().out and out.stat().st_size > 0
+    out.unlink()
+    # two frames kept of a long take at 0.1 fps: each lasts longer than the format shows one
+    with pytest.raises(ViewError, match=rf"v\{suffix}: .* frames a second is slower than a "
+                                        rf"\{suffix} plays"):
+        kinetology.view(_slow_leg(frames), out, max_frames=2, kinetemes=False)
+    assert not out.exists()
