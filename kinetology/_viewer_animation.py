@@ -6,16 +6,20 @@ joints coloured by state, actuators ringed; one frame per slider step.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import numpy as np
 
 from .plotting import STATE_COLOURS, STILL_COLOUR as _STILL
 
-__all__ = ["animate", "GIF_LONGEST", "MP4_SLOWEST"]
+__all__ = ["animate", "GIF_LONGEST", "GIF_SHORTEST", "MP4_SLOWEST"]
 
 #: The longest a GIF shows a frame, seconds: its delay is a 16-bit count of hundredths.
 GIF_LONGEST = 655.35
+#: The shortest frame a GIF plays as stored, seconds: browsers show a delay under 2 hundredths
+#: as 10 hundredths (a 120 fps player, stored with a delay of 0, ran at a tenth of its speed).
+GIF_SHORTEST = 0.02
 #: The fewest frames a second ffmpeg writes an MP4 at (measured: 1e-5 fps wrote, 1e-6 failed).
 MP4_SLOWEST = 1e-5
 
@@ -115,11 +119,16 @@ def _gif(fig, update, player, path: Path, rate: float) -> None:
                                   for colour in rgb for k in (1.0, 0.66, 0.33)]
     palette = Image.new("P", (1, 1))
     palette.putpalette([v for colour in shades for v in colour])
+    step = max(1, math.ceil(rate * GIF_SHORTEST - 1e-9))  # every step-th tick: the same clock
     frames = []
-    for tick in range(player.ticks):
+    for tick in range(0, player.ticks, step):
         update(tick)
         fig.canvas.draw()
         image = Image.fromarray(np.asarray(fig.canvas.buffer_rgba())[..., :3])
         frames.append(image.quantize(palette=palette, dither=Image.Dither.NONE))
+    # a GIF stores whole hundredths: each frame ends at its time rounded, so the delays add up
+    # to the motion's length (a fixed rounded delay ran 30 fps at 33.3, 120 fps drawn every
+    # third step at 50 instead of 40)
+    ends = np.rint(np.arange(len(frames) + 1) * (100.0 * step / rate))
     frames[0].save(path, format="GIF", save_all=True, append_images=frames[1:], loop=0,
-                   duration=round(1000 / rate), optimize=True)
+                   duration=[10 * int(d) for d in np.diff(ends)], optimize=True)

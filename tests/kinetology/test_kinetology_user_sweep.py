@@ -153,3 +153,16 @@ def test_view_writes_one_frame_at_any_rate_and_refuses_frames_too_slow(tmp_path,
                                         rf"\{suffix} plays"):
         kinetology.view(_slow_leg(frames), out, max_frames=2, kinetemes=False)
     assert not out.exists()
+
+
+def test_a_gif_of_a_fast_player_plays_in_time(tmp_path, capsys):
+    pytest.importorskip("matplotlib")
+    from PIL import Image, ImageSequence
+
+    out = tmp_path / "fast.gif"  # 24 frames at 120 fps: 0.2 s
+    assert main(["view", str(_write_bvh(tmp_path / "take.bvh", frames=24)), "-o", str(out),
+                 "--max-rate", "inf"]) == 0
+    assert "24 frames at 120 fps" in capsys.readouterr().out
+    with Image.open(out) as gif:  # a delay of 0 (8 ms, stored in hundredths) played as 100 ms
+        delays = [frame.info["duration"] for frame in ImageSequence.Iterator(gif)]
+    assert min(delays) >= 20 and sum(delays) == 200
