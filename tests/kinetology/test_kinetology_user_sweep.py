@@ -166,3 +166,25 @@ def test_a_gif_of_a_fast_player_plays_in_time(tmp_path, capsys):
     with Image.open(out) as gif:  # a delay of 0 (8 ms, stored in hundredths) played as 100 ms
         delays = [frame.info["duration"] for frame in ImageSequence.Iterator(gif)]
     assert min(delays) >= 20 and sum(delays) == 200
+
+
+# -- evaluate --min-range ------------------------------------------------------------------
+
+def test_evaluate_min_range_leaves_the_mocap6_descriptions_their_own_threshold(monkeypatch,
+                                                                              capsys):
+    import kinetology.evaluation as evaluation
+    from kinetology.evaluation import Performance
+
+    t = np.arange(1440) / 120  # a knee swinging 60 degrees; an elbow 3 (still by 5, not by 2)
+    elbow = np.where(t < 8, 1.5 * np.sin(2 * np.pi * t), 0.0)  # in the swings, not the wave
+    take = kinetology.Motion(np.column_stack([30 * np.sin(2 * np.pi * t), elbow]),
+                             ("knee.rx", "elbow.rx"), 120.0)
+    performances = [Performance("t", "swing", 0, 480), Performance("t", "swing", 480, 960),
+                    Performance("t", "wave", 960, 1440)]
+    monkeypatch.setattr(evaluation, "mocap6_performances", lambda folder: ({"t": take},
+                                                                          performances))
+    reports = []
+    for extra in ([], ["--min-range", "2"]):  # 2 is the default the help gives
+        assert main(["evaluate", "--mocap6", "folder", *extra]) == 0
+        reports.append(capsys.readouterr().out)
+    assert reports[0] == reports[1], reports
