@@ -386,7 +386,7 @@ def _cmd_plot(args) -> int:
                                     source=args.file)
         result = view_invariance(motion, table[args.channel], **params)
         fig = plotting.plot_view_invariance(result, f"{args.channel}, {Path(args.file).name}",
-                                            motion.frame_rate)
+                                            motion.frame_rate, start=args.start, stop=args.stop)
     plotting.save(fig, args.output)
     print(args.output)
     return 0

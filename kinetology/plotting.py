@@ -202,7 +202,8 @@ def plot_reconstruction(original: Motion, decoded: Motion, channel: str, *, star
     return fig
 
 
-def plot_view_invariance(result, title: str = "", frame_rate: float = 120.0):
+def plot_view_invariance(result, title: str = "", frame_rate: float = 120.0, *,
+                         start: float = 0.0, stop: float | None = None):
     """Fig. 6 style: viewpoint (rows) x time (columns), coloured by state; 3D on top.
 
     Parameters
@@ -213,6 +214,10 @@ def plot_view_invariance(result, title: str = "", frame_rate: float = 120.0):
         Put before the agreement in the figure's title.
     frame_rate : float, default 120.0
         Frames per second of the motion measured (for the time axis).
+    start : float, default 0.0
+        Start of the time window drawn, seconds (the title's agreement is the window's).
+    stop : float, optional
+        End of the time window drawn, seconds (default: the end of the motion).
 
     Returns
     -------
@@ -222,6 +227,8 @@ def plot_view_invariance(result, title: str = "", frame_rate: float = 120.0):
     ------
     ImportError
         When matplotlib is not installed.
+    ValueError
+        When no frame falls between ``start`` and ``stop``.
 
     Examples
     --------
@@ -235,20 +242,24 @@ def plot_view_invariance(result, title: str = "", frame_rate: float = 120.0):
     >>> fig.axes[0].get_title()
     'knee  agreement with 3D: 87.5%'
     >>> save(fig, Path(tempfile.mkdtemp()) / "figure.png")
+    >>> plot_view_invariance(result, "knee", frame_rate=4, stop=0.25).axes[0].get_title()
+    'knee  agreement with 3D: 100.0%'
     """
     plt = _pyplot()
-    image = np.vstack([result.states_3d[None, :].repeat(2, axis=0), result.states_2d])
+    t, window = _window(result.states_3d.size, frame_rate, start, stop)
+    states_3d, states_2d = result.states_3d[window], result.states_2d[:, window]
+    image = np.vstack([states_3d[None, :].repeat(2, axis=0), states_2d])
+    agreement = float((states_2d == states_3d[None, :]).mean())
     fig, ax = plt.subplots(figsize=(9, 4.6))
-    frames = result.states_3d.size
     step = 360.0 / len(result.azimuths)
     # one row per view, centred on its azimuth; the two 3D rows sit above the first view
     top, bottom = result.azimuths[0] - 2.5 * step, result.azimuths[-1] + 0.5 * step
     ax.imshow(image, aspect="auto", interpolation="nearest", cmap=_state_cmap(), vmin=-0.5,
-              vmax=3.5, extent=(0, frames / frame_rate, bottom, top))
+              vmax=3.5, extent=(t[window][0], t[window][-1] + 1 / frame_rate, bottom, top))
     ax.axhline(result.azimuths[0] - 0.5 * step, color="white", lw=2)
     ax.set_xlabel("time (s)")
     ax.set_ylabel("viewpoint azimuth (deg); top band: 3D")
-    ax.set_title(f"{title}  agreement with 3D: {100 * result.agreement:.1f}%")
+    ax.set_title(f"{title}  agreement with 3D: {100 * agreement:.1f}%")
     _state_legend(fig, loc="lower center")
     fig.tight_layout(rect=(0, 0.08, 1, 1))
     return fig

@@ -188,3 +188,15 @@ def test_evaluate_min_range_leaves_the_mocap6_descriptions_their_own_threshold(m
         assert main(["evaluate", "--mocap6", "folder", *extra]) == 0
         reports.append(capsys.readouterr().out)
     assert reports[0] == reports[1], reports
+
+
+@needs_mocap
+def test_plot_view_draws_the_window_asked_for(tmp_path, monkeypatch):
+    pytest.importorskip("matplotlib")
+    take = MOCAP / "bandai-namco-1" / "data" / "dataset-1_bye_normal_001.bvh"  # 3.7 s
+    figures = _drawn(monkeypatch)
+    for window in ([], ["--start", "1", "--stop", "2"]):
+        assert main(["plot", str(take), "--channel", "lknee", "--kind", "view", *window,
+                     "-o", str(tmp_path / "v.png")]) == 0
+    whole, part = (fig.axes[0].images[0].get_extent()[:2] for fig in figures)
+    assert whole == pytest.approx((0, 3.7)) and part == pytest.approx((1, 2 + 1 / 30))
