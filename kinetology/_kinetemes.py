@@ -137,7 +137,8 @@ def _bands(signal: np.ndarray, absolute: float, relative: float) -> np.ndarray:
         return np.full(signal.shape[0], float(absolute))
     step = max(1, frames // _PERCENTILE_SAMPLES)
     scale = np.percentile(np.abs(signal[:, ::step]), 95, axis=1)
-    return np.maximum(absolute, relative * scale)
+    with np.errstate(over="ignore"):  # a band past the floats is infinite: all of it absorbed
+        return np.maximum(absolute, relative * scale)
 
 
 def _sign_changes(signal: np.ndarray, band: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

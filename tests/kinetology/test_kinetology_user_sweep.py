@@ -4,6 +4,7 @@ its fix (plot's --min-range, label files of another take, ...)."""
 from __future__ import annotations
 
 import shutil
+import warnings
 
 import numpy as np
 import pytest
@@ -200,3 +201,17 @@ def test_plot_view_draws_the_window_asked_for(tmp_path, monkeypatch):
                      "-o", str(tmp_path / "v.png")]) == 0
     whole, part = (fig.axes[0].images[0].get_extent()[:2] for fig in figures)
     assert whole == pytest.approx((0, 3.7)) and part == pytest.approx((1, 2 + 1 / 30))
+
+
+# -- extreme parameters ----------------------------------------------------------------------
+
+@pytest.mark.parametrize("engine", ["numpy", "numba"])
+def test_a_huge_relative_dead_band_warns_nothing(engine, capsys):
+    pytest.importorskip("numba") if engine == "numba" else None
+    from kinetology.segmentation import segments
+
+    walk = kinetology.synthetic_motion(2, (0,), seed=0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # numpy's overflow warning was printed on stderr
+        found = segments(walk, engine=engine, relative_deadband=1e308)
+    assert all(len(codes) == 1 for codes in found.codes)  # one segment: no sign is significant
