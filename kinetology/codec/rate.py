@@ -139,8 +139,9 @@ def compress_to(motion: Motion, max_error: float) -> Compressed:
     # float range's end (1e308) defeat the construction's arithmetic
     meeting = [c for c in candidates if c.mean_error <= max_error]
     if not meeting:
-        closest = min((c.mean_error for c in candidates), default=float("nan"))
-        raise ValidationError(f"no setting meets max_error={max_error} on this motion (the "
-                         f"closest reached {closest!r} degrees); its values may be too large "
-                         f"to code that finely")
+        # with no candidate there is no closest error to name (it read "nan degrees")
+        closest = (f"the closest reached {min(c.mean_error for c in candidates)!r} degrees"
+                   if candidates else "no residual step that fine fits in 62 bits")
+        raise ValidationError(f"no setting meets max_error={max_error} on this motion "
+                              f"({closest}); its values may be too large to code that finely")
     return min(meeting, key=len)  # ties: the first (base only), the simpler stream

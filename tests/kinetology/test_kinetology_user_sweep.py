@@ -215,3 +215,11 @@ def test_a_huge_relative_dead_band_warns_nothing(engine, capsys):
         warnings.simplefilter("error")  # numpy's overflow warning was printed on stderr
         found = segments(walk, engine=engine, relative_deadband=1e308)
     assert all(len(codes) == 1 for codes in found.codes)  # one segment: no sign is significant
+
+
+def test_a_max_error_too_fine_for_any_setting_says_why(tmp_path, capsys):
+    assert main(["compress", str(_write_bvh(tmp_path / "take.bvh")), "--max-error",
+                 "1e-300"]) == 2
+    err = _one_line(capsys)
+    assert "no setting meets max_error=1e-300" in err and "nan" not in err
+    assert "no residual step that fine fits in 62 bits" in err
