@@ -300,7 +300,7 @@ def decompress(data: bytes, source: str = "<compressed motion>", *,
 
     Parameters
     ----------
-    data : bytes
+    data : bytes, bytearray or memoryview
         ``KIN2`` bytes (``KIN1`` from earlier versions decode too).
     source : str
         Name used in error messages.
@@ -318,6 +318,8 @@ def decompress(data: bytes, source: str = "<compressed motion>", *,
     MotionFormatError
         When ``data`` is not a compressed motion, is damaged, or claims more
         than its size allows.
+    ValueError
+        (ValidationError) When ``data`` is not bytes (a ``str``, say).
 
     Examples
     --------

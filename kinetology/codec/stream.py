@@ -218,10 +218,13 @@ def read(data: bytes, source: str, max_samples: int | None = None) -> Layout:
     >>> write(read(data, "walk.kin")) == data
     True
     """
-    if not isinstance(data, (bytes, bytearray)) or data[:4] not in (MAGIC, OLD_MAGIC):
+    # a str, or a memoryview of good bytes, was "bad magic bytes": a wrong type is named
+    if not isinstance(data, (bytes, bytearray, memoryview)):
+        raise ValidationError(f"a compressed motion is bytes, not {type(data).__name__}")
+    data = bytes(data)
+    if data[:4] not in (MAGIC, OLD_MAGIC):
         raise MotionFormatError("not a kinetology compressed motion (bad magic bytes)",
                                 source=source)
-    data = bytes(data)
     if max_samples is None:
         samples_limit = max(MIN_SAMPLES, SAMPLES_PER_BYTE * len(data))
         body_limit = max(MIN_BODY, BODY_PER_BYTE * len(data))

@@ -223,3 +223,13 @@ def test_a_max_error_too_fine_for_any_setting_says_why(tmp_path, capsys):
     err = _one_line(capsys)
     assert "no setting meets max_error=1e-300" in err and "nan" not in err
     assert "no residual step that fine fits in 62 bits" in err
+
+
+def test_decompress_reads_a_memoryview_and_names_a_wrong_type():
+    from psgs.errors import ValidationError
+
+    walk = kinetology.synthetic_motion(2, (0,), seed=0)
+    data = kinetology.compress(walk)
+    assert kinetology.decompress(memoryview(data)).frames == walk.frames  # was "bad magic"
+    with pytest.raises(ValidationError, match="a compressed motion is bytes, not str"):
+        kinetology.decompress(data.decode("latin-1"))
