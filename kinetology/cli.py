@@ -124,6 +124,17 @@ def _write(text: str, out: str | None) -> None:
         Path(out).write_text(text)
 
 
+def _keep_inputs(output: str | None, inputs) -> None:
+    """Refuse an output that is one of the input files: writing it destroyed the take (and
+    compress then reported the size of its own output as the original's)."""
+    if output in (None, "-") or not Path(output).exists():
+        return
+    for name in inputs:
+        if name and Path(name).exists() and os.path.samefile(output, name):
+            raise ValidationError(f"-o {output} is the input {name}, which writing would "
+                                  f"destroy; give another output")
+
+
 def _is_folder(output: str) -> bool:
     """Whether ``-o`` names a folder: ``DIR/`` or an existing directory."""
     return output.endswith(("/", os.sep)) or Path(output).is_dir()
@@ -171,6 +182,8 @@ def _cmd_segment(args) -> int:
             raise ValidationError(f"-o {args.output}: several files make one actiongram "
                                   f"each, in a folder: give -o {args.output}/")
         out_dir = Path(args.output)
+    if out_dir is None:
+        _keep_inputs(args.output, args.files)
     names = [Path(f).stem for f in args.files]
     if out_dir is not None and len(set(names)) != len(names):
         raise ValidationError("two files share a name; their actiongrams would overwrite each other")
@@ -250,13 +263,14 @@ def _segment_spans(args, channels) -> int:
 def _cmd_compress(args) -> int:
     from .codec import CODEC_DEFAULTS, compress
 
+    out = args.output or str(Path(args.file).with_suffix(".kin"))
+    _keep_inputs(out, [args.file])
     motion = _read(args, args.file)
     params = _params(args, CODEC_DEFAULTS)
     if args.max_error is not None and params:
         raise ValidationError(f"--max-error chooses the settings itself; drop "
                          f"{', '.join('--' + n.replace('_', '-') for n in sorted(params))}")
     data = compress(motion, max_error=args.max_error, **params)  # refusals: ValidationError
-    out = args.output or str(Path(args.file).with_suffix(".kin"))
     Path(out).write_bytes(data)
     size = Path(args.file).stat().st_size
     print(f"{out}: {len(data)} bytes, {100 * len(data) / size:.3f}% of {args.file}; mean "
@@ -267,6 +281,7 @@ def _cmd_compress(args) -> int:
 def _cmd_decompress(args) -> int:
     from .codec import decompress
 
+    _keep_inputs(args.output, [args.file, args.against])
     # read_bytes: a device (/dev/zero) is refused, not read until memory runs out
     motion = decompress(read_bytes(args.file), source=args.file)
     if args.against:  # compared before the CSV is written: a mismatch is an error, not a tail

@@ -233,3 +233,23 @@ def test_decompress_reads_a_memoryview_and_names_a_wrong_type():
     assert kinetology.decompress(memoryview(data)).frames == walk.frames  # was "bad magic"
     with pytest.raises(ValidationError, match="a compressed motion is bytes, not str"):
         kinetology.decompress(data.decode("latin-1"))
+
+
+# -- an output that is an input ----------------------------------------------------------------
+
+@pytest.mark.parametrize("command", [["segment", "{take}", "-o", "{take}"],
+                                     ["compress", "{take}", "-o", "{link}"],
+                                     ["decompress", "{kin}", "-o", "{kin}"],
+                                     ["decompress", "{kin}", "-o", "{take}", "--against",
+                                      "{take}"]])
+def test_an_output_that_is_an_input_is_refused_and_the_input_kept(tmp_path, capsys, command):
+    take = _write_bvh(tmp_path / "take.bvh")
+    kin = tmp_path / "take.kin"
+    assert main(["compress", str(take), "-o", str(kin)]) == 0
+    (tmp_path / "link.bvh").symlink_to(take)
+    before = take.read_bytes(), kin.read_bytes()
+    capsys.readouterr()
+    names = {"take": str(take), "kin": str(kin), "link": str(tmp_path / "link.bvh")}
+    assert main([part.format(**names) for part in command]) == 2
+    assert "which writing would destroy; give another output" in _one_line(capsys)
+    assert (take.read_bytes(), kin.read_bytes()) == before
