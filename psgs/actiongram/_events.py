@@ -108,7 +108,7 @@ def _records(rows, columns: Mapping[str, str]) -> tuple[list[tuple], list[object
             missing = [key for key in keys if key not in row]
             if missing:
                 raise ValidationError(f"row {k}: no {_shown(missing[0])} (a row needs "
-                                      f"{', '.join(keys)})")
+                                      f"{', '.join(map(str, keys))})")
             out.append(tuple(row[key] for key in keys))
         elif isinstance(row, Sequence) and not isinstance(row, (str, bytes)) and len(row) == 4:
             out.append(tuple(row))

@@ -344,3 +344,11 @@ def test_a_name_read_from_many_rows_is_held_once(tmp_path):
     ag = read_events_csv(path)
     symbols = [s for name in ag.names for s in ag.string(name)]
     assert len(symbols) == 600 and len({id(s) for s in symbols}) == 3
+
+
+def test_a_column_named_by_a_number_is_said_missing_as_a_name_is():
+    # the message joined the keys as text, and a number among them was a TypeError
+    rows = [{0: "bass", "onset": 0, "duration": 1, "symbol": "C"}]
+    assert Actiongram.from_events(rows, columns={"stream": 0}).names == ("bass",)
+    with pytest.raises(ValidationError, match=r"row 0: no 3 \(a row needs 3, onset, duration"):
+        Actiongram.from_events(rows, columns={"stream": 3})
