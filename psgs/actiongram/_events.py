@@ -164,18 +164,22 @@ def _strings(records: Sequence[tuple], label: Callable[[int], str], gaps: str,
     return strings, durations, starts
 
 
-def _check_options(gaps: object, rest_symbol: object) -> None:
+def _check_options(gaps: object, rest_symbol: object, keep_repeats: object) -> None:
+    """The options are refused before any row is read (the actiongram's own check of
+    ``keep_repeats`` comes after the rows, as a FormatError of no text)."""
     if gaps not in GAPS:
         raise ValidationError(f"gaps must be one of {', '.join(GAPS)}, not {_shown(gaps)}")
     problem = _bad_symbol(rest_symbol)
     if problem:
         raise ValidationError(f"rest_symbol: {problem}")
+    if not isinstance(keep_repeats, bool):
+        raise ValidationError(f"keep_repeats must be True or False, not {_shown(keep_repeats)}")
 
 
 def from_events(cls, rows, *, gaps: str = "rest", rest_symbol: str = "_",
                 keep_repeats: bool = False, columns: Mapping[str, str] | None = None):
     """:meth:`psgs.Actiongram.from_events` (its docstring says what each argument does)."""
-    _check_options(gaps, rest_symbol)
+    _check_options(gaps, rest_symbol, keep_repeats)
     if columns is not None and not isinstance(columns, Mapping):
         raise ValidationError(f"columns must map a field to a column name, not {_shown(columns)}")
     unknown = [k for k in (columns or {}) if k not in FIELDS]
@@ -196,7 +200,7 @@ def read_csv(cls, path: str | Path, *, gaps: str = "rest", rest_symbol: str = "_
     """The actiongram of a CSV events file, header ``stream,onset,duration,symbol`` (in any
     order; other columns are ignored, but every row has as many cells as the header, and no
     column is named twice). Errors are FormatErrors naming the file and line."""
-    _check_options(gaps, rest_symbol)
+    _check_options(gaps, rest_symbol, keep_repeats)
     source = str(path)
     text = read_text(path, signature=True)
     # strict: a quote left open or text after a closing quote is an error, not read on

@@ -352,3 +352,16 @@ def test_a_column_named_by_a_number_is_said_missing_as_a_name_is():
     assert Actiongram.from_events(rows, columns={"stream": 0}).names == ("bass",)
     with pytest.raises(ValidationError, match=r"row 0: no 3 \(a row needs 3, onset, duration"):
         Actiongram.from_events(rows, columns={"stream": 3})
+
+
+def test_a_keep_repeats_that_is_no_bool_is_an_argument_error_not_a_format_error(tmp_path):
+    # it was a FormatError of '<string>', as though some text were malformed, after the
+    # whole table was read
+    path = tmp_path / "t.csv"
+    path.write_text("stream,onset,duration,symbol\nb,0,1,C\n")
+    for read in (lambda: Actiongram.from_events([("b", 0, 1, "C")], keep_repeats="yes"),
+                 lambda: read_events_csv(path, keep_repeats="yes")):
+        with pytest.raises(ValidationError) as caught:
+            read()
+        assert not isinstance(caught.value, FormatError)
+        assert str(caught.value) == "keep_repeats must be True or False, not 'yes'"
