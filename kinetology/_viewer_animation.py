@@ -11,36 +11,17 @@ from pathlib import Path
 
 import numpy as np
 
+from ._viewer_checks import GIF_LONGEST, GIF_SHORTEST, MP4_SLOWEST
 from .plotting import STATE_COLOURS, STILL_COLOUR as _STILL
 
 __all__ = ["animate", "GIF_LONGEST", "GIF_SHORTEST", "MP4_SLOWEST"]
 
-#: The longest a GIF shows a frame, seconds: its delay is a 16-bit count of hundredths.
-GIF_LONGEST = 655.35
-#: The shortest frame a GIF plays as stored, seconds: browsers show a delay under 2 hundredths
-#: as 10 hundredths (a 120 fps player, stored with a delay of 0, ran at a tenth of its speed).
-GIF_SHORTEST = 0.02
-#: The fewest frames a second ffmpeg writes an MP4 at (measured: 1e-5 fps wrote, 1e-6 failed).
-MP4_SLOWEST = 1e-5
-
-
-def _pace(player, suffix: str, path: Path) -> float:
-    """The frames per second the file plays at: the player's, when the format holds it.
-
-    A single frame's duration shows nothing: it is written at the slowest rate the format
-    holds. More frames slower than that are a :class:`~kinetology.viewer.ViewError` (Pillow
-    raised an OverflowError for a GIF, ffmpeg failed on an MP4, each with a traceback).
-    """
-    from .viewer import ViewError
-
+def _pace(player, suffix: str) -> float:
+    """The frames per second the file plays at: the player's, or for a single frame (whose
+    duration shows nothing) the slowest rate the format holds; the caller has refused more
+    frames slower than that (:func:`~kinetology._viewer_checks.pace_problem`)."""
     slowest = 1 / GIF_LONGEST if suffix == ".gif" else MP4_SLOWEST
-    if player.frame_rate >= slowest:
-        return player.frame_rate
-    if player.ticks == 1:
-        return slowest
-    raise ViewError(f"{player.frame_rate:g} frames a second is slower than a {suffix} plays "
-                    f"(at least {slowest:.3g}): keep more frames (a larger max rate or max "
-                    f"frames) or write .html", source=str(path))
+    return max(player.frame_rate, slowest)
 
 
 def animate(player, path: Path, suffix: str, *, dpi: int = 72) -> None:
@@ -51,7 +32,7 @@ def animate(player, path: Path, suffix: str, *, dpi: int = 72) -> None:
     from matplotlib.collections import LineCollection
     from matplotlib.figure import Figure
 
-    rate = _pace(player, suffix, path)  # before any drawing
+    rate = _pace(player, suffix)
     n = len(player.panels)
     fig = Figure(figsize=(2.6 * n, 3.4), dpi=dpi)
     FigureCanvasAgg(fig)

@@ -15,6 +15,34 @@ import numpy as np
 
 from .motion import is_whole, shown
 
+#: The longest a GIF shows a frame, seconds: its delay is a 16-bit count of hundredths.
+GIF_LONGEST = 655.35
+#: The shortest frame a GIF plays as stored, seconds: browsers show a delay under 2 hundredths
+#: as 10 hundredths (a 120 fps player, stored with a delay of 0, ran at a tenth of its speed).
+GIF_SHORTEST = 0.02
+#: The fewest frames a second ffmpeg writes an MP4 at (measured: 1e-5 fps wrote, 1e-6 failed).
+MP4_SLOWEST = 1e-5
+
+
+def pace_problem(frame_rate: float, ticks: int, suffix: str) -> str | None:
+    """What is wrong with writing ``ticks`` frames at ``frame_rate`` as ``suffix`` (None:
+    nothing): more than one frame slower than the format plays (Pillow raised an
+    OverflowError for a GIF, ffmpeg failed on an MP4, each with a traceback). A single
+    frame's duration shows nothing: it is written at the slowest rate the format holds.
+
+    Examples
+    --------
+    >>> pace_problem(30.0, 90, ".gif") is None, pace_problem(1e-3, 1, ".gif") is None
+    (True, True)
+    >>> pace_problem(1e-3, 2, ".gif")[:44]
+    '0.001 frames a second is slower than a .gif '
+    """
+    slowest = 1 / GIF_LONGEST if suffix == ".gif" else MP4_SLOWEST
+    if frame_rate >= slowest or ticks == 1:
+        return None
+    return (f"{frame_rate:g} frames a second is slower than a {suffix} plays (at least "
+            f"{slowest:.3g}): keep more frames (a larger max rate or max frames) or write .html")
+
 
 def view_problem(max_rate, max_frames, kinetemes, follow) -> str | None:
     """What is wrong with view's options, naming the one option (None: nothing)."""

@@ -40,7 +40,8 @@ from typing import Iterable, Mapping, Sequence
 
 import numpy as np
 
-from ._viewer_checks import panels_problem, positions_problem, tick_problem, view_problem
+from ._viewer_checks import (pace_problem, panels_problem, positions_problem, tick_problem,
+                             view_problem)
 from .motion import Motion, MotionFormatError, check_number
 from .plotting import STATE_COLOURS, STILL_COLOUR
 
@@ -354,6 +355,9 @@ class Player:
             except ImportError:
                 raise ViewError(f"writing {suffix} needs matplotlib: pip install 'psgs[plot]'",
                                 source=str(path)) from None
+            problem = pace_problem(self.frame_rate, self.ticks, suffix)  # before any drawing
+            if problem:
+                raise ViewError(problem, source=str(path))
             from ._viewer_animation import animate
             animate(self, path, suffix, dpi=dpi)
         return path
