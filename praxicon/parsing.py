@@ -6,6 +6,10 @@ and the root drift's in each action's own spread); a Viterbi pass then
 picks one action (or none) per window, paying ``switch`` per change, so one odd window does not
 break a span and a span is never longer than the run of windows that carry it. Each window's
 answer covers the ``hop`` around its centre, so spans follow the motion to within half a window.
+A span then stands only where its windows fit its action: where fewer than ``support`` of them
+pass the action's feature-group test (the test by which :func:`~praxicon.recognition.recognise`
+answers a take "none of these"), the span is none of these, and so is a stretch of ``unfit``
+seconds or more in which every window fails it.
 
 >>> from kinetology import Motion, synthetic_motion
 >>> import numpy as np
@@ -41,12 +45,23 @@ __all__ = ["Span", "Timeline", "parse", "describe_windows", "windows",
 _WINDOW = 2.0  # seconds: about two cycles of a gait or a wave
 _HOP = 0.25  # seconds between window starts
 _SWITCH = 10.0  # log-likelihood a change of action costs: about e^-10, a rare event
+# the share of a span's windows that must pass its action's feature-group test: a quarter,
+# so that a performance of a style not learnt, whose windows pass the test at times only,
+# keeps its span, and a stretch of an action never learnt, nearest to a learnt one by distance
+# but passing its test in no window or a few, does not
+SUPPORT = 0.25
+# seconds: a stretch of a span this long whose every window fails the action's test (twice a
+# window) is none of these, where an action never learnt is absorbed by a learnt neighbour's
+# span (a run between a walk and a bow read as one long walk)
+UNFIT = 4.0
 
 
 @dataclass(frozen=True)
 class Span:
     """``start`` .. ``stop`` seconds performing ``action`` (None: no learnt action), ``score``
-    the mean probability of that answer over the span's windows."""
+    the mean over the span's windows of the probability of that answer; a window that
+    :func:`parse`'s check of its action's feature-group test answered none of these counts
+    1 where it failed the test, 0 where it passed."""
 
     start: float
     stop: float
@@ -194,8 +209,41 @@ def _viterbi(costs: np.ndarray, switch: float) -> np.ndarray:
     return path
 
 
+def _supported(path: np.ndarray, passes: np.ndarray, none: int, support: float,
+               stretch: int) -> np.ndarray:
+    """``path`` (an action per window, ``none`` for none of these) with the windows that do
+    not fit their action answered ``none``: every run of an action whose windows pass its
+    feature-group test (``passes``, per window) in fewer than ``support`` of them, and in the
+    other runs every stretch of ``stretch`` windows or more in a row that fail it.
+
+    Examples
+    --------
+    >>> path = np.array([0, 0, 0, 0, 0, 0, 2, 1, 1, 1, 1])
+    >>> passes = np.array([1, 0, 0, 0, 1, 1, 1, 0, 0, 0, 1], dtype=bool)
+    >>> _supported(path, passes, 2, 0.5, 99).tolist()
+    [0, 0, 0, 0, 0, 0, 2, 2, 2, 2, 2]
+    >>> _supported(path, passes, 2, 0.5, 3).tolist()
+    [0, 2, 2, 2, 0, 0, 2, 2, 2, 2, 2]
+    """
+    out = path.copy()
+    change = np.flatnonzero(np.diff(path)) + 1
+    for a, b in zip(np.concatenate([[0], change]), np.concatenate([change, [len(path)]])):
+        if path[a] == none:
+            continue
+        if passes[a:b].mean() < support:
+            out[a:b] = none
+            continue
+        # the run's stretches of failing windows: where a passing window ends or starts one
+        fails = np.concatenate([[False], ~passes[a:b], [False]])
+        edges = np.flatnonzero(np.diff(fails.astype(np.int8)))
+        for first, stop in zip(edges[::2], edges[1::2]):
+            if stop - first >= stretch:
+                out[a + first:a + stop] = none
+    return out
+
+
 def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
-          own=OWN_KINDS) -> Timeline:
+          own=OWN_KINDS, support: float = SUPPORT, unfit: float = UNFIT) -> Timeline:
     """The recording as a timeline of spans (see the module's description).
 
     Parameters
@@ -205,10 +253,18 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
     hop : float, default 0.25
         Seconds between windows.
     switch : float, default 10.0
-        The cost of changing action, in log-likelihood (nats).
+        The cost of changing action, in log-likelihood (nats); ``math.inf``: the windows are
+        one action (before the check of the spans).
     own : tuple of str, default ("drift",)
         Kinds of the root's features also scored in each action's own spread
         (:func:`~praxicon.description.scores`; ``()``: the shared spread alone).
+    support : float, default 0.25
+        The share of a span's windows, 0 to 1, that must pass its action's feature-group test
+        for the span to stand; a span below it is none of these.
+    unfit : float, default 4.0
+        Seconds: within a span that stands, a stretch at least this long in which every
+        window fails the action's feature-group test is none of these (``math.inf``: none;
+        with ``support=0`` as well, the windows' threshold alone answers none of these).
 
     Returns
     -------
@@ -220,12 +276,15 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
         As :func:`~praxicon.recognition.recognise` says it; a window's error names the
         recording and where the window starts (``FILE (the window from 1.25 s): ...``).
     """
-    from .recognition import _descriptions, _motion, feature_matrix
+    from .recognition import _descriptions, _excess, _motion, feature_matrix
 
     # a hop of 0 or less was one window a frame, a NaN or negative switch cost a timeline of
-    # nonsense, without a word (an infinite cost is allowed: the recording is one action)
+    # nonsense, without a word (an infinite cost is allowed: the windows are one action,
+    # whose span the check below may still cut where its windows do not fit it)
     real_number(hop, "hop", above=0.0)
     real_number(switch, "switch", least=0.0, most=math.inf)
+    real_number(support, "support", least=0.0, most=1.0)
+    real_number(unfit, "unfit", above=0.0, most=math.inf)
     own = kinds_of(own)
     descriptions = _descriptions(praxicon, windows=True)
     if not descriptions.spread.window:
@@ -255,6 +314,22 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
     costs = -log_likelihoods(dist, spread.temperature, spread.tail)
     path = _viterbi(costs, switch)
     p = probabilities(dist, spread.temperature, spread.tail)
+    # each window's part in its span's score: the probability of its answer
+    value = p[np.arange(len(path)), path]
+    if support > 0 or unfit < math.inf:
+        none = len(descriptions.names)
+        features = [spread.features[c] for c in columns]
+        excess, _, _ = _excess(descriptions, features, x, np.where(path == none, 0, path),
+                               fitted)
+        # each window's answer covers ``hop`` seconds: a stretch of unfit seconds is that many
+        # hops (at least one window)
+        stretch = max(1, math.ceil(unfit / hop - 1e-9)) if unfit < math.inf else len(path) + 1
+        checked = _supported(path, excess <= 1.0, none, support, stretch)
+        # a window the check answered none of these counts 1 where it failed the test and 0
+        # where it passed (the probability of none of these there is that of the threshold,
+        # about 0 where an action was nearer)
+        value = np.where(checked != path, (excess > 1.0).astype(float), value)
+        path = checked
     names = [*descriptions.names, None]
     half = min(window, motion.duration) / 2
     centres = np.array(starts) + half
@@ -266,7 +341,7 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
         while j + 1 < len(path) and path[j + 1] == path[i]:
             j += 1
         spans.append(Span(round(float(edges[i]), 6), round(float(edges[j + 1]), 6),
-                          names[path[i]], round(float(p[i:j + 1, path[i]].mean()), 6)))
+                          names[path[i]], round(float(value[i:j + 1].mean()), 6)))
         i = j + 1
     named = {s.action for s in spans if s.action}
     if not named:  # no span names an action: the one closest over the windows, as recognise

@@ -132,16 +132,24 @@ def run_recognise(args) -> int:
 def run_parse(args) -> int:
     import sys
 
+    import math
+
+    from ._arguments import real_number
     from .parsing import parse
 
     _check_pictures(args.plot)
+    try:  # before the folder is read, as every other value of the command
+        real_number(args.support, "--support", least=0.0, most=1.0)
+        real_number(args.unfit, "--unfit", above=0.0, most=math.inf)
+    except DescriptionError as exc:
+        raise ValidationError(str(exc))
     try:
         descriptions = read_descriptions(args.praxicon, windows=True)
     except DescriptionError as exc:
         raise ValidationError(str(exc))
     motion = _read_motion(args.file)
     try:
-        timeline = parse(descriptions, motion)
+        timeline = parse(descriptions, motion, support=args.support, unfit=args.unfit)
     except DescriptionError as exc:
         raise ValidationError(str(exc))
     if timeline.missing:  # as recognise says it: the windows were scored without them
@@ -156,6 +164,8 @@ def run_parse(args) -> int:
 
 def register_recognise(sub) -> None:
     """Add ``recognise`` and ``parse`` to the ``psgs praxicon`` subcommands."""
+    from .parsing import SUPPORT, UNFIT
+
     r = sub.add_parser("recognise", help="which learnt action each motion file is",
                        description="One line per file: the best action (or none of these), "
                                    "its probability and the runner-up. A file that cannot be "
@@ -176,4 +186,12 @@ def register_recognise(sub) -> None:
     p.add_argument("file", metavar="FILE", help="a .bvh or .amc motion file")
     p.add_argument("--plot", default=None, metavar="PNG",
                    help="also draw the timeline over the joint angles")
+    p.add_argument("--support", type=float, default=SUPPORT, metavar="S",
+                   help="the share of a span's windows, 0 to 1, that must pass its action's "
+                        "feature-group test for the span to stand, else it is none of these "
+                        "(default %(default)g; 0: every span stands)")
+    p.add_argument("--unfit", type=float, default=UNFIT, metavar="SECONDS",
+                   help="a stretch of a span this long in which every window fails the "
+                        "action's feature-group test is none of these (default %(default)g; "
+                        "inf: never)")
     p.set_defaults(run=run_parse)
