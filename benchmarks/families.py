@@ -40,7 +40,7 @@ from recognition_methods import Take  # isort: skip
 import numpy as np  # noqa: E402
 
 from _common import DATA, MOCAP, require, write_csv  # noqa: E402
-from recognition import _joined  # noqa: E402
+from recognition_parse import _joined  # noqa: E402
 
 SUBSET = MOCAP / "bandai-namco-2-subset"
 CONTENTS = ("run", "walk", "walk-turn-left", "walk-turn-right")

@@ -17,13 +17,15 @@ calibrated on held-out known takes beside the praxicon; and the bound: the same 
 classified by every method with the left-out content learnt too); parsing cmu-mocap6 leave one
 sequence out (frame accuracy and segment F1) and recordings joined from three takes of
 different Bandai dataset-1 contents (time precision and recall of the spans, absent actions
-reported), each against a sliding-window MiniRocket. CPU per take is ``time.process_time``
+reported), each against a sliding-window MiniRocket, and the same recordings with one content
+not learnt (its time should be none of these). CPU per take is ``time.process_time``
 of classifying the test takes (features included, reading the files not), divided by their
 number.
 
 The takes, the peers' input and the four classifiers are in ``recognition_methods.py``, the
-open set (its protocols, rules, the peers' readings and the bound) in ``recognition_open.py``;
-this module runs the closed-set protocols and parsing, and prints every row.
+open set (its protocols, rules, the peers' readings and the bound) in ``recognition_open.py``,
+parsing in ``recognition_parse.py``; this module runs the closed-set protocols, calls the
+others, and prints every row.
 """
 
 from __future__ import annotations
@@ -35,12 +37,13 @@ from collections import Counter, defaultdict
 
 # first: it runs every method on one thread (set before numpy and numba load) and loads the
 # praxicon package from the repository, not benchmarks/praxicon.py; then the open set's part
-from recognition_methods import METHODS, _resampled, read_bandai, series  # isort: skip
+from recognition_methods import METHODS, read_bandai  # isort: skip
 
 import numpy as np  # noqa: E402
 
 from _common import DATA, DOCS, IMG, MOCAP, require, write_csv  # noqa: E402
 from recognition_open import report_open_sets, run_open_sets  # noqa: E402
+from recognition_parse import _joined, parse_cmu, parse_joined, report_parse  # noqa: E402
 
 
 # -- the closed-set protocols ------------------------------------------------------------------
@@ -106,205 +109,6 @@ def calibration(probabilities, truth, pred, bins: int = 10) -> dict:
     return {"confidence": float(best.mean()), "ece": ece, "nll": nll}
 
 
-
-
-# -- parsing -----------------------------------------------------------------------------------
-def _rate(motion, rate: float = 30.0):
-    """The motion at about ``rate`` fps (every k-th frame after smoothing): parsing's input."""
-    from kinetology import Motion
-    from kinetology.segmentation import smooth
-
-    k = max(1, int(round(motion.frame_rate / rate)))
-    values = smooth(np.asarray(motion.values, dtype=float), motion.frame_rate, 0.5 * k /
-                    motion.frame_rate)[::k]
-    return Motion(values, motion.channels, motion.frame_rate / k, motion.skeleton,
-                  motion.source)
-
-
-def _cut(motion, start, stop):
-    from kinetology import Motion
-    a, b = int(round(start * motion.frame_rate)), int(round(stop * motion.frame_rate))
-    return Motion(motion.values[a:b], motion.channels, motion.frame_rate, motion.skeleton,
-                  motion.source)
-
-
-def _window_peer(takes: dict, window: float, hop: float, length: int = 64, *, peers=True):
-    """Sliding-window MiniRocket: fit on the training takes' windows, label every window
-    (``peers=False``: no peer, every window unlabelled)."""
-    if not peers:
-        return lambda motion: (np.array([0.0]), [None])
-    from aeon.classification.convolution_based import MiniRocketClassifier
-    from praxicon.parsing import windows
-
-    x, y = [], []
-    for name, motions in takes.items():
-        for m in motions:
-            for w in windows(m, window, 2 * hop)[1]:
-                x.append(_resampled(series(w, 30.0), length))
-                y.append(name)
-    model = MiniRocketClassifier(random_state=0, n_jobs=1).fit(np.stack(x), np.array(y))
-
-    def label(motion):
-        starts, cuts = windows(motion, window, hop)
-        z = np.stack([_resampled(series(w, 30.0), length) for w in cuts])
-        centres = np.array(starts) + min(window, motion.duration) / 2
-        return centres, list(model.predict(z))
-    return label
-
-
-def _timeline_labels(timeline, times):
-    return timeline.labels(times)
-
-
-def _peer_labels(centres, labels, times):
-    idx = np.abs(np.asarray(times)[:, None] - centres[None, :]).argmin(axis=1)
-    return [labels[i] for i in idx]
-
-
-def _segments(labels, times, step):
-    out = []
-    i = 0
-    while i < len(labels):
-        j = i
-        while j + 1 < len(labels) and labels[j + 1] == labels[i]:
-            j += 1
-        out.append((labels[i], times[i] - step / 2, times[j] + step / 2))
-        i = j + 1
-    return out
-
-
-def segment_f1(truth, found, step):
-    """Segments (runs of one label) matched when the label agrees and IoU >= 0.5."""
-    times = np.arange(len(truth)) * step + step / 2
-    t = [s for s in _segments(truth, times, step) if s[0] is not None]
-    f = [s for s in _segments(found, times, step) if s[0] is not None]
-    hit = 0
-    for label, a, b in t:
-        for label2, c, d in f:
-            inter = max(0.0, min(b, d) - max(a, c))
-            if label == label2 and inter / (max(b, d) - min(a, c)) >= 0.5:
-                hit += 1
-                break
-    precision = hit / len(f) if f else 0.0
-    recall = hit / len(t) if t else 0.0
-    return 2 * precision * recall / (precision + recall) if hit else 0.0
-
-
-def parse_cmu(results, window=2.0, hop=0.25, *, peers=True):
-    import kinetology
-    from praxicon.parsing import describe_windows, parse
-
-    root = MOCAP / "cmu-mocap6"
-    sequences = {}
-    for path in sorted((root / "amc").glob("*.amc")):
-        labels = kinetology.read_cmu_truelabels(root / "truelabels" / f"{path.stem}.txt", 120.0)
-        sequences[path.stem] = (_rate(kinetology.read(path)), labels)
-    for left in sequences:
-        takes = defaultdict(list)
-        for name, (motion, spans) in sequences.items():
-            if name == left:
-                continue
-            for span in spans:
-                if span.stop - span.start >= 2.0:
-                    takes[span.label].append(_cut(motion, span.start, min(span.stop,
-                                                                          motion.duration)))
-        motion, spans = sequences[left]
-        step = 0.1
-        times = np.arange(int(motion.duration / step)) * step + step / 2
-        truth = [next((s.label for s in spans if s.start <= t < s.stop), None) for t in times]
-        known = [lab in takes for lab in truth]
-        descriptions = describe_windows(takes, window=window, hop=hop)
-        began = time.process_time()
-        found = parse(descriptions, motion, hop=hop).labels(times)
-        cpu_ours = time.process_time() - began
-        peer = _window_peer(takes, window, hop, peers=peers)
-        began = time.process_time()
-        centres, labels = peer(motion)
-        other = _peer_labels(centres, labels, times)
-        cpu_peer = time.process_time() - began
-        for method, pred, cpu in (("praxicon", found, cpu_ours),
-                                  ("minirocket-windows", other, cpu_peer)):
-            r = results["cmu-parse", method]
-            r["frames"] += sum(known)
-            r["right"] += sum(k and p == t for k, p, t in zip(known, pred, truth))
-            r["f1"].append(segment_f1([t if k else None for t, k in zip(truth, known)],
-                                      pred, step))
-            r["cpu"] += cpu
-            r["seconds"] += motion.duration
-
-
-def _joined(takes, rng):
-    """Takes one after another, the root's position continued where the last take stopped."""
-    from kinetology import Motion
-
-    pieces, spans, t = [], [], 0.0
-    last = None
-    for take in takes:
-        values = np.array(take.motion.values, dtype=float)
-        trans = [c for c, ch in enumerate(take.motion.channels) if ch[-2:] in ("tx", "ty", "tz")]
-        if last is not None:
-            values[:, trans] += last[trans] - values[0, trans]
-        last = values[-1]
-        pieces.append(values)
-        spans.append((take.content, t, t + take.motion.duration))
-        t += take.motion.duration
-    m = takes[0].motion
-    return Motion(np.concatenate(pieces), m.channels, m.frame_rate, m.skeleton,
-                  "<joined>"), spans
-
-
-# the root's features also scored in each action's own spread: none of them, and the drift
-# with the sway (the praxicon's default is the drift alone)
-_OWN_VARIANTS = (("none", ()), ("drift+sway", ("drift", "energy")))
-
-
-def parse_joined(results, data, per_style: int = 4, window=2.0, hop=0.25, *,
-                 peers=True):
-    from praxicon.parsing import describe_windows, parse
-
-    rng = np.random.default_rng(0)
-    for style in sorted({t.style for t in data}):
-        train = defaultdict(list)
-        for t in data:
-            if t.style != style:
-                train[t.content].append(t.motion)
-        mine = [t for t in data if t.style == style and t.content in train]
-        contents = sorted({t.content for t in mine})
-        if len(contents) < 3:
-            continue
-        descriptions = describe_windows(train, window=window, hop=hop)
-        peer = _window_peer(train, window, hop, peers=peers)
-        for _ in range(per_style):
-            chosen = rng.choice(contents, 3, replace=False)
-            takes = [next(t for t in mine if t.content == c) for c in chosen]
-            motion, spans = _joined(takes, rng)
-            step = 0.05
-            times = np.arange(int(motion.duration / step)) * step + step / 2
-            truth = [next((c for c, a, b in spans if a <= x < b), None) for x in times]
-            began = time.process_time()
-            found = parse(descriptions, motion, hop=hop).labels(times)
-            cpu_ours = time.process_time() - began
-            # the same descriptions scored otherwise: the trade-off of the own-spread terms
-            variants = [(f"praxicon own={name}", parse(descriptions, motion, hop=hop,
-                                                       own=own).labels(times), 0.0)
-                        for name, own in _OWN_VARIANTS]
-            centres, labels = peer(motion)
-            other = _peer_labels(centres, labels, times)
-            for method, pred, cpu in (("praxicon", found, cpu_ours), *variants,
-                                      ("minirocket-windows", other, 0.0)):
-                r = results["joined-parse", method]
-                pred = list(pred)
-                r["claimed"] += sum(p is not None for p in pred)
-                r["inside"] += sum(p is not None and p == t for p, t in zip(pred, truth))
-                r["true"] += len(truth)
-                r["covered"] += sum(p == t for p, t in zip(pred, truth))
-                absent = set(train) - set(chosen)
-                r["absent_pairs"] += len(absent)
-                r["absent_reported"] += len(absent & set(pred))
-                r["recordings"] += 1
-                r["any_absent"] += int(bool(absent & set(pred)))
-                r["cpu"] += cpu
-                r["seconds"] += motion.duration
 
 
 def cost_growth(data, counts=(2, 4, 8, 10)):
@@ -416,7 +220,7 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--only", action="append", default=None,
                         help="d1-loso, d2-in-style, d2-loso, d2-to-d1, open-set (open-d1, open-d2: one dataset's "
-                             "part), cmu-parse, joined-parse, "
+                             "part), cmu-parse, joined-parse (and open-parse), "
                              "growth, ablation, pictures (repeatable; default all)")
     parser.add_argument("--methods", default=",".join(METHODS))
     parser.add_argument("--no-docs", action="store_true")
@@ -488,35 +292,13 @@ def main(argv=None) -> int:
     run_open_sets(results, d1, d2, want, peer_cache, peers=peers)
     if want("open-set") or want("open-d1") or want("open-d2"):
         rows += report_open_sets(results, say)
-    for protocol, run in (("cmu-parse", lambda: parse_cmu(results, peers=peers)),
-                          ("joined-parse", lambda: parse_joined(results, d1, peers=peers))):
-        if not want(protocol):
-            continue
-        run()
-        variants = ([f"praxicon own={name}" for name, _ in _OWN_VARIANTS]
-                    if protocol == "joined-parse" else [])
-        for method in ("praxicon", *variants, "minirocket-windows"):
-            r = results[protocol, method]
-            if protocol == "cmu-parse":
-                row = {"protocol": protocol, "method": method,
-                       "frame_accuracy": r["right"] / r["frames"],
-                       "segment_f1": float(np.mean(r["f1"])),
-                       "cpu_ms_per_second": 1000 * r["cpu"] / r["seconds"]}
-                say(f"{protocol:12s} {method:19s} frame accuracy={row['frame_accuracy']:.3f} "
-                    f"segment F1={row['segment_f1']:.3f} cpu={row['cpu_ms_per_second']:.2f} "
-                    f"ms per second of motion")
-            else:
-                row = {"protocol": protocol, "method": method,
-                       "recordings": int(r["recordings"]),
-                       "time_precision": r["inside"] / max(1, r["claimed"]),
-                       "time_recall": r["covered"] / r["true"],
-                       "absent_reported": r["absent_reported"] / r["absent_pairs"],
-                       "recordings_with_absent": r["any_absent"] / r["recordings"]}
-                say(f"{protocol:12s} {method:24s} recordings={row['recordings']} time precision="
-                    f"{row['time_precision']:.3f} recall={row['time_recall']:.3f} absent action "
-                    f"reported={row['absent_reported']:.3f} (recordings with one: "
-                    f"{row['recordings_with_absent']:.2f})")
-            rows.append(row)
+    if want("cmu-parse"):
+        parse_cmu(results, peers=peers)
+        rows += report_parse(results, "cmu-parse", say)
+    if want("joined-parse"):
+        parse_joined(results, d1, peers=peers)
+        rows += report_parse(results, "joined-parse", say)
+        rows += report_parse(results, "open-parse", say)
     if want("ablation"):
         rows += ablation(say, d1, d2)
     if want("pictures"):
@@ -533,7 +315,7 @@ def main(argv=None) -> int:
                   "frame_accuracy", "segment_f1", "recordings", "time_precision",
                   "time_recall", "absent_reported", "recordings_with_absent", "actions",
                   "train_takes", "praxicon", "dtw-1nn", "d2-in-style", "d2-loso", "d1-loso",
-                  "known_at_recall_0.9", "confidence", "ece", "nll"]
+                  "known_at_recall_0.9", "confidence", "ece", "nll", "unlearnt_none"]
         write_csv(DATA / "recognition.csv", header,
                   [[_fmt(r.get(h, "")) if not isinstance(r.get(h, ""), float)
                     else f"{r[h]:.4f}" for h in header] for r in rows])
