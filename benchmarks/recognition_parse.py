@@ -6,8 +6,9 @@ three takes of different Bandai dataset-1 contents of one style, parsed with wha
 style learnt (time precision and recall of the spans, absent actions reported). ``open-parse``:
 the same recordings with the middle take's content not learnt (how much of its time is
 answered none of these). Each beside a sliding-window MiniRocket where it can answer; the
-praxicon's default reading beside the windows' threshold alone (``support=0,
-unfit=inf``: every span standing, whatever its windows' feature-group test). ``recognition.py`` runs them and writes the rows.
+praxicon's default reading beside the windows' threshold alone (``support=0, unfit=inf``:
+every span standing, whatever its windows' feature-group test). ``recognition.py`` runs them
+and writes the rows.
 """
 
 from __future__ import annotations
