@@ -242,6 +242,23 @@ def _supported(path: np.ndarray, passes: np.ndarray, none: int, support: float,
     return out
 
 
+def _stretch(unfit: float, starts, windows: int) -> int:
+    """The windows in a row that last ``unfit`` seconds (at least one), each window's answer
+    covering the hop between window starts (``hop`` rounded to whole frames), or
+    ``windows + 1`` (never) when that is more windows than there are.
+
+    Examples
+    --------
+    >>> _stretch(4.0, [0.0, 0.25, 0.5], 40), _stretch(4.0, [0.0, 0.2667], 40)
+    (16, 15)
+    >>> _stretch(1e308, [0.0, 1e-10], 40), _stretch(0.1, [0.0], 1)
+    (41, 1)
+    """
+    hop = starts[1] - starts[0] if len(starts) > 1 else math.inf
+    count = unfit / hop
+    return windows + 1 if not count <= windows else max(1, math.ceil(count - 1e-9))
+
+
 def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
           own=OWN_KINDS, support: float = SUPPORT, unfit: float = UNFIT) -> Timeline:
     """The recording as a timeline of spans (see the module's description).
@@ -319,16 +336,16 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
     if support > 0 or unfit < math.inf:
         none = len(descriptions.names)
         features = [spread.features[c] for c in columns]
-        excess, _, _ = _excess(descriptions, features, x, np.where(path == none, 0, path),
-                               fitted)
-        # each window's answer covers ``hop`` seconds: a stretch of unfit seconds is that many
-        # hops (at least one window)
-        stretch = max(1, math.ceil(unfit / hop - 1e-9)) if unfit < math.inf else len(path) + 1
-        checked = _supported(path, excess <= 1.0, none, support, stretch)
+        passes = np.ones(len(path), dtype=bool)
+        named = np.flatnonzero(path != none)  # the windows answered none need no test
+        if len(named):
+            excess, _, _ = _excess(descriptions, features, x[named], path[named], fitted)
+            passes[named] = excess <= 1.0
+        checked = _supported(path, passes, none, support, _stretch(unfit, starts, len(path)))
         # a window the check answered none of these counts 1 where it failed the test and 0
         # where it passed (the probability of none of these there is that of the threshold,
         # about 0 where an action was nearer)
-        value = np.where(checked != path, (excess > 1.0).astype(float), value)
+        value = np.where(checked != path, (~passes).astype(float), value)
         path = checked
     names = [*descriptions.names, None]
     half = min(window, motion.duration) / 2

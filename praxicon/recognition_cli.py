@@ -130,9 +130,8 @@ def run_recognise(args) -> int:
 
 
 def run_parse(args) -> int:
-    import sys
-
     import math
+    import sys
 
     from ._arguments import real_number
     from .parsing import parse
@@ -189,7 +188,7 @@ def register_recognise(sub) -> None:
     p.add_argument("--support", type=float, default=SUPPORT, metavar="S",
                    help="the share of a span's windows, 0 to 1, that must pass its action's "
                         "feature-group test for the span to stand, else it is none of these "
-                        "(default %(default)g; 0: every span stands)")
+                        "(default %(default)g; 0: no span is refused as a whole)")
     p.add_argument("--unfit", type=float, default=UNFIT, metavar="SECONDS",
                    help="a stretch of a span this long in which every window fails the "
                         "action's feature-group test is none of these (default %(default)g; "

@@ -108,3 +108,18 @@ def test_the_command_checks_support_and_unfit_before_reading(capsys, tmp_path, o
     said = refused(capsys, ["parse", str(tmp_path / "no-praxicon"), str(tmp_path / "x.bvh"),
                             option, value])
     assert said.startswith(option) and "no-praxicon" not in said
+
+
+def test_a_huge_unfit_is_never_and_unfit_counts_the_real_hop():
+    """``unfit`` of 1e308 seconds overflowed the count of windows (a traceback); the count is
+    of the windows' real hop, whole frames (a 0.25 s hop at 30 fps is 8 frames, 0.267 s)."""
+    from kinetology import synthetic_motion
+
+    from praxicon.parsing import _stretch
+
+    px = _learnt()
+    motion = synthetic_motion(3, (0,), seed=1, noise=0.7)
+    assert parse(px, motion, unfit=1e308) == parse(px, motion, unfit=math.inf)
+    assert _stretch(4.0, [0.0, 8 / 30], 100) == 15
+    assert _stretch(4.0, [0.0, 0.25], 100) == 16
+
