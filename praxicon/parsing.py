@@ -50,10 +50,12 @@ _SWITCH = 10.0  # log-likelihood a change of action costs: about e^-10, a rare e
 # keeps its span, and a stretch of an action never learnt, nearest to a learnt one by distance
 # but passing its test in no window or a few, does not
 SUPPORT = 0.25
-# seconds: a stretch of a span this long whose every window fails the action's test (twice a
-# window) is none of these, where an action never learnt is absorbed by a learnt neighbour's
-# span (a run between a walk and a bow read as one long walk)
-UNFIT = 4.0
+# seconds: a stretch of a span this long whose every window fails the action's test (two and
+# a half windows) is none of these, where an action never learnt is absorbed by a learnt
+# neighbour's span. On the parsing benchmark (30 fps, a hop of 8 frames) stretches of 16 to 24
+# windows (4.3 to 6.4 s) answer the same; 15 loses a learnt action's odd stretch in cmu-mocap6,
+# 28 and more catch less of the actions never learnt
+UNFIT = 5.0
 
 
 @dataclass(frozen=True)
@@ -278,7 +280,7 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
     support : float, default 0.25
         The share of a span's windows, 0 to 1, that must pass its action's feature-group test
         for the span to stand; a span below it is none of these.
-    unfit : float, default 4.0
+    unfit : float, default 5.0
         Seconds: within a span that stands, a stretch at least this long in which every
         window fails the action's feature-group test is none of these (``math.inf``: none;
         with ``support=0`` as well, the windows' threshold alone answers none of these).
