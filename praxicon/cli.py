@@ -51,8 +51,11 @@ def run_build(args) -> int:
         _bad(f"{', '.join(args.datasets)}: no action to learn in "
              f"{'it' if len(args.datasets) == 1 else 'them'}")
     settings = Settings.make(args.inducer, params, segmentation, args.min_performances)
+    # no more processes than actions: a pool forks all of them at once, and a count past a
+    # C int was a traceback from the semaphore
+    workers = None if args.workers is None else min(args.workers, len(actions))
     try:
-        executor, close = executor_for(args.workers, args.scheduler)
+        executor, close = executor_for(workers, args.scheduler)
     except (ValueError, OSError) as exc:
         _bad(f"--scheduler {args.scheduler}: {exc}")
     try:
