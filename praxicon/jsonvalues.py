@@ -9,6 +9,7 @@ file and the key, never a ``KeyError`` or ``TypeError``.
 from __future__ import annotations
 
 import json
+import math
 
 from psgs._foundation.files import read_text
 from psgs.errors import FormatError
@@ -79,6 +80,23 @@ class Fields:
         got = self.value[key]
         shown = repr(got) if len(repr(got)) <= 40 else type(got).__name__
         return self.error(f"{self.where}: {key!r} must be {expected}, not {shown}")
+
+    def bounded(self, key: str, got, low: float, strict: bool = False):
+        """``got``, the number or numbers read at ``key``, when each is finite and at least
+        ``low`` (above it when ``strict``; ``None`` passes), else the error naming the key.
+
+        Examples
+        --------
+        >>> f = Fields({"d": [0.5, 0.0]}, "x.json", "morpheme", ValueError)
+        >>> f.bounded("d", f.numbers("d"), 0, strict=True)
+        Traceback (most recent call last):
+        ...
+        ValueError: x.json: 'd' must be above 0 and finite, not [0.5, 0.0]
+        """
+        values = got if isinstance(got, tuple) else () if got is None else (got,)
+        if all((v > low if strict else v >= low) and v < math.inf for v in values):
+            return got
+        raise self._bad(key, f"{'above' if strict else 'at least'} {low:g} and finite")
 
     def need(self, key: str):
         """The value at ``key`` (an error when absent)."""

@@ -196,8 +196,12 @@ class PerformanceRecord:
         used = j.value.get("used")
         if used is not None and not isinstance(used, bool):
             raise j._bad("used", "true or false")
-        return cls(j.text("file"), j.number("start", True), j.number("stop", True),
-                   j.text("label", True), used)
+        # seconds as a build writes them: else generation cut a take at a negative frame
+        start = j.bounded("start", j.number("start", True), 0)
+        stop = j.bounded("stop", j.number("stop", True), 0)
+        if start is not None and stop is not None and not start < stop:
+            raise j._bad("stop", f"after its start {start}")
+        return cls(j.text("file"), start, stop, j.text("label", True), used)
 
 
 @dataclass(frozen=True)
@@ -230,7 +234,8 @@ class ChannelMorpheme:
         """Read :meth:`to_json`'s value back (:class:`PraxiconError` when malformed)."""
         j = _Json(value, where, "morpheme")
         kinetemes = j.texts("kinetemes")
-        durations = j.numbers("durations", True)
+        # typical seconds: 0 or less divided by zero or ran a kineteme backwards in generation
+        durations = j.bounded("durations", j.numbers("durations", True), 0, strict=True)
         displacements = j.numbers("displacements", True)
         for key, got in (("durations", durations), ("displacements", displacements)):
             if got is not None and len(got) != len(kinetemes):
@@ -425,8 +430,10 @@ class ActionRecord:
         if not all(isinstance(v, (int, float)) and not isinstance(v, bool)
                    for v in pose.values()):
             raise j._bad("mean_pose", "channel -> number")
-        return cls(**base,
-                   learnt_from=j.numbers("learnt_from", whole=True), note=j.text("note", True),
+        learnt_from = j.numbers("learnt_from", whole=True)
+        if not all(0 <= i < len(base["performances"]) for i in learnt_from):  # an IndexError
+            raise j._bad("learnt_from", f"indices of its {len(base['performances'])} performances")
+        return cls(**base, learnt_from=learnt_from, note=j.text("note", True),
                    actuators=actuators,
                    joints=tuple(JointRecord.from_json(a, joints[a], f"{where}: joint {a}")
                                 for a in actuators),

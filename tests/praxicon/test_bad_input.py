@@ -269,6 +269,22 @@ DAMAGE = {
         r["joints"]["arm"]["channels"][0]].update(durations=[0.5])), "'durations' has 1 values"),
     "record's status unknown": (_edit_record(lambda r: r.update(status="maybe")),
                                 "'status' must be 'ok' or 'failed'"),
+    # generation indexed the performances with these: an IndexError traceback
+    "learnt from a performance it does not list": (_edit_record(lambda r: r.update(
+        learnt_from=[0, 9])), "'learnt_from' must be indices of its 3 performances"),
+    "learnt from performances that are gone": (_edit_record(lambda r: r.update(
+        performances=[])), "'learnt_from' must be indices of its 0 performances"),
+    # generation divided by them (a warning) or ran a kineteme backwards, and wrote a file
+    "morpheme durations of 0 s": (_edit_record(lambda r: r["joints"]["arm"]["morphemes"][
+        r["joints"]["arm"]["channels"][0]].update(durations=[0.0] * len(r["joints"]["arm"][
+            "morphemes"][r["joints"]["arm"]["channels"][0]]["kinetemes"]))),
+        "'durations' must be above 0 and finite"),
+    "a performance starting before its take": (_edit_record(lambda r: r["performances"][0]
+                                                            .update(start=-5)),
+                                               "performance 1: 'start' must be at least 0"),
+    "a performance stopping before its start": (_edit_record(lambda r: r["performances"][0]
+                                                             .update(start=2, stop=1)),
+                                                "'stop' must be after its start 2, not 1"),
 }
 
 
