@@ -303,6 +303,7 @@ def _read_manifest(path: Path, group_by: tuple[str, ...] | None = None) -> list[
         except csv.Error as exc:  # e.g. a field longer than the csv module's limit
             raise DatasetError(f"{_shown_path(path)}:{lines.number}: {exc}") from None
     takes: list[tuple[str, str | None, Performance]] = []
+    seen: dict[tuple, str] = {}  # (action, style, file, start, stop) -> the row that gave it
     for where, row in rows:
         if any(str(cell).strip() for cell in row.get(None, ())):
             # cells past the header's, which would be dropped without a word (empty ones
@@ -323,8 +324,17 @@ def _read_manifest(path: Path, group_by: tuple[str, ...] | None = None) -> list[
         style = row.get("style")
         if style is not None and not isinstance(style, str):
             raise DatasetError(f"{where}: style must be text, not {shown(style)}")
-        takes.append((str(action), style.strip() or None if style else None,
-                      Performance(_shown_path(file_path), start, stop, _shown_path(path))))
+        style = style.strip() or None if style else None
+        performance = Performance(_shown_path(file_path), start, stop, _shown_path(path))
+        # a row given twice would count as two performances: one take met the minimum of
+        # two and was learnt as if it repeated across takes
+        first = seen.setdefault((action, style, performance), where)
+        if first != where:
+            said = first.rsplit(":", 1)[-1].strip()  # a CSV row's line, a TOML table's place
+            raise DatasetError(f"{where}: the same performance as "
+                               f"{'line ' + said if said.isdigit() else said} (action, file "
+                               f"and span): list each once")
+        takes.append((str(action), style, performance))
     if not takes:  # an action is its rows: a build of none would be an empty folder
         raise DatasetError(f"{_shown_path(path)}: no actions in it (no "
                            + ("[[performance]] table)" if path.suffix.lower() == ".toml"

@@ -69,6 +69,11 @@ def px(built, tmp_path):
                                                                    "header has 2"),
     ("m.csv", "action,file,action\nwave,a.bvh,run\n", "m.csv:1: the header names column "
                                                         "'action' twice"),
+    # a row given twice counted as two performances: one take met the minimum of two
+    ("m.csv", "action,file,start\nwave,a.bvh,1\nwave,b.bvh,\nwave,a.bvh,1.0\n",
+     "m.csv:4: the same performance as line 2 (action, file and span): list each once"),
+    ("m.toml", '[[performance]]\naction = "w"\nfile = "a.bvh"\n' * 2,
+     "m.toml: performance 2: the same performance as performance 1"),
 ])
 def test_a_bad_manifest_is_one_dataset_error(tmp_path, name, content, message):
     path = tmp_path / name
