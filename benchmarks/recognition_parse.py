@@ -134,14 +134,16 @@ def parse_cmu(results, window=2.0, hop=0.25, *, peers=True):
         began = time.process_time()
         found = parse(descriptions, motion, hop=hop).labels(times)
         cpu_ours = time.process_time() - began
+        began = time.process_time()
         alone = parse(descriptions, motion, hop=hop, **_ALONE).labels(times)
+        cpu_alone = time.process_time() - began
         peer = _window_peer(takes, window, hop, peers=peers)
         began = time.process_time()
         centres, labels = peer(motion)
         other = _peer_labels(centres, labels, times)
         cpu_peer = time.process_time() - began
         for method, pred, cpu in (("praxicon", found, cpu_ours),
-                                  (_ALONE_NAME, alone, 0.0),
+                                  (_ALONE_NAME, alone, cpu_alone),
                                   ("minirocket-windows", other, cpu_peer)):
             r = results["cmu-parse", method]
             r["frames"] += sum(known)
