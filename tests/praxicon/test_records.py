@@ -26,7 +26,9 @@ json_values = st.recursive(json_scalars, lambda inner: st.lists(inner, max_size=
 def morphemes(draw):
     k = draw(kinetemes)
     same = st.lists(floats, min_size=len(k), max_size=len(k)).map(tuple)
-    return ChannelMorpheme(k, draw(st.none() | same), draw(st.none() | same),
+    # a kineteme's typical duration is above 0 (load refuses others)
+    durations = st.lists(st.floats(1e-6, 1e6), min_size=len(k), max_size=len(k)).map(tuple)
+    return ChannelMorpheme(k, draw(st.none() | durations), draw(st.none() | same),
                            draw(st.integers(0, 9)))
 
 
@@ -34,7 +36,9 @@ def morphemes(draw):
 def records(draw):
     name = draw(names)
     performances = tuple(draw(st.lists(st.builds(
-        PerformanceRecord, names, st.none() | floats, st.none() | floats, st.none() | names,
+        # seconds 0 or more, the stop after the start (load refuses others)
+        PerformanceRecord, names, st.none() | st.floats(0, 100), st.none() | st.floats(101, 1e6),
+        st.none() | names,
         st.none() | st.booleans()), max_size=3)))
     base = ActionRecord(name, draw(names), draw(names), draw(st.none() | names),
                         status="failed", reason=draw(st.none() | st.text(max_size=20)),
@@ -51,7 +55,8 @@ def records(draw):
     return ActionRecord(
         **{k: getattr(base, k) for k in ("name", "dataset", "content", "style", "reason",
                                          "problems", "performances")},
-        status="ok", learnt_from=tuple(draw(st.lists(st.integers(0, 9), max_size=3))),
+        status="ok", learnt_from=tuple(draw(st.lists(  # indices of its performances
+            st.integers(0, max(len(performances) - 1, 0)), max_size=3 if performances else 0))),
         note=draw(st.none() | st.text(max_size=10)), actuators=tuple(joints),
         joints=joint_records, verdict=draw(st.text(max_size=10)), inducer="pal",
         params=freeze(draw(st.dictionaries(st.text(max_size=4), json_values, max_size=3))),
