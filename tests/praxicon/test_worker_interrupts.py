@@ -16,9 +16,10 @@ import pytest
 
 from praxicon_fixtures import write_manifest
 
-#: The build, run as its own program: every action a worker learns takes a minute, so that at
-#: the interrupt one worker is busy and the other waits for work (the one that printed a
-#: traceback), and a parent that waited for its workers would not be done in time.
+#: The build, run as its own program: the wave takes a worker a minute and the step is quick
+#: (a build starts no more workers than actions), so that at the interrupt one worker is busy
+#: and the other waits for work (the one that printed a traceback), and a parent that waited
+#: for its workers would not be done in time.
 SCRIPT = textwrap.dedent("""
     import signal, sys, time
 
@@ -27,7 +28,8 @@ SCRIPT = textwrap.dedent("""
 
 
     def slow(action, settings):
-        time.sleep(60)
+        if action.content == "wave":
+            time.sleep(60)
         return learn_action(action, settings)
 
 
@@ -68,7 +70,7 @@ def _ignores_sigint(pid: int) -> bool:
                     or multiprocessing.get_start_method() != "fork",
                     reason="reads /proc; the workers are the build's forks")
 def test_ctrl_c_prints_no_worker_traceback_and_stops_at_once(tmp_path):
-    manifest = write_manifest(tmp_path, {"wave": [1, 2]})
+    manifest = write_manifest(tmp_path, {"wave": [1, 2], "step": [3, 4]})
     script = tmp_path / "build.py"
     script.write_text(SCRIPT)
     out = tmp_path / "px"
