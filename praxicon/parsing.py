@@ -211,6 +211,16 @@ def _viterbi(costs: np.ndarray, switch: float) -> np.ndarray:
     return path
 
 
+def _runs(values: np.ndarray) -> list[tuple[int, int]]:
+    """The runs of equal values: ``(first, stop)`` index pairs, in order.
+
+    >>> _runs(np.array([3, 3, 1, 1, 1, 3]))
+    [(0, 2), (2, 5), (5, 6)]
+    """
+    change = (np.flatnonzero(values[1:] != values[:-1]) + 1).tolist()
+    return list(zip([0, *change], [*change, len(values)]))
+
+
 def _supported(path: np.ndarray, passes: np.ndarray, none: int, support: float,
                stretch: int) -> np.ndarray:
     """``path`` (an action per window, ``none`` for none of these) with the windows that do
@@ -228,18 +238,14 @@ def _supported(path: np.ndarray, passes: np.ndarray, none: int, support: float,
     [0, 2, 2, 2, 0, 0, 2, 2, 2, 2, 2]
     """
     out = path.copy()
-    change = np.flatnonzero(np.diff(path)) + 1
-    for a, b in zip(np.concatenate([[0], change]), np.concatenate([change, [len(path)]])):
+    for a, b in _runs(path):
         if path[a] == none:
             continue
         if passes[a:b].mean() < support:
             out[a:b] = none
             continue
-        # the run's stretches of failing windows: where a passing window ends or starts one
-        fails = np.concatenate([[False], ~passes[a:b], [False]])
-        edges = np.flatnonzero(np.diff(fails.astype(np.int8)))
-        for first, stop in zip(edges[::2], edges[1::2]):
-            if stop - first >= stretch:
+        for first, stop in _runs(passes[a:b]):  # the run's stretches of failing windows
+            if not passes[a + first] and stop - first >= stretch:
                 out[a + first:a + stop] = none
     return out
 
@@ -339,10 +345,10 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
         none = len(descriptions.names)
         features = [spread.features[c] for c in columns]
         passes = np.ones(len(path), dtype=bool)
-        named = np.flatnonzero(path != none)  # the windows answered none need no test
-        if len(named):
-            excess, _, _ = _excess(descriptions, features, x[named], path[named], fitted)
-            passes[named] = excess <= 1.0
+        answered = np.flatnonzero(path != none)  # the windows answered none need no test
+        if len(answered):
+            excess, _, _ = _excess(descriptions, features, x[answered], path[answered], fitted)
+            passes[answered] = excess <= 1.0
         checked = _supported(path, passes, none, support, _stretch(unfit, starts, len(path)))
         # a window the check answered none of these counts 1 where it failed the test and 0
         # where it passed (the probability of none of these there is that of the threshold,
@@ -353,15 +359,8 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
     half = min(window, motion.duration) / 2
     centres = np.array(starts) + half
     edges = np.concatenate([[0.0], (centres[1:] + centres[:-1]) / 2, [motion.duration]])
-    spans = []
-    i = 0
-    while i < len(path):
-        j = i
-        while j + 1 < len(path) and path[j + 1] == path[i]:
-            j += 1
-        spans.append(Span(round(float(edges[i]), 6), round(float(edges[j + 1]), 6),
-                          names[path[i]], round(float(value[i:j + 1].mean()), 6)))
-        i = j + 1
+    spans = [Span(round(float(edges[a]), 6), round(float(edges[b]), 6), names[path[a]],
+                  round(float(value[a:b].mean()), 6)) for a, b in _runs(path)]
     named = {s.action for s in spans if s.action}
     if not named:  # no span names an action: the one closest over the windows, as recognise
         named = {names[int(np.argmax(np.where(fitted.compared, p[:, :-1].mean(axis=0), -1)))]}
