@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._viewer_checks import GIF_LONGEST, GIF_SHORTEST, MP4_SLOWEST
+from ._viewer_checks import GIF_LONGEST, GIF_SHORTEST, MP4_SLOWEST, slowest_rate
 from .plotting import STATE_COLOURS, STILL_COLOUR as _STILL
 
 __all__ = ["animate", "GIF_LONGEST", "GIF_SHORTEST", "MP4_SLOWEST"]
@@ -20,8 +20,7 @@ def _pace(player, suffix: str) -> float:
     """The frames per second the file plays at: the player's, or for a single frame (whose
     duration shows nothing) the slowest rate the format holds; the caller has refused more
     frames slower than that (:func:`~kinetology._viewer_checks.pace_problem`)."""
-    slowest = 1 / GIF_LONGEST if suffix == ".gif" else MP4_SLOWEST
-    return max(player.frame_rate, slowest)
+    return max(player.frame_rate, slowest_rate(suffix))
 
 
 def animate(player, path: Path, suffix: str, *, dpi: int = 72) -> None:

@@ -24,6 +24,15 @@ GIF_SHORTEST = 0.02
 MP4_SLOWEST = 1e-5
 
 
+def slowest_rate(suffix: str) -> float:
+    """The fewest frames a second a ``.gif`` or ``.mp4`` plays at.
+
+    >>> round(slowest_rate(".gif"), 6), slowest_rate(".mp4")
+    (0.001526, 1e-05)
+    """
+    return 1 / GIF_LONGEST if suffix == ".gif" else MP4_SLOWEST
+
+
 def pace_problem(frame_rate: float, ticks: int, suffix: str) -> str | None:
     """What is wrong with writing ``ticks`` frames at ``frame_rate`` as ``suffix`` (None:
     nothing): more than one frame slower than the format plays (Pillow raised an
@@ -37,7 +46,7 @@ def pace_problem(frame_rate: float, ticks: int, suffix: str) -> str | None:
     >>> pace_problem(1e-3, 2, ".gif")[:44]
     '0.001 frames a second is slower than a .gif '
     """
-    slowest = 1 / GIF_LONGEST if suffix == ".gif" else MP4_SLOWEST
+    slowest = slowest_rate(suffix)
     if frame_rate >= slowest or ticks == 1:
         return None
     return (f"{frame_rate:g} frames a second is slower than a {suffix} plays (at least "
