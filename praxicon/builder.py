@@ -78,11 +78,19 @@ def stop_pool(pool: ProcessPoolExecutor) -> None:
     if callable(terminate):
         terminate()
         return
-    # before 3.14 the pool names its processes only in _processes (shutdown clears it)
+    # before 3.14 the pool names its processes, and the thread that manages them, only in
+    # private attributes (shutdown clears both)
     processes = list((getattr(pool, "_processes", None) or {}).values())
+    manager = getattr(pool, "_executor_manager_thread", None)
     pool.shutdown(wait=False, cancel_futures=True)
     for process in processes:
         process.terminate()
+    # that thread reaps the workers it sees end and marks the work they held as failed: wait
+    # for it first, so that the futures are done when this returns, and reap after it rather
+    # than beside it (a process two threads wait for at once can keep reading as alive, its
+    # exit code taken by the other thread)
+    if manager is not None:
+        manager.join(timeout=10)
     for process in processes:
         process.join()
 
