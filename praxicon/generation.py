@@ -319,8 +319,10 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
 
     if not isinstance(record, ActionRecord):
         raise ValueError(f"record must be an ActionRecord, not {type(record).__name__}")
-    if not record.learnt:
-        raise ValueError(f"action {record.name!r} was not learnt: {record.reason}")
+    if not record.learnt:  # a record may hold no reason (a hand-made or older one)
+        raise ValueError(f"action {record.name!r} was not learnt"
+                         + (f": {record.reason}" if record.reason and record.reason.strip()
+                            else " (no reason recorded)"))
     if not is_count(repeat) or repeat > MAX_REPEAT:  # a numpy integer is a count too
         raise ValueError(f"repeat must be a whole number from 1 to {MAX_REPEAT}, not {repeat!r}")
     if progress is not None and not callable(progress):  # else a TypeError after a channel
