@@ -358,8 +358,9 @@ def _add_commands(sub) -> None:
                           "default: the number of cores, at most 4")
     gen.add_argument("--style", default=None, metavar="STYLE",
                      help="generate that style of the action: a word of its performances' "
-                          "file names (Bandai's dataset-2_walk_elderly_001.bvh is style "
-                          "elderly); default: every performance together")
+                          "file names that not all of them hold (Bandai's "
+                          "dataset-2_walk_elderly_001.bvh is style elderly, not walk); "
+                          "default: every performance together")
     gen.add_argument("--plot", default=None, metavar="PNG",
                      help="also plot one joint, original performance beside generated")
     gen.add_argument("--view", default=None, metavar="OUT.html",

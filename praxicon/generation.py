@@ -39,7 +39,8 @@ import numpy as np
 from ._values import check_count, is_count
 from .channel_curve import SMOOTH_STEPS as _SMOOTH_STEPS
 from .channel_curve import Method, channel_curves
-from .body_motion import _source_take, animate, body_of, performances_of, whole_cycle
+from .body_motion import _source_take, animate, body_of, missing_style, performances_of, \
+    style_of, whole_cycle
 from .jsonvalues import as_dict
 from .records import ActionRecord, Praxicon, _count
 from .store import load, system_problem
@@ -254,7 +255,7 @@ def style_scales(record, channels, period: float, style: str, rate: float, perfo
     performance of the action has that style. ``performances``: the action's motions
     when already read (:func:`praxicon.body_motion.performances_of`), else read here.
     """
-    from .body_motion import missing_style, own_period, performances_of, style_of
+    from .body_motion import own_period
 
     if performances is None:
         performances = performances_of(record)
@@ -278,6 +279,40 @@ def style_scales(record, channels, period: float, style: str, rate: float, perfo
         return [p for p in found if p is not None] or [expected]
 
     return float(np.median(periods(own)) / np.median(periods(every))), amplitude
+
+
+def _read_files(record) -> list[str]:
+    """The files of the performances generation reads: those the action was learnt from
+    (every one when the record does not say), as :func:`performances_of` picks them."""
+    return [record.performances[i].file
+            for i in record.learnt_from or range(len(record.performances))]
+
+
+def _style_error(record, style: str, performances) -> ValueError | None:
+    """Why ``style`` picks no performance in particular, else None: none of ``performances``
+    (those read) has it (:func:`missing_style`: no such style, or its files cannot be read),
+    or every performance generation reads holds it as a word of its file name (``bye`` of
+    ``dataset-1_bye_normal_001.bvh`` and its siblings).
+
+    Such a word picks every performance: the style's tempo and amplitudes would be all of
+    theirs, the motion the one made without a style, under a style's name. The action's own
+    style (an action built per style, whose file names all hold it) is a style all the same.
+    """
+    if not any(style in style_of(m.source) for m in performances):
+        return missing_style(record, style)
+    names = [style_of(f) for f in _read_files(record)]
+    if style == record.style or not all(style in n for n in names):
+        return None
+    # the styles there are, as missing_style names them: the words that tell the names apart
+    # (take numbers aside), and the action's own style
+    styles = {w for n in names for i, w in enumerate(n)
+              if not w.isdigit() and any(len(o) <= i or o[i] != w for o in names)}
+    styles = sorted(styles | ({record.style} if record.style else set()))
+    held = ("the file name of its one performance holds it" if len(names) == 1 else
+            f"the file names of all {len(names)} of its performances hold it")
+    return ValueError(f"action {record.name!r}: style {style!r} does not tell its performances "
+                      f"apart ({held}; " + (f"styles: {', '.join(styles)})" if styles else
+                                            "it has no styles)"))
 
 
 def has_grammar(record: ActionRecord) -> bool:
@@ -313,6 +348,9 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     is its performances' mean course instead, warped to one time base and played
     ``repeat`` times (:func:`praxicon.acyclic.performed_motion`); its words and methods
     are empty. ``workers`` channels are made at once (threads; the motion is the same).
+
+    Raises ValueError, one line, for a record that was not learnt and for a ``style`` that
+    every performance's file name holds (it would pick them all).
     """
     import kinetology
     from psgs import loads
@@ -331,9 +369,13 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     if not has_grammar(record):  # a one-off gesture: its performances' course, played
         from .acyclic import performed_motion
 
+        performances = performances_of(record)
+        wrong = None if style is None else _style_error(record, style, performances)
+        if wrong:
+            raise wrong
         if source_motion is None:
             source_motion = _source_take(record)
-        motion, _ = performed_motion(record, repeat, source_motion, style)
+        motion, _ = performed_motion(record, repeat, source_motion, style, performances)
         return motion, {}, {}
     try:
         system = loads(record.system, source=record.file)
@@ -350,6 +392,9 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     # the performances are read once, for the style's scales and for the body around them
     performances = performances_of(record)
     if style is not None:
+        wrong = _style_error(record, style, performances)
+        if wrong:
+            raise wrong
         tempo, amplitude = style_scales(record, sorted(usable), period, style, rate,
                                         performances)
         period *= tempo
@@ -446,7 +491,9 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None =
     ------
     ValueError
         When the action is unknown, was not learnt, has nothing to generate (no grammar and no
-        performance that reads), has no performance of ``style``, or an argument is wrong.
+        performance that reads), has no performance of ``style`` or a ``style`` every
+        performance has (a word all their file names share, such as the content's), or an
+        argument is wrong.
 
     Examples
     --------
@@ -468,6 +515,9 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None =
     >>> generate(work / "px", "m.bye", style="sad")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ValueError: action 'm.bye' has no performance of style 'sad' (styles: active, normal)
+    >>> generate(work / "px", "m.bye", style="bye")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ValueError: action 'm.bye': style 'bye' does not tell its performances apart (the file ...)
     >>> generate(work / "px", "m.Nope")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     praxicon.records.PraxiconError: no action 'm.Nope' in the praxicon (actions: m.bye)

@@ -1,17 +1,27 @@
 """``psgs praxicon generate`` on bad input, one line and status 2 each: a record that failed
-with no reason stored (``not learnt: None``)."""
+with no reason stored (``not learnt: None``), and a ``--style`` word every performance's file
+name holds (it picked them all)."""
 
 from __future__ import annotations
 
 from dataclasses import replace
+from pathlib import Path
 
 import pytest
 
 from fuzz_support import praxicon_seed
-from praxicon import dump
-from praxicon.generation import generate_motion
+from praxicon import build, dump, load, read_dataset
+from praxicon.generation import generate, generate_motion
 from praxicon.records import ActionRecord
-from praxicon_fixtures import refused
+from praxicon_fixtures import refused, take
+
+
+@pytest.fixture
+def built(manifest, tmp_path) -> Path:
+    """The manifest fixture's praxicon: moves.wave learnt from wave_1, wave_2 and wave_3."""
+    out = tmp_path / "px"
+    build(read_dataset(manifest), out, progress=False, log=lambda s: None)
+    return out
 
 
 def _with(px, name, **changes):
@@ -33,3 +43,34 @@ def test_a_record_that_failed_without_a_reason_says_so(tmp_path, capsys):
     with pytest.raises(ValueError, match=r"^action 'moves\.bow' was not learnt: 1 usable "
                                          r"performance \(at least 2 needed\)$"):
         generate_motion(seed["moves.bow"], 1)
+
+
+def test_a_style_every_performance_has_is_refused(built, tmp_path, capsys):
+    # wave_1.bvh, wave_2.bvh, wave_3.bvh: "wave" picks them all (a take's number picks it)
+    out = tmp_path / "w.bvh"
+    assert refused(capsys, ["generate", str(built), "moves.wave", "--style", "wave",
+                            "-o", str(out)]) == (
+        "action 'moves.wave': style 'wave' does not tell its performances apart (the file "
+        "names of all 3 of its performances hold it; it has no styles)")
+    assert not out.exists()
+
+
+def test_an_action_built_per_style_keeps_its_own_style(tmp_path):
+    from kinetology import write_bvh
+
+    rows = ["action,file,style"]
+    for seed in (1, 2, 3):
+        write_bvh(take(seed), tmp_path / f"wave_normal_{seed}.bvh")
+        rows.append(f"wave,wave_normal_{seed}.bvh,normal")
+    (tmp_path / "m.csv").write_text("\n".join(rows) + "\n")
+    build(read_dataset(tmp_path / "m.csv"), tmp_path / "px", progress=False, log=lambda s: None)
+    px = load(tmp_path / "px")
+    (name,) = px.names
+    assert px[name].style == "normal"
+    # every take holds "normal", and it is the action's own style: generated as asked
+    own = generate(px, name, repeat=1, style="normal").motion
+    assert own.frames == generate(px, name, repeat=1).motion.frames
+    with pytest.raises(ValueError, match=rf"^action '{name}': style 'wave' does not tell its "
+                                         rf"performances apart \(the file names of all 3 of its "
+                                         rf"performances hold it; styles: normal\)$"):
+        generate(px, name, repeat=1, style="wave")
