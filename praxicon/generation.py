@@ -315,6 +315,41 @@ def _style_error(record, style: str, performances) -> ValueError | None:
                                             "it has no styles)"))
 
 
+def _unreadable(record, performances) -> str | None:
+    """The error line for performances the action was learnt from that cannot be read (a
+    moved file, a relative path read from another folder, a damaged file), else None.
+
+    :func:`performances_of` leaves them out: the body around the actuators, the root's course
+    and a style's scales would then be made from the others, or from the mean pose when none
+    reads, and the motion would differ from the one the praxicon gives, without a word. Only
+    the files not among ``performances`` (those read) are read again, to say why.
+    """
+    import kinetology
+
+    from .body_motion import RELATIVE
+
+    files = _read_files(record)
+    read = {m.source for m in performances}
+    failed: dict[str, str] = {}
+    for file in dict.fromkeys(f for f in files if f not in read):
+        try:
+            kinetology.read(file)
+        except FileNotFoundError:
+            failed[file] = f"{file}: no such file" + (
+                "" if Path(file).is_absolute() else f"; {RELATIVE}")
+        except Exception as exc:  # what kinetology says, on one line (it names the file)
+            why = str(exc).splitlines()[0] if str(exc).strip() else type(exc).__name__
+            failed[file] = why if why.startswith(file) else f"{file}: {why}"
+        # a file that reads was left out for being too short: not a file that cannot be read
+    if not failed:
+        return None
+    lost = sum(f in failed for f in files)
+    which = (f"none of the {len(files)} performances it was learnt from can be read"
+             if lost == len(files) else
+             f"{lost} of the {len(files)} performances it was learnt from cannot be read")
+    return f"action {record.name!r}: {which} ({next(iter(failed.values()))})"
+
+
 def has_grammar(record: ActionRecord) -> bool:
     """Whether the action has a grammar system to derive copies from (actuators and a system).
 
@@ -338,19 +373,20 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
 
     ``source_motion`` gives the skeleton and the channel order (default: the
     record's ``skeleton_source`` file, read). Channels no morpheme drives take the
-    performances' mean cycle (:func:`praxicon.body_motion.animate`; the mean pose when the
-    performance files cannot be read); the root advances and turns steadily at the
-    performances' average speed and turning rate, on the still joint above it when the
-    skeleton has one (Bandai's ``joint_Root``), so that the root's own channels keep
-    their generated values.
+    performances' mean cycle (:func:`praxicon.body_motion.animate`); the root advances and
+    turns steadily at the performances' average speed and turning rate, on the still joint
+    above it when the skeleton has one (Bandai's ``joint_Root``), so that the root's own
+    channels keep their generated values.
 
     An action without a grammar system (:func:`has_grammar`: no synchronised repetition)
     is its performances' mean course instead, warped to one time base and played
     ``repeat`` times (:func:`praxicon.acyclic.performed_motion`); its words and methods
     are empty. ``workers`` channels are made at once (threads; the motion is the same).
 
-    Raises ValueError, one line, for a record that was not learnt and for a ``style`` that
-    every performance's file name holds (it would pick them all).
+    Raises ValueError, one line, for a record that was not learnt, a ``style`` that every
+    performance's file name holds (it would pick them all), and a performance the action was
+    learnt from that cannot be read (naming it and why: the motion made from the others, or
+    from the mean pose when none reads, would not be the one the praxicon gives).
     """
     import kinetology
     from psgs import loads
@@ -375,6 +411,9 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
             raise wrong
         if source_motion is None:
             source_motion = _source_take(record)
+        unreadable = _unreadable(record, performances)
+        if unreadable:
+            raise ValueError(unreadable)
         motion, _ = performed_motion(record, repeat, source_motion, style, performances)
         return motion, {}, {}
     try:
@@ -400,6 +439,10 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
         period *= tempo
     if source_motion is None:
         source_motion = _source_take(record)
+    # said after the skeleton's error and the style's own, which keep coming first
+    unreadable = _unreadable(record, performances)
+    if unreadable:
+        raise ValueError(unreadable)
     # an ASF skeleton is kept (the viewer draws it); the BVH file re-expresses its angles
     skeleton = source_motion.skeleton
     channels = source_motion.channels
@@ -492,8 +535,8 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None =
     ValueError
         When the action is unknown, was not learnt, has nothing to generate (no grammar and no
         performance that reads), has no performance of ``style`` or a ``style`` every
-        performance has (a word all their file names share, such as the content's), or an
-        argument is wrong.
+        performance has (a word all their file names share, such as the content's), a
+        performance it was learnt from cannot be read, or an argument is wrong.
 
     Examples
     --------

@@ -1,6 +1,7 @@
-"""``psgs praxicon generate`` on bad input, one line and status 2 each: a record that failed
-with no reason stored (``not learnt: None``), and a ``--style`` word every performance's file
-name holds (it picked them all)."""
+"""``psgs praxicon generate`` on bad input, one line and status 2 each: a performance it reads
+that cannot be read (it was left out without a word, the motion made from the others or from
+the mean pose), a record that failed with no reason stored (``not learnt: None``), and a
+``--style`` word every performance's file name holds (it picked them all)."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ import pytest
 
 from fuzz_support import praxicon_seed
 from praxicon import build, dump, load, read_dataset
+from praxicon.body_motion import RELATIVE
 from praxicon.generation import generate, generate_motion
 from praxicon.records import ActionRecord
 from praxicon_fixtures import refused, take
@@ -24,10 +26,60 @@ def built(manifest, tmp_path) -> Path:
     return out
 
 
+def _no_such(file: str) -> str:
+    return f"{file}: no such file" + ("" if Path(file).is_absolute() else f"; {RELATIVE}")
+
+
 def _with(px, name, **changes):
     """The praxicon with one action's record changed."""
     return replace(px, actions=tuple(replace(a, **changes) if a.name == name else a
                                      for a in px.actions))
+
+
+def test_a_performance_that_cannot_be_read_is_named_not_left_out(built, tmp_path, capsys):
+    record = load(built)["moves.wave"]
+    files = [record.performances[i].file for i in record.learnt_from]
+    assert len(files) == 3 and record.skeleton_source == files[0]
+    moved = Path(files[1])
+    moved.rename(moved.with_name("moved-" + moved.name))  # not the skeleton's take
+    out = tmp_path / "w.bvh"
+    argv = ["generate", str(built), "moves.wave", "--repeat", "1", "-o", str(out)]
+    assert refused(capsys, argv) == (f"action 'moves.wave': 1 of the 3 performances it was "
+                                     f"learnt from cannot be read ({_no_such(files[1])})")
+    # with a style too: the style's scales are read against every performance
+    assert refused(capsys, argv + ["--style", "1"]).startswith("action 'moves.wave': 1 of the 3")
+    assert not out.exists()
+    # a damaged one: kinetology's reason, which names the file (once)
+    Path(files[2]).write_text("not a motion\n")
+    line = refused(capsys, argv)
+    assert line.startswith(f"action 'moves.wave': 2 of the 3 performances it was learnt from "
+                           f"cannot be read ({files[1]}: no such file")
+    moved.with_name("moved-" + moved.name).rename(moved)
+    line = refused(capsys, argv)
+    assert line.startswith(f"action 'moves.wave': 1 of the 3 performances it was learnt from "
+                           f"cannot be read ({files[2]}:") and line.count(files[2]) == 1
+    assert "not a motion" in line or "HIERARCHY" in line, line
+
+
+def test_none_of_the_performances_read_is_an_error_not_the_mean_pose(built, tmp_path):
+    # the skeleton's take reads, the performances learnt from do not: every channel no
+    # morpheme drives was the mean pose and the root stood still, without a word
+    px = load(built)
+    gone = tuple(replace(p, file=str(tmp_path / "gone" / Path(p.file).name))
+                 for p in px["moves.wave"].performances)
+    moved = _with(px, "moves.wave", performances=gone)
+    with pytest.raises(ValueError, match=r"^action 'moves\.wave': none of the 3 performances it "
+                                         r"was learnt from can be read \(.*/gone/wave_1\.bvh: "
+                                         r"no such file\)$"):
+        generate(moved, "moves.wave", repeat=1)
+    # an action without a grammar (its performances' course) says the same
+    course = _with(px, "moves.wave", performances=gone[:1] + px["moves.wave"].performances[1:],
+                   actuators=())
+    with pytest.raises(ValueError, match=r"^action 'moves\.wave': 1 of the 3 performances it "
+                                         r"was learnt from cannot be read \(.*/gone/wave_1"):
+        generate(course, "moves.wave")
+    # on good input generation is as it was: the performances are read once each
+    assert generate(px, "moves.wave", repeat=1).motion.frames > 0
 
 
 def test_a_record_that_failed_without_a_reason_says_so(tmp_path, capsys):
