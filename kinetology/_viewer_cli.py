@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from psgs._foundation.shell import positive_float
+from psgs._foundation.shell import file_name, positive_float
 
 from .viewer import _count, check_output, view
 
@@ -56,9 +56,9 @@ def register(subparsers) -> None:
                     "Exit status 0: written; 2: a file that is not motion, a motion without "
                     "frames or skeleton, an output suffix other than .html/.gif/.mp4, or a "
                     "missing writer (matplotlib for .gif, ffmpeg for .mp4), in one line.")
-    p.add_argument("files", nargs="+", metavar="FILE",
+    p.add_argument("files", nargs="+", metavar="FILE", type=file_name,
                    help="motion files: .bvh, or .amc (its .asf skeleton found beside it)")
-    p.add_argument("-o", "--output", required=True, metavar="OUT",
+    p.add_argument("-o", "--output", required=True, metavar="OUT", type=file_name,
                    help="out.html (player page), out.gif (needs matplotlib) or out.mp4 "
                         "(needs matplotlib and ffmpeg)")
     p.add_argument("--actuators", nargs="+", metavar="JOINT",

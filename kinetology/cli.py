@@ -18,7 +18,8 @@ from pathlib import Path
 import numpy as np
 
 from psgs._foundation.files import read_bytes
-from psgs._foundation.shell import positive_float, run, version, with_exit_status_help
+from psgs._foundation.shell import (file_name, positive_float, run, version,
+                                    with_exit_status_help)
 from psgs.errors import ValidationError
 
 from ._frame_rate_option import frame_rate_options
@@ -411,49 +412,55 @@ def _add_commands(sub) -> None:
     """Add segment, compress, decompress, evaluate and plot under ``sub``."""
     p = sub.add_parser("segment", help="segment motion files into actiongrams (text form), "
                                        "one per file (one performance each)")
-    p.add_argument("files", nargs="+", metavar="FILE", help=_FILE_HELP + "; several files are "
-                   "performances of one action")
+    p.add_argument("files", nargs="+", metavar="FILE", type=file_name,
+                   help=_FILE_HELP + "; several files are performances of one action")
     p.add_argument("--frame-rate", type=positive_float, metavar="FPS", help=_FRAME_RATE_HELP)
     p.add_argument("--channels", nargs="+", help="channels to keep (names or comma lists)")
     p.add_argument("--start", type=float, default=None,
                    help="seconds: segment only from here (a performance within a take)")
     p.add_argument("--stop", type=float, default=None, help="seconds: segment only up to here")
-    p.add_argument("--labels", help="label file of the take (CMU mocap6 truelabels .txt or "
-                                    "Bandai Namco .json): one actiongram per labelled span")
+    p.add_argument("--labels", type=file_name,
+                   help="label file of the take (CMU mocap6 truelabels .txt or Bandai Namco "
+                        ".json): one actiongram per labelled span")
     p.add_argument("--label", help="with --labels: only spans with this label")
     p.add_argument("--min-seconds", type=float, default=None,
                    help="with --labels: leave out spans shorter than this (default 0)")
-    p.add_argument("-o", "--output", help="output file (default: stdout); with several files "
-                                          "a folder, DIR/, holding NAME.actiongram per file")
+    p.add_argument("-o", "--output", type=file_name,
+                   help="output file (default: stdout); with several files a folder, DIR/, "
+                        "holding NAME.actiongram per file")
     _add_params(p)
     p.set_defaults(run=_cmd_segment)
 
     p = sub.add_parser("compress", help="compress a motion file by segments")
-    p.add_argument("file", help=_FILE_HELP)
+    p.add_argument("file", type=file_name, help=_FILE_HELP)
     p.add_argument("--frame-rate", type=positive_float, metavar="FPS", help=_FRAME_RATE_HELP)
-    p.add_argument("-o", "--output", help="output file (default: FILE with suffix .kin)")
+    p.add_argument("-o", "--output", type=file_name,
+                   help="output file (default: FILE with suffix .kin)")
     _add_params(p, codec=True)
     p.set_defaults(run=_cmd_compress)
 
     p = sub.add_parser("decompress", help="reconstruct a compressed motion as CSV")
-    p.add_argument("file", help="a .kin file written by kinetology compress")
-    p.add_argument("-o", "--output", help="CSV output (default: stdout)")
-    p.add_argument("--against", help="original motion file: print the mean absolute error")
+    p.add_argument("file", type=file_name, help="a .kin file written by kinetology compress")
+    p.add_argument("-o", "--output", type=file_name, help="CSV output (default: stdout)")
+    p.add_argument("--against", type=file_name,
+                   help="original motion file: print the mean absolute error")
     p.add_argument("--frame-rate", type=positive_float, metavar="FPS",
                    help="--against: " + _FRAME_RATE_HELP)
     p.set_defaults(run=_cmd_decompress)
 
     p = sub.add_parser("evaluate", help="measure the five kinetological principles")
-    p.add_argument("files", nargs="*", metavar="FILE", help=_FILE_HELP + " (any number)")
+    p.add_argument("files", nargs="*", metavar="FILE", type=file_name,
+                   help=_FILE_HELP + " (any number)")
     p.add_argument("--frame-rate", type=positive_float, metavar="FPS", help=_FRAME_RATE_HELP)
-    p.add_argument("--mocap6", help="cmu-mocap6 folder: reproducibility and selectivity")
+    p.add_argument("--mocap6", type=file_name,
+                   help="cmu-mocap6 folder: reproducibility and selectivity")
     p.add_argument("--views", type=int, default=36, help="viewpoints on the circle")
     _add_params(p, notes=_EVALUATE_NOTES)
     p.set_defaults(run=_cmd_evaluate)
 
     p = sub.add_parser("plot", help="draw a joint angle by state, its reconstruction, or "
                                     "the view-invariance picture")
-    p.add_argument("file", help=_FILE_HELP)
+    p.add_argument("file", type=file_name, help=_FILE_HELP)
     p.add_argument("--frame-rate", type=positive_float, metavar="FPS", help=_FRAME_RATE_HELP)
     p.add_argument("--channel", required=True,
                    help="channel (states, reconstruction) or angle name such as lknee (view)")
@@ -462,7 +469,8 @@ def _add_commands(sub) -> None:
                         "angle and its decoded copy; view: 2D against 3D states around a circle")
     p.add_argument("--start", type=float, default=0.0, help="seconds")
     p.add_argument("--stop", type=float, default=None, help="seconds")
-    p.add_argument("-o", "--output", required=True, help="image file (.png, .svg, .pdf)")
+    p.add_argument("-o", "--output", required=True, type=file_name,
+                   help="image file (.png, .svg, .pdf)")
     _add_params(p, notes=_PLOT_NOTES)
     p.set_defaults(run=_cmd_plot)
     from ._viewer_cli import register as register_view  # kinetology view: the skeleton player

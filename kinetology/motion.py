@@ -404,7 +404,8 @@ def is_whole(value) -> bool:
 
 def as_path(path, name: str = "path") -> Path:
     """``path`` as a :class:`~pathlib.Path`; a :class:`ValidationError` naming ``name`` when it
-    is no path (None, a number), not the ``TypeError`` of ``Path(None)``.
+    is no path (None, a number), not the ``TypeError`` of ``Path(None)``, or is ``""``, which
+    ``Path`` reads as ``"."`` (then "unknown motion format", the folder taken for a take).
 
     Examples
     --------
@@ -414,10 +415,16 @@ def as_path(path, name: str = "path") -> Path:
     Traceback (most recent call last):
     ...
     psgs.errors.ValidationError: path must be a file's path (str or os.PathLike), not NoneType
+    >>> as_path("")
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: path must be a file's path, not the empty name ''
     """
     if not isinstance(path, (str, os.PathLike)):
         raise ValidationError(f"{name} must be a file's path (str or os.PathLike), not "
                               f"{type(path).__name__}")
+    if path == "":  # Path("") is ".", the current folder: read as a take of no suffix
+        raise ValidationError(f"{name} must be a file's path, not the empty name ''")
     return Path(path)
 
 

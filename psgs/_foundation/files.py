@@ -34,7 +34,8 @@ def read_bytes(path) -> bytes:
         nothing of how much it would give), or a pipe gives more than :data:`PIPE_LIMIT`.
     OSError
         As :func:`open` does for a missing file or a folder (``IsADirectoryError``), so the
-        callers' handling of those stays as it is.
+        callers' handling of those stays as it is; for an empty name a ``FileNotFoundError``
+        that says so (``open`` says only "No such file or directory", naming nothing).
 
     Examples
     --------
@@ -43,12 +44,18 @@ def read_bytes(path) -> bytes:
     >>> _ = path.write_bytes(b"abc")
     >>> read_bytes(path)
     b'abc'
+    >>> read_bytes("")
+    Traceback (most recent call last):
+    ...
+    FileNotFoundError: [Errno 2] the file name is empty: ''
     >>> read_bytes("/dev/zero")
     Traceback (most recent call last):
     ...
     psgs.errors.FormatError: /dev/zero: not a regular file but a device or a socket: its size cannot be known, so it is not read
     """
     name = os.fspath(path)
+    if name in ("", b""):  # (Path("") is ".": a folder, refused as one below)
+        raise FileNotFoundError(errno.ENOENT, "the file name is empty", name)
     # non-blocking, so that opening a FIFO with no writer does not wait for one; binary, so
     # that Windows neither turns CRLF into LF nor stops at a Ctrl-Z
     handle = os.open(name, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0)

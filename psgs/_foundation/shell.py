@@ -18,7 +18,7 @@ from ..errors import PSGSError, ValidationError
 
 __all__ = ["OK", "NO", "ERROR", "INCOMPLETE", "INTERRUPTED", "BROKEN_PIPE", "EXIT_STATUS_HELP",
            "version", "TableHelpFormatter", "with_exit_status_help", "natural", "positive_int",
-           "positive_float", "share", "parse_value", "key_values", "run"]
+           "positive_float", "share", "file_name", "parse_value", "key_values", "run"]
 
 #: Exit statuses of every psgs and kinetology subcommand.
 OK, NO, ERROR, INCOMPLETE = 0, 1, 2, 3
@@ -275,6 +275,52 @@ def share(text: str) -> float:
     return value
 
 
+def file_name(text: str) -> str:
+    """A file's name (to read or to write), as given; the type of every such argument.
+
+    An empty name is refused by :func:`run`, in one line naming the argument, before the
+    command runs: ``Path("")`` is the current folder, so ``''`` read as ``.`` (``.: Is a
+    directory``), and ``''`` where no option means "not given" was taken for none at all.
+    (Refused here, argparse would print its usage before the line.)
+
+    Parameters
+    ----------
+    text : str
+        The argument's text.
+
+    Returns
+    -------
+    str
+        ``text`` unchanged.
+
+    Examples
+    --------
+    >>> file_name("walk.bvh")
+    'walk.bvh'
+    """
+    return text
+
+
+file_name.names_a_file = True  # what run() looks for; other types may carry it too
+
+
+def _empty_file_name(parser: argparse.ArgumentParser, args) -> str | None:
+    """The refusal of the first file argument given as ``''`` (types with ``names_a_file``),
+    among the arguments of ``parser`` and of the subcommands chosen in ``args``."""
+    actions = list(parser._actions)
+    while actions:
+        action = actions.pop(0)
+        if isinstance(action, argparse._SubParsersAction):
+            chosen = action.choices.get(getattr(args, action.dest, None) or "")
+            actions.extend(chosen._actions if chosen is not None else ())
+        elif getattr(action.type, "names_a_file", False):
+            value = getattr(args, action.dest, None)
+            if value == "" or (isinstance(value, list) and "" in value):
+                name = "/".join(action.option_strings) or action.metavar or action.dest
+                return f"argument {name}: the file name is empty ('')"
+    return None
+
+
 def parse_value(text: str) -> bool | int | float | str:
     """The value of a ``KEY=VALUE`` option: a bool, an int, a float, or the text itself.
 
@@ -348,7 +394,8 @@ def run(parser: argparse.ArgumentParser, argv: list[str] | None = None) -> int:
     Errors of the project's tree (:class:`~psgs.errors.PSGSError`) and file errors become
     one line on stderr, ``PROG: error: message``, and status 2; a search out of memory is
     status 3; Ctrl-C 130; a closed pipe 141 (quietly). Anything else is a bug and keeps its
-    traceback.
+    traceback. A file argument (:func:`file_name`) given as ``''`` is such a line too, before
+    the subcommand runs.
 
     Parameters
     ----------
@@ -380,6 +427,8 @@ def run(parser: argparse.ArgumentParser, argv: list[str] | None = None) -> int:
     prog = parser.prog
     args = parser.parse_args(argv)  # a usage error exits 2, as every input error does
     try:
+        if problem := _empty_file_name(parser, args):
+            raise ValidationError(problem)
         status = args.run(args)
     except PSGSError as exc:
         print(f"{prog}: error: {exc}", file=sys.stderr)

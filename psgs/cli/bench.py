@@ -14,7 +14,7 @@ import time
 from pathlib import Path
 
 from ..errors import PSGSError, ValidationError
-from .._foundation.shell import natural, positive_int, share
+from .._foundation.shell import file_name, natural, positive_int, share
 
 
 def register(subparsers) -> None:
@@ -48,7 +48,8 @@ def register(subparsers) -> None:
                        help="1 to 4 random symbols between copies instead of 2")
     synth.add_argument("--unequal-lengths", action="store_true",
                        help="strings of different lengths")
-    synth.add_argument("-o", "--output", metavar="FILE", help="write here instead of stdout")
+    synth.add_argument("-o", "--output", metavar="FILE", type=file_name,
+                       help="write here instead of stdout")
     synth.set_defaults(run=run_synth)
 
     bench = subparsers.add_parser("bench", help="benchmarks (noise)")
@@ -73,8 +74,9 @@ def register(subparsers) -> None:
     noise.add_argument("--seed", type=natural, default=0, help="first seed (default 0)")
     noise.add_argument("--jobs", type=positive_int, default=2,
                        help="worker processes (default 2)")
-    noise.add_argument("--csv", metavar="OUT.csv", help="write the results here")
-    noise.add_argument("--plot", metavar="OUT.png", help="plot the curves (needs matplotlib)")
+    noise.add_argument("--csv", metavar="OUT.csv", type=file_name, help="write the results here")
+    noise.add_argument("--plot", metavar="OUT.png", type=file_name,
+                       help="plot the curves (needs matplotlib)")
     noise.set_defaults(run=run_bench_noise)
 
 

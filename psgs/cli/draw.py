@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from .._foundation.shell import natural, positive_int
+from .._foundation.shell import file_name, natural, positive_int
 
 
 def run_draw(args) -> int:
@@ -40,7 +40,7 @@ def register(subparsers) -> None:
     from ._types import grammar_file  # a shipped example by name, as show and derive take it
     draw.add_argument("file", metavar="FILE", type=grammar_file,
                       help="a .psgs file, or the name of an example (paper_example, ...)")
-    draw.add_argument("-o", "--output", required=True, metavar="OUT",
+    draw.add_argument("-o", "--output", required=True, metavar="OUT", type=file_name,
                       help="the picture, .svg or .png")
     draw.add_argument("--seed", type=natural, default=0, help="seed of the derivation drawn")
     draw.add_argument("--max-steps", type=positive_int, default=200, metavar="K",

@@ -13,7 +13,7 @@ import sys
 import time
 from pathlib import Path
 
-from .._foundation.shell import key_values
+from .._foundation.shell import file_name, key_values
 from ..actiongram import GAPS
 from ..errors import ValidationError
 
@@ -68,10 +68,10 @@ def register(subparsers) -> None:
                     "(text form 'name: sym sym@D ...', or .json). Without FILE (or with "
                     "--example) it learns from a built-in synthetic actiongram and explains "
                     "what it found.")
-    induce.add_argument("file", metavar="FILE", nargs="*",
+    induce.add_argument("file", metavar="FILE", nargs="*", type=file_name,
                         help="an actiongram file; several files are performances of one action "
                              "(learnt from together, never joined)")
-    induce.add_argument("--events", metavar="FILE.csv", action="append",
+    induce.add_argument("--events", metavar="FILE.csv", action="append", type=file_name,
                         help="learn from an events table instead: a CSV file with a header row "
                              "stream,onset,duration,symbol (one row an event, in any order)")
     induce.add_argument("--gaps", choices=GAPS,
@@ -102,8 +102,10 @@ def register(subparsers) -> None:
         description="Learn an action from the performances given with --learn (actiongram "
                     "files), then print the time spans of each FILE where it occurs, with a "
                     "score (chance-corrected agreement with the learned patterns).")
-    locate.add_argument("file", metavar="FILE", nargs="+", help="actiongram files to search")
+    locate.add_argument("file", metavar="FILE", nargs="+", type=file_name,
+                        help="actiongram files to search")
     locate.add_argument("--learn", metavar="PERF", action="append", required=True,
+                        type=file_name,
                         help="an actiongram file of one performance to learn from (repeatable)")
     locate.add_argument("--threshold", type=float, default=0.4,
                         help="least score of a place (default 0.4)")
