@@ -13,6 +13,7 @@ from numbers import Real
 
 import numpy as np
 
+from .kinematics import positions_problem  # noqa: F401 (the viewer's: one bound with the angles')
 from .motion import is_whole, shown
 
 #: The longest a GIF shows a frame, seconds: its delay is a 16-bit count of hundredths.
@@ -67,21 +68,6 @@ def view_problem(max_rate, max_frames, kinetemes, follow) -> str | None:
     for name, value in (("kinetemes", kinetemes), ("follow", follow)):
         if not isinstance(value, (bool, np.bool_)):  # "no" was true
             return f"{name} must be True or False, not {shown(value)}"
-    return None
-
-
-#: The farthest a joint may lie from the origin to be drawn, in file units: the page and the
-#: GIF measure bones and the body's size by their squares, which overflow past 1e154 (a file
-#: of 1e307s gave a page of NaN and Infinity that no browser reads, and a GIF a traceback).
-MAX_POSITION = 1e150
-
-
-def positions_problem(positions: np.ndarray) -> str | None:
-    """What keeps joint positions (frames x joints x 3) from being drawn (None: nothing)."""
-    peak = float(np.max(np.abs(positions), initial=0.0))
-    if not peak <= MAX_POSITION:  # NaN too
-        return (f"joint positions reach {peak:.3g} units, too far to draw (at most "
-                f"{MAX_POSITION:g}: lengths are measured by their squares)")
     return None
 
 

@@ -308,6 +308,7 @@ def _cmd_decompress(args) -> int:
 def _cmd_evaluate(args) -> int:
     from .evaluation import (MAX_VIEWS, angle_table, codec_point, mocap6_performances,
                              reproducibility, selectivity, view_invariance)
+    from .kinematics import measurable_positions
     from .codec import CODEC_DEFAULTS
     from .segmentation import _check as check_parameters
     from .segmentation import segments
@@ -323,6 +324,9 @@ def _cmd_evaluate(args) -> int:
     # every file read (and cmu-mocap6 with it) before the first line of the report: a bad
     # file is then one line of error, not the tail of a report
     motions = [_read(args, name) for name in args.files]
+    for motion in motions:  # a skeleton too large to measure angles on (1e307s), likewise
+        if angle_table(motion.skeleton):
+            measurable_positions(motion)
     mocap6 = mocap6_performances(args.mocap6) if args.mocap6 else None
     for name, motion in zip(args.files, motions):
         seg = segments(motion, **params)

@@ -34,7 +34,7 @@ from psgs._foundation.text import split_lines
 from psgs.errors import ValidationError
 
 from .codec import absolute_errors, compress, decompress, mean_errors
-from .kinematics import forward_kinematics, joint_angle
+from .kinematics import joint_angle, measurable_positions
 from .motion import Motion, MotionFormatError, check_number, file_text
 from .segmentation import DEFAULTS, STATES, smooth, states, unwrap
 
@@ -246,7 +246,7 @@ def view_invariance(motion: Motion, triple: tuple[str, str, str], *, views: int 
     ------
     ValueError
         When ``views`` is not a positive whole number, ``triple`` not three joints, ``up_axis``
-        no axis (0, 1, 2, or -1 for 2) or the motion has no skeleton.
+        no axis (0, 1, 2, or -1 for 2), the motion no skeleton or a joint past 1e150 units.
     KeyError
         When a joint of ``triple`` is not in the skeleton.
 
@@ -281,7 +281,7 @@ def view_invariance(motion: Motion, triple: tuple[str, str, str], *, views: int 
             or up_axis not in (0, 1, 2, -1):  # -2, -3: up horizontal; True an index of no axis
         raise ValidationError(f"up_axis must be 0, 1 or 2, not {up_axis!r}")
     up_axis = up_axis % 3
-    positions = forward_kinematics(motion)
+    positions = measurable_positions(motion)  # a take of 1e307s: one line naming it
     index = [motion.skeleton.index(name) for name in triple]
     angle3 = joint_angle(positions, *index)
     p = {k: v for k, v in {**DEFAULTS, **params}.items() if k != "min_range"}

@@ -20,8 +20,14 @@ from psgs.errors import ValidationError
 from .motion import Motion, MotionFormatError, check_motion, real_array
 
 __all__ = ["axis_rotation", "rotation_matrices", "euler_angles", "local_rotation",
-           "forward_kinematics",
+           "forward_kinematics", "MAX_POSITION", "positions_problem", "measurable_positions",
            "joint_angle"]
+
+#: The farthest a joint may lie from the origin to be drawn or to have its angles measured, in
+#: file units: a page, a GIF and :func:`joint_angle` measure bones by their squares, which
+#: overflow past 1e154 (a file of 1e307s gave a page of NaN and Infinity that no browser reads,
+#: a GIF a traceback, and ``view_invariance`` a "values must be finite" naming no take).
+MAX_POSITION = 1e150
 
 
 def axis_rotation(axis: str, radians) -> np.ndarray:
@@ -225,6 +231,52 @@ def forward_kinematics(motion: Motion) -> np.ndarray:
             raise MotionFormatError(f"forward kinematics overflows at joint {joint.name!r}, "
                                     f"frame {frame}: its offsets or translations are too large",
                                     source=motion.source)
+    return positions
+
+
+def positions_problem(positions: np.ndarray, doing: str = "draw") -> str | None:
+    """What keeps joint positions (frames x joints x 3) from being used for ``doing`` (None:
+    nothing): a joint past :data:`MAX_POSITION`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> positions_problem(np.zeros((2, 3, 3))) is None
+    True
+    >>> positions_problem(np.full((2, 3, 3), 1e307), "measure joint angles")
+    'joint positions reach 1e+307 units, too far to measure joint angles (at most 1e+150: lengths are measured by their squares)'
+    """
+    peak = float(np.max(np.abs(positions), initial=0.0))
+    if not peak <= MAX_POSITION:  # NaN too
+        return (f"joint positions reach {peak:.3g} units, too far to {doing} (at most "
+                f"{MAX_POSITION:g}: lengths are measured by their squares)")
+    return None
+
+
+def measurable_positions(motion: Motion) -> np.ndarray:
+    """:func:`forward_kinematics`, refused in one line naming the motion (its file) when a
+    joint lies past :data:`MAX_POSITION`: the angles :func:`joint_angle` measures there
+    overflow (``inf / inf``), or lose the bones to the translation (``1e307 + 10``).
+
+    Raises
+    ------
+    MotionFormatError
+        A joint past :data:`MAX_POSITION`, naming ``motion.source``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from kinetology import Joint, Motion, Skeleton
+    >>> far = Skeleton((Joint("hip", None, (0, 0, 0), ("hip.rx",)),
+    ...                 Joint("foot", 0, (0, -1e200, 0), end_site=True)))
+    >>> measurable_positions(Motion(np.zeros((2, 1)), ("hip.rx",), 30.0, far, "far.bvh"))
+    Traceback (most recent call last):
+    ...
+    kinetology.motion.MotionFormatError: far.bvh: joint positions reach 1e+200 units, too far to measure joint angles (at most 1e+150: lengths are measured by their squares)
+    """
+    positions = forward_kinematics(motion)
+    if problem := positions_problem(positions, "measure joint angles"):
+        raise MotionFormatError(problem, source=motion.source)
     return positions
 
 

@@ -51,3 +51,65 @@ def test_an_empty_file_name_is_one_line_naming_the_argument(argv, argument, tmp_
 def test_the_readers_refuse_an_empty_name():
     with pytest.raises(ValueError, match="path must be a file's path, not the empty name ''"):
         kinetology.read("")  # was ".: unknown motion format '(no suffix)'": the folder
+
+
+# -- view-invariance of a take too large to measure ------------------------------------------
+
+def _leg(bone: float, source: str = "leg.bvh") -> Motion:
+    skeleton = Skeleton((Joint("hip", None, (0, 0, 0), ("hip.rx",)),
+                         Joint("knee", 0, (0, -bone, 0), ("knee.rx",)),
+                         Joint("foot", 1, (0, -bone, 0), end_site=True)))
+    knee = 45 + 40 * np.sin(np.arange(60) / 10)
+    return Motion(np.column_stack([0 * knee, knee]), ("hip.rx", "knee.rx"), 30.0, skeleton,
+                  source)
+
+
+def test_view_invariance_of_a_take_past_the_floats_names_it():
+    from kinetology.evaluation import view_invariance
+
+    # was "values must be finite numbers", naming nothing (the bones' squares overflowed)
+    with pytest.raises(kinetology.MotionFormatError,
+                       match=r"^leg\.bvh: joint positions reach 2e\+307 units, too far to "
+                             r"measure joint angles \(at most 1e\+150"):
+        view_invariance(_leg(1e307), ("hip", "knee", "foot"), views=4)
+    # bones of 1e200 overflowed only their squares' product: the angle read 90 degrees, in
+    # silence; such a take is refused the same way
+    with pytest.raises(kinetology.MotionFormatError, match="reach 2e"):
+        view_invariance(_leg(1e200), ("hip", "knee", "foot"), views=4)
+    assert view_invariance(_leg(1e6), ("hip", "knee", "foot"), views=4).agreement > 0.5
+
+
+def _bandai_take(path, bone: float):
+    """A take with the Bandai Namco joint names (so evaluate measures its view-invariance)
+    whose leg bones are ``bone`` units long."""
+    joints = [("Hips", None, (0, 0, 0)), ("Chest", "Hips", (0, 10, 0))]
+    for side, x in (("L", 2), ("R", -2)):
+        joints += [(f"UpperLeg_{side}", "Hips", (x, -2, 0)),
+                   (f"LowerLeg_{side}", f"UpperLeg_{side}", (0, -bone, 0)),
+                   (f"Foot_{side}", f"LowerLeg_{side}", (0, -bone, 0)),
+                   (f"Toes_{side}", f"Foot_{side}", (0, 0, 3)),
+                   (f"UpperArm_{side}", "Chest", (x, 5, 0)),
+                   (f"LowerArm_{side}", f"UpperArm_{side}", (x, -8, 0)),
+                   (f"Hand_{side}", f"LowerArm_{side}", (x, -8, 0))]
+    index = {name: i for i, (name, _, _) in enumerate(joints)}
+    t = np.arange(60) / 30
+    built, channels, columns = [], [], []
+    for name, parent, offset in joints:
+        own = (f"{name}.rz", f"{name}.ry", f"{name}.rx")
+        built.append(Joint(name, None if parent is None else index[parent], offset, own))
+        channels += own
+        columns += [0 * t, 0 * t, 40 * np.sin(2 * np.pi * t + len(columns))]
+    kinetology.write_bvh(Motion(np.column_stack(columns), tuple(channels), 30.0,
+                                Skeleton(tuple(built))), path)
+    return path
+
+
+def test_evaluate_names_a_take_too_large_to_measure_before_its_report(tmp_path, capsys):
+    take = _bandai_take(tmp_path / "far.bvh", 1e200)
+    assert main(["evaluate", str(take), "--views", "4"]) == 2
+    line = _one_line(capsys)  # was "values must be finite numbers" after half the report
+    assert line.startswith(f"kinetology: error: {take}: joint positions reach ")
+    assert line.endswith("e+200 units, too far to measure joint angles (at most 1e+150: "
+                         "lengths are measured by their squares)")
+    assert main(["evaluate", str(_bandai_take(tmp_path / "near.bvh", 10)), "--views", "4"]) == 0
+    assert "view-invariance (2D state = 3D state, 4 views): lknee" in capsys.readouterr().out
