@@ -23,7 +23,7 @@ from psgs._foundation.shell import (file_name, positive_float, run, version,
 from psgs.errors import ValidationError
 
 from ._frame_rate_option import frame_rate_options
-from .motion import MotionFormatError
+from .motion import MIN_UNWRAP, MotionFormatError
 from .segmentation import DEFAULTS
 
 _FILE_HELP = "a motion file: .bvh, or .amc (its .asf skeleton is found beside it)"
@@ -37,7 +37,9 @@ _PARAM_HELP = {
     "min_range": "channels moving less than this many degrees are left out",
     "relative_deadband": "dead bands at least this share of a channel's own 95th-percentile "
                          "speed and acceleration",
-    "unwrap": "period in degrees of rotation channels, unwrapped before smoothing (0: off)",
+    "unwrap": f"period in degrees of rotation channels, unwrapped before smoothing (0: off; "
+              f"else at least {MIN_UNWRAP:g}: a step between two frames of more than half the "
+              f"period is taken for a wrap)",
 }
 
 

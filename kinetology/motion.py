@@ -23,8 +23,8 @@ from psgs._foundation.files import decode_utf8, read_bytes
 from psgs.errors import FormatError, NotFound, ValidationError
 
 __all__ = ["MotionFormatError", "Joint", "Skeleton", "Motion", "AXES", "build_motion",
-           "file_text", "FRAME_RATE_RANGE", "check_number", "real_array", "as_path", "shown",
-           "channel_names", "check_motion"]
+           "file_text", "FRAME_RATE_RANGE", "check_number", "MIN_UNWRAP", "check_unwrap",
+           "real_array", "as_path", "shown", "channel_names", "check_motion"]
 
 #: Channel axes, in the order a joint's channels are listed.
 AXES = ("tx", "ty", "tz", "rx", "ry", "rz")
@@ -318,6 +318,35 @@ def check_number(value, name: str, *, positive: bool = False) -> float:
     if not np.isfinite(number) or number < 0 or (positive and number == 0):
         raise ValidationError(f"{name} must be a {'positive' if positive else 'non-negative'} "
                               f"number, not {value!r}")
+    return number
+
+
+#: The shortest unwrap period segmentation takes, degrees (0 turns unwrapping off). An angle's
+#: period is 360 degrees (180 for an axis without a direction; 2 pi for radians, given to the
+#: API); a step between two frames of more than half the period is taken for a wrap and
+#: folded back, so a period of 1e-300 folded every movement away and each channel read as
+#: still ("no channel left to segment"), and one below a degree folds ordinary movement.
+MIN_UNWRAP = 1.0
+
+
+def check_unwrap(value, name: str = "unwrap") -> float:
+    """``value`` as an unwrap period: :func:`check_number`'s checks, then 0 (off) or at
+    least :data:`MIN_UNWRAP` degrees.
+
+    Examples
+    --------
+    >>> check_unwrap(360), check_unwrap(0)
+    (360.0, 0.0)
+    >>> check_unwrap(1e-300)
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: unwrap must be 0 (off) or a period of at least 1 degree, not 1e-300: a step of more than half the period between two frames is taken for a wrap and folded back
+    """
+    number = check_number(value, name)
+    if 0 < number < MIN_UNWRAP:
+        raise ValidationError(f"{name} must be 0 (off) or a period of at least {MIN_UNWRAP:g} "
+                              f"degree, not {value!r}: a step of more than half the period "
+                              f"between two frames is taken for a wrap and folded back")
     return number
 
 

@@ -52,7 +52,7 @@ from ._engines import select
 from ._kinetemes import round_half_even, smooth_channels
 from .joints import actuator_map, skeleton_parents
 from .motion import (Motion, channel_names, check_motion, check_number, check_rate,
-                     real_array)
+                     check_unwrap, real_array)
 
 __all__ = ["STATES", "DEFAULTS", "smooth", "unwrap", "derivatives", "significant_sign",
            "channel_deadbands", "states", "Segmentation", "segments", "segment"]
@@ -276,7 +276,7 @@ def states(values: np.ndarray, frame_rate: float, *, smoothing: float = DEFAULTS
         A channel's dead bands are at least this share of its own 95th-percentile speed and
         acceleration.
     unwrap : float, default DEFAULTS["unwrap"]
-        Period of the angles, degrees, undone before smoothing; 0: no unwrapping.
+        Period of the angles, degrees, undone before smoothing; 0: none, else >= MIN_UNWRAP.
     engine : {"auto", "numpy", "numba"}, default "auto"
         The implementation, as for :func:`segments` (the same codes with each).
 
@@ -435,8 +435,8 @@ def _check(params: dict) -> dict:
         raise TypeError(f"unknown segmentation parameter(s): {', '.join(sorted(unknown))} "
                         f"(known: {', '.join(DEFAULTS)})")
     merged = {**DEFAULTS, **params}
-    for name, value in merged.items():
-        check_number(value, name)
+    for name, value in merged.items():  # unwrap: a period, 0 or at least MIN_UNWRAP degrees
+        (check_unwrap if name == "unwrap" else check_number)(value, name)
     return merged
 
 
@@ -447,7 +447,7 @@ def segments(motion: Motion, channels=None, *, engine: str = "auto", **params) -
     larger merges quick wiggles), ``velocity_deadband`` (deg/s) and ``acceleration_deadband``
     (deg/s²) (larger: fewer, longer segments), ``min_range`` (deg; channels whose smoothed range
     is smaller are still and left out; 0 keeps every channel), ``unwrap`` (period in degrees of
-    the rotation channels, unwrapped before smoothing; 0 turns it off).
+    the rotation channels, unwrapped before smoothing; 0 turns it off, else at least 1).
 
     Parameters
     ----------

@@ -113,3 +113,26 @@ def test_evaluate_names_a_take_too_large_to_measure_before_its_report(tmp_path, 
                          "lengths are measured by their squares)")
     assert main(["evaluate", str(_bandai_take(tmp_path / "near.bvh", 10)), "--views", "4"]) == 0
     assert "view-invariance (2D state = 3D state, 4 views): lknee" in capsys.readouterr().out
+
+
+# -- an unwrap period of no angle ------------------------------------------------------------
+
+def test_an_unwrap_period_below_a_degree_is_refused(tmp_path, capsys):
+    from kinetology.segmentation import states
+
+    motion = kinetology.synthetic_motion(joints=2, patterned=(0,), repetitions=2)
+    for period in (1e-300, 0.5):  # 1e-300 folded every movement: "no channel left to segment"
+        with pytest.raises(ValueError, match="unwrap must be 0 .off. or a period of at least 1 "
+                                             "degree"):
+            kinetology.segments(motion, unwrap=period)
+        with pytest.raises(ValueError, match="at least 1 degree"):
+            states(motion.values, motion.frame_rate, unwrap=period)
+    for period in (0, 1, 2 * np.pi, 180, 360):  # off, and the periods of angles
+        assert kinetology.segments(motion, unwrap=period).channels
+    take = _write_bvh(tmp_path / "take.bvh")
+    assert main(["segment", str(take), "--unwrap", "1e-300"]) == 2
+    assert "unwrap must be 0 (off) or a period of at least 1 degree, not 1e-300" \
+        in _one_line(capsys)
+    with pytest.raises(SystemExit):
+        main(["segment", "--help"])
+    assert "(0: off; else at least 1:" in " ".join(capsys.readouterr().out.split())

@@ -206,12 +206,13 @@ def test_decompress_against_another_motion_writes_no_csv(tmp_path, capsys):
     assert "shape" in _one_line(capsys)
 
 
-@pytest.mark.parametrize("option", ["--unwrap", "--relative-deadband"])
-def test_segmentation_only_settings_reach_no_codec_traceback(tmp_path, capsys, option):
+@pytest.mark.parametrize("option, value", [("--unwrap", "180"), ("--relative-deadband", "0.1")])
+def test_segmentation_only_settings_reach_no_codec_traceback(tmp_path, capsys, option, value):
+    # (an unwrap period is 0 or at least 1 degree: 180, the period of an axis)
     take = str(_write_bvh(tmp_path / "take.bvh"))
-    assert main(["evaluate", take, option, "0.1"]) == 0
+    assert main(["evaluate", take, option, value]) == 0
     assert "reconstructivity" in capsys.readouterr().out
     pytest.importorskip("matplotlib")
     assert main(["plot", take, "--channel", "Knee.rx", "--kind", "reconstruction", option,
-                 "0.1", "-o", str(tmp_path / "p.png")]) == 2
+                 value, "-o", str(tmp_path / "p.png")]) == 2
     assert f"no setting {option}" in _one_line(capsys)
