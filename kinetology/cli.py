@@ -281,6 +281,20 @@ def _cmd_compress(args) -> int:
     return 0
 
 
+def _note_other_rate(args, original, motion) -> None:
+    """Say that ``--against`` is at another frame rate than the compressed motion: its frames
+    are compared one to one all the same (the same count), which is the take's own frames when
+    only the rate was read differently (an AMC file states none), but a user comparing against
+    a take at another rate would otherwise read the error as that of this one, in silence."""
+    if original.frame_rate == motion.frame_rate:
+        return
+    hint = (f"; an AMC file states no rate: --frame-rate {motion.frame_rate:g} reads it at the "
+            f"compressed one" if Path(args.against).suffix.lower() == ".amc" else "")
+    print(f"kinetology: note: {args.against} is at {original.frame_rate:g} fps, {args.file} at "
+          f"{motion.frame_rate:g} fps: their {motion.frames} frames are compared one to one"
+          f"{hint}", file=sys.stderr)
+
+
 def _cmd_decompress(args) -> int:
     from .codec import decompress
 
@@ -290,10 +304,13 @@ def _cmd_decompress(args) -> int:
     if args.against:  # compared before the CSV is written: a mismatch is an error, not a tail
         original = _read(args, args.against, enough=False)  # compared, not segmented
         if original.values.shape != motion.values.shape:
-            raise MotionFormatError(f"{args.against} has shape {original.values.shape}, the "
-                                    f"decoded motion {motion.values.shape}", source=args.file)
+            raise MotionFormatError(f"{args.against} has shape {original.values.shape} at "
+                                    f"{original.frame_rate:g} fps, the decoded motion "
+                                    f"{motion.values.shape} at {motion.frame_rate:g} fps",
+                                    source=args.file)
         if original.channels != motion.channels:
             original = original.select(motion.channels)  # NotFound naming a missing channel
+        _note_other_rate(args, original, motion)
     lines = ["time," + ",".join(motion.channels)]
     t = np.arange(motion.frames) / motion.frame_rate
     for time, row in zip(t, motion.values):
@@ -449,7 +466,9 @@ def _add_commands(sub) -> None:
     p.add_argument("file", type=file_name, help="a .kin file written by kinetology compress")
     p.add_argument("-o", "--output", type=file_name, help="CSV output (default: stdout)")
     p.add_argument("--against", type=file_name,
-                   help="original motion file: print the mean absolute error")
+                   help="original motion file: print the mean absolute error, frame by frame "
+                        "(its frames and channels must be the decoded motion's; at another "
+                        "frame rate it is compared all the same, with a note on stderr)")
     p.add_argument("--frame-rate", type=positive_float, metavar="FPS",
                    help="--against: " + _FRAME_RATE_HELP)
     p.set_defaults(run=_cmd_decompress)

@@ -136,3 +136,37 @@ def test_an_unwrap_period_below_a_degree_is_refused(tmp_path, capsys):
     with pytest.raises(SystemExit):
         main(["segment", "--help"])
     assert "(0: off; else at least 1:" in " ".join(capsys.readouterr().out.split())
+
+
+# -- decompress --against at another frame rate ----------------------------------------------
+
+def _amc(tmp_path):
+    from test_kinetology_readers import SMALL_ASF
+
+    (tmp_path / "s.asf").write_text(SMALL_ASF)
+    rows = "".join(f"{k}\nroot 0 0 0 0 0 0\nfemur {40 * np.sin(k / 8):.3f}\ntibia 0 0\n"
+                   for k in range(1, 121))
+    path = tmp_path / "s_1.amc"
+    path.write_text(":FULLY-SPECIFIED\n:DEGREES\n" + rows)
+    return path
+
+
+def test_decompress_against_a_take_at_another_rate_says_so(tmp_path, capsys):
+    amc, packed, csv = _amc(tmp_path), tmp_path / "s.kin", tmp_path / "s.csv"
+    assert main(["compress", str(amc), "--frame-rate", "60", "-o", str(packed)]) == 0
+    capsys.readouterr()
+    # the AMC read at its default 120 fps: the same 120 frames, compared one to one, with a note
+    assert main(["decompress", str(packed), "--against", str(amc), "-o", str(csv)]) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert err[0] == (f"kinetology: note: {amc} is at 120 fps, {packed} at 60 fps: their 120 "
+                      f"frames are compared one to one; an AMC file states no rate: "
+                      f"--frame-rate 60 reads it at the compressed one")
+    assert err[1].startswith("mean absolute error") and len(err) == 2
+    assert main(["decompress", str(packed), "--against", str(amc), "--frame-rate", "60",
+                 "-o", str(csv)]) == 0
+    assert "note" not in capsys.readouterr().err  # at the same rate: as before
+    # another frame count: an error, as before, now with both rates
+    take = _write_bvh(tmp_path / "take.bvh", frames=240)
+    assert main(["decompress", str(packed), "--against", str(take)]) == 2
+    assert _one_line(capsys).endswith(f"{packed}: {take} has shape (240, 9) at 120 fps, the "
+                                      f"decoded motion (120, 9) at 60 fps")
