@@ -238,6 +238,7 @@ def _segment_spans(args, channels) -> int:
     spans = spans_of(args.labels, motion.frame_rate)
     parts = from_spans(motion, spans, args.label, min_seconds=min_seconds,
                        source=args.labels)
+    _note_unlabelled_end(args, motion, spans)
     short = [p for p in parts if p.frames < MIN_FRAMES]  # no acceleration to segment by
     if short:
         print(f"kinetology: left out {len(short)} span{'s' * (len(short) != 1)} of fewer than "
@@ -261,6 +262,25 @@ def _segment_spans(args, channels) -> int:
                           f"{part.frame_rate:g} fps; durations in seconds\n" + ag.to_text())
         print(f"{target}: {label} {first:g}-{last:g} s, {len(ag)} strings")
     return 0
+
+
+def _note_unlabelled_end(args, motion, spans) -> None:
+    """Say that the labels end well before the take does (more than the labels' rounding,
+    :func:`~kinetology.performances.overshoot`): the rest of the take is in no span, so no
+    actiongram holds it. A note, not an error: the spans there are cut as labelled, and a label
+    file may mark only the start of a take (a label is an action, and there is none for "no
+    action"); but labels of a shorter take would otherwise cut this one without a word. (Labels
+    reaching past the end are refused: they cannot be cut.)"""
+    from .performances import overshoot
+
+    if not spans:  # none at all: the error that no span is left says so
+        return
+    reach = max(span.stop for span in spans)
+    if reach < motion.duration - overshoot(motion):
+        print(f"kinetology: note: the labels in {args.labels} end at {reach:g} s, "
+              f"{motion.duration - reach:.3g} s before the end of {args.files[0]} "
+              f"({motion.duration:g} s): the rest is in no span and not segmented (labels "
+              f"of a shorter take?)", file=sys.stderr)
 
 
 def _cmd_compress(args) -> int:

@@ -170,3 +170,20 @@ def test_decompress_against_a_take_at_another_rate_says_so(tmp_path, capsys):
     assert main(["decompress", str(packed), "--against", str(take)]) == 2
     assert _one_line(capsys).endswith(f"{packed}: {take} has shape (240, 9) at 120 fps, the "
                                       f"decoded motion (120, 9) at 60 fps")
+
+
+# -- labels of a shorter take ----------------------------------------------------------------
+
+def test_segment_notes_labels_that_end_well_before_the_take(tmp_path, capsys):
+    take = _write_bvh(tmp_path / "take.bvh")  # 2 s at 120 fps
+    short, whole = tmp_path / "short.txt", tmp_path / "whole.txt"
+    short.write_text(" ".join(["5"] * 5 + ["1"] * 3))  # CMU truelabels: 0.8 s of labels
+    whole.write_text(" ".join(["5"] * 5 + ["1"] * 15))  # 2 s
+    assert main(["segment", str(take), "--labels", str(short), "-o", f"{tmp_path}/a/"]) == 0
+    captured = capsys.readouterr()
+    assert captured.err == (f"kinetology: note: the labels in {short} end at 0.8 s, 1.2 s "
+                            f"before the end of {take} (2 s): the rest is in no span and not "
+                            f"segmented (labels of a shorter take?)\n")
+    assert captured.out.count(".actiongram") == 2  # the spans labelled: cut as before
+    assert main(["segment", str(take), "--labels", str(whole), "-o", f"{tmp_path}/b/"]) == 0
+    assert capsys.readouterr().err == ""
