@@ -11,7 +11,7 @@ import sys
 from pathlib import Path
 
 from psgs._foundation.engines import usable_cores
-from psgs._foundation.shell import NO, key_values, positive_int
+from psgs._foundation.shell import NO, file_name, key_values, positive_int
 from psgs.errors import ValidationError
 
 __all__ = ["register", "main"]
@@ -298,9 +298,9 @@ def _add_commands(sub) -> None:
     build = sub.add_parser("build", help="learn every action of one or more datasets",
                            description="Learn every action of the datasets into a praxicon "
                                        "folder (docs/praxicon.md).")
-    build.add_argument("datasets", nargs="+", metavar="DATASET",
+    build.add_argument("datasets", nargs="+", metavar="DATASET", type=file_name,
                        help="a Bandai folder, a cmu-mocap6 folder, or a .csv/.toml manifest")
-    build.add_argument("-o", "--output", required=True, metavar="DIR",
+    build.add_argument("-o", "--output", required=True, metavar="DIR", type=file_name,
                        help="the praxicon folder (made when missing; a build there resumes)")
     # the metavar spelt out: argparse's own '{content,content,style}' reads as three choices
     build.add_argument("--group-by", choices=("content", "content,style"), default=None,
@@ -325,8 +325,8 @@ def _add_commands(sub) -> None:
     draw = sub.add_parser("draw", help="draw a praxicon's pictures",
                           description="Actuator matrix (Fig. 10), morphemes (Fig. 11), shared "
                                       "sub-patterns (Fig. 13).")
-    draw.add_argument("praxicon", metavar="DIR", help="a praxicon folder")
-    draw.add_argument("-o", "--output", required=True, metavar="IMGDIR",
+    draw.add_argument("praxicon", metavar="DIR", type=file_name, help="a praxicon folder")
+    draw.add_argument("-o", "--output", required=True, metavar="IMGDIR", type=file_name,
                       help="folder for the pictures")
     draw.add_argument("--format", choices=("svg", "png"), default="svg",
                       help="picture format (default svg: sharp at any zoom, and a system's "
@@ -342,13 +342,13 @@ def _add_commands(sub) -> None:
                                      "them as a BVH file on the source skeleton; an action "
                                      "with no synchronised repetition is generated from its "
                                      "performances' course instead.")
-    gen.add_argument("praxicon", metavar="DIR", help="a praxicon folder")
+    gen.add_argument("praxicon", metavar="DIR", type=file_name, help="a praxicon folder")
     gen.add_argument("action", metavar="ACTION", help="an action name of its index")
     gen.add_argument("--repeat", type=positive_int, default=None, metavar="K",
                      help="how many synchronised copies (default 3, at most 1000); an action "
                           "with no synchronised repetition (no grammar) is its performances' "
                           "course, played K times one after the other (default once)")
-    gen.add_argument("-o", "--output", required=True, metavar="OUT.bvh",
+    gen.add_argument("-o", "--output", required=True, metavar="OUT.bvh", type=file_name,
                      help="the BVH file to write")
     gen.add_argument("--no-progress", action="store_true",
                      help="no progress line (shown only when stderr is a terminal)")
@@ -361,9 +361,9 @@ def _add_commands(sub) -> None:
                           "file names that not all of them hold (Bandai's "
                           "dataset-2_walk_elderly_001.bvh is style elderly, not walk); "
                           "default: every performance together")
-    gen.add_argument("--plot", default=None, metavar="PNG",
+    gen.add_argument("--plot", default=None, metavar="PNG", type=file_name,
                      help="also plot one joint, original performance beside generated")
-    gen.add_argument("--view", default=None, metavar="OUT.html",
+    gen.add_argument("--view", default=None, metavar="OUT.html", type=file_name,
                      help="also a player of the generated motion beside a performance "
                           "(.html, .gif or .mp4: kinetology view)")
     gen.set_defaults(run=run_generate)
@@ -373,7 +373,7 @@ def _add_commands(sub) -> None:
                                        "records give (the systems, the actuator matrix, the "
                                        "shared patterns, the index, the descriptions) and name "
                                        "stray files: one line per problem on stdout.")
-    check.add_argument("praxicon", metavar="DIR", help="a praxicon folder")
+    check.add_argument("praxicon", metavar="DIR", type=file_name, help="a praxicon folder")
     check.add_argument("--repair", action="store_true",
                        help="write the derived files again from the records first")
     check.set_defaults(run=run_verify)

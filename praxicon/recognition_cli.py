@@ -23,7 +23,7 @@ no joint with it, are ranked last).
 
 from __future__ import annotations
 
-from psgs._foundation.shell import ERROR
+from psgs._foundation.shell import ERROR, file_name
 from psgs.errors import ValidationError
 
 from .description import DescriptionError
@@ -170,20 +170,21 @@ def register_recognise(sub) -> None:
                                    "its probability and the runner-up. A file that cannot be "
                                    "recognised is one error line on stderr instead; the other "
                                    "files are still answered, and the exit status is then 2.")
-    r.add_argument("praxicon", metavar="PX", help="a praxicon folder")
-    r.add_argument("files", nargs="+", metavar="FILE", help="a .bvh or .amc motion file")
+    r.add_argument("praxicon", metavar="PX", type=file_name, help="a praxicon folder")
+    r.add_argument("files", nargs="+", metavar="FILE", type=file_name,
+                   help="a .bvh or .amc motion file")
     r.add_argument("--explain", action="store_true",
                    help="also the joints that decided it, tempo, drift, flight and pace")
-    r.add_argument("--plot", default=None, metavar="PNG",
+    r.add_argument("--plot", default=None, metavar="PNG", type=file_name,
                    help="also draw the explanation: per best action its joints' distance "
                         "terms (one FILE)")
     r.set_defaults(run=run_recognise)
     p = sub.add_parser("parse", help="a recording as a timeline of learnt actions",
                        description="One line per span: start, stop (seconds), action (- for "
                                    "none), score.")
-    p.add_argument("praxicon", metavar="PX", help="a praxicon folder")
-    p.add_argument("file", metavar="FILE", help="a .bvh or .amc motion file")
-    p.add_argument("--plot", default=None, metavar="PNG",
+    p.add_argument("praxicon", metavar="PX", type=file_name, help="a praxicon folder")
+    p.add_argument("file", metavar="FILE", type=file_name, help="a .bvh or .amc motion file")
+    p.add_argument("--plot", default=None, metavar="PNG", type=file_name,
                    help="also draw the timeline over the joint angles")
     p.add_argument("--support", type=float, default=SUPPORT, metavar="S",
                    help="the share of a span's windows, 0 to 1, that must pass its action's "

@@ -23,6 +23,16 @@ from psgs.cli import main
     (["synth", "-o", ""], "-o/--output"),           # was written to stdout without a word
     (["bench", "noise", "--csv", ""], "--csv"),     # was not written, without a word
     (["kinetology", "segment", ""], "FILE"),
+    # the praxicon's folders and files: '' was the current folder (".: not a praxicon folder")
+    (["praxicon", "build", "", "-o", "px"], "DATASET"),
+    (["praxicon", "build", "d", "-o", ""], "-o/--output"),
+    (["praxicon", "draw", "", "-o", "img"], "DIR"),
+    (["praxicon", "generate", "px", "a", "-o", ""], "-o/--output"),
+    (["praxicon", "generate", "px", "a", "-o", "a.bvh", "--view", ""], "--view"),
+    (["praxicon", "verify", ""], "DIR"),
+    (["praxicon", "recognise", "px", "a.bvh", ""], "FILE"),
+    (["praxicon", "parse", "", "a.bvh"], "PX"),
+    (["praxicon", "parse", "px", "a.bvh", "--plot", ""], "--plot"),
 ])
 def test_an_empty_file_name_is_one_line_naming_the_argument(argv, argument, capsys):
     assert main(argv) == 2
