@@ -344,7 +344,8 @@ def _unreadable(record, performances) -> str | None:
     if not failed:
         return None
     lost = sum(f in failed for f in files)
-    which = (f"none of the {len(files)} performances it was learnt from can be read"
+    which = ("the one performance it was learnt from cannot be read" if len(files) == 1 else
+             f"none of the {len(files)} performances it was learnt from can be read"
              if lost == len(files) else
              f"{lost} of the {len(files)} performances it was learnt from cannot be read")
     return f"action {record.name!r}: {which} ({next(iter(failed.values()))})"

@@ -362,7 +362,8 @@ class ActionRecord:
         used = sum(bool(p.used) for p in self.performances)
         takes = _count(len(self.performances), "performance")
         if not self.learnt:
-            return f"<ActionRecord {self.name!r}: failed ({self.reason}), {takes}>"
+            why = self.reason if self.reason and self.reason.strip() else "no reason recorded"
+            return f"<ActionRecord {self.name!r}: failed ({why}), {takes}>"
         joints = ", ".join(self.actuators[:4]) + (", ..." if len(self.actuators) > 4 else "")
         return (f"<ActionRecord {self.name!r}: learnt from {used} of {takes}, "
                 f"{_count(len(self.actuators), 'actuator')} ({joints or 'none'}), "

@@ -126,3 +126,18 @@ def test_an_action_built_per_style_keeps_its_own_style(tmp_path):
                                          rf"performances apart \(the file names of all 3 of its "
                                          rf"performances hold it; styles: normal\)$"):
         generate(px, name, repeat=1, style="wave")
+
+
+def test_the_one_performance_an_action_was_learnt_from_is_named_as_one(built, tmp_path):
+    px = load(built)
+    gone = replace(px["moves.wave"].performances[0],
+                   file=str(tmp_path / "gone" / "wave_1.bvh"))
+    alone = _with(px, "moves.wave", performances=(gone,), learnt_from=(0,))
+    with pytest.raises(ValueError, match=r"^action 'moves\.wave': the one performance it was "
+                                         r"learnt from cannot be read \(.*/gone/wave_1\.bvh"):
+        generate(alone, "moves.wave", repeat=1)
+
+
+def test_a_failed_record_without_a_reason_says_so_in_its_repr():
+    assert repr(ActionRecord("m.a", "m", "a")) == \
+        "<ActionRecord 'm.a': failed (no reason recorded), 0 performances>"
