@@ -182,14 +182,16 @@ def from_lark_name(name: str) -> Nonterminal | Terminal:
     """
     if not isinstance(name, str):
         raise ValidationError(f"a Lark name is text, not {name!r}")
+    if not name.startswith((_NT_PREFIX, _T_PREFIX)):
+        raise _not_ours(name)  # no prefix: nothing more to say than that
     try:
         if name.startswith(_NT_PREFIX):
             symbol = Nonterminal(_decode_nonterminal(name[len(_NT_PREFIX):], name))
-        elif name.startswith(_T_PREFIX):
-            symbol = Terminal(_decode_terminal(name[len(_T_PREFIX):], name))
         else:
-            raise _not_ours(name)
+            symbol = Terminal(_decode_terminal(name[len(_T_PREFIX):], name))
     except ValidationError as exc:
+        if str(exc) == str(_not_ours(name)):  # the decoder's own refusal: said once
+            raise _not_ours(name) from None
         raise ValidationError(f"{name!r} is not a name psgs.to_lark writes ({exc})") from None
     if lark_name(symbol) != name:  # e.g. a code point spelled with a leading zero
         raise _not_ours(name)

@@ -103,8 +103,10 @@ def test_mangling_is_injective_on_terminals(x, y):
                                   "T_a", "T__", "T__0_", "T__065_", "T__99999999_", "T_",
                                   "x", ""])
 def test_names_no_export_writes_are_rejected(name):
-    with pytest.raises(ValidationError):
+    with pytest.raises(ValidationError) as refused:
         from_lark_name(name)
+    # said once ('T__' was "... writes ('T__' is not a name psgs.to_lark writes)")
+    assert str(refused.value).count("is not a name psgs.to_lark writes") == 1
 
 
 # ---------------------------------------------------------------- grammars
