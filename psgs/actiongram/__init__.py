@@ -65,7 +65,7 @@ class Actiongram:
     """Named, timed symbol strings, one per actuator (immutable).
 
     Build one with :meth:`from_strings`, :meth:`from_events`, :meth:`from_text`, :meth:`from_json`
-    or :func:`load_actiongram`. The constructor takes the normalised fields
+    or ``psgs.load(path, kind="actiongram")``. The constructor takes the normalised fields
     (``names``, ``symbols``, ``durations`` as tuples of tuples, ``origins`` the
     start time of each string) and validates and normalises them.
 
