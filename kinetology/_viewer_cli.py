@@ -8,7 +8,9 @@ import numpy as np
 
 from psgs._foundation.shell import file_name, positive_float
 
-from .viewer import _count, check_output, view
+from ._viewer_checks import view_problem
+from .motion import counted
+from .viewer import ViewError, check_output, view
 
 __all__ = ["register"]
 
@@ -19,6 +21,9 @@ def _run(args) -> int:
     from ._frame_rate_option import frame_rate_options
 
     check_output(Path(args.output))
+    # the option values before any file is read, in view's own words (as the other commands)
+    if problem := view_problem(args.max_rate, args.max_frames, True, True):
+        raise ViewError(problem, source="kinetology.view")
     # --frame-rate with a BVH file is refused, as by the other commands, before any reading
     options = [frame_rate_options(args, name) for name in args.files]
     motions = [read(name, **o) for name, o in zip(args.files, options)]
@@ -27,7 +32,7 @@ def _run(args) -> int:
                   kinetemes=not args.no_kinetemes, max_rate=args.max_rate,
                   follow=not args.fixed_camera,
                   max_frames=args.max_frames)
-    kept = ", ".join(f"{p.label}: {_count(p.frames, 'frame')} at {p.frame_rate:g} fps"
+    kept = ", ".join(f"{p.label}: {counted(p.frames, 'frame')} at {p.frame_rate:g} fps"
                      for p in player.panels)
     print(f"{args.output}: {kept}")
     for p in player.panels:  # a skeleton of angles only draws as a dot: said, not hidden

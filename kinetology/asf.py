@@ -29,7 +29,7 @@ from psgs.errors import ValidationError
 
 from ._amc_frames import frame_layout, indent as _indent
 from .motion import (FRAME_RATE_RANGE, Joint, Motion, MotionFormatError, Skeleton, build_motion,
-                     as_path, file_text)
+                     as_path, counted, file_text)
 from .textblocks import parse_rows, token_column
 
 __all__ = ["AsfSkeleton", "read_asf", "parse_asf", "read_amc", "parse_amc", "find_asf"]
@@ -173,7 +173,7 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
         """``parts[1:count + 1]`` as floats; an error names the column in ``raw``."""
         given = parts[1:count + 1]
         if len(given) < count:
-            fail(f"expected {count} numbers, found {len(given)}", number)
+            fail(f"expected {counted(count, 'number')}, found {len(given)}", number)
         values = []
         for k, part in enumerate(given, 1):
             value = decimal(part)  # not float(): it takes '1_0' and other scripts' digits

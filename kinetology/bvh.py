@@ -19,7 +19,7 @@ import numpy as np
 from psgs._foundation.text import decimal, split_lines
 
 from .motion import (FRAME_RATE_RANGE, Joint, Motion, MotionFormatError, Skeleton, build_motion,
-                     as_path, file_text)
+                     as_path, counted, file_text)
 from .textblocks import parse_rows
 
 __all__ = ["read_bvh", "parse_bvh", "FRAME_TIME_RANGE"]
@@ -155,7 +155,8 @@ def parse_bvh(text: str, source: str = "<bvh>") -> Motion:
     values = parse_rows(body, len(channels), source=source, first_line=first_data)
     if values.shape[0] != frames:
         raise MotionFormatError(
-            f"header says {frames} frames but {values.shape[0]} frame lines follow",
+            f"header says {counted(frames, 'frame')} but {counted(values.shape[0], 'frame line')} "
+            f"follow{'s' * (values.shape[0] == 1)}",
             source=source, line=frames_at[0], column=frames_at[1])
     skeleton = Skeleton(tuple(joints), length_unit="BVH file units")
     rate = 1.0 / frame_time

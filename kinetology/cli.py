@@ -23,8 +23,10 @@ from psgs._foundation.shell import (file_name, positive_float, run, version,
 from psgs.errors import ValidationError
 
 from ._frame_rate_option import frame_rate_options
-from .motion import MIN_UNWRAP, MotionFormatError
+from ._option_checks import check_codec_options, check_segment_options
+from .motion import MIN_UNWRAP, MotionFormatError, counted
 from .segmentation import DEFAULTS
+from .segmentation import _check as check_parameters
 
 _FILE_HELP = "a motion file: .bvh, or .amc (its .asf skeleton is found beside it)"
 _FRAME_RATE_HELP = ("frames per second of an AMC file (AMC files do not say; default 120, the "
@@ -156,6 +158,7 @@ def _segment_checks(args) -> list[str] | None:
         if given:
             raise ValidationError(f"{' and '.join(given)} choose{'s' * (len(given) == 1)} "
                                   f"among the spans of --labels LABELS, which is not given")
+    check_segment_options(args)  # the values too, before any file is read
     return channels
 
 
@@ -217,7 +220,8 @@ def _cmd_segment(args) -> int:
         else:
             target = out_dir / f"{Path(name).stem}.actiongram"
             target.write_text(header + ag.to_text())
-            print(f"{target}: {len(ag)} strings, {ag.total_symbols} kinetemes")
+            print(f"{target}: {counted(len(ag), 'string')}, "
+                  f"{counted(ag.total_symbols, 'kineteme')}")
     return 0
 
 
@@ -260,7 +264,7 @@ def _segment_spans(args, channels) -> int:
         target.write_text(f"# kinetology segment {Path(args.files[0]).name} from {first:g} s "
                           f"to {last:g} s ({label}): {part.frames} frames at "
                           f"{part.frame_rate:g} fps; durations in seconds\n" + ag.to_text())
-        print(f"{target}: {label} {first:g}-{last:g} s, {len(ag)} strings")
+        print(f"{target}: {label} {first:g}-{last:g} s, {counted(len(ag), 'string')}")
     return 0
 
 
@@ -288,11 +292,12 @@ def _cmd_compress(args) -> int:
 
     out = args.output or str(Path(args.file).with_suffix(".kin"))
     _keep_inputs(out, [args.file])
-    motion = _read(args, args.file)
     params = _params(args, CODEC_DEFAULTS)
     if args.max_error is not None and params:
         raise ValidationError(f"--max-error chooses the settings itself; drop "
                          f"{', '.join('--' + n.replace('_', '-') for n in sorted(params))}")
+    check_codec_options(params, args.max_error)  # before the take is read, as evaluate's
+    motion = _read(args, args.file)
     data = compress(motion, max_error=args.max_error, **params)  # refusals: ValidationError
     Path(out).write_bytes(data)
     size = Path(args.file).stat().st_size
@@ -311,8 +316,8 @@ def _note_other_rate(args, original, motion) -> None:
     hint = (f"; an AMC file states no rate: --frame-rate {motion.frame_rate:g} reads it at the "
             f"compressed one" if Path(args.against).suffix.lower() == ".amc" else "")
     print(f"kinetology: note: {args.against} is at {original.frame_rate:g} fps, {args.file} at "
-          f"{motion.frame_rate:g} fps: their {motion.frames} frames are compared one to one"
-          f"{hint}", file=sys.stderr)
+          f"{motion.frame_rate:g} fps: their {counted(motion.frames, 'frame')} "
+          f"{'is' if motion.frames == 1 else 'are'} compared one to one{hint}", file=sys.stderr)
 
 
 def _cmd_decompress(args) -> int:
@@ -349,7 +354,6 @@ def _cmd_evaluate(args) -> int:
                              reproducibility, selectivity, view_invariance)
     from .kinematics import measurable_positions
     from .codec import CODEC_DEFAULTS
-    from .segmentation import _check as check_parameters
     from .segmentation import segments
 
     if not args.files and not args.mocap6:
@@ -367,16 +371,29 @@ def _cmd_evaluate(args) -> int:
         if angle_table(motion.skeleton):
             measurable_positions(motion)
     mocap6 = mocap6_performances(args.mocap6) if args.mocap6 else None
-    for name, motion in zip(args.files, motions):
-        seg = segments(motion, **params)
-        # the codec's own settings only: it always unwraps, and keeps every channel
-        point = codec_point(motion, Path(name).stat().st_size,
-                            **{k: v for k, v in params.items() if k in CODEC_DEFAULTS})
-        print(f"{name}: {motion.frames} frames, {len(motion.channels)} channels at "
-              f"{motion.frame_rate:g} fps")
+    # segmented and compressed before the first line too, and cmu-mocap6 described: values
+    # too large to difference or to code in 62 bits (1e307s) refuse a take, in one line naming
+    # it, not after the report of the files before it (view-invariance's angles are bounded)
+    measured = [(segments(motion, **params),
+                 # the codec's own settings only: it always unwraps, and keeps every channel
+                 codec_point(motion, Path(name).stat().st_size,
+                             **{k: v for k, v in params.items() if k in CODEC_DEFAULTS}))
+                for name, motion in zip(args.files, motions)]
+    if mocap6 is not None:
+        takes, perfs = mocap6
+        first = next(iter(takes.values()))
+        channels = [c for c in first.channels if c.rsplit(".", 1)[-1] not in ("tx", "ty", "tz")]
+        # a description's own still threshold (5 degrees), not --min-range: the option, given
+        # at its default of 2, changed the tables from those it gives when left out
+        described = {k: v for k, v in params.items() if k != "min_range"}
+        repro = reproducibility(takes, perfs, channels, **described)
+        sel = selectivity(takes, perfs, channels, **described)
+    for name, motion, (seg, point) in zip(args.files, motions, measured):
+        print(f"{name}: {counted(motion.frames, 'frame')}, "
+              f"{counted(len(motion.channels), 'channel')} at {motion.frame_rate:g} fps")
         durations = [seg.durations(c) for c in range(len(seg.channels))]
         mean_duration = float(np.mean(np.concatenate(durations))) if durations else 0.0
-        print(f"  segments: {seg.segment_count} in {len(seg.channels)} moving channels "
+        print(f"  segments: {seg.segment_count} in {counted(len(seg.channels), 'moving channel')} "
               f"({len(seg.still)} still), mean duration {mean_duration:.3f} s")
         print(f"  compactness: {point['bytes']} bytes = {point['percent']:.3f}% of the file "
               f"(paper: 3.698%)")
@@ -388,23 +405,17 @@ def _cmd_evaluate(args) -> int:
             for angle, triple in table.items():
                 vi = view_invariance(motion, triple, views=args.views, **params)
                 scores.append(f"{angle} {100 * vi.agreement:.1f}%")
-            print(f"  view-invariance (2D state = 3D state, {args.views} views): "
+            print(f"  view-invariance (2D state = 3D state, {counted(args.views, 'view')}): "
                   + ", ".join(scores))
         else:
             print("  view-invariance: needs a skeleton with CMU or Bandai Namco joint names")
     if mocap6 is not None:
-        takes, perfs = mocap6
-        first = next(iter(takes.values()))
-        channels = [c for c in first.channels if c.rsplit(".", 1)[-1] not in ("tx", "ty", "tz")]
-        # a description's own still threshold (5 degrees), not --min-range: the option, given
-        # at its default of 2, changed the tables from those it gives when left out
-        described = {k: v for k, v in params.items() if k != "min_range"}
-        table = reproducibility(takes, perfs, channels, **described)
-        print(f"reproducibility ({args.mocap6}, {len(perfs)} performances): mean over channels")
-        for action, row in table.items():
+        print(f"reproducibility ({args.mocap6}, {counted(len(perfs), 'performance')}): mean "
+              f"over channels")
+        for action, row in repro.items():
             mean = np.mean([v[0] for v in row.values()])
-            print(f"  {action}: {100 * mean:.1f}% ({next(iter(row.values()))[2]} performances)")
-        sel = selectivity(takes, perfs, channels, **described)
+            print(f"  {action}: {100 * mean:.1f}% "
+                  f"({counted(next(iter(row.values()))[2], 'performance')})")
         print(f"selectivity: nearest performance of the same action "
               f"{100 * sel['nearest_neighbour_accuracy']:.1f}% (chance "
               f"{100 * sel['chance']:.1f}%); channels described differently, mean over "
@@ -426,6 +437,10 @@ def _cmd_plot(args) -> int:
     if args.kind == "reconstruction" and foreign:
         raise ValidationError(f"--kind reconstruction: the codec has no setting "
                               f"{', '.join('--' + n.replace('_', '-') for n in foreign)}")
+    if args.kind == "reconstruction":  # the values before the take is read, as evaluate's
+        check_codec_options(params)
+    else:
+        check_parameters(params)
     motion = _read(args, args.file)
     if args.kind == "states":
         fig = plotting.plot_states(motion, args.channel, start=args.start, stop=args.stop,

@@ -24,7 +24,7 @@ from psgs.errors import FormatError, NotFound, ValidationError
 
 __all__ = ["MotionFormatError", "Joint", "Skeleton", "Motion", "AXES", "build_motion",
            "file_text", "FRAME_RATE_RANGE", "check_number", "MIN_UNWRAP", "check_unwrap",
-           "real_array", "as_path", "shown", "channel_names", "check_motion"]
+           "real_array", "as_path", "shown", "counted", "channel_names", "check_motion"]
 
 #: Channel axes, in the order a joint's channels are listed.
 AXES = ("tx", "ty", "tz", "rx", "ry", "rz")
@@ -276,7 +276,8 @@ class Motion:
             close = difflib.get_close_matches(str(channel), self.channels, n=3)
             hint = f" (did you mean {', '.join(close)}?)" if close else ""
             raise NotFound(f"no channel {channel!r} in {self.source}{hint}; its "
-                           f"{len(self.channels)} channels: {', '.join(self.channels)}") from None
+                           f"{counted(len(self.channels), 'channel')}: "
+                           f"{', '.join(self.channels)}") from None
 
     def column(self, channel: str) -> np.ndarray:
         """The read-only column of one channel."""
@@ -294,8 +295,8 @@ class Motion:
         return tuple(c for c in self.channels if c.rsplit(".", 1)[-1] in ("rx", "ry", "rz"))
 
     def __repr__(self) -> str:
-        return (f"Motion({self.source!r}, {self.frames} frames x {len(self.channels)} channels "
-                f"at {self.frame_rate:g} fps)")
+        return (f"Motion({self.source!r}, {counted(self.frames, 'frame')} x "
+                f"{counted(len(self.channels), 'channel')} at {self.frame_rate:g} fps)")
 
 
 def check_number(value, name: str, *, positive: bool = False) -> float:
@@ -350,10 +351,12 @@ def check_unwrap(value, name: str = "unwrap") -> float:
     return number
 
 
-def check_rate(values: np.ndarray, frame_rate: float) -> None:
+def check_rate(values: np.ndarray, frame_rate: float, source: str | None = None) -> None:
     """A :class:`ValidationError` when differencing ``values`` (frames first, finite) at
     ``frame_rate`` would overflow: an acceleration is up to the values' size times the rate
     squared, and past the floats' range segmentation read inf and NaN as one still segment.
+    ``source``: the take the values are of, named first in the message (the values are the
+    take's, so the command line's error says which of its files).
 
     Examples
     --------
@@ -367,8 +370,9 @@ def check_rate(values: np.ndarray, frame_rate: float) -> None:
     # central differences: a velocity is at most 2 size rate (at the ends), an acceleration
     # twice that rate; all zero, nothing overflows
     if size and not 4.0 * size * frame_rate * frame_rate < sys.float_info.max / 2:
-        raise ValidationError(f"frame rate {frame_rate:g} fps is too high to difference values "
-                              f"up to {size:g}: their velocities and accelerations overflow")
+        raise ValidationError(f"{source + ': ' if source else ''}frame rate {frame_rate:g} fps "
+                              f"is too high to difference values up to {size:g}: their "
+                              f"velocities and accelerations overflow")
 
 
 def check_motion(motion) -> None:
@@ -415,6 +419,18 @@ def shown(value, limit: int = 60) -> str:
     """
     text = repr(value)
     return text if len(text) <= limit else text[:limit - 3] + "..."
+
+
+def counted(n: int, noun: str) -> str:
+    """``n`` and ``noun``, plural unless ``n`` is 1: a count in a message reads "1 string",
+    not "1 strings".
+
+    Examples
+    --------
+    >>> counted(1, "string"), counted(0, "moving channel"), counted(3, "frame")
+    ('1 string', '0 moving channels', '3 frames')
+    """
+    return f"{n} {noun}{'' if n == 1 else 's'}"
 
 
 def is_whole(value) -> bool:

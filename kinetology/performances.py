@@ -17,7 +17,7 @@ import numpy as np
 from psgs.errors import NotFound, ValidationError
 
 from .labels import Span
-from .motion import Motion, MotionFormatError, check_motion, check_number
+from .motion import Motion, MotionFormatError, check_motion, check_number, check_rate
 
 __all__ = ["cut", "performances", "from_files", "from_spans", "segment_performances",
            "overshoot", "OVERSHOOT"]
@@ -55,16 +55,12 @@ def cut(motion: Motion, start: float | None = None, stop: float | None = None) -
     array([2., 3., 4.])
     """
     check_motion(motion)
-    for name, value in (("start", start), ("stop", stop)):  # float("2") and True would pass
-        if value is not None and (isinstance(value, bool) or not isinstance(value, Real)):
-            raise ValidationError(f"{name} must be a number of seconds, not {value!r}")
+    check_window(start, stop)
     length = motion.duration
     begin = 0.0 if start is None else float(start)
     end = length if stop is None else float(stop)
     where = f"the take {motion.source} ({length:g} s, 0 to {length:g})"
     tolerance = 0.5 / motion.frame_rate  # half a frame: label spans are rounded to frames
-    if not (begin == begin and end == end):  # NaN
-        raise ValidationError(f"start and stop must be numbers, not {start!r}, {stop!r}")
     if begin < 0 or begin >= length:
         raise ValidationError(f"start {begin:g} s is outside {where}")
     if end > length + tolerance or end <= 0:
@@ -80,6 +76,26 @@ def cut(motion: Motion, start: float | None = None, stop: float | None = None) -
                                    offset + last / motion.frame_rate)}
     return Motion(motion.values[first:last], motion.channels, motion.frame_rate,
                   motion.skeleton, motion.source, meta)
+
+
+def check_window(start, stop) -> None:
+    """A :class:`ValidationError` unless ``start`` and ``stop`` are each None or a number of
+    seconds: what :func:`cut` refuses without the take (the rest depends on its length), so
+    that the command line refuses it before reading the take.
+
+    Examples
+    --------
+    >>> check_window(1.5, None)
+    >>> check_window(float("nan"), None)
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: start and stop must be numbers, not nan, None
+    """
+    for name, value in (("start", start), ("stop", stop)):  # float("2") and True would pass
+        if value is not None and (isinstance(value, bool) or not isinstance(value, Real)):
+            raise ValidationError(f"{name} must be a number of seconds, not {value!r}")
+    if any(value is not None and float(value) != float(value) for value in (start, stop)):
+        raise ValidationError(f"start and stop must be numbers, not {start!r}, {stop!r}")  # NaN
 
 
 def from_files(paths: Iterable[str | Path], **options) -> tuple[Motion, ...]:
@@ -322,6 +338,10 @@ def segment_performances(motions, channels=None, *, engine: str = "auto", **para
     # each take smoothed once: the channels that move anywhere are then segmented from the
     # same smoothed values (a channel's segments do not depend on the other channels)
     smoothed = [_smoothed(motion, channels, p, use) for motion in motions]
+    # the check segments() makes, naming the take: values whose velocities overflow read as
+    # still segments, and several files wrote what one file was refused for
+    for motion, (_, values) in zip(motions, smoothed):
+        check_rate(values, motion.frame_rate, motion.source)
     moving: set[str] = set()
     for motion, (names, values) in zip(motions, smoothed):
         if motion.frames:

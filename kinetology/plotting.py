@@ -117,9 +117,11 @@ def plot_states(motion: Motion, channel: str, *, start: float = 0.0, stop: float
     p = {k: v for k, v in {**DEFAULTS, **params}.items() if k != "min_range"}
     signal = motion.column(channel)
     t, window = _window(motion.frames, motion.frame_rate, start, stop)
+    # segments() before states(): of values too large to difference, its error names the take
+    still = _is_still(motion, channel, params)
     code = states(signal, motion.frame_rate, **p)
     fig, ax = plt.subplots(figsize=(9, 3))
-    if _is_still(motion, channel, params):
+    if still:
         ax.plot(t[window], signal[window], color=STILL_COLOUR, lw=2.2, label="still")
         title = (f"{channel}: still (moves less than min_range "
                  f"{params.get('min_range', DEFAULTS['min_range']):g} deg), no states")

@@ -506,7 +506,7 @@ def segments(motion: Motion, channels=None, *, engine: str = "auto", **params) -
     use = select(engine, motion.values.size)
     p = _check(params)
     names, smoothed = _smoothed(motion, channels, p, use)
-    check_rate(smoothed, motion.frame_rate)
+    check_rate(smoothed, motion.frame_rate, motion.source)
     moving = (use.row_ranges(smoothed) >= p["min_range"]) if motion.frames else \
         np.zeros(len(names), bool)
     return _segmentation(motion, names, smoothed, moving, p, use)

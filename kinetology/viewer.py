@@ -43,6 +43,7 @@ import numpy as np
 from ._viewer_checks import (pace_problem, panels_problem, positions_problem, tick_problem,
                              view_problem)
 from .motion import Motion, MotionFormatError, check_number
+from .motion import counted as _count
 from .plotting import STATE_COLOURS, STILL_COLOUR
 
 __all__ = ["SUFFIXES", "ViewError", "Panel", "Player", "view", "motion_html", "check_output"]
@@ -388,10 +389,6 @@ def check_output(path: str | Path) -> str:
         raise ViewError("writing .mp4 needs ffmpeg, which is not on PATH (install it, e.g. "
                         "apt-get install ffmpeg), or write a .gif", source=str(path))
     return suffix
-
-
-def _count(n: int, noun: str) -> str:
-    return f"{n} {noun}{'' if n == 1 else 's'}"
 
 
 def _step(motion: Motion, max_rate: float, max_frames: int) -> int:

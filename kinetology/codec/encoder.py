@@ -235,9 +235,10 @@ def encode_segments(motion: Motion, **params):
             knot_values = fit_knots(knots, codes, signal)
         steps = np.round(knot_values / quantum)
         if not np.all(np.abs(steps) < 2.0 ** 62):
-            # beyond this the int64 cast (and the zigzag varints) would silently wrap
-            raise ValidationError(f"quantum {quantum!r} is too small for channel {name!r}: knot "
-                             f"values would need more than 62 bits")
+            # beyond this the int64 cast (and the zigzag varints) would silently wrap; the
+            # take is named, since its values, not the quantum alone, make the knots too large
+            raise ValidationError(f"{motion.source}: quantum {quantum!r} is too small for "
+                                  f"channel {name!r}: knot values would need more than 62 bits")
         out.append((knots, codes, steps.astype(np.int64)))
     return out, quantum
 
@@ -277,7 +278,10 @@ def compress_with(motion: Motion, settings: dict, *, base=None,
     original = unwrap(motion.values, motion.channels)
     layer = b""
     if p["residual_step"] > 0 and motion.frames:
-        levels = residual.quantise(original - decoded, p["residual_step"], p["hysteresis"])
+        try:
+            levels = residual.quantise(original - decoded, p["residual_step"], p["hysteresis"])
+        except ValidationError as exc:  # the step is too fine for this take's values: named
+            raise ValidationError(f"{motion.source}: {exc}") from None
         decoded = decoded + levels * p["residual_step"]
         layer = residual.encode(levels)
     layout = stream.Layout(

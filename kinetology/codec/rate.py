@@ -30,7 +30,7 @@ from .encoder import (CODEC_DEFAULTS, Compressed, _base_values, _errors, compres
                       encode_segments)
 from .knots import unwrap
 
-__all__ = ["BASE_LADDER", "RESIDUAL_BASES", "compress_to"]
+__all__ = ["BASE_LADDER", "RESIDUAL_BASES", "compress_to", "check_max_error"]
 
 #: (smoothing in s, knot quantum in degrees), coarse to fine.
 BASE_LADDER = ((0.08, 1.0), (0.06, 1.0), (0.05, 1.0), (0.04, 1.0), (0.03, 1.0), (0.025, 1.0),
@@ -105,6 +105,26 @@ def _with_residual(motion: Motion, max_error: float, original: np.ndarray, smoot
     return {**settings, "residual_step": lo}, base
 
 
+def check_max_error(max_error) -> float:
+    """``max_error`` as a float, or a :class:`ValidationError`: a bound is a positive number
+    of degrees (the command line checks it before reading the take).
+
+    Examples
+    --------
+    >>> check_max_error(0.5)
+    0.5
+    >>> check_max_error(0)
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: max_error must be a positive number of degrees, not 0
+    """
+    if not (isinstance(max_error, (int, float, np.floating, np.integer))
+            and not isinstance(max_error, bool)  # True is no bound of 1 degree
+            and np.isfinite(max_error) and max_error > 0):
+        raise ValidationError(f"max_error must be a positive number of degrees, not {max_error!r}")
+    return float(max_error)
+
+
 def compress_to(motion: Motion, max_error: float) -> Compressed:
     """Compress ``motion`` with a mean rotation-channel error of at most ``max_error`` degrees.
 
@@ -119,11 +139,7 @@ def compress_to(motion: Motion, max_error: float) -> Compressed:
     >>> data.max_error, data.mean_error <= 0.3
     (0.3, True)
     """
-    if not (isinstance(max_error, (int, float, np.floating, np.integer))
-            and not isinstance(max_error, bool)  # True is no bound of 1 degree
-            and np.isfinite(max_error) and max_error > 0):
-        raise ValidationError(f"max_error must be a positive number of degrees, not {max_error!r}")
-    max_error = float(max_error)
+    max_error = check_max_error(max_error)
     original = np.array(motion.values)
     candidates = []
     found = _base_only(motion, max_error, original)

@@ -57,7 +57,7 @@ import numpy as np
 
 from psgs.errors import ValidationError
 
-from ..motion import MotionFormatError, is_whole
+from ..motion import MotionFormatError, counted, is_whole
 from .varint import VarintError, decode
 from .varint import encode as varints
 
@@ -186,7 +186,7 @@ class _Reader:
         """Fail at the byte where the data runs out (not where the read began), saying how
         much was wanted from where: a file cut anywhere inside a part read the same before."""
         start, self.pos = self.pos, len(self.data)
-        self.fail(f"data ends {what}: {count} bytes wanted from byte {start}, "
+        self.fail(f"data ends {what}: {counted(count, 'byte')} wanted from byte {start}, "
                   f"{self.pos - start} there")
 
     def double(self) -> float:
@@ -256,11 +256,11 @@ def read(data: bytes, source: str, max_samples: int | None = None) -> Layout:
     if not (rate > 0 and quantum > 0 and np.isfinite(rate) and np.isfinite(quantum)):
         r.fail("bad frame rate or quantum")
     if count > len(body):
-        r.fail(f"{count} channels cannot fit in {len(body)} bytes")
+        r.fail(f"{counted(count, 'channel')} cannot fit in {counted(len(body), 'byte')}")
     if frames * max(count, 1) > samples_limit:
-        r.fail(f"{frames} frames x {count} channels is more than a stream of {len(data)} "
-               f"bytes may claim ({samples_limit} samples; decompress(..., max_samples=N) "
-               f"allows more)")
+        r.fail(f"{counted(frames, 'frame')} x {counted(count, 'channel')} is more than a "
+               f"stream of {len(data)} bytes may claim ({samples_limit} samples; "
+               f"decompress(..., max_samples=N) allows more)")
     names = []
     for _ in range(count):
         length = r.varint()
@@ -294,15 +294,16 @@ def read(data: bytes, source: str, max_samples: int | None = None) -> Layout:
             frames_limit = max(frames_limit, samples_limit)
         if frames > frames_limit:
             raise MotionFormatError(
-                f"a residual layer of {len(residual)} bytes cannot hold {frames} frames "
-                f"(at most {frames_limit}; decompress(..., max_samples=N) allows more)",
+                f"a residual layer of {counted(len(residual), 'byte')} cannot hold {frames} "
+                f"frames (at most {frames_limit}; decompress(..., max_samples=N) allows more)",
                 source=source)
     for c in range(count):  # check the layout before allocating frames x channels
         n = seg_counts[c]
         if frames and n == 0 and frames != 1:
             r.fail(f"channel {names[c]!r} has no segments for {frames} frames")
         if frames and n and (sum(durations[c]) != frames - 1 or min(durations[c]) <= 0):
-            r.fail(f"channel {names[c]!r}: durations do not add up to {frames - 1} frames")
+            r.fail(f"channel {names[c]!r}: durations do not add up to "
+                   f"{counted(frames - 1, 'frame')}")
         if abs(firsts[c]) >= _INT_LIMIT:
             r.fail(f"channel {names[c]!r}: first knot value {firsts[c]} is out of range")
         knot = firsts[c]
