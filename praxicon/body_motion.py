@@ -321,7 +321,7 @@ def performances_of(record, style: str | None = None) -> list:
             continue
         try:
             m = kinetology.read(p.file)
-        except Exception:  # a moved or unreadable file: generation falls back to the mean pose
+        except Exception:  # a moved or unreadable file: generate names it (its own check)
             continue
         if p.start is not None or p.stop is not None:
             a = int(round((p.start or 0.0) * m.frame_rate))
