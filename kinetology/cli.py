@@ -410,17 +410,32 @@ def _cmd_evaluate(args) -> int:
         else:
             print("  view-invariance: needs a skeleton with CMU or Bandai Namco joint names")
     if mocap6 is not None:
-        print(f"reproducibility ({args.mocap6}, {counted(len(perfs), 'performance')}): mean "
-              f"over channels")
-        for action, row in repro.items():
-            mean = np.mean([v[0] for v in row.values()])
-            print(f"  {action}: {100 * mean:.1f}% "
-                  f"({counted(next(iter(row.values()))[2], 'performance')})")
-        print(f"selectivity: nearest performance of the same action "
-              f"{100 * sel['nearest_neighbour_accuracy']:.1f}% (chance "
-              f"{100 * sel['chance']:.1f}%); channels described differently, mean over "
-              f"action pairs {100 * np.mean(list(sel['pairwise'].values())):.1f}%")
+        _print_mocap6(args.mocap6, perfs, repro, sel)
     return 0
+
+
+def _print_mocap6(folder, perfs, repro, sel) -> None:
+    """The reproducibility and selectivity lines of ``evaluate --mocap6``."""
+    print(f"reproducibility ({folder}, {counted(len(perfs), 'performance')}): mean over channels")
+    for action, row in repro.items():
+        mean = np.mean([v[0] for v in row.values()])
+        print(f"  {action}: {100 * mean:.1f}% "
+              f"({counted(next(iter(row.values()))[2], 'performance')})")
+    if not repro:  # an action's performances are compared with each other: one is no comparison
+        print("  no action has two performances or more")
+    actions = sorted({perf.action for perf in perfs})
+    if len(actions) < 2:
+        # selectivity tells actions apart: one action has no pair to compare (their mean is
+        # a mean of nothing, nan), and a lone performance has no nearest other to be right on
+        here = (f"{counted(len(perfs), 'performance')} here, "
+                f"{'of' if len(perfs) == 1 else 'all of'} {actions[0]}") if perfs else \
+            "no performance here: no run of one label lasts 2 s"
+        print(f"selectivity: n/a, needs performances of two actions or more ({here})")
+        return
+    print(f"selectivity: nearest performance of the same action "
+          f"{100 * sel['nearest_neighbour_accuracy']:.1f}% (chance "
+          f"{100 * sel['chance']:.1f}%); channels described differently, mean over "
+          f"action pairs {100 * np.mean(list(sel['pairwise'].values())):.1f}%")
 
 
 def _cmd_plot(args) -> int:

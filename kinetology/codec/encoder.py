@@ -23,6 +23,16 @@ CODEC_DEFAULTS = MappingProxyType({**PINNED, "quantum": 0.5, "residual_step": 0.
                                    "hysteresis": 0.7})
 
 
+class KnotsTooLarge(ValidationError):
+    """:func:`encode_segments`' refusal of a quantum too small for ``channel``'s knot values
+    (more than 62 bits): rate control, which chooses the quantum, names the channel in its own
+    refusal rather than its choice."""
+
+    def __init__(self, message: str, channel: str):
+        super().__init__(message)
+        self.channel = channel
+
+
 class Compressed(bytes):
     """The bytes of a compressed motion, with what the encoder reached.
 
@@ -237,8 +247,9 @@ def encode_segments(motion: Motion, **params):
         if not np.all(np.abs(steps) < 2.0 ** 62):
             # beyond this the int64 cast (and the zigzag varints) would silently wrap; the
             # take is named, since its values, not the quantum alone, make the knots too large
-            raise ValidationError(f"{motion.source}: quantum {quantum!r} is too small for "
-                                  f"channel {name!r}: knot values would need more than 62 bits")
+            raise KnotsTooLarge(f"{motion.source}: quantum {quantum!r} is too small for "
+                                f"channel {name!r}: knot values would need more than 62 bits",
+                                name)
         out.append((knots, codes, steps.astype(np.int64)))
     return out, quantum
 

@@ -26,8 +26,8 @@ from psgs.errors import ValidationError
 
 from ..motion import Motion
 from . import residual
-from .encoder import (CODEC_DEFAULTS, Compressed, _base_values, _errors, compress_with,
-                      encode_segments)
+from .encoder import (CODEC_DEFAULTS, Compressed, KnotsTooLarge, _base_values, _errors,
+                      compress_with, encode_segments)
 from .knots import unwrap
 
 __all__ = ["BASE_LADDER", "RESIDUAL_BASES", "compress_to", "check_max_error"]
@@ -142,12 +142,19 @@ def compress_to(motion: Motion, max_error: float) -> Compressed:
     max_error = check_max_error(max_error)
     original = np.array(motion.values)
     candidates = []
-    found = _base_only(motion, max_error, original)
+    too_large = None  # a channel whose knots no quantum tried fits in 62 bits
+    try:
+        found = _base_only(motion, max_error, original)
+    except KnotsTooLarge as exc:  # at the ladder's finest quantum: a coarser base may code it
+        found, too_large = None, exc.channel
     if found is not None:
         candidates.append(compress_with(motion, found[0], base=found[1], max_error=max_error))
     for smoothing, quantum in RESIDUAL_BASES:
         try:
             settings, base = _with_residual(motion, max_error, original, smoothing, quantum)
+        except KnotsTooLarge as exc:  # the residual family's coarser base is too small too
+            too_large = exc.channel
+            continue
         except ValueError:  # residuals beyond 62 bits at every step that meets the bound
             continue
         candidates.append(compress_with(motion, settings, base=base, max_error=max_error))
@@ -155,9 +162,16 @@ def compress_to(motion: Motion, max_error: float) -> Compressed:
     # float range's end (1e308) defeat the construction's arithmetic
     meeting = [c for c in candidates if c.mean_error <= max_error]
     if not meeting:
+        refusal = f"{motion.source}: no setting meets max_error={max_error}"
+        if too_large is not None and not candidates:
+            # the quantum is rate control's choice, not the caller's: the refusal is of the
+            # bound they gave, and names the channel no quantum tried could code
+            raise ValidationError(f"{refusal}: no quantum fine enough to meet it can code the "
+                                  f"take (channel {too_large!r} would need knot values of more "
+                                  f"than 62 bits)")
         # with no candidate there is no closest error to name (it read "nan degrees")
         closest = (f"the closest reached {min(c.mean_error for c in candidates)!r} degrees"
                    if candidates else "no residual step that fine fits in 62 bits")
-        raise ValidationError(f"no setting meets max_error={max_error} on this motion "
-                              f"({closest}); its values may be too large to code that finely")
+        raise ValidationError(f"{refusal} ({closest}); its values may be too large to code "
+                              f"that finely")
     return min(meeting, key=len)  # ties: the first (base only), the simpler stream

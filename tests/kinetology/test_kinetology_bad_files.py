@@ -257,7 +257,7 @@ def test_a_form_feed_is_no_line_break_for_the_line_numbers():
 @pytest.mark.parametrize("brk", ["\x0c", "\u2028", "\x85"])
 def test_a_label_file_breaks_lines_at_newlines_only(brk, tmp_path):
     # str.splitlines would break at these too, and the bad label be named a line too far
-    from kinetology.evaluation import _labels
+    from kinetology._mocap6 import _labels
 
     path = tmp_path / "t.txt"
     path.write_text(f"1 1{brk}1\n2 x 2\n", encoding="utf-8")

@@ -1,8 +1,12 @@
 """The kinetology command refuses before it works: option values before any file is read, a
 take too large to code or difference in one line naming it (evaluate: before the first line of
-its report); and its counts read "1 string", not "1 strings"."""
+its report, a cmu-mocap6 take too; compress --max-error: no quantum, not the one it tried); its
+counts read "1 string", not "1 strings"; and a --mocap6 folder of one action says selectivity
+needs two, without numpy's warnings."""
 
 from __future__ import annotations
+
+import re
 
 import numpy as np
 import pytest
@@ -80,6 +84,98 @@ def test_a_take_too_large_to_difference_is_named_by_every_command(tmp_path, caps
         assert out == "", name  # nothing reported, nothing written
     # several files wrote an actiongram of still segments for the take one file refused
     assert not (tmp_path / "grams").exists()
+
+
+def _mocap6(folder, takes: dict):
+    """A cmu-mocap6 folder: per take, its AMC root rows (``tx ty tz rx ry rz``) and labels."""
+    (folder / "amc").mkdir(parents=True)
+    (folder / "truelabels").mkdir()
+    for name, (rows, labels) in takes.items():
+        frames = "".join(f"{i}\nroot 0 0 0 {row}\n" for i, row in enumerate(rows, 1))
+        (folder / "amc" / f"{name}.amc").write_text(f":FULLY-SPECIFIED\n:DEGREES\n{frames}")
+        (folder / "truelabels" / f"{name}.txt").write_text(" ".join(map(str, labels)))
+    return folder
+
+
+def _swing(frames: int = 300, ry: str = "0") -> list[str]:
+    """``rx ry rz`` rows of a root swinging 30 degrees about x once a second at 120 fps."""
+    return [f"{30 * np.sin(2 * np.pi * i / 120):.4f} {ry} 0" for i in range(frames)]
+
+
+def test_evaluate_mocap6_names_the_take_too_large_to_difference(tmp_path, capsys):
+    from kinetology.evaluation import mocap6_performances, reproducibility
+
+    # b.amc's ry is 1e307 throughout: still, but its accelerations overflow at 120 fps
+    folder = _mocap6(tmp_path / "mocap6", {"a": (_swing(), [1] * 25),
+                                          "b": (_swing(ry="1e307"), [2] * 25)})
+    huge = folder / "amc" / "b.amc"
+    good = _write_bvh(tmp_path / "good.bvh")
+    for files in ([], [str(good)]):
+        assert main(["evaluate", *files, "--mocap6", str(folder)]) == 2
+        err, out = _one_line(capsys)
+        assert err == (f"kinetology: error: {huge}: frame rate 120 fps is too high to "
+                       f"difference values up to 1e+307: their velocities and accelerations "
+                       f"overflow")  # it named no file
+        assert out == ""  # good.bvh's report was not begun
+    takes, performances = mocap6_performances(folder)
+    with pytest.raises(ValueError, match=f"^{re.escape(str(huge))}: frame rate 120 fps"):
+        reproducibility(takes, performances, ["root.rx", "root.ry"])
+
+
+@pytest.mark.parametrize("labels, here", [
+    ([1] * 25, "1 performance here, of JumpJack"),
+    ([1] * 25 + [2] * 5 + [1] * 20, "2 performances here, all of JumpJack"),
+    ([1] * 10, "no performance here: no run of one label lasts 2 s"),  # was a traceback
+])
+def test_evaluate_mocap6_of_one_action_says_selectivity_needs_two(labels, here, tmp_path,
+                                                                   capsys, recwarn):
+    folder = _mocap6(tmp_path, {"a": (_swing(12 * len(labels)), labels)})
+    assert main(["evaluate", "--mocap6", str(folder)]) == 0
+    captured = capsys.readouterr()
+    assert captured.err == ""
+    # one action has nothing to be told apart from: its pairs' mean read "nan%", with numpy's
+    # "Mean of empty slice" on stderr, and one performance's nearest other "0.0%"
+    assert captured.out.endswith(f"selectivity: n/a, needs performances of two actions or "
+                                 f"more ({here})\n"), captured.out
+    assert "nan" not in captured.out
+    assert not [w for w in recwarn if issubclass(w.category, RuntimeWarning)], \
+        [str(w.message) for w in recwarn]
+    if len(labels) != 50:  # reproducibility compares an action's performances: none has two
+        assert "mean over channels\n  no action has two performances or more\n" in captured.out
+
+
+def test_selectivity_of_no_performance_is_no_error():
+    from kinetology.evaluation import selectivity
+
+    walk = Motion(np.zeros((240, 1)), ("knee.rx",), 120.0)
+    result = selectivity({"a": walk}, [], ["knee.rx"])  # max() of no action's count raised
+    assert (result["nearest_neighbour_accuracy"], result["chance"], result["pairwise"]) == \
+        (0.0, 0.0, {})
+
+
+def test_compress_max_error_says_no_quantum_can_code_the_take(far, tmp_path, capsys):
+    assert main(["compress", str(far), "-o", str(tmp_path / "far.kin"), "--max-error",
+                 "0.5"]) == 2
+    err, _ = _one_line(capsys)
+    # it said "quantum 0.5 is too small", a setting rate control chose, not the user
+    assert err == (f"kinetology: error: {far}: no setting meets max_error=0.5: no quantum fine "
+                   f"enough to meet it can code the take (channel 'Hips.tx' would need knot "
+                   f"values of more than 62 bits)")
+    assert not (tmp_path / "far.kin").exists()
+
+
+def test_compress_max_error_codes_a_take_the_finest_quantum_cannot_on_a_coarser_one():
+    from kinetology.codec import compress
+
+    # 5e18 needs more than 62 bits in quanta of 0.5 degrees, not of 2: the residual layer's
+    # base codes it (the finest rung's refusal ended rate control before it was tried)
+    t = np.arange(240) / 120
+    values = np.zeros((240, 9))
+    values[:, 0] = 5e18
+    values[:, 6] = 30 * np.sin(2 * np.pi * t)
+    far = Motion(values, ("Hips.tx", "Hips.ty", "Hips.tz", "Hips.rz", "Hips.ry", "Hips.rx",
+                          "Knee.rz", "Knee.ry", "Knee.rx"), 120.0, source="far.bvh")
+    assert compress(far, max_error=0.5).mean_error <= 0.5
 
 
 def test_plot_names_a_take_too_large_to_difference(tmp_path, capsys):
@@ -188,8 +284,6 @@ def test_evaluate_counts_one_view_as_one(capsys):
     assert "view-invariance (2D state = 3D state, 1 view): lknee " in capsys.readouterr().out
 
 
-# one performance leaves selectivity no pair to compare: numpy warns of a mean of nothing
-@pytest.mark.filterwarnings("ignore::RuntimeWarning")
 def test_evaluate_mocap6_counts_one_performance_as_one(tmp_path, capsys):
     (tmp_path / "amc").mkdir()
     (tmp_path / "truelabels").mkdir()
@@ -198,7 +292,7 @@ def test_evaluate_mocap6_counts_one_performance_as_one(tmp_path, capsys):
                      for i, x in enumerate(t, 1))
     (tmp_path / "amc" / "a.amc").write_text(f":FULLY-SPECIFIED\n:DEGREES\n{frames}")
     (tmp_path / "truelabels" / "a.txt").write_text(" ".join(["1"] * 25))  # 2.5 s of JumpJack
-    main(["evaluate", "--mocap6", str(tmp_path)])
+    assert main(["evaluate", "--mocap6", str(tmp_path)]) == 0
     out = capsys.readouterr().out
     assert f"reproducibility ({tmp_path}, 1 performance): mean over channels" in out
 
