@@ -17,13 +17,10 @@ import numpy as np
 
 from psgs._foundation.text import split_lines
 
+from .labels import MOCAP6_ACTIONS  # the one list of the exercises, as the label files number them
 from .motion import MotionFormatError, file_text
 
 __all__ = ["MOCAP6_ACTIONS", "Performance", "mocap6_performances"]
-
-
-MOCAP6_ACTIONS = ("JumpJack", "Jog", "Squat", "KneeRaise", "ArmCircle", "Twist", "SideReach",
-                  "Box", "UpDown", "ToeTouchOneHand", "SideBend", "ToeTouchTwoHands")
 
 
 @dataclass(frozen=True, eq=False)
