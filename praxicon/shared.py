@@ -25,6 +25,7 @@ search stops with an error naming the joint and the bound.
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Iterable
 from dataclasses import dataclass
 
@@ -198,7 +199,7 @@ def shared_patterns(praxicon, *, min_length: int = 4, min_actions: int = 2,
                 if len(cycle) >= min_length:
                     numbers.setdefault(action.name, len(numbers))
                     cycles.setdefault(joint.name, []).append((action.name, channel, cycle))
-    joints = {name: _coded(items, numbers) for name, items in cycles.items()}
+    joints = {name: _coded(items, numbers, name) for name, items in cycles.items()}
     wholes: dict[int, set[tuple[str, ...]]] = {}  # every whole cycle, of any joint
     for joint, alphabet in joints.values():
         for m in joint.morphemes:
@@ -219,9 +220,12 @@ def shared_patterns(praxicon, *, min_length: int = 4, min_actions: int = 2,
     return found
 
 
-def _coded(items, numbers) -> tuple[_Joint, list[str]]:
+def _coded(items, numbers, joint: str) -> tuple[_Joint, list[str]]:
     """One joint's morpheme cycles as codes numbered in the kinetemes' order, and that order."""
     alphabet = sorted({k for _, _, cycle in items for k in cycle})
+    if len(alphabet) > sys.maxunicode + 1:  # a code is one character of the patterns' text
+        raise ValidationError(f"shared_patterns: joint {joint!r} has {len(alphabet):,} distinct "
+                              f"kinetemes, more than the {sys.maxunicode + 1:,} it can compare")
     code = {k: i for i, k in enumerate(alphabet)}
     morphemes = []
     for action, channel, cycle in items:

@@ -151,3 +151,14 @@ def test_verify_of_a_folder_with_huge_alike_morphemes_says_so_in_one_line(tmp_pa
     err = capsys.readouterr().err.strip().splitlines()
     assert err == ["psgs: error: shared_patterns: the morphemes of joint 'arm' are too long and "
                    "alike to compare within 20,000,000 steps (max_steps)"]
+
+
+def test_more_distinct_kinetemes_than_characters_is_one_line():
+    import sys
+
+    kinetemes = [f"k{i}" for i in range(sys.maxunicode + 2)]
+    records = [_action(name, [("arm", [("arm.rx", kinetemes)])]) for name in ("a", "b")]
+    with pytest.raises(ValidationError, match=r"^shared_patterns: joint 'arm' has 1,114,113 "
+                                              r"distinct kinetemes, more than the 1,114,112 it "
+                                              r"can compare$"):
+        shared_patterns(records)
