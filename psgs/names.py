@@ -15,7 +15,9 @@ from .errors import ValidationError
 __all__ = ["is_identifier"]
 
 _IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
-_BAD_TERMINAL = re.compile(r"[\s\x00-\x1f\x7f]")
+# a lone surrogate (a "\ud800" escape, a byte of argv that is not UTF-8) is no text: no
+# encoding writes it, so every command that printed the terminal failed
+_BAD_TERMINAL = re.compile(r"[\s\x00-\x1f\x7f\ud800-\udfff]")
 
 
 def is_identifier(name: object) -> bool:

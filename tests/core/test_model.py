@@ -124,6 +124,15 @@ def test_word_reads_a_str_as_one_character_symbols():
         as_word([S])  # type: ignore[list-item]
 
 
+@pytest.mark.parametrize("name", ["\ud800", "a\udcff", "\udfff\ud800"])
+def test_a_terminal_is_no_lone_surrogate(name):
+    # a "\ud800" escape in a file, or a byte of argv that is not UTF-8, made a terminal that
+    # `psgs show`, `derive` and `export` could not print (UnicodeEncodeError, a traceback)
+    with pytest.raises(ValidationError, match="terminal"):
+        Terminal(name)
+    assert Terminal("\U0001f600").name == "\U0001f600"  # a pair of surrogates in JSON, one character
+
+
 def test_grammar_lookup_tables_are_read_only_and_pickle():
     import pickle
 
