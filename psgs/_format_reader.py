@@ -366,7 +366,14 @@ class _Builder:
         try:
             text = json.loads(str(token))
         except json.JSONDecodeError as exc:
-            raise self.error(f"bad terminal {token}: {exc.msg}", at) from None
+            # a raw control character is the one reading outside quotes rejects, told the same
+            # way at its own column: echoed, it broke the line (json's message ends "at")
+            if exc.msg.startswith("Invalid control character"):
+                raise self.error(f"unexpected character {str(token)[exc.pos]!r} (control "
+                                 f"characters and binary data are not allowed)",
+                                 (at[0], at[1] + exc.pos)) from None
+            shown = "".join(c if c.isprintable() else repr(c)[1:-1] for c in str(token))
+            raise self.error(f"bad terminal {shown}: {exc.msg}", at) from None
         try:
             terminal = Terminal(text)
         except ValidationError as exc:

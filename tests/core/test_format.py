@@ -215,6 +215,12 @@ ERRORS = [
     ("no component", "psgs G\nmode single\n", 1, 1, "at least one"),
     ("empty terminal", H + '  p: S -> ""\n', 3, 11, "non-empty"),
     ("bad escape", H + '  p: S -> "\\q"\n', 3, 11, "bad terminal"),
+    # a raw control character inside quotes: the error outside quotes gives, at its column
+    ("control character in a terminal", H + '  p: S -> "a\x1b[2J"\n', 3, 13,
+     "unexpected character '\\x1b' (control characters"),
+    ("carriage return in a terminal", H + '  p: S -> "a\rb"\n', 3, 13, "'\\r'"),
+    ("bad escape beside a control character", H + '  p: S -> "\\q\x07"\n', 3, 11,
+     'bad terminal "\\q\\x07": Invalid \\escape'),
     ("epsilon with symbols", H + '  p: S -> "a" ε\n', 3, 15, "ε stands alone"),
     ("query in a psgs", H + "  p: S -> ?A\n", 3, 11, "only a pcgs has queries"),
     ("query of no component", 'pcgs G\ncomponent A start S\n  p: S -> "a" ?C\n', 3, 3,
@@ -241,6 +247,7 @@ def test_each_mistake_gives_one_located_error(name, text, line, column, words):
     message = str(error)
     assert message.startswith(f"x.psgs:{line}:{column}: ")
     assert "\n" not in message and "Traceback" not in message
+    assert message.isprintable(), message  # no raw control character echoed from the text
 
 
 def test_binary_junk_is_one_located_error(tmp_path):
