@@ -236,7 +236,9 @@ def run_show(args) -> int:
 
 
 def _natural_key(name: str):
-    return [int(part) if part.isdigit() else part for part in re.split(r"(\d+)", name)]
+    # the split's odd parts are its runs of decimal digits; isdigit() also holds for "²" or
+    # "①", which int() refuses (a terminal named so made `psgs show` a ValueError)
+    return [int(part) if k % 2 else part for k, part in enumerate(re.split(r"(\d+)", name))]
 
 
 def summary(system: PSGS | PCGS) -> str:

@@ -173,6 +173,16 @@ def test_show_summarises_a_pcgs(capsys):
     assert "p2: S1 → a ?G2" in out
 
 
+def test_show_sorts_terminals_named_by_digits_that_are_no_decimals(capsys, tmp_path):
+    # "²" and "①" are str.isdigit() but not int(): the natural sort raised a ValueError
+    path = tmp_path / "digits.psgs"
+    path.write_text('psgs D\ncomponent A start S\n  p: S -> "a10" "\u00b2" "\u2460" "a9" "7"\n',
+                    encoding="utf-8")
+    status, out, _ = run(capsys, "show", str(path))
+    assert status == 0
+    assert "T (5): 7 a9 a10 ² ①" in out
+
+
 # ---------------------------------------------------------------- errors
 def test_missing_file_is_one_line(capsys, tmp_path):
     status, out, err = run(capsys, "show", str(tmp_path / "nothing.psgs"))
