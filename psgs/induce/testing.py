@@ -82,8 +82,10 @@ def check_inducer(inducer, actiongrams: Sequence[Actiongram] | None = None) -> N
     * the same input gives an equal Induction; one actiongram, a list or a
       tuple of it give the same; the Induction survives pickling.
     * several performances give an Induction of that many performances, each
-      occurrence in one of them, or a :class:`~psgs.errors.ValidationError`
-      (an inducer that learns from one actiongram says so).
+      occurrence in one of them, well-formed as above (components among the
+      first performance's strings, in its order, the inducer's name...), or a
+      :class:`~psgs.errors.ValidationError` (an inducer that learns from one
+      actiongram says so).
     * bad input: an empty sequence is a ValidationError; a string, a mapping,
       a number, or a sequence holding something other than actiongrams, a
       TypeError.
@@ -133,8 +135,20 @@ def _induce(who: str, inducer, data) -> Induction:
 def _check_one(who: str, inducer, actiongram: Actiongram) -> None:
     """One actiongram: a well-formed, deterministic, picklable Induction."""
     result = _induce(who, inducer, actiongram)
-    names = actiongram.names
     _require(who, result.performances == 1, "one actiongram must give performances == 1")
+    _check_shape(who, inducer, result, actiongram.names)
+    _require(who, _induce(who, inducer, actiongram) == result,
+             "the same actiongram must give an equal Induction")
+    _require(who, _induce(who, inducer, [actiongram]) == result
+             == _induce(who, inducer, (actiongram,)),
+             "one actiongram and a sequence holding it must give the same Induction")
+    _require(who, pickle.loads(pickle.dumps(result)) == result,
+             "the Induction must survive pickling")
+
+
+def _check_shape(who: str, inducer, result: Induction, names: tuple[str, ...]) -> None:
+    """An Induction that describes input whose strings are ``names``: of one actiongram or
+    of several performances alike (a caller reads both the same way)."""
     _require(who, set(result.components) <= set(names),
              f"components {result.components} must be strings of the actiongram")
     order = [names.index(c) for c in result.components]
@@ -163,13 +177,6 @@ def _check_one(who: str, inducer, actiongram: Actiongram) -> None:
     if name:
         _require(who, result.inducer == name, f"the Induction must name its inducer ({name!r}), "
                                               f"not {result.inducer!r}")
-    _require(who, _induce(who, inducer, actiongram) == result,
-             "the same actiongram must give an equal Induction")
-    _require(who, _induce(who, inducer, [actiongram]) == result
-             == _induce(who, inducer, (actiongram,)),
-             "one actiongram and a sequence holding it must give the same Induction")
-    _require(who, pickle.loads(pickle.dumps(result)) == result,
-             "the Induction must survive pickling")
 
 
 def _check_several(who: str, inducer, takes: tuple[Actiongram, ...]) -> None:
@@ -180,6 +187,7 @@ def _check_several(who: str, inducer, takes: tuple[Actiongram, ...]) -> None:
         return  # an inducer of one actiongram refuses several, saying so
     _require(who, result.performances == len(takes),
              f"{len(takes)} performances must give performances == {len(takes)}")
+    _check_shape(who, inducer, result, takes[0].names)
     for name, where in result.occurrence_performance.items():
         _require(who, all(0 <= k < len(takes) for k in where),
                  f"{name}: an occurrence lies outside the performances given")

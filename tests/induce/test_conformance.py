@@ -96,6 +96,28 @@ class Spurious(Sequential):
                        occurrences={**result.occurrences, "ghost": ((0.0, 1.0),)})
 
 
+class SpuriousWhenSeveral(Spurious):
+    """Keeps the contract on one actiongram, makes up a component from several performances."""
+
+    name = "spurious_when_several"
+
+    def induce(self, performances):
+        if isinstance(performances, Actiongram) or len(performances) == 1:
+            return Sequential.induce(self, performances)
+        return super().induce(performances)
+
+
+class ImpostorWhenSeveral(Impostor):
+    """Names another inducer only in what it learns from several performances."""
+
+    name = "impostor_when_several"
+
+    def induce(self, performances):
+        if isinstance(performances, Actiongram) or len(performances) == 1:
+            return Sequential.induce(self, performances)
+        return super().induce(performances)
+
+
 @pytest.mark.parametrize("broken, rule", [
     (Restless(), "the same actiongram must give an equal Induction"),
     (Backwards(), "reports, when given, must be one per string, in actiongram order"),
@@ -103,6 +125,8 @@ class Spurious(Sequential):
     (Forgetful(), "set_params\\(no_such_parameter_xxx=1\\) must raise ValidationError"),
     (Impostor(), "the Induction must name its inducer \\('impostor'\\)"),
     (Spurious(), "components .* must be strings of the actiongram"),
+    (SpuriousWhenSeveral(), "components .* must be strings of the actiongram"),
+    (ImpostorWhenSeveral(), "the Induction must name its inducer \\('impostor_when_several'\\)"),
 ])
 def test_the_kit_catches_an_inducer_that_breaks_a_rule(broken, rule):
     with pytest.raises(AssertionError, match=f"check_inducer\\({broken.name}\\): {rule}"):
