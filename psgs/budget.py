@@ -34,7 +34,8 @@ def check_seconds(value, name: str = "max_seconds", *, optional: bool = False) -
     """
     if value is None and optional:
         return
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0:
+    # numbers.Real: a numpy number (a budget read from an array) is a number of seconds too
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not value > 0:
         what = "a positive number or None" if optional else "a positive number"
         raise ValidationError(f"{name} must be {what}, not {value!r}")
 

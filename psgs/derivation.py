@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 import operator
+import numbers
 import random
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
@@ -184,6 +185,10 @@ def communication_step(system: PCGS, configuration: Sequence[Form]) -> Step:
 
 
 # ---- one validated step
+def _is_index(value) -> bool:
+    return isinstance(value, numbers.Integral) and not isinstance(value, bool)
+
+
 def _normalise_positions(positions, n: int) -> tuple[tuple[int, ...], ...]:
     if isinstance(positions, (str, bytes)) or not isinstance(positions, Iterable):
         raise ValidationError(f"positions must give one entry per component, not {positions!r}")
@@ -197,11 +202,10 @@ def _normalise_positions(positions, n: int) -> tuple[tuple[int, ...], ...]:
             item = tuple(item)
         if item is None:
             out.append(())
-        elif isinstance(item, int) and not isinstance(item, bool):
-            out.append((item,))
-        elif isinstance(item, tuple) and all(
-                isinstance(k, int) and not isinstance(k, bool) for k in item):
-            out.append(tuple(sorted(item)))
+        elif _is_index(item):
+            out.append((int(item),))
+        elif isinstance(item, tuple) and all(map(_is_index, item)):
+            out.append(tuple(sorted(map(int, item))))  # numpy's from an array, as Python's
         else:
             raise ValidationError(f"a component's positions are an index, a sequence of "
                                   f"indices or None, not {item!r}")

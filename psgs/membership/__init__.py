@@ -29,7 +29,7 @@ from __future__ import annotations
 import gc
 import numbers
 
-from ..budget import Budget, check_count
+from ..budget import Budget, check_count, check_seconds
 from ..errors import ValidationError
 from ..model import PCGS, PSGS, as_word
 from .nearest import Nearest, nearest
@@ -44,10 +44,6 @@ __all__ = ["Acceptance", "accepts", "EAGER_REPLAY_LIMIT", "MAX_SYMBOLS", "Neares
 EAGER_REPLAY_LIMIT = 2000
 #: The default memory bound of a search, in symbols kept (states × form size, and chart items).
 MAX_SYMBOLS = 10_000_000
-
-
-def _is_seconds(value) -> bool:
-    return not isinstance(value, bool) and isinstance(value, (int, float)) and value > 0
 
 
 def _flag(value) -> bool:
@@ -130,8 +126,7 @@ def accepts(system: PSGS | PCGS, words, *, max_states: int = 200_000,
     for name, value in (("max_states", max_states), ("max_steps", max_steps),
                         ("max_symbols", max_symbols)):
         check_count(value, name)  # the bounds' one check, as nearest's
-    if not _is_seconds(max_seconds):
-        raise ValidationError(f"max_seconds must be a positive number, not {max_seconds!r}")
+    check_seconds(max_seconds)
     if check_witness is not None and not _flag(check_witness):  # "no" is truthy
         raise ValidationError(f"check_witness must be True, False or None, not {check_witness!r}")
     budget = Budget(max_seconds, max_symbols, every=32)

@@ -10,6 +10,7 @@ script on a word.
 
 from __future__ import annotations
 
+import numbers
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
@@ -23,11 +24,12 @@ __all__ = ["EditCosts", "Edit", "apply_edits", "edit_costs"]
 
 
 def _number(value, what: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise ValidationError(f"{what} must be a number, not {value!r}")
     if not finite(value) or value < 0:  # not NaN nor inf, nor an int past the floats
         raise ValidationError(f"{what} must be a finite number ≥ 0, not {value!r}")
-    return value
+    # a numpy number as the Python one it stands for: np.int64 sums wrap round past 2**63
+    return int(value) if isinstance(value, numbers.Integral) else float(value)
 
 
 def _terminal(value, what: str) -> Terminal:
@@ -79,7 +81,7 @@ class EditCosts:
 
     def __post_init__(self) -> None:
         for name in ("insert", "delete", "substitute"):
-            _number(getattr(self, name), f"the {name} cost")
+            object.__setattr__(self, name, _number(getattr(self, name), f"the {name} cost"))
         for name in ("insert_symbol", "delete_symbol"):
             table = getattr(self, name)
             if not isinstance(table, Mapping):

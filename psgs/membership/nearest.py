@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import gc
 import math
+import numbers
 from collections import deque
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -119,7 +120,7 @@ def _show(x) -> str:
 
 def _check_budgets(max_errors, max_states, max_seconds, max_steps, max_symbols) -> None:
     if max_errors is not None:
-        if isinstance(max_errors, bool) or not isinstance(max_errors, (int, float)) or \
+        if isinstance(max_errors, bool) or not isinstance(max_errors, numbers.Real) or \
                 not finite(max_errors) or max_errors < 0:  # NaN, inf, 10**400
             raise ValidationError(f"max_errors must be a finite number ≥ 0 or None, "
                                   f"not {max_errors!r}")
@@ -181,6 +182,9 @@ def nearest(system: PSGS | PCGS, words, *, max_errors: float | None = None, cost
     (None, 'max_errors', True)
     """
     _check_budgets(max_errors, max_states, max_seconds, max_steps, max_symbols)
+    if max_errors is not None:  # a numpy number (as edit costs are) as the Python one it is
+        max_errors = int(max_errors) if isinstance(max_errors, numbers.Integral) \
+            else float(max_errors)
     table = edit_costs(costs)
     budget = Budget(max_seconds, max_symbols, every=32)
     if isinstance(system, PCGS):

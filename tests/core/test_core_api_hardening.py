@@ -350,3 +350,31 @@ def test_bounds_take_a_numpy_integer_as_the_whole_number_it_is():
     assert language(counting, np.int64(3)) == language(counting, 3)
     with pytest.raises(ValidationError, match="max_steps"):
         random_derivation(gamma, 3, max_steps=np.float64(5.0))
+
+
+def test_seconds_costs_and_positions_take_numpy_numbers_as_the_python_ones():
+    # a budget, an edit cost or an occurrence read from an array was refused (max_seconds,
+    # max_errors, costs: "must be a positive number, not np.int64(5)"; positions: "an index")
+    import dataclasses
+
+    import numpy as np
+
+    from psgs import accepts, language, load, nearest
+    from psgs.derivation import apply_tuple, initial_configuration
+    from psgs.membership.costs import EditCosts
+
+    counting = load("counting")
+    assert accepts(counting, ["aa", "bb"], max_seconds=np.int64(5)).answer == "yes"
+    assert language(counting, 4, max_seconds=np.int32(5)) == language(counting, 4)
+    far = nearest(counting, ["aa", "b"], max_seconds=np.int64(5), max_errors=np.int64(3),
+                  costs={"insert": np.int64(2), "delete": {"a": np.float32(1.5)}})
+    near = nearest(counting, ["aa", "b"], max_errors=3, costs={"insert": 2, "delete": {"a": 1.5}})
+    assert (far.distance, far.exact) == (near.distance, near.exact) == (1.5, True)
+    costs = EditCosts(insert=np.int64(2), pairs={("a", "b"): np.uint8(1)})
+    assert type(costs.insert) is int and type(next(iter(costs.pairs.values()))) is int
+    single = dataclasses.replace(counting, mode="single")
+    start = initial_configuration(single)
+    assert apply_tuple(single, start, ("p1", "q1"), positions=np.array([0, 0])) == \
+        apply_tuple(single, start, ("p1", "q1"), positions=[0, 0])
+    with pytest.raises(ValidationError, match="max_seconds"):
+        accepts(counting, ["a", "b"], max_seconds=np.bool_(True))
