@@ -333,9 +333,9 @@ def _init_from(table: type[Conf]):
                 raise TypeError(f"{type(self).__name__}.__init__() got an unexpected keyword "
                                 f"argument {key!r}")
         values = {f.name: params.get(f.name, f.default) for f in fields}
-        table(**values)
-        for key, value in values.items():
-            setattr(self, key, value)
+        made = table(**values)
+        for key in values:  # as given, a numpy number as the Python number the table holds
+            setattr(self, key, getattr(made, key))
 
     __init__.__signature__ = inspect.Signature(
         [inspect.Parameter("self", inspect.Parameter.POSITIONAL_ONLY)] +

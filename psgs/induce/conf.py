@@ -91,9 +91,11 @@ def plain_number(value: object) -> object:
     >>> import numpy as np
     >>> plain_number(np.float32(0.5)), plain_number(np.int64(3)), plain_number("x")
     (0.5, 3, 'x')
+    >>> type(plain_number(np.float64(0.5)))
+    <class 'float'>
     """
-    if isinstance(value, (bool, int, float)) or not isinstance(value, numbers.Real):
-        return value
+    if type(value) in (bool, int, float) or not isinstance(value, numbers.Real):
+        return value  # np.float64 is a float, but not a plain one: its repr says np.float64
     return int(value) if isinstance(value, numbers.Integral) else float(value)
 
 
@@ -246,6 +248,8 @@ class Conf:
     def __post_init__(self) -> None:
         for f in dataclasses.fields(self):
             rule = f.metadata.get("rule")
+            if isinstance(rule, Number):  # np.int64(3) is a count (one read from an array)
+                object.__setattr__(self, f.name, plain_number(getattr(self, f.name)))
             if rule is not None:
                 rule(f.name, getattr(self, f.name))
 

@@ -221,3 +221,24 @@ def test_pal_stops_voting_once_a_round_leaves_every_copy_where_it_was(monkeypatc
     assert len(calls) < 100
     assert many.occurrences == PAL(rounds=2).induce(actiongram).occurrences == \
         PAL(rounds=40).induce(actiongram).occurrences
+
+
+@pytest.mark.parametrize("name", ["pal", "sequential", "pal_content", "pal_motion"])
+def test_an_inducer_takes_numpy_numbers_as_the_numbers_they_hold(name):
+    # np.int64(3) was refused as "must be an integer, not np.int64(3)" (np.float32 likewise),
+    # though generate, noise_sweep and locate take them: a grid of values from np.arange
+    np = pytest.importorskip("numpy")
+    from psgs.induce import get
+
+    plain = get(name)
+    given = {k: (np.int64(v) if isinstance(v, int) else np.float64(v))
+             for k, v in plain.get_params().items()
+             if isinstance(v, (int, float)) and not isinstance(v, bool)}
+    learner = get(name, **given)
+    assert learner.get_params() == plain.get_params()
+    assert all(type(learner.get_params()[k]) in (int, float) for k in given)
+    if "alpha" in given:
+        assert get(name, alpha=np.float32(0.5)).get_params()["alpha"] == 0.5
+    with pytest.raises(ValidationError, match="must be an integer, not 2.5"):
+        get(name, **{next(k for k, v in given.items() if isinstance(v, np.int64)):
+                     np.float32(2.5)})
