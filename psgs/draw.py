@@ -441,8 +441,15 @@ def _render(system, forest: Forest | None, fmt: str, engine: str) -> bytes:
     return buffer.getvalue()
 
 
-def _forest_or_none(system, derivation, seed: int, max_steps: int) -> Forest | None:
+def _forest_or_none(system, derivation, seed: int, max_steps: int,
+                    engine: str) -> Forest | None:
     """The parse trees of a PSGS's derivation (given, or drawn with ``seed``); None for a PCGS."""
+    # draw's checks, to_svg's too: it drew an unknown engine as auto, a non-system raised
+    # an AttributeError
+    if engine not in ("auto", "graphviz", "matplotlib"):
+        raise ValidationError(f"engine must be auto, graphviz or matplotlib, not {engine!r}")
+    if not isinstance(system, (PSGS, PCGS)):
+        raise ValidationError(f"draw takes a PSGS or a PCGS, not {type(system).__name__}")
     if isinstance(system, PSGS):
         return parse_forest(system, derivation, seed=seed, max_steps=max_steps)
     if derivation is not None:
@@ -462,7 +469,7 @@ def to_svg(system: PSGS | PCGS, *, seed: int = 0, max_steps: int = 200,
     >>> svg.startswith("<?xml"), "<svg" in svg
     (True, True)
     """
-    forest = _forest_or_none(system, derivation, seed, max_steps)
+    forest = _forest_or_none(system, derivation, seed, max_steps, engine)
     return _render(system, forest, "svg", engine).decode("utf-8")
 
 
@@ -506,9 +513,7 @@ def draw(system: PSGS | PCGS, path: str | Path, *, seed: int = 0, max_steps: int
     fmt = path.suffix.lower().lstrip(".")
     if fmt not in ("svg", "png"):
         raise ValidationError(f"{path}: draw writes .svg or .png, not {path.suffix or 'no suffix'!r}")
-    if engine not in ("auto", "graphviz", "matplotlib"):
-        raise ValidationError(f"engine must be auto, graphviz or matplotlib, not {engine!r}")
-    forest = _forest_or_none(system, derivation, seed, max_steps)
+    forest = _forest_or_none(system, derivation, seed, max_steps, engine)
     path.write_bytes(_render(system, forest, fmt, engine))
     return path
 

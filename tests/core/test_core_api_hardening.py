@@ -224,6 +224,28 @@ def test_sync_edges_refuses_what_is_no_system(system):
         sync_edges(system)
 
 
+@pytest.mark.parametrize("system", [None, "paper_example", 3, "grammar"])
+def test_to_svg_and_draw_refuse_what_is_no_system(system, gamma, tmp_path):
+    from psgs.draw import draw, to_svg
+
+    system = gamma.components[0] if system == "grammar" else system
+    with pytest.raises(ValidationError, match="PSGS or a PCGS"):
+        to_svg(system)
+    with pytest.raises(ValidationError, match="PSGS or a PCGS"):
+        draw(system, tmp_path / "x.svg")
+
+
+def test_to_svg_refuses_an_unknown_engine_as_draw_does(tmp_path):
+    from psgs.draw import draw, to_svg
+
+    counting = psgs.load("counting")
+    for picture in (lambda: to_svg(counting, engine="dot"),
+                    lambda: draw(counting, tmp_path / "x.svg", engine="dot")):
+        with pytest.raises(ValidationError, match="engine must be auto, graphviz or matplotlib"):
+            picture()
+    assert not (tmp_path / "x.svg").exists()
+
+
 @pytest.mark.parametrize("name", [None, 3, ["pal"], {"pal": 1}])
 def test_get_refuses_a_name_that_is_no_str(name):
     from psgs.induce import get
