@@ -22,6 +22,8 @@ __all__: list[str] = []  # private: Actiongram.from_text is the interface
 
 #: the directive line that keeps equal neighbours apart (``Actiongram.keep_repeats``)
 KEEP_REPEATS = "%keep_repeats"
+#: what a JSON document says it is (``Actiongram.to_json`` writes it)
+_FORMAT = "psgs-actiongram"
 
 _COMMENT = re.compile(r"(?:^|\s)#")
 
@@ -212,12 +214,41 @@ def _placed(error: FormatError, build, string_places: list[tuple[int, int]],
     return FormatError(error.message, source=source, line=line, column=column)
 
 
+#: the keys a document and each of its string objects may have (what ``to_json`` writes): any
+#: other is a misspelling (``"duration"``) that would leave its data unread
+_DOCUMENT_KEYS = ("format", "version", "strings", "skeleton", "keep_repeats")
+_STRING_KEYS = ("name", "start", "symbols", "durations", "displacements", "actuator")
+
+
+class _KeyTwice(Exception):
+    """A JSON object gives one key twice (``json.loads`` would keep the last silently)."""
+
+
+def _unique_keys(pairs: list[tuple[str, object]]) -> dict[str, object]:
+    out: dict[str, object] = {}
+    for key, value in pairs:
+        if key in out:
+            raise _KeyTwice(key)
+        out[key] = value
+    return out
+
+
+def _unknown_key(data: dict, known: tuple[str, ...], where: str, source: str) -> None:
+    extra = [k for k in data if k not in known]
+    if extra:
+        raise FormatError(f"{where} has unknown key {_shown(extra[0])} (its keys: "
+                          f"{', '.join(known)})", source=source)
+
+
 def read_json(cls, text: str, source: str):
     """The actiongram (of class ``cls``) that the JSON ``text`` holds; FormatError if none."""
     if not isinstance(text, (str, bytes, bytearray)):  # what json.loads reads
         raise ValidationError(f"from_json reads a str or bytes, not {type(text).__name__}")
     try:
-        data = json.loads(text)
+        data = json.loads(text, object_pairs_hook=_unique_keys)
+    except _KeyTwice as exc:
+        raise FormatError(f"key {_shown(exc.args[0])} is given twice in one object",
+                          source=source) from None
     except json.JSONDecodeError as exc:
         raise FormatError(f"not JSON: {exc.msg}", source=source, line=exc.lineno,
                           column=exc.colno) from None
@@ -229,6 +260,15 @@ def read_json(cls, text: str, source: str):
                           source=source) from None
     if not isinstance(data, dict) or not isinstance(data.get("strings"), list):
         raise FormatError("expected a JSON object with a 'strings' list", source=source)
+    _unknown_key(data, _DOCUMENT_KEYS, "the document", source)
+    # another format, or a later version of this one, may hold what this reader would drop
+    said = data.get("format", _FORMAT)
+    if said != _FORMAT:
+        raise FormatError(f"'format' is {_shown(said)}, not {_FORMAT!r}", source=source)
+    version = data.get("version", 1)
+    if isinstance(version, bool) or version != 1:
+        raise FormatError(f"'version' is {_shown(version)}: this reader knows version 1",
+                          source=source)
     names, symbol_rows, duration_rows, origins = [], [], [], []
     disp_rows: list[tuple | None] = []
     actuator_rows: list[object] = []
@@ -236,6 +276,7 @@ def read_json(cls, text: str, source: str):
         if not isinstance(item, dict) or not isinstance(item.get("symbols"), list):
             raise FormatError(f"strings[{k}] must be an object with 'name' and 'symbols'",
                               source=source)
+        _unknown_key(item, _STRING_KEYS, f"strings[{k}]", source)
         syms = item["symbols"]
         durs = item.get("durations", [1.0] * len(syms))
         if not isinstance(durs, list):

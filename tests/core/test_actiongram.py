@@ -400,3 +400,26 @@ def test_a_character_splitlines_breaks_at_is_an_error_on_its_own_line(breaker):
 
 def test_windows_line_ends_still_read():
     assert Actiongram.from_text("a: x y\r\nb: p q\r\n").names == ("a", "b")
+
+
+@pytest.mark.parametrize("doc, words", [
+    # json.loads keeps the last of two equal keys: the first list of strings was lost
+    ('{"strings": [{"name": "a", "symbols": ["x"]}], "strings": [{"name": "b", "symbols": ["y"]}]}',
+     "key 'strings' is given twice"),
+    ('{"strings": [{"name": "a", "symbols": ["x"]}], "skeleton": {"a": null, "a": "b"}}',
+     "key 'a' is given twice"),
+    # a misspelt key was ignored: the durations read as 1 each, the skeleton as none
+    ('{"strings": [{"name": "a", "symbols": ["x", "y"], "duration": [5, 6]}]}',
+     r"strings\[0\] has unknown key 'duration' \(its keys: name, start, symbols, durations"),
+    ('{"strings": [{"name": "a", "symbols": ["x"]}], "skeletn": {"a": null}}',
+     "the document has unknown key 'skeletn'"),
+    # another format, or a later version, was read as this one
+    ('{"format": "psgs-grammar", "strings": [{"name": "a", "symbols": ["x"]}]}',
+     "'format' is 'psgs-grammar', not 'psgs-actiongram'"),
+    ('{"format": "psgs-actiongram", "version": 2, "strings": [{"name": "a", "symbols": ["x"]}]}',
+     "'version' is 2: this reader knows version 1"),
+])
+def test_json_that_would_lose_data_is_a_format_error(doc, words):
+    with pytest.raises(FormatError, match=words) as info:
+        Actiongram.from_json(doc, source="f.json")
+    assert str(info.value).startswith("f.json: ")
