@@ -79,6 +79,8 @@ def loads(text: str | bytes, source: str = "<string>") -> PSGS | PCGS:
     ...
     psgs.errors.FormatError: broken.psgs:1:...
     """
+    if not isinstance(source, str):  # it was found out only by an error: a TypeError then
+        raise ValidationError(f"source must be a str (the name errors give), not {source!r}")
     if isinstance(text, (bytes, bytearray)):
         text = decode_utf8(bytes(text), source)
     if not isinstance(text, str):

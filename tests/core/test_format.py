@@ -250,6 +250,15 @@ def test_each_mistake_gives_one_located_error(name, text, line, column, words):
     assert message.isprintable(), message  # no raw control character echoed from the text
 
 
+@pytest.mark.parametrize("source", [None, 3, b"x.psgs"])
+def test_loads_refuses_a_source_that_is_no_str(source):
+    # it was used only to word an error, so a bad text raised a TypeError ("+=") instead
+    with pytest.raises(psgs.ValidationError, match="source must be a str"):
+        loads("psgs G\n", source=source)
+    with pytest.raises(psgs.ValidationError, match="source must be a str"):
+        loads(H + '  p: S -> "a"\n', source=source)
+
+
 def test_binary_junk_is_one_located_error(tmp_path):
     path = tmp_path / "junk.psgs"
     path.write_bytes(b"psgs G\ncomp\xffonent\n")
