@@ -576,7 +576,7 @@ class PCGS(_Components):
         if not isinstance(self.returning, bool):
             raise ValidationError(f"returning must be True or False, not {self.returning!r}")
         names = [g.name for g in components]
-        if not self.master:
+        if self.master is None or self.master == "":  # not 0 or [], taken for "" before
             object.__setattr__(self, "master", names[0])
         elif self.master not in names:
             raise ValidationError(f"the master {self.master!r} is not a component")

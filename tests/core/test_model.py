@@ -117,6 +117,17 @@ def test_pcgs_master_queries_and_centralised():
         PCGS((master, helper), master="Z")
 
 
+@pytest.mark.parametrize("master", [0, False, [], ()])
+def test_pcgs_master_is_a_name_not_any_falsy_value(master):
+    # master=0 (an index?) was taken for the default "" and chose the first component silently,
+    # while master=1 was refused
+    helper = Grammar("H", S, [Rule("t", S, (b,))])
+    first = Grammar("M", S, [Rule("r", S, (a, Query("H")))])
+    with pytest.raises(ValidationError, match="is not a component"):
+        PCGS((first, helper), master=master)
+    assert PCGS((first, helper), master=None).master == PCGS((first, helper)).master == "M"
+
+
 def test_word_reads_a_str_as_one_character_symbols():
     assert as_word("ab") == (a, b)
     assert as_word(["up", "down"]) == (Terminal("up"), Terminal("down"))
