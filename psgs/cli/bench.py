@@ -81,6 +81,10 @@ def register(subparsers) -> None:
 
 
 # -- argument types -------------------------------------------------------------------
+#: the most noise levels one --levels grid may make
+MAX_LEVELS = 10_000
+
+
 def _levels(text: str) -> tuple[float, ...]:
     import argparse
 
@@ -96,7 +100,14 @@ def _levels(text: str) -> tuple[float, ...]:
         raise argparse.ArgumentTypeError(f"{text!r} is not LO:HI:STEP") from None
     if not (step > 0 and 0 <= low <= high <= 1):
         raise argparse.ArgumentTypeError(f"{text!r}: need 0 <= LO <= HI <= 1 and STEP > 0")
-    count = int(round((high - low) / step)) + 1
+    # a tiny STEP made a grid of 1e300 levels (counted without end) or an infinite one
+    # (OverflowError); every level costs trials, so a grid this long is a slip of the STEP
+    span = (high - low) / step
+    if not span < MAX_LEVELS:
+        many = f"{round(span) + 1:,}" if span < 1e9 else f"{span + 1:.3g}"
+        raise argparse.ArgumentTypeError(f"{text!r} makes {many} levels; at most "
+                                         f"{MAX_LEVELS:,} (a larger STEP)")
+    count = int(round(span)) + 1
     return tuple(round(low + k * step, 10) for k in range(count) if low + k * step <= high + 1e-9)
 
 

@@ -123,6 +123,9 @@ def test_bad_levels_are_rejected(capsys):
     ["bench", "noise", "--levels", "5"],
     ["bench", "noise", "--levels", "nan"],
     ["bench", "noise", "--levels", "0:nan:0.1"],
+    ["bench", "noise", "--levels", "0:1:5e-324"],  # an OverflowError's traceback (status 1)
+    ["bench", "noise", "--levels", "0:1:1e-300"],  # 1e300 levels: counted without end
+    ["bench", "noise", "--levels", "0:1:1e-5"],
 ])
 def test_bad_seeds_and_levels_are_usage_errors(capsys, argv):
     with pytest.raises(SystemExit) as info:
