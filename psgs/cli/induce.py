@@ -334,9 +334,11 @@ def _system_summary(system) -> str:
 
 def run_locate(args) -> int:
     """``psgs locate``: learn from --learn performances, print where each FILE holds the action."""
-    from ..induce import PAL, locate
+    from ..induce import get, locate
 
-    learned = PAL(**key_values(args.param)).induce(_load_performances(args.learn))
+    # through the registry, as psgs induce does: an unknown --param is its one-line
+    # ValidationError, where PAL(...) raised the constructor's TypeError (a traceback)
+    learned = get("pal", **key_values(args.param)).induce(_load_performances(args.learn))
     if not learned.components:
         raise ValidationError(f"nothing learnt from the --learn performances: "
                               f"{learned.verdict or 'no component'}")

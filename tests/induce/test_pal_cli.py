@@ -64,3 +64,13 @@ def test_locate_command(tmp_path, capsys):
     found = {line.split(":")[0]: line for line in lines[1:]}
     assert "score" in found[search[0]] and "score" in found[search[1]]
     assert found[search[2]].endswith("not found")
+
+
+def test_locate_says_in_one_line_that_pal_has_no_such_parameter(tmp_path, capsys):
+    # PAL(nosuch=1) raised the constructor's TypeError: a traceback, status 1
+    learn = write_takes(tmp_path, range(2))
+    args = ["locate", learn[1], "--learn", learn[0], "--param", "nosuch=1"]
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("psgs: error: inducer pal has no parameter 'nosuch'")
+    assert err.count("\n") == 1
