@@ -55,6 +55,9 @@ def _bad_name(name: object) -> str | None:
         return None  # a quick yes for the usual names; anything else takes the checks below
     if not isinstance(name, str) or not name:
         return "an actuator name must be non-empty text"
+    if name[0] == "\ufeff":  # the first line's would be read back without it (psgs.load)
+        return (f"actuator name {_shown(name)} starts with U+FEFF, the byte-order mark a "
+                f"file's reader drops")
     return _bad_token(name, "actuator name")
 
 

@@ -423,3 +423,16 @@ def test_json_that_would_lose_data_is_a_format_error(doc, words):
     with pytest.raises(FormatError, match=words) as info:
         Actiongram.from_json(doc, source="f.json")
     assert str(info.value).startswith("f.json: ")
+
+
+def test_a_name_that_starts_with_a_byte_order_mark_is_refused(tmp_path):
+    # it was kept, and written first in the file; psgs.load drops a leading U+FEFF, so the
+    # file read back as another actiongram (string 'a' where 'U+FEFF a' was written)
+    with pytest.raises(FormatError, match="starts with U\\+FEFF"):
+        Actiongram.from_strings({"\ufeffa": "xy"})
+    with pytest.raises(FormatError, match="starts with U\\+FEFF") as info:
+        Actiongram.from_text("\ufeffa: x y\n", source="f.txt")
+    assert (info.value.line, info.value.column) == (1, 1)
+    ag = Actiongram.from_strings({"a\ufeff": "xy"})  # elsewhere in a name it is kept, and read
+    psgs.dump(ag, tmp_path / "ok.actiongram")
+    assert psgs.load(tmp_path / "ok.actiongram") == ag
