@@ -233,9 +233,11 @@ class DistanceSearch:
         cap = lower if limit is None else min(lower, limit)
         self.proved = lower
         eps_cap = 4
+        raise_by = self.step
         while True:
             # the previous round's visited set is gone; the charts are kept
             self.budget.held = sum(chart.held for chart in self.charts)
+            explored = self.explored
             status, lowest, capped = self._round(cap, eps_cap)
             if status == "max_states":
                 return "max_states", None, None
@@ -250,7 +252,14 @@ class DistanceSearch:
                 return "over", None, None  # every state within the limit was explored
             if capped:
                 eps_cap *= 2
-            cap = max(lowest, cap + self.step)
+            # A round that explored no state learnt only that the cap is too low (the charts,
+            # computed up to the cap, bound what they cut by the cap itself): where a cheap edit
+            # is dwarfed by the ones needed (substitutions at 1, insertions at 10**6) one round
+            # per least cost never ended. The raise doubles while rounds explore nothing; the
+            # branch and bound within a round still returns the cheapest tuple, so the answer
+            # is the same, and rounds that explore states raise the cap as before.
+            raise_by = raise_by * 2 if self.explored == explored else self.step
+            cap = max(lowest, cap + raise_by)
             if limit is not None:
                 cap = min(cap, limit)
             if best < INF:

@@ -144,6 +144,24 @@ def test_synchronisation_can_cost_more_than_the_components():
     assert accepts(counting, result.words)
 
 
+@pytest.mark.parametrize("dear", [10, 10**3, 10**6])
+def test_a_cheap_edit_dwarfed_by_the_needed_ones_does_not_slow_the_rounds(dear):
+    """Substitutions at 1, insertions and deletions at ``dear``: (aa, b) needs one of the
+    dear edits. The rounds raised the cap one least cost at a time, exploring nothing, so
+    10**6 ran into max_seconds instead of answering."""
+    from psgs.format import load
+    from pathlib import Path
+
+    counting = load(Path(__file__).parents[2] / "grammars" / "counting.psgs")
+    costs = {"insert": dear, "delete": dear, "substitute": 1}
+    result = nearest(counting, ["aa", "b"], costs=costs, max_seconds=5)
+    assert result.exact and result.distance == dear
+    assert accepts(counting, result.words)
+    members = list(language(counting, 6, method="search").words)
+    words = (tuple(map(Terminal, "aa")), (Terminal("b"),))
+    assert result.distance == oracle(members, words, edit_costs(costs))
+
+
 def test_all_tuples_small_exhaustive():
     """Every input up to length 3 for Γ's one-block prefix shape: distance 0 iff accepted."""
     from test_membership import gamma
