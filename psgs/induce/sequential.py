@@ -20,6 +20,7 @@ Occurrences are times within their own performance; the induction's
 from __future__ import annotations
 
 from collections.abc import Sequence
+import heapq
 from dataclasses import dataclass
 
 import numpy as np
@@ -144,44 +145,14 @@ def _repair(strings: Sequence[tuple[str, ...]], min_count: int, max_rules: int):
         codes.extend(alphabet[s] for s in syms)
     if len(codes) < 2:
         return None
-    seq = np.asarray(codes, dtype=np.int64)
-    origin = np.arange(len(seq), dtype=np.int64)  # where each current symbol starts
-    expansion: dict[int, tuple[int, int]] = {}
-    length_of = {c: 1 for c in range(len(names) + len(strings) - 1)}
-    next_code = len(names) + len(strings) - 1
-    base = np.int64(1 << 31)
-    bounded = False
-    while len(seq) >= 2:
-        if len(expansion) >= max_rules:
-            bounded = True
-            break
-        keys = seq[:-1] * base + seq[1:]
-        uniq, first, counts = np.unique(keys, return_index=True, return_counts=True)
-        order = np.lexsort((first, -counts))
-        best = uniq[order[0]]
-        hits = np.flatnonzero(keys == best)
-        left, right = int(best // base), int(best % base)
-        if left == right:  # runs like N N N: take non-overlapping pairs left to right
-            keep, last = [], -2
-            for p in hits.tolist():
-                if p >= last + 2:
-                    keep.append(p)
-                    last = p
-            hits = np.asarray(keep, dtype=np.int64)
-        if len(hits) < min_count:
-            break
-        code = next_code
-        next_code += 1
-        expansion[code] = (left, right)
-        length_of[code] = length_of[left] + length_of[right]
-        seq = seq.copy()
-        seq[hits] = code
-        drop = np.ones(len(seq), dtype=bool)
-        drop[hits + 1] = False
-        seq, origin = seq[drop], origin[drop]
+    expansion, length_of, final, bounded = _pair_rules(codes, len(names) + len(strings) - 1,
+                                                       min_count, max_rules)
     if not expansion:
         return None
-    longest = max(expansion, key=lambda c: (length_of[c], int(np.sum(seq == c)), -c))
+    held = {}  # how often each code stands in the final sequence
+    for c in final.values():
+        held[c] = held.get(c, 0) + 1
+    longest = max(expansion, key=lambda c: (length_of[c], held.get(c, 0), -c))
 
     def spell(c: int) -> list[int]:
         out, stack = [], [c]
@@ -197,7 +168,103 @@ def _repair(strings: Sequence[tuple[str, ...]], min_count: int, max_rules: int):
     pattern = tuple(names[c] for c in spell(longest))
     bounds = np.asarray(offsets, dtype=np.int64)
     positions = []
-    for p in origin[seq == longest].tolist():
+    for p in sorted(p for p, c in final.items() if c == longest):
         k = int(np.searchsorted(bounds, p, side="right")) - 1
         positions.append((k, int(p) - offsets[k]))
     return pattern, tuple(positions), len(expansion), bounded
+
+
+def _pair_rules(codes: list[int], first_new: int, min_count: int, max_rules: int):
+    """Re-Pair on ``codes``: ``(expansion, length_of, final, bounded)``.
+
+    Each round makes the most frequent digram (the most places it starts at, overlapping ones
+    of a run ``N N N`` too; among equals the one starting first) a rule, replacing its
+    occurrences left to right (a run's overlapping ones skipped), until that digram starts at
+    fewer than ``min_count`` places left after the skipping, or ``max_rules`` rules are made.
+    ``final`` maps each place left (its original position) to its code.
+
+    The digrams' places are kept up to date as pairs are replaced -- only the neighbours of a
+    replaced pair change -- and the most frequent is read from a heap, so a round costs what
+    it replaces, not a count over the whole sequence (that was quadratic: a random string of
+    10**5 symbols took 12 s, 10**6 did not finish).
+    """
+    n = len(codes)
+    if n < 2:  # no digram at all
+        return {}, {}, dict(enumerate(codes)), False
+    sym = list(codes)
+    nxt = list(range(1, n)) + [-1]
+    prv = [-1] + list(range(n - 1))
+    places: dict[tuple[int, int], set[int]] = {}  # digram -> the places it starts at
+    firsts: dict[tuple[int, int], list[int]] = {}  # digram -> a heap of its places (lazy)
+    ranking: list = []  # (-count, first place, digram), lazy: checked when popped
+
+    def first(key):
+        heap, held = firsts[key], places[key]
+        while heap[0] not in held:
+            heapq.heappop(heap)
+        return heap[0]
+
+    def add(p):
+        key = (sym[p], sym[nxt[p]])
+        places.setdefault(key, set()).add(p)
+        heapq.heappush(firsts.setdefault(key, []), p)
+        return key
+
+    def remove(p):
+        key = (sym[p], sym[nxt[p]])
+        places[key].discard(p)
+        return key
+
+    for p in range(n - 1):
+        add(p)
+    for key in places:
+        heapq.heappush(ranking, (-len(places[key]), first(key), key))
+    expansion: dict[int, tuple[int, int]] = {}
+    length_of: dict[int, int] = {}
+    code, alive, bounded = first_new, n, False
+    while alive >= 2 and ranking:
+        if len(expansion) >= max_rules:
+            bounded = True
+            break
+        count, at, key = heapq.heappop(ranking)
+        held = places.get(key)
+        if not held or -count != len(held) or first(key) != at:
+            continue  # an entry of an older count or first place
+        hits = sorted(held)
+        if key[0] == key[1]:  # a run N N N: non-overlapping pairs, left to right
+            keep = []
+            for p in hits:
+                if not keep or nxt[keep[-1]] != p:
+                    keep.append(p)
+            hits = keep
+        if len(hits) < min_count:
+            break
+        expansion[code] = key
+        length_of[code] = length_of.get(key[0], 1) + length_of.get(key[1], 1)
+        touched = set()
+        for p in hits:
+            q = nxt[p]
+            if prv[p] >= 0:
+                touched.add(remove(prv[p]))
+            remove(p)
+            if nxt[q] >= 0:
+                touched.add(remove(q))
+            sym[p] = code
+            nxt[p] = nxt[q]
+            if nxt[q] >= 0:
+                prv[nxt[q]] = p
+            alive -= 1
+            if prv[p] >= 0:
+                touched.add(add(prv[p]))
+            if nxt[p] >= 0:
+                touched.add(add(p))
+        touched.add(key)
+        for k in touched:
+            if places[k]:
+                heapq.heappush(ranking, (-len(places[k]), first(k), k))
+        code += 1
+    final, p = {}, 0
+    while p >= 0:
+        final[p] = sym[p]
+        p = nxt[p]
+    return expansion, length_of, final, bounded
