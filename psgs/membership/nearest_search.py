@@ -14,7 +14,8 @@ sum over its occurrences of their distance in the component grammar alone.
 never drops along a move (a split costs at least its occurrence's distance),
 so a search that expands only states with ``f ≤ U`` finds every tuple of
 cost ``≤ U``. Rounds raise ``U`` from the sum of the components' distances
-(the lower bound) to the least estimate a round cut off; within a round a
+(the lower bound) to the least estimate a round cut off, by at least the least
+cost (doubled while rounds explore no state); within a round a
 depth-first branch and bound keeps the cheapest tuple, so the first round
 that finds one returns the exact distance. When the components' nearest
 words can be derived in step, the first round finds them without
@@ -31,6 +32,9 @@ from .error_chart import INF, ErrorChart
 from .schedule_search import _item_order, _Substrings
 
 __all__ = ["DistanceSearch"]
+
+#: The largest raise of the cap between two rounds, in least costs (see ``DistanceSearch.run``).
+_MOST_DOUBLED = 2 ** 40
 
 
 class DistanceSearch:
@@ -257,8 +261,12 @@ class DistanceSearch:
             # is dwarfed by the ones needed (substitutions at 1, insertions at 10**6) one round
             # per least cost never ended. The raise doubles while rounds explore nothing; the
             # branch and bound within a round still returns the cheapest tuple, so the answer
-            # is the same, and rounds that explore states raise the cap as before.
-            raise_by = raise_by * 2 if self.explored == explored else self.step
+            # is the same, and rounds that explore states raise the cap as before. The raise
+            # stops doubling at 2**40 least costs: a search that explores nothing at any cap
+            # (a language empty in a way the analysis does not see) then goes on to its time
+            # bound as before, its cap finite (doubling without end overflowed it to inf).
+            idle = self.explored == explored
+            raise_by = min(raise_by * 2, self.step * _MOST_DOUBLED) if idle else self.step
             cap = max(lowest, cap + raise_by)
             if limit is not None:
                 cap = min(cap, limit)

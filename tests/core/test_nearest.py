@@ -162,6 +162,30 @@ def test_a_cheap_edit_dwarfed_by_the_needed_ones_does_not_slow_the_rounds(dear):
     assert result.distance == oracle(members, words, edit_costs(costs))
 
 
+def test_rounds_that_never_explore_keep_a_finite_cap_until_the_time_bound():
+    """A language empty in a way the analysis does not see: (p, q) finishes H, and then no
+    tuple applies, so no round explores a state. Doubled without end, the cap's raise
+    overflowed to inf and the charts computed with nan (a ValueError at once)."""
+    from psgs.format import loads
+
+    system = loads('''psgs R
+mode single
+unsynchronised strict
+component G start S
+  p: S -> S A
+  e: S -> ε
+component H start S
+  q: S -> "a" "a"
+  r: A -> "b" S
+sync
+  (e, r)
+  (p, q)
+''')
+    result = nearest(system, ["", ""], max_seconds=0.5)
+    assert result.distance is None and not result.exact and result.bound == "max_seconds"
+    assert 0 < result.lower_bound < float("inf")
+
+
 def test_all_tuples_small_exhaustive():
     """Every input up to length 3 for Γ's one-block prefix shape: distance 0 iff accepted."""
     from test_membership import gamma
