@@ -20,7 +20,7 @@ with the cube of the morphemes' lengths (two alike morphemes of 400 kinetemes
 took 50 s read sub-string by sub-string, 0.1 s so). Morphemes long *and* alike
 still cost the square of their length, so the places read are bounded
 (``max_steps``, :data:`MAX_STEPS` by default, a few seconds): past it the
-search stops with an error naming the joint and the bound.
+search stops with an error naming the bound and the joint it was reached at.
 """
 
 from __future__ import annotations
@@ -139,8 +139,9 @@ def _dense(keys: np.ndarray) -> np.ndarray:
 
 def _action_counts(ids: np.ndarray, actions: np.ndarray, size: int) -> np.ndarray:
     """How many distinct actions hold each number in ``0 .. size - 1``."""
-    pairs = np.unique(ids * (actions.max(initial=0) + 1) + actions)
-    return np.bincount(pairs // (actions.max(initial=0) + 1), minlength=size)
+    width = actions.max(initial=0) + 1  # an (id, action) pair as one number
+    pairs = np.unique(ids * width + actions)
+    return np.bincount(pairs // width, minlength=size)
 
 
 def shared_patterns(praxicon, *, min_length: int = 4, min_actions: int = 2,
@@ -200,7 +201,9 @@ def shared_patterns(praxicon, *, min_length: int = 4, min_actions: int = 2,
                     numbers.setdefault(action.name, len(numbers))
                     cycles.setdefault(joint.name, []).append((action.name, channel, cycle))
     joints = {name: _coded(items, numbers, name) for name, items in cycles.items()}
-    wholes: dict[int, set[tuple[str, ...]]] = {}  # every whole cycle, of any joint
+    # every whole cycle, of any joint: a pattern another joint holds whole is read around its
+    # end in this joint too, as the definition has always read it (one set of whole cycles)
+    wholes: dict[int, set[tuple[str, ...]]] = {}
     for joint, alphabet in joints.values():
         for m in joint.morphemes:
             rotated = np.roll(m.codes, -m.start)
@@ -244,7 +247,7 @@ class _Level:
     starts: np.ndarray  # where in it the token starts
     ids: np.ndarray  # each token's pattern number (equal kinetemes, equal numbers)
     counts: np.ndarray  # per number, how many actions hold it
-    implied: np.ndarray  # per number, not reported: shared by too few, or held in a longer one
+    dropped: np.ndarray  # per number, not reported: shared by too few, or held in a longer one
     at: np.ndarray  # per place of the joint, the number of the token starting there (-1: none)
 
 
@@ -269,8 +272,8 @@ def _maximal(joint: _Joint, name: str, min_length: int, min_actions: int,
         steps -= len(ids)
         if steps < 0:
             raise ValidationError(
-                f"shared_patterns: the morphemes of joint {name!r} are too long and alike "
-                f"to compare within {max_steps:,} steps (max_steps)")
+                f"shared_patterns: the morphemes are too long and alike to compare within "
+                f"{max_steps:,} steps (max_steps; reached at joint {name!r})")
         lengths = joint.lengths[places]
         # a morpheme as long as the pattern is read once, from its least rotation
         keep = (lengths > length) | ((lengths == length) & (starts == whole_start[places]))
@@ -284,8 +287,8 @@ def _maximal(joint: _Joint, name: str, min_length: int, min_actions: int,
             for part in (shorter[keep][shared], before.at[suffix]):
                 ok = part >= 0  # always so (a shared pattern's parts are shared); kept safe
                 part, same = part[ok], grown[ok]
-                before.implied[part[same == before.counts[part]]] = True
-            candidates.extend(_held(joint, before, ~before.implied))
+                before.dropped[part[same == before.counts[part]]] = True
+            candidates.extend(_held(joint, before, ~before.dropped))
         at = np.full(len(joint.codes), -1, dtype=np.int64)
         at[joint.offsets[places] + starts] = ids
         level = _Level(length, places, starts, ids, counts, counts < min_actions, at)
@@ -296,7 +299,7 @@ def _maximal(joint: _Joint, name: str, min_length: int, min_actions: int,
         ids = shorter * joint.alphabet + joint.symbols(places, starts, length)
         before, length = level, length + 1
     if before is not None:
-        candidates.extend(_held(joint, before, ~before.implied))
+        candidates.extend(_held(joint, before, ~before.dropped))
     by_actions: dict[tuple[str, ...], list[str]] = {}
     for text, actions, _ in whole_held:
         by_actions.setdefault(actions, []).append(text)

@@ -125,9 +125,9 @@ def test_long_unlike_morphemes_share_only_short_patterns_quickly():
 def test_the_bound_is_named_when_morphemes_are_too_long_and_alike():
     morpheme = _long(300)
     records = [_action(name, [("arm", [("arm.rx", morpheme)])]) for name in ("a", "b")]
-    with pytest.raises(ValidationError, match=r"^shared_patterns: the morphemes of joint 'arm' "
-                                              r"are too long and alike to compare within "
-                                              r"10,000 steps \(max_steps\)$"):
+    with pytest.raises(ValidationError, match=r"^shared_patterns: the morphemes are too long and "
+                                              r"alike to compare within 10,000 steps "
+                                              r"\(max_steps; reached at joint 'arm'\)$"):
         shared_patterns(records, max_steps=10_000)
     assert len(shared_patterns(records, max_steps=1_000_000)) == 1
     with pytest.raises(ValidationError, match="max_steps must be a whole number"):
@@ -149,8 +149,8 @@ def test_verify_of_a_folder_with_huge_alike_morphemes_says_so_in_one_line(tmp_pa
         path.write_text(json.dumps(stored))
     assert main(["praxicon", "verify", str(folder)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert err == ["psgs: error: shared_patterns: the morphemes of joint 'arm' are too long and "
-                   "alike to compare within 20,000,000 steps (max_steps)"]
+    assert err == ["psgs: error: shared_patterns: the morphemes are too long and alike to compare "
+                   "within 20,000,000 steps (max_steps; reached at joint 'arm')"]
 
 
 def test_more_distinct_kinetemes_than_characters_is_one_line():
