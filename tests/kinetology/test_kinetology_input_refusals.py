@@ -10,6 +10,7 @@ import kinetology
 from kinetology import Joint, Motion, Skeleton
 from kinetology.cli import main
 
+from test_kinetology_cli import _small_amc
 from test_kinetology_review_fixes import _write_bvh
 
 
@@ -140,19 +141,8 @@ def test_an_unwrap_period_below_a_degree_is_refused(tmp_path, capsys):
 
 # -- decompress --against at another frame rate ----------------------------------------------
 
-def _amc(tmp_path):
-    from test_kinetology_readers import SMALL_ASF
-
-    (tmp_path / "s.asf").write_text(SMALL_ASF)
-    rows = "".join(f"{k}\nroot 0 0 0 0 0 0\nfemur {40 * np.sin(k / 8):.3f}\ntibia 0 0\n"
-                   for k in range(1, 121))
-    path = tmp_path / "s_1.amc"
-    path.write_text(":FULLY-SPECIFIED\n:DEGREES\n" + rows)
-    return path
-
-
 def test_decompress_against_a_take_at_another_rate_says_so(tmp_path, capsys):
-    amc, packed, csv = _amc(tmp_path), tmp_path / "s.kin", tmp_path / "s.csv"
+    amc, packed, csv = _small_amc(tmp_path), tmp_path / "s.kin", tmp_path / "s.csv"
     assert main(["compress", str(amc), "--frame-rate", "60", "-o", str(packed)]) == 0
     capsys.readouterr()
     # the AMC read at its default 120 fps: the same 120 frames, compared one to one, with a note
