@@ -313,7 +313,7 @@ class Actiongram:
         columns : mapping of str to str, optional
             Your key or column name for each of ``stream``, ``onset``, ``duration``,
             ``symbol`` (``{"stream": "voice", "symbol": "pitch"}``); a key that is none of
-            these is a ValidationError.
+            these, or two fields given one column, is a ValidationError.
 
         Returns
         -------

@@ -176,6 +176,31 @@ def _check_options(gaps: object, rest_symbol: object, keep_repeats: object) -> N
         raise ValidationError(f"keep_repeats must be True or False, not {_shown(keep_repeats)}")
 
 
+def _same_column(a: object, b: object) -> bool:
+    """Whether column names ``a`` and ``b`` are one (as a mapping's lookup would take them)."""
+    try:
+        return a is b or bool(a == b)
+    except (TypeError, ValueError):  # a name whose == is no truth value: no two are one
+        return False
+
+
+def _check_one_column_each(columns: dict) -> None:
+    """ValidationError when two fields would read one column: the table would be read with one
+    of its columns in two places and another not at all. A field that ``columns`` leaves out
+    reads the column of its own name, so ``{"onset": "duration"}`` is refused too."""
+    keys = [columns.get(f, f) for f in FIELDS]
+    for i, first in enumerate(FIELDS):
+        for j in range(i + 1, len(FIELDS)):
+            if _same_column(keys[i], keys[j]):
+                second = FIELDS[j]
+                unmapped = [f for f in (first, second) if f not in columns]
+                why = (f" ({_shown(unmapped[0])} is not in columns, so it reads the column of "
+                       f"its own name)" if unmapped else "")
+                raise ValidationError(f"columns gives fields {first!r} and {second!r} one "
+                                      f"column, {_shown(keys[i])}{why}: each field needs a "
+                                      f"column of its own")
+
+
 def from_events(cls, rows, *, gaps: str = "rest", rest_symbol: str = "_",
                 keep_repeats: bool = False, columns: Mapping[str, str] | None = None):
     """:meth:`psgs.Actiongram.from_events` (its docstring says what each argument does)."""
@@ -186,6 +211,7 @@ def from_events(cls, rows, *, gaps: str = "rest", rest_symbol: str = "_",
     if unknown:  # a misspelt field was ignored, and the column it named never read
         raise ValidationError(f"columns maps {_shown(unknown[0])}, which is no field: the "
                               f"fields are {', '.join(FIELDS)}")
+    _check_one_column_each(dict(columns or {}))
     records, labels = _records(rows, dict(columns or {}))
     label = lambda k: f"row {labels[k]!r}"  # noqa: E731 - the index a user gave, as given
     try:

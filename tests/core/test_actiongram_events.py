@@ -115,6 +115,29 @@ def test_a_column_mapped_from_no_field_is_refused():
         Actiongram.from_events([("a", 0, 1, "x")], columns={"note": "symbol"})
 
 
+@pytest.mark.parametrize("columns, words", [
+    ({"onset": "t", "duration": "t"}, "fields 'onset' and 'duration' one column, 't'"),
+    ({"stream": "v", "symbol": "v"}, "fields 'stream' and 'symbol' one column, 'v'"),
+    # a field left out reads the column of its own name, which another field now reads too
+    ({"onset": "duration"}, "fields 'onset' and 'duration' one column, 'duration' ('duration' "
+                            "is not in columns"),
+])
+def test_two_fields_given_one_column_are_refused(columns, words):
+    # one column was read as both fields, and another column of the table not at all
+    rows = [{"t": 0, "v": "a", "onset": 0, "duration": 1, "stream": "s", "symbol": "a"}]
+    import pandas  # in the test extra: the DataFrame path reads columns by the same mapping
+
+    for table in (rows, pandas.DataFrame(rows)):
+        with pytest.raises(ValidationError) as info:
+            Actiongram.from_events(table, columns=columns)
+        assert words in str(info.value) and "each field needs a column of its own" in str(
+            info.value)
+    # a swap is two columns, each read once
+    swapped = Actiongram.from_events([{"stream": "s", "onset": 2, "duration": 0, "symbol": "a"}],
+                                     columns={"onset": "duration", "duration": "onset"})
+    assert swapped.origins == (0.0,) and swapped.durations == {"s": (2.0,)}
+
+
 @pytest.mark.parametrize("rows, words", [
     ([("s", -1, 1, "a")], "row 0: onset must be 0 or more"),
     ([("s", 0, 1, "a"), ("s", math.nan, 1, "a")], "row 1: onset must be finite"),
