@@ -72,8 +72,7 @@ def test_pattern_method_on_a_synthetic_case_and_errors():
     assert locate(learned, Actiongram.from_strings({"a": "x" * 20, "b": "u" * 20})) == ()
     with pytest.raises(ValidationError, match="none of the learned components"):
         locate(learned, Actiongram.from_strings({"q": "xy"}))
-    with pytest.raises(ValidationError, match="no component"):
-        locate(Induction(None, (), {}, {}), new)
+    assert locate(Induction(None, (), {}, {}), new) == ()  # nothing learnt: found nowhere
     with pytest.raises(TypeError):
         locate(learned, "a: x y")
     with pytest.raises(ValidationError, match="method"):
@@ -150,3 +149,44 @@ def test_locate_with_its_defaults_spots_an_action_between_others():
     # B performed alone is found over most of the take
     alone = locate(learned, kinetology.segment(b))
     assert alone and alone[-1].stop - alone[0].start >= 0.7 * b.duration
+
+
+@pytest.mark.parametrize("strings", [{"a": "abcdefghij", "b": "klmnopqrst"},  # nothing repeats
+                                     {"a": "x" * 20, "b": "y" * 20},  # one symbol each
+                                     {"a": "x", "b": "y"}, {"a": "", "b": ""}])
+def test_nothing_learnt_is_found_nowhere_by_every_method(strings):
+    """PAL learns no component from an actiongram without synchronised repetition: every
+    method answers that the action is found nowhere (the pattern method raised, the joints
+    method returned no span)."""
+    learned = PAL().induce(Actiongram.from_strings(strings))
+    assert not learned.components
+    for new in (Actiongram.from_strings(strings),
+                Actiongram.from_strings({"a": "xy" * 10, "b": "uv" * 10})):
+        for method in ("auto", "joints", "pattern"):
+            assert locate(learned, new, method=method) == (), method
+    assert locate(Induction(None, (), {}, {}), Actiongram.from_strings({"a": "xy"}),
+                  method="pattern") == ()
+
+
+def test_numpy_integers_are_repeats():
+    learned, new = _synthetic_case()
+    import numpy as np
+
+    expected = locate(learned, new, threshold=0.6, repeats=2)
+    assert locate(learned, new, threshold=0.6, repeats=np.int64(2)) == expected
+    assert locate(learned, new, threshold=0.6, repeats=np.uint8(2)) == expected
+
+
+def test_more_repeats_than_the_new_motion_holds_find_nothing_without_allocating_them():
+    """A place must hold ``repeats`` copies in a row: more copies than the new motion has
+    sampled points fit nowhere, and are not made (10**12 copies raised a MemoryError)."""
+    import tracemalloc
+
+    learned, new = _synthetic_case()
+    tracemalloc.start()
+    try:
+        assert locate(learned, new, repeats=10**12, method="pattern") == ()
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 50 * 2**20

@@ -16,6 +16,7 @@ each kineteme lasts the channel's median segment duration in the new motion.
 
 from __future__ import annotations
 
+import numbers
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -103,13 +104,16 @@ def locate(learned: Induction | PSGS, actiongram: Actiongram, *, threshold: floa
     Returns
     -------
     tuple of Located
-        In time order; empty when the action is not found.
+        In time order; empty when the action is not found, and by every
+        method when nothing was learnt (an induction without a component:
+        no synchronised repetition).
 
     Raises
     ------
     ValidationError
-        When ``learned`` has no component, or none of its components is a
-        string of ``actiongram``; when a scale is not finite and positive,
+        With ``method="pattern"`` (or a grammar system), when none of the
+        learned components is a string of ``actiongram``; when a scale is not
+        finite and positive,
         ``repeats`` is below 1, or ``threshold`` (at most 1), ``min_speed`` (0 or
         more) or ``min_share`` (0 to 1) is no finite number. A tempo whose pattern is longer than the new
         motion is skipped before it is sampled (it fits nowhere).
@@ -136,22 +140,30 @@ def locate(learned: Induction | PSGS, actiongram: Actiongram, *, threshold: floa
     check_number("min_speed", plain_number(min_speed), low=0)
     if min_share is not None:
         check_number("min_share", plain_number(min_share), low=0, high=1)
-    if repeats is not None and (isinstance(repeats, bool) or not isinstance(repeats, int)
-                                or repeats < 1):
+    if repeats is not None and (isinstance(repeats, bool)
+                                or not isinstance(repeats, numbers.Integral) or repeats < 1):
         raise ValidationError(f"repeats must be a whole number of at least 1, not {repeats!r}")
+    if isinstance(learned, Induction) and not learned.components:
+        # nothing learnt (no synchronised repetition): found nowhere, as the joints method
+        # answers an induction without actuators
+        return ()
     if method == "joints" or (method == "auto" and isinstance(learned, Induction)
                               and learned.actuators and _cyclic(learned)):
         return _by_joints(learned, actiongram, min_share if min_share is not None else 0.4)
     templates = _templates(learned, actiongram)
-    if repeats is None:
-        repeats = 2 if _cyclic(learned) else 1
-    templates = {n: (syms * repeats, durs * repeats, speed)
-                 for n, (syms, durs, speed) in templates.items()}
     if not templates:
         raise ValidationError("none of the learned components is a string of this actiongram")
+    repeats = (2 if _cyclic(learned) else 1) if repeats is None else int(repeats)
     codes: dict[str, int] = {}
     step = grid_step((actiongram,))
     grid = sample(actiongram, codes, step)
+    if repeats > grid.points:
+        # more copies in a row than the new motion has sampled points: each would last less
+        # than a point, so no place holds them (and the copies are not made: their number
+        # is unbounded)
+        return ()
+    templates = {n: (syms * repeats, durs * repeats, speed)
+                 for n, (syms, durs, speed) in templates.items()}
     size = len(codes) + len({s for syms, _, _ in templates.values() for s in syms})
     rows = {name: actiongram.index(name) for name in templates}
     best = np.full(grid.points, -np.inf)
@@ -200,8 +212,6 @@ def _cyclic(learned) -> bool:
 def _templates(learned, actiongram: Actiongram) -> dict[str, tuple]:
     """Per component string of ``actiongram``: (kinetemes, durations, typical speed or None)."""
     if isinstance(learned, Induction):
-        if not learned.components:
-            raise ValidationError("the induction has no component: nothing to locate")
         out = {}
         for name in learned.components:
             if name not in actiongram.names:
