@@ -540,8 +540,9 @@ def read_events_csv(path: str | Path, *, gaps: str = "rest", rest_symbol: str = 
     Raises
     ------
     FormatError
-        Naming the file and the line: a missing column, a number that is not one, a row of
-        too few cells, no rows, or any bad row that :meth:`Actiongram.from_events` refuses.
+        Naming the file, the line and the column of the cell at fault (a row's end for what
+        it lacks): a missing column, a number that is not one, a row of too few cells, no
+        rows, or any bad row that :meth:`Actiongram.from_events` refuses.
     ValidationError
         For a bad ``gaps`` or ``rest_symbol``.
 

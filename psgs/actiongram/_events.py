@@ -9,7 +9,7 @@ onset.
 
 Rows come as tuples, as mappings, as a pandas DataFrame (recognised only when the caller has
 pandas loaded: psgs never imports it) or, for the command line, as a CSV file. Every bad row is
-one error naming the row (its index, or the file's line).
+one error naming the row (its index, or the file's line and the column of the cell at fault).
 """
 
 from __future__ import annotations
@@ -18,6 +18,7 @@ import csv
 import io
 import math
 import numbers
+import re
 import sys
 from array import array
 from collections.abc import Callable, Iterable, Mapping, Sequence
@@ -39,12 +40,14 @@ TOLERANCE = 1e-9
 
 
 class _RowError(Exception):
-    """A bad row: its position in the input and what is wrong (the caller names the row)."""
+    """A bad row: its position in the input, what is wrong (the caller names the row) and the
+    field at fault (a file's error names that field's cell)."""
 
-    def __init__(self, index: int, message: str) -> None:
+    def __init__(self, index: int, message: str, field: str) -> None:
         super().__init__(message)
         self.index = index
         self.message = message
+        self.field = field
 
 
 def _close(a: float, b: float) -> bool:
@@ -58,22 +61,22 @@ def _text(value: object, what: str, index: int) -> str:
         value = str(int(value))
     problem = _bad_name(value) if what == "stream" else _bad_symbol(value)
     if problem:
-        raise _RowError(index, f"{what}: {problem}" if what == "stream" else problem)
+        raise _RowError(index, f"{what}: {problem}" if what == "stream" else problem, what)
     return value
 
 
 def _time(value: object, what: str, index: int) -> float:
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise _RowError(index, f"{what} must be a number, not {_shown(value)}")
+        raise _RowError(index, f"{what} must be a number, not {_shown(value)}", what)
     try:
         number = float(value)
     except OverflowError:  # an int past the floats (10**400): no time a float can hold
         number = math.inf
     if not math.isfinite(number):
-        raise _RowError(index, f"{what} must be finite, not {_shown(value)}")
+        raise _RowError(index, f"{what} must be finite, not {_shown(value)}", what)
     if number < 0 if what == "onset" else number <= 0:
         raise _RowError(index, f"{what} must be {'0 or more' if what == 'onset' else 'positive'}"
-                               f", not {_shown(value)}")
+                               f", not {_shown(value)}", what)
     return number
 
 
@@ -128,13 +131,15 @@ def _strings(records: Sequence[tuple], label: Callable[[int], str], gaps: str,
         name = _text(stream, "stream", k)
         event = (_time(onset, "onset", k), k, _time(duration, "duration", k),
                  _text(symbol, "symbol", k))
+        # the onset alone is a time a float holds: the duration is the cell at fault
         if not math.isfinite(event[0] + event[2]):
             raise _RowError(k, f"its end, onset {_shown(onset)} plus duration "
-                               f"{_shown(duration)}, is past the largest time a float holds")
+                               f"{_shown(duration)}, is past the largest time a float holds",
+                            "duration")
         if event[0] + event[2] == event[0]:
             raise _RowError(k, f"duration {_shown(duration)} vanishes beside onset "
                                f"{_shown(onset)}: a float cannot tell the event's end from "
-                               f"its start")
+                               f"its start", "duration")
         streams.setdefault(name, []).append(event)
     strings, durations, starts = {}, {}, {}
     for name, events in streams.items():
@@ -148,7 +153,7 @@ def _strings(records: Sequence[tuple], label: Callable[[int], str], gaps: str,
             elif after < end:
                 raise _RowError(j, f"overlaps {label(k)} in stream {_shown(name)} ({label(k)} "
                                    f"lasts from {onset:g} to {end:g}, this one starts at "
-                                   f"{after:g})")
+                                   f"{after:g})", "onset")  # this row starts too early
             elif gaps == "hold":
                 durs.append(after - onset)
             elif gaps == "rest":
@@ -157,7 +162,8 @@ def _strings(records: Sequence[tuple], label: Callable[[int], str], gaps: str,
                 durs.append(after - end)
             else:
                 raise _RowError(j, f"a gap in stream {_shown(name)} from {end:g} to {after:g} "
-                                   f"(after {label(k)}); gaps='rest' or 'hold' fill it")
+                                   f"(after {label(k)}); gaps='rest' or 'hold' fill it",
+                                "onset")
         syms.append(events[-1][3])
         durs.append(events[-1][2])
         strings[name], durations[name], starts[name] = syms, durs, events[0][0]
@@ -225,7 +231,8 @@ def read_csv(cls, path: str | Path, *, gaps: str = "rest", rest_symbol: str = "_
              keep_repeats: bool = False):
     """The actiongram of a CSV events file, header ``stream,onset,duration,symbol`` (in any
     order; other columns are ignored, but every row has as many cells as the header, and no
-    column is named twice). Errors are FormatErrors naming the file and line."""
+    column is named twice). Errors are FormatErrors naming the file, the line and, for a cell,
+    its column."""
     _check_options(gaps, rest_symbol, keep_repeats)
     source = str(path)
     text = read_text(path, signature=True)
@@ -239,13 +246,13 @@ def read_csv(cls, path: str | Path, *, gaps: str = "rest", rest_symbol: str = "_
     except csv.Error as exc:
         raise FormatError(f"not CSV: {exc}", source=source, line=1) from None
     missing = [f for f in FIELDS if f not in header]
-    if missing:
-        raise FormatError(f"the header has no column {missing[0]!r} (it needs "
-                          f"{','.join(FIELDS)})", source=source, line=1)
+    if missing:  # at the header's end, where the column would be added
+        raise _at(f"the header has no column {missing[0]!r} (it needs {','.join(FIELDS)})",
+                  text, source, 1, None)
     twice = [f for f in FIELDS if header.count(f) > 1]
-    if twice:  # which of the two is meant cannot be known
-        raise FormatError(f"the header names column {twice[0]!r} twice", source=source,
-                          line=1)
+    if twice:  # which of the two is meant cannot be known: at the second
+        raise _at(f"the header names column {twice[0]!r} twice", text, source, 1,
+                  [k for k, cell in enumerate(header) if cell == twice[0]][1])
     where = [header.index(f) for f in FIELDS]
     # a row's stream and symbol are one of few names: one string each, not one per row, and
     # line numbers in an array, so that a long file costs little more than what it describes
@@ -259,14 +266,19 @@ def read_csv(cls, path: str | Path, *, gaps: str = "rest", rest_symbol: str = "_
             if not any(cell.strip() for cell in row):
                 continue
             if len(row) < len(header) or any(cell.strip() for cell in row[len(header):]):
-                # a cell more would be dropped without a word (empty ones pad a spreadsheet's)
-                raise FormatError(f"{len(row)} cells, the header has {len(header)}",
-                                  source=source, line=line)
+                # a cell more would be dropped without a word (empty ones pad a spreadsheet's):
+                # at the first such cell; a row of too few, at its end, where they are missing
+                extra = [k for k in range(len(header), len(row)) if row[k].strip()]
+                raise _at(f"{len(row)} cells, the header has {len(header)}", text, source,
+                          line, extra[0] if extra else None)
             stream, onset, duration, symbol = (row[i].strip() for i in where)
-            records.append((names.setdefault(stream, stream),
-                            _number(onset, "onset", source, line),
-                            _number(duration, "duration", source, line),
-                            names.setdefault(symbol, symbol)))
+            try:
+                records.append((names.setdefault(stream, stream), _number(onset, "onset"),
+                                _number(duration, "duration"),
+                                names.setdefault(symbol, symbol)))
+            except _RowError as bad:
+                raise _at(bad.message, text, source, line,
+                          where[FIELDS.index(bad.field)]) from None
             lines.append(line)
     except csv.Error as exc:
         raise FormatError(f"not CSV: {exc}", source=source, line=reader.line_num) from None
@@ -276,16 +288,60 @@ def read_csv(cls, path: str | Path, *, gaps: str = "rest", rest_symbol: str = "_
         strings, durations, starts = _strings(records, lambda k: f"line {lines[k]}", gaps,
                                               rest_symbol)
     except _RowError as bad:
-        raise FormatError(bad.message, source=source, line=lines[bad.index]) from None
+        raise _at(bad.message, text, source, lines[bad.index],
+                  where[FIELDS.index(bad.field)]) from None
     return cls.from_strings(strings, durations, starts, keep_repeats=keep_repeats)
 
 
-def _number(text: str, what: str, source: str, line: int) -> float:
+def _number(text: str, what: str) -> float:
     value = decimal(text)  # not float(): it takes '1_0' and digits of other scripts
     if value is None:
-        raise FormatError(f"{what} {_shown(text)} is not a number", source=source,
-                          line=line)
+        raise _RowError(-1, f"{what} {_shown(text)} is not a number", what)
     return value
+
+
+# the line breaks of io.StringIO(text, newline=""), whose lines the csv reader counts
+_BREAK = re.compile(r"\r\n|\r|\n")
+_UNQUOTED = re.compile(r"[^,\r\n]*")
+
+
+def _row_cells(text: str, line: int) -> tuple[list[tuple[int, int]], tuple[int, int]]:
+    """Where each cell of the row that starts on ``line`` starts, and where the row ends: each
+    a (line, column) pair counting from 1, the column in characters.
+
+    The csv reader says no cell's place, so an error's row is read again, by hand: a good file
+    is never read twice. The reader has taken the row (strict), so it is well formed: a cell
+    is quoted (``""`` a quote within, line breaks allowed) or runs to the next comma or line
+    break.
+    """
+    at = 0
+    for _ in range(line - 1):
+        at = _BREAK.search(text, at).end()
+    row_line, line_start, starts = line, at, []
+    while True:
+        starts.append((row_line, at - line_start + 1))
+        if text.startswith('"', at):
+            end = at + 1
+            while True:  # to just past the closing quote (a doubled one is a quote within)
+                end = text.find('"', end) + 1 or len(text)
+                if not text.startswith('"', end):
+                    break
+                end += 1
+            for brk in _BREAK.finditer(text, at, end):
+                row_line, line_start = row_line + 1, brk.end()
+            at = end
+        at = _UNQUOTED.match(text, at).end()  # after a closing quote, strict: nothing
+        if not text.startswith(",", at):
+            return starts, (row_line, at - line_start + 1)
+        at += 1
+
+
+def _at(message: str, text: str, source: str, line: int, cell: int | None) -> FormatError:
+    """The FormatError ``message`` at the start of cell ``cell`` (counting from 0) of the row
+    that starts on ``line``, or at the row's end when ``cell`` is None."""
+    starts, end = _row_cells(text, line)
+    line, column = end if cell is None else starts[cell]
+    return FormatError(message, source=source, line=line, column=column)
 
 
 def to_events(actiongram, rest_symbol: str | None = None) -> tuple[tuple[str, float, float, str],

@@ -119,8 +119,8 @@ def test_a_column_mapped_from_no_field_is_refused():
     ({"onset": "t", "duration": "t"}, "fields 'onset' and 'duration' one column, 't'"),
     ({"stream": "v", "symbol": "v"}, "fields 'stream' and 'symbol' one column, 'v'"),
     # a field left out reads the column of its own name, which another field now reads too
-    ({"onset": "duration"}, "fields 'onset' and 'duration' one column, 'duration' ('duration' "
-                            "is not in columns"),
+    ({"onset": "duration"}, ("fields 'onset' and 'duration' one column, 'duration' "
+                             "('duration' is not in columns")),
 ])
 def test_two_fields_given_one_column_are_refused(columns, words):
     # one column was read as both fields, and another column of the table not at all
@@ -283,25 +283,30 @@ def test_induce_reads_an_events_file(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("content, where, words", [
-    ("stream,onset,duration,symbol\ns,0,1,a\ns,0.5,1,b\n", ":3:", "overlaps line 2"),
-    ("stream,onset,duration,symbol\ns,0,1,a\ns,x,1,b\n", ":3:", "onset 'x' is not a number"),
-    ("stream,onset,duration,symbol\ns,0,nan,a\n", ":2:", "duration must be finite"),
+    # a cell's error names its column; the overlap and the gap are the onset's
+    ("stream,onset,duration,symbol\ns,0,1,a\ns,0.5,1,b\n", ":3:3:", "overlaps line 2"),
+    ("stream,onset,duration,symbol\ns,0,1,a\ns,x,1,b\n", ":3:3:", "onset 'x' is not a number"),
+    ("stream,onset,duration,symbol\ns,0,nan,a\n", ":2:5:", "duration must be finite"),
     # a quoted cell holding a line break: the row is named by the line it starts on
-    ('stream,onset,duration,symbol\ns,0,1,a\n"s\nx",1,1,b\n', ":3:", "stream"),
-    ("stream,onset,symbol\ns,0,a\n", ":1:", "no column 'duration'"),
-    ("stream,onset,duration,symbol\ns,0,1\n", ":2:", "3 cells"),
-    ("stream,onset,duration,symbol\n", ":1:", "no events"),
-    ("", ":1:", "empty file"),
+    ('stream,onset,duration,symbol\ns,0,1,a\n"s\nx",1,1,b\n', ":3:1:", "stream"),
+    # and a cell after it by its own line
+    ('note,stream,onset,duration,symbol\n"a\nb",s,0,-1,x\n', ":3:8:", "duration must be"),
+    # what is missing from a row, at the row's end
+    ("stream,onset,symbol\ns,0,a\n", ":1:20:", "no column 'duration'"),
+    ("stream,onset,duration,symbol\ns,0,1\n", ":2:6:", "3 cells"),
+    ("stream,onset,duration,symbol\n", ":1: ", "no events"),
+    ("", ":1: ", "empty file"),
     # a cell past the header's would be dropped without a word; a column twice is ambiguous
-    ("stream,onset,duration,symbol\ns,0,1,a,extra\n", ":2:", "5 cells, the header has 4"),
-    ("stream,stream,onset,duration,symbol\ns,t,0,1,a\n", ":1:", "'stream' twice"),
+    ("stream,onset,duration,symbol\ns,0,1,a,extra\n", ":2:9:", "5 cells, the header has 4"),
+    ("stream,onset,duration,symbol\ns,0,1,a,, ,extra\n", ":2:12:", "7 cells, the header has 4"),
+    ("stream,stream,onset,duration,symbol\ns,t,0,1,a\n", ":1:8:", "'stream' twice"),
     # an end a float cannot tell from its start; a NUL in a symbol
-    ("stream,onset,duration,symbol\ns,0,1,a\ns,1e300,1,b\n", ":3:", "vanishes beside onset"),
-    ("stream,onset,duration,symbol\ns,0,1,a\x00\n", ":2:", "control character"),
+    ("stream,onset,duration,symbol\ns,0,1,a\ns,1e300,1,b\n", ":3:9:", "vanishes beside onset"),
+    ("stream,onset,duration,symbol\ns,0,1,a\x00\n", ":2:7:", "control character"),
     # float() would read these as 10 and 12; a quote left open would swallow the rest
-    ("stream,onset,duration,symbol\ns,1_0,1,a\n", ":2:", "onset '1_0' is not a number"),
-    ("stream,onset,duration,symbol\ns,\uff11\uff12,1,a\n", ":2:", "is not a number"),
-    ('stream,onset,duration,symbol\ns,0,1,a\ns,1,1,"b\n', ":3:", "not CSV"),
+    ("stream,onset,duration,symbol\ns,1_0,1,a\n", ":2:3:", "onset '1_0' is not a number"),
+    ("stream,onset,duration,symbol\ns,\uff11\uff12,1,a\n", ":2:3:", "is not a number"),
+    ('stream,onset,duration,symbol\ns,0,1,a\ns,1,1,"b\n', ":3: ", "not CSV"),
 ])
 def test_induce_events_errors_name_the_line(tmp_path, capsys, content, where, words):
     from psgs.cli import main
