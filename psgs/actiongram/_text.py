@@ -13,9 +13,9 @@ import re
 
 from .._foundation.text import split_lines
 from ..errors import FormatError, ValidationError
-from ._checks import _bad_name, _read_number, _shown
+from ._checks import _bad_duration, _bad_name, _bad_symbol, _finite, _read_number, _shown
 from ._extras import DIRECTIVE as _DIRECTIVE
-from ._extras import default_actuator
+from ._extras import _bad_displacement, _merge, _merge_displacements, default_actuator
 from ._extras import read_directive as _read_directive
 
 __all__: list[str] = []  # private: Actiongram.from_text is the interface
@@ -224,6 +224,18 @@ class _KeyTwice(Exception):
     """A JSON object gives one key twice (``json.loads`` would keep the last silently)."""
 
 
+class _Misplaced(Exception):
+    """An error of the decoded document, with where it is: places to try in turn, each
+    ``(path, key)``, the path of a value (``("strings", 3, "durations")``) and whether its key
+    is meant rather than the value. Placed in the text only once raised, so that a good
+    document is read once."""
+
+    def __init__(self, message: str, *places: tuple[tuple, bool]) -> None:
+        super().__init__(message)
+        self.message = message
+        self.places = places
+
+
 def _unique_keys(pairs: list[tuple[str, object]]) -> dict[str, object]:
     out: dict[str, object] = {}
     for key, value in pairs:
@@ -233,22 +245,24 @@ def _unique_keys(pairs: list[tuple[str, object]]) -> dict[str, object]:
     return out
 
 
-def _unknown_key(data: dict, known: tuple[str, ...], where: str, source: str) -> None:
+def _unknown_key(data: dict, known: tuple[str, ...], where: str, path: tuple) -> None:
     extra = [k for k in data if k not in known]
     if extra:
-        raise FormatError(f"{where} has unknown key {_shown(extra[0])} (its keys: "
-                          f"{', '.join(known)})", source=source)
+        raise _Misplaced(f"{where} has unknown key {_shown(extra[0])} (its keys: "
+                         f"{', '.join(known)})", (path + (extra[0],), True))
 
 
 def read_json(cls, text: str, source: str):
-    """The actiongram (of class ``cls``) that the JSON ``text`` holds; FormatError if none."""
+    """The actiongram (of class ``cls``) that the JSON ``text`` holds; FormatError if none,
+    at the line and column of the value (or key) at fault."""
     if not isinstance(text, (str, bytes, bytearray)):  # what json.loads reads
         raise ValidationError(f"from_json reads a str or bytes, not {type(text).__name__}")
     try:
         data = json.loads(text, object_pairs_hook=_unique_keys)
-    except _KeyTwice as exc:
+    except _KeyTwice as exc:  # the second of the two, in the first object to close with one
+        line, column = _json_place(text, None) or (None, None)
         raise FormatError(f"key {_shown(exc.args[0])} is given twice in one object",
-                          source=source) from None
+                          source=source, line=line, column=column) from None
     except json.JSONDecodeError as exc:
         raise FormatError(f"not JSON: {exc.msg}", source=source, line=exc.lineno,
                           column=exc.colno) from None
@@ -258,32 +272,46 @@ def read_json(cls, text: str, source: str):
     except ValueError as exc:  # an integer of thousands of digits (Python's int limit)
         raise FormatError(f"not JSON that can be read: {str(exc).split(':')[0]}",
                           source=source) from None
+    try:
+        return _read_document(cls, data)
+    except _Misplaced as exc:
+        found = (_json_place(text, path, key) for path, key in exc.places)
+        line, column = next((place for place in found if place), (None, None))
+        raise FormatError(exc.message, source=source, line=line, column=column) from None
+
+
+def _read_document(cls, data: object):
+    """The actiongram of the decoded JSON ``data``; _Misplaced for an error."""
     if not isinstance(data, dict) or not isinstance(data.get("strings"), list):
-        raise FormatError("expected a JSON object with a 'strings' list", source=source)
-    _unknown_key(data, _DOCUMENT_KEYS, "the document", source)
+        raise _Misplaced("expected a JSON object with a 'strings' list",
+                         (("strings",), False), ((), False))
+    _unknown_key(data, _DOCUMENT_KEYS, "the document", ())
     # another format, or a later version of this one, may hold what this reader would drop
     said = data.get("format", _FORMAT)
     if said != _FORMAT:
-        raise FormatError(f"'format' is {_shown(said)}, not {_FORMAT!r}", source=source)
+        raise _Misplaced(f"'format' is {_shown(said)}, not {_FORMAT!r}", (("format",), False))
     version = data.get("version", 1)
     if isinstance(version, bool) or version != 1:
-        raise FormatError(f"'version' is {_shown(version)}: this reader knows version 1",
-                          source=source)
+        raise _Misplaced(f"'version' is {_shown(version)}: this reader knows version 1",
+                         (("version",), False))
     names, symbol_rows, duration_rows, origins = [], [], [], []
     disp_rows: list[tuple | None] = []
     actuator_rows: list[object] = []
     for k, item in enumerate(data["strings"]):
+        here = ("strings", k)
         if not isinstance(item, dict) or not isinstance(item.get("symbols"), list):
-            raise FormatError(f"strings[{k}] must be an object with 'name' and 'symbols'",
-                              source=source)
-        _unknown_key(item, _STRING_KEYS, f"strings[{k}]", source)
+            raise _Misplaced(f"strings[{k}] must be an object with 'name' and 'symbols'",
+                             (here + ("symbols",), False), (here, False))
+        _unknown_key(item, _STRING_KEYS, f"strings[{k}]", here)
         syms = item["symbols"]
         durs = item.get("durations", [1.0] * len(syms))
         if not isinstance(durs, list):
-            raise FormatError(f"strings[{k}].durations must be a list", source=source)
+            raise _Misplaced(f"strings[{k}].durations must be a list",
+                             (here + ("durations",), False))
         disps = item.get("displacements")
         if disps is not None and not isinstance(disps, list):
-            raise FormatError(f"strings[{k}].displacements must be a list", source=source)
+            raise _Misplaced(f"strings[{k}].displacements must be a list",
+                             (here + ("displacements",), False))
         names.append(item.get("name"))
         symbol_rows.append(tuple(syms))
         duration_rows.append(tuple(durs))
@@ -295,13 +323,152 @@ def read_json(cls, text: str, source: str):
     skeleton = data.get("skeleton", {})
     keep_repeats = data.get("keep_repeats", False)
     if not isinstance(keep_repeats, bool):
-        raise FormatError("'keep_repeats' must be true or false", source=source)
+        raise _Misplaced("'keep_repeats' must be true or false", (("keep_repeats",), False))
     if not isinstance(skeleton, dict):
-        raise FormatError("'skeleton' must be an object {actuator: parent or null}",
-                          source=source)
-    try:
-        return cls(tuple(names), tuple(symbol_rows), tuple(duration_rows), tuple(origins),
-                   tuple(disp_rows), tuple(actuator_rows), tuple(skeleton.items()),
+        raise _Misplaced("'skeleton' must be an object {actuator: parent or null}",
+                         (("skeleton",), False))
+    edges = tuple(skeleton.items())
+
+    def build(strings: slice, skeleton: int):
+        """The actiongram of the ``strings`` and the first ``skeleton`` entries."""
+        return cls(tuple(names[strings]), tuple(symbol_rows[strings]),
+                   tuple(duration_rows[strings]), tuple(origins[strings]),
+                   tuple(disp_rows[strings]), tuple(actuator_rows[strings]), edges[:skeleton],
                    keep_repeats)
-    except FormatError as exc:
-        raise FormatError(exc.message, source=source) from None
+
+    try:
+        return build(slice(None), len(edges))
+    except FormatError as exc:  # the checks of the whole value, which know no path
+        raise _Misplaced(exc.message, *_fault(exc.message, build, data["strings"], names,
+                                              edges, keep_repeats)) from None
+
+
+def _fault(message: str, build, items: list, names: list, edges: tuple,
+           keep_repeats: bool) -> list[tuple[tuple, bool]]:
+    """The places of the constructor's error ``message`` (none when not found).
+
+    A string's checks read that string alone, so the first string that, built alone, raises
+    this very message is the one (when the whole is refused for another string's fault, an
+    earlier string may be refused alone, for another reason); two strings of one name are
+    refused only together; a skeleton's entries are read together (a cycle takes several),
+    so the entry at fault ends the shortest run of them that is refused.
+    """
+    for k, item in enumerate(items):
+        try:
+            build(slice(k, k + 1), 0)
+        except FormatError as exc:
+            if exc.message == message:
+                return _string_fault(item, ("strings", k), keep_repeats)
+    seen: set[str] = set()
+    for k, name in enumerate(names):
+        if not isinstance(name, str):  # refused as a name, above
+            continue
+        if name in seen:
+            return [(("strings", k, "name"), False), (("strings", k), False)]
+        seen.add(name)
+    found = _first_refused(len(edges), lambda j: build(slice(0), j))
+    if found is None:
+        return []
+    child, _ = edges[found[0] - 1]
+    # a bad actuator is the entry's key; anything else (a bad parent, itself as its parent, a
+    # parent that closes a cycle) is its value
+    return [(("skeleton", child), _bad_name(child) is not None)]
+
+
+def _string_fault(item: dict, here: tuple, keep_repeats: bool) -> list[tuple[tuple, bool]]:
+    """The places of the first fault of the string object ``item`` (at path ``here``), found
+    by the constructor's checks in the constructor's order; each ends with the object."""
+    def at(*tails: tuple) -> list[tuple[tuple, bool]]:
+        return [(here + tail, False) for tail in tails] + [(here, False)]
+
+    if _bad_name(item.get("name")):
+        return at(("name",))
+    syms = item["symbols"]
+    durs = item.get("durations", [1.0] * len(syms))
+    if len(durs) != len(syms):
+        return at(("durations",))
+    for j, sym in enumerate(syms):
+        if _bad_symbol(sym):
+            return at(("symbols", j))
+    for j, dur in enumerate(durs):
+        if _bad_duration(dur):
+            return at(("durations", j))
+    start = item.get("start", 0.0)
+    if isinstance(start, bool) or not isinstance(start, (int, float)) or not _finite(start):
+        return at(("start",))
+    # the segments the constructor times, added as it adds them: runs of equal neighbours
+    # merged (unless kept), each known by its first symbol
+    firsts = [j for j in range(len(syms)) if keep_repeats or not j or syms[j] != syms[j - 1]]
+    segments = tuple(map(float, durs)) if keep_repeats else _merge(syms, durs)[1]
+    if not _finite(float(start) + sum(segments)):
+        return at(("durations",), ("start",))
+    t = float(start)
+    for first, dur in zip(firsts, segments):
+        if t + dur == t:  # a duration that vanishes beside its start time
+            return at(("durations", first), ("start",))
+        t += dur
+    disps = item.get("displacements")
+    if disps is not None:
+        if len(disps) != len(syms):
+            return at(("displacements",))
+        bad = [j for j, x in enumerate(disps) if _bad_displacement(x)]
+        if bad:
+            return at(("displacements", bad[0]))
+        merged = disps if keep_repeats else _merge_displacements(syms, disps)
+        if not all(map(_finite, merged)):  # each finite, a merged run's sum may not be
+            return at(("displacements",))
+    return at(("actuator",), ("name",))
+
+
+# one JSON token after white space: punctuation, a string, or a number or literal
+_JSON_TOKEN = re.compile(r'[ \t\n\r]*([\[\]{}:,]|"[^"\\]*(?:\\.[^"\\]*)*"|[^ \t\n\r\[\]{}:,"]+)')
+
+
+def _json_place(text: str | bytes, want: tuple | None,
+                key: bool = False) -> tuple[int, int] | None:
+    """The (line, column) in the JSON ``text`` of the value at path ``want`` (of its key when
+    ``key``), counted as ``json.JSONDecodeError`` counts them; None when there is none.
+
+    With ``want`` None: the second of two equal keys in the first object to close with one,
+    the object ``json.loads`` hands its ``object_pairs_hook`` first (inner before outer).
+    The text has been decoded up to there, so it is JSON: a walk of its tokens suffices.
+    """
+    if not isinstance(text, str):  # decoded as json.loads decodes bytes
+        text = bytes(text).decode(json.detect_encoding(text), "surrogatepass")
+    # per open object or array: [its path, its current key or index, its keys, the offset of
+    # its first repeated key]
+    stack: list[list] = []
+    want_key = False
+    for match in _JSON_TOKEN.finditer(text):
+        token, at = match.group(1), match.start(1)
+        if token in ",:":
+            if token == "," and isinstance(stack[-1][1], int):
+                stack[-1][1] += 1
+            want_key = token == "," and not isinstance(stack[-1][1], int)
+            continue
+        if token in "]}":
+            closed, want_key = stack.pop(), False  # ('{}': no key came)
+            if want is None and closed[3] is not None:
+                at = closed[3]
+                break
+            continue
+        if want_key:  # a key: the path of the value after it
+            top, want_key = stack[-1], False
+            top[1] = json.loads(token)
+            if top[1] in top[2] and top[3] is None:
+                top[3] = at
+            top[2].add(top[1])
+            if key and top[0] + (top[1],) == want:
+                break
+            continue
+        path = stack[-1][0] + (stack[-1][1],) if stack else ()
+        if not key and path == want:
+            break
+        if token == "{":
+            stack.append([path, None, set(), None])
+            want_key = True
+        elif token == "[":
+            stack.append([path, 0, set(), None])
+    else:
+        return None
+    return text.count("\n", 0, at) + 1, at - text.rfind("\n", 0, at)

@@ -1,5 +1,5 @@
-"""Errors of the actiongram readers name the line and column of what is at fault: a cell of a
-CSV events file.
+"""Errors of the actiongram readers name the line and column of what is at fault: a value or a
+key of a JSON document, a cell of a CSV events file.
 
 Each test writes a good file, spoils one thing in it, and checks that the error's place is
 where the spoilt text starts, however the file is laid out.
@@ -7,13 +7,216 @@ where the spoilt text starts, however the file is laid out.
 
 from __future__ import annotations
 
+import json
 import re
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from psgs import FormatError
+from psgs import Actiongram, FormatError
 from psgs.actiongram import read_events_csv
+
+#: a value found nowhere else in a document or a table
+MARK = "MUTATED"
+#: text no symbol, name or actuator may be (white space), found nowhere else either
+BAD = "MUT ATED"
+#: a negative number found nowhere else
+NEGATIVE = -987654.5
+
+
+def place_of(text: str, offset: int) -> tuple[int, int]:
+    """(line, column) of ``offset``, counted as json.JSONDecodeError counts them."""
+    return text.count("\n", 0, offset) + 1, offset - text.rfind("\n", 0, offset)
+
+
+# -- JSON --------------------------------------------------------------------------------------
+@st.composite
+def documents(draw):
+    """A good document, decoded: what ``to_json`` writes for a small actiongram."""
+    names = draw(st.lists(st.sampled_from(["a", "knee.rx", "knee.ry", "hip", "\u00e9.x"]),
+                          min_size=1, max_size=4, unique=True))
+    strings, durations, starts, displacements = {}, {}, {}, {}
+    for name in names:
+        count = draw(st.integers(1, 5))
+        strings[name] = draw(st.lists(st.sampled_from(["B", "G", "R", "x1"]), min_size=count,
+                                      max_size=count))
+        durations[name] = draw(st.lists(st.sampled_from([1, 0.5, 2.25]), min_size=count,
+                                        max_size=count))
+        starts[name] = draw(st.sampled_from([0, 1.5, 10]))
+        if draw(st.booleans()):
+            displacements[name] = draw(st.lists(st.sampled_from([0, 1, -2.5]),
+                                                min_size=count, max_size=count))
+    ag = Actiongram.from_strings(strings, durations, starts, displacements=displacements,
+                                 skeleton=draw(st.sampled_from([{}, {"knee": "hip",
+                                                                     "hip": None}])),
+                                 keep_repeats=draw(st.booleans()))
+    return json.loads(ag.to_json())
+
+
+def with_key(mapping: dict, key: str, value: object, at: int) -> dict:
+    """``mapping`` with ``key`` put in at position ``at`` of its keys."""
+    items = list(mapping.items())
+    return dict(items[:at] + [(key, value)] + items[at:])
+
+
+# what is spoilt in string k (symbol, duration or displacement j): the spoilt value, the
+# words of the error
+STRING_SPOILS = {
+    "durations": (MARK, "strings[{k}].durations must be a list"),
+    "displacements": (MARK, "strings[{k}].displacements must be a list"),
+    "symbols": (MARK, "strings[{k}] must be an object with 'name' and 'symbols'"),
+    "start": (MARK, "start time must be a finite number"),
+    "name": (BAD, f"actuator name {BAD!r} must have no white space"),
+    "actuator": (BAD, f"actuator {BAD!r}:"),
+    "symbol": (BAD, f"symbol {BAD!r} must have no white space"),
+    "duration": (NEGATIVE, f"a duration must be positive and finite, not {NEGATIVE}"),
+    "displacement": (MARK, f"a displacement must be a number, not {MARK!r}"),
+}
+DOCUMENT_SPOILS = {
+    "format": (MARK, f"'format' is {MARK!r}, not 'psgs-actiongram'"),
+    "version": (MARK, f"'version' is {MARK!r}: this reader knows version 1"),
+    "keep_repeats": (MARK, "'keep_repeats' must be true or false"),
+    "skeleton": (MARK, "'skeleton' must be an object"),
+}
+
+
+@st.composite
+def spoilt_documents(draw):
+    """(document text, the spoilt text, its offset in the document, words of the error)."""
+    data = draw(documents())
+    items = data["strings"]
+    k = draw(st.integers(0, len(items) - 1))
+    item = items[k]
+    j = draw(st.integers(0, len(item["symbols"]) - 1))
+    kind = draw(st.sampled_from([*STRING_SPOILS, *DOCUMENT_SPOILS, "unknown key",
+                                 "document's unknown key", "key twice", "document's key twice",
+                                 "name twice"]))
+    replace = None  # (what the mark stands for in the text)
+    if kind in STRING_SPOILS:
+        value, words = STRING_SPOILS[kind]
+        words = words.format(k=k)
+        if kind in ("symbol", "duration"):
+            item[kind + "s"][j] = value
+        elif kind == "displacement":
+            item["displacements"] = item.get("displacements") or [0] * len(item["symbols"])
+            item["displacements"][j] = value
+        else:
+            item[kind] = value
+    elif kind in DOCUMENT_SPOILS:
+        value, words = DOCUMENT_SPOILS[kind]
+        data[kind] = value
+    elif kind in ("unknown key", "document's unknown key"):
+        where = item if kind == "unknown key" else data
+        spoilt = with_key(where, MARK, 1, draw(st.integers(0, len(where))))
+        if where is item:
+            items[k] = spoilt
+        else:
+            data = spoilt
+        words = f"has unknown key {MARK!r}"
+    elif kind in ("key twice", "document's key twice"):
+        # the mark is a key the object has, given again after it: the second is at fault
+        where = item if kind == "key twice" else data
+        keys = list(where)
+        first = draw(st.integers(0, len(keys) - 1))
+        spoilt = with_key(where, MARK, 0, draw(st.integers(first + 1, len(keys))))
+        if where is item:
+            items[k] = spoilt
+        else:
+            data = spoilt
+        replace = json.dumps(keys[first])
+        words = f"key {keys[first]!r} is given twice in one object"
+    else:  # a name an earlier string has
+        k = draw(st.integers(0, len(items) - 1).filter(bool)) if len(items) > 1 else 0
+        if k == 0:  # one string: a name twice is not to be had, spoil a name instead
+            items[0]["name"] = BAD
+            value, words = BAD, "actuator name"
+        else:
+            items[k]["name"] = MARK
+            replace = json.dumps(items[0]["name"], ensure_ascii=False)
+            words = f"two strings are named {items[0]['name']!r}"
+    indent = draw(st.sampled_from([None, 0, 1, 2, 4, "\t"]))
+    separators = draw(st.sampled_from([None, (",", ":"), (" , ", " : ")]))
+    text = json.dumps(data, indent=indent, separators=separators,
+                      ensure_ascii=draw(st.booleans()))
+    marks = [json.dumps(m) for m in (MARK, BAD, NEGATIVE)]
+    token = next(m for m in marks if m in text)
+    assert text.count(token) == 1
+    offset = text.index(token)
+    if replace is not None:
+        text = text.replace(token, replace)
+        token = replace
+    return text, token, offset, words
+
+
+@settings(max_examples=500, deadline=None)
+@given(spoilt_documents(), st.booleans())
+def test_a_json_error_names_the_line_and_column_of_the_value_or_key_at_fault(case, as_bytes):
+    text, token, offset, words = case
+    try:
+        Actiongram.from_json(text.encode() if as_bytes else text, source="f.json")
+    except FormatError as error:
+        assert words in error.message, (error.message, words)
+        assert (error.line, error.column) == place_of(text, offset), (str(error), text)
+        line = text.split("\n")[error.line - 1]
+        assert line[error.column - 1:].startswith(token)
+        assert str(error).startswith(f"f.json:{error.line}:{error.column}: ")
+    else:
+        raise AssertionError(f"read: {text}")
+
+
+@settings(max_examples=30, deadline=None)
+@given(documents(), st.sampled_from([None, 0, 2, "\t"]))
+def test_good_documents_read_as_ever_however_laid_out(data, indent):
+    ag = Actiongram.from_json(json.dumps(data))
+    assert Actiongram.from_json(json.dumps(data, indent=indent)) == ag
+    assert Actiongram.from_json(ag.to_json()) == ag
+
+
+def test_a_string_refused_by_the_constructor_is_placed_at_its_object_when_no_value_is_at_fault():
+    with_no_name = '{"strings": [\n  {"name": "a", "symbols": ["x"]},\n  {"symbols": ["y"]}\n]}'
+    with pytest.raises(FormatError) as info:
+        Actiongram.from_json(with_no_name, source="f.json")
+    assert str(info.value) == "f.json:3:3: an actuator name must be non-empty text"
+
+
+def test_of_two_bad_strings_the_reported_one_is_placed():
+    # the constructor reads every string's symbols before any string's displacements: the
+    # error is the later string's symbol, not the earlier string's displacement
+    doc = ('{"strings": [{"name": "a", "symbols": ["x"], "displacements": ["q"]},\n'
+           '{"name": "b", "symbols": ["y z"]}]}')
+    with pytest.raises(FormatError) as info:
+        Actiongram.from_json(doc, source="f.json")
+    assert str(info.value).startswith("f.json:2:27: string 'b': symbol 'y z'")
+
+
+@pytest.mark.parametrize("doc, words", [
+    # what the constructor refuses, each at its value
+    ('{"strings": [{"name": "a", "symbols": ["x"], "displacements": [1], "actuator": "a b"}]}',
+     "1:80: string 'a': actuator 'a b'"),
+    ('{"strings": [{"name": "a", "symbols": ["x", "x"], "displacements": [1e308, 1e308]}]}',
+     "1:68: string 'a': its displacements overflow"),
+    ('{"strings": [{"name": "a", "symbols": ["x"], "displacements": [1, 2]}]}',
+     "1:63: string 'a' has 1 symbols but 2 displacements"),
+    ('{"strings": [{"name": "a", "start": 1e15, "symbols": ["x", "y", "y"],\n'
+     ' "durations": [1, 1e-9, 1e-9]}]}', "2:19: string 'a': duration 2e-09 of symbol 2 vanishes"),
+    ('{"strings": [{"name": "a", "symbols": ["x", "y"], "durations": [1e308, 1e308]}]}',
+     "1:64: string 'a': its times overflow"),
+    ('{"strings": [{"name": "a", "symbols": ["x"], "start": true}]}',
+     "1:55: string 'a': start time must be a finite number"),
+    ('{"strings": [{"name": "a", "symbols": ["x", "y"], "durations": [1]}]}',
+     "1:64: string 'a' has 2 symbols but 1 durations"),
+    ('{"strings": [{"name": "a", "symbols": ["x"]}, {"name": "a", "symbols": ["y"]}]}',
+     "1:56: two strings are named 'a'"),
+    ('{"strings": [], "skeleton": {"a": "b", "b": "c", "c": "a"}}',
+     "1:55: skeleton: the parents of 'a' form a cycle"),
+    ('{"strings": [], "skeleton": {"a": null, "b": "b"}}', "1:46: skeleton: 'b' is its own parent"),
+    ('{"strings": [], "skeleton": {"a": null, "b c": "a"}}', "1:41: skeleton: actuator name 'b c'"),
+])
+def test_what_the_constructor_refuses_is_placed_at_its_value(doc, words):
+    with pytest.raises(FormatError, match="^f.json:" + re.escape(words)):
+        Actiongram.from_json(doc, source="f.json")
+
 
 # -- CSV events --------------------------------------------------------------------------------
 # what is spoilt in one row: the field, its spoilt cell, words of the error
