@@ -18,7 +18,7 @@ import re
 __all__ = ["split_lines", "decimal", "DECIMAL", "finite"]
 
 #: A number as data files write it: ASCII digits, an optional point and exponent; or inf/nan.
-DECIMAL = re.compile(r"[+-]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf(?:inity)?|nan)\Z",
+DECIMAL = re.compile(r"[+-]?(?:(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?|inf(?:inity)?|nan)\Z",
                      re.ASCII | re.IGNORECASE)
 
 
