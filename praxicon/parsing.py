@@ -29,12 +29,13 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
 from ._arguments import kinds_of, real_number
 from .description import (OWN_KINDS, DescriptionError, common_table, describe_table,
-                          feature_rows, probabilities, score_model, scores)
+                          feature_rows, probabilities, scores)
 from ._description_json import WINDOWS
 from .scoring import log_likelihoods, overflow_reason, unscored
 from .records import _count
@@ -78,13 +79,16 @@ class Timeline:
     ``missing`` names the joints of the actions the spans name that the recording lacks (of
     the closest action when no span names one), as :attr:`Recognition.missing
     <praxicon.recognition.Recognition.missing>` does for a take: the windows were scored over
-    the joints the recording has.
+    the joints the recording has; ``unread`` those of their joints it has, read without some
+    of their features (as :attr:`Recognition.unread
+    <praxicon.recognition.Recognition.unread>`).
     """
 
     source: str
     duration: float
     spans: tuple[Span, ...]
     missing: tuple[str, ...] = ()
+    unread: tuple[str, ...] = ()
 
     def __repr__(self) -> str:  # a summary; text() has every span
         actions = {s.action for s in self.spans if s.action}
@@ -94,10 +98,24 @@ class Timeline:
                 f"{missing}>")
 
     def labels(self, times) -> list[str | None]:
-        """The action at each of ``times`` (seconds)."""
+        """The action at each of ``times``: a sequence of seconds, each from 0 to the
+        recording's ``duration`` (a time outside it has no action: refused, as a NaN is)."""
+        if isinstance(times, (str, bytes)) or np.ndim(times) != 1:
+            raise DescriptionError(f"times must be a sequence of seconds, not "
+                                   f"{type(times).__name__}")
+        try:
+            seconds = np.asarray(times, dtype=float)
+        except (TypeError, ValueError):
+            raise DescriptionError("times must be numbers of seconds") from None
+        if not np.isfinite(seconds).all():
+            raise DescriptionError("times must be finite numbers of seconds")
+        slack = 1e-9 * max(1.0, self.duration)  # a time summed from steps may pass the end
+        outside = seconds[(seconds < -slack) | (seconds > self.duration + slack)]
+        if len(outside):
+            raise DescriptionError(f"a time of {outside[0]:g} s: the recording's times are 0 to "
+                                   f"{self.duration:g} s")
         stops = np.array([s.stop for s in self.spans])
-        index = np.minimum(np.searchsorted(stops, np.asarray(times), side="right"),
-                           len(self.spans) - 1)
+        index = np.minimum(np.searchsorted(stops, seconds, side="right"), len(self.spans) - 1)
         return [self.spans[i].action for i in index]
 
     def text(self) -> str:
@@ -121,9 +139,9 @@ def windows(motion, window: float = _WINDOW, hop: float = _HOP):
     >>> starts[:3], cuts[0].duration
     ([0.0, 0.5, 1.0], 1.0)
     """
-    if motion.frames < 3:
-        raise DescriptionError(f"{motion.source}: {motion.frames} frames; parsing needs at "
-                               f"least 3")
+    from .recognition import _frames
+
+    _frames(motion, "parsing")
     size = max(3, int(round(window * motion.frame_rate)))
     step = max(1, int(round(hop * motion.frame_rate)))
     if motion.frames <= size:
@@ -132,6 +150,22 @@ def windows(motion, window: float = _WINDOW, hop: float = _HOP):
     if starts[-1] != motion.frames - size:
         starts.append(motion.frames - size)
     return [s / motion.frame_rate for s in starts], _Windows(motion, tuple(starts), size)
+
+
+class _Reported(Sequence):
+    """``windows`` that call ``progress(k, total)`` as window ``k`` (from 1) is read."""
+
+    def __init__(self, windows, progress) -> None:
+        self._windows, self._progress = windows, progress
+
+    def __len__(self) -> int:
+        return len(self._windows)
+
+    def __getitem__(self, index):
+        window = self._windows[index]  # past the end: the IndexError that ends iteration
+        if isinstance(index, int):
+            self._progress(index % len(self) + 1, len(self))
+        return window
 
 
 class _Windows(Sequence):
@@ -268,7 +302,8 @@ def _stretch(unfit: float, starts, windows: int) -> int:
 
 
 def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
-          own=OWN_KINDS, support: float = SUPPORT, unfit: float = UNFIT) -> Timeline:
+          own=OWN_KINDS, support: float = SUPPORT, unfit: float = UNFIT,
+          progress=None) -> Timeline:
     """The recording as a timeline of spans (see the module's description).
 
     Parameters
@@ -282,7 +317,8 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
         one action (before the check of the spans).
     own : tuple of str, default ("drift",)
         Kinds of the root's features also scored in each action's own spread
-        (:func:`~praxicon.description.scores`; ``()``: the shared spread alone).
+        (:func:`~praxicon.description.scores`; ``()``: the shared spread alone): ``"drift"``,
+        ``"energy"``, ``"excursion"``.
     support : float, default 0.25
         The share of a span's windows, 0 to 1, that must pass its action's feature-group test
         for the span to stand; a span below it is none of these.
@@ -290,6 +326,10 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
         Seconds: within a span that stands, a stretch at least this long in which every
         window fails the action's feature-group test is none of these (``math.inf``: none;
         with ``support=0`` as well, the windows' threshold alone answers none of these).
+    progress : callable, optional
+        Called ``progress(k, total)`` as the ``k``-th of the recording's ``total`` windows is
+        read (their features are most of the time: about 4 ms a window of a 30 fps take of
+        25 joints, so 0.9 s a minute at the default hop).
 
     Returns
     -------
@@ -301,7 +341,27 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
         As :func:`~praxicon.recognition.recognise` says it; a window's error names the
         recording and where the window starts (``FILE (the window from 1.25 s): ...``).
     """
-    from .recognition import _descriptions, _excess, _motion, feature_matrix
+    from .recognition import _in_file, _Unscorable
+
+    try:
+        return _parsed(praxicon, motion, hop=hop, switch=switch, own=own, support=support,
+                       unfit=unfit, progress=progress)
+    except _Unscorable as exc:  # read from a folder: its descriptions' file named
+        if isinstance(praxicon, (str, Path)):
+            raise _in_file(exc, praxicon, windows=True) from None
+        raise
+
+
+#: the kinds of the root's features (:func:`~praxicon.features.motion_features`), which
+#: ``own`` chooses among
+_ROOT_KINDS = ("drift", "energy", "excursion")
+
+
+def _parsed(praxicon, motion, *, hop, switch, own, support, unfit, progress) -> Timeline:
+    """:func:`parse`, the descriptions' numbers that cannot be scored with raised as an
+    :class:`~praxicon.recognition._Unscorable`."""
+    from .recognition import _descriptions, _excess, _joints_of, _motion, _score_model
+    from .recognition import feature_matrix
 
     # a hop of 0 or less was one window a frame, a NaN or negative switch cost a timeline of
     # nonsense, without a word (an infinite cost is allowed: the windows are one action,
@@ -311,6 +371,12 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
     real_number(support, "support", least=0.0, most=1.0)
     real_number(unfit, "unfit", above=0.0, most=math.inf)
     own = kinds_of(own)
+    unknown = [k for k in own if k not in _ROOT_KINDS]
+    if unknown:  # scored as no kind, without a word
+        raise DescriptionError(f"own: {unknown[0]!r} is no kind of the root's features (they "
+                               f"are {', '.join(_ROOT_KINDS)})")
+    if progress is not None and not callable(progress):
+        raise DescriptionError(f"progress must be callable, not {type(progress).__name__}")
     descriptions = _descriptions(praxicon, windows=True)
     if not descriptions.spread.window:
         raise DescriptionError("parse needs window descriptions (describe_windows; "
@@ -318,8 +384,10 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
     motion = _motion(motion)
     window = descriptions.spread.window
     starts, cuts = windows(motion, window, hop)
+    if progress is not None:
+        cuts = _Reported(cuts, progress)
     columns, x, _ = feature_matrix(descriptions, cuts, shape=False)
-    fitted = score_model(descriptions, columns)
+    fitted = _score_model(descriptions, columns)
     if not fitted.compared.any():  # an action sharing none (another skeleton) is never chosen
         raise DescriptionError(f"{getattr(motion, 'source', '<motion>')}: the motion shares "
                                f"no joint with the praxicon's actions")
@@ -364,8 +432,11 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
     named = {s.action for s in spans if s.action}
     if not named:  # no span names an action: the one closest over the windows, as recognise
         named = {names[int(np.argmax(np.where(fitted.compared, p[:, :-1].mean(axis=0), -1)))]}
+    lacking = _lacking(descriptions, named, {spread.features[c] for c in columns})
+    has = _joints_of(motion)  # a joint it has is not missing (its root may not move)
     return Timeline(getattr(motion, "source", "<motion>"), float(motion.duration), tuple(spans),
-                    _lacking(descriptions, named, {spread.features[c] for c in columns}))
+                    tuple(j for j in lacking if j not in has),
+                    tuple(j for j in lacking if j in has))
 
 
 def _lacking(descriptions, actions, here) -> tuple[str, ...]:

@@ -41,9 +41,9 @@ import numpy as np
 from ._arguments import motion_of, motions_of, whole_number
 from .description import (DescriptionError, Descriptions, feature_rows, mahalanobis_terms,
                           model_scores, own_columns, _part, probabilities, score_model)
-from .feature_groups import feature_groups, group_distances, telling_groups
 from .features import feature_joint, pace_of, share_of_flight
 from .scoring import overflow_reason, unscored
+from ._verdict import _excess, _tested  # noqa: F401  (_excess: parse and the benchmarks)
 from .records import REBUILD, Praxicon, _count
 
 __all__ = ["Recognition", "recognise", "recognise_many", "feature_matrix", "JointReason",
@@ -71,9 +71,11 @@ class Recognition:
     ``threshold`` the largest it may be for an answer other than None (when ``family`` is
     set, these and ``excess`` are the family's, whose test decided); ``missing`` names the
     best-ranked action's joints the motion lacks (recognised over the joints it has),
-    ``lacking`` the same per action shown, and ``unshared`` the actions that share no joint
-    with the motion (ranked last, probability 0: learnt from another skeleton); ``reasons``
-    holds, for the best three actions, every joint's part.
+    ``lacking`` the same per action shown, ``unread`` the best-ranked action's joints the
+    motion has but not with every feature learnt of them (a root whose position does not
+    move has no travel or turning; a joint of other channels), and ``unshared`` the actions
+    that share no joint with the motion (ranked last, probability 0: learnt from another
+    skeleton); ``reasons`` holds, for the best three actions, every joint's part.
     """
 
     source: str
@@ -103,6 +105,8 @@ class Recognition:
     pace: tuple[tuple[str, float, float], ...] = ()
     #: how fast the motion travels, hips' heights a second; None as ``off_ground``
     travel: float | None = None
+    #: the best-ranked action's joints the motion has, read without some of their features
+    unread: tuple[str, ...] = ()
 
     def __repr__(self) -> str:  # a summary, not the dataclass dump of every reason
         best = dict(self.ranking).get(self.action) if self.action else None
@@ -112,8 +116,11 @@ class Recognition:
                 f"feature (threshold {self.threshold:.3f}), "
                 f"{_count(len(self.ranking), 'action')} ranked{missing}>")
 
-    def explain(self, joints: int = 4) -> str:
-        """The reasons, as text: per shown action the joints that decided it."""
+    def explain(self, joints: int | None = 4) -> str:
+        """The reasons, as text: per shown action the ``joints`` that decided it, at most
+        (None: every one) of each role."""
+        if joints is not None:  # -1 left out the last joint of each role, 1.5 failed slicing
+            whole_number(joints, "joints")
         lines = [f"{self.source}: {self.action or 'none of these'} (distance {self.penalty:.3f}"
                  f" per feature, threshold {self.threshold:.3f})"]
         if self.family:
@@ -129,6 +136,9 @@ class Recognition:
         if self.missing:
             lines.append(f"  missing joints (recognised without them): "
                          f"{', '.join(self.missing)}")
+        if self.unread:
+            lines.append(f"  joints read without some of their learnt features (a root that "
+                         f"does not move, or other channels): {', '.join(self.unread)}")
         probability = dict(self.ranking)
         tempo, drift, lacking = dict(self.tempo), dict(self.drift), dict(self.lacking)
         flight = {name: (term, share) for name, term, share in self.flight}
@@ -171,6 +181,9 @@ def _descriptions(source, *, windows: bool = False) -> Descriptions:
     if isinstance(found, Descriptions):  # a typed praxicon value
         return found
     who = "parse" if windows else "recognise"
+    if isinstance(source, Praxicon) and not source.counts["learnt"]:
+        from .store import _nothing_learnt
+        raise DescriptionError(f"{who}: {_nothing_learnt(source, windows)}")
     if isinstance(source, Praxicon):  # read without them, or built before they were learnt
         raise DescriptionError(f"{who}: this praxicon holds no descriptions (load(folder) "
                                f"reads them; '{REBUILD}' learns them)")
@@ -179,6 +192,41 @@ def _descriptions(source, *, windows: bool = False) -> Descriptions:
 
 def _motion(source):
     return motion_of(source)  # a Motion, or read from its file; anything else is refused
+
+
+def _frames(motion, doing: str) -> None:
+    """Refuse a motion of fewer than 3 frames, the fewest whose features can be read."""
+    if motion.frames < 3:
+        raise DescriptionError(f"{getattr(motion, 'source', '<motion>')}: {motion.frames} "
+                               f"frame{'' if motion.frames == 1 else 's'}; {doing} needs at "
+                               f"least 3")
+
+
+class _Unscorable(DescriptionError):
+    """Descriptions holding a number the scores cannot compute with: an error of the
+    praxicon, not of a motion, which names its file where it was read from one."""
+
+
+def _score_model(descriptions: Descriptions, columns):
+    """:func:`~praxicon.description.score_model`, its error an :class:`_Unscorable`."""
+    try:
+        return score_model(descriptions, columns)
+    except DescriptionError as exc:
+        raise _Unscorable(str(exc)) from None
+
+
+def _in_file(exc: DescriptionError, folder, *, windows: bool = False) -> DescriptionError:
+    """``exc`` of the descriptions read from ``folder``, naming their file and part (as
+    :func:`praxicon.load` names a damaged field) when it is an :class:`_Unscorable`."""
+    if not isinstance(exc, _Unscorable):
+        return exc
+    from .description_store import FILE
+    return _Unscorable(f"{Path(folder) / FILE}: {'windows' if windows else 'takes'}: {exc}")
+
+
+def _joints_of(motion) -> set[str]:
+    """The joints that carry a channel of ``motion``."""
+    return {channel.rpartition(".")[0] for channel in motion.channels}
 
 
 def feature_matrix(descriptions: Descriptions, motions, *, shape: bool = True):
@@ -190,14 +238,19 @@ def feature_matrix(descriptions: Descriptions, motions, *, shape: bool = True):
     :class:`Recognition` names each action's).
     """
     wanted = descriptions.spread.features
-    rows = feature_rows(motions, shape=shape)
-    present = [set(r) for r in rows]
-    columns = np.array([i for i, f in enumerate(wanted) if all(f in p for p in present)],
-                       dtype=int)
-    missing = tuple(tuple(sorted({feature_joint(f) for f in wanted if f not in p}))
-                    for p in present)
-    x = np.array([[row[wanted[i]] for i in columns] for row in rows], dtype=float)
-    return columns, x.reshape(len(rows), len(columns)), missing
+    # each motion's features kept as a row of numbers as soon as they are read: the windows of
+    # an hour's recording are 14,400 motions, and a dict of features each held ten times more
+    values, present = [], []
+    for motion in motions:
+        row = feature_rows([motion], shape=shape)[0]
+        present.append(np.array([f in row for f in wanted], dtype=bool))
+        values.append(np.array([row.get(f, np.nan) for f in wanted], dtype=float))
+    has = np.array(present, dtype=bool).reshape(len(present), len(wanted))
+    columns = np.flatnonzero(has.all(axis=0)).astype(int)
+    missing = tuple(tuple(sorted({feature_joint(wanted[i]) for i in np.flatnonzero(~p)}))
+                    for p in has)
+    x = np.array(values, dtype=float).reshape(len(values), len(wanted))[:, columns]
+    return columns, x, missing
 
 
 #: the take-wide features of the body against the ground, each read back from its log into
@@ -287,8 +340,19 @@ def _recognitions(praxicon, motions, *, explain: int | None = 3) -> list:
     >>> good = synthetic_motion(2, (0,), seed=1, noise=0.4)
     >>> short = Motion(good.values[:2], good.channels, good.frame_rate, source="short")
     >>> [getattr(r, "action", str(r)) for r in _recognitions(px, [short, good])]
-    ['short: 2 frames; a description needs at least 3', 'a']
+    ['short: 2 frames; recognising needs at least 3', 'a']
     """
+    try:
+        return _recognised(praxicon, motions, explain)
+    except _Unscorable as exc:  # read from a folder: its descriptions' file named
+        if isinstance(praxicon, (str, Path)):
+            raise _in_file(exc, praxicon) from None
+        raise
+
+
+def _recognised(praxicon, motions, explain: int | None) -> list:
+    """:func:`_recognitions`, the descriptions' numbers that cannot be scored with raised as
+    an :class:`_Unscorable`."""
     descriptions = _descriptions(praxicon)
     if any(a.window for a in descriptions.actions):
         raise DescriptionError("these are window descriptions (for parse); recognise needs the "
@@ -300,6 +364,7 @@ def _recognitions(praxicon, motions, *, explain: int | None = 3) -> list:
     rows = {}
     for i, motion in enumerate(motions):  # one motion's features at a time: each may fail
         try:
+            _frames(motion, "recognising")
             rows[i] = feature_rows([motion])[0]
         except DescriptionError as exc:
             out[i] = exc
@@ -379,7 +444,7 @@ def _family_verdicts(descriptions: Descriptions, rows, best):
     out, overflows = {}, {}
     for indices, columns, x in _by_features(families, [rows[i] for i in wanted]):
         features = [families.spread.features[c] for c in columns]
-        fitted = score_model(families, columns)
+        fitted = _score_model(families, columns)
         chosen = np.array([index[of[best[wanted[k]]]] for k in indices], dtype=int)
         with np.errstate(over="ignore", invalid="ignore"):  # an overflow: said per motion
             dist, _ = model_scores(fitted, x, own_columns(features))
@@ -393,18 +458,6 @@ def _family_verdicts(descriptions: Descriptions, rows, best):
                                            float(penalty[k]), float(families.spread.threshold),
                                            float(excess[k]), group[k])
     return out, overflows
-
-
-def _tested(descriptions, features, x, best, fitted, dist):
-    """The "none of these" test of each motion against its ``best`` action (``dist``: the
-    shared distances, motions x actions): ``(accepted, penalty, excess, group, lost)``,
-    accepted where the distance per feature is within the threshold and no telling feature
-    group (:func:`_excess`) is past its limit; ``lost`` where a distance is not finite (an
-    overflow: the motion cannot be scored)."""
-    excess, group, lost = _excess(descriptions, features, x, best, fitted)
-    penalty = dist[np.arange(len(best)), best] / max(1, len(features))
-    accepted = (penalty <= descriptions.spread.threshold) & (excess <= 1.0)
-    return accepted, penalty, excess, group, lost | unscored(fitted, dist)
 
 
 def _by_features(descriptions: Descriptions, rows):
@@ -425,7 +478,7 @@ def _recognise(descriptions: Descriptions, motions, columns, x, explain: int):
     motion its :class:`Recognition`, or the error that says why it cannot have one."""
     spread = descriptions.spread
     features = [spread.features[i] for i in columns]
-    fitted = score_model(descriptions, columns)
+    fitted = _score_model(descriptions, columns)
     compared = fitted.compared
     if not compared.any():  # each motion of this skeleton answered by its own error
         return [DescriptionError(f"{getattr(m, 'source', '<motion>')}: the motion shares no "
@@ -455,6 +508,10 @@ def _recognise(descriptions: Descriptions, motions, columns, x, explain: int):
             out.append(DescriptionError(f"{getattr(motion, 'source', '<motion>')}: "
                                         f"{overflow_reason(fitted, x[i], features, names)}"))
             continue
+        # a joint the motion has is not missing (its root may not move, so that its travel
+        # is not read): said apart from those it lacks
+        has = _joints_of(motion)
+        absent = [tuple(j for j in joints if j not in has) for joints in lacking]
         order = np.argsort(score[i], kind="stable")
         order = np.concatenate([order[compared[order]], order[~compared[order]]])
         best = int(order[0])  # best_of[i]: an action not compared has an infinite score
@@ -486,45 +543,13 @@ def _recognise(descriptions: Descriptions, motions, columns, x, explain: int):
         out.append(Recognition(
             getattr(motion, "source", "<motion>"), action,
             tuple((names[a], float(p[i, a])) for a in order),
-            float(per_feature[i, best]), float(spread.threshold), lacking[best],
+            float(per_feature[i, best]), float(spread.threshold), absent[best],
             tuple(reasons), tuple(tempos), tuple(drifts), float(excess[i]), excess_group[i],
-            tuple((names[a], lacking[a]) for a in order[:explain] if compared[a]), unshared,
+            tuple((names[a], absent[a]) for a in order[:explain] if compared[a]), unshared,
             flight=tuple(body["flight"]), off_ground=own["flight"],
-            pace=tuple(body["pace"]), travel=own["pace"]))
+            pace=tuple(body["pace"]), travel=own["pace"],
+            unread=tuple(j for j in lacking[best] if j in has)))
     return out
-
-
-def _excess(descriptions, features, x, best, fitted, *, telling: bool = True):
-    """Per motion: its best action's worst feature group over that group's calibrated limit
-    (0 and "" when the descriptions have no limits), the group's name, and whether a group's
-    distance overflowed (the motion cannot be scored).
-
-    Only the groups that tell the best action apart from another learnt action are read
-    (:func:`~praxicon.feature_groups.telling_groups`; ``telling=False``: every group, as the
-    benchmark compares); ``fitted`` is the score model on the motions' columns.
-    """
-    limits = dict(descriptions.spread.limits)
-    groups = {g: c for g, c in feature_groups(features).items() if g in limits}
-    if not groups or not len(x):
-        return np.zeros(len(x)), [""] * len(x), np.zeros(len(x), dtype=bool)
-    bound = np.maximum(np.array([limits[g] for g in groups]), 1e-12)
-    # told apart from the actions the motion is compared with (those sharing a joint with it)
-    tells = np.ones((len(fitted.means), len(groups)), dtype=bool)
-    if telling:
-        compared = np.flatnonzero(fitted.compared)
-        tells[compared] = telling_groups(fitted.means[compared], fitted.variance[compared],
-                                         fitted.scale, groups, bound)
-    far = np.stack([group_distances(x[i], fitted.means[b], fitted.variance[b], fitted.scale,
-                                    groups)[0] for i, b in enumerate(best)])
-    # a sum of squares that overflowed is inf (NaN: a group the best action lacks), read
-    # before a group not read (x 0) turns it into a NaN
-    lost = np.isinf(far).any(axis=1)
-    ratio = far / bound * tells[best]
-    ratio = np.where(np.isnan(ratio), 0.0, ratio)  # a group the best action lacks: not read
-    names = list(groups)
-    # no group read (none tells the best action apart): no group to name
-    return ratio.max(axis=1), [names[k] if r[k] > 0 else "" for k, r in
-                               zip(ratio.argmax(axis=1), ratio)], lost
 
 
 def recognise(praxicon, motion, *, explain: int | None = 3) -> Recognition:

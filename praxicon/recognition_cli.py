@@ -36,7 +36,7 @@ __all__ = ["register_recognise"]
 _ERROR = "psgs: error: "
 
 
-def _read_motion(path: str):
+def _read_motion(path: str, doing: str = "recognising"):
     import kinetology
     from psgs.errors import PSGSError
 
@@ -50,7 +50,7 @@ def _read_motion(path: str):
         raise ValidationError(str(exc).splitlines()[0])
     if motion.frames < 3:
         plural = "s" if motion.frames != 1 else ""
-        raise ValidationError(f"{path}: {motion.frames} frame{plural}; recognising needs at "
+        raise ValidationError(f"{path}: {motion.frames} frame{plural}; {doing} needs at "
                               f"least 3")
     return motion
 
@@ -78,10 +78,35 @@ def _lacking(file, motion, missing) -> str:
     return line
 
 
+def _unread(file, motion, joints) -> str:
+    """The line naming the joints a motion has but that were read without some of their
+    learnt features: the travel and turning of a root none of whose positions move (a take
+    on the spot, its root's travel taken out), or channels other than those learnt."""
+    from .features import _root_joints
+
+    if not _root_joints(motion):
+        return (f"{file}: recognised without the travel and turning of {', '.join(joints)}: "
+                f"no position of the motion moves")
+    return (f"{file}: recognised without some of the learnt features of joints it has: "
+            f"{', '.join(joints)} (its channels, or the joints its travel is on, are not the "
+            f"learnt actions')")
+
+
+def _said(file, motion, answer) -> None:
+    """What the answer was read without, on stderr: the joints the motion lacks, and those
+    it has but not as learnt."""
+    import sys
+
+    if answer.missing:
+        print(_lacking(file, motion, answer.missing), file=sys.stderr)
+    if answer.unread:
+        print(_unread(file, motion, answer.unread), file=sys.stderr)
+
+
 def run_recognise(args) -> int:
     import sys
 
-    from .recognition import Recognition, _recognitions
+    from .recognition import Recognition, _in_file, _recognitions
 
     if args.plot and len(args.files) != 1:
         raise ValidationError(f"--plot draws one recognition's explanation: give one FILE "
@@ -104,7 +129,7 @@ def run_recognise(args) -> int:
         answers = _recognitions(descriptions, [found[k] for k in readable],
                                 explain=3 if args.explain or args.plot else 0)
     except DescriptionError as exc:  # of the praxicon, not of a FILE: no answer at all
-        raise ValidationError(str(exc))
+        raise ValidationError(str(_in_file(exc, args.praxicon)))
     motions = list(found)
     for k, r in zip(readable, answers):
         found[k] = r
@@ -112,8 +137,7 @@ def run_recognise(args) -> int:
         if not isinstance(r, Recognition):
             print(f"{_ERROR}{r}", file=sys.stderr)
             continue
-        if r.missing:
-            print(_lacking(file, motion, r.missing), file=sys.stderr)
+        _said(file, motion, r)
         (best, p), *rest = r.ranking
         runner = f", runner-up {rest[0][0]} {rest[0][1]:.3f}" if rest else ""
         answer = r.action if r.action else f"none of these (closest {best})"
@@ -135,6 +159,7 @@ def run_parse(args) -> int:
 
     from ._arguments import real_number
     from .parsing import parse
+    from .recognition import _in_file
 
     _check_pictures(args.plot)
     try:  # before the folder is read, as every other value of the command
@@ -146,19 +171,39 @@ def run_parse(args) -> int:
         descriptions = read_descriptions(args.praxicon, windows=True)
     except DescriptionError as exc:
         raise ValidationError(str(exc))
-    motion = _read_motion(args.file)
+    motion = _read_motion(args.file, "parsing")
+    # a long recording takes a while (about 0.9 s a minute of a 30 fps take of 25 joints):
+    # on a terminal, the window being read on one line of stderr
+    shown: list[int] = []  # whether the progress line was started
+
+    def progress(done: int, total: int) -> None:
+        shown.append(done)
+        _parse_progress(done, total)
+
+    live = not args.no_progress and sys.stderr.isatty()
     try:
-        timeline = parse(descriptions, motion, support=args.support, unfit=args.unfit)
+        timeline = parse(descriptions, motion, support=args.support, unfit=args.unfit,
+                         progress=progress if live else None)
     except DescriptionError as exc:
-        raise ValidationError(str(exc))
-    if timeline.missing:  # as recognise says it: the windows were scored without them
-        print(_lacking(args.file, motion, timeline.missing), file=sys.stderr)
+        raise ValidationError(str(_in_file(exc, args.praxicon, windows=True)))
+    finally:  # the progress line is wiped before any answer or error is printed
+        if shown:
+            print(f"\r{' ' * 40}\r", end="", file=sys.stderr, flush=True)
+    _said(args.file, motion, timeline)  # as recognise says it: the windows were scored so
     print(timeline.text())
     if args.plot:
         from .recognition_pictures import draw_timeline
         draw_timeline(timeline, motion, args.plot)
         print(args.plot)
     return 0
+
+
+def _parse_progress(done: int, total: int) -> None:
+    import sys
+
+    # one line rewritten in place, a hundred times at most however many windows
+    if done == total or done % max(1, total // 100) == 0:
+        print(f"\rparsing: window {done}/{total}", end="", file=sys.stderr, flush=True)
 
 
 def register_recognise(sub) -> None:
@@ -194,4 +239,6 @@ def register_recognise(sub) -> None:
                    help="a stretch of a span this long in which every window fails the "
                         "action's feature-group test is none of these (default %(default)g; "
                         "inf: never)")
+    p.add_argument("--no-progress", action="store_true",
+                   help="no progress line on stderr (shown on a terminal only)")
     p.set_defaults(run=run_parse)

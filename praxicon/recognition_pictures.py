@@ -44,9 +44,23 @@ def draw_timeline(timeline, motion, path, *, channels: int = 6) -> Path:
 
     Each span is a band in its action's colour (grey hatching: none of these), labelled with
     the action's name without its dataset (content and style). Returns the path written.
+
+    Raises
+    ------
+    ValidationError
+        When ``motion`` is no motion, or not the one parsed (another duration: its spans
+        would be drawn over other time).
     """
+    from kinetology import Motion
     from kinetology.segmentation import unwrap
 
+    if not isinstance(motion, Motion):
+        raise ValidationError(f"a motion must be a kinetology.Motion, not "
+                              f"{type(motion).__name__}")
+    if not abs(motion.duration - timeline.duration) <= 1e-6 * max(1.0, timeline.duration):
+        raise ValidationError(f"{motion.source} lasts {motion.duration:.2f} s; the timeline "
+                              f"{timeline.duration:.2f} s: draw a timeline over the motion "
+                              f"parsed")
     plt = _pyplot()
     rotations = [c for c, name in enumerate(motion.channels)
                  if name.rsplit(".", 1)[-1] in ("rx", "ry", "rz")]
@@ -83,6 +97,8 @@ def draw_explanation(recognition, path, *, joints: int = 12) -> Path:
 
     Returns the path written.
     """
+    from matplotlib.ticker import MaxNLocator
+
     plt = _pyplot()
     shown = recognition.reasons
     if not shown:
@@ -96,6 +112,10 @@ def draw_explanation(recognition, path, *, joints: int = 12) -> Path:
         ax.set_title(f"{_short(name)} (p={probability[name]:.2f})", fontsize=9)
         ax.set_xlabel("distance term")
         ax.tick_params(labelsize=7)
+        # a joint far from an action has a term of 10^5 or more: four ticks, and a power of
+        # ten apart from their labels, or six-figure labels run into one another
+        ax.xaxis.set_major_locator(MaxNLocator(4))
+        ax.ticklabel_format(axis="x", style="sci", scilimits=(-3, 4))
     handles = [plt.Rectangle((0, 0), 1, 1, color=c) for c in _ROLE_COLOURS.values()]
     fig.legend(handles, list(_ROLE_COLOURS), loc="lower center", ncol=4, fontsize=7)
     fig.tight_layout(rect=(0, 0.07, 1, 1))

@@ -387,8 +387,27 @@ def read_descriptions(folder, *, windows: bool = False) -> Descriptions:
     except PraxiconError as exc:
         raise DescriptionError(str(exc)) from None
     found = praxicon.window_descriptions if windows else praxicon.descriptions
+    if found is None and not praxicon.counts["learnt"]:
+        raise DescriptionError(f"{folder}: {_nothing_learnt(praxicon, windows)}")
     if found is None:
         raise DescriptionError(f"{Path(folder) / FILE}: no descriptions in this praxicon "
                                f"(learn them: '{REBUILD}' resumes the build and describes its "
                                f"actions)")
     return found
+
+
+def _nothing_learnt(praxicon: Praxicon, windows: bool = False) -> str:
+    """Why a praxicon that learnt no action has no descriptions: a build that resumes learns
+    none either (it describes the learnt actions), so the descriptions' command is not named.
+
+    >>> from praxicon.records import ActionRecord
+    >>> print(_nothing_learnt(Praxicon((ActionRecord("m.a", "m", "a"),), Settings.make())))
+    ... # doctest: +NORMALIZE_WHITESPACE
+    no action of this praxicon was learnt (its 1 action failed; index.json says why):
+    nothing to recognise with
+    """
+    count = praxicon.counts["actions"]
+    why = (f"its {count} action{'' if count == 1 else 's'} failed; index.json says why"
+           if count else "it has no action")
+    return (f"no action of this praxicon was learnt ({why}): nothing to "
+            f"{'parse' if windows else 'recognise'} with")

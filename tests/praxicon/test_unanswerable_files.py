@@ -164,8 +164,8 @@ def test_descriptions_json_too_large_to_score_with_is_one_error(built, tmp_path,
                                                                where, key, value, said):
     """Every finite number reads back (a description round-trips every float), but one whose
     square (or its inverse's) is past the float range made every probability NaN ("p=nan",
-    "inf x its limit"); now it is one line naming it and the command that learns the
-    descriptions again, before any answer, and the DescriptionError of the API."""
+    "inf x its limit"); now it is one line naming the file, the number and the command that
+    learns the descriptions again, before any answer, and the DescriptionError of the API."""
     px = Path(shutil.copytree(built / "px", tmp_path / "px"))
     data = json.loads((px / "descriptions.json").read_text())
     place = data[part]["spread"] if where == "spread" else data[part]["actions"][0]
@@ -174,8 +174,10 @@ def test_descriptions_json_too_large_to_score_with_is_one_error(built, tmp_path,
     else:
         place[key] = [value, *place[key][1:]]
     (px / "descriptions.json").write_text(json.dumps(data))
-    message = (f"the praxicon's descriptions overflow the scores: {said} (learn the "
-               f"descriptions again: 'psgs praxicon build DATASET... -o FOLDER')")
+    # the file and its part named: a folder's descriptions are what is damaged
+    message = (f"{px / 'descriptions.json'}: {part}: the praxicon's descriptions overflow the "
+               f"scores: {said} (learn the descriptions again: 'psgs praxicon build DATASET... "
+               f"-o FOLDER')")
     command, call = ("recognise", recognise) if part == "takes" else ("parse", parse)
     assert _refused(capsys, [command, str(px), str(built / "new.bvh"),
                              *([str(built / "new2.bvh")] if part == "takes" else [])]) == message
