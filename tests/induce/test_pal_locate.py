@@ -190,3 +190,16 @@ def test_more_repeats_than_the_new_motion_holds_find_nothing_without_allocating_
     finally:
         tracemalloc.stop()
     assert peak < 50 * 2**20
+
+
+def test_the_joints_method_of_a_grammar_system_is_a_validation_error():
+    """A grammar system has no learnt joints to time: method="joints" raised the
+    AttributeError of its missing inducer."""
+    learned = PAL().induce(Actiongram.from_strings({"a": "xyzw" * 8, "b": "pqrs" * 8}))
+    new = Actiongram.from_strings({"a": "xyzw" * 3, "b": "pqrs" * 3})
+    with pytest.raises(ValidationError, match="method joints reads an induction"):
+        locate(learned.system, new, method="joints")
+    assert locate(learned.system, new) == locate(learned.system, new, method="pattern")
+    for wrong in (None, "a: x y"):
+        with pytest.raises(TypeError, match="locate needs an Induction or a PSGS"):
+            locate(wrong, new, method="joints")

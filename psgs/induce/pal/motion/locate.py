@@ -112,8 +112,9 @@ def locate(learned: Induction | PSGS, actiongram: Actiongram, *, threshold: floa
     ------
     ValidationError
         With ``method="pattern"`` (or a grammar system), when none of the
-        learned components is a string of ``actiongram``; when a scale is not
-        finite and positive,
+        learned components is a string of ``actiongram``; with
+        ``method="joints"``, when ``learned`` is a grammar system (it keeps no
+        joints); when a scale is not finite and positive,
         ``repeats`` is below 1, or ``threshold`` (at most 1), ``min_speed`` (0 or
         more) or ``min_share`` (0 to 1) is no finite number. A tempo whose pattern is longer than the new
         motion is skipped before it is sampled (it fits nowhere).
@@ -130,10 +131,17 @@ def locate(learned: Induction | PSGS, actiongram: Actiongram, *, threshold: floa
     >>> [(round(s.start), round(s.stop)) for s in locate(learned, new, threshold=0.6)]
     [(0, 12)]
     """
+    if not isinstance(learned, (Induction, PSGS)):
+        raise TypeError(f"locate needs an Induction or a PSGS, not {type(learned).__name__}")
     if not isinstance(actiongram, Actiongram):
         raise TypeError(f"locate needs an Actiongram, not {type(actiongram).__name__}")
     if method not in ("auto", "joints", "pattern"):
         raise ValidationError(f"method must be auto, joints or pattern, not {method!r}")
+    if method == "joints" and not isinstance(learned, Induction):
+        # the joints method times the learnt joints with the learner's parameters, which a
+        # grammar system does not keep
+        raise ValidationError("method joints reads an induction's learnt joints; a grammar "
+                              "system has none (its patterns: method pattern)")
     scales = _checked_scales(scales)
     # each is read by one method only: checked for both, so a bad one is never ignored
     check_number("threshold", plain_number(threshold), high=1)  # above 1: never met
