@@ -340,6 +340,8 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
     DescriptionError
         As :func:`~praxicon.recognition.recognise` says it; a window's error names the
         recording and where the window starts (``FILE (the window from 1.25 s): ...``).
+    OSError, MotionFormatError
+        As :func:`~praxicon.recognition.recognise` raises them for a path.
     """
     from .recognition import _in_file, _Unscorable
 

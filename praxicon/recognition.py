@@ -577,7 +577,11 @@ def recognise(praxicon, motion, *, explain: int | None = 3) -> Recognition:
         ranked last with probability 0 and named in ``Recognition.unshared``), when a value
         of it is too large to compute with (a feature that is not finite, or distances that
         overflow: the feature is named), or when the descriptions hold a number the scores
-        cannot compute with (named, with the command that learns them again).
+        cannot compute with (named, with the command that learns them again; and their file,
+        when ``praxicon`` is a folder).
+    OSError, MotionFormatError
+        As :func:`kinetology.read` raises them, when ``motion`` is a path that cannot be read
+        or is not motion (``MotionFormatError`` is a ``ValueError``).
 
     Examples
     --------
