@@ -290,7 +290,14 @@ class ErrorChart:
 
     # ---------------------------------------------------------- queries
     def cost(self, a: int, i: int, j: int, cap: float) -> float:
-        """The least cost of ``a`` on ``word[i:j]`` when it is at most ``cap``, else ``inf``."""
+        """The least cost of ``a`` on ``word[i:j]`` when it is at most ``cap``, else ``inf``.
+
+        ``cap`` is widened by a relative 1e-9: the walk prunes a child against
+        ``cap`` less what its siblings cost, and that difference can round a
+        hair below the child's own cost (``7.6 - 5.0 < 2.6``), so a value equal
+        to ``cap`` read as above it.
+        """
+        cap += 1e-9 * max(1.0, cap)
         if i == j:
             v = self.min_yield[a]
             return v if v <= cap else INF
@@ -313,8 +320,9 @@ class ErrorChart:
         Returns ``(splits, excess)``: the splits as ``(cost, boundaries)``
         sorted by cost (boundaries ``i = m0 ≤ … ≤ mr = j``; ``(i,)`` for an
         empty body), and a lower bound of the cost of every split left out
-        (``inf`` when none was).
+        (``inf`` when none was). ``cap`` is widened as in :meth:`cost`.
         """
+        cap += 1e-9 * max(1.0, cap)
         key = (rule, i, j)
         cached = self._split_cache.get(key)
         if cached is not None and cached[0] >= cap:

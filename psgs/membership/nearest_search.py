@@ -291,9 +291,12 @@ class DistanceSearch:
         f0 = 0.0
         for c, front in enumerate(initial):
             f0 += self.item_cost(c, front[0], cap)
-        if f0 > cap:
+        if f0 > cap + tol:
             lb = sum(self.charts[c].lower_bound(*front[0]) for c, front in enumerate(initial))
-            return "none", max(f0 if f0 < INF else cap + self.step, lb), False
+            # the initial state costs more than cap, by how much is not known: cap bounds
+            # it (cap + step did not: with costs 0.7 and 1, 1.7 is followed by 2.0, and the
+            # overstated bound ended a later search at a tuple that was not the cheapest)
+            return "none", max(f0 if f0 < INF else cap, lb), False
         lowest = [INF]
         bound = cap
         if self.best is not None and self.best[0] - tol <= bound:

@@ -98,10 +98,16 @@ def test_nearest_with_costs_equals_the_oracle(data):
     system = data.draw(pst.psgs_systems(max_components=2, max_rules=4, max_rhs=2,
                                         alphabet=ALPHABET))
     words = data.draw(word_tuples(len(system.components)))
-    number = st.sampled_from([0, 0.5, 1, 2, 3])
+    # costs that are no binary fractions too: their sums in different orders differ in the
+    # last place (0.4 + 0.2 > 0.6), which every comparison of costs must allow for
+    number = st.sampled_from([0, 0.1, 0.5, 0.7, 1, 2, 3.2])
     costs = {"insert": data.draw(number), "delete": data.draw(number),
              "substitute": data.draw(number), "pairs": {("a", "b"): data.draw(number)}}
-    check_against_oracle(system, words, costs)
+    result = check_against_oracle(system, words, costs)
+    if result is not None and result.distance is not None:  # within max_errors = the distance
+        within = nearest(system, words, costs=costs, max_errors=result.distance,
+                         max_states=20_000, max_seconds=20)
+        assert within.exact and within.distance == pytest.approx(result.distance), within
 
 
 @PROPERTY
@@ -160,6 +166,46 @@ def test_a_cheap_edit_dwarfed_by_the_needed_ones_does_not_slow_the_rounds(dear):
     members = list(language(counting, 6, method="search").words)
     words = (tuple(map(Terminal, "aa")), (Terminal("b"),))
     assert result.distance == oracle(members, words, edit_costs(costs))
+
+
+THREE_A_OR_B_RUNS = """psgs X
+mode parallel
+unsynchronised free
+
+component G0 start S
+  s0: S -> A A A
+  s1: S -> B B
+  a1: A -> "a"
+  b0: B -> "a" B
+  b1: B -> "b" "b" "b"
+"""
+
+
+@pytest.mark.parametrize("max_errors", [None, 7.6, 7.7, 100])
+def test_a_distance_equal_to_the_cap_is_found_though_its_sums_round(max_errors):
+    """Deleting b (0.1) and inserting aaa (2.5 each) costs 7.6 exactly, as much as the cap
+    the component's distance is computed up to; the chart summed 2.6 + 2.5 + 2.5 against
+    7.6 - 5.0, a hair less than 2.6, and read 7.6 as over the cap: a TypeError without
+    max_errors, and with max_errors=100 an exact answer that no tuple is within it."""
+    from psgs.format import loads
+
+    system = loads(THREE_A_OR_B_RUNS)
+    costs = {"insert": 2.5, "delete": 0.1, "substitute": 3.2}
+    result = nearest(system, ["b"], costs=costs, max_errors=max_errors, max_seconds=5)
+    assert result.exact and result.distance == pytest.approx(7.6)
+    assert [t.name for t in result.words[0]] == ["a", "a", "a"]
+
+
+def test_components_summed_a_hair_over_max_errors_are_within_it():
+    """(aa) and () cost 0.4 + 0.2 = 0.6000000000000001 summed per component, 0.6 as the
+    search sums the tuple's edits: max_errors=0.6 answered that no tuple is within it."""
+    from psgs.format import loads
+
+    system = loads('psgs X\nmode parallel\nunsynchronised free\n\ncomponent G1 start S1\n'
+                   '  r11: S1 -> "a" "a"\n\ncomponent G2 start S2\n  r12: S2 ->\n')
+    costs = {"insert": 0.2, "delete": 0.1, "substitute": 0.1}
+    result = nearest(system, ["", "aa"], costs=costs, max_errors=0.6, max_seconds=5)
+    assert result.exact and result.distance == pytest.approx(0.6)
 
 
 def test_rounds_that_never_explore_keep_a_finite_cap_until_the_time_bound():
