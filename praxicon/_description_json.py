@@ -54,10 +54,13 @@ def check_format(data, kind: str, version: int) -> None:
         raise _error(f"not a {kind} (a JSON object expected, not {type(data).__name__})")
     if data.get("format") != kind:
         raise _error(f"not a {kind} (format {_shown(data.get('format'))})")
-    if data.get("version") != version:
-        raise _error(f"{kind} of version {_shown(data.get('version'))}; this psgs reads "
-                     f"version {version}: learn the descriptions again (psgs praxicon "
-                     f"build ... -o PX resumes the build and describes its actions)")
+    said = data.get("version")
+    if said != version:  # a later version's descriptions are not to be learnt again over
+        later = type(said) is int and said > version
+        raise _error(f"{kind} of version {_shown(said)}; this psgs reads version {version}: "
+                     + ("a later psgs wrote it; upgrade psgs to read it" if later else
+                        "learn the descriptions again (psgs praxicon build ... -o PX resumes "
+                        "the build and describes its actions)"))
 
 
 def _need(data: dict, key: str, where: str):

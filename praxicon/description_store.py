@@ -58,10 +58,13 @@ def read_descriptions_file(folder):
     data = read_json(path, PraxiconError)
     if not isinstance(data, dict) or data.get("format") != _FORMAT:
         raise PraxiconError(f"{path}: not a praxicon descriptions file")
-    if data.get("version") != FORMAT_VERSION:
-        raise PraxiconError(f"{path}: descriptions of version {data.get('version')!r}, this "
-                            f"psgs reads version {FORMAT_VERSION} (learn them again: "
-                            f"'{REBUILD}' resumes the build and describes its actions)")
+    said = data.get("version")
+    if said != FORMAT_VERSION:  # a later version's are not to be learnt again over
+        later = type(said) is int and said > FORMAT_VERSION
+        raise PraxiconError(f"{path}: descriptions of version {said!r}, this psgs reads "
+                            f"version {FORMAT_VERSION} " + ("(a later psgs wrote them; upgrade "
+                            "psgs to read them)" if later else f"(learn them again: "
+                            f"'{REBUILD}' resumes the build and describes its actions)"))
     key = data.get("key", "")
     if not isinstance(key, str):
         raise PraxiconError(f"{path}: 'key' must be text (what the descriptions were learnt "

@@ -591,6 +591,8 @@ def check_index(index, where: str) -> None:
     if not isinstance(index, dict) or index.get("format") != FORMAT:
         raise PraxiconError(f"{where}: not a praxicon index (its format is not {FORMAT!r})")
     version = index.get("version")
-    if version != FORMAT_VERSION:
+    if version != FORMAT_VERSION:  # a later version's folder is not to be rebuilt over
+        later = type(version) is int and version > FORMAT_VERSION
         raise PraxiconError(f"{where}: a praxicon of format version {version!r}; this psgs "
-                            f"reads version {FORMAT_VERSION}: rebuild it with '{REBUILD}'")
+                            f"reads version {FORMAT_VERSION}: " + ("a later psgs wrote it; "
+                            "upgrade psgs to read it" if later else f"rebuild it with '{REBUILD}'"))

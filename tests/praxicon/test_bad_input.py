@@ -239,6 +239,12 @@ def _index_of_version_1(folder):
     (folder / "index.json").write_text(json.dumps(index))
 
 
+def _index_of_a_later_version(folder):
+    index = json.loads((folder / "index.json").read_text())
+    index["version"] += 1
+    (folder / "index.json").write_text(json.dumps(index))
+
+
 def _edit_record(change):
     def edit(folder):
         path = folder / "records" / "moves.wave.json"
@@ -254,6 +260,8 @@ DAMAGE = {
                                                      "version None; this psgs reads version 3"),
     "index of another version": (_index_of_version_1, "rebuild it with 'psgs praxicon build "
                                                       "DATASET... -o FOLDER'"),
+    "index of a later version": (_index_of_a_later_version, "a later psgs wrote it; upgrade "
+                                                            "psgs to read it"),
     "index nests too deeply": (lambda f: (f / "index.json").write_text("[" * 100_000),
                                "index.json: nests too deeply"),
     "index not JSON": (lambda f: (f / "index.json").write_text("{"),

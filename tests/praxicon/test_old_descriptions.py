@@ -90,3 +90,16 @@ def test_verify_still_refuses_a_folder_whose_records_load_refuses(old_folder):
     (old_folder / "records" / "moves.wave.json").write_text("[]")
     with pytest.raises(PraxiconError, match=r"moves\.wave\.json: not a praxicon record file"):
         verify(old_folder)
+
+
+@pytest.mark.parametrize("later", [1, 100])
+def test_descriptions_of_a_later_version_say_to_upgrade_not_to_learn_again(old_folder, later):
+    """Learning them again would write over what a later psgs learnt."""
+    path = old_folder / "descriptions.json"
+    data = json.loads(path.read_text())
+    data["version"] = FORMAT_VERSION + later
+    path.write_text(json.dumps(data))
+    with pytest.raises(PraxiconError, match=f"descriptions of version {FORMAT_VERSION + later}, "
+                                            r"this psgs reads version \d+ \(a later psgs wrote "
+                                            r"them; upgrade psgs to read them\)$"):
+        load(old_folder)
