@@ -225,6 +225,8 @@ def _folder(folder) -> Path:
     the TypeError of ``Path(None)``."""
     if not isinstance(folder, (str, os.PathLike)):
         raise PraxiconError(f"a praxicon folder is a path, not {type(folder).__name__}")
+    if os.fspath(folder) == "":  # Path("") is the current folder: dump wrote into it
+        raise PraxiconError("a praxicon folder's name is empty ('' would be the current folder)")
     return Path(folder)
 
 

@@ -227,6 +227,17 @@ def test_load_and_dump_refuse_a_folder_that_is_no_path(built, folder):
         dump(built, folder)
 
 
+def test_load_and_dump_refuse_an_empty_folder_name(built, tmp_path, monkeypatch):
+    """'' is the current folder to Path: dump wrote the praxicon's files into it."""
+    from praxicon import PraxiconError, dump, load
+
+    monkeypatch.chdir(tmp_path)
+    for call in (lambda: load(""), lambda: dump(built, "")):
+        with pytest.raises(PraxiconError, match="a praxicon folder's name is empty"):
+            call()
+    assert not any(tmp_path.iterdir())
+
+
 def test_dump_refuses_what_is_no_praxicon(tmp_path):
     from praxicon import PraxiconError, dump
 
