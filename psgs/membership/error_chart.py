@@ -320,9 +320,8 @@ class ErrorChart:
         Returns ``(splits, excess)``: the splits as ``(cost, boundaries)``
         sorted by cost (boundaries ``i = m0 ≤ … ≤ mr = j``; ``(i,)`` for an
         empty body), and a lower bound of the cost of every split left out
-        (``inf`` when none was). ``cap`` is widened as in :meth:`cost`.
+        (``inf`` when none was).
         """
-        cap += 1e-9 * max(1.0, cap)
         key = (rule, i, j)
         cached = self._split_cache.get(key)
         if cached is not None and cached[0] >= cap:

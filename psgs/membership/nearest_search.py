@@ -188,7 +188,9 @@ class DistanceSearch:
                 if key is not None:
                     candidates.append((key, m))
         candidates.sort()
-        slack = cap - f
+        # a child's splits are summed in another order than cap - f was taken: a child
+        # costing exactly the cap must not be rounded out of it (as the charts allow)
+        slack = cap - f + 1e-9 * max(1.0, cap)
         out = []
         for order, (_, m) in enumerate(candidates):
             slots = []
@@ -248,7 +250,9 @@ class DistanceSearch:
             best = self.best[0] if self.best is not None else INF
             # a tuple not reached costs at least the estimate of the state it was cut at
             self.proved = max(self.proved, min(lowest, best))
-            if best < INF and best <= lowest + 1e-9 * max(1.0, best):
+            # a round that found a tuple looks on only below it by two tolerances, and what it
+            # cut then lies a tolerance under it: equal within the tolerance, so found
+            if best < INF and best <= lowest + 2e-9 * max(1.0, best):
                 return "found", best, self.best[1]
             if lowest == INF:
                 return "empty", None, None

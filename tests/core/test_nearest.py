@@ -208,6 +208,21 @@ def test_components_summed_a_hair_over_max_errors_are_within_it():
     assert result.exact and result.distance == pytest.approx(0.6)
 
 
+def test_a_round_that_finds_the_cheapest_tuple_ends_the_search():
+    """A found tuple bounds the round a little under its cost; what the round cut then lay
+    a hair under it (insertions at 0.1), the search read it as possibly cheaper and ran its
+    rounds again at the same cap until max_states."""
+    from psgs.format import loads
+
+    system = loads('psgs X\nmode parallel\nunsynchronised free\n\ncomponent G1 start S1\n'
+                   '  r11: S1 ->\n\ncomponent G2 start S2\n  r12: S2 ->\n'
+                   '  r22: S2 -> S2 "a" S2\n')
+    costs = {"insert": 0.1, "delete": 1, "substitute": 0.7}
+    result = nearest(system, ["", "ab"], costs=costs, max_states=2_000, max_seconds=5)
+    assert result.exact and result.distance == pytest.approx(0.8), result
+    assert result.states < 100
+
+
 def test_rounds_that_never_explore_keep_a_finite_cap_until_the_time_bound():
     """A language empty in a way the analysis does not see: (p, q) finishes H, and then no
     tuple applies, so no round explores a state. Doubled without end, the cap's raise
