@@ -24,6 +24,7 @@ praxicon._description_json.FieldError: spread: 'noise' must be numbers above 0: 
 from __future__ import annotations
 
 import math
+from collections import Counter
 
 __all__ = ["WINDOWS", "FieldError", "check_format", "action_fields", "spread_fields",
            "check_window"]
@@ -93,7 +94,8 @@ def _texts(data: dict, key: str, where: str) -> tuple[str, ...]:
     if not value:
         raise _error(f"{where}{key!r} is empty")
     if len(set(value)) != len(value):
-        twice = next(v for v in value if value.count(v) > 1)
+        counts = Counter(value)  # value.count per value: 20,000 names took 4 s to refuse
+        twice = next(v for v in value if counts[v] > 1)
         raise _error(f"{where}{key!r} names {twice!r} twice")
     return tuple(value)
 

@@ -16,6 +16,7 @@ import os
 import signal
 import sys
 import time
+from collections import Counter
 from collections.abc import Iterable
 from concurrent.futures import Executor, Future, ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, replace
@@ -194,8 +195,8 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
     given, executor = executor, _as_executor(executor)
     if executor is not None and not callable(getattr(executor, "submit", None)):
         raise ValidationError(f"executor must be an Executor or a Dask client, not {given!r}")
-    names = [a.name for a in actions]
-    twice = sorted({n for n in names if names.count(n) > 1})
+    counts = Counter(a.name for a in actions)  # names.count per action was quadratic
+    twice = sorted(n for n, count in counts.items() if count > 1)
     if twice:
         raise DatasetError(f"two actions are named {twice[0]!r}: one record would overwrite "
                            f"the other")

@@ -44,6 +44,7 @@ from __future__ import annotations
 
 import json
 import math
+from collections import Counter
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 from functools import partial
@@ -233,12 +234,13 @@ class Descriptions:
             raise DescriptionError(f"'family_of' names {len(self.family_of)} families for "
                                    f"{len(self.actions)} actions")
         named = set(self.families.names)
+        members = Counter(self.family_of)  # family_of.count per action: 20,000 took 13 s
         for a, f in zip(self.actions, self.family_of):
             wanted = f or a.name  # an action alone is its own family
             if wanted not in named:
                 raise DescriptionError(f"action {a.name!r}: no description of its family "
                                        f"{wanted!r}")
-            if f and self.family_of.count(f) < 2:
+            if f and members[f] < 2:
                 raise DescriptionError(f"action {a.name!r}: family {f!r} has one member "
                                        f"(an action alone has the family '')")
         if self.families.spread.window != self.spread.window:
@@ -298,9 +300,9 @@ class Descriptions:
                                    "more")
         spread = Spread.from_dict(data.get("spread"))
         actions = tuple(ActionDescription.from_dict(a) for a in listed)
-        names = [a.name for a in actions]
+        named = Counter(a.name for a in actions)  # names.count per action: 20,000 took 6 s
         for a in actions:
-            if names.count(a.name) > 1:
+            if named[a.name] > 1:
                 raise DescriptionError(f"action {a.name!r} is described twice")
             if a.window != spread.window:  # parse cuts windows of the spread's length
                 raise DescriptionError(f"action {a.name!r}: 'window' {a.window:g} is not the "

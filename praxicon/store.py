@@ -176,24 +176,17 @@ def actuator_matrix(records) -> tuple[list[str], list[str], list[list[int]]]:
         raise PraxiconError(f"actuator_matrix reads a Praxicon or its ActionRecords, "
                             f"{not_all(given, records, ActionRecord)}")
     learnt = [r for r in records if r.learnt]
-    joints: list[str] = []
-    for r in learnt:
-        for joint in _pose_joints(r):
-            if joint not in joints:
-                joints.append(joint)
-    rows = [[int(j in r.actuators) for j in joints] for r in learnt]
+    # a dict's keys and a set, not a list searched per joint: 20,000 joints took 4 s
+    joints = list(dict.fromkeys(joint for r in learnt for joint in _pose_joints(r)))
+    rows = [[int(j in actuators) for j in joints]
+            for actuators in (set(r.actuators) for r in learnt)]
     return [r.name for r in learnt], joints, rows
 
 
 def _pose_joints(record: ActionRecord) -> list[str]:
     if record.all_joints:
         return list(record.all_joints)
-    seen: list[str] = []
-    for channel, _ in record.mean_pose:
-        joint = channel.rsplit(".", 1)[0]
-        if joint not in seen:
-            seen.append(joint)
-    return seen
+    return list(dict.fromkeys(channel.rsplit(".", 1)[0] for channel, _ in record.mean_pose))
 
 
 def write_index(out: Path, praxicon: Praxicon, timings: dict[str, float] | None = None) -> dict:
