@@ -4,12 +4,14 @@ Each regression test reads the worst input found for a reader that once took tim
 with the square of the input's size, at a size where that reader took well over the suite's
 15 s a test, and checks what is read (not how long it takes): the reader of today answers in
 milliseconds. Each change of a pattern comes with a property test that the new way reads what
-the old one did.
+the old one did. ``psgs show`` sorted names by ``int()``, whose time grows with the square of
+the digits too: Python refuses 4,300 digits and more, so a longer run was a ValueError.
 """
 
 from __future__ import annotations
 
 import json
+import re
 
 import pytest
 from hypothesis import given, settings
@@ -17,6 +19,8 @@ from hypothesis import strategies as st
 
 from psgs import Actiongram, FormatError
 from psgs.actiongram._text import _JSON_TOKEN, _json_tokens
+from psgs.cli import main
+from psgs.cli.core import _natural_key
 
 #: JSON values of every kind, nested a little (NaN and the infinities too: json.loads reads them)
 VALUES = st.recursive(
@@ -51,3 +55,28 @@ def test_a_json_error_is_placed_past_much_white_space(space):
         Actiongram.from_json(text, source="walk.json")
     assert "strings[0] must be an object" in caught.value.message
     assert (caught.value.line, caught.value.column) == (1, 14)
+
+
+#: names with runs of digits of several scripts (ASCII, Arabic-Indic, Devanagari), leading
+#: zeros and digits that are no decimals ('²')
+NAMED = st.text(alphabet="a.0019\u0660\u0661\u0969\u00b2", max_size=6)
+
+
+@settings(max_examples=500, deadline=None)
+@given(NAMED, NAMED)
+def test_the_natural_order_is_the_order_of_int(x, y):
+    def old(name):  # runs of digits by int(), which reads every script's
+        return [int(p) if k % 2 else p for k, p in enumerate(re.split(r"(\d+)", name))]
+
+    assert (_natural_key(x) < _natural_key(y), _natural_key(x) == _natural_key(y)) == \
+        (old(x) < old(y), old(x) == old(y))
+
+
+def test_show_sorts_a_terminal_of_more_digits_than_int_reads(capsys, tmp_path):
+    # int() refuses 4,300 digits and more (its time grows with their square): show raised
+    path = tmp_path / "digits.psgs"
+    many = "1" * 5_000
+    path.write_text(f'psgs D\ncomponent A start S\n  p: S -> "a{many}" "a2" "{many}0" "3"\n',
+                    encoding="utf-8")
+    assert main(["show", str(path)]) == 0
+    assert f"T (4): 3 {many}0 a2 a{many}\n" in capsys.readouterr().out
