@@ -24,17 +24,16 @@ borders lie exactly at zero crossings of the smoothed derivatives (which the
 reconstruction in :mod:`kinetology.codec` relies on), and wiggles smaller than
 the dead band never split a segment.
 
-Rotation channels are **unwrapped** first (``unwrap``, a period of 360°): a joint
-whose Euler angle crosses ±180° jumps by ~360° in the file, which would read as a huge
-range and spurious kinetemes; after unwrapping it moves continuously. Translation channels
-(``tx ty tz``) are never unwrapped.
+Rotation channels are **unwrapped** first (``unwrap``, a period of 360°): a joint whose Euler
+angle crosses ±180° jumps by ~360° in the file, which would read as a huge range and spurious
+kinetemes; after unwrapping it moves continuously. Translations are never unwrapped.
 
 Channels whose smoothed range is below ``min_range`` degrees are *still* and
 are left out of the actiongram.
 
-Each segment also has a **displacement**: the signed change of the smoothed, unwrapped
-angle over it (degrees; the channel's unit for translations), and each channel an
-**actuator** (the joint it moves, :mod:`kinetology.joints`), with the joints' parents.
+Each segment also has a **displacement**: the signed change of the smoothed, unwrapped angle
+over it (degrees; the channel's unit for translations), and each channel an **actuator** (the
+joint it moves, :mod:`kinetology.joints`), with the joints' parents.
 """
 
 from __future__ import annotations
@@ -308,6 +307,7 @@ def states(values: np.ndarray, frame_rate: float, *, smoothing: float = DEFAULTS
     one_channel = values.ndim == 1
     if one_channel:
         values = values[:, None]
+    check_rate(values, frame_rate)  # as segments() does: unwrapping 1e308 overflowed first
     values = _unwrap(values, unwrap)
     out = np.empty(values.shape, dtype=np.int8)
     use = select(engine, values.size)
@@ -529,6 +529,7 @@ def _smoothed(motion: Motion, channels, p: dict, use) -> tuple[list[str], np.nda
         # take, not [:, columns]: frames-major, as the compiled engine reads it fastest
         values = motion.values.take(columns, axis=1) if channels else \
             np.zeros((motion.frames, 0))
+    check_rate(values, motion.frame_rate, motion.source)  # unwrapping 1e308 overflowed first
     if p["unwrap"] > 0 and rotation.any() and motion.frames > 1:
         # only the columns that jump by more than half a turn somewhere need it
         jumps = rotation & (use.largest_step(values) > p["unwrap"] / 2)

@@ -86,6 +86,28 @@ def test_a_take_too_large_to_difference_is_named_by_every_command(tmp_path, caps
     assert not (tmp_path / "grams").exists()
 
 
+def test_a_rotation_alternating_at_the_floats_limit_is_refused_without_numpy_warnings(
+        tmp_path, capsys):
+    """Unwrapping +-1e308 overflowed before the rate was checked: numpy's RuntimeWarnings,
+    then a line saying the values went 'up to nan'."""
+    import warnings
+
+    head = SMALL_BVH[: SMALL_BVH.index("Frames:")]
+    rows = [" ".join(["0"] * 8 + [f"{(-1) ** k * 1e308:g}"]) for k in range(240)]
+    path = tmp_path / "wild.bvh"
+    path.write_text(f"{head}Frames: 240\nFrame Time: 0.0083333\n" + "\n".join(rows) + "\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for args in (["segment", str(path)], ["evaluate", str(path)]):
+            assert main(args) == 2, args
+            err, out = _one_line(capsys)
+            assert f"error: {path}: frame rate 120 fps is too high to difference values up " \
+                   f"to 1e+308" in err, args
+        values = np.array([(-1) ** k * 1e308 for k in range(240)])
+        with pytest.raises(psgs.ValidationError, match="values up to 1e\\+308"):
+            __import__("kinetology").states(values, 120.0)
+
+
 def _mocap6(folder, takes: dict):
     """A cmu-mocap6 folder: per take, its AMC root rows (``tx ty tz rx ry rz``) and labels."""
     (folder / "amc").mkdir(parents=True)
