@@ -64,30 +64,71 @@ def _root_joints(motion) -> list[str]:
     every take of a skeleton gets the same features. Empty when no position moves.
     """
     joints = _joints_in_order(motion)
+    place = {joint: k for k, joint in enumerate(joints)}  # not joints.index per channel
     last = -1
     for c, name in enumerate(motion.channels):
         joint, _, axis = name.rpartition(".")
         if axis in _TRANSLATIONS and np.ptp(motion.values[:, c]) > 1e-6:
-            last = max(last, joints.index(joint))
+            last = max(last, place[joint])
     return joints[:last + 1]
 
 
-def _joint_transform(motion, joint: str):
-    """Per frame the joint's rotation matrix and translation (smoothed channels)."""
+def _chain_channels(motion, chain: list[str]) -> tuple[dict[str, int], dict[str, str]]:
+    """What :func:`_joint_transform` reads of ``motion`` for the joints of ``chain``, found
+    once: each channel's column, and each joint's rotation order (the skeleton's, of its first
+    joint of that name; for a joint it lacks, the order its rotation channels are listed in).
+
+    A chain may hold every joint of a skeleton (each with a position channel that moves): a
+    search of every channel and every skeleton joint per joint of it made a chain of 4,000
+    joints take 13 s (quadratic).
+    """
+    column = {channel: k for k, channel in enumerate(motion.channels)}
+    orders: dict[str, str] = {}
+    for joint in motion.skeleton.joints if motion.skeleton is not None else ():
+        orders.setdefault(joint.name, joint.rotation_order)
+    listed = set(chain) - orders.keys()
+    if listed:
+        orders.update(_listed_orders(motion.channels, listed))
+    return column, orders
+
+
+def _listed_orders(channels, joints: set[str]) -> dict[str, str]:
+    """Per joint of ``joints`` the axes (``"ZYX"``) of the rotation channels whose names start
+    with the joint's and a ``.``, in the order of ``channels``: a joint named ``a`` takes the
+    axes of the channels of a joint named ``a.b`` too.
+
+    One pass over the channels, each looked at only where its name could end one of the
+    joints' (at a ``.`` as far in as a joint's name is long).
+    """
+    sizes = sorted({len(joint) for joint in joints})
+    out = dict.fromkeys(joints, "")
+    for channel in channels:
+        head, dot, axis = channel.rpartition(".")
+        if not dot or axis not in _ROTATIONS:
+            continue
+        for size in sizes:
+            if size > len(head):
+                break
+            if (size == len(head) or head[size] == ".") and head[:size] in out:
+                out[head[:size]] += axis[1].upper()
+    return out
+
+
+def _joint_transform(motion, joint: str, channels: tuple[dict[str, int], dict[str, str]]):
+    """Per frame the joint's rotation matrix and translation (smoothed channels), read by
+    the columns and orders of :func:`_chain_channels`."""
     from kinetology.kinematics import rotation_matrices
     from kinetology.segmentation import smooth, unwrap
 
     rate = motion.frame_rate
-    order = "".join(c.rsplit(".", 1)[1][1].upper() for c in motion.channels
-                    if c.startswith(joint + ".") and c.rsplit(".", 1)[1] in _ROTATIONS)
-    if motion.skeleton is not None and joint in motion.skeleton.names:
-        order = motion.skeleton.joints[motion.skeleton.index(joint)].rotation_order
-    angles = {a.upper(): smooth(unwrap(motion.column(f"{joint}.r{a}").astype(float)), rate,
-                                _SMOOTHING)
-              for a in "xyz" if f"{joint}.r{a}" in motion.channels}
-    rot = rotation_matrices(angles, order or "XYZ", motion.frames)
-    pos = np.stack([smooth(motion.column(f"{joint}.t{a}").astype(float), rate, _SMOOTHING)
-                    if f"{joint}.t{a}" in motion.channels else np.zeros(motion.frames)
+    column, orders = channels
+    angles = {a.upper(): smooth(unwrap(motion.values[:, column[f"{joint}.r{a}"]]
+                                       .astype(float)), rate, _SMOOTHING)
+              for a in "xyz" if f"{joint}.r{a}" in column}
+    rot = rotation_matrices(angles, orders[joint] or "XYZ", motion.frames)
+    pos = np.stack([smooth(motion.values[:, column[f"{joint}.t{a}"]].astype(float), rate,
+                           _SMOOTHING)
+                    if f"{joint}.t{a}" in column else np.zeros(motion.frames)
                     for a in "xyz"], axis=1)
     return rot, pos
 
@@ -96,8 +137,9 @@ def _chain_pose(motion, chain: list[str]) -> tuple[np.ndarray, np.ndarray]:
     """Per frame the root chain's rotation and position (smoothed), parent to child."""
     rot = np.broadcast_to(np.eye(3), (motion.frames, 3, 3)).copy()
     pos = np.zeros((motion.frames, 3))
+    channels = _chain_channels(motion, chain)
     for joint in chain:  # compose parent to child: p += R t_child, R = R R_child
-        r, t = _joint_transform(motion, joint)
+        r, t = _joint_transform(motion, joint, channels)
         pos = pos + np.einsum("tij,tj->ti", rot, t)
         rot = rot @ r
     return rot, pos
@@ -477,9 +519,10 @@ def _features(motion, shape: bool) -> tuple[tuple[str, ...], np.ndarray]:
 
     rate = motion.frame_rate
     roots = _root_joints(motion)
+    in_roots = set(roots)  # not the list searched per channel: quadratic in a long chain
     columns = [c for c, channel in enumerate(motion.channels)
                if channel.rpartition(".")[2] in _ROTATIONS
-               and channel.rpartition(".")[0] not in roots]
+               and channel.rpartition(".")[0] not in in_roots]
     x = smooth(unwrap(motion.values[:, columns].astype(float)), rate, _SMOOTHING)
     speed = np.abs(np.gradient(x, axis=0)) * rate
     median = np.median(x, axis=0)
