@@ -580,11 +580,11 @@ class PCGS(_Components):
             object.__setattr__(self, "master", names[0])
         elif self.master not in names:
             raise ValidationError(f"the master {self.master!r} is not a component")
-        for g in components:
-            for q in g.queries:
-                if q.component not in names:
-                    raise ValidationError(f"component {g.name}: query ?{q.component} names no "
-                                          f"component")
+        known = set(names)  # a query's component looked up, not searched for in a list
+        for g, q in ((g, q) for g in components for q in g.queries):
+            if q.component not in known:
+                raise ValidationError(f"component {g.name}: query ?{q.component} names no "
+                                      f"component")
 
     @property
     def master_index(self) -> int:

@@ -17,10 +17,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from psgs import Actiongram, FormatError
+from psgs import Actiongram, FormatError, ValidationError
 from psgs.actiongram._text import _JSON_TOKEN, _json_tokens
 from psgs.cli import main
 from psgs.cli.core import _natural_key
+from psgs.model import PCGS, Grammar, Nonterminal, Query, Rule, Terminal
 
 #: JSON values of every kind, nested a little (NaN and the infinities too: json.loads reads them)
 VALUES = st.recursive(
@@ -80,3 +81,14 @@ def test_show_sorts_a_terminal_of_more_digits_than_int_reads(capsys, tmp_path):
                     encoding="utf-8")
     assert main(["show", str(path)]) == 0
     assert f"T (4): 3 {many}0 a2 a{many}\n" in capsys.readouterr().out
+
+
+def test_a_query_of_no_component_among_many_components_is_named():
+    # every query was searched for in the list of the components' names: 20,000 components
+    # that query the last one took 5 s to check (2e9 comparisons here: some 25 s)
+    many, start = 45_000, Nonterminal("S")
+    asks_last = (Rule("p", start, (Terminal("a"), Query(f"G{many - 2}"))),)
+    components = [Grammar(f"G{i}", start, asks_last) for i in range(many - 1)]
+    components.append(Grammar("Z", start, (Rule("p", start, (Query("H"),)),)))
+    with pytest.raises(ValidationError, match=r"component Z: query \?H names no component"):
+        PCGS(tuple(components))
