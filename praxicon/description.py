@@ -344,6 +344,10 @@ def _loads(text: str) -> dict:
     except json.JSONDecodeError as exc:
         raise DescriptionError(f"not JSON (line {exc.lineno}, column {exc.colno}: "
                                f"{exc.msg})") from None
+    except RecursionError:  # '[' * 100000: the decoder recurses per nesting level
+        raise DescriptionError("not JSON that can be read: nested too deeply") from None
+    except ValueError as exc:  # an integer of thousands of digits (Python's int limit)
+        raise DescriptionError(f"not JSON that can be read: {str(exc).split(':')[0]}") from None
     if not isinstance(data, dict):
         raise DescriptionError("not a praxicon description (a JSON object expected)")
     return data

@@ -110,6 +110,15 @@ def test_action_description_round_trips_every_float(pairs, window, takes):
     assert all(math.copysign(1, x) == math.copysign(1, y) for x, y in zip(again.mean, d.mean))
 
 
+@pytest.mark.parametrize("text, said", [
+    ('{"format": ' + "1" * 5000 + "}", "Exceeds the limit"),  # Python's int limit: ValueError
+    ("[" * 100_000, "nested too deeply")])  # the decoder's RecursionError
+def test_json_the_decoder_cannot_read_is_a_description_error(text, said):
+    for read in (Descriptions.from_json, ActionDescription.from_json):
+        with pytest.raises(DescriptionError, match=f"^not JSON that can be read: {said}"):
+            read(text)
+
+
 def test_other_version_is_a_clear_error(px):
     data = json.loads(px.to_json())
     data["version"] = FORMAT_VERSION - 1
