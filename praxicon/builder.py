@@ -200,9 +200,13 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
     if twice:
         raise DatasetError(f"two actions are named {twice[0]!r}: one record would overwrite "
                            f"the other")
+    if isinstance(out, (str, os.PathLike)) and os.fspath(out) == "":
+        raise ValidationError("the praxicon folder's name is empty ('' would be the current "
+                              "folder)")
     out = Path(out)
     if out.exists() and not out.is_dir():  # else mkdir's bare "File exists"
         raise ValidationError(f"{out}: a file, not a praxicon folder")
+    _not_of_a_later_psgs(out)
     out.mkdir(parents=True, exist_ok=True)
     settings = settings or Settings.make()
     bar = _bar(0, False)
@@ -366,6 +370,25 @@ def _undescribable(takes: dict[str, list]) -> dict[tuple[str, int], str]:
             except DescriptionError as exc:
                 out[name, k] = str(exc)
     return out
+
+
+def _not_of_a_later_psgs(out: Path) -> None:
+    """Refuse to build into a folder whose index or descriptions a later psgs wrote: learnt
+    again here, they would be written over at this version (an earlier version's are)."""
+    from .description import FORMAT_VERSION as DESCRIBED
+    from .records import FORMAT_VERSION as RECORDED
+    for name, version in (("index.json", RECORDED), (FILE, DESCRIBED)):
+        if not (out / name).is_file():
+            continue
+        try:
+            said = read_json(out / name, PraxiconError)
+        except PraxiconError:
+            continue  # damaged: read, refused and rebuilt as before
+        said = said.get("version") if isinstance(said, dict) else None
+        if type(said) is int and said > version:
+            raise PraxiconError(f"{out / name}: of version {said}, written by a later psgs "
+                                f"(this one writes {version}); building here would write over "
+                                f"it: upgrade psgs, or build into another folder")
 
 
 def _described(out: Path, praxicon: Praxicon, log, announce: bool = False) -> Praxicon:

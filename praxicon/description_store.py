@@ -49,8 +49,8 @@ def read_descriptions_file(folder):
     ------
     PraxiconError
         One line naming the file (and the line and column of what is not JSON, or the field):
-        the file is damaged, or holds descriptions of another version (naming the command
-        that rebuilds them).
+        the file is damaged, or holds descriptions of an earlier version (naming the command
+        that rebuilds them) or of a later one (saying to upgrade psgs).
     """
     path = Path(folder) / FILE
     if not path.exists() and not path.is_symlink():

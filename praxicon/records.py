@@ -12,10 +12,11 @@ Versioning
 ----------
 :data:`FORMAT_VERSION` is the version of what a record holds, written in the folder's
 ``index.json`` (``"version"``) and part of every record's input key. Any change to the
-fields (one added, removed, or read differently) bumps it. A folder of another version is
+fields (one added, removed, or read differently) bumps it. A folder of an earlier version is
 refused by :func:`praxicon.load` with one line that names the command that rebuilds it
 (:data:`REBUILD`), and ``psgs praxicon build`` on such a folder learns every action again
-(the input keys differ), which rewrites it at this version.
+(the input keys differ), which rewrites it at this version; of a later version, both refuse
+it (a later psgs wrote it: upgrade psgs).
 
 A further per-action description (e.g. what recognition learns) is added as one more
 optional field of :class:`ActionRecord` holding a frozen value with its own

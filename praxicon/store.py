@@ -276,8 +276,8 @@ def load(folder: str | Path, *, descriptions: bool = True) -> Praxicon:
     ------
     PraxiconError
         One line naming the file: a path that does not exist, a folder that is not a
-        praxicon, a praxicon of another format version (the line names the command that
-        rebuilds it), a damaged index or record, or (unless ``descriptions=False``) a damaged
+        praxicon, a praxicon of an earlier format version (the line names the command that
+        rebuilds it) or of a later one (it says to upgrade psgs), a damaged index or record, or (unless ``descriptions=False``) a damaged
         ``descriptions.json`` (the line and column of what is not JSON; the field of a value
         out of its range), descriptions of another format, or descriptions learnt from other
         records than the folder's (left by an interrupted build); ``descriptions`` that is

@@ -103,3 +103,29 @@ def test_descriptions_of_a_later_version_say_to_upgrade_not_to_learn_again(old_f
                                             r"this psgs reads version \d+ \(a later psgs wrote "
                                             r"them; upgrade psgs to read them\)$"):
         load(old_folder)
+
+
+@pytest.mark.parametrize("name", ["index.json", "descriptions.json"])
+def test_build_refuses_a_folder_a_later_psgs_wrote_and_leaves_it(old_folder, name):
+    """build learnt a later version's folder or descriptions again and wrote over them."""
+    from praxicon.builder import build
+
+    path = old_folder / name
+    data = json.loads(path.read_text())
+    data["version"] = 10**6
+    path.write_text(json.dumps(data))
+    before = {p: p.read_bytes() for p in old_folder.rglob("*") if p.is_file()}
+    with pytest.raises(PraxiconError, match=f"^{path}: of version 1000000, written by a later "
+                                            "psgs .*upgrade psgs"):
+        build([], old_folder)
+    assert {p: p.read_bytes() for p in old_folder.rglob("*") if p.is_file()} == before
+
+
+def test_build_refuses_an_empty_folder_name(tmp_path, monkeypatch):
+    from praxicon.builder import build
+    from psgs.errors import ValidationError
+
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(ValidationError, match="folder's name is empty"):
+        build([], "")
+    assert not any(tmp_path.iterdir())
