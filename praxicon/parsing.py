@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from numbers import Real
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -99,14 +100,15 @@ class Timeline:
 
     def labels(self, times) -> list[str | None]:
         """The action at each of ``times``: a sequence of seconds, each from 0 to the
-        recording's ``duration`` (a time outside it has no action: refused, as a NaN is)."""
-        if isinstance(times, (str, bytes)) or np.ndim(times) != 1:
-            raise DescriptionError(f"times must be a sequence of seconds, not "
-                                   f"{type(times).__name__}")
-        try:
-            seconds = np.asarray(times, dtype=float)
-        except (TypeError, ValueError):
-            raise DescriptionError("times must be numbers of seconds") from None
+        recording's ``duration`` (a time outside it has no action: refused, as a NaN is).
+
+        Raises
+        ------
+        DescriptionError
+            ``times`` is no sequence, one of them is no real number (a text, a bool, a
+            date), not finite, or outside the recording.
+        """
+        seconds = _seconds(times)
         if not np.isfinite(seconds).all():
             raise DescriptionError("times must be finite numbers of seconds")
         slack = 1e-9 * max(1.0, self.duration)  # a time summed from steps may pass the end
@@ -124,6 +126,26 @@ class Timeline:
         width = max([24, *(len(s.action) for s in self.spans if s.action)])
         return "\n".join(f"{s.start:8.2f} {s.stop:8.2f}  {s.action or '-':{width}s} "
                          f"{s.score:.3f}" for s in self.spans)
+
+
+def _seconds(times) -> np.ndarray:
+    """``times`` as an array of floats, each a real number (not a bool, a text or a date); one
+    too large for a float is inf (refused as not finite by the caller)."""
+    if isinstance(times, np.ndarray) and times.ndim == 1 and times.dtype.kind in "fiu":
+        return times.astype(float)
+    if isinstance(times, (str, bytes)) or not isinstance(times, (Sequence, np.ndarray)):
+        raise DescriptionError(f"times must be a sequence of seconds, not "
+                               f"{type(times).__name__}")
+    out = np.empty(len(times))
+    for k, t in enumerate(times):  # ['1.5'] and datetime64 values were read as seconds
+        if isinstance(t, (bool, np.bool_)) or not isinstance(t, Real):
+            raise DescriptionError(f"times must be numbers of seconds, not {type(t).__name__} "
+                                   f"(times[{k}])")
+        try:
+            out[k] = float(t)
+        except OverflowError:  # an int of 400 digits
+            out[k] = math.inf
+    return out
 
 
 def windows(motion, window: float = _WINDOW, hop: float = _HOP):

@@ -156,6 +156,10 @@ def test_parse_takes_every_kind_it_knows(built):
 @pytest.mark.parametrize("times, match", [
     ([math.nan], "finite"), ([math.inf], "finite"), (["a"], "numbers"), (None, "sequence"),
     (1.0, "sequence"), ([-0.5], "0 to"), ([1e9], "0 to"),
+    # an int of 400 digits overflowed float (OverflowError), a ragged list was numpy's
+    # ValueError, a text of digits and a date were read as seconds
+    ([10**400], "finite"), ([[1.0, 2.0], [1.0]], "numbers"), (["1.5"], "seconds, not str"),
+    ([np.datetime64(1, "s")], "numbers"), ([True], "seconds, not bool"),
 ])
 def test_labels_refuses_times_outside_the_recording(built, times, match):
     """A string, a NaN or a time past the end was given the last span's action; None and a
@@ -171,6 +175,7 @@ def test_labels_reads_times_from_0_to_the_end(built):
     assert timeline.labels(ends) == [timeline.spans[0].action, timeline.spans[-1].action]
     assert timeline.labels(np.array(ends)) == timeline.labels(ends)
     assert timeline.labels([]) == []
+    assert timeline.labels((0, np.float32(0.0), np.int64(0))) == [timeline.spans[0].action] * 3
 
 
 @pytest.mark.parametrize("joints", [-1, 1.5, "2", True])
