@@ -339,40 +339,42 @@ def _read_document(cls, data: object):
     try:
         return build(slice(None), len(edges))
     except FormatError as exc:  # the checks of the whole value, which know no path
-        raise _Misplaced(exc.message, *_fault(exc.message, build, data["strings"], names,
-                                              edges, keep_repeats)) from None
+        message, places = _fault(exc.message, build, data["strings"], names, edges,
+                                 keep_repeats)
+        raise _Misplaced(message, *places) from None
 
 
 def _fault(message: str, build, items: list, names: list, edges: tuple,
-           keep_repeats: bool) -> list[tuple[tuple, bool]]:
-    """The places of the constructor's error ``message`` (none when not found).
+           keep_repeats: bool) -> tuple[str, list[tuple[tuple, bool]]]:
+    """The constructor's error ``message`` and its places (none when not found).
 
     A string's checks read that string alone, so the first string that, built alone, raises
     this very message is the one (when the whole is refused for another string's fault, an
     earlier string may be refused alone, for another reason); two strings of one name are
     refused only together; a skeleton's entries are read together (a cycle takes several),
-    so the entry at fault ends the shortest run of them that is refused.
+    so the entry at fault ends the shortest run of them that is refused, and the message
+    is that run's (with two cycles, the whole's may name the other one).
     """
     for k, item in enumerate(items):
         try:
             build(slice(k, k + 1), 0)
         except FormatError as exc:
             if exc.message == message:
-                return _string_fault(item, ("strings", k), keep_repeats)
+                return message, _string_fault(item, ("strings", k), keep_repeats)
     seen: set[str] = set()
     for k, name in enumerate(names):
         if not isinstance(name, str):  # refused as a name, above
             continue
         if name in seen:
-            return [(("strings", k, "name"), False), (("strings", k), False)]
+            return message, [(("strings", k, "name"), False), (("strings", k), False)]
         seen.add(name)
     found = _first_refused(len(edges), lambda j: build(slice(0), j))
     if found is None:
-        return []
+        return message, []
     child, _ = edges[found[0] - 1]
     # a bad actuator is the entry's key; anything else (a bad parent, itself as its parent, a
     # parent that closes a cycle) is its value
-    return [(("skeleton", child), _bad_name(child) is not None)]
+    return found[1].message, [(("skeleton", child), _bad_name(child) is not None)]
 
 
 def _string_fault(item: dict, here: tuple, keep_repeats: bool) -> list[tuple[tuple, bool]]:

@@ -265,6 +265,17 @@ def spoilt_tables(draw):
     return text, *found, words
 
 
+def test_of_two_skeleton_cycles_the_one_named_is_the_one_placed():
+    """The whole's message named the cycle through 'c', the place was the entry that closes
+    the cycle of 'a' and 'b' (the shortest run of entries refused)."""
+    doc = '{"strings": [], "skeleton": {"c": "d", "a": "b", "b": "a", "d": "c"}}'
+    with pytest.raises(FormatError) as info:
+        Actiongram.from_json(doc, source="f.json")
+    error = info.value
+    assert error.message == "skeleton: the parents of 'a' form a cycle"
+    assert doc[error.column - 1:].startswith('"a", "d"')  # the value of "b": "a"
+
+
 @settings(max_examples=200, deadline=None)
 @given(spoilt_tables())
 def test_a_csv_error_names_the_line_and_column_of_the_cell_at_fault(tmp_path_factory, case):
