@@ -92,3 +92,24 @@ def test_a_query_of_no_component_among_many_components_is_named():
     components.append(Grammar("Z", start, (Rule("p", start, (Query("H"),)),)))
     with pytest.raises(ValidationError, match=r"component Z: query \?H names no component"):
         PCGS(tuple(components))
+
+
+# -- DECIMAL: a number's digits read once ---------------------------------------------------
+#: the pattern before: '\d+\.?\d*' tried every split of a run of digits between its two parts
+_OLD_DECIMAL = re.compile(r"[+-]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf(?:inity)?|nan)\Z",
+                          re.ASCII | re.IGNORECASE)
+
+
+@settings(max_examples=500, deadline=None)
+@given(st.text(alphabet="0123456789.eE+-infatyIN x", max_size=12))
+def test_decimal_accepts_what_the_old_pattern_did(text):
+    from psgs._foundation.text import DECIMAL
+
+    assert bool(DECIMAL.match(text)) == bool(_OLD_DECIMAL.match(text))
+
+
+def test_a_long_run_of_digits_and_a_letter_is_refused():
+    from psgs._foundation.text import decimal
+
+    assert decimal("1" * 200_000 + "x") is None  # the old pattern: minutes
+    assert decimal("0" * 200_000 + "1.5") == 1.5

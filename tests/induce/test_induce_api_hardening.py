@@ -242,3 +242,20 @@ def test_an_inducer_takes_numpy_numbers_as_the_numbers_they_hold(name):
     with pytest.raises(ValidationError, match="must be an integer, not 2.5"):
         get(name, **{next(k for k, v in given.items() if isinstance(v, np.int64)):
                      np.float32(2.5)})
+
+
+def test_noise_sweep_does_not_make_every_seed_at_once(monkeypatch):
+    """10**11 trials made a list of every seed first (out of memory before any trial); each
+    cell is handed its seeds as a range."""
+    from psgs.induce import sweep
+
+    handed = []
+
+    def batch(cell):
+        name, _, noise, seeds, _ = cell
+        handed.append(seeds)
+        return name, noise, len(seeds), 0, 0.0, 0.0
+
+    monkeypatch.setattr(sweep, "_trial_batch", batch)
+    rows = sweep.noise_sweep([0.0], 10**12, inducers=("pal",), seed=5, jobs=1)
+    assert handed == [range(5, 5 + 10**12)] and rows[0].trials == 10**12
