@@ -41,6 +41,12 @@ from .spine_costs import suffix_costs
 __all__ = ["ErrorChart"]
 
 INF = math.inf
+#: How far apart two sums of the same edit costs may lie and be equal, relative to the largest
+#: sum they were read from (a cost and the prefix sums of the word's deletions): each is rounded
+#: in the order it was summed (0.4 + 0.2 is 0.6 and one unit in the last place). A few such
+#: units: any wider and a cost that differs from another by less was taken for it (1e6 + 2e-6
+#: for 1e6 + 1e-6); relative all the way down, so costs of 1e-10 are told apart as costs of 1
+TOLERANCE = 1e-15
 #: A walk over a body this short stops at its first unknown child (resolved first, nominal
 #: ends first, so its value prunes the rest); a longer body notes many per pass.
 _LONG_BODY = 8
@@ -89,6 +95,7 @@ class ErrorChart:
         for d in self.delete:
             prefix.append(prefix[-1] + d)
         self.deleted = prefix  # deleted[j] - deleted[i]: deleting word[i:j]
+        self.scale = prefix[-1]  # what a difference of prefix sums is rounded against
         terminal_ids = {~s for body in g.body for s in body if s < 0}
         self.min_insert = min((insert[t] for t in terminal_ids), default=INF)
         # dropping one symbol from a span's edge saves at most its deletion and costs at most
@@ -292,12 +299,12 @@ class ErrorChart:
     def cost(self, a: int, i: int, j: int, cap: float) -> float:
         """The least cost of ``a`` on ``word[i:j]`` when it is at most ``cap``, else ``inf``.
 
-        ``cap`` is widened by a relative 1e-9: the walk prunes a child against
+        ``cap`` is widened by :data:`TOLERANCE`: the walk prunes a child against
         ``cap`` less what its siblings cost, and that difference can round a
         hair below the child's own cost (``7.6 - 5.0 < 2.6``), so a value equal
         to ``cap`` read as above it.
         """
-        cap += 1e-9 * max(1.0, cap)
+        cap += TOLERANCE * (cap + self.scale)
         if i == j:
             v = self.min_yield[a]
             return v if v <= cap else INF
@@ -532,7 +539,7 @@ class ErrorChart:
                 continue
             for rule in g.useful_by_lhs[x]:
                 # only a cheaper split matters once one is known (ties are pruned)
-                bound = cap if best == INF else min(cap, best - 1e-9 * max(1.0, best))
+                bound = cap if best == INF else min(cap, best - TOLERANCE * (best + self.scale))
                 excess = [INF]
                 for total, _ in self._walk(rule, i, j, bound - u, True, missing, excess):
                     if u + total < best:

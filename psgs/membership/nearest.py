@@ -27,7 +27,7 @@ from ..model import PCGS, PSGS, Terminal, Word, as_word
 from ..steps import initial_configuration, pcgs_steps
 from .chart import CompiledGrammar
 from .costs import Edit, EditCosts, edit_costs
-from .error_chart import INF, ErrorChart
+from .error_chart import INF, TOLERANCE, ErrorChart
 from .nearest_search import DistanceSearch
 from .words import coerce_words
 from .witness import PCGSSchedule, PSGSSchedule, Rewrite, ScheduledMove, replay
@@ -254,7 +254,8 @@ def _nearest_psgs(system: PSGS, words, costs: EditCosts, max_errors, max_states,
             lower += d
         # the components' distances, summed in another order than the search sums a tuple's
         # edits, may lie a hair over a max_errors the tuple meets (0.4 + 0.2 > 0.6)
-        if max_errors is not None and lower > max_errors + 1e-9 * max(1.0, max_errors):
+        if max_errors is not None and lower > max_errors + TOLERANCE * (
+                max_errors + sum(chart.scale for chart in charts)):
             return _over(system, max_errors, lower, costs)
         search = DistanceSearch(system, compiled, charts, max_states, budget, step)
         search.words = words
@@ -294,6 +295,9 @@ def _component_distance(chart: ErrorChart, start: int, step: float, max_errors) 
             cap = min(cap, max_errors)
         cap = min(cap, ceiling)
         d = chart.cost(start, 0, chart.n, cap)
+        if d == INF and cap >= ceiling and (max_errors is None or ceiling <= max_errors):
+            return ceiling  # deleting all and inserting the least costs it: summed otherwise,
+            # the chart can read a hair more, over the cap it was asked for
         if d < INF or cap >= ceiling or (max_errors is not None and cap >= max_errors):
             return d
         cap = _GROWTH * cap + step
@@ -421,7 +425,7 @@ def _leaf_edits(chart: ErrorChart, original, terminal: Terminal, t: int, p: int,
     dels = chart.deleted[q] - chart.deleted[p]
     for r in range(p, q):
         here = chart.substitute(r, t)
-        if abs(dels - chart.delete[r] + here - target) <= 1e-9 * max(1.0, target):
+        if abs(dels - chart.delete[r] + here - target) <= TOLERANCE * (target + chart.scale):
             out = [Edit("delete", k, original[k], None, chart.delete[k]) for k in range(p, r)]
             if here or original[r] != terminal:
                 out.append(Edit("substitute", r, original[r], terminal, here))

@@ -28,7 +28,7 @@ from ..analysis import moves as system_moves
 from ..budget import Budget
 from ..model import IDLE, PSGS
 from .depth_first import Finish, depth_first
-from .error_chart import INF, ErrorChart
+from .error_chart import INF, TOLERANCE, ErrorChart
 from .schedule_search import _item_order, _Substrings
 
 __all__ = ["DistanceSearch"]
@@ -57,6 +57,7 @@ class DistanceSearch:
         self.charts = charts
         self.max_states = max_states
         self.budget = budget
+        self.scale = sum(chart.scale for chart in charts)  # what costs are rounded against
         self.step = step  # the least positive cost: rounds grow the bound by at least this
         self.parallel = system.mode == "parallel"
         self.substrings = [_Substrings(ch.word) for ch in charts]
@@ -190,7 +191,7 @@ class DistanceSearch:
         candidates.sort()
         # a child's splits are summed in another order than cap - f was taken: a child
         # costing exactly the cap must not be rounded out of it (as the charts allow)
-        slack = cap - f + 1e-9 * max(1.0, cap)
+        slack = cap - f + TOLERANCE * (cap + self.scale)
         out = []
         for order, (_, m) in enumerate(candidates):
             slots = []
@@ -252,7 +253,7 @@ class DistanceSearch:
             self.proved = max(self.proved, min(lowest, best))
             # a round that found a tuple looks on only below it by two tolerances, and what it
             # cut then lies a tolerance under it: equal within the tolerance, so found
-            if best < INF and best <= lowest + 2e-9 * max(1.0, best):
+            if best < INF and best <= lowest + 2 * TOLERANCE * (best + self.scale):
                 return "found", best, self.best[1]
             if lowest == INF:
                 return "empty", None, None
@@ -290,7 +291,7 @@ class DistanceSearch:
         cut anything.
         """
         self.cap = cap
-        tol = 1e-9 * max(1.0, cap)
+        tol = TOLERANCE * (cap + self.scale)
         initial = self._initial()
         f0 = 0.0
         for c, front in enumerate(initial):
@@ -374,7 +375,7 @@ def _bounded_product(slots, slack: float, excess: list):
                 index[-1] += 1
             continue
         total = sums[t] + options[k][0]
-        if total > slack + 1e-9 * max(1.0, abs(slack)):
+        if total > slack + TOLERANCE * abs(slack):
             if total < excess[0]:
                 excess[0] = total
             index.pop()  # options are sorted: the later ones cost more

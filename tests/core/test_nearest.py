@@ -49,7 +49,7 @@ def check_against_oracle(system, words, costs=None):
         [table.insert, *table.insert_symbol.values()])
     expected = oracle(members, words, table)
     if expected is not None and expected <= floor:
-        assert result.distance == pytest.approx(expected), (words, result)
+        assert result.distance == pytest.approx(expected, rel=1e-12), (words, result)
     elif result.distance is not None:
         assert result.distance >= floor - 1e-9
         assert expected is None or result.distance <= expected + 1e-9
@@ -107,7 +107,7 @@ def test_nearest_with_costs_equals_the_oracle(data):
     if result is not None and result.distance is not None:  # within max_errors = the distance
         within = nearest(system, words, costs=costs, max_errors=result.distance,
                          max_states=20_000, max_seconds=20)
-        assert within.exact and within.distance == pytest.approx(result.distance), within
+        assert within.exact and within.distance == pytest.approx(result.distance, rel=1e-12), within
 
 
 @PROPERTY
@@ -206,6 +206,46 @@ def test_components_summed_a_hair_over_max_errors_are_within_it():
     costs = {"insert": 0.2, "delete": 0.1, "substitute": 0.1}
     result = nearest(system, ["", "aa"], costs=costs, max_errors=0.6, max_seconds=5)
     assert result.exact and result.distance == pytest.approx(0.6)
+
+
+TWO_WAYS_IN_STEP = """psgs X
+mode parallel
+unsynchronised strict
+
+component G1 start S1
+  p: S1 -> A1
+  p2: S1 -> "a"
+  a1: A1 -> "a"
+  b1: A1 -> "b"
+
+component G2 start S2
+  q: S2 -> "c" T2
+  q2: S2 -> "d"
+  t: T2 ->
+
+sync
+  (p, q)
+  (p2, q2)
+  (b1, t)
+  (a1, q)
+"""
+
+
+@pytest.mark.parametrize("big, small", [(10**9, 1), (10**12, 1), (1e6, 1e-6), (1e3, 1e-7),
+                                        (1e-10, 1e-10), (1e-12, 1e-12)])
+def test_costs_a_least_cost_apart_are_told_apart_at_any_size(big, small):
+    """(a, c) becomes (a, d) at big + small or (b, c) at big + 2 small, in step. A tolerance
+    of 1e-9 of the cap took the second for the first at 10**9 + 1 and 10**9 + 2 (and an
+    absolute 1e-9 below 1 did at costs of 1e-10): the dearer answered, exactly."""
+    from psgs.format import loads
+
+    system = loads(TWO_WAYS_IN_STEP)
+    costs = {"insert": 10 * big, "delete": 10 * big, "substitute": 10 * big,
+             "pairs": {("a", "b"): big + 2 * small, ("c", "d"): big + small}}
+    for max_errors in (None, big + small):
+        result = nearest(system, ["a", "c"], costs=costs, max_errors=max_errors, max_seconds=5)
+        assert result.exact and result.distance == big + small, result
+        assert ["".join(t.name for t in w) for w in result.words] == ["a", "d"]
 
 
 def test_a_round_that_finds_the_cheapest_tuple_ends_the_search():
