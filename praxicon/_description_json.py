@@ -94,7 +94,7 @@ def _texts(data: dict, key: str, where: str) -> tuple[str, ...]:
     if not value:
         raise _error(f"{where}{key!r} is empty")
     if len(set(value)) != len(value):
-        counts = Counter(value)  # value.count per value: 20,000 names took 4 s to refuse
+        counts = Counter(value)  # not value.count per value (quadratic)
         twice = next(v for v in value if counts[v] > 1)
         raise _error(f"{where}{key!r} names {twice!r} twice")
     return tuple(value)

@@ -123,7 +123,7 @@ def noise_sweep(levels: Iterable[float], trials: int, *, inducers: Sequence[str]
     """
     levels, inducers, params, variant = _checked(levels, trials, inducers, params, seed,
                                                  variant, jobs, progress)
-    seeds = range(seed, seed + int(trials))  # not a list: 10**11 trials needed 4 TB at once
+    seeds = range(seed, seed + int(trials))  # not a list: the trials are not all held at once
     cells = [(name, dict(params.get(name, {})), float(level), seeds, variant)
              for name in inducers for level in levels]
     results = []
