@@ -26,7 +26,7 @@ the dead band never split a segment.
 
 Rotation channels are **unwrapped** first (``unwrap``, a period of 360°): a joint whose Euler
 angle crosses ±180° jumps by ~360° in the file, which would read as a huge range and spurious
-kinetemes; after unwrapping it moves continuously. Translations are never unwrapped.
+kinetemes; after unwrapping it moves continuously. Translations (``tx ty tz``) never are.
 
 Channels whose smoothed range is below ``min_range`` degrees are *still* and
 are left out of the actiongram.
