@@ -118,7 +118,7 @@ class Recognition:
 
     def explain(self, joints: int | None = 4) -> str:
         """The reasons, as text: per shown action the ``joints`` that decided it, at most
-        (None: every one) of each role."""
+        (None: every one) of each role; ``joints`` not a whole number ≥ 0: DescriptionError."""
         if joints is not None:  # -1 left out the last joint of each role, 1.5 failed slicing
             whole_number(joints, "joints")
         lines = [f"{self.source}: {self.action or 'none of these'} (distance {self.penalty:.3f}"

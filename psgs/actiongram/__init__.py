@@ -376,7 +376,13 @@ class Actiongram:
 
     @classmethod
     def from_json(cls, text: str, source: str = "<string>") -> "Actiongram":
-        """Read the JSON form written by :meth:`to_json` (errors name the line and column)."""
+        """Read the JSON form written by :meth:`to_json`.
+
+        Raises
+        ------
+        FormatError
+            Text that is not JSON, or JSON this format cannot hold, at its line and column.
+        """
         from ._text import read_json
 
         return read_json(cls, text, source)
