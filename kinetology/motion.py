@@ -269,9 +269,13 @@ class Motion:
     def index(self, channel: str) -> int:
         """Column of ``channel``; ``KeyError`` naming it, the closest names and every channel
         of the motion when there is none (a misspelt name is found by reading the message)."""
+        columns = self.__dict__.get("_columns")
+        if columns is None:  # looked up once: tuple.index per channel made select quadratic
+            columns = {name: k for k, name in enumerate(self.channels)}
+            object.__setattr__(self, "_columns", columns)
         try:
-            return self.channels.index(channel)
-        except ValueError:
+            return columns[channel]
+        except (KeyError, TypeError):  # TypeError: an unhashable name is no channel either
             import difflib
             close = difflib.get_close_matches(str(channel), self.channels, n=3)
             hint = f" (did you mean {', '.join(close)}?)" if close else ""

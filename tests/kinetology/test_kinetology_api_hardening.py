@@ -528,3 +528,18 @@ def test_a_frame_rate_whose_accelerations_overflow_is_named_not_one_still_segmen
     assert fast.segment_count > 100
     assert (states(np.zeros(50), 1e160) == 0).all() and states(np.zeros(0), 1e160).size == 0
     assert len(set(states(1e-3 * np.sin(np.arange(50)), 2e153).tolist())) > 1
+
+
+def test_select_of_many_channels_looks_each_up_once():
+    """Motion.index searched the channel tuple per name, so selecting every one of 80,000
+    channels took half a minute (quadratic); the columns are looked up in a table built once."""
+    import numpy as np
+    from kinetology import Motion
+
+    n = 80_000
+    channels = tuple(f"j{k}.rx" for k in range(n))
+    motion = Motion(np.arange(3 * n, dtype=float).reshape(3, n), channels, 30.0)
+    picked = motion.select(list(reversed(channels)))
+    assert picked.channels == channels[::-1]
+    assert picked.values[:, 0].tolist() == motion.values[:, -1].tolist()
+    assert motion.index("j79999.rx") == n - 1
