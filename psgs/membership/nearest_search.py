@@ -36,6 +36,9 @@ __all__ = ["DistanceSearch"]
 #: The largest raise of the cap between two rounds, in least costs (see ``DistanceSearch.run``).
 _MOST_DOUBLED = 2 ** 40
 
+#: A round raises the cap by at least this share of it (1/8): rounds grow geometrically.
+_SHARE = 8
+
 
 class DistanceSearch:
     """Rounds of bounded depth-first search for the cheapest synchronised schedule.
@@ -270,9 +273,13 @@ class DistanceSearch:
             # stops doubling at 2**40 least costs: a search that explores nothing at any cap
             # (a language empty in a way the analysis does not see) then goes on to its time
             # bound as before, its cap finite (doubling without end overflowed it to inf).
+            # A round that explores raises the cap by an eighth of it at least: with a least
+            # cost far under the distance (pairs at 1e-6 beside edits at 0.1) the states' costs
+            # take so many values that one round per least cost ran into max_states.
             idle = self.explored == explored
             raise_by = min(raise_by * 2, self.step * _MOST_DOUBLED) if idle else self.step
-            cap = max(lowest, cap + raise_by)
+            share = 0.0 if idle else min(cap / _SHARE, self.step * _MOST_DOUBLED)
+            cap = max(lowest, cap + raise_by, cap + share)
             if limit is not None:
                 cap = min(cap, limit)
             if best < INF:

@@ -263,6 +263,19 @@ def test_a_round_that_finds_the_cheapest_tuple_ends_the_search():
     assert result.states < 100
 
 
+def test_a_least_cost_far_under_the_distance_does_not_make_a_round_of_each():
+    """Substituting a for b at 1e-6 beside edits at 0.1: the states' costs take so many
+    values under 0.1 that rounds raised one least cost at a time stopped at max_states."""
+    from psgs.format import loads
+
+    system = loads('psgs X\nmode parallel\nunsynchronised free\n\ncomponent G1 start S1\n'
+                   '  r11: S1 ->\n  r21: S1 -> "a" S1 S1\n')
+    costs = {"insert": 0.1, "delete": 0.1, "substitute": 0.1, "pairs": {("a", "b"): 1e-6}}
+    result = nearest(system, ["aa"], costs=costs, max_states=20_000, max_seconds=5)
+    assert result.exact and result.distance == pytest.approx(0.1, rel=1e-12), result
+    assert result.states < 1_000
+
+
 def test_rounds_that_never_explore_keep_a_finite_cap_until_the_time_bound():
     """A language empty in a way the analysis does not see: (p, q) finishes H, and then no
     tuple applies, so no round explores a state. Doubled without end, the cap's raise
