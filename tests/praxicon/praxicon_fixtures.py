@@ -54,6 +54,22 @@ Frame Time: {frame_time}
 """ + "\n".join(rows) + "\n")
 
 
+def build_walk_and_stay(root: Path, leg) -> Path:
+    """A praxicon (``root/px``) of a walk and a stand, m.walk and m.stay, each learnt from three
+    takes ``leg(seed, pace)`` (pace 10 and 0 units a second) written into ``root``."""
+    from kinetology import write_bvh
+    from praxicon import build, read_dataset
+
+    rows = ["action,file"]
+    for name, pace, seeds in (("walk", 10.0, (1, 2, 3)), ("stay", 0.0, (4, 5, 6))):
+        for seed in seeds:
+            write_bvh(leg(seed, pace), root / f"{name}{seed}.bvh")
+            rows.append(f"{name},{root / f'{name}{seed}.bvh'}")
+    (root / "m.csv").write_text("\n".join(rows) + "\n")
+    build(read_dataset(root / "m.csv"), root / "px", progress=False, log=lambda s: None)
+    return root / "px"
+
+
 def write_manifest(folder: Path, actions: dict[str, list[int]], missing: bool = False) -> Path:
     """BVH takes and a CSV manifest: ``actions`` maps an action to its takes' seeds."""
     from kinetology import write_bvh

@@ -17,7 +17,7 @@ import pytest
 from praxicon import load, parse, recognise
 from praxicon.description import DescriptionError
 from psgs.errors import ValidationError
-from praxicon_fixtures import leg_body, refused, run_praxicon
+from praxicon_fixtures import build_walk_and_stay, leg_body, refused, run_praxicon
 
 _RATE = 30.0
 
@@ -40,16 +40,9 @@ def built(tmp_path_factory) -> Path:
     on the spot whose hips do not move at all (fixed.bvh), a walk of 2 frames and a long
     walk (long.bvh, 60 s)."""
     from kinetology import Motion, write_bvh
-    from praxicon import build, read_dataset
 
     root = tmp_path_factory.mktemp("edges")
-    rows = ["action,file"]
-    for name, pace, seeds in (("walk", 10.0, (1, 2, 3)), ("stay", 0.0, (4, 5, 6))):
-        for seed in seeds:
-            write_bvh(_leg(seed, pace), root / f"{name}{seed}.bvh")
-            rows.append(f"{name},{root / f'{name}{seed}.bvh'}")
-    (root / "m.csv").write_text("\n".join(rows) + "\n")
-    build(read_dataset(root / "m.csv"), root / "px", progress=False, log=lambda s: None)
+    build_walk_and_stay(root, _leg)
     write_bvh(_leg(7, 10.0), root / "new.bvh")
     write_bvh(_leg(8, 0.0, bob=0.0), root / "fixed.bvh")
     walk = _leg(9, 10.0)

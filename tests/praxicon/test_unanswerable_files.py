@@ -20,7 +20,8 @@ import pytest
 
 from praxicon import load, parse, recognise, recognise_many
 from praxicon.description import DescriptionError
-from praxicon_fixtures import leg_body, refused as _refused, run_praxicon as _run
+from praxicon_fixtures import build_walk_and_stay, leg_body
+from praxicon_fixtures import refused as _refused, run_praxicon as _run
 
 # an overflow was a RuntimeWarning on stderr before the NaN answer: none may be left
 pytestmark = pytest.mark.filterwarnings("error::RuntimeWarning")
@@ -53,16 +54,9 @@ def built(tmp_path_factory) -> Path:
     (every feature finite, its distances not), an empty file and a body of other joints."""
     from kinetology import Motion, write_bvh
     from kinetology.bvh_writer import star_skeleton
-    from praxicon import build, read_dataset
 
     root = tmp_path_factory.mktemp("unanswerable")
-    rows = ["action,file"]
-    for name, pace, seeds in (("walk", 10.0, (1, 2, 3)), ("stay", 0.0, (4, 5, 6))):
-        for seed in seeds:
-            write_bvh(_leg(seed, pace), root / f"{name}{seed}.bvh")
-            rows.append(f"{name},{root / f'{name}{seed}.bvh'}")
-    (root / "m.csv").write_text("\n".join(rows) + "\n")
-    build(read_dataset(root / "m.csv"), root / "px", progress=False, log=lambda s: None)
+    build_walk_and_stay(root, _leg)
     write_bvh(_leg(7, 10.0), root / "new.bvh")
     write_bvh(_leg(8, 10.0), root / "new2.bvh")
     walk = _leg(9, 10.0)
