@@ -296,15 +296,20 @@ class ErrorChart:
         return best
 
     # ---------------------------------------------------------- queries
+    def tolerance(self, value: float) -> float:
+        """How far a sum of costs near ``value`` may lie from another of the same costs
+        summed otherwise (:data:`TOLERANCE` of it and of the word's deletions)."""
+        return TOLERANCE * (value + self.scale)
+
     def cost(self, a: int, i: int, j: int, cap: float) -> float:
         """The least cost of ``a`` on ``word[i:j]`` when it is at most ``cap``, else ``inf``.
 
-        ``cap`` is widened by :data:`TOLERANCE`: the walk prunes a child against
+        ``cap`` is widened by :meth:`tolerance`: the walk prunes a child against
         ``cap`` less what its siblings cost, and that difference can round a
         hair below the child's own cost (``7.6 - 5.0 < 2.6``), so a value equal
         to ``cap`` read as above it.
         """
-        cap += TOLERANCE * (cap + self.scale)
+        cap += self.tolerance(cap)
         if i == j:
             v = self.min_yield[a]
             return v if v <= cap else INF
@@ -539,7 +544,7 @@ class ErrorChart:
                 continue
             for rule in g.useful_by_lhs[x]:
                 # only a cheaper split matters once one is known (ties are pruned)
-                bound = cap if best == INF else min(cap, best - TOLERANCE * (best + self.scale))
+                bound = cap if best == INF else min(cap, best - self.tolerance(best))
                 excess = [INF]
                 for total, _ in self._walk(rule, i, j, bound - u, True, missing, excess):
                     if u + total < best:

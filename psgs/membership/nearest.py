@@ -425,7 +425,7 @@ def _leaf_edits(chart: ErrorChart, original, terminal: Terminal, t: int, p: int,
     dels = chart.deleted[q] - chart.deleted[p]
     for r in range(p, q):
         here = chart.substitute(r, t)
-        if abs(dels - chart.delete[r] + here - target) <= TOLERANCE * (target + chart.scale):
+        if abs(dels - chart.delete[r] + here - target) <= chart.tolerance(target):
             out = [Edit("delete", k, original[k], None, chart.delete[k]) for k in range(p, r)]
             if here or original[r] != terminal:
                 out.append(Edit("substitute", r, original[r], terminal, here))

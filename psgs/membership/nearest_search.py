@@ -15,7 +15,8 @@ never drops along a move (a split costs at least its occurrence's distance),
 so a search that expands only states with ``f ≤ U`` finds every tuple of
 cost ``≤ U``. Rounds raise ``U`` from the sum of the components' distances
 (the lower bound) to the least estimate a round cut off, by at least the least
-cost (doubled while rounds explore no state); within a round a
+cost (doubled while rounds explore no state) and, after a round that explored,
+an eighth of ``U``; within a round a
 depth-first branch and bound keeps the cheapest tuple, so the first round
 that finds one returns the exact distance. When the components' nearest
 words can be derived in step, the first round finds them without
@@ -79,6 +80,10 @@ class DistanceSearch:
         self.proved = 0.0  # every tuple costs at least this
 
     # ------------------------------------------------------------ estimates
+    def tolerance(self, value: float) -> float:
+        """:meth:`ErrorChart.tolerance` over every component's word."""
+        return TOLERANCE * (value + self.scale)
+
     def item_cost(self, c: int, item, cap: float) -> float:
         """Component ``c``'s chart cost of an occurrence ``(A, i, j)`` (``inf`` above ``cap``)."""
         a, i, j = item
@@ -194,7 +199,7 @@ class DistanceSearch:
         candidates.sort()
         # a child's splits are summed in another order than cap - f was taken: a child
         # costing exactly the cap must not be rounded out of it (as the charts allow)
-        slack = cap - f + TOLERANCE * (cap + self.scale)
+        slack = cap - f + self.tolerance(cap)
         out = []
         for order, (_, m) in enumerate(candidates):
             slots = []
@@ -256,7 +261,7 @@ class DistanceSearch:
             self.proved = max(self.proved, min(lowest, best))
             # a round that found a tuple looks on only below it by two tolerances, and what it
             # cut then lies a tolerance under it: equal within the tolerance, so found
-            if best < INF and best <= lowest + 2 * TOLERANCE * (best + self.scale):
+            if best < INF and best <= lowest + 2 * self.tolerance(best):
                 return "found", best, self.best[1]
             if lowest == INF:
                 return "empty", None, None
@@ -264,18 +269,15 @@ class DistanceSearch:
                 return "over", None, None  # every state within the limit was explored
             if capped:
                 eps_cap *= 2
-            # A round that explored no state learnt only that the cap is too low (the charts,
-            # computed up to the cap, bound what they cut by the cap itself): where a cheap edit
-            # is dwarfed by the ones needed (substitutions at 1, insertions at 10**6) one round
-            # per least cost never ended. The raise doubles while rounds explore nothing; the
-            # branch and bound within a round still returns the cheapest tuple, so the answer
-            # is the same, and rounds that explore states raise the cap as before. The raise
-            # stops doubling at 2**40 least costs: a search that explores nothing at any cap
-            # (a language empty in a way the analysis does not see) then goes on to its time
-            # bound as before, its cap finite (doubling without end overflowed it to inf).
-            # A round that explores raises the cap by an eighth of it at least: with a least
-            # cost far under the distance (pairs at 1e-6 beside edits at 0.1) the states' costs
-            # take so many values that one round per least cost ran into max_states.
+            # The branch and bound within a round returns the cheapest tuple whatever the cap,
+            # so the cap may rise by more than the least cost, and must: a round that explored
+            # no state learnt only that the cap is too low (where substitutions at 1 are dwarfed
+            # by insertions at 10**6, one round per least cost never ended), so the raise
+            # doubles while rounds explore nothing; a round that explored raises it by an
+            # eighth at least (with pairs at 1e-6 beside edits at 0.1 the states' costs take
+            # so many values that one round each ran into max_states). Both stop growing at
+            # 2**40 least costs, so the cap stays finite when no round ever explores (a
+            # language empty in a way the analysis does not see): the time bound ends it.
             idle = self.explored == explored
             raise_by = min(raise_by * 2, self.step * _MOST_DOUBLED) if idle else self.step
             share = 0.0 if idle else min(cap / _SHARE, self.step * _MOST_DOUBLED)
@@ -298,7 +300,7 @@ class DistanceSearch:
         cut anything.
         """
         self.cap = cap
-        tol = TOLERANCE * (cap + self.scale)
+        tol = self.tolerance(cap)
         initial = self._initial()
         f0 = 0.0
         for c, front in enumerate(initial):
