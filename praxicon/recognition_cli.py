@@ -48,10 +48,12 @@ def _read_motion(path: str, doing: str = "recognising"):
         raise ValidationError(f"{path}: {exc.strerror or exc}")
     except PSGSError as exc:  # not motion: one line
         raise ValidationError(str(exc).splitlines()[0])
-    if motion.frames < 3:
-        plural = "s" if motion.frames != 1 else ""
-        raise ValidationError(f"{path}: {motion.frames} frame{plural}; {doing} needs at "
-                              f"least 3")
+    from .recognition import _frames
+
+    try:
+        _frames(motion, doing)  # the API's refusal, said as the command's one line
+    except DescriptionError as exc:
+        raise ValidationError(str(exc)) from None
     return motion
 
 
