@@ -29,7 +29,7 @@ from psgs.errors import ValidationError
 
 from ._amc_frames import frame_layout, indent as _indent
 from .motion import (FRAME_RATE_RANGE, Joint, Motion, MotionFormatError, Skeleton, build_motion,
-                     as_path, counted, file_text)
+                     as_path, counted, file_text, rebuilt)
 from .textblocks import parse_rows, token_column
 
 __all__ = ["AsfSkeleton", "read_asf", "parse_asf", "read_amc", "parse_amc", "find_asf"]
@@ -80,6 +80,11 @@ class AsfSkeleton:
     dofs: MappingProxyType  # read-only: bone name -> tuple of dof names, in AMC value order ("root" included)
     skeleton: Skeleton
     length_scale: float  # the :units length (inches per unit is 1/scale in CMU's files)
+
+    def __post_init__(self) -> None:  # a dict given is copied: the value stays read-only
+        object.__setattr__(self, "dofs", MappingProxyType(dict(self.dofs)))
+
+    __reduce__ = rebuilt  # pickle and copy.deepcopy cannot take the mappingproxy
 
 
 def read_asf(path: str | Path) -> AsfSkeleton:

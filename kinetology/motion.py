@@ -12,7 +12,7 @@ from __future__ import annotations
 import os
 import sys
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from numbers import Integral, Real
 from pathlib import Path
 from types import MappingProxyType
@@ -24,7 +24,8 @@ from psgs.errors import FormatError, NotFound, ValidationError
 
 __all__ = ["MotionFormatError", "Joint", "Skeleton", "Motion", "AXES", "build_motion",
            "file_text", "FRAME_RATE_RANGE", "check_number", "MIN_UNWRAP", "check_unwrap",
-           "real_array", "as_path", "shown", "counted", "channel_names", "check_motion"]
+           "real_array", "as_path", "shown", "counted", "channel_names", "check_motion",
+           "rebuilt"]
 
 #: Channel axes, in the order a joint's channels are listed.
 AXES = ("tx", "ty", "tz", "rx", "ry", "rz")
@@ -166,6 +167,23 @@ class Skeleton:
         raise NotFound(f"no joint named {name!r} (joints: {', '.join(self.names)})")
 
 
+def rebuilt(value) -> tuple:
+    """The ``__reduce__`` of a frozen dataclass keeping a read-only mapping (a motion's
+    ``meta``), which :mod:`pickle` and :func:`copy.deepcopy` cannot take: its class and its
+    constructor's arguments, each mappingproxy as a ``dict``. The constructor checks them and
+    makes them read-only again; what the value caches (a motion's columns) is left out.
+
+    Examples
+    --------
+    >>> import pickle
+    >>> m = Motion(np.zeros((2, 1)), ("knee.rx",), 120.0, meta={"format": "bvh"})
+    >>> rebuilt(m)[1][5], pickle.loads(pickle.dumps(m)).values.flags.writeable
+    ({'format': 'bvh'}, False)
+    """
+    return type(value), tuple(dict(v) if isinstance(v, MappingProxyType) else v
+                              for v in (getattr(value, f.name) for f in fields(value) if f.init))
+
+
 @dataclass(frozen=True, eq=False)
 class Motion:
     """Joint-angle motion: ``values[frame, channel]`` in degrees, read-only.
@@ -297,6 +315,10 @@ class Motion:
     def rotation_channels(self) -> tuple[str, ...]:
         """Channels that are angles (axis ``rx``, ``ry`` or ``rz``)."""
         return tuple(c for c in self.channels if c.rsplit(".", 1)[-1] in ("rx", "ry", "rz"))
+
+    # pickle and copy.deepcopy cannot take the read-only meta (a mappingproxy): the motion is
+    # rebuilt by its constructor, which checks the fields and makes them read-only again
+    __reduce__ = rebuilt
 
     def __repr__(self) -> str:
         return (f"Motion({self.source!r}, {counted(self.frames, 'frame')} x "

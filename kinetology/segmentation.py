@@ -51,7 +51,7 @@ from ._engines import select
 from ._kinetemes import round_half_even, smooth_channels
 from .joints import actuator_map, skeleton_parents
 from .motion import (Motion, channel_names, check_motion, check_number, check_rate,
-                     check_unwrap, real_array)
+                     check_unwrap, real_array, rebuilt)
 
 __all__ = ["STATES", "DEFAULTS", "smooth", "unwrap", "derivatives", "significant_sign",
            "channel_deadbands", "states", "Segmentation", "segments", "segment"]
@@ -153,8 +153,7 @@ def smooth(values: np.ndarray, frame_rate: float, sigma: float) -> np.ndarray:
     if sigma * frame_rate <= 0 or values.shape[0] < 2:
         return values.copy()
     columns = values.reshape(values.shape[0], -1)
-    return np.ascontiguousarray(smooth_channels(columns, frame_rate, sigma).T).reshape(
-        values.shape)
+    return np.ascontiguousarray(smooth_channels(columns, frame_rate, sigma).T).reshape(values.shape)
 
 
 def derivatives(values: np.ndarray, frame_rate: float) -> tuple[np.ndarray, np.ndarray]:
@@ -379,8 +378,10 @@ class Segmentation:
     skeleton: Mapping[str, str | None] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "actuators", MappingProxyType(dict(self.actuators)))
-        object.__setattr__(self, "skeleton", MappingProxyType(dict(self.skeleton)))
+        for name in ("actuators", "skeleton"):  # read-only: the mappings given are copied
+            object.__setattr__(self, name, MappingProxyType(dict(getattr(self, name))))
+
+    __reduce__ = rebuilt  # pickle and copy.deepcopy cannot take a mappingproxy
 
     def symbols(self, c: int) -> tuple[str, ...]:
         """State letters of channel ``c``'s segments, in time order."""
@@ -544,8 +545,7 @@ def _segmentation(motion: Motion, channels: list[str], smoothed: np.ndarray,
     """The segments of the ``moving`` rows of ``smoothed`` (channels x frames)."""
     kept_smooth = smoothed if moving.all() else smoothed[moving]
     borders, codes, moves = use.segment_columns(kept_smooth, motion.frame_rate,
-                                                p["velocity_deadband"],
-                                                p["acceleration_deadband"],
+                                                p["velocity_deadband"], p["acceleration_deadband"],
                                                 p["relative_deadband"])
     kept = tuple(name for name, m in zip(channels, moving) if m)
     still = tuple(name for name, m in zip(channels, moving) if not m)
