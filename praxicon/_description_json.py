@@ -26,6 +26,8 @@ from __future__ import annotations
 import math
 from collections import Counter
 
+from .jsonvalues import written_by
+
 __all__ = ["WINDOWS", "FieldError", "check_format", "action_fields", "spread_fields",
            "check_window"]
 
@@ -56,10 +58,10 @@ def check_format(data, kind: str, version: int) -> None:
     if data.get("format") != kind:
         raise _error(f"not a {kind} (format {_shown(data.get('format'))})")
     said = data.get("version")
-    if said != version:  # a later version's descriptions are not to be learnt again over
-        later = type(said) is int and said > version
+    age = written_by(said, version)
+    if age:  # a later version's descriptions are not to be learnt again over
         raise _error(f"{kind} of version {_shown(said)}; this psgs reads version {version}: "
-                     + ("a later psgs wrote it; upgrade psgs to read it" if later else
+                     + ("a later psgs wrote it; upgrade psgs to read it" if age == "later" else
                         "learn the descriptions again (psgs praxicon build ... -o PX resumes "
                         "the build and describes its actions)"))
 

@@ -31,7 +31,7 @@ from .learn import Settings, input_key, learn_action
 from .description import DescriptionError
 from .description_store import (FILE, descriptions_key, descriptions_text,
                                 read_descriptions_file)
-from .jsonvalues import read_json
+from .jsonvalues import read_json, written_by
 from .records import ActionRecord, PerformanceRecord, Praxicon, PraxiconError, name_problem
 from .store import read_records, write_atomic, write_index, write_record, write_shared
 
@@ -385,7 +385,7 @@ def _not_of_a_later_psgs(out: Path) -> None:
         except PraxiconError:
             continue  # damaged: read, refused and rebuilt as before
         said = said.get("version") if isinstance(said, dict) else None
-        if type(said) is int and said > version:
+        if written_by(said, version) == "later":
             raise PraxiconError(f"{out / name}: of version {said}, written by a later psgs "
                                 f"(this one writes {version}); building here would write over "
                                 f"it: upgrade psgs, or build into another folder")

@@ -14,7 +14,7 @@ import json
 from pathlib import Path
 
 from .description import FORMAT_VERSION, LEARNING, DescriptionError, Descriptions
-from .jsonvalues import read_json
+from .jsonvalues import read_json, written_by
 from .records import REBUILD, Praxicon, PraxiconError
 
 __all__ = ["FILE", "descriptions_key", "read_descriptions_file", "descriptions_text"]
@@ -59,11 +59,11 @@ def read_descriptions_file(folder):
     if not isinstance(data, dict) or data.get("format") != _FORMAT:
         raise PraxiconError(f"{path}: not a praxicon descriptions file")
     said = data.get("version")
-    if said != FORMAT_VERSION:  # a later version's are not to be learnt again over
-        later = type(said) is int and said > FORMAT_VERSION
+    age = written_by(said, FORMAT_VERSION)
+    if age:  # a later version's are not to be learnt again over
         raise PraxiconError(f"{path}: descriptions of version {said!r}, this psgs reads "
                             f"version {FORMAT_VERSION} " + ("(a later psgs wrote them; upgrade "
-                            "psgs to read them)" if later else f"(learn them again: "
+                            "psgs to read them)" if age == "later" else f"(learn them again: "
                             f"'{REBUILD}' resumes the build and describes its actions)"))
     key = data.get("key", "")
     if not isinstance(key, str):

@@ -14,7 +14,7 @@ import math
 from psgs._foundation.files import read_text
 from psgs.errors import FormatError
 
-__all__ = ["Fields", "freeze", "thaw", "as_dict", "pairs", "read_json"]
+__all__ = ["Fields", "freeze", "thaw", "as_dict", "pairs", "read_json", "written_by"]
 
 
 def read_json(path, error: type[Exception], missing: str | None = None):
@@ -53,6 +53,30 @@ def read_json(path, error: type[Exception], missing: str | None = None):
         raise error(f"{path}:{exc.lineno}:{exc.colno}: not JSON ({exc.msg})") from None
     except ValueError as exc:  # e.g. an integer of more digits than Python converts
         raise error(f"{path}: not JSON ({exc})") from None
+
+
+def written_by(said, version: int) -> str | None:
+    """Which psgs wrote a file whose ``"version"`` is ``said``, for this one, which reads
+    ``version``: ``None`` this one (the same version), ``"later"`` a later one (a whole
+    number above ``version``), ``"earlier"`` an earlier one (any other value, a missing
+    version too).
+
+    A later psgs's file is neither read (upgrade psgs) nor written over, where an earlier
+    one's is learnt or built again: every reader of a praxicon's versioned files (the index,
+    the descriptions file, the descriptions in it, the build's check of its folder) tells them
+    apart here, so that they cannot come to disagree on which is which.
+
+    Examples
+    --------
+    >>> written_by(3, 3), written_by(4, 3), written_by(2, 3)
+    (None, 'later', 'earlier')
+    >>> written_by(None, 3), written_by("4", 3), written_by(4.0, 3)
+    ('earlier', 'earlier', 'earlier')
+    """
+    if said == version:
+        return None
+    # a bool is an int to Python, and True > 0: no psgs writes a version as true
+    return "later" if type(said) is int and said > version else "earlier"
 
 
 class Fields:

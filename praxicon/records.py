@@ -34,7 +34,7 @@ from psgs.errors import NotFound, PSGSError, ValidationError
 from ._errors import REBUILD
 from ._values import settings_fields
 from .description import DescriptionError, Descriptions
-from .jsonvalues import Fields, as_dict, freeze, pairs as _pairs
+from .jsonvalues import Fields, as_dict, freeze, pairs as _pairs, written_by
 
 __all__ = ["FORMAT", "FORMAT_VERSION", "REBUILD", "FRAME_RATES", "PraxiconError",
            "PerformanceRecord", "ChannelMorpheme", "JointRecord", "ActionRecord", "Praxicon",
@@ -592,8 +592,8 @@ def check_index(index, where: str) -> None:
     if not isinstance(index, dict) or index.get("format") != FORMAT:
         raise PraxiconError(f"{where}: not a praxicon index (its format is not {FORMAT!r})")
     version = index.get("version")
-    if version != FORMAT_VERSION:  # a later version's folder is not to be rebuilt over
-        later = type(version) is int and version > FORMAT_VERSION
+    if age := written_by(version, FORMAT_VERSION):  # a later one's is not rebuilt over
         raise PraxiconError(f"{where}: a praxicon of format version {version!r}; this psgs "
                             f"reads version {FORMAT_VERSION}: " + ("a later psgs wrote it; "
-                            "upgrade psgs to read it" if later else f"rebuild it with '{REBUILD}'"))
+                            "upgrade psgs to read it" if age == "later" else
+                            f"rebuild it with '{REBUILD}'"))
