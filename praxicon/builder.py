@@ -29,7 +29,7 @@ from ._values import check_count, not_all, shown
 from .datasets import Action, DatasetError
 from .learn import Settings, input_key, learn_action
 from .description import DescriptionError
-from .description_store import (FILE, descriptions_key, descriptions_text,
+from .description_store import (FILE, descriptions_in, descriptions_key, descriptions_text,
                                 read_descriptions_file)
 from .jsonvalues import read_json, written_by
 from .records import ActionRecord, PerformanceRecord, Praxicon, PraxiconError, name_problem
@@ -206,7 +206,7 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
     out = Path(out)
     if out.exists() and not out.is_dir():  # else mkdir's bare "File exists"
         raise ValidationError(f"{out}: a file, not a praxicon folder")
-    _not_of_a_later_psgs(out)
+    seen = _not_of_a_later_psgs(out)
     out.mkdir(parents=True, exist_ok=True)
     settings = settings or Settings.make()
     bar = _bar(0, False)
@@ -296,7 +296,10 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
         write_shared(out, result)
     # the build's last step: what recognition and parsing read, learnt from every learnt
     # action's performances together (the actions share one spread)
-    result = _described(out, result, log, announce=progress)
+    # the descriptions as read before the build, unless it learnt an action (they were
+    # removed then)
+    result = _described(out, result, log, announce=progress,
+                        read=_UNREAD if todo else seen.get(FILE, _UNREAD))
     return BuildResult(result, tuple(sorted(learnt)), tuple(sorted(skipped)),
                        tuple(sorted(failed)), tuple(refused))
 
@@ -372,33 +375,49 @@ def _undescribable(takes: dict[str, list]) -> dict[tuple[str, int], str]:
     return out
 
 
-def _not_of_a_later_psgs(out: Path) -> None:
+def _not_of_a_later_psgs(out: Path) -> dict:
     """Refuse to build into a folder whose index or descriptions a later psgs wrote: learnt
-    again here, they would be written over at this version (an earlier version's are)."""
+    again here, they would be written over at this version (an earlier version's are).
+
+    Returns what it read: per file its JSON value, or the :class:`PraxiconError` reading it
+    raised, so that the build's last step (:func:`_described`) does not read the descriptions
+    (megabytes) a second time."""
     from .description import FORMAT_VERSION as DESCRIBED
     from .records import FORMAT_VERSION as RECORDED
+    read: dict = {}
     for name, version in (("index.json", RECORDED), (FILE, DESCRIBED)):
         if not (out / name).is_file():
             continue
         try:
-            said = read_json(out / name, PraxiconError)
-        except PraxiconError:
+            said = read[name] = read_json(out / name, PraxiconError)
+        except PraxiconError as exc:
+            read[name] = exc
             continue  # damaged: read, refused and rebuilt as before
         said = said.get("version") if isinstance(said, dict) else None
         if written_by(said, version) == "later":
             raise PraxiconError(f"{out / name}: of version {said}, written by a later psgs "
                                 f"(this one writes {version}); building here would write over "
                                 f"it: upgrade psgs, or build into another folder")
+    return read
 
 
-def _described(out: Path, praxicon: Praxicon, log, announce: bool = False) -> Praxicon:
+#: :func:`_described`'s ``read`` when the build has not read the descriptions file
+_UNREAD = object()
+
+
+def _described(out: Path, praxicon: Praxicon, log, announce: bool = False,
+               read=_UNREAD) -> Praxicon:
     """``praxicon`` with its descriptions: the folder's when they were learnt from the same
     actions, else learnt now and written (``descriptions.json``); ``announce``: say so on
     stderr first (after the progress bar it is the build's one silent step, 15 s on the
-    shared data)."""
+    shared data). ``read``: the file's JSON value (or the error reading it raised) when the
+    build has read it already, else it is read here."""
     key = descriptions_key(praxicon)
     try:
-        found = read_descriptions_file(out)
+        if isinstance(read, PraxiconError):
+            raise read
+        found = read_descriptions_file(out) if read is _UNREAD else \
+            descriptions_in(read, out / FILE)
     except PraxiconError as exc:  # damaged or of another version: learnt again
         log(f"{exc}: learnt again")
         found = None

@@ -17,7 +17,8 @@ from .description import FORMAT_VERSION, LEARNING, DescriptionError, Description
 from .jsonvalues import read_json, written_by
 from .records import REBUILD, Praxicon, PraxiconError
 
-__all__ = ["FILE", "descriptions_key", "read_descriptions_file", "descriptions_text"]
+__all__ = ["FILE", "descriptions_key", "read_descriptions_file", "descriptions_in",
+           "descriptions_text"]
 
 #: The file's name inside a praxicon folder.
 FILE = "descriptions.json"
@@ -55,7 +56,13 @@ def read_descriptions_file(folder):
     path = Path(folder) / FILE
     if not path.exists() and not path.is_symlink():
         return None
-    data = read_json(path, PraxiconError)
+    return descriptions_in(read_json(path, PraxiconError), path)
+
+
+def descriptions_in(data, path):
+    """``(takes, windows, key)`` of the JSON value ``data`` read from ``path`` (a
+    ``descriptions.json``), every field checked as :func:`read_descriptions_file` checks them
+    (its errors name ``path``): for a reader that has read the file already."""
     if not isinstance(data, dict) or data.get("format") != _FORMAT:
         raise PraxiconError(f"{path}: not a praxicon descriptions file")
     said = data.get("version")
