@@ -363,12 +363,12 @@ def key_values(items: list[str], option: str = "--param") -> dict:
     Returns
     -------
     dict
-        Key -> value, later keys replacing earlier ones.
+        Key -> value.
 
     Raises
     ------
     ValidationError
-        For an item without ``=`` or without a key.
+        For an item without ``=`` or without a key, or a key given twice.
 
     Examples
     --------
@@ -378,13 +378,24 @@ def key_values(items: list[str], option: str = "--param") -> dict:
     Traceback (most recent call last):
     ...
     psgs.errors.ValidationError: --param 'seed': write KEY=VALUE
+    >>> key_values(["seed=3", "seed = 5"])
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: --param seed is given twice (seed=3, then seed=5): give each key once
     """
-    out = {}
+    out: dict = {}
+    given: dict[str, str] = {}  # key -> its item as written, for the message
     for item in items:
         key, eq, value = item.partition("=")
-        if not eq or not key.strip():
+        key = key.strip()
+        if not eq or not key:
             raise ValidationError(f"{option} {item!r}: write KEY=VALUE")
-        out[key.strip()] = parse_value(value.strip())
+        if key in given:
+            # the later one silently won before: a typo in a long command line went unseen
+            raise ValidationError(f"{option} {key} is given twice ({given[key]}, then "
+                                  f"{key}={value.strip()}): give each key once")
+        given[key] = f"{key}={value.strip()}"
+        out[key] = parse_value(value.strip())
     return out
 
 
