@@ -13,7 +13,8 @@ system. This module gives everything else from the action's performances:
 * **typical movements** (:func:`mean_cycles`): per channel, the performances' mean cycle,
   its phase aligned to a leading generated channel, so joints the grammar does not drive
   move as they do in the takes instead of standing still;
-* **a style's performances** (:func:`performances_of` with a style, :func:`style_of`).
+* **a style's performances** (:func:`performances_of` with a style, :func:`style_of`: read by
+  :mod:`praxicon.performance_files`, named here too).
 
 Every function is pure: motions in, arrays out.
 """
@@ -21,10 +22,11 @@ Every function is pure: motions in, arrays out.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
+# RELATIVE too: the line generation's errors end with, long read from here
+from .performance_files import RELATIVE, missing_style, performances_of, style_of  # noqa: F401
 from .heading import _UP, Course, Travel, _moving_mean, course, course_time, global_rotation, \
     heading, mean_course, root_chain, travel, yaw_matrices
 
@@ -256,80 +258,6 @@ class Body:
     course: Course | None = None
     offset: float = 0.0
     drift: dict | None = None
-
-
-def style_of(file) -> list[str]:
-    """The words of a performance's file name, any of which can name its style.
-
-    Bandai Namco's names are ``dataset-N_CONTENT_STYLE_TAKE``: their words are split at
-    ``_``, so ``walk-turn-left`` stays one word.
-
-    >>> style_of("data/dataset-2_walk-turn-left_elderly_003.bvh")
-    ['dataset-2', 'walk-turn-left', 'elderly', '003']
-    """
-    return Path(str(file)).stem.split("_")
-
-
-#: Where a recorded path is read from (the records keep the paths build was given).
-RELATIVE = ("a relative path is relative to the folder build ran in: run from there, or build "
-            "from absolute paths")
-
-
-def missing_style(record, style: str) -> ValueError:
-    """The error for a style none of ``record``'s performances read gives.
-
-    When performances of that style were learnt from but none could be read (a relative path
-    read from another folder, a file moved), the error names one and why, not "no such
-    style". Else it names the styles there are: the words that tell the performances' file
-    names apart (take numbers aside), and the action's own style (an action of one style,
-    whose file names differ by their take numbers only).
-    """
-    import kinetology
-
-    own = [record.performances[i] for i in record.learnt_from or range(len(record.performances))
-           if style in style_of(record.performances[i].file)]
-    if own:
-        file = own[0].file
-        try:
-            kinetology.read(file)
-            why = "too short, or not on the channels of the other performances"
-        except FileNotFoundError:
-            why = "no such file" + ("" if Path(file).is_absolute() else f"; {RELATIVE}")
-        except Exception as exc:  # not a motion it reads: what kinetology says, on one line
-            why = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-        return ValueError(f"action {record.name!r}: its performances of style {style!r} "
-                          f"cannot be read ({file}: {why})")
-    names = [style_of(p.file) for p in record.performances]
-    styles = {n[i] for n in names for i in range(len(n))
-              if not n[i].isdigit() and any(len(o) <= i or o[i] != n[i] for o in names)}
-    styles = sorted(styles | ({record.style} if record.style else set()))
-    return ValueError(f"action {record.name!r} has no performance of style {style!r}"
-                      + (f" (styles: {', '.join(styles)})" if styles else ""))
-
-
-def performances_of(record, style: str | None = None) -> list:
-    """The motions of the performances an action was learnt from (trimmed; unreadable ones left out).
-
-    With ``style``, only those whose file name holds it as a word (:func:`style_of`).
-    """
-    import kinetology
-
-    out = []
-    for i in record.learnt_from or range(len(record.performances)):
-        p = record.performances[i]
-        if style is not None and style not in style_of(p.file):
-            continue
-        try:
-            m = kinetology.read(p.file)
-        except Exception:  # a moved or unreadable file: generate names it (its own check)
-            continue
-        if p.start is not None or p.stop is not None:
-            a = int(round((p.start or 0.0) * m.frame_rate))
-            b = m.frames if p.stop is None else int(round(p.stop * m.frame_rate))
-            m = kinetology.Motion(m.values[a:b], m.channels, m.frame_rate, m.skeleton, m.source)
-        if m.frames >= 2:
-            out.append(m)
-    return out
 
 
 def _source_take(record):

@@ -39,8 +39,9 @@ import numpy as np
 from ._values import check_count, is_count
 from .channel_curve import SMOOTH_STEPS as _SMOOTH_STEPS
 from .channel_curve import Method, channel_curves
-from .body_motion import _source_take, animate, body_of, missing_style, performances_of, \
-    style_of, whole_cycle
+from .body_motion import _source_take, animate, body_of, whole_cycle
+from .performance_files import learnt_files, missing_style, performances_of, \
+    read_performances, style_of, unreadable
 from .jsonvalues import as_dict
 from .records import ActionRecord, Praxicon, _count
 from .store import load, system_problem
@@ -253,7 +254,7 @@ def style_scales(record, channels, period: float, style: str, rate: float, perfo
     channel that moves most in the performances; a channel's amplitude is the style's mean
     range (5th to 95th percentile) over all performances' mean. Raises ValueError when no
     performance of the action has that style. ``performances``: the action's motions
-    when already read (:func:`praxicon.body_motion.performances_of`), else read here.
+    when already read (:func:`praxicon.performance_files.performances_of`), else read here.
     """
     from .body_motion import own_period
 
@@ -281,13 +282,6 @@ def style_scales(record, channels, period: float, style: str, rate: float, perfo
     return float(np.median(periods(own)) / np.median(periods(every))), amplitude
 
 
-def _read_files(record) -> list[str]:
-    """The files of the performances generation reads: those the action was learnt from
-    (every one when the record does not say), as :func:`performances_of` picks them."""
-    return [record.performances[i].file
-            for i in record.learnt_from or range(len(record.performances))]
-
-
 def _style_error(record, style: str, performances) -> ValueError | None:
     """Why ``style`` picks no performance in particular, else None: none of ``performances``
     (those read) has it (:func:`missing_style`: no such style, or its files cannot be read),
@@ -300,7 +294,7 @@ def _style_error(record, style: str, performances) -> ValueError | None:
     """
     if not any(style in style_of(m.source) for m in performances):
         return missing_style(record, style)
-    names = [style_of(f) for f in _read_files(record)]
+    names = [style_of(f) for f in learnt_files(record)]
     if style == record.style or not all(style in n for n in names):
         return None
     # the styles there are, as missing_style names them: the words that tell the names apart
@@ -313,42 +307,6 @@ def _style_error(record, style: str, performances) -> ValueError | None:
     return ValueError(f"action {record.name!r}: style {style!r} does not tell its performances "
                       f"apart ({held}; " + (f"styles: {', '.join(styles)})" if styles else
                                             "it has no styles)"))
-
-
-def _unreadable(record, performances) -> str | None:
-    """The error line for performances the action was learnt from that cannot be read (a
-    moved file, a relative path read from another folder, a damaged file), else None.
-
-    :func:`performances_of` leaves them out: the body around the actuators, the root's course
-    and a style's scales would then be made from the others, or from the mean pose when none
-    reads, and the motion would differ from the one the praxicon gives, without a word. Only
-    the files not among ``performances`` (those read) are read again, to say why.
-    """
-    import kinetology
-
-    from .body_motion import RELATIVE
-
-    files = _read_files(record)
-    read = {m.source for m in performances}
-    failed: dict[str, str] = {}
-    for file in dict.fromkeys(f for f in files if f not in read):
-        try:
-            kinetology.read(file)
-        except FileNotFoundError:
-            failed[file] = f"{file}: no such file" + (
-                "" if Path(file).is_absolute() else f"; {RELATIVE}")
-        except Exception as exc:  # what kinetology says, on one line (it names the file)
-            why = str(exc).splitlines()[0] if str(exc).strip() else type(exc).__name__
-            failed[file] = why if why.startswith(file) else f"{file}: {why}"
-        # a file that reads was left out for being too short: not a file that cannot be read
-    if not failed:
-        return None
-    lost = sum(f in failed for f in files)
-    which = ("the one performance it was learnt from cannot be read" if len(files) == 1 else
-             f"none of the {len(files)} performances it was learnt from can be read"
-             if lost == len(files) else
-             f"{lost} of the {len(files)} performances it was learnt from cannot be read")
-    return f"action {record.name!r}: {which} ({next(iter(failed.values()))})"
 
 
 def has_grammar(record: ActionRecord) -> bool:
@@ -406,15 +364,14 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     if not has_grammar(record):  # a one-off gesture: its performances' course, played
         from .acyclic import performed_motion
 
-        performances = performances_of(record)
+        performances, failed = read_performances(record)
         wrong = None if style is None else _style_error(record, style, performances)
         if wrong:
             raise wrong
         if source_motion is None:
             source_motion = _source_take(record)
-        unreadable = _unreadable(record, performances)
-        if unreadable:
-            raise ValueError(unreadable)
+        if failed:
+            raise ValueError(unreadable(record, failed))
         motion, _ = performed_motion(record, repeat, source_motion, style, performances)
         return motion, {}, {}
     try:
@@ -430,7 +387,7 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     period = float(np.median([sum(m.durations) for m in usable.values()]))
     tempo, amplitude = 1.0, {}
     # the performances are read once, for the style's scales and for the body around them
-    performances = performances_of(record)
+    performances, failed = read_performances(record)
     if style is not None:
         wrong = _style_error(record, style, performances)
         if wrong:
@@ -441,9 +398,8 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     if source_motion is None:
         source_motion = _source_take(record)
     # said after the skeleton's error and the style's own, which keep coming first
-    unreadable = _unreadable(record, performances)
-    if unreadable:
-        raise ValueError(unreadable)
+    if failed:
+        raise ValueError(unreadable(record, failed))
     # an ASF skeleton is kept (the viewer draws it); the BVH file re-expresses its angles
     skeleton = source_motion.skeleton
     channels = source_motion.channels
