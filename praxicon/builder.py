@@ -28,6 +28,7 @@ from psgs.errors import MissingDependency, ValidationError
 from ._values import check_count, not_all, shown
 from .datasets import Action, DatasetError
 from .learn import Settings, input_key, learn_action
+from .outputs import check_writable_folder
 from .description import DescriptionError
 from .description_store import (FILE, descriptions_in, descriptions_key, descriptions_text,
                                 read_descriptions_file)
@@ -204,8 +205,11 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
         raise ValidationError("the praxicon folder's name is empty ('' would be the current "
                               "folder)")
     out = Path(out)
-    if out.exists() and not out.is_dir():  # else mkdir's bare "File exists"
-        raise ValidationError(f"{out}: a file, not a praxicon folder")
+    try:  # a file in its place (else mkdir's bare "File exists"), or a folder that cannot be
+        # written, which failed only once the first action was learnt
+        check_writable_folder(out, "a praxicon folder")
+    except ValueError as exc:
+        raise ValidationError(str(exc)) from None
     seen = _not_of_a_later_psgs(out)
     out.mkdir(parents=True, exist_ok=True)
     settings = settings or Settings.make()

@@ -111,7 +111,8 @@ def _check_outputs(args) -> None:
     error after the BVH file (or the plot) is already on disk."""
     from kinetology.viewer import check_output
 
-    from .pictures import check_folder, check_picture
+    from .outputs import check_folder
+    from .pictures import check_picture
 
     if Path(args.output).suffix.lower() != ".bvh":
         _bad(f"{args.output}: the motion is written as BVH; give -o a .bvh file")

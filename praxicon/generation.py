@@ -528,6 +528,10 @@ def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None =
         from .pictures import check_picture
 
         check_picture(plot)
+    if output is not None:  # as the picture: a place it cannot be written, before the work
+        from .outputs import check_folder
+
+        check_folder(output, "the motion")
     # generation reads the records only: descriptions of another version do not stop it
     record = (folder if isinstance(folder, Praxicon)
               else load(folder, descriptions=False))[action]

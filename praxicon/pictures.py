@@ -25,6 +25,7 @@ import numpy as np
 from kinetology.plotting import STATE_COLOURS
 
 from ._values import check_count, is_count, shown as _shown
+from .outputs import check_folder, check_writable_folder
 from .records import ActionRecord, Praxicon
 from .store import actuator_matrix, load
 
@@ -76,32 +77,6 @@ def check_picture(path) -> str:
                          f" pictures; give one of {', '.join(known)}")
     check_folder(path, "the picture")
     return suffix
-
-
-def check_folder(path, what: str = "the file") -> None:
-    """ValueError (one line) unless ``path`` can be written: its folder exists, is a folder
-    and is writable, and ``path`` itself is not a folder.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> check_folder(tempfile.gettempdir())  # doctest: +ELLIPSIS
-    Traceback (most recent call last):
-    ...
-    ValueError: ...: a folder, not the file
-    """
-    import os
-
-    path = Path(path)
-    folder = path.parent
-    if path.is_dir():
-        raise ValueError(f"{path}: a folder, not {what}")
-    if not folder.exists():
-        raise ValueError(f"{path}: no folder {folder} to write {what} into")
-    if not folder.is_dir():
-        raise ValueError(f"{path}: {folder} is not a folder")
-    if not os.access(folder, os.W_OK | os.X_OK):
-        raise ValueError(f"{path}: the folder {folder} is not writable")
 
 
 def _save(fig, path) -> Path:
@@ -359,8 +334,9 @@ def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> lis
     from psgs.draw import graphviz_available
     from psgs.errors import ValidationError
 
-    if out.exists() and not out.is_dir():  # else mkdir's bare "File exists"
-        raise ValueError(f"{out}: a file, not a folder for the pictures")
+    # before any picture: a file in its place (else mkdir's bare "File exists"), or a folder
+    # that cannot be written, failed at the first picture
+    check_writable_folder(out, "a folder for the pictures")
     praxicon = _praxicon(folder)  # read once: a damaged folder is one error before any picture
     if not any(a.learnt for a in praxicon.actions):
         raise ValueError(f"{_named(folder)}: no learnt action to draw")
