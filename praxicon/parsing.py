@@ -75,7 +75,9 @@ class Span:
 
 @dataclass(frozen=True)
 class Timeline:
-    """A recording parsed into spans, in time order, covering ``0 .. duration``.
+    """A recording parsed into spans, in time order, covering ``0 .. duration``; when
+    :func:`parse` stopped at its ``max_seconds``, ``bound`` names it (``"max_seconds"``,
+    else None), ``reason`` says where, and the spans cover ``0 ..`` :attr:`end` only.
 
     ``missing`` names the joints of the actions the spans name that the recording lacks (of
     the closest action when no span names one), as :attr:`Recognition.missing
@@ -90,17 +92,26 @@ class Timeline:
     spans: tuple[Span, ...]
     missing: tuple[str, ...] = ()
     unread: tuple[str, ...] = ()
+    bound: str | None = None
+    reason: str | None = None
+
+    @property
+    def end(self) -> float:
+        """Where the spans end: ``duration``, or where parse stopped at its bound."""
+        return self.duration if self.bound is None else self.spans[-1].stop
 
     def __repr__(self) -> str:  # a summary; text() has every span
         actions = {s.action for s in self.spans if s.action}
         missing = f", {_count(len(self.missing), 'joint')} missing" if self.missing else ""
+        stopped = f", parsed to {self.end:.2f} s ({self.bound})" if self.bound else ""
         return (f"<Timeline {self.source!r}: {self.duration:.2f} s in "
                 f"{_count(len(self.spans), 'span')} of {_count(len(actions), 'action')}"
-                f"{missing}>")
+                f"{missing}{stopped}>")
 
     def labels(self, times) -> list[str | None]:
         """The action at each of ``times``: a sequence of seconds, each from 0 to the
-        recording's ``duration`` (a time outside it has no action: refused, as a NaN is).
+        recording's ``duration`` (a time outside it has no action: refused, as a NaN is), or
+        to :attr:`end` where parse stopped at its bound (a time after it was not parsed).
 
         Raises
         ------
@@ -112,10 +123,12 @@ class Timeline:
         if not np.isfinite(seconds).all():
             raise DescriptionError("times must be finite numbers of seconds")
         slack = 1e-9 * max(1.0, self.duration)  # a time summed from steps may pass the end
-        outside = seconds[(seconds < -slack) | (seconds > self.duration + slack)]
+        outside = seconds[(seconds < -slack) | (seconds > self.end + slack)]
         if len(outside):
             raise DescriptionError(f"a time of {outside[0]:g} s: the recording's times are 0 to "
-                                   f"{self.duration:g} s")
+                                   f"{self.duration:g} s" + (
+                                       "" if self.bound is None else
+                                       f", parsed to {self.end:g} s ({self.bound})"))
         stops = np.array([s.stop for s in self.spans])
         index = np.minimum(np.searchsorted(stops, seconds, side="right"), len(self.spans) - 1)
         return [self.spans[i].action for i in index]
@@ -325,7 +338,7 @@ def _stretch(unfit: float, starts, windows: int) -> int:
 
 def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
           own=OWN_KINDS, support: float = SUPPORT, unfit: float = UNFIT,
-          progress=None) -> Timeline:
+          progress=None, max_seconds: float | None = None) -> Timeline:
     """The recording as a timeline of spans (see the module's description).
 
     Parameters
@@ -352,6 +365,11 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
         Called ``progress(k, total)`` as the ``k``-th of the recording's ``total`` windows is
         read (their features are most of the time: about 4 ms a window of a 30 fps take of
         25 joints, so 0.9 s a minute at the default hop).
+    max_seconds : float or None, default None
+        The wall-clock bound, from the call on (``None``: none). Past it no more window is
+        read (the first always is) and the windows read are parsed: the timeline up to there,
+        its ``bound`` ``"max_seconds"`` and its ``reason`` saying where it stopped, as the
+        library's searches report a bound in their result.
 
     Returns
     -------
@@ -369,7 +387,7 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
 
     try:
         return _parsed(praxicon, motion, hop=hop, switch=switch, own=own, support=support,
-                       unfit=unfit, progress=progress)
+                       unfit=unfit, progress=progress, max_seconds=max_seconds)
     except _Unscorable as exc:  # read from a folder: its descriptions' file named
         if isinstance(praxicon, (str, Path)):
             raise _in_file(exc, praxicon, windows=True) from None
@@ -381,11 +399,21 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
 _ROOT_KINDS = ("drift", "energy", "excursion")
 
 
-def _parsed(praxicon, motion, *, hop, switch, own, support, unfit, progress) -> Timeline:
+def _parsed(praxicon, motion, *, hop, switch, own, support, unfit, progress,
+            max_seconds) -> Timeline:
     """:func:`parse`, the descriptions' numbers that cannot be scored with raised as an
     :class:`~praxicon.recognition._Unscorable`."""
+    from psgs.budget import Budget, check_seconds
+    from psgs.errors import ValidationError
+
     from .recognition import _descriptions, _excess, _joints_of, _motion, _score_model
     from .recognition import feature_matrix
+
+    try:  # the clock starts first: the bound covers reading the praxicon and the motion too
+        check_seconds(max_seconds, optional=True)
+    except ValidationError as exc:  # praxicon's one error for a wrong argument
+        raise DescriptionError(str(exc)) from None
+    clock = Budget(max_seconds)
 
     # a hop of 0 or less was one window a frame, a NaN or negative switch cost a timeline of
     # nonsense, without a word (an infinite cost is allowed: the windows are one action,
@@ -410,7 +438,14 @@ def _parsed(praxicon, motion, *, hop, switch, own, support, unfit, progress) -> 
     starts, cuts = windows(motion, window, hop)
     if progress is not None:
         cuts = _Reported(cuts, progress)
-    columns, x, _ = feature_matrix(descriptions, cuts, shape=False)
+    read: list[int] = []  # how many windows were read, as they are
+    columns, x, _ = feature_matrix(descriptions, _until(cuts, clock, read), shape=False)
+    # past the bound, the windows read are parsed: where the next one's answer would begin
+    # is where the timeline ends (the edge the whole recording's timeline has there)
+    complete = read[0] == len(starts)
+    stop = motion.duration if complete else \
+        (starts[read[0] - 1] + starts[read[0]]) / 2 + min(window, motion.duration) / 2
+    starts = starts[:read[0]]
     fitted = _score_model(descriptions, columns)
     if not fitted.compared.any():  # an action sharing none (another skeleton) is never chosen
         raise DescriptionError(f"{getattr(motion, 'source', '<motion>')}: the motion shares "
@@ -450,7 +485,7 @@ def _parsed(praxicon, motion, *, hop, switch, own, support, unfit, progress) -> 
     names = [*descriptions.names, None]
     half = min(window, motion.duration) / 2
     centres = np.array(starts) + half
-    edges = np.concatenate([[0.0], (centres[1:] + centres[:-1]) / 2, [motion.duration]])
+    edges = np.concatenate([[0.0], (centres[1:] + centres[:-1]) / 2, [stop]])
     spans = [Span(round(float(edges[a]), 6), round(float(edges[b]), 6), names[path[a]],
                   round(float(value[a:b].mean()), 6)) for a, b in _runs(path)]
     named = {s.action for s in spans if s.action}
@@ -458,9 +493,25 @@ def _parsed(praxicon, motion, *, hop, switch, own, support, unfit, progress) -> 
         named = {names[int(np.argmax(np.where(fitted.compared, p[:, :-1].mean(axis=0), -1)))]}
     lacking = _lacking(descriptions, named, {spread.features[c] for c in columns})
     has = _joints_of(motion)  # a joint it has is not missing (its root may not move)
+    bound = reason = None
+    if not complete:
+        bound, reason = "max_seconds", (f"stopped after {max_seconds:g} seconds (max_seconds): "
+                                        f"parsed to {spans[-1].stop:.2f} s of "
+                                        f"{motion.duration:.2f} s")
     return Timeline(getattr(motion, "source", "<motion>"), float(motion.duration), tuple(spans),
                     tuple(j for j in lacking if j not in has),
-                    tuple(j for j in lacking if j in has))
+                    tuple(j for j in lacking if j in has), bound, reason)
+
+
+def _until(cuts, clock, read: list[int]):
+    """The windows ``cuts``, in order, until ``clock`` has expired (the first always);
+    ``read`` holds how many were given."""
+    read.append(0)
+    for k in range(len(cuts)):
+        if k and clock.expired():
+            return
+        read[0] = k + 1
+        yield cuts[k]
 
 
 def _lacking(descriptions, actions, here) -> tuple[str, ...]:

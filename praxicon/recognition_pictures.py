@@ -43,7 +43,8 @@ def draw_timeline(timeline, motion, path, *, channels: int = 6) -> Path:
     """Draw ``timeline`` over the ``channels`` joint angles of ``motion`` that move most.
 
     Each span is a band in its action's colour (grey hatching: none of these), labelled with
-    the action's name without its dataset (content and style). Returns the path written.
+    the action's name without its dataset (content and style); where a timeline stopped at
+    its bound, a dashed line says the rest was not parsed. Returns the path written.
 
     Raises
     ------
@@ -78,6 +79,11 @@ def draw_timeline(timeline, motion, path, *, channels: int = 6) -> Path:
             ax.axvspan(span.start, span.stop, color=colours[span.action], alpha=0.25, lw=0)
             ax.text((span.start + span.stop) / 2, 1.01, _short(span.action),
                     transform=ax.get_xaxis_transform(), ha="center", va="bottom", fontsize=8)
+    if timeline.bound:  # parse stopped at its bound: the rest is not parsed, not no action
+        ax.axvline(timeline.end, color="0.3", lw=1, ls="--")
+        ax.text(timeline.end, 0.98, f" not parsed past here ({timeline.bound})",
+                transform=ax.get_xaxis_transform(), ha="left", va="top", fontsize=8,
+                color="0.3")  # inside the axes: the spans' names are above them
     for k in order:
         ax.plot(t, values[:, k] - np.median(values[:, k]), lw=0.8,
                 label=motion.channels[rotations[k]])
