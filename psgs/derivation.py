@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from typing import Union
 
 from .analysis import moves
-from .budget import check_count
+from .budget import Budget, check_count, check_seconds
 from .errors import ValidationError
 from .model import IDLE, PCGS, PSGS, Form, Nonterminal, Query, Terminal, resolve_tuple
 from .notation import format_configuration, format_form, short, show_tuple, spaced
@@ -419,9 +419,11 @@ class Derivation:
         """``"terminal"``, ``"blocked"`` (no step applies) or ``"open"`` (steps remain)."""
         if self.is_terminal:
             return "terminal"
-        if not applicable_steps(self.system, self.result):
-            return "blocked"
-        return "open"
+        # whether one step applies, not the list of them: in single mode their number is a
+        # product of occurrence counts (two forms of 2,000 A's, a million steps)
+        steps = (pcgs_steps(self.system, self.result) if isinstance(self.system, PCGS)
+                 else psgs_successors(self.system, self.result))
+        return "blocked" if next(steps, None) is None else "open"
 
     def __len__(self) -> int:
         return len(self.steps)
@@ -433,7 +435,8 @@ class Derivation:
 
 def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
                       max_form_length: int = 100_000,
-                      max_symbols: int = 10_000_000) -> Derivation:
+                      max_symbols: int = 10_000_000,
+                      max_seconds: float | None = None) -> Derivation:
     """A derivation from the axioms taking uniformly random applicable steps (seeded).
 
     Each step is drawn uniformly among :func:`applicable_steps` (the same
@@ -446,10 +449,11 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
     can double a form at every step), or configurations holding more than
     ``max_symbols`` symbols together (the derivation keeps every configuration
     it passes, so a form that grows by one symbol a step holds the square of
-    the steps: 50 million symbols, 400 MB, at 10,000 steps). The bound hit is
-    named in ``Derivation.bound`` (``"max_steps"``, ``"max_form_length"`` or
-    ``"max_symbols"``) and described in ``Derivation.reason``. The same seed
-    always gives the same derivation, and a derivation stopped at a bound is the
+    the steps: 50 million symbols, 400 MB, at 10,000 steps), or after ``max_seconds``
+    (read between steps: a step costs about the forms' length times the tuples of M). The
+    bound hit is named in ``Derivation.bound`` (``"max_steps"``, ``"max_form_length"``,
+    ``"max_symbols"`` or ``"max_seconds"``) and described in ``Derivation.reason``. The
+    same seed always gives the same derivation, and a derivation stopped at a bound is the
     start of the one a larger bound allows.
 
     Parameters
@@ -466,6 +470,9 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
     max_symbols : int, default 10_000_000
         Stop before the configurations kept (the axioms' and every step's result)
         would hold more symbols than this, summed (a pointer each: ~80 MB).
+    max_seconds : float or None, default None
+        Stop once this much wall-clock time has passed (None: no limit). The only bound
+        whose stopping point depends on the machine.
 
     Returns
     -------
@@ -494,6 +501,8 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
     check_count(max_steps, "max_steps", minimum=0)
     check_count(max_form_length, "max_form_length", minimum=0)
     check_count(max_symbols, "max_symbols", minimum=1)
+    check_seconds(max_seconds, optional=True)
+    clock = Budget(max_seconds)
     rng = random.Random(_checked_seed(seed))
     configuration = initial_configuration(system)
     steps: list[Step] = []
@@ -502,6 +511,10 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
     while not is_terminal_configuration(system, configuration):
         if len(steps) >= max_steps:
             bound, reason = "max_steps", f"stopped after {max_steps} steps (max_steps)"
+            break
+        if clock.expired():
+            bound = "max_seconds"
+            reason = f"stopped after {max_seconds:g} seconds, {len(steps)} steps (max_seconds)"
             break
         if max(len(f) for f in configuration) > max_form_length:
             bound = "max_form_length"

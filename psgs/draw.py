@@ -24,15 +24,16 @@ import shutil
 from dataclasses import dataclass
 from pathlib import Path
 
+from ._draw_matplotlib import PER_ROW, _PALETTE, _matplotlib, _rule_text
 from .errors import MissingDependency, PSGSError, ValidationError
 from .model import PCGS, PSGS, Query
 
 __all__ = ["Forest", "parse_forest", "sync_edges", "draw", "to_svg", "graphviz_available",
-           "PER_ROW"]
+           "PER_ROW", "MAX_NODES"]
 
-_PALETTE = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2",
-            "#17becf", "#bcbd22", "#7f7f7f")
-
+#: The most parse-tree nodes ``psgs draw`` and a notebook's picture draw (about 3 s with
+#: matplotlib, 5 s with Graphviz): a tree past a few thousand nodes is no longer readable.
+MAX_NODES = 5_000
 
 @dataclass(frozen=True)
 class Forest:
@@ -40,7 +41,10 @@ class Forest:
 
     ``roots[c]`` is the root node of component ``c``; ``rules[i]`` the label of
     the rule that rewrote node ``i`` (``None`` for a leaf); ``complete`` is
-    False when the derivation stopped before a terminal configuration.
+    False when the trees stop before a terminal configuration. ``bound`` names the
+    bound that stopped them (the derivation's, e.g. ``"max_steps"``, or ``"max_nodes"``
+    when :func:`parse_forest` left steps out), ``None`` when they are terminal or the
+    derivation is blocked; ``reason`` says it in words.
 
     Examples
     --------
@@ -57,6 +61,8 @@ class Forest:
     rules: tuple[str | None, ...]
     roots: tuple[int, ...]
     complete: bool
+    bound: str | None = None
+    reason: str | None = None
 
     def leaves(self, component: int) -> tuple[str, ...]:
         """The word under component ``component``'s tree, left to right."""
@@ -71,7 +77,7 @@ class Forest:
 
 
 def parse_forest(system: PSGS, derivation=None, *, seed: int = 0,
-                 max_steps: int = 200) -> Forest:
+                 max_steps: int = 200, max_nodes: int | None = None) -> Forest:
     """The parse trees of ``derivation`` (default: a random one with ``seed``).
 
     Parameters
@@ -81,10 +87,20 @@ def parse_forest(system: PSGS, derivation=None, *, seed: int = 0,
         which shows a PCGS's rules and queries).
     derivation : psgs.Derivation, optional
         Default ``psgs.random_derivation(system, seed, max_steps=max_steps)``.
+    max_nodes : int, optional
+        At most this many nodes in the trees: the steps of the derivation up to the last
+        one that keeps within it (the forest's ``bound`` is then ``"max_nodes"``). None:
+        every step.
 
     Returns
     -------
     Forest
+
+    Raises
+    ------
+    ValidationError
+        For a PCGS, a derivation of another system, or a ``max_nodes`` that is not a
+        whole number ≥ 1.
 
     Examples
     --------
@@ -93,9 +109,15 @@ def parse_forest(system: PSGS, derivation=None, *, seed: int = 0,
     >>> f = parse_forest(gamma, seed=1)
     >>> "".join(f.leaves(0)) in {"abcdbcad" * k for k in range(1, 20)}
     True
+    >>> cut = parse_forest(gamma, seed=1, max_nodes=20)
+    >>> len(cut.labels) <= 20, cut.complete, cut.bound
+    (True, False, 'max_nodes')
     """
+    from .budget import check_count
     from .derivation import Derivation, random_derivation
 
+    if max_nodes is not None:
+        check_count(max_nodes, "max_nodes")
     if not isinstance(system, PSGS):
         raise ValidationError("a forest of parse trees is drawn for a PSGS; a PCGS "
                               "communicates forms between components")
@@ -118,7 +140,19 @@ def parse_forest(system: PSGS, derivation=None, *, seed: int = 0,
 
     roots = tuple(node(str(axiom)) for axiom in system.axioms)
     fronts = [[root] for root in roots]  # node of each symbol of each component's form
-    for step in derivation.steps:
+    bound, reason = derivation.bound, derivation.reason
+    for done, step in enumerate(derivation.steps):
+        # a step adds a node per symbol of each right side it writes (one for ε); parallel
+        # rewriting doubles a form a step, so 17 steps of S -> S S made 262,000 nodes and a
+        # picture of 130 MB after three minutes
+        grown = sum(len(positions) * max(1, len(rule.rhs))
+                    for rule, positions in zip(step.tuple, step.positions)
+                    if rule is not None and positions)
+        if max_nodes is not None and len(labels) + grown > max_nodes:
+            bound = "max_nodes"
+            reason = (f"drew the first {done} of {len(derivation.steps)} steps: the next "
+                      f"would take the parse trees past {max_nodes} nodes (max_nodes)")
+            break
         for c, (rule, positions) in enumerate(zip(step.tuple, step.positions)):
             if rule is None or not positions:
                 continue
@@ -133,8 +167,10 @@ def parse_forest(system: PSGS, derivation=None, *, seed: int = 0,
                 else:
                     replaced.append(old)
             fronts[c] = replaced
+    complete = bound != "max_nodes" and derivation.is_terminal
     return Forest(system.component_names, tuple(labels), tuple(tuple(k) for k in children),
-                  tuple(rules), roots, derivation.is_terminal)
+                  tuple(rules), roots, complete, None if complete else bound,
+                  None if complete else reason)
 
 
 def sync_edges(system: PSGS | PCGS) -> tuple[tuple[tuple[str, str], tuple[str, str], int], ...]:
@@ -180,11 +216,6 @@ def graphviz_available() -> bool:
     except ImportError:
         return False
     return shutil.which("dot") is not None
-
-
-def _rule_text(rule) -> str:
-    rhs = " ".join(str(s) for s in rule.rhs) or "ε"
-    return f"{rule.label}: {rule.lhs} → {rhs}"
 
 
 def _graphviz(system, forest: Forest | None):
@@ -236,172 +267,6 @@ def _graphviz(system, forest: Forest | None):
     return graph
 
 
-PER_ROW = 8  # components side by side in a matplotlib picture; more wrap onto further rows
-
-
-def _tuples_of(system) -> dict[tuple[str, str], list[int]]:
-    """(component, rule) -> the tuples of M (0-based) that hold the rule (PSGS only)."""
-    member: dict[tuple[str, str], list[int]] = {}
-    if isinstance(system, PSGS):
-        names = system.component_names
-        for t, entries in enumerate(system.sync):
-            for c, rule in enumerate(entries):
-                if rule is not None:
-                    member.setdefault((names[c], rule.label), []).append(t)
-    return member
-
-
-def _place_tree(forest: Forest, root: int):
-    """x (leaf order) and depth of every node under ``root``; returns (x, depth, width)."""
-    x_of: dict[int, float] = {}
-    depth: dict[int, int] = {root: 0}
-    cursor = 0.0
-    stack: list[tuple[int, bool]] = [(root, False)]
-    while stack:  # iterative post-order: a long derivation is a deep tree
-        node, done = stack.pop()
-        kids = forest.children[node]
-        if done:
-            x_of[node] = sum(x_of[k] for k in kids) / len(kids)
-        elif not kids:
-            x_of[node] = cursor
-            cursor += 1.0
-        else:
-            stack.append((node, True))
-            for k in reversed(kids):
-                depth[k] = depth[node] + 1
-                stack.append((k, False))
-    return x_of, depth, max(cursor, 1.0)
-
-
-# characters of a rule that fit its cell: 6-point monospace (0.6 of the size a character) on
-# the cell's 1.96 inches right of the tags
-_RULE_CHARS = int(1.96 * 72 / (0.6 * 6))
-
-
-def _fitted(text: str, most: int = _RULE_CHARS) -> str:
-    """``text``, cut to ``most`` characters with an ellipsis when longer: a cut rule says so.
-
-    Examples
-    --------
-    >>> _fitted("p: S → a S", 40), _fitted("r1: N_Hips_rx_1 → N_Hips_rx_2 N_Hips_rx_3", 20)
-    ('p: S → a S', 'r1: N_Hips_rx_1 → N…')
-    """
-    return text if len(text) <= most else text[:most - 1] + "…"
-
-
-def _cell(ax, box, xlim, ylim):
-    """The transform from a cell's own coordinates (``xlim`` by ``ylim``) onto ``box`` (left,
-    bottom, width, height in inches) of ``ax``, whose data coordinates are inches."""
-    from matplotlib.transforms import Affine2D
-
-    left, bottom, width, height = box
-    sx, sy = width / (xlim[1] - xlim[0]), height / (ylim[1] - ylim[0])
-    return Affine2D().scale(sx, sy).translate(left - xlim[0] * sx,
-                                              bottom - ylim[0] * sy) + ax.transData
-
-
-def _inches_box(ax, box):
-    """``box`` (left, bottom, width, height in inches) as a clip box of ``ax``."""
-    from matplotlib.transforms import Bbox, TransformedBbox
-
-    return TransformedBbox(Bbox.from_bounds(*box), ax.transData)
-
-
-def _matplotlib(system, forest: Forest | None):
-    """Components in rows of at most :data:`PER_ROW`; per component its rules (and its parse
-    tree) in its own cell, so that no line crosses another component.
-
-    Synchronisation is drawn as tags, not lines: a rule in tuple k of M carries ``Mk``, in
-    tuple k's colour, and the legend says what a tag means; a line between two components
-    would cross every component between them, idle ones included.
-    """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    n = len(system.components)
-    columns = min(n, PER_ROW)
-    rows = -(-n // columns)
-    member = _tuples_of(system)
-    tall = max(len(g.rules) for g in system.components)
-    placed = [_place_tree(forest, root) for root in forest.roots] if forest is not None else []
-    deep = max((max(d.values()) for _, d, _ in placed), default=-1) + 1
-    tree_h = 0.0 if forest is None else min(6.0, 0.6 + 0.18 * deep)
-    rule_h = 0.5 + 0.28 * tall
-    cell_w = 2.6
-    fig = plt.figure(figsize=(0.4 + cell_w * columns, 1.4 + rows * (rule_h + tree_h + 0.4)))
-    width_in, height = fig.get_figwidth(), fig.get_figheight()
-    # one axes in inches for the whole picture, each cell placed by its own transform: an axes
-    # per cell (two per component) cost more than the drawing itself in a praxicon system
-    ax = fig.add_axes((0, 0, 1, 1))
-    ax.set_axis_off()
-    ax.set_xlim(0, width_in)
-    ax.set_ylim(0, height)
-    top = 1 - 0.9 / height
-    band = (top - 0.5 / height) / rows
-    for c, grammar in enumerate(system.components):
-        row, col = divmod(c, columns)
-        colour = _PALETTE[c % len(_PALETTE)]
-        left = 0.2 + col * cell_w
-        width = cell_w - 0.15
-        y0 = (top - (row + 1) * band) * height
-        share = tree_h / (tree_h + rule_h)
-        rules = (left, y0, width, band * (1 - share) * 0.9 * height)
-        low = -tall + 0.4  # the cell's rules from y=1 (the name) down to one row per rule
-        cell = _cell(ax, rules, (0.0, 1.0), (low, 1.0))
-        clip = _inches_box(ax, rules)
-        ax.text(0.5, 0.8, grammar.name, ha="center", va="center", fontweight="bold",
-                fontsize=8, color=colour, transform=cell)
-        for r, rule in enumerate(grammar.rules):
-            tags = member.get((grammar.name, rule.label), [])
-            # the tag first, then the rule: a long rule is clipped at the cell's edge, never
-            # drawn over its tag or the next component
-            text = ax.text(0.2, -r, _fitted(_rule_text(rule)), ha="left", va="center",
-                           fontsize=6, family="monospace", clip_on=True, transform=cell)
-            text.set_clip_box(clip)
-            if tags:
-                ax.text(0.0, -r, " ".join(f"M{t + 1}" for t in tags[:2])
-                        + ("…" if len(tags) > 2 else ""), ha="left", va="center",
-                        fontsize=6, color="white", fontweight="bold", transform=cell,
-                        bbox=dict(boxstyle="round,pad=0.15", lw=0,
-                                  fc=_PALETTE[tags[0] % len(_PALETTE)]))
-            for sym in rule.rhs:
-                if isinstance(sym, Query):
-                    ax.text(0.0, -r, f"?{sym.component}", ha="left", va="center",
-                            fontsize=6, color="black", transform=cell,
-                            bbox=dict(boxstyle="round,pad=0.15", lw=0.5, fc="white",
-                                      ec="black", ls="--"))
-        if forest is not None:
-            x_of, depth, wide = placed[c]
-            tree_box = (left, y0 + band * (1 - share) * height, width,
-                        band * share * 0.95 * height)
-            tree = _cell(ax, tree_box, (-0.8, wide - 0.2), (-deep + 0.5, 0.6))
-            segments = [[(x_of[p], -depth[p]), (x_of[k], -depth[k])]
-                        for p in x_of for k in forest.children[p]]
-            from matplotlib.collections import LineCollection
-
-            ax.add_collection(LineCollection(segments, colors=colour, linewidths=0.6,
-                                             transform=tree))
-            small = max(3.0, min(6.0, 60 / wide))
-            for node, x in x_of.items():
-                leaf = not forest.children[node]
-                ax.text(x, -depth[node], forest.labels[node], ha="center", va="center",
-                        fontsize=small, color="black" if leaf else colour, transform=tree)
-    what = ("each component's parse tree of a derived word (top) and its rules (below); "
-            if forest is not None else "each component's rules; ")
-    if isinstance(system, PSGS):
-        legend = (what + "a tag Mk: the rule belongs to tuple k of M (rules with the same tag "
-                  "are applied together, components without it idle)")
-    else:
-        legend = what + "?G: the rule queries component G (its form is communicated)"
-    fig.text(0.5, 1 - 0.3 / height, system.name or "system", ha="center", va="center",
-             fontsize=10, fontweight="bold")
-    fig.text(0.5, 1 - 0.6 / height, legend, ha="center", va="center", fontsize=7,
-             wrap=True)
-    return fig
-
-
 def _render(system, forest: Forest | None, fmt: str, engine: str) -> bytes:
     """The picture's bytes: Graphviz when asked (or ``auto`` and available), else matplotlib.
 
@@ -442,7 +307,7 @@ def _render(system, forest: Forest | None, fmt: str, engine: str) -> bytes:
 
 
 def _forest_or_none(system, derivation, seed: int, max_steps: int,
-                    engine: str) -> Forest | None:
+                    engine: str, max_nodes: int | None = None) -> Forest | None:
     """The parse trees of a PSGS's derivation (given, or drawn with ``seed``); None for a PCGS."""
     # draw's checks, to_svg's too: it drew an unknown engine as auto, a non-system raised
     # an AttributeError
@@ -451,14 +316,15 @@ def _forest_or_none(system, derivation, seed: int, max_steps: int,
     if not isinstance(system, (PSGS, PCGS)):
         raise ValidationError(f"draw takes a PSGS or a PCGS, not {type(system).__name__}")
     if isinstance(system, PSGS):
-        return parse_forest(system, derivation, seed=seed, max_steps=max_steps)
+        return parse_forest(system, derivation, seed=seed, max_steps=max_steps,
+                            max_nodes=max_nodes)
     if derivation is not None:
         raise ValidationError("a PCGS is drawn without parse trees: give no derivation")
     return None
 
 
 def to_svg(system: PSGS | PCGS, *, seed: int = 0, max_steps: int = 200,
-           engine: str = "auto", derivation=None) -> str:
+           engine: str = "auto", derivation=None, max_nodes: int | None = None) -> str:
     """The picture of :func:`draw` as SVG text (its parameters are :func:`draw`'s).
 
     Examples
@@ -469,12 +335,12 @@ def to_svg(system: PSGS | PCGS, *, seed: int = 0, max_steps: int = 200,
     >>> svg.startswith("<?xml"), "<svg" in svg
     (True, True)
     """
-    forest = _forest_or_none(system, derivation, seed, max_steps, engine)
+    forest = _forest_or_none(system, derivation, seed, max_steps, engine, max_nodes)
     return _render(system, forest, "svg", engine).decode("utf-8")
 
 
 def draw(system: PSGS | PCGS, path: str | Path, *, seed: int = 0, max_steps: int = 200,
-         engine: str = "auto", derivation=None) -> Path:
+         engine: str = "auto", derivation=None, max_nodes: int | None = None) -> Path:
     """Draw the forest of parse trees of a derived word and the synchronisation graph.
 
     Parameters
@@ -490,6 +356,11 @@ def draw(system: PSGS | PCGS, path: str | Path, *, seed: int = 0, max_steps: int
     derivation : psgs.Derivation, optional
         A derivation of ``system`` (a PSGS) to draw instead of the random one of ``seed``
         and ``max_steps``: a caller that also reports on it derives it once.
+    max_nodes : int, optional
+        The most nodes of the parse trees drawn (see :func:`parse_forest`); None: every
+        step. The time of a picture grows with its nodes (Graphviz's faster than linearly:
+        8,000 nodes took 17 s), so a caller that draws what it does not know passes one,
+        e.g. :data:`MAX_NODES`.
 
     Returns
     -------
@@ -513,7 +384,7 @@ def draw(system: PSGS | PCGS, path: str | Path, *, seed: int = 0, max_steps: int
     fmt = path.suffix.lower().lstrip(".")
     if fmt not in ("svg", "png"):
         raise ValidationError(f"{path}: draw writes .svg or .png, not {path.suffix or 'no suffix'!r}")
-    forest = _forest_or_none(system, derivation, seed, max_steps, engine)
+    forest = _forest_or_none(system, derivation, seed, max_steps, engine, max_nodes)
     path.write_bytes(_render(system, forest, fmt, engine))
     return path
 
@@ -531,7 +402,7 @@ def _escape(text: object) -> str:
 def system_svg(system) -> str | None:
     """A system's picture as SVG for a notebook, or None when it cannot be drawn here."""
     try:
-        return to_svg(system, max_steps=60)
+        return to_svg(system, max_steps=60, max_nodes=MAX_NODES)
     except Exception:  # no matplotlib, a system too large for dot: the notebook shows text
         return None
 

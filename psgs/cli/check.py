@@ -40,6 +40,9 @@ def register(subparsers) -> None:
                        help="search budget in states (default 200000)")
     check.add_argument("--max-seconds", type=positive_float, default=30.0, metavar="S",
                        help="search budget in seconds (default 30)")
+    check.add_argument("--max-symbols", type=positive_int, default=10_000_000, metavar="N",
+                       help="memory budget: the symbols the search's states hold together "
+                            "(default 10000000)")
     check.add_argument("--max-steps", type=positive_int, default=200, metavar="K",
                        help="PCGS: longest derivation searched (default 200)")
     check.add_argument("--nearest", action="store_true",
@@ -91,7 +94,7 @@ def run_check(args) -> int:
     if args.max_errors is not None:
         raise ValidationError("--max-errors applies with --nearest only")
     result = accepts(system, words, max_states=args.max_states, max_seconds=args.max_seconds,
-                     max_steps=args.max_steps)
+                     max_steps=args.max_steps, max_symbols=args.max_symbols)
     if result.answer == "yes":
         print("yes")
         if args.trace:
@@ -114,7 +117,8 @@ def _run_nearest(system, words, args) -> int:
     from ..membership import nearest
 
     result = nearest(system, words, max_errors=args.max_errors, max_states=args.max_states,
-                     max_seconds=args.max_seconds, max_steps=args.max_steps)
+                     max_seconds=args.max_seconds, max_steps=args.max_steps,
+                     max_symbols=args.max_symbols)
     print(result)
     if result.words is not None:
         if isinstance(system, PCGS):

@@ -80,14 +80,16 @@ def register(subparsers) -> None:
     derive.add_argument("--max-steps", type=positive_int, default=10_000, metavar="K",
                         help="--random stops after K steps (default 10000)")
     derive.add_argument("--max-symbols", type=positive_int, default=10_000_000, metavar="N",
-                        help="--random stops before its configurations would hold N symbols "
-                             "together (default 10000000)")
+                        help="memory budget: --random stops before its configurations would "
+                             "hold N symbols together, --enumerate before the configurations "
+                             "it keeps would (default 10000000)")
     derive.add_argument("--max-length", type=natural, default=None, metavar="L",
                         help="--enumerate: total length bound (needed)")
     derive.add_argument("--max-configurations", type=positive_int, default=200_000, metavar="N",
                         help="--enumerate: search budget (default 200000)")
     derive.add_argument("--max-seconds", type=positive_float, default=60.0, metavar="S",
-                        help="--enumerate: time budget in seconds, analysis included (default 60)")
+                        help="time budget in seconds of --random, and of --enumerate with its "
+                             "analysis (default 60)")
     derive.add_argument("--mode", choices=("parallel", "single"),
                         help="PSGS: override the file's rewriting mode")
     derive.add_argument("--returning", choices=("yes", "no"),
@@ -152,7 +154,7 @@ def _enumerate(system: PSGS | PCGS, args) -> int:
     if args.max_length is None:
         raise ValidationError("--enumerate needs --max-length L")
     found = language(system, args.max_length, max_configurations=args.max_configurations,
-                     max_seconds=args.max_seconds)
+                     max_seconds=args.max_seconds, max_symbols=args.max_symbols)
     out = sys.stdout
     for words in found:
         print(_show_words(system, words), file=out)
@@ -186,7 +188,7 @@ def _random(system: PSGS | PCGS, args) -> int:
     from ..derivation import random_derivation
     from ..notation import format_configuration
     derivation = random_derivation(system, args.seed, max_steps=args.max_steps,
-                                   max_symbols=args.max_symbols)
+                                   max_symbols=args.max_symbols, max_seconds=args.max_seconds)
     if args.trace:
         print(format_configuration(derivation.configurations[0], system))
         for step in derivation.steps:
