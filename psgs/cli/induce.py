@@ -13,7 +13,7 @@ import sys
 import time
 from pathlib import Path
 
-from .._foundation.shell import file_name, key_values
+from .._foundation.shell import INCOMPLETE, file_name, key_values
 from ..actiongram import GAPS
 from ..errors import ValidationError
 
@@ -151,6 +151,40 @@ def _load_events(args):
 EXAMPLE_SEED = 1
 EXAMPLE_NOISE = 0.1
 
+#: A string's status that says the inducer stopped at one of its budgets -> that budget.
+#: The sequential baseline's max_rules stops its compression of a string before every
+#: repeated digram is a rule, so the pattern is not the one it learns without the bound.
+BOUND_STATUSES = {"rule bound reached": "max_rules"}
+
+
+def _bound_hit(inducer, result) -> str | None:
+    """The line naming the budget that stopped the induction on some strings, or None.
+
+    >>> from psgs import Actiongram
+    >>> from psgs.induce import get
+    >>> inducer = get("sequential", max_rules=1)
+    >>> result = inducer.induce(Actiongram.from_strings({"x": "abcabcabc", "y": "pq"}))
+    >>> _bound_hit(inducer, result)
+    'sequential stopped at its bound max_rules=1 on 1 string (x): its pattern is what the rules made by then give'
+    """
+    stopped: dict[str, list[str]] = {}
+    for report in result.reports:
+        bound = BOUND_STATUSES.get(report.status)
+        if bound is not None:
+            stopped.setdefault(bound, []).append(report.name)
+    if not stopped:
+        return None
+    parts = []
+    for bound, names in stopped.items():
+        value = getattr(inducer.conf(), bound, None)
+        shown = ", ".join(names[:5]) + (f", ... ({len(names)} in all)" if len(names) > 5 else "")
+        one = len(names) == 1
+        parts.append(f"{bound}{'' if value is None else f'={value}'} on {len(names)} "
+                     f"string{'' if one else 's'} ({shown})")
+    them = "its pattern is" if sum(map(len, stopped.values())) == 1 else "their patterns are"
+    return (f"{result.inducer} stopped at its bound {'; '.join(parts)}: {them} what the "
+            f"rules made by then give")
+
 
 def run_induce(args) -> int:
     """``psgs induce``: learn from FILE... (one performance each)
@@ -164,7 +198,8 @@ def run_induce(args) -> int:
     Returns
     -------
     int
-        0.
+        0, or 3 when the inducer stopped at one of its budgets on some string (the sequential
+        baseline's ``max_rules``), named on stderr.
 
     Raises
     ------
@@ -211,6 +246,8 @@ def run_induce(args) -> int:
     result = inducer.induce(performances if performances and len(performances) > 1
                             else actiongram)
     seconds = time.perf_counter() - began
+    bound_line = _bound_hit(inducer, result)
+    status = 0 if bound_line is None else INCOMPLETE
     system_text = dumps(result.system) if result.system is not None else None
     if args.output:
         if system_text is None:
@@ -222,7 +259,8 @@ def run_induce(args) -> int:
         data["system"] = system_text
         data["seconds"] = round(seconds, 6)
         print(json.dumps(data, indent=2))
-        return 0
+        _say_bound(bound_line)
+        return status
     out = []
     if truth is not None:
         out.append(f"Example: a synthetic actiongram (seed {EXAMPLE_SEED}, "
@@ -273,7 +311,14 @@ def run_induce(args) -> int:
         if args.full:
             out.append(system_text.rstrip("\n"))
     print("\n".join(out))
-    return 0
+    _say_bound(bound_line)
+    return status
+
+
+def _say_bound(line: str | None) -> None:
+    """The budget the induction stopped at, on stderr (exit status 3 says one was hit)."""
+    if line is not None:
+        print(f"psgs: {line}", file=sys.stderr)
 
 
 SHOWN_SYMBOLS = 12  # a pattern's symbols on a summary line; the rest is counted

@@ -138,10 +138,29 @@ def test_bad_seeds_and_levels_are_usage_errors(capsys, argv):
 def test_a_component_kept_at_a_bound_is_not_also_called_dropped(tmp_path, capsys):
     path = tmp_path / "a.txt"
     path.write_text("x: a b c a b c a b c a b c\n")
-    assert main(["induce", str(path), "--inducer", "sequential", "--param", "max_rules=1"]) == 0
-    out = capsys.readouterr().out
+    # max_rules is a budget: the learner stopped before its pattern (a b c), so status 3
+    assert main(["induce", str(path), "--inducer", "sequential", "--param", "max_rules=1"]) == 3
+    captured = capsys.readouterr()
+    out = captured.out
     assert "1 component(s)" in out and "note: x: rule bound reached" in out
+    assert "x: a b   (" in out  # what it had found is still printed
     assert "dropped" not in out
+    assert captured.err == ("psgs: sequential stopped at its bound max_rules=1 on 1 string "
+                            "(x): its pattern is what the rules made by then give\n")
+
+
+def test_an_induction_within_its_budget_exits_0_and_names_no_bound(tmp_path, capsys):
+    path = tmp_path / "a.txt"
+    path.write_text("x: a b c a b c a b c a b c\n")
+    for extra in ([], ["--json"]):
+        assert main(["induce", str(path), "--inducer", "sequential", *extra]) == 0
+        assert capsys.readouterr().err == ""
+    # --json prints the object whole, and names the bound on stderr as the summary does
+    assert main(["induce", str(path), "--inducer", "sequential", "--param", "max_rules=1",
+                 "--json"]) == 3
+    captured = capsys.readouterr()
+    assert json.loads(captured.out)["patterns"] == {"x": ["a", "b"]}
+    assert "at its bound max_rules=1" in captured.err and captured.err.count("\n") == 1
 
 
 @pytest.mark.parametrize("flag", ["--csv", "--plot"])
