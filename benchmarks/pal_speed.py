@@ -244,7 +244,7 @@ def _table(path: Path) -> list[dict]:
 
 def write_section() -> None:
     """Rewrite the pal section of docs/benchmarks.md from docs/data (both scripts call this)."""
-    lines = ["## PAL (issues 4 and 13)", ""]
+    lines = ["## PAL: speed and noise", ""]
     noise = DATA / "noise_summary.json"
     if noise.exists():
         s = json.loads(noise.read_text())
