@@ -150,16 +150,27 @@ def _show_words(system: PSGS | PCGS, words) -> str:
 
 
 def _enumerate(system: PSGS | PCGS, args) -> int:
+    from ..budget import Budget
     from ..enumeration import language
     if args.max_length is None:
         raise ValidationError("--enumerate needs --max-length L")
+    # --max-seconds covers the witnesses of --trace too: each was a search of its own 30 s
+    clock = Budget(args.max_seconds)
     found = language(system, args.max_length, max_configurations=args.max_configurations,
                      max_seconds=args.max_seconds, max_symbols=args.max_symbols)
     out = sys.stdout
+    missing = []  # the witnesses a bound kept from being found
     for words in found:
         print(_show_words(system, words), file=out)
         if args.trace:
-            print("  " + _witness(system, words), file=out)
+            line, bound = _witness(system, words, args, clock)
+            print("  " + line, file=out)
+            if bound is not None:
+                missing.append(bound)
+    if missing:
+        print(f"psgs: no derivation was found for {len(missing)} of the words above within "
+              f"the bounds ({', '.join(dict.fromkeys(missing))}); they are in the language all "
+              f"the same", file=sys.stderr)
     if not found.complete:
         # not "the words up to length L": a budget can stop it before any tuple is checked
         said = ("the words above are those it found" if len(found)
@@ -170,18 +181,21 @@ def _enumerate(system: PSGS | PCGS, args) -> int:
     if not len(found):  # say so: an empty stdout with status 0 looked like success
         print(f"psgs: no word up to length {args.max_length}", file=sys.stderr)
         return NO
-    return 0
+    return INCOMPLETE if missing else 0
 
 
-def _witness(system: PSGS | PCGS, words) -> str:
+def _witness(system: PSGS | PCGS, words, args, clock) -> tuple[str, str | None]:
+    """The derivation of ``words`` as a line, and the bound that kept it from being found
+    (None when it was found), searched within the time --max-seconds leaves."""
     from ..membership import accepts
     try:
-        answer = accepts(system, words)
+        answer = accepts(system, words, max_seconds=clock.left(), max_symbols=args.max_symbols)
     except ModuleNotFoundError as exc:  # a membership back end not installed in this build
-        return f"(no derivation: {exc})"
+        return f"(no derivation: {exc})", None
     if answer.answer == "yes" and answer.witness is not None:
-        return str(answer.witness)
-    return f"(no derivation found: {answer.reason or answer.answer})"
+        return str(answer.witness), None
+    return (f"(no derivation found: {answer.reason or answer.answer})",
+            answer.bound if answer.answer == "unknown" else None)
 
 
 def _random(system: PSGS | PCGS, args) -> int:

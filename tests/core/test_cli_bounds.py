@@ -126,3 +126,26 @@ def test_check_takes_a_memory_bound_and_names_it(grammar, capsys, nearest):
     assert status == 3 and out
     assert err.startswith("psgs: the search stopped at its bound max_symbols: ")
     assert "max_symbols=20000" in err and err.count("\n") == 1
+
+
+def test_enumerate_trace_names_the_bound_that_kept_a_witness_back(capsys, monkeypatch):
+    # each witness was a search of its own 30 s, outside --max-seconds, and one that ran out
+    # was a line of stdout only, with status 0
+    import types
+
+    import psgs.membership as membership
+
+    asked = []
+
+    def unknown(system, words, **budgets):
+        asked.append(budgets)
+        return types.SimpleNamespace(answer="unknown", witness=None, bound="max_states",
+                                     reason="stopped after 2 states (max_states)")
+    monkeypatch.setattr(membership, "accepts", unknown)
+    status, out, err = run(capsys, "derive", "paper_example", "--enumerate", "--max-length",
+                           "32", "--trace", "--max-seconds", "20")
+    assert status == 3
+    assert "(no derivation found: stopped after 2 states (max_states))" in out
+    assert err == ("psgs: no derivation was found for 1 of the words above within the bounds "
+                   "(max_states); they are in the language all the same\n")
+    assert 0 < asked[0]["max_seconds"] <= 20 and asked[0]["max_symbols"] == 10_000_000
