@@ -17,6 +17,7 @@ from importlib import resources
 
 import lark
 
+from ._foundation.text import first_unseen
 from .errors import FormatError, ValidationError
 from .model import IDLE, PCGS, PSGS, Grammar, Nonterminal, Query, Rule, Terminal
 
@@ -129,6 +130,30 @@ def _syntax_error(exc: lark.exceptions.UnexpectedInput, text: str, source: str,
         words = sorted(_TOKEN_WORDS.get(name, name) for name in expected)
         message = f"unexpected {found}" + (f"; expected {_one_of(words)}" if words else "")
     return FormatError(message, source=source, line=line, column=column)
+
+
+def _raw_offset(quoted: str, index: int) -> int:
+    r"""Where the character ``index`` of the text a quoted terminal stands for begins in the
+    quoted text as written (a JSON string literal, quote included).
+
+    >>> _raw_offset('"ab"', 1), _raw_offset('"\\u00e9b"', 1), _raw_offset('"\\ud83d\\ude00x"', 1)
+    (2, 7, 13)
+    """
+    k, char = 1, 0
+    while char < index:
+        if quoted[k] != "\\":
+            k += 1
+        elif quoted[k + 1] != "u":
+            k += 2
+        else:
+            high = int(quoted[k + 2:k + 6], 16)
+            k += 6
+            # a surrogate pair written as two escapes is one character of the text
+            if 0xD800 <= high < 0xDC00 and quoted[k:k + 2] == "\\u" and \
+                    0xDC00 <= int(quoted[k + 2:k + 6], 16) < 0xE000:
+                k += 6
+        char += 1
+    return k
 
 
 def _describe_token(token) -> str:
@@ -377,7 +402,10 @@ class _Builder:
         try:
             terminal = Terminal(text)
         except ValidationError as exc:
-            raise self.error(str(exc), at) from None
+            # at the character at fault (written as it is or as an escape), not at the quote
+            bad = first_unseen(text)
+            where = at if bad is None else (at[0], at[1] + _raw_offset(str(token), bad))
+            raise self.error(str(exc), where) from None
         self.note_kind(text, "terminal", at)
         self.terminals[str(token)] = terminal
         return terminal

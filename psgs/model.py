@@ -18,7 +18,7 @@ from types import MappingProxyType
 from typing import Literal, Union
 
 from .errors import ValidationError
-from .names import _BAD_TERMINAL, _as_tuple, _require_identifier, is_identifier
+from .names import _as_tuple, _terminal_problem, _require_identifier, is_identifier
 
 __all__ = [
     "Terminal", "Nonterminal", "Query", "Symbol", "Word", "Form", "Rule", "Grammar",
@@ -31,12 +31,13 @@ IDLE = None
 
 @dataclass(frozen=True, slots=True, order=True)
 class Terminal:
-    """A terminal symbol: any non-empty text without white space or control characters.
+    """A terminal symbol: non-empty text without white space, control or format characters.
 
     Parameters
     ----------
     name : str
-        Non-empty, no white space or control characters (``"a"``, ``"up"``, ``"+"``).
+        Non-empty; no white space, control character (C0, DEL, C1), invisible format
+        character (U+200B, U+FEFF, ...) or lone surrogate (``"a"``, ``"up"``, ``"döwn"``).
 
     Examples
     --------
@@ -48,10 +49,8 @@ class Terminal:
     name: str
 
     def __post_init__(self) -> None:
-        if not isinstance(self.name, str) or not self.name or _BAD_TERMINAL.search(self.name):
-            raise ValidationError(
-                f"terminal {self.name!r} must be non-empty text without white space or control "
-                f"characters")
+        if (problem := _terminal_problem(self.name)) is not None:  # names the character
+            raise ValidationError(problem)
 
     def __str__(self) -> str:
         return self.name

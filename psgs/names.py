@@ -10,14 +10,39 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable
 
+from ._foundation.text import character_name, first_unseen
 from .errors import ValidationError
 
 __all__ = ["is_identifier"]
 
 _IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
-# a lone surrogate (a "\ud800" escape, a byte of argv that is not UTF-8) is no text: no
-# encoding writes it, so every command that printed the terminal failed
-_BAD_TERMINAL = re.compile(r"[\s\x00-\x1f\x7f\ud800-\udfff]")
+
+
+def _terminal_problem(name: object) -> str | None:
+    """Why ``name`` cannot be a terminal's text, or None when it can.
+
+    Non-empty text without white space, control characters (C0, DEL and C1), invisible format
+    characters (U+200B, U+FEFF, ...) or lone surrogates (:func:`first_unseen`): a terminal is
+    shown wherever its system is, and one that looks like another, or that rewrites the
+    screen showing it, misleads whoever reads it; a lone surrogate (a ``"\\ud800"`` escape, a
+    byte of argv that is not UTF-8) is no text at all, which no encoding writes.
+
+    Examples
+    --------
+    >>> _terminal_problem("up") is None
+    True
+    >>> print(_terminal_problem("a\\u200bb"))  # doctest: +NORMALIZE_WHITESPACE
+    terminal 'a\\u200bb' holds U+200B ZERO WIDTH SPACE (character 2): a terminal is non-empty
+    text without white space, control or invisible format characters
+    """
+    rule = "non-empty text without white space, control or invisible format characters"
+    if not isinstance(name, str) or not name:
+        return f"terminal {name!r} must be {rule}"
+    at = first_unseen(name)
+    if at is None:
+        return None
+    return (f"terminal {name!r} holds {character_name(name[at])} (character {at + 1}): "
+            f"a terminal is {rule}")
 
 
 def is_identifier(name: object) -> bool:

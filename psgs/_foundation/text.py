@@ -7,15 +7,18 @@ and an error named a line the file does not have; :func:`split_lines` breaks at 
 (10) and digits of any script (``١٢``, ``１２``), which no data file means; :func:`decimal`
 takes the ASCII decimal form only (and ``inf``/``nan``, which the readers then refuse with a
 message of their own). :func:`finite` is :func:`math.isfinite` for any number a caller gives,
-an int past the floats included.
+an int past the floats included. :func:`first_unseen` finds the characters no name or symbol
+may hold, which a reader of the text cannot see or which break its line, and
+:func:`character_name` says which one it is.
 """
 
 from __future__ import annotations
 
 import math
 import re
+import unicodedata
 
-__all__ = ["split_lines", "decimal", "DECIMAL", "finite"]
+__all__ = ["split_lines", "decimal", "DECIMAL", "finite", "first_unseen", "character_name"]
 
 #: A number as data files write it: ASCII digits, an optional point and exponent; or inf/nan.
 DECIMAL = re.compile(r"[+-]?(?:(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?|inf(?:inity)?|nan)\Z",
@@ -67,3 +70,51 @@ def finite(value: int | float) -> bool:
         return math.isfinite(value)
     except OverflowError:
         return False
+
+
+# white space (Python's \s: Unicode's too, U+0085, U+00A0, U+2028 ...), C0 and DEL
+_SPACE_OR_ASCII_CONTROL = re.compile(r"[\s\x00-\x1f\x7f]")
+# beyond ASCII, by Unicode category: controls (C1, U+0080-U+009F), format characters (soft
+# hyphen, zero-width space and joiners, direction marks and overrides, word joiner, U+FEFF,
+# tags) and lone surrogates
+_UNSEEN_CATEGORIES = frozenset(("Cc", "Cf", "Cs"))
+
+
+def first_unseen(text: str) -> int | None:
+    """The index of the first character of ``text`` that a reader cannot see or that breaks
+    its line: white space, a control character (C0, DEL, C1), a format character (Unicode
+    category Cf: U+00AD, U+200B-U+200F, U+202A-U+202E, U+2060-U+2064, U+FEFF, ...) or a lone
+    surrogate; None when there is none.
+
+    Two names that differ by such a character look the same wherever they are shown, and a
+    control character rewrites the terminal that shows it (``\x9b`` begins an escape
+    sequence), so no name or symbol holds one. Private-use and unassigned code points are
+    left alone: they show as a box, and which are unassigned changes with Python's Unicode.
+
+    Examples
+    --------
+    >>> first_unseen("up"), first_unseen("a b"), first_unseen("a\u200bb"), first_unseen("\x9b")
+    (None, 1, 1, 0)
+    >>> first_unseen("d\u00f6wn"), first_unseen("\ufeffx"), first_unseen("\ue000")
+    (None, 0, None)
+    """
+    found = _SPACE_OR_ASCII_CONTROL.search(text)
+    end = len(text) if found is None else found.start()
+    if not text.isascii():  # the usual symbol is ASCII: one regex search, no loop
+        category = unicodedata.category
+        for k in range(end):
+            if text[k] > "\x7f" and category(text[k]) in _UNSEEN_CATEGORIES:
+                return k
+    return None if found is None else end
+
+
+def character_name(char: str) -> str:
+    """``char`` as a message names it: its code point and, when Unicode has one, its name.
+
+    Examples
+    --------
+    >>> character_name("\u200b"), character_name("\x9b")
+    ('U+200B ZERO WIDTH SPACE', 'U+009B')
+    """
+    name = unicodedata.name(char, "")
+    return f"U+{ord(char):04X}" + (f" {name}" if name else "")

@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 import re
 
-from .._foundation.text import finite as _finite
+from .._foundation.text import finite as _finite, first_unseen
 from ..errors import FormatError, ValidationError
 
 __all__: list[str] = []  # private helpers
@@ -42,8 +42,9 @@ def _not_unicode(text: str) -> bool:
     return False
 
 
-# the characters a grammar's terminal refuses (psgs.names, above this layer), so that every
-# symbol of an actiongram can be a terminal of the grammar learnt from it
+# the characters no token of the text format holds (an actuator's name); a symbol refuses
+# what a grammar's terminal refuses too (first_unseen: C1 controls and invisible format
+# characters besides), so that every symbol can be a terminal of the grammar learnt from it
 _SPACE_OR_CONTROL = re.compile(r"[\s\x00-\x1f\x7f]")
 _PLAIN_NAME = re.compile(r"[!-~]+")  # printable ASCII without white space: the common case
 
@@ -74,7 +75,11 @@ def _bad_token(text: str, what: str) -> str | None:
 def _bad_symbol(symbol: object) -> str | None:
     if not isinstance(symbol, str) or not symbol:
         return f"a symbol must be non-empty text, not {_shown(symbol)}"
-    return _bad_token(symbol, "symbol")
+    problem = _bad_token(symbol, "symbol")
+    if problem is None and (at := first_unseen(symbol)) is not None:
+        return (f"symbol {_shown(symbol)} holds U+{ord(symbol[at]):04X}, a control or "
+                f"invisible format character, which no terminal of a grammar holds")
+    return problem
 
 
 def _bad_duration(value: object) -> str | None:

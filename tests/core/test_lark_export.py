@@ -67,7 +67,8 @@ def test_lark_names_have_lark_shapes_and_known_values():
 
 
 identifiers = st.from_regex(r"[A-Za-z_][A-Za-z0-9_]{0,10}", fullmatch=True)
-terminal_texts = st.text(st.characters(blacklist_categories=("Cs", "Cc", "Zs", "Zl", "Zp")),
+# (no control or format character: a terminal refuses them)
+terminal_texts = st.text(st.characters(blacklist_categories=("Cs", "Cc", "Cf", "Zs", "Zl", "Zp")),
                          min_size=1, max_size=8).filter(lambda t: not any(c.isspace() for c in t))
 
 
@@ -191,7 +192,7 @@ def test_pcgs_components_leave_out_rules_with_queries():
     assert_same_language(g1, 5)
 
 
-@pytest.mark.parametrize("text", ["\\", '"', "*", "/", "'", "a\\\\b", "[", "^$", "😀(", "a\x80",
+@pytest.mark.parametrize("text", ["\\", '"', "*", "/", "'", "a\\\\b", "[", "^$", "😀(", "a\ue000",
                                   "\u0300", "x\\u0041"])
 def test_terminals_with_odd_text_export_and_parse(text):
     t = Terminal(text)
