@@ -9,11 +9,14 @@ from __future__ import annotations
 
 import re
 
+import numpy as np
+
 from psgs._foundation.text import decimal
 
+from ._frame_block import FRAME, Lines, content_end, read_records
 from .motion import MotionFormatError
 
-__all__ = ["frame_layout", "indent"]
+__all__ = ["frame_layout", "indent", "read_at_once", "default_dofs", "angle_columns"]
 
 _FRAME_NUMBER = re.compile(r"[+-]?[0-9]+")  # ASCII digits: str.isdigit takes '²' as well
 
@@ -120,3 +123,79 @@ def indent(line: str, words: int) -> int:
     """
     parts = line.split(None, words)
     return len(line) - len(parts[words]) if len(parts) > words else len(line)
+
+
+def read_at_once(lines: Lines, start: int, dofs: dict | None, degrees: bool):
+    """The values (degrees) and channel names of the AMC frames from line ``start`` (from 0) on,
+    read a chunk at a time by :func:`~kinetology._frame_block.read_records`; None for frames
+    that way does not read, which the first way then reads or names the error of.
+
+    Frame 1 is checked by :func:`frame_layout` and sets the bones and their counts of values
+    (from ``dofs``, else from frame 1's lines, named as :func:`default_dofs` names them).
+
+    Examples
+    --------
+    >>> text = ":DEGREES\\n" + "".join(f"{n}\\nroot {n} 2\\n" for n in range(1, 4001))
+    >>> values, names = read_at_once(Lines(text), 1, None, True)
+    >>> values.shape, values[-1].tolist(), names
+    ((4000, 2), [4000.0, 2.0], ('root.1', 'root.2'))
+    """
+    text = lines.text
+    begin = lines.offset(start)
+    end = content_end(text, begin)
+    if end <= begin:
+        return None
+    last = start + text.count("\n", begin, end)  # the last line of the frames
+    per_frame = 1
+    while (start + per_frame <= last
+           and not _FRAME_NUMBER.fullmatch(lines[start + per_frame].strip())):
+        per_frame += 1
+    frame = [lines[i] for i in range(start, start + per_frame)]
+    try:
+        bones, per_frame = frame_layout(frame, "", start + 1)
+    except MotionFormatError:
+        return None
+    layout, names = [(FRAME, 1)], []
+    for bone, line in zip(bones, frame[1:]):
+        if dofs is not None and bone not in dofs:
+            return None
+        bone_dofs = dofs[bone] if dofs is not None else default_dofs(bone, len(line.split()) - 1)
+        try:
+            layout.append((bone.encode("utf-8"), len(bone_dofs)))
+        except UnicodeEncodeError:  # a lone surrogate, in a text not read from a file
+            return None
+        names.extend(f"{bone}.{d}" for d in bone_dofs)
+    values = read_records(text, begin, end, layout, int(frame[0].strip()))
+    if values is not None and not degrees:
+        rotation = angle_columns(names)
+        with np.errstate(over="ignore"):
+            converted = np.degrees(values[:, rotation])
+        if not np.isfinite(converted).all():  # the first way names the value
+            return None
+        values[:, rotation] = converted
+    return None if values is None else (values, tuple(names))
+
+
+def default_dofs(bone: str, width: int) -> tuple[str, ...]:
+    """The dof names of a bone of ``width`` values when no skeleton names them: ``root``'s six
+    its standard ``tx ty tz rx ry rz``, any other's ``1``, ``2``, ...
+
+    Examples
+    --------
+    >>> default_dofs("root", 6), default_dofs("femur", 2)
+    (('tx', 'ty', 'tz', 'rx', 'ry', 'rz'), ('1', '2'))
+    """
+    return (("tx", "ty", "tz", "rx", "ry", "rz") if bone == "root" and width == 6
+            else tuple(str(k + 1) for k in range(width)))
+
+
+def angle_columns(names) -> list[int]:
+    """The columns of ``names`` that are angles: every one but a translation (``bone.1`` ..
+    without a skeleton too), converted from radians in a ``:RADIANS`` file.
+
+    Examples
+    --------
+    >>> angle_columns(["root.tx", "root.rx", "femur.1"])
+    [1, 2]
+    """
+    return [i for i, n in enumerate(names) if n.rsplit(".", 1)[1] not in ("tx", "ty", "tz")]

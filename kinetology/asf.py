@@ -27,7 +27,8 @@ import numpy as np
 from psgs._foundation.text import decimal, split_lines
 from psgs.errors import ValidationError
 
-from ._amc_frames import frame_layout, indent as _indent
+from ._amc_frames import angle_columns, default_dofs, frame_layout, indent as _indent, read_at_once
+from ._frame_block import Lines
 from .motion import (FRAME_RATE_RANGE, Joint, Motion, MotionFormatError, Skeleton, build_motion,
                      as_path, counted, file_text, rebuilt)
 from .textblocks import parse_rows, token_column
@@ -504,14 +505,20 @@ def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None 
     if not slowest <= frame_rate <= fastest:  # nan fails both comparisons
         raise ValidationError(f"frame rate {frame_rate!r} is outside {slowest:g} .. "
                               f"{fastest:g} frames a second")
-    lines = split_lines(_without_bom(text))
+    lines = Lines(_without_bom(text))  # the header's lines: the frames are read from the text
     start = 0
     degrees = True
     while start < len(lines) and (not lines[start].strip() or lines[start].lstrip()[0] in "#:"):
         if lines[start].strip().upper() == ":RADIANS":
             degrees = False
         start += 1
-    data = lines[start:]
+    # a chunk at a time, about twice the file's size in all; frames that way does not read
+    # (malformed ones) are split into lines as before, to name the bad line
+    read = read_at_once(lines, start, dofs, degrees)
+    if read is not None:
+        del text, lines  # let go before the motion copies the values (read_amc holds neither)
+        return build_motion(read[0], read[1], frame_rate, skeleton, source, {"format": "amc"})
+    data = lines.tail(start)
     while data and not data[-1].strip():
         data.pop()
     if not data:
@@ -533,9 +540,7 @@ def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None 
                                         line=line_of(slot), column=_indent(data[slot], 0) + 1)
             bone_dofs = dofs[bone]
         else:
-            width = len(rows[0].split())
-            bone_dofs = (("tx", "ty", "tz", "rx", "ry", "rz") if bone == "root" and width == 6
-                         else tuple(str(k + 1) for k in range(width)))
+            bone_dofs = default_dofs(bone, len(rows[0].split()))
         block = parse_rows(rows, len(bone_dofs), source=source,
                            line_of=lambda i, s=slot: line_of(s + i * per_frame),
                            indent_of=lambda i, s=slot: _indent(data[s + i * per_frame], 1))
@@ -544,9 +549,7 @@ def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None 
         slots.extend([slot] * len(bone_dofs))
     values = np.hstack(columns) if columns else np.zeros((frames, 0))
     if not degrees:
-        # every column but a translation is an angle (also ``bone.1`` .. without a skeleton)
-        rotation = [i for i, n in enumerate(names)
-                    if n.rsplit(".", 1)[1] not in ("tx", "ty", "tz")]
+        rotation = angle_columns(names)
         with np.errstate(over="ignore"):
             converted = np.degrees(values[:, rotation])
         if not np.isfinite(converted).all():  # 1e307 radians is finite, its degrees are not

@@ -3,8 +3,9 @@
 Channels are renamed ``joint.tx`` .. ``joint.rz`` (``Xposition`` -> ``tx``,
 ``Zrotation`` -> ``rz``); a joint's rotation order is the order its rotation
 channels are listed in (``Zrotation Yrotation Xrotation`` -> ``"ZYX"``, the
-matrix ``Rz @ Ry @ Rx``). The frame block is parsed in one numpy pass; only
-when it is malformed is it walked line by line to name the bad line.
+matrix ``Rz @ Ry @ Rx``). The frame block is read a chunk of frames at a time
+(:mod:`kinetology._frame_block`: about twice the file's size in memory); only when it is
+malformed is it walked line by line to name the bad line.
 """
 
 from __future__ import annotations
@@ -16,8 +17,9 @@ from pathlib import Path
 
 import numpy as np
 
-from psgs._foundation.text import decimal, split_lines
+from psgs._foundation.text import decimal
 
+from ._frame_block import Lines, content_end, read_records
 from .motion import (FRAME_RATE_RANGE, Joint, Motion, MotionFormatError, Skeleton, build_motion,
                      as_path, counted, file_text)
 from .textblocks import parse_rows
@@ -117,7 +119,7 @@ def parse_bvh(text: str, source: str = "<bvh>") -> Motion:
     """
     if text.startswith("\ufeff"):  # a UTF-8 byte-order mark is not part of the first word
         text = text[1:]
-    lines = split_lines(text)
+    lines = Lines(text)  # the header's lines: the frames are read from the text
     tokens = _HierarchyTokens(lines, source)
     tokens.expect("HIERARCHY")
     joints: list[Joint] = []
@@ -148,16 +150,24 @@ def parse_bvh(text: str, source: str = "<bvh>") -> Motion:
                                 f"{longest:g} s ({1 / longest:g} to {1 / shortest:g} frames a "
                                 f"second)", source=source, line=time_at[0], column=time_at[1])
     first_data = tokens.line_index + 1
-    body = [ln for ln in lines[first_data - 1:]]
-    # trailing blank lines are common; anything else beyond the frames is an error
-    while body and not body[-1].strip():
-        body.pop()
-    values = parse_rows(body, len(channels), source=source, first_line=first_data)
+    start = lines.offset(first_data - 1)
+    # a chunk at a time, about twice the file's size in all; a block that way does not read
+    # (a malformed one) is split into lines as before, to name the bad line
+    values = read_records(lines.text, start, content_end(lines.text, start),
+                          ((None, len(channels)),))
+    if values is None:
+        body = lines.tail(first_data - 1)
+        # trailing blank lines are common; anything else beyond the frames is an error
+        while body and not body[-1].strip():
+            body.pop()
+        values = parse_rows(body, len(channels), source=source, first_line=first_data)
     if values.shape[0] != frames:
         raise MotionFormatError(
             f"header says {counted(frames, 'frame')} but {counted(values.shape[0], 'frame line')} "
             f"follow{'s' * (values.shape[0] == 1)}",
             source=source, line=frames_at[0], column=frames_at[1])
+    # the text is let go before the motion copies the values (read_bvh holds it nowhere else)
+    del text, lines, tokens
     skeleton = Skeleton(tuple(joints), length_unit="BVH file units")
     rate = 1.0 / frame_time
     # "Frame Time: .0083333" means 120 fps; below 1 fps (a frame every 100 s) rounding would
@@ -262,8 +272,9 @@ def _read_joint(tokens, joints, channels, parent, end_site=False, name=None):
 class _HierarchyTokens:
     """White-space tokens of the hierarchy part, with their line and column."""
 
-    def __init__(self, lines: list[str], source: str) -> None:
+    def __init__(self, lines: Lines, source: str) -> None:
         self.lines = lines
+        self.count = len(lines)  # asked for at every line
         self.source = source
         self.line_index = 0  # number of lines fully consumed
         # a deque: one line may hold the whole hierarchy (12,000 joints), and list.pop(0)
@@ -274,7 +285,7 @@ class _HierarchyTokens:
 
     def _fill(self) -> bool:
         while not self.pending:
-            if self.line_index >= len(self.lines):
+            if self.line_index >= self.count:
                 return False
             line = self.lines[self.line_index]
             self.line_index += 1
@@ -288,7 +299,7 @@ class _HierarchyTokens:
     def next(self, what: str) -> str:
         if not self._fill():
             raise MotionFormatError(f"file ends where {what} was expected", source=self.source,
-                                    line=max(1, len(self.lines)))
+                                    line=max(1, self.count))
         token, column = self.pending.popleft()
         self.last = (self.current_line, column)
         return token
