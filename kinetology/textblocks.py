@@ -70,6 +70,10 @@ def parse_rows(lines: list[str], width: int, *, source: str, first_line: int = 1
     Traceback (most recent call last):
     ...
     kinetology.motion.MotionFormatError: walk.amc:11:3: value 2 is not finite (inf)
+    >>> parse_rows(["1 2 3", "4"], 2, source="walk.amc", first_line=10)
+    Traceback (most recent call last):
+    ...
+    kinetology.motion.MotionFormatError: walk.amc:10:1: expected 2 numbers, found 3
     """
     def where(i: int) -> int:
         return line_of(i) if line_of is not None else first_line + i
@@ -80,8 +84,11 @@ def parse_rows(lines: list[str], width: int, *, source: str, first_line: int = 1
     joined = " ".join(lines)
     tokens = joined.split()
     values = None
-    # numpy, as float(), takes '1_0' and other scripts' digits: such text goes the slow way
-    if len(tokens) == width * len(lines) and joined.isascii() and "_" not in joined:
+    # numpy, as float(), takes '1_0' and other scripts' digits: such text goes the slow way;
+    # so does a block of the right count of numbers that is not right on every line (a
+    # number moved to the next line would shift every value after it without a word)
+    if (len(tokens) == width * len(lines) and joined.isascii() and "_" not in joined
+            and all(len(line.split()) == width for line in lines)):
         try:
             values = np.array(tokens, dtype=float).reshape(len(lines), width)
         except ValueError:

@@ -224,3 +224,15 @@ def test_a_header_claiming_a_trillion_frames_allocates_nothing_for_them(tmp_path
     finally:
         tracemalloc.stop()
     assert peak < 1_000_000
+
+
+def test_a_number_moved_to_the_next_line_is_an_error_not_shifted_values():
+    # the right count of numbers in all, but not on every line: read as frames, every value
+    # after the moved one landed in the next channel's column
+    text = _bvh([["1", "2", "3"], ["4", "5", "6"]])
+    first = text.splitlines().index("1 2 3") + 1
+    with pytest.raises(MotionFormatError, match=f"<bvh>:{first}:1: expected 3 numbers, found 4"):
+        parse_bvh(text.replace("1 2 3\n4 5 6", "1 2 3 4\n5 6"))
+    amc = ":DEGREES\n1\nroot 1 2\nfemur 1 2\n2\nroot 1 2\nfemur\n"
+    with pytest.raises(MotionFormatError, match="<amc>:4:1: expected 1 number, found 2"):
+        parse_amc(amc, dofs={"root": ("tx", "ty"), "femur": ("rx",)})
