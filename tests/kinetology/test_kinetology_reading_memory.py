@@ -211,14 +211,18 @@ def test_reading_takes_at_most_two_and_a_half_times_the_file(kind, tmp_path):
     assert peak <= PEAK_PER_BYTE * size, f"{peak / size:.2f} bytes per byte of the file"
 
 
-def test_a_header_claiming_a_trillion_frames_allocates_nothing_for_them(tmp_path):
+@pytest.mark.parametrize("claim, error", [
+    (("Frames: 3", "Frames: 1000000000000"), "header says 1000000000000 frames but 3 frame "
+                                             "lines follow"),
+    (("CHANNELS 3", "CHANNELS 1000000000000"), "unknown channel 'End'"),
+])
+def test_a_header_claiming_a_trillion_frames_or_channels_allocates_nothing_for_them(
+        claim, error, tmp_path):
     path = tmp_path / "claims.bvh"
-    path.write_text(_bvh([["1", "2", "3"]] * 3).replace("Frames: 3", "Frames: 1000000000000"),
-                    encoding="utf-8")
+    path.write_text(_bvh([["1", "2", "3"]] * 3).replace(*claim), encoding="utf-8")
     tracemalloc.start()
     try:
-        with pytest.raises(MotionFormatError, match="header says 1000000000000 frames but 3 "
-                                                    "frame lines follow"):
+        with pytest.raises(MotionFormatError, match=error):
             kinetology.read(path)
         peak = tracemalloc.get_traced_memory()[1]
     finally:
