@@ -38,6 +38,10 @@ __all__ = ["Language", "language", "context_free_words"]
 INFINITE = math.inf
 #: words built between two readings of the clock (about a millisecond of set inserts)
 _WORDS_PER_READING = 4096
+#: What a word kept in a set costs besides its symbols, counted in symbols (pointers): the
+#: tuple's header and its slot in the set, about 70 bytes. Words are short, so counting their
+#: symbols alone let 10 million "symbols" of eight-symbol words take 400 MB
+WORD_OVERHEAD = 8
 
 
 @dataclass(frozen=True)
@@ -142,14 +146,18 @@ def _tuple_key(ws: tuple[Word, ...]):
 # ---------------------------------------------------------------- context-free facts
 def context_free_words(grammar: Grammar, max_length: int, *, rules: Iterable[Rule] | None = None,
                        start: Nonterminal | None = None, max_words: int = 1_000_000,
-                       max_seconds: float | None = 60.0):
+                       max_seconds: float | None = 60.0, max_symbols: int | None = MAX_SYMBOLS):
     """The context-free words of ``grammar`` up to ``max_length``, by length.
 
     Returns ``(words_by_length, bound)``: a list whose entry ``n`` is the
     frozenset of words of length ``n`` derivable from ``start`` (the axiom
     unless given) with ``rules`` (all the grammar's rules unless given), and
-    ``None`` or a sentence naming ``max_words`` when the table grew past it
-    (or ``max_seconds``, default 60, ``None`` for no limit, when time ran out); then the list
+    ``None`` or a sentence naming the bound that stopped it: ``max_words`` when the table
+    grew past that many words, ``max_symbols`` (default
+    :data:`psgs.membership.MAX_SYMBOLS`, ``None`` for no limit) when the words kept and those
+    being built would hold more symbols (the memory bound: a word of length n counts as
+    n + :data:`WORD_OVERHEAD` symbols, what its tuple and its place in a set take), or
+    ``max_seconds`` (default 60, ``None`` for no limit) when time ran out; then the list
     stops before the length at which it was hit, and every shorter length is
     complete. ε-rules, unit cycles and left recursion are
     fine: each length is a fixpoint over finitely many words. Query symbols
@@ -163,12 +171,17 @@ def context_free_words(grammar: Grammar, max_length: int, *, rules: Iterable[Rul
     >>> by_length, bound = context_free_words(g, 4)
     >>> [sorted("".join(map(str, w)) for w in words) for words in by_length], bound
     ([[''], [], ['ab'], [], ['aabb']], None)
+    >>> by_length, bound = context_free_words(g, 40, max_symbols=100)
+    >>> len(by_length), bound
+    (14, 'stopped at length 14: the words kept and those being built would hold more than 100 symbols (max_symbols); shorter words are complete')
     """
     if not isinstance(grammar, Grammar):
         raise ValidationError(f"expected a Grammar, not {type(grammar).__name__}")
     check_count(max_length, "max_length", minimum=0)
     check_count(max_words, "max_words")
     check_seconds(max_seconds, optional=True)
+    if max_symbols is not None:
+        check_count(max_symbols, "max_symbols")
     rules = grammar.rules if rules is None else rules
     if isinstance(rules, Rule) or not isinstance(rules, Iterable):
         raise ValidationError(f"rules must be an iterable of Rule values, not {rules!r}")
@@ -180,12 +193,13 @@ def context_free_words(grammar: Grammar, max_length: int, *, rules: Iterable[Rul
     if not isinstance(start, Nonterminal):
         raise ValidationError(f"start must be a Nonterminal, not {start!r}")
     return _words_by_length(grammar, max_length, rules, start, max_words,
-                            Budget(max_seconds, every=32))
+                            Budget(max_seconds, max_symbols, every=32))
 
 
 def _words_by_length(grammar: Grammar, max_length: int, rules, start, max_words: int,
                      clock: Budget):
-    """:func:`context_free_words` on a running budget; a time-out keeps the complete lengths."""
+    """:func:`context_free_words` on a running budget (its time and its memory: the symbols of
+    the words kept are held on it); a bound reached keeps the complete lengths."""
     yields = min_yields(rules)
     lhs_order = sorted({r.lhs for r in rules}, key=lambda n: n.name)
     table: dict[Nonterminal, list[set]] = {a: [] for a in lhs_order}
@@ -210,20 +224,18 @@ def _words_by_length(grammar: Grammar, max_length: int, rules, start, max_words:
             for r in rules:
                 if yields[r.lhs] > n:
                     continue
-                try:
-                    found = _sequence_words(r.rhs, n, words_of, yields, clock)
-                except BoundReached:
-                    for a in lhs_order:
-                        table[a].pop()
-                    return _rows_of(table, start, n), (
-                        f"stopped at length {n} after {clock.seconds:g} seconds (max_seconds); "
-                        f"shorter words are complete")
                 row = table[r.lhs][n]
                 before = len(row)
-                row.update(found)
-                if len(row) != before:
-                    stored += len(row) - before
-                    changed = True
+                try:
+                    row.update(_sequence_words(r.rhs, n, words_of, yields, clock))
+                    if len(row) != before:
+                        stored += len(row) - before
+                        changed = True
+                        clock.hold((len(row) - before) * (n + WORD_OVERHEAD))
+                except BoundReached as stop:
+                    for a in lhs_order:
+                        table[a].pop()
+                    return _rows_of(table, start, n), _stopped_at(str(stop), n, clock)
             if stored > max_words:
                 for a in lhs_order:
                     table[a].pop()
@@ -231,6 +243,16 @@ def _words_by_length(grammar: Grammar, max_length: int, rules, start, max_words:
                          f"shorter words are complete")
                 return _rows_of(table, start, n), bound
     return _rows_of(table, start, max_length + 1), None
+
+
+def _stopped_at(bound: str, n: int, clock: Budget) -> str:
+    """The sentence of a context-free enumeration stopped at length ``n`` by ``bound``."""
+    if bound == "max_symbols":
+        why = (f"the words kept and those being built would hold more than "
+               f"{clock.max_symbols} symbols (max_symbols)")
+        return f"stopped at length {n}: {why}; shorter words are complete"
+    return (f"stopped at length {n} after {clock.seconds:g} seconds (max_seconds); "
+            f"shorter words are complete")
 
 
 def _rows_of(table, start, count: int) -> list[frozenset]:
@@ -244,7 +266,9 @@ def _sequence_words(rhs, n: int, words_of, yields, clock: Budget) -> set:
     """Words of length exactly ``n`` derivable from the symbol sequence ``rhs``.
 
     Built from the end of ``rhs`` backwards, one position at a time (no
-    recursion, so a body of thousands of symbols is fine).
+    recursion, so a body of thousands of symbols is fine). Raises
+    :class:`~psgs.errors.BoundReached` when ``clock``'s time runs out, or when the words kept
+    (``clock.held``) and those built here would hold more than its ``max_symbols``.
     """
     k = len(rhs)
     suffix_min = [0] * (k + 1)
@@ -255,34 +279,63 @@ def _sequence_words(rhs, n: int, words_of, yields, clock: Budget) -> set:
         suffix_min[i] = suffix_min[i + 1] + one
     if suffix_min[0] > n:
         return set()
-    # tails[m]: the words of length m derivable from rhs[i + 1:]
+    # tails[m]: the words of length m derivable from rhs[i + 1:]; tail_symbols what they hold
     tails: dict[int, set] = {0: {()}}
+    tail_symbols = 0
+    work = 0
     for i in range(k - 1, -1, -1):
         clock.tick()
         here: dict[int, set] = {}
-        low, rest = int(suffix_min[i] - suffix_min[i + 1]), int(suffix_min[i + 1])
-        # rhs[:i] takes at least suffix_min[0] - suffix_min[i] symbols of the n
-        for m in range(int(suffix_min[i]), n - int(suffix_min[0] - suffix_min[i]) + 1):
+        here_symbols = 0
+        low = int(suffix_min[i] - suffix_min[i + 1])
+        # rhs[:i] takes at least suffix_min[0] - suffix_min[i] symbols of the n; the whole
+        # body (i == 0) is asked for the words of length n alone
+        top = n - int(suffix_min[0] - suffix_min[i])
+        if i == k - 1:
+            # the last symbol's words are taken as they are (the table's rows, kept and
+            # counted already), not built again word by word: hashing a word costs its
+            # length, and every length's were built again at every n (S -> a S: cubic)
+            for m in range(n if i == 0 else low, top + 1):
+                words = words_of(rhs[i], m)
+                if words:
+                    here[m] = words
+            tails = here
+            continue
+        for m in range(n if i == 0 else int(suffix_min[i]), top + 1):
             out: set = set()
-            for n1 in range(low, m - rest + 1):
-                heads = words_of(rhs[i], n1)
-                after = tails.get(m - n1) if heads else None
-                if not after:
+            # the lengths the tails have, not every split of m: a tail of one length (the
+            # last symbol's) made each m a loop over m splits, and the enumeration cubic
+            for rest, after in tails.items():
+                n1 = m - rest
+                if n1 < low:
                     continue
-                # the clock is read every few thousand words built, not once per position:
-                # one position's products can be millions of words (S -> SS | aSb | ε)
-                built = 0
-                for h in heads:
+                work += 1
+                for h in words_of(rhs[i], n1):
                     out.update(h + t for t in after)
-                    built += len(after)
-                    if built >= _WORDS_PER_READING:
-                        built = 0
-                        if clock.expired():
-                            raise BoundReached("max_seconds")
+                    work += len(after)
+                    # read every few thousand words built or splits tried: one position's
+                    # products can be millions of words (S -> SS | aSb | ε)
+                    if work >= _WORDS_PER_READING:
+                        work = 0
+                        _within(clock, tail_symbols + here_symbols
+                                + len(out) * (m + WORD_OVERHEAD))
+                if work >= _WORDS_PER_READING:  # splits that built nothing count too
+                    work = 0
+                    _within(clock, tail_symbols + here_symbols + len(out) * (m + WORD_OVERHEAD))
             if out:
                 here[m] = out
-        tails = here
+                here_symbols += len(out) * (m + WORD_OVERHEAD)
+        tails, tail_symbols = here, here_symbols
     return tails.get(n, set())
+
+
+def _within(clock: Budget, building: int) -> None:
+    """BoundReached when the time is up, or when the words kept and the ``building`` symbols
+    of those being built pass the memory bound (a word counted as its symbols and
+    :data:`WORD_OVERHEAD`)."""
+    clock.check()
+    if clock.max_symbols is not None and clock.held + building > clock.max_symbols:
+        raise BoundReached("max_symbols")
 
 
 # ---------------------------------------------------------------- entry point
@@ -311,8 +364,11 @@ def language(system, max_length: int, *, max_configurations: int = 200_000,
     time of the whole call, grammar analysis included (in the filter each
     ``accepts`` call gets the time left as its own ``max_seconds``).
     ``max_symbols`` bounds memory: the configurations the search keeps,
-    counted as configurations × form size in symbols (default
-    :data:`psgs.membership.MAX_SYMBOLS`). The other budgets are deterministic.
+    counted as configurations × form size in symbols, or the context-free words the filter
+    and a grammar's enumeration keep and build, their symbols and :data:`WORD_OVERHEAD` a
+    word (default
+    :data:`psgs.membership.MAX_SYMBOLS`; each ``accepts`` call of the filter gets what the
+    words leave). The other budgets are deterministic.
 
     Always terminates. When a budget stops it, ``complete`` is ``False``,
     ``bound`` is the budget's name, e.g. ``"max_configurations"``, and
@@ -336,7 +392,9 @@ def language(system, max_length: int, *, max_configurations: int = 200_000,
     max_seconds : float or None, default 60.0
         Wall-clock budget (None: none).
     max_symbols : int, optional
-        Budget of memory: the configurations the search keeps times their size in symbols.
+        Budget of memory: the configurations the search keeps times their size in symbols;
+        the words the context-free enumeration keeps and builds, their symbols and
+        :data:`WORD_OVERHEAD` a word.
     method : {None, "search", "filter"}
         PSGS only; None chooses by mode (see above).
     **membership_options
@@ -466,6 +524,8 @@ def _psgs_filter(system: PSGS, max_length: int, max_words: int, max_candidates: 
         options = membership_options
         if clock.deadline is not None:  # one accepts call may not outlive language's budget
             options = {**membership_options, "max_seconds": clock.left()}
+        if clock.max_symbols is not None:  # nor hold more than the component words leave
+            options = {**options, "max_symbols": max(1, clock.max_symbols - clock.held)}
         answer = accepts(system, words, **options)
         verdict = getattr(answer, "answer", "yes" if answer else "no")
         if verdict == "yes":
