@@ -64,12 +64,31 @@ def mahalanobis_terms(x: np.ndarray, mean: np.ndarray, parts) -> np.ndarray:
 
 
 def distances(x: np.ndarray, means: np.ndarray, parts) -> np.ndarray:
-    """Squared Mahalanobis distance of every row of ``x`` to every mean (motions x actions)."""
+    """Squared Mahalanobis distance of every row of ``x`` to every mean (motions x actions).
+
+    Each row's distance is its own sums in a fixed order, whatever other rows ``x`` holds: a
+    take recognised alone and in a batch of any size has the same numbers to the last bit. A
+    matrix product would not give that: BLAS takes another path for one row than for several,
+    and may block the rows.
+
+    Examples
+    --------
+    >>> parts = (np.ones(3), np.ones(3), np.array([[1.0, 0.0, 0.0]]), np.array([[0.5]]))
+    >>> x = np.array([[1.0, 2.0, 0.0], [0.1, 0.2, 0.3]])
+    >>> both = distances(x, np.zeros((1, 3)), parts)
+    >>> both.tolist(), bool(distances(x[1:], np.zeros((1, 3)), parts)[0, 0] == both[1, 0])
+    ([[4.5], [0.135]], True)
+    """
     scale, inverse, w, inner = parts
+    # C order, so that every row's sums run along contiguous memory however ``x`` was cut (a
+    # matrix's chosen columns, x[:, columns], come in Fortran order)
+    x = np.ascontiguousarray(x, dtype=float)
+    w = np.ascontiguousarray(w, dtype=float)
     out = np.empty((len(x), len(means)))
     for a, mean in enumerate(means):
         d = (x - mean) / scale
-        b = (d * inverse) @ w.T
+        # einsum without optimize runs numpy's own loops (no BLAS): one dot product per row
+        b = np.einsum("nf,kf->nk", d * inverse, w)
         out[:, a] = (d * d * inverse).sum(axis=1) - np.einsum("ni,ij,nj->n", b, inner, b)
     return out
 
