@@ -16,11 +16,11 @@ another version or damaged, a ``--plot`` into a folder that is not there) is one
 stderr and exit status 2, before any answer. A FILE that cannot be answered for (an empty or
 one-frame motion, a path that does not exist, a value too large to compute with, a motion
 that shares no joint with any learnt action) is one line on stderr naming it: ``parse``
-stops there; ``recognise`` still answers every other FILE (recognised together, in one
-call) and exits with status 2 at the end. A motion whose skeleton lacks some of its best
-action's joints (for ``parse``, of the actions its spans name) is recognised over the joints
-it has, and those joints are named on stderr (actions learnt from another skeleton, sharing
-no joint with it, are ranked last).
+stops there; ``recognise`` still answers every other FILE (recognised together, a chunk of
+files at a time: ``CHUNK_FILES``) and exits with status 2 at the end. A motion whose
+skeleton lacks some of its best action's joints (for ``parse``, of the actions its spans
+name) is recognised over the joints it has, and those joints are named on stderr (actions
+learnt from another skeleton, sharing no joint with it, are ranked last).
 """
 
 from __future__ import annotations
@@ -107,11 +107,76 @@ def _said(file, motion, answer) -> None:
         print(_unread(file, motion, answer.unread), file=sys.stderr)
 
 
-def run_recognise(args) -> int:
+#: ``recognise`` reads its FILEs in chunks, recognises each chunk in one batch (features
+#: once, one matrix of scores per skeleton), prints its lines and drops its motions before
+#: reading the next: the memory of a run is one chunk's, however many FILEs. A chunk ends at
+#: this many files, or sooner once its motions' values hold ``CHUNK_BYTES`` (a chunk holds at
+#: least one file, however long). A batch's fixed cost (the score model, the telling groups:
+#: about 17 ms for 28 actions) is then well under a millisecond a take; a take's answer is
+#: the same in any chunk (:func:`~praxicon.scoring.distances`)
+CHUNK_FILES = 256
+CHUNK_BYTES = 64 * 2**20
+
+
+def _chunks(files):
+    """``(file, motion or its ValidationError)`` pairs, in the order given, a chunk at a time
+    (``CHUNK_FILES``, ``CHUNK_BYTES``); the next chunk's files are read when it is asked for,
+    so that a caller that drops each chunk first holds one chunk's motions at a time."""
+    chunk, size = [], 0
+    for file in files:
+        try:
+            motion = _read_motion(file)
+            size += motion.values.nbytes
+        except ValidationError as exc:
+            motion = exc
+        chunk.append((file, motion))
+        del motion  # the chunk alone holds it, so that dropping the chunk frees it
+        if len(chunk) >= CHUNK_FILES or size >= CHUNK_BYTES:
+            yield chunk
+            chunk, size = [], 0
+    if chunk:
+        yield chunk
+
+
+def _answer(file, r, explain: bool) -> None:
+    """One FILE's line (and explanation) on stdout, or its error line on stderr."""
     import sys
 
+    from .recognition import Recognition
+
+    if not isinstance(r, Recognition):
+        print(f"{_ERROR}{r}", file=sys.stderr)
+        return
+    (best, p), *rest = r.ranking
+    runner = f", runner-up {rest[0][0]} {rest[0][1]:.3f}" if rest else ""
+    answer = r.action if r.action else f"none of these (closest {best})"
+    print(f"{file}: {answer} {p:.3f}{runner}")
+    if explain:
+        print(r.explain())
+
+
+def _recognise_chunk(descriptions, chunk, args):
+    """One chunk's FILEs recognised together, each one's lines printed in its turn:
+    ``(whether every FILE was answered, the last answer)``."""
     from .recognition import Recognition, _in_file, _recognitions
 
+    readable = [k for k, (_, m) in enumerate(chunk) if not isinstance(m, ValidationError)]
+    try:
+        answers = _recognitions(descriptions, [chunk[k][1] for k in readable],
+                                explain=3 if args.explain or args.plot else 0)
+    except DescriptionError as exc:  # of the praxicon, not of a FILE: no more answers
+        raise ValidationError(str(_in_file(exc, args.praxicon)))
+    found = [m for _, m in chunk]
+    for k, r in zip(readable, answers):
+        found[k] = r
+    for (file, motion), r in zip(chunk, found):
+        if isinstance(r, Recognition):
+            _said(file, motion, r)
+        _answer(file, r, args.explain)
+    return all(isinstance(r, Recognition) for r in found), found[-1]
+
+
+def run_recognise(args) -> int:
     if args.plot and len(args.files) != 1:
         raise ValidationError(f"--plot draws one recognition's explanation: give one FILE "
                               f"(got {len(args.files)})")
@@ -120,39 +185,18 @@ def run_recognise(args) -> int:
         descriptions = read_descriptions(args.praxicon)
     except DescriptionError as exc:
         raise ValidationError(str(exc))
-    # every FILE read first, its error kept in its place; the readable ones recognised
-    # together (features once, one matrix of scores), each unanswerable one said in its turn
-    found: list = []
-    for file in args.files:
-        try:
-            found.append(_read_motion(file))
-        except ValidationError as exc:
-            found.append(exc)
-    readable = [k for k, m in enumerate(found) if not isinstance(m, ValidationError)]
-    try:
-        answers = _recognitions(descriptions, [found[k] for k in readable],
-                                explain=3 if args.explain or args.plot else 0)
-    except DescriptionError as exc:  # of the praxicon, not of a FILE: no answer at all
-        raise ValidationError(str(_in_file(exc, args.praxicon)))
-    motions = list(found)
-    for k, r in zip(readable, answers):
-        found[k] = r
-    for file, r, motion in zip(args.files, found, motions):
-        if not isinstance(r, Recognition):
-            print(f"{_ERROR}{r}", file=sys.stderr)
-            continue
-        _said(file, motion, r)
-        (best, p), *rest = r.ranking
-        runner = f", runner-up {rest[0][0]} {rest[0][1]:.3f}" if rest else ""
-        answer = r.action if r.action else f"none of these (closest {best})"
-        print(f"{file}: {answer} {p:.3f}{runner}")
-        if args.explain:
-            print(r.explain())
-    if not all(isinstance(r, Recognition) for r in found):
+    # descriptions the scores cannot compute with are found by the first chunk holding a
+    # motion of the features they fail on: of one skeleton, the first chunk, before any answer
+    answered, last = True, None
+    for chunk in _chunks(args.files):
+        done, last = _recognise_chunk(descriptions, chunk, args)
+        answered &= done
+        del chunk  # its motions let go before the next chunk is read
+    if not answered:
         return ERROR  # every other FILE answered; the status says one was not
     if args.plot:
         from .recognition_pictures import draw_explanation
-        draw_explanation(found[0], args.plot)
+        draw_explanation(last, args.plot)
         print(args.plot)
     return 0
 

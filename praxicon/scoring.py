@@ -67,9 +67,9 @@ def distances(x: np.ndarray, means: np.ndarray, parts) -> np.ndarray:
     """Squared Mahalanobis distance of every row of ``x`` to every mean (motions x actions).
 
     Each row's distance is its own sums in a fixed order, whatever other rows ``x`` holds: a
-    take recognised alone and in a batch of any size has the same numbers to the last bit. A
-    matrix product would not give that: BLAS takes another path for one row than for several,
-    and may block the rows.
+    take recognised alone and in a batch of any size has the same numbers to the last bit, in
+    whichever chunk of files ``psgs praxicon recognise`` reads it. A matrix product would not
+    give that: BLAS takes another path for one row than for several, and may block the rows.
 
     Examples
     --------

@@ -1,0 +1,107 @@
+"""``psgs praxicon recognise`` reads its FILEs a chunk at a time.
+
+The command read every FILE before recognising them in one batch, so its memory grew with the
+number of files; it now reads, recognises and prints a chunk (``CHUNK_FILES``, ``CHUNK_BYTES``)
+and drops its motions before reading the next, its output the same whatever the chunks.
+"""
+
+from __future__ import annotations
+
+import gc
+import weakref
+from pathlib import Path
+
+import pytest
+
+from praxicon import recognition_cli
+from praxicon_fixtures import run_praxicon, take
+
+
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory) -> Path:
+    """A praxicon of a waving arm and a stepping leg (``px``), and eight new takes beside it:
+    ``new0.bvh`` ... ``new7.bvh``, waves and steps in turn."""
+    from kinetology import write_bvh
+    from praxicon import build, read_dataset
+
+    root = tmp_path_factory.mktemp("chunks")
+    rows = ["action,file"]
+    for name, seeds in (("wave", (1, 2, 3)), ("step", (4, 5, 6))):
+        for seed in seeds:
+            write_bvh(_move(take(seed), name), root / f"{name}{seed}.bvh")
+            rows.append(f"{name},{root / f'{name}{seed}.bvh'}")
+    (root / "m.csv").write_text("\n".join(rows) + "\n")
+    build(read_dataset(root / "m.csv"), root / "px", progress=False, log=lambda s: None)
+    for k in range(8):
+        write_bvh(_move(take(10 + k), "wave" if k % 2 else "step"), root / f"new{k}.bvh")
+    return root
+
+
+def _move(motion, name: str):
+    """The take with only the arm (a wave) or only the leg (a step) moving."""
+    from kinetology import Motion
+
+    values = motion.values.copy()
+    still = ("leg.rx",) if name == "wave" else ("arm.rx", "arm.rz")
+    for channel in still:
+        values[:, motion.channels.index(channel)] *= 0.02
+    return Motion(values, motion.channels, motion.frame_rate, motion.skeleton, motion.source)
+
+
+def _files(folder: Path) -> list[str]:
+    return [str(folder / f"new{k}.bvh") for k in range(8)]
+
+
+@pytest.fixture
+def held(monkeypatch) -> list[int]:
+    """Before each FILE the command reads: how many of the motions it read before are still
+    held (reachable), filled in as the command runs."""
+    alive: list[weakref.ref] = []
+    out: list[int] = []
+    real = recognition_cli._read_motion
+
+    def reading(path, doing="recognising"):
+        gc.collect()  # held means reachable, not merely not yet collected
+        out.append(sum(ref() is not None for ref in alive))
+        motion = real(path, doing)
+        alive.append(weakref.ref(motion))
+        return motion
+
+    monkeypatch.setattr(recognition_cli, "_read_motion", reading)
+    return out
+
+
+def test_the_command_holds_one_chunk_of_motions_at_a_time(folder, held, monkeypatch, capsys):
+    monkeypatch.setattr(recognition_cli, "CHUNK_FILES", 3)
+    status, out, err = run_praxicon(capsys, ["recognise", str(folder / "px"), *_files(folder)])
+    assert status == 0 and err == "" and len(out.splitlines()) == 8
+    # a chunk's first, second and third read find 0, 1 and 2 of its motions held: none of the
+    # chunk before (read all at once, the eighth read found seven)
+    assert held == [0, 1, 2, 0, 1, 2, 0, 1]
+
+
+def test_a_chunk_ends_at_its_bytes_too(folder, held, monkeypatch, capsys):
+    # one take's values (180 frames x 5 channels) are 7,200 bytes: two fill a chunk
+    monkeypatch.setattr(recognition_cli, "CHUNK_BYTES", 10_000)
+    status, out, _ = run_praxicon(capsys, ["recognise", str(folder / "px"), *_files(folder)])
+    assert status == 0 and len(out.splitlines()) == 8
+    assert held == [0, 1] * 4
+
+
+@pytest.mark.parametrize("explain", [[], ["--explain"]])
+def test_the_output_is_the_same_in_chunks_of_any_size(folder, monkeypatch, capsys, explain):
+    (folder / "empty.bvh").write_text("")
+    files = _files(folder)
+    # unanswerable FILEs among them, each said in its place: one in a chunk of its own, one
+    # the first of a chunk, one in the middle of one
+    argv = ["recognise", str(folder / "px"), str(folder / "nowhere.bvh"), *files[:5],
+            str(folder / "empty.bvh"), *files[5:], str(folder / "nowhere.bvh"), *explain]
+    seen = set()
+    for size in (1, 2, 3, 5, recognition_cli.CHUNK_FILES):
+        monkeypatch.setattr(recognition_cli, "CHUNK_FILES", size)
+        seen.add(run_praxicon(capsys, argv))
+    (status, out, err), = seen  # one output, whatever the chunk
+    assert status == 2 and len(err.splitlines()) == 3
+    assert out.startswith(f"{files[0]}: ")
+    answered = [out.index(f"{file}: ") for file in files]  # every one, in the order given
+    assert answered == sorted(answered)
