@@ -55,7 +55,8 @@ class Sequential(Inducer):
         The fewest occurrences of a digram that make a rule (default 2, at least 2).
     max_rules : int, optional
         A bound on rules per string (default 100000); the string's report says
-        ``"rule bound reached"`` when it stops there.
+        ``"rule bound reached"`` when the bound stopped a further rule from being made (a
+        string whose last rule is the ``max_rules``-th is learnt whole, and says so).
 
     Raises
     ------
@@ -180,7 +181,9 @@ def _pair_rules(codes: list[int], first_new: int, min_count: int, max_rules: int
     Each round makes the most frequent digram (the most places it starts at, overlapping ones
     of a run ``N N N`` too; among equals the one starting first) a rule, replacing its
     occurrences left to right (a run's overlapping ones skipped), until that digram starts at
-    fewer than ``min_count`` places left after the skipping, or ``max_rules`` rules are made.
+    fewer than ``min_count`` places left after the skipping, or ``max_rules`` rules are made
+    and another would be (``bounded`` says so; not when the last rule the bound allows is the
+    last one there is).
     ``final`` maps each place left (its original position) to its code.
 
     The digrams' places are kept up to date as pairs are replaced -- only the neighbours of a
@@ -223,9 +226,6 @@ def _pair_rules(codes: list[int], first_new: int, min_count: int, max_rules: int
     length_of: dict[int, int] = {}
     code, alive, bounded = first_new, n, False
     while alive >= 2 and ranking:
-        if len(expansion) >= max_rules:
-            bounded = True
-            break
         count, at, key = heapq.heappop(ranking)
         held = places.get(key)
         if not held or -count != len(held) or first(key) != at:
@@ -238,6 +238,11 @@ def _pair_rules(codes: list[int], first_new: int, min_count: int, max_rules: int
                     keep.append(p)
             hits = keep
         if len(hits) < min_count:
+            break
+        if len(expansion) >= max_rules:
+            # checked here, with the next rule in hand: a string whose compression ends at
+            # its max_rules-th rule anyway is not one the bound stopped
+            bounded = True
             break
         expansion[code] = key
         length_of[code] = length_of.get(key[0], 1) + length_of.get(key[1], 1)

@@ -163,6 +163,15 @@ def test_an_induction_within_its_budget_exits_0_and_names_no_bound(tmp_path, cap
     assert "at its bound max_rules=1" in captured.err and captured.err.count("\n") == 1
 
 
+def test_a_bound_that_stopped_no_rule_is_not_named_and_exits_0(tmp_path, capsys):
+    path = tmp_path / "a.txt"
+    path.write_text("x: a b a b\n")
+    # one rule (a b) is all this string has: max_rules=1 cut nothing off
+    assert main(["induce", str(path), "--inducer", "sequential", "--param", "max_rules=1"]) == 0
+    captured = capsys.readouterr()
+    assert captured.err == "" and "x: a b   (2 copies at" in captured.out
+
+
 @pytest.mark.parametrize("flag", ["--csv", "--plot"])
 def test_bench_noise_checks_its_output_path_before_running(tmp_path, capsys, flag):
     target = tmp_path / "no-such-dir" / "out.x"

@@ -76,6 +76,19 @@ def test_rule_bound_is_reported():
     assert result.report("a").status == "rule bound reached"
 
 
+@pytest.mark.parametrize("text, rules", [("abab", 1), ("abcabcabcabc", 3), ("abcdabcd", 3)])
+def test_a_string_whose_last_rule_is_the_bound_is_not_called_bounded(text, rules):
+    # abab makes one rule (a b) and then nothing repeats: max_rules=1 stopped nothing
+    actiongram = Actiongram.from_strings({"a": text})
+    whole = Sequential().induce(actiongram)
+    at_bound = Sequential(max_rules=rules).induce(actiongram)
+    assert at_bound.report("a").status == "component"
+    assert at_bound.patterns == whole.patterns and at_bound.reports == whole.reports
+    if rules > 1:  # one rule fewer is a real cut
+        assert Sequential(max_rules=rules - 1).induce(actiongram).report("a").status == \
+            "rule bound reached"
+
+
 def test_each_component_generates_its_own_repetitions_independently():
     strings = {"x": "abcabcabc", "y": "pqrpqrpqr"}
     result = Sequential().induce(Actiongram.from_strings(strings))
@@ -144,9 +157,6 @@ def _recounted_pair_rules(codes, first_new, min_count, max_rules):
     expansion, length_of, code, bounded = {}, {}, first_new, False
     base = np.int64(1 << 31)
     while len(seq) >= 2:
-        if len(expansion) >= max_rules:
-            bounded = True
-            break
         keys = seq[:-1] * base + seq[1:]
         uniq, first, counts = np.unique(keys, return_index=True, return_counts=True)
         best = uniq[np.lexsort((first, -counts))[0]]
@@ -160,6 +170,9 @@ def _recounted_pair_rules(codes, first_new, min_count, max_rules):
                     last = p
             hits = np.asarray(keep, dtype=np.int64)
         if len(hits) < min_count:
+            break
+        if len(expansion) >= max_rules:  # the bound stops a rule that would be made
+            bounded = True
             break
         expansion[code] = (left, right)
         length_of[code] = length_of.get(left, 1) + length_of.get(right, 1)
