@@ -365,29 +365,83 @@ def random_step(system: _System, configuration: Configuration,
     """
     if isinstance(system, PCGS):
         return _random_pcgs_step(system, configuration, rng)
+    single = system.mode == "single"
     candidates = []
     total = 0
     where = [positions_by_name(form) for form in configuration]
     for sync_tuple in system_moves(system):
-        choices = psgs_choices(system, configuration, sync_tuple, where)
-        if choices is None:
+        spots = _spots(sync_tuple, where)
+        # whether a tuple changes something does not depend on the occurrences chosen, so it
+        # is asked of its rules (no configuration built per tuple and step)
+        if spots is None or not _changes(sync_tuple, spots):
             continue
-        first = tuple(c[0] for c in choices)
-        # whether a tuple changes something does not depend on the occurrences chosen
-        if rewritten(configuration, sync_tuple, first) == configuration:
-            continue
-        count = math.prod(len(c) for c in choices)
-        candidates.append((sync_tuple, choices, count))
+        # single mode: one occurrence per rewriting component, the product of their counts;
+        # the occurrences themselves are listed only for the tuple drawn
+        count = math.prod(len(occ) for occ in spots if occ) if single else 1
+        candidates.append((sync_tuple, spots, count))
         total += count
     if not total:
         return None
     index = rng.randrange(total)
-    for sync_tuple, choices, count in candidates:
+    for sync_tuple, spots, count in candidates:
         if index < count:
             break
         index -= count
-    positions = _unrank(choices, index)
+    positions = _unrank_spots(spots, index) if single else spots
     return Step(sync_tuple, positions, configuration, rewritten(configuration, sync_tuple, positions))
+
+
+def _spots(sync_tuple: SyncTuple, where: Sequence[dict[str, tuple[int, ...]]]
+           ) -> tuple[tuple[int, ...], ...] | None:
+    """Per component the occurrences ``sync_tuple`` rewrites there (parallel mode's positions),
+    ``()`` for an idle entry or a terminal form; None when the tuple does not apply.
+
+    :func:`psgs_choices` without listing single mode's choices one by one (a list per
+    tuple, as long as the forms are, on every step).
+    """
+    spots = []
+    for rule, table in zip(sync_tuple, where):
+        # a PSGS form holds terminals and nonterminals only: no nonterminal means terminal
+        if rule is IDLE or not table:
+            spots.append(())
+            continue
+        occ = table.get(rule.lhs.name, ())
+        if not occ:
+            return None
+        spots.append(occ)
+    return tuple(spots)
+
+
+def _changes(sync_tuple: SyncTuple, spots: Sequence[tuple[int, ...]]) -> bool:
+    """Whether applying ``sync_tuple`` at its occurrences ``spots`` changes the configuration.
+
+    A component rewrites when it has occurrences (not ``()``: idle, or a terminal form);
+    replacing an occurrence of ``A`` by the right-hand side changes the form unless that side
+    is ``A`` alone.
+
+    Examples
+    --------
+    >>> from psgs.model import Nonterminal as N, Rule, Terminal as T
+    >>> keep, grow = Rule("k", N("A"), (N("A"),)), Rule("g", N("A"), (T("a"), N("A")))
+    >>> _changes((keep, None), [(0,), ()]), _changes((keep, grow), [(0,), (2, 5)])
+    (False, True)
+    >>> _changes((grow,), [()])  # the form is terminal: the rule does not rewrite it
+    False
+    """
+    return any(occ and rule.rhs != (rule.lhs,) for rule, occ in zip(sync_tuple, spots))
+
+
+def _unrank_spots(spots: Sequence[tuple[int, ...]], index: int) -> tuple:
+    """Single mode's ``index``-th step of a tuple: :func:`_unrank` of its :func:`psgs_choices`
+    (``[(k,) for k in occ]`` per rewriting component, ``[()]`` per other one), unlisted."""
+    picked = []
+    for occ in reversed(spots):
+        if occ:
+            index, r = divmod(index, len(occ))
+            picked.append((occ[r],))
+        else:
+            picked.append(())
+    return tuple(reversed(picked))
 
 
 def _unrank(choices, index: int) -> tuple:
