@@ -8,6 +8,7 @@ extras and for ``%keep_repeats``; ``#`` comments. The grammar is in the docstrin
 
 from __future__ import annotations
 
+import itertools
 import json
 import re
 
@@ -26,6 +27,7 @@ KEEP_REPEATS = "%keep_repeats"
 _FORMAT = "psgs-actiongram"
 
 _COMMENT = re.compile(r"(?:^|\s)#")
+_TOKEN = re.compile(r"\S+")
 
 
 def strip_comment(line: str, source: str, line_no: int) -> str:
@@ -113,7 +115,7 @@ def read_text(cls, text: str, source: str):
         string_places.append((line_no, name_col))
         syms, durs, disps = [], [], []
         offset = len(head) + 1
-        for match in re.finditer(r"\S+", body):
+        for match in _TOKEN.finditer(body):
             token, col = match.group(), offset + match.start() + 1
             sym, at, dur_text = token.partition("@")
             if ":" in token:
@@ -170,7 +172,34 @@ def read_text(cls, text: str, source: str):
     try:
         return build(slice(None), len(edges))
     except FormatError as exc:  # found by the checks of the whole value, which name no line
-        raise _placed(exc, build, string_places, edge_places, source) from None
+        error = _placed(exc, build, string_places, edge_places, source)
+        raise _at_symbol(error, text, names, symbol_rows, string_places, source) from None
+
+
+def _at_symbol(error: FormatError, text: str, names: list[str],
+               symbol_rows: list[tuple[str, ...]], string_places: list[tuple[int, int]],
+               source: str) -> FormatError:
+    """``error``, placed at a string's name, moved to the column of the symbol at fault when
+    it is that string's first bad symbol that the checks refused.
+
+    The columns of the symbols are not kept while reading (one number per symbol of a large
+    file): the line is split again, here, on the error's way out.
+    """
+    if error.line is None:
+        return error
+    for k, (line_no, column) in enumerate(string_places):
+        if (line_no, column) == (error.line, error.column):
+            break
+    else:
+        return error  # a %parent line's error
+    j, problem = next(((j, p) for j, sym in enumerate(symbol_rows[k])
+                       if (p := _bad_symbol(sym)) is not None), (None, None))
+    if j is None or error.message != f"string {_shown(names[k])}: {problem}":
+        return error  # the string's name, its durations or its times: the name's place
+    line = strip_comment(split_lines(text)[line_no - 1], source, line_no)
+    head = line.partition(":")[0]
+    token = next(itertools.islice(_TOKEN.finditer(line, len(head) + 1), j, None))
+    return FormatError(error.message, source=source, line=line_no, column=token.start() + 1)
 
 
 def _first_refused(count: int, build) -> tuple[int, FormatError] | None:
