@@ -67,7 +67,8 @@ def register(subparsers) -> None:
     noise.add_argument("--levels", type=_levels, default=_levels("0:0.40:0.02"),
                        metavar="LO:HI:STEP", help="noise levels (default 0:0.40:0.02)")
     noise.add_argument("--inducer", action="append", metavar="NAME",
-                       help="inducer to run (repeatable; default pal and sequential)")
+                       help="inducer to run (repeatable, each inducer once; default pal "
+                            "and sequential)")
     noise.add_argument("--variant", choices=("paper", "random-durations", "irregular-gaps",
                                              "unequal-lengths", "all"), default="paper",
                        help="protocol variant (default paper)")
@@ -197,8 +198,8 @@ def run_bench_noise(args) -> int:
     Raises
     ------
     ValidationError
-        For an unknown inducer, or a ``--csv``/``--plot`` path that cannot be
-        written (checked before the sweep runs).
+        For an unknown inducer, one given twice, or a ``--csv``/``--plot`` path that
+        cannot be written (checked before the sweep runs).
     PSGSError
         For ``--plot`` without matplotlib.
 
@@ -216,7 +217,11 @@ def run_bench_noise(args) -> int:
     from ..induce.sweep import noise_sweep
 
     inducers = tuple(args.inducer or ("pal", "sequential"))
-    for name in inducers:
+    for k, name in enumerate(inducers):
+        # an inducer's parameters and trials are those of its name: a second run would print
+        # the same column again, so a repeated name is a slip, said before hours of trials
+        if name in inducers[:k]:
+            raise ValidationError(f"--inducer {name} is given twice: give each inducer once")
         get(name)  # fail early, with one line, on an unknown name
     for out in (args.csv, args.plot):  # and on an output path that cannot be written
         if out and (Path(out).is_dir() or not Path(out).resolve().parent.is_dir()):

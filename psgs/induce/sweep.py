@@ -90,7 +90,7 @@ def noise_sweep(levels: Iterable[float], trials: int, *, inducers: Sequence[str]
     trials : int
         Actiongrams per level.
     inducers : sequence of str, optional
-        Inducer names (:func:`psgs.induce.get`); default ``("pal",)``.
+        Inducer names (:func:`psgs.induce.get`), each once; default ``("pal",)``.
     params : mapping, optional
         Inducer name -> its keyword parameters.
     seed : int, optional
@@ -112,8 +112,10 @@ def noise_sweep(levels: Iterable[float], trials: int, *, inducers: Sequence[str]
     ------
     ValidationError
         For an unknown inducer or parameter, arguments ``generate`` refuses, a level that is
-        no number from 0 to 1, ``trials`` or ``jobs`` that is not a whole number ≥ 1, or an
-        argument of the wrong kind (``inducers`` a single string, ``params`` no mapping).
+        no number from 0 to 1, ``trials`` or ``jobs`` that is not a whole number ≥ 1, an
+        inducer named twice (its parameters are those of its name, so it would run the same
+        trials again), or an argument of the wrong kind (``inducers`` a single string,
+        ``params`` no mapping).
 
     Examples
     --------
@@ -157,6 +159,10 @@ def _checked(levels, trials, inducers, params, seed, variant, jobs, progress):
     if isinstance(inducers, (str, bytes)) or not isinstance(inducers, Iterable):
         raise ValidationError(f"inducers must be a sequence of inducer names, not {inducers!r}")
     inducers = tuple(inducers)
+    for k, name in enumerate(inducers):
+        # params are keyed by name, so a second run of a name is the first one again
+        if name in inducers[:k]:
+            raise ValidationError(f"inducers names {name!r} twice: give each inducer once")
     read = {}
     for name, given in (("params", params), ("variant", variant)):
         try:  # a mapping, or (name, value) pairs as dict() reads them, read once (an iterator)

@@ -180,6 +180,17 @@ def test_bench_noise_checks_its_output_path_before_running(tmp_path, capsys, fla
     assert "not a file in an existing directory" in captured.err and "cells" not in captured.err
 
 
+def test_bench_noise_refuses_an_inducer_given_twice_before_running(capsys):
+    # each inducer's column is the same trials with the same parameters: a repeat is a slip
+    argv = ["bench", "noise", "--trials", "1", "--levels", "0", "--jobs", "1",
+            "--inducer", "sequential", "--inducer", "pal", "--inducer", "sequential"]
+    assert main(argv) == 2
+    captured = capsys.readouterr()
+    assert captured.out == "" and "cells" not in captured.err
+    assert captured.err == ("psgs: error: --inducer sequential is given twice: give each "
+                            "inducer once\n")
+
+
 def test_several_performances_are_counted_whole(tmp_path, capsys):
     # the summary line counts every performance's strings and symbols, not the first one's
     first, second = tmp_path / "a.txt", tmp_path / "b.txt"

@@ -56,6 +56,7 @@ def test_generate_takes_numpy_sizes_as_before():
     ({"levels": ["0.1"]}, "noise level"), ({"levels": [math.nan]}, "noise level"),
     ({"levels": [True]}, "noise level"), ({"levels": [1.5]}, "noise level"),
     ({"inducers": "sequential"}, "inducers"), ({"inducers": None}, "inducers"),
+    ({"inducers": ("sequential", "pal", "sequential")}, "names 'sequential' twice"),
     ({"params": 3}, "params"), ({"params": {"sequential": 2}}, "params"),
     ({"variant": "random"}, "variant"), ({"seed": None}, "seed"), ({"seed": "0"}, "seed"),
     ({"jobs": 0}, "jobs"), ({"jobs": None}, "jobs"), ({"progress": 3}, "progress"),
