@@ -80,8 +80,11 @@ def _read(handle: int, most: int, name, *, pipe: bool) -> bytes:
     """Up to ``most`` bytes of ``handle``, to its end; a pipe that gives them all is too long
     (``most`` is one past the limit)."""
     chunks, left = [], most
+    # os.read allocates what it is asked for: a pipe is read in pieces (its limit is no size
+    # it has), a regular file whole (its size is known, and pieces joined would hold it twice)
+    piece = 1 << 24 if pipe else 1 << 30
     while left > 0:
-        chunk = os.read(handle, min(left, 1 << 24))
+        chunk = os.read(handle, min(left, piece))
         if not chunk:  # the end (a regular file that shrank while read: what is there is all)
             break
         chunks.append(chunk)

@@ -73,3 +73,20 @@ def test_lines_break_at_newlines_only(text, lines):
 ])
 def test_numbers_as_data_files_write_them(text, value):
     assert decimal(text) == value
+
+
+def test_a_large_regular_file_is_held_once_while_read(tmp_path):
+    # read in 16 MiB pieces and joined, a file of 20 MiB was held twice at the join
+    import tracemalloc
+
+    path = tmp_path / "large.bin"
+    data = os.urandom(20 << 20)
+    path.write_bytes(data)
+    tracemalloc.start()
+    try:
+        got = files.read_bytes(path)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert got == data
+    assert peak < 1.1 * len(data), f"peak {peak / len(data):.2f} times the file"
