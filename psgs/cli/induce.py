@@ -161,11 +161,14 @@ def _bound_hit(inducer, result) -> str | None:
     """The line naming the budget that stopped the induction on some strings, or None.
 
     >>> from psgs import Actiongram
-    >>> from psgs.induce import get
+    >>> from psgs.induce import Induction, get
     >>> inducer = get("sequential", max_rules=1)
     >>> result = inducer.induce(Actiongram.from_strings({"x": "abcabcabc", "y": "pq"}))
     >>> _bound_hit(inducer, result)
     'sequential stopped at its bound max_rules=1 on 1 string (x): its pattern is what the rules made by then give'
+    >>> _bound_hit(get("pal"), Induction(None, (), {}, {}, inducer="pal", bound="max_seconds",
+    ...                                  reason="stopped after 1 seconds (max_seconds)"))
+    'pal stopped after 1 seconds (max_seconds): no component was found by then'
     """
     stopped: dict[str, list[str]] = {}
     for report in result.reports:
@@ -173,7 +176,12 @@ def _bound_hit(inducer, result) -> str | None:
         if bound is not None:
             stopped.setdefault(bound, []).append(report.name)
     if not stopped:
-        return None
+        if getattr(result, "bound", None) is None:  # (a plug-in's result may not have one)
+            return None
+        # a bound of the whole induction (PAL's max_seconds), in the inducer's own words
+        found = ("its components are those found by then" if result.components
+                 else "no component was found by then")
+        return f"{result.inducer} {result.reason or 'stopped at ' + result.bound}: {found}"
     parts = []
     for bound, names in stopped.items():
         value = getattr(inducer.conf(), bound, None)
@@ -198,8 +206,8 @@ def run_induce(args) -> int:
     Returns
     -------
     int
-        0, or 3 when the inducer stopped at one of its budgets on some string (the sequential
-        baseline's ``max_rules``), named on stderr.
+        0, or 3 when the inducer stopped at one of its budgets (the sequential baseline's
+        ``max_rules`` on some string, PAL's ``max_seconds``), named on stderr.
 
     Raises
     ------

@@ -40,7 +40,7 @@ C = TypeVar("C", bound="Conf")
 
 
 def check_number(name: str, value: object, *, low: float | None = None, high: float | None = None,
-                 integer: bool = False, low_open: bool = False) -> None:
+                 integer: bool = False, low_open: bool = False, optional: bool = False) -> None:
     """Validate one numeric inducer parameter.
 
     Parameters
@@ -55,6 +55,8 @@ def check_number(name: str, value: object, *, low: float | None = None, high: fl
         Whether only an ``int`` will do (``bool`` never does).
     low_open : bool, optional
         Whether ``low`` itself is refused.
+    optional : bool, optional
+        Whether ``None`` (no value: no bound) is allowed too.
 
     Raises
     ------
@@ -68,11 +70,15 @@ def check_number(name: str, value: object, *, low: float | None = None, high: fl
     Traceback (most recent call last):
     ...
     psgs.errors.ValidationError: parameter alpha must be a finite number, not nan
+    >>> check_number("max_seconds", None, low=0, low_open=True, optional=True)
     """
+    if optional and value is None:
+        return
     ok_type = (int,) if integer else (int, float)
     if isinstance(value, bool) or not isinstance(value, ok_type):
         kind = "an integer" if integer else "a number"
-        raise ValidationError(f"parameter {name} must be {kind}, not {value!r}")
+        raise ValidationError(f"parameter {name} must be {kind}{' or None' if optional else ''}"
+                              f", not {value!r}")
     if not finite(value):  # NaN passes every comparison below; 10**400 is no float
         raise ValidationError(f"parameter {name} must be a finite number, not {value!r}")
     if low is not None and (value <= low if low_open else value < low):
@@ -143,10 +149,11 @@ class Number:
     high: float | None = None
     integer: bool = False
     low_open: bool = False
+    optional: bool = False
 
     def __call__(self, name: str, value: object) -> None:
         check_number(name, value, low=self.low, high=self.high, integer=self.integer,
-                     low_open=self.low_open)
+                     low_open=self.low_open, optional=self.optional)
 
 
 @dataclass(frozen=True)
@@ -176,7 +183,8 @@ class Parameter:
         ``rule(name, value)`` raises :class:`~psgs.errors.ValidationError` for a bad value.
     recorded : bool, optional
         Whether an :class:`~psgs.induce.Induction` records it (False for a parameter that
-        changes how the inducer computes, never what it finds, so that results compare equal).
+        changes how the inducer computes, never what it finds, so that results compare equal;
+        and for a time bound, which an Induction it stopped names in its ``bound``).
 
     Examples
     --------

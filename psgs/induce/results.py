@@ -110,6 +110,11 @@ class Induction:
         Actuator name -> for each entry of ``occurrences[name]``, the share of
         the pattern's positions that copy agrees with (1.0 for an exact copy);
         empty when the inducer does not measure it.
+    bound : str or None, optional
+        The bound the inducer stopped at (``"max_seconds"``, ``"max_rules"``), None when
+        it ran to the end; what it holds is then what was found by that point.
+    reason : str or None, optional
+        The same in words, with the bound's value.
 
     Raises
     ------
@@ -151,8 +156,14 @@ class Induction:
     verdict: str = ""
     actuator_reports: tuple[ActuatorReport, ...] = ()
     agreements: Mapping[str, tuple[float, ...]] = field(default_factory=dict)
+    bound: str | None = None
+    reason: str | None = None
 
     def __post_init__(self) -> None:
+        for name in ("bound", "reason"):
+            if not isinstance(getattr(self, name), (str, type(None))):
+                raise ValidationError(f"{name} must be a str or None, not "
+                                      f"{getattr(self, name)!r}")
         if isinstance(self.performances, bool) or not isinstance(self.performances, int) \
                 or self.performances < 1:
             raise ValidationError(f"performances must be a positive integer, not "
@@ -202,7 +213,8 @@ class Induction:
                              self.inducer, dict(self.params), self.performances,
                              dict(self.occurrence_performance), self.actuators,
                              dict(self.actuator_channels), dict(self.morphemes), self.verdict,
-                             self.actuator_reports, dict(self.agreements)))
+                             self.actuator_reports, dict(self.agreements), self.bound,
+                             self.reason))
 
     def __repr__(self) -> str:
         # a summary, not the dataclass dump of every pattern and occurrence
@@ -210,8 +222,10 @@ class Induction:
         joints = f", joints {', '.join(self.actuators)}" if self.actuators else ""
         takes = f" from {self.performances} performances" if self.performances > 1 else ""
         verdict = f" ({self.verdict})" if self.verdict else ""
+        stopped = f", stopped at {self.bound}" if self.bound else ""
         return (f"<Induction {self.inducer or 'unnamed inducer'}{takes}: "
-                f"{len(self.components)} component(s) ({found or 'none'}){joints}{verdict}>")
+                f"{len(self.components)} component(s) ({found or 'none'}){joints}{verdict}"
+                f"{stopped}>")
 
     def __str__(self) -> str:
         # one line per component: its pattern (cut at 12 symbols) and how many copies
@@ -264,8 +278,9 @@ synchronised_with=())
         -------
         dict
             Plain lists, numbers and strings only; ``occurrence_performance`` is
-            included only when there was more than one performance, and
-            ``agreements`` only when the inducer measured them.
+            included only when there was more than one performance,
+            ``agreements`` only when the inducer measured them, and ``bound`` and
+            ``reason`` only when it stopped at a bound.
 
         Examples
         --------
@@ -298,6 +313,9 @@ synchronised_with=())
                                        for r in self.actuator_reports]
         if self.agreements:
             out["agreements"] = {k: [round(a, 4) for a in v] for k, v in self.agreements.items()}
+        if self.bound is not None:
+            out["bound"] = self.bound
+            out["reason"] = self.reason
         if self.performances > 1:
             out["performances"] = self.performances
             out["occurrence_performance"] = {k: list(v)

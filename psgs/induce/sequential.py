@@ -21,7 +21,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 import heapq
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -56,7 +56,8 @@ class Sequential(Inducer):
     max_rules : int, optional
         A bound on rules per string (default 100000); the string's report says
         ``"rule bound reached"`` when the bound stopped a further rule from being made (a
-        string whose last rule is the ``max_rules``-th is learnt whole, and says so).
+        string whose last rule is the ``max_rules``-th is learnt whole, and says so), and
+        the Induction's ``bound`` is then ``"max_rules"``.
 
     Raises
     ------
@@ -73,6 +74,8 @@ class Sequential(Inducer):
     >>> result = Sequential().induce(two)
     >>> result.patterns["x"], result.occurrence_performance["x"]
     (('a', 'b'), (0, 0, 1))
+    >>> Sequential(max_rules=1).induce(Actiongram.from_strings({"x": "abcabcabc"})).reason
+    'stopped making rules at max_rules=1 on 1 string'
     """
 
     name = "sequential"
@@ -120,9 +123,15 @@ class Sequential(Inducer):
             reports.append(StringReport(
                 name=name, status="rule bound reached" if bounded else "component",
                 motif=pattern, copies=len(positions)))
-        return self.build_induction(first.names, patterns, occurrences, reports,
-                                    synchronise=False, performances=len(takes),
-                                    occurrence_performance=where)
+        result = self.build_induction(first.names, patterns, occurrences, reports,
+                                      synchronise=False, performances=len(takes),
+                                      occurrence_performance=where)
+        stopped = [r.name for r in reports if r.status == "rule bound reached"]
+        if not stopped:
+            return result
+        return replace(result, bound="max_rules", reason=(
+            f"stopped making rules at max_rules={conf.max_rules} on {len(stopped)} "
+            f"string{'' if len(stopped) == 1 else 's'}"))
 
 
 def _repair(strings: Sequence[tuple[str, ...]], min_count: int, max_rules: int):

@@ -74,6 +74,9 @@ def test_performances_learn_like_one_string_cut_by_symbols_that_occur_once(texts
 def test_rule_bound_is_reported():
     result = Sequential(max_rules=1).induce(Actiongram.from_strings({"a": "abcabcabcabc"}))
     assert result.report("a").status == "rule bound reached"
+    # and the Induction names it, as every bounded result of the library does
+    assert result.bound == "max_rules" and result.to_dict()["reason"] == \
+        "stopped making rules at max_rules=1 on 1 string"
 
 
 @pytest.mark.parametrize("text, rules", [("abab", 1), ("abcabcabcabc", 3), ("abcdabcd", 3)])
@@ -82,7 +85,7 @@ def test_a_string_whose_last_rule_is_the_bound_is_not_called_bounded(text, rules
     actiongram = Actiongram.from_strings({"a": text})
     whole = Sequential().induce(actiongram)
     at_bound = Sequential(max_rules=rules).induce(actiongram)
-    assert at_bound.report("a").status == "component"
+    assert at_bound.report("a").status == "component" and at_bound.bound is None
     assert at_bound.patterns == whole.patterns and at_bound.reports == whole.reports
     if rules > 1:  # one rule fewer is a real cut
         assert Sequential(max_rules=rules - 1).induce(actiongram).report("a").status == \

@@ -102,3 +102,29 @@ def synchronised_pairs(lo, hi, bounds, fraction, min_copies):
             out[i, j] = _pair(lo[a:b], hi[a:b], lo[c:d], hi[c:d], disjoint[i], disjoint[j],
                               fraction, min_copies)
     return out
+
+
+@_jit
+def disjoint_flags(lo, hi, bounds):
+    """:func:`_disjoint` of each copy list ``(lo, hi)[bounds[i]:bounds[i + 1]]``."""
+    count = len(bounds) - 1
+    disjoint = np.zeros(count, dtype=np.bool_)
+    for i in range(count):
+        disjoint[i] = _disjoint(lo[bounds[i]:bounds[i + 1]], hi[bounds[i]:bounds[i + 1]])
+    return disjoint
+
+
+@_jit
+def synchronised_rows(lo, hi, bounds, disjoint, first, last, fraction, min_copies):
+    """Rows ``first`` to ``last - 1`` of :func:`synchronised_pairs` (row ``i`` at ``i - first``),
+    ``disjoint`` from :func:`disjoint_flags`: the same pair tests, a block of rows a call, so
+    that a caller with a deadline reads its clock between blocks."""
+    count = len(bounds) - 1
+    out = np.zeros((last - first, count), dtype=np.bool_)
+    for i in range(first, last):
+        a, b = bounds[i], bounds[i + 1]
+        for j in range(i + 1, count):
+            c, d = bounds[j], bounds[j + 1]
+            out[i - first, j] = _pair(lo[a:b], hi[a:b], lo[c:d], hi[c:d], disjoint[i],
+                                      disjoint[j], fraction, min_copies)
+    return out

@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .conf import NO_BOUND
 from .motifs import Timed
 from .in_step import group_significance
 from .pairing import keeps_shift, spans_pair
@@ -40,6 +41,7 @@ from .sections import (Section, copy_agreements, find_sections, follow_rate,
                        repeat_significance)
 
 if TYPE_CHECKING:
+    from ...budget import Budget
     from .conf import ContentConf
     from .content import ContentResult
 
@@ -56,24 +58,34 @@ CHANCE_IN_STEP = "in step with its group no more than by chance"
 SCREEN = -1e-9
 
 
-def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) -> None:
-    """Section groups formed and weighed against the motif groups; ``found`` updated."""
+def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf,
+                 clock: Budget = NO_BOUND) -> None:
+    """Section groups formed and weighed against the motif groups; ``found`` updated.
+
+    ``clock`` is read in the search (each string, each row of pairs, each group's lead)
+    and raises :class:`~psgs.errors.BoundReached` past its deadline, always before the
+    components of ``found`` change (its sections, partners and statuses may have).
+    """
     # (not bounded by max_pattern: a section is found by a search over lengths, not grown)
     level = math.log10(conf.alpha)
     # every string's follow rate, read by the section search and by the groups' test alike
-    follows = [follow_rate(s.codes) for s in strings]
+    follows = []
+    for s in strings:
+        clock.check()
+        follows.append(follow_rate(s.codes))
     symbols = strings
     if conf.section_durations == "equal":
         # a section's copies repeat what ``codes`` holds: here the symbols with their
         # durations; every rate stays the symbols' own
         strings = [with_durations(s) for s in strings]
     sections = find_sections([s.codes for s in strings], conf.min_copies,
-                             [s.match_rate for s in strings], SCREEN, follows)
+                             [s.match_rate for s in strings], SCREEN, follows, clock)
     found.sections = sections
     candidates = [i for i, s in enumerate(sections) if s is not None and s.significance <= SCREEN]
     intervals = {i: strings[i].copy_times(sections[i]) for i in candidates}
     partners: dict[int, list[int]] = {i: [] for i in candidates}
     for k, a in enumerate(candidates):
+        clock.check()
         for b in candidates[k + 1:]:
             # in step: copies that pair off, at one shift (a chance repeat inside long
             # copies pairs with them too, but lies off them by a different amount in each)
@@ -93,7 +105,7 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf) 
     sectioned, readings = [], []
     for group in sync_groups(candidates, partners):
         significance, members = group_significance(strings, sections, intervals, follows,
-                                                   group, partners, level)
+                                                   group, partners, level, clock)
         for i in group:
             if significance > level or i not in members:
                 found.dropped.setdefault(i, CHANCE_IN_STEP)

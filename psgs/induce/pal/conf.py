@@ -1,9 +1,9 @@
 """The paper's learner's parameters, as one frozen value handed to each of its phases.
 
 :class:`ContentConf` is the table of :class:`~psgs.induce.pal.learner.ContentPAL`
-(every rule declared once, see :mod:`psgs.induce.conf`). The two rows both
-PAL learners read, :data:`MIN_COPIES` and :data:`ALPHA`, are declared here once
-and used by :class:`~psgs.induce.pal.motion.conf.MotionConf` too.
+(every rule declared once, see :mod:`psgs.induce.conf`). The rows both
+PAL learners read, :data:`MIN_COPIES`, :data:`ALPHA` and :data:`MAX_SECONDS`, are declared
+here once and used by :class:`~psgs.induce.pal.motion.conf.MotionConf` too.
 """
 
 from __future__ import annotations
@@ -11,14 +11,25 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..conf import Choice, Conf, Number, Parameter, parameter
+from ...budget import Budget
 from ..._foundation.engines import ENGINES, resolve
 
-__all__ = ["ContentConf", "MIN_COPIES", "ALPHA", "TIMINGS", "SECTION_DURATIONS"]
+__all__ = ["ContentConf", "MIN_COPIES", "ALPHA", "MAX_SECONDS", "NO_BOUND", "UNDECIDED",
+           "TIMINGS", "SECTION_DURATIONS"]
 
 #: Fewest copies (of a motif, or cycles of a joint) that count as repetition.
 MIN_COPIES = Parameter(3, Number(low=2, integer=True))
 #: The chance level a repetition must beat.
 ALPHA = Parameter(1e-2, Number(low=0, high=1, low_open=True))
+#: A wall-clock bound on one induction, seconds (None: none). Not recorded: an Induction it
+#: stops names it in its ``bound``, and one it does not stop is the same without it.
+MAX_SECONDS = Parameter(None, Number(low=0, low_open=True, optional=True), recorded=False)
+#: The status of a string that is no component of an induction stopped at ``max_seconds``: a
+#: stage that did not run (the sections, the joins, the choice of joints) might have made it one.
+UNDECIDED = "not decided: stopped at max_seconds"
+#: The clock a phase reads when it is handed none: no deadline, so ``check()`` reads no clock
+#: and never raises (shared: ``check`` changes nothing in it).
+NO_BOUND = Budget()
 #: How the paper's learner locates copies (see :class:`ContentConf`).
 TIMINGS = ("content", "period", "auto")
 #: What a section's copies must repeat (see :class:`ContentConf`): the symbols, or the
@@ -73,4 +84,5 @@ class ContentConf(Conf):
     timing: str = parameter("auto", Choice(TIMINGS))
     period_quantile: float = parameter(0.9, Number(low=0, high=1))
     period_agreement: float = parameter(0.6, Number(low=0, high=1, low_open=True))
+    max_seconds: float | None = MAX_SECONDS.field()
     engine: str = parameter("auto", check_engine, recorded=False)

@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .conf import NO_BOUND
 from .motifs import Motif, Timed, find_motifs
 from .edges import trim
 from .joining import may_join
@@ -17,6 +18,7 @@ from .together import locate_together
 from .widening import widen
 
 if TYPE_CHECKING:
+    from ...budget import Budget
     from .conf import ContentConf
 
 
@@ -46,34 +48,47 @@ class ContentResult:
     agreements: dict[int, tuple[float, ...]] = field(default_factory=dict)  # per copy
 
 
-def find_candidates(strings: list[Timed], conf: ContentConf) -> ContentResult:
-    """Steps 1-3: a motif per string, the significance screen, synchronisation in time."""
-    motifs = find_motifs([s.codes for s in strings], conf)
+def find_candidates(strings: list[Timed], conf: ContentConf, clock: Budget = NO_BOUND
+                    ) -> ContentResult:
+    """Steps 1-3: a motif per string, the significance screen, synchronisation in time.
+
+    ``clock`` is read between strings and between rows of the pairs tested; past its
+    deadline it raises :class:`~psgs.errors.BoundReached` (nothing is returned).
+    """
+    motifs = find_motifs([s.codes for s in strings], conf, clock)
     candidates = [i for i, m in enumerate(motifs)
                   if m is not None and m.significance <= math.log10(conf.alpha)]
     intervals = {i: strings[i].copy_times(motifs[i]) for i in candidates}
     partners: dict[int, list[int]] = {i: [] for i in candidates}
-    for i, j in synchronised_pairs([intervals[i] for i in candidates], conf):
+    for i, j in synchronised_pairs([intervals[i] for i in candidates], conf, clock):
         a, b = candidates[i], candidates[j]
         partners[a].append(b)
         partners[b].append(a)
     return ContentResult(motifs, candidates, intervals, partners)
 
 
-def pool_groups(strings: list[Timed], found: ContentResult, conf: ContentConf) -> ContentResult:
-    """Steps 4-6 for every group of synchronised strings: pooled windows, vote, join, trim."""
+def pool_groups(strings: list[Timed], found: ContentResult, conf: ContentConf,
+                clock: Budget = NO_BOUND) -> ContentResult:
+    """Steps 4-6 for every group of synchronised strings: pooled windows, vote, join, trim.
+
+    ``clock`` is read before each group and each of its rounds; past its deadline it raises
+    :class:`~psgs.errors.BoundReached`, ``found`` holding the patterns of the groups done
+    (a group's are written once it is done).
+    """
     intervals = found.intervals
     groups = sync_groups(found.candidates, found.partners)
     patterns, occurrences, joined = found.patterns, found.occurrences, found.joined
     dropped = found.dropped
     grouped = {i for g in groups for i in g}
     for group in groups:
+        clock.check()
         located = {i: intervals[i] for i in group}
         earlier = np.zeros((0, 2))
         members = list(group)
         # the rounds before the last vote, then locate each member again with its vote; once
         # a round leaves every member where it was, every round left would repeat it
         for _ in range(conf.rounds - 1):
+            clock.check()
             before = {i: located[i] for i in members}
             windows = pooled_windows([located[i] for i in members], conf.window_support)
             earlier = windows
@@ -91,6 +106,7 @@ def pool_groups(strings: list[Timed], found: ContentResult, conf: ContentConf) -
         # overlap them in time (a random string's chance motif can); windows are redrawn
         # without the members that do not
         for _ in range(len(group)):
+            clock.check()
             windows = with_earlier(pooled_windows([located[i] for i in members],
                                                   conf.window_support), earlier)
             votes = {i: v for i in members
@@ -108,6 +124,7 @@ def pool_groups(strings: list[Timed], found: ContentResult, conf: ContentConf) -
                 dropped[i] = LEFT_ALONE
             votes = {}
         else:
+            clock.check()
             together = locate_together(strings, votes, conf)
             if together is not None:
                 # a copy damaged in most members passes no joint scan; its window stays
@@ -119,6 +136,7 @@ def pool_groups(strings: list[Timed], found: ContentResult, conf: ContentConf) -
                                    conf.column_alpha, conf.max_pattern)
             # strings whose own motif search fell short, read in the group's windows
             outside = [i for i in range(len(strings)) if i not in grouped]
+            clock.check()
             for i in may_join(strings, outside, windows, conf.joins_copies, conf.conserve):
                 if (v := vote(strings[i], windows)) is not None \
                         and repeats_in_windows(strings[i], v, conf, conf.joins_copies):

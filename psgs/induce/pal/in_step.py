@@ -35,6 +35,7 @@ import math
 
 import numpy as np
 
+from .conf import NO_BOUND
 from .motifs import Timed
 from .pairing import lead_segments
 from .sections import Section, _cycles
@@ -46,7 +47,7 @@ __all__: list[str] = []  # private: choice.py is the caller
 
 def group_significance(strings: list[Timed], sections: list, intervals: dict[int, np.ndarray],
                        follows: list[float | None], group: list[int],
-                       partners: dict[int, list[int]], level: float
+                       partners: dict[int, list[int]], level: float, clock=NO_BOUND
                        ) -> tuple[float, dict[int, Section]]:
     """The strongest reading of a group of sections in step: its significance and members.
 
@@ -54,7 +55,8 @@ def group_significance(strings: list[Timed], sections: list, intervals: dict[int
     ``follows[i]`` its follow rate (None: its match rate), ``partners`` who is in step
     with whom, ``level`` log10 of ``alpha``. The members map to the section each is read
     at (its own, or one found at the lead's copies). Returns ``(inf, {})`` when no lead
-    has a partner that beats chance.
+    has a partner that beats chance. ``clock`` (a :class:`~psgs.budget.Budget`) is read
+    before each lead.
 
     Examples
     --------
@@ -77,6 +79,7 @@ def group_significance(strings: list[Timed], sections: list, intervals: dict[int
     total = len(strings)
     best: tuple[float, dict[int, Section]] = (math.inf, {})
     for lead in group:
+        clock.check()
         best = min(best, _led_by(strings, lead, sections[lead], intervals[lead], follows,
                                  partners[lead], sections, intervals, level),
                    key=lambda b: b[0])
@@ -84,6 +87,7 @@ def group_significance(strings: list[Timed], sections: list, intervals: dict[int
     # puts the others' copies off its own: each member leads again, at the copies it was
     # read at
     for lead, section in list(best[1].items()):
+        clock.check()
         if section is not sections[lead]:
             at = strings[lead].copy_times(section)
             best = min(best, _led_by(strings, lead, section, at, follows, [], sections,

@@ -15,14 +15,15 @@ from __future__ import annotations
 from dataclasses import replace
 
 from ...actiongram import Actiongram
+from ...budget import Budget
 from ..._foundation.engines import for_input
-from ...errors import ValidationError
+from ...errors import BoundReached, ValidationError
 from ..base import Inducer, as_performances
 from ..results import NO_REPETITION, Induction, StringReport
 from ._encoding import encode
-from .conf import ContentConf
-from .choice import add_sections
-from .content import ContentResult, find_candidates, pool_groups
+from .conf import NO_BOUND, UNDECIDED, ContentConf
+from .choice import add_sections, keep_agreeing
+from .content import LEFT_ALONE, ContentResult, find_candidates, pool_groups
 from .motifs import Timed
 from .period import period_mode
 
@@ -108,6 +109,15 @@ class ContentPAL(Inducer):
         all strings in one call; ``pip install 'psgs[fast]'``), numpy's array passes
         (``"numpy"``), or numba when it imports and numpy otherwise (``"auto"``). Every
         engine gives the same result, to the bit, so an Induction does not record it.
+    max_seconds : float or None, default None
+        A wall-clock bound on the induction (None: none), read at the head of its loops:
+        each string's motif search, each row of synchronisation pairs, each group pooled,
+        each string's section search, each period tried. Past it the learner stops; the
+        Induction's ``bound`` is ``"max_seconds"``, its ``reason`` says at which stage, its
+        components are the groups pooled by then (their copies held to ``copy_agreement``,
+        a group left with one member dropped) and every other string is ``"not decided:
+        stopped at max_seconds"``. Not recorded in ``params``: an induction it does not
+        stop is the same without it.
 
     Examples
     --------
@@ -179,17 +189,37 @@ def learn_content(inducer: Inducer, conf: ContentConf, actiongram: Actiongram) -
     >>> learn_content(learner, learner.conf(), case.actiongram) == learner.induce(case.actiongram)
     True
     """
+    # started first: max_seconds covers everything the caller waits for
+    clock = Budget(seconds=conf.max_seconds) if conf.max_seconds is not None else NO_BOUND
     strings, symbol_of = encode(actiongram)
     conf = replace(conf, engine=for_input(conf.engine, sum(len(s.codes) for s in strings),
                                           CROSSOVER, "psgs.induce.pal._motifs_jit"))
-    found = pool_groups(strings, find_candidates(strings, conf), conf)
-    if conf.timing != "period":
-        add_sections(strings, found, conf)
-    by_period = None
-    if conf.timing == "period" or (conf.timing == "auto" and not found.patterns):
-        by_period = _period_phase(strings, len(symbol_of), found, conf)
+    found, stage, before_sections = None, "the motif search and synchronisation", None
+    try:
+        found = find_candidates(strings, conf, clock)
+        stage = "the pooling of synchronised strings"
+        pool_groups(strings, found, conf, clock)
+        if conf.timing != "period":
+            stage = "the section search"
+            # what add_sections changes before it can stop (never the components)
+            before_sections = found.sections, found.section_partners, dict(found.dropped)
+            add_sections(strings, found, conf, clock)
+            before_sections = None
+        by_period = None
+        if conf.timing == "period" or (conf.timing == "auto" and not found.patterns):
+            stage = "the period mode"
+            by_period = _period_phase(strings, len(symbol_of), found, conf, clock)
+    except BoundReached:
+        return _stopped(inducer, actiongram, strings, found, conf, symbol_of, stage,
+                        before_sections)
     reports = _reports(actiongram, found, by_period is not None or conf.timing == "period",
                        symbol_of)
+    return _ended(inducer, actiongram, found, reports, symbol_of)
+
+
+def _ended(inducer: Inducer, actiongram: Actiongram, found: ContentResult,
+           reports: tuple[StringReport, ...], symbol_of: list[str]) -> Induction:
+    """The Induction of ``found``'s components, with ``reports`` and their agreements."""
     patterns = {i: tuple(symbol_of[c] for c in codes) for i, codes in found.patterns.items()}
     result = _result(inducer, actiongram, patterns, found.occurrences, reports)
     names = actiongram.names
@@ -197,9 +227,49 @@ def learn_content(inducer: Inducer, conf: ContentConf, actiongram: Actiongram) -
                                        if i in found.agreements})
 
 
-def _period_phase(strings: list[Timed], size: int, found: ContentResult, conf: ContentConf):
+def _stopped(inducer: Inducer, actiongram: Actiongram, strings: list[Timed],
+             found: ContentResult | None, conf: ContentConf, symbol_of: list[str],
+             stage: str, before_sections) -> Induction:
+    """The Induction of a learner stopped at ``max_seconds`` during ``stage``: the groups
+    pooled by then, their copies held to ``copy_agreement`` as add_sections holds them."""
+    reason = f"stopped after {conf.max_seconds:g} seconds (max_seconds), in {stage}"
+    if found is None:  # nothing is pooled before the candidates are all found
+        reports = tuple(StringReport(name=name, status=UNDECIDED) for name in actiongram.names)
+        result = _result(inducer, actiongram, {}, {}, reports)
+    else:
+        if before_sections is not None:
+            found.sections, found.section_partners, found.dropped = before_sections
+        if conf.timing == "period":
+            # the period mode's components replace the content mode's: those of a mode
+            # that did not finish, none
+            found.patterns, found.occurrences, found.agreements = {}, {}, {}
+        elif stage != "the period mode":  # (timing="auto" runs it when content found none)
+            _settle(strings, found, conf)
+        reports = tuple(r if r.status == "component" else replace(r, status=UNDECIDED)
+                        for r in _reports(actiongram, found, False, symbol_of))
+        result = _ended(inducer, actiongram, found, reports, symbol_of)
+    return replace(result, bound="max_seconds", reason=reason,
+                   verdict="" if result.components else
+                   "no component found before max_seconds")
+
+
+def _settle(strings: list[Timed], found: ContentResult, conf: ContentConf) -> None:
+    """Pooled groups that the section weighing never saw, held to ``copy_agreement``; a
+    group it leaves with one member is no longer in step with anything."""
+    keep_agreeing(strings, found, conf)
+    for group in found.groups:
+        left = [i for i in group if i in found.patterns]
+        if len(left) == 1:
+            i = left[0]
+            del found.patterns[i], found.occurrences[i], found.spans[i], found.agreements[i]
+            found.joined.pop(i, None)
+            found.dropped[i] = LEFT_ALONE
+
+
+def _period_phase(strings: list[Timed], size: int, found: ContentResult, conf: ContentConf,
+                  clock: Budget = NO_BOUND):
     """Replace the content mode's findings by the period mode's (which may be none)."""
-    by_period = period_mode(strings, size, conf)
+    by_period = period_mode(strings, size, conf, clock)
     found.patterns, found.occurrences, found.joined, found.agreements = {}, {}, {}, {}
     if by_period is not None:
         for i, codes in by_period.patterns.items():

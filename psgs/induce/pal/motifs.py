@@ -12,9 +12,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..._foundation.engines import select, usable_cores
+from .conf import NO_BOUND
 from .statistics import log10_binom_sf, log10_poisson_sf, scan_threshold
 
 if TYPE_CHECKING:
+    from ...budget import Budget
     from .conf import ContentConf
 
 
@@ -172,7 +174,8 @@ _UNDECIDED = object()
 class Search:
     """The motif search by one engine, as a table of the same functions (the same motifs).
 
-    ``find_all(strings, conf)``: :func:`find_motif` of every string;
+    ``find_all(strings, conf, clock)``: :func:`find_motif` of every string, ``clock`` read
+    between strings (or runs of them);
     ``grow(codes, motif, starts, match_rate, distinct, conf, seed_only)``: one motif grown,
     or ``_UNDECIDED`` to leave it to numpy's loop. :func:`search` picks the table.
     """
@@ -186,23 +189,51 @@ def search(conf: ContentConf) -> Search:
     return select(conf.engine, numpy=NUMPY_SEARCH, numba=lambda: COMPILED_SEARCH)
 
 
-def find_motifs(strings: list[np.ndarray], conf: ContentConf) -> list[Motif | None]:
+def find_motifs(strings: list[np.ndarray], conf: ContentConf, clock: Budget = NO_BOUND
+                ) -> list[Motif | None]:
     """:func:`find_motif` of every string, by the engine ``conf.engine`` chooses.
 
-    The compiled engine searches every string in one call; a string where it
-    meets a chance level too close to a boundary to decide in its own floats
-    (see :mod:`psgs.induce.pal._motifs_jit`) is searched here again.
+    The compiled engine searches every string in one call (with a deadline on ``clock``,
+    one call per run of strings of :data:`CLOCKED_SYMBOLS`, the clock read between them);
+    a string where it meets a chance level too close to a boundary to decide in its own
+    floats (see :mod:`psgs.induce.pal._motifs_jit`) is searched here again. ``clock`` raises
+    :class:`~psgs.errors.BoundReached` past its deadline.
     """
-    return search(conf).find_all(strings, conf)
+    return search(conf).find_all(strings, conf, clock)
 
 
-def _find_each(strings: list[np.ndarray], conf: ContentConf) -> list[Motif | None]:
+def _find_each(strings: list[np.ndarray], conf: ContentConf, clock: Budget = NO_BOUND
+               ) -> list[Motif | None]:
     """numpy's engine: each string searched on its own."""
-    return [find_motif(codes, conf) for codes in strings]
+    return [find_motif(codes, conf, clock) for codes in strings]
 
 
-def _find_all_compiled(strings: list[np.ndarray], conf: ContentConf) -> list[Motif | None]:
-    """The compiled engine: every string in one call (see :func:`find_motifs`)."""
+#: With a deadline, the compiled engine searches runs of strings of about this many symbols
+#: (a string longer is a run alone), reading the clock between them: a call is some 0.3 s
+#: at numba's 0.6 µs a symbol. Each string's search is the same in any run.
+CLOCKED_SYMBOLS = 1 << 19
+
+
+def _find_all_compiled(strings: list[np.ndarray], conf: ContentConf, clock: Budget = NO_BOUND
+                       ) -> list[Motif | None]:
+    """The compiled engine: every string in one call, or a call per run of strings when
+    ``clock`` has a deadline (see :func:`find_motifs`)."""
+    if clock.deadline is None:
+        return _compiled_run(strings, conf, clock)
+    out: list[Motif | None] = []
+    first, held = 0, 0
+    for i, codes in enumerate(strings):
+        held += len(codes)
+        if held >= CLOCKED_SYMBOLS or i == len(strings) - 1:
+            clock.check()
+            out.extend(_compiled_run(strings[first:i + 1], conf, clock))
+            first, held = i + 1, 0
+    return out
+
+
+def _compiled_run(strings: list[np.ndarray], conf: ContentConf, clock: Budget
+                  ) -> list[Motif | None]:
+    """One compiled call searching ``strings``."""
     from . import _motifs_jit as jit
 
     count = len(strings)
@@ -222,7 +253,7 @@ def _find_all_compiled(strings: list[np.ndarray], conf: ContentConf) -> list[Mot
             status.tolist(), lengths.tolist(), copies.tolist(), thresholds.tolist(),
             bounds[:-1].tolist())):
         if state == jit.UNCERTAIN:
-            out.append(find_motif(strings[i], conf))
+            out.append(find_motif(strings[i], conf, clock))
         elif state == jit.FOUND:
             out.append(Motif(motifs[i, :length].copy(), starts[start:start + k].copy(),
                              significance(len(strings[i]), length, threshold, k,
@@ -299,12 +330,13 @@ def _symbol_statistics(flat: np.ndarray, bounds: np.ndarray, min_copies: int
     return sizes, distinct, rates
 
 
-def find_motif(codes: np.ndarray, conf: ContentConf) -> Motif | None:
+def find_motif(codes: np.ndarray, conf: ContentConf, clock: Budget = NO_BOUND
+               ) -> Motif | None:
     """The best-supported repeated motif of one string, or None.
 
     Up to ``conf.seeds`` of the most frequent digrams are grown in turn (a
     burst of noise can stop one seed early); the most significant motif wins,
-    the earlier seed among equals.
+    the earlier seed among equals. ``clock`` is read before each seed.
     """
     n = len(codes)
     if n < 2 * conf.min_copies:
@@ -325,6 +357,7 @@ def find_motif(codes: np.ndarray, conf: ContentConf) -> Motif | None:
         if int(uniq[index]) in covered:
             continue  # already inside a motif grown from an earlier seed
         tried += 1
+        clock.check()
         seed = np.array([uniq[index] // size, uniq[index] % size], dtype=np.int64)
         found = grow(codes, seed, np.flatnonzero(keys == uniq[index]), match_rate, distinct,
                      conf, seed_only=True)

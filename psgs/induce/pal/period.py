@@ -7,11 +7,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .conf import NO_BOUND
 from .motifs import Timed
 from .statistics import log10_binom_sf
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from ...budget import Budget
     from .conf import ContentConf
 
 
@@ -49,7 +51,8 @@ def time_grid(strings: list[Timed], max_points: int = 1 << 14):
     return times, step, grid
 
 
-def _self_agreement(grid: np.ndarray, size: int) -> tuple[np.ndarray, np.ndarray]:
+def _self_agreement(grid: np.ndarray, size: int, clock: Budget = NO_BOUND
+                    ) -> tuple[np.ndarray, np.ndarray]:
     """Per string and lag (in grid points): share of times whose symbol recurs one lag later.
 
     Also each string's chance rate, the sum of its squared symbol time shares
@@ -69,6 +72,7 @@ def _self_agreement(grid: np.ndarray, size: int) -> tuple[np.ndarray, np.ndarray
     chance = np.zeros(grid.shape[0])
     counted = np.maximum(valid.sum(axis=1), 1)
     for row in range(grid.shape[0]):
+        clock.check()
         # only the symbols this string holds: the cost follows its own alphabet, not the
         # actiongram's; a symbol at few points is counted pair by pair (whole numbers, as
         # the rounded correlation gives them), a frequent one by an FFT
@@ -169,7 +173,8 @@ def track_windows(grid: np.ndarray, lag: int) -> np.ndarray:
     return np.asarray(starts, dtype=np.int64)
 
 
-def period_mode(strings: list[Timed], size: int, conf: ContentConf) -> PeriodResult | None:
+def period_mode(strings: list[Timed], size: int, conf: ContentConf, clock: Budget = NO_BOUND
+                ) -> PeriodResult | None:
     """Components whose symbols recur with the action's period, read in tracked windows.
 
     For real motion: joints cycle through the same few states at different
@@ -180,26 +185,28 @@ def period_mode(strings: list[Timed], size: int, conf: ContentConf) -> PeriodRes
     (binomial tail on its segments, at its chance rate, times the number of
     strings, below ``alpha``); at least two are needed (synchronisation). Its
     pattern is the plurality symbol at each time offset, runs shorter than
-    two grid points dropped.
+    two grid points dropped. ``clock`` is read for each string and each period tried, and
+    raises :class:`~psgs.errors.BoundReached` past its deadline.
     """
     if sum(len(s.codes) > 0 for s in strings) < 2:
         return None
     times, step, grid = time_grid(strings)
     if grid.shape[1] < 2 * conf.min_copies:
         return None
-    agreement, chance = _self_agreement(grid, size)
+    agreement, chance = _self_agreement(grid, size, clock)
     lags = _candidate_periods(agreement - chance[:, None], conf)
     best = None
     for lag in lags:
+        clock.check()
         found = _read_period(strings, size, times, step, grid, agreement, chance, lag,
-                             len(lags), conf)
+                             len(lags), conf, clock)
         if found is not None and (best is None or len(found.patterns) > len(best.patterns)):
             best = found
     return best
 
 
 def _read_period(strings, size, times, step, grid, agreement, chance, lag, tried,
-                 conf: ContentConf) -> PeriodResult | None:
+                 conf: ContentConf, clock: Budget = NO_BOUND) -> PeriodResult | None:
     """The components of one candidate period (see :func:`period_mode`)."""
     drivers = np.flatnonzero(agreement[:, lag] >= conf.period_agreement)
     if len(drivers) < 2:
@@ -211,6 +218,7 @@ def _read_period(strings, size, times, step, grid, agreement, chance, lag, tried
     penalty = math.log10(len(strings) * tried)
     patterns, occurrences, agreed = {}, {}, {}
     for row, s in enumerate(strings):
+        clock.check()
         copies = windows[row]
         valid = (copies[:-1] >= 0) & (copies[1:] >= 0)
         if valid.sum() == 0:

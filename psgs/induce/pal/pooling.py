@@ -10,11 +10,13 @@ import numpy as np
 
 from ...analysis import reachable
 from ..._foundation.engines import select
+from .conf import NO_BOUND
 from .motifs import Timed, grow, locate_copies
 from .statistics import log10_binom_sf, scan_threshold
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from ...budget import Budget
     from .conf import ContentConf
 
 
@@ -55,32 +57,59 @@ def synchronised(a: np.ndarray, b: np.ndarray, fraction: float, min_copies: int)
     return both >= min_copies and both >= fraction * clusters
 
 
-def synchronised_pairs(lists: list[np.ndarray], conf: ContentConf) -> list[tuple[int, int]]:
+def synchronised_pairs(lists: list[np.ndarray], conf: ContentConf, clock: Budget = NO_BOUND
+                       ) -> list[tuple[int, int]]:
     """The pairs ``(i, j)``, ``i < j`` in order, of copy interval lists that are
-    :func:`synchronised`, by the engine ``conf.engine`` chooses (the same pairs)."""
+    :func:`synchronised`, by the engine ``conf.engine`` chooses (the same pairs).
+
+    ``clock`` is read before each ``i`` (the compiled engine: before each block of rows,
+    when it has a deadline) and raises :class:`~psgs.errors.BoundReached` past it: the
+    pairs are quadratic in the lists.
+    """
     pairs = select(conf.engine, numpy=_pairs_each, numba=lambda: _pairs_compiled)
-    return pairs(lists, conf.sync_fraction, conf.min_copies)
+    return pairs(lists, conf.sync_fraction, conf.min_copies, clock)
 
 
-def _pairs_each(lists: list[np.ndarray], fraction: float, copies: int
-                ) -> list[tuple[int, int]]:
+def _pairs_each(lists: list[np.ndarray], fraction: float, copies: int,
+                clock: Budget = NO_BOUND) -> list[tuple[int, int]]:
     """numpy's engine: :func:`synchronised` on every pair."""
-    return [(i, j) for i in range(len(lists)) for j in range(i + 1, len(lists))
-            if synchronised(lists[i], lists[j], fraction, copies)]
+    out = []
+    for i in range(len(lists)):
+        clock.check()
+        out.extend((i, j) for j in range(i + 1, len(lists))
+                   if synchronised(lists[i], lists[j], fraction, copies))
+    return out
 
 
-def _pairs_compiled(lists: list[np.ndarray], fraction: float, copies: int
-                    ) -> list[tuple[int, int]]:
-    """The compiled engine: every pair in one call."""
-    from ._pairs_jit import synchronised_pairs as compiled
+#: With a deadline, the compiled engine tests about this many pairs a call, a block of rows
+PAIRS_PER_CALL = 1 << 20
+
+
+def _pairs_compiled(lists: list[np.ndarray], fraction: float, copies: int,
+                    clock: Budget = NO_BOUND) -> list[tuple[int, int]]:
+    """The compiled engine: every pair in one call, or a block of rows a call when ``clock``
+    has a deadline (the same pairs, in the same order)."""
+    from . import _pairs_jit as jit
 
     bounds = np.zeros(len(lists) + 1, dtype=np.int64)
     np.cumsum([len(iv) for iv in lists], out=bounds[1:])
     spans = np.concatenate(lists).astype(np.float64).reshape(-1, 2) if lists \
         else np.zeros((0, 2))
-    found = compiled(np.ascontiguousarray(spans[:, 0]), np.ascontiguousarray(spans[:, 1]),
-                     bounds, float(fraction), int(copies))
-    return list(zip(*(k.tolist() for k in np.nonzero(found))))
+    lo, hi = np.ascontiguousarray(spans[:, 0]), np.ascontiguousarray(spans[:, 1])
+    if clock.deadline is None:
+        found = jit.synchronised_pairs(lo, hi, bounds, float(fraction), int(copies))
+        return list(zip(*(k.tolist() for k in np.nonzero(found))))
+    disjoint = jit.disjoint_flags(lo, hi, bounds)
+    count = len(lists)
+    rows = max(1, PAIRS_PER_CALL // max(count, 1))
+    out: list[tuple[int, int]] = []
+    for first in range(0, count, rows):
+        clock.check()
+        last = min(first + rows, count)
+        found = jit.synchronised_rows(lo, hi, bounds, disjoint, first, last, float(fraction),
+                                      int(copies))
+        out.extend((first + r, j) for r, j in zip(*(k.tolist() for k in np.nonzero(found))))
+    return out
 
 
 def _disjoint(spans: np.ndarray) -> bool:

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .conf import NO_BOUND
 from .motifs import keep_apart
 from .statistics import log10_binom_sf, log10_choose
 
@@ -178,10 +179,11 @@ def copy_agreements(codes: np.ndarray, pattern, starts) -> list[float]:
 
 
 def find_sections(strings: list[np.ndarray], copies: int, match_rates: list[float],
-                  level: float, follows: list[float | None] | None = None
-                  ) -> list[Section | None]:
+                  level: float, follows: list[float | None] | None = None,
+                  clock=NO_BOUND) -> list[Section | None]:
     """:func:`find_section` of every string (unbounded in length), strings that cannot hold a
-    section reaching ``level`` passed over in one pass over all of them.
+    section reaching ``level`` passed over in one pass over all of them; ``clock`` (a
+    :class:`~psgs.budget.Budget`) read before each string searched.
 
     Examples
     --------
@@ -199,6 +201,7 @@ def find_sections(strings: list[np.ndarray], copies: int, match_rates: list[floa
     lows = [_shortest(len(c), copies, q, f, level, len(c) // copies)
             if len(c) >= 2 * copies else 0 for c, q, f in zip(strings, match_rates, follows)]
     for i in _may_repeat(strings, lows, copies):
+        clock.check()
         out[i] = find_section(strings[i], copies, len(strings[i]), match_rates[i], level,
                               follows[i], lows[i])
     return out

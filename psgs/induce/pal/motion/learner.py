@@ -15,8 +15,11 @@ from __future__ import annotations
 from dataclasses import replace
 
 from ....actiongram import Actiongram
+from ....budget import Budget
+from ....errors import BoundReached
 from ...base import Inducer, as_performances
 from ...results import NO_REPETITION, Induction, StringReport
+from ..conf import UNDECIDED
 from .conf import MotionConf
 from .performances import learn_motion
 from .results import ActuatorReport, Morpheme
@@ -56,6 +59,11 @@ class MotionPAL(Inducer):
         Shortest cycle within a performance, seconds.
     min_cycle_score : float, default 0.05
         A joint whose best cycle score is no higher does not cycle (no period).
+    max_seconds : float or None, default None
+        A wall-clock bound on the induction (None: none), read for each performance
+        sampled, aligned and scored and for each leader tried. Past it the learner stops
+        with no component (the joints are chosen at the end): the Induction's ``bound`` is
+        ``"max_seconds"`` and every string is ``"not decided: stopped at max_seconds"``.
 
     Examples
     --------
@@ -162,7 +170,17 @@ def learn_performances(inducer: Inducer, conf: MotionConf, takes: tuple[Actiongr
     >>> learn_performances(learner, learner.conf(), takes) == learner.induce(takes)
     True
     """
-    found = learn_motion(takes, conf)
+    # started first: max_seconds covers everything the caller waits for
+    clock = Budget(seconds=conf.max_seconds)
+    try:
+        found = learn_motion(takes, conf, clock)
+    except BoundReached:
+        result = inducer.build_induction(
+            takes[0].names, {}, {}, [StringReport(name, UNDECIDED) for name in takes[0].names],
+            synchronise=True, performances=len(takes))
+        return replace(result, verdict="no component found before max_seconds",
+                       bound="max_seconds", reason=f"stopped after {conf.max_seconds:g} seconds "
+                                                   f"(max_seconds), before the joints were chosen")
     first = takes[0]
     names = first.names
     symbols = found.symbols

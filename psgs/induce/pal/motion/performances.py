@@ -39,9 +39,11 @@ from .cycles import CycleEvidence, joint_period, lag_scores
 from .grids import Grid, agreement, agreement_counts, grid_step, kappa, resample, sample
 from .morphemes import read_patterns
 from .results import JointEvidence, MotionResult
+from ..conf import NO_BOUND
 from ..statistics import log10_binom_sf
 
 if TYPE_CHECKING:
+    from ....budget import Budget
     from .conf import MotionConf
 
 
@@ -50,11 +52,19 @@ if TYPE_CHECKING:
 LEADER_SHARE = 0.1
 
 
-def learn_motion(takes: tuple[Actiongram, ...], conf: MotionConf) -> MotionResult:
-    """Steps 1-6 of the module docstring on ``takes`` (same strings, same order)."""
+def learn_motion(takes: tuple[Actiongram, ...], conf: MotionConf, clock: Budget = NO_BOUND
+                 ) -> MotionResult:
+    """Steps 1-6 of the module docstring on ``takes`` (same strings, same order).
+
+    ``clock`` is read for each performance sampled, aligned and scored, and for each
+    leader tried; past its deadline it raises :class:`~psgs.errors.BoundReached`.
+    """
     codes: dict[str, int] = {}
     step = grid_step(takes)
-    grids = [sample(ag, codes, step) for ag in takes]
+    grids = []
+    for ag in takes:
+        clock.check()
+        grids.append(sample(ag, codes, step))
     size = max(len(codes), 1)
     first = takes[0]
     joints = [JointEvidence(a, tuple(first.index(c) for c in first.channels(a)))
@@ -77,13 +87,18 @@ def learn_motion(takes: tuple[Actiongram, ...], conf: MotionConf) -> MotionResul
     log_p = np.zeros(len(first))
     shifts: list[int] = []
     if len(takes) >= 2:
-        shifts, cross, cross_p = _across(grids, size, paths, segments, conf)
+        shifts, cross, cross_p = _across(grids, size, paths, segments, conf, clock)
         repeated, log_p = cross, cross_p
-    scored = [lag_scores(g, size, conf) for g in grids]
+    scored = []
+    for g in grids:
+        clock.check()
+        scored.append(lag_scores(g, size, conf))
     evidence = CycleEvidence(grids, scored, size, paths, segments)
+    clock.check()
     leaders = _first_leaders(joints, repeated, log_p, evidence, conf) or [None]
     result = None
     for k, leader in enumerate(leaders[:3]):  # a leader alone (none in step) gives way
+        clock.check()
         # each further try is held to a 100 times stricter test (it is one more look)
         tried = _with_cycles(leader, joints, repeated, log_p, evidence, first, conf,
                              symbols, extra=2.0 * k)
@@ -93,6 +108,7 @@ def learn_motion(takes: tuple[Actiongram, ...], conf: MotionConf) -> MotionResul
             break
     found, periods = result
     if found.verdict == "":
+        clock.check()
         read_patterns(found, grids, periods, shifts, takes)
         if periods:
             found.period = float(np.median([p for p in periods if p])) * step
@@ -120,14 +136,19 @@ def _with_cycles(leader, joints, repeated, log_p, evidence: CycleEvidence, first
 
 # -- evidence across performances ----------------------------------------------------------
 def _across(grids: list[Grid], size: int, paths: np.ndarray, segments: np.ndarray,
-            conf: MotionConf) -> tuple[list[int], np.ndarray, np.ndarray]:
+            conf: MotionConf, clock: Budget = NO_BOUND
+            ) -> tuple[list[int], np.ndarray, np.ndarray]:
     """Per channel: repeated motion and log10 p across aligned, time-normalised performances."""
     length = int(np.median([g.points for g in grids]))
     states = [resample(g.states, length) for g in grids]
     speeds = [resample(g.speed, length) for g in grids]
     reach = int(round(conf.max_shift * length))
     reference = states[0]
-    shifts = [0] + [_best_shift(reference, s, reach, size) for s in states[1:]]
+    shifts = [0]
+    for s in states[1:]:
+        clock.check()
+        shifts.append(_best_shift(reference, s, reach, size))
+    clock.check()
     channels = reference.shape[0]
     pairs = [(p, q) for p in range(len(grids)) for q in range(p + 1, len(grids))]
     # pairs at one relative shift overlap over the same length: one agreement call for them
