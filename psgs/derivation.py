@@ -508,6 +508,8 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
     steps: list[Step] = []
     bound = reason = None
     held = sum(len(f) for f in configuration)
+    # what a PSGS step may apply is the same every step: built once, not per step
+    tuples = None if isinstance(system, PCGS) else moves(system)
     while not is_terminal_configuration(system, configuration):
         if len(steps) >= max_steps:
             bound, reason = "max_steps", f"stopped after {max_steps} steps (max_steps)"
@@ -521,7 +523,7 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
             reason = (f"stopped when a form grew beyond {max_form_length} symbols "
                      f"(max_form_length)")
             break
-        step = random_step(system, configuration, rng)
+        step = random_step(system, configuration, rng, moves=tuples)
         if step is None:
             break
         held += sum(len(f) for f in step.after)

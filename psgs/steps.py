@@ -345,14 +345,16 @@ def pcgs_steps(system: PCGS, configuration: Configuration) -> Iterator[Step]:
 
 # ---------------------------------------------------------------- random steps
 def random_step(system: _System, configuration: Configuration,
-                rng: random.Random) -> Step | None:
+                rng: random.Random, *, moves: Sequence[SyncTuple] | None = None
+                ) -> Step | None:
     """A uniformly random applicable step, or None; never lists all of them.
 
     In single mode the steps of one tuple are every choice of occurrences, a
     product that grows like the forms' lengths to the power n; counting them
     is cheap. The index drawn is the position the step would have in
     :func:`psgs.derivation.applicable_steps`, so a seed picks the same step
-    either way.
+    either way. ``moves`` is :func:`psgs.analysis.moves` of a PSGS, when the
+    caller draws many steps and has it already (it is the same every step).
 
     Examples
     --------
@@ -369,7 +371,7 @@ def random_step(system: _System, configuration: Configuration,
     candidates = []
     total = 0
     where = [positions_by_name(form) for form in configuration]
-    for sync_tuple in system_moves(system):
+    for sync_tuple in (system_moves(system) if moves is None else moves):
         spots = _spots(sync_tuple, where)
         # whether a tuple changes something does not depend on the occurrences chosen, so it
         # is asked of its rules (no configuration built per tuple and step)
