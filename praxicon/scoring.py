@@ -89,7 +89,11 @@ def distances(x: np.ndarray, means: np.ndarray, parts) -> np.ndarray:
         d = (x - mean) / scale
         # einsum without optimize runs numpy's own loops (no BLAS): one dot product per row
         b = np.einsum("nf,kf->nk", d * inverse, w)
-        out[:, a] = (d * d * inverse).sum(axis=1) - np.einsum("ni,ij,nj->n", b, inner, b)
+        # two operands at a time: with three, einsum's loop order followed the number of
+        # rows where the spread has two shared directions (a take alone and in a batch
+        # differed in the last bits)
+        bm = np.einsum("ni,ij->nj", b, inner)
+        out[:, a] = (d * d * inverse).sum(axis=1) - np.einsum("nj,nj->n", bm, b)
     return out
 
 

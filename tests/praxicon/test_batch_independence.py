@@ -10,6 +10,7 @@ the last bit.
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from praxicon import recognise, recognise_many
 from praxicon.scoring import distances
@@ -50,9 +51,12 @@ def test_a_take_has_the_same_numbers_alone_and_in_any_batch():
             assert recognise_many(d, [new[k] for k in batch]) == [alone[k] for k in batch]
 
 
-def test_distances_are_each_rows_own_whatever_the_batch_and_its_layout():
+@pytest.mark.parametrize("factors", range(1, 17))
+@pytest.mark.parametrize("features", [3, 17, 70])
+def test_distances_are_each_rows_own_whatever_the_batch_and_its_layout(features, factors):
+    # every count of shared directions: with two, a three-operand einsum's loop order
+    # followed the number of rows
     rng = np.random.default_rng(1)
-    features, factors = 70, 9
     w = rng.normal(size=(factors, features))
     inner = np.linalg.inv(np.eye(factors) + w @ w.T)
     parts = (rng.uniform(0.5, 2.0, features), rng.uniform(0.5, 2.0, features), w, inner)
