@@ -188,6 +188,8 @@ def _witness(system: PSGS | PCGS, words, args, clock) -> tuple[str, str | None]:
     """The derivation of ``words`` as a line, and the bound that kept it from being found
     (None when it was found), searched within the time --max-seconds leaves."""
     from ..membership import accepts
+    if clock.expired():  # no search past the bound: each would still get its millisecond
+        return "(no derivation searched: stopped at max_seconds)", "max_seconds"
     try:
         answer = accepts(system, words, max_seconds=clock.left(), max_symbols=args.max_symbols)
     except ModuleNotFoundError as exc:  # a membership back end not installed in this build

@@ -30,11 +30,13 @@ def run_draw(args) -> int:
     used = "graphviz" if engine == "graphviz" or (engine == "auto" and graphviz_available()) \
         else "matplotlib"
     print(f"{path} ({used})")
-    if derivation is None or derivation.is_terminal:
+    if derivation is None:
         return 0
     # the forest again (at most --max-nodes nodes, so cheap) for what stopped it: draw
-    # returns the file only
+    # returns the file only; --max-nodes may cut the trees of a derivation that ended, too
     forest = parse_forest(system, derivation, max_nodes=args.max_nodes)
+    if forest.bound is None and derivation.is_terminal:
+        return 0
     if forest.bound is not None:
         what = "the picture" if forest.bound == "max_nodes" else \
             f"the derivation drawn (seed {args.seed})"

@@ -149,3 +149,31 @@ def test_enumerate_trace_names_the_bound_that_kept_a_witness_back(capsys, monkey
     assert err == ("psgs: no derivation was found for 1 of the words above within the bounds "
                    "(max_states); they are in the language all the same\n")
     assert 0 < asked[0]["max_seconds"] <= 20 and asked[0]["max_symbols"] == 10_000_000
+
+
+def test_enumerate_trace_searches_no_witness_once_the_time_is_out(capsys, monkeypatch):
+    # past the bound each witness still got a millisecond, and thousands of words took
+    # seconds each over --max-seconds, with status 0
+    import psgs.budget as budget
+    import psgs.membership as membership
+
+    def never(*args, **kwargs):
+        raise AssertionError("a witness was searched past the bound")
+    monkeypatch.setattr(membership, "accepts", never)
+    monkeypatch.setattr(budget.Budget, "expired", lambda self: self.deadline is not None)
+    status, out, err = run(capsys, "derive", "paper_example", "--enumerate", "--max-length",
+                           "32", "--trace", "--max-seconds", "20")
+    assert status == 3
+    assert "(no derivation searched: stopped at max_seconds)" in out
+    assert "(max_seconds)" in err
+
+
+def test_draw_of_a_derivation_that_ended_says_when_max_nodes_cut_its_trees(tmp_path, capsys):
+    # the derivation ends in 9 steps; the picture of it did not, and the status said 0
+    status, out, err = run(capsys, "draw", "paper_example", "-o", str(tmp_path / "g.svg"),
+                           "--max-nodes", "3", "--engine", "matplotlib")
+    assert status == 3 and out
+    assert err.startswith("psgs: the picture stopped at its bound max_nodes: ")
+    status, out, err = run(capsys, "draw", "paper_example", "-o", str(tmp_path / "h.svg"),
+                           "--engine", "matplotlib")
+    assert status == 0 and err == ""
