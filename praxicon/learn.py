@@ -279,6 +279,11 @@ def _learnt(base: ActionRecord, action: Action, motions, used: list[int],
     segmented = _segment_all(motions, segmentation)
     inducer = get(settings.inducer, **dict(settings.params))
     induction, learnt, note = _induce(inducer, segmented)
+    if getattr(induction, "bound", None) is not None:
+        # what an inducer found before its bound is not what it learns: kept, the action
+        # would read as learnt whole (its record says ok, its params do not hold the bound)
+        raise ValueError(f"the inducer stopped at its bound {induction.bound} "
+                         f"({induction.reason}): nothing kept; raise the bound to learn it")
     channels = _component_channels(induction)
     joints: dict[str, list] = {}
     for channel in channels:
