@@ -243,6 +243,7 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
         # a build interrupted at any moment leaves a folder without descriptions (which load
         # reads, and recognise names the command for), never one describing other records
         (out / FILE).unlink(missing_ok=True)
+        seen.pop(FILE, None)  # not kept through the learning: they may be megabytes
     learnt, failed = [], [n for n in skipped if not records[n].learnt]
     dataset_list = tuple(str(d) for d in (datasets or sorted({a.dataset for a in actions})))
 
