@@ -62,7 +62,16 @@ def read_descriptions_file(folder):
 def descriptions_in(data, path):
     """``(takes, windows, key)`` of the JSON value ``data`` read from ``path`` (a
     ``descriptions.json``), every field checked as :func:`read_descriptions_file` checks them
-    (its errors name ``path``): for a reader that has read the file already."""
+    (its errors name ``path``): for a reader that has read the file already.
+
+    Examples
+    --------
+    >>> descriptions_in({"format": "praxicon-descriptions-file", "version": 10**6},
+    ...                 "px/descriptions.json")
+    Traceback (most recent call last):
+    ...
+    praxicon.records.PraxiconError: px/descriptions.json: descriptions of version 1000000, this psgs reads version ... (a later psgs wrote them; upgrade psgs to read them)
+    """
     if not isinstance(data, dict) or data.get("format") != _FORMAT:
         raise PraxiconError(f"{path}: not a praxicon descriptions file")
     said = data.get("version")

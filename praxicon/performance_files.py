@@ -42,6 +42,16 @@ def missing_style(record, style: str) -> ValueError:
     style". Else it names the styles there are: the words that tell the performances' file
     names apart (take numbers aside), and the action's own style (an action of one style,
     whose file names differ by their take numbers only).
+
+    Examples
+    --------
+    >>> from praxicon.records import ActionRecord, PerformanceRecord
+    >>> record = ActionRecord("d.wave", "d", "wave", performances=(
+    ...     PerformanceRecord("/x/d_wave_happy_1.bvh"), PerformanceRecord("/x/d_wave_angry_1.bvh")))
+    >>> missing_style(record, "sad")
+    ValueError("action 'd.wave' has no performance of style 'sad' (styles: angry, happy)")
+    >>> missing_style(record, "happy")
+    ValueError("action 'd.wave': its performances of style 'happy' cannot be read (/x/d_wave_happy_1.bvh: no such file)")
     """
     import kinetology
 
@@ -69,7 +79,17 @@ def missing_style(record, style: str) -> ValueError:
 def learnt_files(record, style: str | None = None) -> list[str]:
     """The files of the performances ``record`` was learnt from (every one when the record
     does not say), in its order, a file once per performance; with ``style``, those whose
-    file name holds it as a word."""
+    file name holds it as a word.
+
+    Examples
+    --------
+    >>> from praxicon.records import ActionRecord, PerformanceRecord
+    >>> record = ActionRecord("d.wave", "d", "wave", learnt_from=(0, 2), performances=(
+    ...     PerformanceRecord("d_wave_happy_1.bvh"), PerformanceRecord("d_wave_angry_1.bvh"),
+    ...     PerformanceRecord("d_wave_angry_2.bvh")))
+    >>> learnt_files(record), learnt_files(record, "angry")
+    (['d_wave_happy_1.bvh', 'd_wave_angry_2.bvh'], ['d_wave_angry_2.bvh'])
+    """
     files = [record.performances[i].file
              for i in record.learnt_from or range(len(record.performances))]
     return files if style is None else [f for f in files if style in style_of(f)]
