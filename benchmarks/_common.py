@@ -16,6 +16,7 @@ import importlib.util
 import math
 import sys
 import time
+import tracemalloc
 from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 
@@ -94,6 +95,18 @@ def best_of(repeat: int, function: Callable[[], object]) -> tuple[float, object]
         result = function()
         best = min(best, time.perf_counter() - began)
     return best, result
+
+
+def peak_bytes(function: Callable[[], object]) -> tuple[int, int]:
+    """Peak bytes allocated while ``function`` runs (``tracemalloc``), and bytes its answer
+    still holds."""
+    tracemalloc.start()
+    try:
+        answer = function()  # noqa: F841 - held while the memory it takes is read
+        held, peak = tracemalloc.get_traced_memory()
+        return peak, held
+    finally:
+        tracemalloc.stop()
 
 
 def loglog_slope(xs: Sequence[float], ys: Sequence[float]) -> float:

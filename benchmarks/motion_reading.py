@@ -17,10 +17,10 @@ from __future__ import annotations
 import argparse
 import sys
 import tempfile
-import tracemalloc
 from pathlib import Path
 
-from _common import DATA, DOCS, MOCAP, best_of, replace_section, require, write_csv
+from _common import (DATA, DOCS, MOCAP, best_of, peak_bytes, replace_section, require,
+                     write_csv)
 
 _BANDAI = MOCAP / "bandai-namco-1" / "data" / "dataset-1_dance-short_normal_001.bvh"
 _CMU_BVH = MOCAP / "cmu-01_01-pair" / "01_01.bvh"
@@ -56,17 +56,6 @@ def _repeated_amc(source: Path, times: int, out: Path) -> Path:
     return out
 
 
-def _peak(function) -> tuple[int, int]:
-    """Peak bytes allocated while ``function`` runs, and bytes its answer still holds."""
-    tracemalloc.start()
-    try:
-        answer = function()  # noqa: F841 - held while the memory it takes is read
-        held, peak = tracemalloc.get_traced_memory()
-        return peak, held
-    finally:
-        tracemalloc.stop()
-
-
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--no-write", action="store_true", help="print only")
@@ -88,7 +77,7 @@ def main(argv=None) -> int:
             seconds, motion = best_of(3, lambda: kinetology.read(path))
             values = motion.values.size
             del motion
-            peak, held = _peak(lambda: kinetology.read(path))
+            peak, held = peak_bytes(lambda: kinetology.read(path))
             rows.append([name, size, values, f"{seconds:.4f}", peak, held])
             lines.append(f"| {name} | {size / 1e6:.2f} MB | {values / 1e6:.2f} M | "
                          f"{seconds:.3f} s | {size / 1e6 / seconds:.0f} MB/s | "

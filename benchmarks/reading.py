@@ -17,10 +17,9 @@ from __future__ import annotations
 import argparse
 import sys
 import time
-import tracemalloc
 from importlib import resources
 
-from _common import DATA, DOCS, replace_section, require, write_csv
+from _common import DATA, DOCS, peak_bytes, replace_section, require, write_csv
 
 
 def _rules_text(rules: int) -> str:
@@ -52,17 +51,6 @@ def _cpu(repeat: int, function) -> float:
     return best
 
 
-def _peak(function) -> tuple[int, int]:
-    """Peak bytes allocated while ``function`` runs, and bytes its answer still holds."""
-    tracemalloc.start()
-    try:
-        answer = function()  # noqa: F841 - held while the memory it takes is read
-        held, peak = tracemalloc.get_traced_memory()
-        return peak, held
-    finally:
-        tracemalloc.stop()
-
-
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--no-write", action="store_true", help="print only")
@@ -82,8 +70,8 @@ def main(argv=None) -> int:
         assert psgs.loads(text) is not None and whole.parse(text) is not None
         cpu_psgs = _cpu(3, lambda: psgs.loads(text))
         cpu_lark = _cpu(3, lambda: whole.parse(text))
-        peak_psgs, held = _peak(lambda: psgs.loads(text))
-        peak_lark, tree = _peak(lambda: whole.parse(text))
+        peak_psgs, held = peak_bytes(lambda: psgs.loads(text))
+        peak_lark, tree = peak_bytes(lambda: whole.parse(text))
         rows.append([name, size, f"{cpu_psgs:.3f}", f"{cpu_lark:.3f}", peak_psgs, held,
                      peak_lark, tree])
         lines.append(f"| {name} | {size / 1e6:.2f} MB | {cpu_psgs:.2f} s | {cpu_lark:.2f} s | "
