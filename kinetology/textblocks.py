@@ -81,21 +81,21 @@ def parse_rows(lines: list[str], width: int, *, source: str, first_line: int = 1
     def column(i: int, k: int) -> int:  # of the k-th value of lines[i], in the file's line
         return token_column(lines[i], k) + (indent_of(i) if indent_of is not None else 0)
 
-    joined = " ".join(lines)
-    tokens = joined.split()
+    # each line split once: its count checked, its numbers read (a block of the right count of
+    # numbers that is not right on every line would shift every value after a moved number)
+    rows = [line.split() for line in lines]
     values = None
-    # numpy, as float(), takes '1_0' and other scripts' digits: such text goes the slow way;
-    # so does a block of the right count of numbers that is not right on every line (a
-    # number moved to the next line would shift every value after it without a word)
-    if (len(tokens) == width * len(lines) and joined.isascii() and "_" not in joined
-            and all(len(line.split()) == width for line in lines)):
-        try:
-            values = np.array(tokens, dtype=float).reshape(len(lines), width)
-        except ValueError:
-            values = None
+    if all(len(row) == width for row in rows):
+        joined = " ".join(lines)
+        # numpy, as float(), takes '1_0' and other scripts' digits: such text goes the slow way
+        if joined.isascii() and "_" not in joined:
+            try:
+                values = np.array(list(itertools.chain.from_iterable(rows)),
+                                  dtype=float).reshape(len(lines), width)
+            except ValueError:
+                values = None
     if values is None:
-        for i, line in enumerate(lines):
-            parts = line.split()
+        for i, parts in enumerate(rows):
             if len(parts) != width:
                 raise MotionFormatError(f"expected {width} number{'s' * (width != 1)}, "
                                         f"found {len(parts)}",
@@ -105,10 +105,11 @@ def parse_rows(lines: list[str], width: int, *, source: str, first_line: int = 1
                     raise MotionFormatError(f"not a number: {part!r}", source=source,
                                             line=where(i), column=column(i, k))
         # every token is a decimal number (the text held other white space, say)
-        values = np.array(tokens, dtype=float).reshape(len(lines), width)
+        values = np.array(list(itertools.chain.from_iterable(rows)),
+                          dtype=float).reshape(len(lines), width)
     if not np.isfinite(values).all():
         row, col = (int(n) for n in np.argwhere(~np.isfinite(values))[0])
-        raise MotionFormatError(f"value {col + 1} is not finite ({lines[row].split()[col]})",
+        raise MotionFormatError(f"value {col + 1} is not finite ({rows[row][col]})",
                                 source=source, line=where(row), column=column(row, col))
     return values
 
