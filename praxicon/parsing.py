@@ -438,14 +438,14 @@ def _parsed(praxicon, motion, *, hop, switch, own, support, unfit, progress,
     starts, cuts = windows(motion, window, hop)
     if progress is not None:
         cuts = _Reported(cuts, progress)
-    read: list[int] = []  # how many windows were read, as they are
-    columns, x, _ = feature_matrix(descriptions, _until(cuts, clock, read), shape=False)
+    columns, x, _ = feature_matrix(descriptions, _until(cuts, clock), shape=False)
+    read = len(x)  # the windows read: a row each
     # past the bound, the windows read are parsed: where the next one's answer would begin
     # is where the timeline ends (the edge the whole recording's timeline has there)
-    complete = read[0] == len(starts)
+    complete = read == len(starts)
     stop = motion.duration if complete else \
-        (starts[read[0] - 1] + starts[read[0]]) / 2 + min(window, motion.duration) / 2
-    starts = starts[:read[0]]
+        (starts[read - 1] + starts[read]) / 2 + min(window, motion.duration) / 2
+    starts = starts[:read]
     fitted = _score_model(descriptions, columns)
     if not fitted.compared.any():  # an action sharing none (another skeleton) is never chosen
         raise DescriptionError(f"{getattr(motion, 'source', '<motion>')}: the motion shares "
@@ -503,14 +503,11 @@ def _parsed(praxicon, motion, *, hop, switch, own, support, unfit, progress,
                     tuple(j for j in lacking if j in has), bound, reason)
 
 
-def _until(cuts, clock, read: list[int]):
-    """The windows ``cuts``, in order, until ``clock`` has expired (the first always);
-    ``read`` holds how many were given."""
-    read.append(0)
+def _until(cuts, clock):
+    """The windows ``cuts``, in order, until ``clock`` has expired (the first always)."""
     for k in range(len(cuts)):
         if k and clock.expired():
             return
-        read[0] = k + 1
         yield cuts[k]
 
 
