@@ -219,19 +219,14 @@ def psgs_choices(system: PSGS, configuration: Configuration, sync_tuple: SyncTup
     >>> psgs_choices(gamma, start, gamma.sync[0])
     [[(0,)], [(0,)], [(0,)], [(0,)]]
     """
-    per_component: list[list[tuple[int, ...]]] = []
+    if where is None:
+        where = [positions_by_name(form) for form in configuration]
+    spots = _spots(sync_tuple, where)
+    if spots is None:
+        return None
     parallel = system.mode == "parallel"
-    for c, (rule, form) in enumerate(zip(sync_tuple, configuration)):
-        # a PSGS form holds terminals and nonterminals only: no nonterminal means terminal
-        if rule is IDLE or (not where[c] if where is not None else is_terminal_form(form)):
-            per_component.append([()])
-            continue
-        occ = (occurrences(form, rule.lhs) if where is None
-               else where[c].get(rule.lhs.name, ()))
-        if not occ:
-            return None
-        per_component.append([occ] if parallel else [(k,) for k in occ])
-    return per_component
+    # a component that does not rewrite has the one choice (): idle, or a terminal form
+    return [[()] if not occ else [occ] if parallel else [(k,) for k in occ] for occ in spots]
 
 
 def psgs_successors(system: PSGS, configuration: Configuration,
@@ -398,8 +393,8 @@ def _spots(sync_tuple: SyncTuple, where: Sequence[dict[str, tuple[int, ...]]]
     """Per component the occurrences ``sync_tuple`` rewrites there (parallel mode's positions),
     ``()`` for an idle entry or a terminal form; None when the tuple does not apply.
 
-    :func:`psgs_choices` without listing single mode's choices one by one (a list per
-    tuple, as long as the forms are, on every step).
+    What :func:`psgs_choices` lists the choices of; :func:`random_step` counts them without
+    listing single mode's one by one (a list per tuple, as long as the forms are, each step).
     """
     spots = []
     for rule, table in zip(sync_tuple, where):
