@@ -89,19 +89,10 @@ def _pair(a_lo, a_hi, b_lo, b_hi, a_disjoint, b_disjoint, fraction, min_copies):
 @_jit
 def synchronised_pairs(lo, hi, bounds, fraction, min_copies):
     """Which pairs (i < j) of the copy lists ``(lo, hi)[bounds[i]:bounds[i + 1]]`` (start
-    and end times) are synchronised, as an (n, n) boolean array filled above its diagonal."""
-    count = len(bounds) - 1
-    disjoint = np.zeros(count, dtype=np.bool_)
-    for i in range(count):
-        disjoint[i] = _disjoint(lo[bounds[i]:bounds[i + 1]], hi[bounds[i]:bounds[i + 1]])
-    out = np.zeros((count, count), dtype=np.bool_)
-    for i in range(count):
-        a, b = bounds[i], bounds[i + 1]
-        for j in range(i + 1, count):
-            c, d = bounds[j], bounds[j + 1]
-            out[i, j] = _pair(lo[a:b], hi[a:b], lo[c:d], hi[c:d], disjoint[i], disjoint[j],
-                              fraction, min_copies)
-    return out
+    and end times) are synchronised, as an (n, n) boolean array filled above its diagonal:
+    every row of :func:`synchronised_rows` at once."""
+    return synchronised_rows(lo, hi, bounds, disjoint_flags(lo, hi, bounds), 0,
+                             len(bounds) - 1, fraction, min_copies)
 
 
 @_jit
