@@ -87,15 +87,6 @@ def _pair(a_lo, a_hi, b_lo, b_hi, a_disjoint, b_disjoint, fraction, min_copies):
 
 
 @_jit
-def synchronised_pairs(lo, hi, bounds, fraction, min_copies):
-    """Which pairs (i < j) of the copy lists ``(lo, hi)[bounds[i]:bounds[i + 1]]`` (start
-    and end times) are synchronised, as an (n, n) boolean array filled above its diagonal:
-    every row of :func:`synchronised_rows` at once."""
-    return synchronised_rows(lo, hi, bounds, disjoint_flags(lo, hi, bounds), 0,
-                             len(bounds) - 1, fraction, min_copies)
-
-
-@_jit
 def disjoint_flags(lo, hi, bounds):
     """:func:`_disjoint` of each copy list ``(lo, hi)[bounds[i]:bounds[i + 1]]``."""
     count = len(bounds) - 1
@@ -107,9 +98,11 @@ def disjoint_flags(lo, hi, bounds):
 
 @_jit
 def synchronised_rows(lo, hi, bounds, disjoint, first, last, fraction, min_copies):
-    """Rows ``first`` to ``last - 1`` of :func:`synchronised_pairs` (row ``i`` at ``i - first``),
-    ``disjoint`` from :func:`disjoint_flags`: the same pair tests, a block of rows a call, so
-    that a caller with a deadline reads its clock between blocks."""
+    """Which pairs (i < j) of the copy lists ``(lo, hi)[bounds[i]:bounds[i + 1]]`` (start and
+    end times) are synchronised, for the rows ``i`` from ``first`` to ``last - 1`` (row ``i``
+    at ``i - first``, filled right of the diagonal); ``disjoint`` from :func:`disjoint_flags`.
+    Every row in one call, or a block of rows a call so that a caller with a deadline reads
+    its clock between blocks."""
     count = len(bounds) - 1
     out = np.zeros((last - first, count), dtype=np.bool_)
     for i in range(first, last):

@@ -96,12 +96,10 @@ def _pairs_compiled(lists: list[np.ndarray], fraction: float, copies: int,
     spans = np.concatenate(lists).astype(np.float64).reshape(-1, 2) if lists \
         else np.zeros((0, 2))
     lo, hi = np.ascontiguousarray(spans[:, 0]), np.ascontiguousarray(spans[:, 1])
-    if clock.deadline is None:
-        found = jit.synchronised_pairs(lo, hi, bounds, float(fraction), int(copies))
-        return list(zip(*(k.tolist() for k in np.nonzero(found))))
     disjoint = jit.disjoint_flags(lo, hi, bounds)
     count = len(lists)
-    rows = max(1, PAIRS_PER_CALL // max(count, 1))
+    # without a deadline every row in one call
+    rows = max(1, count if clock.deadline is None else PAIRS_PER_CALL // max(count, 1))
     out: list[tuple[int, int]] = []
     for first in range(0, count, rows):
         clock.check()
