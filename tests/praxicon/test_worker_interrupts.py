@@ -66,6 +66,34 @@ def _ignores_sigint(pid: int) -> bool:
     return bool(int(mask, 16) & (1 << (signal.SIGINT - 1)))
 
 
+def _group(pgid: int) -> list[str]:
+    """The processes of process group ``pgid`` still there: pid, state and command line."""
+    found = []
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+            if int(fields[2]) == pgid and fields[0] != "Z":
+                command = (stat.parent / "cmdline").read_bytes().replace(b"\0", b" ")
+                found.append(f"{stat.parent.name} {fields[0]} {command.decode(errors='replace')}")
+        except (OSError, IndexError, ValueError):
+            continue
+    return found
+
+
+def _alive(pids: list[int]) -> list[int]:
+    """Those of ``pids`` that are still processes (not zombies: a worker whose parent ended
+    is the init process's to reap)."""
+    left = []
+    for pid in pids:
+        try:
+            state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+        except OSError:
+            continue
+        if state != "Z":
+            left.append(pid)
+    return left
+
+
 @pytest.mark.skipif(not sys.platform.startswith("linux")
                     or multiprocessing.get_start_method() != "fork",
                     reason="reads /proc; the workers are the build's forks")
@@ -78,9 +106,14 @@ def test_ctrl_c_prints_no_worker_traceback_and_stops_at_once(tmp_path):
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(
         [root, *filter(None, [os.environ.get("PYTHONPATH")])])}
     started = time.monotonic()
-    build = subprocess.Popen([sys.executable, str(script), str(manifest), str(out)],
-                             stderr=subprocess.PIPE, text=True, start_new_session=True,
-                             cwd=root, env=env)
+    # stderr to a file and the build's own exit awaited: a pipe would also wait for any
+    # process that inherited it, and a failure would not say which process was still there
+    err_file = tmp_path / "stderr"
+    with err_file.open("w") as err_out:
+        build = subprocess.Popen([sys.executable, str(script), str(manifest), str(out)],
+                                 stderr=err_out, text=True, start_new_session=True,
+                                 cwd=root, env=env)
+    workers: list[int] = []
     try:
         deadline = time.monotonic() + 10
         while time.monotonic() < deadline:  # both workers up, past their initializer
@@ -91,11 +124,19 @@ def test_ctrl_c_prints_no_worker_traceback_and_stops_at_once(tmp_path):
         else:  # an interrupt before the build started would test nothing of the pool
             pytest.fail("the build's two workers did not start within 10 s")
         os.killpg(build.pid, signal.SIGINT)  # what Ctrl-C sends: the whole process group
-        _, err = build.communicate(timeout=max(1.0, 14 - (time.monotonic() - started)))
+        try:
+            build.wait(timeout=max(1.0, 14 - (time.monotonic() - started)))
+        except subprocess.TimeoutExpired:
+            pytest.fail(f"the build did not stop within 14 s of its start; its processes: "
+                        f"{_group(build.pid)}; stderr: {err_file.read_text()!r}")
+        # nothing it started is left running either (its workers were stopped, not orphaned)
+        left = _alive(workers) or _group(build.pid)
+        assert not left, f"left running after the build ended: {_group(build.pid)} {left}"
     finally:
-        if build.poll() is None:
+        if _group(build.pid):
             os.killpg(build.pid, signal.SIGKILL)
-            build.wait()
+        build.wait()
+    err = err_file.read_text()
     assert "Traceback" not in err, err
     assert build.returncode == 130 and err.strip().splitlines()[-1] == "psgs: interrupted"
     assert (out / "index.json").is_file()  # the folder of what was done, as before
