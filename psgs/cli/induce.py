@@ -151,14 +151,14 @@ def _load_events(args):
 EXAMPLE_SEED = 1
 EXAMPLE_NOISE = 0.1
 
-#: A string's status that says the inducer stopped at one of its budgets -> that budget.
-#: The sequential baseline's max_rules stops its compression of a string before every
-#: repeated digram is a rule, so the pattern is not the one it learns without the bound.
-BOUND_STATUSES = {"rule bound reached": "max_rules"}
-
-
 def _bound_hit(inducer, result) -> str | None:
-    """The line naming the budget that stopped the induction on some strings, or None.
+    """The line naming the budget that stopped the induction, or None.
+
+    The Induction names its bound (``bound``, and in words ``reason``). A bound that stops
+    the learning of each string apart (the sequential baseline's ``max_rules``) leaves the
+    strings it stopped among the components, their reports saying why they are not plain
+    components: those are named, with the bound's value; a bound of the whole induction
+    (PAL's ``max_seconds``) is named in the inducer's own words.
 
     >>> from psgs import Actiongram
     >>> from psgs.induce import Induction, get
@@ -170,28 +170,22 @@ def _bound_hit(inducer, result) -> str | None:
     ...                                  reason="stopped after 1 seconds (max_seconds)"))
     'pal stopped after 1 seconds (max_seconds): no component was found by then'
     """
-    stopped: dict[str, list[str]] = {}
-    for report in result.reports:
-        bound = BOUND_STATUSES.get(report.status)
-        if bound is not None:
-            stopped.setdefault(bound, []).append(report.name)
-    if not stopped:
-        if getattr(result, "bound", None) is None:  # (a plug-in's result may not have one)
-            return None
-        # a bound of the whole induction (PAL's max_seconds), in the inducer's own words
+    bound = getattr(result, "bound", None)  # (a plug-in's result may not have one)
+    if bound is None:
+        return None
+    names = [report.name for report in result.reports
+             if report.name in result.components and report.status != "component"]
+    if not names:
         found = ("its components are those found by then" if result.components
                  else "no component was found by then")
-        return f"{result.inducer} {result.reason or 'stopped at ' + result.bound}: {found}"
-    parts = []
-    for bound, names in stopped.items():
-        value = getattr(inducer.conf(), bound, None)
-        shown = ", ".join(names[:5]) + (f", ... ({len(names)} in all)" if len(names) > 5 else "")
-        one = len(names) == 1
-        parts.append(f"{bound}{'' if value is None else f'={value}'} on {len(names)} "
-                     f"string{'' if one else 's'} ({shown})")
-    them = "its pattern is" if sum(map(len, stopped.values())) == 1 else "their patterns are"
-    return (f"{result.inducer} stopped at its bound {'; '.join(parts)}: {them} what the "
-            f"rules made by then give")
+        return f"{result.inducer} {result.reason or 'stopped at ' + bound}: {found}"
+    value = getattr(inducer, bound, None)  # (the inducer holds its parameters)
+    shown = ", ".join(names[:5]) + (f", ... ({len(names)} in all)" if len(names) > 5 else "")
+    one = len(names) == 1
+    return (f"{result.inducer} stopped at its bound {bound}"
+            f"{'' if value is None else f'={value}'} on {len(names)} string{'' if one else 's'} "
+            f"({shown}): {'its pattern is' if one else 'their patterns are'} what the rules "
+            f"made by then give")
 
 
 def run_induce(args) -> int:

@@ -200,3 +200,33 @@ def test_several_performances_are_counted_whole(tmp_path, capsys):
         assert main(["induce", *map(str, order)]) == 0
         line = capsys.readouterr().out.splitlines()[0]
         assert "of 2 strings, 21 symbols (2 performances)" in line, line
+
+
+def test_the_bound_is_read_from_the_induction_not_from_a_status_text(tmp_path, capsys,
+                                                                     monkeypatch):
+    from dataclasses import replace
+
+    from psgs.induce import Sequential
+
+    path = tmp_path / "a.txt"
+    path.write_text("x: a b c a b c a b c a b c\ny: p q\n")
+    learn = Sequential.induce
+
+    def reworded(self, performances):  # the same Induction, its caveat in other words
+        result = learn(self, performances)
+        return replace(result, reports=tuple(
+            replace(r, status="stopped early") if r.status != "component" and
+            r.name in result.components else r for r in result.reports))
+
+    monkeypatch.setattr(Sequential, "induce", reworded)
+    assert main(["induce", str(path), "--inducer", "sequential", "--param", "max_rules=1"]) == 3
+    assert capsys.readouterr().err == ("psgs: sequential stopped at its bound max_rules=1 on 1 "
+                                       "string (x): its pattern is what the rules made by then "
+                                       "give\n")
+
+    def unbounded(self, performances):  # the status text alone names no bound
+        return replace(learn(self, performances), bound=None, reason=None)
+
+    monkeypatch.setattr(Sequential, "induce", unbounded)
+    assert main(["induce", str(path), "--inducer", "sequential", "--param", "max_rules=1"]) == 0
+    assert capsys.readouterr().err == ""
