@@ -7,6 +7,7 @@ the whole grammar system with ``--full``, or JSON with ``--json``.
 
 from __future__ import annotations
 
+import inspect
 import json
 import re
 import sys
@@ -16,7 +17,6 @@ from pathlib import Path
 from .._foundation.shell import INCOMPLETE, file_name, key_values
 from ..actiongram import GAPS
 from ..errors import ValidationError
-
 
 # a motion string's status names its joint: "why (joint J)", or "verdict (why, joint J)"
 _OF_JOINT = re.compile(r"(?P<head>.*?)(?: \(joint (?P<alone>[^()]+)\)|, joint (?P<inner>[^()]+)\))")
@@ -88,7 +88,9 @@ def register(subparsers) -> None:
     induce.add_argument("--inducer", default="pal", help="pal (default), sequential, or a "
                                                          "plug-in's name")
     induce.add_argument("--param", action="append", default=[], metavar="K=V",
-                        help="an inducer parameter, e.g. --param alpha=1e-6 (repeatable)")
+                        help="an inducer parameter, e.g. --param alpha=1e-6 (repeatable); "
+                             "a parameter whose default is none takes none (PAL's "
+                             "max_seconds=none: no time bound)")
     induce.add_argument("--json", action="store_true",
                         help="print one JSON object (the system as text under 'system')")
     induce.add_argument("--full", action="store_true",
@@ -110,9 +112,58 @@ def register(subparsers) -> None:
     locate.add_argument("--threshold", type=float, default=0.4,
                         help="least score of a place (default 0.4)")
     locate.add_argument("--param", action="append", default=[], metavar="K=V",
-                        help="a PAL parameter (repeatable)")
+                        help="a PAL parameter (repeatable); max_seconds=none: no time "
+                             "bound, the default")
     locate.add_argument("--json", action="store_true", help="print one JSON object")
     locate.set_defaults(run=run_locate)
+
+
+def _inducer(name: str, items: list[str]):
+    """The inducer ``name`` built with the ``--param`` items ``items``.
+
+    A value ``none`` (any case) of a parameter whose default is None is that default (PAL's
+    ``max_seconds=none``: no bound): the parameter's own message says it takes a number or
+    None, and the text ``None`` was refused with it. For any other parameter ``none`` stays
+    a word, which the parameter refuses in its own words.
+
+    Parameters
+    ----------
+    name : str
+        The inducer's name (``--inducer``).
+    items : list of str
+        The ``KEY=VALUE`` texts.
+
+    Returns
+    -------
+    Inducer
+
+    Raises
+    ------
+    ValidationError
+        For a bad item, an unknown inducer or parameter, or a bad value.
+
+    Examples
+    --------
+    >>> _inducer("pal", ["max_seconds=None"]).max_seconds is None
+    True
+    >>> _inducer("sequential", ["max_rules=none"])
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: parameter max_rules must be an integer, not 'none'
+    """
+    from ..induce import get
+
+    params = key_values(items)
+    nones = {key for key, value in params.items()
+             if isinstance(value, str) and value.lower() == "none"}
+    inducer = get(name, **{key: value for key, value in params.items() if key not in nones})
+    if not nones:
+        return inducer
+    declared = inspect.signature(type(inducer)).parameters
+    for key in nones:
+        if key in declared and declared[key].default is None:
+            params[key] = None
+    return get(name, **params)
 
 
 MOTION_SUFFIXES = (".bvh", ".amc", ".asf", ".c3d", ".fbx", ".trc")
@@ -219,11 +270,10 @@ def run_induce(args) -> int:
     ...
     0
     """
-    from ..writing import dumps
-    from ..induce import get
     from ..induce.synthetic import generate
+    from ..writing import dumps
 
-    inducer = get(args.inducer, **key_values(args.param))
+    inducer = _inducer(args.inducer, args.param)
     out_path = args.output
     if out_path == "":  # else taken for no -o at all: nothing written, without a word
         raise ValidationError("-o needs a file name")
@@ -381,11 +431,11 @@ def _system_summary(system) -> str:
 
 def run_locate(args) -> int:
     """``psgs locate``: learn from --learn performances, print where each FILE holds the action."""
-    from ..induce import get, locate
+    from ..induce import locate
 
     # through the registry, as psgs induce does: an unknown --param is its one-line
     # ValidationError, where PAL(...) raised the constructor's TypeError (a traceback)
-    learned = get("pal", **key_values(args.param)).induce(_load_performances(args.learn))
+    learned = _inducer("pal", args.param).induce(_load_performances(args.learn))
     if not learned.components:
         raise ValidationError(f"nothing learnt from the --learn performances: "
                               f"{learned.verdict or 'no component'}")

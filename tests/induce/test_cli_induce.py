@@ -230,3 +230,30 @@ def test_the_bound_is_read_from_the_induction_not_from_a_status_text(tmp_path, c
     monkeypatch.setattr(Sequential, "induce", unbounded)
     assert main(["induce", str(path), "--inducer", "sequential", "--param", "max_rules=1"]) == 0
     assert capsys.readouterr().err == ""
+
+
+@pytest.mark.parametrize("text", ["none", "None", "NONE"])
+def test_none_is_the_default_of_a_parameter_whose_default_is_none(tmp_path, capsys, text):
+    path = tmp_path / "a.txt"
+    path.write_text("x: a b c a b c a b c a b c\ny: a b c a b c a b c a b c\n")
+
+    def learnt(*extra):
+        assert main(["induce", str(path), "--json", *extra]) == 0
+        captured = capsys.readouterr()
+        assert captured.err == ""
+        return {k: v for k, v in json.loads(captured.out).items() if k != "seconds"}
+
+    # max_seconds's own message says it takes a number or None: the text None was refused
+    assert learnt("--param", f"max_seconds={text}") == learnt()
+
+
+def test_none_for_a_parameter_that_takes_no_none_is_its_own_message(tmp_path, capsys):
+    path = tmp_path / "a.txt"
+    path.write_text("x: a b c a b c\n")
+    assert main(["induce", str(path), "--inducer", "sequential", "--param",
+                 "max_rules=None"]) == 2
+    assert capsys.readouterr().err == ("psgs: error: parameter max_rules must be an integer, "
+                                       "not 'None'\n")
+    assert main(["induce", str(path), "--param", "max_seconds=soon"]) == 2
+    assert capsys.readouterr().err == ("psgs: error: parameter max_seconds must be a number or "
+                                       "None, not 'soon'\n")

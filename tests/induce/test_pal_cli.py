@@ -74,3 +74,12 @@ def test_locate_says_in_one_line_that_pal_has_no_such_parameter(tmp_path, capsys
     err = capsys.readouterr().err
     assert err.startswith("psgs: error: inducer pal has no parameter 'nosuch'")
     assert err.count("\n") == 1
+
+
+def test_locate_takes_none_for_pals_max_seconds(tmp_path, capsys):
+    learn = write_takes(tmp_path, range(3))
+    args = ["locate", learn[2], "--learn", learn[0], "--learn", learn[1], "--json"]
+    assert main(args) == 0
+    plain = capsys.readouterr().out
+    assert main([*args, "--param", "max_seconds=none"]) == 0
+    assert capsys.readouterr().out == plain
