@@ -6,8 +6,8 @@ about 60 bytes for a number written in 9: reading a BVH file took eleven times i
 from the text into one array allocated once: numpy checks the chunk (its characters, the count
 of numbers on every line, the bone name that starts each AMC line, the frame numbers) and its
 C table reader (``numpy.loadtxt``) converts it, each number as ``float`` reads it. Reading then
-takes about twice the file's size (the text, and the values copied into the motion), and is
-faster than splitting was.
+takes about twice the file's size (its bytes and its text while they are decoded, then the text
+and the values, which the motion keeps without a copy), and is faster than splitting was.
 
 Only well-formed blocks are read here. For anything else (white space other than spaces and
 tabs, an indented AMC line, a number the checks cannot vouch for, a value that is not finite,

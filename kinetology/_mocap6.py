@@ -18,7 +18,8 @@ import numpy as np
 from psgs._foundation.text import split_lines
 
 from .labels import MOCAP6_ACTIONS  # the one list of the exercises, as the label files number them
-from .motion import MotionFormatError, file_text
+from ._file_motion import file_text
+from .motion import MotionFormatError
 
 __all__ = ["MOCAP6_ACTIONS", "Performance", "mocap6_performances"]
 

@@ -28,9 +28,10 @@ from psgs._foundation.text import decimal, split_lines
 from psgs.errors import ValidationError
 
 from ._amc_frames import angle_columns, default_dofs, frame_layout, indent as _indent, read_at_once
+from ._file_motion import build_motion, file_text
 from ._frame_block import Lines
-from .motion import (FRAME_RATE_RANGE, Joint, Motion, MotionFormatError, Skeleton, build_motion,
-                     as_path, counted, file_text, rebuilt)
+from .motion import (FRAME_RATE_RANGE, Joint, Motion, MotionFormatError, Skeleton, as_path,
+                     counted, rebuilt)
 from .textblocks import parse_rows, token_column
 
 __all__ = ["AsfSkeleton", "read_asf", "parse_asf", "read_amc", "parse_amc", "find_asf"]
@@ -516,7 +517,7 @@ def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None 
     # (malformed ones) are split into lines as before, to name the bad line
     read = read_at_once(lines, start, dofs, degrees)
     if read is not None:
-        del text, lines  # let go before the motion copies the values (read_amc holds neither)
+        del text, lines  # let go before the motion is built (read_amc holds neither)
         return build_motion(read[0], read[1], frame_rate, skeleton, source, {"format": "amc"})
     data = lines.tail(start)
     while data and not data[-1].strip():

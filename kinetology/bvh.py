@@ -19,9 +19,10 @@ import numpy as np
 
 from psgs._foundation.text import decimal
 
+from ._file_motion import build_motion, file_text
 from ._frame_block import Lines, content_end, read_records
-from .motion import (FRAME_RATE_RANGE, Joint, Motion, MotionFormatError, Skeleton, build_motion,
-                     as_path, counted, file_text)
+from .motion import (FRAME_RATE_RANGE, Joint, Motion, MotionFormatError, Skeleton, as_path,
+                     counted)
 from .textblocks import parse_rows
 
 __all__ = ["read_bvh", "parse_bvh", "FRAME_TIME_RANGE"]
@@ -166,7 +167,7 @@ def parse_bvh(text: str, source: str = "<bvh>") -> Motion:
             f"header says {counted(frames, 'frame')} but {counted(values.shape[0], 'frame line')} "
             f"follow{'s' * (values.shape[0] == 1)}",
             source=source, line=frames_at[0], column=frames_at[1])
-    # the text is let go before the motion copies the values (read_bvh holds it nowhere else)
+    # the text is let go before the motion is built (read_bvh holds it nowhere else)
     del text, lines, tokens
     skeleton = Skeleton(tuple(joints), length_unit="BVH file units")
     rate = 1.0 / frame_time

@@ -27,7 +27,8 @@ from psgs._foundation.text import split_lines
 from psgs.errors import ValidationError
 
 from .bvh import FRAME_TIME_RANGE
-from .motion import MotionFormatError, as_path, check_number, file_text
+from ._file_motion import file_text
+from .motion import MotionFormatError, as_path, check_number
 
 __all__ = ["Span", "MOCAP6_ACTIONS", "read_cmu_truelabels", "read_bandai_json", "spans_of"]
 

@@ -19,13 +19,11 @@ from types import MappingProxyType
 
 import numpy as np
 
-from psgs._foundation.files import decode_utf8, read_bytes
 from psgs.errors import FormatError, NotFound, ValidationError
 
-__all__ = ["MotionFormatError", "Joint", "Skeleton", "Motion", "AXES", "build_motion",
-           "file_text", "FRAME_RATE_RANGE", "check_number", "MIN_UNWRAP", "check_unwrap",
-           "real_array", "as_path", "shown", "counted", "channel_names", "check_motion",
-           "rebuilt"]
+__all__ = ["MotionFormatError", "Joint", "Skeleton", "Motion", "AXES", "FRAME_RATE_RANGE",
+           "check_number", "MIN_UNWRAP", "check_unwrap", "real_array", "as_path", "shown",
+           "counted", "channel_names", "check_motion", "rebuilt", "Owned"]
 
 #: Channel axes, in the order a joint's channels are listed.
 AXES = ("tx", "ty", "tz", "rx", "ry", "rz")
@@ -167,6 +165,34 @@ class Skeleton:
         raise NotFound(f"no joint named {name!r} (joints: {', '.join(self.names)})")
 
 
+class Owned:
+    """A new float array handed to :class:`Motion` to keep, not copy: only for an array that
+    nothing else holds (a reader's, just filled), since the motion then makes it read-only in
+    place. Anything else (a view of another array, another type) is copied as any value is.
+
+    Parameters
+    ----------
+    array : numpy.ndarray
+        Frames x channels.
+
+    Examples
+    --------
+    >>> values = np.zeros((2, 1))
+    >>> m = Motion(Owned(values), ("knee.rx",), 120.0)
+    >>> np.shares_memory(m.values, values), values.flags.writeable
+    (True, False)
+    >>> np.shares_memory(Motion(values, ("knee.rx",), 120.0).values, values)
+    False
+    """
+
+    __slots__ = ("array",)
+
+    def __init__(self, array) -> None:
+        owned = (type(array) is np.ndarray and array.dtype == np.float64
+                 and array.base is None and array.flags.c_contiguous)
+        self.array = array if owned else real_array(array)
+
+
 def rebuilt(value) -> tuple:
     """The ``__reduce__`` of a frozen dataclass keeping a read-only mapping (a motion's
     ``meta``), which :mod:`pickle` and :func:`copy.deepcopy` cannot take: its class and its
@@ -236,7 +262,11 @@ class Motion:
     meta: dict = field(default_factory=dict)  # read-only after construction (format, truth)
 
     def __post_init__(self) -> None:
-        values = real_array(self.values)
+        given = self.values
+        # an array a reader has just made is kept (made read-only) rather than copied: the copy
+        # took the values' size again, four times the text of a file of one-digit numbers;
+        # whatever else is given is copied, so that no holder of it can change the motion
+        values = given.array if isinstance(given, Owned) else real_array(given)
         if values.ndim != 2:
             raise ValidationError(f"motion values must be frames x channels, got shape {values.shape}")
         channels = channel_names(self.channels)
@@ -309,7 +339,8 @@ class Motion:
         """A motion with only ``channels`` (in that order) and no skeleton."""
         channels = channel_names(channels)
         columns = [self.index(c) for c in channels]
-        return Motion(self.values[:, columns], tuple(channels), self.frame_rate, None,
+        # indexing by a list of columns makes a new array, which nothing else holds
+        return Motion(Owned(self.values[:, columns]), tuple(channels), self.frame_rate, None,
                       self.source, self.meta)
 
     def rotation_channels(self) -> tuple[str, ...]:
@@ -523,75 +554,3 @@ def real_array(values, name: str = "motion values") -> np.ndarray:
         raise ValidationError(f"{name} must be real numbers, not {given.dtype} "
                               f"({type(values).__name__})")
     return np.array(given, dtype=float, copy=True)
-
-
-def build_motion(values, channels, frame_rate, skeleton=None, source="<motion>",
-                 meta=None) -> Motion:
-    """A :class:`Motion` for a reader: what :class:`Motion` refuses becomes a :class:`MotionFormatError`.
-
-    Readers check their input as they go; this is the last line of that defence, so that a
-    file the checks missed still gives the documented error naming the file, never the plain
-    ``ValueError`` of the constructor.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> build_motion(np.zeros((2, 2)), ("knee.rx",), 120, source="bad.bvh")
-    Traceback (most recent call last):
-    ...
-    kinetology.motion.MotionFormatError: bad.bvh: 1 channel names for 2 columns
-    """
-    try:
-        return Motion(values, channels, frame_rate, skeleton, source, meta or {})
-    except ValueError as exc:
-        raise MotionFormatError(str(exc), source=source) from None
-
-
-def file_text(path, *, until: bytes | None = None) -> str:
-    """The text of a motion or label file, as every kinetology reader reads one.
-
-    Through :func:`psgs._foundation.files.read_bytes` and ``decode_utf8``: a device
-    (``/dev/zero``) is refused before a byte is read, a regular file is read once and no
-    further than its size (a pipe to its end, 1 GiB at most), and its bytes must be UTF-8 (a
-    leading byte-order mark is dropped). A byte that is not UTF-8 is an error at its line and column, never replaced: a replaced byte in a joint's
-    name would rename the joint without a word.
-
-    Parameters
-    ----------
-    path : str or Path
-        The file.
-    until : bytes, optional
-        Only the text up to the end of the first line holding these bytes (all of it when
-        none does): a header, without decoding the frames after it.
-
-    Returns
-    -------
-    str
-        Its text.
-
-    Raises
-    ------
-    MotionFormatError
-        For a file that is not a regular file, or bytes that are not UTF-8 (``file:line:col``).
-    FileNotFoundError, IsADirectoryError
-        As :func:`open` raises them.
-
-    Examples
-    --------
-    >>> import tempfile, pathlib
-    >>> path = pathlib.Path(tempfile.mkdtemp()) / "hips.bvh"
-    >>> _ = path.write_bytes(b"ROOT Hips\\nJOINT H\\xe4ps\\n")
-    >>> file_text(path)
-    Traceback (most recent call last):
-    ...
-    kinetology.motion.MotionFormatError: ...hips.bvh:2:8: not UTF-8 text: byte 0xe4 cannot be decoded (is this a binary file?)
-    """
-    try:
-        data = read_bytes(path)
-        if until is not None and (at := data.find(until)) >= 0:
-            end = data.find(b"\n", at)
-            data = data[:end] if end >= 0 else data
-        return decode_utf8(data, os.fspath(path), signature=True)
-    except FormatError as exc:  # the shared reader's error, as the readers document theirs
-        raise MotionFormatError(exc.message, source=exc.source, line=exc.line,
-                                column=exc.column) from None

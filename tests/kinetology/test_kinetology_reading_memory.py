@@ -25,7 +25,7 @@ from kinetology import asf as asf_module
 from kinetology import bvh as bvh_module
 from kinetology.asf import parse_amc, read_asf
 from kinetology.bvh import parse_bvh
-from kinetology.motion import MotionFormatError
+from kinetology.motion import Motion, MotionFormatError, Owned
 
 #: The bound stated in docs/kinetology.md: the peak of memory allocated while a file of a
 #: megabyte or more is read, per byte of the file (the text, and the values the motion copies).
@@ -240,3 +240,61 @@ def test_a_number_moved_to_the_next_line_is_an_error_not_shifted_values():
     amc = ":DEGREES\n1\nroot 1 2\nfemur 1 2\n2\nroot 1 2\nfemur\n"
     with pytest.raises(MotionFormatError, match="<amc>:4:1: expected 1 number, found 2"):
         parse_amc(amc, dofs={"root": ("tx", "ty"), "femur": ("rx",)})
+
+
+def _digits_bvh(tmp_path, frames=20000, width=60):
+    """A BVH file of one-digit numbers: a number per two characters, so that its floats are
+    four times the file's size."""
+    rng = np.random.default_rng(1)
+    values = rng.integers(0, 10, size=(frames, width)).astype(float)
+    path = tmp_path / "digits.bvh"
+    path.write_text(_bvh([[f"{v:.0f}" for v in row] for row in values]), encoding="utf-8")
+    return path, values
+
+
+def test_a_file_of_one_digit_numbers_is_read_without_copying_its_values(tmp_path):
+    path, values = _digits_bvh(tmp_path)
+    size = path.stat().st_size
+    peak, motion = _peak(path)
+    assert np.array_equal(motion.values, values) and not motion.values.flags.writeable
+    # the text (a byte a character) and the values (four times the text); copying the values
+    # into the motion took four times more again: 8.5 bytes a byte of the file
+    assert motion.values.nbytes > 3.9 * size
+    assert peak <= 5.5 * size, f"{peak / size:.2f} bytes per byte of the file"
+
+
+def test_a_motion_copies_every_array_but_one_handed_over_to_it():
+    given = np.zeros((3, 2))
+    motion = Motion(given, ("a.rx", "b.rx"), 30.0)
+    given[0, 0] = 5.0  # the caller still holds its array: the motion's does not change
+    assert motion.values[0, 0] == 0.0 and given.flags.writeable
+    frozen = np.zeros((3, 2))
+    frozen.setflags(write=False)  # read-only, but its owner can make it writeable again
+    motion = Motion(frozen, ("a.rx", "b.rx"), 30.0)
+    frozen.setflags(write=True)
+    frozen[0, 0] = 5.0
+    assert motion.values[0, 0] == 0.0
+    # handed over: kept (read-only in place) if it is a new float array of its own
+    owned = np.zeros((3, 2))
+    motion = Motion(Owned(owned), ("a.rx", "b.rx"), 30.0)
+    assert np.shares_memory(motion.values, owned) and not owned.flags.writeable
+    with pytest.raises(ValueError):
+        motion.values.setflags(write=True)
+    # a view of another array, another type or a non-float array is copied even so
+    base = np.zeros((4, 2))  # (its first rows: contiguous, but a view of it)
+    for other in (base[:3], np.zeros((3, 2), dtype=np.float32), [[0, 0]] * 3,
+                  np.asfortranarray(np.zeros((3, 2)))):
+        motion = Motion(Owned(other), ("a.rx", "b.rx"), 30.0)
+        assert not np.shares_memory(motion.values, np.asarray(other))
+    assert base.flags.writeable
+
+
+def test_select_keeps_the_columns_it_takes_and_a_pickled_motion_copies():
+    import pickle
+    motion = Motion(np.arange(6.0).reshape(3, 2), ("a.rx", "b.rx"), 30.0)
+    chosen = motion.select(["b.rx"])
+    assert chosen.values.tolist() == [[1.0], [3.0], [5.0]]
+    assert not chosen.values.flags.writeable and not np.shares_memory(chosen.values,
+                                                                      motion.values)
+    again = pickle.loads(pickle.dumps(chosen))
+    assert np.array_equal(again.values, chosen.values) and not again.values.flags.writeable
