@@ -28,7 +28,8 @@ from kinetology.bvh import parse_bvh
 from kinetology.motion import Motion, MotionFormatError, Owned
 
 #: The bound stated in docs/kinetology.md: the peak of memory allocated while a file of a
-#: megabyte or more is read, per byte of the file (the text, and the values the motion copies).
+#: megabyte or more is read, per byte of the file (the bytes and the text they decode to, then
+#: the text and the values, which the motion keeps without copying them).
 PEAK_PER_BYTE = 2.5
 
 
