@@ -307,24 +307,41 @@ def _render(system, forest: Forest | None, fmt: str, engine: str) -> bytes:
 
 
 def _forest_or_none(system, derivation, seed: int, max_steps: int,
-                    engine: str, max_nodes: int | None = None) -> Forest | None:
-    """The parse trees of a PSGS's derivation (given, or drawn with ``seed``); None for a PCGS."""
+                    engine: str, max_nodes: int | None = None,
+                    forest: Forest | None = None) -> Forest | None:
+    """The parse trees of a PSGS's derivation (given, or drawn with ``seed``), or ``forest``
+    when given; None for a PCGS."""
     # draw's checks, to_svg's too: it drew an unknown engine as auto, a non-system raised
     # an AttributeError
     if engine not in ("auto", "graphviz", "matplotlib"):
         raise ValidationError(f"engine must be auto, graphviz or matplotlib, not {engine!r}")
     if not isinstance(system, (PSGS, PCGS)):
         raise ValidationError(f"draw takes a PSGS or a PCGS, not {type(system).__name__}")
+    if forest is not None:
+        if not isinstance(forest, Forest):
+            raise ValidationError(f"forest must be a Forest, not {type(forest).__name__}")
+        if derivation is not None or max_nodes is not None:
+            # the forest is drawn as it is: a derivation or a bound beside it would be unused
+            raise ValidationError("give forest, or the derivation and max_nodes to build it "
+                                  "from, not both")
     if isinstance(system, PSGS):
-        return parse_forest(system, derivation, seed=seed, max_steps=max_steps,
-                            max_nodes=max_nodes)
-    if derivation is not None:
-        raise ValidationError("a PCGS is drawn without parse trees: give no derivation")
+        if forest is None:
+            return parse_forest(system, derivation, seed=seed, max_steps=max_steps,
+                                max_nodes=max_nodes)
+        # another system's trees would be drawn beside this one's rules, without an error
+        if forest.components != system.component_names or \
+                tuple(forest.labels[r] for r in forest.roots) != tuple(map(str, system.axioms)):
+            raise ValidationError("forest holds the parse trees of another system")
+        return forest
+    if derivation is not None or forest is not None:
+        raise ValidationError(f"a PCGS is drawn without parse trees: give no "
+                              f"{'derivation' if forest is None else 'forest'}")
     return None
 
 
 def to_svg(system: PSGS | PCGS, *, seed: int = 0, max_steps: int = 200,
-           engine: str = "auto", derivation=None, max_nodes: int | None = None) -> str:
+           engine: str = "auto", derivation=None, max_nodes: int | None = None,
+           forest: Forest | None = None) -> str:
     """The picture of :func:`draw` as SVG text (its parameters are :func:`draw`'s).
 
     Examples
@@ -335,12 +352,13 @@ def to_svg(system: PSGS | PCGS, *, seed: int = 0, max_steps: int = 200,
     >>> svg.startswith("<?xml"), "<svg" in svg
     (True, True)
     """
-    forest = _forest_or_none(system, derivation, seed, max_steps, engine, max_nodes)
+    forest = _forest_or_none(system, derivation, seed, max_steps, engine, max_nodes, forest)
     return _render(system, forest, "svg", engine).decode("utf-8")
 
 
 def draw(system: PSGS | PCGS, path: str | Path, *, seed: int = 0, max_steps: int = 200,
-         engine: str = "auto", derivation=None, max_nodes: int | None = None) -> Path:
+         engine: str = "auto", derivation=None, max_nodes: int | None = None,
+         forest: Forest | None = None) -> Path:
     """Draw the forest of parse trees of a derived word and the synchronisation graph.
 
     Parameters
@@ -361,6 +379,10 @@ def draw(system: PSGS | PCGS, path: str | Path, *, seed: int = 0, max_steps: int
         step. The time of a picture grows with its nodes (Graphviz's faster than linearly:
         8,000 nodes took 17 s), so a caller that draws what it does not know passes one,
         e.g. :data:`MAX_NODES`.
+    forest : Forest, optional
+        The parse trees to draw, as :func:`parse_forest` built them for ``system`` (then
+        no ``derivation`` nor ``max_nodes``): a caller that also reports on them (what
+        stopped them) builds them once.
 
     Returns
     -------
@@ -369,8 +391,8 @@ def draw(system: PSGS | PCGS, path: str | Path, *, seed: int = 0, max_steps: int
     Raises
     ------
     ValidationError
-        For a suffix other than ``.svg``/``.png``, an unknown engine, or a derivation of
-        another system (or of a PCGS).
+        For a suffix other than ``.svg``/``.png``, an unknown engine, a derivation or forest
+        of another system (or of a PCGS), or a forest with a derivation or ``max_nodes``.
 
     Examples
     --------
@@ -379,12 +401,19 @@ def draw(system: PSGS | PCGS, path: str | Path, *, seed: int = 0, max_steps: int
     ...            pathlib.Path(tempfile.mkdtemp()) / "gamma.svg", engine="matplotlib")
     >>> out.read_text()[:5]
     '<?xml'
+    >>> counting = psgs.load("grammars/counting.psgs")
+    >>> trees = parse_forest(counting, seed=2, max_nodes=4)
+    >>> trees.bound
+    'max_nodes'
+    >>> out = draw(counting, out.with_name("cut.svg"), engine="matplotlib", forest=trees)
+    >>> out.read_bytes() == to_svg(counting, seed=2, max_nodes=4, engine="matplotlib").encode()
+    True
     """
     path = Path(path)
     fmt = path.suffix.lower().lstrip(".")
     if fmt not in ("svg", "png"):
         raise ValidationError(f"{path}: draw writes .svg or .png, not {path.suffix or 'no suffix'!r}")
-    forest = _forest_or_none(system, derivation, seed, max_steps, engine, max_nodes)
+    forest = _forest_or_none(system, derivation, seed, max_steps, engine, max_nodes, forest)
     path.write_bytes(_render(system, forest, fmt, engine))
     return path
 

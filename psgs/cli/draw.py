@@ -25,16 +25,16 @@ def run_draw(args) -> int:
     derivation = random_derivation(system, args.seed, max_steps=args.max_steps,
                                    max_seconds=args.max_seconds) \
         if isinstance(system, PSGS) else None
-    path = draw(system, args.output, engine=engine, derivation=derivation,
-                max_nodes=args.max_nodes)
+    # the trees drawn, built once: what stopped them is said below (--max-nodes may cut the
+    # trees of a derivation that ended, too)
+    forest = parse_forest(system, derivation, max_nodes=args.max_nodes) \
+        if derivation is not None else None
+    path = draw(system, args.output, engine=engine, forest=forest)
     used = "graphviz" if engine == "graphviz" or (engine == "auto" and graphviz_available()) \
         else "matplotlib"
     print(f"{path} ({used})")
-    if derivation is None:
+    if forest is None:
         return 0
-    # the forest again (at most --max-nodes nodes, so cheap) for what stopped it: draw
-    # returns the file only; --max-nodes may cut the trees of a derivation that ended, too
-    forest = parse_forest(system, derivation, max_nodes=args.max_nodes)
     if forest.bound is None and derivation.is_terminal:
         return 0
     if forest.bound is not None:

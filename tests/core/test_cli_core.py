@@ -417,6 +417,53 @@ def test_draw_derives_the_word_it_draws_once(tmp_path, capsys, monkeypatch):
     assert status == 0 and len(made) == 1
 
 
+@pytest.mark.parametrize("bounds", [{}, {"max_nodes": 20}, {"max_steps": 3}])
+def test_draw_builds_the_trees_it_draws_once(tmp_path, capsys, monkeypatch, bounds):
+    # the trees were built for the picture, then again for what stopped them
+    import psgs.draw as draw
+
+    built = []
+    real = draw.parse_forest
+
+    def counted(*args, **kwargs):
+        built.append(real(*args, **kwargs))
+        return built[-1]
+    monkeypatch.setattr(draw, "parse_forest", counted)
+    argv = [f"--{k.replace('_', '-')}={v}" for k, v in bounds.items()]
+    status, _, err = run(capsys, "draw", "paper_example", "-o", str(tmp_path / "g.svg"),
+                         "--engine", "matplotlib", "--seed", "3", *argv)
+    assert len(built) == 1 and status == (3 if bounds else 0)
+    assert err.startswith(f"psgs: the {'picture' if 'max_nodes' in bounds else 'derivation'}"
+                          if bounds else "")
+    # the picture of those trees, as the library draws them
+    monkeypatch.undo()
+    drawn = draw.to_svg(psgs.load(GAMMA), seed=3, engine="matplotlib",
+                        **{"max_nodes": draw.MAX_NODES, **bounds})
+    assert (tmp_path / "g.svg").read_text() == drawn
+
+
+def test_draw_draws_the_trees_it_is_given(tmp_path):
+    from psgs.derivation import random_derivation
+    from psgs.draw import parse_forest, to_svg
+
+    gamma, counting = psgs.load(GAMMA), psgs.load("counting")
+    cut = parse_forest(gamma, seed=5, max_nodes=30)
+    assert cut.bound == "max_nodes"
+    assert to_svg(gamma, forest=cut, engine="matplotlib") == \
+        to_svg(gamma, seed=5, max_nodes=30, engine="matplotlib")
+    refused = [
+        (dict(forest=parse_forest(counting)), "the parse trees of another system"),
+        (dict(forest=cut, max_nodes=30), "give forest, or the derivation and max_nodes"),
+        (dict(forest=cut, derivation=random_derivation(gamma, 5)), "give forest, or"),
+        (dict(forest="trees"), "forest must be a Forest, not str")]
+    for options, words in refused:
+        with pytest.raises(psgs.ValidationError, match=words):
+            to_svg(gamma, engine="matplotlib", **options)
+    with pytest.raises(psgs.ValidationError, match="a PCGS is drawn without parse trees: "
+                                                   "give no forest"):
+        to_svg(psgs.load("pcgs_abc"), forest=cut)
+
+
 def test_draw_takes_the_derivation_it_draws():
     from psgs.derivation import random_derivation
     from psgs.draw import to_svg
