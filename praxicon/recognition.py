@@ -40,10 +40,11 @@ import numpy as np
 
 from ._arguments import motion_of, motions_of, whole_number
 from .description import (DescriptionError, Descriptions, feature_rows, mahalanobis_terms,
-                          model_scores, own_columns, _part, probabilities, score_model)
+                          model_scores, own_columns, _part, probabilities)
 from .features import feature_joint, pace_of, share_of_flight
 from .scoring import overflow_reason, unscored
-from ._verdict import _excess, _tested  # noqa: F401  (_excess: parse and the benchmarks)
+from ._verdict import ScoreModels, _Unscorable, _tested
+from ._verdict import _excess, _score_model  # noqa: F401  (parse, benchmarks read them here)
 from .records import REBUILD, Praxicon, _count
 
 __all__ = ["Recognition", "recognise", "recognise_many", "feature_matrix", "JointReason",
@@ -202,19 +203,6 @@ def _frames(motion, doing: str) -> None:
                                f"least 3")
 
 
-class _Unscorable(DescriptionError):
-    """Descriptions holding a number the scores cannot compute with: an error of the
-    praxicon, not of a motion, which names its file where it was read from one."""
-
-
-def _score_model(descriptions: Descriptions, columns):
-    """:func:`~praxicon.description.score_model`, its error an :class:`_Unscorable`."""
-    try:
-        return score_model(descriptions, columns)
-    except DescriptionError as exc:
-        raise _Unscorable(str(exc)) from None
-
-
 def _in_file(exc: DescriptionError, folder, *, windows: bool = False) -> DescriptionError:
     """``exc`` of the descriptions read from ``folder``, naming their file and part (as
     :func:`praxicon.load` names a damaged field) when it is an :class:`_Unscorable`."""
@@ -329,7 +317,9 @@ def _recognitions(praxicon, motions, *, explain: int | None = 3) -> list:
     feature that is not finite, no joint shared with the praxicon, scores that overflow) has
     its :class:`~praxicon.description.DescriptionError` in its place, so that the others are
     still recognised in the one call (``psgs praxicon recognise`` answers every good file). A
-    praxicon that cannot be read still raises.
+    praxicon that cannot be read still raises. ``praxicon`` may be the
+    :class:`~praxicon._verdict.ScoreModels` of its descriptions, kept by a caller that
+    recognises many batches (the models are then made once, not once per call).
 
     Examples
     --------
@@ -353,7 +343,9 @@ def _recognitions(praxicon, motions, *, explain: int | None = 3) -> list:
 def _recognised(praxicon, motions, explain: int | None) -> list:
     """:func:`_recognitions`, the descriptions' numbers that cannot be scored with raised as
     an :class:`_Unscorable`."""
-    descriptions = _descriptions(praxicon)
+    models = praxicon if isinstance(praxicon, ScoreModels) else \
+        ScoreModels(_descriptions(praxicon))
+    descriptions = models.descriptions
     if any(a.window for a in descriptions.actions):
         raise DescriptionError("these are window descriptions (for parse); recognise needs the "
                                "whole-take descriptions")
@@ -370,15 +362,15 @@ def _recognised(praxicon, motions, explain: int | None) -> list:
             out[i] = exc
     read = list(rows)
     for indices, columns, x in _by_features(descriptions, list(rows.values())):
-        found = _recognise(descriptions, [motions[read[k]] for k in indices], columns, x,
-                           explain)
+        found = _recognise(models, [motions[read[k]] for k in indices], columns, x, explain)
         for k, r in zip(indices, found):
             out[read[k]] = r
     if descriptions.families is None:
         return out
     ranked = [i for i in read if isinstance(out[i], Recognition)]
     best = [out[i].ranking[0][0] for i in ranked]
-    verdicts, overflows = _family_verdicts(descriptions, [rows[i] for i in ranked], best)
+    verdicts, overflows = _family_verdicts(descriptions, [rows[i] for i in ranked], best,
+                                           models.families)
     for k, verdict in verdicts.items():
         i = ranked[k]
         out[i] = replace(out[i], action=best[k] if verdict.accepted else None,
@@ -432,24 +424,26 @@ def family_verdicts(descriptions: Descriptions, rows, best) -> dict[int, FamilyV
     return out
 
 
-def _family_verdicts(descriptions: Descriptions, rows, best):
+def _family_verdicts(descriptions: Descriptions, rows, best, models=None):
     """:func:`family_verdicts`, and per motion whose scores against the families overflow
-    (left out of the verdicts) the reason (:func:`~praxicon.scoring.overflow_reason`)."""
+    (left out of the verdicts) the reason (:func:`~praxicon.scoring.overflow_reason`);
+    ``models``: the families' :class:`~praxicon._verdict.ScoreModels`, when kept."""
     families = descriptions.families
     if families is None:
         return {}, {}
+    models = ScoreModels(families) if models is None else models
     of = dict(zip(descriptions.names, descriptions.family_of))
     index = {n: k for k, n in enumerate(families.names)}
     wanted = [i for i, b in enumerate(best) if of.get(b)]
     out, overflows = {}, {}
     for indices, columns, x in _by_features(families, [rows[i] for i in wanted]):
         features = [families.spread.features[c] for c in columns]
-        fitted = _score_model(families, columns)
+        fitted, test = models(columns)
         chosen = np.array([index[of[best[wanted[k]]]] for k in indices], dtype=int)
         with np.errstate(over="ignore", invalid="ignore"):  # an overflow: said per motion
             dist, _ = model_scores(fitted, x, own_columns(features))
             accepted, penalty, excess, group, lost = _tested(families, features, x, chosen,
-                                                             fitted, dist)
+                                                             fitted, dist, test)
         for k, (i, f) in enumerate(zip(indices, chosen)):
             if lost[k]:
                 overflows[wanted[i]] = overflow_reason(fitted, x[k], features, families.names)
@@ -473,12 +467,14 @@ def _by_features(descriptions: Descriptions, rows):
         yield indices, columns, x.reshape(len(indices), len(columns))
 
 
-def _recognise(descriptions: Descriptions, motions, columns, x, explain: int):
-    """:func:`recognise_many` for motions that have the same ``columns`` of the features: per
+def _recognise(models: ScoreModels, motions, columns, x, explain: int):
+    """:func:`recognise_many` for motions that have the same ``columns`` of the features
+    (scored with ``models``, the descriptions' :class:`~praxicon._verdict.ScoreModels`): per
     motion its :class:`Recognition`, or the error that says why it cannot have one."""
+    descriptions = models.descriptions
     spread = descriptions.spread
     features = [spread.features[i] for i in columns]
-    fitted = _score_model(descriptions, columns)
+    fitted, test = models(columns)
     compared = fitted.compared
     if not compared.any():  # each motion of this skeleton answered by its own error
         return [DescriptionError(f"{getattr(m, 'source', '<motion>')}: the motion shares no "
@@ -494,7 +490,7 @@ def _recognise(descriptions: Descriptions, motions, columns, x, explain: int):
         # order learnt
         best_of = score.argmin(axis=1) if len(score) else np.zeros(0, dtype=int)
         accepted, _, excess, excess_group, lost = _tested(descriptions, features, x, best_of,
-                                                          fitted, dist)
+                                                          fitted, dist, test)
     lost |= unscored(fitted, score)
     names = descriptions.names
     here = set(features)

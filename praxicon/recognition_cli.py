@@ -111,17 +111,19 @@ def _said(file, motion, answer) -> None:
 #: once, one matrix of scores per skeleton), prints its lines and drops its motions before
 #: reading the next: the memory of a run is one chunk's, however many FILEs. A chunk ends at
 #: this many files, or sooner once its motions' values hold ``CHUNK_BYTES`` (a chunk holds at
-#: least one file, however long). A batch's fixed cost (the score model, the telling groups:
-#: about 17 ms for 28 actions) is then well under a millisecond a take; a take's answer is
-#: the same in any chunk (:func:`~praxicon.scoring.distances`)
+#: least one file, however long). What scoring reads of the descriptions alone (the score
+#: model, the telling groups: about 17 ms for 28 actions) is made once per skeleton for the
+#: whole command (:class:`~praxicon._verdict.ScoreModels`), not once per chunk; a take's answer
+#: is the same in any chunk (:func:`~praxicon.scoring.distances`)
 CHUNK_FILES = 256
 CHUNK_BYTES = 64 * 2**20
 
 
-def _chunks(files):
+def _chunks(files, most_files: int = CHUNK_FILES, most_bytes: int = CHUNK_BYTES):
     """``(file, motion or its ValidationError)`` pairs, in the order given, a chunk at a time
-    (``CHUNK_FILES``, ``CHUNK_BYTES``); the next chunk's files are read when it is asked for,
-    so that a caller that drops each chunk first holds one chunk's motions at a time."""
+    (at most ``most_files`` files, or fewer holding ``most_bytes``); the next chunk's files
+    are read when it is asked for, so that a caller that drops each chunk first holds one
+    chunk's motions at a time."""
     chunk, size = [], 0
     for file in files:
         try:
@@ -131,7 +133,7 @@ def _chunks(files):
             motion = exc
         chunk.append((file, motion))
         del motion  # the chunk alone holds it, so that dropping the chunk frees it
-        if len(chunk) >= CHUNK_FILES or size >= CHUNK_BYTES:
+        if len(chunk) >= most_files or size >= most_bytes:
             yield chunk
             chunk, size = [], 0
     if chunk:
@@ -155,14 +157,15 @@ def _answer(file, r, explain: bool) -> None:
         print(r.explain())
 
 
-def _recognise_chunk(descriptions, chunk, args):
-    """One chunk's FILEs recognised together, each one's lines printed in its turn:
-    ``(whether every FILE was answered, the last answer)``."""
+def _recognise_chunk(models, chunk, args):
+    """One chunk's FILEs recognised together (``models``: the descriptions'
+    :class:`~praxicon._verdict.ScoreModels`, kept from chunk to chunk), each one's lines
+    printed in its turn: ``(whether every FILE was answered, the last answer)``."""
     from .recognition import Recognition, _in_file, _recognitions
 
     readable = [k for k, (_, m) in enumerate(chunk) if not isinstance(m, ValidationError)]
     try:
-        answers = _recognitions(descriptions, [chunk[k][1] for k in readable],
+        answers = _recognitions(models, [chunk[k][1] for k in readable],
                                 explain=3 if args.explain or args.plot else 0)
     except DescriptionError as exc:  # of the praxicon, not of a FILE: no more answers
         raise ValidationError(str(_in_file(exc, args.praxicon)))
@@ -176,7 +179,12 @@ def _recognise_chunk(descriptions, chunk, args):
     return all(isinstance(r, Recognition) for r in found), found[-1]
 
 
-def run_recognise(args) -> int:
+def run_recognise(args, *, most_files: int = CHUNK_FILES,
+                  most_bytes: int = CHUNK_BYTES) -> int:
+    """``psgs praxicon recognise``, its FILEs read and recognised a chunk at a time (at most
+    ``most_files`` files, or fewer holding ``most_bytes``: :func:`_chunks`)."""
+    from .recognition import ScoreModels
+
     if args.plot and len(args.files) != 1:
         raise ValidationError(f"--plot draws one recognition's explanation: give one FILE "
                               f"(got {len(args.files)})")
@@ -187,9 +195,10 @@ def run_recognise(args) -> int:
         raise ValidationError(str(exc))
     # descriptions the scores cannot compute with are found by the first chunk holding a
     # motion of the features they fail on: of one skeleton, the first chunk, before any answer
+    models = ScoreModels(descriptions)  # made as each skeleton's first chunk asks, then kept
     answered, last = True, None
-    for chunk in _chunks(args.files):
-        done, last = _recognise_chunk(descriptions, chunk, args)
+    for chunk in _chunks(args.files, most_files, most_bytes):
+        done, last = _recognise_chunk(models, chunk, args)
         answered &= done
         del chunk  # its motions let go before the next chunk is read
     if not answered:
