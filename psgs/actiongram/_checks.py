@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 import re
 
-from .._foundation.text import finite as _finite, first_unseen
+from .._foundation.text import character_name, finite as _finite, first_unseen
 from ..errors import FormatError, ValidationError
 
 __all__: list[str] = []  # private helpers
@@ -57,8 +57,8 @@ def _bad_name(name: object) -> str | None:
     if not isinstance(name, str) or not name:
         return "an actuator name must be non-empty text"
     if name[0] == "\ufeff":  # the first line's would be read back without it (psgs.load)
-        return (f"actuator name {_shown(name)} starts with U+FEFF, the byte-order mark a "
-                f"file's reader drops")
+        return (f"actuator name {_shown(name)} starts with {character_name(name[0])}, the "
+                f"byte-order mark a file's reader drops")
     return _bad_token(name, "actuator name")
 
 
@@ -66,9 +66,13 @@ def _bad_token(text: str, what: str) -> str | None:
     """Why non-empty ``text`` cannot be a token of the text format (a ``what``), or None."""
     if _not_unicode(text):
         return f"{what} {_shown(text)} is not valid Unicode (a lone surrogate)"
-    if _SPACE_OR_CONTROL.search(text) or "@" in text or ":" in text or text.startswith("#"):
-        return (f"{what} {_shown(text)} must have no white space, control character, '@' or "
-                f"':' and not start with '#'")
+    rule = "must have no white space, control character, '@' or ':' and not start with '#'"
+    unseen = _SPACE_OR_CONTROL.search(text)
+    if unseen:  # named: a cut repr (_shown) may not show it, nor tell one space from another
+        return (f"{what} {_shown(text)} holds {character_name(unseen.group())} (character "
+                f"{unseen.start() + 1}): it {rule}")
+    if "@" in text or ":" in text or text.startswith("#"):
+        return f"{what} {_shown(text)} {rule}"
     return None
 
 
@@ -77,8 +81,9 @@ def _bad_symbol(symbol: object) -> str | None:
         return f"a symbol must be non-empty text, not {_shown(symbol)}"
     problem = _bad_token(symbol, "symbol")
     if problem is None and (at := first_unseen(symbol)) is not None:
-        return (f"symbol {_shown(symbol)} holds U+{ord(symbol[at]):04X}, a control or "
-                f"invisible format character, which no terminal of a grammar holds")
+        return (f"symbol {_shown(symbol)} holds {character_name(symbol[at])} (character "
+                f"{at + 1}), a control or invisible format character, which no terminal of a "
+                f"grammar holds")
     return problem
 
 

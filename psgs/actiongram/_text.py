@@ -12,7 +12,7 @@ import itertools
 import json
 import re
 
-from .._foundation.text import split_lines
+from .._foundation.text import character_name, split_lines
 from ..errors import FormatError, ValidationError
 from ._checks import _bad_duration, _bad_name, _bad_symbol, _finite, _read_number, _shown
 from ._extras import DIRECTIVE as _DIRECTIVE
@@ -76,7 +76,7 @@ def read_text(cls, text: str, source: str):
         line = strip_comment(raw, source, line_no)
         control = _CONTROL.search(line)
         if control:  # no symbol or name may hold one (a NUL would reach the grammar unseen)
-            raise FormatError(f"control character U+{ord(control.group()):04X} in the text",
+            raise FormatError(f"control character {character_name(control.group())} in the text",
                               source=source, line=line_no, column=control.start() + 1)
         if not line.strip():
             continue

@@ -67,9 +67,11 @@ STRING_SPOILS = {
     "displacements": (MARK, "strings[{k}].displacements must be a list"),
     "symbols": (MARK, "strings[{k}] must be an object with 'name' and 'symbols'"),
     "start": (MARK, "start time must be a finite number"),
-    "name": (BAD, f"actuator name {BAD!r} must have no white space"),
+    "name": (BAD, f"actuator name {BAD!r} holds U+0020 SPACE (character 4): it must have no "
+                  f"white space"),
     "actuator": (BAD, f"actuator {BAD!r}:"),
-    "symbol": (BAD, f"symbol {BAD!r} must have no white space"),
+    "symbol": (BAD, f"symbol {BAD!r} holds U+0020 SPACE (character 4): it must have no white "
+                    f"space"),
     "duration": (NEGATIVE, f"a duration must be positive and finite, not {NEGATIVE}"),
     "displacement": (MARK, f"a displacement must be a number, not {MARK!r}"),
 }
