@@ -215,12 +215,13 @@ def performed_motion(record, repeat: int, source_motion, style: str | None = Non
         performances_of, style_of
     from .heading import _body_velocity
 
-    if performances is None:
+    read = performances is None  # here, every file read (performances_of raises otherwise)
+    if read:
         performances = performances_of(record)
     if style is not None:
         own = [m for m in performances if style in style_of(m.source)]
         if not own:
-            raise missing_style(record, style)
+            raise missing_style(record, style, {} if read else None)
         performances = own
     channels = tuple(source_motion.channels)
     takes = [m for m in performances if set(channels) <= set(m.channels) and m.frames >= 2]

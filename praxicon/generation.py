@@ -258,13 +258,14 @@ def style_scales(record, channels, period: float, style: str, rate: float, perfo
     """
     from .body_motion import own_period
 
-    if performances is None:
+    read = performances is None  # here, every file read (performances_of raises otherwise)
+    if read:
         performances = performances_of(record)
     every = [m for m in performances if set(channels) <= set(m.channels)]
     # the style's takes are among those just read: picked by their file names, not read again
     own = [m for m in every if style in style_of(m.source)]
     if not own:
-        raise missing_style(record, style)
+        raise missing_style(record, style, {} if read else None)
 
     def spread(m, c):
         return float(np.subtract(*np.percentile(m.column(c), [95, 5])))
@@ -282,9 +283,10 @@ def style_scales(record, channels, period: float, style: str, rate: float, perfo
     return float(np.median(periods(own)) / np.median(periods(every))), amplitude
 
 
-def _style_error(record, style: str, performances) -> ValueError | None:
+def _style_error(record, style: str, performances, failed) -> ValueError | None:
     """Why ``style`` picks no performance in particular, else None: none of ``performances``
-    (those read) has it (:func:`missing_style`: no such style, or its files cannot be read),
+    (those read; ``failed``: why each of the others could not be, :func:`read_performances`)
+    has it (:func:`missing_style`: no such style, or its files cannot be read),
     or every performance generation reads holds it as a word of its file name (``bye`` of
     ``dataset-1_bye_normal_001.bvh`` and its siblings).
 
@@ -293,7 +295,7 @@ def _style_error(record, style: str, performances) -> ValueError | None:
     style (an action built per style, whose file names all hold it) is a style all the same.
     """
     if not any(style in style_of(m.source) for m in performances):
-        return missing_style(record, style)
+        return missing_style(record, style, failed)
     names = [style_of(f) for f in learnt_files(record)]
     if style == record.style or not all(style in n for n in names):
         return None
@@ -365,7 +367,7 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
         from .acyclic import performed_motion
 
         performances, failed = read_performances(record)
-        wrong = None if style is None else _style_error(record, style, performances)
+        wrong = None if style is None else _style_error(record, style, performances, failed)
         if wrong:
             raise wrong
         if source_motion is None:
@@ -389,7 +391,7 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     # the performances are read once, for the style's scales and for the body around them
     performances, failed = read_performances(record)
     if style is not None:
-        wrong = _style_error(record, style, performances)
+        wrong = _style_error(record, style, performances, failed)
         if wrong:
             raise wrong
         tempo, amplitude = style_scales(record, sorted(usable), period, style, rate,

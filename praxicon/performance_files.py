@@ -34,7 +34,7 @@ def style_of(file) -> list[str]:
     return Path(str(file)).stem.split("_")
 
 
-def missing_style(record, style: str) -> ValueError:
+def missing_style(record, style: str, failed: dict[str, str] | None = None) -> ValueError:
     """The error for a style none of ``record``'s performances read gives.
 
     When performances of that style were learnt from but none could be read (a relative path
@@ -42,6 +42,11 @@ def missing_style(record, style: str) -> ValueError:
     style". Else it names the styles there are: the words that tell the performances' file
     names apart (take numbers aside), and the action's own style (an action of one style,
     whose file names differ by their take numbers only).
+
+    ``failed`` holds, per file that could not be read, the line saying why, from a caller
+    that has read the performances (:func:`read_performances`): a file of the style not among
+    them was read (too short, or not on the channels of the others) and none is read again.
+    Without it, the style's first file is read here to say why.
 
     Examples
     --------
@@ -52,22 +57,19 @@ def missing_style(record, style: str) -> ValueError:
     ValueError("action 'd.wave' has no performance of style 'sad' (styles: angry, happy)")
     >>> missing_style(record, "happy")
     ValueError("action 'd.wave': its performances of style 'happy' cannot be read (/x/d_wave_happy_1.bvh: no such file)")
+    >>> missing_style(record, "happy", {})  # read by the caller: too short
+    ValueError("action 'd.wave': its performances of style 'happy' cannot be read (/x/d_wave_happy_1.bvh: too short, or not on the channels of the other performances)")
     """
-    import kinetology
-
     own = [record.performances[i] for i in record.learnt_from or range(len(record.performances))
            if style in style_of(record.performances[i].file)]
     if own:
         file = own[0].file
-        try:
-            kinetology.read(file)
-            why = "too short, or not on the channels of the other performances"
-        except FileNotFoundError:
-            why = "no such file" + ("" if Path(file).is_absolute() else f"; {RELATIVE}")
-        except Exception as exc:  # not a motion it reads: what kinetology says, on one line
-            why = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        if failed is None:
+            failed = _unread(file)
+        why = failed.get(file, f"{file}: too short, or not on the channels of the other "
+                               f"performances")
         return ValueError(f"action {record.name!r}: its performances of style {style!r} "
-                          f"cannot be read ({file}: {why})")
+                          f"cannot be read ({why})")
     names = [style_of(p.file) for p in record.performances]
     styles = {n[i] for n in names for i in range(len(n))
               if not n[i].isdigit() and any(len(o) <= i or o[i] != n[i] for o in names)}
@@ -102,6 +104,17 @@ def _why(file: str, exc: Exception) -> str:
     # what kinetology says, on one line (it names the file)
     why = str(exc).splitlines()[0] if str(exc).strip() else type(exc).__name__
     return why if why.startswith(file) else f"{file}: {why}"
+
+
+def _unread(file: str) -> dict[str, str]:
+    """``{file: the line saying why it cannot be read}``, or ``{}`` when it reads."""
+    import kinetology
+
+    try:
+        kinetology.read(file)
+    except Exception as exc:  # not a motion it reads: what kinetology says, on one line
+        return {file: _why(file, exc)}
+    return {}
 
 
 def read_performances(record, style: str | None = None) -> tuple[list, dict[str, str]]:

@@ -42,3 +42,40 @@ def test_an_action_of_one_style_names_it():
                           performances=tuple(PerformanceRecord(f) for f in files))
     assert str(missing_style(record, "sad")) == ("action 'b.walk.normal' has no performance of "
                                                  "style 'sad' (styles: normal)")
+
+
+def test_why_a_style_is_missing_is_said_from_the_files_read_once(tmp_path, monkeypatch):
+    """Generation has read every performance when it finds no performance of the style: why
+    its files could not be read is what that reading said, each file read once."""
+    import kinetology
+    import pytest
+    from praxicon import generate
+
+    folder = tmp_path / "px"
+    dump(praxicon_seed(), folder)
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    monkeypatch.chdir(elsewhere)
+    (elsewhere / "step_0.bvh").write_text("HIERARCHY\nROOT Hips\n{ OFFSET 0 0 0\n")  # damaged
+    reads: list[str] = []
+    real = kinetology.read
+    monkeypatch.setattr(kinetology, "read", lambda path, *a, **k: reads.append(str(path))
+                        or real(path, *a, **k))
+    with pytest.raises(ValueError) as error:
+        generate(folder, "moves.step", style="step")
+    assert str(error.value) == ("action 'moves.step': its performances of style 'step' cannot "
+                                "be read (step_0.bvh:3: file ends where '}' was expected)")
+    assert sorted(reads) == ["step_0.bvh", "step_1.bvh"]
+
+
+def test_a_style_read_but_too_short_is_said_without_reading_it_again(tmp_path, monkeypatch):
+    import kinetology
+
+    record = ActionRecord("d.walk", "d", "walk", performances=(
+        PerformanceRecord(str(tmp_path / "d_walk_sad_1.bvh")),
+        PerformanceRecord(str(tmp_path / "d_walk_x_1.bvh"))))
+    monkeypatch.setattr(kinetology, "read", None)  # nothing is read
+    assert str(missing_style(record, "sad", {})) == (
+        f"action 'd.walk': its performances of style 'sad' cannot be read "
+        f"({tmp_path / 'd_walk_sad_1.bvh'}: too short, or not on the channels of the other "
+        f"performances)")
