@@ -50,8 +50,8 @@ from pathlib import Path
 
 from .._foundation.files import read_text
 from ..errors import FormatError, NotFound, ValidationError
-from ._checks import (_bad_duration, _bad_name, _bad_symbol, _check_times_advance, _finite,
-                      _format_number, _plain_durations, _shown, _tuple_of)
+from ._checks import (_bad_duration, _bad_name, _bad_symbol, _finite,
+                      _format_number, _plain_durations, _shown, _times_problem, _tuple_of)
 from ._events import GAPS
 from ._extras import _merge, default_actuator, normalise_extras
 
@@ -162,7 +162,9 @@ class Actiongram:
             if not math.isfinite(float(origin) + sum(d)):
                 raise FormatError(f"string {_shown(name)}: its times overflow (the durations "
                                   f"add up to more than a float can hold)")
-            _check_times_advance(name, float(origin), d)
+            vanishing = _times_problem(name, float(origin), d, syms, self.keep_repeats)
+            if vanishing is not None:
+                raise FormatError(vanishing[1])
             merged_symbols.append(s)
             merged_durations.append(d)
         object.__setattr__(self, "names", names)

@@ -104,19 +104,40 @@ def _plain_durations(durations: tuple) -> bool:
     return min(durations) > 0 and all(map(_finite, durations))
 
 
-def _check_times_advance(name: str, origin: float, durations: tuple[float, ...]) -> None:
-    """FormatError when a duration vanishes beside its start time (``T + D == T`` in floats).
+def _times_problem(name: str, origin: float, segments: tuple[float, ...],
+                   symbols: tuple[str, ...], keep_repeats: bool) -> tuple[int, str] | None:
+    """The first segment whose duration vanishes beside its start time (``T + D == T`` in
+    floats): the index of its first symbol as given, and the message; None when every start
+    time advances.
 
     ``s@1e15: a@1e-9`` is positive on paper but adds nothing to 1e15, so two symbols would
     share one start time and every later computation on times (PAL's time grid) divides by 0.
+    ``segments`` are the durations as timed: a run of equal neighbours is one segment unless
+    ``keep_repeats``, and is named by the symbols of ``symbols`` it merges.
+
+    >>> _times_problem("s", 1e15, (1.0, 2e-9), ("x", "y", "y"), False)
+    (1, "string 's': duration 2e-09 of symbols 2-3 (equal neighbours: one segment) vanishes beside its start time 1000000000000001.0 (T + D == T in floating point)")
+    >>> _times_problem("s", 0.0, (1.0, 2e-9), ("x", "y", "y"), False) is None
+    True
     """
     t = origin
-    for j, d in enumerate(durations):
+    for j, d in enumerate(segments):
         after = t + d
         if after == t:
-            raise FormatError(f"string {_shown(name)}: duration {d!r} of symbol {j + 1} vanishes "
-                              f"beside its start time {t!r} (T + D == T in floating point)")
+            break
         t = after
+    else:
+        return None
+    if keep_repeats:
+        first, count = j, 1
+    else:  # the j-th run of equal neighbours (the checks before made every symbol hashable text)
+        starts = [i for i, sym in enumerate(symbols) if i == 0 or sym != symbols[i - 1]]
+        first = starts[j]
+        count = (starts[j + 1] if j + 1 < len(starts) else len(symbols)) - first
+    which = f"symbol {first + 1}" if count == 1 else \
+        f"symbols {first + 1}-{first + count} (equal neighbours: one segment)"
+    return first, (f"string {_shown(name)}: duration {d!r} of {which} vanishes beside its "
+                   f"start time {t!r} (T + D == T in floating point)")
 
 
 def _format_number(value: float) -> str:

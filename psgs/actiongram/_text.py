@@ -14,7 +14,8 @@ import re
 
 from .._foundation.text import character_name, split_lines
 from ..errors import FormatError, ValidationError
-from ._checks import _bad_duration, _bad_name, _bad_symbol, _finite, _read_number, _shown
+from ._checks import (_bad_duration, _bad_name, _bad_symbol, _finite, _read_number, _shown,
+                      _times_problem)
 from ._extras import DIRECTIVE as _DIRECTIVE
 from ._extras import _bad_displacement, _merge, _merge_displacements, default_actuator
 from ._extras import read_directive as _read_directive
@@ -173,16 +174,19 @@ def read_text(cls, text: str, source: str):
         return build(slice(None), len(edges))
     except FormatError as exc:  # found by the checks of the whole value, which name no line
         error = _placed(exc, build, string_places, edge_places, source)
-        raise _at_symbol(error, text, names, symbol_rows, string_places, source) from None
+        raise _at_symbol(error, text, names, (symbol_rows, duration_rows, origins),
+                         keep_repeats, string_places, source) from None
 
 
-def _at_symbol(error: FormatError, text: str, names: list[str],
-               symbol_rows: list[tuple[str, ...]], string_places: list[tuple[int, int]],
+def _at_symbol(error: FormatError, text: str, names: list[str], rows: tuple[list, list, list],
+               keep_repeats: bool, string_places: list[tuple[int, int]],
                source: str) -> FormatError:
     """``error``, placed at a string's name, moved to the column of the symbol at fault when
-    it is that string's first bad symbol that the checks refused.
+    it is that string's first bad symbol that the checks refused, or the (first) symbol of
+    the segment whose duration vanishes beside its start time.
 
-    The columns of the symbols are not kept while reading (one number per symbol of a large
+    ``rows`` are the symbols, durations and start times read, one entry per string. The
+    columns of the symbols are not kept while reading (one number per symbol of a large
     file): the line is split again, here, on the error's way out.
     """
     if error.line is None:
@@ -192,9 +196,16 @@ def _at_symbol(error: FormatError, text: str, names: list[str],
             break
     else:
         return error  # a %parent line's error
-    j, problem = next(((j, p) for j, sym in enumerate(symbol_rows[k])
+    symbols, durations, origin = (row[k] for row in rows)
+    j, problem = next(((j, p) for j, sym in enumerate(symbols)
                        if (p := _bad_symbol(sym)) is not None), (None, None))
-    if j is None or error.message != f"string {_shown(names[k])}: {problem}":
+    if j is not None:
+        problem = f"string {_shown(names[k])}: {problem}"
+    else:  # every symbol is good: the one whose duration vanishes, if that is the error
+        segments = tuple(durations) if keep_repeats else _merge(symbols, durations)[1]
+        j, problem = _times_problem(names[k], origin, segments, symbols, keep_repeats) \
+            or (None, None)
+    if j is None or error.message != problem:
         return error  # the string's name, its durations or its times: the name's place
     line = strip_comment(split_lines(text)[line_no - 1], source, line_no)
     head = line.partition(":")[0]

@@ -338,7 +338,7 @@ def test_durations_that_vanish_are_rejected_from_python_too():
 
 
 @pytest.mark.parametrize("text, place, words", [
-    ("hip: a\ns@1e15: a@1e-9 b@1e-9\n", "2:1", "duration 1e-09 of symbol 1 vanishes"),
+    ("hip: a\ns@1e15: a@1e-9 b@1e-9\n", "2:9", "duration 1e-09 of symbol 1 vanishes"),
     ("hip: a\n  s@1e308: a@1e308\n", "2:3", "string 's': its times overflow"),
     ("hip: a\ns: a@1~1e308 a@1~1e308\n", "2:1", "its displacements overflow"),
     ("hip: a\n%parent x: y\nknee: b\n%parent x: z\n", "4:1", "'x' is given a parent twice"),

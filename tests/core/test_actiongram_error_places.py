@@ -201,7 +201,8 @@ def test_of_two_bad_strings_the_reported_one_is_placed():
     ('{"strings": [{"name": "a", "symbols": ["x"], "displacements": [1, 2]}]}',
      "1:63: string 'a' has 1 symbols but 2 displacements"),
     ('{"strings": [{"name": "a", "start": 1e15, "symbols": ["x", "y", "y"],\n'
-     ' "durations": [1, 1e-9, 1e-9]}]}', "2:19: string 'a': duration 2e-09 of symbol 2 vanishes"),
+     ' "durations": [1, 1e-9, 1e-9]}]}',
+     "2:19: string 'a': duration 2e-09 of symbols 2-3 (equal neighbours: one segment) vanishes"),
     ('{"strings": [{"name": "a", "symbols": ["x", "y"], "durations": [1e308, 1e308]}]}',
      "1:64: string 'a': its times overflow"),
     ('{"strings": [{"name": "a", "symbols": ["x"], "start": true}]}',
