@@ -399,10 +399,12 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
 _ROOT_KINDS = ("drift", "energy", "excursion")
 
 
-def _parsed(praxicon, motion, *, hop, switch, own, support, unfit, progress,
-            max_seconds) -> Timeline:
+def _parsed(praxicon, motion, *, hop=_HOP, switch=_SWITCH, own=OWN_KINDS, support=SUPPORT,
+            unfit=UNFIT, progress=None, max_seconds=None, clock=None) -> Timeline:
     """:func:`parse`, the descriptions' numbers that cannot be scored with raised as an
-    :class:`~praxicon.recognition._Unscorable`."""
+    :class:`~praxicon.recognition._Unscorable`. ``clock``: the :class:`~psgs.budget.Budget`
+    of ``max_seconds`` when the caller started it before (``psgs praxicon parse``'s covers
+    reading the praxicon and the recording), else it starts here."""
     from psgs.budget import Budget, check_seconds
     from psgs.errors import ValidationError
 
@@ -413,7 +415,7 @@ def _parsed(praxicon, motion, *, hop, switch, own, support, unfit, progress,
         check_seconds(max_seconds, optional=True)
     except ValidationError as exc:  # praxicon's one error for a wrong argument
         raise DescriptionError(str(exc)) from None
-    clock = Budget(max_seconds)
+    clock = Budget(max_seconds) if clock is None else clock
 
     # a hop of 0 or less was one window a frame, a NaN or negative switch cost a timeline of
     # nonsense, without a word (an infinite cost is allowed: the windows are one action,

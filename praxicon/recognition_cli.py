@@ -213,12 +213,14 @@ def run_recognise(args, *, most_files: int = CHUNK_FILES,
 def run_parse(args) -> int:
     import math
     import sys
-    import time
 
-    started = time.monotonic()  # --max-seconds covers reading the praxicon and the FILE too
+    from psgs.budget import Budget
+
+    # the deadline starts first: --max-seconds covers reading the praxicon and the FILE too
+    clock = Budget(args.max_seconds)
 
     from ._arguments import real_number
-    from .parsing import parse
+    from .parsing import _parsed
     from .recognition import _in_file
 
     _check_pictures(args.plot)
@@ -241,11 +243,10 @@ def run_parse(args) -> int:
         _parse_progress(done, total)
 
     live = not args.no_progress and sys.stderr.isatty()
-    left = None if args.max_seconds is None else \
-        max(args.max_seconds - (time.monotonic() - started), 1e-6)
-    try:
-        timeline = parse(descriptions, motion, support=args.support, unfit=args.unfit,
-                         progress=progress if live else None, max_seconds=left)
+    try:  # parse's windows are read until the command's own deadline (the first always)
+        timeline = _parsed(descriptions, motion, support=args.support, unfit=args.unfit,
+                           progress=progress if live else None, max_seconds=args.max_seconds,
+                           clock=clock)
     except DescriptionError as exc:
         raise ValidationError(str(_in_file(exc, args.praxicon, windows=True)))
     finally:  # the progress line is wiped before any answer or error is printed

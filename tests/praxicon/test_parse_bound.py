@@ -120,3 +120,28 @@ def test_the_command_prints_what_was_parsed_and_exits_3(built, tmp_path, capsys)
         run_praxicon(capsys, ["parse", str(built), take, "--max-seconds", "0"])
     assert usage.value.code == 2
     assert "argument --max-seconds: must be positive" in capsys.readouterr().err
+
+
+def test_the_commands_deadline_runs_from_its_start(built, monkeypatch, capsys):
+    """The command's one deadline covers reading the praxicon; parse's windows are read until
+    it (the first always): a praxicon read past it leaves one window, as a nanosecond does.
+    A deadline started again for parse would parse the whole take; one handed on as seconds
+    left, floored at a millisecond, read windows past it."""
+    import time
+
+    from praxicon import recognition_cli
+
+    real = recognition_cli.read_descriptions
+
+    def slow(*args, **kwargs):
+        time.sleep(0.3)
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(recognition_cli, "read_descriptions", slow)
+    take = str(built.parent / "wave_1.bvh")
+    status, out, err = run_praxicon(capsys, ["parse", str(built), take, "--max-seconds", "0.2"])
+    assert status == 3
+    (only,) = out.splitlines()
+    assert only.split()[:3] == ["0.00", "1.13", "moves.wave"]
+    assert err == ("psgs: the parse stopped at its bound max_seconds (0.2 s): parsed to "
+                   "1.13 s of 6.00 s; the timeline above ends there\n")
