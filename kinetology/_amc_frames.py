@@ -7,16 +7,19 @@ frames missing or repeated.
 
 from __future__ import annotations
 
+import itertools
 import re
 
 import numpy as np
 
 from psgs._foundation.text import decimal
 
-from ._frame_block import FRAME, Lines, content_end, read_records
+from ._frame_block import FRAME, Lines, content_end, line_pieces, read_records
 from .motion import MotionFormatError
+from .textblocks import RowReader, token_column
 
-__all__ = ["frame_layout", "indent", "read_at_once", "default_dofs", "angle_columns"]
+__all__ = ["frame_layout", "indent", "read_at_once", "read_by_lines", "to_degrees",
+           "default_dofs", "angle_columns"]
 
 _FRAME_NUMBER = re.compile(r"[+-]?[0-9]+")  # ASCII digits: str.isdigit takes '²' as well
 
@@ -32,8 +35,9 @@ def frame_layout(data: list[str], source: str, first_line: int) -> tuple[list[st
 
     Parameters
     ----------
-    data : list of str
-        The AMC lines from the first frame number to the last line that is not blank.
+    data : iterable of str
+        The AMC lines from the first frame number to the last line that is not blank (read
+        once, in order: a list, or the lines of :func:`~kinetology._frame_block.line_pieces`).
     source : str
         The file named in errors.
     first_line : int
@@ -65,49 +69,57 @@ def frame_layout(data: list[str], source: str, first_line: int) -> tuple[list[st
     ...
     kinetology.motion.MotionFormatError: w.amc:6:3: bone 'root' appears twice in frame 1 (first at line 4)
     """
-    def fail(message: str, i: int, column: int | None = None):
-        text = data[i]
+    def fail(message: str, i: int, text: str, column: int | None = None):
         raise MotionFormatError(message, source=source, line=first_line + i,
                                 column=column or len(text) - len(text.lstrip()) + 1)
 
-    first_text = data[0].strip()
+    lines = iter(data)  # a line at a time: the lines of a long take are never all held
+    last = next(lines, "")
+    first_text = last.strip()
     if not (_FRAME_NUMBER.fullmatch(first_text) and first_text[0] not in "+-"
             and len(first_text) <= 18):
-        fail(f"expected a frame number, found {first_text[:30]!r}", 0)
+        fail(f"expected a frame number, found {first_text[:30]!r}", 0, last)
     first = int(first_text)  # usually 1; every next frame's number is one more
-    per_frame = 1
-    # a frame number ends frame 1's bone lines, a negative one too (then refused in its place)
-    while per_frame < len(data) and not _FRAME_NUMBER.fullmatch(data[per_frame].strip()):
-        per_frame += 1
     bones: list[str] = []
     seen: dict[str, int] = {}
-    for i in range(1, per_frame):
-        if not data[i].strip():  # a blank line inside a frame (blank lines only lead or trail)
-            fail("expected a bone line, found an empty line", i, 1)
-        bone = data[i].split(None, 1)[0]
-        if decimal(bone) is not None:  # a number where frame 2's should be ('2.0', '1e0')
-            fail(f"expected frame number {first + 1}, found {data[i].strip()[:30]!r} (frames "
-                 f"are numbered one after another from {first})", i)
-        if bone in seen:  # its second line would be read as the next frame's bone
-            fail(f"bone {bone!r} appears twice in frame {first} (first at line "
-                 f"{first_line + seen[bone]})", i)
-        seen[bone] = i
-        bones.append(bone)
-    heads = [ln.split(None, 1)[0] if ln.strip() else "" for ln in data]
-    expected = ([None] + bones) * (len(data) // per_frame + 1)
-    for i, head in enumerate(heads):
-        if i % per_frame == 0:
+    per_frame, count = None, 1  # per_frame: known once frame 2's number comes
+    for i, line in enumerate(lines, 1):
+        count, last = i + 1, line
+        if per_frame is None:
+            # a frame number ends frame 1's bone lines, a negative one too (then refused in
+            # its place)
+            if not _FRAME_NUMBER.fullmatch(line.strip()):
+                if not line.strip():  # a blank line inside a frame (they only lead or trail)
+                    fail("expected a bone line, found an empty line", i, line, 1)
+                bone = line.split(None, 1)[0]
+                if decimal(bone) is not None:  # a number where frame 2's should be ('2.0')
+                    fail(f"expected frame number {first + 1}, found {line.strip()[:30]!r} "
+                         f"(frames are numbered one after another from {first})", i, line)
+                if bone in seen:  # its second line would be read as the next frame's bone
+                    fail(f"bone {bone!r} appears twice in frame {first} (first at line "
+                         f"{first_line + seen[bone]})", i, line)
+                seen[bone] = i
+                bones.append(bone)
+                continue
+            per_frame = i
+        slot = i % per_frame
+        if slot == 0:
             number = first + i // per_frame
-            text = data[i].strip()
+            text = line.strip()
             if text != str(number) and not (_FRAME_NUMBER.fullmatch(text) and len(text) <= 30
                                              and int(text) == number):  # "002" is frame 2
                 fail(f"expected frame number {number}, found {text[:30] or 'an empty line'!r} "
-                     f"(frames are numbered one after another from {first})", i)
-        elif head != expected[i]:
-            fail(f"expected bone {expected[i]!r}, found {head or 'an empty line'!r}", i)
-    if len(data) % per_frame:
-        fail(f"last frame is truncated (it has {len(data) % per_frame - 1} of "
-             f"{per_frame - 1} bone lines)", len(data) - 1)
+                     f"(frames are numbered one after another from {first})", i, line)
+        else:
+            head = line.split(None, 1)[0] if line.strip() else ""
+            if head != bones[slot - 1]:
+                fail(f"expected bone {bones[slot - 1]!r}, found {head or 'an empty line'!r}",
+                     i, line)
+    if per_frame is None:  # one frame
+        per_frame = count
+    if count % per_frame:
+        fail(f"last frame is truncated (it has {count % per_frame - 1} of "
+             f"{per_frame - 1} bone lines)", count - 1, last)
     return bones, per_frame
 
 
@@ -166,14 +178,126 @@ def read_at_once(lines: Lines, start: int, dofs: dict | None, degrees: bool):
             return None
         names.extend(f"{bone}.{d}" for d in bone_dofs)
     values = read_records(text, begin, end, layout, int(frame[0].strip()))
-    if values is not None and not degrees:
-        rotation = angle_columns(names)
-        with np.errstate(over="ignore"):
-            converted = np.degrees(values[:, rotation])
-        if not np.isfinite(converted).all():  # the first way names the value
-            return None
-        values[:, rotation] = converted
+    if values is not None and not degrees and to_degrees(values, angle_columns(names)):
+        return None  # a value too large in degrees: the first way names it
     return None if values is None else (values, tuple(names))
+
+
+def read_by_lines(lines: Lines, start: int, dofs: dict | None, degrees: bool, source: str):
+    """The values (degrees) and channel names of the AMC frames from line ``start`` (from 0)
+    on, read a piece of whole frames at a time (:func:`~kinetology._frame_block.line_pieces`)
+    into one array, as splitting all the lines at once read them: the same floats and the same
+    error, where that took 7 times the file's size. The first way, for frames
+    :func:`read_at_once` does not read.
+
+    Errors come in the order splitting the lines met them: the frames' layout
+    (:func:`frame_layout`); then bone by bone, in frame 1's order, a bone not in ``dofs``, the
+    first of its lines that does not hold its count of numbers, else the first of its values
+    that is not finite; then (``degrees`` False) the first value too large in degrees.
+
+    Examples
+    --------
+    >>> text = ":RADIANS\\n1\\nroot 0 3.14159\\n2\\nroot 1 -3.14159\\n"
+    >>> values, names = read_by_lines(Lines(text), 1, {"root": ("tx", "rx")}, False, "w.amc")
+    >>> values.round(3).tolist(), names
+    ([[0.0, 180.0], [1.0, -180.0]], ('root.tx', 'root.rx'))
+    >>> read_by_lines(Lines(text.replace("-3.14159", "x")), 1, None, True, "w.amc")
+    Traceback (most recent call last):
+    ...
+    kinetology.motion.MotionFormatError: w.amc:5:8: not a number: 'x'
+    """
+    text = lines.text
+    begin = lines.offset(start)
+    end = content_end(text, begin)  # the blank lines after the frames left out
+    if end <= begin:
+        raise MotionFormatError("no frames", source=source, line=max(1, len(lines)))
+    def each_line():
+        return itertools.chain.from_iterable(piece for _, piece in line_pieces(text, begin, end))
+
+    bones, per_frame = frame_layout(each_line(), source, start + 1)
+    frame = list(itertools.islice(each_line(), per_frame))  # frame 1's lines
+    frames = (text.count("\n", begin, end) + 1) // per_frame
+    names, slots, widths = [], [], []  # slots: the frame line (1..) of each column
+    missing = None  # the first bone not in the skeleton: the bones before it are read
+    for b, bone in enumerate(bones):
+        if dofs is not None and bone not in dofs:
+            missing = b
+            break
+        bone_dofs = (dofs[bone] if dofs is not None
+                     else default_dofs(bone, len(_numbers_text(frame[b + 1]).split())))
+        names.extend(f"{bone}.{d}" for d in bone_dofs)
+        slots.extend([b + 1] * len(bone_dofs))
+        widths.append(len(bone_dofs))
+    # every number takes a character and a separator: frames too short for theirs hold an
+    # error, found without allocating their array
+    room = missing is None and frames * len(names) * 2 <= end - begin + 1
+    out = np.empty((frames, len(names))) if room else None
+    readers, at = [], 0
+    for width in widths:
+        readers.append(RowReader(width, source, None if out is None else out[:, at:at + width]))
+        at += width
+    rotation = angle_columns(names) if not degrees and out is not None else None
+    too_large = None
+    for first, piece in line_pieces(text, begin, end, per_frame):
+        for b, reader in enumerate(readers):
+            mine = piece[b + 1::per_frame]
+            rows = [_numbers_text(line) for line in mine]
+            reader.add(rows, lambda j, s=first + b + 1: start + s + j * per_frame + 1,
+                       lambda j, k, rows=rows, mine=mine: token_column(rows[j], k)
+                       + indent(mine[j], 1))
+        # converted while every value so far is a finite number: after a bad line or value an
+        # error is certain, and the rows of a bad line hold no values to name
+        if (rotation is not None and too_large is None
+                and all(reader.error is None for reader in readers)):
+            block = out[first // per_frame:(first + len(piece)) // per_frame]
+            found = to_degrees(block, rotation)
+            if found is not None:  # its block left in radians, the value to name
+                row, k = found
+                col = rotation[k]
+                line = row * per_frame + slots[col]
+                too_large = MotionFormatError(
+                    f"{names[col]}: {block[row, col]:g} radians is too large to convert to "
+                    f"degrees", source=source, line=start + first + line + 1,
+                    column=token_column(piece[line], 1 + col - slots.index(slots[col])))
+    for reader in readers:
+        if reader.error is not None:
+            raise reader.error
+    if missing is not None:
+        raise MotionFormatError(f"bone {bones[missing]!r} is not in the skeleton", source=source,
+                                line=start + missing + 2,
+                                column=indent(frame[missing + 1], 0) + 1)
+    if too_large is not None:
+        raise too_large
+    return out, tuple(names)
+
+
+def _numbers_text(line: str) -> str:
+    """The text of an AMC bone line after the bone's name."""
+    parts = line.split(None, 1)
+    return parts[1] if len(parts) > 1 else ""
+
+
+def to_degrees(values: np.ndarray, columns: list[int], rows: int = 4096):
+    """Convert ``values[:, columns]`` from radians to degrees in place, a block of ``rows``
+    rows at a time (all at once took a copy of those columns); the ``(row, k)`` of the first
+    value (by rows, then ``columns``) whose degrees a float cannot hold (1e307 radians), its
+    block left in radians; None when all are converted.
+
+    Examples
+    --------
+    >>> values = np.array([[1.0, np.pi], [2.0, 1e307]])
+    >>> to_degrees(values, [1], rows=1), values[:, 1].tolist()
+    ((1, 0), [180.0, 1e+307])
+    """
+    for at in range(0, values.shape[0], rows):
+        block = values[at:at + rows]
+        with np.errstate(over="ignore"):
+            converted = np.degrees(block[:, columns])
+        if not np.isfinite(converted).all():
+            row, k = (int(n) for n in np.argwhere(~np.isfinite(converted))[0])
+            return at + row, k
+        block[:, columns] = converted
+    return None
 
 
 def default_dofs(bone: str, width: int) -> tuple[str, ...]:

@@ -27,12 +27,12 @@ import numpy as np
 from psgs._foundation.text import decimal, split_lines
 from psgs.errors import ValidationError
 
-from ._amc_frames import angle_columns, default_dofs, frame_layout, indent as _indent, read_at_once
+from ._amc_frames import read_at_once, read_by_lines
 from ._file_motion import build_motion, file_text
 from ._frame_block import Lines
 from .motion import (FRAME_RATE_RANGE, Joint, Motion, MotionFormatError, Skeleton, as_path,
                      counted, rebuilt)
-from .textblocks import parse_rows, token_column
+from .textblocks import token_column
 
 __all__ = ["AsfSkeleton", "read_asf", "parse_asf", "read_amc", "parse_amc", "find_asf"]
 
@@ -514,53 +514,12 @@ def parse_amc(text: str, *, dofs: dict | None = None, skeleton: Skeleton | None 
             degrees = False
         start += 1
     # a chunk at a time, about twice the file's size in all; frames that way does not read
-    # (malformed ones) are split into lines as before, to name the bad line
+    # (malformed ones) are split into lines, a piece of frames at a time, to name the bad line
     read = read_at_once(lines, start, dofs, degrees)
     if read is not None:
         del text, lines  # let go before the motion is built (read_amc holds neither)
         return build_motion(read[0], read[1], frame_rate, skeleton, source, {"format": "amc"})
-    data = lines.tail(start)
-    while data and not data[-1].strip():
-        data.pop()
-    if not data:
-        raise MotionFormatError("no frames", source=source, line=max(1, len(lines)))
-
-    def line_of(i: int) -> int:
-        return start + i + 1
-
-    bones, per_frame = frame_layout(data, source, start + 1)
-    frames = len(data) // per_frame
-    columns, names, slots = [], [], []  # slots: the frame line (1..) of each column
-    for b, bone in enumerate(bones):
-        slot = b + 1
-        rows = [ln.split(None, 1)[1] if len(ln.split(None, 1)) > 1 else ""
-                for ln in data[slot::per_frame]]
-        if dofs is not None:
-            if bone not in dofs:
-                raise MotionFormatError(f"bone {bone!r} is not in the skeleton", source=source,
-                                        line=line_of(slot), column=_indent(data[slot], 0) + 1)
-            bone_dofs = dofs[bone]
-        else:
-            bone_dofs = default_dofs(bone, len(rows[0].split()))
-        block = parse_rows(rows, len(bone_dofs), source=source,
-                           line_of=lambda i, s=slot: line_of(s + i * per_frame),
-                           indent_of=lambda i, s=slot: _indent(data[s + i * per_frame], 1))
-        columns.append(block)
-        names.extend(f"{bone}.{d}" for d in bone_dofs)
-        slots.extend([slot] * len(bone_dofs))
-    values = np.hstack(columns) if columns else np.zeros((frames, 0))
-    if not degrees:
-        rotation = angle_columns(names)
-        with np.errstate(over="ignore"):
-            converted = np.degrees(values[:, rotation])
-        if not np.isfinite(converted).all():  # 1e307 radians is finite, its degrees are not
-            row, k = (int(n) for n in np.argwhere(~np.isfinite(converted))[0])
-            col = rotation[k]
-            at = slots[col] + row * per_frame
-            raise MotionFormatError(f"{names[col]}: {values[row, col]:g} radians is too large "
-                                    f"to convert to degrees", source=source, line=line_of(at),
-                                    column=token_column(data[at],
-                                                        1 + col - slots.index(slots[col])))
-        values[:, rotation] = converted
+    values, names = read_by_lines(lines, start, dofs, degrees, source)
+    del text, lines
     return build_motion(values, tuple(names), frame_rate, skeleton, source, {"format": "amc"})
 

@@ -5,7 +5,7 @@ Channels are renamed ``joint.tx`` .. ``joint.rz`` (``Xposition`` -> ``tx``,
 channels are listed in (``Zrotation Yrotation Xrotation`` -> ``"ZYX"``, the
 matrix ``Rz @ Ry @ Rx``). The frame block is read a chunk of frames at a time
 (:mod:`kinetology._frame_block`: about twice the file's size in memory); only when it is
-malformed is it walked line by line to name the bad line.
+malformed is it walked line by line (a piece of lines at a time) to name the bad line.
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ from ._file_motion import build_motion, file_text
 from ._frame_block import Lines, content_end, read_records
 from .motion import (FRAME_RATE_RANGE, Joint, Motion, MotionFormatError, Skeleton, as_path,
                      counted)
-from .textblocks import parse_rows
+from .textblocks import read_block
 
 __all__ = ["read_bvh", "parse_bvh", "FRAME_TIME_RANGE"]
 
@@ -152,16 +152,14 @@ def parse_bvh(text: str, source: str = "<bvh>") -> Motion:
                                 f"second)", source=source, line=time_at[0], column=time_at[1])
     first_data = tokens.line_index + 1
     start = lines.offset(first_data - 1)
+    # trailing blank lines are common; anything else beyond the frames is an error
+    end = content_end(lines.text, start)
     # a chunk at a time, about twice the file's size in all; a block that way does not read
-    # (a malformed one) is split into lines as before, to name the bad line
-    values = read_records(lines.text, start, content_end(lines.text, start),
-                          ((None, len(channels)),))
+    # (a malformed one) is split into lines, a piece at a time, to name the bad line
+    values = read_records(lines.text, start, end, ((None, len(channels)),))
     if values is None:
-        body = lines.tail(first_data - 1)
-        # trailing blank lines are common; anything else beyond the frames is an error
-        while body and not body[-1].strip():
-            body.pop()
-        values = parse_rows(body, len(channels), source=source, first_line=first_data)
+        values = read_block(lines.text, start, end, len(channels), source=source,
+                            first_line=first_data)
     if values.shape[0] != frames:
         raise MotionFormatError(
             f"header says {counted(frames, 'frame')} but {counted(values.shape[0], 'frame line')} "

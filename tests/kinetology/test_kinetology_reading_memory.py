@@ -43,7 +43,8 @@ def _outcome(parse, text: str):
 
 def _both_ways(parse, text: str, chunk: int):
     """The outcome of reading ``text`` in chunks of ``chunk`` characters, whether the chunks
-    read it (or it gave up), and the outcome of the first way."""
+    read it (or it gave up), and the outcome of the first way; which splits the lines a piece
+    at a time, and must read them as in one piece (the same values, the same error)."""
     read = []
 
     def spy(function):
@@ -61,11 +62,15 @@ def _both_ways(parse, text: str, chunk: int):
         stack.enter_context(mock.patch.object(asf_module, "read_at_once",
                                               spy(asf_module.read_at_once)))
         chunked = _outcome(parse, text)
-    with ExitStack() as stack:  # the chunked reading gives up: the lines are split
-        stack.enter_context(mock.patch.object(bvh_module, "read_records", lambda *a: None))
-        stack.enter_context(mock.patch.object(asf_module, "read_at_once", lambda *a: None))
-        split = _outcome(parse, text)
-    return chunked, any(read), split
+    split = []
+    for piece in (1 << 30, chunk):  # the whole block in one piece, then in pieces of chunk
+        with ExitStack() as stack:  # the chunked reading gives up: the lines are split
+            stack.enter_context(mock.patch.object(bvh_module, "read_records", lambda *a: None))
+            stack.enter_context(mock.patch.object(asf_module, "read_at_once", lambda *a: None))
+            stack.enter_context(mock.patch.object(_frame_block, "CHUNK", piece))
+            split.append(_outcome(parse, text))
+    assert split[0] == split[1]
+    return chunked, any(read), split[0]
 
 
 # numbers as files write them: every format a float of the file may be written in
@@ -142,7 +147,8 @@ def test_amc_values_are_those_of_splitting_the_lines(data, frames, count, chunk,
 # same values both ways, or is the same error at the same place
 _EDITS = ["1-2", "1e5e5", "+2", "002", "2.0", "2e0", "inf", "-nan", "1_0", "١", "0x10", "1e999",
           ".", "-", "e5", "1.", ".5", "+.5", "1e+5", "", "  ", "\t", "\r", "\x0b", "\x0c",
-          "\x1c", "\u00a0", "#", "root", "femur", "3", "1 2", "\n", "\n\n", "\r\n"]
+          "\x1c", "\u00a0", "#", "root", "femur", "3", "1 2", "\n", "\n\n", "\r\n",
+          "1e307", "\ufeff", "\x00", "  femur 1", "2\nroot 1 2"]
 
 
 @settings(max_examples=200)
@@ -152,7 +158,8 @@ def test_an_edited_frame_block_reads_or_fails_the_same_both_ways(kind, data, chu
         text = _bvh([["0", "1.5", "-2"], ["3", "4", "5e-3"], ["6", "7", "8"]])
         parse = parse_bvh
     else:
-        text = _amc(["root", "femur"], 3, [[["1", "2"], ["3"]]] * 3)
+        text = _amc(["root", "femur"], 3, [[["1", "2"], ["3"]]] * 3,
+                    radians=data.draw(st.booleans()))
         dofs = data.draw(st.sampled_from([None, {"root": ("tx", "rx"), "femur": ("rx",)}]))
         parse = lambda t: parse_amc(t, dofs=dofs)  # noqa: E731
     block = text.index("0.01\n") + 5 if kind == "bvh" else text.index("\n1\n") + 1
