@@ -108,13 +108,55 @@ def first_unseen(text: str) -> int | None:
     return None if found is None else end
 
 
+# Unicode gives the control characters no name (unicodedata.name has none for them), only
+# aliases (NameAliases.txt): each one's first alias of type 'control', the name ISO 6429 and
+# ISO 646 give it. U+0080, U+0081 and U+0099 were never in a standard and have only a
+# 'figment' alias, the name in common use, given here so that every control has a name.
+_C0_NAMES = (
+    "NULL", "START OF HEADING", "START OF TEXT", "END OF TEXT", "END OF TRANSMISSION",
+    "ENQUIRY", "ACKNOWLEDGE", "ALERT", "BACKSPACE", "CHARACTER TABULATION", "LINE FEED",
+    "LINE TABULATION", "FORM FEED", "CARRIAGE RETURN", "SHIFT OUT", "SHIFT IN",
+    "DATA LINK ESCAPE", "DEVICE CONTROL ONE", "DEVICE CONTROL TWO", "DEVICE CONTROL THREE",
+    "DEVICE CONTROL FOUR", "NEGATIVE ACKNOWLEDGE", "SYNCHRONOUS IDLE",
+    "END OF TRANSMISSION BLOCK", "CANCEL", "END OF MEDIUM", "SUBSTITUTE", "ESCAPE",
+    "INFORMATION SEPARATOR FOUR", "INFORMATION SEPARATOR THREE", "INFORMATION SEPARATOR TWO",
+    "INFORMATION SEPARATOR ONE",
+)  # U+0000-U+001F
+_DELETE_NAME = "DELETE"  # U+007F
+_C1_NAMES = (
+    "PADDING CHARACTER", "HIGH OCTET PRESET", "BREAK PERMITTED HERE", "NO BREAK HERE", "INDEX",
+    "NEXT LINE", "START OF SELECTED AREA", "END OF SELECTED AREA", "CHARACTER TABULATION SET",
+    "CHARACTER TABULATION WITH JUSTIFICATION", "LINE TABULATION SET", "PARTIAL LINE FORWARD",
+    "PARTIAL LINE BACKWARD", "REVERSE LINE FEED", "SINGLE SHIFT TWO", "SINGLE SHIFT THREE",
+    "DEVICE CONTROL STRING", "PRIVATE USE ONE", "PRIVATE USE TWO", "SET TRANSMIT STATE",
+    "CANCEL CHARACTER", "MESSAGE WAITING", "START OF GUARDED AREA", "END OF GUARDED AREA",
+    "START OF STRING", "SINGLE GRAPHIC CHARACTER INTRODUCER", "SINGLE CHARACTER INTRODUCER",
+    "CONTROL SEQUENCE INTRODUCER", "STRING TERMINATOR", "OPERATING SYSTEM COMMAND",
+    "PRIVACY MESSAGE", "APPLICATION PROGRAM COMMAND",
+)  # U+0080-U+009F
+
+
 def character_name(char: str) -> str:
     """``char`` as a message names it: its code point and, when Unicode has one, its name.
+
+    A control character (C0, DEL, C1), which has no name in :mod:`unicodedata`, is named by
+    its Unicode alias (``NEXT LINE``, ``ESCAPE``); a private-use, unassigned or surrogate code
+    point has none.
 
     Examples
     --------
     >>> character_name("\u200b"), character_name("\x9b")
-    ('U+200B ZERO WIDTH SPACE', 'U+009B')
+    ('U+200B ZERO WIDTH SPACE', 'U+009B CONTROL SEQUENCE INTRODUCER')
+    >>> character_name("\x85"), character_name("\t"), character_name("\ue000")
+    ('U+0085 NEXT LINE', 'U+0009 CHARACTER TABULATION', 'U+E000')
     """
-    name = unicodedata.name(char, "")
-    return f"U+{ord(char):04X}" + (f" {name}" if name else "")
+    code = ord(char)
+    if code < 0x20:
+        name = _C0_NAMES[code]
+    elif code == 0x7F:
+        name = _DELETE_NAME
+    elif 0x80 <= code < 0xA0:
+        name = _C1_NAMES[code - 0x80]
+    else:
+        name = unicodedata.name(char, "")
+    return f"U+{code:04X}" + (f" {name}" if name else "")

@@ -6,6 +6,7 @@ name and text say it alike."""
 from __future__ import annotations
 
 import re
+import unicodedata
 
 import pytest
 from hypothesis import given, settings
@@ -33,6 +34,31 @@ def test_a_symbol_and_a_terminal_name_the_character_they_hold_alike(head, bad, t
         with pytest.raises(ValidationError) as refused:
             Terminal(symbol)
         assert said in str(refused.value)
+
+
+CONTROLS = [*range(0x00, 0x20), 0x7F, *range(0x80, 0xA0)]
+
+
+@pytest.mark.parametrize("code", CONTROLS, ids=lambda code: f"U+{code:04X}")
+def test_every_control_character_is_named_by_its_unicode_alias(code):
+    # unicodedata.name has none for a control; lookup knows Unicode's aliases, so it is the
+    # oracle: the name given is one of the character's own, not another character's
+    shown = character_name(chr(code))
+    point, _, name = shown.partition(" ")
+    assert point == f"U+{code:04X}" and name, shown
+    assert unicodedata.lookup(name) == chr(code), shown
+
+
+@pytest.mark.parametrize("char, said", [
+    ("\x00", "U+0000 NULL"), ("\t", "U+0009 CHARACTER TABULATION"), ("\n", "U+000A LINE FEED"),
+    ("\x1b", "U+001B ESCAPE"), ("\x7f", "U+007F DELETE"), ("\x80", "U+0080 PADDING CHARACTER"),
+    ("\x85", "U+0085 NEXT LINE"), ("\x9b", "U+009B CONTROL SEQUENCE INTRODUCER"),
+    ("\x9f", "U+009F APPLICATION PROGRAM COMMAND"),
+    # beyond the controls, unicodedata's name, or none
+    (" ", "U+0020 SPACE"), ("\xa0", "U+00A0 NO-BREAK SPACE"), ("\ue000", "U+E000"),
+])
+def test_a_character_is_named_by_code_point_and_name(char, said):
+    assert character_name(char) == said
 
 
 @pytest.mark.parametrize("name, said", [
