@@ -145,9 +145,9 @@ def character_name(char: str) -> str:
 
     Examples
     --------
-    >>> character_name("\u200b"), character_name("\x9b")
+    >>> character_name("\\u200b"), character_name("\\x9b")
     ('U+200B ZERO WIDTH SPACE', 'U+009B CONTROL SEQUENCE INTRODUCER')
-    >>> character_name("\x85"), character_name("\t"), character_name("\ue000")
+    >>> character_name("\\x85"), character_name("\\t"), character_name("\\ue000")
     ('U+0085 NEXT LINE', 'U+0009 CHARACTER TABULATION', 'U+E000')
     """
     code = ord(char)
