@@ -14,7 +14,7 @@ import numpy as np
 
 from psgs._foundation.text import decimal
 
-from ._frame_block import FRAME, Lines, content_end, line_pieces, read_records
+from ._frame_block import FRAME, Lines, content_end, file_end, line_pieces, read_records
 from .motion import MotionFormatError
 from .textblocks import RowReader, token_column
 
@@ -210,7 +210,7 @@ def read_by_lines(lines: Lines, start: int, dofs: dict | None, degrees: bool, so
     begin = lines.offset(start)
     end = content_end(text, begin)  # the blank lines after the frames left out
     if end <= begin:
-        raise MotionFormatError("no frames", source=source, line=max(1, len(lines)))
+        raise MotionFormatError("no frames", source=source, **file_end(lines))
     def each_line():
         return itertools.chain.from_iterable(piece for _, piece in line_pieces(text, begin, end))
 

@@ -23,7 +23,8 @@ import io
 
 import numpy as np
 
-__all__ = ["Lines", "content_end", "line_pieces", "read_records", "FRAME", "CHUNK", "SMALL"]
+__all__ = ["Lines", "content_end", "file_end", "line_pieces", "read_records", "FRAME", "CHUNK",
+           "SMALL"]
 
 #: Characters of text per chunk converted at once: its copies and checks take a few times
 #: this, whatever the file's size.
@@ -97,6 +98,19 @@ class Lines:
         if lines[-1] == "":
             lines.pop()
         return [line[:-1] if line.endswith("\r") else line for line in lines]
+
+
+def file_end(lines: Lines) -> dict:
+    """Where the text of ``lines`` ends, as an error names it: the last line, the column after
+    its last character (line 1, column 1 for no text), for what a file ends without.
+
+    Examples
+    --------
+    >>> file_end(Lines("HIERARCHY\\nROOT hip\\n")), file_end(Lines(""))
+    ({'line': 2, 'column': 9}, {'line': 1, 'column': 1})
+    """
+    count = len(lines)
+    return {"line": max(1, count), "column": len(lines[count - 1]) + 1 if count else 1}
 
 
 def content_end(text: str, start: int) -> int:

@@ -168,13 +168,16 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
             "position": (0.0, 0.0, 0.0), "orientation": (0.0, 0.0, 0.0)}
     bones: dict[str, dict] = {}
     children: dict[str, list[str]] = {}
-    named_at: dict[str, int] = {}  # bone -> the :hierarchy line naming it as a child
+    named_at: dict[str, tuple] = {}  # bone -> where :hierarchy names it as a child
     current: dict | None = None
     scale = 1.0
     radians = False  # ':units angle rad': axis and orientation angles given in radians
 
     def fail(message, number, column=1):
         raise MotionFormatError(message, source=source, line=number, column=column)
+
+    def after(raw):  # the column just after a line's last word (before a comment)
+        return len(raw.split("#", 1)[0].rstrip()) + 1
 
     def numbers(parts, count, number, raw):
         """``parts[1:count + 1]`` as floats; an error names the column in ``raw``."""
@@ -205,18 +208,20 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
             scale = numbers(parts, 1, number, raw)[0]
         elif section == "units" and key == "angle":
             if len(parts) < 2 or parts[1].lower() not in ("deg", "rad"):
-                fail(f"angle unit must be deg or rad, not {' '.join(parts[1:])!r}", number)
+                fail(f"angle unit must be deg or rad, not {' '.join(parts[1:])!r}", number,
+                     token_column(raw, 1) if len(parts) > 1 else after(raw))
             radians = parts[1].lower() == "rad"
         elif section == "root":
             if key == "order":
                 order = tuple(p.lower() for p in parts[1:])
-                if not set(order) <= _DOFS or len(set(order)) != len(order):
-                    fail(f"bad root order {' '.join(parts[1:])!r}", number)
+                if (bad := _first_bad(order)) is not None:
+                    fail(f"bad root order {' '.join(parts[1:])!r}", number,
+                         token_column(raw, bad + 1))
                 root["order"] = order
             elif key == "axis":
                 if len(parts) < 2:
-                    fail("root axis needs an order such as XYZ", number)
-                root["axis"] = _axis_order(parts[1], fail, number)
+                    fail("root axis needs an order such as XYZ", number, after(raw))
+                root["axis"] = _axis_order(parts[1], fail, number, token_column(raw, 1))
             elif key in ("position", "orientation"):
                 root[key] = numbers(parts, 3, number, raw)
         elif section == "bonedata":
@@ -225,7 +230,7 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
                            "direction": (0.0, 0.0, 0.0), "length": 0.0, "line": number}
             elif key == "end":
                 if current is None or "name" not in current:
-                    fail("bone without a name", number)
+                    fail("bone without a name", number, token_column(raw, 0))
                 twin = bones.get(current["name"])
                 if twin is not None:  # the second would replace the first without a word
                     fail(f"two bones are named {current['name']!r} (the first at line "
@@ -233,22 +238,27 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
                 bones[current["name"]] = current
                 current = None
             elif current is None:
-                fail(f"{parts[0]!r} outside a begin/end bone block", number)
+                fail(f"{parts[0]!r} outside a begin/end bone block", number,
+                     token_column(raw, 0))
             elif key == "name":
-                current["name"] = parts[1] if len(parts) > 1 else fail("bone name missing", number)
+                current["name"] = (parts[1] if len(parts) > 1
+                                   else fail("bone name missing", number, after(raw)))
                 current["name_at"] = (number, token_column(raw, 1))
             elif key == "direction":
                 current["direction"] = numbers(parts, 3, number, raw)
             elif key == "length":
                 current["length"] = numbers(parts, 1, number, raw)[0]
+                current["length_at"] = (number, token_column(raw, 1))
             elif key == "axis":
                 current["axis"] = numbers(parts, 3, number, raw)
                 current["order"] = _axis_order(parts[4] if len(parts) > 4 else "XYZ", fail,
-                                               number)
+                                               number, token_column(raw, 4)
+                                               if len(parts) > 4 else 1)
             elif key == "dof":
                 dof = tuple(p.lower() for p in parts[1:])
-                if not set(dof) <= _DOFS or len(set(dof)) != len(dof):
-                    fail(f"bad dof list {' '.join(parts[1:])!r}", number)
+                if (bad := _first_bad(dof)) is not None:
+                    fail(f"bad dof list {' '.join(parts[1:])!r}", number,
+                         token_column(raw, bad + 1))
                 current["dof"] = dof
         elif section == "hierarchy":
             if key in ("begin", "end"):
@@ -260,8 +270,8 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
                          token_column(raw, k))
                 if child in named_at:  # two parents, or a cycle: no tree to place
                     fail(f"hierarchy gives bone {child!r} a parent twice (first at line "
-                         f"{named_at[child]})", number, token_column(raw, k))
-                named_at[child] = number
+                         f"{named_at[child][0]})", number, token_column(raw, k))
+                named_at[child] = (number, token_column(raw, k))
     if not bones:
         raise MotionFormatError("no :bonedata bones", source=source)
     if radians:
@@ -275,12 +285,13 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
                         root["orientation"]))
     dofs = {"root": tuple(root["order"])}
     placed: set[str] = set()
+    last = [None]  # the bone placed last: where nesting too deeply is named
 
     def place(bone: str, parent_index: int, offset) -> None:
         if bone in placed:
-            raise MotionFormatError(f"bone {bone!r} appears twice in the hierarchy",
-                                    source=source)
+            fail(f"bone {bone!r} appears twice in the hierarchy", *named_at[bone])
         placed.add(bone)
+        last[0] = bone
         info = bones[bone]
         dofs[bone] = info["dof"]
         index = len(joints)
@@ -289,9 +300,9 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
                             info["axis"]))
         with np.errstate(over="ignore", invalid="ignore"):
             vector = tuple(float(info["length"]) * np.asarray(info["direction"]))
-        if not np.isfinite(vector).all():
-            raise MotionFormatError(f"bone {bone!r}: length x direction overflows",
-                                    source=source, line=info["line"])
+        if not np.isfinite(vector).all():  # only a length given can make it overflow
+            fail(f"bone {bone!r}: length x direction overflows",
+                 *info.get("length_at", (info["line"], 1)))
         kids = children.get(bone, [])
         for child in kids:
             place(child, index, vector)
@@ -302,11 +313,12 @@ def parse_asf(text: str, source: str = "<asf>") -> AsfSkeleton:
         for child in children.get("root", []):
             place(child, 0, (0.0, 0.0, 0.0))
     except RecursionError:  # bones are placed by recursion; real skeletons are shallow
-        raise MotionFormatError("bones nested too deeply in :hierarchy", source=source) from None
+        raise MotionFormatError("bones nested too deeply in :hierarchy", source=source,
+                                line=named_at[last[0]][0],
+                                column=named_at[last[0]][1]) from None
     missing = [b for b in bones if b not in placed]
-    if missing:
-        raise MotionFormatError(f"bones not in the hierarchy: {', '.join(missing)}",
-                                source=source)
+    if missing:  # named where the first of them is defined
+        fail(f"bones not in the hierarchy: {', '.join(missing)}", *bones[missing[0]]["name_at"])
     return AsfSkeleton(MappingProxyType(dofs), Skeleton(tuple(joints), length_unit=f"ASF units (length {scale})"),
                        scale)
 
@@ -316,11 +328,21 @@ def _without_bom(text: str) -> str:
     return text[1:] if text.startswith("\ufeff") else text
 
 
-def _axis_order(text: str, fail, number) -> str:
+def _axis_order(text: str, fail, number, column) -> str:
     order = text.upper()
     if sorted(order) != ["X", "Y", "Z"]:
-        fail(f"bad axis order {text!r}", number)
+        fail(f"bad axis order {text!r}", number, column)
     return order
+
+
+def _first_bad(dofs) -> int | None:
+    """The index of the first of ``dofs`` that is no dof or repeats one before it; None."""
+    seen = set()
+    for k, dof in enumerate(dofs):
+        if dof not in _DOFS or dof in seen:
+            return k
+        seen.add(dof)
+    return None
 
 
 def find_asf(amc_path: Path) -> Path | None:
@@ -445,9 +467,10 @@ def _key_file_dofs(path: Path) -> dict | None:
     for number, line in enumerate(split_lines(file_text(path)), 1):
         parts = line.split()
         if parts:
-            if not set(p.lower() for p in parts[1:]) <= _DOFS:
+            bad = next((k for k, p in enumerate(parts[1:], 1) if p.lower() not in _DOFS), None)
+            if bad is not None:
                 raise MotionFormatError(f"bad dof names in {line.strip()!r}", source=str(path),
-                                        line=number)
+                                        line=number, column=token_column(line, bad))
             dofs[parts[0]] = tuple(p.lower() for p in parts[1:])
     return dofs
 

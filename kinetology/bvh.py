@@ -132,7 +132,7 @@ def parse_bvh(text: str, source: str = "<bvh>") -> Motion:
         _read_joint(tokens, joints, channels, parent=None)
     except RecursionError:  # joints nest by recursion; no real skeleton comes near the limit
         raise MotionFormatError("joints nested too deeply", source=source,
-                                line=tokens.last[0]) from None
+                                line=tokens.last[0], column=tokens.last[1]) from None
     if tokens.peek().upper() == "ROOT":
         tokens.fail("only one ROOT is supported")
     tokens.expect("MOTION")
