@@ -39,14 +39,15 @@ def test_an_induction_says_who_made_it_with_which_parameters():
     one = generate(seed=5, **SMALL).actiongram
     result = PAL().induce(one)
     assert result.inducer == "pal" and result.system.name == "pal"
-    # engine and max_seconds change how it computes, or name the bound that stopped it
-    assert set(result.params) == set(PALConf.names()) - {"engine", "max_seconds"}
+    # engine changes how it computes; max_seconds and max_bytes name the bound that stopped it
+    unrecorded = {"engine", "max_seconds", "max_bytes"}
+    assert set(result.params) == set(PALConf.names()) - unrecorded
     content = ContentPAL().induce(one)
     assert content.inducer == "pal_content" and set(content.params) == \
-        set(ContentConf.names()) - {"engine", "max_seconds"}
+        set(ContentConf.names()) - unrecorded
     motion = MotionPAL().induce([one, one])
     assert motion.inducer == "pal_motion" and set(motion.params) == \
-        set(MotionConf.names()) - {"max_seconds"}
+        set(MotionConf.names()) - unrecorded
 
 
 def test_the_tables_are_frozen_and_pal_s_is_the_union():
@@ -55,7 +56,7 @@ def test_the_tables_are_frozen_and_pal_s_is_the_union():
     assert set(PALConf.names()) == set(ContentConf.names()) | set(MotionConf.names())
     assert PAL().get_params() == PALConf().as_dict()
     # a row both learners read is one declaration: the same rule object in every table
-    for name in ("min_copies", "alpha"):
+    for name in ("min_copies", "alpha", "max_seconds", "max_bytes"):
         rules = {id(f.metadata["rule"]) for table in (ContentConf, MotionConf, PALConf)
                  for f in dataclasses.fields(table) if f.name == name}
         assert len(rules) == 1, name

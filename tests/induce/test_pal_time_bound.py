@@ -185,13 +185,18 @@ def test_the_compiled_pairs_come_a_block_of_rows_at_a_time_alike(monkeypatch):
     for _ in range(30):
         starts = np.sort(rng.uniform(0, 100, 12))
         lists.append(np.column_stack((starts, starts + rng.uniform(0.5, 6, 12))))
-    whole = pooling._pairs_compiled(lists, 0.5, 3)
+    whole = _pairs(pooling._pairs_compiled(lists, 0.5, 3))  # (30 rows: one block)
     monkeypatch.setattr(pooling, "PAIRS_PER_CALL", 40)  # 1 row a block
-    assert pooling._pairs_compiled(lists, 0.5, 3, Budget(seconds=1e6)) == whole
-    assert whole == pooling._pairs_each(lists, 0.5, 3) and len(whole) > 20
+    assert _pairs(pooling._pairs_compiled(lists, 0.5, 3, Budget(seconds=1e6))) == whole
+    assert whole == _pairs(pooling._pairs_each(lists, 0.5, 3)) and len(whole) > 20
     # and the clock stops them between blocks
     with pytest.raises(BoundReached):
-        pooling._pairs_compiled(lists, 0.5, 3, _expired())
+        _pairs(pooling._pairs_compiled(lists, 0.5, 3, _expired()))
+
+
+def _pairs(blocks) -> list[tuple[int, int]]:
+    """The pairs of pooling's blocks of rows, in order."""
+    return [pair for rows, columns in blocks for pair in zip(rows, columns, strict=True)]
 
 
 def _expired() -> Budget:

@@ -1,5 +1,5 @@
-"""The compiled synchronisation test: :func:`psgs.induce.pal.pooling.synchronised` for every
-pair of candidates in one numba call.
+"""The compiled synchronisation test: :func:`psgs.induce.pal.pooling.synchronised` for the
+pairs of a block of rows of candidates in one numba call.
 
 Only comparisons of the copies' times and integer counts, in the numpy engine's terms, so
 the pairs are the same (tests/induce/test_pal_engines.py draws touching, overlapping and
@@ -101,8 +101,9 @@ def synchronised_rows(lo, hi, bounds, disjoint, first, last, fraction, min_copie
     """Which pairs (i < j) of the copy lists ``(lo, hi)[bounds[i]:bounds[i + 1]]`` (start and
     end times) are synchronised, for the rows ``i`` from ``first`` to ``last - 1`` (row ``i``
     at ``i - first``, filled right of the diagonal); ``disjoint`` from :func:`disjoint_flags`.
-    Every row in one call, or a block of rows a call so that a caller with a deadline reads
-    its clock between blocks."""
+    A block of rows a call: the table is the block's rows by every candidate (every row at
+    once would be the candidates squared), and a caller with a deadline reads its clock
+    between blocks."""
     count = len(bounds) - 1
     out = np.zeros((last - first, count), dtype=np.bool_)
     for i in range(first, last):

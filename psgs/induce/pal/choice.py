@@ -36,13 +36,12 @@ from .conf import NO_BOUND
 from .motifs import Timed
 from .in_step import group_significance
 from .pairing import keeps_shift, spans_pair
-from .pooling import sync_groups
+from .pooling import PAIR_BYTES, sync_groups
 from .sections import (Section, copy_agreements, find_sections, follow_rate,
                        repeat_significance)
 
 if TYPE_CHECKING:
-    from ...budget import Budget
-    from .conf import ContentConf
+    from .conf import Bounds, ContentConf
     from .content import ContentResult
 
 __all__: list[str] = []  # private: content.py is the caller
@@ -59,12 +58,14 @@ SCREEN = -1e-9
 
 
 def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf,
-                 clock: Budget = NO_BOUND) -> None:
+                 clock: Bounds = NO_BOUND) -> None:
     """Section groups formed and weighed against the motif groups; ``found`` updated.
 
     ``clock`` is read in the search (each string, each row of pairs, each group's lead)
-    and raises :class:`~psgs.errors.BoundReached` past its deadline, always before the
-    components of ``found`` change (its sections, partners and statuses may have).
+    and raises :class:`~psgs.errors.BoundReached` past its deadline, or when the section
+    pairs found pass its ``max_bytes`` (:data:`~psgs.induce.pal.pooling.PAIR_BYTES` a pair),
+    always before the components of ``found`` change (its sections, partners and statuses
+    may have).
     """
     # (not bounded by max_pattern: a section is found by a search over lengths, not grown)
     level = math.log10(conf.alpha)
@@ -86,13 +87,15 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf,
     partners: dict[int, list[int]] = {i: [] for i in candidates}
     for k, a in enumerate(candidates):
         clock.check()
-        for b in candidates[k + 1:]:
-            # in step: copies that pair off, at one shift (a chance repeat inside long
-            # copies pairs with them too, but lies off them by a different amount in each)
-            if coincide(intervals[a], intervals[b], conf.min_copies, conf.sync_fraction) \
-                    and keeps_shift(intervals[a], intervals[b]):
-                partners[a].append(b)
-                partners[b].append(a)
+        in_step = [b for b in candidates[k + 1:]
+                   # copies that pair off, at one shift (a chance repeat inside long copies
+                   # pairs with them too, but lies off them by a different amount in each)
+                   if coincide(intervals[a], intervals[b], conf.min_copies, conf.sync_fraction)
+                   and keeps_shift(intervals[a], intervals[b])]
+        clock.keep(PAIR_BYTES * len(in_step))
+        partners[a].extend(in_step)
+        for b in in_step:
+            partners[b].append(a)
     found.section_partners = partners
     weights = {i: motif_weight(symbols[i], found.patterns[i], found.spans[i])
                for i in found.patterns}

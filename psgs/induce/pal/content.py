@@ -12,14 +12,14 @@ from .conf import NO_BOUND
 from .motifs import Motif, Timed, find_motifs
 from .edges import trim
 from .joining import may_join
-from .pooling import (pooled_pattern, pooled_windows, relocate, repeats_in_windows, sync_groups,
-                      synchronised_pairs, vote)
+from .pooling import (PAIR_BYTES, pair_blocks, pooled_pattern, pooled_windows, relocate,
+                      repeats_in_windows, sync_groups, vote)
 from .together import locate_together
 from .widening import widen
 
 if TYPE_CHECKING:
     from ...budget import Budget
-    from .conf import ContentConf
+    from .conf import Bounds, ContentConf
 
 
 #: the statuses of a string some stage of the pooling dropped (see ``docs/pal.md``)
@@ -48,22 +48,25 @@ class ContentResult:
     agreements: dict[int, tuple[float, ...]] = field(default_factory=dict)  # per copy
 
 
-def find_candidates(strings: list[Timed], conf: ContentConf, clock: Budget = NO_BOUND
+def find_candidates(strings: list[Timed], conf: ContentConf, clock: Bounds = NO_BOUND
                     ) -> ContentResult:
     """Steps 1-3: a motif per string, the significance screen, synchronisation in time.
 
     ``clock`` is read between strings and between rows of the pairs tested; past its
-    deadline it raises :class:`~psgs.errors.BoundReached` (nothing is returned).
+    deadline it raises :class:`~psgs.errors.BoundReached` (nothing is returned), as it does
+    when the pairs found pass its ``max_bytes`` (:data:`PAIR_BYTES` a pair).
     """
     motifs = find_motifs([s.codes for s in strings], conf, clock)
     candidates = [i for i, m in enumerate(motifs)
                   if m is not None and m.significance <= math.log10(conf.alpha)]
     intervals = {i: strings[i].copy_times(motifs[i]) for i in candidates}
     partners: dict[int, list[int]] = {i: [] for i in candidates}
-    for i, j in synchronised_pairs([intervals[i] for i in candidates], conf, clock):
-        a, b = candidates[i], candidates[j]
-        partners[a].append(b)
-        partners[b].append(a)
+    for rows, columns in pair_blocks([intervals[i] for i in candidates], conf, clock):
+        clock.keep(PAIR_BYTES * len(rows))
+        for i, j in zip(rows, columns):
+            a, b = candidates[i], candidates[j]
+            partners[a].append(b)
+            partners[b].append(a)
     return ContentResult(motifs, candidates, intervals, partners)
 
 

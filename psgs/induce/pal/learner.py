@@ -15,13 +15,12 @@ from __future__ import annotations
 from dataclasses import replace
 
 from ...actiongram import Actiongram
-from ...budget import Budget
 from ..._foundation.engines import for_input
 from ...errors import BoundReached, ValidationError
 from ..base import Inducer, as_performances
 from ..results import NO_REPETITION, Induction, StringReport
 from ._encoding import encode
-from .conf import NO_BOUND, UNDECIDED, ContentConf
+from .conf import NO_BOUND, Bounds, ContentConf, bounds, stop_reason, undecided
 from .choice import add_sections, keep_agreeing
 from .content import LEFT_ALONE, ContentResult, find_candidates, pool_groups
 from .motifs import Timed
@@ -118,6 +117,18 @@ class ContentPAL(Inducer):
         a group left with one member dropped) and every other string is ``"not decided:
         stopped at max_seconds"``. Not recorded in ``params``: an induction it does not
         stop is the same without it.
+    max_bytes : float or None, default None
+        A bound on the bytes of the working data that grow faster than the input (None:
+        none), counted from their sizes as they are made, not measured (the same on every
+        machine and every run): 32 bytes a pair of synchronised strings (motifs' and
+        sections'; the pairs are up to the strings squared), and the period mode's time
+        grid and FFTs (8 bytes a string a grid point and 32 a string a point of the
+        transform, some 1.2 MB a string on the finest grid). The rest grows with the input
+        alone and is not counted (measured: some 100 to 130 bytes a symbol in all; the
+        compiled synchronisation tests its pairs a block of rows at a time, in a table of
+        1 MB or one row). A step that would pass it does not run: the learner stops as at
+        ``max_seconds``, ``bound`` ``"max_bytes"``, what was found by then kept, every other
+        string ``"not decided: stopped at max_bytes"``. Not recorded in ``params``.
 
     Examples
     --------
@@ -190,7 +201,7 @@ def learn_content(inducer: Inducer, conf: ContentConf, actiongram: Actiongram) -
     True
     """
     # started first: max_seconds covers everything the caller waits for
-    clock = Budget(seconds=conf.max_seconds) if conf.max_seconds is not None else NO_BOUND
+    clock = bounds(conf)
     strings, symbol_of = encode(actiongram)
     conf = replace(conf, engine=for_input(conf.engine, sum(len(s.codes) for s in strings),
                                           CROSSOVER, "psgs.induce.pal._motifs_jit"))
@@ -209,9 +220,9 @@ def learn_content(inducer: Inducer, conf: ContentConf, actiongram: Actiongram) -
         if conf.timing == "period" or (conf.timing == "auto" and not found.patterns):
             stage = "the period mode"
             by_period = _period_phase(strings, len(symbol_of), found, conf, clock)
-    except BoundReached:
+    except BoundReached as stop:
         return _stopped(inducer, actiongram, strings, found, conf, symbol_of, stage,
-                        before_sections)
+                        before_sections, stop.bound)
     reports = _reports(actiongram, found, by_period is not None or conf.timing == "period",
                        symbol_of)
     return _ended(inducer, actiongram, found, reports, symbol_of)
@@ -229,12 +240,14 @@ def _ended(inducer: Inducer, actiongram: Actiongram, found: ContentResult,
 
 def _stopped(inducer: Inducer, actiongram: Actiongram, strings: list[Timed],
              found: ContentResult | None, conf: ContentConf, symbol_of: list[str],
-             stage: str, before_sections) -> Induction:
-    """The Induction of a learner stopped at ``max_seconds`` during ``stage``: the groups
-    pooled by then, their copies held to ``copy_agreement`` as add_sections holds them."""
-    reason = f"stopped after {conf.max_seconds:g} seconds (max_seconds), in {stage}"
+             stage: str, before_sections, bound: str) -> Induction:
+    """The Induction of a learner stopped at ``bound`` (``max_seconds`` or ``max_bytes``)
+    during ``stage``: the groups pooled by then, their copies held to ``copy_agreement`` as
+    add_sections holds them."""
+    reason = f"{stop_reason(bound, conf)}, in {stage}"
+    status = undecided(bound)
     if found is None:  # nothing is pooled before the candidates are all found
-        reports = tuple(StringReport(name=name, status=UNDECIDED) for name in actiongram.names)
+        reports = tuple(StringReport(name=name, status=status) for name in actiongram.names)
         result = _result(inducer, actiongram, {}, {}, reports)
     else:
         if before_sections is not None:
@@ -245,12 +258,11 @@ def _stopped(inducer: Inducer, actiongram: Actiongram, strings: list[Timed],
             found.patterns, found.occurrences, found.agreements = {}, {}, {}
         elif stage != "the period mode":  # (timing="auto" runs it when content found none)
             _settle(strings, found, conf)
-        reports = tuple(r if r.status == "component" else replace(r, status=UNDECIDED)
+        reports = tuple(r if r.status == "component" else replace(r, status=status)
                         for r in _reports(actiongram, found, False, symbol_of))
         result = _ended(inducer, actiongram, found, reports, symbol_of)
-    return replace(result, bound="max_seconds", reason=reason,
-                   verdict="" if result.components else
-                   "no component found before max_seconds")
+    return replace(result, bound=bound, reason=reason,
+                   verdict="" if result.components else f"no component found before {bound}")
 
 
 def _settle(strings: list[Timed], found: ContentResult, conf: ContentConf) -> None:
@@ -267,7 +279,7 @@ def _settle(strings: list[Timed], found: ContentResult, conf: ContentConf) -> No
 
 
 def _period_phase(strings: list[Timed], size: int, found: ContentResult, conf: ContentConf,
-                  clock: Budget = NO_BOUND):
+                  clock: Bounds = NO_BOUND):
     """Replace the content mode's findings by the period mode's (which may be none)."""
     by_period = period_mode(strings, size, conf, clock)
     found.patterns, found.occurrences, found.joined, found.agreements = {}, {}, {}, {}

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from ...budget import Budget
-    from .conf import ContentConf
+    from .conf import Bounds, ContentConf
 
 
 @dataclass(frozen=True)
@@ -27,13 +27,15 @@ class PeriodResult:
     agreement: dict
 
 
-def time_grid(strings: list[Timed], max_points: int = 1 << 14):
+def time_grid(strings: list[Timed], max_points: int = 1 << 14, clock: Bounds = NO_BOUND):
     """Sample every string's symbol code on one time grid (-1 outside the string).
 
     The step is half the lower quartile of the segment durations (so most
     segments span two points or more; the quickest flickers fall between
     points), coarser if the
-    actiongram would need more than ``max_points`` points.
+    actiongram would need more than ``max_points`` points. The grid and what the period
+    mode computes from it are counted against ``clock``'s ``max_bytes`` before they are
+    made (:func:`grid_bytes`).
     """
     present = [s for s in strings if len(s.codes)]
     t0 = min(float(s.starts[0]) for s in present)
@@ -41,6 +43,7 @@ def time_grid(strings: list[Timed], max_points: int = 1 << 14):
     durations = np.concatenate([s.ends - s.starts for s in present])
     step = max(float(np.quantile(durations, 0.25)) / 2, (t1 - t0) / max_points)
     times = t0 + step * (np.arange(int((t1 - t0) / step + 1e-9)) + 0.5)
+    clock.keep(grid_bytes(len(strings), len(times)))
     grid = np.full((len(strings), len(times)), -1, dtype=np.int64)
     for row, s in enumerate(strings):
         if len(s.codes) == 0:
@@ -49,6 +52,25 @@ def time_grid(strings: list[Timed], max_points: int = 1 << 14):
         inside = (times >= s.starts[0]) & (index < len(s.codes))
         grid[row, inside] = s.codes[index[inside]]
     return times, step, grid
+
+
+def _transform_size(points: int) -> int:
+    """The length of the FFTs of :func:`_self_agreement` on a grid of ``points`` points."""
+    return 1 << max(1, (2 * points - 1).bit_length())
+
+
+def grid_bytes(strings: int, points: int) -> int:
+    """The bytes the period mode is counted at: its time grid of ``strings`` rows of
+    ``points`` points (8 bytes a point) and the FFTs of :func:`_self_agreement` with the
+    arrays beside them (32 bytes a row a point of the transform; measured, the period
+    mode's largest working data took 31 to 35).
+
+    Examples
+    --------
+    >>> grid_bytes(100, 16384)  # 100 strings on the finest grid: about 118 MB
+    117964800
+    """
+    return strings * (8 * points + 32 * _transform_size(points))
 
 
 def _self_agreement(grid: np.ndarray, size: int, clock: Budget = NO_BOUND
@@ -60,7 +82,7 @@ def _self_agreement(grid: np.ndarray, size: int, clock: Budget = NO_BOUND
     Computed with FFTs of one indicator per symbol.
     """
     n = grid.shape[1]
-    nfft = 1 << max(1, (2 * n - 1).bit_length())
+    nfft = _transform_size(n)
     valid = grid >= 0
 
     def correlate(indicator):
@@ -173,7 +195,7 @@ def track_windows(grid: np.ndarray, lag: int) -> np.ndarray:
     return np.asarray(starts, dtype=np.int64)
 
 
-def period_mode(strings: list[Timed], size: int, conf: ContentConf, clock: Budget = NO_BOUND
+def period_mode(strings: list[Timed], size: int, conf: ContentConf, clock: Bounds = NO_BOUND
                 ) -> PeriodResult | None:
     """Components whose symbols recur with the action's period, read in tracked windows.
 
@@ -186,11 +208,12 @@ def period_mode(strings: list[Timed], size: int, conf: ContentConf, clock: Budge
     strings, below ``alpha``); at least two are needed (synchronisation). Its
     pattern is the plurality symbol at each time offset, runs shorter than
     two grid points dropped. ``clock`` is read for each string and each period tried, and
-    raises :class:`~psgs.errors.BoundReached` past its deadline.
+    raises :class:`~psgs.errors.BoundReached` past its deadline, or before the grid is made
+    when :func:`grid_bytes` would pass its ``max_bytes``.
     """
     if sum(len(s.codes) > 0 for s in strings) < 2:
         return None
-    times, step, grid = time_grid(strings)
+    times, step, grid = time_grid(strings, clock=clock)
     if grid.shape[1] < 2 * conf.min_copies:
         return None
     agreement, chance = _self_agreement(grid, size, clock)

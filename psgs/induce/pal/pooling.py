@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 import numpy as np
@@ -57,38 +58,72 @@ def synchronised(a: np.ndarray, b: np.ndarray, fraction: float, min_copies: int)
     return both >= min_copies and both >= fraction * clusters
 
 
+#: The bytes a pair of synchronised strings is counted at against ``max_bytes``: each string
+#: in the other's list of partners and in its report's ``synchronised_with``, 8 bytes each
+PAIR_BYTES = 32
+
 def synchronised_pairs(lists: list[np.ndarray], conf: ContentConf, clock: Budget = NO_BOUND
                        ) -> list[tuple[int, int]]:
     """The pairs ``(i, j)``, ``i < j`` in order, of copy interval lists that are
-    :func:`synchronised`, by the engine ``conf.engine`` chooses (the same pairs).
+    :func:`synchronised`, by the engine ``conf.engine`` chooses (the same pairs): the pairs
+    of :func:`pair_blocks` in one list.
 
-    ``clock`` is read before each ``i`` (the compiled engine: before each block of rows,
-    when it has a deadline) and raises :class:`~psgs.errors.BoundReached` past it: the
-    pairs are quadratic in the lists.
+    Examples
+    --------
+    >>> from psgs.induce.pal.conf import ContentConf
+    >>> copies = np.array([[0.0, 1.0], [5.0, 6.0], [10.0, 11.0]])
+    >>> synchronised_pairs([copies, copies + 0.2, copies + 2.5], ContentConf(engine="numpy"))
+    [(0, 1)]
     """
-    pairs = select(conf.engine, numpy=_pairs_each, numba=lambda: _pairs_compiled)
-    return pairs(lists, conf.sync_fraction, conf.min_copies, clock)
+    return [(i, j) for rows, columns in pair_blocks(lists, conf, clock)
+            for i, j in zip(rows, columns)]
+
+
+def pair_blocks(lists: list[np.ndarray], conf: ContentConf, clock: Budget = NO_BOUND
+                ) -> Iterator[tuple[list[int], list[int]]]:
+    """The pairs of :func:`synchronised_pairs`, a block of rows at a time: for each block,
+    the ``i`` and the ``j`` of its pairs as two lists (the pairs in order over the blocks).
+
+    The caller keeps what it needs of each block as it comes: the pairs are up to the
+    lists squared, and a list of them all would be held beside what the caller makes of
+    them. ``clock`` is read before each ``i`` (the compiled engine: before each block of
+    rows, when it has a deadline) and raises :class:`~psgs.errors.BoundReached` past it.
+
+    Examples
+    --------
+    >>> from psgs.induce.pal.conf import ContentConf
+    >>> copies = np.array([[0.0, 1.0], [5.0, 6.0], [10.0, 11.0]])
+    >>> list(pair_blocks([copies, copies + 0.2, copies + 0.4], ContentConf(engine="numpy")))
+    [([0, 0], [1, 2]), ([1], [2])]
+    """
+    blocks = select(conf.engine, numpy=_pairs_each, numba=lambda: _pairs_compiled)
+    return blocks(lists, conf.sync_fraction, conf.min_copies, clock)
 
 
 def _pairs_each(lists: list[np.ndarray], fraction: float, copies: int,
-                clock: Budget = NO_BOUND) -> list[tuple[int, int]]:
-    """numpy's engine: :func:`synchronised` on every pair."""
-    out = []
+                clock: Budget = NO_BOUND) -> Iterator[tuple[list[int], list[int]]]:
+    """numpy's engine: :func:`synchronised` on every pair, a row a block."""
     for i in range(len(lists)):
         clock.check()
-        out.extend((i, j) for j in range(i + 1, len(lists))
-                   if synchronised(lists[i], lists[j], fraction, copies))
-    return out
+        partners = [j for j in range(i + 1, len(lists))
+                    if synchronised(lists[i], lists[j], fraction, copies)]
+        if partners:
+            yield [i] * len(partners), partners
 
 
-#: With a deadline, the compiled engine tests about this many pairs a call, a block of rows
+#: The compiled engine tests the pairs of a block of rows a call, about this many: its table
+#: of the block's pairs is that many bytes (a row at least), where one table of every pair
+#: would be the lists squared (100 MB at 10,000 candidates)
 PAIRS_PER_CALL = 1 << 20
 
 
+#: The compiled engine hands its pairs on at most this many at a time
+PAIRS_HANDED = 1 << 16
+
+
 def _pairs_compiled(lists: list[np.ndarray], fraction: float, copies: int,
-                    clock: Budget = NO_BOUND) -> list[tuple[int, int]]:
-    """The compiled engine: every pair in one call, or a block of rows a call when ``clock``
-    has a deadline (the same pairs, in the same order)."""
+                    clock: Budget = NO_BOUND) -> Iterator[tuple[list[int], list[int]]]:
+    """The compiled engine: a call per block of rows, the clock read between them."""
     from . import _pairs_jit as jit
 
     bounds = np.zeros(len(lists) + 1, dtype=np.int64)
@@ -98,16 +133,17 @@ def _pairs_compiled(lists: list[np.ndarray], fraction: float, copies: int,
     lo, hi = np.ascontiguousarray(spans[:, 0]), np.ascontiguousarray(spans[:, 1])
     disjoint = jit.disjoint_flags(lo, hi, bounds)
     count = len(lists)
-    # without a deadline every row in one call
-    rows = max(1, count if clock.deadline is None else PAIRS_PER_CALL // max(count, 1))
-    out: list[tuple[int, int]] = []
+    rows = max(1, PAIRS_PER_CALL // max(count, 1))
     for first in range(0, count, rows):
         clock.check()
         last = min(first + rows, count)
-        found = jit.synchronised_rows(lo, hi, bounds, disjoint, first, last, float(fraction),
-                                      int(copies))
-        out.extend((first + r, j) for r, j in zip(*(k.tolist() for k in np.nonzero(found))))
-    return out
+        # (the block's table is let go before the next block's is made)
+        at, partners = np.nonzero(jit.synchronised_rows(lo, hi, bounds, disjoint, first, last,
+                                                        float(fraction), int(copies)))
+        # as Python ints a pair takes some 70 bytes: handed on a part of the block at a time
+        for part in range(0, len(at), PAIRS_HANDED):
+            yield ((at[part:part + PAIRS_HANDED] + first).tolist(),
+                   partners[part:part + PAIRS_HANDED].tolist())
 
 
 def _disjoint(spans: np.ndarray) -> bool:

@@ -11,7 +11,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 from ...conf import Choice, Conf, Number, parameter
-from ..conf import ALPHA, MAX_SECONDS, MIN_COPIES
+from ..conf import ALPHA, MAX_BYTES, MAX_SECONDS, MIN_COPIES
 
 __all__ = ["MotionConf", "LEARNERS"]
 
@@ -45,6 +45,7 @@ class MotionConf(Conf):
     min_cycle: float = parameter(0.25, Number(low=0))
     min_cycle_score: float = parameter(0.05, Number(low=0, high=1))
     max_seconds: float | None = MAX_SECONDS.field()
+    max_bytes: float | None = MAX_BYTES.field()
 
     @classmethod
     def of(cls, inducer: str, params: Mapping[str, object]) -> MotionConf:

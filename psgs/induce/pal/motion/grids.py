@@ -48,6 +48,18 @@ def grid_step(performances: tuple[Actiongram, ...], max_points: int = 4096) -> f
     return max(step, longest / max_points, 1e-12)
 
 
+def grid_points(ag: Actiongram, step: float) -> int:
+    """How many points :func:`sample` samples ``ag`` at, ``step`` seconds apart (one at least).
+
+    Examples
+    --------
+    >>> grid_points(Actiongram.from_strings({"knee": "abab"}), 0.5)
+    8
+    """
+    t0, t1 = _span(ag)
+    return max(1, int((t1 - t0) / step + 1e-9))
+
+
 def _span(ag: Actiongram) -> tuple[float, float]:
     present = [(o, o + sum(d)) for o, d in zip(ag.origins, ag.segment_durations) if len(d)]
     if not present:
@@ -62,8 +74,8 @@ def sample(ag: Actiongram, codes: dict[str, int], step: float) -> Grid:
     each grid time looked up in its own row by one sorted search over
     (row, end) pairs; the same ends, comparisons and rates as string by string.
     """
-    t0, t1 = _span(ag)
-    count = max(1, int((t1 - t0) / step + 1e-9))
+    t0, _ = _span(ag)
+    count = grid_points(ag, step)
     times = t0 + step * (np.arange(count) + 0.5)
     states = np.full((len(ag), count), -1, dtype=np.int64)
     velocity = np.zeros((len(ag), count))

@@ -15,11 +15,10 @@ from __future__ import annotations
 from dataclasses import replace
 
 from ....actiongram import Actiongram
-from ....budget import Budget
 from ....errors import BoundReached
 from ...base import Inducer, as_performances
 from ...results import NO_REPETITION, Induction, StringReport
-from ..conf import UNDECIDED
+from ..conf import bounds, stop_reason, undecided
 from .conf import MotionConf
 from .performances import learn_motion
 from .results import ActuatorReport, Morpheme
@@ -64,6 +63,12 @@ class MotionPAL(Inducer):
         sampled, aligned and scored and for each leader tried. Past it the learner stops
         with no component (the joints are chosen at the end): the Induction's ``bound`` is
         ``"max_seconds"`` and every string is ``"not decided: stopped at max_seconds"``.
+    max_bytes : float or None, default None
+        A bound on the bytes of the performances' time grids (None: none), counted, not
+        measured: 24 bytes a channel a grid point a performance (its state, velocity and
+        cycle score; a performance has at most 4096 points, and every other array is
+        smaller), before each performance is sampled. A performance that would pass it is
+        not: the learner stops as at ``max_seconds``, with ``bound`` ``"max_bytes"``.
 
     Examples
     --------
@@ -171,16 +176,17 @@ def learn_performances(inducer: Inducer, conf: MotionConf, takes: tuple[Actiongr
     True
     """
     # started first: max_seconds covers everything the caller waits for
-    clock = Budget(seconds=conf.max_seconds)
+    clock = bounds(conf)
     try:
         found = learn_motion(takes, conf, clock)
-    except BoundReached:
+    except BoundReached as stop:
+        status = undecided(stop.bound)
         result = inducer.build_induction(
-            takes[0].names, {}, {}, [StringReport(name, UNDECIDED) for name in takes[0].names],
+            takes[0].names, {}, {}, [StringReport(name, status) for name in takes[0].names],
             synchronise=True, performances=len(takes))
-        return replace(result, verdict="no component found before max_seconds",
-                       bound="max_seconds", reason=f"stopped after {conf.max_seconds:g} seconds "
-                                                   f"(max_seconds), before the joints were chosen")
+        return replace(result, verdict=f"no component found before {stop.bound}",
+                       bound=stop.bound,
+                       reason=f"{stop_reason(stop.bound, conf)}, before the joints were chosen")
     first = takes[0]
     names = first.names
     symbols = found.symbols

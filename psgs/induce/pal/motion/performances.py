@@ -36,7 +36,8 @@ import numpy as np
 from ....actiongram import Actiongram
 from ...results import NO_REPETITION
 from .cycles import CycleEvidence, joint_period, lag_scores
-from .grids import Grid, agreement, agreement_counts, grid_step, kappa, resample, sample
+from .grids import (Grid, agreement, agreement_counts, grid_points, grid_step, kappa, resample,
+                    sample)
 from .morphemes import read_patterns
 from .results import JointEvidence, MotionResult
 from ..conf import NO_BOUND
@@ -44,26 +45,35 @@ from ..statistics import log10_binom_sf
 
 if TYPE_CHECKING:
     from ....budget import Budget
+    from ..conf import Bounds
     from .conf import MotionConf
 
+
+#: The bytes a channel's grid point of one performance is counted at against ``max_bytes``:
+#: its state and velocity (8 bytes each) and a cycle score at one lag (8), the lags of a
+#: performance being fewer than its points (at most 4096: every other array is smaller)
+GRID_BYTES = 24
 
 #: A joint may lead from its cycles when they are at least this share of the strongest
 #: joint's (measured: the waving arm of the benchmark's composite has 0.16 of its foreign arm's).
 LEADER_SHARE = 0.1
 
 
-def learn_motion(takes: tuple[Actiongram, ...], conf: MotionConf, clock: Budget = NO_BOUND
+def learn_motion(takes: tuple[Actiongram, ...], conf: MotionConf, clock: Bounds = NO_BOUND
                  ) -> MotionResult:
     """Steps 1-6 of the module docstring on ``takes`` (same strings, same order).
 
     ``clock`` is read for each performance sampled, aligned and scored, and for each
-    leader tried; past its deadline it raises :class:`~psgs.errors.BoundReached`.
+    leader tried; past its deadline it raises :class:`~psgs.errors.BoundReached`, as it
+    does before a performance is sampled when its :data:`GRID_BYTES` would pass its
+    ``max_bytes``.
     """
     codes: dict[str, int] = {}
     step = grid_step(takes)
     grids = []
     for ag in takes:
         clock.check()
+        clock.keep(GRID_BYTES * len(ag) * grid_points(ag, step))
         grids.append(sample(ag, codes, step))
     size = max(len(codes), 1)
     first = takes[0]
