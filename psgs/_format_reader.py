@@ -17,7 +17,7 @@ from importlib import resources
 
 import lark
 
-from ._foundation.text import first_unseen
+from ._foundation.text import character_name, first_unseen
 from .errors import FormatError, ValidationError
 from .model import IDLE, PCGS, PSGS, Grammar, Nonterminal, Query, Rule, Terminal
 
@@ -104,12 +104,13 @@ def _syntax_error(exc: lark.exceptions.UnexpectedInput, text: str, source: str,
         if char == '"':
             message = "unterminated string: a terminal needs its closing '\"' on the same line"
         elif char == "(" or char == ")":
-            message = f"unexpected {char!r}: a tuple stands on a line of its own, after 'sync'"
+            message = (f"unexpected {_character(char)}: a tuple stands on a line of its own, "
+                       f"after 'sync'")
         elif not char.isprintable() and char not in "\t":
-            message = (f"unexpected character {char!r} (control characters and binary data "
-                       f"are not allowed)")
+            message = (f"unexpected character {_character(char)} (control characters and "
+                       f"binary data are not allowed)")
         else:
-            message = f"unexpected character {char!r}"
+            message = f"unexpected character {_character(char)}"
             allowed = sorted(_TOKEN_WORDS.get(name, name) for name in exc.allowed or ())
             if allowed:
                 message += f"; expected {_one_of(allowed)}"
@@ -156,6 +157,28 @@ def _raw_offset(quoted: str, index: int) -> int:
     return k
 
 
+def _character(char: str) -> str:
+    """``char`` as a message names it (:func:`character_name`), quoted before its name when
+    it can be seen: ``'%' (U+0025 PERCENT SIGN)``, ``U+001B ESCAPE``.
+
+    >>> _character("("), _character("\\x1b"), _character("\\u200b")
+    ("'(' (U+0028 LEFT PARENTHESIS)", 'U+001B ESCAPE', 'U+200B ZERO WIDTH SPACE')
+    """
+    name = character_name(char)
+    return f"'{char}' ({name})" if char.isprintable() and first_unseen(char) is None else name
+
+
+def _hidden(text: str) -> str:
+    """Which character of ``text``, shown with escapes, the first escape stands for (the
+    escape says little: ``\\x85``, ``\\u200b``), or "" when every character shows as it is.
+
+    >>> _hidden('"a\\x85"'), _hidden('"a"')
+    (' (it holds U+0085 NEXT LINE)', '')
+    """
+    char = next((c for c in text if not c.isprintable()), None)
+    return "" if char is None else f" (it holds {character_name(char)})"
+
+
 def _describe_token(token) -> str:
     if token is None:
         return "the end of the text"
@@ -163,7 +186,7 @@ def _describe_token(token) -> str:
         return "the end of the line"
     if token.type == "$END":
         return "the end of the text"
-    return repr(str(token))
+    return repr(str(token)) + _hidden(str(token))
 
 
 def _one_of(words: list[str]) -> str:
@@ -394,11 +417,12 @@ class _Builder:
             # a raw control character is the one reading outside quotes rejects, told the same
             # way at its own column: echoed, it broke the line (json's message ends "at")
             if exc.msg.startswith("Invalid control character"):
-                raise self.error(f"unexpected character {str(token)[exc.pos]!r} (control "
-                                 f"characters and binary data are not allowed)",
+                raise self.error(f"unexpected character {_character(str(token)[exc.pos])} "
+                                 f"(control characters and binary data are not allowed)",
                                  (at[0], at[1] + exc.pos)) from None
             shown = "".join(c if c.isprintable() else repr(c)[1:-1] for c in str(token))
-            raise self.error(f"bad terminal {shown}: {exc.msg}", at) from None
+            raise self.error(f"bad terminal {shown}{_hidden(str(token))}: {exc.msg}",
+                             at) from None
         try:
             terminal = Terminal(text)
         except ValidationError as exc:
