@@ -14,6 +14,12 @@ searches it); the two implementations differ by some 1e-12, so every other decis
 numpy engine's. The significance kept is computed in Python from the integers returned
 (:func:`~psgs.induce.pal.motifs.significance`), so every ``Motif`` is the same to the bit.
 
+A search can be stopped inside a string: every loop over a string's seeds, its growth steps
+and the columns of a scan reads ``stop``, a one-byte array that
+:func:`psgs.induce.pal.alarm.alarm` sets at the deadline from a timer thread (numba reads no
+clock), and a string stopped is ``STOPPED``: the caller raises the bound, nothing of it is
+kept. A flag that is never set changes nothing.
+
 Without numba this module still imports (the functions are then plain Python, which
 :func:`psgs.induce.pal.motifs.search` never offers), so that the doctests collect everywhere.
 """
@@ -27,8 +33,8 @@ from ._counting_jit import _digrams, _sorted
 
 __all__: list[str] = []  # private: the PAL parameter ``engine`` is the interface
 
-#: status of a string after the search
-NONE, FOUND, UNCERTAIN = 0, 1, 2
+#: status of a string after the search (STOPPED: ``stop`` was set before it ended)
+NONE, FOUND, UNCERTAIN, STOPPED = 0, 1, 2, 3
 #: farthest column looked at beyond a damaged one while growing (motifs._BRIDGE)
 _BRIDGE = 2
 
@@ -76,14 +82,17 @@ def _ascending(values):
 
 
 @_jit
-def _locate(codes, motif, threshold):
-    """motifs.locate_copies: the best-agreeing non-overlapping windows, in position order."""
+def _locate(codes, motif, threshold, stop):
+    """motifs.locate_copies: the best-agreeing non-overlapping windows, in position order
+    (none once ``stop`` is set: the caller reads it)."""
     n, length = len(codes), len(motif)
     width = n - length + 1
     if width <= 0:
         return np.zeros(0, dtype=np.int64)
     score = np.zeros(width, dtype=np.int64)
     for o in range(length):  # column by column: a loop over the windows that vectorises
+        if stop[0]:
+            return np.zeros(0, dtype=np.int64)
         sym = motif[o]
         for w in range(width):
             score[w] += codes[w + o] == sym
@@ -135,24 +144,26 @@ def _median_gap(starts):
 # -- growing one seed -----------------------------------------------------------------------
 @_jit
 def grow_motif(codes, motif, starts, size, p, lp, lq, min_copies, conserve, match_fraction,
-               scan_alpha, max_pattern, seed_only):
+               scan_alpha, max_pattern, seed_only, stop):
     """motifs.grow of one motif: (status, motif, starts, threshold)."""
     thresholds = np.full(max(max_pattern, len(motif)) + 1, -2, dtype=np.int64)
     column = np.zeros(size, dtype=np.int64)
     return _grow(codes, motif, starts, size, thresholds, p, lp, lq, min_copies, conserve,
-                 match_fraction, scan_alpha, max_pattern, column, seed_only)
+                 match_fraction, scan_alpha, max_pattern, column, seed_only, stop)
 
 
 @_jit
 def _grow(codes, seed, starts, size, thresholds, p, lp, lq, min_copies, conserve,
-          match_fraction, scan_alpha, max_pattern, column, seed_only):
-    """motifs.grow: (status, motif, starts, threshold)."""
+          match_fraction, scan_alpha, max_pattern, column, seed_only, stop):
+    """motifs.grow: (status, motif, starts, threshold); STOPPED when ``stop`` is set."""
     n = len(codes)
     motif = seed.copy()
     grown_any = False
     added = np.empty(_BRIDGE, dtype=np.int64)
     best_added = np.empty(_BRIDGE, dtype=np.int64)
     while len(motif) < max_pattern:
+        if stop[0]:
+            return STOPPED, motif, starts, -1
         length = len(motif)
         spacing = _median_gap(starts) if len(starts) > 1 else n
         if length + 1 > spacing:
@@ -212,7 +223,10 @@ def _grow(codes, seed, starts, size, thresholds, p, lp, lq, min_copies, conserve
         threshold = _threshold_of(thresholds, glen, n, p, lp, lq, match_fraction, scan_alpha)
         if threshold < 0:
             return UNCERTAIN, motif, starts, -1
-        found = _merge(kept, _locate(codes, grown, threshold), glen)
+        located = _locate(codes, grown, threshold, stop)
+        if stop[0]:
+            return STOPPED, motif, starts, -1
+        found = _merge(kept, located, glen)
         if len(found) < min_copies:
             break
         motif, starts, grown_any = grown, found, True
@@ -226,12 +240,17 @@ def _grow(codes, seed, starts, size, thresholds, p, lp, lq, min_copies, conserve
         rotated = np.empty(length, dtype=np.int64)
         for j in range(length):
             rotated[j] = motif[(j - shift) % length]
-        found = _locate(codes, rotated, threshold)
+        found = _locate(codes, rotated, threshold, stop)
+        if stop[0]:
+            return STOPPED, motif, starts, -1
         if len(found) >= len(starts):
             motif, starts, rotated_any = rotated, found, True
     if not (seed_only and length == 2 and motif[0] != motif[1] and threshold >= 2
             and not grown_any and not rotated_any):
-        starts = _merge(starts, _locate(codes, motif, threshold), length)
+        located = _locate(codes, motif, threshold, stop)
+        if stop[0]:
+            return STOPPED, motif, starts, -1
+        starts = _merge(starts, located, length)
     if len(starts) < min_copies:
         return NONE, motif, starts, threshold
     return FOUND, motif, starts, threshold
@@ -255,7 +274,7 @@ def _significance(n, length, threshold, copies, p, lp, lq, log_distinct):
 
 @_jit
 def _search(codes, size, p, lp, lq, log_distinct, min_copies, seeds, conserve,
-            match_fraction, scan_alpha, max_pattern, motif_out, starts_out):
+            match_fraction, scan_alpha, max_pattern, motif_out, starts_out, stop):
     """motifs.find_motif on one string: (status, length, copies, threshold)."""
     n = len(codes)
     if n < 2 * min_copies:
@@ -301,9 +320,9 @@ def _search(codes, size, p, lp, lq, log_distinct, min_copies, seeds, conserve,
         starts = order[begin[gi]:begin[gi + 1]].copy()  # in position order
         got, motif, where, threshold = _grow(codes, seed, starts, size, thresholds, p, lp, lq,
                                              min_copies, conserve, match_fraction, scan_alpha,
-                                             max_pattern, column, as_seed)
-        if got == UNCERTAIN:
-            return UNCERTAIN, 0, 0, 0
+                                             max_pattern, column, as_seed, stop)
+        if got == UNCERTAIN or got == STOPPED:
+            return got, 0, 0, 0
         if got == NONE:
             continue
         for j in range(len(motif) - 1):
@@ -340,7 +359,7 @@ def _clear(n, length, threshold, copies, p, lp, lq, log_distinct):
 @_jit
 def find_motifs(codes, bounds, sizes, p, lp, lq, log_distinct, min_copies, seeds, conserve,
                 match_fraction, scan_alpha, max_pattern):
-    """The motif search of every string ``codes[bounds[i]:bounds[i + 1]]``.
+    """The motif search of every string ``codes[bounds[i]:bounds[i + 1]]`` (never stopped).
 
     Returns ``status`` (NONE, FOUND, UNCERTAIN), the motif's ``length``, its number of
     ``copies`` and the ``threshold`` of each string, the motifs as rows of ``motifs`` and the
@@ -352,18 +371,23 @@ def find_motifs(codes, bounds, sizes, p, lp, lq, log_distinct, min_copies, seeds
            np.zeros((strings, max_pattern), dtype=np.int64),
            np.zeros(len(codes), dtype=np.int64))
     search_strings(codes, bounds, 0, strings, sizes, p, lp, lq, log_distinct, min_copies,
-                   seeds, conserve, match_fraction, scan_alpha, max_pattern, *out)
+                   seeds, conserve, match_fraction, scan_alpha, max_pattern,
+                   np.zeros(1, dtype=np.uint8), *out)
     return out
 
 
 @_jit
 def search_strings(codes, bounds, first, last, sizes, p, lp, lq, log_distinct, min_copies,
-                   seeds, conserve, match_fraction, scan_alpha, max_pattern, status, length,
-                   copies, threshold, motifs, starts):
+                   seeds, conserve, match_fraction, scan_alpha, max_pattern, stop, status,
+                   length, copies, threshold, motifs, starts):
     """:func:`find_motifs` of strings ``first`` to ``last - 1``, written into the arrays
-    given (so that threads can search disjoint runs of strings side by side)."""
+    given (so that threads can search disjoint runs of strings side by side); once ``stop``
+    is set, every string not searched to its end is STOPPED."""
     for i in range(first, last):
+        if stop[0]:
+            status[i] = STOPPED
+            continue
         a, b = bounds[i], bounds[i + 1]
         status[i], length[i], copies[i], threshold[i] = _search(
             codes[a:b], sizes[i], p[i], lp[i], lq[i], log_distinct[i], min_copies, seeds,
-            conserve, match_fraction, scan_alpha, max_pattern, motifs[i], starts[a:b])
+            conserve, match_fraction, scan_alpha, max_pattern, motifs[i], starts[a:b], stop)

@@ -110,8 +110,10 @@ class ContentPAL(Inducer):
         engine gives the same result, to the bit, so an Induction does not record it.
     max_seconds : float or None, default None
         A wall-clock bound on the induction (None: none), read at the head of its loops:
-        each string's motif search, each row of synchronisation pairs, each group pooled,
-        each string's section search, each period tried. Past it the learner stops; the
+        each seed of a string's motif search (in a string of 2^19 symbols or more, each
+        growth step and each column scanned too), each row of synchronisation pairs, each
+        group pooled, each string's section search, each period tried. Past it the learner
+        stops; the
         Induction's ``bound`` is ``"max_seconds"``, its ``reason`` says at which stage, its
         components are the groups pooled by then (their copies held to ``copy_agreement``,
         a group left with one member dropped) and every other string is ``"not decided:

@@ -12,6 +12,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..._foundation.engines import select, usable_cores
+from ...errors import BoundReached
+from .alarm import alarm
 from .conf import NO_BOUND
 from .statistics import log10_binom_sf, log10_poisson_sf, scan_threshold
 
@@ -90,26 +92,30 @@ class Motif:
 
 
 # -- motif finding in one string ---------------------------------------------------
-def match_scores(codes: np.ndarray, motif) -> np.ndarray:
+def match_scores(codes: np.ndarray, motif, clock: Budget = NO_BOUND) -> np.ndarray:
     """How many positions of ``motif`` the window starting at each index agrees with
-    (``len(codes) - len(motif) + 1`` windows, at least one symbol long)."""
+    (``len(codes) - len(motif) + 1`` windows, at least one symbol long); ``clock`` read
+    before each column (a pass over the string)."""
     width = len(codes) - len(motif) + 1
     score = np.zeros(width, dtype=np.int32)
     for offset, sym in enumerate(motif):
+        clock.check()
         score += codes[offset:offset + width] == sym
     return score
 
 
-def locate_copies(codes: np.ndarray, motif: np.ndarray, threshold: int) -> np.ndarray:
+def locate_copies(codes: np.ndarray, motif: np.ndarray, threshold: int,
+                  clock: Budget = NO_BOUND) -> np.ndarray:
     """Non-overlapping windows agreeing with ``motif`` in >= threshold positions.
 
     Best agreement first, earlier first among equals; returned in position order.
+    ``clock`` is read before each column of the scan.
     """
     n, length = len(codes), len(motif)
     width = n - length + 1
     if width <= 0:
         return np.zeros(0, dtype=np.int64)
-    score = match_scores(codes, motif)
+    score = match_scores(codes, motif, clock)
     hits = np.flatnonzero(score >= threshold)
     if len(hits) == 0:
         return hits
@@ -197,7 +203,10 @@ def find_motifs(strings: list[np.ndarray], conf: ContentConf, clock: Budget = NO
     one call per run of strings of :data:`CLOCKED_SYMBOLS`, the clock read between them);
     a string where it meets a chance level too close to a boundary to decide in its own
     floats (see :mod:`psgs.induce.pal._motifs_jit`) is searched here again. ``clock`` raises
-    :class:`~psgs.errors.BoundReached` past its deadline.
+    :class:`~psgs.errors.BoundReached` past its deadline, also inside a string of
+    :data:`CLOCKED_SYMBOLS` or more (numpy: before each growth step and each column of a
+    scan; compiled: the run's loops read an :func:`~psgs.induce.pal.alarm.alarm`), so that
+    a seed grown in a long string is no unit the bound waits for.
     """
     return search(conf).find_all(strings, conf, clock)
 
@@ -210,7 +219,10 @@ def _find_each(strings: list[np.ndarray], conf: ContentConf, clock: Budget = NO_
 
 #: With a deadline, the compiled engine searches runs of strings of about this many symbols
 #: (a string longer is a run alone), reading the clock between them: a call is some 0.3 s
-#: at numba's 0.6 µs a symbol. Each string's search is the same in any run.
+#: at numba's 0.6 µs a symbol. Each string's search is the same in any run. A run this long,
+#: and numpy's search of a string this long, is also stopped inside (a seed grown in 10^6
+#: symbols took 1.2 s with either engine: a pass over the string for each column of each
+#: growth step).
 CLOCKED_SYMBOLS = 1 << 19
 
 
@@ -226,14 +238,16 @@ def _find_all_compiled(strings: list[np.ndarray], conf: ContentConf, clock: Budg
         held += len(codes)
         if held >= CLOCKED_SYMBOLS or i == len(strings) - 1:
             clock.check()
-            out.extend(_compiled_run(strings[first:i + 1], conf, clock))
+            out.extend(_compiled_run(strings[first:i + 1], conf, clock,
+                                     held >= CLOCKED_SYMBOLS))
             first, held = i + 1, 0
     return out
 
 
-def _compiled_run(strings: list[np.ndarray], conf: ContentConf, clock: Budget
-                  ) -> list[Motif | None]:
-    """One compiled call searching ``strings``."""
+def _compiled_run(strings: list[np.ndarray], conf: ContentConf, clock: Budget,
+                  armed: bool = False) -> list[Motif | None]:
+    """One compiled call searching ``strings``; ``armed``: stopped at ``clock``'s deadline
+    inside the call too (:class:`~psgs.errors.BoundReached`)."""
     from . import _motifs_jit as jit
 
     count = len(strings)
@@ -246,8 +260,12 @@ def _compiled_run(strings: list[np.ndarray], conf: ContentConf, clock: Budget
         rate = float(rates[i])
         stats[:, i] = (rate, math.log(rate), math.log1p(-rate) if rate < 1 else -math.inf,
                        math.log10(max(int(distinct[i]), 2)))
-    found = _search_all(jit, flat.astype(np.int64, copy=False), bounds, sizes, stats, conf)
+    with alarm(clock, armed) as stop:
+        found = _search_all(jit, flat.astype(np.int64, copy=False), bounds, sizes, stats, conf,
+                            stop)
     status, lengths, copies, thresholds, motifs, starts = found
+    if np.any(status == jit.STOPPED):
+        raise BoundReached("max_seconds")
     out: list[Motif | None] = []
     for i, (state, length, k, threshold, start) in enumerate(zip(
             status.tolist(), lengths.tolist(), copies.tolist(), thresholds.tolist(),
@@ -268,8 +286,9 @@ def _compiled_run(strings: list[np.ndarray], conf: ContentConf, clock: Budget
 _THREADED_SYMBOLS = 1 << 18
 
 
-def _search_all(jit, flat, bounds, sizes, stats, conf):
-    """The compiled search of every string, in one thread or two (the same arrays out)."""
+def _search_all(jit, flat, bounds, sizes, stats, conf, stop):
+    """The compiled search of every string, in one thread or two (the same arrays out);
+    ``stop``: the flag its loops read (see :mod:`psgs.induce.pal._motifs_jit`)."""
     count = len(bounds) - 1
     out = (np.zeros(count, dtype=np.int64), np.zeros(count, dtype=np.int64),
            np.zeros(count, dtype=np.int64), np.zeros(count, dtype=np.int64),
@@ -277,7 +296,7 @@ def _search_all(jit, flat, bounds, sizes, stats, conf):
            np.zeros(len(flat), dtype=np.int64))
     args = (sizes, stats[0], stats[1], stats[2], stats[3], conf.min_copies, conf.seeds,
             float(conf.conserve), float(conf.match_fraction), float(conf.scan_alpha),
-            conf.max_pattern) + out
+            conf.max_pattern, stop) + out
     middle = int(np.searchsorted(bounds, len(flat) / 2))
     if len(flat) < _THREADED_SYMBOLS or usable_cores() < 2 or not 0 < middle < count:
         jit.search_strings(flat, bounds, 0, count, *args)
@@ -336,7 +355,8 @@ def find_motif(codes: np.ndarray, conf: ContentConf, clock: Budget = NO_BOUND
 
     Up to ``conf.seeds`` of the most frequent digrams are grown in turn (a
     burst of noise can stop one seed early); the most significant motif wins,
-    the earlier seed among equals. ``clock`` is read before each seed.
+    the earlier seed among equals. ``clock`` is read before each seed, and in a string of
+    :data:`CLOCKED_SYMBOLS` or more inside each seed's growth too (see :func:`grow`).
     """
     n = len(codes)
     if n < 2 * conf.min_copies:
@@ -360,7 +380,7 @@ def find_motif(codes: np.ndarray, conf: ContentConf, clock: Budget = NO_BOUND
         clock.check()
         seed = np.array([uniq[index] // size, uniq[index] % size], dtype=np.int64)
         found = grow(codes, seed, np.flatnonzero(keys == uniq[index]), match_rate, distinct,
-                     conf, seed_only=True)
+                     conf, seed_only=True, clock=clock)
         if found is None:
             continue
         covered.update((found.motif[:-1] * size + found.motif[1:]).tolist())
@@ -381,20 +401,28 @@ def _digram_counts(keys: np.ndarray, bins: int) -> tuple[np.ndarray, np.ndarray,
 
 
 def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: float,
-          distinct: int, conf: ContentConf, seed_only: bool = False) -> Motif | None:
+          distinct: int, conf: ContentConf, seed_only: bool = False,
+          clock: Budget = NO_BOUND) -> Motif | None:
     """Grow ``motif`` one conserved column at a time from its copies at ``starts``.
 
     ``seed_only``: ``motif`` is a digram and ``starts`` all its occurrences.
-    With ``conf.engine`` compiled, the compiled loop grows it (the same motif).
+    With ``conf.engine`` compiled, the compiled loop grows it (the same motif). In a string
+    of :data:`CLOCKED_SYMBOLS` or more, ``clock`` is read before each growth step and each
+    column of a scan (the compiled loop: its alarm), and raises
+    :class:`~psgs.errors.BoundReached` past its deadline.
     """
     n = len(codes)
+    # (a shorter string's seed is a unit the caller reads the clock around)
+    clock = clock if n >= CLOCKED_SYMBOLS else NO_BOUND
     if n and match_rate > 0:
-        decided = search(conf).grow(codes, motif, starts, match_rate, distinct, conf, seed_only)
+        decided = search(conf).grow(codes, motif, starts, match_rate, distinct, conf, seed_only,
+                                    clock)
         if decided is not _UNDECIDED:
             return decided
     size = int(codes.max()) + 1
     grown_from = motif
     while len(motif) < conf.max_pattern:
+        clock.check()
         length = len(motif)
         spacing = median_gap(starts) if len(starts) > 1 else n
         if length + 1 > spacing:
@@ -431,7 +459,7 @@ def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: f
         grown = grown.astype(np.int64)
         kept = kept[(kept >= 0) & (kept + len(grown) <= n)]
         threshold = scan_threshold(len(grown), n - len(grown) + 1, match_rate, conf)
-        found = merge_copies(kept, locate_copies(codes, grown, threshold), len(grown))
+        found = merge_copies(kept, locate_copies(codes, grown, threshold, clock), len(grown))
         if len(found) < conf.min_copies:
             break
         motif, starts = grown, found
@@ -442,13 +470,13 @@ def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: f
         # copies tile the string: put a copy boundary where the string starts
         shift = int(starts[0] % length)
         rotated = np.roll(motif, shift)
-        found = locate_copies(codes, rotated, threshold)
+        found = locate_copies(codes, rotated, threshold, clock)
         if len(found) >= len(starts):
             motif, starts = rotated, found
     if not (seed_only and len(motif) == 2 and motif[0] != motif[1] and threshold >= 2
             and motif is grown_from):
         # (a digram that did not grow: its exact occurrences are ``starts`` already)
-        starts = merge_copies(starts, locate_copies(codes, motif, threshold), length)
+        starts = merge_copies(starts, locate_copies(codes, motif, threshold, clock), length)
     if len(starts) < conf.min_copies:
         return None
     return Motif(motif, starts, significance(n, length, threshold, len(starts), match_rate,
@@ -475,18 +503,21 @@ def _numpy_leaves_it(*_args) -> object:
 
 
 def _grow_compiled(codes: np.ndarray, motif, starts, match_rate: float, distinct: int,
-                   conf: ContentConf, seed_only: bool):
+                   conf: ContentConf, seed_only: bool, clock: Budget = NO_BOUND):
     """The compiled loop's motif, None, or ``_UNDECIDED`` (a chance level too close to call
-    in the compiled floats: numpy's loop decides)."""
+    in the compiled floats: numpy's loop decides); stopped at ``clock``'s deadline."""
     from . import _motifs_jit as jit
 
     n = len(codes)
-    state, grown, found, threshold = jit.grow_motif(
-        codes.astype(np.int64, copy=False), np.asarray(motif, dtype=np.int64),
-        np.asarray(starts, dtype=np.int64), int(codes.max()) + 1, match_rate,
-        math.log(match_rate), math.log1p(-match_rate) if match_rate < 1 else -math.inf,
-        conf.min_copies, float(conf.conserve), float(conf.match_fraction),
-        float(conf.scan_alpha), conf.max_pattern, seed_only)
+    with alarm(clock) as stop:
+        state, grown, found, threshold = jit.grow_motif(
+            codes.astype(np.int64, copy=False), np.asarray(motif, dtype=np.int64),
+            np.asarray(starts, dtype=np.int64), int(codes.max()) + 1, match_rate,
+            math.log(match_rate), math.log1p(-match_rate) if match_rate < 1 else -math.inf,
+            conf.min_copies, float(conf.conserve), float(conf.match_fraction),
+            float(conf.scan_alpha), conf.max_pattern, seed_only, stop)
+    if state == jit.STOPPED:
+        raise BoundReached("max_seconds")
     if state == jit.FOUND:
         return Motif(grown, found, significance(n, len(grown), threshold, len(found),
                                                 match_rate, distinct))
