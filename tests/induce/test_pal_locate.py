@@ -70,13 +70,34 @@ def test_pattern_method_on_a_synthetic_case_and_errors():
     spans = locate(learned, new, threshold=0.6)  # one channel of two agreeing scores 0.5
     assert [(round(s.start), round(s.stop)) for s in spans] == [(0, 12)]
     assert locate(learned, Actiongram.from_strings({"a": "x" * 20, "b": "u" * 20})) == ()
-    with pytest.raises(ValidationError, match="none of the learned components"):
-        locate(learned, Actiongram.from_strings({"q": "xy"}))
+    # a take without the learned strings: not found, by each method alike
+    for method in ("auto", "pattern"):
+        assert locate(learned, Actiongram.from_strings({"q": "xy"}), method=method) == ()
     assert locate(Induction(None, (), {}, {}), new) == ()  # nothing learnt: found nowhere
     with pytest.raises(TypeError):
         locate(learned, "a: x y")
     with pytest.raises(ValidationError, match="method"):
         locate(learned, new, method="guess")
+
+
+def test_a_take_without_what_was_learnt_is_not_found_by_either_method():
+    import sys
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from test_pal_performances import performance
+
+    learned = PAL().induce([performance(k) for k in range(6)])  # the waving arm, by joint
+    assert learned.actuators and learned.morphemes
+    held = performance(7)
+    assert locate(learned, held)  # found in a take with the learned joints
+    # a take whose channels are none of the learned ones (segmentation leaves out the
+    # channels that hardly move): the pattern method raised where the joints method (the
+    # default for an action learnt as cycles by joint) answered "not found"
+    other = Actiongram.from_strings({"q": "xyxyxyxyxyxyxyxy", "r": "uvuvuvuvuvuvuvuv"})
+    for method in ("auto", "joints", "pattern"):
+        assert locate(learned, other, method=method) == (), method
+    # and a grammar system whose components are no string of the take
+    assert locate(learned.system, other) == ()
 
 
 def test_locate_with_a_grammar_system_reads_its_patterns():

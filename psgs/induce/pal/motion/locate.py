@@ -106,14 +106,18 @@ def locate(learned: Induction | PSGS, actiongram: Actiongram, *, threshold: floa
     tuple of Located
         In time order; empty when the action is not found, and by every
         method when nothing was learnt (an induction without a component:
-        no synchronised repetition).
+        no synchronised repetition) or when ``actiongram`` holds none of what
+        was learnt: no string of a learned component (``method="pattern"``),
+        no channel of a learned joint (``method="joints"``). A string a take
+        lacks is motion that is not there (segmentation leaves out the channels
+        that hardly move), so the action is not found in it, as a channel the
+        take lacks counts 0 among others; comparing :func:`learned_names` with
+        ``actiongram.names`` tells this case from a place that scored too low.
 
     Raises
     ------
     ValidationError
-        With ``method="pattern"`` (or a grammar system), when none of the
-        learned components is a string of ``actiongram``; with
-        ``method="joints"``, when ``learned`` is a grammar system (it keeps no
+        With ``method="joints"``, when ``learned`` is a grammar system (it keeps no
         joints); when a scale is not finite and positive,
         ``repeats`` is below 1, or ``threshold`` (at most 1), ``min_speed`` (0 or
         more) or ``min_share`` (0 to 1) is no finite number. A tempo whose pattern is longer than the new
@@ -130,6 +134,8 @@ def locate(learned: Induction | PSGS, actiongram: Actiongram, *, threshold: floa
     >>> new = Actiongram.from_strings({"a": "xy" * 6 + "xxxxyyyyxxxx", "b": "uv" * 6 + "u" * 12})
     >>> [(round(s.start), round(s.stop)) for s in locate(learned, new, threshold=0.6)]
     [(0, 12)]
+    >>> locate(learned, Actiongram.from_strings({"q": "xy" * 6}))  # no learned string in it
+    ()
     """
     if not isinstance(learned, (Induction, PSGS)):
         raise TypeError(f"locate needs an Induction or a PSGS, not {type(learned).__name__}")
@@ -160,7 +166,10 @@ def locate(learned: Induction | PSGS, actiongram: Actiongram, *, threshold: floa
         return _by_joints(learned, actiongram, min_share if min_share is not None else 0.4)
     templates = _templates(learned, actiongram)
     if not templates:
-        raise ValidationError("none of the learned components is a string of this actiongram")
+        # none of the learned strings moves in this take: not found, as the joints method
+        # answers a take without the learned joints (not an error: psgs locate reads many
+        # takes, and one without those channels answers "not found" like any other)
+        return ()
     repeats = (2 if _cyclic(learned) else 1) if repeats is None else int(repeats)
     codes: dict[str, int] = {}
     step = grid_step((actiongram,))
