@@ -8,12 +8,14 @@ frames missing or repeated.
 from __future__ import annotations
 
 import itertools
+import operator
 import re
 
 import numpy as np
 
 from psgs._foundation.text import decimal
 
+from . import _frame_block
 from ._frame_block import FRAME, Lines, content_end, file_end, line_pieces, read_records
 from .motion import MotionFormatError
 from .textblocks import RowReader, token_column
@@ -82,9 +84,8 @@ def frame_layout(data: list[str], source: str, first_line: int) -> tuple[list[st
     first = int(first_text)  # usually 1; every next frame's number is one more
     bones: list[str] = []
     seen: dict[str, int] = {}
-    per_frame, count = None, 1  # per_frame: known once frame 2's number comes
+    per_frame, i, line = None, 0, last  # per_frame: known once frame 2's number comes
     for i, line in enumerate(lines, 1):
-        count, last = i + 1, line
         if per_frame is None:
             # a frame number ends frame 1's bone lines, a negative one too (then refused in
             # its place)
@@ -111,10 +112,11 @@ def frame_layout(data: list[str], source: str, first_line: int) -> tuple[list[st
                 fail(f"expected frame number {number}, found {text[:30] or 'an empty line'!r} "
                      f"(frames are numbered one after another from {first})", i, line)
         else:
-            head = line.split(None, 1)[0] if line.strip() else ""
-            if head != bones[slot - 1]:
-                fail(f"expected bone {bones[slot - 1]!r}, found {head or 'an empty line'!r}",
-                     i, line)
+            head = line.split(None, 1)
+            if not head or head[0] != bones[slot - 1]:
+                fail(f"expected bone {bones[slot - 1]!r}, found "
+                     f"{head[0] if head else 'an empty line'!r}", i, line)
+    count, last = i + 1, line  # the lines, and the last of them
     if per_frame is None:  # one frame
         per_frame = count
     if count % per_frame:
@@ -238,10 +240,21 @@ def read_by_lines(lines: Lines, start: int, dofs: dict | None, degrees: bool, so
         at += width
     rotation = angle_columns(names) if not degrees and out is not None else None
     too_large = None
-    for first, piece in line_pieces(text, begin, end, per_frame):
-        for b, reader in enumerate(readers):
+    at_once = _FramesAtOnce(widths, per_frame)
+    # pieces of a quarter of the chunk: a piece read at once holds a string per number
+    for first, piece in line_pieces(text, begin, end, per_frame, max(1, _frame_block.CHUNK // 4)):
+        row = first // per_frame
+        values = (at_once.values(piece) if out is not None
+                  and all(reader.error is None for reader in readers) else None)
+        if values is not None:  # well formed: its rows are read, as bone by bone
+            out[row:row + values.shape[0]] = values
+            for reader in readers:
+                reader.rows += values.shape[0]
+        for b, reader in enumerate(readers if values is None else ()):
             mine = piece[b + 1::per_frame]
-            rows = [_numbers_text(line) for line in mine]
+            # the text after the bone's name (split here, not by a function called per line)
+            rows = [parts[1] if len(parts) > 1 else ""
+                    for parts in (line.split(None, 1) for line in mine)]
             reader.add(rows, lambda j, s=first + b + 1: start + s + j * per_frame + 1,
                        lambda j, k, rows=rows, mine=mine: token_column(rows[j], k)
                        + indent(mine[j], 1))
@@ -249,7 +262,7 @@ def read_by_lines(lines: Lines, start: int, dofs: dict | None, degrees: bool, so
         # error is certain, and the rows of a bad line hold no values to name
         if (rotation is not None and too_large is None
                 and all(reader.error is None for reader in readers)):
-            block = out[first // per_frame:(first + len(piece)) // per_frame]
+            block = out[row:(first + len(piece)) // per_frame]
             found = to_degrees(block, rotation)
             if found is not None:  # its block left in radians, the value to name
                 row, k = found
@@ -269,6 +282,44 @@ def read_by_lines(lines: Lines, start: int, dofs: dict | None, degrees: bool, so
     if too_large is not None:
         raise too_large
     return out, tuple(names)
+
+
+class _FramesAtOnce:
+    """The values of a piece of whole AMC frames by one conversion, when every bone line holds
+    its bone's count of numbers, all decimal and finite: the floats reading bone by bone gives
+    (each number as ``float`` reads it), without a conversion per bone; None for any other
+    piece, which is then read bone by bone to keep the errors in their order.
+    """
+
+    def __init__(self, widths: list[int], per_frame: int) -> None:
+        self.per_frame = per_frame
+        self.counts = [width + 1 for width in widths]  # a bone line's words, its name's too
+        self.numbers: list[int] = []  # where a frame's numbers are among its bone lines' words
+        words = 0
+        for count in self.counts:
+            self.numbers.extend(range(words + 1, words + count))
+            words += count
+        self.words = words
+
+    def values(self, piece: list[str]):
+        frames = len(piece) // self.per_frame
+        lines = piece.copy()
+        del lines[::self.per_frame]  # the frame numbers (checked by frame_layout)
+        if list(map(len, map(str.split, lines))) != self.counts * frames:
+            return None
+        joined = " ".join(lines)
+        # numpy, as float(), takes '1_0' and other scripts' digits: such text goes bone by bone
+        if not joined.isascii() or "_" in joined:
+            return None
+        words = joined.split()
+        numbers = [f * self.words + k for f in range(frames) for k in self.numbers]
+        try:
+            values = np.array(operator.itemgetter(*numbers)(words) if len(numbers) > 1
+                              else [words[n] for n in numbers], dtype=float)
+        except ValueError:
+            return None
+        values = values.reshape(frames, len(self.numbers))
+        return values if np.isfinite(values).all() else None
 
 
 def _numbers_text(line: str) -> str:

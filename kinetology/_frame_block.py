@@ -133,7 +133,7 @@ def content_end(text: str, start: int) -> int:
     return start
 
 
-def line_pieces(text: str, start: int, end: int, per: int = 1):
+def line_pieces(text: str, start: int, end: int, per: int = 1, size: int | None = None):
     """The lines of ``text[start:end]`` (``start`` at a line's start), as :class:`Lines` gives
     them, a piece of about :data:`CHUNK` characters at a time: the first way of reading holds
     a piece's lines and numbers, never the block's (a Python string per line and per number
@@ -147,6 +147,8 @@ def line_pieces(text: str, start: int, end: int, per: int = 1):
         The block.
     per : int, default 1
         The lines of a record (an AMC frame's): every piece but the last holds whole records.
+    size : int, optional
+        Characters of a piece, :data:`CHUNK` unless given.
 
     Yields
     ------
@@ -159,15 +161,19 @@ def line_pieces(text: str, start: int, end: int, per: int = 1):
     >>> list(line_pieces(text, 0, len(text) - 1, per=2))
     [(0, ['1', 'root 0', '2', 'root 1', '3', 'root 2'])]
     """
-    index, at = 0, start
+    index, at, size = 0, start, CHUNK if size is None else size
     while at < end:
-        stop = text.find("\n", min(at + CHUNK, end), end)
+        stop = text.find("\n", min(at + size, end), end)
         stop = end if stop < 0 else stop
         for _ in range(-(text.count("\n", at, stop) + 1) % per):  # on to a record's end
             found = text.find("\n", stop + 1, end) if stop < end else -1
             stop = end if found < 0 else found
-        lines = text[at:stop].split("\n")
-        yield index, [line[:-1] if line.endswith("\r") else line for line in lines]
+        piece = text[at:stop]
+        if "\r" in piece:  # one '\r' that ends a line is dropped, as Lines drops it
+            piece = piece.replace("\r\n", "\n")
+            piece = piece[:-1] if piece.endswith("\r") else piece  # before the break at stop
+        lines = piece.split("\n")
+        yield index, lines
         index += len(lines)
         at = stop + 1
 

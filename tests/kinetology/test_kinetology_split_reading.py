@@ -255,3 +255,22 @@ def test_amc_lines_read_a_piece_at_a_time_fail_as_all_at_once(data, frames, chun
         assert answer == [[float(t) for tokens in frame for t in tokens] for frame in rows]
     else:
         assert answer == "a.amc:" + expected
+
+
+@settings(max_examples=300)
+@given(parts=st.lists(st.sampled_from(["a", " ", "\r", "\n", "\r\n", "b1", "\t"]), max_size=40),
+       data=st.data(), chunk=st.sampled_from([1, 3, 7, 1 << 16]), per=st.integers(1, 3))
+def test_line_pieces_are_the_lines_of_the_block_in_whole_records(parts, data, chunk, per):
+    text = "".join(parts) + "\n"
+    start = data.draw(st.sampled_from([0] + [i + 1 for i, c in enumerate(text) if c == "\n"]))
+    # a block ends after a character that is not white space (or is empty)
+    end = data.draw(st.sampled_from([start] + [i + 1 for i in range(start, len(text))
+                                               if not text[i].isspace()]))
+    expected = text[start:end].split("\n") if end > start else []
+    expected = [line[:-1] if line.endswith("\r") else line for line in expected]
+    with mock.patch.object(_frame_block, "CHUNK", chunk):
+        pieces = list(_frame_block.line_pieces(text, start, end, per))
+    assert [line for _, lines in pieces for line in lines] == expected
+    sizes = [len(lines) for _, lines in pieces]
+    assert [first for first, _ in pieces] == [sum(sizes[:k]) for k in range(len(sizes))]
+    assert all(size % per == 0 for size in sizes[:-1])
