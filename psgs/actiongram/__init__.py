@@ -42,22 +42,18 @@ older files, which still read:
 
 from __future__ import annotations
 
-import json
-import math
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
 from .._foundation.files import read_text
 from ..errors import FormatError, NotFound, ValidationError
-from ._checks import (_bad_duration, _bad_name, _bad_symbol, _finite,
-                      _format_number, _plain_durations, _shown, _times_problem, _tuple_of)
+from ._checks import _shown, _tuple_of
 from ._events import GAPS
-from ._extras import _merge, default_actuator, normalise_extras
+from ._extras import default_actuator, normalise_extras
+from ._faults import STRING_CHECKS, refuse, strings_of
 
 __all__ = ["Actiongram", "GAPS", "default_actuator", "read_events_csv"]
-
-_JSON_FORMAT = "psgs-actiongram"
 
 
 @dataclass(frozen=True)
@@ -129,52 +125,15 @@ class Actiongram:
                                   "per string")
         if not isinstance(self.keep_repeats, bool):
             raise FormatError(f"keep_repeats must be True or False, not {_shown(self.keep_repeats)}")
-        seen: set[str] = set()
-        merged_symbols, merged_durations = [], []
-        for name, syms, durs, origin in zip(names, symbols, durations, origins):
-            problem = _bad_name(name)
-            if problem:
-                raise FormatError(problem)
-            if name in seen:
-                raise FormatError(f"two strings are named {_shown(name)}")
-            seen.add(name)
-            if len(syms) != len(durs):
-                raise FormatError(f"string {_shown(name)} has {len(syms)} symbols but {len(durs)} "
-                                  f"durations")
-            try:
-                distinct = dict.fromkeys(syms)  # each distinct symbol once, in order
-            except TypeError:  # an unhashable symbol (a list from JSON): not text
-                distinct = syms
-            for sym in distinct:
-                problem = _bad_symbol(sym)
-                if problem:
-                    raise FormatError(f"string {_shown(name)}: {problem}")
-            if not _plain_durations(durs):
-                for dur in durs:
-                    problem = _bad_duration(dur)
-                    if problem:
-                        raise FormatError(f"string {_shown(name)}: {problem}")
-            if isinstance(origin, bool) or not isinstance(origin, (int, float)) \
-                    or not _finite(origin):
-                raise FormatError(f"string {_shown(name)}: start time must be a finite number, "
-                                  f"not {_shown(origin)}")
-            s, d = (syms, tuple(map(float, durs))) if self.keep_repeats else _merge(syms, durs)
-            if not math.isfinite(float(origin) + sum(d)):
-                raise FormatError(f"string {_shown(name)}: its times overflow (the durations "
-                                  f"add up to more than a float can hold)")
-            vanishing = _times_problem(name, float(origin), d, syms, self.keep_repeats)
-            if vanishing is not None:
-                raise FormatError(vanishing[1])
-            merged_symbols.append(s)
-            merged_durations.append(d)
+        strings = strings_of(names, symbols, durations, origins, self.keep_repeats)
+        # the first fault of the strings' checks, found in the order the readers place it by
+        refuse(strings, STRING_CHECKS)
+        segments = [s.segments for s in strings]
         object.__setattr__(self, "names", names)
-        object.__setattr__(self, "symbols", tuple(merged_symbols))
-        object.__setattr__(self, "segment_durations", tuple(merged_durations))
+        object.__setattr__(self, "symbols", tuple(s for s, _ in segments))
+        object.__setattr__(self, "segment_durations", tuple(d for _, d in segments))
         object.__setattr__(self, "origins", tuple(float(o) for o in origins))
-        self._set_extras(names, symbols)  # after the names are checked; needs unmerged symbols
-
-    def _set_extras(self, names: tuple[str, ...], symbols: tuple[tuple[str, ...], ...]) -> None:
-        normalise_extras(self, names, symbols)
+        normalise_extras(self, strings)  # after the names are checked; needs unmerged symbols
 
     # -- construction ------------------------------------------------------
     @classmethod
@@ -372,7 +331,7 @@ class Actiongram:
     @classmethod
     def from_text(cls, text: str, source: str = "<string>") -> "Actiongram":
         """Read the plain-text form (see the module docstring)."""
-        from ._text import read_text
+        from ._text_form import read_text
 
         return read_text(cls, text, source)
 
@@ -385,52 +344,22 @@ class Actiongram:
         FormatError
             Text that is not JSON, or JSON this format cannot hold, at its line and column.
         """
-        from ._text import read_json
+        from ._json_form import read_json
 
         return read_json(cls, text, source)
 
     # -- output ------------------------------------------------------------
     def to_text(self) -> str:
         """The plain-text form; :meth:`from_text` reads it back to an equal value."""
-        lines = ["%keep_repeats"] if self.keep_repeats else []
-        for name, syms, durs, origin, disps in zip(self.names, self.symbols,
-                                                   self.segment_durations, self.origins,
-                                                   self.segment_displacements):
-            head = name if origin == 0 else f"{name}@{_format_number(origin)}"
-            if disps is None:
-                tokens = [s if d == 1 else f"{s}@{_format_number(d)}" for s, d in zip(syms, durs)]
-            else:
-                tokens = [f"{s}@{_format_number(d)}~{_format_number(x)}"
-                          for s, d, x in zip(syms, durs, disps)]
-            lines.append(f"{head}: {' '.join(tokens)}".rstrip())
-        groups: dict[str, list[str]] = {}  # only assignments that differ from the default
-        for name, actuator in zip(self.names, self.string_actuators):
-            if actuator != default_actuator(name):
-                groups.setdefault(actuator, []).append(name)
-        lines.extend(f"%actuator {a}: {' '.join(ns)}" for a, ns in groups.items())
-        lines.extend(f"%parent {c}: {p}" if p is not None else f"%parent {c}:"
-                     for c, p in self.skeleton_edges)
-        return "\n".join(lines) + "\n"
+        from ._text_form import write_text
+
+        return write_text(self)
 
     def to_json(self) -> str:
         """A JSON document; :meth:`from_json` reads it back to an equal value."""
-        strings = []
-        for n, s, d, o, x, a in zip(self.names, self.symbols, self.segment_durations,
-                                    self.origins, self.segment_displacements,
-                                    self.string_actuators):
-            item: dict[str, object] = {"name": n, "start": o, "symbols": list(s),
-                                       "durations": list(d)}
-            if x is not None:
-                item["displacements"] = list(x)
-            if a != default_actuator(n):
-                item["actuator"] = a
-            strings.append(item)
-        data: dict[str, object] = {"format": _JSON_FORMAT, "version": 1, "strings": strings}
-        if self.skeleton_edges:
-            data["skeleton"] = dict(self.skeleton_edges)
-        if self.keep_repeats:
-            data["keep_repeats"] = True
-        return json.dumps(data)
+        from ._json_form import write_json
+
+        return write_json(self)
 
     # -- accessors ---------------------------------------------------------
     def __len__(self) -> int:

@@ -1,7 +1,6 @@
 """The checks of names and numbers that the actiongram modules share (one job: say what is wrong).
 
-Kept below both :mod:`psgs.actiongram` and :mod:`psgs.actiongram._extras` so that neither has
-to import the other for them.
+Kept below every other module of :mod:`psgs.actiongram`, so that each can import them.
 """
 
 from __future__ import annotations
@@ -10,7 +9,7 @@ import math
 import re
 
 from .._foundation.text import character_name, finite as _finite, first_unseen
-from ..errors import FormatError, ValidationError
+from ..errors import ValidationError
 
 __all__: list[str] = []  # private helpers
 
@@ -92,6 +91,14 @@ def _bad_duration(value: object) -> str | None:
         return f"a duration must be a number, not {_shown(value)}"
     if not _finite(value) or value <= 0:
         return f"a duration must be positive and finite, not {_shown(value)}"
+    return None
+
+
+def _bad_displacement(value: object) -> str | None:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return f"a displacement must be a number, not {_shown(value)}"
+    if not _finite(value):
+        return f"a displacement must be finite, not {_shown(value)}"
     return None
 
 

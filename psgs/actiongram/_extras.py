@@ -1,25 +1,19 @@
 """The optional extras of an actiongram: displacements, actuator map, skeleton.
 
-Their validation, merging and text directives, apart from the strings themselves, which
-every actiongram has; :class:`psgs.Actiongram` is the only user.
+Their normalisation and text directives, apart from the strings themselves, which every
+actiongram has; :class:`psgs.Actiongram` is the only user. The checks of the displacements and
+actuators are in the constructor's one list of checks, :data:`psgs.actiongram._faults.CHECKS`,
+after the strings'; the skeleton's are here.
 """
 
 from __future__ import annotations
 
-import math
 import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable
 
 from ..errors import FormatError, ValidationError
-from ._checks import _bad_name, _finite, _shown, _tuple_of
-
-
-def _bad_displacement(value: object) -> str | None:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        return f"a displacement must be a number, not {_shown(value)}"
-    if not _finite(value):
-        return f"a displacement must be finite, not {_shown(value)}"
-    return None
+from ._checks import _bad_name, _shown, _tuple_of
+from ._faults import ACTUATOR_CHECKS, DISPLACEMENT_CHECKS, StringFields, refuse
 
 
 def default_actuator(name: str) -> str:
@@ -45,34 +39,6 @@ def default_actuator(name: str) -> str:
         raise ValidationError(f"a string's name is a str, not {_shown(name)}")
     head = name.split(".", 1)[0]
     return head if head else name
-
-
-def _merge(symbols: Sequence[str], durations: Sequence[float]) -> tuple[tuple[str, ...],
-                                                                       tuple[float, ...]]:
-    """Merge runs of equal neighbours into one segment, adding their durations."""
-    out_symbols: list[str] = []
-    out_durations: list[float] = []
-    for sym, dur in zip(symbols, durations):
-        if out_symbols and out_symbols[-1] == sym:
-            out_durations[-1] += dur
-        else:
-            out_symbols.append(sym)
-            out_durations.append(float(dur))
-    return tuple(out_symbols), tuple(out_durations)
-
-
-def _merge_displacements(symbols: Sequence[str],
-                         displacements: Sequence[float]) -> tuple[float, ...]:
-    """The displacements of :func:`_merge`'s segments: a merged run's changes add up."""
-    out: list[float] = []
-    previous = None
-    for sym, disp in zip(symbols, displacements):
-        if out and previous == sym:
-            out[-1] += disp
-        else:
-            out.append(float(disp))
-        previous = sym
-    return tuple(out)
 
 
 DIRECTIVE = re.compile(r"\s*%(?:actuator|parent)\s")
@@ -105,45 +71,23 @@ def read_directive(line: str, source: str, line_no: int, owner: dict[str, str],
     edges.append((joint, words[0] if words else None))
 
 
-def normalise_extras(value, names: tuple[str, ...], symbols: tuple[tuple[str, ...], ...]) -> None:
+def normalise_extras(value, strings: tuple[StringFields, ...]) -> None:
     """Validate and normalise ``value``'s displacements, actuator map and skeleton in place.
 
-    ``symbols`` are the strings before equal neighbours merge (a merged run's
-    displacements add up).
+    ``strings`` are ``value``'s strings as given, which have passed their checks
+    (:data:`~psgs.actiongram._faults.STRING_CHECKS`): their symbols before equal neighbours
+    merge (a merged run's displacements add up).
     """
     displacements = (_tuple_of(value.segment_displacements, "segment_displacements")
-                     or (None,) * len(names))
-    if len(displacements) != len(names):
+                     or (None,) * len(strings))
+    if len(displacements) != len(strings):
         raise ValidationError("segment_displacements must have one entry per string")
-    rows: list[tuple[float, ...] | None] = []
-    for name, syms, disps in zip(names, symbols, displacements):
-        if disps is None:
-            rows.append(None)
-            continue
-        if isinstance(disps, (str, bytes)) or not isinstance(disps, Iterable):
-            raise FormatError(f"string {_shown(name)}: displacements must be a list of "
-                              f"numbers or None, not {_shown(disps)}")
-        disps = tuple(disps)
-        if len(disps) != len(syms):
-            raise FormatError(f"string {_shown(name)} has {len(syms)} symbols but "
-                              f"{len(disps)} displacements")
-        for disp in disps:
-            problem = _bad_displacement(disp)
-            if problem:
-                raise FormatError(f"string {_shown(name)}: {problem}")
-        # an empty string has nothing to displace: unknown, as the text form reads it back
-        if not syms:
-            rows.append(None)
-        elif value.keep_repeats:
-            rows.append(tuple(map(float, disps)))
-        else:
-            merged = _merge_displacements(syms, disps)
-            if not all(map(math.isfinite, merged)):  # finite each, too large once added
-                raise FormatError(f"string {_shown(name)}: its displacements overflow (equal "
-                                  f"neighbours merged add up to more than a float can hold)")
-            rows.append(merged)
-    object.__setattr__(value, "segment_displacements", tuple(rows))
-    normalise_actuators(value, names)
+    if any(d is not None for d in displacements):  # (the usual actiongram has none: no checks)
+        strings = tuple(s.given(d) for s, d in zip(strings, displacements))
+        refuse(strings, DISPLACEMENT_CHECKS)
+        displacements = tuple(s.displacement_row for s in strings)
+    object.__setattr__(value, "segment_displacements", displacements)
+    normalise_actuators(value, tuple(s.name for s in strings))
     normalise_skeleton(value)
 
 
@@ -154,10 +98,9 @@ def normalise_actuators(value, names: tuple[str, ...]) -> None:
         actuators = tuple(default_actuator(n) if isinstance(n, str) else n for n in names)
     if len(actuators) != len(names):
         raise ValidationError("string_actuators must have one entry per string")
-    for name, actuator in zip(names, actuators):
-        problem = _bad_name(actuator)
-        if problem:
-            raise FormatError(f"string {_shown(name)}: actuator {_shown(actuator)}: {problem}")
+    if any(_bad_name(a) is not None for a in actuators):  # the table's check, its message
+        refuse(tuple(StringFields(n, (), (), actuator=a) for n, a in zip(names, actuators)),
+               ACTUATOR_CHECKS)
     object.__setattr__(value, "string_actuators", actuators)
 
 

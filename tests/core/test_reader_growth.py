@@ -18,7 +18,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from psgs import Actiongram, FormatError, ValidationError
-from psgs.actiongram._text import _JSON_TOKEN, _json_tokens
+from psgs.actiongram._json_form import _JSON_TOKEN, _json_tokens
 from psgs.cli import main
 from psgs.cli.core import _natural_key
 from psgs.model import PCGS, Grammar, Nonterminal, Query, Rule, Terminal
