@@ -16,7 +16,7 @@ numpy engine's. The significance kept is computed in Python from the integers re
 
 A search can be stopped inside a string: every loop over a string's seeds, its growth steps
 and the columns of a scan reads ``stop``, a one-byte array that
-:func:`psgs.induce.pal.alarm.alarm` sets at the deadline from a timer thread (numba reads no
+:func:`psgs.induce.pal._alarm.alarm` sets at the deadline from a timer thread (numba reads no
 clock), and a string stopped is ``STOPPED``: the caller raises the bound, nothing of it is
 kept. A flag that is never set changes nothing.
 

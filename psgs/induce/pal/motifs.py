@@ -13,7 +13,7 @@ import numpy as np
 
 from ..._foundation.engines import select, usable_cores
 from ...errors import BoundReached
-from .alarm import alarm
+from ._alarm import alarm
 from .conf import NO_BOUND
 from .statistics import log10_binom_sf, log10_poisson_sf, scan_threshold
 
@@ -205,7 +205,7 @@ def find_motifs(strings: list[np.ndarray], conf: ContentConf, clock: Budget = NO
     floats (see :mod:`psgs.induce.pal._motifs_jit`) is searched here again. ``clock`` raises
     :class:`~psgs.errors.BoundReached` past its deadline, also inside a string of
     :data:`CLOCKED_SYMBOLS` or more (numpy: before each growth step and each column of a
-    scan; compiled: the run's loops read an :func:`~psgs.induce.pal.alarm.alarm`), so that
+    scan; compiled: the run's loops read an :func:`~psgs.induce.pal._alarm.alarm`), so that
     a seed grown in a long string is no unit the bound waits for.
     """
     return search(conf).find_all(strings, conf, clock)
