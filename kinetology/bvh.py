@@ -20,7 +20,7 @@ import numpy as np
 from psgs._foundation.text import decimal
 
 from ._file_motion import build_motion, file_text
-from ._frame_block import Lines, content_end, read_records
+from ._frame_block import Lines, content_end, file_end, read_records
 from .motion import (FRAME_RATE_RANGE, Joint, Motion, MotionFormatError, Skeleton, as_path,
                      counted)
 from .textblocks import read_block
@@ -183,7 +183,8 @@ def _read_header_number(lines, tokens, label: str, source: str, *, integer: bool
     while index < len(lines) and not lines[index].strip():
         index += 1
     if index >= len(lines):
-        raise MotionFormatError(f"file ends before '{label}'", source=source, line=len(lines))
+        raise MotionFormatError(f"file ends before '{label}'", source=source,
+                                **file_end(lines))
     text = lines[index]
     line = text.strip()
     if not line.lower().startswith(label.lower()):
@@ -298,7 +299,7 @@ class _HierarchyTokens:
     def next(self, what: str) -> str:
         if not self._fill():
             raise MotionFormatError(f"file ends where {what} was expected", source=self.source,
-                                    line=max(1, self.count))
+                                    **file_end(self.lines))
         token, column = self.pending.popleft()
         self.last = (self.current_line, column)
         return token

@@ -83,3 +83,15 @@ def test_a_key_file_names_the_column_of_its_bad_dof(tmp_path):
     with pytest.raises(MotionFormatError, match=r"SkeletonJoints.key:2:12: bad dof names in "
                                                 r"'femur rx rq'$"):
         read_amc(tmp_path / "a.amc", asf=None)
+
+
+@pytest.mark.parametrize("text, place, words", [
+    ("HIERARCHY\nROOT Hips\n{ OFFSET 0 0 0\n", (3, 15), "file ends where '}' was expected"),
+    ("HIERARCHY\nROOT Hips\n{ OFFSET 0 0 0\nCHANNELS 1 Xrotation\n}\nMOTION\n", (6, 7),
+     "file ends before 'Frames:'"),
+])
+def test_a_bvh_file_that_ends_early_is_named_after_its_last_character(text, place, words):
+    # the line alone left the reader to find where the text stops (a long last line)
+    with pytest.raises(MotionFormatError) as error:
+        parse_bvh(text, source="cut.bvh")
+    assert str(error.value) == f"cut.bvh:{place[0]}:{place[1]}: {words}"

@@ -64,7 +64,7 @@ def test_why_a_style_is_missing_is_said_from_the_files_read_once(tmp_path, monke
     with pytest.raises(ValueError) as error:
         generate(folder, "moves.step", style="step")
     assert str(error.value) == ("action 'moves.step': its performances of style 'step' cannot "
-                                "be read (step_0.bvh:3: file ends where '}' was expected)")
+                                "be read (step_0.bvh:3:15: file ends where '}' was expected)")
     assert sorted(reads) == ["step_0.bvh", "step_1.bvh"]
 
 
