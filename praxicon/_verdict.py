@@ -114,33 +114,41 @@ def _group_test(descriptions, features, fitted, *, telling: bool = True):
     return groups, bound, tells
 
 
-def _excess(descriptions, features, x, best, fitted, *, telling: bool = True):
+def _excess(descriptions, features, x, best, fitted, *, telling: bool = True, rows=None):
     """Per motion: its best action's worst feature group over that group's calibrated limit
     (0 and "" when the descriptions have no limits), the group's name, and whether a group's
     distance overflowed (the motion cannot be scored).
 
     The groups read are :func:`_group_test`'s (``telling=False``: every group); ``fitted`` is
-    the score model on the motions' columns.
+    the score model on the motions' columns. ``rows``: the rows of ``x`` tested, ``best``
+    their actions (None: every row), read in place (parse tests the windows answered by an
+    action among all of a recording's).
     """
-    if not len(x):
+    if not len(best):
         return _excess_of(None, x, best, fitted)
     return _excess_of(_group_test(descriptions, features, fitted, telling=telling), x, best,
-                      fitted)
+                      fitted, rows)
 
 
-def _excess_of(test, x, best, fitted):
+def _excess_of(test, x, best, fitted, rows=None):
     """:func:`_excess` with what the group test reads on the motions' columns (``test``:
     :func:`_group_test`) made before."""
-    if test is None or not len(x):
-        return np.zeros(len(x)), [""] * len(x), np.zeros(len(x), dtype=bool)
+    n = len(best)
+    if test is None or not n:
+        return np.zeros(n), [""] * n, np.zeros(n, dtype=bool)
     groups, bound, tells = test
-    far = np.stack([group_distances(x[i], fitted.means[b], fitted.variance[b], fitted.scale,
-                                    groups)[0] for i, b in enumerate(best)])
+    rows = range(n) if rows is None else rows
+    far = np.empty((n, len(groups)))  # a row at a time: a list of them held ten times more
+    for k, (i, b) in enumerate(zip(rows, best)):
+        far[k] = group_distances(x[i], fitted.means[b], fitted.variance[b], fitted.scale,
+                                 groups)[0]
     # a sum of squares that overflowed is inf (NaN: a group the best action lacks), read
     # before a group not read (x 0) turns it into a NaN
     lost = np.isinf(far).any(axis=1)
-    ratio = far / bound * tells[best]
-    ratio = np.where(np.isnan(ratio), 0.0, ratio)  # a group the best action lacks: not read
+    ratio = far  # in place: a recording's windows x groups, once
+    ratio /= bound
+    ratio *= tells[best]
+    ratio[np.isnan(ratio)] = 0.0  # a group the best action lacks: not read
     names = list(groups)
     # no group read (none tells the best action apart): no group to name
     return ratio.max(axis=1), [names[k] if r[k] > 0 else "" for k, r in

@@ -375,6 +375,19 @@ def parse(praxicon, motion, *, hop: float = _HOP, switch: float = _SWITCH,
     -------
     Timeline
 
+    Notes
+    -----
+    The memory is linear in the recording and bounded by it (parse has no memory bound of its
+    own): one row of numbers a window, 8 bytes a feature the recording has, written into one
+    block (:func:`~praxicon.feature_table.feature_matrix`; the columns every window has are
+    known once the last is read), scored a block of rows at a time. A rotation channel gives
+    about four features: a window every 8 frames (30 fps, the default hop) holds half what the
+    recording holds of that channel (8 bytes a frame), a window every 2 or 3 frames (10 fps)
+    more. At its peak parse held 344 bytes a frame beyond a 30 fps Bandai recording's own
+    1,056 (255 features a window every 8 frames: 255 bytes a frame of rows; 21.7 minutes),
+    446 with a praxicon of two skeletons (491 features); it held 1,340 and 1,650 when the rows
+    were a list, then a matrix, then its columns, and every window was scored at once.
+
     Raises
     ------
     DescriptionError
@@ -440,7 +453,8 @@ def _parsed(praxicon, motion, *, hop=_HOP, switch=_SWITCH, own=OWN_KINDS, suppor
     starts, cuts = windows(motion, window, hop)
     if progress is not None:
         cuts = _Reported(cuts, progress)
-    columns, x, _ = feature_matrix(descriptions, _until(cuts, clock), shape=False)
+    columns, x, _ = feature_matrix(descriptions, _until(cuts, clock), shape=False,
+                                   count=len(cuts))
     read = len(x)  # the windows read: a row each
     # past the bound, the windows read are parsed: where the next one's answer would begin
     # is where the timeline ends (the edge the whole recording's timeline has there)
@@ -476,7 +490,8 @@ def _parsed(praxicon, motion, *, hop=_HOP, switch=_SWITCH, own=OWN_KINDS, suppor
         passes = np.ones(len(path), dtype=bool)
         answered = np.flatnonzero(path != none)  # the windows answered none need no test
         if len(answered):
-            excess, _, _ = _excess(descriptions, features, x[answered], path[answered], fitted)
+            excess, _, _ = _excess(descriptions, features, x, path[answered], fitted,
+                                   rows=answered)
             passes[answered] = excess <= 1.0
         checked = _supported(path, passes, none, support, _stretch(unfit, starts, len(path)))
         # a window the check answered none of these counts 1 where it failed the test and 0

@@ -41,6 +41,7 @@ import numpy as np
 from ._arguments import motion_of, motions_of, whole_number
 from .description import (DescriptionError, Descriptions, feature_rows, mahalanobis_terms,
                           model_scores, own_columns, _part, probabilities)
+from .feature_table import feature_matrix
 from .features import feature_joint, pace_of, share_of_flight
 from .scoring import overflow_reason, unscored
 from ._verdict import ScoreModels, _Unscorable, _tested
@@ -215,30 +216,6 @@ def _in_file(exc: DescriptionError, folder, *, windows: bool = False) -> Descrip
 def _joints_of(motion) -> set[str]:
     """The joints that carry a channel of ``motion``."""
     return {channel.rpartition(".")[0] for channel in motion.channels}
-
-
-def feature_matrix(descriptions: Descriptions, motions, *, shape: bool = True):
-    """The features the descriptions share with every motion, as one matrix.
-
-    Returns ``(columns, rows, missing)``: the indices of the descriptions' features kept, a
-    motions x kept-features matrix, and per motion the joints of the descriptions' features
-    it lacks (of every action: in a praxicon of several skeletons, the other skeletons' too;
-    :class:`Recognition` names each action's).
-    """
-    wanted = descriptions.spread.features
-    # each motion's features kept as a row of numbers as soon as they are read: the windows of
-    # an hour's recording are 14,400 motions, and a dict of features each held ten times more
-    values, present = [], []
-    for motion in motions:
-        row = feature_rows([motion], shape=shape)[0]
-        present.append(np.array([f in row for f in wanted], dtype=bool))
-        values.append(np.array([row.get(f, np.nan) for f in wanted], dtype=float))
-    has = np.array(present, dtype=bool).reshape(len(present), len(wanted))
-    columns = np.flatnonzero(has.all(axis=0)).astype(int)
-    missing = tuple(tuple(sorted({feature_joint(wanted[i]) for i in np.flatnonzero(~p)}))
-                    for p in has)
-    x = np.array(values, dtype=float).reshape(len(values), len(wanted))[:, columns]
-    return columns, x, missing
 
 
 #: the take-wide features of the body against the ground, each read back from its log into

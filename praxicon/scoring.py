@@ -304,6 +304,13 @@ def _part(a: np.ndarray, rows=None, columns=None) -> np.ndarray:
     return a
 
 
+#: Rows :func:`model_scores` scores at a time. Its temporaries are a few copies of the rows'
+#: features per action (and rows x actions x the root's own features): scored at once, the
+#: windows of a long recording held four times their features beside them. A row's numbers
+#: are the same whatever rows it is scored with (:func:`distances`).
+_ROWS = 256
+
+
 def model_scores(m: ScoreModel, x, own) -> tuple[np.ndarray, np.ndarray]:
     """:func:`scores` from a :class:`ScoreModel` (``own``: positions among its columns of the
     features also scored in each action's own spread).
@@ -313,7 +320,16 @@ def model_scores(m: ScoreModel, x, own) -> tuple[np.ndarray, np.ndarray]:
     from a skeleton with fewer of the motion's joints) are on the same scale as the others:
     the "none of these" threshold, a distance per feature, reads each action's own. Actions
     not compared (no joint in common) get an infinite distance: ranked last, probability 0.
+    The rows are scored ``_ROWS`` at a time.
     """
+    if len(x) <= _ROWS:
+        return _model_scores(m, x, own)
+    parts = [_model_scores(m, x[a:a + _ROWS], own) for a in range(0, len(x), _ROWS)]
+    return tuple(np.concatenate([p[k] for p in parts]) for k in (0, 1))
+
+
+def _model_scores(m: ScoreModel, x, own) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`model_scores` of rows scored at once."""
     n = len(m.columns)
     shared = np.full((len(x), len(m.means)), np.inf)
     raw = np.zeros_like(shared)
