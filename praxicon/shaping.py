@@ -32,8 +32,9 @@ these conditions is a linear programme (:func:`scipy.optimize.linprog`, HiGHS du
 simplex, its iterations capped). The relative dead band (a share of the channel's
 own 95th-percentile speed) depends on the answer, so the band is assumed, checked
 on the answer and the programme solved again with the answer's band when it moved
-(up to ten rounds). The peaks are placed three ways and the nearest answer kept. The
-caller checks every answer by segmenting it again.
+(up to ten rounds, fewer where the bands come back to a round's: the rounds would go round
+that cycle). The peaks are placed three ways and the nearest answer kept. The caller checks
+every answer by segmenting it again.
 """
 
 from __future__ import annotations
@@ -294,10 +295,17 @@ def shape(base, knots, symbols, frame_rate: float, segmentation: dict, *,
         # the answer is kept when its own band is still between the two (else: again, with
         # the answer's band)
         bands = {name: _band(m @ base, floors[name], relative) for name, m in (("v", mv), ("a", ma))}
+        asked = set()  # the conditions of this placement's rounds so far
         for _ in range(_ROUNDS):
             lower_v = _conditions(v_signs, peaks_v, bands["v"], bands["v"], eps_v)
             lower_a = _conditions(a_signs, peaks_a, bands["a"], bands["a"], eps_a)
             lower = np.concatenate((lower_v, lower_a, [_REACH * p["min_range"]]))
+            if lower.tobytes() in asked:
+                # the bands came back to a round's: the same programmes give the same
+                # answers, so the rounds left would go round that cycle, none settling
+                # (status "band", as after the last round), two linear programmes a round
+                break
+            asked.add(lower.tobytes())
             # first only whether the conditions can hold (no objective: several times faster
             # to refute), then the nearest such curve, its simplex iterations capped (not its
             # time: the answer must not depend on the machine's load); at the cap the
