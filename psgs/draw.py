@@ -306,6 +306,27 @@ def _render(system, forest: Forest | None, fmt: str, engine: str) -> bytes:
     return buffer.getvalue()
 
 
+def _trees_of(system: PSGS, forest: Forest) -> bool:
+    """Whether ``forest`` could be parse trees of ``system``: its components and axioms, and
+    every rewritten node a rule of its component, the rule's left side above its right."""
+    if forest.components != system.component_names or \
+            tuple(forest.labels[r] for r in forest.roots) != tuple(map(str, system.axioms)):
+        return False
+    for grammar, root in zip(system.components, forest.roots):
+        stack = [root]
+        while stack:
+            node = stack.pop()
+            label = forest.rules[node]
+            if label is None:
+                continue
+            rule = grammar.rule_by_label.get(label)
+            below = tuple(forest.labels[k] for k in forest.children[node])
+            if rule is None or forest.labels[node] != str(rule.lhs) or \
+                    below != (tuple(map(str, rule.rhs)) or ("ε",)):
+                return False
+            stack.extend(forest.children[node])
+    return True
+
 def _forest_or_none(system, derivation, seed: int, max_steps: int,
                     engine: str, max_nodes: int | None = None,
                     forest: Forest | None = None) -> Forest | None:
@@ -329,8 +350,7 @@ def _forest_or_none(system, derivation, seed: int, max_steps: int,
             return parse_forest(system, derivation, seed=seed, max_steps=max_steps,
                                 max_nodes=max_nodes)
         # another system's trees would be drawn beside this one's rules, without an error
-        if forest.components != system.component_names or \
-                tuple(forest.labels[r] for r in forest.roots) != tuple(map(str, system.axioms)):
+        if not _trees_of(system, forest):
             raise ValidationError("forest holds the parse trees of another system")
         return forest
     if derivation is not None or forest is not None:
@@ -381,8 +401,9 @@ def draw(system: PSGS | PCGS, path: str | Path, *, seed: int = 0, max_steps: int
         e.g. :data:`MAX_NODES`.
     forest : Forest, optional
         The parse trees to draw, as :func:`parse_forest` built them for ``system`` (then
-        no ``derivation`` nor ``max_nodes``): a caller that also reports on them (what
-        stopped them) builds them once.
+        no ``derivation`` nor ``max_nodes``; ``seed`` and ``max_steps`` are not used): a
+        caller that also reports on them (what stopped them) builds them once. Trees that
+        are not ``system``'s (another component, axiom or rule) are refused.
 
     Returns
     -------

@@ -451,6 +451,13 @@ def test_draw_draws_the_trees_it_is_given(tmp_path):
     assert cut.bound == "max_nodes"
     assert to_svg(gamma, forest=cut, engine="matplotlib") == \
         to_svg(gamma, seed=5, max_nodes=30, engine="matplotlib")
+    # the same components and axioms, another rule's label and terminal: not its trees either
+    renamed = psgs.loads(psgs.dumps(counting).replace("p1", "r9")
+                         .replace('"a"', '"zz"'))
+    with pytest.raises(psgs.ValidationError, match="the parse trees of another system"):
+        to_svg(renamed, forest=parse_forest(counting, seed=2), engine="matplotlib")
+    assert to_svg(counting, forest=parse_forest(counting, seed=2), engine="matplotlib") == \
+        to_svg(counting, seed=2, engine="matplotlib")
     refused = [
         (dict(forest=parse_forest(counting)), "the parse trees of another system"),
         (dict(forest=cut, max_nodes=30), "give forest, or the derivation and max_nodes"),
