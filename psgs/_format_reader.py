@@ -10,6 +10,7 @@ what :func:`psgs.loads` runs on a text it has decoded.
 from __future__ import annotations
 
 import json
+import unicodedata
 from array import array
 from dataclasses import dataclass, field
 from functools import lru_cache
@@ -161,16 +162,23 @@ def _character(char: str) -> str:
     """``char`` as a message names it (:func:`character_name`), quoted before its name when
     it can be seen: ``'%' (U+0025 PERCENT SIGN)``, ``U+001B ESCAPE``.
 
+    A quote is quoted by the other quote (``"'" (U+0027 APOSTROPHE)``), and a combining
+    mark, which would sit on its quote, is named alone.
+
     >>> _character("("), _character("\\x1b"), _character("\\u200b")
     ("'(' (U+0028 LEFT PARENTHESIS)", 'U+001B ESCAPE', 'U+200B ZERO WIDTH SPACE')
+    >>> print(_character("'"), _character("\\u0301"), sep=", ")
+    "'" (U+0027 APOSTROPHE), U+0301 COMBINING ACUTE ACCENT
     """
     name = character_name(char)
-    return f"'{char}' ({name})" if char.isprintable() and first_unseen(char) is None else name
+    seen = (char.isprintable() and first_unseen(char) is None
+            and not unicodedata.category(char).startswith("M"))
+    return f"{char!r} ({name})" if seen else name
 
 
 def _hidden(text: str) -> str:
-    """Which character of ``text``, shown with escapes, the first escape stands for (the
-    escape says little: ``\\x85``, ``\\u200b``), or "" when every character shows as it is.
+    """The first character of ``text`` that cannot be shown as it is (a token is shown with
+    escapes, which say little: ``\\x85``, ``\\u200b``), named; "" when every one can.
 
     >>> _hidden('"a\\x85"'), _hidden('"a"')
     (' (it holds U+0085 NEXT LINE)', '')
