@@ -24,9 +24,10 @@ __all__: list[str] = []  # private: motifs.py is the caller
 
 
 @contextmanager
-def alarm(clock: Budget, armed: bool = True) -> Iterator[np.ndarray]:
+def alarm(clock: Budget) -> Iterator[np.ndarray]:
     """A flag (a one-byte array, 0) that turns 1 when ``clock``'s deadline comes, while the
-    ``with`` block runs; never, when ``clock`` has no deadline or ``armed`` is false.
+    ``with`` block runs; never, when ``clock`` has no deadline or one farther off than a
+    timer can wait (``threading.TIMEOUT_MAX``, some 292 years).
 
     Examples
     --------
@@ -39,13 +40,19 @@ def alarm(clock: Budget, armed: bool = True) -> Iterator[np.ndarray]:
     >>> with alarm(Budget()) as flag:
     ...     print(flag[0])
     0
+    >>> with alarm(Budget(seconds=1e10)) as flag:  # past TIMEOUT_MAX: no timer
+    ...     print(flag[0])
+    0
     """
     flag = np.zeros(1, dtype=np.uint8)
-    if not armed or clock.deadline is None:
+    # (the seconds left by the clock's own reading: the same deadline as its check())
+    left = clock.left()
+    if left is None or left >= threading.TIMEOUT_MAX:
+        # a wait that long makes the timer's thread die of OverflowError; it would never
+        # ring anyway
         yield flag
         return
-    # (the seconds left by the clock's own reading: the same deadline as its check())
-    timer = threading.Timer(clock.left(), flag.fill, (1,))
+    timer = threading.Timer(left, flag.fill, (1,))
     timer.daemon = True  # a timer left waiting never keeps the interpreter alive
     timer.start()
     try:

@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ._alarm import alarm
 from .conf import NO_BOUND
 from .motifs import Motif, Timed, find_motifs
 from .edges import trim
@@ -74,10 +75,19 @@ def pool_groups(strings: list[Timed], found: ContentResult, conf: ContentConf,
                 clock: Budget = NO_BOUND) -> ContentResult:
     """Steps 4-6 for every group of synchronised strings: pooled windows, vote, join, trim.
 
-    ``clock`` is read before each group and each of its rounds; past its deadline it raises
+    ``clock`` is read before each group, each of its rounds and each member located again
+    (and inside its scans and growth: the compiled growth reads an
+    :func:`~psgs.induce.pal._alarm.alarm`); past its deadline it raises
     :class:`~psgs.errors.BoundReached`, ``found`` holding the patterns of the groups done
     (a group's are written once it is done).
     """
+    with alarm(clock) as stop:
+        return _pool_groups(strings, found, conf, clock, stop)
+
+
+def _pool_groups(strings: list[Timed], found: ContentResult, conf: ContentConf,
+                 clock: Budget, stop: np.ndarray) -> ContentResult:
+    """:func:`pool_groups`, the compiled growth reading ``stop``."""
     intervals = found.intervals
     groups = sync_groups(found.candidates, found.partners)
     patterns, occurrences, joined = found.patterns, found.occurrences, found.joined
@@ -99,8 +109,9 @@ def pool_groups(strings: list[Timed], found: ContentResult, conf: ContentConf,
             kept_columns = trim(votes, conf.edge_share, conf.column_alpha) if votes else {}
             # locate each member's copies again with its voted pattern
             for i, (first, last) in kept_columns.items():
+                clock.check()
                 pattern = pooled_pattern(strings[i], votes[i])
-                again = relocate(strings[i], pattern[first:last], conf)
+                again = relocate(strings[i], pattern[first:last], conf, clock, stop)
                 if again is not None:
                     located[i] = again
             if all(np.array_equal(located[i], before[i]) for i in members):
@@ -128,7 +139,7 @@ def pool_groups(strings: list[Timed], found: ContentResult, conf: ContentConf,
             votes = {}
         else:
             clock.check()
-            together = locate_together(strings, votes, conf)
+            together = locate_together(strings, votes, conf, clock)
             if together is not None:
                 # a copy damaged in most members passes no joint scan; its window stays
                 together = with_earlier(together, windows)

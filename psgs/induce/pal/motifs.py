@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import functools
+from contextlib import nullcontext
 import math
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
@@ -203,10 +204,10 @@ def find_motifs(strings: list[np.ndarray], conf: ContentConf, clock: Budget = NO
     one call per run of strings of :data:`CLOCKED_SYMBOLS`, the clock read between them);
     a string where it meets a chance level too close to a boundary to decide in its own
     floats (see :mod:`psgs.induce.pal._motifs_jit`) is searched here again. ``clock`` raises
-    :class:`~psgs.errors.BoundReached` past its deadline, also inside a string of
-    :data:`CLOCKED_SYMBOLS` or more (numpy: before each growth step and each column of a
-    scan; compiled: the run's loops read an :func:`~psgs.induce.pal._alarm.alarm`), so that
-    a seed grown in a long string is no unit the bound waits for.
+    :class:`~psgs.errors.BoundReached` past its deadline, also inside a string's seeds
+    (numpy: before each growth step and each column of a scan; compiled: the run's loops
+    read an :func:`~psgs.induce.pal._alarm.alarm`), so that a seed grown in a long string
+    is no unit the bound waits for.
     """
     return search(conf).find_all(strings, conf, clock)
 
@@ -218,11 +219,11 @@ def _find_each(strings: list[np.ndarray], conf: ContentConf, clock: Budget = NO_
 
 
 #: With a deadline, the compiled engine searches runs of strings of about this many symbols
-#: (a string longer is a run alone), reading the clock between them: a call is some 0.3 s
-#: at numba's 0.6 µs a symbol. Each string's search is the same in any run. A run this long,
-#: and numpy's search of a string this long, is also stopped inside (a seed grown in 10^6
-#: symbols took 1.2 s with either engine: a pass over the string for each column of each
-#: growth step).
+#: (a string longer is a run alone), reading the clock between them. Each string's search
+#: is the same in any run. How long a run takes depends on what repeats in it, not only on
+#: its length (a seed grown in 2^19 - 1 symbols of a repeating pattern: 1.9 s with either
+#: engine, a pass over the string for each column of each growth step), so every run with a
+#: deadline is also stopped inside, by its alarm.
 CLOCKED_SYMBOLS = 1 << 19
 
 
@@ -238,16 +239,15 @@ def _find_all_compiled(strings: list[np.ndarray], conf: ContentConf, clock: Budg
         held += len(codes)
         if held >= CLOCKED_SYMBOLS or i == len(strings) - 1:
             clock.check()
-            out.extend(_compiled_run(strings[first:i + 1], conf, clock,
-                                     held >= CLOCKED_SYMBOLS))
+            out.extend(_compiled_run(strings[first:i + 1], conf, clock))
             first, held = i + 1, 0
     return out
 
 
-def _compiled_run(strings: list[np.ndarray], conf: ContentConf, clock: Budget,
-                  armed: bool = False) -> list[Motif | None]:
-    """One compiled call searching ``strings``; ``armed``: stopped at ``clock``'s deadline
-    inside the call too (:class:`~psgs.errors.BoundReached`)."""
+def _compiled_run(strings: list[np.ndarray], conf: ContentConf, clock: Budget
+                  ) -> list[Motif | None]:
+    """One compiled call searching ``strings``, stopped at ``clock``'s deadline inside the
+    call too (:class:`~psgs.errors.BoundReached`); a flag never set changes nothing."""
     from . import _motifs_jit as jit
 
     count = len(strings)
@@ -260,7 +260,7 @@ def _compiled_run(strings: list[np.ndarray], conf: ContentConf, clock: Budget,
         rate = float(rates[i])
         stats[:, i] = (rate, math.log(rate), math.log1p(-rate) if rate < 1 else -math.inf,
                        math.log10(max(int(distinct[i]), 2)))
-    with alarm(clock, armed) as stop:
+    with alarm(clock) as stop:
         found = _search_all(jit, flat.astype(np.int64, copy=False), bounds, sizes, stats, conf,
                             stop)
     status, lengths, copies, thresholds, motifs, starts = found
@@ -355,8 +355,8 @@ def find_motif(codes: np.ndarray, conf: ContentConf, clock: Budget = NO_BOUND
 
     Up to ``conf.seeds`` of the most frequent digrams are grown in turn (a
     burst of noise can stop one seed early); the most significant motif wins,
-    the earlier seed among equals. ``clock`` is read before each seed, and in a string of
-    :data:`CLOCKED_SYMBOLS` or more inside each seed's growth too (see :func:`grow`).
+    the earlier seed among equals. ``clock`` is read before each seed and inside each seed's
+    growth too (see :func:`grow`).
     """
     n = len(codes)
     if n < 2 * conf.min_copies:
@@ -402,21 +402,20 @@ def _digram_counts(keys: np.ndarray, bins: int) -> tuple[np.ndarray, np.ndarray,
 
 def grow(codes: np.ndarray, motif: np.ndarray, starts: np.ndarray, match_rate: float,
           distinct: int, conf: ContentConf, seed_only: bool = False,
-          clock: Budget = NO_BOUND) -> Motif | None:
+          clock: Budget = NO_BOUND, stop: np.ndarray | None = None) -> Motif | None:
     """Grow ``motif`` one conserved column at a time from its copies at ``starts``.
 
     ``seed_only``: ``motif`` is a digram and ``starts`` all its occurrences.
-    With ``conf.engine`` compiled, the compiled loop grows it (the same motif). In a string
-    of :data:`CLOCKED_SYMBOLS` or more, ``clock`` is read before each growth step and each
-    column of a scan (the compiled loop: its alarm), and raises
-    :class:`~psgs.errors.BoundReached` past its deadline.
+    With ``conf.engine`` compiled, the compiled loop grows it (the same motif). ``clock`` is
+    read before each growth step and each column of a scan, and raises
+    :class:`~psgs.errors.BoundReached` past its deadline; the compiled loop reads ``stop``
+    instead, an :func:`~psgs.induce.pal._alarm.alarm` of ``clock`` (one is set for the call
+    when it is None and ``clock`` has a deadline).
     """
     n = len(codes)
-    # (a shorter string's seed is a unit the caller reads the clock around)
-    clock = clock if n >= CLOCKED_SYMBOLS else NO_BOUND
     if n and match_rate > 0:
         decided = search(conf).grow(codes, motif, starts, match_rate, distinct, conf, seed_only,
-                                    clock)
+                                    clock, stop)
         if decided is not _UNDECIDED:
             return decided
     size = int(codes.max()) + 1
@@ -503,13 +502,15 @@ def _numpy_leaves_it(*_args) -> object:
 
 
 def _grow_compiled(codes: np.ndarray, motif, starts, match_rate: float, distinct: int,
-                   conf: ContentConf, seed_only: bool, clock: Budget = NO_BOUND):
+                   conf: ContentConf, seed_only: bool, clock: Budget = NO_BOUND,
+                   stop: np.ndarray | None = None):
     """The compiled loop's motif, None, or ``_UNDECIDED`` (a chance level too close to call
-    in the compiled floats: numpy's loop decides); stopped at ``clock``'s deadline."""
+    in the compiled floats: numpy's loop decides); stopped when ``stop`` is set (without
+    one, an alarm at ``clock``'s deadline)."""
     from . import _motifs_jit as jit
 
     n = len(codes)
-    with alarm(clock) as stop:
+    with (alarm(clock) if stop is None else nullcontext(stop)) as stop:
         state, grown, found, threshold = jit.grow_motif(
             codes.astype(np.int64, copy=False), np.asarray(motif, dtype=np.int64),
             np.asarray(starts, dtype=np.int64), int(codes.max()) + 1, match_rate,

@@ -257,19 +257,26 @@ def _join_fragments(core: np.ndarray, spans: np.ndarray) -> np.ndarray:
     return np.column_stack((low, high))
 
 
-def relocate(string: Timed, pattern: tuple[int, ...], conf: ContentConf) -> np.ndarray | None:
-    """Copy intervals of ``pattern`` found by scanning the string, or None if too few."""
+def relocate(string: Timed, pattern: tuple[int, ...], conf: ContentConf,
+             clock: Budget = NO_BOUND, stop: np.ndarray | None = None) -> np.ndarray | None:
+    """Copy intervals of ``pattern`` found by scanning the string, or None if too few.
+
+    ``clock`` is read before each column of the scans and each growth step, ``stop`` (its
+    :func:`~psgs.induce.pal._alarm.alarm`) by the compiled growth; past the deadline
+    :class:`~psgs.errors.BoundReached` is raised.
+    """
     if len(pattern) < 2:
         return None
     codes = string.codes
     motif = np.asarray(pattern, dtype=np.int64)
     threshold = scan_threshold(len(motif), len(codes) - len(motif) + 1, string.match_rate,
                                conf)
-    found = locate_copies(codes, motif, threshold)
+    found = locate_copies(codes, motif, threshold, clock)
     if len(found) < conf.min_copies:
         return None
     # the pooled copies are many and reliable: let them grow the pattern further
-    grown = grow(codes, motif, found, string.match_rate, string.distinct, conf)
+    grown = grow(codes, motif, found, string.match_rate, string.distinct, conf, clock=clock,
+                 stop=stop)
     if grown is None:
         return string.intervals(found, len(motif))
     return string.copy_times(grown)

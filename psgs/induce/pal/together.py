@@ -22,22 +22,25 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .conf import NO_BOUND
 from .motifs import Timed, match_scores
 from .pooling import Vote
 from .statistics import chance_threshold
 
 if TYPE_CHECKING:
+    from ...budget import Budget
     from .conf import ContentConf
 
 __all__: list[str] = []  # private: content.py is the caller
 
 
 def locate_together(strings: list[Timed], votes: dict[int, Vote],
-                    conf: ContentConf) -> np.ndarray | None:
+                    conf: ContentConf, clock: Budget = NO_BOUND) -> np.ndarray | None:
     """The group's copy windows found by scanning all members at once, or None if too few.
 
     Returns a (copies, 2) array of time windows in time order: each from the
-    earliest start to the latest end of the members' copies it holds.
+    earliest start to the latest end of the members' copies it holds. ``clock`` is read
+    before each member and each column of its scan (:class:`~psgs.errors.BoundReached`).
     """
     members = list(votes)
     reference = strings[members[0]]
@@ -50,12 +53,13 @@ def locate_together(strings: list[Timed], votes: dict[int, Vote],
     last = np.full(len(times), -np.inf)
     positions, rates = 0, []
     for i in members:
+        clock.check()
         s, pattern = strings[i], np.asarray(votes[i].pattern, dtype=np.int64)
         length, n = len(pattern), len(s.codes)
         width = n - length + 1
         if width <= 0:
             return None
-        score = match_scores(s.codes, pattern.tolist())
+        score = match_scores(s.codes, pattern.tolist(), clock)
         # the member's start nearest each reference start
         at = np.clip(np.searchsorted(s.starts, times), 1, n - 1)
         nearer = np.where(np.abs(s.starts[at - 1] - times) <= np.abs(s.starts[at] - times),
