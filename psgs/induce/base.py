@@ -84,6 +84,23 @@ class Inducer:
             names.append(p.name)
         return tuple(names)
 
+    def __setstate__(self, state: dict) -> None:
+        """Restore a pickled inducer; a parameter added since it was pickled takes its
+        default (what the inducer did before the parameter existed).
+
+        Examples
+        --------
+        >>> from psgs.induce import Sequential
+        >>> learner = Sequential.__new__(Sequential)
+        >>> learner.__setstate__({"min_count": 3})  # pickled before max_rules existed
+        >>> learner.get_params()
+        {'min_count': 3, 'max_rules': 100000}
+        """
+        self.__dict__.update(state)
+        for p in inspect.signature(type(self).__init__).parameters.values():
+            if p.name != "self" and p.name not in state and p.default is not p.empty:
+                setattr(self, p.name, p.default)
+
     def get_params(self) -> dict[str, object]:
         """The parameters this inducer was built with, by name, in ``__init__``'s order.
 
