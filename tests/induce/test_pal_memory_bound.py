@@ -18,12 +18,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from psgs import Actiongram
 from psgs.cli import main
 from psgs.errors import ValidationError
 from psgs.induce import PAL, ContentPAL, MotionPAL
 from psgs.induce.pal import pooling
-from psgs.induce.pal.conf import Bounds, undecided
-from psgs.induce.pal.period import grid_bytes
+from psgs.induce.pal.conf import Bounds, ContentConf, undecided
+from psgs.induce.pal.learner import encode
+from psgs.induce.pal.period import grid_bytes, period_mode, time_grid
 from psgs.induce.synthetic import generate
 
 sys.path.insert(0, str(Path(__file__).parent))
@@ -110,6 +112,26 @@ def test_the_period_mode_counts_its_grid():
     grid = PAL(max_bytes=grid_bytes(20, 2) - 1).induce(actiongram)
     assert grid.bound == "max_bytes" and grid.reason.endswith("in the period mode")
     assert PAL(max_bytes=1e9).induce(actiongram) == full
+
+
+def test_the_period_mode_s_count_bounds_its_traced_peak():
+    # 46 symbols on 16,384 points: each symbol about 360 times, at the size where its pairs
+    # are listed one by one rather than transformed (the most pairs a row can hold)
+    rng = np.random.default_rng(0)
+    symbols = [f"s{k}" for k in range(46)]
+    actiongram = Actiongram.from_strings(
+        {f"j{i}": [symbols[k] for k in rng.integers(0, 46, 16384)] for i in range(2)})
+    strings, symbol_of = encode(actiongram)
+    times, _, grid = time_grid(strings)
+    counted = grid_bytes(len(strings), len(times))
+    del grid
+    tracemalloc.start()
+    try:
+        period_mode(strings, len(symbol_of), ContentConf())
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak <= counted
 
 
 def test_the_real_motion_learner_counts_its_grids():
