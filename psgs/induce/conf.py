@@ -25,6 +25,7 @@ psgs.errors.ValidationError: how must be one of fast, exact, not 'slow'
 from __future__ import annotations
 
 import dataclasses
+import math
 import numbers
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
@@ -80,7 +81,13 @@ def check_number(name: str, value: object, *, low: float | None = None, high: fl
         raise ValidationError(f"parameter {name} must be {kind}{' or None' if optional else ''}"
                               f", not {value!r}")
     if not finite(value):  # NaN passes every comparison below; 10**400 is no float
-        raise ValidationError(f"parameter {name} must be a finite number, not {value!r}")
+        if isinstance(value, int):
+            given = f"a whole number of {len(str(abs(value)))} digits (past a float's range)"
+        elif math.isinf(value):  # also what a number past a float's range, 1e400, reads as
+            given = f"{value!r} (a number past a float's range reads as inf)"
+        else:
+            given = repr(value)
+        raise ValidationError(f"parameter {name} must be a finite number, not {given}")
     if low is not None and (value <= low if low_open else value < low):
         raise ValidationError(f"parameter {name} must be {'>' if low_open else '>='} {low}, "
                               f"not {value!r}")

@@ -154,6 +154,16 @@ def test_max_bytes_is_validated_like_the_other_parameters(value):
         MotionPAL(max_bytes=value)
 
 
+def test_a_bound_past_a_float_s_range_and_a_bound_of_one_are_worded_as_such():
+    with pytest.raises(ValidationError, match=r"not inf \(a number past a float's range"):
+        PAL(max_bytes=float("1e400"))
+    with pytest.raises(ValidationError, match="not a whole number of 401 digits"):
+        PAL(max_bytes=10 ** 400)
+    actiongram = generate(seed=1).actiongram
+    assert PAL(max_bytes=1).induce(actiongram).reason.startswith(
+        "stopped at 1 byte (max_bytes), in ")
+
+
 def test_max_bytes_is_not_recorded_and_counts_nothing_without_a_value():
     result = ContentPAL(max_bytes=1e9).induce(generate(seed=2).actiongram)
     assert "max_bytes" not in result.params and result.bound is None

@@ -66,10 +66,14 @@ def stop_reason(bound: str, conf) -> str:
     'stopped after 2 seconds (max_seconds)'
     >>> stop_reason("max_bytes", ContentConf(max_bytes=1e9))
     'stopped at 1e+09 bytes (max_bytes)'
+    >>> stop_reason("max_bytes", ContentConf(max_bytes=1))
+    'stopped at 1 byte (max_bytes)'
     """
     if bound == "max_seconds":
-        return f"stopped after {conf.max_seconds:g} seconds (max_seconds)"
-    return f"stopped at {conf.max_bytes:g} bytes (max_bytes)"
+        value = conf.max_seconds
+        return f"stopped after {value:g} second{'' if value == 1 else 's'} (max_seconds)"
+    value = conf.max_bytes
+    return f"stopped at {value:g} byte{'' if value == 1 else 's'} (max_bytes)"
 
 
 class Bounds(Budget):
