@@ -12,7 +12,7 @@ import os
 from psgs._foundation.files import decode_utf8, read_bytes
 from psgs.errors import FormatError
 
-from .motion import Motion, MotionFormatError, Owned
+from .motion import Motion, MotionFormatError, _Owned
 
 __all__ = ["build_motion", "file_text"]
 
@@ -26,7 +26,7 @@ def build_motion(values, channels, frame_rate, skeleton=None, source="<motion>",
     ``ValueError`` of the constructor.
 
     ``values`` is the reader's own new array, which it holds nowhere else: the motion keeps it
-    (made read-only) instead of copying it (:class:`~kinetology.motion.Owned`), so that reading
+    (made read-only) instead of copying it (``kinetology.motion._Owned``), so that reading
     takes the text and the values once, not the values twice.
 
     Examples
@@ -42,7 +42,7 @@ def build_motion(values, channels, frame_rate, skeleton=None, source="<motion>",
     (True, False)
     """
     try:
-        return Motion(Owned(values), channels, frame_rate, skeleton, source, meta or {})
+        return Motion(_Owned(values), channels, frame_rate, skeleton, source, meta or {})
     except ValueError as exc:
         raise MotionFormatError(str(exc), source=source) from None
 

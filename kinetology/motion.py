@@ -23,7 +23,7 @@ from psgs.errors import FormatError, NotFound, ValidationError
 
 __all__ = ["MotionFormatError", "Joint", "Skeleton", "Motion", "AXES", "FRAME_RATE_RANGE",
            "check_number", "MIN_UNWRAP", "check_unwrap", "real_array", "as_path", "shown",
-           "counted", "channel_names", "check_motion", "rebuilt", "Owned"]
+           "counted", "channel_names", "check_motion", "rebuilt"]
 
 #: Channel axes, in the order a joint's channels are listed.
 AXES = ("tx", "ty", "tz", "rx", "ry", "rz")
@@ -165,10 +165,12 @@ class Skeleton:
         raise NotFound(f"no joint named {name!r} (joints: {', '.join(self.names)})")
 
 
-class Owned:
+class _Owned:
     """A new float array handed to :class:`Motion` to keep, not copy: only for an array that
     nothing else holds (a reader's, just filled), since the motion then makes it read-only in
     place. Anything else (a view of another array, another type) is copied as any value is.
+    Private: a caller that kept the array (or a view of it) could change the motion through it,
+    so only the readers, which hold their array nowhere else, hand one over.
 
     Parameters
     ----------
@@ -178,7 +180,7 @@ class Owned:
     Examples
     --------
     >>> values = np.zeros((2, 1))
-    >>> m = Motion(Owned(values), ("knee.rx",), 120.0)
+    >>> m = Motion(_Owned(values), ("knee.rx",), 120.0)
     >>> np.shares_memory(m.values, values), values.flags.writeable
     (True, False)
     >>> np.shares_memory(Motion(values, ("knee.rx",), 120.0).values, values)
@@ -266,7 +268,7 @@ class Motion:
         # an array a reader has just made is kept (made read-only) rather than copied: the copy
         # took the values' size again, four times the text of a file of one-digit numbers;
         # whatever else is given is copied, so that no holder of it can change the motion
-        values = given.array if isinstance(given, Owned) else real_array(given)
+        values = given.array if isinstance(given, _Owned) else real_array(given)
         if values.ndim != 2:
             raise ValidationError(f"motion values must be frames x channels, got shape {values.shape}")
         channels = channel_names(self.channels)
@@ -296,7 +298,8 @@ class Motion:
             raise ValidationError(f"meta must be a mapping, not {type(meta).__name__}")
         values.setflags(write=False)
         # a view of a read-only array cannot be made writeable again (the array that owns its
-        # memory could be, with setflags), so "read-only" holds for whoever has the motion
+        # memory could be, with setflags): the motion hands out the view, so writing needs a
+        # deliberate values.base.setflags(write=True), not a slip
         values = values.view()
         object.__setattr__(self, "values", values)
         object.__setattr__(self, "channels", channels)
@@ -340,7 +343,7 @@ class Motion:
         channels = channel_names(channels)
         columns = [self.index(c) for c in channels]
         # indexing by a list of columns makes a new array, which nothing else holds
-        return Motion(Owned(self.values[:, columns]), tuple(channels), self.frame_rate, None,
+        return Motion(_Owned(self.values[:, columns]), tuple(channels), self.frame_rate, None,
                       self.source, self.meta)
 
     def rotation_channels(self) -> tuple[str, ...]:

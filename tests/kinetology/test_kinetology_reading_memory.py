@@ -25,7 +25,7 @@ from kinetology import asf as asf_module
 from kinetology import bvh as bvh_module
 from kinetology.asf import parse_amc, read_asf
 from kinetology.bvh import parse_bvh
-from kinetology.motion import Motion, MotionFormatError, Owned
+from kinetology.motion import Motion, MotionFormatError, _Owned
 
 #: The bound stated in docs/kinetology.md: the peak of memory allocated while a file of a
 #: megabyte or more is read, per byte of the file (the bytes and the text they decode to, then
@@ -284,7 +284,7 @@ def test_a_motion_copies_every_array_but_one_handed_over_to_it():
     assert motion.values[0, 0] == 0.0
     # handed over: kept (read-only in place) if it is a new float array of its own
     owned = np.zeros((3, 2))
-    motion = Motion(Owned(owned), ("a.rx", "b.rx"), 30.0)
+    motion = Motion(_Owned(owned), ("a.rx", "b.rx"), 30.0)
     assert np.shares_memory(motion.values, owned) and not owned.flags.writeable
     with pytest.raises(ValueError):
         motion.values.setflags(write=True)
@@ -292,7 +292,7 @@ def test_a_motion_copies_every_array_but_one_handed_over_to_it():
     base = np.zeros((4, 2))  # (its first rows: contiguous, but a view of it)
     for other in (base[:3], np.zeros((3, 2), dtype=np.float32), [[0, 0]] * 3,
                   np.asfortranarray(np.zeros((3, 2)))):
-        motion = Motion(Owned(other), ("a.rx", "b.rx"), 30.0)
+        motion = Motion(_Owned(other), ("a.rx", "b.rx"), 30.0)
         assert not np.shares_memory(motion.values, np.asarray(other))
     assert base.flags.writeable
 
