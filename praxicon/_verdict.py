@@ -32,9 +32,14 @@ def _score_model(descriptions, columns):
         raise _Unscorable(str(exc)) from None
 
 
+#: The most score models :class:`ScoreModels` keeps (about 0.24 MB each for 28 actions): one
+#: a skeleton, and a command's files seldom have more, but its memory must not grow with them.
+KEPT_MODELS = 16
+
+
 class ScoreModels:
     """The score models of ``descriptions`` (and of their families, ``families``), each made
-    when a set of columns is first asked for and then kept.
+    when a set of columns is first asked for and then kept (the last :data:`KEPT_MODELS`).
 
     What scoring and the group test read of the descriptions alone (the score model, the
     feature groups, the groups that tell each action apart: about 17 ms for 28 actions) depends
@@ -74,6 +79,8 @@ class ScoreModels:
             # a group distance too large overflows to inf, which tells as it compares
             with np.errstate(over="ignore", invalid="ignore"):
                 test = _group_test(self.descriptions, features, fitted)
+            if len(self._made) >= KEPT_MODELS:  # files of many skeletons: the oldest goes
+                del self._made[next(iter(self._made))]
             self._made[key] = (fitted, test)
         return self._made[key]
 

@@ -109,7 +109,8 @@ def _said(file, motion, answer) -> None:
 
 #: ``recognise`` reads its FILEs in chunks, recognises each chunk in one batch (features
 #: once, one matrix of scores per skeleton), prints its lines and drops its motions before
-#: reading the next: the memory of a run is one chunk's, however many FILEs. A chunk ends at
+#: reading the next: the memory of a run is one chunk's (and at most
+#: :data:`~praxicon._verdict.KEPT_MODELS` score models), however many FILEs. A chunk ends at
 #: this many files, or sooner once its motions' values hold ``CHUNK_BYTES`` (a chunk holds at
 #: least one file, however long). What scoring reads of the descriptions alone (the score
 #: model, the telling groups: about 17 ms for 28 actions) is made once per skeleton for the

@@ -166,3 +166,26 @@ def test_the_families_score_model_is_kept_too(monkeypatch):
     assert made == [d, d.families]
     assert answers[0][0].family == "a"
     assert answers == [_recognitions(d, new)] * 3
+
+
+def test_score_models_keep_at_most_their_bound(monkeypatch):
+    """Files of many skeletons (sets of columns) do not grow what a command keeps: past
+    KEPT_MODELS the oldest model goes, and one asked for again is made again, the same."""
+    import numpy as np
+    from kinetology import synthetic_motion
+    from praxicon import _verdict
+    from praxicon.description import describe
+    from praxicon.recognition import _recognitions
+
+    d = describe({"a": [synthetic_motion(3, (0,), seed=s) for s in (1, 2)],
+                  "b": [synthetic_motion(3, (2,), seed=s) for s in (3, 4)]})
+    new = [synthetic_motion(3, (0,), seed=5), synthetic_motion(3, (2,), seed=6)]
+    monkeypatch.setattr(_verdict, "KEPT_MODELS", 2)
+    models = _verdict.ScoreModels(d)
+    answers = _recognitions(models, new)  # every column: the first set kept
+    width = len(d.spread.features)
+    for columns in (np.arange(width - 1), np.arange(1, width)):  # two more: the first goes
+        models(columns)
+    assert len(models._made) == 2  # noqa: SLF001 - what is kept
+    assert _recognitions(models, new) == answers == _recognitions(d, new)
+    assert len(models._made) == 2  # noqa: SLF001
