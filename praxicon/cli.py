@@ -22,7 +22,7 @@ def _bad(message: str):
 
 
 def run_build(args) -> int:
-    from psgs.induce import get
+    from psgs.induce.registry import text_params
 
     from kinetology.motion import check_number
     from kinetology.segmentation import DEFAULTS
@@ -31,9 +31,9 @@ def run_build(args) -> int:
     from .datasets import DatasetError, read_datasets
     from .learn import Settings
 
-    params = key_values(args.param, "--param")
+    # an unknown inducer or parameter: one line, now; none is None where that is the default
+    params = text_params(args.inducer, key_values(args.param, "--param"))
     segmentation = key_values(args.segment, "--segment")
-    get(args.inducer, **params)  # an unknown inducer or parameter: one line, now
     unknown = sorted(set(segmentation) - set(DEFAULTS))
     if unknown:
         _bad(f"--segment {unknown[0]}: unknown (known: {', '.join(DEFAULTS)})")
@@ -310,7 +310,8 @@ def _add_commands(sub) -> None:
                             "content,style where most styles have several takes)")
     build.add_argument("--inducer", default="pal", help="the inducer by name (default pal)")
     build.add_argument("--param", action="append", default=[], metavar="K=V",
-                       help="an inducer parameter (repeatable)")
+                       help="an inducer parameter (repeatable); a parameter whose default "
+                            "is none takes none (PAL's max_seconds=none: no time bound)")
     build.add_argument("--segment", action="append", default=[], metavar="K=V",
                        help="a kinetology segmentation parameter (repeatable)")
     build.add_argument("--min-performances", type=positive_int, default=2, metavar="N",

@@ -7,7 +7,6 @@ the whole grammar system with ``--full``, or JSON with ``--json``.
 
 from __future__ import annotations
 
-import inspect
 import json
 import re
 import sys
@@ -152,18 +151,9 @@ def _inducer(name: str, items: list[str]):
     psgs.errors.ValidationError: parameter max_rules must be an integer, not 'none'
     """
     from ..induce import get
+    from ..induce.registry import text_params
 
-    params = key_values(items)
-    nones = {key for key, value in params.items()
-             if isinstance(value, str) and value.lower() == "none"}
-    inducer = get(name, **{key: value for key, value in params.items() if key not in nones})
-    if not nones:
-        return inducer
-    declared = inspect.signature(type(inducer)).parameters
-    for key in nones:
-        if key in declared and declared[key].default is None:
-            params[key] = None
-    return get(name, **params)
+    return get(name, **text_params(name, key_values(items)))
 
 
 MOTION_SUFFIXES = (".bvh", ".amc", ".asf", ".c3d", ".fbx", ".trc")

@@ -21,7 +21,7 @@ from .base import Inducer, unknown_parameter
 from .pal import PAL, ContentPAL, MotionPAL
 from .sequential import Sequential
 
-__all__ = ["get", "available", "GROUP"]
+__all__ = ["get", "available", "GROUP", "text_params"]
 
 #: The entry-point group other packages add inducers to.
 GROUP = "psgs.inducers"
@@ -142,6 +142,52 @@ def get(name: str, **params) -> Inducer:
                               f"method (an inducer subclasses psgs.induce.Inducer or has one)")
     return inducer
 
+
+def text_params(name: str, params: dict) -> dict:
+    """``params`` as given in text (a command line's ``KEY=VALUE``), for inducer ``name``:
+    the text ``none`` (any case) of a parameter whose default is None is None.
+
+    A parameter that takes a number or None (PAL's ``max_seconds``, ``max_bytes``) says so
+    when refused, and the text ``None`` was refused with that very message; for any other
+    parameter ``none`` stays a word, which the parameter refuses in its own words.
+
+    Parameters
+    ----------
+    name : str
+        The inducer's name (see :func:`get`).
+    params : dict
+        Parameter names to values, the values as given (texts among them).
+
+    Returns
+    -------
+    dict
+        The same parameters, ``none`` read as None where the default is None.
+
+    Raises
+    ------
+    ValidationError
+        As :func:`get` does, for an unknown inducer or parameter or a bad value (the
+        values are checked as :func:`get` checks them).
+
+    Examples
+    --------
+    >>> text_params("pal", {"max_seconds": "None", "alpha": 0.01})
+    {'max_seconds': None, 'alpha': 0.01}
+    >>> text_params("sequential", {"max_rules": "none"})
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: parameter max_rules must be an integer, not 'none'
+    """
+    nones = {key for key, value in params.items()
+             if isinstance(value, str) and value.lower() == "none"}
+    inducer = get(name, **{key: value for key, value in params.items() if key not in nones})
+    if not nones:
+        return dict(params)
+    declared = inspect.signature(type(inducer)).parameters
+    read = {key: None if key in nones and key in declared and declared[key].default is None
+            else value for key, value in params.items()}
+    get(name, **read)  # a none left a word is refused here, in the parameter's words
+    return read
 
 def _check_names(name: str, factory, params: dict) -> None:
     """Refuse a parameter the factory does not take, naming the ones it does."""

@@ -97,6 +97,8 @@ def test_generate_a_style(manifest, tmp_path, capsys):
     (["build", "nowhere", "-o", "x"], "nowhere: no such file or folder"),
     (["build", ".", "-o", "x", "--inducer", "nope"], "unknown inducer 'nope'"),
     (["build", ".", "-o", "x", "--param", "nope=1"], "has no parameter 'nope'"),
+    (["build", ".", "-o", "x", "--inducer", "sequential", "--param", "max_rules=none"],
+     "parameter max_rules must be an integer, not 'none'"),
     (["build", ".", "-o", "x", "--segment", "nope=1"], "--segment nope: unknown"),
     (["draw", "nowhere", "-o", "x"], "nowhere: no such praxicon folder"),
     (["generate", "nowhere", "a", "-o", "x.bvh"], "nowhere: no such praxicon folder"),
@@ -214,3 +216,14 @@ def test_the_build_says_when_it_describes_the_actions(manifest, tmp_path, capsys
     assert "describing" not in capsys.readouterr().err
     assert main(["build", str(manifest), "-o", str(tmp_path / "quiet"), "--no-progress"]) == 0
     assert "describing" not in capsys.readouterr().err
+
+
+def test_build_takes_none_for_a_parameter_whose_default_is_none(manifest, tmp_path, capsys):
+    # as psgs induce does: max_seconds=none is no time bound (it was refused as 'must be a
+    # number or None, not 'none''), recorded as the JSON null it is
+    out = tmp_path / "px"
+    assert main(["build", str(manifest), "-o", str(out), "--no-progress",
+                 "--param", "min_copies=3", "--param", "max_seconds=None"]) == 0
+    index = json.loads((out / "index.json").read_text())
+    assert index["settings"]["params"] == {"min_copies": 3, "max_seconds": None}
+    assert "2 learnt" in capsys.readouterr().out
