@@ -60,14 +60,18 @@ def _long_string(n: int) -> np.ndarray:
 
 
 @pytest.mark.parametrize("engine", _engines())
-def test_a_seed_grown_in_a_long_string_stops_at_the_deadline(engine):
-    codes = _long_string(1 << 21)
+@pytest.mark.parametrize("length, seconds, slack", [
+    (1 << 21, 0.2, SLACK),  # a seed grown in a long string
+    (motifs.CLOCKED_SYMBOLS - 1, 0.05, SHORT_SLACK),  # a string just under the clocked length
+], ids=["long string", "just under the clocked length"])
+def test_a_string_s_search_stops_at_the_deadline(engine, length, seconds, slack):
+    codes = _long_string(length)
     conf = ContentConf(engine=engine)
     motifs.find_motifs([codes[:2000]], conf)  # (numba: compiled, or read from its cache)
     begun = time.monotonic()
     with pytest.raises(BoundReached, match="max_seconds"):
-        motifs.find_motifs([codes], conf, Budget(seconds=0.2))
-    assert time.monotonic() - begun < 0.2 + SLACK
+        motifs.find_motifs([codes], conf, Budget(seconds=seconds))
+    assert time.monotonic() - begun < seconds + slack
 
 
 @pytest.mark.parametrize("engine", _engines())
@@ -109,17 +113,6 @@ def test_a_long_string_s_single_seed_stops_too(engine):
         motifs.grow(codes, seed, starts, rate, 200, conf, seed_only=True,
                     clock=Budget(seconds=0.2))
     assert time.monotonic() - begun < 0.2 + SLACK
-
-
-@pytest.mark.parametrize("engine", _engines())
-def test_a_string_just_under_the_clocked_length_stops_at_the_deadline(engine):
-    codes = _long_string(motifs.CLOCKED_SYMBOLS - 1)
-    conf = ContentConf(engine=engine)
-    motifs.find_motifs([codes[:2000]], conf)  # (numba: compiled, or read from its cache)
-    begun = time.monotonic()
-    with pytest.raises(BoundReached, match="max_seconds"):
-        motifs.find_motifs([codes], conf, Budget(seconds=0.05))
-    assert time.monotonic() - begun < 0.05 + SHORT_SLACK
 
 
 def _expired() -> Budget:
