@@ -31,7 +31,7 @@ from psgs.induce.synthetic import generate
 
 SLACK = 1.0
 #: past the deadline, a pass over 2^19 symbols is about a millisecond: the slack of the
-#: strings under the clocked length is for a loaded machine (the code before took 0.6 s past
+#: strings just under 2^19 symbols is for a loaded machine (the code before took 0.6 s past
 #: it with numpy, 1.8 s compiled)
 SHORT_SLACK = 0.35
 
@@ -62,8 +62,8 @@ def _long_string(n: int) -> np.ndarray:
 @pytest.mark.parametrize("engine", _engines())
 @pytest.mark.parametrize("length, seconds, slack", [
     (1 << 21, 0.2, SLACK),  # a seed grown in a long string
-    (motifs.CLOCKED_SYMBOLS - 1, 0.05, SHORT_SLACK),  # a string just under the clocked length
-], ids=["long string", "just under the clocked length"])
+    ((1 << 19) - 1, 0.05, SHORT_SLACK),  # under what a compiled run once read no alarm in
+], ids=["long string", "just under 2^19 symbols"])
 def test_a_string_s_search_stops_at_the_deadline(engine, length, seconds, slack):
     codes = _long_string(length)
     conf = ContentConf(engine=engine)
@@ -75,14 +75,12 @@ def test_a_string_s_search_stops_at_the_deadline(engine, length, seconds, slack)
 
 
 @pytest.mark.parametrize("engine", _engines())
-def test_a_deadline_not_reached_inside_a_string_changes_nothing(engine, monkeypatch):
+def test_a_deadline_not_reached_inside_a_string_changes_nothing(engine):
     strings, _ = encode(generate(seed=4, noise=0.2, strings=8, unequal_lengths=True)
                         .actiongram)
     codes = [s.codes for s in strings]
     conf = ContentConf(engine=engine)
     plain = motifs.find_motifs(codes, conf)
-    # every string long enough to be read inside its seeds, each a run of its own
-    monkeypatch.setattr(motifs, "CLOCKED_SYMBOLS", 50)
     bounded = motifs.find_motifs(codes, conf, Budget(seconds=1e6))
     assert sum(m is not None for m in plain) >= 3
     for a, b in zip(plain, bounded, strict=True):

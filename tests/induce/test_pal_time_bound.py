@@ -166,25 +166,6 @@ def test_psgs_induce_prints_what_was_found_names_the_bound_and_exits_3(ticking, 
     assert captured.err.endswith("no component was found by then\n")
 
 
-def test_the_compiled_engine_searches_runs_of_strings_alike(monkeypatch):
-    # (numba's loops run as Python where numba is not installed: the same runs either way)
-    strings, _ = encode(generate(seed=2, noise=0.1, strings=8).actiongram)
-    codes = [s.codes for s in strings]
-    conf = ContentConf()
-    whole = motifs._find_all_compiled(codes, conf)
-    calls = []
-    real = motifs._compiled_run
-    monkeypatch.setattr(motifs, "_compiled_run", lambda *a: calls.append(a) or real(*a))
-    monkeypatch.setattr(motifs, "CLOCKED_SYMBOLS", 150)
-    runs = motifs._find_all_compiled(codes, conf, Budget(seconds=1e6))
-    assert len(calls) == 4 and sum(m is not None for m in whole) > 3
-    for a, b in zip(whole, runs, strict=True):
-        assert (a is None) == (b is None)
-        if a is not None:
-            assert np.array_equal(a.motif, b.motif) and np.array_equal(a.starts, b.starts)
-            assert a.significance == b.significance
-
-
 def test_the_compiled_pairs_come_a_block_of_rows_at_a_time_alike(monkeypatch):
     rng = np.random.default_rng(0)
     lists = []

@@ -200,12 +200,11 @@ def find_motifs(strings: list[np.ndarray], conf: ContentConf, clock: Budget = NO
                 ) -> list[Motif | None]:
     """:func:`find_motif` of every string, by the engine ``conf.engine`` chooses.
 
-    The compiled engine searches every string in one call (with a deadline on ``clock``,
-    one call per run of strings of :data:`CLOCKED_SYMBOLS`, the clock read between them);
-    a string where it meets a chance level too close to a boundary to decide in its own
-    floats (see :mod:`psgs.induce.pal._motifs_jit`) is searched here again. ``clock`` raises
+    The compiled engine searches every string in one call; a string where it meets a chance
+    level too close to a boundary to decide in its own floats (see
+    :mod:`psgs.induce.pal._motifs_jit`) is searched here again. ``clock`` raises
     :class:`~psgs.errors.BoundReached` past its deadline, also inside a string's seeds
-    (numpy: before each growth step and each column of a scan; compiled: the run's loops
+    (numpy: before each growth step and each column of a scan; compiled: the call's loops
     read an :func:`~psgs.induce.pal._alarm.alarm`), so that a seed grown in a long string
     is no unit the bound waits for.
     """
@@ -218,36 +217,15 @@ def _find_each(strings: list[np.ndarray], conf: ContentConf, clock: Budget = NO_
     return [find_motif(codes, conf, clock) for codes in strings]
 
 
-#: With a deadline, the compiled engine searches runs of strings of about this many symbols
-#: (a string longer is a run alone), reading the clock between them. Each string's search
-#: is the same in any run. How long a run takes depends on what repeats in it, not only on
-#: its length (a seed grown in 2^19 - 1 symbols of a repeating pattern: 1.9 s with either
-#: engine, a pass over the string for each column of each growth step), so every run with a
-#: deadline is also stopped inside, by its alarm.
-CLOCKED_SYMBOLS = 1 << 19
-
-
 def _find_all_compiled(strings: list[np.ndarray], conf: ContentConf, clock: Budget = NO_BOUND
                        ) -> list[Motif | None]:
-    """The compiled engine: every string in one call, or a call per run of strings when
-    ``clock`` has a deadline (see :func:`find_motifs`)."""
-    if clock.deadline is None:
-        return _compiled_run(strings, conf, clock)
-    out: list[Motif | None] = []
-    first, held = 0, 0
-    for i, codes in enumerate(strings):
-        held += len(codes)
-        if held >= CLOCKED_SYMBOLS or i == len(strings) - 1:
-            clock.check()
-            out.extend(_compiled_run(strings[first:i + 1], conf, clock))
-            first, held = i + 1, 0
-    return out
-
-
-def _compiled_run(strings: list[np.ndarray], conf: ContentConf, clock: Budget
-                  ) -> list[Motif | None]:
-    """One compiled call searching ``strings``, stopped at ``clock``'s deadline inside the
-    call too (:class:`~psgs.errors.BoundReached`); a flag never set changes nothing."""
+    """The compiled engine: every string in one call (see :func:`find_motifs`), stopped at
+    ``clock``'s deadline inside the call (:class:`~psgs.errors.BoundReached`): its loops read
+    an alarm between strings and seeds and at each growth step and column, since how long a
+    string takes depends on what repeats in it, not only on its length (a seed grown in
+    2^19 - 1 symbols of a repeating pattern: 1.9 s, a pass over the string for each column of
+    each growth step). A flag never set changes nothing."""
+    clock.check()
     from . import _motifs_jit as jit
 
     count = len(strings)
