@@ -97,18 +97,22 @@ def disjoint_flags(lo, hi, bounds):
 
 
 @_jit
-def synchronised_rows(lo, hi, bounds, disjoint, first, last, fraction, min_copies):
+def synchronised_rows(lo, hi, bounds, disjoint, first, last, fraction, min_copies, stop):
     """Which pairs (i < j) of the copy lists ``(lo, hi)[bounds[i]:bounds[i + 1]]`` (start and
     end times) are synchronised, for the rows ``i`` from ``first`` to ``last - 1`` (row ``i``
     at ``i - first``, filled right of the diagonal); ``disjoint`` from :func:`disjoint_flags`.
     A block of rows a call: the table is the block's rows by every candidate (every row at
-    once would be the candidates squared), and a caller with a deadline reads its clock
-    between blocks."""
+    once would be the candidates squared). ``stop`` (a one-byte flag, see
+    :func:`psgs.induce.pal._alarm.alarm`) is read before each pair: once it is set the call
+    returns with the rest of the table left False, and the caller, reading the flag after
+    it, keeps none of it (a block is some 2^20 pair tests, seconds for long copy lists)."""
     count = len(bounds) - 1
     out = np.zeros((last - first, count), dtype=np.bool_)
     for i in range(first, last):
         a, b = bounds[i], bounds[i + 1]
         for j in range(i + 1, count):
+            if stop[0]:
+                return out
             c, d = bounds[j], bounds[j + 1]
             out[i - first, j] = _pair(lo[a:b], hi[a:b], lo[c:d], hi[c:d], disjoint[i],
                                       disjoint[j], fraction, min_copies)

@@ -11,6 +11,8 @@ import numpy as np
 
 from ...analysis import reachable
 from ..._foundation.engines import select
+from ...errors import BoundReached
+from ._alarm import alarm
 from .conf import NO_BOUND
 from .motifs import Timed, grow, locate_copies
 from .statistics import log10_binom_sf, scan_threshold
@@ -50,7 +52,14 @@ def synchronised(a: np.ndarray, b: np.ndarray, fraction: float, min_copies: int)
     """
     if len(a) == 0 or len(b) == 0:
         return False
-    if _disjoint(a) and _disjoint(b):
+    return _synchronised(a, b, _disjoint(a) and _disjoint(b), fraction, min_copies)
+
+
+def _synchronised(a: np.ndarray, b: np.ndarray, disjoint: bool, fraction: float,
+                  min_copies: int) -> bool:
+    """:func:`synchronised` of two lists of copies (neither empty), ``disjoint`` when both
+    are :func:`_disjoint` (known beforehand: a row of pair tests reads each list's once)."""
+    if disjoint:
         both, clusters = _shared_clusters(a, b)
     else:
         held = copy_clusters([a, b])
@@ -100,13 +109,27 @@ def pair_blocks(lists: list[np.ndarray], conf: ContentConf, clock: Budget = NO_B
     return blocks(lists, conf.sync_fraction, conf.min_copies, clock)
 
 
+#: numpy's engine reads the clock before each this many pair tests of a row (some 30 µs a
+#: test: a row of 100,000 candidates would be 3 s between two readings)
+PAIRS_CLOCKED = 1 << 10
+
+
 def _pairs_each(lists: list[np.ndarray], fraction: float, copies: int,
                 clock: Budget = NO_BOUND) -> Iterator[tuple[list[int], list[int]]]:
-    """numpy's engine: :func:`synchronised` on every pair, a row a block."""
-    for i in range(len(lists)):
-        clock.check()
-        partners = [j for j in range(i + 1, len(lists))
-                    if synchronised(lists[i], lists[j], fraction, copies)]
+    """numpy's engine: :func:`synchronised` on every pair, a row a block, the clock read
+    before each :data:`PAIRS_CLOCKED` pairs of a row."""
+    count = len(lists)
+    # each list's disjointness, once (not once a pair: a third of the tests' time)
+    disjoint = [bool(len(iv)) and _disjoint(iv) for iv in lists]
+    for i in range(count):
+        partners: list[int] = []
+        a = lists[i]
+        for first in range(i + 1, max(count, i + 2), PAIRS_CLOCKED):
+            clock.check()
+            if len(a):
+                partners += [j for j in range(first, min(first + PAIRS_CLOCKED, count))
+                             if len(lists[j]) and _synchronised(
+                                 a, lists[j], disjoint[i] and disjoint[j], fraction, copies)]
         if partners:
             yield [i] * len(partners), partners
 
@@ -123,7 +146,8 @@ PAIRS_HANDED = 1 << 16
 
 def _pairs_compiled(lists: list[np.ndarray], fraction: float, copies: int,
                     clock: Budget = NO_BOUND) -> Iterator[tuple[list[int], list[int]]]:
-    """The compiled engine: a call per block of rows, the clock read between them."""
+    """The compiled engine: a call per block of rows, the clock read between them and an
+    :func:`~psgs.induce.pal._alarm.alarm` of it before each pair inside them."""
     from . import _pairs_jit as jit
 
     bounds = np.zeros(len(lists) + 1, dtype=np.int64)
@@ -134,16 +158,22 @@ def _pairs_compiled(lists: list[np.ndarray], fraction: float, copies: int,
     disjoint = jit.disjoint_flags(lo, hi, bounds)
     count = len(lists)
     rows = max(1, PAIRS_PER_CALL // max(count, 1))
-    for first in range(0, count, rows):
-        clock.check()
-        last = min(first + rows, count)
-        # (the block's table is let go before the next block's is made)
-        at, partners = np.nonzero(jit.synchronised_rows(lo, hi, bounds, disjoint, first, last,
-                                                        float(fraction), int(copies)))
-        # as Python ints a pair takes some 70 bytes: handed on a part of the block at a time
-        for part in range(0, len(at), PAIRS_HANDED):
-            yield ((at[part:part + PAIRS_HANDED] + first).tolist(),
-                   partners[part:part + PAIRS_HANDED].tolist())
+    with alarm(clock) as stop:
+        for first in range(0, count, rows):
+            clock.check()
+            last = min(first + rows, count)
+            # (the block's table is let go before the next block's is made)
+            table = jit.synchronised_rows(lo, hi, bounds, disjoint, first, last,
+                                          float(fraction), int(copies), stop)
+            if stop[0]:  # the deadline came inside the block: its table is not whole
+                raise BoundReached("max_seconds")
+            at, partners = np.nonzero(table)
+            del table
+            # as Python ints a pair takes some 70 bytes: handed on a part of the block at a
+            # time
+            for part in range(0, len(at), PAIRS_HANDED):
+                yield ((at[part:part + PAIRS_HANDED] + first).tolist(),
+                       partners[part:part + PAIRS_HANDED].tolist())
 
 
 def _disjoint(spans: np.ndarray) -> bool:
@@ -411,13 +441,35 @@ class _Offsets:
         return self.string.ends[self.index] - self.origin
 
 
-def pooled_pattern(string: Timed, vote: Vote) -> tuple[int, ...]:
+def member_votes(strings: list[Timed], members, windows: np.ndarray,
+                 clock: Budget = NO_BOUND) -> dict[int, Vote]:
+    """:func:`vote` of each of ``members`` in ``windows``, in their order, those with none (no
+    window holds a symbol of theirs) left out; ``clock`` read before each member.
+
+    Examples
+    --------
+    >>> string = Timed.from_codes(np.array([0, 1, 2, 0, 1, 2, 3]), np.ones(7), 0.0)
+    >>> other = Timed.from_codes(np.array([4, 5]), np.ones(2), 20.0)
+    >>> votes = member_votes([string, other], [1, 0], np.array([[0.0, 3.0], [3.0, 6.0]]))
+    >>> list(votes), votes[0].pattern
+    ([0], (0, 1, 2))
+    """
+    out = {}
+    for i in members:
+        clock.check()
+        if (v := vote(strings[i], windows)) is not None:
+            out[i] = v
+    return out
+
+
+def pooled_pattern(string: Timed, vote: Vote, clock: Budget = NO_BOUND) -> tuple[int, ...]:
     """The plurality pattern over all of a member's copies, damaged boundaries included.
 
     ``vote.pattern`` reads only the copies of the common length; a window a
     little too short or long for a copy (its boundary set by copies that noise
     damaged) still holds that copy, and it votes here too (see
-    :func:`_aligned`), ties going to the symbol seen first in time.
+    :func:`_aligned`), ties going to the symbol seen first in time. ``clock`` is read
+    between the passes over the copies (:func:`_aligned`'s a part of the copies at a time).
     """
     spans = vote.bounds
     length = len(vote.pattern)
@@ -428,8 +480,9 @@ def pooled_pattern(string: Timed, vote: Vote) -> tuple[int, ...]:
     same = string.codes[full[:, 0][:, None] + np.arange(length)]
     rows = np.concatenate((np.flatnonzero(spans[:, 1] - spans[:, 0] == length),
                            np.flatnonzero(spans[:, 1] - spans[:, 0] != length)))
+    clock.check()
     voters = np.concatenate((same, _aligned(string.codes, odd[:, 0], odd[:, 1],
-                                            list(vote.pattern))))
+                                            list(vote.pattern), clock)))
     voters = voters[np.argsort(rows, kind="stable")]  # in time order, for the ties
     return tuple(_plurality(voters[voters[:, 0] >= 0])[0])
 
@@ -447,7 +500,29 @@ def _plurality(copies: np.ndarray) -> tuple[list[int], np.ndarray]:
     return copies[first, np.arange(length)].tolist(), top / rows
 
 
-def _aligned(codes: np.ndarray, lo: np.ndarray, hi: np.ndarray, pattern: list[int]) -> np.ndarray:
+#: :func:`_aligned` reads the copies a part at a time, each part's table of reads some this
+#: many symbols (copies x (2 * reach + 1) starts x the pattern's length: read whole, 21,645
+#: copies of 64 symbols peaked at 865 MB)
+ALIGNED_SYMBOLS = 1 << 20
+
+
+def _aligned(codes: np.ndarray, lo: np.ndarray, hi: np.ndarray, pattern: list[int],
+             clock: Budget = NO_BOUND) -> np.ndarray:
+    """:func:`_aligned_part` of the copies a part at a time (each copy's read is its own),
+    ``clock`` read before each part."""
+    part = max(1, ALIGNED_SYMBOLS // ((2 * max(1, len(pattern) // 4) + 1) * len(pattern)))
+    if len(lo) <= part:
+        return _aligned_part(codes, lo, hi, pattern)
+    out = []
+    for first in range(0, len(lo), part):
+        clock.check()
+        out.append(_aligned_part(codes, lo[first:first + part], hi[first:first + part],
+                                 pattern))
+    return np.concatenate(out)
+
+
+def _aligned_part(codes: np.ndarray, lo: np.ndarray, hi: np.ndarray, pattern: list[int]
+                  ) -> np.ndarray:
     """Copies of another length than the pattern's, read at the pattern's length.
 
     A window a little too short or too long for a copy (its boundary set by

@@ -16,33 +16,43 @@ unconserved end columns, here deciding whether to add one).
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
+from .conf import NO_BOUND
 from .motifs import Timed
 from .edges import trim
-from .pooling import Vote, vote
+from .pooling import Vote, member_votes
+
+if TYPE_CHECKING:
+    from ...budget import Budget
 
 __all__: list[str] = []  # private: content.py is the caller
 
 
 def widen(strings: list[Timed], votes: dict[int, Vote], windows: np.ndarray,
-          edge_share: float, alpha: float, longest: int) -> tuple[np.ndarray, dict[int, Vote]]:
+          edge_share: float, alpha: float, longest: int, clock: Budget = NO_BOUND
+          ) -> tuple[np.ndarray, dict[int, Vote]]:
     """``windows`` and ``votes`` widened while the column beyond is conserved in the group.
 
     ``votes`` are the members' votes in ``windows``; a widening is kept only
     when it lengthens every member's pattern by exactly one column and
     :func:`trim` (with ``edge_share`` and ``alpha``) keeps that column in every member.
     Patterns grow to
-    ``longest`` columns at most.
+    ``longest`` columns at most. ``clock`` is read before each column tried and each
+    member's vote (:class:`~psgs.errors.BoundReached`): a group of thousands of members
+    widened by tens of columns is as many votes.
     """
     for side in ("start", "end"):
         while max(len(v.pattern) for v in votes.values()) < longest:
+            clock.check()
             wider = _one_column(strings, list(votes), windows, side)
             if wider is None:
                 break
-            again = {i: vote(strings[i], wider) for i in votes}
-            if any(v is None or len(v.pattern) != len(votes[i].pattern) + 1
-                   for i, v in again.items()):
+            again = member_votes(strings, votes, wider, clock)
+            if len(again) < len(votes) or any(len(v.pattern) != len(votes[i].pattern) + 1
+                                              for i, v in again.items()):
                 break
             kept = trim(again, edge_share, alpha)
             if side == "start" and any(first > 0 for first, _ in kept.values()):

@@ -1,0 +1,134 @@
+"""max_seconds inside the units of work PAL's loops once ran to their end between two readings
+of the clock.
+
+Each case here is one such unit made long, a deadline well inside it, and the time to the
+raise held to a slack: the compiled synchronisation's block of some 2^20 pair tests (it read
+the clock only between blocks: 1,024 candidates of 1,000 copies were one block of 3 s), a row
+of numpy's pair tests (8,000 partners of 3,000 copies: 1.3 s) and the widening of a large
+group (1,000 members by 30 columns: 2.4 s, no reading at all). The slack is for a loaded
+machine: the cut units take a few hundredths of a second past the deadline here. What reads
+the clock in parts reads the same answer as whole.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import pytest
+
+from psgs.budget import Budget
+from psgs.errors import BoundReached
+from psgs.induce.pal import pooling
+
+SLACK = 0.5
+
+
+def _has_numba() -> bool:
+    try:
+        import numba  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+NEEDS_NUMBA = pytest.mark.skipif(not _has_numba(),
+                                 reason="the compiled engine needs numba (test extra)")
+
+
+def _copies(count: int, offset: float = 0.0) -> np.ndarray:
+    """``count`` disjoint copies of 6 time units, 10 apart, from ``offset``."""
+    starts = np.arange(count) * 10.0 + offset
+    return np.column_stack((starts, starts + 6.0))
+
+
+def _raises_within(run, seconds: float) -> float:
+    """The seconds ``run(Budget(seconds))`` took to raise the bound."""
+    begun = time.monotonic()
+    with pytest.raises(BoundReached, match="max_seconds"):
+        run(Budget(seconds=seconds))
+    return time.monotonic() - begun
+
+
+@NEEDS_NUMBA
+def test_a_compiled_block_of_pair_tests_stops_at_the_deadline():
+    # 1,024 candidates are one block (2^20 pairs); a pair of 1,000 copies each is some 2,000
+    # steps: 3 s for the block (the same array many times: the lists' memory is one's)
+    lists = [_copies(1000, offset) for offset in (0.0, 1.5, 3.0, 4.5)] * 256
+    assert len(lists) ** 2 == pooling.PAIRS_PER_CALL  # one block
+    list(pooling._pairs_compiled(lists[:4], 0.5, 3))  # (compiled, or read from the cache)
+    took = _raises_within(lambda clock: list(pooling._pairs_compiled(lists, 0.5, 3, clock)),
+                          0.1)
+    assert took < 0.1 + SLACK
+
+
+def test_a_row_of_numpy_s_pair_tests_reads_the_clock():
+    # row 0 tests 8,000 partners of 3,000 copies, some 160 µs each: 1.3 s
+    lists = [_copies(3000)] + [_copies(3000, 1.5)] * 8000
+    took = _raises_within(lambda clock: next(pooling._pairs_each(lists, 0.5, 3, clock)), 0.05)
+    assert took < 0.05 + SLACK
+
+
+def test_numpy_s_rows_read_a_part_at_a_time_are_the_same_pairs(monkeypatch):
+    rng = np.random.default_rng(1)
+    lists = [_copies(12, float(offset)) for offset in rng.uniform(0, 8, 40)]
+    whole = list(pooling._pairs_each(lists, 0.5, 3))
+    monkeypatch.setattr(pooling, "PAIRS_CLOCKED", 3)
+    assert list(pooling._pairs_each(lists, 0.5, 3, Budget(seconds=1e6))) == whole
+    assert sum(len(rows) for rows, _ in whole) > 100
+
+
+def _widening_case(members: int):
+    """``members`` strings (the protocol's 4 patterned strings of 40-symbol templates, over
+    and over) voted in the true copy windows cut short by 15 columns a side."""
+    from psgs.induce.pal.learner import encode
+    from psgs.induce.synthetic import generate
+
+    case = generate(seed=3, template_length=40, copies=10)
+    strings, _ = encode(case.actiongram)
+    patterned = [strings[case.actiongram.names.index(n)] for n in case.components]
+    many = (patterned * members)[:members]
+    true = np.asarray(case.windows, dtype=float)
+    short = true + np.array([15.0, -15.0])
+    return many, pooling.member_votes(many, range(members), short), short, true
+
+
+def test_widening_a_large_group_reads_the_clock():
+    from psgs.induce.pal.widening import widen
+
+    # 1,000 members widened by 30 columns: 30,000 votes, 2.4 s
+    strings, votes, short, true = _widening_case(1000)
+    took = _raises_within(lambda clock: widen(strings, votes, short, 0.5, 1e-3, 64, clock),
+                          0.1)
+    assert took < 0.1 + SLACK
+    # a deadline not reached: the same windows and votes as without one
+    few, votes, short, true = _widening_case(8)
+    windows, plain = widen(few, votes, short, 0.5, 1e-3, 64)
+    again, bounded = widen(few, votes, short, 0.5, 1e-3, 64, Budget(seconds=1e6))
+    assert np.array_equal(windows, true) and np.array_equal(again, windows)
+    assert [v.pattern for v in plain.values()] == [v.pattern for v in bounded.values()]
+
+
+def test_a_member_s_pooled_pattern_reads_its_copies_a_part_at_a_time(monkeypatch):
+    from psgs.induce.pal.motifs import Timed
+
+    # a figure of 64 symbols 2,000 times, 10% noise; every third window one symbol long, so
+    # 667 copies are read again at the pattern's length (more than one part of 2^20 symbols)
+    rng = np.random.default_rng(0)
+    figure = np.concatenate((rng.permutation(100)[:64], [100, 101]))
+    codes = np.tile(figure, 2000)
+    noise = rng.random(len(codes)) < 0.1
+    codes[noise] = rng.integers(0, 102, int(noise.sum()))
+    string = Timed.from_codes(codes, np.ones(len(codes)), 0.0)
+    starts = np.arange(2000) * 66.0
+    windows = np.column_stack((starts, starts + 64.0))
+    windows[::3, 1] += 1.0
+    v = pooling.vote(string, windows)
+    parts = pooling.pooled_pattern(string, v, Budget(seconds=1e6))
+    monkeypatch.setattr(pooling, "ALIGNED_SYMBOLS", 1 << 40)  # every copy in one part
+    assert pooling.pooled_pattern(string, v) == parts
+    assert parts == tuple(figure[:64].tolist())
+    expired = Budget(seconds=1e-3)
+    expired.deadline -= 1.0
+    with pytest.raises(BoundReached, match="max_seconds"):
+        pooling.pooled_pattern(string, v, expired)
