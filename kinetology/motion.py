@@ -21,6 +21,8 @@ import numpy as np
 
 from psgs.errors import FormatError, NotFound, ValidationError
 
+from ._values_frozen import frozen_meta, read_only, thawed
+
 __all__ = ["MotionFormatError", "Joint", "Skeleton", "Motion", "AXES", "FRAME_RATE_RANGE",
            "check_number", "MIN_UNWRAP", "check_unwrap", "real_array", "as_path", "shown",
            "counted", "channel_names", "check_motion", "rebuilt"]
@@ -169,8 +171,10 @@ class _Owned:
     """A new float array handed to :class:`Motion` to keep, not copy: only for an array that
     nothing else holds (a reader's, just filled), since the motion then makes it read-only in
     place. Anything else (a view of another array, another type) is copied as any value is.
-    Private: a caller that kept the array (or a view of it) could change the motion through it,
-    so only the readers, which hold their array nowhere else, hand one over.
+    Private: a caller that kept the array (or a view of it) could change the motion through it
+    (the array owning its memory can be made writeable again), so only the readers, which hold
+    their array nowhere else, hand one over. It pickles as its array, checked again when read
+    back (a copied array is no longer one nothing else holds).
 
     Parameters
     ----------
@@ -194,19 +198,24 @@ class _Owned:
                  and array.base is None and array.flags.c_contiguous)
         self.array = array if owned else real_array(array)
 
+    def __reduce__(self) -> tuple:
+        return _Owned, (self.array,)
+
 
 def rebuilt(value) -> tuple:
-    """The ``__reduce__`` of a frozen dataclass keeping a read-only mapping (a motion's
-    ``meta``), which :mod:`pickle` and :func:`copy.deepcopy` cannot take: its class and its
-    constructor's arguments, each mappingproxy as a ``dict``. The constructor checks them and
-    makes them read-only again; what the value caches (a motion's columns) is left out.
+    """The ``__reduce__`` of a frozen dataclass keeping read-only mappings (an ASF skeleton's
+    ``dofs``, a segmentation's ``actuators``), which :mod:`pickle` and :func:`copy.deepcopy`
+    cannot take: its class and its constructor's arguments, each mappingproxy field as a
+    ``dict`` (a mappingproxy inside one is not thawed: a motion's ``meta``, which may hold
+    some, has its own). The constructor checks them and makes them read-only again.
 
     Examples
     --------
     >>> import pickle
-    >>> m = Motion(np.zeros((2, 1)), ("knee.rx",), 120.0, meta={"format": "bvh"})
-    >>> rebuilt(m)[1][5], pickle.loads(pickle.dumps(m)).values.flags.writeable
-    ({'format': 'bvh'}, False)
+    >>> from kinetology.asf import AsfSkeleton
+    >>> bones = AsfSkeleton({"root": ("tx",)}, Skeleton((Joint("root", None, (0, 0, 0)),)), 1.0)
+    >>> rebuilt(bones)[1][0], pickle.loads(pickle.dumps(bones)) == bones
+    ({'root': ('tx',)}, True)
     """
     return type(value), tuple(dict(v) if isinstance(v, MappingProxyType) else v
                               for v in (getattr(value, f.name) for f in fields(value) if f.init))
@@ -216,7 +225,11 @@ def rebuilt(value) -> tuple:
 class Motion:
     """Joint-angle motion: ``values[frame, channel]`` in degrees, read-only.
 
-    Frozen: ``values`` is a read-only copy and ``meta`` a read-only mapping.
+    Frozen: ``values`` is read-only (a copy of what is given; a reader's own array, uncopied),
+    and neither it nor its ``base`` lets numpy make it writeable again (``setflags`` refuses);
+    ``meta`` is a read-only mapping whose values are frozen too (lists become tuples, dicts
+    read-only mappings, arrays read-only copies). A motion pickles and copies to an equal one,
+    as frozen.
 
     Parameters
     ----------
@@ -232,7 +245,9 @@ class Motion:
     source : str, default "<motion>"
         Where the motion came from (named in errors and in ``repr``).
     meta : dict, optional
-        Anything else: the file format, the truth of a synthetic motion, ...
+        Anything else: the file format, the truth of a synthetic motion, ... Kept frozen at
+        every depth: a mapping in it becomes a read-only mapping, a list a tuple, a set a
+        frozenset, an array a read-only copy; other values are kept as given.
 
     Raises
     ------
@@ -240,8 +255,8 @@ class Motion:
         (a :class:`psgs.errors.ValidationError`) When ``values`` is not a two-dimensional array
         of real numbers (complex, bool, strings and objects are refused), its columns and
         ``channels`` disagree, names repeat or are not strings, a value is not finite, the
-        frame rate is not a positive number, or ``skeleton``, ``source`` or ``meta`` is not of
-        its type.
+        frame rate is not a positive number, ``skeleton``, ``source`` or ``meta`` is not of
+        its type, or ``meta`` holds itself.
 
     Examples
     --------
@@ -254,6 +269,13 @@ class Motion:
     Traceback (most recent call last):
     ...
     psgs.errors.ValidationError: 1 channel names for 2 columns
+    >>> cut = Motion(np.zeros((3, 1)), ("knee.rx",), 120.0, meta={"cut": [0.5, 2.0]})
+    >>> cut.meta["cut"]
+    (0.5, 2.0)
+    >>> cut.values.setflags(write=True)
+    Traceback (most recent call last):
+    ...
+    ValueError: cannot set WRITEABLE flag to True of this array
     """
 
     values: np.ndarray
@@ -296,16 +318,15 @@ class Motion:
         meta = {} if self.meta is None else self.meta
         if not isinstance(meta, Mapping):
             raise ValidationError(f"meta must be a mapping, not {type(meta).__name__}")
-        values.setflags(write=False)
-        # a view of a read-only array cannot be made writeable again (the array that owns its
-        # memory could be, with setflags): the motion hands out the view, so writing needs a
-        # deliberate values.base.setflags(write=True), not a slip
-        values = values.view()
-        object.__setattr__(self, "values", values)
+        frozen = frozen_meta(meta)
+        # the array owning the memory could be made writeable again by anyone reaching it
+        # through values.base: the motion hands out an array whose base is a holder of it
+        # instead, which numpy cannot make writeable (still the reader's memory, uncopied)
+        object.__setattr__(self, "values", read_only(values))
         object.__setattr__(self, "channels", channels)
         object.__setattr__(self, "frame_rate", rate)
         object.__setattr__(self, "source", os.fspath(self.source))
-        object.__setattr__(self, "meta", MappingProxyType(dict(meta)))
+        object.__setattr__(self, "meta", frozen)
 
     @property
     def frames(self) -> int:
@@ -350,9 +371,12 @@ class Motion:
         """Channels that are angles (axis ``rx``, ``ry`` or ``rz``)."""
         return tuple(c for c in self.channels if c.rsplit(".", 1)[-1] in ("rx", "ry", "rz"))
 
-    # pickle and copy.deepcopy cannot take the read-only meta (a mappingproxy): the motion is
-    # rebuilt by its constructor, which checks the fields and makes them read-only again
-    __reduce__ = rebuilt
+    def __reduce__(self) -> tuple:
+        # pickle and copy.deepcopy cannot take the read-only meta (mappingproxies, at any
+        # depth): the motion is rebuilt by its constructor from its fields, meta thawed to
+        # dicts, which checks them and freezes them again; its cached columns are left out
+        return Motion, (self.values, self.channels, self.frame_rate, self.skeleton, self.source,
+                        thawed(self.meta))
 
     def __repr__(self) -> str:
         return (f"Motion({self.source!r}, {counted(self.frames, 'frame')} x "
