@@ -117,6 +117,13 @@ class Joint:
     axis: tuple[float, float, float] = (0.0, 0.0, 0.0)
     end_site: bool = False
 
+    def __post_init__(self) -> None:
+        # a list or an array given would stay changeable inside the frozen joint
+        for name in ("offset", "channels", "axis"):
+            given = getattr(self, name)
+            if not isinstance(given, (tuple, str)) and isinstance(given, Iterable):
+                object.__setattr__(self, name, tuple(given))
+
 
 @dataclass(frozen=True, slots=True)
 class Skeleton:
@@ -149,6 +156,8 @@ class Skeleton:
     length_unit: str = "file units"
 
     def __post_init__(self) -> None:
+        if not isinstance(self.joints, tuple) and isinstance(self.joints, Iterable):
+            object.__setattr__(self, "joints", tuple(self.joints))  # a list would stay changeable
         for index, joint in enumerate(self.joints):
             if joint.parent is not None and not 0 <= joint.parent < index:
                 raise ValidationError(f"joint {joint.name!r} has parent {joint.parent}, which does "

@@ -1,6 +1,6 @@
 """A motion holds nothing a user can change: its values cannot be made writeable through any
 view or ``base`` (and a reader's array is still not copied), its ``meta`` is read-only at every
-depth; and all of it survives pickle and copy, as frozen."""
+depth, its skeleton's joints are tuples; and all of it survives pickle and copy, as frozen."""
 
 from __future__ import annotations
 
@@ -17,7 +17,7 @@ from numpy.lib.stride_tricks import as_strided
 
 import kinetology
 from kinetology._file_motion import build_motion
-from kinetology.motion import _Owned
+from kinetology.motion import Joint, Skeleton, _Owned
 from kinetology_fixtures import MOCAP, needs_mocap
 from psgs.errors import ValidationError
 
@@ -170,6 +170,20 @@ def test_a_frozen_array_handed_on_is_shared_not_copied_again():
                                meta={"frames": np.arange(3.0)})
     part = motion.select(["b.rx"])  # hands its meta on
     assert part.meta["frames"] is motion.meta["frames"]
+
+
+def test_a_skeleton_given_lists_holds_tuples():
+    joints = [Joint("hip", None, [0, 0, 0], ["hip.rx"], "ZYX", np.zeros(3)),
+              Joint("knee", 0, np.array([0.0, -10.0, 0.0]))]
+    skeleton = Skeleton(joints)
+    joints.append(joints[0])
+    assert skeleton.names == ("hip", "knee") and type(skeleton.joints) is tuple
+    hip, knee = skeleton.joints
+    assert hip.offset == (0, 0, 0) and hip.channels == ("hip.rx",) and hip.axis == (0, 0, 0)
+    assert type(knee.offset) is tuple and knee.offset == (0.0, -10.0, 0.0)
+    assert hash(skeleton) == hash(Skeleton(tuple(joints[:2])))  # hashable now lists are gone
+    motion = kinetology.Motion(np.zeros((1, 1)), ("hip.rx",), 30, skeleton)
+    assert pickle.loads(pickle.dumps(motion)).skeleton == skeleton
 
 
 @pytest.mark.parametrize("protocol", range(pickle.HIGHEST_PROTOCOL + 1))
