@@ -29,7 +29,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._chance_jit import _MARGIN, _jit, _log10_binom_sf, _log10_poisson_sf, _threshold
-from ._counting_jit import _digrams, _sorted
+from ._counting_jit import _digrams, _runs, _sorted
 
 __all__: list[str] = []  # private: the PAL parameter ``engine`` is the interface
 
@@ -282,7 +282,11 @@ def _search(codes, size, p, lp, lq, log_distinct, min_copies, seeds, conserve,
     keys = np.empty(n - 1, dtype=np.int64)
     for j in range(n - 1):
         keys[j] = codes[j] * size + codes[j + 1]
-    order, begin, counts = _digrams(keys, size * size)
+    if stop[0]:
+        return STOPPED, 0, 0, 0
+    order, begin, counts = _digram_groups(keys, size * size, stop)
+    if stop[0]:
+        return STOPPED, 0, 0, 0
     first = np.empty(len(counts), dtype=np.int64)
     for g in range(len(counts)):
         first[g] = order[begin[g]]
@@ -297,6 +301,8 @@ def _search(codes, size, p, lp, lq, log_distinct, min_copies, seeds, conserve,
     status = NONE
     best_len, best_copies, best_threshold, best_sig = 0, 0, 0, 0.0
     while True:
+        if stop[0]:  # (a pass over the digrams below, as many as the string's symbols)
+            return STOPPED, 0, 0, 0
         # the next seed: most frequent first, the earlier first occurrence among equals
         gi = -1
         for g in range(len(counts)):
@@ -347,6 +353,63 @@ def _search(codes, size, p, lp, lq, log_distinct, min_copies, seeds, conserve,
         motif_out[:length] = motif
         starts_out[:copies] = where
     return status, best_len, best_copies, best_threshold
+
+
+#: the bits of the keys' digit each pass of :func:`_digram_groups`'s radix sort places
+_DIGIT = 16
+
+
+@_jit
+def _digram_groups(keys, bins, stop):
+    """``_counting_jit._digrams(keys, bins)`` (positions by key, each key's in position
+    order; where each key's group begins; its count), reading ``stop`` in its passes.
+
+    A small alphabet's keys are counted there (three passes); a large one's are sorted
+    here by a stable radix sort, a pass a :data:`_DIGIT`-bit digit from the lowest (3
+    passes for keys below 2^48, where the merge sort there takes a pass a doubling: 24 for
+    10^7 keys, seconds that read no flag). A stable sort has one answer, so the groups are
+    the same. Once ``stop`` is set the arrays returned are not whole (the caller reads it).
+    """
+    m = len(keys)
+    if bins <= 4 * m + 4096:
+        return _digrams(keys, bins)
+    order = np.arange(m)
+    spare = np.empty(m, dtype=np.int64)
+    at = np.empty(1 << _DIGIT, dtype=np.int64)
+    mask = (1 << _DIGIT) - 1
+    shift = 0
+    while shift < 63 and (bins - 1) >> shift:  # (a shift of 64 bits is no shift in C)
+        if stop[0]:
+            return order, np.zeros(1, dtype=np.int64), np.zeros(0, dtype=np.int64)
+        at[:] = 0
+        for j in range(m):
+            at[(keys[j] >> shift) & mask] += 1
+        total = 0
+        for d in range(len(at)):  # each digit's first place
+            count = at[d]
+            at[d] = total
+            total += count
+        for j in range(m):
+            if not j & mask and stop[0]:  # (a scattered pass: 0.3 s at 10^7 keys)
+                return order, np.zeros(1, dtype=np.int64), np.zeros(0, dtype=np.int64)
+            k = order[j]
+            d = (keys[k] >> shift) & mask
+            spare[at[d]] = k
+            at[d] += 1
+        order, spare = spare, order
+        shift += _DIGIT
+    groups = 0
+    for j in range(m):
+        if j == 0 or keys[order[j]] != keys[order[j - 1]]:
+            groups += 1
+    begin = np.empty(groups + 1, dtype=np.int64)
+    g = 0
+    for j in range(m):
+        if j == 0 or keys[order[j]] != keys[order[j - 1]]:
+            begin[g] = j
+            g += 1
+    begin[groups] = m
+    return order, begin, _runs(begin)
 
 
 @_jit

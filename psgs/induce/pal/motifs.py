@@ -334,7 +334,8 @@ def find_motif(codes: np.ndarray, conf: ContentConf, clock: Budget = NO_BOUND
     Up to ``conf.seeds`` of the most frequent digrams are grown in turn (a
     burst of noise can stop one seed early); the most significant motif wins,
     the earlier seed among equals. ``clock`` is read before each seed and inside each seed's
-    growth too (see :func:`grow`).
+    growth too (see :func:`grow`), and between the passes over the string before its first
+    seed (its symbols and digrams counted).
     """
     n = len(codes)
     if n < 2 * conf.min_copies:
@@ -343,8 +344,14 @@ def find_motif(codes: np.ndarray, conf: ContentConf, clock: Budget = NO_BOUND
     freq = np.bincount(codes, minlength=size) / n
     distinct = int(np.count_nonzero(freq))
     match_rate = float(np.sum(freq ** 2))
+    clock.check()
     keys = codes[:-1] * size + codes[1:]
-    uniq, first, counts = _digram_counts(keys, size * size)
+    uniq, first, counts = _digram_counts(keys, size * size, clock)
+    # only a digram seen min_copies times is a seed: the others are left out of the sort
+    # (their order, after every seed, is never read)
+    seeded = np.flatnonzero(counts >= conf.min_copies)
+    uniq, first, counts = uniq[seeded], first[seeded], counts[seeded]
+    clock.check()
     order = np.lexsort((first, -counts))
     best: Motif | None = None
     covered: set[int] = set()
@@ -367,14 +374,36 @@ def find_motif(codes: np.ndarray, conf: ContentConf, clock: Budget = NO_BOUND
     return best
 
 
-def _digram_counts(keys: np.ndarray, bins: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The distinct digram keys, where each first occurs, and how often (as ``np.unique``)."""
-    if bins > 4 * len(keys) + 4096:  # a large alphabet: sorting is cheaper than counting
-        return np.unique(keys, return_index=True, return_counts=True)
+def _digram_counts(keys: np.ndarray, bins: int, clock: Budget = NO_BOUND
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The distinct digram keys (``0 <= key < bins``), where each first occurs, and how often
+    (as ``np.unique``); ``clock`` read between the passes over them.
+
+    Examples
+    --------
+    >>> _digram_counts(np.array([5, 2, 5, 7, 2, 5]), 10**12)  # sorted: a large alphabet
+    (array([2, 5, 7]), array([1, 0, 3]), array([2, 3, 1]))
+    >>> _digram_counts(np.array([5, 2, 5, 7, 2, 5]), 8)  # counted
+    (array([2, 5, 7]), array([1, 0, 3]), array([2, 3, 1]))
+    """
+    m = len(keys)
+    if bins > 4 * m + 4096:  # a large alphabet: sorting is cheaper than counting
+        if bins * max(m, 1) > 1 << 62:  # no room for the position beside the key
+            return np.unique(keys, return_index=True, return_counts=True)
+        # each key with its position below it, sorted: the keys in order, each key's
+        # positions in position order (np.unique's stable sort of the keys alone is some
+        # ten times slower, and one call)
+        both = np.sort(keys.astype(np.int64, copy=False) * m + np.arange(m))
+        clock.check()
+        ordered = both // m
+        opens = np.flatnonzero(np.concatenate(([True], ordered[1:] != ordered[:-1])))
+        clock.check()
+        return ordered[opens], both[opens] % m, np.diff(np.append(opens, m))
     counts = np.bincount(keys, minlength=bins)
     uniq = np.flatnonzero(counts)
-    first = np.full(bins, len(keys), dtype=np.int64)
-    np.minimum.at(first, keys, np.arange(len(keys)))
+    clock.check()
+    first = np.full(bins, m, dtype=np.int64)
+    np.minimum.at(first, keys, np.arange(m))
     return uniq, first[uniq], counts[uniq]
 
 
