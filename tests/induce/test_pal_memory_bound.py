@@ -185,3 +185,21 @@ def test_psgs_induce_names_max_bytes_and_exits_3(tmp_path, capsys):
     assert main(["induce", str(path), "--param", "max_bytes=100", "--json"]) == 3
     data = json.loads(capsys.readouterr().out)
     assert data["bound"] == "max_bytes" and data["components"] == []
+
+
+@pytest.mark.parametrize("name", ["max_bytes", "max_seconds"])
+def test_a_bound_of_zero_of_either_sign_is_refused_as_the_number_it_is(name, tmp_path, capsys):
+    # -0.0 is refused as -0.0 (it is no more a bound than 0); the command line reads the
+    # text -0 as the integer 0 (int("-0")), so it is refused as 0, and -0.0 as -0.0
+    for value, shown in [(-0.0, "-0.0"), (0.0, "0.0"), (0, "0")]:
+        with pytest.raises(ValidationError) as refused:
+            PAL(**{name: value})
+        assert str(refused.value) == f"parameter {name} must be > 0, not {shown}"
+        with pytest.raises(ValidationError, match=f"must be > 0, not {shown}$"):
+            MotionPAL(**{name: value})
+    path = tmp_path / "ag.txt"
+    path.write_text(generate(seed=1).actiongram.to_text())
+    for text, shown in [("-0", "0"), ("-0.0", "-0.0"), ("-0e0", "-0.0")]:
+        assert main(["induce", str(path), "--param", f"{name}={text}"]) == 2
+        assert capsys.readouterr().err == (f"psgs: error: parameter {name} must be > 0, "
+                                           f"not {shown}\n")
