@@ -9,6 +9,7 @@ matplotlib is there.
 from __future__ import annotations
 
 import csv
+import os
 import sys
 import time
 from pathlib import Path
@@ -198,8 +199,9 @@ def run_bench_noise(args) -> int:
     Raises
     ------
     ValidationError
-        For an unknown inducer, one given twice, or a ``--csv``/``--plot`` path that
-        cannot be written (checked before the sweep runs).
+        For an unknown inducer, one given twice, a ``--csv``/``--plot`` path that cannot be
+        written, one file named by both, or a ``--plot`` name whose suffix is no picture
+        format of matplotlib's (all checked before the sweep runs).
     PSGSError
         For ``--plot`` without matplotlib.
 
@@ -226,11 +228,18 @@ def run_bench_noise(args) -> int:
     for out in (args.csv, args.plot):  # and on an output path that cannot be written
         if out and (Path(out).is_dir() or not Path(out).resolve().parent.is_dir()):
             raise ValidationError(f"{out}: not a file in an existing directory")
+        if out:
+            _check_writable(out)
+    if args.csv and args.plot and Path(args.csv).resolve() == Path(args.plot).resolve():
+        raise ValidationError(f"--csv and --plot name one file, {args.plot}: the plot would be "
+                              f"written over the table")
     if args.plot:
         try:
             import matplotlib  # noqa: F401
         except ImportError:
             raise PSGSError("--plot needs matplotlib: pip install 'psgs[plot]'") from None
+        # matplotlib refuses a format only when it saves, after every trial has run
+        _check_picture(args.plot)
     began = time.perf_counter()
     rows = noise_sweep(args.levels, args.trials, inducers=inducers, seed=args.seed,
                        variant=_VARIANTS[args.variant], jobs=args.jobs,
@@ -272,6 +281,8 @@ def plot_noise(rows, path: str, title: str = "") -> None:
     ------
     ImportError
         When matplotlib is not installed (the ``plot`` extra).
+    ValidationError
+        For a ``path`` whose suffix is no picture format of matplotlib's (before drawing).
 
     Examples
     --------
@@ -284,6 +295,7 @@ def plot_noise(rows, path: str, title: str = "") -> None:
     """
     import matplotlib
 
+    _check_picture(path)
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
@@ -308,3 +320,36 @@ def plot_noise(rows, path: str, title: str = "") -> None:
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)
+
+
+def _check_writable(path: str) -> None:
+    """ValidationError unless ``path``, in an existing folder, can be written there: the
+    results are written after the sweep, so a folder or a file without write permission
+    failed only once every trial had run."""
+    folder = Path(path).resolve().parent
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise ValidationError(f"{path}: the folder {folder} is not writable")
+    if Path(path).exists() and not os.access(path, os.W_OK):
+        raise ValidationError(f"{path}: the file is there and read-only")
+
+
+def _check_picture(path: str) -> None:
+    """ValidationError unless matplotlib writes a picture in the format of ``path``'s suffix
+    (``.png``, ``.svg``, ``.pdf`` ...; any case). A name without a suffix is refused too:
+    matplotlib would write ``NAME.png`` beside it, not the file named.
+
+    >>> _check_picture("noise.PNG")
+    >>> _check_picture("noise.txt")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: noise.txt: matplotlib cannot write '.txt' pictures; give one of .png, .svg, .pdf, ...
+    """
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    suffix = Path(path).suffix.lower()
+    known = FigureCanvasBase.get_supported_filetypes()
+    if suffix[1:] not in known:
+        first = ["png", "svg", "pdf"]
+        names = ", ".join(f".{n}" for n in first + sorted(set(known) - set(first)))
+        what = f"{suffix!r} pictures" if suffix else "a picture without a suffix"
+        raise ValidationError(f"{path}: matplotlib cannot write {what}; give one of {names}")
