@@ -48,7 +48,7 @@ from pathlib import Path
 
 from .._foundation.files import read_text
 from ..errors import FormatError, NotFound, ValidationError
-from ._checks import _shown, _tuple_of
+from ._checks import _refused, _shown, _tuple_of
 from ._events import GAPS
 from ._extras import default_actuator, normalise_extras
 from ._faults import STRING_CHECKS, refuse, strings_of
@@ -72,7 +72,9 @@ class Actiongram:
     symbols : tuple of tuple of str
         Each actuator's symbol string (no symbol twice in a row).
     segment_durations : tuple of tuple of float
-        Each symbol's duration, positive.
+        Each symbol's duration, positive. Every duration, start time and displacement may be
+        any real number (an int, a float, a Fraction, numpy's integer and floating scalars),
+        kept as the float of its value.
     origins : tuple of float, default () (every string starts at 0)
         The start time of each string.
     segment_displacements : tuple, default ()
@@ -89,7 +91,8 @@ class Actiongram:
     ------
     FormatError
         For an empty or repeated name, a symbol that is not text, a duration that is not
-        positive and finite, or strings and durations of different lengths.
+        positive and finite, or strings and durations of different lengths. Its source is
+        ``"Actiongram"``: no file is at fault (the readers name theirs, with the place).
     ValidationError
         For a field that is no sequence, or has not one entry per string.
 
@@ -124,7 +127,7 @@ class Actiongram:
             raise ValidationError("names, symbols, durations and origins must have one entry "
                                   "per string")
         if not isinstance(self.keep_repeats, bool):
-            raise FormatError(f"keep_repeats must be True or False, not {_shown(self.keep_repeats)}")
+            raise _refused(f"keep_repeats must be True or False, not {_shown(self.keep_repeats)}")
         strings = strings_of(names, symbols, durations, origins, self.keep_repeats)
         # the first fault of the strings' checks, found in the order the readers place it by
         refuse(strings, STRING_CHECKS)
@@ -174,11 +177,11 @@ class Actiongram:
                                       f"not be a {type(given).__name__}")
         for extra in (*durations, *starts):  # in the order given: the same error every run
             if extra not in strings:
-                raise FormatError(f"durations or starts given for unknown string "
+                raise _refused(f"durations or starts given for unknown string "
                                   f"{_shown(extra)}")
         for extra in (*displacements, *actuators):
             if extra not in strings:
-                raise FormatError(f"displacements or actuators given for unknown string "
+                raise _refused(f"displacements or actuators given for unknown string "
                                   f"{_shown(extra)}")
         names, symbol_rows, duration_rows, origins = [], [], [], []
         for name, syms in strings.items():

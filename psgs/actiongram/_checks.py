@@ -6,14 +6,48 @@ Kept below every other module of :mod:`psgs.actiongram`, so that each can import
 from __future__ import annotations
 
 import math
+import numbers
 import re
 
 from .._foundation.text import character_name, finite as _finite, first_unseen
-from ..errors import ValidationError
+from ..errors import FormatError, ValidationError
 
 __all__: list[str] = []  # private helpers
 
 _NUMBER = re.compile(r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?\Z", re.ASCII)
+
+
+#: The source an error of a value made in memory names, where a reader's names its file: there
+#: is no file, line or column to name (the text and JSON readers place the same message in
+#: theirs), so it names what refused the value.
+IN_MEMORY = "Actiongram"
+
+
+def _refused(message: str) -> FormatError:
+    """The FormatError of a value made in memory (a constructor's or from_strings' argument):
+    its source is :data:`IN_MEMORY`, not a file's name.
+
+    >>> str(_refused("string 'a': a duration must be positive and finite, not -1"))
+    "Actiongram: string 'a': a duration must be positive and finite, not -1"
+    """
+    return FormatError(message, source=IN_MEMORY)
+
+
+def _real(value: object) -> bool:
+    """Whether ``value`` is a real number a time or a displacement may be: an int, a float,
+    a Fraction, numpy's integer and floating scalars (:class:`numbers.Real`), but no bool,
+    and no ``numpy.timedelta64``, a Real to numpy whose count would be read without its unit.
+
+    >>> import numpy as np
+    >>> [_real(v) for v in (1, 2.5, np.int64(3), np.float32(0.5), True, 1j, "1")]
+    [True, True, True, True, False, False, False]
+    >>> _real(np.timedelta64(5, "ms"))
+    False
+    """
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        return False
+    kind = getattr(getattr(value, "dtype", None), "kind", None)  # numpy's scalars have one
+    return kind is None or kind in "iuf"
 
 
 def _shown(value: object, limit: int = 40) -> str:
@@ -87,7 +121,7 @@ def _bad_symbol(symbol: object) -> str | None:
 
 
 def _bad_duration(value: object) -> str | None:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
+    if not _real(value):
         return f"a duration must be a number, not {_shown(value)}"
     if not _finite(value) or value <= 0:
         return f"a duration must be positive and finite, not {_shown(value)}"
@@ -95,7 +129,7 @@ def _bad_duration(value: object) -> str | None:
 
 
 def _bad_displacement(value: object) -> str | None:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
+    if not _real(value):
         return f"a displacement must be a number, not {_shown(value)}"
     if not _finite(value):
         return f"a displacement must be finite, not {_shown(value)}"

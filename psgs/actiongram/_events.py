@@ -27,7 +27,7 @@ from pathlib import Path
 from .._foundation.files import read_text
 from .._foundation.text import decimal
 from ..errors import FormatError, ValidationError
-from ._checks import _bad_name, _bad_symbol, _shown
+from ._checks import _bad_name, _bad_symbol, _real, _shown
 
 __all__: list[str] = []  # private: Actiongram.from_events and to_events are the interface
 
@@ -66,7 +66,7 @@ def _text(value: object, what: str, index: int) -> str:
 
 
 def _time(value: object, what: str, index: int) -> float:
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+    if not _real(value):  # a numpy timedelta64 too: its count would be read without its unit
         raise _RowError(index, f"{what} must be a number, not {_shown(value)}", what)
     try:
         number = float(value)

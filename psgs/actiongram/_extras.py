@@ -12,7 +12,7 @@ import re
 from collections.abc import Iterable
 
 from ..errors import FormatError, ValidationError
-from ._checks import _bad_name, _shown, _tuple_of
+from ._checks import _bad_name, _refused, _shown, _tuple_of
 from ._faults import ACTUATOR_CHECKS, DISPLACEMENT_CHECKS, StringFields, refuse
 
 
@@ -111,16 +111,16 @@ def normalise_skeleton(value) -> None:
     for edge in _tuple_of(value.skeleton_edges, "skeleton_edges"):
         if isinstance(edge, (str, bytes)) or not isinstance(edge, Iterable) \
                 or len(tuple(edge)) != 2:
-            raise FormatError(f"a skeleton entry must be (actuator, parent), not {_shown(edge)}")
+            raise _refused(f"a skeleton entry must be (actuator, parent), not {_shown(edge)}")
         child, parent = tuple(edge)
         for joint in (child,) if parent is None else (child, parent):
             problem = _bad_name(joint)
             if problem:
-                raise FormatError(f"skeleton: {problem}")
+                raise _refused(f"skeleton: {problem}")
         if child in parent_of:
-            raise FormatError(f"skeleton: {_shown(child)} is given a parent twice")
+            raise _refused(f"skeleton: {_shown(child)} is given a parent twice")
         if parent == child:
-            raise FormatError(f"skeleton: {_shown(child)} is its own parent")
+            raise _refused(f"skeleton: {_shown(child)} is its own parent")
         parent_of[child] = parent
         edges.append((child, parent))
     rooted: set[str] = set()  # joints whose parent chain is known to end (linear time)
@@ -129,7 +129,7 @@ def normalise_skeleton(value) -> None:
         on_chain = {start}
         while joint is not None and joint in parent_of and joint not in rooted:
             if joint in on_chain:
-                raise FormatError(f"skeleton: the parents of {_shown(start)} form a cycle")
+                raise _refused(f"skeleton: the parents of {_shown(start)} form a cycle")
             chain.append(joint)
             on_chain.add(joint)
             joint = parent_of[joint]

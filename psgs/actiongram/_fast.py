@@ -16,8 +16,8 @@ from collections.abc import Iterable, Mapping, Sequence
 
 import numpy as np
 
-from ..errors import FormatError, ValidationError
-from ._checks import _bad_name, _bad_symbol, _shown, _tuple_of
+from ..errors import ValidationError
+from ._checks import _bad_name, _bad_symbol, _refused, _shown, _tuple_of
 from ._extras import default_actuator, normalise_actuators, normalise_skeleton
 
 __all__: list[str] = []  # private: Actiongram.from_codes is the interface
@@ -71,7 +71,7 @@ def build(cls, codes: Mapping, alphabet: Sequence[str], durations: Mapping | Non
     for sym in alphabet:
         problem = _bad_symbol(sym)
         if problem:
-            raise FormatError(f"alphabet: {problem}")
+            raise _refused(f"alphabet: {problem}")
     rows = {}
     for name, row in codes.items():
         row = np.asarray(row)

@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 
 from ..errors import FormatError
 from ._checks import (_bad_displacement, _bad_duration, _bad_name, _bad_symbol, _finite,
-                      _plain_durations, _shown, _times_problem)
+                      _plain_durations, _real, _refused, _shown, _times_problem)
 from ._segments import _merge, _merge_displacements
 
 __all__: list[str] = []  # private: the constructor and the readers are the interface
@@ -153,8 +153,7 @@ def _durations(s: StringFields) -> Fault | None:
 
 
 def _start(s: StringFields) -> Fault | None:
-    if isinstance(s.start, bool) or not isinstance(s.start, (int, float)) \
-            or not _finite(s.start):
+    if not _real(s.start) or not _finite(s.start):
         return Fault(f"string {_shown(s.name)}: start time must be a finite number, not "
                      f"{_shown(s.start)}", (("start",),))
     return None
@@ -243,10 +242,10 @@ def first_fault(strings: Sequence[StringFields],
 
 def refuse(strings: Sequence[StringFields], checks: tuple[Check, ...]) -> None:
     """Raise the first fault of the ``checks`` as the constructor does: a FormatError with
-    its message alone (the readers place it)."""
+    its message, placed nowhere (the readers place it in their file)."""
     found = first_fault(strings, (checks,))
     if found is not None:
-        raise FormatError(found[1].message)
+        raise _refused(found[1].message)
 
 
 def first_refused(count: int, build: Callable[[int], object]) -> tuple[int, FormatError] | None:

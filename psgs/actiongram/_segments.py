@@ -22,9 +22,10 @@ def _merge(symbols: Sequence[str], durations: Sequence[float]) -> tuple[tuple[st
     """
     out_symbols: list[str] = []
     out_durations: list[float] = []
+    # float() of each: a numpy float32 added to a float would stay a float32, and lose digits
     for sym, dur in zip(symbols, durations):
         if out_symbols and out_symbols[-1] == sym:
-            out_durations[-1] += dur
+            out_durations[-1] += float(dur)
         else:
             out_symbols.append(sym)
             out_durations.append(float(dur))
@@ -42,7 +43,7 @@ def _merge_displacements(symbols: Sequence[str],
     previous = None
     for sym, disp in zip(symbols, displacements):
         if out and previous == sym:
-            out[-1] += disp
+            out[-1] += float(disp)
         else:
             out.append(float(disp))
         previous = sym

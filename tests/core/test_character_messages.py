@@ -68,7 +68,7 @@ def test_a_character_is_named_by_code_point_and_name(char, said):
                 "byte-order mark a file's reader drops"),
 ])
 def test_an_actuator_name_names_its_character(name, said):
-    with pytest.raises(FormatError, match="^<string>: " + re.escape(said)):
+    with pytest.raises(FormatError, match="^Actiongram: " + re.escape(said)):
         Actiongram.from_strings({name: ["x"]})
 
 
