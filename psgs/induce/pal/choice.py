@@ -35,6 +35,7 @@ import numpy as np
 from .conf import NO_BOUND
 from .motifs import Timed
 from .in_step import group_significance
+from .paired_sections import paired_groups
 from .pairing import keeps_shift, spans_pair
 from .pooling import PAIR_BYTES, sync_groups
 from .sections import (Section, copy_agreements, find_sections, follow_rate,
@@ -122,6 +123,19 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf,
             weighed.append((rank, 1, len(sectioned), sorted(members)))
             sectioned.append(sorted(members))
             readings.append(members)
+    # strings no section group took may still play a section at the same times as another,
+    # though each one's own longest repeat lies elsewhere: found by the pair
+    grouped = {i for g in sectioned for i in g}
+    pairs = paired_groups(strings, follows, level,
+                          [i for i in range(len(strings)) if i not in grouped],
+                          conf.min_copies, clock) if conf.section_search == "pairs" else []
+    for _, members in pairs:
+        rank = sum(motif_weight(strings[i], tuple(s.motif.tolist()),
+                                tuple((a, a + len(s.motif)) for a in s.starts.tolist()))
+                   for i, s in members.items())
+        weighed.append((rank, 1, len(sectioned), sorted(members)))
+        sectioned.append(sorted(members))
+        readings.append(members)
     taken: dict[int, tuple[int, int]] = {}  # string -> (kind, group) it is a component of
     beside = math.log10(max(len(strings) - 1, 1))
 

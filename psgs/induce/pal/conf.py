@@ -18,8 +18,8 @@ from ...errors import BoundReached
 from ..._foundation.engines import ENGINES, resolve
 
 __all__ = ["ContentConf", "MIN_COPIES", "ALPHA", "MAX_SECONDS", "MAX_BYTES", "NO_BOUND",
-           "UNDECIDED", "TIMINGS", "SECTION_DURATIONS", "Bounds", "bounds", "stop_reason",
-           "undecided"]
+           "UNDECIDED", "TIMINGS", "SECTION_DURATIONS", "SECTION_SEARCHES", "Bounds", "bounds",
+           "stop_reason", "undecided"]
 
 #: Fewest copies (of a motif, or cycles of a joint) that count as repetition.
 MIN_COPIES = Parameter(3, Number(low=2, integer=True))
@@ -37,6 +37,8 @@ TIMINGS = ("content", "period", "auto")
 #: What a section's copies must repeat (see :class:`ContentConf`): the symbols, or the
 #: symbols and their durations alike.
 SECTION_DURATIONS = ("any", "equal")
+#: how sections are looked for: in each string alone, or in pairs of strings as well
+SECTION_SEARCHES = ("own", "pairs")
 
 
 def undecided(bound: str) -> str:
@@ -183,6 +185,7 @@ class ContentConf(Conf):
     joins_copies: int = parameter(4, Number(low=2, integer=True))
     copy_agreement: float = parameter(0.5, Number(low=0, high=1))
     section_durations: str = parameter("any", Choice(SECTION_DURATIONS))
+    section_search: str = parameter("own", Choice(SECTION_SEARCHES))
     timing: str = parameter("auto", Choice(TIMINGS))
     period_quantile: float = parameter(0.9, Number(low=0, high=1))
     period_agreement: float = parameter(0.6, Number(low=0, high=1, low_open=True))

@@ -105,36 +105,61 @@ def _paired(strings: list[Timed], sections: list, intervals: dict[int, np.ndarra
             level: float) -> tuple[float, dict[int, Section]]:
     """The strongest pair of partners in ``group`` read where both their sections are, as one
     event (:func:`pair_significance`), every other string read there as a member must be."""
-    total = len(strings)
     best: tuple[float, dict[int, Section]] = (math.inf, {})
     for a in group:
         for b in partners[a]:
             if b <= a or b not in group or len(intervals[a]) != 2 or len(intervals[b]) != 2:
                 continue
-            core = _core([intervals[a], intervals[b]])
-            readings = {i: read_at(strings[i], core, follows[i]) for i in (a, b)} \
-                if core is not None else {}
-            if len(readings) < 2 or any(r is None for r in readings.values()):
+            pair = pair_reading(strings, (a, b), (intervals[a], intervals[b]), follows)
+            if pair is None or pair[0] > level or pair[0] >= best[0]:
                 continue
-            # only what the two share counts: each string's symbols inside the shared copy
-            # (its own section reaching past it is its own repeat, weighed in its own string)
-            shared = [int(np.count_nonzero((strings[i].starts >= core[0, 0] - 1e-9)
-                                           & (strings[i].ends <= core[0, 1] + 1e-9)))
-                      for i in (a, b)]
-            if min(shared) < 2:
-                continue
-            weight = (pair_significance([strings[i] for i in (a, b)], shared,
-                                        [follows[i] for i in (a, b)])
-                      + log10_choose(total, 2))
-            if weight > level or weight >= best[0]:
-                continue
-            members = {i: r[1] for i, r in readings.items()}
+            weight, members, core = pair
             for j, (again, found) in _read_the_rest(strings, core, follows, members,
                                                     level).items():
                 members[j] = found
                 weight += again
             best = (weight, members)
     return best
+
+
+def pair_reading(strings: list[Timed], pair: tuple[int, int],
+                 copies: tuple[np.ndarray, np.ndarray], follows: list[float | None]
+                 ) -> tuple[float, dict[int, Section], np.ndarray] | None:
+    """Two strings read where both of their two copies ``copies`` are, weighed as one event:
+    ``(significance, {string: the repeat read}, the shared copies' times)``, or None when
+    their copies share no time or either holds no exact repeat in step there.
+
+    The significance is :func:`pair_significance` of the symbols each string has inside
+    the shared copies (its own repeat reaching past them is its own, weighed in its own
+    string) and the pair's choice among the strings, ``log10 C(N, 2)``.
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(3)
+    >>> section = [[0, 1, 2, 3, 0, 2, 1, 3, 2, 0], [3, 2, 0, 1, 3, 1, 0, 2, 0, 3]]
+    >>> codes = [np.concatenate((rng.integers(0, 4, 4) + 4, s, [9, 8], s,
+    ...                          rng.integers(0, 4, 12) + 4)) for s in section]
+    >>> strings = [Timed.from_codes(c, np.ones(len(c)), 0.0) for c in codes]
+    >>> at = np.array([[4.0, 14.0], [16.0, 26.0]])
+    >>> weight, members, core = pair_reading(strings, (0, 1), (at, at), [None, None])
+    >>> sorted(members), members[0].starts.tolist(), weight < -2
+    ([0, 1], [4, 16], True)
+    """
+    core = _core(list(copies))
+    if core is None:
+        return None
+    readings = {i: read_at(strings[i], core, follows[i]) for i in pair}
+    if any(r is None for r in readings.values()):
+        return None
+    shared = [int(np.count_nonzero((strings[i].starts >= core[0, 0] - 1e-9)
+                                   & (strings[i].ends <= core[0, 1] + 1e-9)))
+              for i in pair]
+    if min(shared) < 2:
+        return None
+    weight = (pair_significance([strings[i] for i in pair], shared,
+                                [follows[i] for i in pair])
+              + log10_choose(len(strings), 2))
+    return weight, {i: r[1] for i, r in readings.items()}, core
 
 
 def pair_significance(strings: list[Timed], lengths: list[int], follows: list[float | None]
