@@ -48,7 +48,7 @@ from pathlib import Path
 
 from .._foundation.files import read_text
 from ..errors import FormatError, NotFound, ValidationError
-from ._checks import _refused, _shown, _tuple_of
+from ._checks import _names_of, _refused, _shown, _tuple_of
 from ._events import GAPS
 from ._extras import default_actuator, normalise_extras
 from ._faults import STRING_CHECKS, refuse, strings_of
@@ -94,7 +94,8 @@ class Actiongram:
         positive and finite, or strings and durations of different lengths. Its source is
         ``"Actiongram"``: no file is at fault (the readers name theirs, with the place).
     ValidationError
-        For a field that is no sequence, or has not one entry per string.
+        For a field that is no sequence (``names`` or ``string_actuators`` a bare ``str``),
+        or has not one entry per string.
 
     Examples
     --------
@@ -119,7 +120,7 @@ class Actiongram:
     keep_repeats: bool = False
 
     def __post_init__(self) -> None:
-        names = _tuple_of(self.names, "names")
+        names = _names_of(self.names, "names")
         symbols = _tuple_of(self.symbols, "symbols", rows=True)
         durations = _tuple_of(self.segment_durations, "segment_durations", rows=True)
         origins = _tuple_of(self.origins, "origins") if self.origins else (0.0,) * len(names)
@@ -408,8 +409,20 @@ class Actiongram:
         return self.symbols[self.index(name)]
 
     def subset(self, names: Iterable[str]) -> "Actiongram":
-        """The actiongram of the named strings only, in the order given (skeleton kept whole)."""
-        picks = [self.index(n) for n in _tuple_of(names, "names")]
+        """The actiongram of the named strings only, in the order given (skeleton kept whole).
+
+        ``names`` is a sequence of names: a bare ``str`` is a ValidationError, not the names
+        of its characters.
+
+        >>> ag = Actiongram.from_strings({"a": "x", "b": "y", "ab": "z"})
+        >>> ag.subset(["ab", "a"]).names
+        ('ab', 'a')
+        >>> ag.subset("ab")
+        Traceback (most recent call last):
+        ...
+        psgs.errors.ValidationError: names must be a sequence of string names, not a str ('ab'); one name is given as ['ab']
+        """
+        picks = [self.index(n) for n in _names_of(names, "names")]
         return Actiongram(tuple(self.names[i] for i in picks),
                           tuple(self.symbols[i] for i in picks),
                           tuple(self.segment_durations[i] for i in picks),

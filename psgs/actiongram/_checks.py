@@ -66,6 +66,23 @@ def _tuple_of(value: object, what: str, rows: bool = False) -> tuple:
         raise ValidationError(f"{what} must be {kind}, not {_shown(value)}") from None
 
 
+def _names_of(value: object, what: str, kind: str = "string") -> tuple:
+    """``value``, a collection of names, as a tuple; a bare str is refused, not read as the
+    names of its characters (``subset("ab")`` picked the strings 'a' and 'b', not 'ab').
+
+    >>> _names_of(["ab"], "names")
+    ('ab',)
+    >>> _names_of("ab", "names")
+    Traceback (most recent call last):
+    ...
+    psgs.errors.ValidationError: names must be a sequence of string names, not a str ('ab'); one name is given as ['ab']
+    """
+    if isinstance(value, str):
+        raise ValidationError(f"{what} must be a sequence of {kind} names, not a str "
+                              f"({_shown(value)}); one name is given as [{_shown(value)}]")
+    return _tuple_of(value, what)
+
+
 def _not_unicode(text: str) -> bool:
     """True for text with a lone surrogate (JSON ``"\\ud800"``): it cannot be written as UTF-8."""
     try:

@@ -12,7 +12,7 @@ import re
 from collections.abc import Iterable
 
 from ..errors import FormatError, ValidationError
-from ._checks import _bad_name, _refused, _shown, _tuple_of
+from ._checks import _bad_name, _names_of, _refused, _shown, _tuple_of
 from ._faults import ACTUATOR_CHECKS, DISPLACEMENT_CHECKS, StringFields, refuse
 
 
@@ -93,7 +93,7 @@ def normalise_extras(value, strings: tuple[StringFields, ...]) -> None:
 
 def normalise_actuators(value, names: tuple[str, ...]) -> None:
     """Validate ``value.string_actuators`` (one valid name per string; () the defaults)."""
-    actuators = _tuple_of(value.string_actuators, "string_actuators")
+    actuators = _names_of(value.string_actuators, "string_actuators", "actuator")
     if not actuators:
         actuators = tuple(default_actuator(n) if isinstance(n, str) else n for n in names)
     if len(actuators) != len(names):
