@@ -13,8 +13,8 @@ from .conf import NO_BOUND
 from .motifs import Motif, Timed, find_motifs
 from .edges import trim
 from .joining import may_join
-from .pooling import (PAIR_BYTES, pair_blocks, pooled_pattern, pooled_windows, relocate,
-                      repeats_in_windows, sync_groups, vote)
+from .pooling import (PAIR_BYTES, member_votes, pair_blocks, pooled_pattern, pooled_windows,
+                      relocate, repeats_in_windows, sync_groups, vote)
 from .together import locate_together
 from .widening import widen
 
@@ -105,12 +105,12 @@ def _pool_groups(strings: list[Timed], found: ContentResult, conf: ContentConf,
             before = {i: located[i] for i in members}
             windows = pooled_windows([located[i] for i in members], conf.window_support)
             earlier = windows
-            votes = {i: v for i in members if (v := vote(strings[i], windows)) is not None}
+            votes = member_votes(strings, members, windows, clock)
             kept_columns = trim(votes, conf.edge_share, conf.column_alpha) if votes else {}
             # locate each member's copies again with its voted pattern
             for i, (first, last) in kept_columns.items():
                 clock.check()
-                pattern = pooled_pattern(strings[i], votes[i])
+                pattern = pooled_pattern(strings[i], votes[i], clock)
                 again = relocate(strings[i], pattern[first:last], conf, clock, stop)
                 if again is not None:
                     located[i] = again
@@ -123,10 +123,9 @@ def _pool_groups(strings: list[Timed], found: ContentResult, conf: ContentConf,
             clock.check()
             windows = with_earlier(pooled_windows([located[i] for i in members],
                                                   conf.window_support), earlier)
-            votes = {i: v for i in members
-                     if (v := vote(strings[i], windows)) is not None
-                     and repeats_in_windows(strings[i], v, conf, conf.min_copies,
-                                            beyond_chance=False)}
+            votes = {i: v for i, v in member_votes(strings, members, windows, clock).items()
+                     if repeats_in_windows(strings[i], v, conf, conf.min_copies,
+                                           beyond_chance=False)}
             for i in members:
                 if i not in votes:
                     dropped[i] = DROPPED_IN_WINDOWS
@@ -143,15 +142,16 @@ def _pool_groups(strings: list[Timed], found: ContentResult, conf: ContentConf,
             if together is not None:
                 # a copy damaged in most members passes no joint scan; its window stays
                 together = with_earlier(together, windows)
-                again = {i: vote(strings[i], together) for i in votes}
-                if all(v is not None for v in again.values()):
+                again = member_votes(strings, votes, together, clock)
+                if len(again) == len(votes):
                     windows, votes = together, again
             windows, votes = widen(strings, votes, windows, conf.edge_share,
-                                   conf.column_alpha, conf.max_pattern)
+                                   conf.column_alpha, conf.max_pattern, clock)
             # strings whose own motif search fell short, read in the group's windows
             outside = [i for i in range(len(strings)) if i not in grouped]
             clock.check()
             for i in may_join(strings, outside, windows, conf.joins_copies, conf.conserve):
+                clock.check()
                 if (v := vote(strings[i], windows)) is not None \
                         and repeats_in_windows(strings[i], v, conf, conf.joins_copies):
                     votes[i] = v
@@ -165,7 +165,7 @@ def _pool_groups(strings: list[Timed], found: ContentResult, conf: ContentConf,
                 continue
             v = votes[i]
             length = len(v.pattern)
-            patterns[i] = pooled_pattern(strings[i], v)[first:last]
+            patterns[i] = pooled_pattern(strings[i], v, clock)[first:last]
             where, spans = [], []
             for a, b in v.spans:
                 if b - a == length:
