@@ -26,12 +26,15 @@ __all__ = ["frame_layout", "indent", "read_at_once", "read_by_lines", "to_degree
 _FRAME_NUMBER = re.compile(r"[+-]?[0-9]+")  # ASCII digits: str.isdigit takes '²' as well
 
 
-def frame_layout(data: list[str], source: str, first_line: int) -> tuple[list[str], int]:
+def frame_layout(data: list[str], source: str, first_line: int,
+                 skeleton=None) -> tuple[list[str], int]:
     """The bones of every frame, in order, and the lines a frame takes (its number's and its
     bones').
 
-    Frame 1 sets the bones and their order; no bone appears twice in it. Every frame is
-    its number, then those bones in that order. Frames are numbered one after another from
+    Frame 1 sets the bones and their order; no bone appears twice in it, and each is one of
+    ``skeleton``'s bones when there is one (a bone misspelt in frame 1 alone is named at its
+    line, not as the good bone of frame 2 that differs from it). Every frame is its number,
+    then those bones in that order. Frames are numbered one after another from
     the first frame's number (usually 1): a jump (``1000000000000`` for ``2``) or a repeat
     would lose or double frames without a word.
 
@@ -44,6 +47,8 @@ def frame_layout(data: list[str], source: str, first_line: int) -> tuple[list[st
         The file named in errors.
     first_line : int
         The file line number of ``data[0]``.
+    skeleton : container of str, optional
+        The skeleton's bones (an ASF file's dofs per bone); None: any bone.
 
     Returns
     -------
@@ -56,7 +61,8 @@ def frame_layout(data: list[str], source: str, first_line: int) -> tuple[list[st
     ------
     MotionFormatError
         At the line and column of the first frame number that is not the next one, the bone
-        that is not the expected one (or appears twice in frame 1), or the truncated frame.
+        that is not the expected one (or appears twice in frame 1, or is not in
+        ``skeleton``), or the truncated frame.
 
     Examples
     --------
@@ -70,6 +76,11 @@ def frame_layout(data: list[str], source: str, first_line: int) -> tuple[list[st
     Traceback (most recent call last):
     ...
     kinetology.motion.MotionFormatError: w.amc:6:3: bone 'root' appears twice in frame 1 (first at line 4)
+    >>> frame_layout(["1", "root 0", "femr 0", "2", "root 1", "femur 2"], "w.amc", 3,
+    ...              {"root": ("tx",), "femur": ("rx",)})
+    Traceback (most recent call last):
+    ...
+    kinetology.motion.MotionFormatError: w.amc:5:1: bone 'femr' is not in the skeleton
     """
     def fail(message: str, i: int, text: str, column: int | None = None):
         raise MotionFormatError(message, source=source, line=first_line + i,
@@ -99,6 +110,8 @@ def frame_layout(data: list[str], source: str, first_line: int) -> tuple[list[st
                 if bone in seen:  # its second line would be read as the next frame's bone
                     fail(f"bone {bone!r} appears twice in frame {first} (first at line "
                          f"{first_line + seen[bone]})", i, line)
+                if skeleton is not None and bone not in skeleton:
+                    fail(f"bone {bone!r} is not in the skeleton", i, line)
                 seen[bone] = i
                 bones.append(bone)
                 continue
@@ -192,10 +205,11 @@ def read_by_lines(lines: Lines, start: int, dofs: dict | None, degrees: bool, so
     error, where that took 7 times the file's size. The first way, for frames
     :func:`read_at_once` does not read.
 
-    Errors come in the order splitting the lines met them: the frames' layout
-    (:func:`frame_layout`); then bone by bone, in frame 1's order, a bone not in ``dofs``, the
-    first of its lines that does not hold its count of numbers, else the first of its values
-    that is not finite; then (``degrees`` False) the first value too large in degrees.
+    Errors come in the order splitting the lines met them: the frames' layout, a bone of
+    frame 1 not in ``dofs`` among them (:func:`frame_layout`); then bone by bone, in frame
+    1's order, the first of its lines that does not hold its count of numbers, else the first
+    of its values that is not finite; then (``degrees`` False) the first value too large in
+    degrees.
 
     Examples
     --------
@@ -216,15 +230,11 @@ def read_by_lines(lines: Lines, start: int, dofs: dict | None, degrees: bool, so
     def each_line():
         return itertools.chain.from_iterable(piece for _, piece in line_pieces(text, begin, end))
 
-    bones, per_frame = frame_layout(each_line(), source, start + 1)
+    bones, per_frame = frame_layout(each_line(), source, start + 1, dofs)
     frame = list(itertools.islice(each_line(), per_frame))  # frame 1's lines
     frames = (text.count("\n", begin, end) + 1) // per_frame
     names, slots, widths = [], [], []  # slots: the frame line (1..) of each column
-    missing = None  # the first bone not in the skeleton: the bones before it are read
     for b, bone in enumerate(bones):
-        if dofs is not None and bone not in dofs:
-            missing = b
-            break
         bone_dofs = (dofs[bone] if dofs is not None
                      else default_dofs(bone, len(_numbers_text(frame[b + 1]).split())))
         names.extend(f"{bone}.{d}" for d in bone_dofs)
@@ -232,7 +242,7 @@ def read_by_lines(lines: Lines, start: int, dofs: dict | None, degrees: bool, so
         widths.append(len(bone_dofs))
     # every number takes a character and a separator: frames too short for theirs hold an
     # error, found without allocating their array
-    room = missing is None and frames * len(names) * 2 <= end - begin + 1
+    room = frames * len(names) * 2 <= end - begin + 1
     out = np.empty((frames, len(names))) if room else None
     readers, at = [], 0
     for width in widths:
@@ -275,10 +285,6 @@ def read_by_lines(lines: Lines, start: int, dofs: dict | None, degrees: bool, so
     for reader in readers:
         if reader.error is not None:
             raise reader.error
-    if missing is not None:
-        raise MotionFormatError(f"bone {bones[missing]!r} is not in the skeleton", source=source,
-                                line=start + missing + 2,
-                                column=indent(frame[missing + 1], 0) + 1)
     if too_large is not None:
         raise too_large
     return out, tuple(names)

@@ -3,9 +3,10 @@
 array, about the text and the values in memory (splitting them all at once took 7 to 18 times
 the file's size), with the same values and the same first error as splitting all at once.
 
-An AMC file's errors come in the order splitting its lines met them: its layout, then bone by
-bone in frame 1's order (a bone not in the skeleton, its first line without its count of
-numbers, else its first value that is not finite), then the first value too large in degrees.
+An AMC file's errors come in the order splitting its lines met them: its layout (a bone of
+frame 1 not in the skeleton among it), then bone by bone in frame 1's order (its first line
+without its count of numbers, else its first value that is not finite), then the first value
+too large in degrees.
 Reading a piece at a time meets the lines in another order (frame by frame); each case is read
 with pieces of a frame and with one piece for the whole block.
 """
@@ -61,8 +62,9 @@ _ORDER = [
      "o.amc:11:1: expected 2 numbers, found 3"),
     (_amc([_OK, ("1 2", "3", "4"), ("1 2", "-inf", "4 5")]), None,
      "o.amc:12:9: value 1 is not finite (-inf)"),
-    # a bone not in the skeleton after the errors of the bones before it, before those after
-    (_amc([_OK, _OK, ("1 nan", "3", "4 5")]), _DOFS, "o.amc:11:8: value 2 is not finite (nan)"),
+    # a bone of frame 1 not in the skeleton with the layout, before any bone's values
+    (_amc([_OK, _OK, ("1 nan", "3", "4 5")]), _DOFS,
+     "o.amc:4:3: bone 'femur' is not in the skeleton"),
     (_amc([_OK, ("1 2", "3", "4"), _OK]), _DOFS, "o.amc:4:3: bone 'femur' is not in the skeleton"),
     # a value too large in degrees after every other error, the first frame's first
     (_amc([("1 1e307", "3", "4 5"), _OK, ("1 2", "3", "x 5")], radians=True), None,
