@@ -7,8 +7,9 @@ Run from the repository root:
 The draws are those of ``tests/induce/test_pal_sections.py`` (its generator and its criterion,
 loaded from that file so both read the same thing): two to six strings of 60 symbols each play
 a section of 8 to 16 symbols over 4 to 12 letters twice at the same times among random
-symbols, with up to 16 random strings beside them; a draw is right when PAL (``min_copies=2``)
-names exactly the sectioned strings, each with both copies (every reported copy exact). The
+symbols, with up to 16 random strings beside them; a draw is right when PAL (``min_copies=2``,
+each string's sections alone and with ``section_search="pairs"``) names exactly the sectioned
+strings, each with both copies (every reported copy exact). The
 test checks a few hundred seeded draws for an error rate; this counts thousands of fresh ones
 per region of the ranges, the hardest (an 8-symbol section over 4 letters, which a random
 string of 60 holds by chance about 1 time in 13) apart, and says what each wrong draw got
@@ -72,12 +73,14 @@ def main(argv=None) -> int:
     rows, lines = [], []
     for name, sectioned, length, letters, share in REGIONS:
         draws = _draws(rng, args.draws * share, sectioned, length, letters)
-        for method in ("PAL min_copies=2", "longest repeat per string, grouped by time"):
+        for method in ("PAL min_copies=2", "PAL min_copies=2, section_search=pairs",
+                       "longest repeat per string, grouped by time"):
             verdicts, started = {}, time.process_time()
             for k, draw in enumerate(draws):
                 ag, truth, copies = drawn._sectioned(*draw)
                 if method.startswith("PAL"):
-                    result = PAL(min_copies=2).induce(ag)
+                    result = PAL(min_copies=2, **({"section_search": "pairs"}
+                                                  if "pairs" in method else {})).induce(ag)
                     named = {n: result.occurrences[n] for n in result.components}
                     exact = {n: all(a == 1.0 for a in result.agreements[n]) for n in named}
                 else:

@@ -443,6 +443,11 @@ METHODS = {
     "PAL min_copies=2": lambda ag: dict(PAL(min_copies=2).induce(ag).occurrences),
     "PAL min_copies=2, equal durations": lambda ag: dict(
         PAL(min_copies=2, section_durations="equal").induce(ag).occurrences),
+    "PAL min_copies=2, pairs": lambda ag: dict(
+        PAL(min_copies=2, section_search="pairs").induce(ag).occurrences),
+    "PAL min_copies=2, equal durations, pairs": lambda ag: dict(
+        PAL(min_copies=2, section_durations="equal", section_search="pairs").induce(ag)
+        .occurrences),
     "PAL min_copies=2 on pitch_duration symbols": lambda ag: dict(
         PAL(min_copies=2).induce(with_durations(ag)).occurrences),
     "longest exact repeat": lambda ag: peer(ag, longest_repeat),
