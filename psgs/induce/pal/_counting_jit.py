@@ -71,6 +71,14 @@ def _digrams(keys, bins):
         return order, begin, _runs(begin)
     # sorting, a large alphabet: equal keys keep their order (position order)
     order = _stable_argsort(keys)
+    return _grouped(keys, order)
+
+
+@_jit
+def _grouped(keys, order):
+    """``(order, begin, runs)`` of keys sorted by ``order``: where each group of equal keys
+    begins (and, last, their count), and :func:`_runs` of that."""
+    m = len(order)
     groups = 0
     for j in range(m):
         if j == 0 or keys[order[j]] != keys[order[j - 1]]:

@@ -29,7 +29,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._chance_jit import _MARGIN, _jit, _log10_binom_sf, _log10_poisson_sf, _threshold
-from ._counting_jit import _digrams, _runs, _sorted
+from ._counting_jit import _digrams, _grouped, _sorted
 
 __all__: list[str] = []  # private: the PAL parameter ``engine`` is the interface
 
@@ -398,18 +398,7 @@ def _digram_groups(keys, bins, stop):
             at[d] += 1
         order, spare = spare, order
         shift += _DIGIT
-    groups = 0
-    for j in range(m):
-        if j == 0 or keys[order[j]] != keys[order[j - 1]]:
-            groups += 1
-    begin = np.empty(groups + 1, dtype=np.int64)
-    g = 0
-    for j in range(m):
-        if j == 0 or keys[order[j]] != keys[order[j - 1]]:
-            begin[g] = j
-            g += 1
-    begin[groups] = m
-    return order, begin, _runs(begin)
+    return _grouped(keys, order)
 
 
 @_jit

@@ -114,13 +114,7 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf,
             if significance > level or i not in members:
                 found.dropped.setdefault(i, CHANCE_IN_STEP)
         if significance <= level:
-            # ranked as the motif groups are, by its members' significances summed, each
-            # weighed alone by the one rule of a motif's copies (the group's own
-            # significance is the test it has passed)
-            rank = sum(motif_weight(strings[i], tuple(s.motif.tolist()),
-                                    tuple((a, a + len(s.motif)) for a in s.starts.tolist()))
-                       for i, s in members.items())
-            weighed.append((rank, 1, len(sectioned), sorted(members)))
+            weighed.append((_rank(strings, members), 1, len(sectioned), sorted(members)))
             sectioned.append(sorted(members))
             readings.append(members)
     # strings no section group took may still play a section at the same times as another,
@@ -130,10 +124,7 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf,
                           [i for i in range(len(strings)) if i not in grouped],
                           conf.min_copies, clock) if conf.section_search == "pairs" else []
     for _, members in pairs:
-        rank = sum(motif_weight(strings[i], tuple(s.motif.tolist()),
-                                tuple((a, a + len(s.motif)) for a in s.starts.tolist()))
-                   for i, s in members.items())
-        weighed.append((rank, 1, len(sectioned), sorted(members)))
+        weighed.append((_rank(strings, members), 1, len(sectioned), sorted(members)))
         sectioned.append(sorted(members))
         readings.append(members)
     taken: dict[int, tuple[int, int]] = {}  # string -> (kind, group) it is a component of
@@ -234,6 +225,15 @@ def with_durations(string: Timed) -> Timed:
     steps = np.round(durations / grain).astype(np.int64)
     _, keys = np.unique(np.column_stack((string.codes, steps)), axis=0, return_inverse=True)
     return _Keyed(keys.ravel().astype(np.int64), string.starts, string.ends, string.match_rate)
+
+
+def _rank(strings: list[Timed], members: dict[int, Section]) -> float:
+    """A section group's rank among the groups: ranked as the motif groups are, by its
+    members' significances summed, each weighed alone by the one rule of a motif's copies
+    (the group's own significance is the test it has passed)."""
+    return sum(motif_weight(strings[i], tuple(s.motif.tolist()),
+                            tuple((a, a + len(s.motif)) for a in s.starts.tolist()))
+               for i, s in members.items())
 
 
 def coincide(a: np.ndarray, b: np.ndarray, copies: int, fraction: float = 1.0) -> bool:
