@@ -26,7 +26,7 @@ from __future__ import annotations
 import math
 from collections import Counter
 
-from .jsonvalues import written_by
+from .jsonvalues import bad_item, shown, written_by
 
 __all__ = ["WINDOWS", "FieldError", "check_format", "action_fields", "spread_fields",
            "check_window"]
@@ -45,22 +45,17 @@ class FieldError(ValueError):
 _error = FieldError
 
 
-def _shown(value) -> str:
-    text = repr(value)
-    return text if len(text) <= 40 else type(value).__name__
-
-
 def check_format(data, kind: str, version: int) -> None:
     """A :class:`FieldError` unless ``data`` is a JSON object of format ``kind`` and
     descriptions version ``version``."""
     if not isinstance(data, dict):
         raise _error(f"not a {kind} (a JSON object expected, not {type(data).__name__})")
     if data.get("format") != kind:
-        raise _error(f"not a {kind} (format {_shown(data.get('format'))})")
+        raise _error(f"not a {kind} (format {shown(data.get('format'))})")
     said = data.get("version")
     age = written_by(said, version)
     if age:  # a later version's descriptions are not to be learnt again over
-        raise _error(f"{kind} of version {_shown(said)}; this psgs reads version {version}: "
+        raise _error(f"{kind} of version {shown(said)}; this psgs reads version {version}: "
                      + ("a later psgs wrote it; upgrade psgs to read it" if age == "later" else
                         "learn the descriptions again (psgs praxicon build ... -o PX resumes "
                         "the build and describes its actions)"))
@@ -76,7 +71,7 @@ def _number(data: dict, key: str, where: str, *, above: float | None = None,
             infinite: bool = False) -> float:
     value = _need(data, key, where)
     if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise _error(f"{where}{key!r} must be a number, not {_shown(value)}")
+        raise _error(f"{where}{key!r} must be a number, not {shown(value)}")
     try:
         value = float(value)
     except OverflowError:  # an integer of 400 digits
@@ -91,8 +86,9 @@ def _number(data: dict, key: str, where: str, *, above: float | None = None,
 
 def _texts(data: dict, key: str, where: str) -> tuple[str, ...]:
     value = _need(data, key, where)
-    if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
-        raise _error(f"{where}{key!r} must be a list of text")
+    if not isinstance(value, list):
+        raise _error(f"{where}{key!r} must be a list of text, not {shown(value)}")
+    _items(key, value, lambda v: isinstance(v, str), "a list of text", where)
     if not value:
         raise _error(f"{where}{key!r} is empty")
     if len(set(value)) != len(value):
@@ -105,24 +101,33 @@ def _texts(data: dict, key: str, where: str) -> tuple[str, ...]:
 def _numbers(value, key: str, where: str, count: int, *, least: float | None = None,
              strict: bool = False) -> tuple[float, ...]:
     """``count`` finite numbers (at least ``least``, above it when ``strict``)."""
-    if not isinstance(value, list) or any(isinstance(v, bool) or not isinstance(v, (int, float))
-                                          for v in value):
-        raise _error(f"{where}{key!r} must be a list of numbers")
+    if not isinstance(value, list):
+        raise _error(f"{where}{key!r} must be a list of numbers, not {shown(value)}")
+    _items(key, value, lambda v: not isinstance(v, bool) and isinstance(v, (int, float)),
+           "a list of numbers", where)
     if len(value) != count:
         raise _error(f"{where}{key!r} has {len(value)} values for {count} features")
-    out = []
-    for i, v in enumerate(value):
-        try:
-            v = float(v)
-        except OverflowError:
-            v = math.inf
-        if not math.isfinite(v):
-            raise _error(f"{where}{key!r} must be finite numbers: value {i + 1} is {v!r}")
-        if least is not None and (v <= least if strict else v < least):
-            raise _error(f"{where}{key!r} must be numbers {'above' if strict else 'from'} "
-                         f"{least:g}: value {i + 1} is {v!r}")
-        out.append(v)
-    return tuple(out)
+    out = tuple(map(_float, value))
+    _items(key, out, math.isfinite, "finite numbers", where)
+    if least is not None:
+        _items(key, out, (lambda v: v > least) if strict else (lambda v: v >= least),
+               f"numbers {'above' if strict else 'from'} {least:g}", where)
+    return out
+
+
+def _float(number) -> float:
+    try:
+        return float(number)
+    except OverflowError:  # an integer of 400 digits
+        return math.inf
+
+
+def _items(key: str, items, good, expected: str, where: str) -> None:
+    """A :class:`FieldError` naming the first of ``items`` that is not ``good`` and its place
+    (:func:`~praxicon.jsonvalues.bad_item`, as the records' readers name it)."""
+    problem = bad_item(key, items, good, expected)
+    if problem:
+        raise _error(f"{where}{problem}")
 
 
 def check_window(window: float, where: str = "") -> float:
@@ -138,7 +143,7 @@ def check_window(window: float, where: str = "") -> float:
     praxicon._description_json.FieldError: spread: 'window' must be 0 (whole takes) or 0.1 to 60 seconds, not 1e+300
     """
     if isinstance(window, bool) or not isinstance(window, (int, float)):
-        raise _error(f"{where}'window' must be a number, not {_shown(window)}")
+        raise _error(f"{where}'window' must be a number, not {shown(window)}")
     if window != 0.0 and not WINDOWS[0] <= window <= WINDOWS[1]:
         raise _error(f"{where}'window' must be 0 (whole takes) or {WINDOWS[0]:g} to "
                      f"{WINDOWS[1]:g} seconds, not {window!r}")
@@ -151,14 +156,14 @@ def action_fields(data, version: int) -> tuple:
     check_format(data, "praxicon-action-description", version)
     name = _need(data, "name", "action: ")
     if not isinstance(name, str) or not name:
-        raise _error(f"action: 'name' must be text, not {_shown(name)}")
+        raise _error(f"action: 'name' must be text, not {shown(name)}")
     where = f"action {name!r}: "
     features = _texts(data, "features", where)
     mean = _numbers(_need(data, "mean", where), "mean", where, len(features))
     spread = _numbers(_need(data, "spread", where), "spread", where, len(features), least=0.0)
     takes = _need(data, "takes", where)
     if isinstance(takes, bool) or not isinstance(takes, int) or takes < 1:
-        raise _error(f"{where}'takes' must be a whole number from 1, not {_shown(takes)}")
+        raise _error(f"{where}'takes' must be a whole number from 1, not {shown(takes)}")
     window = check_window(_number(data, "window", where), where)
     return name, features, mean, spread, takes, window
 
@@ -174,7 +179,7 @@ def spread_fields(data, version: int) -> tuple:
     scale = _numbers(_need(data, "scale", where), "scale", where, n, least=0.0, strict=True)
     rows = _need(data, "factors", where)
     if not isinstance(rows, list):
-        raise _error(f"{where}'factors' must be a list of rows of numbers")
+        raise _error(f"{where}'factors' must be a list of rows of numbers, not {shown(rows)}")
     factors = tuple(_numbers(r, "factors", f"{where}row {i + 1} of ", n)
                     for i, r in enumerate(rows))
     noise = _numbers(_need(data, "noise", where), "noise", where, n, least=0.0, strict=True)
@@ -183,12 +188,15 @@ def spread_fields(data, version: int) -> tuple:
     window = check_window(_number(data, "window", where), where)
     # descriptions written before the group test have no limits: no group test
     limits = data.get("limits", [])
-    if not isinstance(limits, list) or not all(
-            isinstance(p, list) and len(p) == 2 and isinstance(p[0], str) for p in limits):
-        raise _error(f"{where}'limits' must be a list of [group, number] pairs")
+    pair = "a list of [group, number] pairs"
+    if not isinstance(limits, list):
+        raise _error(f"{where}'limits' must be {pair}, not {shown(limits)}")
+    _items("limits", limits, lambda p: isinstance(p, list) and len(p) == 2
+           and isinstance(p[0], str), pair, where)
     bounds = _numbers([v for _, v in limits], "limits", where, len(limits), least=0.0,
                       strict=True)
     tail = data.get("tail")
     tail = math.inf if tail is None else _number(data, "tail", where, above=0.0)
     return (features, scale, factors, noise, threshold, temperature, window,
             tuple((g, v) for (g, _), v in zip(limits, bounds)), tail)
+

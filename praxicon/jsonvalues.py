@@ -14,7 +14,8 @@ import math
 from psgs._foundation.files import read_text
 from psgs.errors import FormatError
 
-__all__ = ["Fields", "freeze", "thaw", "as_dict", "pairs", "read_json", "written_by"]
+__all__ = ["Fields", "freeze", "thaw", "as_dict", "pairs", "read_json", "written_by",
+           "shown", "bad_item", "one_each"]
 
 
 def read_json(path, error: type[Exception], missing: str | None = None):
@@ -79,6 +80,72 @@ def written_by(said, version: int) -> str | None:
     return "later" if type(said) is int and said > version else "earlier"
 
 
+def shown(value) -> str:
+    """``value`` as a JSON reader's error shows it: its ``repr``, or its type's name when
+    that is longer than 40 characters (a list of thousands of numbers stays one short line).
+
+    Examples
+    --------
+    >>> shown(-1), shown("x"), shown(list(range(100)))
+    ('-1', "'x'", 'list')
+    """
+    text = repr(value)
+    return text if len(text) <= 40 else type(value).__name__
+
+
+def bad_item(key: str, items, good, expected: str) -> str | None:
+    """The words of an error naming the first of ``items`` (a list; or a JSON object, its
+    values named by their keys) that is not ``good(item)``: ``'KEY' must be EXPECTED: value N
+    is V`` (N counted from 1), or ``... value of 'NAME' is V``; ``None`` when every item is.
+
+    Every JSON reader of the praxicon words a bad item of a list or object so: the item and
+    its place, not the whole value, which is most often too long to show.
+
+    Examples
+    --------
+    >>> bad_item("durations", [0.5, 0.5, 0.5, -1], lambda v: v > 0, "numbers above 0")
+    "'durations' must be numbers above 0: value 4 is -1"
+    >>> bad_item("names", {"a.rx": "a_rx", "a.ry": 3}, lambda v: isinstance(v, str),
+    ...          "channel -> text")
+    "'names' must be channel -> text: value of 'a.ry' is 3"
+    >>> bad_item("names", [], None, "text") is None
+    True
+    """
+    places = items.items() if isinstance(items, dict) else enumerate(items, 1)
+    for place, item in places:
+        if not good(item):
+            where = f"value of {place!r}" if isinstance(items, dict) else f"value {place}"
+            return f"{key!r} must be {expected}: {where} is {shown(item)}"
+    return None
+
+
+def one_each(keys, names, kind: str, each: str) -> str | None:
+    """What is wrong with ``keys`` (a JSON object's, each a ``kind``) that must be one for
+    each of ``names`` (each an ``each``): the first name without one, else the first key of
+    no name; ``None`` when they match.
+
+    Examples
+    --------
+    >>> one_each(["a.rx", "a.rq"], ["a.rx", "a.ry"], "morpheme", "channel")
+    "its morphemes are not one per channel: channel 'a.ry' has none"
+    >>> one_each(["a.rx", "a.rq"], ["a.rx"], "morpheme", "channel")
+    "its morphemes are not one per channel: 'a.rq' is no channel of it"
+    """
+    keys, names = set(keys), list(names)
+    if keys == set(names):
+        return None
+    start = f"its {kind}s are not one per {each}: "
+    missing = next((n for n in names if n not in keys), None)
+    if missing is not None:
+        return f"{start}{each} {shown(missing)} has none"
+    named = set(names)
+    return f"{start}{shown(min(k for k in keys if k not in named))} is no {each} of it"
+
+
+def _is_number(value) -> bool:
+    return not isinstance(value, bool) and isinstance(value, (int, float))
+
+
 class Fields:
     """Typed access to one JSON object; every error (``error``, a one-line exception class)
     names ``where`` and the key.
@@ -101,9 +168,24 @@ class Fields:
         self.value, self.where, self.what = value, where, what
 
     def _bad(self, key: str, expected: str):
-        got = self.value[key]
-        shown = repr(got) if len(repr(got)) <= 40 else type(got).__name__
-        return self.error(f"{self.where}: {key!r} must be {expected}, not {shown}")
+        return self.error(f"{self.where}: {key!r} must be {expected}, not "
+                          f"{shown(self.value[key])}")
+
+    def items(self, key: str, good, expected: str) -> None:
+        """An error naming ``key`` and its first item (of a list or a JSON object) that is not
+        ``good`` (:func:`bad_item`), unless every item is.
+
+        Examples
+        --------
+        >>> f = Fields({"names": {"a.rx": "a_rx", "a.ry": 3}}, "x.json", "record", ValueError)
+        >>> f.items("names", lambda v: isinstance(v, str), "channel -> text")
+        Traceback (most recent call last):
+        ...
+        ValueError: x.json: 'names' must be channel -> text: value of 'a.ry' is 3
+        """
+        problem = bad_item(key, self.value.get(key) or (), good, expected)  # absent: none
+        if problem:
+            raise self.error(f"{self.where}: {problem}")
 
     def bounded(self, key: str, got, low: float, strict: bool = False):
         """``got``, the number or numbers read at ``key``, when each is finite and at least
@@ -115,12 +197,17 @@ class Fields:
         >>> f.bounded("d", f.numbers("d"), 0, strict=True)
         Traceback (most recent call last):
         ...
-        ValueError: x.json: 'd' must be above 0 and finite, not [0.5, 0.0]
+        ValueError: x.json: 'd' must be numbers above 0 and finite: value 2 is 0.0
         """
-        values = got if isinstance(got, tuple) else () if got is None else (got,)
-        if all((v > low if strict else v >= low) and v < math.inf for v in values):
-            return got
-        raise self._bad(key, f"{'above' if strict else 'at least'} {low:g} and finite")
+        def good(v) -> bool:
+            return (v > low if strict else v >= low) and v < math.inf
+
+        bound = f"{'above' if strict else 'at least'} {low:g} and finite"
+        if isinstance(got, tuple):  # a list: its first number out of bounds is named
+            self.items(key, good, f"numbers {bound}")
+        elif got is not None and not good(got):
+            raise self._bad(key, bound)
+        return got
 
     def need(self, key: str):
         """The value at ``key`` (an error when absent)."""
@@ -151,8 +238,9 @@ class Fields:
         value = self.value.get(key) if optional else self.need(key)
         if value is None and optional:
             return None
-        if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+        if not isinstance(value, list):
             raise self._bad(key, "a list of text")
+        self.items(key, lambda v: isinstance(v, str), "a list of text")
         return tuple(value)
 
     def numbers(self, key: str, optional: bool = False, whole: bool = False):
@@ -160,10 +248,11 @@ class Fields:
         value = self.value.get(key) if optional else self.need(key)
         if value is None and optional:
             return None
-        kinds = (int,) if whole else (int, float)
-        if not isinstance(value, list) or any(isinstance(v, bool) or not isinstance(v, kinds)
-                                              for v in value):
-            raise self._bad(key, "a list of whole numbers" if whole else "a list of numbers")
+        expected = "a list of whole numbers" if whole else "a list of numbers"
+        if not isinstance(value, list):
+            raise self._bad(key, expected)
+        self.items(key, lambda v: _is_number(v) and (not whole or isinstance(v, int)),
+                   expected)
         return tuple(value)
 
     def object(self, key: str, optional: bool = False) -> dict | None:

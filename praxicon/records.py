@@ -34,7 +34,7 @@ from psgs.errors import NotFound, PSGSError, ValidationError
 from ._errors import REBUILD
 from ._values import settings_fields
 from .description import DescriptionError, Descriptions
-from .jsonvalues import Fields, as_dict, freeze, pairs as _pairs, written_by
+from .jsonvalues import Fields, as_dict, freeze, one_each, pairs as _pairs, written_by
 
 __all__ = ["FORMAT", "FORMAT_VERSION", "REBUILD", "FRAME_RATES", "PraxiconError",
            "PerformanceRecord", "ChannelMorpheme", "JointRecord", "ActionRecord", "Praxicon",
@@ -285,8 +285,8 @@ class JointRecord:
         j = _Json(value, where, "joint")
         channels = j.texts("channels")
         morphemes = j.object("morphemes")
-        if sorted(morphemes) != sorted(channels):
-            raise PraxiconError(f"{where}: its morphemes are not one per channel")
+        if problem := one_each(morphemes, channels, "morpheme", "channel"):
+            raise PraxiconError(f"{where}: {problem}")
         return cls(name, tuple((c, ChannelMorpheme.from_json(morphemes[c], f"{where}: {c}"))
                                for c in channels))
 
@@ -423,18 +423,16 @@ class ActionRecord:
             return cls(**base)
         actuators = j.texts("actuators")
         joints = j.object("joints")
-        if sorted(joints) != sorted(actuators):
-            raise PraxiconError(f"{where}: its joints are not one per actuator")
+        if problem := one_each(joints, actuators, "joint", "actuator"):
+            raise PraxiconError(f"{where}: {problem}")
         names = j.object("component_names")
         pose = j.object("mean_pose")
-        if not all(isinstance(v, str) for v in names.values()):
-            raise j._bad("component_names", "channel -> text")
-        if not all(isinstance(v, (int, float)) and not isinstance(v, bool)
-                   for v in pose.values()):
-            raise j._bad("mean_pose", "channel -> number")
+        j.items("component_names", lambda v: isinstance(v, str), "channel -> text")
+        j.items("mean_pose", lambda v: isinstance(v, (int, float)) and not isinstance(v, bool),
+                "channel -> number")
         learnt_from = j.numbers("learnt_from", whole=True)
-        if not all(0 <= i < len(base["performances"]) for i in learnt_from):  # an IndexError
-            raise j._bad("learnt_from", f"indices of its {len(base['performances'])} performances")
+        count = len(base["performances"])  # an index past them was an IndexError
+        j.items("learnt_from", lambda i: 0 <= i < count, f"indices of its {count} performances")
         return cls(**base, learnt_from=learnt_from, note=j.text("note", True),
                    actuators=actuators,
                    joints=tuple(JointRecord.from_json(a, joints[a], f"{where}: joint {a}")
@@ -559,8 +557,7 @@ class Praxicon:
         check_index(value, where)
         j = _Json(value, where, "praxicon")
         keys = j.object("keys", True) or {}
-        if not all(isinstance(k, str) for k in keys.values()):
-            raise j._bad("keys", "action -> text")
+        j.items("keys", lambda k: isinstance(k, str), "action -> text")
         actions = sorted((ActionRecord.from_json(a, f"{where}: action {i + 1}")
                           for i, a in enumerate(j.objects("actions"))), key=lambda a: a.name)
         names = [a.name for a in actions]

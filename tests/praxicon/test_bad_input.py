@@ -291,7 +291,7 @@ DAMAGE = {
     "morpheme durations of 0 s": (_edit_record(lambda r: r["joints"]["arm"]["morphemes"][
         r["joints"]["arm"]["channels"][0]].update(durations=[0.0] * len(r["joints"]["arm"][
             "morphemes"][r["joints"]["arm"]["channels"][0]]["kinetemes"]))),
-        "'durations' must be above 0 and finite"),
+        "'durations' must be numbers above 0 and finite: value 1 is 0.0"),
     "a performance starting before its take": (_edit_record(lambda r: r["performances"][0]
                                                             .update(start=-5)),
                                                "performance 1: 'start' must be at least 0"),
