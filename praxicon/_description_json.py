@@ -7,8 +7,11 @@ not a reshape error deep in the scores or a NaN probability printed as an answer
 checked is what the scores rely on: one value per feature in every per-feature list, a
 shared direction per row of ``factors`` over every feature, every number finite (the
 threshold may be infinite: descriptions learnt without calibration answer every motion),
-scales, noise and temperature above zero, spreads and group limits not below it, and window
-lengths within :data:`WINDOWS`.
+scales, noise, temperature and group limits above zero, spreads not below it, window lengths
+within :data:`WINDOWS`, and each group limit naming a feature group of the spread's features
+(:func:`~praxicon.feature_groups.feature_groups`) once: the group test reads only the groups
+it finds a limit for, so a limit of a group renamed turned that group's test off without a
+word.
 
 The checks raise :class:`FieldError`, which :mod:`praxicon.description` (which this module
 must not import: it reads through this one) turns into its ``DescriptionError``.
@@ -26,10 +29,11 @@ from __future__ import annotations
 import math
 from collections import Counter
 
+from .feature_groups import feature_groups
 from .jsonvalues import bad_item, shown, written_by
 
 __all__ = ["WINDOWS", "FieldError", "check_format", "action_fields", "spread_fields",
-           "check_window"]
+           "check_window", "check_named_alike"]
 
 #: Shortest and longest window (seconds) window descriptions may be learnt from and parse
 #: cuts a recording into: under 0.1 s a window is a few frames at the usual capture rates
@@ -130,6 +134,19 @@ def _items(key: str, items, good, expected: str, where: str) -> None:
         raise _error(f"{where}{problem}")
 
 
+def _limit_groups(names: list, features: tuple[str, ...], where: str) -> None:
+    """A :class:`FieldError` unless each of ``names`` (the groups of a spread's ``limits``)
+    is a feature group of ``features`` and none is named twice."""
+    groups = feature_groups(features)
+    _items("limits", names, groups.__contains__, "of the spread's feature groups", where)
+    first: dict[str, int] = {}
+    for i, name in enumerate(names, 1):
+        if name in first:
+            raise _error(f"{where}'limits' names {name!r} twice (values {first[name]} and "
+                         f"{i})")
+        first[name] = i
+
+
 def check_window(window: float, where: str = "") -> float:
     """``window`` when it is 0 (whole takes) or a window length within :data:`WINDOWS`.
 
@@ -193,10 +210,55 @@ def spread_fields(data, version: int) -> tuple:
         raise _error(f"{where}'limits' must be {pair}, not {shown(limits)}")
     _items("limits", limits, lambda p: isinstance(p, list) and len(p) == 2
            and isinstance(p[0], str), pair, where)
+    # above 0: the group test divides a group's distance by its limit (the calibration never
+    # writes one under the group's size, one standard deviation per feature)
     bounds = _numbers([v for _, v in limits], "limits", where, len(limits), least=0.0,
                       strict=True)
+    _limit_groups([g for g, _ in limits], features, where)
     tail = data.get("tail")
     tail = math.inf if tail is None else _number(data, "tail", where, above=0.0)
     return (features, scale, factors, noise, threshold, temperature, window,
             tuple((g, v) for (g, _), v in zip(limits, bounds)), tail)
 
+
+def check_named_alike(takes, windows) -> None:
+    """A :class:`FieldError` unless the whole-take descriptions ``takes`` and the window
+    descriptions ``windows`` (:class:`~praxicon.description.Descriptions`, each checked alone)
+    describe the same actions, and the takes' families are those of their actions.
+
+    The build learns both from the same takes, and the families' descriptions are the
+    families the actions name (``family_of``; an action alone is its own family, under its
+    own name) and no other: an action parse cannot answer with, or a family no action is in,
+    changes the answers without a word (a family's "none of these" reads the groups that tell
+    it apart from every other family described). A family may have the name of one of its own
+    members, never of another action (that action's own family would be another with its
+    name).
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as D
+    >>> check_named_alike(D(names=("a", "b"), families=None), D(names=("a",)))
+    Traceback (most recent call last):
+    ...
+    praxicon._description_json.FieldError: takes and windows describe other actions: 'b' is described in takes only
+    """
+    whole, windowed = set(takes.names), set(windows.names)
+    if whole != windowed:  # which part was damaged cannot be told: both are named
+        part, only = ("takes", whole - windowed) if whole - windowed else \
+            ("windows", windowed - whole)
+        raise _error(f"takes and windows describe other actions: {min(only)!r} is described "
+                     f"in {part} only")
+    if takes.families is None:
+        return
+    pooled: dict[str, list[str]] = {}  # the families of two or more actions
+    for name, family in zip(takes.names, takes.family_of):
+        if family:
+            pooled.setdefault(family, []).append(name)
+    for family, members in pooled.items():
+        if family in whole and family not in members:
+            raise _error(f"takes: family {family!r} has the name of another action "
+                         f"(its members: {', '.join(map(repr, members[:3]))})")
+    alone = {name for name, family in zip(takes.names, takes.family_of) if not family}
+    stray = [f for f in takes.families.names if f not in pooled and f not in alone]
+    if stray:
+        raise _error(f"takes: families: describes {stray[0]!r}, the family of no action")

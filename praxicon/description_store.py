@@ -13,6 +13,7 @@ import hashlib
 import json
 from pathlib import Path
 
+from ._description_json import FieldError, check_named_alike
 from .description import FORMAT_VERSION, LEARNING, DescriptionError, Descriptions
 from .jsonvalues import read_json, written_by
 from .records import REBUILD, Praxicon, PraxiconError
@@ -44,7 +45,9 @@ def read_descriptions_file(folder):
     """``(takes, windows, key)`` from ``folder/descriptions.json``; ``None`` when it has none.
 
     Every field is checked (:mod:`praxicon._description_json`); the whole-take descriptions
-    must be of whole takes (``window`` 0), the window descriptions of windows.
+    must be of whole takes (``window`` 0), the window descriptions of windows, both of the
+    same actions, the takes' families those of their actions
+    (:func:`~praxicon._description_json.check_named_alike`).
 
     Raises
     ------
@@ -99,4 +102,8 @@ def descriptions_in(data, path):
                                 f"{'a window length' if windowed else '0 (whole takes)'}, "
                                 f"not {described.spread.window!r}")
         found.append(described)
+    try:
+        check_named_alike(*found)
+    except FieldError as exc:
+        raise PraxiconError(f"{path}: {exc}") from None
     return found[0], found[1], key

@@ -31,6 +31,7 @@ from dataclasses import dataclass
 from kinetology.motion import FRAME_RATE_RANGE
 from psgs.errors import NotFound, PSGSError, ValidationError
 
+from ._description_json import FieldError, check_named_alike
 from ._errors import REBUILD
 from ._values import settings_fields
 from .description import DescriptionError, Descriptions
@@ -569,7 +570,8 @@ class Praxicon:
             try:
                 takes = Descriptions.from_dict(described["takes"])
                 windows = Descriptions.from_dict(described["windows"])
-            except (KeyError, TypeError, DescriptionError) as exc:
+                check_named_alike(takes, windows)
+            except (KeyError, TypeError, DescriptionError, FieldError) as exc:
                 raise PraxiconError(f"{where}: descriptions: {exc}") from None
         return cls(tuple(actions), Settings.from_dict(j.object("settings"), where),
                    j.texts("datasets"), tuple(sorted((n, keys[n]) for n in names if n in keys)),

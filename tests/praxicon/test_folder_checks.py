@@ -242,10 +242,21 @@ DESCRIPTIONS = {
                                          "spread's 2"),
     "action twice": (lambda d: d["takes"]["actions"].append(d["takes"]["actions"][0]),
                      "takes: action 'm.step' is described twice"),
-    "action not in the index": (lambda d: d["takes"]["actions"][0].update(name="m.ghost"),
+    "action not in the index": (lambda d: [d[p]["actions"][0].update(name="m.ghost")
+                                           for p in ("takes", "windows")],
                                 "takes: describes 'm.ghost', which index.json does not list "
                                 "as a learnt action (learn the descriptions again: 'psgs "
                                 "praxicon build"),
+    # the group test reads the groups it finds a limit for: renamed, it was off unsaid
+    "a limit of no feature group": (
+        lambda d: d["takes"]["spread"]["limits"][0].__setitem__(0, "bogus0"),
+        "takes: spread: 'limits' must be of the spread's feature groups: value 1 is 'bogus0'"),
+    "a group's limit twice": (
+        lambda d: d["windows"]["spread"]["limits"].append(d["windows"]["spread"]["limits"][0]),
+        "windows: spread: 'limits' names"),
+    "windows of an action the takes lack": (
+        lambda d: d["windows"]["actions"][0].update(name="m.ghost"),
+        "takes and windows describe other actions: 'm.step' is described in takes only"),
     "key of other records": (lambda d: d.update(key="0" * 64),
                              "descriptions.json: 'key' is not the key of this folder's learnt "
                              "actions: the descriptions were learnt from other records"),
