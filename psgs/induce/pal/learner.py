@@ -95,12 +95,12 @@ class ContentPAL(Inducer):
     section_search : {"own", "pairs"}, default "own"
         Where sections are looked for. ``"own"``: each string's own longest repeat, grouped
         with the others' in step. ``"pairs"`` (with ``min_copies=2``): as well, for the
-        strings no section group took, every exact repeat that could reach ``alpha`` with
-        another string's, the other string read at the same times, the pair weighed as one
-        event (and as one string of both, so that streams that move together are not
-        counted twice); it finds a short section two strings play at the same times where
-        either one's longest repeat lies elsewhere (``docs/streams.md``, "Sections found by
-        pairs"), and shorter repeats that voices of music play together.
+        strings no section group took, each string's exact repeats at least half as strong
+        as a pair must be, every other such string read at the same times, the pair weighed
+        as one event and as one string of both (so that, in this search, streams that move
+        together are not counted twice); it finds a short section two strings play at the
+        same times where either one's longest repeat lies elsewhere (``docs/streams.md``,
+        "Sections found by pairs"), and shorter repeats that voices of music play together.
     timing : {"auto", "content", "period"}, default "auto"
         How copies are located. ``"content"``: by content in each string, joined in time;
         ``"period"``: by time windows of the action's period pooled over all strings (for

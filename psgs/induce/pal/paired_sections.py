@@ -21,15 +21,16 @@ import numpy as np
 from .conf import NO_BOUND
 from .in_step import _core, _read_the_rest, pair_reading
 from .motifs import Timed
-from .pairing import keeps_shift
-from .sections import (Section, _cycles, _longest_repeated, _repeated, _window_hashes,
-                       follow_rate)
+from .sections import (_BASE, _INVERSE, Section, _cycles, _longest_repeated, _repeated,
+                       _window_hashes, follow_rate)
 from .statistics import log10_choose
 
 __all__: list[str] = []  # private: choice.py is the caller
 
 #: bytes counted against ``max_bytes`` for each repeat listed (its three numbers)
 REPEAT_BYTES = 24
+#: bytes counted for each pair of strings tested or kept (a joint string's numbers, a reading)
+JOINT_BYTES = 512
 
 
 def exact_repeats(codes: np.ndarray, low: int, clock=NO_BOUND) -> np.ndarray:
@@ -43,7 +44,9 @@ def exact_repeats(codes: np.ndarray, low: int, clock=NO_BOUND) -> np.ndarray:
     c`` at 1 and 4, ``b c a`` ...); a run of twice its shift or more is a block played
     three times or more, left to the search for more copies. ``clock`` (a
     :class:`~psgs.induce.pal.conf.Bounds`) is read for each window of a group of equal
-    ones and counts :data:`REPEAT_BYTES` a run.
+    ones (its runs with the later ones are found at once, each run's length by halving
+    on prefix hashes, then checked symbol by symbol) and counts :data:`REPEAT_BYTES` a run
+    before it is kept.
 
     Examples
     --------
@@ -63,28 +66,66 @@ def exact_repeats(codes: np.ndarray, low: int, clock=NO_BOUND) -> np.ndarray:
     ordered = hashes[order]
     begins = np.concatenate(([0], np.flatnonzero(np.diff(ordered)) + 1))
     sizes = np.diff(np.concatenate((begins, [len(ordered)])))
+    prefix, powers = _prefix_hashes(codes)
     found = []
     for g in np.flatnonzero(sizes >= 2).tolist():
-        clock.check()
-        before = len(found)
-        where = order[begins[g]:begins[g] + sizes[g]].tolist()  # ascending positions
-        for k, p in enumerate(where):
+        where = order[begins[g]:begins[g] + sizes[g]]  # ascending positions
+        for k in range(len(where) - 1):
             clock.check()  # (a group holds as many pairs as its windows squared)
-            for q in where[k + 1:]:
-                shift = q - p
-                if shift < low or (p and codes[p - 1] == codes[q - 1]):
-                    continue  # the copies would overlap, or the run begins further left
-                if not np.array_equal(codes[p:p + low], codes[q:q + low]):
-                    continue  # (a hash collision)
-                length = low
-                while q + length < n and codes[p + length] == codes[q + length]:
-                    length += 1
-                if length < 2 * shift:
-                    found.append((p, q, length))
-        clock.keep(REPEAT_BYTES * (len(found) - before))
+            p, q = int(where[k]), where[k + 1:]
+            # the copies apart, and where the run begins (the symbols before disagree)
+            q = q[q - p >= low]
+            if p:
+                q = q[codes[q - 1] != codes[p - 1]]
+            q = q[np.all(codes[q[:, None] + np.arange(low)] == codes[p:p + low], axis=1)] \
+                if len(q) else q  # (a hash collision)
+            if not len(q):
+                continue
+            # each run's length, up to twice its shift (longer is a block played three
+            # times or more): the longest agreeing prefix, by halving on prefix hashes
+            shift = q - p
+            lo, hi = np.full(len(q), low), np.minimum(n - q, 2 * shift)
+            while np.any(lo < hi):
+                mid = (lo + hi + 1) // 2
+                same = _hash(prefix, powers, p, mid) == _hash(prefix, powers, q, mid)
+                lo, hi = np.where(same, mid, lo), np.where(same, hi, mid - 1)
+            kept = lo < 2 * shift
+            rows = np.column_stack((np.full(np.count_nonzero(kept), p), q[kept], lo[kept]))
+            rows = rows[[_exact(codes, *row) for row in rows.tolist()]]
+            clock.keep(REPEAT_BYTES * len(rows))
+            found.append(rows)
     if not found:
         return np.empty((0, 3), dtype=np.int64)
-    return np.array(sorted(found), dtype=np.int64)
+    out = np.concatenate(found).astype(np.int64)
+    return out[np.lexsort(out.T[::-1])]
+
+
+def _prefix_hashes(codes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Prefix sums of ``(code + 1) * BASE**-j`` and the powers ``BASE**j`` (wrapping 64-bit
+    arithmetic): the hash of any window, :func:`_hash`, in two operations."""
+    n = len(codes)
+    with np.errstate(over="ignore"):
+        steps = np.full(n + 1, _INVERSE, dtype=np.uint64)
+        steps[0] = 1
+        weighted = (codes.astype(np.uint64) + np.uint64(1)) * np.cumprod(steps, dtype=np.uint64)[:n]
+        prefix = np.concatenate(([np.uint64(0)], np.cumsum(weighted, dtype=np.uint64)))
+        steps[:] = _BASE
+        steps[0] = 1
+        return prefix, np.cumprod(steps, dtype=np.uint64)
+
+
+def _hash(prefix: np.ndarray, powers: np.ndarray, start, length) -> np.ndarray:
+    """The hash of the windows of ``length`` symbols at ``start`` (equal windows, equal
+    hashes, wherever they are)."""
+    with np.errstate(over="ignore"):
+        return (prefix[start + length] - prefix[start]) * powers[start]
+
+
+def _exact(codes: np.ndarray, p: int, q: int, length: int) -> bool:
+    """Whether the run of ``length`` at ``p`` and ``q`` agrees and ends there (the hashes
+    said so; a collision would not)."""
+    return bool(np.array_equal(codes[p:p + length], codes[q:q + length])
+                and (q + length == len(codes) or codes[p + length] != codes[q + length]))
 
 
 def paired_groups(strings: list[Timed], follows: list[float | None], level: float,
@@ -131,6 +172,7 @@ def paired_groups(strings: list[Timed], follows: list[float | None], level: floa
     half = {i: log10_choose(len(strings[i].codes) - len(strings[i].codes) // 2 + 1, 2) / 2
             for i in free}
     need = level - log10_choose(total, 2)
+    tolerance = {i: float(np.median(strings[i].ends - strings[i].starts)) / 2 for i in free}
     pairs: dict[tuple[int, int], tuple[float, dict[int, Section], np.ndarray]] = {}
     joints: dict[tuple[int, int], _JointString] = {}
     for i in free:
@@ -139,11 +181,13 @@ def paired_groups(strings: list[Timed], follows: list[float | None], level: floa
         if low is None:
             continue
         codes = strings[i].codes
+        hashed = _prefix_hashes(codes)
         for p, p2, length in exact_repeats(codes, low, clock).tolist():
             shift, size = p2 - p, min(length, p2 - p)
             # a run longer than its shift: its first two copies and its last two
             for start in dict.fromkeys((p, p + length - size)):
-                if _cycles(codes, (start, start + shift), size):
+                clock.check()
+                if _cycle(codes, hashed, start, start + shift, size):
                     continue
                 mine = strings[i].intervals(np.array([start, start + shift]), size)
                 bound = need - (q + (size - 1) * r + half[i])
@@ -151,23 +195,25 @@ def paired_groups(strings: list[Timed], follows: list[float | None], level: floa
                     if j == i:
                         continue
                     clock.check()
-                    theirs = _agreeing(strings[j], mine, terms[j], bound - half[j])
-                    if theirs is None:
-                        continue
-                    key = (i, j) if i < j else (j, i)
-                    core = _core([mine, theirs])
-                    if core is None:
-                        continue
-                    # the two read as one string first: the cheaper test, and the one that
-                    # fails where the strings move together
-                    if key not in joints:
-                        joints[key] = _JointString.of(strings[key[0]], strings[key[1]])
-                    if joints[key].significance(core) + log10_choose(total, 2) > level:
-                        continue
-                    reading = pair_reading(strings, key, (core, core), follows)
-                    if reading is not None and reading[0] <= level and (
-                            key not in pairs or reading[0] < pairs[key][0]):
-                        pairs[key] = reading
+                    for theirs in _agreeing(strings[j], mine, terms[j], bound - half[j],
+                                            tolerance[j]):
+                        key = (i, j) if i < j else (j, i)
+                        core = _core([mine, theirs])
+                        if core is None:
+                            continue
+                        # the two read as one string first: the cheaper test, and the one
+                        # that fails where the strings move together
+                        if key not in joints:
+                            clock.keep(JOINT_BYTES)
+                            joints[key] = _JointString.of(strings[key[0]], strings[key[1]])
+                        if joints[key].significance(core) + log10_choose(total, 2) > level:
+                            continue
+                        reading = pair_reading(strings, key, (core, core), follows)
+                        if reading is not None and reading[0] <= level and (
+                                key not in pairs or reading[0] < pairs[key][0]):
+                            if key not in pairs:
+                                clock.keep(JOINT_BYTES)
+                            pairs[key] = reading
     taken = set(range(total)) - set(free)
     groups = []
     for (i, j), (weight, members, core) in sorted(pairs.items(), key=lambda kv: kv[1][0]):
@@ -187,54 +233,84 @@ class _JointString:
     """Two strings as one, a symbol a stretch of time in which neither changes (the pair of
     their symbols), with its own match and follow rates: the chance of a repeat of both at
     once read from how the two move together, not as if they were independent (voices of
-    one piece move together: a repeat of one is half a repeat of the other)."""
+    one piece move together: a repeat of one is half a repeat of the other). It keeps the
+    two strings and three numbers, not the joint string (one is kept per pair tested)."""
 
-    def __init__(self, starts, ends, codes) -> None:
-        self.starts, self.ends, self.codes = starts, ends, codes
-        counts = np.bincount(codes)
-        self.match = float(np.sum((counts / len(codes)) ** 2))
-        follow = follow_rate(codes)
-        self.follow = self.match if follow is None else follow
+    def __init__(self, a: Timed, b: Timed, size: int, match: float, follow: float) -> None:
+        self.a, self.b, self.size, self.match, self.follow = a, b, size, match, follow
 
     @classmethod
     def of(cls, a: Timed, b: Timed) -> "_JointString":
-        cuts = np.unique(np.concatenate((a.starts, a.ends, b.starts, b.ends)))
-        lo, hi = max(a.starts[0], b.starts[0]), min(a.ends[-1], b.ends[-1])
-        cuts = cuts[(cuts >= lo) & (cuts <= hi)]
+        cuts = _cuts(a, b, max(a.starts[0], b.starts[0]), min(a.ends[-1], b.ends[-1]))
         middles = (cuts[:-1] + cuts[1:]) / 2
         at_a = np.searchsorted(a.ends, middles, side="right")
         at_b = np.searchsorted(b.ends, middles, side="right")
         keys = a.codes[np.minimum(at_a, len(a.codes) - 1)] * (int(b.codes.max()) + 1) + \
             b.codes[np.minimum(at_b, len(b.codes) - 1)]
         _, codes = np.unique(keys, return_inverse=True)
-        return cls(cuts[:-1], cuts[1:], codes.astype(np.int64))
+        counts = np.bincount(codes)
+        match = float(np.sum((counts / max(len(codes), 1)) ** 2))
+        follow = follow_rate(codes.astype(np.int64))
+        return cls(a, b, len(codes), match, match if follow is None else follow)
 
     def significance(self, core: np.ndarray) -> float:
         """log10 of the chance of an exact repeat of the joint string as long as its
         stretches inside ``core``'s first copy, at some pair of places."""
-        inside = int(np.count_nonzero((self.starts >= core[0, 0] - 1e-9)
-                                      & (self.ends <= core[0, 1] + 1e-9)))
+        lo = max(self.a.starts[0], self.b.starts[0], core[0, 0] - 1e-9)
+        hi = min(self.a.ends[-1], self.b.ends[-1], core[0, 1] + 1e-9)
+        inside = len(_cuts(self.a, self.b, lo, hi)) - 1
         if inside < 1 or self.match <= 0 or self.follow <= 0:
             return 0.0
-        places = log10_choose(max(len(self.codes) - inside + 1, 2), 2)
+        places = log10_choose(max(self.size - inside + 1, 2), 2)
         return places + math.log10(self.match) + (inside - 1) * math.log10(self.follow)
 
 
+def _cuts(a: Timed, b: Timed, lo: float, hi: float) -> np.ndarray:
+    """The times from ``lo`` to ``hi`` at which either string's segments begin or end."""
+    parts = []
+    for string in (a, b):
+        for times in (string.starts, string.ends):
+            parts.append(times[np.searchsorted(times, lo, side="left"):
+                               np.searchsorted(times, hi, side="right")])
+    return np.unique(np.concatenate(parts))
+
+
+def _cycle(codes: np.ndarray, hashed, first: int, second: int, size: int) -> bool:
+    """:func:`~psgs.induce.pal.sections._cycles` of the copies of ``size`` at ``first`` and
+    ``second``: every shift of half the window or less tried at once on the prefix hashes
+    ``hashed`` (:func:`_prefix_hashes`), the one found checked by the symbols."""
+    prefix, powers = hashed
+    span = second + size - first
+    shifts = np.arange(1, size // 2 + 1)
+    if not len(shifts):
+        return False
+    window = _hash(prefix, powers, first, size - shifts) == \
+        _hash(prefix, powers, first + shifts, size - shifts)
+    stretch = _hash(prefix, powers, first, span - shifts) == \
+        _hash(prefix, powers, first + shifts, span - shifts)
+    found = shifts[window & stretch]
+    if not len(found):
+        return False
+    return _cycles(codes, np.array([first, second]), size) if not np.array_equal(
+        codes[first + found[0]:second + size], codes[first:second + size - found[0]]) else True
+
+
 def _agreeing(string: Timed, copies: np.ndarray, term: tuple[float, float],
-              need: float) -> np.ndarray | None:
-    """The times of the longest exact repeat of ``string`` inside the first of ``copies``
-    and at their shift, when its chance (``term``: log10 of a first symbol's and each
-    further one's) reaches ``need``; else None.
+              need: float, tolerance: float) -> list[np.ndarray]:
+    """The times of the exact repeats of ``string`` inside the first of ``copies`` and at
+    their shift whose chance (``term``: log10 of a first symbol's and each further one's)
+    reaches ``need``: the one of the most segments and the one covering the most time (a
+    few long segments can cover more of the other string's symbols), one or both.
 
     A segment repeats when a segment of the same symbol begins the shift later, to within
-    half the string's median segment (the times of two strings never agree to the float).
+    ``tolerance`` (half the string's median segment: the times of two strings never agree
+    to the float).
     """
     (a, b), (c, _) = copies.tolist()
     shift = c - a
     first = np.flatnonzero((string.starts >= a - 1e-9) & (string.ends <= b + 1e-9))
     if len(first) < 2:
-        return None
-    tolerance = float(np.median(string.ends - string.starts)) / 2
+        return []
     target = string.starts[first] + shift
     at = np.clip(np.searchsorted(string.starts, target), 1, len(string.codes) - 1)
     at = np.where(np.abs(string.starts[at - 1] - target) < np.abs(string.starts[at] - target),
@@ -243,26 +319,20 @@ def _agreeing(string: Timed, copies: np.ndarray, term: tuple[float, float],
         string.codes[at] == string.codes[first]) & (at > first[-1])
     # runs of agreeing segments whose partners follow one another as they do
     step = np.concatenate(([False], ok[1:] & ok[:-1] & (np.diff(at) == np.diff(first))))
-    if not ok.any():
-        return None
-    starts = np.flatnonzero(ok & ~step)
-    lengths = np.array([_run_length(step, u) for u in starts.tolist()])
-    best = int(np.argmax(lengths))
-    length, u = int(lengths[best]), int(starts[best])
+    begins = np.flatnonzero(ok & ~step)
+    if not len(begins):
+        return []
+    lengths = np.bincount(np.cumsum(ok & ~step)[ok])[1:]
+    ends = begins + lengths - 1
+    covered = string.ends[first[ends]] - string.starts[first[begins]]
     q, r = term
-    if length < 2 or q + (length - 1) * r > need:
-        return None
-    k0, k1 = first[u], first[u + length - 1]
-    m0, m1 = at[u], at[u + length - 1]
-    return np.array([[string.starts[k0], string.ends[k1]], [string.starts[m0], string.ends[m1]]])
-
-
-def _run_length(step: np.ndarray, u: int) -> int:
-    """How many segments from ``u`` on agree, each following the one before."""
-    v = u + 1
-    while v < len(step) and step[v]:
-        v += 1
-    return v - u
+    out = []
+    for best in dict.fromkeys((int(np.argmax(lengths)), int(np.argmax(covered)))):
+        length, u, v = int(lengths[best]), int(begins[best]), int(ends[best])
+        if length >= 2 and q + (length - 1) * r <= need:
+            out.append(np.array([[string.starts[first[u]], string.ends[first[v]]],
+                                 [string.starts[at[u]], string.ends[at[v]]]]))
+    return out
 
 
 def _term(string: Timed, follow: float | None) -> tuple[float, float]:
