@@ -42,7 +42,8 @@ from .schedule_search import _item_order, _ScheduleSearch, _spine, _Substrings
 
 __all__ = ["lockstep_accepts", "lockstep_applies"]
 
-#: The most occurrences over empty spans a component's block may hold at once.
+#: The most occurrences over empty spans a component's block may hold at once (single mode:
+#: the schedule search needs no such cap in parallel mode, whose keys are finitely many).
 _BLOCK_EPSILON_CAP = 16
 
 

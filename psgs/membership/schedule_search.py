@@ -12,12 +12,15 @@ and ``(A, i', j')`` with ``w[i:j] == w[i':j']`` have the same futures, so a
 state is keyed by its multiset of (nonterminal, substring class). Substring
 classes are found with a polynomial rolling hash and confirmed by comparing
 the substrings, so a hash collision can cost time but never a wrong answer.
+In ``parallel`` mode the occurrences of a nonterminal in one form all derive
+the same word, so a frontier gives each nonterminal one substring class (the
+others have no future) and is keyed by the set of its pairs; the multiset of
+``single`` mode would count ε-occurrences that change nothing there.
 See ``docs/membership.md``.
 """
 
 from __future__ import annotations
 
-import itertools
 from collections.abc import Sequence
 
 from ..analysis import moves as system_moves, reachable, strongly_connected, usable_rules
@@ -30,6 +33,9 @@ from .result import Acceptance
 from .witness import PSGSSchedule, Rewrite, ScheduledMove
 
 __all__: list[str] = []
+
+#: The first round's cap on ε-occurrences per component (single mode; doubled per round).
+_FIRST_CAP = 4
 
 
 class _Substrings:
@@ -134,6 +140,10 @@ class _ScheduleSearch:
             if len(front) == 1:
                 (a, i, j), = front
                 out.append(((a, classes.of(i, j)),))
+            elif self.parallel:
+                # equal occurrences in parallel mode are rewritten alike for ever (see
+                # _parallel_options): how many there are changes no step, so the set is the key
+                out.append(tuple(sorted({(a, classes.of(i, j)) for a, i, j in front})))
             else:
                 out.append(tuple(sorted((a, classes.of(i, j)) for a, i, j in front)))
         return tuple(out)
@@ -181,49 +191,47 @@ class _ScheduleSearch:
                 yield tuple(new), ((it, split),)
 
     def _parallel_options(self, c: int, front, rule: int, a: int, targets):
+        """Parallel mode: every occurrence of ``a`` takes the same split, shifted to its span.
+
+        In parallel mode all occurrences of one nonterminal in a form derive the
+        same word: from the step that made them on, every step rewrites them
+        alike (each applies one rule to every occurrence of its left side), so
+        their sub-forms stay equal. A derivation of the words therefore gives
+        each nonterminal of a form a single substring class, and a frontier
+        where one nonterminal has two classes has no future. Hence the ways to
+        apply ``rule`` are the splits of one occurrence, copied to the others
+        (equal substrings have the same splits, shifted), and a way whose
+        children give a nonterminal a second class is dropped at once. Without
+        this, ``S → S S`` in parallel mode tried every multiset of splits,
+        every partition of the word's length.
+        """
         chart = self.charts[c]
         classes = self.substrings[c]
         tick = self.budget.tick
+        first = targets[0]
+        if len(targets) > 1:
+            cls = classes.of(first[1], first[2])
+            if any(classes.of(i, j) != cls for _, i, j in targets[1:]):
+                return  # two occurrences of a that must derive different words
         rest = [it for it in front if it[0] != a]
-        if len(targets) == 1:
-            # one occurrence: the general product below reduces to its splits, in order;
-            # this path skips the grouping and the lazy product (most steps of most grammars)
-            it = targets[0]
-            for split in chart.splits(rule, it[1], it[2]):
-                tick()
-                new = rest + self._children(c, rule, split)
-                new.sort(key=_item_order)
-                yield tuple(new), ((it, split),)
-            return
-        groups: dict[int, list] = {}
-        for it in targets:
-            groups.setdefault(classes.of(it[1], it[2]), []).append(it)
-        per_group = []
-        for items in groups.values():
-            splits = [chart.splits(rule, it[1], it[2]) for it in items]
-            if not splits[0]:
-                return  # an occurrence the rule cannot cover kills the step
-            per_group.append((items, splits))
-
-        def group_choices(items, splits):
-            # equal occurrences have the same splits (shifted): choose a multiset of them
-            for combo in itertools.combinations_with_replacement(range(len(splits[0])),
-                                                                 len(items)):
-                yield tuple((it, sp[k]) for it, sp, k in zip(items, splits, combo))
-
-        # the product of lazy factors: itertools.product would list every factor first
-        factors = []
-        for items, splits in per_group:
-            choices = group_choices(items, splits)
-            factors.append(_Replayable(next(choices), choices))
-        for combo in _lazy_product(factors):
+        known: dict[int, int] = {}  # the class each nonterminal of the rest must derive
+        for s, i, j in rest:
+            if s not in known:
+                known[s] = classes.of(i, j)
+        origin = first[1]
+        for split in chart.splits(rule, first[1], first[2]):
             tick()
-            rewrites = tuple(rw for group in combo for rw in group)
-            new = list(rest)
-            for it, split in rewrites:
-                new.extend(self._children(c, rule, split))
+            children = self._children(c, rule, split)
+            if not _agrees(classes, children, known):
+                continue
+            new = rest + children
+            rewrites = [(first, split)]
+            for it in targets[1:]:
+                shift = it[1] - origin
+                rewrites.append((it, tuple(b + shift for b in split)))
+                new.extend((s, i + shift, j + shift) for s, i, j in children)
             new.sort(key=_item_order)
-            yield tuple(new), rewrites
+            yield tuple(new), tuple(rewrites)
 
     def successors(self, state):
         """Successor states, lazily, moves whose leftmost target comes first.
@@ -304,8 +312,9 @@ class _ScheduleSearch:
         per component; only occurrences that must derive ε can pile up (e.g.
         ``S → S B``, ``B → ε``). Capping them makes each round finite; a round
         that never met the cap has explored everything, so its "no" is proved.
+        In parallel mode the cap never binds (see :meth:`walk`): one round decides.
         """
-        cap = 4
+        cap = _FIRST_CAP
         explored = 0
         while True:
             # the previous round's visited set is gone; the charts are kept
@@ -332,7 +341,7 @@ class _ScheduleSearch:
             return None, explored, capped
         if path == "max_states":
             reason = f"the schedule search stopped after {explored} states"
-            if capped:
+            if capped or cap > _FIRST_CAP:  # this round or an earlier one met the cap
                 reason += " (occurrences that derive ε can pile up without end here)"
             return (Acceptance("unknown", reason=reason + f" (max_states={self.max_states})",
                                bound="max_states", states=explored, system=self.system),
@@ -357,9 +366,12 @@ class _ScheduleSearch:
 
         def expand(nxt, path):
             _, _, state, move = nxt
-            # a frontier of at most cap occurrences cannot hold more than cap ε-occurrences
-            if any(len(front) > cap and sum(1 for _, i, j in front if i == j) > cap
-                   for front in state):
+            # a frontier of at most cap occurrences cannot hold more than cap ε-occurrences;
+            # parallel mode needs no cap: its keys are sets with one class per nonterminal
+            # (see key), finitely many, however many ε-occurrences pile up
+            if not self.parallel and any(
+                    len(front) > cap and sum(1 for _, i, j in front if i == j) > cap
+                    for front in state):
                 counts[1] = True
                 return None
             k = self.key(state)
@@ -388,6 +400,21 @@ def _finished(state) -> bool:
 
 def _item_order(item):
     return (item[1], item[2], item[0])
+
+
+def _agrees(classes: _Substrings, children, known: dict[int, int]) -> bool:
+    """Whether ``children`` give each nonterminal one class, the class ``known`` holds for it.
+
+    ``known`` maps the nonterminals of the rest of the frontier to the class
+    they derive; each child's class is added to it on a copy, so equal
+    children (``S → S S`` split in the middle) agree with each other too.
+    """
+    seen = dict(known)
+    for s, i, j in children:
+        cls = classes.of(i, j)
+        if seen.setdefault(s, cls) != cls:
+            return False
+    return True
 
 
 

@@ -54,26 +54,42 @@ def test_a_rule_with_a_thousand_symbols_is_parsed_without_recursion():
 
 # ---------------------------------------------------------------- item 13
 def piling() -> PSGS:
-    """S → S S | a | ε in parallel mode: ε-occurrences pile up without end."""
+    """S → S S | a | ε in parallel mode: the words a^(2^k) and ε."""
     return PSGS((Grammar("G", S, [Rule("r1", S, (S, S)), Rule("r2", S, (a,)),
                                   Rule("r3", S, ())]),))
 
 
+def epsilon_pile() -> PSGS:
+    """The ε-pile system of docs/membership.md: single mode, S's pile up over the empty word.
+
+    G1 S → S S | a | ε, G2 T → c | b, the tuples (S → a, T → c) and (S → ε, T → b); the words
+    (ε, c) are not in the language, and S → S S (in no tuple) piles up ε-occurrences of S
+    without end. (``piling()`` in parallel mode did the same until its search kept one word per
+    nonterminal: it decides aaa at once now.)
+    """
+    c, t = T("c"), N("T")
+    g1 = Grammar("G1", S, [Rule("p1", S, (S, S)), Rule("p2", S, (a,)), Rule("p3", S, ())])
+    g2 = Grammar("G2", t, [Rule("q1", t, (c,)), Rule("q2", t, (T("b"),))])
+    return PSGS((g1, g2), (("p2", "q1"), ("p3", "q2")), mode="single")
+
+
 def test_accepts_keeps_max_seconds_where_epsilon_occurrences_pile_up():
-    result, seconds = timed(lambda: psgs.accepts(piling(), ["aaa"], max_seconds=0.5))
+    result, seconds = timed(lambda: psgs.accepts(epsilon_pile(), ["", "c"], max_seconds=0.5))
     assert result.answer == "unknown" and result.bound == "max_seconds"
     assert within(seconds, 0.5), seconds
     assert "0.5 s" in result.reason
 
 
 def test_language_filter_keeps_max_seconds_on_the_same_system():
-    lang, seconds = timed(lambda: language(piling(), 3, method="filter", max_seconds=0.5))
+    lang, seconds = timed(lambda: language(epsilon_pile(), 3, method="filter",
+                                           max_seconds=0.5))
     assert not lang.complete and lang.bound == "max_seconds" and within(seconds, 0.5), seconds
-    assert ("a",) in lang  # what was proved before time ran out is kept
+    assert ("", "b") in lang  # what was proved before time ran out is kept
 
 
 def test_the_schedule_search_has_a_memory_bound_and_names_it():
-    result, seconds = timed(lambda: psgs.accepts(piling(), ["aaa"], max_symbols=20_000))
+    result, seconds = timed(lambda: psgs.accepts(epsilon_pile(), ["", "c"],
+                                                 max_symbols=20_000))
     assert result.answer == "unknown" and result.bound == "max_symbols"
     assert "max_symbols=20000" in result.reason and seconds < 10
 
@@ -160,12 +176,16 @@ def test_epsilon_occurrences_made_by_non_empty_spans_still_give_a_proved_no(mode
 
 
 def test_the_documented_unknown_class_stays_unknown_naming_its_budget():
-    # S → S S | a | ε in parallel mode derives a^(2^k) and ε only; aaa is not a member, but
-    # ε-occurrences of S multiply themselves, so no round of the search is ever complete
-    assert psgs.accepts(piling(), ["aaaa"]).answer == "yes"
-    result = psgs.accepts(piling(), ["aaa"], max_states=100)
+    # the ε-pile system (single mode): (ε, c) is not a member, but ε-occurrences of S multiply
+    # themselves, so no round of the search is ever complete
+    assert psgs.accepts(epsilon_pile(), ["a", "c"]).answer == "yes"
+    result = psgs.accepts(epsilon_pile(), ["", "c"], max_states=100)
     assert result.answer == "unknown" and result.bound == "max_states"
     assert "pile up" in result.reason
+    # the example of the class before: in parallel mode the S over aaa has no split into two
+    # S's that derive one word, so it is a proved no (the words are a^(2^k) and ε)
+    assert psgs.accepts(piling(), ["aaaa"]).answer == "yes"
+    assert psgs.accepts(piling(), ["aaa"], max_states=100).answer == "no"
 
 
 def test_the_filter_reads_the_clock_while_it_builds_a_components_words():

@@ -53,12 +53,15 @@ def test_the_memory_bound_counts_the_words_kept():
 def test_language_names_the_memory_bound_of_a_grammar_and_of_the_filter():
     lang = language(eight_letters(), 8, max_symbols=100_000)
     assert not lang.complete and lang.bound == "max_symbols" and "100000 symbols" in lang.reason
-    # the filter's accepts calls get what the component words leave
-    piling = PSGS((Grammar("G", S, [Rule("r1", S, (S, S)), Rule("r2", S, (a,)),
-                                    Rule("r3", S, ())]),))
+    # the filter's accepts calls get what the component words leave; the system is the ε-pile
+    # of docs/membership.md (single mode), whose search on (ε, c) piles up S's without end
+    t = N("T")
+    g1 = Grammar("G1", S, [Rule("p1", S, (S, S)), Rule("p2", S, (a,)), Rule("p3", S, ())])
+    g2 = Grammar("G2", t, [Rule("q1", t, (T("c"),)), Rule("q2", t, (b,))])
+    piling = PSGS((g1, g2), (("p2", "q1"), ("p3", "q2")), mode="single")
     lang = language(piling, 3, method="filter", max_symbols=2_000, max_seconds=20)
     assert lang.bound == "max_symbols" and "max_symbols=19" in lang.reason  # 2000 less words
-    assert ("a",) in lang
+    assert ("", "b") in lang
 
 
 def test_the_time_bound_is_named_and_kept():

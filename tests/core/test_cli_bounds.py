@@ -115,13 +115,17 @@ def test_a_derivation_s_status_does_not_list_every_step(monkeypatch):
     assert opened.status == "open"
 
 
-PILING = 'psgs Piling\nmode parallel\ncomponent G start S\n  r1: S -> S S\n  r2: S -> "a"\n  r3: S -> \n'
+# the ε-pile system of docs/membership.md: single mode, (ε, c) is not a member and S → S S piles
+# up S's over the empty word without end
+PILING = ('psgs Piling\nmode single\ncomponent G1 start S\n  p1: S -> S S\n  p2: S -> "a"\n'
+          '  p3: S -> \ncomponent G2 start T\n  q1: T -> "c"\n  q2: T -> "b"\n'
+          'sync\n  (p2, q1)\n  (p3, q2)\n')
 
 
 @pytest.mark.parametrize("nearest", [[], ["--nearest"]])
 def test_check_takes_a_memory_bound_and_names_it(grammar, capsys, nearest):
     # ε-occurrences pile up: without --max-symbols only the library's default bound held it
-    status, out, err = run(capsys, "check", grammar(PILING), "aaa", "--max-symbols", "20000",
+    status, out, err = run(capsys, "check", grammar(PILING), "", "c", "--max-symbols", "20000",
                            *nearest)
     assert status == 3 and out
     assert err.startswith("psgs: the search stopped at its bound max_symbols: ")
