@@ -256,6 +256,7 @@ def _read_period(strings, size, times, step, grid, agreement, chance, lag, tried
     windows = grid[:, starts[:, None] + np.arange(lag)]   # (strings, copies, lag)
     penalty = math.log10(len(strings) * tried)
     patterns, occurrences, agreed = {}, {}, {}
+    kept: dict[int, set[int]] = {}  # per component, the windows it holds
     for row, s in enumerate(strings):
         clock.check()
         copies = windows[row]
@@ -274,10 +275,25 @@ def _read_period(strings, size, times, step, grid, agreement, chance, lag, tried
         pattern = _plurality_runs(copies, size)
         if len(pattern) < 2:
             continue
+        # the windows the string is there for (half their points or more): a copy of a
+        # string is never reported where it has no symbol
+        held = np.flatnonzero(2 * (copies >= 0).sum(axis=1) >= lag)
+        if len(held) < conf.min_copies:
+            continue
         patterns[row] = pattern
         agreed[row] = share
         occurrences[row] = tuple((float(times[a] - step / 2), float(times[a + lag - 1] + step / 2))
-                                 for a in starts.tolist())
+                                 for a in starts[held].tolist())
+        kept[row] = set(held.tolist())
+    # in step: a component shares min_copies windows with another one (strings that repeat
+    # at one period but at other times are not synchronised)
+    while True:
+        alone = [row for row in kept if not any(
+            len(kept[row] & kept[other]) >= conf.min_copies for other in kept if other != row)]
+        if not alone:
+            break
+        for row in alone:
+            del kept[row], patterns[row], occurrences[row], agreed[row]
     if len(patterns) < 2:
         return None
     return PeriodResult(float(lag * step), patterns, occurrences, agreed)
