@@ -90,6 +90,41 @@ def chance_threshold(length: int, windows: int, match_rate: float, conf: Content
 @functools.lru_cache(maxsize=4096)
 def _threshold(length: int, windows: int, match_rate: float, match_fraction: float,
                scan_alpha: float) -> int:
+    """The first ``t`` from the floor up whose ``windows`` tails ``P(X >= t)`` are at most
+    ``scan_alpha`` (``length`` when none is).
+
+    Found by halving when the answer is the same as trying each ``t`` in turn, as it is
+    when ``scan_alpha < windows / 4``: at ``t <= m p`` (``m = length``, ``p`` the match
+    rate) the tail is at least a half (the binomial's median is ``floor(m p)`` or
+    ``ceil(m p)``), so no ``t`` there passes; past ``m p``, at or past the mode, each tail
+    is more than ``1 + 1 / m`` times the next (the terms only fall), far beyond what the
+    sum's rounding and its cut at ``e^-30`` of its first term can move, so the ``t`` that
+    pass are the ones from the first that does on. Else (a bound as large as the
+    windows, where a tail of about 1 decides by its last bits) each ``t`` in turn.
+
+    Examples
+    --------
+    >>> _threshold(10, 100, 0.25, 0.5, 0.05) == _linear_threshold(10, 100, 0.25, 0.5, 0.05)
+    True
+    """
+    low = max(2, math.ceil(match_fraction * length))
+    if not scan_alpha < windows / 4 or not 0 < match_rate < 1:
+        return _linear_threshold(length, windows, match_rate, match_fraction, scan_alpha)
+    # (below m p every t fails; the t are tried from the last whole number at or under it)
+    low = max(low, math.floor(length * match_rate))
+    high = length + 1  # (length + 1: no t passes)
+    while low < high:
+        middle = (low + high) // 2
+        if windows * 10 ** log10_binom_sf(middle, length, match_rate) <= scan_alpha:
+            high = middle
+        else:
+            low = middle + 1
+    return min(low, length)
+
+
+def _linear_threshold(length: int, windows: int, match_rate: float, match_fraction: float,
+                      scan_alpha: float) -> int:
+    """:func:`_threshold`, each ``t`` tried in turn from the floor up."""
     low = max(2, math.ceil(match_fraction * length))
     for t in range(low, length + 1):
         if windows * 10 ** log10_binom_sf(t, length, match_rate) <= scan_alpha:
