@@ -319,8 +319,11 @@ def _reports(actiongram: Actiongram, found: ContentResult, period_used: bool,
             m = section  # the repetition the report is about
         if i in found.joined and i in found.patterns:
             partners[i] = found.joined[i]
-        synchronised = (*partners.get(i, ()), *(j for j in section_partners.get(i, ())
-                                                if j not in partners.get(i, ())))
+        # (each section partner looked up in a set of the partners, not in their list: a
+        # string in step with thousands has thousands of both)
+        mates = partners.get(i, ())
+        known = set(mates)
+        synchronised = (*mates, *(j for j in section_partners.get(i, ()) if j not in known))
         if i in found.patterns:
             status = "component"
         elif period_used:
