@@ -5,11 +5,13 @@ Each case here is one such unit made long, a deadline well inside it, and the ti
 raise held to a slack: the compiled synchronisation's block of some 2^20 pair tests (it read
 the clock only between blocks: 1,024 candidates of 1,000 copies were one block of 3 s), a row
 of numpy's pair tests (8,000 partners of 3,000 copies: 1.3 s), the widening of a large group
-(1,000 members by 30 columns: 2.4 s, no reading at all), and the passes over a long string
+(1,000 members by 30 columns: 2.4 s, no reading at all), the passes over a long string
 before its first seed (4 million symbols of a large alphabet: the digrams sorted, about a
-second, and no seed to read the clock before). The slack is for a loaded machine: the cut
-units take a few hundredths of a second past the deadline here. What reads the clock in
-parts reads the same answer as whole.
+second, and no seed to read the clock before), and one long string's section search (a
+section of 200,000 symbols twice in a million: some 30 probes of its lengths, 3.4 s, read
+only before the string). The slack is for a loaded machine: the cut units take a few
+hundredths of a second past the deadline here. What reads the clock in parts reads the same
+answer as whole.
 """
 
 from __future__ import annotations
@@ -179,3 +181,30 @@ def test_the_compiled_radix_groups_are_the_merge_sort_s(values, bins):
     # a flag set stops it
     stopped = _digram_groups(keys, bins, np.ones(1, dtype=np.uint8))
     assert len(stopped[2]) == 0
+
+
+def _long_section(symbols: int, half: int) -> np.ndarray:
+    """``symbols`` random symbols of 50, the last ``2 * half`` a section of ``half`` twice."""
+    rng = np.random.default_rng(0)
+    section = rng.integers(0, 50, half)
+    return np.concatenate((rng.integers(0, 50, symbols - 2 * half), section, section))
+
+
+def test_one_long_string_s_section_search_reads_the_clock_between_its_lengths():
+    from psgs.induce.pal.sections import find_section, find_sections, follow_rate
+
+    # a section of 200,000 symbols twice in 10^6: the lengths probed double to it and halve
+    # back, some 30 probes of 0.1 s each after 0.2 s of passes over the string (3.4 s, with
+    # no reading between them): the deadline falls among the probes
+    codes = _long_section(1_000_000, 200_000)
+    rate = float(np.sum((np.bincount(codes) / len(codes)) ** 2))
+    took = _raises_within(lambda clock: find_sections([codes], 2, [rate], -1e-9,
+                                                      [follow_rate(codes)], clock), 1.0)
+    assert took < 1.0 + SLACK
+    # a deadline not reached: the same section as without one
+    short = _long_section(3000, 400)
+    plain = find_section(short, 2, 3000, rate)
+    bounded = find_section(short, 2, 3000, rate, clock=Budget(seconds=1e6))
+    assert len(plain.motif) == 400 and plain.starts.tolist() == [2200, 2600]
+    assert np.array_equal(bounded.motif, plain.motif)
+    assert np.array_equal(bounded.starts, plain.starts)

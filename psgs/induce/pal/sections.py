@@ -183,7 +183,8 @@ def find_sections(strings: list[np.ndarray], copies: int, match_rates: list[floa
                   clock=NO_BOUND) -> list[Section | None]:
     """:func:`find_section` of every string (unbounded in length), strings that cannot hold a
     section reaching ``level`` passed over in one pass over all of them; ``clock`` (a
-    :class:`~psgs.budget.Budget`) read before each string searched.
+    :class:`~psgs.budget.Budget`) read before that pass's hashes of each length, before each
+    string searched and between the lengths each string's search probes.
 
     Examples
     --------
@@ -200,23 +201,25 @@ def find_sections(strings: list[np.ndarray], copies: int, match_rates: list[floa
                else None for i, c in enumerate(strings)]
     lows = [_shortest(len(c), copies, q, f, level, len(c) // copies)
             if len(c) >= 2 * copies else 0 for c, q, f in zip(strings, match_rates, follows)]
-    for i in _may_repeat(strings, lows, copies):
+    for i in _may_repeat(strings, lows, copies, clock):
         clock.check()
         out[i] = find_section(strings[i], copies, len(strings[i]), match_rates[i], level,
-                              follows[i], lows[i])
+                              follows[i], lows[i], clock)
     return out
 
 
-def _may_repeat(strings: list[np.ndarray], lows: list[int], copies: int) -> list[int]:
+def _may_repeat(strings: list[np.ndarray], lows: list[int], copies: int,
+                clock=NO_BOUND) -> list[int]:
     """The strings where some window of ``lows[i]`` symbols comes ``copies`` times, spread
     over ``(copies - 1) lows[i]`` symbols at least (what a section needs; hashes of every
-    string of one length compared at once)."""
+    string of one length compared at once, ``clock`` read before each length)."""
     by_length: dict[int, list[int]] = {}
     for i, (codes, low) in enumerate(zip(strings, lows)):
         if 2 <= low <= len(codes) // copies:
             by_length.setdefault(low, []).append(i)
     out: list[int] = []
     for length, rows in by_length.items():
+        clock.check()
         flat = np.concatenate([strings[i] for i in rows])
         bounds = np.cumsum([0] + [len(strings[i]) for i in rows])
         hashes = _window_hashes(flat, length)
@@ -248,7 +251,7 @@ def _may_repeat(strings: list[np.ndarray], lows: list[int], copies: int) -> list
 
 def find_section(codes: np.ndarray, copies: int, longest: int, match_rate: float,
                  level: float = 0.0, follow: float | None = None,
-                 low: int | None = None) -> Section | None:
+                 low: int | None = None, clock=NO_BOUND) -> Section | None:
     """The longest window of ``codes`` found ``copies`` times or more, exact and apart.
 
     Among windows of that length the one with the most copies wins, the
@@ -258,7 +261,10 @@ def find_section(codes: np.ndarray, copies: int, longest: int, match_rate: float
     significance to reach ``level`` (log10; 0 looks at every length), or when
     the longest is a cycle (its copies are parts of one block played over and
     over, :func:`_cycles`). ``follow`` and ``low``: the string's
-    :func:`follow_rate` and the shortest length worth a look, when known.
+    :func:`follow_rate` and the shortest length worth a look, when known. ``clock`` (a
+    :class:`~psgs.budget.Budget`) is read before each probe of a length (each hashes and
+    sorts the whole string: a long string's search is many such passes) and raises
+    :class:`~psgs.errors.BoundReached` past its deadline.
 
     Examples
     --------
@@ -274,9 +280,13 @@ def find_section(codes: np.ndarray, copies: int, longest: int, match_rate: float
     if low is None:  # (find_sections hands both in)
         follow = follow_rate(codes)
         low = _shortest(n, copies, match_rate, follow, level, high)
-    if low > high or not _repeated(codes, low, copies, first=True):
+    if low > high:
         return None
-    low = _longest_repeated(codes, copies, low, high)
+    clock.check()
+    if not _repeated(codes, low, copies, first=True):
+        return None
+    low = _longest_repeated(codes, copies, low, high, clock)
+    clock.check()
     starts = _repeated(codes, low, copies)
     motif = codes[starts[0]:starts[0] + low].copy()
     if _cycles(codes, starts, low):
@@ -288,9 +298,10 @@ def find_section(codes: np.ndarray, copies: int, longest: int, match_rate: float
                                                       match_rate, follow))
 
 
-def _longest_repeated(codes: np.ndarray, copies: int, low: int, high: int) -> int:
+def _longest_repeated(codes: np.ndarray, copies: int, low: int, high: int,
+                      clock=NO_BOUND) -> int:
     """The longest length in ``[low, high]`` whose some window comes ``copies`` times apart,
-    ``low`` known to.
+    ``low`` known to; ``clock`` read before each probe.
 
     A window with ``copies`` copies apart gives each of its prefixes as many, so the
     lengths that repeat are the ones up to the answer. The search doubles from ``low``
@@ -299,6 +310,7 @@ def _longest_repeated(codes: np.ndarray, copies: int, low: int, high: int) -> in
     """
     step = max(1, low)
     while low < high:
+        clock.check()
         probe = min(high, low + step)
         if _repeated(codes, probe, copies, first=True):
             low, step = probe, 2 * step
@@ -306,6 +318,7 @@ def _longest_repeated(codes: np.ndarray, copies: int, low: int, high: int) -> in
             high = probe - 1
             break
     while low < high:
+        clock.check()
         middle = (low + high + 1) // 2
         if _repeated(codes, middle, copies, first=True):
             low = middle
