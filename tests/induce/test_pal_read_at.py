@@ -198,11 +198,14 @@ def test_colliding_window_hashes_fall_back_to_the_grid(monkeypatch):
 
 
 @pytest.mark.parametrize("need", [-1.5, -3.0])
-def test_a_reading_asked_to_be_as_light_as_need_is_the_oracles_or_none(need, monkeypatch):
+@pytest.mark.parametrize("cells", [0, in_step._GRID_CELLS])
+def test_a_reading_asked_to_be_as_light_as_need_is_the_oracles_or_none(need, cells,
+                                                                       monkeypatch):
     # a caller that keeps only readings as light as ``need`` gets the same reading when it
     # is, and None when it is not, though on long copies only runs that could be that
-    # light are looked for
-    monkeypatch.setattr(in_step, "_GRID_CELLS", 0)
+    # light are looked for, and on short ones (the grid of every shift: ``cells`` as
+    # committed) no candidate whose bound is heavier is weighed
+    monkeypatch.setattr(in_step, "_GRID_CELLS", cells)
     answered = 0
     for seed in range(150):
         string, lead, follow = _planted(seed)

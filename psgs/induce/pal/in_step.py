@@ -11,8 +11,8 @@ event (``docs/streams.md``, "Significance of a repetition"):
 - its **lead**, one member, repeats somewhere: :func:`lead_significance`,
   the expected number of maximal exact repeats as strong in its string;
 - each other member repeats where the lead's copies are:
-  :func:`in_step_significance`, ``T_j``, counting only the places its copies
-  could take lying as close to the lead's copies as they do;
+  :func:`~psgs.induce.pal.in_step_weight.in_step_significance`, ``T_j``, counting
+  only the places its copies could take lying as close to the lead's copies as they do;
 - and the lead and its ``m - 1`` partners could have been any of the
   ``N`` strings: ``log10(N * C(N - 1, m - 1))``.
 
@@ -36,6 +36,7 @@ import math
 import numpy as np
 
 from .conf import NO_BOUND
+from .in_step_weight import in_step_significance, in_step_weights
 from .motifs import Timed
 from .pairing import lead_segments
 from .sections import Section, _cycles
@@ -76,13 +77,14 @@ def group_significance(strings: list[Timed], sections: list, intervals: dict[int
     >>> sorted(members), significance < -2.0
     ([0, 1], True)
     """
-    total = len(strings)
     best: tuple[float, dict[int, Section]] = (math.inf, {})
+    reads = _Reads(strings, follows, [intervals[lead] for lead in group])
     for lead in group:
         clock.check()
         best = min(best, _led_by(strings, lead, sections[lead], intervals[lead], follows,
-                                 partners[lead], sections, intervals, level),
+                                 partners[lead], sections, intervals, level, reads),
                    key=lambda b: b[0])
+        reads.done(intervals[lead])
     # a lead's own section may be a chance extension of the repeat the others play, which
     # puts the others' copies off its own: each member leads again, at the copies it was
     # read at
@@ -192,9 +194,12 @@ def pair_significance(strings: list[Timed], lengths: list[int], follows: list[fl
 
 def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.ndarray,
             follows: list[float | None], partners: list[int], sections: list,
-            intervals: dict[int, np.ndarray], level: float) -> tuple[float, dict[int, Section]]:
+            intervals: dict[int, np.ndarray], level: float, reads: _Reads | None = None
+            ) -> tuple[float, dict[int, Section]]:
     """:func:`group_significance` with one lead read at ``lead_copies``: every other string
-    read there (its own section too when it is one of the lead's ``partners``)."""
+    read there (its own section too when it is one of the lead's ``partners``; ``reads``
+    keeps the readings other leads will ask for again)."""
+    reads = _Reads(strings, follows, []) if reads is None else reads
     total = len(strings)
     # (a member's reading counts only this light or lighter: the lightest of the rest
     # need not be found; the slack keeps every reading the test below keeps, whatever the
@@ -202,15 +207,20 @@ def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.n
     need = level - math.log10(total - 1) + _SLACK if total > 1 else -math.inf
     joined: dict[int, Section] = {}
     weights = []
-    for j in range(total):
+    # (the partners' own sections weighed at the lead's copies all at once)
+    mates = set(partners)
+    own = [j for j in range(total) if j != lead and j in mates]
+    at_lead = dict(zip(own, in_step_weights([(strings[j], sections[j], intervals[j],
+                                              lead_copies, follows[j]) for j in own])))
+    # (only a lead of two copies reads the other strings at them: else its partners alone)
+    for j in range(total) if len(lead_copies) == 2 else own:
         if j == lead:
             continue
         readings = []
-        if j in partners:
-            readings.append((in_step_significance(strings[j], sections[j], intervals[j],
-                                                  lead_copies, follows[j]), sections[j]))
+        if j in at_lead:
+            readings.append((at_lead[j], sections[j]))
         if len(lead_copies) == 2:
-            again = read_at(strings[j], lead_copies, follows[j], need)
+            again = reads.read(j, lead_copies, need)
             if again is not None:
                 readings.append(again)
         if not readings:
@@ -223,10 +233,11 @@ def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.n
         # a lead's copies may reach past the repeat the others play (symbols around its
         # copies agreeing by chance), which puts an exact member off them: every string
         # not yet in is read again where the lead and its members all are
-        core = _core([lead_copies] + [strings[j].copy_times(f) for j, f in joined.items()])
+        core = _core([lead_copies] + [_times(strings, sections, intervals, j, f)
+                                      for j, f in joined.items()])
         if core is not None:
             for j, (again, found) in _read_the_rest(strings, core, follows, {lead, *joined},
-                                                    level).items():
+                                                    level, reads).items():
                 joined[j] = found
                 weights.append(again)
     if not joined:
@@ -235,15 +246,27 @@ def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.n
     # in step with both are (the member's copies may reach past the lead's by chance
     # agreement, as the lead's past the member's): else a chance repeat of the others'
     # would lead them; it is reported as read there
-    again = None
+    places = []
     for mate, found in joined.items():
-        at = strings[mate].copy_times(found)
+        at = _times(strings, sections, intervals, mate, found)
         if len(at) == 2 and len(lead_copies) == 2:
             core = _core([at, lead_copies])
             at = at if core is None else core
-        here = read_at(strings[lead], at, follows[lead], need) if len(at) == 2 else (
-            in_step_significance(strings[lead], section, lead_copies, at, follows[lead]),
-            section)
+        places.append(at)
+    # (the lead's own section weighed at every member's copies but two at once)
+    many = [at for at in places if len(at) != 2]
+    weighed = iter(in_step_weights([(strings[lead], section, lead_copies, at, follows[lead])
+                                    for at in many]))
+    again = None
+    read: dict[tuple, tuple[float, Section] | None] = {}  # (members often share their times)
+    for at in places:
+        if len(at) == 2:
+            key = _times_key(at)
+            if key not in read:
+                read[key] = read_at(strings[lead], at, follows[lead], need)
+            here = read[key]
+        else:
+            here = (next(weighed), section)
         if here is not None and (again is None or here[0] < again[0]):
             again = here
     if again is None or again[0] + math.log10(total - 1) > level:
@@ -254,19 +277,77 @@ def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.n
     return significance, {lead: again[1], **joined}
 
 
+def _times(strings: list[Timed], sections: list, intervals: dict[int, np.ndarray], j: int,
+           found: Section) -> np.ndarray:
+    """The times of string ``j``'s copies of ``found``: ``intervals[j]`` when it is its own
+    section (they are its copies' times)."""
+    return intervals[j] if found is sections[j] else strings[j].copy_times(found)
+
+
 def _read_the_rest(strings: list[Timed], core: np.ndarray, follows: list[float | None],
-                   taken, level: float) -> dict[int, tuple[float, Section]]:
+                   taken, level: float, reads: _Reads | None = None
+                   ) -> dict[int, tuple[float, Section]]:
     """Every string not in ``taken`` read at ``core`` (two copies' times) that is in step
     there beyond chance among the other strings, as a member must be: ``{string: (its
-    significance, the repeat read)}``, in string order."""
+    significance, the repeat read)}``, in string order (``reads``: as :func:`_led_by`)."""
     beside = math.log10(len(strings) - 1)
+    reads = _Reads(strings, follows, []) if reads is None else reads
     out = {}
     for j in range(len(strings)):
         if j not in taken:
-            again = read_at(strings[j], core, follows[j], level - beside + _SLACK)
+            again = reads.read(j, core, level - beside + _SLACK)
             if again is not None and again[0] + beside <= level:
                 out[j] = again
     return out
+
+
+class _Reads:
+    """:func:`read_at` of the strings at lead copies, each answer kept while a lead still
+    to come reads at the same times: sections in step often lie at the very same times
+    (a string's copies are its segments' times), and each lead reads every string there.
+    ``leads``: the copies each lead to come reads at, in turn (:meth:`done` after each);
+    answers at other times are not kept, nor at more than ``_KEPT_TIMES`` times at once."""
+
+    def __init__(self, strings: list[Timed], follows: list[float | None],
+                 leads: list[np.ndarray]) -> None:
+        self.strings, self.follows = strings, follows
+        self.left: dict[tuple, int] = {}  # times -> leads still to read there
+        for copies in leads:
+            key = _times_key(copies)
+            self.left[key] = self.left.get(key, 0) + 1
+        self.kept: dict[tuple, dict] = {}
+
+    def read(self, j: int, copies: np.ndarray, need: float) -> tuple[float, Section] | None:
+        """``read_at(strings[j], copies, follows[j], need)``."""
+        key = _times_key(copies)
+        if self.left.get(key, 0) < 2 and key not in self.kept:
+            return read_at(self.strings[j], copies, self.follows[j], need)
+        if key not in self.kept:
+            if len(self.kept) >= _KEPT_TIMES:
+                return read_at(self.strings[j], copies, self.follows[j], need)
+            self.kept[key] = {}
+        answers = self.kept[key]
+        if (j, need) not in answers:
+            answers[j, need] = read_at(self.strings[j], copies, self.follows[j], need)
+        return answers[j, need]
+
+    def done(self, copies: np.ndarray) -> None:
+        """A lead reading at ``copies`` is done: their answers go with the last one."""
+        key = _times_key(copies)
+        if key in self.left:
+            self.left[key] -= 1
+            if self.left[key] <= 0:
+                del self.left[key]
+                self.kept.pop(key, None)
+
+
+def _times_key(copies: np.ndarray) -> tuple:
+    """Copies' times as a key: equal when every time is the same."""
+    return copies.shape, copies.dtype.str, copies.tobytes()
+
+
+#: the most lead copies' times whose readings are kept at once (each: one per string)
+_KEPT_TIMES = 8
 
 
 def _core(copies: list[np.ndarray]) -> np.ndarray | None:
@@ -308,137 +389,6 @@ def lead_significance(string: Timed, section: Section, follow: float | None) -> 
     return sets + (copies - 1) * (math.log10(q) + (length - 1) * math.log10(r))
 
 
-def in_step_significance(string: Timed, section: Section, copies: np.ndarray, lead: np.ndarray,
-                         follow: float | None, maximal: bool = True) -> float:
-    """``log10(A * H * P * (1 - r^(c-1)))``: a section's exact copies, lying as close to
-    the lead's copies as they do, by chance; ``inf`` when they do not keep the lead's shift.
-
-    ``P = (q r^(L-1))^(c-1)``, the chance that ``c`` windows of ``L`` symbols agree
-    (``q`` the match rate, ``r`` the follow rate or ``q``), and ``1 - r^(c-1)`` that the
-    symbols before them do not (a repeat counted once, at its left end; 1 when a copy
-    could open the string). A copy pairs with a lead copy when the two share half of the
-    time they cover together; its distance to it is the time outside the shared part (how
-    far its start and its end lie from the lead copy's). Of the sets of windows of ``L``
-    symbols pairing copy by copy with the lead copies these pair with (a copy pairing with
-    none: any window), ``A`` lie as close as these copies do: their distances summed, plus
-    their **mismatch**, how far each copy's start and end lie off the lead's otherwise
-    than the first copy's do (summed over the copies after the first). Copies played at the
-    same times as the lead's keep its shift between them, and the symbols that agree by
-    chance around a section move the edges of all its copies alike, so a repeat off the
-    lead's copies by the same amount in each is nearer than one off by different amounts.
-    ``H`` is what choosing that closeness after seeing it costs: the sum over the closeness
-    ``d`` of the sets at ``d`` over the sets at ``d`` or nearer (the union over every set
-    of the chance that it is as strong; at most ``1 + ln`` of the sets). Only copies **in
-    step** are weighed: their mismatch at most, per copy after the first, the string's
-    median segment under the lead's copies or an eighth of the shortest lead copy,
-    whichever is more (a symbol's worth of rhythm, a note held longer at a section's end;
-    exact repeats at the same times have none), since copies played at the same times keep
-    the lead's shift and a repeat at a shift of its own is no repeat in step, however near
-    (the sets counted are still every set pairing as the copies do, so that the test is
-    chosen no more finely than before the copies were seen). ``copies`` and
-    ``lead`` are (copies, 2) arrays of times; ``maximal``: the copies are a maximal run of
-    agreement (the symbols before them disagree), not a part of one.
-
-    Examples
-    --------
-    >>> codes = np.array([0, 1, 2, 3, 4, 5, 1, 2, 3, 4, 6, 7])
-    >>> string = Timed.from_codes(codes, np.ones(12), 0.0)
-    >>> section = Section(codes[1:5], np.array([1, 6]), -1.0)
-    >>> same = np.array([[1.0, 5.0], [6.0, 10.0]])
-    >>> round(in_step_significance(string, section, same, same, None), 2)  # one place
-    -3.11
-    >>> round(in_step_significance(string, section, same, same + 1, None), 2)  # more
-    -2.33
-    >>> in_step_significance(string, section, same, same + [[0], [1]], None)  # off the shift
-    inf
-    """
-    length = len(section.motif)
-    q = string.match_rate
-    r = q if follow is None else follow
-    if q <= 0 or r <= 0:
-        return -math.inf
-    c = len(copies)
-    chance = (c - 1) * (math.log10(q) + (length - 1) * math.log10(r))
-    n = len(string.codes)
-    begins = string.starts[:n - length + 1]
-    ends = string.ends[length - 1:]
-    slack = 1e-9 * max(1.0, float(np.max(np.abs(copies))))
-    anywhere, opens = 0.0, False
-    # per copy that pairs: its offsets from its lead copy (start, end) and those of every
-    # window pairing as it does
-    per_copy: list[tuple[tuple[float, float], np.ndarray, np.ndarray]] = []
-    for a, b in copies.tolist():
-        closest = None
-        for lo, hi in lead.tolist():
-            shared, union = min(b, hi) - max(a, lo), max(b, hi) - min(a, lo)
-            if shared > 0 and 2 * shared >= union and (closest is None
-                                                       or union - shared < closest[0]):
-                closest = (union - shared, lo, hi)
-        if closest is None:
-            anywhere += math.log10(len(begins))  # it could be any window
-            opens = True
-            continue
-        _, lo, hi = closest
-        shared = np.minimum(ends, hi) - np.maximum(begins, lo)
-        union = np.maximum(ends, hi) - np.minimum(begins, lo)
-        pairs = (shared > 0) & (2 * shared >= union)
-        per_copy.append(((a - lo, b - hi), begins[pairs] - lo, ends[pairs] - hi))
-        opens = opens or bool(pairs[0])
-    left = 0.0 if opens or not maximal else math.log10(max(1e-300, 1 - r ** (c - 1)))
-    # copies in step keep the lead's shift, each copy after the first to within the
-    # string's typical segment or an eighth of the lead's copy (a note held longer at a
-    # section's end), or they are not in step at all
-    under = (string.starts < lead[:, 1].max()) & (string.ends > lead[:, 0].min())
-    durations = (string.ends - string.starts)[under]
-    tolerance = (c - 1) * max(float(np.median(durations)) if len(durations) else 0.0,
-                              float(np.min(lead[:, 1] - lead[:, 0])) / 8)
-    return anywhere + _as_close(per_copy, slack, tolerance) + chance + left
-
-
-def _as_close(per_copy: list[tuple[tuple[float, float], np.ndarray, np.ndarray]],
-              slack: float, tolerance: float = math.inf) -> float:
-    """log10 of ``A * H`` (:func:`in_step_significance`) for copies at the offsets given
-    from their lead copies (start, end), each of which could have been any of the windows
-    whose offsets are listed with it; ``inf`` when the copies' mismatch is over
-    ``tolerance`` (not in step).
-
-    The sets are ranked by their distance plus their mismatch while they are few (4096 or
-    fewer); past that, copy by copy by the distance alone (``A`` and ``H`` the products of
-    each copy's own: a ranking of its own, chosen by the sets' number alone, before the
-    string is read).
-    """
-    if not per_copy:
-        return 0.0
-    sizes = [len(b) for _, b, _ in per_copy]
-    if len(per_copy) > 1 and math.prod(sizes) > 1 << 12:
-        return sum(_as_close([one], slack) for one in per_copy)
-    (first_b, first_e), _, _ = per_copy[0]
-    # every set's offsets: one window per copy (the sets as the rows of a grid)
-    grids = np.meshgrid(*[np.arange(k) for k in sizes], indexing="ij")
-    rows = [g.ravel() for g in grids]
-    distance = np.zeros(len(rows[0]))
-    mismatch = np.zeros(len(rows[0]))
-    observed_d = observed_m = 0.0
-    for k, ((db, de), begins, ends) in enumerate(per_copy):
-        b, e = begins[rows[k]], ends[rows[k]]
-        distance += np.abs(b) + np.abs(e)
-        observed_d += abs(db) + abs(de)
-        if k:
-            b0, e0 = per_copy[0][1][rows[0]], per_copy[0][2][rows[0]]
-            mismatch += np.abs(b - b0) + np.abs(e - e0)
-            observed_m += abs(db - first_b) + abs(de - first_e)
-    # (the sets' keys on a grid of ``slack``, so that float sums of the times do not part
-    # equal keys)
-    if observed_m > tolerance + slack:
-        return math.inf  # (off the lead's shift: not in step)
-    keys = np.round((mismatch + distance) / slack)
-    near = max(1, int(np.count_nonzero(keys <= round((observed_m + observed_d) / slack))))
-    # choosing the key after seeing it: the union over the sets of the chance each is as
-    # strong, sum over the keys k of (sets at k) / (sets at k or nearer)
-    _, counts = np.unique(keys, return_counts=True)
-    return math.log10(near) + math.log10(float(np.sum(counts / np.cumsum(counts))))
-
-
 #: what a caller adds to the weight it needs (its own test, a sum, may round either way)
 _SLACK = 1e-9
 #: grids of more shifts-by-positions than this are first searched for long runs alone
@@ -473,8 +423,9 @@ def read_at(string: Timed, lead: np.ndarray, follow: float | None, need: float |
     when the copies share a long repeat (a movement's section played twice: 23 s to under
     1 s on a quartet of 8,000 to 12,000 notes a voice). With ``need`` (log10), a
     caller that keeps only readings that light says so: the answer is the same when it
-    is that light and None otherwise, and on long copies only the runs whose least bound
-    reaches ``need`` are looked for.
+    is that light and None otherwise, on long copies only the runs whose least bound
+    reaches ``need`` are looked for, and no candidate whose least bound is heavier than
+    ``need`` is weighed (none at all when the longest run's is).
 
     Examples
     --------
@@ -518,7 +469,13 @@ def _read_runs(frame: Frame, follow: float | None, need: float | None
     q = string.match_rate
     r = q if follow is None else follow
     if frame.width * (frame.top - frame.low + 1) <= _GRID_CELLS or q <= 0 or not 0 < r < 1:
-        return _lightest(frame, candidates(frame, *grid_runs(frame)), follow)
+        runs = grid_runs(frame)
+        # (with ``need``: no candidate is longer than the longest run, and none weighs less
+        # than its length's bound, so a longest run whose bound is heavier keeps none)
+        if (need is not None and q > 0 and 0 < r < 1 and len(runs[0])
+                and _bound(q, r, int(np.max(runs[1] - runs[0]))) > need):
+            return None
+        return _lightest(frame, candidates(frame, *runs), follow, need=need)
     # (a candidate weighed in one pass keeps its weight in the next: a string that plays
     # one short block over and over gives the same cycles to every pass)
     weighed: dict = {}
@@ -531,7 +488,7 @@ def _read_runs(frame: Frame, follow: float | None, need: float | None
             floor += 1
         runs = long_runs(frame, floor)
         if runs is not None:
-            return _lightest(frame, candidates(frame, *runs), follow, weighed)
+            return _lightest(frame, candidates(frame, *runs), follow, weighed, need)
     # long copies: the grid of every shift by every position is most of the cost, and
     # only long runs can be the lightest. The runs of ``floor`` symbols or more, found
     # from equal windows, are weighed first; when every shorter run's least bound is
@@ -559,11 +516,13 @@ def _bound(q: float, r: float, length: int, inner: bool = False) -> float:
             + (0.0 if inner else math.log10(max(1e-300, 1 - r))))
 
 
-def _lightest(frame: Frame, found, follow: float | None, weighed: dict | None = None
-              ) -> tuple[float, Section] | None:
+def _lightest(frame: Frame, found, follow: float | None, weighed: dict | None = None,
+              need: float | None = None) -> tuple[float, Section] | None:
     """The lightest candidate in step (:func:`in_step_significance`), the first among
     equals, weighed from the least bound on their weight up; ``weighed`` keeps each
-    candidate's weight (inf: a cycle, or not in step) for another pass."""
+    candidate's weight (inf: a cycle, or not in step) for another pass. With ``need``, the
+    candidates whose bound is heavier than it are not weighed: the answer is the same when
+    it is that light, and may be None or heavier otherwise."""
     lengths, ats, shifted, clipped = found
     weighed = {} if weighed is None else weighed
     if not lengths:
@@ -575,6 +534,8 @@ def _lightest(frame: Frame, found, follow: float | None, weighed: dict | None = 
     bounds = {key: _bound(q, r, *key) for key in set(zip(lengths, clipped))}
     best, best_order = None, -1
     for bound, order in sorted((bounds[key], k) for k, key in enumerate(zip(lengths, clipped))):
+        if need is not None and bound > need:
+            break  # (every candidate left is heavier than the caller keeps)
         if best is not None and bound >= best[0]:
             if bound > best[0]:
                 break  # (every candidate left is at least as heavy)
