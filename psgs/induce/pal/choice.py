@@ -86,13 +86,13 @@ def add_sections(strings: list[Timed], found: ContentResult, conf: ContentConf,
     candidates = [i for i, s in enumerate(sections) if s is not None and s.significance <= SCREEN]
     intervals = {i: strings[i].copy_times(sections[i]) for i in candidates}
     partners: dict[int, list[int]] = {i: [] for i in candidates}
+    table = _CopyTable.of([intervals[i] for i in candidates])
     for k, a in enumerate(candidates):
         clock.check()
-        in_step = [b for b in candidates[k + 1:]
-                   # copies that pair off, at one shift (a chance repeat inside long copies
-                   # pairs with them too, but lies off them by a different amount in each)
-                   if coincide(intervals[a], intervals[b], conf.min_copies, conf.sync_fraction)
-                   and keeps_shift(intervals[a], intervals[b])]
+        # copies that pair off, at one shift (a chance repeat inside long copies pairs with
+        # them too, but lies off them by a different amount in each)
+        in_step = [candidates[b] for b in in_step_row(table, k, conf.min_copies,
+                                                      conf.sync_fraction)]
         clock.keep(PAIR_BYTES * len(in_step))
         partners[a].extend(in_step)
         for b in in_step:
@@ -268,6 +268,131 @@ def coincide(a: np.ndarray, b: np.ndarray, copies: int, fraction: float = 1.0) -
             near += 1
     count = min(count, len(b_list))
     return count >= copies and count >= fraction * max(len(a), len(b))
+
+
+#: a row's pair tests are laid out at most this many copy pairs at a time (a pair of
+#: strings with more is tested alone, by coincide and keeps_shift)
+_ROW_CELLS = 1 << 16
+
+
+@dataclass(frozen=True)
+class _CopyTable:
+    """Every candidate's copies end to end: their ``starts`` and ``ends``, where each
+    candidate's begin (``begins``), how many each has (``sizes``), whether they start in
+    time order (``ordered``, as :func:`coincide` reads them) and each one's ``copies`` as
+    they came."""
+
+    starts: np.ndarray
+    ends: np.ndarray
+    begins: np.ndarray
+    sizes: np.ndarray
+    ordered: np.ndarray
+    copies: tuple
+
+    @classmethod
+    def of(cls, copies: list[np.ndarray]) -> _CopyTable:
+        sizes = np.array([len(c) for c in copies], dtype=np.int64)
+        flat = (np.concatenate(copies).reshape(-1, 2) if copies else np.zeros((0, 2)))
+        begins = np.cumsum(sizes) - sizes
+        # (falls[i]: how many of the first i copies start after the copy that follows them)
+        falls = np.concatenate(([0], np.cumsum(np.diff(flat[:, 0]) < 0))).tolist()
+        ordered = np.array([not size or falls[begin + size - 1] == falls[begin]
+                            for begin, size in zip(begins.tolist(), sizes.tolist())], bool)
+        return cls(flat[:, 0].copy(), flat[:, 1].copy(), begins, sizes, ordered, tuple(copies))
+
+
+def in_step_row(table: _CopyTable, k: int, copies: int, fraction: float) -> list[int]:
+    """The candidates after ``k`` whose copies are in step with candidate ``k``'s:
+    ``coincide(a, b, copies, fraction) and keeps_shift(a, b)``, ``a`` the copies of ``k``
+    and ``b`` of each later one, the same to the bit, tested together.
+
+    Every copy of ``a`` beside every copy of each ``b`` (a block of candidates at a time,
+    ``_ROW_CELLS`` pairs of copies at most): the pairs that share half the time they cover,
+    which of them :func:`coincide`'s walk from the copy of ``b`` starting last before a
+    copy of ``a`` meets, and the first copy of ``b`` each copy of ``a`` pairs with for
+    :func:`~psgs.induce.pal.pairing.keeps_shift`'s offsets. A candidate whose copies do
+    not start in time order (:func:`coincide` bisects their starts), or that has more
+    pairs of copies with ``a`` than a block, is tested alone by the two functions.
+
+    Examples
+    --------
+    >>> a = np.array([[9.0, 25.0], [27.0, 43.0]])
+    >>> inside = np.array([[9.0, 17.0], [34.0, 42.0]])  # pairs with a, shifted 25 not 18
+    >>> table = _CopyTable.of([a, a + 1, a * 0.5, inside])
+    >>> in_step_row(table, 0, 2, 1.0)  # in step; off the copies; at a shift of its own
+    [1]
+    >>> [coincide(a, b, 2) for b in (a + 1, a * 0.5, inside)]
+    [True, False, True]
+    """
+    size = int(table.sizes[k])
+    later = np.arange(k + 1, len(table.sizes))
+    other = table.sizes[later]
+    # (as coincide: too few copies on one side to pair off enough of the other's)
+    enough = ~(np.minimum(size, other) < np.maximum(copies, fraction * np.maximum(size, other)))
+    alone = enough & ((size * other > _ROW_CELLS) | ~table.ordered[later])
+    found = []
+    for b in later[alone].tolist():
+        a_copies, b_copies = table.copies[k], table.copies[b]
+        if coincide(a_copies, b_copies, copies, fraction) and keeps_shift(a_copies, b_copies):
+            found.append(b)
+    together = later[enough & ~alone]
+    cells = np.cumsum(size * table.sizes[together])
+    done = 0
+    while done < len(together):
+        upto = max(done + 1, int(np.searchsorted(cells, cells[done] - size * int(
+            table.sizes[together[done]]) + _ROW_CELLS, side="right")))
+        block = together[done:upto]
+        found.extend(block[_in_step_block(table, k, block, copies, fraction)].tolist())
+        done = upto
+    return sorted(found)
+
+
+def _in_step_block(table: _CopyTable, k: int, block: np.ndarray, copies: int,
+                   fraction: float) -> np.ndarray:
+    """:func:`in_step_row` of the candidates ``block`` (copies in time order): a mask."""
+    first = int(table.begins[k])
+    size = int(table.sizes[k])
+    a0 = table.starts[first:first + size][:, None]
+    a1 = table.ends[first:first + size][:, None]
+    sizes = table.sizes[block]
+    owner = np.repeat(np.arange(len(block)), sizes)
+    local = np.arange(int(sizes.sum())) - np.repeat(np.cumsum(sizes) - sizes, sizes)
+    at = table.begins[block][owner] + local
+    b0, b1 = table.starts[at][None, :], table.ends[at][None, :]
+    shared = np.minimum(a1, b1) - np.maximum(a0, b0)
+    union = np.maximum(a1, b1) - np.minimum(a0, b0)
+    pairs = (shared > 0) & (2 * shared >= union)
+    edges = np.cumsum(sizes) - sizes
+    # coincide: from the copy of b starting last before the copy of a (bisect_left - 1, or
+    # the first) on, while they start before it ends; a copy of a counts once
+    before = np.add.reduceat((b0 < a0).astype(np.int64), edges, axis=1)
+    near = np.maximum(before - 1, 0)[:, owner]
+    walked = pairs & (local[None, :] >= near) & (b0 < a1)
+    count = np.add.reduceat(walked.astype(np.int64), edges, axis=1).astype(bool).sum(axis=0)
+    count = np.minimum(count, sizes)
+    met = (count >= copies) & (count >= fraction * np.maximum(size, sizes))
+    # keeps_shift: each copy of a's first partner among b's copies, its offsets and the
+    # shorter copy's length; two partners at least, every offset within half the median
+    ranked = np.where(pairs, local[None, :], np.iinfo(np.int64).max)
+    partner = np.minimum.reduceat(ranked, edges, axis=1)
+    has = partner < np.iinfo(np.int64).max  # (copies of a, candidates)
+    index = table.begins[block][None, :] + np.where(has, partner, 0)
+    c, d = table.starts[index], table.ends[index]
+    start_off, end_off = a0 - c, a1 - d
+    lengths = np.minimum(a1 - a0, d - c)
+    paired = has.sum(axis=0)
+    spread_start = (np.where(has, start_off, -np.inf).max(axis=0)
+                    - np.where(has, start_off, np.inf).min(axis=0))
+    spread_end = (np.where(has, end_off, -np.inf).max(axis=0)
+                  - np.where(has, end_off, np.inf).min(axis=0))
+    ordered = np.sort(np.where(has, lengths, np.inf), axis=0)
+    column = np.arange(len(block))
+    upper = ordered[np.minimum(paired // 2, size - 1), column]
+    lower = ordered[np.maximum(paired // 2 - 1, 0), column]
+    # (np.median: the middle value, or the middle two's sum halved)
+    median = np.where(paired % 2 == 1, upper, (lower + upper) / 2)
+    keeps = (paired >= 2) & (spread_start <= median / 2) & (spread_end <= median / 2)
+    return met & keeps
 
 
 def motif_weight(string: Timed, pattern: tuple[int, ...],
