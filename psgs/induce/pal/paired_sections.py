@@ -21,8 +21,8 @@ import numpy as np
 from .conf import NO_BOUND
 from .in_step import _core, _read_the_rest, pair_reading
 from .motifs import Timed
-from .sections import (_BASE, _INVERSE, Section, _cycles, _longest_repeated, _repeated,
-                       _window_hashes, follow_rate)
+from .sections import (Section, _cycles, _longest_repeated, _repeated, follow_rate,
+                       prefix_hashes, window_hash)
 from .statistics import log10_choose
 
 __all__: list[str] = []  # private: choice.py is the caller
@@ -33,7 +33,7 @@ REPEAT_BYTES = 24
 JOINT_BYTES = 512
 
 
-def exact_repeats(codes: np.ndarray, low: int, clock=NO_BOUND) -> np.ndarray:
+def exact_repeats(codes: np.ndarray, low: int, clock=NO_BOUND, hashed=None) -> np.ndarray:
     """Every maximal run of agreement between a string and itself shifted, at a shift of
     ``low`` symbols or more, ``low`` symbols or longer: rows ``(start, start + shift,
     length)`` in order.
@@ -46,7 +46,8 @@ def exact_repeats(codes: np.ndarray, low: int, clock=NO_BOUND) -> np.ndarray:
     :class:`~psgs.induce.pal.conf.Bounds`) is read for each window of a group of equal
     ones (its runs with the later ones are found at once, each run's length by halving
     on prefix hashes, then checked symbol by symbol) and counts :data:`REPEAT_BYTES` a run
-    before it is kept.
+    before it is kept. ``hashed``: the string's
+    :func:`~psgs.induce.pal.sections.prefix_hashes`, when the caller has them.
 
     Examples
     --------
@@ -61,12 +62,12 @@ def exact_repeats(codes: np.ndarray, low: int, clock=NO_BOUND) -> np.ndarray:
     n = len(codes)
     if low < 1 or 2 * low > n:
         return np.empty((0, 3), dtype=np.int64)
-    hashes = _window_hashes(codes, low)
+    prefix, powers = prefix_hashes(codes) if hashed is None else hashed
+    hashes = window_hash(prefix, powers, np.arange(n - low + 1), low)
     order = np.argsort(hashes, kind="stable")
     ordered = hashes[order]
     begins = np.concatenate(([0], np.flatnonzero(np.diff(ordered)) + 1))
     sizes = np.diff(np.concatenate((begins, [len(ordered)])))
-    prefix, powers = _prefix_hashes(codes)
     found = []
     for g in np.flatnonzero(sizes >= 2).tolist():
         where = order[begins[g]:begins[g] + sizes[g]]  # ascending positions
@@ -87,7 +88,8 @@ def exact_repeats(codes: np.ndarray, low: int, clock=NO_BOUND) -> np.ndarray:
             lo, hi = np.full(len(q), low), np.minimum(n - q, 2 * shift)
             while np.any(lo < hi):
                 mid = (lo + hi + 1) // 2
-                same = _hash(prefix, powers, p, mid) == _hash(prefix, powers, q, mid)
+                same = (window_hash(prefix, powers, p, mid)
+                        == window_hash(prefix, powers, q, mid))
                 lo, hi = np.where(same, mid, lo), np.where(same, hi, mid - 1)
             kept = lo < 2 * shift
             rows = np.column_stack((np.full(np.count_nonzero(kept), p), q[kept], lo[kept]))
@@ -98,27 +100,6 @@ def exact_repeats(codes: np.ndarray, low: int, clock=NO_BOUND) -> np.ndarray:
         return np.empty((0, 3), dtype=np.int64)
     out = np.concatenate(found).astype(np.int64)
     return out[np.lexsort(out.T[::-1])]
-
-
-def _prefix_hashes(codes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Prefix sums of ``(code + 1) * BASE**-j`` and the powers ``BASE**j`` (wrapping 64-bit
-    arithmetic): the hash of any window, :func:`_hash`, in two operations."""
-    n = len(codes)
-    with np.errstate(over="ignore"):
-        steps = np.full(n + 1, _INVERSE, dtype=np.uint64)
-        steps[0] = 1
-        weighted = (codes.astype(np.uint64) + np.uint64(1)) * np.cumprod(steps, dtype=np.uint64)[:n]
-        prefix = np.concatenate(([np.uint64(0)], np.cumsum(weighted, dtype=np.uint64)))
-        steps[:] = _BASE
-        steps[0] = 1
-        return prefix, np.cumprod(steps, dtype=np.uint64)
-
-
-def _hash(prefix: np.ndarray, powers: np.ndarray, start, length) -> np.ndarray:
-    """The hash of the windows of ``length`` symbols at ``start`` (equal windows, equal
-    hashes, wherever they are)."""
-    with np.errstate(over="ignore"):
-        return (prefix[start + length] - prefix[start]) * powers[start]
 
 
 def _exact(codes: np.ndarray, p: int, q: int, length: int) -> bool:
@@ -181,8 +162,8 @@ def paired_groups(strings: list[Timed], follows: list[float | None], level: floa
         if low is None:
             continue
         codes = strings[i].codes
-        hashed = _prefix_hashes(codes)
-        for p, p2, length in exact_repeats(codes, low, clock).tolist():
+        hashed = prefix_hashes(codes)
+        for p, p2, length in exact_repeats(codes, low, clock, hashed).tolist():
             shift, size = p2 - p, min(length, p2 - p)
             # a run longer than its shift: its first two copies and its last two
             for start in dict.fromkeys((p, p + length - size)):
@@ -278,16 +259,17 @@ def _cuts(a: Timed, b: Timed, lo: float, hi: float) -> np.ndarray:
 def _cycle(codes: np.ndarray, hashed, first: int, second: int, size: int) -> bool:
     """:func:`~psgs.induce.pal.sections._cycles` of the copies of ``size`` at ``first`` and
     ``second``: every shift of half the window or less tried at once on the prefix hashes
-    ``hashed`` (:func:`_prefix_hashes`), the one found checked by the symbols."""
+    ``hashed`` (:func:`~psgs.induce.pal.sections.prefix_hashes`), the one found checked by
+    the symbols."""
     prefix, powers = hashed
     span = second + size - first
     shifts = np.arange(1, size // 2 + 1)
     if not len(shifts):
         return False
-    window = _hash(prefix, powers, first, size - shifts) == \
-        _hash(prefix, powers, first + shifts, size - shifts)
-    stretch = _hash(prefix, powers, first, span - shifts) == \
-        _hash(prefix, powers, first + shifts, span - shifts)
+    window = window_hash(prefix, powers, first, size - shifts) == \
+        window_hash(prefix, powers, first + shifts, size - shifts)
+    stretch = window_hash(prefix, powers, first, span - shifts) == \
+        window_hash(prefix, powers, first + shifts, span - shifts)
     found = shifts[window & stretch]
     if not len(found):
         return False

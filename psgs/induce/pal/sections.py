@@ -400,15 +400,30 @@ def _repeated(codes: np.ndarray, length: int, copies: int, first: bool = False):
 
 def _window_hashes(codes: np.ndarray, length: int) -> np.ndarray:
     """A 64-bit polynomial hash of every window of ``length`` symbols (wrapping arithmetic)."""
+    prefix, powers = prefix_hashes(codes)
+    with np.errstate(over="ignore"):
+        # the sum of code_j BASE**-j over each window, times BASE**(its last j)
+        return (prefix[length:] - prefix[:-length]) * powers[length - 1:len(codes)]
+
+
+def prefix_hashes(codes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Prefix sums of ``(code + 1) * BASE**-j`` and the powers ``BASE**j`` (wrapping 64-bit
+    arithmetic): the hash of any window, :func:`window_hash`, in two operations."""
     n = len(codes)
     with np.errstate(over="ignore"):
-        steps = np.full(n, _INVERSE, dtype=np.uint64)
+        steps = np.full(n + 1, _INVERSE, dtype=np.uint64)
         steps[0] = 1
-        inverse_powers = np.cumprod(steps, dtype=np.uint64)  # BASE**-j
+        inverse_powers = np.cumprod(steps, dtype=np.uint64)[:n]  # BASE**-j
         weighted = (codes.astype(np.uint64) + np.uint64(1)) * inverse_powers
         prefix = np.concatenate(([np.uint64(0)], np.cumsum(weighted, out=weighted)))
-        sums = prefix[length:] - prefix[:-length]  # sum of code_j BASE**-j over the window
         steps[:] = _BASE
         steps[0] = 1
-        powers = np.cumprod(steps, dtype=np.uint64)  # BASE**j
-        return sums * powers[length - 1:]
+        return prefix, np.cumprod(steps, dtype=np.uint64)
+
+
+def window_hash(prefix: np.ndarray, powers: np.ndarray, start, length) -> np.ndarray:
+    """The hash of the windows of ``length`` symbols at ``start`` from
+    :func:`prefix_hashes` (equal windows, equal hashes, wherever they are; the hashes of
+    :func:`_window_hashes` times ``BASE**(length - 1)``)."""
+    with np.errstate(over="ignore"):
+        return (prefix[start + length] - prefix[start]) * powers[start]
