@@ -405,6 +405,9 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     # an ASF skeleton is kept (the viewer draws it); the BVH file re-expresses its angles
     skeleton = source_motion.skeleton
     channels = source_motion.channels
+    looked_up = _lookup_problem(record, {g.name for g in system.components}, channels, usable)
+    if looked_up:  # else a channel silently posed at 0, or derived from no component
+        raise ValueError(f"action {record.name!r}: {looked_up}")
     pose = dict(record.mean_pose)
     body = body_of(record, channels, set(usable), period, style, performances)
     # a morpheme of half a stride repeats before the body does (the legs take turns): each
@@ -419,7 +422,7 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     component = dict(record.component_names)
     jobs, sequences = [], {}
     for channel, morpheme in usable.items():
-        word = words.get(component.get(channel, channel))
+        word = words.get(component[channel])
         kinetemes = morpheme.kinetemes
         if word is None or tuple(word) != kinetemes * copies:
             raise ValueError(f"action {record.name!r}: the system derives "
@@ -446,6 +449,32 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     motion = kinetology.Motion(values, channels, rate, skeleton, f"generated:{record.name}",
                                {"format": "generated", "cycle": cycle})
     return motion, derived, methods
+
+
+def _lookup_problem(record: ActionRecord, components: set[str], channels, usable) -> str | None:
+    """Why the record's ``mean_pose`` and ``component_names`` do not name what generation
+    looks up in them: each channel of the skeleton (``channels``) its mean angle, each
+    channel of a morpheme (``usable``) its component of the system (``components``, their
+    names); ``None`` when they do. A renamed key left a channel at 0 or without a word."""
+    source = f"its skeleton ({record.skeleton_source})"
+    named, known = dict(record.mean_pose), set(channels)
+    stray = next((c for c in named if c not in known), None)
+    if stray is not None:
+        return f"'mean_pose' names {stray!r}, which is no channel of {source}"
+    missing = next((c for c in channels if c not in named), None)
+    if missing is not None:
+        return f"'mean_pose' has no value for {missing!r}, a channel of {source}"
+    component = dict(record.component_names)
+    for channel in usable:
+        name = component.get(channel)
+        if name is None:
+            return (f"'component_names' has no component for {channel!r}, a channel of its "
+                    f"morphemes")
+        if name not in components:
+            shown = ", ".join(sorted(components)[:4]) + (", ..." if len(components) > 4 else "")
+            return (f"'component_names' gives {channel!r} the component {name!r}, which is no "
+                    f"component of its system (its components: {shown or 'none'})")
+    return None
 
 
 def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None = None,

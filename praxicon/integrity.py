@@ -29,7 +29,7 @@ from pathlib import Path
 
 from ._values import shown
 from .description_store import FILE
-from .jsonvalues import read_json
+from .jsonvalues import channels_problem, read_json
 from .records import REBUILD, PraxiconError
 from .store import TEMPORARY_NAME, dump, load, system_problem
 
@@ -193,6 +193,27 @@ def _damaged_systems(folder: Path, praxicon) -> dict[str, str]:
     return problems
 
 
+def _misnamed_channels(folder: Path, praxicon) -> list[str]:
+    """A line per learnt record whose ``mean_pose`` or ``component_names`` has a key that is
+    no channel of its joints, or lacks a channel of its morphemes
+    (:func:`~praxicon.jsonvalues.channels_problem`): generation looks each channel up there,
+    and a key renamed left a channel posed at 0, or derived from no component."""
+    problems = []
+    for record in praxicon.actions:
+        if not record.learnt:
+            continue
+        needed = list(record.morphemes())
+        for key, pairs in (("mean_pose", record.mean_pose),
+                           ("component_names", record.component_names)):
+            problem = channels_problem(key, (c for c, _ in pairs), record.all_joints, needed)
+            if problem:
+                problems.append(f"{folder / 'records' / (record.name + '.json')}: {problem}: "
+                                f"the record is damaged ('{REBUILD}' into the folder learns "
+                                f"the action again)")
+                break
+    return problems
+
+
 def _written_from(damaged: dict[str, str]) -> set[str]:
     """The files of the folder written from the damaged records: the records themselves and
     their ``.psgs`` files."""
@@ -244,6 +265,7 @@ def verify(folder) -> Verification:
     compared = [c for c in (_compare(folder, name, data) for name, data in expected.items()
                             if name not in skipped) if c]
     problems = [problem for problem, _ in compared] + list(damaged.values())
+    problems += _misnamed_channels(folder, praxicon)
     repairable = sum(mendable for _, mendable in compared)
     timing = _timings(folder, set(praxicon.names))
     problems += [timing] if timing else []
