@@ -52,8 +52,8 @@ from functools import partial
 import numpy as np
 
 from ._arguments import DescriptionError, described
-from ._description_json import (FieldError, action_fields, check_format, check_window,
-                                spread_fields)
+from ._description_json import (FieldError, action_fields, check_action, check_format,
+                                check_spread, check_window, json_object, spread_fields)
 # the spread and its calibration live in .calibration (the names are this module's as well;
 # ``calibrate`` is imported under another name: describe_table has a flag of that name)
 from .calibration import (_FOLDS, _MARGIN, _RANK, GROUP_LEVEL, fit_spread,  # noqa: F401
@@ -100,7 +100,7 @@ class ActionDescription:
     ``features`` are the ones every take of the action has (a subset of the spread's: actions
     learnt from other skeletons have other joints); ``takes`` counts the takes (or windows)
     learnt from; ``window`` is the length in seconds of the windows learnt from (0: whole
-    takes).
+    takes). Checked when made, as a file's are (:func:`~praxicon._description_json.check_action`).
     """
 
     name: str
@@ -110,6 +110,9 @@ class ActionDescription:
     takes: int
     window: float = 0.0
     version: int = FORMAT_VERSION
+
+    def __post_init__(self) -> None:
+        _fields(check_action, *vars(self).values(), FORMAT_VERSION)
 
     def __repr__(self) -> str:  # a summary, not every feature's mean and spread
         windows = f", windows of {self.window:g} s" if self.window else ""
@@ -129,7 +132,7 @@ class ActionDescription:
     @classmethod
     def from_dict(cls, data: dict) -> "ActionDescription":
         """The description :meth:`to_dict` wrote (another format or version: a clear error)."""
-        return cls(*_fields(action_fields, data))
+        return cls(*_fields(action_fields, data, FORMAT_VERSION))
 
     @classmethod
     def from_json(cls, text: str) -> "ActionDescription":
@@ -141,7 +144,7 @@ class ActionDescription:
         >>> ActionDescription.from_json(d.to_json()) == d
         True
         """
-        return cls.from_dict(_loads(text))
+        return cls.from_dict(_fields(json_object, text))
 
 
 @dataclass(frozen=True)
@@ -149,7 +152,8 @@ class Spread:
     """How copies of an action vary around its mean, shared by every action of a praxicon.
 
     Features are divided by ``scale``; in those units the covariance is
-    ``diag(noise) + factorsᵀ factors`` (``factors``: rows of shared directions).
+    ``diag(noise) + factorsᵀ factors`` (``factors``: rows of shared directions). Checked when
+    made, as a file's are (:func:`~praxicon._description_json.check_spread`).
     """
 
     features: tuple[str, ...]
@@ -162,6 +166,11 @@ class Spread:
     version: int = FORMAT_VERSION
     limits: tuple[tuple[str, float], ...] = ()  # per feature group: its largest distance
     tail: float = math.inf  # of the likelihoods (scoring.log_likelihoods): inf is Gaussian
+
+    def __post_init__(self) -> None:
+        _fields(check_spread, self.features, self.scale, self.factors, self.noise,
+                self.threshold, self.temperature, self.window, self.limits, self.tail,
+                self.version, FORMAT_VERSION)
 
     def __repr__(self) -> str:  # a summary, not the factors
         return (f"<Spread: {len(self.features)} features, {len(self.factors)} shared "
@@ -180,7 +189,7 @@ class Spread:
     def from_dict(cls, data: dict) -> "Spread":
         """The spread :meth:`to_dict` wrote."""
         features, scale, factors, noise, threshold, temperature, window, limits, tail = \
-            _fields(spread_fields, data)
+            _fields(spread_fields, data, FORMAT_VERSION)
         return cls(features, scale, factors, noise, threshold, temperature, window,
                    FORMAT_VERSION, limits, tail)
 
@@ -202,12 +211,23 @@ class Descriptions:
     family_of: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
+        if not isinstance(self.spread, Spread):
+            raise DescriptionError(f"the spread must be a Spread, not "
+                                   f"{type(self.spread).__name__}")
+        if not (isinstance(self.actions, tuple) and self.actions and all(
+                isinstance(a, ActionDescription) for a in self.actions)):
+            raise DescriptionError("'actions' must be a tuple of action descriptions, one or "
+                                   "more")
+        named = Counter(a.name for a in self.actions)  # not names.count per action (quadratic)
+        for a in self.actions:
+            if named[a.name] > 1:
+                raise DescriptionError(f"action {a.name!r} is described twice")
+            if a.window != self.spread.window:  # parse cuts windows of the spread's length
+                raise DescriptionError(f"action {a.name!r}: 'window' {a.window:g} is not the "
+                                       f"spread's {self.spread.window:g}")
         self._check_families()
         known = set(self.spread.features)
         for a in self.actions:
-            if not (len(a.features) == len(a.mean) == len(a.spread)):
-                raise DescriptionError(f"action {a.name!r}: {len(a.features)} features but "
-                                       f"{len(a.mean)} means and {len(a.spread)} spreads")
             if not known.issuperset(a.features):
                 extra = sorted(set(a.features) - known)[:3]
                 raise DescriptionError(f"action {a.name!r} has features the spread has not "
@@ -293,20 +313,13 @@ class Descriptions:
     @classmethod
     def from_dict(cls, data: dict) -> "Descriptions":
         """The descriptions :meth:`to_dict` wrote (another version: a clear error)."""
-        _fields(check_format, data, "praxicon-descriptions")
+        _fields(check_format, data, "praxicon-descriptions", FORMAT_VERSION)
         listed = data.get("actions")
         if not isinstance(listed, list) or not listed:
             raise DescriptionError("'actions' must be a list of action descriptions, one or "
                                    "more")
         spread = Spread.from_dict(data.get("spread"))
         actions = tuple(ActionDescription.from_dict(a) for a in listed)
-        named = Counter(a.name for a in actions)  # not names.count per action (quadratic)
-        for a in actions:
-            if named[a.name] > 1:
-                raise DescriptionError(f"action {a.name!r} is described twice")
-            if a.window != spread.window:  # parse cuts windows of the spread's length
-                raise DescriptionError(f"action {a.name!r}: 'window' {a.window:g} is not the "
-                                       f"spread's {spread.window:g}")
         if "families" not in data:
             if "family_of" in data:
                 raise DescriptionError("'family_of' without the families' descriptions")
@@ -326,31 +339,16 @@ class Descriptions:
     @classmethod
     def from_json(cls, text: str) -> "Descriptions":
         """The descriptions :meth:`to_json` wrote (another version: a clear error)."""
-        return cls.from_dict(_loads(text))
+        return cls.from_dict(_fields(json_object, text))
 
 
-def _fields(read, data, *args):
-    """``read(data, *args, FORMAT_VERSION)`` (:mod:`praxicon._description_json`), its
-    errors this module's."""
+def _fields(check, *args):
+    """``check(*args)`` (a reader or a check of :mod:`praxicon._description_json`), its errors
+    this module's."""
     try:
-        return read(data, *args, FORMAT_VERSION)
+        return check(*args)
     except FieldError as exc:
         raise DescriptionError(str(exc)) from None
-
-
-def _loads(text: str) -> dict:
-    try:
-        data = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise DescriptionError(f"not JSON (line {exc.lineno}, column {exc.colno}: "
-                               f"{exc.msg})") from None
-    except RecursionError:  # '[' * 100000: the decoder recurses per nesting level
-        raise DescriptionError("not JSON that can be read: nested too deeply") from None
-    except ValueError as exc:  # an integer of thousands of digits (Python's int limit)
-        raise DescriptionError(f"not JSON that can be read: {str(exc).split(':')[0]}") from None
-    if not isinstance(data, dict):
-        raise DescriptionError("not a praxicon description (a JSON object expected)")
-    return data
 
 
 def describe_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
@@ -368,10 +366,8 @@ def describe_table(table: dict[str, np.ndarray], features: tuple[str, ...], *,
     limits): descriptions that only rank, learnt without the five more models the calibration
     learns.
     """
-    try:  # what from_dict would refuse is refused here, not after a dump that cannot be loaded
-        window = float(check_window(window))
-    except FieldError as exc:
-        raise DescriptionError(str(exc)) from None
+    # what from_dict would refuse is refused here, not after a dump that cannot be loaded
+    window = float(_fields(check_window, window))
     names = sorted(table)
     groups = [np.asarray(table[n], dtype=float) for n in names]
     if not groups:

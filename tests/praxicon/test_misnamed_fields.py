@@ -1,0 +1,230 @@
+"""Names in a praxicon's files that name nothing there are refused, naming the file, the
+action and the name, where they were used with a default without a word.
+
+A record's ``mean_pose`` key renamed left that channel posed at 0 in a generated motion; a
+``component_names`` key or value renamed was "the system derives '' for Hand_R.ry"; a feature
+renamed alike in a spread and its actions was never compared by recognition. And descriptions
+made in Python are checked as a file's are: the same damage, the same line.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import shutil
+from dataclasses import replace
+
+import pytest
+
+from kinetology import synthetic_motion
+from praxicon import build, load, read_dataset, verify
+from praxicon._description_json import FieldError, check_feature_names, feature_problem
+from praxicon.description import (ActionDescription, DescriptionError, Descriptions, Spread,
+                                  describe)
+from praxicon.features import motion_features
+from praxicon.generation import generate_motion
+from praxicon.parsing import describe_windows
+from praxicon_fixtures import leg_body, refused, run_praxicon, take, write_manifest
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory):
+    """A praxicon of two actions (moves.step, moves.wave) learnt from BVH takes."""
+    root = tmp_path_factory.mktemp("misnamed")
+    manifest = write_manifest(root, {"wave": [1, 2, 3], "step": [4, 5, 6]})
+    build(read_dataset(manifest), root / "px", progress=False, log=lambda s: None)
+    return root / "px"
+
+
+def _damaged(built, tmp_path, change):
+    """A copy of the folder with ``change(record)`` made to moves.wave's record JSON."""
+    folder = tmp_path / "px"
+    shutil.copytree(built, folder)
+    path = folder / "records" / "moves.wave.json"
+    stored = json.loads(path.read_text())
+    change(stored["record"])
+    path.write_text(json.dumps(stored, indent=2, sort_keys=True) + "\n")
+    return folder
+
+
+def _renamed(mapping: dict, old: str, new: str) -> None:
+    mapping[new] = mapping.pop(old)
+
+
+# -- a record's mean pose and component names -------------------------------------------------
+
+def test_a_renamed_mean_pose_key_is_refused_by_generate_and_named_by_verify(built, tmp_path,
+                                                                           capsys):
+    # hips.rz drives no morpheme: only the mean pose gives it its angle (0 when not found)
+    folder = _damaged(built, tmp_path, lambda r: _renamed(r["mean_pose"], "hips.rz", "hipz.rz"))
+    line = refused(capsys, ["generate", str(folder), "moves.wave", "-o",
+                            str(tmp_path / "out.bvh")])
+    assert line.startswith("action 'moves.wave': 'mean_pose' names 'hipz.rz', which is no "
+                           "channel of its skeleton (")
+    assert not (tmp_path / "out.bvh").exists()
+    status, out, _ = run_praxicon(capsys, ["verify", str(folder)])
+    assert status == 1
+    (problem,) = [p for p in out.splitlines() if "mean_pose" in p]
+    assert problem.startswith(f"{folder / 'records' / 'moves.wave.json'}: 'mean_pose' names "
+                              f"'hipz.rz', which is no channel of its joints")
+
+
+def test_a_mean_pose_without_a_channel_of_the_skeleton_is_refused(built):
+    record = load(built, descriptions=False)["moves.wave"]
+    cut = replace(record, mean_pose=tuple(p for p in record.mean_pose if p[0] != "head.ry"))
+    with pytest.raises(ValueError, match=r"^action 'moves.wave': 'mean_pose' has no value for "
+                                         r"'head.ry', a channel of its skeleton \("):
+        generate_motion(cut, 1, source_motion=take(1))
+
+
+def test_a_renamed_component_names_key_is_refused_by_generate_and_named_by_verify(
+        built, tmp_path, capsys):
+    channel = dict(load(built, descriptions=False)["moves.wave"].component_names)
+    first = sorted(channel)[0]
+    folder = _damaged(built, tmp_path,
+                      lambda r: _renamed(r["component_names"], first, first[:-1] + "q"))
+    line = refused(capsys, ["generate", str(folder), "moves.wave", "-o",
+                            str(tmp_path / "out.bvh")])
+    assert line == (f"action 'moves.wave': 'component_names' has no component for "
+                    f"{first!r}, a channel of its morphemes")
+    status, out, _ = run_praxicon(capsys, ["verify", str(folder)])
+    assert status == 1 and f"'component_names' names {first[:-1] + 'q'!r}, which is no " \
+        f"channel of its joints" in out
+
+
+def test_a_component_name_no_component_of_the_system_has_is_named(built):
+    record = load(built, descriptions=False)["moves.wave"]
+    (channel, name), *rest = record.component_names
+    wrong = replace(record, component_names=((channel, name + "_x"), *rest))
+    with pytest.raises(ValueError) as caught:
+        generate_motion(wrong, 1, source_motion=take(1))
+    said = str(caught.value)
+    assert said.startswith(f"action 'moves.wave': 'component_names' gives {channel!r} the "
+                           f"component {name + '_x'!r}, which is no component of its system "
+                           f"(its components: ")
+    assert name in said and "derives" not in said
+
+
+# -- descriptions made in Python are checked as a file's are ----------------------------------
+
+def _action(**changes) -> ActionDescription:
+    fields = dict(name="a", features=("j.rx:pose", "tempo"), mean=(1.0, 0.5),
+                  spread=(0.5, 0.25), takes=2, window=0.0)
+    return ActionDescription(**{**fields, **changes})
+
+
+def _spread(**changes) -> Spread:
+    fields = dict(features=("j.rx:pose", "tempo"), scale=(1.0, 2.0), factors=((0.5, 0.25),),
+                  noise=(1.0, 1.0), threshold=2.0, temperature=1.0, limits=(("j", 3.0),))
+    return Spread(**{**fields, **changes})
+
+
+ACTIONS = [({"mean": (math.nan, 0.5)}, "'mean' must be finite numbers: value 1 is nan"),
+           ({"spread": (0.5,)}, "'spread' has 1 values for 2 features"),
+           ({"spread": (0.5, -1.0)}, "'spread' must be numbers from 0: value 2 is -1.0"),
+           ({"takes": 0}, "'takes' must be a whole number from 1, not 0"),
+           ({"window": 1e300}, "'window' must be 0 (whole takes) or 0.1 to 60 seconds"),
+           ({"features": ("tempo", "tempo"), "mean": (1.0, 1.0)}, "names 'tempo' twice"),
+           ({"name": ""}, "action: 'name' must be text, not ''")]
+SPREADS = [({"noise": (1.0, 0.0)}, "spread: 'noise' must be numbers above 0: value 2 is 0.0"),
+           ({"scale": (1.0, math.inf)}, "spread: 'scale' must be finite numbers: value 2"),
+           ({"factors": ((0.5,),)}, "spread: row 1 of 'factors' has 1 values for 2 features"),
+           ({"threshold": math.nan}, "spread: 'threshold' must be a finite number, not nan"),
+           ({"temperature": 0.0}, "spread: 'temperature' must be above 0, not 0.0"),
+           ({"tail": -1.0}, "spread: 'tail' must be above 0, not -1.0"),
+           ({"limits": (("bogus", 3.0),)}, "'limits' must be of the spread's feature groups: "
+                                            "value 1 is 'bogus'"),
+           ({"limits": (("j", 0.0),)}, "'limits' must be numbers above 0: value 1 is 0.0")]
+
+
+@pytest.mark.parametrize("changes, said", ACTIONS)
+def test_an_action_description_made_in_python_is_checked_as_read(changes, said):
+    with pytest.raises(DescriptionError) as made:
+        _action(**changes)
+    assert said in str(made.value)
+    # the same damage in a file: the same line (one check, whichever way it was made)
+    data = _action().to_dict()
+    data.update(changes)
+    with pytest.raises(DescriptionError) as read:
+        ActionDescription.from_dict(json.loads(json.dumps(
+            {k: list(v) if isinstance(v, tuple) else v for k, v in data.items()})))
+    assert str(read.value) == str(made.value)
+
+
+@pytest.mark.parametrize("changes, said", SPREADS)
+def test_a_spread_made_in_python_is_checked_as_read(changes, said):
+    with pytest.raises(DescriptionError) as made:
+        _spread(**changes)
+    assert said in str(made.value)
+    data = _spread().to_dict()
+    data.update({k: [list(p) for p in v] if k in ("limits", "factors") else
+                 list(v) if isinstance(v, tuple) else v for k, v in changes.items()})
+    with pytest.raises(DescriptionError) as read:
+        Spread.from_dict(json.loads(json.dumps(data)))
+    assert str(read.value) == str(made.value)
+
+
+def test_descriptions_made_in_python_are_checked_as_read():
+    with pytest.raises(DescriptionError, match="action 'a' is described twice"):
+        Descriptions((_action(), _action()), _spread())
+    with pytest.raises(DescriptionError, match="action 'a': 'window' 2 is not the spread's 0"):
+        Descriptions((_action(window=2.0),), _spread())
+    with pytest.raises(DescriptionError, match="'actions' must be a tuple of action "
+                                               "descriptions, one or more"):
+        Descriptions((), _spread())
+
+
+def test_a_good_description_is_made_and_read_back_alike():
+    d = Descriptions((_action(), _action(name="b")), _spread())
+    assert Descriptions.from_json(d.to_json()) == d
+
+
+# -- features a motion can have -----------------------------------------------------------------
+
+def _walk(seed: int):
+    import numpy as np
+    frames = 90
+    t = np.arange(frames) / 30.0
+    return leg_body(np.zeros(frames), np.full(frames, 9.0) + 0.1 * np.sin(6 * t + seed),
+                    10.0 * t, 20 * np.sin(2 * np.pi * t + seed), 1.0, "0.0333333")
+
+
+@pytest.mark.parametrize("shape", [True, False])
+def test_every_feature_a_motion_has_is_one_a_motion_can_have(shape):
+    # the oracle: the names motion_features gives, with and without a moving root
+    names = set()
+    for motion in (synthetic_motion(3, (0,), seed=1), take(1), _walk(1)):
+        names.update(motion_features(motion, shape=shape)[0])
+    assert {"flight", "pace", "tempo", "Hips.turny:drift", "thigh.rx:energy"} <= names
+    assert [n for n in names if feature_problem(n, window=not shape)] == []
+    if shape:  # a whole take's course, which no window has
+        course = [n for n in names if feature_problem(n, window=True)]
+        assert course and all(n.endswith((":excursion", ":shape0", ":shape1", ":shape2",
+                                          ":shape3")) for n in course)
+
+
+@pytest.mark.parametrize("renamed", ["arm.rx:range", "arm.rq:pose", "Hips.travelq:drift",
+                                     "Hips.travelx:excursion", "rx:pose", ".rx:pose",
+                                     "arm.rx", "tempo2", "", "arm.rx:pose:pose"])
+def test_a_feature_renamed_alike_in_the_spread_and_every_action_is_named(renamed):
+    takes = {"wave": [take(s) for s in (1, 2, 3)], "still": [take(s) for s in (4, 5, 6)]}
+    learnt = describe(takes, choose=False)
+    old = next(f for f in learnt.spread.features if f.startswith("arm.rx:"))
+    data = json.loads(json.dumps(learnt.to_dict()).replace(json.dumps(old), json.dumps(renamed)))
+    damaged = Descriptions.from_dict(data)  # each part alone reads: no check sees the names
+    with pytest.raises(FieldError) as caught:
+        check_feature_names(damaged, "takes")
+    assert str(caught.value).startswith(f"takes: action 'still': 'features' names "
+                                        f"{renamed!r}: no motion has it (a feature is ")
+    check_feature_names(learnt, "takes")  # as learnt: every name one a motion has
+
+
+def test_a_window_description_of_a_whole_takes_feature_is_named():
+    takes = {"wave": [take(s) for s in (1, 2, 3)], "still": [take(s) for s in (4, 5, 6)]}
+    windows = describe_windows(takes)
+    old = windows.spread.features[0]
+    course = old.rsplit(":", 1)[0] + ":shape0"
+    data = json.loads(json.dumps(windows.to_dict()).replace(json.dumps(old), json.dumps(course)))
+    with pytest.raises(FieldError, match=r"^windows: action 'still': 'features' names '.*:shape0'"
+                                         r": no window of a recording has it"):
+        check_feature_names(Descriptions.from_dict(data), "windows")
