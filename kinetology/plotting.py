@@ -7,11 +7,11 @@ it is missing.
 
 from __future__ import annotations
 
-from pathlib import Path
 from types import MappingProxyType
 
 import numpy as np
 
+from psgs._foundation.pictures import picture_suffix
 from psgs.errors import MissingDependency, ValidationError
 
 from .codec.knots import is_rotation
@@ -447,19 +447,9 @@ def check_output(path) -> str:
     >>> check_output("knee.txt")
     Traceback (most recent call last):
     ...
-    psgs.errors.ValidationError: knee.txt: cannot write '.txt'; give one of .png, .svg, .pdf, ...
+    psgs.errors.ValidationError: knee.txt: matplotlib cannot write '.txt' pictures; give one of .png, .svg, .pdf, ...
     """
-    _pyplot()
-    from matplotlib.backend_bases import FigureCanvasBase
-
-    suffix = Path(path).suffix.lower()
-    known = FigureCanvasBase.get_supported_filetypes()
-    if suffix[1:] not in known:  # matplotlib's own refusal comes after the work, as a traceback
-        first = ["png", "svg", "pdf"]
-        names = first + sorted(set(known) - set(first))
-        raise ValidationError(f"{path}: cannot write {suffix or 'a file without a suffix'!r}; "
-                              f"give one of {', '.join('.' + n for n in names)}")
-    return suffix
+    return picture_suffix(path)
 
 
 def save(fig, path) -> None:

@@ -23,6 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from kinetology.plotting import STATE_COLOURS
+from psgs._foundation.pictures import picture_suffix
 
 from ._values import check_count, is_count, shown as _shown
 from .outputs import check_folder, check_writable_folder
@@ -46,8 +47,9 @@ def _pyplot():
 
 
 def check_picture(path) -> str:
-    """The suffix of ``path`` when matplotlib can write a picture there, else ValueError (one
-    line): checked before anything is drawn or written.
+    """The suffix of ``path`` when matplotlib can write a picture there, else a ValueError (one
+    line; :class:`~psgs.errors.ValidationError` for the suffix): checked before anything is
+    drawn or written.
 
     Its folder must exist and be writable (the answers a picture goes with are not printed
     first, to end in an error for the picture alone), and ``path`` must not be a folder.
@@ -59,7 +61,7 @@ def check_picture(path) -> str:
     >>> check_picture("walk.bvh")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    ValueError: walk.bvh: matplotlib cannot write '.bvh' pictures; give one of .avif, .eps, ...
+    psgs.errors.ValidationError: walk.bvh: matplotlib cannot write '.bvh' pictures; give one of .png, .svg, .pdf, ...
     >>> check_picture("/nonexistent/dir/walk.png")
     Traceback (most recent call last):
     ...
@@ -67,14 +69,7 @@ def check_picture(path) -> str:
     """
     if not isinstance(path, (str, os.PathLike)):  # Path(5) is a TypeError
         raise ValueError(f"a picture is written to a file's path, not {type(path).__name__}")
-    _pyplot()
-    from matplotlib.backend_bases import FigureCanvasBase
-
-    suffix = Path(path).suffix.lower()
-    known = sorted(f".{s}" for s in FigureCanvasBase.get_supported_filetypes())
-    if suffix not in known:
-        raise ValueError(f"{path}: matplotlib cannot write {suffix or 'a file without a suffix'!r}"
-                         f" pictures; give one of {', '.join(known)}")
+    suffix = picture_suffix(path, needs="pip install 'psgs[praxicon]'")
     check_folder(path, "the picture")
     return suffix
 

@@ -9,7 +9,8 @@ a copy of another's:
 * :mod:`psgs._foundation.engines`: choosing between numpy's array passes and numba's
   compiled loops;
 * :mod:`psgs._foundation.files`: reading an input file whole (no device, a pipe to a limit, strict UTF-8);
-* :mod:`psgs._foundation.text`: its lines as an editor counts them, its numbers as written.
+* :mod:`psgs._foundation.text`: its lines as an editor counts them, its numbers as written;
+* :mod:`psgs._foundation.pictures`: whether matplotlib writes a picture to a path (its suffix).
 
 The error tree is :mod:`psgs.errors` (public: users catch its classes). These modules import
 nothing of psgs but :mod:`psgs.errors`, so any layer may use them; kinetology and praxicon

@@ -15,6 +15,7 @@ import time
 from pathlib import Path
 
 from ..errors import PSGSError, ValidationError
+from .._foundation.pictures import picture_suffix
 from .._foundation.shell import file_name, natural, positive_int, share
 
 
@@ -239,7 +240,7 @@ def run_bench_noise(args) -> int:
         except ImportError:
             raise PSGSError("--plot needs matplotlib: pip install 'psgs[plot]'") from None
         # matplotlib refuses a format only when it saves, after every trial has run
-        _check_picture(args.plot)
+        picture_suffix(args.plot)
     began = time.perf_counter()
     rows = noise_sweep(args.levels, args.trials, inducers=inducers, seed=args.seed,
                        variant=_VARIANTS[args.variant], jobs=args.jobs,
@@ -295,7 +296,7 @@ def plot_noise(rows, path: str, title: str = "") -> None:
     """
     import matplotlib
 
-    _check_picture(path)
+    picture_suffix(path)
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
@@ -331,25 +332,3 @@ def _check_writable(path: str) -> None:
         raise ValidationError(f"{path}: the folder {folder} is not writable")
     if Path(path).exists() and not os.access(path, os.W_OK):
         raise ValidationError(f"{path}: the file is there and read-only")
-
-
-def _check_picture(path: str) -> None:
-    """ValidationError unless matplotlib writes a picture in the format of ``path``'s suffix
-    (``.png``, ``.svg``, ``.pdf`` ...; any case). A name without a suffix is refused too:
-    matplotlib would write ``NAME.png`` beside it, not the file named.
-
-    >>> _check_picture("noise.PNG")
-    >>> _check_picture("noise.txt")  # doctest: +ELLIPSIS
-    Traceback (most recent call last):
-    ...
-    psgs.errors.ValidationError: noise.txt: matplotlib cannot write '.txt' pictures; give one of .png, .svg, .pdf, ...
-    """
-    from matplotlib.backend_bases import FigureCanvasBase
-
-    suffix = Path(path).suffix.lower()
-    known = FigureCanvasBase.get_supported_filetypes()
-    if suffix[1:] not in known:
-        first = ["png", "svg", "pdf"]
-        names = ", ".join(f".{n}" for n in first + sorted(set(known) - set(first)))
-        what = f"{suffix!r} pictures" if suffix else "a picture without a suffix"
-        raise ValidationError(f"{path}: matplotlib cannot write {what}; give one of {names}")

@@ -25,6 +25,7 @@ PACKAGES = ("psgs", "kinetology", "praxicon")  # praxicon: a package another bra
 # command-line shell, lazy names, the engine selector).
 FOUNDATION = ("psgs.errors", "psgs._foundation", "psgs._foundation.shell",
               "psgs._foundation.lazy", "psgs._foundation.engines", "psgs._foundation.files",
+              "psgs._foundation.pictures",
               "psgs._foundation.text")
 CORE_TIERS = (
     (*FOUNDATION, "psgs.budget", "psgs.names"),
