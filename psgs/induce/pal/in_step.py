@@ -16,7 +16,9 @@ event (``docs/streams.md``, "Significance of a repetition"):
 - and the lead and its ``m - 1`` partners could have been any of the
   ``N`` strings: ``log10(N * C(N - 1, m - 1))``.
 
-The group's significance is the sum, at the lead that makes it strongest; a
+The group's significance is the sum, at the lead that makes it strongest
+(members that move with the lead or with another, one string's symbol determining
+the other's, add nothing: :class:`~psgs.induce.pal.in_step_weight.Alike`); a
 member is kept only when its own ``T_j`` beats chance among the other
 strings (``T_j + log10(N - 1) <= log10(alpha)``), so that no random string is
 carried in by the others' strength. A string is read at the lead's copies
@@ -36,7 +38,7 @@ import math
 import numpy as np
 
 from .conf import NO_BOUND
-from .in_step_weight import in_step_significance, in_step_weights
+from .in_step_weight import Alike, in_step_significance, in_step_weights
 from .motifs import Timed
 from .pairing import lead_segments
 from .sections import Section, _cycles
@@ -55,7 +57,9 @@ def group_significance(strings: list[Timed], sections: list, intervals: dict[int
     ``sections[i]`` is string ``i``'s Section, ``intervals[i]`` its copies' times,
     ``follows[i]`` its follow rate (None: its match rate), ``partners`` who is in step
     with whom, ``level`` log10 of ``alpha``. The members map to the section each is read
-    at (its own, or one found at the lead's copies). Returns ``(inf, {})`` when no lead
+    at (its own, or one found at the lead's copies); members that move together count once
+    (:class:`~psgs.induce.pal.in_step_weight.Alike`; weighed again so when the strongest
+    reading holds such members). Returns ``(inf, {})`` when no lead
     has a partner that beats chance. ``clock`` (a :class:`~psgs.budget.Budget`) is read
     before each lead.
 
@@ -77,12 +81,32 @@ def group_significance(strings: list[Timed], sections: list, intervals: dict[int
     >>> sorted(members), significance < -2.0
     ([0, 1], True)
     """
+    best = _strongest(strings, sections, intervals, follows, group, partners, level, clock)
+    # members that move together count once (in_step_weight.Alike), weighed again so only
+    # when the strongest reading holds such members: counting fewer members only makes a
+    # reading weaker (each adds T_j + log10 of at most N - 1 <= level < 0), so the
+    # strongest without any stays the strongest
+    alike = Alike(strings)
+    if best[0] <= level:
+        first, *rest = best[1]
+        if alike.counted(first, rest) != rest:
+            best = _strongest(strings, sections, intervals, follows, group, partners, level,
+                              clock, alike)
+    return best
+
+
+def _strongest(strings: list[Timed], sections: list, intervals: dict[int, np.ndarray],
+               follows: list[float | None], group: list[int], partners: dict[int, list[int]],
+               level: float, clock, alike: Alike | None = None
+               ) -> tuple[float, dict[int, Section]]:
+    """:func:`group_significance`, every member's weight counted (``alike`` None) or
+    only those ``alike`` counts."""
     best: tuple[float, dict[int, Section]] = (math.inf, {})
     reads = _Reads(strings, follows, [intervals[lead] for lead in group])
     for lead in group:
         clock.check()
         best = min(best, _led_by(strings, lead, sections[lead], intervals[lead], follows,
-                                 partners[lead], sections, intervals, level, reads),
+                                 partners[lead], sections, intervals, level, reads, alike),
                    key=lambda b: b[0])
         reads.done(intervals[lead])
     # a lead's own section may be a chance extension of the repeat the others play, which
@@ -93,33 +117,37 @@ def group_significance(strings: list[Timed], sections: list, intervals: dict[int
         if section is not sections[lead]:
             at = strings[lead].copy_times(section)
             best = min(best, _led_by(strings, lead, section, at, follows, [], sections,
-                                     intervals, level), key=lambda b: b[0])
+                                     intervals, level, alike=alike), key=lambda b: b[0])
     if best[0] > level:
         # two partners whose copies each reach past the repeat they share, on other sides,
         # are each off the other's copies: weighed as one event where both are
         best = min(best, _paired(strings, sections, intervals, follows, group, partners,
-                                 level), key=lambda b: b[0])
+                                 level, alike), key=lambda b: b[0])
     return best
 
 
 def _paired(strings: list[Timed], sections: list, intervals: dict[int, np.ndarray],
             follows: list[float | None], group: list[int], partners: dict[int, list[int]],
-            level: float) -> tuple[float, dict[int, Section]]:
+            level: float, alike: Alike | None = None) -> tuple[float, dict[int, Section]]:
     """The strongest pair of partners in ``group`` read where both their sections are, as one
-    event (:func:`pair_significance`), every other string read there as a member must be."""
+    event (:func:`pair_significance`), every other string read there as a member must be
+    (with ``alike``: no pair that moves together, and only the members it counts weighed)."""
     best: tuple[float, dict[int, Section]] = (math.inf, {})
     for a in group:
         for b in partners[a]:
             if b <= a or b not in group or len(intervals[a]) != 2 or len(intervals[b]) != 2:
                 continue
+            if alike is not None and alike.dependent(a, b):
+                continue  # (one string's repeat, not two)
             pair = pair_reading(strings, (a, b), (intervals[a], intervals[b]), follows)
             if pair is None or pair[0] > level or pair[0] >= best[0]:
                 continue
             weight, members, core = pair
-            for j, (again, found) in _read_the_rest(strings, core, follows, members,
-                                                    level).items():
+            rest = _read_the_rest(strings, core, follows, members, level)
+            counted = set(rest if alike is None else alike.counted(a, [b, *rest]))
+            for j, (again, found) in rest.items():
                 members[j] = found
-                weight += again
+                weight += again if j in counted else 0.0
             best = (weight, members)
     return best
 
@@ -194,11 +222,12 @@ def pair_significance(strings: list[Timed], lengths: list[int], follows: list[fl
 
 def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.ndarray,
             follows: list[float | None], partners: list[int], sections: list,
-            intervals: dict[int, np.ndarray], level: float, reads: _Reads | None = None
-            ) -> tuple[float, dict[int, Section]]:
+            intervals: dict[int, np.ndarray], level: float, reads: _Reads | None = None,
+            alike: Alike | None = None) -> tuple[float, dict[int, Section]]:
     """:func:`group_significance` with one lead read at ``lead_copies``: every other string
     read there (its own section too when it is one of the lead's ``partners``; ``reads``
-    keeps the readings other leads will ask for again)."""
+    keeps the readings other leads will ask for again; ``alike``: only the members it
+    counts weighed, and chosen)."""
     reads = _Reads(strings, follows, []) if reads is None else reads
     total = len(strings)
     # (a member's reading counts only this light or lighter: the lightest of the rest
@@ -271,7 +300,10 @@ def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.n
             again = here
     if again is None or again[0] + math.log10(total - 1) > level:
         return math.inf, {}
-    m = len(joined) + 1
+    if alike is not None:  # (members that move with the lead or another add nothing)
+        weight_of = dict(zip(joined, weights))
+        weights = [weight_of[j] for j in alike.counted(lead, list(joined))]
+    m = len(weights) + 1
     significance = (lead_significance(strings[lead], section, follows[lead]) + sum(weights)
                     + math.log10(total) + log10_choose(total - 1, m - 1))
     return significance, {lead: again[1], **joined}
