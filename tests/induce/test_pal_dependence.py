@@ -32,18 +32,23 @@ def _timed(codes, durations, origin: float) -> Timed:
 @st.composite
 def _timed_pairs(draw):
     """Two strings of integer durations at integer origins, the second often a function of
-    the first's symbol at each time (so that both answers are met)."""
+    the first's symbol at each time, or on the same segments (so that both answers and
+    both ways of reading the stretches are met)."""
     n = draw(st.integers(1, 12))
     codes = draw(st.lists(st.integers(0, 3), min_size=n, max_size=n))
     durations = draw(st.lists(st.integers(1, 3), min_size=n, max_size=n))
     origin = draw(st.integers(0, 4))
     a = _timed(codes, durations, float(origin))
-    if draw(st.booleans()):  # b: a mapped, cut at some of a's times, over part of its span
+    kind = draw(st.integers(0, 2))
+    if kind == 0:  # b: a mapped, cut at some of a's times, over part of its span
         mapping = draw(st.lists(st.integers(0, 2), min_size=4, max_size=4))
         lo = draw(st.integers(0, n - 1))
         hi = draw(st.integers(lo + 1, n))
         b = _timed([mapping[c] for c in codes[lo:hi]], durations[lo:hi],
                    float(origin + sum(durations[:lo])))
+    elif kind == 1:  # b: other symbols on a's segments
+        b = _timed(draw(st.lists(st.integers(0, 3), min_size=n, max_size=n)), durations,
+                   float(origin))
     else:
         m = draw(st.integers(1, 12))
         b = _timed(draw(st.lists(st.integers(0, 3), min_size=m, max_size=m)),

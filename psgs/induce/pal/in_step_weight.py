@@ -494,17 +494,24 @@ def determines(a: Timed, b: Timed) -> bool:
     lo, hi = max(a.starts[0], b.starts[0]), min(a.ends[-1], b.ends[-1])
     if not hi > lo:
         return False
-    cuts = []
-    for string in (a, b):
-        for times in (string.starts, string.ends):
-            cuts.append(times[(times > lo) & (times < hi)])
-    cuts = np.unique(np.concatenate([[lo, hi], *cuts]))
-    middles = (cuts[:-1] + cuts[1:]) / 2
-    # (segments of one string are contiguous: the one ending first after a middle holds it)
-    at_a = np.minimum(np.searchsorted(a.ends, middles, side="right"), len(a.codes) - 1)
-    at_b = np.minimum(np.searchsorted(b.ends, middles, side="right"), len(b.codes) - 1)
-    pairs = np.unique(np.column_stack((a.codes[at_a], b.codes[at_b])), axis=0)
-    return len(pairs) == len(np.unique(pairs[:, 0]))
+    if np.array_equal(a.ends, b.ends):  # (the same segments: each is a stretch)
+        x, y = a.codes, b.codes
+    else:
+        cuts = []
+        for string in (a, b):
+            for times in (string.starts, string.ends):
+                cuts.append(times[(times > lo) & (times < hi)])
+        cuts = np.unique(np.concatenate([[lo, hi], *cuts]))
+        middles = (cuts[:-1] + cuts[1:]) / 2
+        # (segments of one string are contiguous: the one ending first after a middle
+        # holds it)
+        x = a.codes[np.minimum(np.searchsorted(a.ends, middles, side="right"), len(a.codes) - 1)]
+        y = b.codes[np.minimum(np.searchsorted(b.ends, middles, side="right"), len(b.codes) - 1)]
+    # (each symbol of a given the symbol of b beside one of its stretches: a function when
+    # every stretch agrees with it)
+    beside = np.zeros(int(x.max()) + 1, dtype=y.dtype)
+    beside[x] = y
+    return bool(np.array_equal(beside[x], y))
 
 
 def renamed_key(string: Timed) -> bytes:
