@@ -4,7 +4,9 @@ to be answered "none of these" while the known takes stay right.
 Per split (:func:`open_split`): the praxicon's rules (the whole-vector threshold, the
 feature-group test at several levels, every group read, a pairwise test on top), the peers'
 rejection as an analyst would calibrate it on held-out known takes (DTW 1-NN's nearest
-distance, MiniRocket's top score), and the bound: the same split classified by every method
+distance, MiniRocket's top score), the oracle (the praxicon's group statistics at the best
+threshold chosen on the split's test takes themselves: what no calibration of them can beat)
+and the bound: the same split classified by every method
 with the left-out content learnt too. :func:`run_open_sets` runs the protocols'
 splits and :func:`report_open_sets` prints their rows; ``recognition.py`` calls both, and
 running this file prints the open-set rows alone (as ``recognition.py --only open-set
@@ -98,6 +100,14 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
             for q in _PAIR_QUANTILES:
                 rules[f"groups+pair q={q:g}"] = rules[f"groups a={level:g}"] & (
                     towards <= np.quantile(held, q))
+        if level == GROUP_LEVEL and not by_style:
+            # the group statistics per take, for the best threshold chosen on the test takes
+            # themselves (``_oracle_row``): what no calibration of these statistics can beat
+            whole = penalty <= d.spread.threshold
+            for name, stat in (("groups", excess), ("every group", every)):
+                results[protocol, "oracle"].setdefault(name, []).extend(
+                    (float(v) if w else np.inf, t.content not in known, d.names[b] == t.content)
+                    for v, w, t, b in zip(stat, whole, test, best))
         for name, accept in rules.items():
             r = results[protocol, name]
             for t, b, ok in zip(test, best, accept):
@@ -431,6 +441,21 @@ def report_open_sets(results, say) -> list[dict]:
                 f"rejection={row['closed_accuracy']:.3f}")
         if results[protocol, "detail"].get("left-out"):
             say(_open_detail(protocol, results))
+        for statistic in ("groups", "every group"):
+            taken = results[protocol, "oracle"].get(statistic)
+            if not taken:
+                continue
+            kept = results[protocol, f"groups a={0.01:g}"]
+            reached, known_at = _oracle_row(taken, kept["known_right"] / kept["known"])
+            oracle = protocol.replace("open-", "open-oracle-", 1)
+            rows.append({"protocol": oracle, "method": statistic, "takes": int(kept["unknown"]),
+                         "none_of_these": reached,
+                         "closed_accuracy": kept["known_right"] / kept["known"],
+                         "known_at_recall_0.9": known_at})  # (the bound's column: the same)
+            say(f"{oracle:16s} {statistic:11s} best threshold on the test takes: "
+                f"none-of-these={reached:.3f} at the rule's known accuracy "
+                f"{kept['known_right'] / kept['known']:.3f}; none-of-these 0.9 keeps known "
+                f"{known_at:.3f}")
         bound = protocol.replace("open-", "open-bound-", 1)
         for method in ("praxicon", "dtw-1nn", "minirocket"):
             taken = results[bound, method].get("takes")
@@ -447,6 +472,32 @@ def report_open_sets(results, say) -> list[dict]:
                 f"(answers={len(taken)}, left-out {left}); "
                 f"biased to C-recall 0.9: known={favoured:.3f}")
     return rows
+
+
+def _oracle_row(taken, known_floor: float, rejected: float = 0.9) -> tuple[float, float]:
+    """Over every threshold on a statistic (``taken``: per test take its value, inf where the
+    whole-vector threshold rejects it; whether it is of the left-out content; whether its best
+    action is right): the largest share of left-out takes rejected (value over the threshold)
+    while the known takes' accuracy stays at least ``known_floor``, and the largest known
+    accuracy while at least ``rejected`` of the left-out takes are rejected.
+
+    >>> taken = [(0.5, False, True), (2.0, False, True), (1.0, True, False), (3.0, True, False)]
+    >>> _oracle_row(taken, 1.0)  # both known takes kept: 3.0 alone rejected
+    (0.5, 0.5)
+    >>> _oracle_row(taken, 0.5)
+    (1.0, 0.5)
+    """
+    value, unknown, right = (np.array(v) for v in zip(*taken))
+    best_rejected, best_known = 0.0, 0.0
+    for threshold in np.unique(np.concatenate(([-np.inf], value[np.isfinite(value)]))):
+        accept = value <= threshold
+        known = float((accept & right)[~unknown].mean()) if (~unknown).any() else 1.0
+        share = float((~accept)[unknown].mean()) if unknown.any() else 0.0
+        if known >= known_floor - 1e-12:
+            best_rejected = max(best_rejected, share)
+        if share >= rejected - 1e-12:
+            best_known = max(best_known, known)
+    return best_rejected, best_known
 
 
 def main(argv=None) -> int:
