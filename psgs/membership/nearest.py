@@ -29,6 +29,7 @@ from .chart import CompiledGrammar
 from .costs import Edit, EditCosts, edit_costs
 from .error_chart import INF, TOLERANCE, ErrorChart
 from .nearest_search import DistanceSearch
+from .parallel_distance import FormSearch, multiplies
 from .words import coerce_words
 from .witness import PCGSSchedule, PSGSSchedule, Rewrite, ScheduledMove, replay
 
@@ -243,13 +244,19 @@ def _nearest_psgs(system: PSGS, words, costs: EditCosts, max_errors, max_states,
                     return costs.substitution(w[p], symbol_of[t])
             compiled.append(cg)
             charts.append(ErrorChart(cg, ws, insert, [costs.deletion(t) for t in w], sub, budget))
+        # parallel mode with a rule that multiplies its nonterminal (S → S S): the span search
+        # would choose a split per occurrence, and the chart of each component alone is cubic
+        # (every span of S → S S); the forms themselves are few, and bound themselves
+        forms = system.mode == "parallel" and any(map(multiplies, compiled))
         lower = 0.0
         for g, cg, chart in zip(system.components, compiled, charts):
+            if chart.min_yield[cg.index[g.start]] == INF:
+                return Nearest(None, True, INF, reason=f"component {g.name} derives no word, "
+                               "so the language is empty", system=system)
+            if forms:
+                continue
             d = _component_distance(chart, cg.index[g.start], step, max_errors)
             if d == INF:
-                if chart.min_yield[cg.index[g.start]] == INF:
-                    return Nearest(None, True, INF, reason=f"component {g.name} derives no word, "
-                                   "so the language is empty", system=system)
                 return _over(system, max_errors, lower, costs)
             lower += d
         # the components' distances, summed in another order than the search sums a tuple's
@@ -257,7 +264,8 @@ def _nearest_psgs(system: PSGS, words, costs: EditCosts, max_errors, max_states,
         if max_errors is not None and lower > max_errors + TOLERANCE * (
                 max_errors + sum(chart.scale for chart in charts)):
             return _over(system, max_errors, lower, costs)
-        search = DistanceSearch(system, compiled, charts, max_states, budget, step)
+        kind = FormSearch if forms else DistanceSearch
+        search = kind(system, compiled, charts, max_states, budget, step)
         search.words = words
         status, cost, path = search.run(lower, max_errors)
         if status == "found":
@@ -335,8 +343,10 @@ def _answer(search: DistanceSearch, cost: float, path, costs: EditCosts, exact: 
         taken = []
         for c, rule in enumerate(search.move_rule_ids[m]):
             ids = []
-            for (a, i, j), bounds in rewrites[c]:
-                nid = pending[c][(a, i, j)].pop()
+            # the occurrences a move rewrites are taken before any child is made: a child over
+            # the same span (S → S S over an empty span) is no occurrence of this move
+            taken_here = [pending[c][item].pop() for item, _ in rewrites[c]]
+            for nid, ((a, i, j), bounds) in zip(taken_here, rewrites[c]):
                 node = nodes[c][nid]
                 body = search.compiled[c].body[rule]
                 children = []
