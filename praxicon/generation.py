@@ -42,7 +42,7 @@ from .channel_curve import Method, channel_curves
 from .body_motion import _source_take, animate, body_of, whole_cycle
 from .performance_files import learnt_files, missing_style, performances_of, \
     read_performances, style_of, unreadable
-from .jsonvalues import as_dict
+from .jsonvalues import as_dict, component_problem
 from .records import ActionRecord, Praxicon, _count
 from .store import load, system_problem
 
@@ -464,17 +464,7 @@ def _lookup_problem(record: ActionRecord, components: set[str], channels, usable
     missing = next((c for c in channels if c not in named), None)
     if missing is not None:
         return f"'mean_pose' has no value for {missing!r}, a channel of {source}"
-    component = dict(record.component_names)
-    for channel in usable:
-        name = component.get(channel)
-        if name is None:
-            return (f"'component_names' has no component for {channel!r}, a channel of its "
-                    f"morphemes")
-        if name not in components:
-            shown = ", ".join(sorted(components)[:4]) + (", ..." if len(components) > 4 else "")
-            return (f"'component_names' gives {channel!r} the component {name!r}, which is no "
-                    f"component of its system (its components: {shown or 'none'})")
-    return None
+    return component_problem(dict(record.component_names), usable, components)
 
 
 def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None = None,

@@ -29,7 +29,7 @@ from pathlib import Path
 
 from ._values import shown
 from .description_store import FILE
-from .jsonvalues import channels_problem, read_json
+from .jsonvalues import channels_problem, component_problem, read_json
 from .records import REBUILD, PraxiconError
 from .store import TEMPORARY_NAME, dump, load, system_problem
 
@@ -181,31 +181,48 @@ def _loaded(folder):
         return load(folder, descriptions=False), str(exc)
 
 
-def _damaged_systems(folder: Path, praxicon) -> dict[str, str]:
+def _damaged_systems(folder: Path, praxicon, components: dict | None = None) -> dict[str, str]:
     """Per record whose system does not parse, its file's path in the folder -> the line
-    naming it (:func:`~praxicon.store.system_problem`)."""
+    naming it (:func:`~praxicon.store.system_problem`); into ``components``, per record whose
+    system parses, its components' names (each system is parsed once)."""
+    from psgs import loads
+    from psgs.errors import PSGSError
+
     problems = {}
     for record in praxicon.actions:
         name = f"records/{record.name}.json"
-        problem = system_problem(record, folder / name)
-        if problem:
-            problems[name] = problem
+        if not record.system:
+            continue
+        try:
+            system = loads(record.system, source=str(folder / name))
+        except (PSGSError, ValueError):  # system_problem's line (it parses it again)
+            problems[name] = system_problem(record, folder / name) or f"{folder / name}: " \
+                "'system' does not parse"
+            continue
+        if components is not None:
+            components[record.name] = {g.name for g in system.components}
     return problems
 
 
-def _misnamed_channels(folder: Path, praxicon) -> list[str]:
+def _misnamed_channels(folder: Path, praxicon, components: dict) -> list[str]:
     """A line per learnt record whose ``mean_pose`` or ``component_names`` has a key that is
     no channel of its joints, or lacks a channel of its morphemes
-    (:func:`~praxicon.jsonvalues.channels_problem`): generation looks each channel up there,
+    (:func:`~praxicon.jsonvalues.channels_problem`), or whose component names are not of its
+    system (``components``, per record whose system parses, its components' names;
+    :func:`~praxicon.jsonvalues.component_problem`): generation looks each channel up there,
     and a key renamed left a channel posed at 0, or derived from no component."""
     problems = []
     for record in praxicon.actions:
         if not record.learnt:
             continue
         needed = list(record.morphemes())
-        for key, pairs in (("mean_pose", record.mean_pose),
-                           ("component_names", record.component_names)):
-            problem = channels_problem(key, (c for c, _ in pairs), record.all_joints, needed)
+        found = [channels_problem(key, (c for c, _ in pairs), record.all_joints, needed)
+                 for key, pairs in (("mean_pose", record.mean_pose),
+                                    ("component_names", record.component_names))]
+        if record.name in components:
+            found.append(component_problem(dict(record.component_names), needed,
+                                           components[record.name]))
+        for problem in found:
             if problem:
                 problems.append(f"{folder / 'records' / (record.name + '.json')}: {problem}: "
                                 f"the record is damaged ('{REBUILD}' into the folder learns "
@@ -260,12 +277,13 @@ def verify(folder) -> Verification:
     expected = _expected(praxicon)
     # a damaged record and its .psgs file are not compared: the record is what is wrong, and
     # "--repair writes it again" would copy the damage over a file that may be intact
-    damaged = _damaged_systems(folder, praxicon)
+    components: dict[str, set[str]] = {}
+    damaged = _damaged_systems(folder, praxicon, components)
     skipped = _written_from(damaged)
     compared = [c for c in (_compare(folder, name, data) for name, data in expected.items()
                             if name not in skipped) if c]
     problems = [problem for problem, _ in compared] + list(damaged.values())
-    problems += _misnamed_channels(folder, praxicon)
+    problems += _misnamed_channels(folder, praxicon, components)
     repairable = sum(mendable for _, mendable in compared)
     timing = _timings(folder, set(praxicon.names))
     problems += [timing] if timing else []

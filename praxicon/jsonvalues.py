@@ -15,7 +15,7 @@ from psgs._foundation.files import read_text
 from psgs.errors import FormatError
 
 __all__ = ["Fields", "freeze", "thaw", "as_dict", "pairs", "read_json", "written_by",
-           "shown", "bad_item", "one_each", "channels_problem"]
+           "shown", "bad_item", "one_each", "channels_problem", "component_problem"]
 
 #: The axes of a channel ``JOINT.AXIS`` (``kinetology.AXES``: kept here, so that reading a
 #: record does not import kinetology).
@@ -173,6 +173,29 @@ def channels_problem(key: str, keys, joints, needed) -> str | None:
     missing = next((c for c in needed if c not in have), None)
     if missing is not None:
         return f"{key!r} has no value for {shown(missing)}, a channel of its morphemes"
+    return None
+
+
+def component_problem(names: dict, channels, components) -> str | None:
+    """What is wrong with a record's ``component_names`` (``names``, channel -> component)
+    for its system, whose components are named ``components``: the first of ``channels``
+    (its morphemes') without a component name, or whose name is no component of the system;
+    ``None`` when neither. Generation derives each channel's word from its component.
+
+    Examples
+    --------
+    >>> component_problem({"a.rx": "a_rx", "a.ry": "a_rq"}, ["a.rx", "a.ry"], {"a_rx", "a_ry"})
+    "'component_names' gives 'a.ry' the component 'a_rq', which is no component of its system (its components: a_rx, a_ry)"
+    """
+    for channel in channels:
+        name = names.get(channel)
+        if name is None:
+            return (f"'component_names' has no component for {shown(channel)}, a channel of "
+                    f"its morphemes")
+        if name not in components:
+            known = ", ".join(sorted(components)[:4]) + (", ..." if len(components) > 4 else "")
+            return (f"'component_names' gives {shown(channel)} the component {shown(name)}, "
+                    f"which is no component of its system (its components: {known or 'none'})")
     return None
 
 

@@ -105,6 +105,16 @@ def test_a_component_name_no_component_of_the_system_has_is_named(built):
     assert name in said and "derives" not in said
 
 
+def test_verify_names_a_component_name_no_component_of_the_system_has(built, tmp_path, capsys):
+    channel, name = load(built, descriptions=False)["moves.wave"].component_names[0]
+    folder = _damaged(built, tmp_path,
+                      lambda r: r["component_names"].__setitem__(channel, name + "_x"))
+    status, out, _ = run_praxicon(capsys, ["verify", str(folder)])
+    assert status == 1
+    assert (f"{folder / 'records' / 'moves.wave.json'}: 'component_names' gives {channel!r} "
+            f"the component {name + '_x'!r}, which is no component of its system") in out
+
+
 # -- descriptions made in Python are checked as a file's are ----------------------------------
 
 def _action(**changes) -> ActionDescription:
