@@ -14,10 +14,13 @@ import math
 import shutil
 from dataclasses import replace
 
+import numpy as np
 import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 from kinetology import synthetic_motion
-from praxicon import build, load, read_dataset, verify
+from praxicon import build, load, read_dataset
 from praxicon._description_json import FieldError, check_feature_names, feature_problem
 from praxicon.description import (ActionDescription, DescriptionError, Descriptions, Spread,
                                   describe)
@@ -80,7 +83,7 @@ def test_a_mean_pose_without_a_channel_of_the_skeleton_is_refused(built):
 def test_a_renamed_component_names_key_is_refused_by_generate_and_named_by_verify(
         built, tmp_path, capsys):
     channel = dict(load(built, descriptions=False)["moves.wave"].component_names)
-    first = sorted(channel)[0]
+    first = min(channel)
     folder = _damaged(built, tmp_path,
                       lambda r: _renamed(r["component_names"], first, first[:-1] + "q"))
     line = refused(capsys, ["generate", str(folder), "moves.wave", "-o",
@@ -142,8 +145,8 @@ SPREADS = [({"noise": (1.0, 0.0)}, "spread: 'noise' must be numbers above 0: val
            ({"threshold": math.nan}, "spread: 'threshold' must be a finite number, not nan"),
            ({"temperature": 0.0}, "spread: 'temperature' must be above 0, not 0.0"),
            ({"tail": -1.0}, "spread: 'tail' must be above 0, not -1.0"),
-           ({"limits": (("bogus", 3.0),)}, "'limits' must be of the spread's feature groups: "
-                                            "value 1 is 'bogus'"),
+           ({"limits": (("bogus", 3.0),)}, ("'limits' must be of the spread's feature groups: "
+                                             "value 1 is 'bogus'")),
            ({"limits": (("j", 0.0),)}, "'limits' must be numbers above 0: value 1 is 0.0")]
 
 
@@ -192,7 +195,6 @@ def test_a_good_description_is_made_and_read_back_alike():
 # -- features a motion can have -----------------------------------------------------------------
 
 def _walk(seed: int):
-    import numpy as np
     frames = 90
     t = np.arange(frames) / 30.0
     return leg_body(np.zeros(frames), np.full(frames, 9.0) + 0.1 * np.sin(6 * t + seed),
@@ -238,3 +240,42 @@ def test_a_window_description_of_a_whole_takes_feature_is_named():
     with pytest.raises(FieldError, match=r"^windows: action 'still': 'features' names '.*:shape0'"
                                          r": no window of a recording has it"):
         check_feature_names(Descriptions.from_dict(data), "windows")
+
+
+KINDS = ["pose", "posec", "spread", "energy", "shape0", "shape3", "shape4", "drift",
+         "excursion", "range", "", "Pose"]
+
+
+@settings(max_examples=40, deadline=None)
+@given(joints=st.lists(st.text("ab:._1", min_size=1, max_size=4), min_size=1, max_size=3,
+                       unique=True),
+       axes=st.lists(st.sets(st.sampled_from(["rx", "ry", "rz"]), min_size=1), min_size=3,
+                     max_size=3),
+       moves=st.booleans(), shape=st.booleans(), kind=st.sampled_from(KINDS))
+def test_the_features_accepted_are_those_motion_features_names(joints, axes, moves, shape,
+                                                               kind):
+    # the oracle: for each channel of a drawn motion the kinds motion_features gives it are
+    # exactly the kinds feature_problem accepts for that channel
+    from kinetology import Motion
+
+    channels = [f"{j}.{a}" for j, per in zip(joints, axes) for a in sorted(per)]
+    if moves:  # the first joint travels: the root's features
+        channels = [f"{joints[0]}.t{a}" for a in "xyz"] + channels
+    assume(len(set(channels)) == len(channels))
+    t = np.arange(60) / 30.0
+    values = np.column_stack([np.sin((k + 1) * t) * 10 + (k < 3 and moves) * 5 * t
+                              for k in range(len(channels))])
+    try:
+        motion = Motion(values, tuple(channels), 30.0, None, "drawn")
+    except ValueError:
+        assume(False)
+    names = motion_features(motion, shape=shape)[0]
+    assert [n for n in names if feature_problem(n, window=not shape)] == []
+    given_kinds: dict[str, set] = {}
+    for n in names:
+        if ":" in n:
+            channel, _, k = n.rpartition(":")
+            given_kinds.setdefault(channel, set()).add(k)
+    for channel, kinds in given_kinds.items():
+        accepted = feature_problem(f"{channel}:{kind}", window=not shape) is None
+        assert accepted == (kind in kinds), (channel, kind, kinds)
