@@ -23,7 +23,7 @@ from psgs.induce.pal.content import find_candidates
 from psgs.induce.pal.learner import encode
 from psgs.induce.pal.motifs import (Timed, _symbol_statistics, find_motif, find_motifs, grow,
                                     locate_copies)
-from psgs.induce.pal.pooling import synchronised, synchronised_pairs
+from psgs.induce.pal.synchronisation import synchronised, synchronised_pairs
 from psgs.induce.synthetic import generate
 
 numba = pytest.importorskip("numba", reason="the compiled engine needs numba (test extra)")

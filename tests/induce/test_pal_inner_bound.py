@@ -25,7 +25,7 @@ from hypothesis import strategies as st
 
 from psgs.budget import Budget
 from psgs.errors import BoundReached
-from psgs.induce.pal import motifs, pooling
+from psgs.induce.pal import motifs, pooling, synchronisation
 from psgs.induce.pal.conf import ContentConf
 
 SLACK = 0.5
@@ -63,9 +63,9 @@ def test_a_compiled_block_of_pair_tests_stops_at_the_deadline():
     # 1,024 candidates are one block (2^20 pairs); a pair of 1,000 copies each is some 2,000
     # steps: 3 s for the block (the same array many times: the lists' memory is one's)
     lists = [_copies(1000, offset) for offset in (0.0, 1.5, 3.0, 4.5)] * 256
-    assert len(lists) ** 2 == pooling.PAIRS_PER_CALL  # one block
-    list(pooling._pairs_compiled(lists[:4], 0.5, 3))  # (compiled, or read from the cache)
-    took = _raises_within(lambda clock: list(pooling._pairs_compiled(lists, 0.5, 3, clock)),
+    assert len(lists) ** 2 == synchronisation.PAIRS_PER_CALL  # one block
+    list(synchronisation._pairs_compiled(lists[:4], 0.5, 3))  # (compiled, or read from the cache)
+    took = _raises_within(lambda clock: list(synchronisation._pairs_compiled(lists, 0.5, 3, clock)),
                           0.1)
     assert took < 0.1 + SLACK
 
@@ -73,16 +73,16 @@ def test_a_compiled_block_of_pair_tests_stops_at_the_deadline():
 def test_a_row_of_numpy_s_pair_tests_reads_the_clock():
     # row 0 tests 8,000 partners of 3,000 copies, some 160 µs each: 1.3 s
     lists = [_copies(3000)] + [_copies(3000, 1.5)] * 8000
-    took = _raises_within(lambda clock: next(pooling._pairs_each(lists, 0.5, 3, clock)), 0.05)
+    took = _raises_within(lambda clock: next(synchronisation._pairs_each(lists, 0.5, 3, clock)), 0.05)
     assert took < 0.05 + SLACK
 
 
 def test_numpy_s_rows_read_a_part_at_a_time_are_the_same_pairs(monkeypatch):
     rng = np.random.default_rng(1)
     lists = [_copies(12, float(offset)) for offset in rng.uniform(0, 8, 40)]
-    whole = list(pooling._pairs_each(lists, 0.5, 3))
-    monkeypatch.setattr(pooling, "PAIRS_CLOCKED", 3)
-    assert list(pooling._pairs_each(lists, 0.5, 3, Budget(seconds=1e6))) == whole
+    whole = list(synchronisation._pairs_each(lists, 0.5, 3))
+    monkeypatch.setattr(synchronisation, "PAIRS_CLOCKED", 3)
+    assert list(synchronisation._pairs_each(lists, 0.5, 3, Budget(seconds=1e6))) == whole
     assert sum(len(rows) for rows, _ in whole) > 100
 
 

@@ -22,7 +22,7 @@ from psgs import Actiongram
 from psgs.cli import main
 from psgs.errors import ValidationError
 from psgs.induce import PAL, ContentPAL, MotionPAL
-from psgs.induce.pal import pooling
+from psgs.induce.pal import synchronisation
 from psgs.induce.pal.conf import Bounds, ContentConf, undecided
 from psgs.induce.pal.learner import encode
 from psgs.induce.pal.period import grid_bytes, period_mode, time_grid
@@ -53,15 +53,15 @@ def test_the_compiled_pair_table_is_a_block_of_rows_not_every_pair(monkeypatch):
     real = _pairs_jit.synchronised_rows
     monkeypatch.setattr(_pairs_jit, "synchronised_rows",
                         lambda *a: tables.append(real(*a).shape) or real(*a))
-    monkeypatch.setattr(pooling, "PAIRS_PER_CALL", 200)
-    monkeypatch.setattr(pooling, "PAIRS_HANDED", 4)
-    blocks = list(pooling._pairs_compiled(lists, 0.5, 3))
+    monkeypatch.setattr(synchronisation, "PAIRS_PER_CALL", 200)
+    monkeypatch.setattr(synchronisation, "PAIRS_HANDED", 4)
+    blocks = list(synchronisation._pairs_compiled(lists, 0.5, 3))
     # 66 candidates, 3 rows of 66 a table, without a deadline too, the pairs handed on 4 at
     # a time: the same pairs
     assert set(tables) == {(3, 66)} and len(tables) == 22
     assert [len(rows) for rows, _ in blocks] == [4, 4, 4, 3]  # rows 60-62, then 63-65
     pairs = [p for rows, columns in blocks for p in zip(rows, columns)]
-    assert pairs == [p for rows, columns in pooling._pairs_each(lists, 0.5, 3)
+    assert pairs == [p for rows, columns in synchronisation._pairs_each(lists, 0.5, 3)
                      for p in zip(rows, columns)]
     assert pairs == [(i, j) for i in range(60, 66) for j in range(i + 1, 66)]
 
@@ -69,10 +69,10 @@ def test_the_compiled_pair_table_is_a_block_of_rows_not_every_pair(monkeypatch):
 def test_the_compiled_pair_tests_hold_a_block_of_rows_in_memory():
     pytest.importorskip("numba", reason="the compiled engine needs numba (test extra)")
     lists = _random_copies(3000, copies=3)
-    list(pooling._pairs_compiled(lists[:20], 0.5, 3))  # compiled (or read from the cache)
+    list(synchronisation._pairs_compiled(lists[:20], 0.5, 3))  # compiled (or read from the cache)
     tracemalloc.start()
     try:
-        found = list(pooling._pairs_compiled(lists, 0.5, 3))
+        found = list(synchronisation._pairs_compiled(lists, 0.5, 3))
         peak = tracemalloc.get_traced_memory()[1]
     finally:
         tracemalloc.stop()

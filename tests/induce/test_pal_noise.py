@@ -206,7 +206,7 @@ def test_trim_equals_the_member_by_member_reference(members, edge_share):
 @given(parts=st.lists(st.lists(st.tuples(st.integers(0, 3), st.integers(1, 4)), min_size=1,
                                max_size=12), min_size=2, max_size=2))
 def test_shared_clusters_count_what_merging_the_intervals_counts(parts):
-    from psgs.induce.pal.pooling import _shared_clusters, copy_clusters
+    from psgs.induce.pal.synchronisation import _shared_clusters, copy_clusters
     lists = []
     for steps in parts:  # disjoint intervals in time order: gaps (maybe 0) then widths
         t, spans = 0.0, []

@@ -22,7 +22,7 @@ from psgs.budget import Budget
 from psgs.cli import main
 from psgs.errors import BoundReached, ValidationError
 from psgs.induce import PAL, ContentPAL, MotionPAL
-from psgs.induce.pal import motifs, pooling
+from psgs.induce.pal import motifs, synchronisation
 from psgs.induce.pal.conf import UNDECIDED, ContentConf
 from psgs.induce.pal.learner import encode
 from psgs.induce.synthetic import generate
@@ -173,13 +173,13 @@ def test_the_compiled_pairs_come_a_block_of_rows_at_a_time_alike(monkeypatch):
     for _ in range(30):
         starts = np.sort(rng.uniform(0, 100, 12))
         lists.append(np.column_stack((starts, starts + rng.uniform(0.5, 6, 12))))
-    whole = _pairs(pooling._pairs_compiled(lists, 0.5, 3))  # (30 rows: one block)
-    monkeypatch.setattr(pooling, "PAIRS_PER_CALL", 40)  # 1 row a block
-    assert _pairs(pooling._pairs_compiled(lists, 0.5, 3, Budget(seconds=1e6))) == whole
-    assert whole == _pairs(pooling._pairs_each(lists, 0.5, 3)) and len(whole) > 20
+    whole = _pairs(synchronisation._pairs_compiled(lists, 0.5, 3))  # (30 rows: one block)
+    monkeypatch.setattr(synchronisation, "PAIRS_PER_CALL", 40)  # 1 row a block
+    assert _pairs(synchronisation._pairs_compiled(lists, 0.5, 3, Budget(seconds=1e6))) == whole
+    assert whole == _pairs(synchronisation._pairs_each(lists, 0.5, 3)) and len(whole) > 20
     # and the clock stops them between blocks
     with pytest.raises(BoundReached):
-        _pairs(pooling._pairs_compiled(lists, 0.5, 3, _expired()))
+        _pairs(synchronisation._pairs_compiled(lists, 0.5, 3, _expired()))
 
 
 def _pairs(blocks) -> list[tuple[int, int]]:

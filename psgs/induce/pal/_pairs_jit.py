@@ -1,4 +1,4 @@
-"""The compiled synchronisation test: :func:`psgs.induce.pal.pooling.synchronised` for the
+"""The compiled synchronisation test: :func:`psgs.induce.pal.synchronisation.synchronised` for the
 pairs of a block of rows of candidates in one numba call.
 
 Only comparisons of the copies' times and integer counts, in the numpy engine's terms, so
@@ -20,7 +20,7 @@ __all__: list[str] = []  # private: the PAL parameter ``engine`` is the interfac
 
 @_jit
 def _disjoint(lo, hi):
-    """pooling._disjoint, and each interval's end at or after its start: then starts and
+    """synchronisation._disjoint, and each interval's end at or after its start: then starts and
     ends both only grow (what the pointers of :func:`_pair` need; otherwise the general
     clustering runs, which gives the same answer)."""
     for j in range(len(lo)):
@@ -49,11 +49,11 @@ def _overlap_runs(lo, hi, other_lo, other_hi):
 
 @_jit
 def _pair(a_lo, a_hi, b_lo, b_hi, a_disjoint, b_disjoint, fraction, min_copies):
-    """pooling.synchronised on copies ``(a_lo, a_hi)`` and ``(b_lo, b_hi)``."""
+    """synchronisation.synchronised on copies ``(a_lo, a_hi)`` and ``(b_lo, b_hi)``."""
     if len(a_lo) == 0 or len(b_lo) == 0:
         return False
     if a_disjoint and b_disjoint:
-        # pooling._shared_clusters: clusters = intervals - overlaps; each interval's run of
+        # synchronisation._shared_clusters: clusters = intervals - overlaps; each interval's run of
         # the other list's is two searchsorted counts, here read off by pointers moving
         # forward (the lists are in time order, so the counts only grow)
         overlaps, touching_a = _overlap_runs(a_lo, a_hi, b_lo, b_hi)
@@ -61,7 +61,7 @@ def _pair(a_lo, a_hi, b_lo, b_hi, a_disjoint, b_disjoint, fraction, min_copies):
         both = touching_a + touching_b - overlaps
         clusters = len(a_lo) + len(b_lo) - overlaps
     else:
-        # pooling.copy_clusters: sorted by start, then end; a cluster opens past the reach
+        # synchronisation.copy_clusters: sorted by start, then end; a cluster opens past the reach
         lo = np.concatenate((a_lo, b_lo))
         hi = np.concatenate((a_hi, b_hi))
         by_end = _stable_argsort(hi)

@@ -13,8 +13,9 @@ from .conf import NO_BOUND
 from .motifs import Motif, Timed, find_motifs
 from .edges import trim
 from .joining import may_join
-from .pooling import (PAIR_BYTES, member_votes, pair_blocks, pooled_pattern, pooled_windows,
-                      relocate, repeats_in_windows, sync_groups, vote)
+from .pooling import (PAIR_BYTES, member_votes, pooled_pattern, pooled_windows, relocate,
+                      repeats_in_windows, sync_groups, vote)
+from .synchronisation import pair_blocks
 from .together import locate_together
 from .widening import widen
 
