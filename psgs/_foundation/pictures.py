@@ -54,6 +54,9 @@ def picture_suffix(path, *, needs: str = "pip install 'psgs[plot]'") -> str:
     psgs.errors.ValidationError: walk: matplotlib cannot write a picture without a suffix; give one of .png, ...
     """
     try:
+        # the package first: a submodule imported before is found in sys.modules on its own,
+        # even where the package cannot be imported now
+        import matplotlib  # noqa: F401
         from matplotlib.backend_bases import FigureCanvasBase
     except ImportError:  # pragma: no cover - depends on the environment
         raise MissingDependency(f"pictures need matplotlib: {needs} "
