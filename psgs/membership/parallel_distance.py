@@ -10,7 +10,7 @@ search runs out of time. Such forms are few, though: this search walks the
 tuples of forms themselves, cheapest lower bound first (A*), and aligns a
 word with the input only once it is terminal.
 
-A form's lower bound is the larger of two, each never above the cost of a
+A form's lower bound is the largest of three, each never above the cost of a
 word the form derives (so the first terminal tuple taken off the queue is a
 nearest one):
 
@@ -18,14 +18,19 @@ nearest one):
   the terminals' count plus, per nonterminal, its number of occurrences times
   a length ``X`` derives; a word whose length is ``L`` needs ``|n - L|``
   insertions or deletions, at least the cheapest each;
+* letters: an input symbol that no terminal the form can derive matches is
+  deleted or substituted, an edit of its own;
 * alignment, asked when the form is the cheapest left and short: the least
   cost of aligning the form's symbols with the input one after the other, a
-  terminal matched, substituted or inserted, a nonterminal of few words against
-  those words (the rows of its :class:`~psgs.membership.error_chart.ErrorChart`)
-  and any other by its lengths (the chart of ``S → S S`` asks every span).
+  terminal matched, substituted or inserted, a nonterminal against the words
+  it derives alone by its :class:`~psgs.membership.error_chart.ErrorChart`
+  when it has few words or the input is short, else by its lengths (the chart
+  of ``S → S S`` asks every span and split).
 
 A child keeps its parent's bound when that is larger (it derives a subset of
-the parent's words). A terminal tuple's bound is its exact edit distance.
+the parent's words). A terminal tuple's bound is its exact edit distance. A
+nonterminal too frequent in a form for any word but ε within the best cost
+found leaves the form for a set that must derive ε (``FormSearch._children``).
 """
 
 from __future__ import annotations
@@ -297,7 +302,9 @@ class FormSearch:
     # ------------------------------------------------------------ bounds
     def _bound(self, state, cap: float, refine: bool) -> float:
         total = 0.0
-        for part, form in zip(self.parts, state):
+        for part, (form, vanish) in zip(self.parts, state):
+            if any(not part.compiled.nullable[x] for x in vanish):
+                return INF  # a nonterminal that must derive the empty word cannot
             counts: dict[int, int] = {}
             fixed = 0
             letters = 0
@@ -321,39 +328,70 @@ class FormSearch:
                 return INF
         return total
 
-    def _children(self, state):
-        """``(move, state)`` per move that rewrites: every occurrence of each entry's left side."""
+    def _children(self, state, upper: float):
+        """``(move, state)`` per move that rewrites: every occurrence of each entry's left side.
+
+        A component's entry is its form and the nonterminals that must derive the empty word
+        (``vanish``): a nonterminal that occurs so often in a form that any other word of it
+        makes the tuple longer than ``upper`` allows leaves the form for that set (its
+        occurrences derive one word, so all the empty one, wherever they stand). The set is
+        still rewritten by the moves, as the forms' occurrences would be: a rule of a
+        terminal there is no move within ``upper``, its body's nonterminals join the set.
+        """
         for m, rule_ids in enumerate(self.move_rule_ids):
             new = []
             changed = False
-            for c, (rule, form) in enumerate(zip(rule_ids, state)):
-                if rule is None or all(s < 0 for s in form):
-                    new.append(form)  # idle, or a terminal form: the engine leaves it
+            for c, (rule, (form, vanish)) in enumerate(zip(rule_ids, state)):
+                if rule is None or (not vanish and all(s < 0 for s in form)):
+                    new.append((form, vanish))  # idle, or a terminal form: the engine leaves it
                     continue
                 cg = self.compiled[c]
                 a = cg.lhs[rule]
-                if a not in form:
-                    break
                 body = cg.body[rule]
-                out = []
-                for s in form:
-                    if s == a:
-                        out.extend(body)
-                    else:
-                        out.append(s)
-                out = tuple(out)
-                changed = changed or out != form
-                new.append(out)
+                if a in vanish:
+                    if any(s < 0 for s in body):
+                        break  # as many terminals as occurrences: over upper
+                    vanish = (vanish - {a}) | set(body)
+                    out = tuple(s for s in form if s not in vanish)
+                elif a in form:
+                    out = []
+                    for s in form:
+                        if s == a:
+                            out.extend(x for x in body if x not in vanish)
+                        else:
+                            out.append(s)
+                    out, vanish = self._vanishing(c, tuple(out), vanish, upper)
+                else:
+                    break
+                entry = (out, frozenset(vanish))
+                changed = changed or entry != state[c]
+                new.append(entry)
             else:
                 if changed:
                     yield m, tuple(new)
+
+    def _vanishing(self, c: int, form, vanish, upper: float):
+        """``form`` without the nonterminals too frequent to derive a word other than ε."""
+        chart = self.charts[c]
+        if upper == INF or chart.min_insert <= 0:
+            return form, vanish
+        # k occurrences of a word of one symbol or more are k - n insertions at least
+        most = chart.n + (upper + self.tolerance(upper)) / chart.min_insert
+        counts: dict[int, int] = {}
+        for s in form:
+            if s >= 0:
+                counts[s] = counts.get(s, 0) + 1
+        many = {x for x, k in counts.items() if k > most}
+        if not many:
+            return form, vanish
+        return tuple(s for s in form if s not in many), vanish | many
 
     # ------------------------------------------------------------ search
     def run(self, lower: float, limit: float | None):
         """A* from the start forms; returns ``(status, cost, path)`` as ``DistanceSearch.run``."""
         budget = self.budget
-        start = tuple((cg.index[g.start],) for g, cg in zip(self.system.components,
-                                                            self.compiled))
+        start = tuple(((cg.index[g.start],), frozenset())
+                      for g, cg in zip(self.system.components, self.compiled))
         cap = INF if limit is None else limit
         f0 = max(lower, self._bound(start, cap, refine=True))
         self.proved = lower
@@ -367,7 +405,7 @@ class FormSearch:
             f, _, _, state, refined = heapq.heappop(queue)
             self.proved = max(self.proved, f)
             upper = self.best[0] if self.best is not None else cap
-            terminal = all(s < 0 for form in state for s in form)
+            terminal = all(not vanish and all(s < 0 for s in form) for form, vanish in state)
             if terminal:
                 return "found", f, self._path(parent, state)
             if not refined:  # the chart bound, asked once a state is the cheapest left
@@ -383,7 +421,7 @@ class FormSearch:
             if self.explored >= self.max_states:
                 self.proved = f
                 return "max_states", None, None
-            for m, child in self._children(state):
+            for m, child in self._children(state, upper):
                 budget.tick()
                 if child in parent:
                     continue
@@ -393,8 +431,8 @@ class FormSearch:
                     cut = cut or self.best is None
                     continue
                 parent[child] = (state, m)
-                budget.hold(1 + sum(map(len, child)))
-                done = all(s < 0 for form in child for s in form)
+                budget.hold(1 + sum(len(form) + len(vanish) for form, vanish in child))
+                done = all(not vanish and all(s < 0 for s in form) for form, vanish in child)
                 if done and (self.best is None or h < self.best[0]):
                     self.best = (h, self._path(parent, child))
                 heapq.heappush(queue, (h, 0 if done else 1, counter, child, done))

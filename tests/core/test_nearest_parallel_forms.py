@@ -91,6 +91,29 @@ def test_each_occurrence_lines_up_with_its_own_piece():
         check_answer(letters, (tuple(T(x) for x in word),), result)
 
 
+def test_a_doubling_nullable_beside_another_component():
+    # G1's S1 → S1 S1 doubles for free while G0 is still far: the forms S1^(2^k) all derive ε
+    # at the same cost, and the search made one for each k until a budget ran out (so did the
+    # span search). Once S1 occurs too often for any other word, it leaves the form.
+    s0, s1, b = N("S0"), N("S1"), T("b")
+    g0 = Grammar("G0", s0, [Rule("d0", s0, (s0, s0)), Rule("a0", s0, (a,)), Rule("b0", s0, (b,))])
+    g1 = Grammar("G1", s1, [Rule("d1", s1, (s1, s1)), Rule("e1", s1, ()), Rule("b1", s1, (b,))])
+    system = PSGS((g0, g1), mode="parallel")
+    # the words: (x^(2^k), ε or b^(2^j)) for x = a, b; the oracle over those up to length 16
+    firsts = [(x,) * 2 ** k for x in (a, b) for k in range(5)]
+    seconds = [()] + [(b,) * 2 ** k for k in range(5)]
+    for words in (["ab", "zz"], ["abab", "z"], ["aab", "bbb"], ["bbbbbbbbz", "zbzb"]):
+        given = tuple(tuple(T(x) for x in w) for w in words)
+        table = edit_costs(None)
+        expected = min(_edit_distance(given[0], u, table) for u in firsts) + \
+            min(_edit_distance(given[1], u, table) for u in seconds)
+        start = time.perf_counter()
+        result = psgs.nearest(system, words, max_seconds=5)
+        assert time.perf_counter() - start < 1.0
+        assert result.exact and result.distance == expected, (words, result)
+        check_answer(system, given, result)
+
+
 def test_max_errors():
     far = psgs.nearest(DOUBLING, ["a" * 48], max_errors=10)
     assert far.distance is None and far.bound == "max_errors" and far.lower_bound > 10
