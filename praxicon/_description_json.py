@@ -18,8 +18,8 @@ The checks of what a description holds are made on its values (:func:`check_acti
 are checked as a file's are, and a file's once. :func:`action_fields` and
 :func:`spread_fields` only read the JSON values into them (lists of numbers as tuples of
 floats). What a description's names must name beside a praxicon (the window descriptions of
-the takes' actions, the families of the actions) is checked by :func:`check_named_alike`, and
-features a motion can have by :func:`check_feature_names`.
+the takes' actions, the families of the actions, features a motion can have:
+:func:`check_feature_names`) is checked by :func:`check_named_alike`.
 
 The checks raise :class:`FieldError`, which :mod:`praxicon.description` (which this module
 must not import: it reads through this one) turns into its ``DescriptionError``.
@@ -434,7 +434,8 @@ def check_feature_names(described, part: str) -> None:
 def check_named_alike(takes, windows) -> None:
     """A :class:`FieldError` unless the whole-take descriptions ``takes`` and the window
     descriptions ``windows`` (:class:`~praxicon.description.Descriptions`, each checked alone)
-    describe the same actions, and the takes' families are those of their actions.
+    describe the same actions, each names only features a motion has
+    (:func:`check_feature_names`), and the takes' families are those of their actions.
 
     The build learns both from the same takes, and the families' descriptions are the
     families the actions name (``family_of``; an action alone is its own family, under its
@@ -458,6 +459,10 @@ def check_named_alike(takes, windows) -> None:
             ("windows", windowed - whole)
         raise _error(f"takes and windows describe other actions: {min(only)!r} is described "
                      f"in {part} only")
+    for described, part in ((takes, "takes"), (takes.families, "takes: families"),
+                            (windows, "windows")):
+        if described is not None:
+            check_feature_names(described, part)
     if takes.families is None:
         return
     pooled: dict[str, list[str]] = {}  # the families of two or more actions

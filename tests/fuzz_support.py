@@ -351,7 +351,7 @@ def praxicon_seed():
                                    problems=("bow_2.bvh: not a BVH file (line 1, column 1)",),
                                    performances=(PerformanceRecord("bow_1.bvh", used=True),
                                                  PerformanceRecord("bow_2.bvh", used=False))))
-    features = ("arm.rx:pose", "arm.rx:range", "leg.rx:pose", "tempo")
+    features = ("arm.rx:pose", "arm.rx:spread", "leg.rx:pose", "tempo")
     groups = (("arm", 4.5), ("leg", 3.25), ("tempo", 2.0))
 
     def described(window: float) -> Descriptions:

@@ -279,3 +279,19 @@ def test_the_features_accepted_are_those_motion_features_names(joints, axes, mov
     for channel, kinds in given_kinds.items():
         accepted = feature_problem(f"{channel}:{kind}", window=not shape) is None
         assert accepted == (kind in kinds), (channel, kind, kinds)
+
+
+def test_a_folder_whose_features_were_renamed_alike_is_refused_by_every_reader(built, tmp_path,
+                                                                             capsys):
+    folder = tmp_path / "px"
+    shutil.copytree(built, folder)
+    path = folder / "descriptions.json"
+    old = next(f for f in load(built).descriptions.spread.features if f.startswith("arm.rx:"))
+    path.write_text(path.read_text().replace(json.dumps(old), json.dumps("arm.rx:bogus")))
+    said = (f"{path}: takes: action 'moves.step': 'features' names 'arm.rx:bogus': no motion "
+            f"has it (a feature is ")
+    for command in (["recognise", str(folder), str(tmp_path / "none.bvh")],
+                    ["parse", str(folder), str(tmp_path / "none.bvh")]):
+        assert refused(capsys, command).startswith(said)
+    status, out, _ = run_praxicon(capsys, ["verify", str(folder)])
+    assert status == 1 and said in out
