@@ -212,8 +212,7 @@ def pair_significance(strings: list[Timed], lengths: list[int], follows: list[fl
     places = max(log10_choose(len(s.codes) - length + 1, 2) for s, length in zip(strings, lengths))
     chance = 0.0
     for string, length, follow in zip(strings, lengths, follows):
-        q = string.match_rate
-        r = q if follow is None else follow
+        q, r = string.chance_rates(follow)
         if q <= 0 or r <= 0:
             return -math.inf
         chance += math.log10(q) + (length - 1) * math.log10(r)
@@ -407,8 +406,7 @@ def lead_significance(string: Timed, section: Section, follow: float | None) -> 
     -2.3
     """
     n, length, copies = len(string.codes), len(section.motif), len(section.starts)
-    q = string.match_rate
-    r = q if follow is None else follow
+    q, r = string.chance_rates(follow)
     if q <= 0 or r <= 0:
         return -math.inf
     # c windows of L symbols apart in n symbols: C(n - c (L - 1), c) sets, of which
@@ -498,8 +496,7 @@ def _read_runs(frame: Frame, follow: float | None, need: float | None
     """:func:`read_at`'s search: the lightest candidate, or (with ``need``) possibly None
     when none is as light as ``need``."""
     string, n = frame.string, len(frame.string.codes)
-    q = string.match_rate
-    r = q if follow is None else follow
+    q, r = string.chance_rates(follow)
     if frame.width * (frame.top - frame.low + 1) <= _GRID_CELLS or q <= 0 or not 0 < r < 1:
         runs = grid_runs(frame)
         # (with ``need``: no candidate is longer than the longest run, and none weighs less
@@ -561,8 +558,7 @@ def _lightest(frame: Frame, found, follow: float | None, weighed: dict | None = 
         return None
     string, lead = frame.string, frame.lead
     codes, starts, ends = string.codes, string.starts, string.ends
-    q = string.match_rate
-    r = q if follow is None else follow
+    q, r = string.chance_rates(follow)
     bounds = {key: _bound(q, r, *key) for key in set(zip(lengths, clipped))}
     best, best_order = None, -1
     for bound, order in sorted((bounds[key], k) for k, key in enumerate(zip(lengths, clipped))):

@@ -93,8 +93,7 @@ def in_step_significance(string: Timed, section: Section, copies: np.ndarray, le
     inf
     """
     length = len(section.motif)
-    q = string.match_rate
-    r = q if follow is None else follow
+    q, r = string.chance_rates(follow)
     if q <= 0 or r <= 0:
         return -math.inf
     c = len(copies)
@@ -207,8 +206,7 @@ def in_step_weights(rows: list[tuple[Timed, Section, np.ndarray, np.ndarray, flo
     for k, (string, section, copies, lead, follow) in enumerate(rows):
         n, c, m = len(string.codes), len(copies), len(lead)
         size = c * (n - len(section.motif) + 1) + n + c * m
-        q = string.match_rate
-        r = q if follow is None else follow
+        q, r = string.chance_rates(follow)
         if (size > _BATCH_CELLS or q <= 0 or r <= 0 or not c or not m
                 or not len(section.motif) <= n):
             out[k] = in_step_significance(string, section, copies, lead, follow)
@@ -335,8 +333,7 @@ def _weigh(rows: list, places: list[int], out: list[float]) -> None:
         if empty_list[row]:
             out[places[row]] = in_step_significance(string, section, row_copies, lead, follow)
             continue
-        q = string.match_rate
-        r = q if follow is None else follow
+        q, r = string.chance_rates(follow)
         copies_row = counts[row]
         chance = (copies_row - 1) * (math.log10(q) + (len(section.motif) - 1) * math.log10(r))
         anywhere = 0.0

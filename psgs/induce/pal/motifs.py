@@ -71,6 +71,12 @@ class Timed:
         frequencies), the rate the scan threshold is set at."""
         return float(np.sum((self.symbol_counts / len(self.codes)) ** 2))
 
+    def chance_rates(self, follow: float | None) -> tuple[float, float]:
+        """``(q, r)``: the chance that a repeat's first symbol agrees with its copy's by chance
+        (:attr:`match_rate`) and that each further one does (``follow``, the string's follow
+        rate; ``q`` without one), which the weights of repeats in step multiply."""
+        return self.match_rate, self.match_rate if follow is None else follow
+
     def intervals(self, copy_starts: np.ndarray, length: int) -> np.ndarray:
         """(k, 2) array: the time span of each copy of a motif of ``length`` symbols."""
         return np.column_stack((self.starts[copy_starts], self.ends[copy_starts + length - 1]))

@@ -320,8 +320,7 @@ def _agreeing(string: Timed, copies: np.ndarray, term: tuple[float, float],
 def _term(string: Timed, follow: float | None) -> tuple[float, float]:
     """log10 of a string's chance that its first symbol repeats, and each further one:
     what :func:`~psgs.induce.pal.in_step.pair_significance` adds up (0 when it cannot)."""
-    q = string.match_rate
-    r = q if follow is None else follow
+    q, r = string.chance_rates(follow)
     if q <= 0 or r <= 0:
         return 0.0, 0.0
     return math.log10(q), math.log10(r)
