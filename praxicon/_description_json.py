@@ -181,8 +181,8 @@ def _plain(value: tuple, least: float | None, strict: bool) -> bool:
     try:
         if not set(map(type, value)) <= _NUMBERS or not math.isfinite(math.fsum(value)):
             return False
-    except OverflowError:  # an int past the float range: not finite, said by _numbers
-        return False
+    except (OverflowError, ValueError):  # an int past the float range, or inf and -inf
+        return False  # together (fsum refuses them): said by _numbers
     return least is None or not value or (min(value) > least if strict else
                                           min(value) >= least)
 

@@ -133,6 +133,8 @@ def _spread(**changes) -> Spread:
 
 
 ACTIONS = [({"mean": (math.nan, 0.5)}, "'mean' must be finite numbers: value 1 is nan"),
+           # both infinities: their sum is no number at all (math.fsum refuses it)
+           ({"mean": (math.inf, -math.inf)}, "'mean' must be finite numbers: value 1 is inf"),
            ({"spread": (0.5,)}, "'spread' has 1 values for 2 features"),
            ({"spread": (0.5, -1.0)}, "'spread' must be numbers from 0: value 2 is -1.0"),
            ({"takes": 0}, "'takes' must be a whole number from 1, not 0"),
