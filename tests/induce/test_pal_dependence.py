@@ -12,7 +12,7 @@ from test_pal_sections import _draw, _sectioned
 from psgs import Actiongram
 from psgs.induce import PAL
 from psgs.induce.pal.in_step import group_significance, lead_significance
-from psgs.induce.pal.in_step_weight import Alike, determines, renamed_key
+from psgs.induce.pal.alike import Alike, determines, moves_with, renamed_key
 from psgs.induce.pal.motifs import Timed
 from psgs.induce.pal.sections import Section, find_section, follow_rate
 
@@ -178,5 +178,36 @@ def test_alike_counts_each_string_that_moves_alone_once():
     base, other = _draw(rng, 4, 60), _draw(rng, 4, 60)
     strings = [_timed(c, np.ones(60), 0.0) for c in
                (base, _renamed(base, rng, 4), other, _renamed(other, rng, 4), other)]
-    assert Alike(strings).counted(0, [1, 2, 3, 4]) == [2]
-    assert Alike(strings).counted(2, [0, 1, 3]) == [0]
+    copies = np.array([[5.0, 13.0], [30.0, 38.0]])
+    assert Alike(strings, -2.0).counted(0, [1, 2, 3, 4], copies) == [2]
+    assert Alike(strings, -2.0).counted(2, [0, 1, 3], copies) == [0]
+
+
+def test_a_pairing_met_only_inside_the_copies_is_no_dependence():
+    # both strings repeat at the lead's copies by the event the group is weighed for, so
+    # their symbols pair off alike in both copies whether they depend on each other or not:
+    # a renamed copy is dependent by what it shares outside them, a string recorded only
+    # around the copies is not
+    rng = np.random.default_rng(8)
+    codes = _draw(rng, 16, 40)
+    lead = _timed(codes, np.ones(40), 0.0)
+    copies = np.array([[5.0, 9.0], [12.0, 16.0]])
+    assert moves_with(lead, _timed(_renamed(codes, rng, 16), np.ones(40), 0.0), copies, -2.0)
+    around = _timed(_renamed(codes, rng, 16)[5:16], np.ones(11), 5.0)
+    assert determines(lead, around)  # a function where both are: by the copies alone
+    assert not moves_with(lead, around, copies, -2.0)
+    assert not moves_with(around, lead, copies, -2.0)
+
+
+def test_a_member_recorded_only_around_the_copies_is_still_found():
+    # two strings over 16 letters play their own 4-symbol sections at the same times, the
+    # second recorded from 5 to 16 only: their symbols pair off alike in both copies, which
+    # is the evidence itself, not a dependence (read as one, the pair was lost)
+    names = "abcdefghijklmnop"
+    rng = np.random.default_rng(12)
+    strings = {"s0": "npdfompadhenmpadehkibanlninehmbfbhpcghodidamafihbplpblejoelc",
+               "s1": "fpgiebhfpgi",
+               "r0": [names[c] for c in rng.integers(0, 16, 60)],
+               "r1": [names[c] for c in rng.integers(0, 16, 60)]}
+    ag = Actiongram.from_strings(strings, starts={"s1": 5.0})
+    assert {"s0", "s1"} <= set(PAL(min_copies=2).induce(ag).components)

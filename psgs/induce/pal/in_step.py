@@ -18,7 +18,8 @@ event (``docs/streams.md``, "Significance of a repetition"):
 
 The group's significance is the sum, at the lead that makes it strongest
 (members that move with the lead or with another, one string's symbol determining
-the other's, add nothing: :class:`~psgs.induce.pal.in_step_weight.Alike`); a
+the other's beyond chance away from the lead's copies, add nothing:
+:class:`~psgs.induce.pal.alike.Alike`); a
 member is kept only when its own ``T_j`` beats chance among the other
 strings (``T_j + log10(N - 1) <= log10(alpha)``), so that no random string is
 carried in by the others' strength. A string is read at the lead's copies
@@ -38,7 +39,8 @@ import math
 import numpy as np
 
 from .conf import NO_BOUND
-from .in_step_weight import Alike, in_step_significance, in_step_weights
+from .alike import Alike
+from .in_step_weight import in_step_significance, in_step_weights
 from .motifs import Timed
 from .pairing import lead_segments
 from .sections import Section, _cycles
@@ -58,7 +60,7 @@ def group_significance(strings: list[Timed], sections: list, intervals: dict[int
     ``follows[i]`` its follow rate (None: its match rate), ``partners`` who is in step
     with whom, ``level`` log10 of ``alpha``. The members map to the section each is read
     at (its own, or one found at the lead's copies); members that move together count once
-    (:class:`~psgs.induce.pal.in_step_weight.Alike`; weighed again so when the strongest
+    (:class:`~psgs.induce.pal.alike.Alike`; weighed again so when the strongest
     reading holds such members). Returns ``(inf, {})`` when no lead
     has a partner that beats chance. ``clock`` (a :class:`~psgs.budget.Budget`) is read
     before each lead.
@@ -82,14 +84,14 @@ def group_significance(strings: list[Timed], sections: list, intervals: dict[int
     ([0, 1], True)
     """
     best = _strongest(strings, sections, intervals, follows, group, partners, level, clock)
-    # members that move together count once (in_step_weight.Alike), weighed again so only
+    # members that move together count once (alike.Alike), weighed again so only
     # when the strongest reading holds such members: counting fewer members only makes a
     # reading weaker (each adds T_j + log10 of at most N - 1 <= level < 0), so the
     # strongest without any stays the strongest
-    alike = Alike(strings)
+    alike = Alike(strings, level)
     if best[0] <= level:
         first, *rest = best[1]
-        if alike.counted(first, rest) != rest:
+        if alike.counted(first, rest, strings[first].copy_times(best[1][first])) != rest:
             best = _strongest(strings, sections, intervals, follows, group, partners, level,
                               clock, alike)
     return best
@@ -137,14 +139,15 @@ def _paired(strings: list[Timed], sections: list, intervals: dict[int, np.ndarra
         for b in partners[a]:
             if b <= a or b not in group or len(intervals[a]) != 2 or len(intervals[b]) != 2:
                 continue
-            if alike is not None and alike.dependent(a, b):
+            if alike is not None and alike.dependent(a, b, np.concatenate((intervals[a],
+                                                                           intervals[b]))):
                 continue  # (one string's repeat, not two)
             pair = pair_reading(strings, (a, b), (intervals[a], intervals[b]), follows)
             if pair is None or pair[0] > level or pair[0] >= best[0]:
                 continue
             weight, members, core = pair
             rest = _read_the_rest(strings, core, follows, members, level)
-            counted = set(rest if alike is None else alike.counted(a, [b, *rest]))
+            counted = set(rest if alike is None else alike.counted(a, [b, *rest], core))
             for j, (again, found) in rest.items():
                 members[j] = found
                 weight += again if j in counted else 0.0
@@ -226,7 +229,7 @@ def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.n
     """:func:`group_significance` with one lead read at ``lead_copies``: every other string
     read there (its own section too when it is one of the lead's ``partners``; ``reads``
     keeps the readings other leads will ask for again; ``alike``: only the members it
-    counts weighed, and chosen)."""
+    counts weighed; which members join does not depend on it)."""
     reads = _Reads(strings, follows, []) if reads is None else reads
     total = len(strings)
     # (a member's reading counts only this light or lighter: the lightest of the rest
@@ -301,7 +304,7 @@ def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.n
         return math.inf, {}
     if alike is not None:  # (members that move with the lead or another add nothing)
         weight_of = dict(zip(joined, weights))
-        weights = [weight_of[j] for j in alike.counted(lead, list(joined))]
+        weights = [weight_of[j] for j in alike.counted(lead, list(joined), lead_copies)]
     m = len(weights) + 1
     significance = (lead_significance(strings[lead], section, follows[lead]) + sum(weights)
                     + math.log10(total) + log10_choose(total - 1, m - 1))

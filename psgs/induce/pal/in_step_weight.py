@@ -10,25 +10,10 @@ per call, not per symbol, decided (63 % of 10 minutes). The rows' arrays are lai
 end and every elementwise step runs once over all of them, in the order and with the
 operations of :func:`in_step_significance`; each row's sums of several terms are still
 summed alone, as it sums them.
-
-Which members' weights count (:class:`Alike`): the group is weighed as if its strings were
-independent, and two strings that move together are not. Where one string's symbol
-determines the other's at every time both cover (:func:`determines`: a renamed copy of it,
-a joint that follows another), a repeat of the one is a repeat of the other, and the
-second repeat is no evidence: a random string of 60 symbols over 4 letters beside a
-renamed copy of it was claimed about 1 time in 5, a chance repeat of the one "confirmed"
-by the same repeat of the other. A member whose symbol the lead's determines, or that
-determines the lead's, or that is a renamed copy of a member counted before it
-(:func:`renamed_key`), stays a member (it moves with the group) but adds nothing to the
-group's weight, nor to the number of strings the group was chosen from: the group's
-evidence is that of the one string of both, as the pairs' joint string
-(:class:`~psgs.induce.pal.paired_sections._JointString`) weighs it, which is then the
-finer string itself.
 """
 
 from __future__ import annotations
 
-import hashlib
 import math
 
 import numpy as np
@@ -466,111 +451,3 @@ def _closeness(first: np.ndarray, copies: np.ndarray, tolerance: np.ndarray,
     for g, value in zip(order.tolist(), values):
         out[g] = value
     return out
-
-
-def determines(a: Timed, b: Timed) -> bool:
-    """Whether ``a``'s symbol determines ``b``'s at every time both strings cover: each
-    symbol of ``a`` is met there beside one symbol of ``b`` only (False when they share
-    no time).
-
-    Read on the stretches in which neither changes: a symbol of ``b`` that changes
-    inside a segment of ``a`` puts one symbol of ``a`` beside two of ``b``.
-
-    Examples
-    --------
-    >>> def timed(codes):
-    ...     return Timed.from_codes(np.array(codes), np.ones(len(codes)), 0.0)
-    >>> a = timed([0, 1, 2, 0, 1, 2, 3])
-    >>> determines(a, timed([5, 4, 6, 5, 4, 6, 7])), determines(a, timed([1, 1, 0, 1, 1, 0, 0]))
-    (True, True)
-    >>> determines(timed([1, 0, 1, 0, 1, 0, 0]), a)  # a finer string: not the other way
-    False
-    >>> determines(a, Timed.from_codes(np.array([0, 1]), np.array([1.0, 2.0]), 7.0))
-    False
-    """
-    lo, hi = max(a.starts[0], b.starts[0]), min(a.ends[-1], b.ends[-1])
-    if not hi > lo:
-        return False
-    if np.array_equal(a.ends, b.ends):  # (the same segments: each is a stretch)
-        x, y = a.codes, b.codes
-    else:
-        cuts = []
-        for string in (a, b):
-            for times in (string.starts, string.ends):
-                cuts.append(times[(times > lo) & (times < hi)])
-        cuts = np.unique(np.concatenate([[lo, hi], *cuts]))
-        middles = (cuts[:-1] + cuts[1:]) / 2
-        # (segments of one string are contiguous: the one ending first after a middle
-        # holds it)
-        x = a.codes[np.minimum(np.searchsorted(a.ends, middles, side="right"), len(a.codes) - 1)]
-        y = b.codes[np.minimum(np.searchsorted(b.ends, middles, side="right"), len(b.codes) - 1)]
-    # (each symbol of a given the symbol of b beside one of its stretches: a function when
-    # every stretch agrees with it)
-    beside = np.zeros(int(x.max()) + 1, dtype=y.dtype)
-    beside[x] = y
-    return bool(np.array_equal(beside[x], y))
-
-
-def renamed_key(string: Timed) -> bytes:
-    """A key equal for two strings when one is the other renamed: the same times, and
-    its symbols mapped one-to-one (each code replaced by the rank of its first place;
-    the key is a 16-byte digest of those and the times, not a copy of the string).
-
-    Examples
-    --------
-    >>> def timed(codes):
-    ...     return Timed.from_codes(np.array(codes), np.ones(len(codes)), 0.0)
-    >>> renamed_key(timed([3, 1, 3, 2])) == renamed_key(timed([0, 2, 0, 1]))
-    True
-    >>> renamed_key(timed([3, 1, 3, 2])) == renamed_key(timed([0, 2, 1, 0]))
-    False
-    """
-    _, first, inverse = np.unique(string.codes, return_index=True, return_inverse=True)
-    rank = np.argsort(np.argsort(first))
-    digest = hashlib.blake2b(digest_size=16)
-    for part in (string.starts, string.ends, rank[inverse.ravel()].astype(np.int64)):
-        digest.update(np.ascontiguousarray(part).tobytes())
-    return digest.digest()
-
-
-class Alike:
-    """Which members of a group add to its weight: the strings' :func:`renamed_key`
-    found once per string, their dependence (:func:`determines`, one way or the other)
-    each time it is asked (a pair is asked by each of its two strings leading: kept, the
-    answers of a group of N strings would be N^2)."""
-
-    def __init__(self, strings: list[Timed]) -> None:
-        self.strings = strings
-        self.keys: dict[int, bytes] = {}
-
-    def dependent(self, i: int, j: int) -> bool:
-        """Whether string ``i``'s symbol determines ``j``'s or ``j``'s ``i``'s."""
-        a, b = self.strings[i], self.strings[j]
-        return determines(a, b) or determines(b, a)
-
-    def key(self, i: int) -> bytes:
-        """:func:`renamed_key` of string ``i``."""
-        if i not in self.keys:
-            self.keys[i] = renamed_key(self.strings[i])
-        return self.keys[i]
-
-    def counted(self, lead: int, members: list[int]) -> list[int]:
-        """The ``members`` (in their order) whose weight adds to a group led by ``lead``:
-        each that is not :meth:`dependent` with the lead and not a renamed copy of a
-        member counted before it.
-
-        Examples
-        --------
-        >>> def timed(codes):
-        ...     return Timed.from_codes(np.array(codes), np.ones(len(codes)), 0.0)
-        >>> strings = [timed([0, 1, 2, 0, 1]), timed([2, 0, 1, 2, 0]), timed([1, 2, 1, 0, 2]),
-        ...            timed([0, 1, 0, 2, 1])]
-        >>> Alike(strings).counted(0, [1, 2, 3])  # 1 renames 0; 3 renames 2
-        [2]
-        """
-        out, seen = [], set()
-        for j in members:
-            if not self.dependent(lead, j) and self.key(j) not in seen:
-                out.append(j)
-                seen.add(self.key(j))
-        return out
