@@ -420,6 +420,8 @@ def run_open_sets(results, d1, d2, want, cache, *, peers=True) -> None:
 def report_open_sets(results, say) -> list[dict]:
     """The open-set rows, one line each through ``say`` (per protocol: every rule, the
     praxicon's answers per left-out content, the bound), and their CSV rows."""
+    from praxicon.calibration import GROUP_LEVEL
+
     rows = []
     rules = ([f"whole x{m:g}" for m in _MARGINS] + [f"groups a={v:g}" for v in _LEVELS]
              + [f"own style a={v:g}" for v in _LEVELS] + ["every group a=0.01"]
@@ -445,7 +447,7 @@ def report_open_sets(results, say) -> list[dict]:
             taken = results[protocol, "oracle"].get(statistic)
             if not taken:
                 continue
-            kept = results[protocol, f"groups a={0.01:g}"]
+            kept = results[protocol, f"groups a={GROUP_LEVEL:g}"]
             reached, known_at = _oracle_row(taken, kept["known_right"] / kept["known"])
             oracle = protocol.replace("open-", "open-oracle-", 1)
             rows.append({"protocol": oracle, "method": statistic, "takes": int(kept["unknown"]),

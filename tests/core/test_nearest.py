@@ -61,7 +61,13 @@ def check_against_oracle(system, words, costs=None):
         assert (result.distance == 0) == member
     else:  # free edits can reach a member at no cost
         assert result.distance == 0 or not member
-    # the witness derives the nearest words; the edit scripts turn the input into them
+    check_witness(words, result, table)
+    return result
+
+
+def check_witness(words, result, table) -> None:
+    """The witness derives the nearest words; the edit scripts turn the input into them, at
+    the costs ``table`` (:func:`~psgs.membership.costs.edit_costs`) adding up to the distance."""
     assert result.witness.words == result.words
     assert result.witness.is_terminal
     total = 0
@@ -70,7 +76,6 @@ def check_against_oracle(system, words, costs=None):
         assert sum(e.cost for e in script) == pytest.approx(_edit_distance(w, u, table))
         total += sum(e.cost for e in script)
     assert total == pytest.approx(result.distance)
-    return result
 
 
 @pytest.mark.parametrize("mode", ["parallel", "single"])

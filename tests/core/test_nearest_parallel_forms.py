@@ -16,12 +16,13 @@ import time
 import pytest
 from hypothesis import HealthCheck, assume, given, settings, strategies as st
 from test_membership_parallel_words import DOUBLING, parallel_systems
+from test_nearest import check_witness
 
 import psgs
 from psgs import PSGS, Grammar, Nonterminal as N, Rule, Terminal as T
 from psgs.enumeration import language
 from psgs.membership.chart import CompiledGrammar
-from psgs.membership.costs import apply_edits, edit_costs
+from psgs.membership.costs import edit_costs
 from psgs.membership.nearest import _edit_distance
 from psgs.membership.parallel_distance import multiplies
 
@@ -36,15 +37,7 @@ def doubling_distance(n: int) -> int:
 
 def check_answer(system, words, result, costs=None):
     """The witness derives the nearest words; the edit scripts turn the input into them."""
-    table = edit_costs(costs)
-    assert result.witness.words == result.words
-    assert result.witness.is_terminal
-    total = 0
-    for w, u, script in zip(words, result.words, result.edits):
-        assert apply_edits(w, script) == u
-        assert sum(e.cost for e in script) == pytest.approx(_edit_distance(w, u, table))
-        total += sum(e.cost for e in script)
-    assert total == pytest.approx(result.distance)
+    check_witness(words, result, edit_costs(costs))
 
 
 @pytest.mark.parametrize("n, expected", [(64, 0), (48, 16), (100, 28), (1, 0), (3, 1), (0, 1)])
