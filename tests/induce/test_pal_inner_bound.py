@@ -73,7 +73,8 @@ def test_a_compiled_block_of_pair_tests_stops_at_the_deadline():
 def test_a_row_of_numpy_s_pair_tests_reads_the_clock():
     # row 0 tests 8,000 partners of 3,000 copies, some 160 µs each: 1.3 s
     lists = [_copies(3000)] + [_copies(3000, 1.5)] * 8000
-    took = _raises_within(lambda clock: next(synchronisation._pairs_each(lists, 0.5, 3, clock)), 0.05)
+    took = _raises_within(
+        lambda clock: next(synchronisation._pairs_each(lists, 0.5, 3, clock)), 0.05)
     assert took < 0.05 + SLACK
 
 
