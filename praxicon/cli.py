@@ -162,7 +162,7 @@ def _shaping_progress(done: int, total: int, channel: str) -> None:
 def run_generate(args) -> int:
     from kinetology.bvh_writer import format_bvh, without_axes
 
-    from .generation import generate
+    from .generation import RecordFieldError, generate
     from .pictures import draw_generated
     from .store import load
 
@@ -189,6 +189,8 @@ def run_generate(args) -> int:
         Path(args.output).write_text(text, encoding="utf-8")
         if player is not None:
             _save_player(player, shown, args.view)
+    except RecordFieldError as exc:  # the file to look at: the record's
+        _bad(f"{Path(args.praxicon) / 'records' / (args.action + '.json')}: {exc}")
     except ValueError as exc:
         _bad(str(exc))
     if result.origin == "performances":

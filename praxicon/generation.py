@@ -407,7 +407,7 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     channels = source_motion.channels
     looked_up = _lookup_problem(record, {g.name for g in system.components}, channels, usable)
     if looked_up:  # else a channel silently posed at 0, or derived from no component
-        raise ValueError(f"action {record.name!r}: {looked_up}")
+        raise RecordFieldError(f"action {record.name!r}: {looked_up}")
     pose = dict(record.mean_pose)
     body = body_of(record, channels, set(usable), period, style, performances)
     # a morpheme of half a stride repeats before the body does (the legs take turns): each
@@ -449,6 +449,11 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     motion = kinetology.Motion(values, channels, rate, skeleton, f"generated:{record.name}",
                                {"format": "generated", "cycle": cycle})
     return motion, derived, methods
+
+
+class RecordFieldError(ValueError):
+    """A learnt record whose ``mean_pose`` or ``component_names`` do not name what generation
+    looks up (the command line names the record's file before it)."""
 
 
 def _lookup_problem(record: ActionRecord, components: set[str], channels, usable) -> str | None:

@@ -62,8 +62,9 @@ def test_a_renamed_mean_pose_key_is_refused_by_generate_and_named_by_verify(buil
     folder = _damaged(built, tmp_path, lambda r: _renamed(r["mean_pose"], "hips.rz", "hipz.rz"))
     line = refused(capsys, ["generate", str(folder), "moves.wave", "-o",
                             str(tmp_path / "out.bvh")])
-    assert line.startswith("action 'moves.wave': 'mean_pose' names 'hipz.rz', which is no "
-                           "channel of its skeleton (")
+    record = folder / "records" / "moves.wave.json"
+    assert line.startswith(f"{record}: action 'moves.wave': 'mean_pose' names 'hipz.rz', "
+                           f"which is no channel of its skeleton (")
     assert not (tmp_path / "out.bvh").exists()
     status, out, _ = run_praxicon(capsys, ["verify", str(folder)])
     assert status == 1
@@ -88,8 +89,9 @@ def test_a_renamed_component_names_key_is_refused_by_generate_and_named_by_verif
                       lambda r: _renamed(r["component_names"], first, first[:-1] + "q"))
     line = refused(capsys, ["generate", str(folder), "moves.wave", "-o",
                             str(tmp_path / "out.bvh")])
-    assert line == (f"action 'moves.wave': 'component_names' has no component for "
-                    f"{first!r}, a channel of its morphemes")
+    assert line == (f"{folder / 'records' / 'moves.wave.json'}: action 'moves.wave': "
+                    f"'component_names' has no component for {first!r}, a channel of its "
+                    f"morphemes")
     status, out, _ = run_praxicon(capsys, ["verify", str(folder)])
     assert status == 1 and f"'component_names' names {first[:-1] + 'q'!r}, which is no " \
         f"channel of its joints" in out
