@@ -199,6 +199,20 @@ def test_a_pairing_met_only_inside_the_copies_is_no_dependence():
     assert not moves_with(around, lead, copies, -2.0)
 
 
+def test_a_member_resting_outside_the_copies_is_no_dependence():
+    # a member that rests in one symbol before, between and after its copies meets every
+    # symbol of the lead with it there: one segment of its own, one event, not a pairing that
+    # recurs (counted over stretches, it read as dependent and its pair was lost)
+    rng = np.random.default_rng(6)
+    lead = _timed(_draw(rng, 8, 60), np.ones(60), 0.0)
+    section = _draw(rng, 8, 6)
+    member = _timed([7] + section + [7] + section + [7], [10] + [1] * 6 + [4] + [1] * 6 + [34],
+                    0.0)
+    copies = np.array([[10.0, 16.0], [20.0, 26.0]])
+    assert not moves_with(lead, member, copies, -2.0)
+    assert not moves_with(member, lead, copies, -2.0)
+
+
 def test_a_member_recorded_only_around_the_copies_is_still_found():
     # two strings over 16 letters play their own 4-symbol sections at the same times, the
     # second recorded from 5 to 16 only: their symbols pair off alike in both copies, which

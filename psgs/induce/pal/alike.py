@@ -88,8 +88,9 @@ def moves_with(a: Timed, b: Timed, away: np.ndarray, level: float) -> bool:
     """Whether ``a``'s symbol determines ``b``'s beyond chance away from the times ``away``
     (rows of start and end: the lead's copies): :func:`determines` on the stretches outside
     them, and the chance that an independent ``b`` meets each of ``a``'s symbols with one
-    symbol of its own as often as it does, the product over ``a``'s symbols of ``b``'s match
-    rate to the power of the stretches past the first, at most ``level`` (log10).
+    symbol of its own as often as it does, at most ``level`` (log10): over ``a``'s symbols,
+    ``b``'s match rate (over its segments outside the copies) to the power of the segments of
+    ``b`` the symbol meets past the first.
 
     Examples
     --------
@@ -109,13 +110,20 @@ def moves_with(a: Timed, b: Timed, away: np.ndarray, level: float) -> bool:
     x, y, middles = read
     away = np.asarray(away, dtype=float).reshape(-1, 2)
     outside = ~((middles[:, None] > away[:, 0]) & (middles[:, None] < away[:, 1])).any(axis=1)
-    x, y = x[outside], y[outside]
+    # b's segment under each stretch: a stretch that shares a segment of b with an earlier
+    # stretch of the same symbol of a is no new meeting (b resting in one symbol outside the
+    # copies meets every symbol of a with it, by one event)
+    segment = np.minimum(np.searchsorted(b.ends, middles, side="right"), len(b.codes) - 1)
+    x, y, segment = x[outside], y[outside], segment[outside]
     if not len(x) or not _is_function(x, y):
         return False
-    q = b.match_rate
+    held = np.unique(segment)
+    share = np.bincount(b.codes[held]) / len(held)
+    q = float(np.sum(share ** 2))  # b's match rate over its segments outside the copies
     if not 0 < q < 1:
         return False
-    repeats = len(x) - len(np.unique(x))  # each of a's symbols: its stretches past the first
+    # each of a's symbols: the segments of b it meets past the first
+    repeats = len(np.unique(np.column_stack((x, segment)), axis=0)) - len(np.unique(x))
     return repeats * math.log10(q) <= level
 
 

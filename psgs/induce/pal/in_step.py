@@ -91,7 +91,11 @@ def group_significance(strings: list[Timed], sections: list, intervals: dict[int
     alike = Alike(strings, level)
     if best[0] <= level:
         first, *rest = best[1]
-        if alike.counted(first, rest, strings[first].copy_times(best[1][first])) != rest:
+        # (asked at the copies the lead was read at and at its own, as its readings ask; a
+        # string read at another's copies may lead too, and has no own)
+        places = [strings[first].copy_times(best[1][first]), *(
+            [intervals[first]] if first in intervals else [])]
+        if any(alike.counted(first, rest, at) != rest for at in places):
             best = _strongest(strings, sections, intervals, follows, group, partners, level,
                               clock, alike)
     return best
@@ -139,13 +143,12 @@ def _paired(strings: list[Timed], sections: list, intervals: dict[int, np.ndarra
         for b in partners[a]:
             if b <= a or b not in group or len(intervals[a]) != 2 or len(intervals[b]) != 2:
                 continue
-            if alike is not None and alike.dependent(a, b, np.concatenate((intervals[a],
-                                                                           intervals[b]))):
-                continue  # (one string's repeat, not two)
             pair = pair_reading(strings, (a, b), (intervals[a], intervals[b]), follows)
             if pair is None or pair[0] > level or pair[0] >= best[0]:
                 continue
             weight, members, core = pair
+            if alike is not None and alike.dependent(a, b, core):
+                continue  # (one string's repeat, not two: read where the pair is)
             rest = _read_the_rest(strings, core, follows, members, level)
             counted = set(rest if alike is None else alike.counted(a, [b, *rest], core))
             for j, (again, found) in rest.items():
