@@ -41,7 +41,38 @@ _MOST_DOUBLED = 2 ** 40
 _SHARE = 8
 
 
-class DistanceSearch:
+class SearchSetup:
+    """What a distance search is handed and what :func:`psgs.nearest` reads back from it:
+    the system, its compiled components and error charts, the budgets, the least positive
+    cost, the system's moves with their rules' ids in each compiled component, and the
+    answer so far (the input words, the states explored, the cheapest tuple and the bound
+    proved). :class:`DistanceSearch` and
+    :class:`~psgs.membership.parallel_distance.FormSearch` build on it.
+    """
+
+    def __init__(self, system: PSGS, compiled, charts: list[ErrorChart], max_states: int,
+                 budget: Budget, step: float) -> None:
+        self.system = system
+        self.compiled = compiled
+        self.charts = charts
+        self.max_states = max_states
+        self.budget = budget
+        self.scale = sum(chart.scale for chart in charts)  # what costs are rounded against
+        self.step = step  # the least positive cost: rounds grow the bound by at least this
+        self.moves = system_moves(system)
+        self.move_rule_ids = [tuple(None if r is IDLE else cg.rule_id[r]
+                                    for r, cg in zip(m, compiled)) for m in self.moves]
+        self.words = None  # the input words, for the edit scripts of the answer
+        self.explored = 0
+        self.best = None  # (cost, path) of the cheapest tuple found so far
+        self.proved = 0.0  # every tuple costs at least this
+
+    def tolerance(self, value: float) -> float:
+        """:meth:`ErrorChart.tolerance` over every component's word."""
+        return TOLERANCE * (value + self.scale)
+
+
+class DistanceSearch(SearchSetup):
     """Rounds of bounded depth-first search for the cheapest synchronised schedule.
 
     Built by :func:`psgs.nearest`, which reads the answer from ``run``.
@@ -56,34 +87,17 @@ class DistanceSearch:
 
     def __init__(self, system: PSGS, compiled, charts: list[ErrorChart], max_states: int,
                  budget: Budget, step: float) -> None:
-        self.system = system
-        self.compiled = compiled
-        self.charts = charts
-        self.max_states = max_states
-        self.budget = budget
-        self.scale = sum(chart.scale for chart in charts)  # what costs are rounded against
-        self.step = step  # the least positive cost: rounds grow the bound by at least this
+        super().__init__(system, compiled, charts, max_states, budget, step)
         self.parallel = system.mode == "parallel"
         self.substrings = [_Substrings(ch.word) for ch in charts]
-        self.moves = system_moves(system)
-        self.move_rule_ids = [tuple(None if r is IDLE else cg.rule_id[r]
-                                    for r, cg in zip(m, compiled)) for m in self.moves]
         self.cap = 0.0
         self.moves_needing: dict[tuple[int, int], list[int]] = {}
         for m, rule_ids in enumerate(self.move_rule_ids):
             for c, rule in enumerate(rule_ids):
                 if rule is not None:
                     self.moves_needing.setdefault((c, compiled[c].lhs[rule]), []).append(m)
-        self.words = None  # the input words, for the edit scripts of the answer
-        self.explored = 0
-        self.best = None  # (cost, path) of the cheapest tuple found so far
-        self.proved = 0.0  # every tuple costs at least this
 
     # ------------------------------------------------------------ estimates
-    def tolerance(self, value: float) -> float:
-        """:meth:`ErrorChart.tolerance` over every component's word."""
-        return TOLERANCE * (value + self.scale)
-
     def item_cost(self, c: int, item, cap: float) -> float:
         """Component ``c``'s chart cost of an occurrence ``(A, i, j)`` (``inf`` above ``cap``)."""
         a, i, j = item

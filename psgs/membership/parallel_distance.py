@@ -37,11 +37,11 @@ from __future__ import annotations
 
 import heapq
 
-from ..analysis import moves as system_moves
 from ..budget import Budget
-from ..model import IDLE, PSGS
+from ..model import PSGS
 from .chart import UNBOUNDED
-from .error_chart import INF, TOLERANCE, ErrorChart
+from .error_chart import INF, ErrorChart
+from .nearest_search import SearchSetup
 
 __all__ = ["FormSearch", "multiplies"]
 
@@ -256,7 +256,7 @@ class _Component:
         return row[n] if row[n] <= cap + chart.tolerance(cap) else INF
 
 
-class FormSearch:
+class FormSearch(SearchSetup):
     """A* over the tuples of sentential forms of a parallel-mode PSGS, for :func:`psgs.nearest`.
 
     Built by :func:`psgs.nearest` in parallel mode when a component's grammar
@@ -279,25 +279,8 @@ class FormSearch:
 
     def __init__(self, system: PSGS, compiled, charts: list[ErrorChart], max_states: int,
                  budget: Budget, step: float) -> None:
-        self.system = system
-        self.compiled = compiled
-        self.charts = charts
-        self.max_states = max_states
-        self.budget = budget
-        self.step = step
-        self.scale = sum(chart.scale for chart in charts)
-        self.moves = system_moves(system)
-        self.move_rule_ids = [tuple(None if r is IDLE else cg.rule_id[r]
-                                    for r, cg in zip(m, compiled)) for m in self.moves]
+        super().__init__(system, compiled, charts, max_states, budget, step)
         self.parts = [_Component(cg, ch, budget.tick) for cg, ch in zip(compiled, charts)]
-        self.words = None  # the input words, for the edit scripts of the answer
-        self.explored = 0
-        self.best = None  # (cost, path) of the cheapest terminal tuple generated so far
-        self.proved = 0.0
-
-    def tolerance(self, value: float) -> float:
-        """:meth:`ErrorChart.tolerance` over every component's word."""
-        return TOLERANCE * (value + self.scale)
 
     # ------------------------------------------------------------ bounds
     def _bound(self, state, cap: float, refine: bool) -> float:
