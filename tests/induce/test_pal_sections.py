@@ -105,6 +105,8 @@ def _exactly_right(seed: int, sectioned: int, spurious: int, length: int, letter
 @example(952231, 5, 13, 16, 9)
 @example(422294, 2, 7, 14, 5)
 @example(261232, 2, 13, 8, 4)  # two strings, each section reaching past the shared one
+@example(570071, 6, 14, 8, 4)  # the weakest of six members short of the test against all
+@example(404318, 6, 9, 8, 4)
 def test_pal_names_exactly_the_sectioned_strings_with_both_copies(seed, sectioned, spurious,
                                                                    length, letters):
     assert _exactly_right(seed, sectioned, spurious, length, letters)

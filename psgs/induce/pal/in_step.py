@@ -8,7 +8,7 @@ could have taken and still lain as close to the first string's copies are a
 handful, not thousands. So a group of sections in step is weighed as one
 event (``docs/streams.md``, "Significance of a repetition"):
 
-- its **lead**, one member, repeats somewhere: :func:`lead_significance`,
+- its **lead**, one member, repeats somewhere: :func:`~psgs.induce.pal.sections.lead_significance`,
   the expected number of maximal exact repeats as strong in its string;
 - each other member repeats where the lead's copies are:
   :func:`~psgs.induce.pal.in_step_weight.in_step_significance`, ``T_j``, counting
@@ -16,20 +16,18 @@ event (``docs/streams.md``, "Significance of a repetition"):
 - and the lead and its ``m - 1`` partners could have been any of the
   ``N`` strings: ``log10(N * C(N - 1, m - 1))``.
 
-The group's significance is the sum, at the lead that makes it strongest
-(members that move with the lead or with another, one string's symbol determining
-the other's beyond chance away from the lead's copies, add nothing:
-:class:`~psgs.induce.pal.alike.Alike`); a
-member is kept only when its own ``T_j`` beats chance among the other
-strings (``T_j + log10(N - 1) <= log10(alpha)``), so that no random string is
-carried in by the others' strength. A string is read at the lead's copies
-(:func:`read_at`), not only at its own section: its longest repeat may be a
-chance repeat elsewhere, as long as the section or longer. Copies in step keep
-the lead's shift between them (to within the string's typical segment); a
-string that fails at the lead's copies is read again where the lead and its
-members all are (symbols agreeing by chance around the lead's copies make
-them reach past the repeat the others play), and the lead itself is read
-where it and its closest member both are.
+The group's significance is the sum, at the lead that makes it strongest (members
+that move with the lead or with another, one string's symbol determining the other's
+beyond chance away from the lead's copies, add nothing: :class:`~psgs.induce.pal.alike.Alike`);
+a member is kept only when its own ``T_j`` beats chance among the other strings
+(``T_j + log10(N - 1) <= log10(alpha)``), so that no random string is carried in by the
+others' strength. A string is read at the lead's copies (:func:`read_at`), not only at its
+own section: its longest repeat may be a chance repeat elsewhere, as long as the section or
+longer. Copies in step keep the lead's shift between them (to within the string's typical
+segment); a string that fails at the lead's copies is read again where the lead and its
+members all are (symbols agreeing by chance around the lead's copies make them reach past
+the repeat the others play; there by Holm's step-down over the strings read), and the lead
+itself is read where it and its closest member both are.
 """
 
 from __future__ import annotations
@@ -43,7 +41,7 @@ from .alike import Alike
 from .in_step_weight import in_step_significance, in_step_weights
 from .motifs import Timed
 from .pairing import lead_segments
-from .sections import Section, _cycles
+from .sections import Section, _cycles, lead_significance
 from .shift_runs import Frame, candidates, grid_runs, long_runs
 from .statistics import log10_choose
 
@@ -325,18 +323,29 @@ def _read_the_rest(strings: list[Timed], core: np.ndarray, follows: list[float |
                    taken, level: float, reads: _Reads | None = None
                    ) -> dict[int, tuple[float, Section]]:
     """Every string not in ``taken`` read at ``core`` (two copies' times) that is in step
-    there beyond chance among the other strings, as a member must be: ``{string: (its
-    significance, the repeat read)}``, in string order (``reads``: as :func:`_led_by`)."""
-    beside = math.log10(len(strings) - 1)
-    reads = _Reads(strings, follows, []) if reads is None else reads
-    out = {}
-    for j in range(len(strings)):
-        if j not in taken:
-            again = reads.read(j, core, level - beside + _SLACK)
-            if again is not None and again[0] + beside <= level:
-                out[j] = again
-    return out
+    there beyond chance among the other strings read, as a member must be: ``{string: (its
+    significance, the repeat read)}``, in string order (``reads``: as :func:`_led_by`).
 
+    Holm's step-down over the ``M`` strings read: the ``k``-th lightest (from 0) joins when
+    it and every lighter one pass ``T + log10(M - k) <= level``; the chance of carrying in
+    any random string stays ``alpha``, as with ``T + log10(M) <= level`` for each, and a
+    member read where others passed needs less. Read in rounds at the next member's need
+    until one adds none (whoever passes a round's need passes Holm's at its own rank).
+    """
+    reads = _Reads(strings, follows, []) if reads is None else reads
+    left = [j for j in range(len(strings)) if j not in taken]
+    count = len(left)
+    out: dict[int, tuple[float, Section]] = {}
+    while left:
+        need = level - math.log10(count - len(out))
+        found = {j: again for j in left
+                 if (again := reads.read(j, core, need + _SLACK)) is not None
+                 and again[0] <= need}
+        if not found:
+            break
+        out.update(found)
+        left = [j for j in left if j not in found]
+    return dict(sorted(out.items()))
 
 class _Reads:
     """:func:`read_at` of the strings at lead copies, each answer kept while a lead still
@@ -393,36 +402,6 @@ def _core(copies: list[np.ndarray]) -> np.ndarray | None:
     core = np.column_stack((np.max([c[:, 0] for c in copies if len(c) == 2], axis=0),
                             np.min([c[:, 1] for c in copies if len(c) == 2], axis=0)))
     return core if np.all(core[:, 1] > core[:, 0]) else None
-
-
-def lead_significance(string: Timed, section: Section, follow: float | None) -> float:
-    """log10 of the expected number of maximal exact repeats as strong as ``section``.
-
-    ``[C(K - 1, c) (1 - r^(c-1)) + C(K - 1, c - 1)] * P``: ``C(K, c)``, ``K = n - c (L - 1)``,
-    is the number of ways to place ``c`` windows of ``L`` symbols apart in ``n``, ``P =
-    (q r^(L-1))^(c-1)`` the chance that they agree; a repeat is counted once, at its left
-    end, where the symbols before its copies do not all agree (chance ``1 - r^(c-1)``) or
-    its first copy opens the string.
-
-    Examples
-    --------
-    >>> codes = np.array([0, 1, 2, 3, 4, 5, 1, 2, 3, 4, 6, 7])
-    >>> string = Timed.from_codes(codes, np.ones(12), 0.0)
-    >>> round(lead_significance(string, Section(codes[1:5], np.array([1, 6]), -1.0), None), 2)
-    -2.3
-    """
-    n, length, copies = len(string.codes), len(section.motif), len(section.starts)
-    q, r = string.chance_rates(follow)
-    if q <= 0 or r <= 0:
-        return -math.inf
-    # c windows of L symbols apart in n symbols: C(n - c (L - 1), c) sets, of which
-    # C(n - c (L - 1) - 1, c - 1) open the string
-    sets = n - copies * (length - 1)
-    inner = log10_choose(sets - 1, copies) + math.log10(max(1e-300, 1 - r ** (copies - 1)))
-    edge = log10_choose(sets - 1, copies - 1)
-    top = max(inner, edge)
-    sets = top + math.log10(10 ** (inner - top) + 10 ** (edge - top))
-    return sets + (copies - 1) * (math.log10(q) + (length - 1) * math.log10(r))
 
 
 #: what a caller adds to the weight it needs (its own test, a sum, may round either way)

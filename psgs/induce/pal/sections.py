@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .conf import NO_BOUND
-from .motifs import keep_apart
+from .motifs import Timed, keep_apart
 from .statistics import log10_binom_sf, log10_choose
 
 __all__: list[str] = []  # private: content.py is the caller
@@ -96,6 +96,36 @@ def repeat_significance(n: int, length: int, copies: int, agreeing: int,
     else:
         tail = log10_binom_sf(agreeing, (copies - 1) * length, match_rate)
     return min(0.0, sets + tail)
+
+
+def lead_significance(string: Timed, section: Section, follow: float | None) -> float:
+    """log10 of the expected number of maximal exact repeats as strong as ``section``.
+
+    ``[C(K - 1, c) (1 - r^(c-1)) + C(K - 1, c - 1)] * P``: ``C(K, c)``, ``K = n - c (L - 1)``,
+    is the number of ways to place ``c`` windows of ``L`` symbols apart in ``n``, ``P =
+    (q r^(L-1))^(c-1)`` the chance that they agree; a repeat is counted once, at its left
+    end, where the symbols before its copies do not all agree (chance ``1 - r^(c-1)``) or
+    its first copy opens the string.
+
+    Examples
+    --------
+    >>> codes = np.array([0, 1, 2, 3, 4, 5, 1, 2, 3, 4, 6, 7])
+    >>> string = Timed.from_codes(codes, np.ones(12), 0.0)
+    >>> round(lead_significance(string, Section(codes[1:5], np.array([1, 6]), -1.0), None), 2)
+    -2.3
+    """
+    n, length, copies = len(string.codes), len(section.motif), len(section.starts)
+    q, r = string.chance_rates(follow)
+    if q <= 0 or r <= 0:
+        return -math.inf
+    # c windows of L symbols apart in n symbols: C(n - c (L - 1), c) sets, of which
+    # C(n - c (L - 1) - 1, c - 1) open the string
+    sets = n - copies * (length - 1)
+    inner = log10_choose(sets - 1, copies) + math.log10(max(1e-300, 1 - r ** (copies - 1)))
+    edge = log10_choose(sets - 1, copies - 1)
+    top = max(inner, edge)
+    sets = top + math.log10(10 ** (inner - top) + 10 ** (edge - top))
+    return sets + (copies - 1) * (math.log10(q) + (length - 1) * math.log10(r))
 
 
 def follow_rate(codes: np.ndarray) -> float | None:
