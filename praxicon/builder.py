@@ -25,6 +25,7 @@ from pathlib import Path
 from psgs._foundation.files import read_text
 from psgs.errors import MissingDependency, ValidationError
 
+from ._record_checks import name_problem
 from ._values import check_count, not_all, shown
 from .datasets import Action, DatasetError
 from .learn import Settings, input_key, learn_action
@@ -33,7 +34,7 @@ from .description import DescriptionError
 from .description_store import (FILE, descriptions_in, descriptions_key, descriptions_text,
                                 read_descriptions_file)
 from .jsonvalues import read_json, written_by
-from .records import ActionRecord, PerformanceRecord, Praxicon, PraxiconError, name_problem
+from .records import ActionRecord, PerformanceRecord, Praxicon, PraxiconError
 from .store import read_records, write_atomic, write_index, write_record, write_shared
 
 __all__ = ["build", "BuildResult", "executor_for", "describe_praxicon", "ignore_interrupts",

@@ -419,7 +419,7 @@ def read_dataset(path: str | Path, group_by: str | None = None) -> list[Action]:
 def _checked_names(actions: list[Action], path: Path) -> list[Action]:
     """``actions``, or a DatasetError when two of them get one name (one record would
     overwrite the other) or a name cannot name the action's files."""
-    from .records import name_problem
+    from ._record_checks import name_problem
 
     first: dict[str, Action] = {}
     for action in actions:

@@ -42,7 +42,8 @@ from .channel_curve import Method, channel_curves
 from .body_motion import _source_take, animate, body_of, whole_cycle
 from .performance_files import learnt_files, missing_style, performances_of, \
     read_performances, style_of, unreadable
-from .jsonvalues import as_dict, component_problem
+from ._record_checks import component_problem
+from .jsonvalues import as_dict
 from .records import ActionRecord, Praxicon, _count
 from .store import load, system_problem
 

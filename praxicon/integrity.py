@@ -29,7 +29,8 @@ from pathlib import Path
 
 from ._values import shown
 from .description_store import FILE
-from .jsonvalues import channels_problem, component_problem, read_json
+from ._record_checks import channels_problem, component_problem
+from .jsonvalues import read_json
 from .records import REBUILD, PraxiconError
 from .store import TEMPORARY_NAME, dump, load, system_problem
 
@@ -207,9 +208,9 @@ def _damaged_systems(folder: Path, praxicon, components: dict | None = None) -> 
 def _misnamed_channels(folder: Path, praxicon, components: dict) -> list[str]:
     """A line per learnt record whose ``mean_pose`` or ``component_names`` has a key that is
     no channel of its joints, or lacks a channel of its morphemes
-    (:func:`~praxicon.jsonvalues.channels_problem`), or whose component names are not of its
+    (:func:`~praxicon._record_checks.channels_problem`), or whose component names are not of its
     system (``components``, per record whose system parses, its components' names;
-    :func:`~praxicon.jsonvalues.component_problem`): generation looks each channel up there,
+    :func:`~praxicon._record_checks.component_problem`): generation looks each channel up there,
     and a key renamed left a channel posed at 0, or derived from no component."""
     problems = []
     for record in praxicon.actions:

@@ -33,6 +33,7 @@ from psgs.errors import NotFound, PSGSError, ValidationError
 
 from ._description_json import FieldError, check_named_alike
 from ._errors import REBUILD
+from ._record_checks import MAX_NAME_BYTES, name_problem
 from ._values import settings_fields
 from .description import DescriptionError, Descriptions
 from .jsonvalues import Fields, as_dict, freeze, one_each, pairs as _pairs, written_by
@@ -50,37 +51,6 @@ FORMAT_VERSION = 3
 #: at 30 and 120); generation makes rate x seconds frames, so a rate far outside is a damaged
 #: record, not a recording.
 FRAME_RATES = FRAME_RATE_RANGE
-#: Longest action name in bytes (UTF-8): it names the action's files, which with ``.json``
-#: and a temporary suffix must stay within the 255 bytes file systems allow.
-MAX_NAME_BYTES = 200
-
-
-def name_problem(name) -> str | None:
-    """Why ``name`` cannot name an action's files (None when it can).
-
-    Examples
-    --------
-    >>> name_problem("m.wave"), name_problem("a/b")
-    (None, "action name 'a/b' cannot be a file name (it holds '/')")
-    >>> name_problem("x" * 300)
-    'action name xxxxxxxxxxxxxxxxxxxxxxxx... is 300 bytes long; at most 200 make a file name'
-    """
-    if not isinstance(name, str):
-        return f"action name {name!r} is not text"
-    if not name.strip():
-        return f"action name {name!r} is empty"
-    for bad in ("/", "\\", "\0"):
-        if bad in name:
-            return f"action name {name!r} cannot be a file name (it holds {bad!r})"
-    if name.startswith("."):
-        return f"action name {name!r} cannot be a file name (it starts with '.')"
-    size = len(name.encode("utf-8", "surrogatepass"))
-    if size > MAX_NAME_BYTES:
-        return (f"action name {name[:24]}... is {size} bytes long; at most {MAX_NAME_BYTES} "
-                f"make a file name")
-    return None
-
-
 class PraxiconError(PSGSError, ValueError):
     """A praxicon folder, index or record that cannot be read; the message is one line.
 

@@ -31,9 +31,9 @@ from collections.abc import Iterable
 from dataclasses import replace
 from pathlib import Path
 
+from ._record_checks import name_problem
 from ._values import is_flag, not_all, shown
-from .records import (REBUILD, ActionRecord, Praxicon, PraxiconError, Settings, check_index,
-                      name_problem)
+from .records import REBUILD, ActionRecord, Praxicon, PraxiconError, Settings, check_index
 from .description import DescriptionError, Descriptions
 from .description_store import (FILE, descriptions_key, descriptions_text,
                                 read_descriptions_file)
