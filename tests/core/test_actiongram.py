@@ -105,7 +105,7 @@ def actiongrams(draw):
                                    starts=starts)
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=75, deadline=None)
 @given(actiongrams())
 def test_round_trip_text_and_json(ag):
     assert Actiongram.from_text(ag.to_text()) == ag
@@ -296,7 +296,7 @@ def actiongrams_with_extras(draw):
                                    displacements=rows, actuators=owners, skeleton=skeleton)
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=75, deadline=None)
 @given(actiongrams_with_extras())
 def test_round_trip_text_and_json_with_extras(ag):
     assert Actiongram.from_text(ag.to_text()) == ag

@@ -119,7 +119,7 @@ def where_named(message: str, fields) -> tuple[int, tuple]:
     return k, ("displacements",)
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=150, deadline=None)
 @given(mutated())
 def test_the_readers_refuse_what_the_constructor_refuses_with_its_message_at_its_place(fields):
     names, symbols, durations, starts, displacements, keep = fields

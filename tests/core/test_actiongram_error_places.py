@@ -151,7 +151,7 @@ def spoilt_documents(draw):
     return text, token, offset, words
 
 
-@settings(max_examples=500, deadline=None)
+@settings(max_examples=250, deadline=None)
 @given(spoilt_documents(), st.booleans())
 def test_a_json_error_names_the_line_and_column_of_the_value_or_key_at_fault(case, as_bytes):
     text, token, offset, words = case
@@ -279,7 +279,7 @@ def test_of_two_skeleton_cycles_the_one_named_is_the_one_placed():
     assert doc[error.column - 1:].startswith('"a", "d"')  # the value of "b": "a"
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=100, deadline=None)
 @given(spoilt_tables())
 def test_a_csv_error_names_the_line_and_column_of_the_cell_at_fault(tmp_path_factory, case):
     text, cell, offset, words = case

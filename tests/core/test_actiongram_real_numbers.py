@@ -194,7 +194,7 @@ def _build(fields, keep, numpy_how):
         return error.message  # (durations that vanish beside a start): the same refusal
 
 
-@settings(max_examples=300)
+@settings(max_examples=150)
 @given(actiongram_fields())
 def test_numpy_and_python_numbers_of_equal_value_give_equal_actiongrams(case):
     fields, keep, how = case

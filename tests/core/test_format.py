@@ -341,13 +341,13 @@ def test_round_trip_of_every_shipped_grammar(path):
     assert loads(dumps(other)) == other
 
 
-@settings(max_examples=120, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(pst.psgs_systems(max_components=3))
 def test_round_trip_of_generated_psgs(system):
     assert loads(dumps(system)) == system
 
 
-@settings(max_examples=120, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(pst.pcgs_systems(max_components=3))
 def test_round_trip_of_generated_pcgs(system):
     assert loads(dumps(system)) == system
@@ -395,7 +395,7 @@ def odd_psgs(draw):
                 unsynchronised=draw(st.sampled_from(["free", "strict"])))
 
 
-@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow,
+@settings(max_examples=75, deadline=None, suppress_health_check=[HealthCheck.too_slow,
                                                                   HealthCheck.filter_too_much])
 @given(odd_psgs())
 def test_round_trip_with_keywords_as_names_and_odd_terminal_text(system):

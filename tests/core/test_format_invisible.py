@@ -86,7 +86,7 @@ def systems_of_odd_terminals(draw):
     return PSGS((Grammar("G", S, rules + (Rule("end", S, ()),)),))
 
 
-@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=75, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(systems_of_odd_terminals())
 def test_the_writer_s_text_reads_back_identically(system):
     text = dumps(system)

@@ -72,7 +72,7 @@ terminal_texts = st.text(st.characters(blacklist_categories=("Cs", "Cc", "Cf", "
                          min_size=1, max_size=8).filter(lambda t: not any(c.isspace() for c in t))
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=150, deadline=None)
 @given(identifiers)
 def test_nonterminal_names_round_trip_and_are_lark_rule_names(name):
     mangled = lark_name(Nonterminal(name))
@@ -88,7 +88,7 @@ def test_terminal_names_round_trip_and_are_lark_terminal_names(text):
     assert from_lark_name(mangled) == Terminal(text)
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=100, deadline=None)
 @given(identifiers, identifiers)
 def test_mangling_is_injective_on_nonterminals(x, y):
     assert (lark_name(Nonterminal(x)) == lark_name(Nonterminal(y))) == (x == y)

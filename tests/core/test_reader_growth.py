@@ -33,7 +33,7 @@ VALUES = st.recursive(
 SPACE = st.text(alphabet=" \t\n\r", max_size=4)
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=150, deadline=None)
 @given(value=VALUES, before=SPACE, after=SPACE, comma=SPACE, colon=SPACE,
        indent=st.none() | st.sampled_from(["", "\t", " \r\n", "  "]),
        ascii_only=st.booleans())
