@@ -90,7 +90,7 @@ def reference(cg: CompiledGrammar):
     return nullable, minlen, maxlen, closure, edge_terminals(False), edge_terminals(True)
 
 
-@settings(max_examples=200)
+@settings(max_examples=100)
 @given(pst.grammars(max_nonterminals=5, max_rules=9))
 def test_the_near_linear_analysis_agrees_with_the_fixpoints(grammar):
     ids = {t: k for k, t in enumerate(sorted(grammar.terminals))}

@@ -77,7 +77,7 @@ def block_systems(draw):
                 unsynchronised=draw(st.sampled_from(("free", "strict"))))
 
 
-@settings(max_examples=150, deadline=None, derandomize=True,
+@settings(max_examples=75, deadline=None, derandomize=True,
           suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
 @given(block_systems(), st.data())
 def test_a_fast_yes_is_a_yes_of_the_general_search(system, data):

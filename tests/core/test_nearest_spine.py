@@ -30,7 +30,7 @@ def charts(grammar, word, insert, delete, substitute, alphabet=ALPHABET):
     return cg, ErrorChart(cg, ws, [insert] * len(alphabet), [delete] * len(ws), sub)
 
 
-@settings(max_examples=120, deadline=None, derandomize=True,
+@settings(max_examples=60, deadline=None, derandomize=True,
           suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
 @given(block_systems(), st.text("abx", max_size=7), st.sampled_from((1.0, 0.5, 2.0)),
        st.sampled_from((1.0, 0.7, 3.0)), st.sampled_from((1.0, 1.5, 0.25)))

@@ -58,7 +58,7 @@ def test_seeded_steps_on_the_shipped_grammars_are_those_of_the_listing(path, mod
     assert taken > 20  # the walks went somewhere
 
 
-@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=75, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(psgs_systems(max_components=3, max_nonterminals=2, max_rules=4), st.integers(0, 2**16))
 def test_seeded_steps_on_drawn_systems_are_those_of_the_listing(system, seed):
     # drawn systems hold rules A -> A (unit rules are allowed), alone and beside others
