@@ -91,14 +91,14 @@ def long_alphabets(draw):
     return codes.astype(np.int64)
 
 
-@settings(max_examples=500)
+@settings(max_examples=250)
 @given(st.lists(st.one_of(tiny, one_symbol, tilings(), noisy_repeats(), long_alphabets()),
                 min_size=1, max_size=8))
 def test_both_engines_find_the_same_motifs(strings):
     check(strings)
 
 
-@settings(max_examples=150)
+@settings(max_examples=75)
 @given(st.lists(noisy_repeats(), min_size=1, max_size=4),
        st.builds(dict, min_copies=st.integers(2, 5), conserve=st.sampled_from([0.4, 0.6, 0.9]),
                  match_fraction=st.sampled_from([0.3, 0.5, 0.8]),
@@ -162,7 +162,7 @@ def copy_lists(draw):
     return spans
 
 
-@settings(max_examples=150)
+@settings(max_examples=75)
 @given(st.lists(copy_lists(), min_size=2, max_size=6), st.sampled_from([0.3, 0.5, 1.0]),
        st.integers(1, 4))
 def test_both_engines_synchronise_the_same_pairs(lists, fraction, copies):
@@ -199,7 +199,7 @@ def test_the_engine_is_a_parameter_like_any_other():
     assert "engine" not in pal.induce(generate(seed=1).actiongram).params
 
 
-@settings(max_examples=200)
+@settings(max_examples=100)
 @given(st.lists(st.one_of(tiny, one_symbol, noisy_repeats(), long_alphabets(),
                           st.lists(st.integers(0, 300), max_size=300).map(_as_codes)),
                 min_size=1, max_size=12))

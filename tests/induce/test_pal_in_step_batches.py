@@ -45,7 +45,7 @@ def _row(rng: np.random.Generator, many_copies: bool):
 
 @pytest.mark.parametrize("cells, bits", [(in_step_weight._BATCH_CELLS, 62), (300, 62),
                                          (in_step_weight._BATCH_CELLS, 0)])
-@settings(max_examples=150, deadline=None, derandomize=True)
+@settings(max_examples=75, deadline=None, derandomize=True)
 @given(seed=st.integers(0, 2**32 - 1), rows=st.integers(1, 12), many=st.booleans())
 def test_the_weights_of_many_rows_are_each_row_s_own(cells, bits, seed, rows, many):
     # (300 cells: batches of a few rows, rows longer than a batch weighed alone and a part

@@ -32,7 +32,7 @@ def _greedy_reference(codes, motif, threshold):
     return sorted(chosen)
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=150, deadline=None)
 @given(codes=st.lists(st.integers(0, 3), min_size=2, max_size=60),
        motif=st.lists(st.integers(0, 3), min_size=2, max_size=6), data=st.data())
 def test_copy_location_equals_the_one_by_one_greedy_choice(codes, motif, data):
@@ -183,7 +183,7 @@ def _trim_reference(votes, edge_share):
     return out
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=75, deadline=None)
 @given(members=st.lists(st.tuples(st.integers(1, 7), st.integers(0, 10**6)), min_size=1,
                         max_size=5),
        edge_share=st.sampled_from([0.3, 0.5, 0.7]))
@@ -202,7 +202,7 @@ def test_trim_equals_the_member_by_member_reference(members, edge_share):
     assert trim(votes, edge_share) == _trim_reference(votes, edge_share)
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=150, deadline=None)
 @given(parts=st.lists(st.lists(st.tuples(st.integers(0, 3), st.integers(1, 4)), min_size=1,
                                max_size=12), min_size=2, max_size=2))
 def test_shared_clusters_count_what_merging_the_intervals_counts(parts):

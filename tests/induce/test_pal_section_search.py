@@ -53,7 +53,7 @@ def test_may_repeat_is_the_brute_force_prefilter(strings, copies, lows):
             assert i in expected
 
 
-@settings(max_examples=200, deadline=None, derandomize=True)
+@settings(max_examples=100, deadline=None, derandomize=True)
 @given(codes=codes_lists, copies=st.integers(2, 3), data=st.data())
 def test_longest_repeated_is_the_longest_length_that_repeats(codes, copies, data):
     high = len(codes) // copies
@@ -96,7 +96,7 @@ spans = st.lists(st.tuples(st.floats(0, 6, allow_nan=False), st.floats(0.5, 8, a
                  min_size=0, max_size=6)
 
 
-@settings(max_examples=300, deadline=None, derandomize=True)
+@settings(max_examples=150, deadline=None, derandomize=True)
 @given(a=spans, b=spans, copies=st.integers(1, 3), fraction=st.sampled_from([0.0, 0.5, 1.0]))
 def test_coincide_is_the_all_pairs_oracle(a, b, copies, fraction):
     a, b = _copies(a), _copies(b)

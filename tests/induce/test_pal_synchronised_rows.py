@@ -39,7 +39,7 @@ def _each_pair(lists, fraction, copies):
             if synchronisation.synchronised(lists[i], lists[j], fraction, copies)]
 
 
-@settings(max_examples=300, deadline=None, derandomize=True)
+@settings(max_examples=150, deadline=None, derandomize=True)
 @given(_copy_lists(), st.sampled_from([0.0, 0.5, 0.9, 1.0]), st.integers(1, 3))
 def test_a_row_at_once_finds_the_pairs_each_pair_does(lists, fraction, copies):
     found = [(i, j) for rows, columns in synchronisation._pairs_each(lists, fraction, copies)

@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 from psgs.induce.pal.statistics import _linear_threshold, _threshold
 
 
-@settings(max_examples=500, deadline=None, derandomize=True)
+@settings(max_examples=250, deadline=None, derandomize=True)
 @given(length=st.integers(1, 200), windows=st.integers(-2, 10**6),
        rate=st.one_of(st.floats(0, 1), st.sampled_from([0.125, 0.25, 0.5, 1 / 3])),
        fraction=st.sampled_from([0.0, 0.5, 0.9]),
