@@ -62,7 +62,7 @@ def _symbol_at(string: Timed, t: float) -> int | None:
     return int(string.codes[k]) if k < len(string.codes) and string.starts[k] <= t else None
 
 
-@settings(max_examples=300, deadline=None, derandomize=True)
+@settings(max_examples=150, deadline=None, derandomize=True)
 @given(_timed_pairs())
 def test_determines_is_a_function_at_every_shared_time(pair):
     # oracle: read both strings at every half unit of time (the times are whole units)
@@ -147,11 +147,12 @@ def _claims(seed: int, copies: int, others: int) -> bool:
 
 def test_random_strings_and_renamed_copies_are_claimed_at_most_at_alpha():
     # 60 symbols over 4 letters: a chance repeat of a random string lies at the same times
-    # in each renamed copy. Weighed as independent, 1 draw of 5 was claimed (76 of
-    # these 400); at alpha = 0.01 the expected count is 4 at most, and 12 or more has a
-    # chance of 0.001 under it (measured: 1 of 400)
-    draws = [(seed, 1 + seed % 3, (0, 2, 4)[seed // 3 % 3]) for seed in range(400)]
-    assert sum(_claims(*d) for d in draws) < 12
+    # in each renamed copy. Weighed as independent, 1 draw of 5 was claimed (76 of 400
+    # such draws, about 38 of these 200); at alpha = 0.01 the expected count is 2 at most,
+    # and 9 or more has a chance of 0.0002 under it (binomial; 12 or more of 400 had
+    # 0.0008). Measured: 1 of these 200 (seed 162), 1 of 400
+    draws = [(seed, 1 + seed % 3, (0, 2, 4)[seed // 3 % 3]) for seed in range(200)]
+    assert sum(_claims(*d) for d in draws) < 9
 
 
 def test_sectioned_strings_are_still_found_beside_renamed_copies():
