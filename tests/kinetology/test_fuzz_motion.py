@@ -17,7 +17,7 @@ from fuzz_support import READERS, apply, mutations_strategy, outcome, seed_bytes
 
 
 @pytest.mark.parametrize("name", ["bvh", "asf", "amc", "codec-write"])
-@settings(max_examples=150)
+@settings(max_examples=75)
 @given(seed=st.integers(0, 2), mutations=mutations_strategy())
 def test_mutated_files_read_or_give_a_documented_error(name, seed, mutations, tmp_path_factory):
     reader = READERS[name]

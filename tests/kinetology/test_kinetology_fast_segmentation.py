@@ -253,7 +253,7 @@ def test_the_kernel_is_the_correctly_rounded_gaussian(rate, sigma, frames):
 
 # -- rounding --------------------------------------------------------------------------
 
-@settings(max_examples=300)
+@settings(max_examples=150)
 @given(st.lists(st.one_of(st.floats(allow_nan=True, allow_infinity=True),
                           st.floats(-1e4, 1e4),
                           st.integers(-10 ** 7, 10 ** 7).map(lambda k: k / 2000),  # halves
@@ -306,7 +306,7 @@ def _outcome(build):
         return type(exc), str(exc)
 
 
-@settings(max_examples=400)
+@settings(max_examples=200)
 @given(coded(), st.booleans())
 def test_from_codes_is_from_strings_of_the_decoded_symbols(case, as_arrays):
     alphabet, codes, durations, moves, actuators, skeleton = case

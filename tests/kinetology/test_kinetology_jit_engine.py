@@ -68,7 +68,7 @@ def motions(draw, max_frames=400):
     return Motion(np.column_stack(columns), tuple(f"j{i}.{a}" for i, a in enumerate(axes)), rate)
 
 
-@settings(max_examples=300)
+@settings(max_examples=150)
 @given(motions(), deadbands)
 def test_the_engines_segment_alike(motion, params):
     assert_same(segments(motion, engine="numba", **params),
@@ -129,7 +129,7 @@ def test_threads_do_not_change_the_result(monkeypatch, rate):
     assert_same(alone, segments(motion, engine="numpy"))
 
 
-@settings(max_examples=300)
+@settings(max_examples=150)
 @given(st.lists(st.one_of(st.floats(0, 1e6), st.sampled_from([0.0, 1.0, 2.5]),
                           st.just(np.inf)), min_size=1, max_size=60),
        st.integers(0, 3))

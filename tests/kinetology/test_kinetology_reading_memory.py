@@ -151,7 +151,7 @@ _EDITS = ["1-2", "1e5e5", "+2", "002", "2.0", "2e0", "inf", "-nan", "1_0", "١",
           "1e307", "\ufeff", "\x00", "  femur 1", "2\nroot 1 2"]
 
 
-@settings(max_examples=200)
+@settings(max_examples=100)
 @given(kind=st.sampled_from(["bvh", "amc"]), data=st.data(), chunk=_chunks)
 def test_an_edited_frame_block_reads_or_fails_the_same_both_ways(kind, data, chunk):
     if kind == "bvh":

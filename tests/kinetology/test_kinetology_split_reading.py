@@ -230,7 +230,7 @@ def test_bvh_lines_read_a_piece_at_a_time_fail_as_all_at_once(rows, chunk):
         assert answer == "b.bvh:" + expected
 
 
-@settings(max_examples=150)
+@settings(max_examples=75)
 @given(data=st.data(), frames=st.integers(1, 5), chunk=st.sampled_from([1, 30, 1 << 16]))
 def test_amc_lines_read_a_piece_at_a_time_fail_as_all_at_once(data, frames, chunk):
     bones, widths = ("root", "femur", "tibia"), (2, 1, 2)
@@ -259,7 +259,7 @@ def test_amc_lines_read_a_piece_at_a_time_fail_as_all_at_once(data, frames, chun
         assert answer == "a.amc:" + expected
 
 
-@settings(max_examples=300)
+@settings(max_examples=150)
 @given(parts=st.lists(st.sampled_from(["a", " ", "\r", "\n", "\r\n", "b1", "\t"]), max_size=40),
        data=st.data(), chunk=st.sampled_from([1, 3, 7, 1 << 16]), per=st.integers(1, 3))
 def test_line_pieces_are_the_lines_of_the_block_in_whole_records(parts, data, chunk, per):

@@ -79,7 +79,7 @@ def _assert_unwritable(array):
         base = getattr(base, "base", None)
 
 
-@settings(max_examples=150)
+@settings(max_examples=75)
 @given(meta=st.dictionaries(st.text(max_size=4), _json, max_size=4),
        protocol=st.integers(0, pickle.HIGHEST_PROTOCOL))
 def test_any_json_like_meta_is_frozen_and_round_trips_frozen(meta, protocol):
