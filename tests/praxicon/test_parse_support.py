@@ -44,7 +44,7 @@ def _oracle(path, passes, none, support, stretch):
     return out
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=150, deadline=None)
 @given(st.lists(st.tuples(st.integers(0, 3), st.booleans()), min_size=1, max_size=40),
        st.floats(0, 1), st.integers(1, 12))
 def test_supported_agrees_with_the_rule_window_by_window(windows, support, stretch):

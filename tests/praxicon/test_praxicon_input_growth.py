@@ -223,7 +223,7 @@ def chained_motions(draw):
     return Motion(values, tuple(channels), 30.0, skeleton), chain
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=100, deadline=None)
 @given(chained_motions())
 def test_the_root_chain_s_motion_is_the_old_one(drawn):
     motion, chain = drawn
