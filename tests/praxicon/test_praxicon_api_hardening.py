@@ -473,7 +473,10 @@ def test_parse_holds_one_window_at_a_time():
 
     takes = {"a": [synthetic_motion(20, (0, 1), seed=s, repetitions=4) for s in (1, 2)],
              "b": [synthetic_motion(20, (2, 3), seed=s, repetitions=4) for s in (3, 4)]}
-    recording = synthetic_motion(20, (0, 1), seed=7, repetitions=14)
+    # 612 frames, 372 windows: both sides of the bound grow with the windows' count, so a
+    # short recording tells the two apart as a long one does (14 repetitions, 1,683 frames,
+    # took four times as long; the peak was 4 % of all_windows there, 8 % here)
+    recording = synthetic_motion(20, (0, 1), seed=7, repetitions=5)
     windows = describe_windows(takes)
     tracemalloc.start()
     try:
