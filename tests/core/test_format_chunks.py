@@ -88,7 +88,7 @@ def test_arbitrary_text_gets_the_same_answer_in_chunks(text):
     _same_answer(text)
 
 
-@settings(max_examples=100, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=50, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(pst.psgs_systems(max_components=3), st.randoms(use_true_random=False),
        st.lists(st.sampled_from(list('S:->"()#,\n?ε→a1 /\\\x00')), min_size=1, max_size=3))
 def test_a_damaged_system_gets_the_same_answer_in_chunks(system, rnd, inserted):
