@@ -251,7 +251,7 @@ def actiongrams(draw):
                       tuple(origins))
 
 
-@settings(max_examples=150)
+@settings(max_examples=75)
 @given(actiongrams())
 def test_encode_is_each_strings_own_coding(ag):
     # codes numbered in order of first appearance, times summed string by string

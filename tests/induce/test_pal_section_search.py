@@ -38,7 +38,7 @@ def _spread(codes: list[int], length: int, copies: int) -> bool:
                for s in seen.values())
 
 
-@settings(max_examples=200, deadline=None, derandomize=True)
+@settings(max_examples=100, deadline=None, derandomize=True)
 @given(strings=st.lists(codes_lists, min_size=1, max_size=6), copies=st.integers(2, 3),
        lows=st.lists(st.integers(0, 8), min_size=6, max_size=6))
 def test_may_repeat_is_the_brute_force_prefilter(strings, copies, lows):
