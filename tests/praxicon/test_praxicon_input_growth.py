@@ -169,7 +169,7 @@ def records(draw):
     return out
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=100, deadline=None)
 @given(records())
 def test_the_actuator_matrix_is_the_old_one(given_records):
     assert actuator_matrix(given_records) == _old_actuator_matrix(given_records)
