@@ -7,7 +7,8 @@ from __future__ import annotations
 
 from .jsonvalues import shown
 
-__all__ = ["MAX_NAME_BYTES", "name_problem", "channels_problem", "component_problem"]
+__all__ = ["MAX_NAME_BYTES", "name_problem", "channels_problem", "component_problem",
+           "lookup_problem"]
 
 #: The axes of a channel ``JOINT.AXIS`` (``kinetology.AXES``: kept here, so that reading a
 #: record does not import kinetology).
@@ -95,4 +96,68 @@ def component_problem(names: dict, channels, components) -> str | None:
             known = ", ".join(sorted(components)[:4]) + (", ..." if len(components) > 4 else "")
             return (f"'component_names' gives {shown(channel)} the component {shown(name)}, "
                     f"which is no component of its system (its components: {known or 'none'})")
+    return None
+
+
+def lookup_problem(record, components=None, skeleton=None) -> str | None:
+    """Why a learnt record's ``mean_pose`` and ``component_names`` do not name what
+    generation looks up in them (``None`` when they do): the one check that
+    :func:`praxicon.load` (the record alone), :func:`praxicon.verify` (with its system's
+    components) and generation (with the components and the skeleton it poses) make.
+
+    Generation looks each channel of the skeleton up in ``mean_pose`` and each channel of a
+    morpheme up in ``component_names``, with a default: a key renamed or dropped left a
+    channel posed at 0, or derived from no component, without a word. The record alone shows
+    a key that is no channel of its joints and a morpheme's channel without one
+    (:func:`channels_problem`); ``components`` (the names of its parsed system's components)
+    a component name that is no component (:func:`component_problem`); ``skeleton`` (the
+    channels of the motion generated on, read from ``record.skeleton_source``) a
+    ``mean_pose`` key that is no channel of it, or a channel of it without one, which only
+    that file shows.
+
+    Parameters
+    ----------
+    record : ActionRecord
+        A learnt record.
+    components : set of str, optional
+        Its system's components' names; not checked without them (the system unparsed).
+    skeleton : sequence of str, optional
+        The skeleton's channels; not checked without them (the file unread).
+
+    Returns
+    -------
+    str or None
+        The first problem, one line naming the key, or None.
+
+    Examples
+    --------
+    >>> from praxicon.records import ActionRecord, ChannelMorpheme, JointRecord
+    >>> r = ActionRecord("m.a", "m", "a", status="ok", actuators=("arm",),
+    ...                  joints=(JointRecord("arm", (("arm.rx", ChannelMorpheme(("B",))),)),),
+    ...                  component_names=(("arm.rx", "arm_rx"),), skeleton_source="a.bvh",
+    ...                  all_joints=("hips", "arm"),
+    ...                  mean_pose=(("arm.rx", 1.5), ("hips.rz", 0.0)))
+    >>> lookup_problem(r, {"arm_rx"}, ["hips.rz", "arm.rx"]) is None
+    True
+    >>> lookup_problem(r, {"arm_rx"}, ["hips.rz", "arm.rx", "arm.ry"])
+    "'mean_pose' has no value for 'arm.ry', a channel of its skeleton (a.bvh)"
+    >>> lookup_problem(r, {"arm_ry"})
+    "'component_names' gives 'arm.rx' the component 'arm_rx', which is no component of its system (its components: arm_ry)"
+    """
+    needed = list(record.morphemes())
+    for key, pairs in (("mean_pose", record.mean_pose),
+                       ("component_names", record.component_names)):
+        if problem := channels_problem(key, (c for c, _ in pairs), record.all_joints, needed):
+            return problem
+    if skeleton is not None:
+        source = f"its skeleton ({record.skeleton_source})"
+        named, known = dict(record.mean_pose), set(skeleton)
+        stray = next((c for c in named if c not in known), None)
+        if stray is not None:
+            return f"'mean_pose' names {shown(stray)}, which is no channel of {source}"
+        missing = next((c for c in skeleton if c not in named), None)
+        if missing is not None:
+            return f"'mean_pose' has no value for {shown(missing)}, a channel of {source}"
+    if components is not None:
+        return component_problem(dict(record.component_names), needed, components)
     return None

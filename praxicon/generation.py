@@ -42,7 +42,7 @@ from .channel_curve import Method, channel_curves
 from .body_motion import _source_take, animate, body_of, whole_cycle
 from .performance_files import learnt_files, missing_style, performances_of, \
     read_performances, style_of, unreadable
-from ._record_checks import component_problem
+from ._record_checks import lookup_problem
 from .jsonvalues import as_dict
 from .records import ActionRecord, Praxicon, _count
 from .store import load, system_problem
@@ -406,7 +406,7 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
     # an ASF skeleton is kept (the viewer draws it); the BVH file re-expresses its angles
     skeleton = source_motion.skeleton
     channels = source_motion.channels
-    looked_up = _lookup_problem(record, {g.name for g in system.components}, channels, usable)
+    looked_up = lookup_problem(record, {g.name for g in system.components}, channels)
     if looked_up:  # else a channel silently posed at 0, or derived from no component
         raise RecordFieldError(f"action {record.name!r}: {looked_up}")
     pose = dict(record.mean_pose)
@@ -455,22 +455,6 @@ def generate_motion(record: ActionRecord, repeat: int, source_motion=None,
 class RecordFieldError(ValueError):
     """A learnt record whose ``mean_pose`` or ``component_names`` do not name what generation
     looks up (the command line names the record's file before it)."""
-
-
-def _lookup_problem(record: ActionRecord, components: set[str], channels, usable) -> str | None:
-    """Why the record's ``mean_pose`` and ``component_names`` do not name what generation
-    looks up in them: each channel of the skeleton (``channels``) its mean angle, each
-    channel of a morpheme (``usable``) its component of the system (``components``, their
-    names); ``None`` when they do. A renamed key left a channel at 0 or without a word."""
-    source = f"its skeleton ({record.skeleton_source})"
-    named, known = dict(record.mean_pose), set(channels)
-    stray = next((c for c in named if c not in known), None)
-    if stray is not None:
-        return f"'mean_pose' names {stray!r}, which is no channel of {source}"
-    missing = next((c for c in channels if c not in named), None)
-    if missing is not None:
-        return f"'mean_pose' has no value for {missing!r}, a channel of {source}"
-    return component_problem(dict(record.component_names), usable, components)
 
 
 def generate(folder: str | Path | Praxicon, action: str, *, repeat: int | None = None,

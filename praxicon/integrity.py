@@ -29,7 +29,7 @@ from pathlib import Path
 
 from ._values import shown
 from .description_store import FILE
-from ._record_checks import channels_problem, component_problem
+from ._record_checks import lookup_problem
 from .jsonvalues import read_json
 from .records import REBUILD, PraxiconError
 from .store import TEMPORARY_NAME, dump, load, system_problem
@@ -206,29 +206,19 @@ def _damaged_systems(folder: Path, praxicon, components: dict | None = None) -> 
 
 
 def _misnamed_channels(folder: Path, praxicon, components: dict) -> list[str]:
-    """A line per learnt record whose ``mean_pose`` or ``component_names`` has a key that is
-    no channel of its joints, or lacks a channel of its morphemes
-    (:func:`~praxicon._record_checks.channels_problem`), or whose component names are not of its
-    system (``components``, per record whose system parses, its components' names;
-    :func:`~praxicon._record_checks.component_problem`): generation looks each channel up there,
-    and a key renamed left a channel posed at 0, or derived from no component."""
+    """A line per learnt record whose ``component_names`` give a channel of its morphemes a
+    component that is not of its system (``components``, per record whose system parses, its
+    components' names): :func:`~praxicon._record_checks.lookup_problem`, of which
+    :func:`~praxicon.load` made the rest (the keys the record alone shows wrong), since it
+    leaves the systems unparsed. Generation derives each channel's word from its component."""
     problems = []
     for record in praxicon.actions:
-        if not record.learnt:
-            continue
-        needed = list(record.morphemes())
-        found = [channels_problem(key, (c for c, _ in pairs), record.all_joints, needed)
-                 for key, pairs in (("mean_pose", record.mean_pose),
-                                    ("component_names", record.component_names))]
-        if record.name in components:
-            found.append(component_problem(dict(record.component_names), needed,
-                                           components[record.name]))
-        for problem in found:
+        if record.learnt and record.name in components:
+            problem = lookup_problem(record, components[record.name])
             if problem:
                 problems.append(f"{folder / 'records' / (record.name + '.json')}: {problem}: "
                                 f"the record is damaged ('{REBUILD}' into the folder learns "
                                 f"the action again)")
-                break
     return problems
 
 

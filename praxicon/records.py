@@ -33,7 +33,7 @@ from psgs.errors import NotFound, PSGSError, ValidationError
 
 from ._description_json import FieldError, check_named_alike
 from ._errors import REBUILD
-from ._record_checks import MAX_NAME_BYTES, name_problem
+from ._record_checks import MAX_NAME_BYTES, lookup_problem, name_problem
 from ._values import settings_fields
 from .description import DescriptionError, Descriptions
 from .jsonvalues import Fields, as_dict, freeze, one_each, pairs as _pairs, written_by
@@ -404,17 +404,21 @@ class ActionRecord:
         learnt_from = j.numbers("learnt_from", whole=True)
         count = len(base["performances"])  # an index past them was an IndexError
         j.items("learnt_from", lambda i: 0 <= i < count, f"indices of its {count} performances")
-        return cls(**base, learnt_from=learnt_from, note=j.text("note", True),
-                   actuators=actuators,
-                   joints=tuple(JointRecord.from_json(a, joints[a], f"{where}: joint {a}")
-                                for a in actuators),
-                   verdict=j.text("verdict", True) or "", inducer=j.text("inducer", True),
-                   params=_pairs(j.object("params", True)), system=j.text("system", True),
-                   component_names=tuple(sorted(names.items())),
-                   frame_rate=_frame_rate(j),
-                   skeleton_source=j.text("skeleton_source"),
-                   all_joints=j.texts("all_joints"), mean_pose=tuple(sorted(pose.items())),
-                   segmentation=_pairs(j.object("segmentation", True)))
+        record = cls(**base, learnt_from=learnt_from, note=j.text("note", True),
+                     actuators=actuators,
+                     joints=tuple(JointRecord.from_json(a, joints[a], f"{where}: joint {a}")
+                                  for a in actuators),
+                     verdict=j.text("verdict", True) or "", inducer=j.text("inducer", True),
+                     params=_pairs(j.object("params", True)), system=j.text("system", True),
+                     component_names=tuple(sorted(names.items())),
+                     frame_rate=_frame_rate(j),
+                     skeleton_source=j.text("skeleton_source"),
+                     all_joints=j.texts("all_joints"), mean_pose=tuple(sorted(pose.items())),
+                     segmentation=_pairs(j.object("segmentation", True)))
+        # a key generation finds nothing under: refused here, not when generation poses 0
+        if problem := lookup_problem(record):
+            raise PraxiconError(f"{where}: {problem}")
+        return record
 
 
 def _frame_rate(j: Fields) -> float:

@@ -31,7 +31,7 @@ from collections.abc import Iterable
 from dataclasses import replace
 from pathlib import Path
 
-from ._record_checks import name_problem
+from ._record_checks import lookup_problem, name_problem
 from ._values import is_flag, not_all, shown
 from .records import REBUILD, ActionRecord, Praxicon, PraxiconError, Settings, check_index
 from .description import DescriptionError, Descriptions
@@ -228,7 +228,8 @@ def dump(praxicon: Praxicon, folder: str | Path) -> None:
     matrix and the shared patterns (what :func:`load` reads back as an equal value).
 
     Raises :class:`~praxicon.records.PraxiconError` (before writing anything) when an
-    action's name cannot be a file name.
+    action's name cannot be a file name, or a learnt record's ``mean_pose`` or
+    ``component_names`` key is one :func:`load` refuses (what is written reads back).
 
     Examples
     --------
@@ -243,6 +244,8 @@ def dump(praxicon: Praxicon, folder: str | Path) -> None:
     if not isinstance(praxicon, Praxicon):
         raise PraxiconError(f"dump writes a Praxicon, not {type(praxicon).__name__}")
     problems = [p for p in map(name_problem, praxicon.names) if p]
+    problems += [f"action {a.name!r}: {p}" for a in praxicon.actions
+                 if a.learnt and (p := lookup_problem(a))]
     if problems:
         raise PraxiconError(problems[0])
     folder = _folder(folder)
@@ -277,7 +280,10 @@ def load(folder: str | Path, *, descriptions: bool = True) -> Praxicon:
     PraxiconError
         One line naming the file: a path that does not exist, a folder that is not a
         praxicon, a praxicon of an earlier format version (the line names the command that
-        rebuilds it) or of a later one (it says to upgrade psgs), a damaged index or record, or (unless ``descriptions=False``) a damaged
+        rebuilds it) or of a later one (it says to upgrade psgs), a damaged index or record
+        (a learnt record whose ``mean_pose`` or ``component_names`` key is no channel of its
+        joints, or that lacks a channel of its morphemes, is one: generation would look the
+        channel up in vain), or (unless ``descriptions=False``) a damaged
         ``descriptions.json`` (the line and column of what is not JSON; the field of a value
         out of its range), descriptions of another format, or descriptions learnt from other
         records than the folder's (left by an interrupted build); ``descriptions`` that is

@@ -27,6 +27,7 @@ def _record(pattern, durations, displacements, rate=30.0, legs=None):
                         component_names=(("arm.rx", "arm_rx"), ("leg.rx", "leg_rx")),
                         joints=(JointRecord("arm", (("arm.rx", morpheme),)),
                                 JointRecord("leg", (("leg.rx", other),))),
+                        all_joints=tuple(dict.fromkeys(c.split(".")[0] for c in CHANNELS)),
                         mean_pose=tuple((c, 5.0) for c in sorted(CHANNELS)))
 
 

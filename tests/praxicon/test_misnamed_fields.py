@@ -13,20 +13,22 @@ import json
 import math
 import shutil
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from kinetology import synthetic_motion
-from praxicon import build, load, read_dataset
+from kinetology import read_bvh, synthetic_motion
+from praxicon import build, dump, load, read_dataset
 from praxicon._description_json import FieldError, check_feature_names, feature_problem
 from praxicon.description import (ActionDescription, DescriptionError, Descriptions, Spread,
                                   describe)
 from praxicon.features import motion_features
-from praxicon.generation import generate_motion
+from praxicon.generation import RecordFieldError, generate, generate_motion
 from praxicon.parsing import describe_windows
+from praxicon.records import PraxiconError
 from praxicon_fixtures import leg_body, refused, run_praxicon, take, write_manifest
 
 
@@ -56,21 +58,27 @@ def _renamed(mapping: dict, old: str, new: str) -> None:
 
 # -- a record's mean pose and component names -------------------------------------------------
 
-def test_a_renamed_mean_pose_key_is_refused_by_generate_and_named_by_verify(built, tmp_path,
-                                                                           capsys):
+JOINTS_SAID = "which is no channel of its joints (JOINT.AXIS: a joint of all_joints, an axis " \
+    "of tx ty tz rx ry rz)"
+
+
+def _refused_everywhere(folder: Path, tmp_path, capsys) -> str:
+    """The line load, generate and verify each refuse ``folder`` with (the same one)."""
+    with pytest.raises(PraxiconError) as caught:
+        load(folder)
+    said = str(caught.value)
+    assert refused(capsys, ["generate", str(folder), "moves.wave", "-o",
+                            str(tmp_path / "out.bvh")]) == said
+    assert not (tmp_path / "out.bvh").exists()
+    assert refused(capsys, ["verify", str(folder)]) == said
+    return said
+
+
+def test_a_renamed_mean_pose_key_is_refused_by_load_generate_and_verify(built, tmp_path, capsys):
     # hips.rz drives no morpheme: only the mean pose gives it its angle (0 when not found)
     folder = _damaged(built, tmp_path, lambda r: _renamed(r["mean_pose"], "hips.rz", "hipz.rz"))
-    line = refused(capsys, ["generate", str(folder), "moves.wave", "-o",
-                            str(tmp_path / "out.bvh")])
-    record = folder / "records" / "moves.wave.json"
-    assert line.startswith(f"{record}: action 'moves.wave': 'mean_pose' names 'hipz.rz', "
-                           f"which is no channel of its skeleton (")
-    assert not (tmp_path / "out.bvh").exists()
-    status, out, _ = run_praxicon(capsys, ["verify", str(folder)])
-    assert status == 1
-    (problem,) = [p for p in out.splitlines() if "mean_pose" in p]
-    assert problem.startswith(f"{folder / 'records' / 'moves.wave.json'}: 'mean_pose' names "
-                              f"'hipz.rz', which is no channel of its joints")
+    assert _refused_everywhere(folder, tmp_path, capsys) == \
+        f"{folder / 'records' / 'moves.wave.json'}: 'mean_pose' names 'hipz.rz', {JOINTS_SAID}"
 
 
 def test_a_mean_pose_without_a_channel_of_the_skeleton_is_refused(built):
@@ -81,20 +89,36 @@ def test_a_mean_pose_without_a_channel_of_the_skeleton_is_refused(built):
         generate_motion(cut, 1, source_motion=take(1))
 
 
-def test_a_renamed_component_names_key_is_refused_by_generate_and_named_by_verify(
+def test_a_renamed_component_names_key_is_refused_by_load_generate_and_verify(
         built, tmp_path, capsys):
     channel = dict(load(built, descriptions=False)["moves.wave"].component_names)
     first = min(channel)
     folder = _damaged(built, tmp_path,
                       lambda r: _renamed(r["component_names"], first, first[:-1] + "q"))
-    line = refused(capsys, ["generate", str(folder), "moves.wave", "-o",
-                            str(tmp_path / "out.bvh")])
-    assert line == (f"{folder / 'records' / 'moves.wave.json'}: action 'moves.wave': "
-                    f"'component_names' has no component for {first!r}, a channel of its "
-                    f"morphemes")
-    status, out, _ = run_praxicon(capsys, ["verify", str(folder)])
-    assert status == 1 and f"'component_names' names {first[:-1] + 'q'!r}, which is no " \
-        f"channel of its joints" in out
+    assert _refused_everywhere(folder, tmp_path, capsys) == \
+        f"{folder / 'records' / 'moves.wave.json'}: 'component_names' names " \
+        f"{first[:-1] + 'q'!r}, {JOINTS_SAID}"
+
+
+def test_a_dropped_component_names_key_of_a_morpheme_is_refused_when_loaded(built, tmp_path,
+                                                                           capsys):
+    first = min(dict(load(built, descriptions=False)["moves.wave"].component_names))
+    folder = _damaged(built, tmp_path, lambda r: r["component_names"].pop(first))
+    assert _refused_everywhere(folder, tmp_path, capsys) == \
+        f"{folder / 'records' / 'moves.wave.json'}: 'component_names' has no value for " \
+        f"{first!r}, a channel of its morphemes"
+
+
+def test_dump_writes_no_record_load_would_refuse(built, tmp_path):
+    good = load(built, descriptions=False)
+    record = good["moves.wave"]
+    pose = tuple(("hipz.rz" if c == "hips.rz" else c, v) for c, v in record.mean_pose)
+    damaged = replace(good, actions=tuple(replace(a, mean_pose=pose) if a is record else a
+                                          for a in good.actions))
+    with pytest.raises(PraxiconError, match=r"^action 'moves.wave': 'mean_pose' names "
+                                            r"'hipz.rz', which is no channel of its joints"):
+        dump(damaged, tmp_path / "px")
+    assert not (tmp_path / "px").exists()
 
 
 def test_a_component_name_no_component_of_the_system_has_is_named(built):
@@ -118,6 +142,80 @@ def test_verify_names_a_component_name_no_component_of_the_system_has(built, tmp
     assert status == 1
     assert (f"{folder / 'records' / 'moves.wave.json'}: 'component_names' gives {channel!r} "
             f"the component {name + '_x'!r}, which is no component of its system") in out
+
+
+@pytest.fixture(scope="module")
+def scratch(built, tmp_path_factory):
+    """A copy of the folder, its moves.wave record rewritten by each example."""
+    folder = tmp_path_factory.mktemp("mutated") / "px"
+    shutil.copytree(built, folder)
+    return folder
+
+
+# names a key is renamed to or added as: channels of the skeleton, channels of its joints the
+# skeleton lacks, and names of no channel of its joints
+NAMES = ["hips.rz", "arm.rx", "arm.rz", "leg.rx", "head.ry", "head.rx", "arm.tx", "leg.rz",
+         "hipz.rz", "arm.rq", "arm", "", "arm.rx.rx", "Arm.rx"]
+
+
+@st.composite
+def mutations(draw):
+    """One to three renames, drops or additions of keys of mean_pose or component_names."""
+    steps = []
+    for _ in range(draw(st.integers(1, 3))):
+        key = draw(st.sampled_from(["mean_pose", "component_names"]))
+        steps.append((key, draw(st.sampled_from(["rename", "drop", "add"])),
+                      draw(st.integers(0, 9)), draw(st.sampled_from(NAMES))))
+    return steps
+
+
+def _mutate(record: dict, steps) -> None:
+    for key, how, which, name in steps:
+        pairs = record[key]
+        old = sorted(pairs)[which % len(pairs)] if pairs else None
+        value = 0.5 if key == "mean_pose" else name.replace(".", "_")
+        if how == "rename" and old is not None:
+            _renamed(pairs, old, name)
+        elif how == "drop" and old is not None:
+            del pairs[old]
+        elif how == "add":
+            pairs.setdefault(name, value)
+
+
+@settings(max_examples=60, deadline=None)
+@given(steps=mutations())
+def test_load_refuses_what_generate_refuses_of_mutated_keys(built, scratch, steps):
+    good = load(built, descriptions=False)
+    record = good["moves.wave"]
+    path = scratch / "records" / "moves.wave.json"
+    stored = json.loads((built / "records" / "moves.wave.json").read_text())
+    _mutate(stored["record"], steps)
+    path.write_text(json.dumps(stored, indent=2, sort_keys=True) + "\n")
+    try:
+        load(scratch)
+        by_load = None
+    except PraxiconError as exc:
+        assert str(exc).startswith(f"{path}: ")
+        by_load = str(exc)[len(f"{path}: "):]
+    # generation of the same record in memory, where load is not asked
+    pose, names = stored["record"]["mean_pose"], stored["record"]["component_names"]
+    mutated = replace(record, mean_pose=tuple(sorted(pose.items())),
+                      component_names=tuple(sorted(names.items())))
+    alone = replace(good, actions=tuple(mutated if a.name == record.name else a
+                                        for a in good.actions))
+    try:
+        generate(alone, "moves.wave", repeat=1)
+        by_generate = None
+    except RecordFieldError as exc:
+        assert str(exc).startswith("action 'moves.wave': ")
+        by_generate = str(exc)[len("action 'moves.wave': "):]
+    if by_load is not None:  # what load refuses, generate refuses with the same words
+        assert by_generate == by_load
+    else:  # and refuses besides only what the skeleton's file shows, which load never reads
+        skeleton = read_bvh(record.skeleton_source).channels
+        assert (by_generate is not None) == (set(pose) != set(skeleton)), (by_generate, pose)
+        assert by_generate is None or "a channel of its skeleton (" in by_generate \
+            or "which is no channel of its skeleton (" in by_generate
 
 
 # -- descriptions made in Python are checked as a file's are ----------------------------------
