@@ -23,10 +23,9 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from ..analysis import moves as system_moves, reachable, strongly_connected, usable_rules
+from ..analysis import moves as system_moves, reachable, strongly_connected
 from ..budget import Budget
-from ..errors import BoundReached
-from ..model import IDLE, PSGS, Terminal, Word
+from ..model import IDLE, PSGS
 from .chart import Chart, CompiledGrammar
 from .depth_first import Finish, depth_first
 from .result import Acceptance

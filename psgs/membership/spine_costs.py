@@ -94,7 +94,7 @@ def suffix_costs(chart) -> dict[tuple[int, int, int], float] | None:
             back[r].append((q, insert[t]))
         for r in units[q]:
             back[r].append((q, 0.0))
-    delete, sub, word = chart.delete, chart.substitute, chart.word
+    delete, sub = chart.delete, chart.substitute  # sub(i, t) reads word[i] itself
     tick = chart.budget.tick
     n = chart.n
     base = [INF] * size
