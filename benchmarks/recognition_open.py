@@ -54,8 +54,8 @@ def open_set(results, protocol, train, test, *, by_style: bool = False):
     With ``by_style`` one action is learnt per content and style (as ``psgs praxicon build``
     groups a dataset with several takes of each pair) and the answer's content counted.
     """
-    from praxicon.calibration import held_together
-    from praxicon.description import (_MARGIN, GROUP_LEVEL, chosen_table, common_table,
+    from praxicon.calibration import _MARGIN, held_together
+    from praxicon.description import (GROUP_LEVEL, chosen_table, common_table,
                                       describe_table, feature_rows, score_model, scores)
     from praxicon.recognition import _excess, feature_matrix
 
@@ -151,7 +151,7 @@ def _towards(fitted, dist, best, other) -> np.ndarray:
     """Per take, how many shared standard deviations it lies from its best action's mean
     towards ``other``'s along the line between the two means: from the shared squared
     distances alone, ``(d_best - d_other + D²) / 2D`` with ``D`` the means' distance."""
-    from praxicon.description import distances
+    from praxicon.scoring import distances
 
     gap = np.array([distances(fitted.means[o][None], fitted.means[b][None], fitted.parts)[0, 0]
                     for b, o in zip(best, other)])

@@ -54,21 +54,17 @@ import numpy as np
 from ._arguments import DescriptionError, described
 from ._description_json import (FieldError, action_fields, check_action, check_format,
                                 check_spread, check_window, json_object, spread_fields)
-# the spread and its calibration live in .calibration (the names are this module's as well;
-# ``calibrate`` is imported under another name: describe_table has a flag of that name)
-from .calibration import (_FOLDS, _MARGIN, _RANK, GROUP_LEVEL, fit_spread,  # noqa: F401
-                          group_limits, scale_floors)
+# the spread and its calibration live in .calibration (``calibrate`` is imported under another
+# name: describe_table has a flag of that name)
+from .calibration import _RANK, GROUP_LEVEL, fit_spread, scale_floors
 from .calibration import calibrate as _calibrate
 from .calibration import held_together
 from .feature_choice import _FOLDS as _CHOICE_FOLDS
 from .feature_choice import choose_features
 from .features import FeatureError, feature_joint, motion_features
-# the model and its scores live in .scoring; the names below are this module's as well, for
+# the model and its scores live in .scoring; those of __all__ are this module's as well, for
 # the callers that read descriptions and score with them from one place
-from .scoring import (_NOISE_FLOOR, _PRIOR_TAKES, OWN_KINDS, ScoreModel,  # noqa: F401
-                      _action_variances, _part, _score_model, action_variances, distances,
-                      mahalanobis_terms, model_scores, own_columns, own_terms,
-                      precision_parts, probabilities, score_model, scores)
+from .scoring import OWN_KINDS, ScoreModel, own_columns, own_terms, score_model, scores
 
 __all__ = ["FORMAT_VERSION", "ActionDescription", "Spread", "Descriptions", "describe",
            "describe_table", "chosen_table", "family_descriptions", "DescriptionError",

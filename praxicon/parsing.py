@@ -36,9 +36,9 @@ import numpy as np
 
 from ._arguments import kinds_of, real_number
 from .description import (OWN_KINDS, DescriptionError, common_table, describe_table,
-                          feature_rows, probabilities, scores)
+                          feature_rows, scores)
 from ._description_json import WINDOWS
-from .scoring import log_likelihoods, overflow_reason, unscored
+from .scoring import log_likelihoods, overflow_reason, probabilities, unscored
 from .records import _count
 
 __all__ = ["Span", "Timeline", "parse", "describe_windows", "windows",

@@ -39,11 +39,11 @@ from pathlib import Path
 import numpy as np
 
 from ._arguments import motion_of, motions_of, whole_number
-from .description import (DescriptionError, Descriptions, feature_rows, mahalanobis_terms,
-                          model_scores, own_columns, _part, probabilities)
+from .description import DescriptionError, Descriptions, feature_rows, own_columns
 from .feature_table import feature_matrix
 from .features import feature_joint, pace_of, share_of_flight
-from .scoring import overflow_reason, unscored
+from .scoring import (_part, mahalanobis_terms, model_scores, overflow_reason, probabilities,
+                      unscored)
 from ._verdict import ScoreModels, _Unscorable, _tested
 from ._verdict import _excess, _score_model  # noqa: F401  (parse, benchmarks read them here)
 from .records import REBUILD, Praxicon, _count

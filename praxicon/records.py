@@ -36,7 +36,7 @@ from ._errors import REBUILD
 from ._record_checks import MAX_NAME_BYTES, lookup_problem, name_problem
 from ._values import settings_fields
 from .description import DescriptionError, Descriptions
-from .jsonvalues import Fields, as_dict, freeze, one_each, pairs as _pairs, written_by
+from .jsonvalues import Fields, as_dict, one_each, pairs as _pairs, written_by
 
 __all__ = ["FORMAT", "FORMAT_VERSION", "REBUILD", "FRAME_RATES", "PraxiconError",
            "PerformanceRecord", "ChannelMorpheme", "JointRecord", "ActionRecord", "Praxicon",

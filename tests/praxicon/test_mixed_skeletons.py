@@ -11,9 +11,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from praxicon.description import describe, distances, precision_parts
+from praxicon.description import describe
 from praxicon.features import feature_joint
 from praxicon.recognition import recognise, recognise_many
+from praxicon.scoring import distances, precision_parts
 
 #: per skeleton, its joints in the roles the synthetic takes move: hips, left arm (two
 #: channels), right arm, left leg, head
