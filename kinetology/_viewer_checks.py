@@ -13,7 +13,6 @@ from numbers import Real
 
 import numpy as np
 
-from .kinematics import positions_problem  # noqa: F401 (the viewer's: one bound with the angles')
 from .motion import is_whole, shown
 
 #: The longest a GIF shows a frame, seconds: its delay is a 16-bit count of hundredths.

@@ -40,8 +40,8 @@ from typing import Iterable, Mapping, Sequence
 
 import numpy as np
 
-from ._viewer_checks import (pace_problem, panels_problem, positions_problem, tick_problem,
-                             view_problem)
+from ._viewer_checks import pace_problem, panels_problem, tick_problem, view_problem
+from .kinematics import positions_problem
 from .motion import Motion, MotionFormatError, check_number
 from .motion import counted as _count
 from .plotting import STATE_COLOURS, STILL_COLOUR

@@ -268,7 +268,6 @@ def shape(base, knots, symbols, frame_rate: float, segmentation: dict, *,
                            sparse.hstack([-step, zero_t, -sparse.identity(n - 1)])])
     b_abs = np.concatenate((base, -base, step @ base, -(step @ base)))
     dv, da = sparse.diags(v_signs.astype(float)), sparse.diags(a_signs.astype(float))
-    zeros = sparse.csr_matrix((n, 2 * n - 1))
     # the channel must still move (a smoothed range under min_range is "still", no kinetemes):
     # the smoothed curve rises by 1.1 min_range from where the base's is lowest to highest
     from kinetology.segmentation import smooth
