@@ -43,9 +43,10 @@ def check_answer(system, words, result, costs=None):
 @pytest.mark.parametrize("n, expected", [(64, 0), (48, 16), (100, 28), (1, 0), (3, 1), (0, 1)])
 def test_the_doubling_grammar_is_answered_at_once(n, expected):
     assert doubling_distance(n) == expected  # the brute force: a^100 is 28 from a^128
-    start = time.perf_counter()
+    # this thread's CPU seconds: a loaded machine stretches wall time, not the work done
+    start = time.thread_time()
     result = psgs.nearest(DOUBLING, ["a" * n], max_seconds=5)
-    seconds = time.perf_counter() - start
+    seconds = time.thread_time() - start
     assert result.exact and result.distance == expected, result
     assert seconds < 1.0, seconds
     word = result.words[0]
@@ -100,9 +101,9 @@ def test_a_doubling_nullable_beside_another_component():
         table = edit_costs(None)
         expected = min(_edit_distance(given[0], u, table) for u in firsts) + \
             min(_edit_distance(given[1], u, table) for u in seconds)
-        start = time.perf_counter()
+        start = time.thread_time()
         result = psgs.nearest(system, words, max_seconds=5)
-        assert time.perf_counter() - start < 1.0
+        assert time.thread_time() - start < 1.0
         assert result.exact and result.distance == expected, (words, result)
         check_answer(system, given, result)
 
@@ -125,9 +126,9 @@ def test_budgets_name_the_bound_they_hit():
     assert "max_states=3" in states.reason
     symbols = psgs.nearest(letters, word, max_symbols=40)
     assert not symbols.exact and symbols.bound == "max_symbols", symbols
-    start = time.perf_counter()
+    start = time.thread_time()
     seconds = psgs.nearest(letters, ["ab" * 400], max_seconds=0.2)
-    assert time.perf_counter() - start < 1.5
+    assert time.thread_time() - start < 1.5
     assert not seconds.exact and seconds.bound == "max_seconds", seconds
 
 
