@@ -69,10 +69,15 @@ def _solve_exactly(matrix: np.ndarray, rhs: np.ndarray) -> np.ndarray:
     LAPACK's answer depends in its last bits on the CPU's kernels; these coefficients shape
     every decoded value, so they are computed the same way everywhere. The system is small
     (at most 10 x 10) and nonsingular (the two knot values fix the constant and linear
-    parts the jerk does not, and the border conditions are independent).
+    parts the jerk does not, and the border conditions are independent). ``rhs`` may hold
+    several right-hand sides as columns, solved in one elimination: the row operations depend
+    on ``matrix`` alone, so each column's answer is the one it has solved on its own.
     """
-    n = len(rhs)
-    a = [[Fraction(float(x)) for x in row] + [Fraction(float(b))] for row, b in zip(matrix, rhs)]
+    rhs = np.asarray(rhs)
+    columns = rhs.reshape(len(rhs), -1)
+    n, k = len(columns), columns.shape[1]
+    a = [[Fraction(float(x)) for x in row] + [Fraction(float(b)) for b in right]
+         for row, right in zip(matrix, columns)]
     for col in range(n):
         pivot = next(r for r in range(col, n) if a[r][col] != 0)
         a[col], a[pivot] = a[pivot], a[col]
@@ -80,7 +85,8 @@ def _solve_exactly(matrix: np.ndarray, rhs: np.ndarray) -> np.ndarray:
             if r != col and a[r][col] != 0:
                 factor = a[r][col] / a[col][col]
                 a[r] = [x - factor * y for x, y in zip(a[r], a[col])]
-    return np.array([float(a[r][n] / a[r][r]) for r in range(n)])
+    solved = np.array([[float(a[r][n + j] / a[r][r]) for j in range(k)] for r in range(n)])
+    return solved.reshape(rhs.shape)
 
 
 @lru_cache(maxsize=None)
@@ -121,11 +127,13 @@ def basis(left_velocity: bool, left_acceleration: bool, right_velocity: bool,
     kkt[:5, :5] = 2 * cost
     kkt[:5, 5:] = constraints.T
     kkt[5:, :5] = constraints
+    # the knot values y0 = 1, y1 = 0 (U) and y0 = 0, y1 = 1 (W), in one elimination
+    rhs = np.zeros((5 + m, 2))
+    rhs[5, 0] = rhs[6, 1] = 1.0
+    solved = _solve_exactly(kkt, rhs)[:5]
     out = []
-    for y0, y1 in ((1.0, 0.0), (0.0, 1.0)):
-        rhs = np.zeros(5 + m)
-        rhs[5], rhs[6] = y0, y1
-        coefficients = _solve_exactly(kkt, rhs)[:5]
+    for column in solved.T:
+        coefficients = column.copy()
         coefficients.setflags(write=False)  # cached: shared by every caller
         out.append(coefficients)
     return out[0], out[1]
@@ -154,8 +162,16 @@ def _border_flags(codes: np.ndarray) -> np.ndarray:
     return lv * 8 + la * 4 + rv * 2 + ra
 
 
-_TABLE_U = np.array([basis(*(bool(k >> b & 1) for b in (3, 2, 1, 0)))[0] for k in range(16)])
-_TABLE_W = np.array([basis(*(bool(k >> b & 1) for b in (3, 2, 1, 0)))[1] for k in range(16)])
+@lru_cache(maxsize=1)
+def _tables() -> tuple[np.ndarray, np.ndarray]:
+    """``(U, W)``: :func:`basis` of every flag pattern 0..15 of :func:`_border_flags`, one row
+    each. Made on first use, not at import: the exact solves take tens of milliseconds, which
+    every command importing the codec (``--help`` too) paid before."""
+    patterns = [basis(*(bool(k >> b & 1) for b in (3, 2, 1, 0))) for k in range(16)]
+    tables = np.array([u for u, _ in patterns]), np.array([w for _, w in patterns])
+    for table in tables:
+        table.setflags(write=False)  # cached: shared by every caller
+    return tables
 
 
 def _design(knots: np.ndarray, codes: np.ndarray):
@@ -167,7 +183,8 @@ def _design(knots: np.ndarray, codes: np.ndarray):
     offset = np.arange(frames) - knots[seg]
     s = offset / lengths[seg]
     pattern = _border_flags(codes)[seg]
-    return seg, _polynomial(s, _TABLE_U[pattern]), _polynomial(s, _TABLE_W[pattern])
+    table_u, table_w = _tables()
+    return seg, _polynomial(s, table_u[pattern]), _polynomial(s, table_w[pattern])
 
 
 def _polynomial(s: np.ndarray, coefficients: np.ndarray) -> np.ndarray:
