@@ -5,9 +5,27 @@
 
 from __future__ import annotations
 
-from ..format import example_names, example_path
-
 __all__ = ["example_names", "grammar_file"]
+
+
+def example_names() -> list[str]:
+    """The names of the examples shipped in psgs (:func:`psgs.format.example_names`).
+
+    Returns
+    -------
+    list of str
+        The names, each usable where a grammar file is asked for.
+
+    Examples
+    --------
+    >>> "paper_example" in example_names()
+    True
+    """
+    # psgs.format imports the file reader and its parser (lark): read when asked, so that
+    # building the command's parser (--help, --version) does not
+    from ..format import example_names as shipped
+
+    return shipped()
 
 
 def grammar_file(text: str) -> str:
@@ -15,7 +33,26 @@ def grammar_file(text: str) -> str:
 
     ``psgs show paper_example`` reads the example from inside the package (as ``psgs.load``
     does); any other text is returned unchanged and fails to open with one line.
+
+    Parameters
+    ----------
+    text : str
+        The argument's text.
+
+    Returns
+    -------
+    str
+        The path to open.
+
+    Examples
+    --------
+    >>> grammar_file("paper_example").endswith("paper_example.psgs")
+    True
+    >>> grammar_file("no/such.psgs")
+    'no/such.psgs'
     """
+    from ..format import example_path  # when an argument is read, not when the parser is made
+
     return str(example_path(text))
 
 

@@ -21,7 +21,6 @@ import unicodedata
 from pathlib import Path
 
 from ..errors import ValidationError
-from ..format import load
 from ..model import IDLE, PCGS, PSGS
 from .._foundation.shell import INCOMPLETE, NO, natural, positive_float, positive_int
 from ._types import example_names, grammar_file
@@ -48,6 +47,8 @@ def rule_less_nonterminals(system: PSGS | PCGS) -> list[tuple[str, str]]:
 def load_system(path: str) -> PSGS | PCGS:
     """``psgs.load`` for the commands: a missing file names the shipped examples, and
     nonterminals without rules are a warning on stderr."""
+    from ..format import load  # its reader's parser (lark) loads when a file is read
+
     try:
         system = load(path)
     except FileNotFoundError as exc:
