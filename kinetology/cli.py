@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from psgs._foundation.files import read_bytes
-from psgs._foundation.shell import (file_name, positive_float, run, version,
+from psgs._foundation.shell import (add_version, file_name, positive_float, run,
                                     with_exit_status_help)
 from psgs.errors import ValidationError
 
@@ -559,8 +559,7 @@ _DESCRIPTION = ("Motion capture (BVH, ASF/AMC) in, actiongrams out; compression 
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser of the ``kinetology`` command (one subparser per subcommand)."""
     parser = argparse.ArgumentParser(prog="kinetology", description=_DESCRIPTION)
-    parser.add_argument("--version", action="version", version=f"%(prog)s {version()}",
-                        help="print the version and exit")
+    add_version(parser)
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True,
                                 help="the subcommand (COMMAND --help for its options)")
     _add_commands(sub)

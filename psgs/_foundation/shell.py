@@ -17,7 +17,7 @@ import sys
 from ..errors import PSGSError, ValidationError
 
 __all__ = ["OK", "NO", "ERROR", "INCOMPLETE", "INTERRUPTED", "BROKEN_PIPE", "EXIT_STATUS_HELP",
-           "version", "TableHelpFormatter", "with_exit_status_help", "natural", "positive_int",
+           "version", "add_version", "TableHelpFormatter", "with_exit_status_help", "natural", "positive_int",
            "positive_float", "share", "file_name", "parse_value", "key_values", "run"]
 
 #: Exit statuses of every psgs and kinetology subcommand.
@@ -62,6 +62,46 @@ def version() -> str:
     except metadata.PackageNotFoundError:
         from . import __version__
         return __version__
+
+
+class _VersionAction(argparse.Action):
+    """``--version``: the version is looked up when the option is given, not when the parser
+    is made (the lookup reads the installed distribution's metadata, which every other
+    command and every ``--help`` paid for)."""
+
+    def __init__(self, option_strings, dest=argparse.SUPPRESS, default=argparse.SUPPRESS,
+                 help=None):
+        super().__init__(option_strings, dest=dest, default=default, nargs=0, help=help)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        # argparse's own version action, made now with the version text: prints and exits
+        shown = argparse._VersionAction(self.option_strings, version=f"%(prog)s {version()}")
+        shown(parser, namespace, values, option_string)
+
+
+def add_version(parser: argparse.ArgumentParser) -> None:
+    """Give ``parser`` a ``--version`` option printing ``PROG VERSION`` (:func:`version`).
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The command's parser.
+
+    Examples
+    --------
+    >>> import contextlib, io
+    >>> parser = argparse.ArgumentParser(prog="demo")
+    >>> add_version(parser)
+    >>> out = io.StringIO()
+    >>> with contextlib.redirect_stdout(out):
+    ...     try:
+    ...         parser.parse_args(["--version"])
+    ...     except SystemExit as exc:
+    ...         status = exc.code
+    >>> status, out.getvalue() == f"demo {version()}\\n"
+    (0, True)
+    """
+    parser.add_argument("--version", action=_VersionAction, help="print the version and exit")
 
 
 class TableHelpFormatter(argparse.HelpFormatter):

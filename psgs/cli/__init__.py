@@ -14,7 +14,7 @@ import argparse
 import importlib
 import sys
 
-from .._foundation.shell import run, version, with_exit_status_help
+from .._foundation.shell import add_version, run, with_exit_status_help
 
 # modules that add subcommands; each defines register(subparsers)
 _COMMAND_MODULES = ("core", "check", "induce", "bench", "draw")
@@ -39,8 +39,7 @@ def build_parser(commands=None) -> argparse.ArgumentParser:
     """The parser; ``commands`` adds name -> register(subparsers) beside the plug-ins'."""
     parser = argparse.ArgumentParser(
         prog="psgs", description="Parallel grammar systems: derive, check, export, induce.")
-    parser.add_argument("--version", action="version", version=f"%(prog)s {version()}",
-                        help="print the version and exit")
+    add_version(parser)
     sub = parser.add_subparsers(dest="command", metavar="COMMAND",
                                 help="the subcommand (COMMAND --help for its options)")
     sub.required = True
