@@ -4,21 +4,20 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import numpy as np
-
 from psgs._foundation.shell import file_name, positive_float
-
-from ._viewer_checks import view_problem
-from .motion import counted
-from .viewer import ViewError, check_output, view
 
 __all__ = ["register"]
 
 
 def _run(args) -> int:
-    from .readers import read
+    # the player's modules load when it runs, not when the command's parser is made
+    import numpy as np
 
     from ._frame_rate_option import frame_rate_options
+    from ._viewer_checks import view_problem
+    from .motion import counted
+    from .readers import read
+    from .viewer import ViewError, check_output, view
 
     check_output(Path(args.output))
     # the option values before any file is read, in view's own words (as the other commands)

@@ -28,8 +28,7 @@ from __future__ import annotations
 from psgs._foundation.shell import ERROR, INCOMPLETE, file_name, positive_float
 from psgs.errors import ValidationError
 
-from .description import DescriptionError
-from .store import read_descriptions
+from ._errors import DescriptionError
 
 __all__ = ["register_recognise"]
 
@@ -190,6 +189,8 @@ def run_recognise(args, *, most_files: int = CHUNK_FILES,
         raise ValidationError(f"--plot draws one recognition's explanation: give one FILE "
                               f"(got {len(args.files)})")
     _check_pictures(args.plot)
+    from .store import read_descriptions
+
     try:
         descriptions = read_descriptions(args.praxicon)
     except DescriptionError as exc:
@@ -223,6 +224,7 @@ def run_parse(args) -> int:
     from ._arguments import real_number
     from .parsing import _parsed
     from .recognition import _in_file
+    from .store import read_descriptions
 
     _check_pictures(args.plot)
     try:  # before the folder is read, as every other value of the command
