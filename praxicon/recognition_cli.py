@@ -37,6 +37,40 @@ __all__ = ["register_recognise"]
 _ERROR = "psgs: error: "
 
 
+def read_descriptions(folder, *, windows: bool = False):
+    """The praxicon's descriptions, as :func:`praxicon.store.read_descriptions` reads them;
+    the store (and the descriptions' modules under it) loads when a command reads a folder,
+    not when the command's parser is made.
+
+    Parameters
+    ----------
+    folder : str or path
+        The praxicon folder.
+    windows : bool, default False
+        The windows' descriptions (for parse), not the whole takes'.
+
+    Returns
+    -------
+    praxicon.description.Descriptions
+        The descriptions.
+
+    Raises
+    ------
+    DescriptionError
+        One line, as :func:`praxicon.store.read_descriptions` says it.
+
+    Examples
+    --------
+    >>> read_descriptions("no/such/praxicon")
+    Traceback (most recent call last):
+    ...
+    praxicon.description.DescriptionError: no/such/praxicon: no such praxicon folder
+    """
+    from .store import read_descriptions as read
+
+    return read(folder, windows=windows)
+
+
 def _read_motion(path: str, doing: str = "recognising"):
     import kinetology
     from psgs.errors import PSGSError
@@ -189,8 +223,6 @@ def run_recognise(args, *, most_files: int = CHUNK_FILES,
         raise ValidationError(f"--plot draws one recognition's explanation: give one FILE "
                               f"(got {len(args.files)})")
     _check_pictures(args.plot)
-    from .store import read_descriptions
-
     try:
         descriptions = read_descriptions(args.praxicon)
     except DescriptionError as exc:
@@ -224,7 +256,6 @@ def run_parse(args) -> int:
     from ._arguments import real_number
     from .parsing import _parsed
     from .recognition import _in_file
-    from .store import read_descriptions
 
     _check_pictures(args.plot)
     try:  # before the folder is read, as every other value of the command
