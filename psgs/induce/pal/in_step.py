@@ -8,8 +8,9 @@ could have taken and still lain as close to the first string's copies are a
 handful, not thousands. So a group of sections in step is weighed as one
 event (``docs/streams.md``, "Significance of a repetition"):
 
-- its **lead**, one member, repeats somewhere: :func:`~psgs.induce.pal.sections.lead_significance`,
-  the expected number of maximal exact repeats as strong in its string;
+- its **lead**, one member, repeats somewhere:
+  :func:`~psgs.induce.pal.sections.lead_significance`, the expected number of maximal
+  exact repeats as strong in its string;
 - each other member repeats where the lead's copies are:
   :func:`~psgs.induce.pal.in_step_weight.in_step_significance`, ``T_j``, counting
   only the places its copies could take lying as close to the lead's copies as they do;
@@ -346,6 +347,7 @@ def _read_the_rest(strings: list[Timed], core: np.ndarray, follows: list[float |
         out.update(found)
         left = [j for j in left if j not in found]
     return dict(sorted(out.items()))
+
 
 class _Reads:
     """:func:`read_at` of the strings at lead copies, each answer kept while a lead still
