@@ -417,7 +417,8 @@ class ActionRecord:
                      segmentation=_pairs(j.object("segmentation", True)))
         # a key generation finds nothing under: refused here, not when generation poses 0
         if problem := lookup_problem(record):
-            raise PraxiconError(f"{where}: {problem}")
+            raise PraxiconError(f"{where}: {problem}: the record is damaged ('{REBUILD}' "
+                                f"into the folder learns the action again)")
         return record
 
 

@@ -17,8 +17,9 @@ import sys
 from ..errors import PSGSError, ValidationError
 
 __all__ = ["OK", "NO", "ERROR", "INCOMPLETE", "INTERRUPTED", "BROKEN_PIPE", "EXIT_STATUS_HELP",
-           "version", "add_version", "TableHelpFormatter", "with_exit_status_help", "natural", "positive_int",
-           "positive_float", "share", "file_name", "parse_value", "key_values", "run"]
+           "version", "add_version", "TableHelpFormatter", "with_exit_status_help", "natural",
+           "positive_int", "positive_float", "share", "file_name", "parse_value", "key_values",
+           "run"]
 
 #: Exit statuses of every psgs and kinetology subcommand.
 OK, NO, ERROR, INCOMPLETE = 0, 1, 2, 3
@@ -74,9 +75,9 @@ class _VersionAction(argparse.Action):
         super().__init__(option_strings, dest=dest, default=default, nargs=0, help=help)
 
     def __call__(self, parser, namespace, values, option_string=None):
-        # argparse's own version action, made now with the version text: prints and exits
-        shown = argparse._VersionAction(self.option_strings, version=f"%(prog)s {version()}")
-        shown(parser, namespace, values, option_string)
+        # as argparse's version action does: the line on stdout, then exit status 0
+        sys.stdout.write(f"{parser.prog} {version()}\n")
+        parser.exit()
 
 
 def add_version(parser: argparse.ArgumentParser) -> None:

@@ -49,12 +49,13 @@ def _strings(seed: int, sectioned: int, spurious: int, length: int):
 
 @settings(max_examples=25, deadline=None, derandomize=True)
 @given(seed=st.integers(0, 100_000), sectioned=st.integers(3, 6), spurious=st.integers(0, 16),
-       length=st.integers(6, 9))
+       length=st.integers(6, 9), taken=st.sets(st.integers(0, 21), min_size=1, max_size=3))
 def test_the_members_are_holms_and_hold_every_one_bonferroni_keeps(seed, sectioned, spurious,
-                                                                  length):
+                                                                  length, taken):
+    # ``taken``: the lead and the members joined before (any strings, sectioned or not)
     strings, core = _strings(seed, sectioned, spurious, length)
     follows = [follow_rate(s.codes) for s in strings]
-    taken = {0}
+    taken = {j % len(strings) for j in taken}
     joined = _read_the_rest(strings, core, follows, taken, LEVEL)
     read = {j: read_at(strings[j], core, follows[j]) for j in range(len(strings))
             if j not in taken}
@@ -68,8 +69,11 @@ def test_the_members_are_holms_and_hold_every_one_bonferroni_keeps(seed, section
         holm.append(j)
     assert sorted(joined) == sorted(holm)
     assert all(joined[j][0] == weights[j] for j in joined)
-    # every string the test of each against all keeps is kept
-    assert {j for j, w in weights.items() if w + math.log10(count) <= LEVEL} <= set(joined)
+    # every string the test of each against all keeps is kept (all the others, as before,
+    # and all those read)
+    kept = {j for j, w in weights.items() if w + math.log10(count) <= LEVEL}
+    assert {j for j, w in weights.items() if w + math.log10(len(strings) - 1) <= LEVEL} \
+        <= kept <= set(joined)
 
 
 def test_a_member_short_of_the_test_against_all_joins_after_the_others():

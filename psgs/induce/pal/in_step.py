@@ -20,15 +20,17 @@ event (``docs/streams.md``, "Significance of a repetition"):
 The group's significance is the sum, at the lead that makes it strongest (members
 that move with the lead or with another, one string's symbol determining the other's
 beyond chance away from the lead's copies, add nothing: :class:`~psgs.induce.pal.alike.Alike`);
-a member is kept only when its own ``T_j`` beats chance among the other strings
-(``T_j + log10(N - 1) <= log10(alpha)``), so that no random string is carried in by the
-others' strength. A string is read at the lead's copies (:func:`read_at`), not only at its
+a member is kept only when its own ``T_j`` beats chance among the other strings, so that
+no random string is carried in by the others' strength: ``T_j + log10(N - 1) <=
+log10(alpha)`` read at the lead's copies, and, read again at the core below, Holm's
+step-down over the ``M`` strings read there (the ``k``-th lightest against
+``log10(M - k)``). A string is read at the lead's copies (:func:`read_at`), not only at its
 own section: its longest repeat may be a chance repeat elsewhere, as long as the section or
 longer. Copies in step keep the lead's shift between them (to within the string's typical
 segment); a string that fails at the lead's copies is read again where the lead and its
-members all are (symbols agreeing by chance around the lead's copies make them reach past
-the repeat the others play; there by Holm's step-down over the strings read), and the lead
-itself is read where it and its closest member both are.
+members all are (the core: symbols agreeing by chance around the lead's copies make them
+reach past the repeat the others play), and the lead itself is read where it and its
+closest member both are.
 """
 
 from __future__ import annotations
@@ -329,8 +331,8 @@ def _read_the_rest(strings: list[Timed], core: np.ndarray, follows: list[float |
 
     Holm's step-down over the ``M`` strings read: the ``k``-th lightest (from 0) joins when
     it and every lighter one pass ``T + log10(M - k) <= level``; the chance of carrying in
-    any random string stays ``alpha``, as with ``T + log10(M) <= level`` for each, and a
-    member read where others passed needs less. Read in rounds at the next member's need
+    any random string at this reading is at most ``alpha``, as with ``T + log10(M) <= level``
+    for each, and a member read where others passed needs less. Read in rounds at the next member's need
     until one adds none (whoever passes a round's need passes Holm's at its own rank).
     """
     reads = _Reads(strings, follows, []) if reads is None else reads
