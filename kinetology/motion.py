@@ -21,6 +21,9 @@ import numpy as np
 
 from psgs.errors import FormatError, NotFound, ValidationError
 
+# MIN_UNWRAP, the shortest unwrap period: defined with numpy-free values that the commands'
+# help texts read without this module
+from ._defaults import MIN_UNWRAP
 from ._values_frozen import frozen_meta, read_only, thawed
 
 __all__ = ["MotionFormatError", "Joint", "Skeleton", "Motion", "AXES", "FRAME_RATE_RANGE",
@@ -413,14 +416,6 @@ def check_number(value, name: str, *, positive: bool = False) -> float:
         raise ValidationError(f"{name} must be a {'positive' if positive else 'non-negative'} "
                               f"number, not {value!r}")
     return number
-
-
-#: The shortest unwrap period segmentation takes, degrees (0 turns unwrapping off). An angle's
-#: period is 360 degrees (180 for an axis without a direction; 2 pi for radians, given to the
-#: API); a step between two frames of more than half the period is taken for a wrap and
-#: folded back, so a period of 1e-300 folded every movement away and each channel read as
-#: still ("no channel left to segment"), and one below a degree folds ordinary movement.
-MIN_UNWRAP = 1.0
 
 
 def check_unwrap(value, name: str = "unwrap") -> float:

@@ -47,6 +47,9 @@ import numpy as np
 
 from psgs.errors import ValidationError
 
+# DEFAULTS, the default parameters: defined with numpy-free values that the commands' help
+# texts read without this module
+from ._defaults import DEFAULTS
 from ._engines import select
 from ._kinetemes import round_half_even, smooth_channels
 from .joints import actuator_map, skeleton_parents
@@ -60,16 +63,6 @@ _TRANSLATIONS = ("tx", "ty", "tz")
 
 #: State letters, indexed by code: code = 2 * (θ' < 0) + ((θ' >= 0) == (θ'' < 0)).
 STATES = ("B", "G", "R", "Y")
-
-#: Default parameters (all in seconds and degrees, so they hold from 30 to 120 fps).
-DEFAULTS = MappingProxyType({
-    "smoothing": 0.05,               # Gaussian sigma, seconds (1.5 frames at 30 fps, 6 at 120)
-    "velocity_deadband": 2.0,        # degrees per second, the floor of the velocity dead band
-    "acceleration_deadband": 10.0,   # degrees per second squared, likewise
-    "relative_deadband": 0.05,       # share of a channel's own 95th-percentile |θ'|, |θ''|
-    "min_range": 2.0,                # degrees; channels that move less are still
-    "unwrap": 360.0,                 # period of rotation channels in degrees; 0: no unwrapping
-})
 
 
 def _is_rotation(channel: str) -> bool:

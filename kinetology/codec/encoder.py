@@ -10,18 +10,14 @@ from psgs.errors import ValidationError
 
 from ..motion import Motion, MotionFormatError
 from . import entropy, residual, stream
-from .knots import PINNED, channel_knots, is_rotation, unwrap
+# CODEC_DEFAULTS, the settings without max_error: defined with numpy-free values that the
+# commands' help texts read without this module
+from .._defaults import CODEC_DEFAULTS
+from .knots import channel_knots, is_rotation, unwrap
 from .quartic import fit_knots, reconstruct
 
 __all__ = ["CODEC_DEFAULTS", "Compressed", "absolute_errors", "compress_with", "decompress",
            "encode_segments", "mean_errors"]
-
-#: Settings of :func:`kinetology.codec.compress` without ``max_error``: the pinned
-#: segmentation, the knot quantum (degrees), and no residual layer
-#: (``residual_step`` 0; ``hysteresis`` applies when there is one).
-CODEC_DEFAULTS = MappingProxyType({**PINNED, "quantum": 0.5, "residual_step": 0.0,
-                                   "hysteresis": 0.7})
-
 
 class KnotsTooLarge(ValidationError):
     """:func:`encode_segments`' refusal of a quantum too small for ``channel``'s knot values

@@ -18,22 +18,14 @@ Rotation channels are unwrapped (period 360°) first, so an angle that crosses
 
 from __future__ import annotations
 
-from types import MappingProxyType
-
 import numpy as np
 
+# PINNED, the codec's segmentation parameters: defined with numpy-free values that the
+# commands' help texts read without this module
+from .._defaults import PINNED
 from .._kinetemes import _weights
 
 __all__ = ["PINNED", "unwrap", "is_rotation", "channel_knots"]
-
-#: The codec's segmentation parameters (seconds, degrees): fixed here, not read
-#: from :data:`kinetology.segmentation.DEFAULTS`.
-PINNED = MappingProxyType({
-    "smoothing": 0.025,              # Gaussian sigma, seconds
-    "velocity_deadband": 5.0,        # degrees per second
-    "acceleration_deadband": 200.0,  # degrees per second squared
-})
-
 
 def is_rotation(channel: str) -> bool:
     """Whether a channel is an angle (axis ``rx``, ``ry`` or ``rz``), so periodic.
