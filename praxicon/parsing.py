@@ -35,6 +35,9 @@ from pathlib import Path
 import numpy as np
 
 from ._arguments import kinds_of, real_number
+# SUPPORT (the share of a span's windows passing its action's test) and UNFIT (the seconds of
+# failing windows that are none of its actions): plain values that parse --help reads
+from ._defaults import SUPPORT, UNFIT
 from .description import (OWN_KINDS, DescriptionError, common_table, describe_table,
                           feature_rows, scores)
 from ._description_json import WINDOWS
@@ -47,17 +50,6 @@ __all__ = ["Span", "Timeline", "parse", "describe_windows", "windows",
 _WINDOW = 2.0  # seconds: about two cycles of a gait or a wave
 _HOP = 0.25  # seconds between window starts
 _SWITCH = 10.0  # log-likelihood a change of action costs: about e^-10, a rare event
-# the share of a span's windows that must pass its action's feature-group test: a quarter,
-# so that a performance of a style not learnt, whose windows pass the test at times only,
-# keeps its span, and a stretch of an action never learnt, nearest to a learnt one by distance
-# but passing its test in no window or a few, does not
-SUPPORT = 0.25
-# seconds: a stretch of a span this long whose every window fails the action's test (two and
-# a half windows) is none of these, where an action never learnt is absorbed by a learnt
-# neighbour's span. On the parsing benchmark (30 fps, a hop of 8 frames) stretches of 16 to 24
-# windows (4.3 to 6.4 s) answer the same; 15 loses a learnt action's odd stretch in cmu-mocap6,
-# 28 and more catch less of the actions never learnt
-UNFIT = 5.0
 
 
 @dataclass(frozen=True)

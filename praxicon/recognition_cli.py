@@ -310,7 +310,7 @@ def _parse_progress(done: int, total: int) -> None:
 
 def register_recognise(sub) -> None:
     """Add ``recognise`` and ``parse`` to the ``psgs praxicon`` subcommands."""
-    from .parsing import SUPPORT, UNFIT
+    from ._defaults import SUPPORT, UNFIT  # not .parsing: --help does not need the parser
 
     r = sub.add_parser("recognise", help="which learnt action each motion file is",
                        description="One line per file: the best action (or none of these), "
