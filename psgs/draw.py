@@ -24,6 +24,8 @@ import shutil
 from dataclasses import dataclass
 from pathlib import Path
 
+# MAX_NODES, the most parse-tree nodes drawn: its own module, which psgs draw --help reads
+from ._draw_limits import MAX_NODES
 from ._draw_matplotlib import PER_ROW, _PALETTE, _matplotlib, _rule_text
 from .errors import MissingDependency, PSGSError, ValidationError
 from .model import PCGS, PSGS, Query
@@ -31,9 +33,6 @@ from .model import PCGS, PSGS, Query
 __all__ = ["Forest", "parse_forest", "sync_edges", "draw", "to_svg", "graphviz_available",
            "PER_ROW", "MAX_NODES"]
 
-#: The most parse-tree nodes ``psgs draw`` and a notebook's picture draw (about 3 s with
-#: matplotlib, 5 s with Graphviz): a tree past a few thousand nodes is no longer readable.
-MAX_NODES = 5_000
 
 @dataclass(frozen=True)
 class Forest:

@@ -52,7 +52,7 @@ def run_draw(args) -> int:
 
 def register(subparsers) -> None:
     """Add ``draw`` to the ``psgs`` command."""
-    from ..draw import MAX_NODES
+    from .._draw_limits import MAX_NODES  # not psgs.draw: --help does not need the drawing
 
     draw = subparsers.add_parser(
         "draw", help="draw a grammar system: parse trees of a derived word, synchronisation",
