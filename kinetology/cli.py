@@ -15,18 +15,14 @@ import os
 import sys
 from pathlib import Path
 
-import numpy as np
-
 from psgs._foundation.files import read_bytes
 from psgs._foundation.shell import (add_version, file_name, positive_float, run,
                                     with_exit_status_help)
 from psgs.errors import ValidationError
 
-from ._frame_rate_option import frame_rate_options
-from ._option_checks import check_codec_options, check_segment_options
-from .motion import MIN_UNWRAP, MotionFormatError, counted
-from .segmentation import DEFAULTS
-from .segmentation import _check as check_parameters
+# the defaults the help texts print; the modules that work with them (and numpy) are imported
+# by the handlers, so that making the parser (every --help and --version) does not load them
+from ._defaults import CODEC_DEFAULTS, DEFAULTS, MIN_UNWRAP
 
 _FILE_HELP = "a motion file: .bvh, or .amc (its .asf skeleton is found beside it)"
 _FRAME_RATE_HELP = ("frames per second of an AMC file (AMC files do not say; default 120, the "
@@ -77,7 +73,6 @@ def _add_params(parser, *, codec: bool = False, notes=None) -> None:
     """The segmentation options (or with ``codec`` the codec's); ``notes``: help texts that
     replace :data:`_PARAM_HELP`'s for this command."""
     if codec:  # the codec pins its own settings: its defaults, not the segmentation's
-        from .codec import CODEC_DEFAULTS
         for name, default in CODEC_DEFAULTS.items():
             text = _PARAM_HELP.get(name, _CODEC_HELP.get(name))
             parser.add_argument(f"--{name.replace('_', '-')}", dest=name, type=float,
@@ -100,6 +95,7 @@ MIN_FRAMES = 3
 def _read(args, path: str, *, enough: bool = True):
     """Read a motion file, with ``--frame-rate`` for AMC (a BVH file states its own rate);
     ``enough``: refuse one of fewer than :data:`MIN_FRAMES` frames."""
+    from ._frame_rate_option import frame_rate_options
     from .readers import read
     motion = read(path, **frame_rate_options(args, path))
     if enough:
@@ -109,6 +105,7 @@ def _read(args, path: str, *, enough: bool = True):
 
 def _enough_frames(motion, path: str, args, span: str = "") -> None:
     """One line, not an empty actiongram (or a traceback), for a motion too short to segment."""
+    from .motion import MotionFormatError
     if motion.frames < MIN_FRAMES:
         command = getattr(args, "kinetology_command", None) or args.command
         raise MotionFormatError(
@@ -147,6 +144,7 @@ def _is_folder(output: str) -> bool:
 
 def _segment_checks(args) -> list[str] | None:
     """The channels asked for (None: every angle); the options' refusals, before any work."""
+    from ._option_checks import check_segment_options
     channels = None
     if args.channels:
         channels = [c for item in args.channels for c in item.split(",") if c]
@@ -164,6 +162,7 @@ def _segment_checks(args) -> list[str] | None:
 
 def _refuse_empty(grams, names, args, channels) -> None:
     """No actiongram without strings: psgs refuses to read one (``empty actiongram``)."""
+    from .motion import MotionFormatError
     for name, ag in zip(names, grams):
         if not len(ag):
             limit = args.min_range if args.min_range is not None else DEFAULTS["min_range"]
@@ -173,6 +172,7 @@ def _refuse_empty(grams, names, args, channels) -> None:
 
 
 def _cmd_segment(args) -> int:
+    from .motion import counted
     from .performances import cut, segment_performances
     from .segmentation import segment
 
@@ -228,6 +228,7 @@ def _cmd_segment(args) -> int:
 def _segment_spans(args, channels) -> int:
     """One actiongram per labelled span of one take: DIR/TAKE-LABEL-K.actiongram."""
     from .labels import spans_of
+    from .motion import counted
     from .performances import from_spans, segment_performances
 
     if len(args.files) != 1 or not args.output or args.output == "-":
@@ -288,7 +289,8 @@ def _note_unlabelled_end(args, motion, spans) -> None:
 
 
 def _cmd_compress(args) -> int:
-    from .codec import CODEC_DEFAULTS, compress
+    from ._option_checks import check_codec_options
+    from .codec import compress
 
     out = args.output or str(Path(args.file).with_suffix(".kin"))
     _keep_inputs(out, [args.file])
@@ -311,6 +313,7 @@ def _note_other_rate(args, original, motion) -> None:
     are compared one to one all the same (the same count), which is the take's own frames when
     only the rate was read differently (an AMC file states none), but a user comparing against
     a take at another rate would otherwise read the error as that of this one, in silence."""
+    from .motion import counted
     if original.frame_rate == motion.frame_rate:
         return
     hint = (f"; an AMC file states no rate: --frame-rate {motion.frame_rate:g} reads it at the "
@@ -321,7 +324,10 @@ def _note_other_rate(args, original, motion) -> None:
 
 
 def _cmd_decompress(args) -> int:
+    import numpy as np
+
     from .codec import decompress
+    from .motion import MotionFormatError
 
     _keep_inputs(args.output, [args.file, args.against])
     # read_bytes: a device (/dev/zero) is refused, not read until memory runs out
@@ -350,11 +356,13 @@ def _cmd_decompress(args) -> int:
 
 
 def _cmd_evaluate(args) -> int:
+    import numpy as np
+
     from .evaluation import (MAX_VIEWS, angle_table, codec_point, mocap6_performances,
                              reproducibility, selectivity, view_invariance)
     from .kinematics import measurable_positions
-    from .codec import CODEC_DEFAULTS
-    from .segmentation import segments
+    from .motion import MotionFormatError, counted
+    from .segmentation import _check as check_parameters, segments
 
     if not args.files and not args.mocap6:
         raise MotionFormatError("nothing to evaluate: give motion files and/or --mocap6 DIR",
@@ -416,6 +424,9 @@ def _cmd_evaluate(args) -> int:
 
 def _print_mocap6(folder, perfs, repro, sel) -> None:
     """The reproducibility and selectivity lines of ``evaluate --mocap6``."""
+    import numpy as np
+
+    from .motion import counted
     print(f"reproducibility ({folder}, {counted(len(perfs), 'performance')}): mean over channels")
     for action, row in repro.items():
         mean = np.mean([v[0] for v in row.values()])
@@ -440,8 +451,9 @@ def _print_mocap6(folder, perfs, repro, sel) -> None:
 
 def _cmd_plot(args) -> int:
     from . import plotting
-
-    from .codec import CODEC_DEFAULTS
+    from ._option_checks import check_codec_options
+    from .motion import MotionFormatError
+    from .segmentation import _check as check_parameters
 
     plotting.check_output(args.output)  # matplotlib refuses a suffix only once the work is done
     params = _params(args, DEFAULTS)
