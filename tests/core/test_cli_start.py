@@ -16,9 +16,13 @@ import pytest
 
 #: Modules the parser was made with once and no longer needs: the grammar reader and its
 #: parser generator (read when a FILE is), the skeleton player (when ``kinetology view``
-#: runs), the praxicon's store (when a praxicon folder is read).
+#: runs), the praxicon's store (when a praxicon folder is read); numpy and the modules whose
+#: defaults the help texts print (they read them from numpy-free modules of defaults), and
+#: kinetology's motion, which its package no longer imports at once.
 DEFERRED = ("lark", "psgs.format", "psgs._format_reader", "kinetology.viewer",
-            "kinetology._viewer_checks", "kinetology.readers", "praxicon.store")
+            "kinetology._viewer_checks", "kinetology.readers", "praxicon.store", "numpy",
+            "kinetology.motion", "kinetology.segmentation", "kinetology.codec",
+            "praxicon.description", "praxicon.parsing", "psgs.draw")
 
 
 def _fresh(code: str) -> dict:
@@ -33,9 +37,9 @@ def test_the_parser_is_made_without_the_deferred_modules():
         "import json, sys\n"
         "from psgs.cli import build_parser\n"
         "build_parser()\n"
+        f"loaded = [m for m in {DEFERRED!r} if m in sys.modules]\n"
         "import kinetology.codec.quartic as q\n"
-        f"print(json.dumps({{'loaded': [m for m in {DEFERRED!r} if m in sys.modules],\n"
-        "                  'tables': q._tables.cache_info().currsize}))\n")
+        "print(json.dumps({'loaded': loaded, 'tables': q._tables.cache_info().currsize}))\n")
     assert found["loaded"] == []
     # the codec's quartic tables (tens of milliseconds of exact solves) are made on first use
     assert found["tables"] == 0
@@ -103,3 +107,22 @@ def test_the_exact_quartics_agree_with_a_float_solve(k):
     expected = np.linalg.solve(kkt, rhs)[:5].T
     table_u, table_w = _tables()
     np.testing.assert_allclose(np.stack([table_u[k], table_w[k]]), expected, atol=1e-9)
+
+
+def test_kinetology_loads_its_names_on_first_use_and_keeps_them():
+    # the package imports neither motion nor numpy; the module performances, imported first,
+    # does not take the function's name; a Motion from motion.py shows its player
+    found = _fresh(
+        "import json, sys, types\n"
+        "import kinetology\n"
+        "at_once = [m for m in ('numpy', 'kinetology.motion') if m in sys.modules]\n"
+        "from kinetology.performances import cut\n"
+        "from kinetology.motion import Motion\n"
+        "from kinetology import performances\n"
+        "import kinetology.performances as named\n"
+        "print(json.dumps({'at_once': at_once, 'function': [\n"
+        "    isinstance(f, types.FunctionType) and f.__name__ == 'performances'\n"
+        "    for f in (kinetology.performances, performances, named)],\n"
+        "    'shown': Motion._repr_html_.__name__, 'Motion': kinetology.Motion is Motion}))\n")
+    assert found == {"at_once": [], "function": [True, True, True], "shown": "_motion_html",
+                     "Motion": True}
