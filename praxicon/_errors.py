@@ -9,10 +9,12 @@ from __future__ import annotations
 
 from psgs.errors import PSGSError
 
-__all__ = ["DescriptionError", "REBUILD"]
+__all__ = ["DescriptionError", "REBUILD", "DAMAGED"]
 
 #: The command that rebuilds a praxicon folder (named by every "other version" error).
 REBUILD = "psgs praxicon build DATASET... -o FOLDER"
+#: How a line about one damaged record ends (a build into the folder learns that one again).
+DAMAGED = f"the record is damaged ('{REBUILD}' into the folder learns the action again)"
 
 
 class DescriptionError(PSGSError, ValueError):

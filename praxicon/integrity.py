@@ -29,6 +29,7 @@ from pathlib import Path
 
 from ._values import shown
 from .description_store import FILE
+from ._errors import DAMAGED
 from ._record_checks import lookup_problem
 from .jsonvalues import read_json
 from .records import REBUILD, PraxiconError
@@ -217,8 +218,7 @@ def _misnamed_channels(folder: Path, praxicon, components: dict) -> list[str]:
             problem = lookup_problem(record, components[record.name])
             if problem:
                 problems.append(f"{folder / 'records' / (record.name + '.json')}: {problem}: "
-                                f"the record is damaged ('{REBUILD}' into the folder learns "
-                                f"the action again)")
+                                f"{DAMAGED}")
     return problems
 
 

@@ -32,7 +32,7 @@ from kinetology.motion import FRAME_RATE_RANGE
 from psgs.errors import NotFound, PSGSError, ValidationError
 
 from ._description_json import FieldError, check_named_alike
-from ._errors import REBUILD
+from ._errors import DAMAGED, REBUILD
 from ._record_checks import MAX_NAME_BYTES, lookup_problem, name_problem
 from ._values import settings_fields
 from .description import DescriptionError, Descriptions
@@ -417,8 +417,7 @@ class ActionRecord:
                      segmentation=_pairs(j.object("segmentation", True)))
         # a key generation finds nothing under: refused here, not when generation poses 0
         if problem := lookup_problem(record):
-            raise PraxiconError(f"{where}: {problem}: the record is damaged ('{REBUILD}' "
-                                f"into the folder learns the action again)")
+            raise PraxiconError(f"{where}: {problem}: {DAMAGED}")
         return record
 
 

@@ -31,6 +31,7 @@ from collections.abc import Iterable
 from dataclasses import replace
 from pathlib import Path
 
+from ._errors import DAMAGED
 from ._record_checks import lookup_problem, name_problem
 from ._values import is_flag, not_all, shown
 from .records import REBUILD, ActionRecord, Praxicon, PraxiconError, Settings, check_index
@@ -127,8 +128,7 @@ def system_problem(record: ActionRecord, where, *, advice: bool = True) -> str |
         line, column = getattr(exc, "line", None), getattr(exc, "column", None)
         place = f"line {line}, column {column}: " if line and column else ""
         said = f"{where}: 'system' does not parse ({place}{getattr(exc, 'message', exc)})"
-        return said + (f": the record is damaged ('{REBUILD}' into the folder learns the "
-                       f"action again)" if advice else "")
+        return said + (f": {DAMAGED}" if advice else "")
     return None
 
 
