@@ -70,6 +70,16 @@ def build_walk_and_stay(root: Path, leg) -> Path:
     return root / "px"
 
 
+def build_wave_and_step(folder: Path) -> Path:
+    """A praxicon (``folder/px``) of moves.wave and moves.step, learnt from three BVH takes
+    each written into ``folder`` with their manifest (:func:`write_manifest`)."""
+    from praxicon import build, read_dataset
+
+    manifest = write_manifest(folder, {"wave": [1, 2, 3], "step": [4, 5, 6]})
+    build(read_dataset(manifest), folder / "px", progress=False, log=lambda s: None)
+    return folder / "px"
+
+
 def write_manifest(folder: Path, actions: dict[str, list[int]], missing: bool = False) -> Path:
     """BVH takes and a CSV manifest: ``actions`` maps an action to its takes' seeds."""
     from kinetology import write_bvh

@@ -21,7 +21,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from kinetology import read_bvh, synthetic_motion
-from praxicon import build, dump, load, read_dataset
+from praxicon import dump, load
 from praxicon._description_json import FieldError, check_feature_names, feature_problem
 from praxicon.description import (ActionDescription, DescriptionError, Descriptions, Spread,
                                   describe)
@@ -29,16 +29,13 @@ from praxicon.features import motion_features
 from praxicon.generation import RecordFieldError, generate, generate_motion
 from praxicon.parsing import describe_windows
 from praxicon.records import PraxiconError
-from praxicon_fixtures import leg_body, refused, run_praxicon, take, write_manifest
+from praxicon_fixtures import build_wave_and_step, leg_body, refused, run_praxicon, take
 
 
 @pytest.fixture(scope="module")
 def built(tmp_path_factory):
     """A praxicon of two actions (moves.step, moves.wave) learnt from BVH takes."""
-    root = tmp_path_factory.mktemp("misnamed")
-    manifest = write_manifest(root, {"wave": [1, 2, 3], "step": [4, 5, 6]})
-    build(read_dataset(manifest), root / "px", progress=False, log=lambda s: None)
-    return root / "px"
+    return build_wave_and_step(tmp_path_factory.mktemp("misnamed"))
 
 
 def _damaged(built, tmp_path, change):

@@ -14,19 +14,15 @@ from pathlib import Path
 import pytest
 
 import praxicon.outputs as outputs
-from praxicon import build, read_dataset
 from praxicon_fixtures import refused
 
 
 @pytest.fixture(scope="module")
 def built(tmp_path_factory) -> Path:
     """The manifest fixture's praxicon (moves.wave, moves.step, ...), built once."""
-    from praxicon_fixtures import write_manifest
+    from praxicon_fixtures import build_wave_and_step
 
-    data = tmp_path_factory.mktemp("data")
-    path = write_manifest(data, {"wave": [1, 2, 3], "step": [4, 5, 6]})
-    build(read_dataset(path), data / "px", progress=False, log=lambda s: None)
-    return data / "px"
+    return build_wave_and_step(tmp_path_factory.mktemp("data"))
 
 
 def _read_only(monkeypatch, *paths) -> None:

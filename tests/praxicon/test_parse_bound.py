@@ -12,7 +12,6 @@ import numpy as np
 import pytest
 
 from kinetology import Motion, synthetic_motion
-from praxicon import build, read_dataset
 from praxicon.description import DescriptionError
 from praxicon.parsing import describe_windows, parse, windows
 from praxicon_fixtures import run_praxicon
@@ -92,12 +91,9 @@ def test_the_bound_is_a_positive_number_of_seconds(two_actions, bad):
 
 @pytest.fixture(scope="module")
 def built(tmp_path_factory):
-    from praxicon_fixtures import write_manifest
+    from praxicon_fixtures import build_wave_and_step
 
-    data = tmp_path_factory.mktemp("data")
-    path = write_manifest(data, {"wave": [1, 2, 3], "step": [4, 5, 6]})
-    build(read_dataset(path), data / "px", progress=False, log=lambda s: None)
-    return data / "px"
+    return build_wave_and_step(tmp_path_factory.mktemp("data"))
 
 
 def test_the_command_prints_what_was_parsed_and_exits_3(built, tmp_path, capsys):
