@@ -37,40 +37,6 @@ __all__ = ["register_recognise"]
 _ERROR = "psgs: error: "
 
 
-def read_descriptions(folder, *, windows: bool = False):
-    """The praxicon's descriptions, as :func:`praxicon.store.read_descriptions` reads them;
-    the store (and the descriptions' modules under it) loads when a command reads a folder,
-    not when the command's parser is made.
-
-    Parameters
-    ----------
-    folder : str or path
-        The praxicon folder.
-    windows : bool, default False
-        The windows' descriptions (for parse), not the whole takes'.
-
-    Returns
-    -------
-    praxicon.description.Descriptions
-        The descriptions.
-
-    Raises
-    ------
-    DescriptionError
-        One line, as :func:`praxicon.store.read_descriptions` says it.
-
-    Examples
-    --------
-    >>> read_descriptions("no/such/praxicon")
-    Traceback (most recent call last):
-    ...
-    praxicon.description.DescriptionError: no/such/praxicon: no such praxicon folder
-    """
-    from .store import read_descriptions as read
-
-    return read(folder, windows=windows)
-
-
 def _read_motion(path: str, doing: str = "recognising"):
     import kinetology
     from psgs.errors import PSGSError
@@ -218,6 +184,7 @@ def run_recognise(args, *, most_files: int = CHUNK_FILES,
     """``psgs praxicon recognise``, its FILEs read and recognised a chunk at a time (at most
     ``most_files`` files, or fewer holding ``most_bytes``: :func:`_chunks`)."""
     from .recognition import ScoreModels
+    from .store import read_descriptions
 
     if args.plot and len(args.files) != 1:
         raise ValidationError(f"--plot draws one recognition's explanation: give one FILE "
@@ -256,6 +223,7 @@ def run_parse(args) -> int:
     from ._arguments import real_number
     from .parsing import _parsed
     from .recognition import _in_file
+    from .store import read_descriptions
 
     _check_pictures(args.plot)
     try:  # before the folder is read, as every other value of the command

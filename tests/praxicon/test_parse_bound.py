@@ -125,15 +125,15 @@ def test_the_commands_deadline_runs_from_its_start(built, monkeypatch, capsys):
     left, floored at a millisecond, read windows past it."""
     import time
 
-    from praxicon import recognition_cli
+    from praxicon import store
 
-    real = recognition_cli.read_descriptions
+    real = store.read_descriptions
 
     def slow(*args, **kwargs):
         time.sleep(0.3)
         return real(*args, **kwargs)
 
-    monkeypatch.setattr(recognition_cli, "read_descriptions", slow)
+    monkeypatch.setattr(store, "read_descriptions", slow)
     take = str(built.parent / "wave_1.bvh")
     status, out, err = run_praxicon(capsys, ["parse", str(built), take, "--max-seconds", "0.2"])
     assert status == 3
