@@ -1,5 +1,6 @@
 """The option values of ``kinetology segment``, ``compress`` and ``plot``, checked before any
-file is read (kept apart from :mod:`kinetology.cli`, which is near the module line cap).
+file is read (kept apart from the commands, :mod:`kinetology._commands`: it loads the
+segmentation and numpy, which the commands import when a handler runs).
 
 A bad value is then one line at once, not after reading a large take, nor after the error of a
 missing file; the words are those the work itself would refuse the value in, so a message

@@ -370,6 +370,7 @@ def test_a_built_wheel_ships_the_example_grammars_and_the_metadata(tmp_path):
 def test_resource_limits_are_one_line_not_a_traceback(capsys, monkeypatch, error, status, words):
     import psgs.cli.core as core
     from kinetology import cli as kinetology_cli
+    from kinetology._commands import segment as segment_command
 
     def fail(*args, **kwargs):
         raise error()
@@ -377,7 +378,7 @@ def test_resource_limits_are_one_line_not_a_traceback(capsys, monkeypatch, error
     assert main(["show", "counting"]) == status
     err = capsys.readouterr().err
     assert words in err and len(err.splitlines()) == 1
-    monkeypatch.setattr(kinetology_cli, "_read", fail)
+    monkeypatch.setattr(segment_command, "read_motion", fail)  # where segment reads its takes
     assert kinetology_cli.main(["segment", "x.bvh"]) == status
     err = capsys.readouterr().err
     assert words in err and len(err.splitlines()) == 1
