@@ -1,5 +1,6 @@
-"""The argument checks of :func:`kinetology.view` and :class:`kinetology.Player` (kept here:
-viewer.py is at the line cap).
+"""The argument checks of :func:`kinetology.view` and :class:`kinetology.Player`, and the
+pace a GIF or MP4 can play at (``kinetology view`` checks its options here before it reads a
+file; the animation writer reads the formats' limits).
 
 Each returns the problem in words, for the caller's :class:`~kinetology.viewer.ViewError`, or
 None. What worked before the checks keeps working: an infinite ``max_rate`` or ``max_frames``

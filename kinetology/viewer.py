@@ -27,35 +27,32 @@ for a CMU walk with its 38 joints at the cap, 490 frames).
 
 from __future__ import annotations
 
-import html
-import json
 import math
 import os
 import shutil
 from dataclasses import dataclass
 from functools import cached_property
-from importlib import resources
 from pathlib import Path
 from typing import Iterable, Mapping, Sequence
 
 import numpy as np
 
+# below: a panel's geometry (_viewer_camera), what it shows of its motion besides the
+# positions (_viewer_contents), and the HTML of a player (_viewer_page)
+from . import _viewer_camera as camera
+from ._viewer_camera import PITCH as _PITCH, YAW as _YAW
 from ._viewer_checks import pace_problem, panels_problem, tick_problem, view_problem
+from ._viewer_contents import (actuator_flags, actuator_problem, frame_step, joint_states,
+                               titled)
+from ._viewer_page import fragment, packed_positions, page
 from .kinematics import positions_problem
 from .motion import Motion, MotionFormatError, check_number
 from .motion import counted as _count
-from .plotting import STATE_COLOURS, STILL_COLOUR
 
 __all__ = ["SUFFIXES", "ViewError", "Panel", "Player", "view", "motion_html", "check_output"]
 
-#: the states' colours (those of the plots) and a still joint's, ``"-"``
-_COLOURS = {**STATE_COLOURS, "-": STILL_COLOUR}
 #: Output suffixes a player writes.
 SUFFIXES = (".html", ".gif", ".mp4")
-_STATE_READING = {"B": "rising, speeding up", "G": "rising, slowing down",
-                  "R": "falling, speeding up", "Y": "falling, slowing down", "-": "still"}
-_QUANTA = 1000  # positions to 1/1000 of the largest extent: 2 mm on a 2 m body, below a pixel
-_YAW, _PITCH = 30.0, 12.0  # degrees: the default view, a little from the side and above
 
 
 class ViewError(MotionFormatError):
@@ -151,28 +148,17 @@ class Panel:
         within 1% of its mean. Not a bone: a root that stays at the origin while the body's
         translation channels carry it away (Bandai Namco's ``joint_Root``); such a link is not
         drawn, and a joint without bones is not part of the body."""
-        out = []
-        for j, parent in enumerate(self.parents):
-            if parent < 0:
-                out.append(False)
-                continue
-            length = np.linalg.norm(self.positions[:, j] - self.positions[:, parent], axis=-1)
-            out.append(bool(np.ptp(length) <= 0.01 * length.mean() + 1e-9))
-        return tuple(out)
+        return camera.bones(self.positions, self.parents)
 
     @cached_property
     def body(self) -> np.ndarray:
         """Joints that are part of the drawn body (at an end of a bone), a boolean mask."""
-        mask = np.array(self.bones)
-        for j, parent in enumerate(self.parents):
-            if self.bones[j]:
-                mask[parent] = True
-        return mask if mask.any() else np.ones(len(self.joints), bool)
+        return camera.body(self.bones, self.parents)
 
     def pose(self, frame: int, yaw: float = _YAW, pitch: float = _PITCH) -> np.ndarray:
         """The joints of kept frame ``frame`` projected on the screen plane, ``(joints, 2)``:
         x to the right, y up, in file units (the page and the GIF draw this projection)."""
-        return _project(self.positions[frame], self._anchors[frame], yaw, pitch)
+        return camera.project(self.positions[frame], self._anchors[frame], yaw, pitch)
 
     def floor(self, frame: int, yaw: float = _YAW, pitch: float = _PITCH) -> np.ndarray:
         """The floor's grid around the camera's point at kept frame ``frame``, projected as
@@ -180,63 +166,31 @@ class Panel:
         so a body that travels passes over them."""
         anchor = self._anchors[frame]
         radius, _ = self._fit
-        spacing = radius / 2
-        lines = []
-        for axis in (0, 2):  # lines of constant x, then of constant z
-            other = 2 - axis
-            first = math.ceil((anchor[axis] - radius) / spacing)
-            for k in range(first, first + 5):
-                a, b = anchor.copy(), anchor.copy()
-                a[axis] = b[axis] = k * spacing
-                a[other], b[other] = anchor[other] - radius, anchor[other] + radius
-                lines.append((a, b))
-        return _project(np.array(lines, float).reshape(-1, 2, 3), anchor, yaw, pitch)
+        return camera.project(camera.floor_lines(anchor, radius), anchor, yaw, pitch)
 
     def _centre(self) -> np.ndarray:
-        lo, hi = self.positions.min(axis=(0, 1)), self.positions.max(axis=(0, 1))
-        return np.array([(lo[0] + hi[0]) / 2, lo[1], (lo[2] + hi[2]) / 2])
+        return camera.centre(self.positions)
 
     @cached_property
     def _anchors(self) -> np.ndarray:
         """Per kept frame, the floor point the camera looks at: when following, below the mean
         of the joints (not the root joint: Bandai Namco's root stays at the origin while the
         hips carry the body away)."""
-        anchors = np.tile(self._centre(), (self.frames, 1))
-        if self.follow:
-            anchors[:, [0, 2]] = self.positions[:, self.body][..., [0, 2]].mean(axis=1)
-        return anchors
+        return camera.anchors(self.positions, self.body, self.follow)
 
     @cached_property
     def _fit(self) -> tuple[float, float]:
         """Horizontal radius around the camera's point (any yaw fits in it) and height."""
-        anchors, body = self._anchors, self.positions[:, self.body]
-        flat = body[..., [0, 2]] - anchors[:, None, [0, 2]]
-        radius = float(np.sqrt((flat ** 2).sum(-1)).max())
-        height = float(body[..., 1].max() - anchors[0, 1])
-        return max(radius, 1e-9), max(height, 1e-9)
+        return camera.fit(self.positions, self.body, self._anchors)
 
     def to_json(self) -> dict:
         """The panel as the page's script reads it (positions as integer differences)."""
-        centre = self._centre()
-        radius, height = self._fit
-        quantum = max(2 * radius, height) / _QUANTA
-        ints = np.rint((self.positions - centre) / quantum).astype(np.int64)
-        deltas = np.diff(ints, axis=0, prepend=np.zeros_like(ints[:1]))
         return {"label": self.label, "joints": list(self.joints), "parents": list(self.parents),
-                "frames": self.frames, "rate": self.frame_rate, "quantum": quantum,
-                "radius": radius / quantum, "height": height / quantum,
-                "pos": deltas.ravel().tolist(), "states": list(self.states),
+                "frames": self.frames, "rate": self.frame_rate,
+                **packed_positions(self.positions, self._centre(), *self._fit),
+                "states": list(self.states),
                 "actuators": [int(a) for a in self.actuators], "follow": self.follow,
                 "bones": [int(b) for b in self.bones], "body": [int(b) for b in self.body]}
-
-
-def _project(points: np.ndarray, centre: np.ndarray, yaw: float, pitch: float) -> np.ndarray:
-    """Orthographic view turned by ``yaw`` about the vertical and tilted ``pitch`` downwards."""
-    a, b = math.radians(yaw), math.radians(pitch)
-    x, y, z = (points - centre)[..., 0], (points - centre)[..., 1], (points - centre)[..., 2]
-    across = x * math.cos(a) - z * math.sin(a)
-    depth = x * math.sin(a) + z * math.cos(a)
-    return np.stack([across, y * math.cos(b) + depth * math.sin(b)], axis=-1)
 
 
 @dataclass(frozen=True, eq=False)
@@ -299,43 +253,10 @@ class Player:
 
     def to_html(self, *, title: str | None = None) -> str:
         """The whole page: inline data and script, nothing fetched, opens from a file."""
-        title = title or " | ".join(p.label for p in self.panels)
-        return ("<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\">"
-                f"<title>{html.escape(title)}</title></head>\n<body style=\"margin:8px;"
-                f"font-family:sans-serif\">\n{self._fragment()}\n</body></html>\n")
+        return page(title or " | ".join(p.label for p in self.panels), fragment(self))
 
     def _repr_html_(self) -> str:
-        return self._fragment()
-
-    def _fragment(self) -> str:
-        data = {"rate": self.frame_rate, "ticks": self.ticks, "yaw": _YAW, "pitch": _PITCH,
-                "colours": _COLOURS, "panels": [p.to_json() for p in self.panels]}
-        # no "<" at all inside the script element: a label cannot end it or open a comment
-        text = json.dumps(data, separators=(",", ":")).replace("<", "\\u003c")
-        # the element id comes from the content: two players on one notebook page do not
-        # collide, and the same motions give the same page
-        import hashlib
-        ident = "kinetology-view-" + hashlib.sha1(text.encode()).hexdigest()[:12]
-        legend = " ".join(
-            f'<span title="{_STATE_READING[s]}"><span style="display:inline-block;width:.8em;'
-            f'height:.8em;border-radius:50%;background:{c}"></span> {s if s != "-" else "still"}'
-            f'</span>' for s, c in _COLOURS.items())
-        if any(any(p.actuators) for p in self.panels):
-            legend += (' <span><span style="display:inline-block;width:.8em;height:.8em;'
-                       'border-radius:50%;border:2px solid #000"></span> actuator</span>')
-        script = resources.files(__package__).joinpath("viewer.js").read_text("utf-8")
-        return (f'<div id="{ident}" class="kinetology-view">\n'
-                f'<div class="panels" style="display:flex;gap:8px;flex-wrap:wrap"></div>\n'
-                f'<div style="display:flex;gap:8px;align-items:center;margin-top:4px">'
-                f'<button class="play" type="button">Play</button>'
-                f'<input class="time" type="range" min="0" max="{self.ticks - 1}" value="0" '
-                f'step="1" style="flex:1" aria-label="time">'
-                f'<span class="clock" style="font-variant-numeric:tabular-nums">0.00 s</span>'
-                f'</div>\n<div style="font-size:.85em;margin-top:4px">{legend} '
-                f'&middot; drag a body to turn it</div>\n'
-                f'<script type="application/json" class="data">{text}</script>\n'
-                f'<script>\n(function (script, id) {{\n{script}\n}})(document.currentScript, '
-                f'"{ident}");\n</script>\n</div>')
+        return fragment(self)
 
     def save(self, path: str | Path, *, dpi: int = 72) -> Path:
         """Write the player to ``path``: ``.html`` (the page), ``.gif`` or ``.mp4``.
@@ -391,46 +312,6 @@ def check_output(path: str | Path) -> str:
     return suffix
 
 
-def _step(motion: Motion, max_rate: float, max_frames: int) -> int:
-    by_rate = math.ceil(motion.frame_rate / max_rate - 1e-9)
-    by_count = math.ceil(motion.frames / max_frames)
-    return max(1, by_rate, by_count)
-
-
-def _joint_states(motion: Motion, step: int, params: dict) -> tuple[str, ...]:
-    """Per joint, the state letter of its widest moving rotation channel at each kept frame."""
-    from .segmentation import STATES, segments, unwrap
-
-    found = segments(motion, engine="numpy", **params)
-    letters = np.array([*STATES])
-    codes = {c: np.repeat(found.codes[i], np.diff(found.borders[i]))[::step]
-             for i, c in enumerate(found.channels)}
-    kept = math.ceil(motion.frames / step)
-    out = []
-    for joint in motion.skeleton.joints:
-        moving = [c for c in joint.channels if c in codes]
-        if not moving:
-            out.append("-" * kept)
-            continue
-        widest = max(moving, key=lambda c: float(np.ptp(unwrap(motion.column(c)))))
-        out.append("".join(letters[codes[widest]]))
-    return tuple(out)
-
-
-def _actuator_flags(motion: Motion, label: str, names: Iterable[str] | None) -> tuple[bool, ...]:
-    joints = motion.skeleton.names
-    chosen = set()
-    for name in names or ():
-        if name in joints:
-            chosen.add(name)
-        elif name in motion.channels:  # a channel stands for the joint that lists it
-            chosen.update(j.name for j in motion.skeleton.joints if name in j.channels)
-        else:
-            raise ViewError(f"no joint or channel {name!r} to highlight (joints: "
-                            f"{', '.join(joints)})", source=label)
-    return tuple(j in chosen for j in joints)
-
-
 def _panel(label: str, motion: Motion, actuators, kinetemes: bool, max_rate: float,
            max_frames: int, follow: bool, params: dict) -> Panel:
     if not isinstance(motion, Motion):
@@ -442,7 +323,7 @@ def _panel(label: str, motion: Motion, actuators, kinetemes: bool, max_rate: flo
                         source=motion.source)
     from .kinematics import forward_kinematics
 
-    step = _step(motion, max_rate, max_frames)
+    step = frame_step(motion, max_rate, max_frames)
     kept = Motion(motion.values[::step], motion.channels, motion.frame_rate / step,
                   motion.skeleton, motion.source)
     positions = forward_kinematics(kept)
@@ -450,12 +331,14 @@ def _panel(label: str, motion: Motion, actuators, kinetemes: bool, max_rate: flo
         raise ViewError(problem, source=motion.source)
     positions.setflags(write=False)
     joints = motion.skeleton.joints
-    states = _joint_states(motion, step, params) if kinetemes else \
+    states = joint_states(motion, step, params) if kinetemes else \
         tuple("-" * kept.frames for _ in joints)
+    actuators = tuple(actuators or ())  # read once: a generator is checked, then flagged
+    if problem := actuator_problem(motion, actuators):
+        raise ViewError(problem, source=label)
     return Panel(label, motion.skeleton.names,
                  tuple(-1 if j.parent is None else j.parent for j in joints), positions,
-                 states, _actuator_flags(motion, label, actuators), kept.frame_rate, step,
-                 follow)
+                 states, actuator_flags(motion, actuators), kept.frame_rate, step, follow)
 
 
 def view(motions: Motion | Sequence[Motion] | Mapping[str, Motion],
@@ -537,7 +420,7 @@ def view(motions: Motion | Sequence[Motion] | Mapping[str, Motion],
     if isinstance(motions, str) or not isinstance(motions, Iterable):
         raise ViewError(f"motions must be a Motion, a sequence or a mapping of them, not "
                         f"{type(motions).__name__}", source="kinetology.view")
-    named = dict(motions) if isinstance(motions, Mapping) else _titled(motions)
+    named = dict(motions) if isinstance(motions, Mapping) else titled(motions)
     if not named:
         raise ViewError("no motion to show", source="kinetology.view")
     for label, motion in named.items():
@@ -582,13 +465,3 @@ def motion_html(motion: Motion) -> str | None:
     if motion.frames == 0 or motion.skeleton is None:
         return None
     return view(motion)._repr_html_()
-
-
-def _titled(motions: Iterable) -> dict:
-    """Panels titled by file name; a name that repeats (a/walk.bvh, b/walk.bvh) gets its
-    position added, so that every motion keeps its panel."""
-    motions = list(motions)
-    names = [Path(m.source).name if isinstance(m, Motion) else str(i)
-             for i, m in enumerate(motions)]
-    return {(name if names.count(name) == 1 else f"{name} ({i + 1})"): m
-            for i, (name, m) in enumerate(zip(names, motions))}

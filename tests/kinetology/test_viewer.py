@@ -21,7 +21,8 @@ from kinetology.bvh import parse_bvh
 from kinetology.cli import main
 from kinetology.kinematics import forward_kinematics
 from kinetology.segmentation import STATES, states
-from kinetology.viewer import ViewError, _step, view
+from kinetology._viewer_contents import frame_step
+from kinetology.viewer import ViewError, view
 
 from kinetology_fixtures import MOCAP, needs_mocap
 
@@ -92,7 +93,7 @@ def test_page_positions_decode_within_half_a_quantum(angles, travel, length):
 def test_step_is_the_smallest_meeting_both_caps(rate, frames, max_rate, max_frames):
     motion = Motion(np.zeros((1, 1)), ("a.rx",), rate)
     object.__setattr__(motion, "values", np.zeros((frames, 0)))  # a shape, not data
-    k = _step(motion, max_rate, max_frames)
+    k = frame_step(motion, max_rate, max_frames)
 
     def fits(step):
         return rate / step <= max_rate * (1 + 1e-9) and math.ceil(frames / step) <= max_frames
