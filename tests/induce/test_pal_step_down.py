@@ -8,7 +8,8 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from psgs.induce.pal.in_step import _read_the_rest, read_at
+from psgs.induce.pal.core_cover import cover_reading
+from psgs.induce.pal.in_step import _read_the_rest
 from psgs.induce.pal.motifs import Timed
 from psgs.induce.pal.sections import follow_rate
 
@@ -57,7 +58,7 @@ def test_the_members_are_holms_and_hold_every_one_bonferroni_keeps(seed, section
     follows = [follow_rate(s.codes) for s in strings]
     taken = {j % len(strings) for j in taken}
     joined = _read_the_rest(strings, core, follows, taken, LEVEL)
-    read = {j: read_at(strings[j], core, follows[j]) for j in range(len(strings))
+    read = {j: cover_reading(strings[j], core, follows[j]) for j in range(len(strings))
             if j not in taken}
     weights = {j: r[0] for j, r in read.items() if r is not None}
     count = len(read)
@@ -80,11 +81,11 @@ def test_a_member_short_of_the_test_against_all_joins_after_the_others():
     # six strings play an 8-symbol section over 4 letters; read at the section's times the
     # weakest weighs just short of the test against all the others, and passes once the
     # lighter ones have
-    strings, core = _strings(35, 6, 16, 8)
+    strings, core = _strings(232, 6, 16, 8)
     follows = [follow_rate(s.codes) for s in strings]
-    read = {j: read_at(strings[j], core, follows[j]) for j in range(1, len(strings))}
+    read = {j: cover_reading(strings[j], core, follows[j]) for j in range(1, len(strings))}
     count = len(read)
-    assert [j for j in range(1, 6) if read[j][0] + math.log10(count) > LEVEL] == [5]
+    assert [j for j in range(1, 6) if read[j][0] + math.log10(count) > LEVEL] == [2]
     joined = _read_the_rest(strings, core, follows, {0}, LEVEL)
     assert set(range(1, 6)) <= set(joined)
     assert not set(joined) - set(range(1, 6))

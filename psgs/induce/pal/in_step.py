@@ -22,9 +22,10 @@ that move with the lead or with another, one string's symbol determining the oth
 beyond chance away from the lead's copies, add nothing: :class:`~psgs.induce.pal.alike.Alike`);
 a member is kept only when its own ``T_j`` beats chance among the other strings, so that
 no random string is carried in by the others' strength: ``T_j + log10(N - 1) <=
-log10(alpha)`` read at the lead's copies, and, read again at the core below, Holm's
-step-down over the ``M`` strings read there (the ``k``-th lightest against
-``log10(M - k)``). A string is read at the lead's copies (:func:`read_at`), not only at its
+log10(alpha)`` read at the lead's copies, and, read again at the core below by how
+much of it the string plays again at its shift
+(:func:`~psgs.induce.pal.core_cover.cover_reading`), Holm's step-down over the ``M``
+strings read there (the ``k``-th lightest against ``log10(M - k)``). A string is read at the lead's copies (:func:`read_at`), not only at its
 own section: its longest repeat may be a chance repeat elsewhere, as long as the section or
 longer. Copies in step keep the lead's shift between them (to within the string's typical
 segment); a string that fails at the lead's copies is read again where the lead and its
@@ -41,6 +42,7 @@ import numpy as np
 
 from .conf import NO_BOUND
 from .alike import Alike
+from .core_cover import cover_reading
 from .in_step_weight import in_step_significance, in_step_weights
 from .motifs import Timed
 from .pairing import lead_segments
@@ -272,7 +274,7 @@ def _led_by(strings: list[Timed], lead: int, section: Section, lead_copies: np.n
                                       for j, f in joined.items()])
         if core is not None:
             for j, (again, found) in _read_the_rest(strings, core, follows, {lead, *joined},
-                                                    level, reads).items():
+                                                    level).items():
                 joined[j] = found
                 weights.append(again)
     if not joined:
@@ -323,27 +325,25 @@ def _times(strings: list[Timed], sections: list, intervals: dict[int, np.ndarray
 
 
 def _read_the_rest(strings: list[Timed], core: np.ndarray, follows: list[float | None],
-                   taken, level: float, reads: _Reads | None = None
-                   ) -> dict[int, tuple[float, Section]]:
-    """Every string not in ``taken`` read at ``core`` (two copies' times) that is in step
-    there beyond chance among the other strings read, as a member must be: ``{string: (its
-    significance, the repeat read)}``, in string order (``reads``: as :func:`_led_by`).
+                   taken, level: float) -> dict[int, tuple[float, Section]]:
+    """Every string not in ``taken`` that plays the core (two copies' times) again at its
+    shift beyond chance among the other strings read, as a member must be: ``{string: (its
+    significance, the repeat read)}``, in string order. Each is weighed by how much of the
+    core it covers (:func:`~psgs.induce.pal.core_cover.cover_reading`).
 
     Holm's step-down over the ``M`` strings read: the ``k``-th lightest (from 0) joins when
     it and every lighter one pass ``T + log10(M - k) <= level``; the chance of carrying in
     any random string at this reading is at most ``alpha``, as with ``T + log10(M) <= level``
-    for each, and a member read where others passed needs less. Read in rounds at the next member's need
-    until one adds none (whoever passes a round's need passes Holm's at its own rank).
+    for each, and a member read where others passed needs less.
     """
-    reads = _Reads(strings, follows, []) if reads is None else reads
     left = [j for j in range(len(strings)) if j not in taken]
     count = len(left)
+    readings = {j: cover_reading(strings[j], core, follows[j]) for j in left}
     out: dict[int, tuple[float, Section]] = {}
     while left:
         need = level - math.log10(count - len(out))
-        found = {j: again for j in left
-                 if (again := reads.read(j, core, need + _SLACK)) is not None
-                 and again[0] <= need}
+        found = {j: readings[j] for j in left
+                 if readings[j] is not None and readings[j][0] <= need}
         if not found:
             break
         out.update(found)
