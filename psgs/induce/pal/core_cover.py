@@ -30,7 +30,7 @@ import math
 import numpy as np
 
 from .motifs import Timed
-from .pairing import lead_segments
+from .pairing import lead_segments, spans_pair
 from .sections import Section, _cycles
 
 __all__: list[str] = []  # private: in_step.py is the caller
@@ -44,7 +44,9 @@ def cover_reading(string: Timed, core: np.ndarray, follow: float | None
 
     The repeat reported is that stretch widened on both sides while the string keeps
     playing its symbols again at the same shift in time (and its copies do not overlap):
-    the string's own section, which may reach past the core. ``core`` is a (2, 2) array of
+    the string's own section, which may reach past the core. Its copies must pair with the
+    core's, each pair sharing half of the time the two cover together, or there is no
+    reading. ``core`` is a (2, 2) array of
     times, the copies' ``[[start, end], [start, end]]``.
 
     Examples
@@ -81,7 +83,8 @@ def cover_reading(string: Timed, core: np.ndarray, follow: float | None
     run = 0
     for k in range(len(first)):
         if plays[k] and run and steps[k] == steps[k - 1]:
-            run += 1
+            # (no longer than the shift: the copies of a longer stretch would overlap)
+            run = min(run + 1, int(steps[k]))
         else:
             run = int(plays[k])
         if run > best:
@@ -104,5 +107,12 @@ def cover_reading(string: Timed, core: np.ndarray, follow: float | None
     while hi - lo < step and again(hi):
         hi += 1
     if _cycles(codes, (lo, lo + step), hi - lo):
+        return None
+    # a member's copies pair with the core's (each pair sharing half of the time the two
+    # cover together), as copies in step do everywhere else: a string playing a few of the
+    # core's symbols again is no member, however unlikely those few
+    found = np.array([[starts[lo], string.ends[hi - 1]],
+                      [starts[lo + step], string.ends[hi - 1 + step]]])
+    if not all(spans_pair(copy, at) for copy, at in zip(found.tolist(), core.tolist())):
         return None
     return weight, Section(codes[lo:hi].copy(), np.array([lo, lo + step], dtype=np.int64), 0.0)
