@@ -1,7 +1,8 @@
 """Benchmark: psgs.accepts against Lark (Earley and LALR) on the same component words; psgs.nearest.
 
-    python benchmarks/membership.py            # full run; rewrites the membership section
+    python benchmarks/membership.py            # full run; rewrites the membership sections
     python benchmarks/membership.py --quick    # small sizes, prints only
+    python benchmarks/membership.py --forms    # only the multiplying grammars (about 5 min)
 
 For each system of ``grammars/`` and each size, the words are a member tuple
 of the language. ``accepts`` is timed end to end (parse every component and
@@ -22,16 +23,37 @@ of a random component) at 0.1%, 1% and 5% of the symbols (at least one),
 timed end to end (best of 2), once exact (no ``max_errors``) and once with
 ``max_errors`` set to the number of edits made (the distance is at most
 that: undoing each edit costs 1).
+
+``--forms`` (also part of the full run): the distance in parallel mode on
+systems with a rule that multiplies its nonterminal (``S → S S``), where
+:func:`psgs.nearest` takes the form search
+(``psgs.membership.parallel_distance``). A seeded generator
+(:func:`multiplying_system`) draws systems of one or two components, each
+with ``S → S S``, a terminal rule and up to three more rules over
+``S, A, a, b`` (bodies of 0-3 symbols), two components with up to three
+tuples (a system whose language is empty is drawn again); the input is a
+word tuple of 20-50 symbols in all, over ``a, b``, each word with its own
+share of ``a``. The form search has 3 s per input on 300 inputs; the span
+search (``psgs.membership.nearest_search``, which ``nearest`` takes when it
+is told that no rule multiplies) 3 s per input on the first 60. Counted are
+the answers each gives exactly and the budgets that ran out, timed the
+exact answers (median, mean, slowest) and the whole run, and compared the
+distances where both answered. ``--forms --quick``: 30 inputs, the span
+search on 12, docs untouched; ``--seed``, ``--symbols LEAST MOST`` and
+``--inputs FORM SPAN`` draw other inputs (``--inputs 300 0``: the form search
+alone) and print only.
 """
 
 from __future__ import annotations
 
 import argparse
 import dataclasses
+import importlib
 import math
 import os
 import platform
 import random
+import statistics
 import time
 
 import lark
@@ -40,7 +62,11 @@ from _common import BENCHMARKS_PAGE, REPO, loglog_slope, replace_section, requir
 require("psgs")
 from psgs import to_lark  # noqa: E402
 from psgs.format import load  # noqa: E402
+from psgs import PSGS, Grammar, Nonterminal, Rule, Terminal  # noqa: E402
 from psgs.membership import accepts, nearest  # noqa: E402
+
+# the module, not the function psgs.membership re-exports under its name
+NEAREST_MODULE = importlib.import_module("psgs.membership.nearest")
 
 GAMMA_BLOCKS = ("abcdbcad", "bcadabcd", "cdabcdab", "abcdbcad")
 
@@ -212,18 +238,194 @@ def write_section(table: str, nearest_table: str, command: str) -> None:
     replace_section(BENCHMARKS_PAGE, "membership", body)
 
 
+FORMS_SEED = 2026
+FORMS_SYSTEMS = 300  # the form search's inputs
+FORMS_BOTH = 60  # the first inputs, on which the span search is timed too
+FORMS_SECONDS = 3.0
+FORMS_SYMBOLS = (20, 50)  # the least and most symbols of an input
+
+
+def multiplying_system(rng: random.Random) -> PSGS:
+    """A parallel-mode system whose components each hold ``S → S S`` (drawn from ``rng``)."""
+    a, b = Terminal("a"), Terminal("b")
+    grammars = []
+    for i in range(rng.choice((1, 2))):
+        s, x = Nonterminal(f"S{i}"), Nonterminal(f"A{i}")
+        rules = {(s, (s, s)), (s, (rng.choice((a, b)),))}
+        for _ in range(rng.randint(0, 3)):
+            lhs = rng.choice((s, x))
+            rules.add((lhs, tuple(rng.choice((s, x, a, b)) for _ in range(rng.randint(0, 3)))))
+        grammars.append(Grammar(f"G{i}", s, [Rule(f"r{i}_{k}", lhs, body)
+                                             for k, (lhs, body) in enumerate(sorted(
+                                                 rules, key=str))]))
+    sync = []
+    if len(grammars) == 2:
+        labels = [[r.label for r in g.rules] for g in grammars]
+        for _ in range(rng.randint(0, 3)):
+            pair = (rng.choice([*labels[0], None]), rng.choice([*labels[1], None]))
+            if pair != (None, None) and pair not in sync:
+                sync.append(pair)
+    policy = rng.choice(("free", "strict")) if sync else "free"
+    return PSGS(tuple(grammars), tuple(sync), mode="parallel", unsynchronised=policy)
+
+
+def multiplying_input(rng: random.Random, components: int,
+                      symbols: tuple[int, int] = FORMS_SYMBOLS) -> list[str]:
+    """A word tuple of 20-50 (``symbols``) symbols in all over ``a, b``; each word its own
+    share of ``a``."""
+    total = rng.randint(*symbols)
+    cuts = sorted(rng.randint(0, total) for _ in range(components - 1))
+    lengths = [q - p for p, q in zip([0, *cuts], [*cuts, total])]
+    words = []
+    for n in lengths:
+        share = rng.random()
+        words.append("".join("a" if rng.random() < share else "b" for _ in range(n)))
+    return words
+
+
+def forms_cases(count: int, seed: int = FORMS_SEED, symbols: tuple[int, int] = FORMS_SYMBOLS):
+    """``count`` (system, words) pairs, the same for the same seed and ``symbols``.
+
+    A system whose language is empty (tuples that never let a strict system finish) is
+    drawn again: both searches answer it at once, and it would measure nothing.
+    """
+    rng = random.Random(seed)
+    made = 0
+    while made < count:
+        system = multiplying_system(rng)
+        empty = nearest(system, [""] * len(system.components), max_states=100_000,
+                        max_seconds=60.0)
+        if empty.exact and empty.distance is None:
+            continue
+        made += 1
+        yield system, multiplying_input(rng, len(system.components), symbols)
+
+
+def distance_by(search: str, system, words, seconds: float):
+    """``nearest`` by the form search, or by the span search; (result, seconds)."""
+    kept = NEAREST_MODULE.multiplies
+    if search == "span":  # nearest takes the span search when no rule multiplies
+        NEAREST_MODULE.multiplies = lambda compiled: False
+    try:
+        start = time.perf_counter()
+        result = nearest(system, words, max_seconds=seconds, max_states=10_000_000)
+        return result, time.perf_counter() - start
+    finally:
+        NEAREST_MODULE.multiplies = kept
+
+
+def run_forms(count: int, both_count: int, seed: int = FORMS_SEED,
+              symbols: tuple[int, int] = FORMS_SYMBOLS, seconds: float = FORMS_SECONDS) -> str:
+    """The form search on ``count`` drawn inputs, the span search on the first ``both_count``.
+
+    Returns the table: per search and set of inputs, how many it answered exactly within
+    ``seconds``, which budgets ran out, the median and mean time per exact answer and the
+    slowest; and on how many of the shared inputs both answered, and whether they agree.
+    """
+    times = {"form": [], "form_first": [], "span": []}
+    bounds: dict[str, dict[str, int]] = {key: {} for key in times}
+    totals = dict.fromkeys(times, 0.0)
+    differ = both = 0
+    for k, (system, words) in enumerate(forms_cases(count, seed, symbols)):
+        searches = ("form", "span") if k < both_count else ("form",)
+        got = {}
+        for search in searches:
+            result, took = distance_by(search, system, words, seconds)
+            got[search] = result
+            for key in (search, "form_first") if search == "form" and k < both_count else \
+                    (search,):
+                totals[key] += took
+                if result.exact:
+                    times[key].append(took)
+                else:
+                    bounds[key][result.bound] = bounds[key].get(result.bound, 0) + 1
+        form, span = got["form"], got.get("span")
+        if span is not None and form.exact and span.exact:
+            both += 1
+            differ += form.distance != span.distance
+        shown = "" if span is None else f"span: {_answer(span)}"
+        print(f"{k:3} {sum(map(len, words)):3} symbols  form: {_answer(form):26} {shown}",
+              flush=True)
+    lines = [f"| search | inputs | exact within {seconds:g} s | ran out (budget: count) "
+             "| median s per exact answer | mean s per exact answer | slowest exact (s) "
+             "| whole run (s) |", "|---|---:|---:|---|---:|---:|---:|---:|"]
+    rows = (("form", f"form search (what `nearest` takes), all {count}", count),
+            ("form_first", f"form search, the first {both_count}", both_count),
+            ("span", f"span search, the first {both_count}", both_count))
+    for key, label, inputs in rows:
+        if not inputs:
+            continue
+        found = times[key]
+        ran_out = ", ".join(f"{b}: {n}" for b, n in sorted(bounds[key].items())) or "none"
+        median = f"{statistics.median(found):.3f}" if found else "n/a"
+        mean = f"{statistics.fmean(found):.3f}" if found else "n/a"
+        slowest = f"{max(found):.3f}" if found else "n/a"
+        lines.append(f"| {label} | {inputs} | {len(found)} | {ran_out} | {median} | {mean} | "
+                     f"{slowest} | {totals[key]:.1f} |")
+    if both_count:
+        lines += ["", f"Of the first {both_count}, both searches answered {both} exactly; their "
+                  f"distances differ on {differ}."]
+    return "\n".join(lines)
+
+
+def _answer(result) -> str:
+    if result.exact:
+        return f"{result.distance} exact ({result.states} states)"
+    return f"unknown ({result.bound})"
+
+
+def write_forms_section(table: str, command: str) -> None:
+    cpu = platform.processor() or platform.machine()
+    body = (f"### Distance on grammars that multiply a nonterminal (parallel mode)\n\n"
+            f"Measured with `{command}` on {cpu}, Python {platform.python_version()}, "
+            f"{time.strftime('%Y-%m-%d', time.gmtime())}, on a machine shared with other jobs "
+            f"(load average {os.getloadavg()[0]:.1f} at the end): {FORMS_SYSTEMS} systems "
+            f"drawn by `multiplying_system` (seed {FORMS_SEED}), parallel mode, one or two "
+            f"components each with `S → S S`, a terminal rule and up to three more (a system "
+            f"whose language is empty is drawn again); inputs of 20-50 symbols over `a, b`; "
+            f"{FORMS_SECONDS:g} s per input and search, one run each. The form search is what "
+            f"`psgs.nearest` takes on such systems; the span search, what it takes otherwise, "
+            f"is timed on the first {FORMS_BOTH} (it runs out of time on most).\n\n{table}\n")
+    replace_section(BENCHMARKS_PAGE, "membership-forms", body)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="small sizes; do not write docs")
+    parser.add_argument("--forms", action="store_true",
+                        help="only the distance on grammars that multiply a nonterminal")
+    parser.add_argument("--seed", type=int, default=FORMS_SEED,
+                        help="--forms: the generator's seed (another: prints only)")
+    parser.add_argument("--symbols", type=int, nargs=2, default=FORMS_SYMBOLS,
+                        metavar=("LEAST", "MOST"),
+                        help="--forms: the inputs' lengths (others than 20 50: prints only)")
+    parser.add_argument("--inputs", type=int, nargs=2, default=(FORMS_SYSTEMS, FORMS_BOTH),
+                        metavar=("FORM", "SPAN"),
+                        help="--forms: inputs for the form search, and of them for the span "
+                             "search (others than 300 60: prints only)")
     args = parser.parse_args()
+    default = (args.seed == FORMS_SEED and tuple(args.symbols) == FORMS_SYMBOLS
+               and tuple(args.inputs) == (FORMS_SYSTEMS, FORMS_BOTH))
+    if args.forms:
+        inputs = (30, 12) if args.quick and default else tuple(args.inputs)
+        forms_table = run_forms(*inputs, args.seed, tuple(args.symbols))
+        print()
+        print(forms_table)
+        if not args.quick and default:
+            write_forms_section(forms_table, "python benchmarks/membership.py --forms")
+        return
     table = run(args.quick)
     print()
     print(table)
     nearest_table = run_nearest(args.quick)
     print()
     print(nearest_table)
+    forms_table = run_forms(*((30, 12) if args.quick else (FORMS_SYSTEMS, FORMS_BOTH)))
+    print()
+    print(forms_table)
     if not args.quick:
         write_section(table, nearest_table, "python benchmarks/membership.py")
+        write_forms_section(forms_table, "python benchmarks/membership.py")
 
 
 if __name__ == "__main__":
