@@ -7,12 +7,12 @@ the span search of :mod:`psgs.membership.nearest_search` must choose a split
 per occurrence. Where a rule multiplies its own nonterminal (``S → S S``: the
 forms ``S^(2^k)``) those choices are the partitions of the input and the span
 search runs out of time. Such forms are few, though: this search walks the
-tuples of forms themselves, cheapest lower bound first (A*), and aligns a
-word with the input only once it is terminal.
+tuples of forms themselves, cheapest lower bound first (A*).
 
-A form's lower bound is the largest of three, each never above the cost of a
-word the form derives (so the first terminal tuple taken off the queue is a
-nearest one):
+A state's lower bound is the sum over components of the largest of these,
+each never above the cost of a word the form derives (so the first terminal
+tuple taken off the queue is a nearest one); :mod:`psgs.membership._form_bounds`
+computes them:
 
 * lengths: the form's occurrences of ``X`` derive one word, so its length is
   the terminals' count plus, per nonterminal, its number of occurrences times
@@ -20,39 +20,48 @@ nearest one):
   insertions or deletions, at least the cheapest each;
 * letters: an input symbol that no terminal the form can derive matches is
   deleted or substituted, an edit of its own;
-* alignment, asked when the form is the cheapest left and short: the least
-  cost of aligning the form's symbols with the input one after the other, a
-  terminal matched, substituted or inserted, a nonterminal against the words
-  it derives alone by its :class:`~psgs.membership.error_chart.ErrorChart`
-  when it has few words or the input is short, else by its lengths (the chart
-  of ``S → S S`` asks every span and split).
+* alignment, asked once the state is the cheapest left: the least cost of
+  aligning the form's symbols with the input one after the other, a terminal
+  matched, substituted or inserted, a nonterminal against the words it
+  derives alone, by its cost on every span
+  (:func:`~psgs.membership._span_table.span_costs`, on inputs of up to 64
+  symbols, or 128 once the search has run a while) or by its lengths;
+* one length: if that does not lift the state, the alignment in which the
+  occurrences of the form's most frequent nonterminal all take words of one
+  length (they derive one word), the least over the lengths;
+* the floor: a component's word costs at least the component's distance
+  alone (:meth:`FormSearch._find_floors`, searched first when there are two
+  components or more); when every component's nearest derivation alone can
+  be run in step by the system's moves, that tuple is the answer at once.
 
 A child keeps its parent's bound when that is larger (it derives a subset of
-the parent's words). A terminal tuple's bound is its exact edit distance. A
-nonterminal too frequent in a form for any word but ε within the best cost
-found leaves the form for a set that must derive ε (``FormSearch._children``).
+the parent's words). A terminal tuple's bound is its exact edit distance.
+Among equal bounds the queue takes terminal tuples first, then the states with
+the fewest nonterminal occurrences, then the newest (a plateau of equal bounds
+is walked depth first). A nonterminal too frequent in a form for any word but
+ε within the best cost found leaves the form for a set that must derive ε
+(``FormSearch._children``).
 """
 
 from __future__ import annotations
 
+import copy
 import heapq
+import time
 
 from ..budget import Budget
+from ..errors import BoundReached
 from ..model import PSGS
-from .chart import UNBOUNDED
+from ._form_bounds import _LATE_STATES, _LEVELS, FormBounds
 from .error_chart import INF, ErrorChart
 from .nearest_search import SearchSetup
 
 __all__ = ["FormSearch", "multiplies"]
 
-#: The alignment bound is computed for a form when its nonterminals times the input's spans
-#: are at most this many; longer forms keep the length bound alone.
-_CHART_CELLS = 20_000
-
-#: Inputs up to this long align a nonterminal of many words by its error chart (the chart of
-#: ``S → S S`` asks every span and split: 0.02 s at 32 symbols, 0.4 s at 100); longer ones
-#: by its lengths.
-_CHART_LENGTH = 32
+#: The share of the time left that each component's search alone may take (its floor).
+_FLOOR_SHARE = 0.25
+#: The most positions (one per component's trail) tried to take the trails in step.
+_SYNC_CELLS = 100_000
 
 
 def multiplies(compiled) -> bool:
@@ -91,171 +100,6 @@ def multiplies(compiled) -> bool:
     return False
 
 
-def _lengths(compiled, most: int, tick) -> list[int]:
-    """Per nonterminal, the lengths ``≤ most`` it derives in its grammar alone, as a bitset."""
-    mask = (1 << (most + 1)) - 1
-    sets = [0] * len(compiled.nonterminals)
-    changed = True
-    while changed:
-        changed = False
-        for a, body in zip(compiled.lhs, compiled.body):
-            tick()
-            acc = 1
-            for s in body:
-                acc = _sumset(acc, 2 if s < 0 else sets[s], mask)
-                if not acc:
-                    break
-            if acc | sets[a] != sets[a]:
-                sets[a] |= acc
-                changed = True
-    return sets
-
-
-def _letters(compiled) -> list[int]:
-    """Per nonterminal, the terminals its words can hold, as a bitset of terminal ids."""
-    sets = [0] * len(compiled.nonterminals)
-    changed = True
-    while changed:
-        changed = False
-        for a, body in zip(compiled.lhs, compiled.body):
-            acc = sets[a]
-            for s in body:
-                acc |= (1 << ~s) if s < 0 else sets[s]
-            if acc != sets[a]:
-                sets[a] = acc
-                changed = True
-    return sets
-
-
-def _sumset(x: int, y: int, mask: int) -> int:
-    """``{p + q : p in x, q in y}`` as bitsets, cut at ``mask``."""
-    if x.bit_count() > y.bit_count():
-        x, y = y, x
-    out = 0
-    while x:
-        low = x & -x
-        out |= y << (low.bit_length() - 1)
-        x ^= low
-    return out & mask
-
-
-def _scaled(x: int, k: int, mask: int) -> int:
-    """``{k p : p in x}`` as a bitset, cut at ``mask``."""
-    if k == 1:
-        return x & mask
-    out = 0
-    most = mask.bit_length()
-    while x:
-        low = x & -x
-        p = (low.bit_length() - 1) * k
-        if p >= most:
-            break
-        out |= 1 << p
-        x ^= low
-    return out
-
-
-class _Component:
-    """What the bounds of one component's forms read: its chart, lengths and costs."""
-
-    def __init__(self, compiled, chart: ErrorChart, tick) -> None:
-        self.compiled = compiled
-        self.chart = chart
-        self.n = chart.n
-        # lengths are kept up to 2n + 1: any longer word is n + 2 insertions away at least,
-        # one bound for all of them
-        self.most = 2 * self.n + 1
-        self.mask = (1 << (self.most + 1)) - 1
-        self.lengths = _lengths(compiled, self.most, tick)
-        self.minlen, self.maxlen = compiled.minlen, compiled.maxlen
-        self.letters = _letters(compiled)
-        self._foreign: dict[int, float] = {}
-
-    def foreign_bound(self, letters: int) -> float:
-        """What the input symbols no terminal of ``letters`` (a bitset of ids) matches cost.
-
-        Each is deleted or substituted, one edit of its own.
-        """
-        known = self._foreign.get(letters)
-        if known is not None:
-            return known
-        chart = self.chart
-        ids = [t for t in range(letters.bit_length()) if letters >> t & 1]
-        total = 0.0
-        for p, x in enumerate(chart.word):
-            if x < 0 or not letters >> x & 1:
-                total += min([chart.delete[p], *(chart.substitute(p, t) for t in ids)])
-        self._foreign[letters] = total
-        return total
-
-    def length_bound(self, counts: dict[int, int], fixed: int) -> float:
-        """The least cost of the length change a word of the form needs."""
-        chart, n, mask = self.chart, self.n, self.mask
-        reach = (1 << fixed) & mask
-        longest = fixed
-        for x, k in counts.items():
-            if self.minlen[x] >= UNBOUNDED:
-                return INF  # x derives no word
-            reach = _sumset(reach, _scaled(self.lengths[x], k, mask), mask)
-            longest += k * self.maxlen[x]
-            if not reach and longest <= self.most:
-                return INF
-        best = INF
-        below = reach & ((1 << (n + 1)) - 1)
-        if below:
-            shortfall = n - (below.bit_length() - 1)
-            best = 0.0 if shortfall == 0 else shortfall * chart.min_delete
-        above = reach >> n
-        if above:
-            excess = (above & -above).bit_length() - 1
-            best = min(best, 0.0 if excess == 0 else excess * chart.min_insert)
-        if longest > self.most:  # a length past what the bitsets hold
-            best = min(best, (self.most + 1 - n) * chart.min_insert)
-        return best
-
-    def chart_bound(self, form, cap: float, tick) -> float:
-        """The least cost of the form's symbols aligned with the input one after the other.
-
-        Each terminal matched, substituted or inserted, any input symbol deleted,
-        each nonterminal against the words it derives alone when they are few
-        (the chart's rows), else by their lengths: exact on a terminal form.
-        ``inf`` when above ``cap``.
-        """
-        chart, n = self.chart, self.n
-        deleted, delete, insert, sub = chart.deleted, chart.delete, chart.insert, chart.substitute
-        row = list(deleted)  # row[q]: the form so far against word[:q]
-        for s in form:
-            tick()
-            new = [INF] * (n + 1)
-            if s < 0:
-                t = ~s
-                new[0] = row[0] + insert[t]
-                for q in range(1, n + 1):
-                    new[q] = min(row[q] + insert[t], row[q - 1] + sub(q - 1, t))
-            else:
-                least = chart.min_yield[s]
-                # a nonterminal with few words is costed by the chart's rows (one per start);
-                # any other by its lengths alone on a long input (the chart of S → S S is cubic)
-                few = chart.finite[s] is not None or n <= _CHART_LENGTH
-                for p in range(n + 1):
-                    base = row[p]
-                    if base > cap:
-                        continue
-                    for q in range(p, n + 1):
-                        if few:  # exact when not above the cap (deleting all, inserting least)
-                            here = chart.cost(s, p, q, min(cap - base,
-                                                           deleted[q] - deleted[p] + least))
-                        else:
-                            here = chart.lower_bound(s, p, q)
-                        if base + here < new[q]:
-                            new[q] = base + here
-            for q in range(1, n + 1):  # input symbols deleted after the form so far
-                if new[q - 1] + delete[q - 1] < new[q]:
-                    new[q] = new[q - 1] + delete[q - 1]
-            row = new
-        return row[n] if row[n] <= cap + chart.tolerance(cap) else INF
-
-
 class FormSearch(SearchSetup):
     """A* over the tuples of sentential forms of a parallel-mode PSGS, for :func:`psgs.nearest`.
 
@@ -280,33 +124,25 @@ class FormSearch(SearchSetup):
     def __init__(self, system: PSGS, compiled, charts: list[ErrorChart], max_states: int,
                  budget: Budget, step: float) -> None:
         super().__init__(system, compiled, charts, max_states, budget, step)
-        self.parts = [_Component(cg, ch, budget.tick) for cg, ch in zip(compiled, charts)]
+        self.parts = [FormBounds(cg, ch, budget.tick, budget.hold)
+                      for cg, ch in zip(compiled, charts)]
+        # per component, what its word costs at least in any tuple (its distance alone)
+        self.floors = [0.0] * len(compiled)
+        self.starts = [cg.index[g.start] for g, cg in zip(system.components, compiled)]
+        self.paths = True  # build the path of a tuple found (the floors' searches do not)
+        self.synchronised = None  # moves that derive the components' nearest words in step
 
     # ------------------------------------------------------------ bounds
-    def _bound(self, state, cap: float, refine: bool) -> float:
+    def _bound(self, state, cap: float, level: int) -> float:
+        """The sum of the components' bounds (:meth:`FormBounds.bound` at ``level``), each at
+        least its floor; ``inf`` past ``cap``."""
         total = 0.0
-        for part, (form, vanish) in zip(self.parts, state):
+        late = self.explored >= _LATE_STATES
+        for part, floor, (form, vanish) in zip(self.parts, self.floors, state):
             if any(not part.compiled.nullable[x] for x in vanish):
                 return INF  # a nonterminal that must derive the empty word cannot
-            counts: dict[int, int] = {}
-            fixed = 0
-            letters = 0
-            for s in form:
-                if s < 0:
-                    fixed += 1
-                    letters |= 1 << ~s
-                else:
-                    counts[s] = counts.get(s, 0) + 1
-            if not counts:
-                value = part.chart_bound(form, cap - total, self.budget.tick)
-            else:
-                for x in counts:
-                    letters |= part.letters[x]
-                value = max(part.length_bound(counts, fixed), part.foreign_bound(letters))
-                cells = len(form) * (part.n + 1) * (part.n + 2) // 2
-                if refine and value + total <= cap and cells <= _CHART_CELLS:
-                    value = max(value, part.chart_bound(form, cap - total, self.budget.tick))
-            total += value
+            value = part.bound(form, cap - total, level, late, self.budget.tick)
+            total += value if value > floor else floor
             if total > cap + self.tolerance(cap):
                 return INF
         return total
@@ -372,34 +208,147 @@ class FormSearch(SearchSetup):
     # ------------------------------------------------------------ search
     def run(self, lower: float, limit: float | None):
         """A* from the start forms; returns ``(status, cost, path)`` as ``DistanceSearch.run``."""
+        if len(self.compiled) > 1:
+            status = self._find_floors(limit)
+            if status is not None:
+                return status, None, None
+            lower = max(lower, sum(self.floors))
+            if self.synchronised is not None:  # the components' nearest words, in step
+                self.proved = lower
+                return "found", lower, self._moves_path(self.synchronised)
+        return self._search(lower, limit)
+
+    def _find_floors(self, limit: float | None) -> str | None:
+        """Each component's distance alone, its floor in every tuple; a status when that decides.
+
+        A derivation of the system, read in one component, is a derivation of that
+        component's grammar alone in parallel mode (each step rewrites every occurrence of
+        its rule's left side, or nothing), so the component's word costs at least its
+        distance to the words its grammar derives alone so. Each is searched as this
+        search does, on that component, within ``_FLOOR_SHARE`` of the time left and
+        ``max_states``: when it runs out first, what it proved is the floor. (Without
+        tuples under ``free`` every rule is a move alone and the components are
+        independent: their trails are a nearest tuple, so each may take all the time
+        left.) Without floors a component whose bounds are loose (its start alone
+        derives a word near its input, in its grammar) let the search take every form
+        of the other components within that slack, paired with each of its own.
+        """
         budget = self.budget
-        start = tuple(((cg.index[g.start],), frozenset())
-                      for g, cg in zip(self.system.components, self.compiled))
+        independent = not self.system.sync and self.system.unsynchronised == "free"
+        trails = []
+        for c in range(len(self.compiled)):
+            alone = copy.copy(self)
+            alone.compiled, alone.charts = [self.compiled[c]], [self.charts[c]]
+            alone.parts, alone.floors = [self.parts[c]], [0.0]
+            alone.starts = [self.starts[c]]
+            alone.move_rule_ids = [(k,) for k in range(len(self.compiled[c].rules))]
+            alone.scale = self.charts[c].scale
+            alone.best, alone.explored, alone.proved, alone.paths = None, 0, 0.0, False
+            deadline = budget.deadline
+            left = budget.left()
+            if left is not None and not independent:
+                budget.deadline = min(deadline, time.monotonic() + left * _FLOOR_SHARE)
+            try:
+                status, cost, trail = alone._search(0.0, limit)
+            except BoundReached as stop:
+                if stop.bound != "max_seconds" or budget.deadline == deadline:
+                    # every tuple costs at least the floors so far and what this one proved
+                    self.proved = max(self.proved, sum(self.floors) + alone.proved)
+                    raise
+                status, cost, trail = "max_seconds", None, None
+            finally:
+                budget.deadline = deadline
+                self.explored += alone.explored
+            if status in ("over", "empty"):  # no tuple within the limit, or none at all
+                self.proved = max(self.proved, alone.proved)
+                return status
+            self.floors[c] = cost if status == "found" else alone.proved
+            trails.append(trail if status == "found" else None)
+        self.proved = max(self.proved, sum(self.floors))
+        if all(trails) and (limit is None or sum(self.floors) <= limit + self.tolerance(limit)):
+            moves = self._synchronise(trails)
+            if moves is not None:
+                self.synchronised = moves
+        return None
+
+    def _synchronise(self, trails) -> list[int] | None:
+        """The system's moves that take every component along its trail at once, or ``None``.
+
+        ``trails[c]`` is component ``c``'s nearest derivation alone, as ``(state, move)``
+        pairs of its own search. A move of the system advances each component it names by
+        the next rule of its trail (a component at the end of its trail, terminal, skips
+        its entry); a move that names another rule for a component not at its end is left
+        out (it rewrites off the trail, or does not apply). The tuple the moves derive
+        costs the sum of the floors, so it is a nearest one; ``None`` when no order of the
+        system's moves takes every trail to its end (then the search decides), or when the
+        positions to try exceed ``_SYNC_CELLS``.
+        """
+        tick = self.budget.tick
+        ends = tuple(len(trail) for trail in trails)
+        rules = [[m for _, m in trail] for trail in trails]  # alone, move k is rule k
+        start = (0,) * len(trails)
+        seen = {start: None}
+        stack = [start]
+        while stack:
+            at = stack.pop()
+            if at == ends:
+                moves = []
+                while seen[at] is not None:
+                    at, m = seen[at]
+                    moves.append(m)
+                return moves[::-1]
+            for m, rule_ids in enumerate(self.move_rule_ids):
+                tick()
+                new = list(at)
+                for c, rule in enumerate(rule_ids):
+                    if rule is None or at[c] == ends[c]:
+                        continue  # idle, or terminal: the engine skips its entry
+                    if rule != rules[c][at[c]]:
+                        break
+                    new[c] += 1
+                else:
+                    new = tuple(new)
+                    if new != at and new not in seen:
+                        if len(seen) >= _SYNC_CELLS:
+                            return None
+                        seen[new] = (at, m)
+                        stack.append(new)
+        return None
+
+    def _search(self, lower: float, limit: float | None):
+        """A* from the start forms; ``run``'s answer (a trail when ``paths`` is off)."""
+        budget = self.budget
+        start = tuple(((x,), frozenset()) for x in self.starts)
         cap = INF if limit is None else limit
-        f0 = max(lower, self._bound(start, cap, refine=True))
+        f0 = max(lower, self._bound(start, cap, _LEVELS))
         self.proved = lower
         parent = {start: None}
         if f0 == INF:  # over the limit (or no word: then no tuple is within it either)
             return ("over" if limit is not None else "empty"), None, None
-        queue = [(f0, 1, 0, start, True)]
+        # ties: terminal tuples first, then the fewest nonterminal occurrences (the nearest to
+        # a word, and a doubling nullable that keeps the bound no longer wins), then the
+        # newest, so that a plateau of equal bounds is walked depth first
+        queue = [(f0, _open(start), 0, start, _LEVELS)]
         counter = 1
         cut = False  # a state was left out as costing more than the limit
         while queue:
-            f, _, _, state, refined = heapq.heappop(queue)
+            f, rank, _, state, level = heapq.heappop(queue)
             self.proved = max(self.proved, f)
             upper = self.best[0] if self.best is not None else cap
-            terminal = all(not vanish and all(s < 0 for s in form) for form, vanish in state)
-            if terminal:
+            if rank == 0:  # a terminal tuple
                 return "found", f, self._path(parent, state)
-            if not refined:  # the chart bound, asked once a state is the cheapest left
-                g = max(f, self._bound(state, upper, refine=True))
-                if g > f + self.tolerance(f):
-                    if g <= upper + self.tolerance(upper):
-                        heapq.heappush(queue, (g, 1, counter, state, True))
-                        counter += 1
-                    else:
-                        cut = cut or self.best is None
-                    continue
+            g = f
+            while level < _LEVELS and g <= f + self.tolerance(f):
+                # the dearer bounds, asked once a state is the cheapest left
+                level += 1
+                g = max(f, self._bound(state, upper, level))
+            if g > f + self.tolerance(f):
+                if g <= upper + self.tolerance(upper):
+                    heapq.heappush(queue, (g, rank, -counter, state, level))
+                    counter += 1
+                else:
+                    cut = cut or self.best is None
+                continue
             self.explored += 1
             if self.explored >= self.max_states:
                 self.proved = f
@@ -409,7 +358,7 @@ class FormSearch(SearchSetup):
                 if child in parent:
                     continue
                 upper = self.best[0] if self.best is not None else cap
-                h = max(f, self._bound(child, upper, refine=False))
+                h = max(f, self._bound(child, upper, 0))
                 if h == INF or h > upper + self.tolerance(upper):  # inf: no word, or over
                     cut = cut or self.best is None
                     continue
@@ -418,7 +367,8 @@ class FormSearch(SearchSetup):
                 done = all(not vanish and all(s < 0 for s in form) for form, vanish in child)
                 if done and (self.best is None or h < self.best[0]):
                     self.best = (h, self._path(parent, child))
-                heapq.heappush(queue, (h, 0 if done else 1, counter, child, done))
+                heapq.heappush(queue, (h, _open(child), -counter, child,
+                                       _LEVELS if done else 0))
                 counter += 1
         if limit is not None and cut:
             return "over", None, None
@@ -427,12 +377,22 @@ class FormSearch(SearchSetup):
     # ------------------------------------------------------------ the path
     def _path(self, parent, state):
         """The moves to ``state`` as ``DistanceSearch`` paths are: per move, per component,
-        ``((A, i, j), bounds)`` for each occurrence rewritten, spans of the input words."""
-        moves = []
+        ``((A, i, j), bounds)`` for each occurrence rewritten, spans of the input words.
+
+        When the search builds no paths (a component's floor), the states before each
+        move and the moves: ``[(state, move), ...]``.
+        """
+        trail = []
         while parent[state] is not None:
             state, m = parent[state]
-            moves.append(m)
-        moves.reverse()
+            trail.append((state, m))
+        trail.reverse()
+        if not self.paths:
+            return trail
+        return self._moves_path([m for _, m in trail])
+
+    def _moves_path(self, moves):
+        """The path of :meth:`_path` for the system's ``moves`` from the start forms."""
         per_component = [self._spans(c, moves) for c in range(len(self.compiled))]
         return [(m, tuple(rewrites[k] for rewrites in per_component))
                 for k, m in enumerate(moves)]
@@ -508,6 +468,11 @@ class FormSearch(SearchSetup):
             node_span[x] = (bounds[0], bounds[-1])
         return [tuple(((nodes[x][0], *node_span[x]), bounds_of[x]) for x in ids)
                 for ids in rewritten]
+
+
+def _open(state) -> int:
+    """How many nonterminal occurrences a state's forms hold (0: a terminal tuple)."""
+    return sum(sum(1 for s in form if s >= 0) + len(vanish) for form, vanish in state)
 
 
 def _leaf_spans(chart: ErrorChart, leaves) -> list[tuple[int, int]]:
