@@ -113,6 +113,6 @@ def cover_reading(string: Timed, core: np.ndarray, follow: float | None
     # core's symbols again is no member, however unlikely those few
     found = np.array([[starts[lo], string.ends[hi - 1]],
                       [starts[lo + step], string.ends[hi - 1 + step]]])
-    if not all(spans_pair(copy, at) for copy, at in zip(found.tolist(), core.tolist())):
+    if not all(spans_pair(copy, mate) for copy, mate in zip(found.tolist(), core.tolist())):
         return None
     return weight, Section(codes[lo:hi].copy(), np.array([lo, lo + step], dtype=np.int64), 0.0)
