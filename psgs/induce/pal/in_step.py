@@ -25,13 +25,13 @@ no random string is carried in by the others' strength: ``T_j + log10(N - 1) <=
 log10(alpha)`` read at the lead's copies, and, read again at the core below by how
 much of it the string plays again at its shift
 (:func:`~psgs.induce.pal.core_cover.cover_reading`), Holm's step-down over the ``M``
-strings read there (the ``k``-th lightest against ``log10(M - k)``). A string is read at the lead's copies (:func:`read_at`), not only at its
-own section: its longest repeat may be a chance repeat elsewhere, as long as the section or
-longer. Copies in step keep the lead's shift between them (to within the string's typical
-segment); a string that fails at the lead's copies is read again where the lead and its
-members all are (the core: symbols agreeing by chance around the lead's copies make them
-reach past the repeat the others play), and the lead itself is read where it and its
-closest member both are.
+strings read there (the ``k``-th lightest against ``log10(M - k)``). A string is read at
+the lead's copies (:func:`read_at`), not only at its own section: its longest repeat may be
+a chance repeat elsewhere, as long as the section or longer. Copies in step keep the
+lead's shift between them (to within the string's typical segment); a string that fails at
+the lead's copies is read again where the lead and its members all are (the core: symbols
+agreeing by chance around the lead's copies make them reach past the repeat the others
+play), and the lead itself is read where it and its closest member both are.
 """
 
 from __future__ import annotations
@@ -332,22 +332,18 @@ def _read_the_rest(strings: list[Timed], core: np.ndarray, follows: list[float |
     core it covers (:func:`~psgs.induce.pal.core_cover.cover_reading`).
 
     Holm's step-down over the ``M`` strings read: the ``k``-th lightest (from 0) joins when
-    it and every lighter one pass ``T + log10(M - k) <= level``; the chance of carrying in
-    any random string at this reading is at most ``alpha``, as with ``T + log10(M) <= level``
+    it and every lighter one weigh at most ``level - log10(M - k)``; the chance of carrying
+    in any random string at this reading is at most ``alpha``, as with ``level - log10(M)``
     for each, and a member read where others passed needs less.
     """
     left = [j for j in range(len(strings)) if j not in taken]
-    count = len(left)
     readings = {j: cover_reading(strings[j], core, follows[j]) for j in left}
+    ranked = sorted((found[0], j) for j, found in readings.items() if found is not None)
     out: dict[int, tuple[float, Section]] = {}
-    while left:
-        need = level - math.log10(count - len(out))
-        found = {j: readings[j] for j in left
-                 if readings[j] is not None and readings[j][0] <= need}
-        if not found:
+    for k, (weight, j) in enumerate(ranked):
+        if weight > level - math.log10(len(left) - k):
             break
-        out.update(found)
-        left = [j for j in left if j not in found]
+        out[j] = readings[j]
     return dict(sorted(out.items()))
 
 
