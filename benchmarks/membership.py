@@ -220,13 +220,19 @@ def run_nearest(quick: bool) -> str:
     return "\n".join(lines)
 
 
-def write_section(table: str, nearest_table: str, command: str) -> None:
+def _measured(command: str, versions: str = "") -> str:
+    """How a section's figures were measured: the command, the machine, Python (and
+    ``versions``), the date and the load at the end, without the closing punctuation."""
     cpu = platform.processor() or platform.machine()
-    body = (f"## Membership (`psgs.accepts`)\n\nMeasured with `{command}` on {cpu}, Python "
-            f"{platform.python_version()}, lark {lark.__version__}, "
+    return (f"Measured with `{command}` on {cpu}, Python {platform.python_version()}{versions}, "
             f"{time.strftime('%Y-%m-%d', time.gmtime())}, on a machine shared with other jobs "
-            f"(load average {os.getloadavg()[0]:.1f} at the end). `accepts`: best of 3 runs; Lark: "
-            f"one run. `accepts` includes parsing every component and the schedule search "
+            f"(load average {os.getloadavg()[0]:.1f} at the end)")
+
+
+def write_section(table: str, nearest_table: str, command: str) -> None:
+    body = (f"## Membership (`psgs.accepts`)\n\n"
+            f"{_measured(command, f', lark {lark.__version__}')}. `accepts`: best of 3 runs; "
+            f"Lark: one run. `accepts` includes parsing every component and the schedule search "
             f"(not building the schedule found and replaying the witness, both done on first "
             f"access); Lark is the parse of the same "
             f"component words alone, with the exported grammars, parser construction excluded, "
@@ -375,11 +381,8 @@ def _answer(result) -> str:
 
 
 def write_forms_section(table: str, command: str) -> None:
-    cpu = platform.processor() or platform.machine()
     body = (f"### Distance on grammars that multiply a nonterminal (parallel mode)\n\n"
-            f"Measured with `{command}` on {cpu}, Python {platform.python_version()}, "
-            f"{time.strftime('%Y-%m-%d', time.gmtime())}, on a machine shared with other jobs "
-            f"(load average {os.getloadavg()[0]:.1f} at the end): {FORMS_SYSTEMS} systems "
+            f"{_measured(command)}: {FORMS_SYSTEMS} systems "
             f"drawn by `multiplying_system` (seed {FORMS_SEED}), parallel mode, one or two "
             f"components each with `S → S S`, a terminal rule and up to three more (a system "
             f"whose language is empty is drawn again); inputs of 20-50 symbols over `a, b`; "
