@@ -92,7 +92,9 @@ def stop_pool(pool: ProcessPoolExecutor) -> None:
     # for it first, so that the futures are done when this returns, and reap after it rather
     # than beside it (a process two threads wait for at once can keep reading as alive, its
     # exit code taken by the other thread)
-    if manager is not None:
+    # Ctrl-C can land inside the pool's first submit, between its processes' start and its
+    # thread's: that thread never ran, and joining it raised over the interrupt
+    if manager is not None and manager.ident is not None:
         manager.join(timeout=10)
     for process in processes:
         process.join()

@@ -207,3 +207,25 @@ def test_closing_the_pool_while_an_exception_is_handled_does_not_wait_for_the_wo
             close()
     assert time.monotonic() - started < 10 and busy.done()
     assert workers and not any(w.is_alive() for w in workers)
+
+
+@pytest.mark.skipif(sys.version_info >= (3, 14), reason="3.14's pool stops its own workers")
+def test_ctrl_c_before_the_pool_s_thread_starts_stops_it_without_a_new_error(monkeypatch):
+    # the interrupt once landed in the first submit after the workers had started and before
+    # the pool's managing thread had: stopping the pool then tried to join that thread
+    import concurrent.futures.process as process
+
+    from praxicon.builder import executor_for
+
+    def interrupted(thread):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(process._ExecutorManagerThread, "start", interrupted)
+    pool, close = executor_for(2)
+    with pytest.raises(KeyboardInterrupt):
+        try:
+            pool.submit(time.sleep, 60)
+        finally:
+            workers = list(pool._processes.values())  # noqa: SLF001 - the processes to check
+            close(stop=True)
+    assert workers and not any(w.is_alive() for w in workers)
