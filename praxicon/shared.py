@@ -132,14 +132,29 @@ def _chars(codes) -> str:
     return "".join(map(chr, codes))
 
 
+def _small(span: int, count: int) -> bool:
+    """Whether a table of ``span`` flags costs less than sorting ``count`` keys: the levels'
+    keys are dense numbers times a few kinetemes or actions, so mostly it does, and a table
+    read in one pass replaces the sort each level otherwise spends most of its time in."""
+    return span <= 16 * count + 4096
+
+
 def _dense(keys: np.ndarray) -> np.ndarray:
     """Each key's number among the distinct keys (equal keys, equal numbers)."""
+    if len(keys) and _small(int(keys.max()) + 1, len(keys)):  # keys are never negative
+        seen = np.zeros(int(keys.max()) + 1, dtype=bool)
+        seen[keys] = True
+        return (np.cumsum(seen) - 1)[keys].astype(np.int64)  # the rank np.unique gives
     return np.unique(keys, return_inverse=True)[1].reshape(-1).astype(np.int64)
 
 
 def _action_counts(ids: np.ndarray, actions: np.ndarray, size: int) -> np.ndarray:
     """How many distinct actions hold each number in ``0 .. size - 1``."""
     width = actions.max(initial=0) + 1  # an (id, action) pair as one number
+    if _small(size * int(width), len(ids)):
+        held = np.zeros(size * int(width), dtype=bool)
+        held[ids * width + actions] = True
+        return np.bincount(np.flatnonzero(held) // width, minlength=size)
     pairs = np.unique(ids * width + actions)
     return np.bincount(pairs // width, minlength=size)
 
@@ -225,10 +240,14 @@ def shared_patterns(praxicon, *, min_length: int = 4, min_actions: int = 2,
 
 def _coded(items, numbers, joint: str) -> tuple[_Joint, list[str]]:
     """One joint's morpheme cycles as codes numbered in the kinetemes' order, and that order."""
-    alphabet = sorted({k for _, _, cycle in items for k in cycle})
-    if len(alphabet) > sys.maxunicode + 1:  # a code is one character of the patterns' text
-        raise ValidationError(f"shared_patterns: joint {joint!r} has {len(alphabet):,} distinct "
+    distinct: set[str] = set()
+    for _, _, cycle in items:
+        distinct.update(cycle)
+    if len(distinct) > sys.maxunicode + 1:  # a code is one character of the patterns' text
+        # counted before the sort, which is most of the time a refused joint would cost
+        raise ValidationError(f"shared_patterns: joint {joint!r} has {len(distinct):,} distinct "
                               f"kinetemes, more than the {sys.maxunicode + 1:,} it can compare")
+    alphabet = sorted(distinct)
     code = {k: i for i, k in enumerate(alphabet)}
     morphemes = []
     for action, channel, cycle in items:
