@@ -175,22 +175,39 @@ def _tables() -> tuple[np.ndarray, np.ndarray]:
 
 
 def _design(knots: np.ndarray, codes: np.ndarray):
-    """For every frame: its segment, and the weights of its left and right knot."""
+    """For every frame: its segment, and the weights of its left and right knot.
+
+    The weights are :func:`_polynomial` of each frame's row of the tables, computed without
+    gathering those rows (two frames x 5 arrays read a column at a time were most of a long
+    curve's decoding time): each coefficient is repeated over its segment's frames, and the
+    terms are added in the same order, so every weight is the same float."""
     lengths = np.diff(knots)
     frames = knots[-1] + 1
-    seg = np.repeat(np.arange(lengths.size), lengths)
-    seg = np.append(seg, lengths.size - 1)  # the last frame ends the last segment
+    counts = np.append(lengths, 1)  # the last frame ends the last segment
+    seg = np.repeat(np.append(np.arange(lengths.size), lengths.size - 1), counts)
     offset = np.arange(frames) - knots[seg]
     s = offset / lengths[seg]
-    pattern = _border_flags(codes)[seg]
+    pattern = _border_flags(codes)
     table_u, table_w = _tables()
-    return seg, _polynomial(s, table_u[pattern]), _polynomial(s, table_w[pattern])
+    per_segment = np.concatenate((table_u[pattern], table_w[pattern]), axis=1)
+    # row k (u) and 5 + k (w): the coefficients of s^k, a row of its own to repeat
+    rows = np.concatenate((per_segment, per_segment[-1:])).T.copy()
+    u, w = np.repeat(rows[0], counts), np.repeat(rows[5], counts)
+    power = s  # s^1: what 1.0 * s is, exactly
+    for k in range(1, 5):
+        if k > 1:
+            power = power * s
+        for out, row in ((u, rows[k]), (w, rows[5 + k])):
+            term = np.repeat(row, counts)
+            term *= power
+            out += term
+    return seg, u, w
 
 
 def _polynomial(s: np.ndarray, coefficients: np.ndarray) -> np.ndarray:
     """``sum_k c[:, k] s^k`` in one fixed order of elementwise operations (powers by
     multiplication, terms added from ``k = 0``): ``np.einsum`` and ``**`` may add or round
-    differently on another CPU."""
+    differently on another CPU. (:func:`_design` adds the same terms in the same order.)"""
     out = coefficients[:, 0].copy()
     power = np.ones_like(s)
     for k in range(1, 5):
