@@ -19,8 +19,10 @@ state, renormalised one word at a time. rANS decodes in the reverse order of
 encoding, so the encoder first runs the model forwards to find every bit and
 its probability, then encodes them backwards. Every step is a numpy operation
 over the lanes, so a 2,000-frame, 62-channel take codes in a fraction of a
-second. Integer arithmetic only: output is byte-identical across runs and
-machines.
+second; the encoder finds the bits and their contexts, which follow from the
+symbols, for a block of frames at once, and a probability's update is one
+table lookup (:func:`_transitions`). Integer arithmetic only: output is
+byte-identical across runs and machines.
 
 Layout of :func:`encode`'s bytes: varint count of escaped magnitudes and the
 magnitudes (varints); per lane a varint word count; per lane its final state
@@ -29,6 +31,8 @@ order the decoder reads them.
 """
 
 from __future__ import annotations
+
+from functools import lru_cache
 
 import numpy as np
 
@@ -71,28 +75,51 @@ class EntropyError(ValueError):
 _SIGN_SLOT = _HISTORY * _HISTORY
 _MAG_SLOT = _SIGN_SLOT + _SIGNS
 _SLOTS = _MAG_SLOT + _MAG_LEVELS * _HISTORY
+#: Frames whose bits :func:`encode` finds at once: the memory of finding them stays near that
+#: of the bits kept for the backward pass (11 bytes each), whatever the matrix's size.
+_BLOCK = 4096
+
+
+#: A slot's model state: its probability of a 0 bit plus ``2**12`` times the bits it has seen
+#: (capped where the adaptation settles); :func:`_transitions` steps it.
+_STATES = _SHIFTS.size << PRECISION
+
+
+@lru_cache(maxsize=1)
+def _transitions() -> np.ndarray:
+    """Where a slot's state goes after a bit: ``table[state]`` after a 0, ``table[state +
+    _STATES]`` after a 1, the probability moved as :meth:`_Model.update` says.
+
+    One lookup instead of the dozen numpy operations the update took on every coded bit
+    (most of the coder's time); made on first use (4 MiB)."""
+    state = np.arange(_STATES, dtype=np.int64)
+    p, seen = state & (_M - 1), state >> PRECISION
+    shift = _SHIFTS[seen]
+    after = np.minimum(seen + 1, _SHIFTS.size - 1) << PRECISION
+    table = np.concatenate([p + ((_M - p) >> shift), p - (p >> shift)]) + np.tile(after, 2)
+    table.setflags(write=False)  # cached: shared by every caller
+    return table
 
 
 class _Model:
-    """Per-lane adaptive probabilities (of a 0 bit), each with the count of bits it has seen."""
+    """Per-lane adaptive probabilities (of a 0 bit), each with the count of bits it has seen,
+    held as one state per slot (see :data:`_STATES`)."""
 
     def __init__(self, lanes: int) -> None:
-        self.p = np.full(lanes * _SLOTS, _HALF, np.int64)
-        self.seen = np.zeros(lanes * _SLOTS, np.int64)
+        self.state = np.full(lanes * _SLOTS, _HALF, np.int64)  # p = 1/2, no bit seen
         self.base = np.arange(lanes, dtype=np.int64) * _SLOTS  # each lane's first slot
+        self.next = _transitions()
 
-    def update(self, index, bits) -> None:
-        """Move the probabilities at flat ``index`` towards the ``bits`` just seen.
+    def update(self, index, bits, state=None) -> None:
+        """Move the probabilities at flat ``index`` (whose states are ``state`` when given)
+        towards the ``bits`` just seen.
 
         A fresh probability learns fast (the step is about 1/(seen + 2)) and
         settles to a 1/32 step, so rare contexts and short takes cost little.
         With a shift of at least 1 a probability stays within 1 .. 2**12 - 1.
         """
-        p = self.p[index]
-        seen = self.seen[index]
-        shift = _SHIFTS[seen]
-        self.p[index] = np.where(bits, p - (p >> shift), p + ((_M - p) >> shift))
-        self.seen[index] = np.minimum(seen + 1, _SHIFTS.size - 1)
+        state = self.state[index] if state is None else state
+        self.state[index] = self.next[state + bits * _STATES]
 
 
 def _contexts(previous, before):
@@ -111,6 +138,40 @@ def _check(symbols):
     return symbols
 
 
+def _events(symbols: np.ndarray, first: int, stop: int, base: np.ndarray):
+    """Every bit :func:`encode` codes for frames ``first`` to ``stop``, in decoding order: frame
+    by frame, and in a frame its decisions (the zero bit, the sign, the unary magnitude levels
+    in turn), each in the lanes that make it, lowest first. All follow from the symbols (a
+    bit's context is the symbols before it), so they are found at once, not a frame at a time.
+
+    Returns the lane, the flat model slot and the bit of each, where each frame's bits start
+    and where each step's (a decision in a frame) start, each list closed by the count.
+    """
+    lanes = symbols.shape[1]
+    lead = min(first, 2)  # the two symbols before a block are its first contexts
+    padded = np.zeros((stop - first + 2, lanes), np.int64)
+    padded[2 - lead:] = symbols[first - lead:stop]
+    block, previous, before = padded[2:], padded[1:-1], padded[:-2]
+    zs, ss, ms = _contexts(previous, before)
+    mag = np.abs(block)
+    mag[mag < 0] = 1  # abs(-2**63) wraps to itself, whose first magnitude bit is 0, as 1's is
+    # a symbol's decisions: the zero bit, then the sign and one bit per magnitude level up to
+    # |v| (the bit at level l is |v| > l + 1), at most _MAG_LEVELS of them
+    count = np.where(block != 0, 2 + np.minimum(mag, _MAG_LEVELS), 1).ravel()
+    owner = np.repeat(np.arange(count.size), count)
+    decision = np.arange(owner.size) - np.repeat(np.cumsum(count) - count, count)
+    t, lane = np.divmod(owner, lanes) if lanes else (owner, owner)
+    key = t * (2 + _MAG_LEVELS) + decision
+    order = np.argsort(key * lanes + lane, kind="stable")
+    owner, decision, t, lane, key = (x[order] for x in (owner, decision, t, lane, key))
+    v, level = block.ravel()[owner], decision - 2
+    slot = np.where(decision == 0, zs.ravel()[owner], np.where(
+        decision == 1, ss.ravel()[owner], ms.ravel()[owner] + level * _HISTORY))
+    bit = np.where(decision == 0, v != 0, np.where(
+        decision == 1, v < 0, mag.ravel()[owner] > level + 1))
+    steps = np.concatenate(([0], np.flatnonzero(key[1:] != key[:-1]) + 1, [key.size]))
+    frame_starts = np.searchsorted(t, np.arange(stop - first + 1))
+    return lane, base[lane] + slot, bit, frame_starts, steps
 
 
 def encode(symbols) -> bytes:
@@ -137,49 +198,43 @@ def encode(symbols) -> bytes:
     symbols = _check(symbols)
     frames, lanes = symbols.shape
     model = _Model(lanes)
-    # forward pass: every coded bit with its probability of 0, in decoding order
-    steps: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []  # (lanes, bits, p0)
-    escapes: list[int] = []
-    previous = np.zeros(lanes, np.int64)
-    before = np.zeros(lanes, np.int64)
-    every = np.arange(lanes)
-    for t in range(frames):
-        v = symbols[t]
-        zs, ss, ms = _contexts(previous, before)
-        index = model.base + zs
-        nonzero = v != 0
-        steps.append((every, nonzero, model.p[index]))
-        model.update(index, nonzero)
-        active = np.flatnonzero(nonzero)
-        if active.size:
-            negative = v[active] < 0
-            index = model.base[active] + ss[active]
-            steps.append((active, negative, model.p[index]))
-            model.update(index, negative)
-            magnitude = np.abs(v[active])
-            slots = model.base[active] + ms[active]
-            for level in range(_MAG_LEVELS):
-                more = magnitude > level + 1
-                index = slots + level * _HISTORY
-                steps.append((active, more, model.p[index]))
-                model.update(index, more)
-                active, magnitude, slots = active[more], magnitude[more], slots[more]
-                if not active.size:
-                    break
-            else:
-                escapes.extend((magnitude - ESCAPE).tolist())
-        before, previous = previous, v
-    # backward pass: rANS encode every lane's bits in reverse
+    # forward pass: every coded bit's probability of 0 as the model stood when it came, a
+    # block of frames at a time (the bits' details take some 80 bytes each while found); the
+    # bits of one frame are each in a slot of their own, so the frame updates them at once
+    blocks = []
+    for first in range(0, frames, _BLOCK):
+        stop = min(first + _BLOCK, frames)
+        lane, index, bit, frame_starts, steps = _events(symbols, first, stop, model.base)
+        p0 = np.empty(bit.size, np.int64)
+        bit_state = bit * _STATES
+        for t in range(stop - first):
+            a, b = frame_starts[t], frame_starts[t + 1]
+            where = index[a:b]
+            state = model.state[where]
+            p0[a:b] = state & (_M - 1)
+            model.state[where] = model.next[state + bit_state[a:b]]  # model.update, unrolled
+        blocks.append((lane.astype(np.int32), bit, p0.astype(np.uint16), steps))
+    mag = np.abs(symbols)
+    escapes = (mag[mag > ESCAPE - 1] - ESCAPE).tolist()
+    # backward pass: rANS encode every lane's bits in reverse, a step (one decision of a
+    # frame, in the lanes that make it) at a time
     state = np.full(lanes, _LOW, np.int64)
     words: list[tuple[np.ndarray, np.ndarray]] = []
-    for where, bit, p0 in reversed(steps):
+    for lane, bit, p0, steps in reversed(blocks):
+        p0 = p0.astype(np.int64)
         freq = np.where(bit, _M - p0, p0)
-        x = state[where]
-        flush = x >= ((_LOW >> PRECISION) << 16) * freq
-        if flush.any():
-            words.append((where[flush], x[flush] & 0xFFFF))
-            x = np.where(flush, x >> 16, x)
-        state[where] = (x // freq) * _M + np.where(bit, p0, 0) + x % freq
+        low = np.where(bit, p0, 0)
+        full = ((_LOW >> PRECISION) << 16) * freq
+        for step in range(steps.size - 2, -1, -1):
+            a, b = steps[step], steps[step + 1]
+            where = lane[a:b]
+            x = state[where]
+            flush = x >= full[a:b]
+            if flush.any():
+                words.append((where[flush], x[flush] & 0xFFFF))
+                x = np.where(flush, x >> 16, x)
+            quotient, remainder = np.divmod(x, freq[a:b])
+            state[where] = quotient * _M + low[a:b] + remainder
     # the decoder reads the words in the reverse order of their writing
     per_lane = [[] for _ in range(lanes)]
     for where, word in reversed(words):
@@ -262,7 +317,8 @@ def decode(data: bytes, frames: int, lanes: int) -> np.ndarray:
 
     def bit(where, index):
         """Decode one bit in each lane of ``where`` with the probabilities at ``index``."""
-        p0 = model.p[index]
+        held = model.state[index]
+        p0 = held & (_M - 1)
         x = state[where]
         slot = x & (_M - 1)
         one = slot >= p0
@@ -275,7 +331,7 @@ def decode(data: bytes, frames: int, lanes: int) -> np.ndarray:
             x[refill] = (x[refill] << 16) | streams[lanes_in, pointer[lanes_in]]
             pointer[lanes_in] += 1
         state[where] = x
-        model.update(index, one)
+        model.update(index, one, held)
         return one
 
     out = np.zeros((frames, lanes), np.int64)
