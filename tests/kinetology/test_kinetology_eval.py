@@ -5,14 +5,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import kinetology
 from kinetology.bvh import parse_bvh
 from kinetology.evaluation import (CMU_ANGLES, describe, mocap6_performances, reproducibility,
                                    selectivity, view_invariance)
 from kinetology.segmentation import STATES
 from kinetology.synthetic import synthetic_motion
 
-from kinetology_fixtures import MOCAP, needs_mocap
+from kinetology_fixtures import MOCAP, needs_mocap, real_take
 
 
 def _planar_leg(frames=360, rate=120.0):
@@ -89,7 +88,7 @@ def test_synthetic_motion_is_seeded_and_patterned_joints_repeat():
 
 @needs_mocap
 def test_view_invariance_of_a_real_walk():
-    m = kinetology.read(MOCAP / "cmu-subject02" / "02_01.amc")
+    m = real_take(MOCAP / "cmu-subject02" / "02_01.amc")
     knee = view_invariance(m, CMU_ANGLES["lknee"], views=12)
     assert knee.states_2d.shape == (12, m.frames)
     assert knee.agreement > 0.75
@@ -123,7 +122,7 @@ def test_view_invariance_agrees_between_the_bvh_and_amc_of_one_take():
     from kinetology.evaluation import angle_table
 
     folder = MOCAP / "cmu-01_01-pair"
-    amc, bvh = kinetology.read(folder / "01_01.amc"), kinetology.read(folder / "01_01.bvh")
+    amc, bvh = real_take(folder / "01_01.amc"), real_take(folder / "01_01.bvh")
     a_table, b_table = angle_table(amc.skeleton), angle_table(bvh.skeleton)
     assert a_table is CMU_ANGLES and set(b_table) == set(a_table)
     for angle in ("lknee", "relbow"):
@@ -136,7 +135,7 @@ def test_view_invariance_agrees_between_the_bvh_and_amc_of_one_take():
 def test_bandai_skeleton_has_an_angle_table():
     from kinetology.evaluation import BANDAI_ANGLES, angle_table
 
-    m = kinetology.read(MOCAP / "bandai-namco-1" / "data" / "dataset-1_walk_normal_001.bvh")
+    m = real_take(MOCAP / "bandai-namco-1" / "data" / "dataset-1_walk_normal_001.bvh")
     assert angle_table(m.skeleton) is BANDAI_ANGLES
     knee = view_invariance(m, BANDAI_ANGLES["lknee"], views=8)
     assert knee.agreement > 0.7

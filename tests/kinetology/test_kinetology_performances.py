@@ -15,7 +15,7 @@ from kinetology.labels import (MOCAP6_ACTIONS, Span, read_bandai_json, read_cmu_
                                spans_of)
 from kinetology.performances import cut, from_spans, performances
 
-from kinetology_fixtures import MOCAP, needs_mocap
+from kinetology_fixtures import MOCAP, needs_mocap, real_take
 
 
 def ramp(frames=100, rate=10.0):
@@ -124,7 +124,7 @@ def test_bandai_labels_agree_with_every_file_name(dataset):
 def test_bandai_span_is_the_whole_take():
     path = MOCAP / "bandai-namco-1" / "data" / "dataset-1_byebye_sad_001.json"
     span, = read_bandai_json(path)
-    motion = kinetology.read(path.with_suffix(".bvh"))
+    motion = real_take(path.with_suffix(".bvh"))
     assert span.start == 0 and span.stop == pytest.approx(motion.duration, abs=1e-3)
     assert len(performances(motion, spans=[span])) == 1
     assert spans_of(path) == (span,)
@@ -168,17 +168,17 @@ def test_cmu_fallback_parents_skip_joints_that_are_not_actuators():
 
 @needs_mocap
 def test_parents_come_from_the_bvh_and_asf_hierarchies():
-    bvh = kinetology.read(MOCAP / "bandai-namco-1" / "data" / "dataset-1_bye_normal_001.bvh")
+    bvh = real_take(MOCAP / "bandai-namco-1" / "data" / "dataset-1_bye_normal_001.bvh")
     seg = kinetology.segments(bvh)
     assert seg.skeleton["LowerArm_R"] == "UpperArm_R"
     assert seg.skeleton["UpperArm_R"] == "Shoulder_R"
     assert seg.actuators and all(joint == channel.split(".")[0]
                                  for channel, joint in seg.actuators.items())
     assert set(seg.skeleton) == set(seg.actuators.values())
-    amc = kinetology.read(MOCAP / "cmu-subject02" / "02_01.amc")  # with 02.asf beside it
+    amc = real_take(MOCAP / "cmu-subject02" / "02_01.amc")  # with 02.asf beside it
     seg = kinetology.segments(amc)
     assert seg.skeleton["lfemur"] == "root" and seg.skeleton["rradius"] == "rhumerus"
-    bare = kinetology.read(MOCAP / "cmu-mocap6" / "amc" / "13_29.amc")  # no ASF
+    bare = real_take(MOCAP / "cmu-mocap6" / "amc" / "13_29.amc")  # no ASF
     assert bare.skeleton is None
     seg = kinetology.segments(bare)
     assert seg.skeleton["ltibia"] == "lfemur" and seg.skeleton["root"] is None

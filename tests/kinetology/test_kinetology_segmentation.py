@@ -12,7 +12,7 @@ from kinetology import Motion, segment, segments
 from kinetology.segmentation import DEFAULTS, STATES, significant_sign, smooth, states
 from kinetology.synthetic import synthetic_motion
 
-from kinetology_fixtures import MOCAP, needs_mocap
+from kinetology_fixtures import MOCAP, needs_mocap, real_take
 
 
 def _wave(frames=480, rate=120.0, amplitude=30.0, hz=1.0, noise=0.0, seed=0):
@@ -167,9 +167,7 @@ def test_smoothing_preserves_constants_and_lines():
 
 @needs_mocap
 def test_real_amc_segments_into_an_actiongram_psgs_reads(tmp_path):
-    import kinetology
-
-    m = kinetology.read(MOCAP / "cmu-subject02" / "02_01.amc")
+    m = real_take(MOCAP / "cmu-subject02" / "02_01.amc")
     ag = segment(m)
     assert "ltibia.rx" in ag.names and len(ag.names) >= 40
     # a walking knee flexes about once a step: B G R Y cycles dominate

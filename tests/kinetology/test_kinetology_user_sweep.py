@@ -14,7 +14,7 @@ import kinetology
 from kinetology.cli import main
 from kinetology.viewer import ViewError
 
-from kinetology_fixtures import MOCAP, needs_mocap
+from kinetology_fixtures import MOCAP, needs_mocap, real_take
 from test_kinetology_review_fixes import _write_bvh
 
 
@@ -87,7 +87,6 @@ def test_segment_takes_labels_within_their_rounding_past_the_end(tmp_path, capsy
 
 @needs_mocap
 def test_every_shared_label_file_fits_its_take():
-    import kinetology
     from kinetology.labels import spans_of
     from kinetology.performances import from_spans
 
@@ -99,7 +98,7 @@ def test_every_shared_label_file_fits_its_take():
     pairs = [(labels, take) for labels, take in pairs if take.is_file()]
     assert len(pairs) > 300
     for labels, take in pairs:
-        motion = kinetology.read(take)
+        motion = real_take(take)
         parts = from_spans(motion, spans_of(labels, motion.frame_rate), source=str(labels))
         assert sum(p.frames for p in parts) == motion.frames, labels
 

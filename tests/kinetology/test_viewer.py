@@ -15,7 +15,6 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
-import kinetology
 from kinetology import Joint, Motion, Skeleton
 from kinetology.bvh import parse_bvh
 from kinetology.cli import main
@@ -24,7 +23,7 @@ from kinetology.segmentation import STATES, states
 from kinetology._viewer_contents import frame_step
 from kinetology.viewer import ViewError, view
 
-from kinetology_fixtures import MOCAP, needs_mocap
+from kinetology_fixtures import MOCAP, needs_mocap, real_take
 
 BVH = MOCAP / "bandai-namco-1" / "data" / "dataset-1_bow_active_001.bvh"
 AMC = MOCAP / "cmu-subject02" / "02_01.amc"
@@ -153,7 +152,7 @@ def test_cli_writes_a_gif_of_a_real_take(tmp_path, capsys, take):
     out = tmp_path / "take.gif"
     assert main(["view", str(take), "-o", str(out), "--max-rate", "4"]) == 0
     with image.open(out) as gif:
-        motion = kinetology.read(take)
+        motion = real_take(take)
         step = math.ceil(motion.frame_rate / 4)  # the fewest frames dropped for 4 fps or less
         assert gif.n_frames == math.ceil(motion.frames / step)
         first = np.asarray(gif.convert("RGB"))
@@ -229,7 +228,7 @@ def test_notebook_repr_of_a_motion_is_the_player():
 
 @needs_mocap
 def test_a_root_left_behind_is_not_a_bone_and_the_camera_follows_the_body():
-    bandai, cmu = view([kinetology.read(BVH), kinetology.read(AMC)]).panels
+    bandai, cmu = view([real_take(BVH), real_take(AMC)]).panels
     # Bandai Namco's joint_Root stays at the origin while the hips' channels carry the body
     assert [bandai.joints[j] for j, b in enumerate(bandai.bones) if not b] == \
         ["joint_Root", "Hips"]
@@ -244,7 +243,7 @@ def test_a_root_left_behind_is_not_a_bone_and_the_camera_follows_the_body():
     travel = np.ptp(cmu.positions[:, 0, 2])
     radius, _ = cmu._fit
     assert travel > 2 * radius  # the walk is longer than the picture is wide
-    fixed = view(kinetology.read(AMC), follow=False).panels[0]
+    fixed = view(real_take(AMC), follow=False).panels[0]
     assert fixed._fit[0] > travel / 2  # without following, the whole path is in the picture
 
 
