@@ -26,6 +26,7 @@ def _every_candidate(string: Timed, lead: np.ndarray, follow, need=None):
     if segments is None:
         return None
     first, second = segments
+    in_first, in_second = set(first.tolist()), set(second.tolist())  # (looked up per symbol)
     reach = len(first) + len(second)
     best = None
     for shift in range(max(1, int(second[0] - first[-1])), int(second[-1] - first[0]) + 1):
@@ -43,7 +44,7 @@ def _every_candidate(string: Timed, lead: np.ndarray, follow, need=None):
             windows = [(s, length, True) for s in range(begin, end - length + 1)]
             # the run's part under the lead's copies: each position's segment under the
             # first copy and its partner's under the second, at most a shift long
-            under = [p for p in range(begin, end) if p in first and p + shift in second]
+            under = [p for p in range(begin, end) if p in in_first and p + shift in in_second]
             if under:
                 cut = (under[0], min(under[-1] + 1, under[0] + shift) - under[0])
                 if cut != (begin, end - begin) and cut[1] >= 2:
