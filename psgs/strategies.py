@@ -21,6 +21,7 @@ its first rule uses only terminals and later nonterminals.
 
 from __future__ import annotations
 
+import functools
 import numbers
 from collections.abc import Sequence
 
@@ -189,28 +190,16 @@ def grammars(draw, *, name: str = "G", max_nonterminals: int = 3, max_rules: int
     names = [Nonterminal(n + suffix) for n in DEFAULT_NAMES[:count]]
     min_rhs = 0 if allow_epsilon else 1
 
-    def body(allowed_nts: list[Nonterminal], allow_queries: bool):
-        pool = [st.sampled_from(alphabet).map(Terminal)]
-        if allowed_nts:
-            pool.append(st.sampled_from(allowed_nts))
-        if allow_queries and queries:
-            pool.append(st.sampled_from(tuple(queries)).map(Query))
-        return st.lists(st.one_of(*pool), min_size=min_rhs, max_size=max_rhs).map(tuple)
-
-    def acceptable(rhs: tuple) -> bool:
-        if not allow_unit and len(rhs) == 1 and isinstance(rhs[0], Nonterminal):
-            return False
-        return True
-
+    queries, allow_unit = tuple(queries), bool(allow_unit)
     bodies: list[tuple[Nonterminal, tuple]] = []
     for index, lhs in enumerate(names):
         # productive by construction: only later nonterminals, the last one none
-        rhs = draw(body(names[index + 1:], False).filter(acceptable))
+        rhs = draw(_bodies(alphabet, tuple(names[index + 1:]), (), min_rhs, max_rhs, allow_unit))
         bodies.append((lhs, rhs))
     extra = draw(st.integers(0, max(0, max_rules - count)))
     for _ in range(extra):
         lhs = draw(st.sampled_from(names))
-        rhs = draw(body(names, True).filter(acceptable))
+        rhs = draw(_bodies(alphabet, tuple(names), queries, min_rhs, max_rhs, allow_unit))
         bodies.append((lhs, rhs))
     rules, seen = [], set()
     for lhs, rhs in bodies:
@@ -219,6 +208,28 @@ def grammars(draw, *, name: str = "G", max_nonterminals: int = 3, max_rules: int
         seen.add((lhs, rhs))
         rules.append(Rule(f"r{len(rules) + 1}{suffix}", lhs, rhs))
     return Grammar(name, names[0], tuple(rules))
+
+
+@functools.lru_cache(maxsize=256)
+def _bodies(alphabet: tuple[str, ...], allowed_nts: tuple[Nonterminal, ...],
+            queries: tuple[str, ...], min_rhs: int, max_rhs: int, allow_unit: bool):
+    """The right sides :func:`grammars` draws, made once per shape: hypothesis reads the
+    source of a filter's predicate each time a filter is made (to find a length bound in
+    it), which re-read this file for every rule drawn. A strategy draws the same whether
+    made now or then."""
+    pool = [st.sampled_from(alphabet).map(Terminal)]
+    if allowed_nts:
+        pool.append(st.sampled_from(allowed_nts))
+    if queries:
+        pool.append(st.sampled_from(queries).map(Query))
+
+    def acceptable(rhs: tuple) -> bool:
+        if not allow_unit and len(rhs) == 1 and isinstance(rhs[0], Nonterminal):
+            return False
+        return True
+
+    bodies = st.lists(st.one_of(*pool), min_size=min_rhs, max_size=max_rhs).map(tuple)
+    return bodies.filter(acceptable)
 
 
 @st.composite
