@@ -289,7 +289,10 @@ def test_span_costs_equal_the_chart(grammar, word, costs):
 # ------------------------------------------------------------------ property: vs the span search
 def test_the_form_search_equals_the_span_search(monkeypatch):
     # the span search is exact too where it answers (inputs short enough); nearest takes it
-    # when told that no rule multiplies
+    # when told that no rule multiplies. Where it answers here it explores at most 52 states
+    # (within 0.011 s); where it does not, it ran on to its clock, 728-1,630 states in 0.5 s,
+    # six times a run (3 s of the test's 3.5). At 200 states it gives up on those at once and
+    # still answers every input it answered before, whatever the machine's load
     import importlib
 
     # the module: psgs.membership re-exports the function nearest under the module's name
@@ -300,7 +303,8 @@ def test_the_form_search_equals_the_span_search(monkeypatch):
         form = psgs.nearest(system, words, costs=costs, max_seconds=5)
         with monkeypatch.context() as patch:
             patch.setattr(nearest_module, "multiplies", lambda compiled: False)
-            span = psgs.nearest(system, words, costs=costs, max_seconds=0.5)
+            span = psgs.nearest(system, words, costs=costs, max_states=200,
+                                   max_seconds=0.5)
         return form, span
 
     @PROPERTY
