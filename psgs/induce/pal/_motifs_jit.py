@@ -143,19 +143,17 @@ def _median_gap(starts):
 
 # -- growing one seed -----------------------------------------------------------------------
 @_jit
-def grow_motif(codes, motif, starts, size, p, lp, lq, min_copies, conserve, match_fraction,
-               scan_alpha, max_pattern, seed_only, stop):
-    """motifs.grow of one motif: (status, motif, starts, threshold)."""
-    thresholds = np.full(max(max_pattern, len(motif)) + 1, -2, dtype=np.int64)
-    column = np.zeros(size, dtype=np.int64)
-    return _grow(codes, motif, starts, size, thresholds, p, lp, lq, min_copies, conserve,
-                 match_fraction, scan_alpha, max_pattern, column, seed_only, stop)
+def grow_motif(codes, seed, starts, size, thresholds, p, lp, lq, min_copies, conserve,
+               match_fraction, scan_alpha, max_pattern, column, seed_only, stop):
+    """motifs.grow of one motif: (status, motif, starts, threshold); STOPPED when ``stop`` is
+    set. ``thresholds`` holds the string's scan thresholds by length, computed on first
+    need (-2 everywhere at first; an entry a length up to ``max(max_pattern, len(seed))``);
+    ``column`` is ``size`` zeros, scratch left zeros: :func:`_search` passes its string's
+    to every seed.
 
-
-@_jit
-def _grow(codes, seed, starts, size, thresholds, p, lp, lq, min_copies, conserve,
-          match_fraction, scan_alpha, max_pattern, column, seed_only, stop):
-    """motifs.grow: (status, motif, starts, threshold); STOPPED when ``stop`` is set."""
+    Python (``motifs._grow_compiled``) and :func:`_search` call this one function: a
+    compiled wrapper that made the scratch compiled all of the growth again (0.9 s of a
+    cold start)."""
     n = len(codes)
     motif = seed.copy()
     grown_any = False
@@ -293,7 +291,7 @@ def _search(codes, size, p, lp, lq, log_distinct, min_copies, seeds, conserve,
     taken = np.zeros(len(counts), dtype=np.bool_)
     thresholds = np.full(max_pattern + 1, -2, dtype=np.int64)
     column = np.zeros(size, dtype=np.int64)
-    # (a run-time True: a literal one would compile _grow a second time)
+    # (a run-time True: a literal one would compile grow_motif a second time)
     as_seed = seeds > 0
     covered = np.empty(seeds * max_pattern, dtype=np.int64)
     n_covered = 0
@@ -324,9 +322,10 @@ def _search(codes, size, p, lp, lq, log_distinct, min_copies, seeds, conserve,
         seed = np.empty(2, dtype=np.int64)
         seed[0], seed[1] = key // size, key % size
         starts = order[begin[gi]:begin[gi + 1]].copy()  # in position order
-        got, motif, where, threshold = _grow(codes, seed, starts, size, thresholds, p, lp, lq,
-                                             min_copies, conserve, match_fraction, scan_alpha,
-                                             max_pattern, column, as_seed, stop)
+        got, motif, where, threshold = grow_motif(codes, seed, starts, size, thresholds, p, lp,
+                                                  lq, min_copies, conserve, match_fraction,
+                                                  scan_alpha, max_pattern, column, as_seed,
+                                                  stop)
         if got == UNCERTAIN or got == STOPPED:
             return got, 0, 0, 0
         if got == NONE:
@@ -350,8 +349,12 @@ def _search(codes, size, p, lp, lq, log_distinct, min_copies, seeds, conserve,
                 continue
         status = FOUND
         best_len, best_copies, best_threshold, best_sig = length, copies, threshold, sig
-        motif_out[:length] = motif
-        starts_out[:copies] = where
+        # element loops: an array assigned to a slice compiles a shape check whose error
+        # message (string formatting) took 1.7 s of the engine's 15 s of compilation
+        for j in range(length):
+            motif_out[j] = motif[j]
+        for j in range(copies):
+            starts_out[j] = where[j]
     return status, best_len, best_copies, best_threshold
 
 
@@ -408,10 +411,11 @@ def _clear(n, length, threshold, copies, p, lp, lq, log_distinct):
     return length * log_distinct + _log10_poisson_sf(copies, lam) > _MARGIN
 
 
-@_jit
 def find_motifs(codes, bounds, sizes, p, lp, lq, log_distinct, min_copies, seeds, conserve,
                 match_fraction, scan_alpha, max_pattern):
-    """The motif search of every string ``codes[bounds[i]:bounds[i + 1]]`` (never stopped).
+    """The motif search of every string ``codes[bounds[i]:bounds[i + 1]]`` (never stopped):
+    :func:`search_strings` called from Python (compiled, this wrapper compiled all of the
+    search a second time, 2 s, in the first test that called it).
 
     Returns ``status`` (NONE, FOUND, UNCERTAIN), the motif's ``length``, its number of
     ``copies`` and the ``threshold`` of each string, the motifs as rows of ``motifs`` and the

@@ -523,13 +523,17 @@ def _grow_compiled(codes: np.ndarray, motif, starts, match_rate: float, distinct
     from . import _motifs_jit as jit
 
     n = len(codes)
+    motif = np.asarray(motif, dtype=np.int64)
+    size = int(codes.max()) + 1
+    # (the scratch the compiled search keeps per string: its thresholds by length, a column)
+    thresholds = np.full(max(conf.max_pattern, len(motif)) + 1, -2, dtype=np.int64)
     with (alarm(clock) if stop is None else nullcontext(stop)) as stop:
         state, grown, found, threshold = jit.grow_motif(
-            codes.astype(np.int64, copy=False), np.asarray(motif, dtype=np.int64),
-            np.asarray(starts, dtype=np.int64), int(codes.max()) + 1, match_rate,
-            math.log(match_rate), math.log1p(-match_rate) if match_rate < 1 else -math.inf,
-            conf.min_copies, float(conf.conserve), float(conf.match_fraction),
-            float(conf.scan_alpha), conf.max_pattern, seed_only, stop)
+            codes.astype(np.int64, copy=False), motif, np.asarray(starts, dtype=np.int64),
+            size, thresholds, match_rate, math.log(match_rate),
+            math.log1p(-match_rate) if match_rate < 1 else -math.inf, conf.min_copies,
+            float(conf.conserve), float(conf.match_fraction), float(conf.scan_alpha),
+            conf.max_pattern, np.zeros(size, dtype=np.int64), bool(seed_only), stop)
     if state == jit.STOPPED:
         raise BoundReached("max_seconds")
     if state == jit.FOUND:
