@@ -25,8 +25,17 @@ def log10_choose(n: int, k: int) -> float:
     return (math.lgamma(n + 1) - math.lgamma(k + 1) - math.lgamma(n - k + 1)) / _LN10
 
 
+#: log(j!) = lgamma(j + 1) for j = 0 .. 4096, the very floats math.lgamma gives: the tails of
+#: up to that many trials read them from here instead of calling it twice a term
+_LOG_FACTORIALS = [math.lgamma(j + 1) for j in range(4097)]
+
+
 def log10_binom_sf(k: int, m: int, p: float) -> float:
-    """log10 P(X >= k) for X ~ Binomial(m, p)."""
+    """log10 P(X >= k) for X ~ Binomial(m, p).
+
+    >>> round(log10_binom_sf(2, 3, 0.5), 6) == round(math.log10(0.5), 6)
+    True
+    """
     if k <= 0:
         return 0.0
     if k > m or p <= 0:
@@ -35,17 +44,28 @@ def log10_binom_sf(k: int, m: int, p: float) -> float:
         return 0.0
     # (the sums run in a fixed order: the compiled motif search's results are checked
     # against these, to the bit; names bound locally only for speed)
-    lgamma, lp, lq = math.lgamma, math.log(p), math.log1p(-p)
-    whole, mp = lgamma(m + 1), m * p
-    terms = []
-    floor = None
-    for i in range(k, m + 1):
-        t = whole - lgamma(i + 1) - lgamma(m - i + 1) + i * lp + (m - i) * lq
-        terms.append(t)
-        if floor is None:
-            floor = t - 30
-        if i > mp and t < floor:
-            break
+    lp, lq, mp = math.log(p), math.log1p(-p), m * p
+    if m < len(_LOG_FACTORIALS):
+        log_factorial = _LOG_FACTORIALS
+        whole = log_factorial[m]
+        # (the first term sets the cut and never meets it)
+        t = whole - log_factorial[k] - log_factorial[m - k] + k * lp + (m - k) * lq
+        terms, floor = [t], t - 30
+        for i in range(k + 1, m + 1):
+            t = whole - log_factorial[i] - log_factorial[m - i] + i * lp + (m - i) * lq
+            terms.append(t)
+            if i > mp and t < floor:
+                break
+    else:  # (more trials than the table holds: the same terms, lgamma called for each)
+        lgamma = math.lgamma
+        whole = lgamma(m + 1)
+        t = whole - lgamma(k + 1) - lgamma(m - k + 1) + k * lp + (m - k) * lq
+        terms, floor = [t], t - 30
+        for i in range(k + 1, m + 1):
+            t = whole - lgamma(i + 1) - lgamma(m - i + 1) + i * lp + (m - i) * lq
+            terms.append(t)
+            if i > mp and t < floor:
+                break
     top = max(terms)
     exp = math.exp
     return (top + math.log(sum([exp(t - top) for t in terms]))) / _LN10
