@@ -31,26 +31,36 @@ def place_of(text: str, offset: int) -> tuple[int, int]:
 
 
 # -- JSON --------------------------------------------------------------------------------------
+# the strategies documents() draws from, made once: hypothesis validates a strategy and works
+# out its properties the first time it draws from it, which for strategies made afresh in
+# every example cost more than the drawing (they draw the same either way)
+_NAMES = st.lists(st.sampled_from(["a", "knee.rx", "knee.ry", "hip", "\u00e9.x"]), min_size=1,
+                  max_size=4, unique=True)
+_COUNTS = st.integers(1, 5)
+_SYMBOLS = {n: st.lists(st.sampled_from(["B", "G", "R", "x1"]), min_size=n, max_size=n)
+            for n in range(1, 6)}
+_DURATIONS = {n: st.lists(st.sampled_from([1, 0.5, 2.25]), min_size=n, max_size=n)
+              for n in range(1, 6)}
+_STARTS = st.sampled_from([0, 1.5, 10])
+_DISPLACEMENTS = {n: st.lists(st.sampled_from([0, 1, -2.5]), min_size=n, max_size=n)
+                  for n in range(1, 6)}
+_SKELETONS = st.sampled_from([{}, {"knee": "hip", "hip": None}])
+
+
 @st.composite
 def documents(draw):
     """A good document, decoded: what ``to_json`` writes for a small actiongram."""
-    names = draw(st.lists(st.sampled_from(["a", "knee.rx", "knee.ry", "hip", "\u00e9.x"]),
-                          min_size=1, max_size=4, unique=True))
+    names = draw(_NAMES)
     strings, durations, starts, displacements = {}, {}, {}, {}
     for name in names:
-        count = draw(st.integers(1, 5))
-        strings[name] = draw(st.lists(st.sampled_from(["B", "G", "R", "x1"]), min_size=count,
-                                      max_size=count))
-        durations[name] = draw(st.lists(st.sampled_from([1, 0.5, 2.25]), min_size=count,
-                                        max_size=count))
-        starts[name] = draw(st.sampled_from([0, 1.5, 10]))
+        count = draw(_COUNTS)
+        strings[name] = draw(_SYMBOLS[count])
+        durations[name] = draw(_DURATIONS[count])
+        starts[name] = draw(_STARTS)
         if draw(st.booleans()):
-            displacements[name] = draw(st.lists(st.sampled_from([0, 1, -2.5]),
-                                                min_size=count, max_size=count))
+            displacements[name] = draw(_DISPLACEMENTS[count])
     ag = Actiongram.from_strings(strings, durations, starts, displacements=displacements,
-                                 skeleton=draw(st.sampled_from([{}, {"knee": "hip",
-                                                                     "hip": None}])),
-                                 keep_repeats=draw(st.booleans()))
+                                 skeleton=dict(draw(_SKELETONS)), keep_repeats=draw(st.booleans()))
     return json.loads(ag.to_json())
 
 
@@ -82,6 +92,12 @@ DOCUMENT_SPOILS = {
     "skeleton": (MARK, "'skeleton' must be an object"),
 }
 
+_KINDS = st.sampled_from([*STRING_SPOILS, *DOCUMENT_SPOILS, "unknown key",
+                          "document's unknown key", "key twice", "document's key twice",
+                          "name twice"])
+_INDENTS = st.sampled_from([None, 0, 1, 2, 4, "\t"])
+_SEPARATORS = st.sampled_from([None, (",", ":"), (" , ", " : ")])
+
 
 @st.composite
 def spoilt_documents(draw):
@@ -91,9 +107,7 @@ def spoilt_documents(draw):
     k = draw(st.integers(0, len(items) - 1))
     item = items[k]
     j = draw(st.integers(0, len(item["symbols"]) - 1))
-    kind = draw(st.sampled_from([*STRING_SPOILS, *DOCUMENT_SPOILS, "unknown key",
-                                 "document's unknown key", "key twice", "document's key twice",
-                                 "name twice"]))
+    kind = draw(_KINDS)
     replace = None  # (what the mark stands for in the text)
     if kind in STRING_SPOILS:
         value, words = STRING_SPOILS[kind]
@@ -137,8 +151,8 @@ def spoilt_documents(draw):
             items[k]["name"] = MARK
             replace = json.dumps(items[0]["name"], ensure_ascii=False)
             words = f"two strings are named {items[0]['name']!r}"
-    indent = draw(st.sampled_from([None, 0, 1, 2, 4, "\t"]))
-    separators = draw(st.sampled_from([None, (",", ":"), (" , ", " : ")]))
+    indent = draw(_INDENTS)
+    separators = draw(_SEPARATORS)
     text = json.dumps(data, indent=indent, separators=separators,
                       ensure_ascii=draw(st.booleans()))
     marks = [json.dumps(m) for m in (MARK, BAD, NEGATIVE)]
@@ -231,29 +245,35 @@ CELL_SPOILS = [
     ("stream", "#s", "stream: actuator name '#s'"),
 ]
 
+# made once, as for documents()
+_ORDERS = st.permutations(["stream", "onset", "duration", "symbol", "note"])
+# a quoted note may hold commas, quotes and line breaks
+_NOTES = st.sampled_from(["", "x", "two\nlines", 'say "hi", then', "a\r\nb"])
+_CELL_SPOILS = st.sampled_from(CELL_SPOILS)
+_NEWLINES = st.sampled_from(["\n", "\r\n"])
+_BLANKS = st.sampled_from(["", ",,,,", " , ,"])
+
 
 @st.composite
 def spoilt_tables(draw):
     """(CSV text, the spoilt cell as written, its offset in the text, words of the error)."""
-    order = draw(st.permutations(["stream", "onset", "duration", "symbol", "note"]))
+    order = draw(_ORDERS)
     count = draw(st.integers(1, 5))
     rows, t = [], 0
     for _ in range(count):
         duration = draw(st.integers(1, 3))
         rows.append({"stream": "s", "onset": str(t), "duration": str(duration),
                      "symbol": draw(st.sampled_from("ab")),
-                     # a quoted note may hold commas, quotes and line breaks
-                     "note": draw(st.sampled_from(["", "x", "two\nlines", 'say "hi", then',
-                                                   "a\r\nb"]))})
+                     "note": draw(_NOTES)})
         t += duration + draw(st.integers(0, 1))
     bad = draw(st.integers(0, count - 1))
-    field, value, words = draw(st.sampled_from(CELL_SPOILS))
+    field, value, words = draw(_CELL_SPOILS)
     rows[bad][field] = value
-    newline = draw(st.sampled_from(["\n", "\r\n"]))
+    newline = draw(_NEWLINES)
     text, found = ",".join(order) + newline, None
     for k, row in enumerate(rows):
         if draw(st.booleans()):  # blank rows are skipped, and counted
-            text += draw(st.sampled_from(["", ",,,,", " , ,"])) + newline
+            text += draw(_BLANKS) + newline
         cells = []
         for name in order:
             cell = row[name]
