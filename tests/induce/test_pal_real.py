@@ -20,9 +20,32 @@ pytestmark = pytest.mark.skipif(not MOCAP.is_dir(),
                                 reason=f"shared motion-capture data not found at {MOCAP}")
 
 
-def spans(action: str, takes=None, limit: int | None = None):
-    """Labelled performances of one cmu-mocap6 exercise, each its own actiongram."""
+@pytest.fixture(scope="module")
+def read():
+    """The cmu-mocap6 takes as read: ``read(take)`` is ``(motion, labels)``, or None where the
+    take's AMC file is absent; each take read once for this module's tests (a Motion is
+    frozen and the labels a tuple: the tests only read them)."""
     from kinetology.labels import read_cmu_truelabels
+
+    folder, cache = MOCAP / "cmu-mocap6", {}
+
+    def take(name: str):
+        if name not in cache:
+            amc = folder / "amc" / f"{name}.amc"
+            if not amc.is_file():
+                cache[name] = None  # 14_06.amc is absent from the shared data (its README)
+            else:
+                motion = kinetology.read(amc)
+                cache[name] = motion, read_cmu_truelabels(folder / "truelabels" / f"{name}.txt",
+                                                          motion.frame_rate)
+        return cache[name]
+
+    return take
+
+
+def spans(read, action: str, takes=None, limit: int | None = None):
+    """Labelled performances of one cmu-mocap6 exercise, each its own actiongram (``read``:
+    the module's reader of takes)."""
     from kinetology.performances import from_spans
 
     folder = MOCAP / "cmu-mocap6"
@@ -30,19 +53,16 @@ def spans(action: str, takes=None, limit: int | None = None):
         takes = sorted(p.stem for p in (folder / "truelabels").glob("*.txt"))
     out = []
     for take in takes:
-        amc = folder / "amc" / f"{take}.amc"
-        if not amc.is_file():
-            continue  # 14_06.amc is absent from the shared data (its README says so)
-        motion = kinetology.read(amc)
-        labels = read_cmu_truelabels(folder / "truelabels" / f"{take}.txt", motion.frame_rate)
-        out.extend(from_spans(motion, labels, action, min_seconds=3.0))
+        found = read(take)
+        if found is not None:
+            out.extend(from_spans(*found, action, min_seconds=3.0))
     if not out:
         pytest.skip(f"no {action} span in {folder}")
     return [kinetology.segment(m) for m in out[:limit]]
 
 
-def test_jumping_jacks_arms_and_legs_take_part():
-    result = PAL().induce(spans("JumpJack"))
+def test_jumping_jacks_arms_and_legs_take_part(read):
+    result = PAL().induce(spans(read, "JumpJack"))
     assert {"lhumerus", "rhumerus", "lfemur", "rfemur", "ltibia", "rtibia"} <= \
         set(result.actuators)
     assert result.verdict == "" and result.system.mode == "parallel"
@@ -52,8 +72,8 @@ def test_jumping_jacks_arms_and_legs_take_part():
     assert 0.5 < period[1] - period[0] < 1.6  # a copy is one jump
 
 
-def test_jogging_legs_take_part():
-    result = PAL().induce(spans("Jog"))
+def test_jogging_legs_take_part(read):
+    result = PAL().induce(spans(read, "Jog"))
     assert {"lfemur", "rfemur", "ltibia", "rtibia"} <= set(result.actuators)
 
 
@@ -68,8 +88,8 @@ def test_the_tours_walk_learns_the_legs():
     assert not psgs.accepts(result.system, [p * (2 if i else 3) for i, p in enumerate(patterns)])
 
 
-def test_one_take_in_the_period_mode_still_finds_the_jump():
-    ag = spans("JumpJack", takes=("14_14",), limit=1)[0]
+def test_one_take_in_the_period_mode_still_finds_the_jump(read):
+    ag = spans(read, "JumpJack", takes=("14_14",), limit=1)[0]
     result = PAL().induce(ag)
     assert result.components and {"rtibia.rx", "ltibia.rx"} & set(result.components)
     assert PAL(timing="content").induce(ag).components == ()
