@@ -30,7 +30,7 @@ from .model import IDLE, PCGS, PSGS, Form, Nonterminal, Query, Terminal, resolve
 from .notation import format_configuration, format_form, short, show_tuple, spaced
 from .steps import (Configuration, Step, has_query, initial_configuration as _initial,
                     is_terminal_configuration, is_terminal_form, occurrences, pcgs_communicate,
-                    pcgs_steps, psgs_successors, random_step, rewritten)
+                    pcgs_steps, positions_by_name, psgs_successors, random_step, rewritten)
 
 # Configuration and Step are psgs.steps', the notation psgs.notation's: used here, not
 # offered again from here (one home per name)
@@ -510,7 +510,17 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
     held = sum(len(f) for f in configuration)
     # what a PSGS step may apply is the same every step: built once, not per step
     tuples = None if isinstance(system, PCGS) else moves(system)
-    while not is_terminal_configuration(system, configuration):
+    where = None
+    while True:
+        if tuples is None:
+            if is_terminal_configuration(system, configuration):
+                break
+        else:
+            # one scan of the forms a step tells whether they are terminal (a PSGS form holds
+            # terminals and nonterminals only) and where the step may rewrite: they grow long
+            where = [positions_by_name(form) for form in configuration]
+            if not any(where):
+                break
         if len(steps) >= max_steps:
             bound, reason = "max_steps", f"stopped after {max_steps} steps (max_steps)"
             break
@@ -523,7 +533,7 @@ def random_derivation(system: _System, seed, *, max_steps: int = 10_000,
             reason = (f"stopped when a form grew beyond {max_form_length} symbols "
                      f"(max_form_length)")
             break
-        step = random_step(system, configuration, rng, moves=tuples)
+        step = random_step(system, configuration, rng, moves=tuples, where=where)
         if step is None:
             break
         held += sum(len(f) for f in step.after)

@@ -340,8 +340,8 @@ def pcgs_steps(system: PCGS, configuration: Configuration) -> Iterator[Step]:
 
 # ---------------------------------------------------------------- random steps
 def random_step(system: _System, configuration: Configuration,
-                rng: random.Random, *, moves: Sequence[SyncTuple] | None = None
-                ) -> Step | None:
+                rng: random.Random, *, moves: Sequence[SyncTuple] | None = None,
+                where: Sequence[dict[str, tuple[int, ...]]] | None = None) -> Step | None:
     """A uniformly random applicable step, or None; never lists all of them.
 
     In single mode the steps of one tuple are every choice of occurrences, a
@@ -349,7 +349,9 @@ def random_step(system: _System, configuration: Configuration,
     is cheap. The index drawn is the position the step would have in
     :func:`psgs.derivation.applicable_steps`, so a seed picks the same step
     either way. ``moves`` is :func:`psgs.analysis.moves` of a PSGS, when the
-    caller draws many steps and has it already (it is the same every step).
+    caller draws many steps and has it already (it is the same every step);
+    ``where`` (per component :func:`positions_by_name` of its form) saves a
+    scan of every form when the caller has made it.
 
     Examples
     --------
@@ -365,7 +367,8 @@ def random_step(system: _System, configuration: Configuration,
     single = system.mode == "single"
     candidates = []
     total = 0
-    where = [positions_by_name(form) for form in configuration]
+    if where is None:
+        where = [positions_by_name(form) for form in configuration]
     for sync_tuple in (system_moves(system) if moves is None else moves):
         spots = _spots(sync_tuple, where)
         # whether a tuple changes something does not depend on the occurrences chosen, so it
