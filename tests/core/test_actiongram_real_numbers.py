@@ -142,30 +142,44 @@ _FLOATS = st.floats(-1e6, 1e6, allow_nan=False, allow_infinity=False)
 _FLOAT32 = _FLOATS.map(lambda x: float(np.float32(x)))  # values a float32 holds exactly
 
 
+# the strategies rows() and actiongram_fields() draw from, made once: hypothesis validates a
+# strategy and works out its properties the first time it draws from it, which for strategies
+# made afresh in every example cost more than the drawing (they draw the same either way)
+_NUMBERS = {True: st.one_of(st.integers(1, 1000), st.floats(1e-3, 1e3), _FLOAT32.filter(
+    lambda x: 1e-3 <= x)), False: st.one_of(_INTS, _FLOATS, _FLOAT32)}
+_SIZES = st.integers(0, 6)
+_VALUES = {(positive, size): st.lists(_NUMBERS[positive], min_size=size, max_size=size)
+           for positive in (True, False) for size in range(7)}
+_KINDS = {size: st.lists(st.integers(0, 5), min_size=size, max_size=size) for size in range(7)}
+_NAMES = st.lists(st.sampled_from(["knee.rx", "knee.ry", "hip", "s"]), min_size=1, max_size=4,
+                  unique=True)
+_SYMBOLS = {size: st.lists(st.sampled_from("ab"), min_size=size, max_size=size)
+            for size in range(7)}  # equal neighbours: merged
+_MOVES = {size: st.none() | st.lists(st.one_of(_INTS, _FLOATS, _FLOAT32), min_size=size,
+                                     max_size=size) for size in range(7)}
+_STARTS = st.one_of(st.integers(-100, 100), _FLOATS, _FLOAT32)
+_HOW = st.sampled_from(["scalars", "arrays"])
+
+
 @st.composite
 def rows(draw, positive: bool):
     """A row of numbers (Python's), and how each is to be given as numpy's."""
-    numbers = st.one_of(st.integers(1, 1000), st.floats(1e-3, 1e3), _FLOAT32.filter(
-        lambda x: 1e-3 <= x)) if positive else st.one_of(_INTS, _FLOATS, _FLOAT32)
-    size = draw(st.integers(0, 6))
-    values = draw(st.lists(numbers, min_size=size, max_size=size))
-    return values, draw(st.lists(st.integers(0, 5), min_size=size, max_size=size))
+    size = draw(_SIZES)
+    values = draw(_VALUES[positive, size])
+    return values, draw(_KINDS[size])
 
 
 @st.composite
 def actiongram_fields(draw):
-    names = draw(st.lists(st.sampled_from(["knee.rx", "knee.ry", "hip", "s"]), min_size=1,
-                          max_size=4, unique=True))
+    names = draw(_NAMES)
     fields = {}
     for name in names:
         durations, kinds = draw(rows(positive=True))
-        symbols = draw(st.lists(st.sampled_from("ab"), min_size=len(durations),
-                                max_size=len(durations)))  # equal neighbours: merged
-        moves = draw(st.none() | st.lists(st.one_of(_INTS, _FLOATS, _FLOAT32),
-                                          min_size=len(durations), max_size=len(durations)))
-        start = draw(st.one_of(st.integers(-100, 100), _FLOATS, _FLOAT32))
+        symbols = draw(_SYMBOLS[len(durations)])
+        moves = draw(_MOVES[len(durations)])
+        start = draw(_STARTS)
         fields[name] = (symbols, durations, kinds, moves, start)
-    return fields, draw(st.booleans()), draw(st.sampled_from(["scalars", "arrays"]))
+    return fields, draw(st.booleans()), draw(_HOW)
 
 
 def _numpy_row(values, kinds, how):
