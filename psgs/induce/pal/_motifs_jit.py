@@ -28,7 +28,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._chance_jit import _MARGIN, _jit, _log10_binom_sf, _log10_poisson_sf, _threshold
+from ._chance_jit import (_MARGIN, _inlined, _jit, _log10_binom_sf, _log10_poisson_sf,
+                          _threshold)
 from ._counting_jit import _digrams, _grouped, _sorted
 
 __all__: list[str] = []  # private: the PAL parameter ``engine`` is the interface
@@ -270,7 +271,7 @@ def _significance(n, length, threshold, copies, p, lp, lq, log_distinct):
     return min(length * log_distinct + _log10_poisson_sf(copies, lam), 0.0)
 
 
-@_jit
+@_inlined  # (into search_strings: compiled on its own, 1.5-2 s more)
 def _search(codes, size, p, lp, lq, log_distinct, min_copies, seeds, conserve,
             match_fraction, scan_alpha, max_pattern, motif_out, starts_out, stop):
     """motifs.find_motif on one string: (status, length, copies, threshold)."""
