@@ -81,14 +81,21 @@ def _direct_sum(padded, kernel, frames, out):
 
 
 @_jit
-def _derivative(signal, rate, out):
-    """``np.gradient(signal) * rate`` as :func:`kinetology._kinetemes._gradient` computes it:
-    ``(x[t + 1] - x[t - 1]) * 0.5``, then ``* rate``; one-sided at the ends."""
+def _derivatives(signal, rate, velocity, acceleration):
+    """``np.gradient(signal) * rate`` into ``velocity`` and the same of ``velocity`` into
+    ``acceleration``, as :func:`kinetology._kinetemes._gradient` computes it:
+    ``(x[t + 1] - x[t - 1]) * 0.5``, then ``* rate``; one-sided at the ends. (Both in one
+    function: one derivative a call compiled twice, for the take's read-only rows and for
+    the writable velocity.)"""
     n = signal.size
     for t in range(1, n - 1):
-        out[t] = ((signal[t + 1] - signal[t - 1]) * 0.5) * rate
-    out[0] = (signal[1] - signal[0]) * rate
-    out[n - 1] = (signal[n - 1] - signal[n - 2]) * rate
+        velocity[t] = ((signal[t + 1] - signal[t - 1]) * 0.5) * rate
+    velocity[0] = (signal[1] - signal[0]) * rate
+    velocity[n - 1] = (signal[n - 1] - signal[n - 2]) * rate
+    for t in range(1, n - 1):
+        acceleration[t] = ((velocity[t + 1] - velocity[t - 1]) * 0.5) * rate
+    acceleration[0] = (velocity[1] - velocity[0]) * rate
+    acceleration[n - 1] = (velocity[n - 1] - velocity[n - 2]) * rate
 
 
 @_jit
@@ -125,7 +132,7 @@ def _order_statistics(sample, lower, heap):
         x = sample[i]
         if x > heap[0]:
             heap[0] = x
-            _sift_down(heap, 0, size)
+            _sift_down(heap, np.int64(0), size)  # (a literal 0 would compile it again)
     a = heap[0]
     if size == 1:
         return a, a
@@ -276,8 +283,7 @@ def _segment_rows(flat, row_stride, rows, frames, rate, v_floor, a_floor, relati
     done = 0
     for r in range(first, rows, stride):
         s = flat[r * row_stride:r * row_stride + frames]
-        _derivative(s, rate, velocity)
-        _derivative(velocity, rate, acceleration)
+        _derivatives(s, rate, velocity, acceleration)
         v_band = _band(velocity, v_floor, relative, step, lower, gamma, sample, heap, kept)
         a_band = _band(acceleration, a_floor, relative, step, lower, gamma, sample, heap, kept)
         nv, v_up = _flips(velocity, v_band, v_flips)
@@ -337,7 +343,10 @@ def _in_threads(threads: int, job) -> list:
 
 def largest_step(values: np.ndarray) -> np.ndarray:
     """:func:`kinetology._kinetemes.largest_step`, one pass (blocks of frames in threads)."""
-    values = np.ascontiguousarray(values, dtype=float)
+    values = np.ascontiguousarray(values, dtype=float).view()
+    # read-only whatever the caller's array (a take's are): one compiled signature, where a
+    # writable array compiled _largest_steps a second time
+    values.flags.writeable = False
     frames, channels = values.shape
     threads = thread_count(frames, channels)  # the frames are cut, not the channels
     if threads == 1:
