@@ -30,32 +30,42 @@ STARTS = [0.0, 1.5, -1e15]
 #: start time, times that overflow, equal neighbours whose displacements add up past the floats
 SPOILS = ["symbol", "vanishing", "times overflow", "displacements overflow"]
 
+# the strategies mutated() draws from, made once: hypothesis validates a strategy and works out
+# its properties the first time it draws from it, which for strategies made afresh in every
+# example cost more than the drawing (they draw the same either way)
+_NAMES = st.lists(st.sampled_from(NAMES), min_size=1, max_size=4, unique=True)
+_SYMBOLS = [st.lists(st.sampled_from(GOOD_SYMBOLS), min_size=n, max_size=n) for n in range(6)]
+_DURATIONS = [st.lists(st.sampled_from(GOOD_DURATIONS), min_size=n, max_size=n)
+              for n in range(6)]
+_STARTS = st.sampled_from(STARTS)
+_DISPLACEMENTS = [st.none() | st.lists(st.sampled_from([0.0, 1.0, -2.5]), min_size=n,
+                                       max_size=n) for n in range(6)]
+# (the displacements' checks come after every string's: its spoil is drawn more often so that
+# it is the first fault often enough)
+_SPOILS = st.sampled_from(SPOILS + SPOILS[-1:] * 3)
+_BAD_SYMBOLS = st.sampled_from(BAD_SYMBOLS)
+
 
 @st.composite
 def mutated(draw):
     """The fields of a good actiongram with a few of its strings spoilt: (names, symbols,
     durations, starts, displacements, keep_repeats)."""
-    names = draw(st.lists(st.sampled_from(NAMES), min_size=1, max_size=4, unique=True))
+    names = draw(_NAMES)
     symbols, durations, starts, displacements = [], [], [], []
     for _ in names:
         count = draw(st.integers(0, 5))
-        symbols.append(draw(st.lists(st.sampled_from(GOOD_SYMBOLS), min_size=count,
-                                     max_size=count)))
-        durations.append(draw(st.lists(st.sampled_from(GOOD_DURATIONS), min_size=count,
-                                       max_size=count)))
-        starts.append(draw(st.sampled_from(STARTS)))
-        displacements.append(draw(st.none() | st.lists(st.sampled_from([0.0, 1.0, -2.5]),
-                                                        min_size=count, max_size=count)))
+        symbols.append(draw(_SYMBOLS[count]))
+        durations.append(draw(_DURATIONS[count]))
+        starts.append(draw(_STARTS))
+        displacements.append(draw(_DISPLACEMENTS[count]))
     for _ in range(draw(st.integers(0, 3))):
         k = draw(st.integers(0, len(names) - 1))
         if not symbols[k]:
             continue
         j = draw(st.integers(0, len(symbols[k]) - 1))
-        # (the displacements' checks come after every string's: its spoil is drawn more often
-        # so that it is the first fault often enough)
-        spoil = draw(st.sampled_from(SPOILS + SPOILS[-1:] * 3))
+        spoil = draw(_SPOILS)
         if spoil == "symbol":
-            symbols[k][j] = draw(st.sampled_from(BAD_SYMBOLS))
+            symbols[k][j] = draw(_BAD_SYMBOLS)
         elif spoil == "vanishing":
             starts[k], durations[k][j] = 1e15, 1e-9
         elif spoil == "times overflow":
