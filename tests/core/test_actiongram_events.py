@@ -20,18 +20,24 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 # -- from_events against a brute-force expansion ---------------------------------------------
+# the strategies tables() draws from, made once: hypothesis validates a strategy and works out
+# its properties the first time it draws from it, which for strategies made afresh in every
+# example cost more than the drawing (they draw the same either way)
+_NAMES = st.lists(st.sampled_from("SATB"), min_size=1, max_size=4, unique=True)
+_EVENTS = st.lists(st.tuples(st.sampled_from([0, 0, 0, 1, 2]), st.integers(1, 3),
+                             st.sampled_from("ab_")), min_size=1, max_size=8)
+
+
 @st.composite
 def tables(draw):
     """Integer-timed streams: per stream its first onset, then (gap, duration, symbol) events
     laid end to end; and the rows, shuffled."""
-    names = draw(st.lists(st.sampled_from("SATB"), min_size=1, max_size=4, unique=True))
+    names = draw(_NAMES)
     streams, rows = {}, []
     for name in names:
         t = draw(st.integers(0, 3))
         events = []
-        for gap, duration, symbol in draw(st.lists(st.tuples(
-                st.sampled_from([0, 0, 0, 1, 2]), st.integers(1, 3), st.sampled_from("ab_")),
-                min_size=1, max_size=8)):
+        for gap, duration, symbol in draw(_EVENTS):
             t += gap if events else 0
             events.append((t, duration, symbol))
             t += duration
