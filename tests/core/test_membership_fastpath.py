@@ -47,19 +47,28 @@ def general(system, words):
                         fast=False)
 
 
+# the strategies block_systems() draws from, made once (per component number i): hypothesis
+# validates a strategy and works out its properties the first time it draws from it, which for
+# strategies made afresh in every example cost more than the drawing (they draw the same)
+_LETTERS = st.sampled_from((T("a"), T("b")))
+_WORDS = st.lists(_LETTERS, max_size=2)
+_A_BODIES = {i: st.lists(st.one_of(_LETTERS, st.just(N(f"B{i}"))), max_size=3) for i in (1, 2, 3)}
+_PREFIXES = {i: st.lists(st.sampled_from((T("a"), T("b"), N(f"A{i}"), N(f"B{i}"))), max_size=2)
+             for i in (1, 2, 3)}
+
+
 @st.composite
 def block_systems(draw):
     """Small PSGS whose spines are right-linear: S → α S | α, α over a, b and finite A, B."""
     components = []
     for i in range(1, draw(st.integers(1, 3)) + 1):
         s, a, b = N(f"S{i}"), N(f"A{i}"), N(f"B{i}")
-        letters = st.sampled_from((T("a"), T("b")))
         bodies = {(s, (a,))}  # a way out of the spine
         for _ in range(draw(st.integers(1, 2))):
-            bodies.add((b, tuple(draw(st.lists(letters, max_size=2)))))
+            bodies.add((b, tuple(draw(_WORDS))))
         for _ in range(draw(st.integers(1, 2))):
-            bodies.add((a, tuple(draw(st.lists(st.one_of(letters, st.just(b)), max_size=3)))))
-        prefixes = st.lists(st.sampled_from((T("a"), T("b"), a, b)), max_size=2)
+            bodies.add((a, tuple(draw(_A_BODIES[i]))))
+        prefixes = _PREFIXES[i]
         for _ in range(draw(st.integers(1, 3))):
             tail = (s,) if draw(st.booleans()) else ()
             bodies.add((s, tuple(draw(prefixes)) + tail))
