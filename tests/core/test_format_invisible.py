@@ -76,11 +76,16 @@ def test_what_stays_allowed():
         assert system.components[0].rules[0].rhs == (Terminal(text),)
 
 
+# made once: hypothesis validates a strategy the first time it draws from it, which for one
+# made afresh in every example cost more than the drawing (it draws the same)
+_TEXTS = st.lists(st.text(allowed, min_size=1, max_size=5)
+                  .filter(lambda t: t != "S" and not any(c.isspace() for c in t)),
+                  min_size=1, max_size=4, unique=True)
+
+
 @st.composite
 def systems_of_odd_terminals(draw):
-    texts = draw(st.lists(st.text(allowed, min_size=1, max_size=5)
-                          .filter(lambda t: t != "S" and not any(c.isspace() for c in t)),
-                          min_size=1, max_size=4, unique=True))
+    texts = draw(_TEXTS)
     S = Nonterminal("S")
     rules = tuple(Rule(f"p{k}", S, (Terminal(t), S)) for k, t in enumerate(texts))
     return PSGS((Grammar("G", S, rules + (Rule("end", S, ()),)),))

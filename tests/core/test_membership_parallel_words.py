@@ -14,6 +14,7 @@ wherever the enumeration is complete (exact).
 from __future__ import annotations
 
 import dataclasses
+import functools
 import itertools
 import time
 
@@ -121,10 +122,18 @@ ALPHABET = (a, b)
 SYMBOLS = (S, A, a, b)
 
 
+@functools.lru_cache(maxsize=None)
+def _bodies(index: int, least: int):
+    """The rule bodies parallel_grammars() draws, made once: hypothesis validates a strategy
+    the first time it draws from it, which for one made afresh in every example cost more than
+    the drawing (it draws the same)."""
+    symbols = (N(f"S{index}"), N(f"A{index}"), a, b)
+    return st.lists(st.sampled_from(symbols), min_size=least, max_size=3)
+
+
 @st.composite
 def parallel_grammars(draw, name: str, index: int, epsilon: bool) -> Grammar:
     s, x = N(f"S{index}"), N(f"A{index}")
-    symbols = (s, x, a, b)
     rules = [Rule(f"t{index}", s, (draw(st.sampled_from(ALPHABET)),))]  # productive
     if draw(st.booleans()):
         rules.append(Rule(f"d{index}", s, (s, s)))  # ambiguous: S over a word splits anywhere
@@ -134,7 +143,7 @@ def parallel_grammars(draw, name: str, index: int, epsilon: bool) -> Grammar:
     least = 0 if epsilon else 1
     for k in range(draw(st.integers(0, 3))):
         lhs = draw(st.sampled_from((s, x) if len(rules) > 2 else (s,)))
-        body = tuple(draw(st.lists(st.sampled_from(symbols), min_size=least, max_size=3)))
+        body = tuple(draw(_bodies(index, least)))
         rules.append(Rule(f"r{index}_{k}", lhs, body))
     if epsilon:
         rules.append(Rule(f"e{index}", draw(st.sampled_from((s, x))), ()))
