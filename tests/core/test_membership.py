@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import functools
 from pathlib import Path
 
 import pytest
@@ -27,8 +28,12 @@ def _grammar(name: str, start: str, prefix: str, texts: list[str]) -> Grammar:
     return Grammar(name, N(start), tuple(rules))
 
 
+@functools.lru_cache(maxsize=None)
 def gamma(mode: str = "parallel", unsynchronised: str = "free") -> PSGS:
-    """The paper's Γ (section 3), typed in; grammars/paper_example.psgs when it loads."""
+    """The paper's Γ (section 3), typed in; grammars/paper_example.psgs when it loads.
+
+    Read once per mode and policy: a PSGS is frozen, and the property tests asked for it in
+    every example (a read of the file each, 7 ms)."""
     path = REPO / "grammars" / "paper_example.psgs"
     if path.exists():
         try:
