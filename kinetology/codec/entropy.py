@@ -75,9 +75,12 @@ class EntropyError(ValueError):
 _SIGN_SLOT = _HISTORY * _HISTORY
 _MAG_SLOT = _SIGN_SLOT + _SIGNS
 _SLOTS = _MAG_SLOT + _MAG_LEVELS * _HISTORY
-#: Frames whose bits :func:`encode` finds at once: the memory of finding them stays near that
-#: of the bits kept for the backward pass (11 bytes each), whatever the matrix's size.
-_BLOCK = 4096
+#: Symbols whose bits :func:`encode` finds at once (a block is this many over the lanes, in
+#: frames): finding a bit holds some 80 bytes while it is found, against the 7 kept for the
+#: backward pass, so a block of a fixed number of frames grew with the lanes and the
+#: magnitudes (a dense 1,000 x 1,000 matrix held 1 GiB); at most ``ESCAPE + 1`` bits a symbol,
+#: a block holds some 16 MiB at worst.
+_BLOCK_SYMBOLS = 1 << 14
 
 
 #: A slot's model state: its probability of a 0 bit plus ``2**12`` times the bits it has seen
@@ -202,8 +205,9 @@ def encode(symbols) -> bytes:
     # block of frames at a time (the bits' details take some 80 bytes each while found); the
     # bits of one frame are each in a slot of their own, so the frame updates them at once
     blocks = []
-    for first in range(0, frames, _BLOCK):
-        stop = min(first + _BLOCK, frames)
+    block = max(1, _BLOCK_SYMBOLS // max(1, lanes))
+    for first in range(0, frames, block):
+        stop = min(first + block, frames)
         lane, index, bit, frame_starts, steps = _events(symbols, first, stop, model.base)
         p0 = np.empty(bit.size, np.int64)
         bit_state = bit * _STATES
