@@ -272,8 +272,17 @@ def _checked(knots, codes, values):
     whole frames rising from 0, codes that are not one state (0..3) per segment or knot values
     that are not one finite number per knot gave numpy's errors, a curve of NaN, or a curve
     read from the wrong rows without a word."""
-    knots, codes = np.asarray(knots), np.asarray(codes)
+    knots, codes = _checked_segments(knots, codes)
     values = real_array(values, "values")
+    if values.shape != knots.shape or not np.isfinite(values).all():
+        raise ValidationError(f"values must be one finite number for each of the {knots.size} "
+                              f"knots")
+    return knots, codes, values
+
+
+def _checked_segments(knots, codes):
+    """Knots and codes as arrays, or the ValidationError of :func:`_checked`."""
+    knots, codes = np.asarray(knots), np.asarray(codes)
     if knots.ndim != 1 or not knots.size or knots.dtype.kind not in "iu" or knots[0] != 0 \
             or np.any(np.diff(knots) < 1):
         raise ValidationError("knots must be whole frames rising from 0, not "
@@ -282,16 +291,20 @@ def _checked(knots, codes, values):
             codes.dtype.kind not in "iu" or codes.min() < 0 or codes.max() > 3)):
         raise ValidationError(f"codes must be one state 0..3 for each of the {knots.size - 1} "
                               f"segments, not {np.array2string(codes, threshold=8)}")
-    if values.shape != knots.shape or not np.isfinite(values).all():
-        raise ValidationError(f"values must be one finite number for each of the {knots.size} "
-                              f"knots")
-    return knots, codes, values
+    return knots, codes
 
 
 def fit_knots(knots, codes, signal) -> np.ndarray:
     """Knot values minimising the squared error of :func:`reconstruct` against ``signal``.
 
     A tridiagonal solve (each frame depends on the two knots of its segment).
+
+    Raises
+    ------
+    ValueError
+        (ValidationError) Knots that are not whole frames rising from 0, codes that are not
+        one state 0..3 per segment, a signal that is not one finite number per frame
+        (``knots[-1] + 1`` of them).
 
     Examples
     --------
@@ -301,6 +314,13 @@ def fit_knots(knots, codes, signal) -> np.ndarray:
     >>> bool(np.abs(reconstruct([0, 10, 20], [1, 2], values) - signal).max() < 0.5)
     True
     """
+    knots, codes = _checked_segments(knots, codes)
+    signal = real_array(signal, "signal")
+    # more samples than frames were read from the first rows without a word, fewer were
+    # numpy's broadcast error
+    if signal.shape != (int(knots[-1]) + 1,) or not np.isfinite(signal).all():
+        raise ValidationError(f"signal must be one finite number for each of the "
+                              f"{int(knots[-1]) + 1} frames the knots span")
     n = knots.size
     if n == 1:
         return np.array([signal[0]], dtype=float)

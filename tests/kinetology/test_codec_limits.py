@@ -134,3 +134,18 @@ def test_the_cut_dictionary_writes_the_bytes_of_the_full_one(size):
     body = np.random.default_rng(size).integers(0, 40, size, dtype=np.uint8).tobytes()
     full = lzma.compress(body, format=lzma.FORMAT_RAW, filters=stream.FILTERS)
     assert lzma.compress(body, format=lzma.FORMAT_RAW, filters=stream._filters_for(size)) == full
+
+
+@pytest.mark.parametrize("knots, codes, signal, message", [
+    # more codes than segments were read from their first rows without a word
+    ([0, 4, 8], [1, 2, 3], np.ones(9), "codes must be one state 0..3 for each of the 2"),
+    ([0, 4, 8], [1], np.ones(9), "codes must be one state 0..3 for each of the 2"),
+    ([0, 4, 4], [1, 2], np.ones(5), "knots must be whole frames rising from 0"),
+    ([0, 4, 8], [1, 2], np.ones(12), "signal must be one finite number for each of the 9"),
+    ([0, 4, 8], [1, 2], np.r_[np.ones(8), np.nan], "signal must be one finite number"),
+])
+def test_fit_knots_refuses_inputs_that_do_not_fit_one_another(knots, codes, signal, message):
+    from kinetology.codec.quartic import fit_knots
+
+    with pytest.raises(ValueError, match=message):
+        fit_knots(np.array(knots), np.array(codes), signal)
