@@ -15,9 +15,11 @@ from __future__ import annotations
 import os
 import signal
 import sys
+import threading
 import time
 from collections import Counter
 from collections.abc import Iterable
+from contextlib import contextmanager
 from concurrent.futures import Executor, Future, ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -72,6 +74,29 @@ def ignore_interrupts() -> None:
     whole and stops the workers (:func:`stop_pool`); a worker waiting for work printed a
     traceback of its own before ``psgs: interrupted``."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+@contextmanager
+def _interrupts_deferred():
+    """Ctrl-C held back until the block ends, then delivered as it would have been.
+
+    A process pool forks its workers at the first submit; an interrupt that landed in the
+    parent's after-fork handlers (logging's release of its lock) was swallowed there
+    ("Exception ignored") and left that lock taken, so the build hung at its next fork, and one
+    that landed between the workers' start and the pool's thread's left a thread that could not
+    be joined. Python's handler can only be set from the main thread: elsewhere nothing is held.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    caught: list[int] = []
+    previous = signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+        if caught:  # to the handler now in place: KeyboardInterrupt, or what the caller set
+            signal.raise_signal(signal.SIGINT)
 
 
 def stop_pool(pool: ProcessPoolExecutor) -> None:
@@ -281,8 +306,9 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
                 finish(action, *learn_action(action, settings))
                 bar.update(1)
         else:
-            futures: dict[Future, Action] = {executor.submit(learn_action, a, settings): a
-                                             for a in schedule(todo)}
+            with _interrupts_deferred():
+                futures: dict[Future, Action] = {executor.submit(learn_action, a, settings): a
+                                                 for a in schedule(todo)}
             try:
                 for future in as_completed(futures):
                     action = futures[future]

@@ -229,3 +229,28 @@ def test_ctrl_c_before_the_pool_s_thread_starts_stops_it_without_a_new_error(mon
             workers = list(pool._processes.values())  # noqa: SLF001 - the processes to check
             close(stop=True)
     assert workers and not any(w.is_alive() for w in workers)
+
+
+def test_ctrl_c_during_the_submits_waits_for_them_then_interrupts_the_build(tmp_path):
+    # a pool forks its workers inside the first submit: an interrupt raised there could land in
+    # the parent's after-fork handlers (logging's lock release), where it was swallowed and left
+    # the lock taken; held until the submits are done, it interrupts the build as Ctrl-C does
+    from concurrent.futures import Executor, Future
+
+    from praxicon.builder import build
+    from praxicon.datasets import read_datasets
+
+    finished: list[str] = []
+
+    class Forking(Executor):
+        def submit(self, fn, /, *args, **kwargs):
+            signal.raise_signal(signal.SIGINT)  # Ctrl-C while the "fork" runs
+            finished.append(args[0].name)  # what the after-fork handlers still had to do
+            return Future()
+
+    actions = read_datasets([str(write_manifest(tmp_path, {"wave": [1, 2], "step": [3, 4]}))])
+    with pytest.raises(KeyboardInterrupt):
+        build(actions, tmp_path / "px", executor=Forking(), progress=False)
+    assert sorted(finished) == sorted(a.name for a in actions)
+    assert (tmp_path / "px" / "index.json").is_file()
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
