@@ -30,6 +30,13 @@ def log10_choose(n: int, k: int) -> float:
 _LOG_FACTORIALS = [math.lgamma(j + 1) for j in range(4097)]
 
 
+class _LogFactorials:
+    """log(j!) past the table, read as the table is: ``math.lgamma(j + 1)``."""
+
+    def __getitem__(self, j: int) -> float:
+        return math.lgamma(j + 1)
+
+
 def log10_binom_sf(k: int, m: int, p: float) -> float:
     """log10 P(X >= k) for X ~ Binomial(m, p).
 
@@ -45,27 +52,16 @@ def log10_binom_sf(k: int, m: int, p: float) -> float:
     # (the sums run in a fixed order: the compiled motif search's results are checked
     # against these, to the bit; names bound locally only for speed)
     lp, lq, mp = math.log(p), math.log1p(-p), m * p
-    if m < len(_LOG_FACTORIALS):
-        log_factorial = _LOG_FACTORIALS
-        whole = log_factorial[m]
-        # (the first term sets the cut and never meets it)
-        t = whole - log_factorial[k] - log_factorial[m - k] + k * lp + (m - k) * lq
-        terms, floor = [t], t - 30
-        for i in range(k + 1, m + 1):
-            t = whole - log_factorial[i] - log_factorial[m - i] + i * lp + (m - i) * lq
-            terms.append(t)
-            if i > mp and t < floor:
-                break
-    else:  # (more trials than the table holds: the same terms, lgamma called for each)
-        lgamma = math.lgamma
-        whole = lgamma(m + 1)
-        t = whole - lgamma(k + 1) - lgamma(m - k + 1) + k * lp + (m - k) * lq
-        terms, floor = [t], t - 30
-        for i in range(k + 1, m + 1):
-            t = whole - lgamma(i + 1) - lgamma(m - i + 1) + i * lp + (m - i) * lq
-            terms.append(t)
-            if i > mp and t < floor:
-                break
+    log_factorial = _LOG_FACTORIALS if m < len(_LOG_FACTORIALS) else _LogFactorials()
+    whole = log_factorial[m]
+    # (the first term sets the cut and never meets it)
+    t = whole - log_factorial[k] - log_factorial[m - k] + k * lp + (m - k) * lq
+    terms, floor = [t], t - 30
+    for i in range(k + 1, m + 1):
+        t = whole - log_factorial[i] - log_factorial[m - i] + i * lp + (m - i) * lq
+        terms.append(t)
+        if i > mp and t < floor:
+            break
     top = max(terms)
     exp = math.exp
     return (top + math.log(sum([exp(t - top) for t in terms]))) / _LN10
