@@ -177,10 +177,12 @@ def _tables() -> tuple[np.ndarray, np.ndarray]:
 def _design(knots: np.ndarray, codes: np.ndarray):
     """For every frame: its segment, and the weights of its left and right knot.
 
-    The weights are :func:`_polynomial` of each frame's row of the tables, computed without
-    gathering those rows (two frames x 5 arrays read a column at a time were most of a long
-    curve's decoding time): each coefficient is repeated over its segment's frames, and the
-    terms are added in the same order, so every weight is the same float."""
+    A weight is ``sum_k c_k s^k`` over the coefficients ``c`` of its segment's row of the
+    tables, in one fixed order of elementwise operations (powers by multiplication, terms
+    added from ``k = 0``: ``np.einsum`` and ``**`` may add or round differently on another
+    CPU). Each coefficient is repeated over its segment's frames rather than each frame's row
+    gathered (two frames x 5 arrays read a column at a time were most of a long curve's
+    decoding time)."""
     lengths = np.diff(knots)
     frames = knots[-1] + 1
     counts = np.append(lengths, 1)  # the last frame ends the last segment
@@ -202,18 +204,6 @@ def _design(knots: np.ndarray, codes: np.ndarray):
             term *= power
             out += term
     return seg, u, w
-
-
-def _polynomial(s: np.ndarray, coefficients: np.ndarray) -> np.ndarray:
-    """``sum_k c[:, k] s^k`` in one fixed order of elementwise operations (powers by
-    multiplication, terms added from ``k = 0``): ``np.einsum`` and ``**`` may add or round
-    differently on another CPU. (:func:`_design` adds the same terms in the same order.)"""
-    out = coefficients[:, 0].copy()
-    power = np.ones_like(s)
-    for k in range(1, 5):
-        power = power * s
-        out += coefficients[:, k] * power
-    return out
 
 
 def reconstruct(knots: np.ndarray, codes: np.ndarray, values: np.ndarray, *,
