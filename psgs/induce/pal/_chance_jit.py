@@ -13,27 +13,11 @@ import math
 
 # compiled on first use, once per installed copy; plain Python where numba does not import
 from ..._foundation.engines import jit as _jit
-from ..._foundation.engines import numba_missing
 
 __all__: list[str] = []  # private: the PAL parameter ``engine`` is the interface
 
 #: a chance level this close (relative) to a boundary is left to the numpy engine
 _MARGIN = 1e-6
-
-
-def _inlined(function):
-    """:func:`_jit` for a function with one caller, which numba compiles into that caller's
-    body (``inline="always"``) instead of on its own: a function compiled on its own is
-    optimised by LLVM once for itself and again inside each compiled caller (its code is
-    linked into theirs), so a compiled function called only by another costs its
-    optimisation twice. Worth it for a large function (the motif search of one string:
-    1.5-2 s of a cold start); small helpers inlined into their callers measured no faster
-    (numba's inlining costs about what it saves)."""
-    if numba_missing():
-        return function
-    import numba
-
-    return numba.njit(cache=True, nogil=True, inline="always")(function)
 
 
 @_jit

@@ -28,8 +28,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._chance_jit import (_MARGIN, _inlined, _jit, _log10_binom_sf, _log10_poisson_sf,
-                          _threshold)
+from ..._foundation.engines import jit_inlined as _inlined
+from ._chance_jit import _MARGIN, _jit, _log10_binom_sf, _log10_poisson_sf, _threshold
 from ._counting_jit import _digrams, _grouped, _sorted
 
 __all__: list[str] = []  # private: the PAL parameter ``engine`` is the interface
