@@ -210,13 +210,12 @@ def encode(symbols) -> bytes:
         stop = min(first + block, frames)
         lane, index, bit, frame_starts, steps = _events(symbols, first, stop, model.base)
         p0 = np.empty(bit.size, np.int64)
-        bit_state = bit * _STATES
         for t in range(stop - first):
             a, b = frame_starts[t], frame_starts[t + 1]
             where = index[a:b]
             state = model.state[where]
             p0[a:b] = state & (_M - 1)
-            model.state[where] = model.next[state + bit_state[a:b]]  # model.update, unrolled
+            model.update(where, bit[a:b], state)
         blocks.append((lane.astype(np.int32), bit, p0.astype(np.uint16), steps))
     mag = np.abs(symbols)
     escapes = (mag[mag > ESCAPE - 1] - ESCAPE).tolist()
