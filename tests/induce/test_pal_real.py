@@ -7,6 +7,7 @@ walks of CMU subject 02); the joints that take part are named by
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 
 import pytest
@@ -27,18 +28,16 @@ def read():
     frozen and the labels a tuple: the tests only read them)."""
     from kinetology.labels import read_cmu_truelabels
 
-    folder, cache = MOCAP / "cmu-mocap6", {}
+    folder = MOCAP / "cmu-mocap6"
 
+    @functools.cache
     def take(name: str):
-        if name not in cache:
-            amc = folder / "amc" / f"{name}.amc"
-            if not amc.is_file():
-                cache[name] = None  # 14_06.amc is absent from the shared data (its README)
-            else:
-                motion = kinetology.read(amc)
-                cache[name] = motion, read_cmu_truelabels(folder / "truelabels" / f"{name}.txt",
-                                                          motion.frame_rate)
-        return cache[name]
+        amc = folder / "amc" / f"{name}.amc"
+        if not amc.is_file():
+            return None  # 14_06.amc is absent from the shared data (its README says so)
+        motion = kinetology.read(amc)
+        return motion, read_cmu_truelabels(folder / "truelabels" / f"{name}.txt",
+                                           motion.frame_rate)
 
     return take
 
