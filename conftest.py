@@ -6,6 +6,9 @@
   worker's and that of the subprocesses it waited for), not wall time: the same test on a
   machine loaded by other work takes longer by the clock but not by the CPU, so the rule
   does not depend on what else runs (a flaky limit would be a bug of its own).
+* A doctest's temporary folders (``tempfile.mkdtemp()``, as the examples write them for a
+  reader to run) go under pytest's own, which it prunes: otherwise every run of the suite
+  left some forty folders in the system's temporary directory.
 * A doctest that reads the real data (``../shared/data/mocap``, beside the repository) is
   skipped, with that reason, when the data is not there.
 
@@ -14,6 +17,7 @@ the tests below it, and the doctests live in ``psgs/``, ``kinetology/`` and ``pr
 """
 
 import os
+import tempfile
 from pathlib import Path
 
 import pytest
@@ -33,6 +37,13 @@ def pytest_collection_modifyitems(config, items):
         test = getattr(item, "dtest", None)  # a doctest item
         if test is not None and any("../shared" in example.source for example in test.examples):
             item.add_marker(pytest.mark.skip(reason=reason))
+
+
+@pytest.fixture(autouse=True)
+def _doctest_temporary_folders(request, monkeypatch):
+    """Point a doctest's ``tempfile`` at a folder of pytest's, for that doctest alone."""
+    if getattr(request.node, "dtest", None) is not None:
+        monkeypatch.setattr(tempfile, "tempdir", str(request.getfixturevalue("tmp_path")))
 
 
 def _cpu_seconds() -> float:

@@ -431,6 +431,7 @@ def test_every_error_example_of_the_format_page_gives_its_message():
         assert str(info.value) == message
 
 
+@pytest.mark.usefixtures("examples_tempdir")
 def test_the_python_blocks_of_the_format_page_run(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(REPO)
     blocks = doc_blocks("python")

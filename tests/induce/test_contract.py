@@ -351,6 +351,7 @@ def test_bench_and_synth_live_in_their_own_cli_module():
                                     "psgs.induce.registry", "psgs.induce.sequential",
                                     "psgs.induce.synthetic", "psgs.induce.sweep",
                                     "psgs.cli.bench", "psgs.cli.induce"])
+@pytest.mark.usefixtures("examples_tempdir")
 def test_docstring_examples_run(module):
     import doctest
 

@@ -387,6 +387,7 @@ def test_command_line_max_error(tmp_path, capsys):
 @pytest.mark.parametrize("module", ["kinetology.codec", "kinetology.codec.encoder",
                                     "kinetology.codec.quartic", "kinetology.codec.knots",
                                     "kinetology.codec.residual", "kinetology.codec.entropy"])
+@pytest.mark.usefixtures("examples_tempdir")
 def test_docstring_examples_run(module):
     import doctest
     import importlib

@@ -11,12 +11,15 @@ def _files(folder):
 
 
 def test_dask_local_cluster_gives_the_serial_praxicon(manifest, tmp_path):
+    import dask
     from dask.distributed import Client, LocalCluster
 
     actions = read_dataset(manifest)
     build(actions, tmp_path / "serial", progress=False, log=lambda s: None)
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                      dashboard_address=None) as cluster, Client(cluster) as client:
+    # the cluster's scratch space in the test's folder, not dask's default in /tmp, kept
+    with dask.config.set({"temporary-directory": str(tmp_path / "dask-scratch")}), \
+            LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                         dashboard_address=None) as cluster, Client(cluster) as client:
         result = build(actions, tmp_path / "dask", executor=client, progress=False,
                        log=lambda s: None)
         assert len(client.scheduler_info()["workers"]) == 2

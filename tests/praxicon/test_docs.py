@@ -7,12 +7,14 @@ import os
 import re
 from pathlib import Path
 
+import pytest
 from praxicon_fixtures import needs_mocap
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
 @needs_mocap()
+@pytest.mark.usefixtures("examples_tempdir")
 def test_praxicon_page_example_runs(capsys):
     text = (ROOT / "docs" / "praxicon.md").read_text(encoding="utf-8")
     blocks = re.findall(r"```python\n(.*?)```", text, flags=re.S)

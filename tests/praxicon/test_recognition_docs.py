@@ -6,12 +6,14 @@ import os
 import re
 from pathlib import Path
 
+import pytest
 from praxicon_fixtures import needs_mocap
 
 ROOT = Path(__file__).resolve().parents[2]
 
 
 @needs_mocap()
+@pytest.mark.usefixtures("examples_tempdir")
 def test_recognition_example_runs(capsys):
     text = (ROOT / "docs" / "praxicon.md").read_text(encoding="utf-8")
     (block,) = re.findall(r"```py\n(.*?)```", text, flags=re.S)
