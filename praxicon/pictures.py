@@ -18,6 +18,8 @@ Kineteme colours follow their letters: ``B`` blue, ``G`` green, ``R`` red,
 from __future__ import annotations
 
 import os
+import signal
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -322,12 +324,37 @@ def _check_systems(folder, praxicon: Praxicon) -> None:
             raise ValueError(problem)
 
 
+@contextmanager
+def _spawned_ignoring_interrupts():
+    """SIGINT blocked in this thread while it spawns a pool's workers.
+
+    A spawned worker is a fresh interpreter that takes Ctrl-C as KeyboardInterrupt until its
+    initializer ignores it, a second or so of imports in which each worker printed a traceback
+    before ``psgs: interrupted`` and died; the blocked mask is what it inherits, so the
+    interrupt waits, and is dropped when the initializer ignores it. The pool must exist
+    before: its queues start multiprocessing's resource tracker, which unblocks SIGINT after
+    starting its own process. In this process the block only delays the interrupt until the
+    submits are done (:func:`~praxicon.builder._interrupts_deferred` holds it meanwhile).
+    """
+    block = getattr(signal, "pthread_sigmask", None)  # not on Windows
+    if block is None:
+        yield
+        return
+    previous = block(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        block(signal.SIG_SETMASK, previous)
+
+
 def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> list[Path]:
     from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 
     from psgs._foundation.engines import usable_cores
     from psgs.draw import graphviz_available
     from psgs.errors import ValidationError
+
+    from .builder import _interrupts_deferred, ignore_interrupts, stop_pool
 
     # before any picture: a file in its place (else mkdir's bare "File exists"), or a folder
     # that cannot be written, failed at the first picture
@@ -370,24 +397,28 @@ def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> lis
     # time, one core each)
     dot = graphviz_available() and drawn
     many = workers or min(4, usable_cores())
-    pool = None
-    if dot:
-        pool = ThreadPoolExecutor(max_workers=many)
-        pending = [pool.submit(by_dot, a) for a in drawn]
-    elif many > 1 and len(drawn) > 1:
-        import multiprocessing
-
-        from .builder import ignore_interrupts
-
-        # spawn: a fresh interpreter on every platform, nothing inherited but the arguments;
-        # Ctrl-C is this process's to handle (the workers would print their tracebacks)
-        pool = ProcessPoolExecutor(max_workers=min(many, len(drawn)),
-                                   mp_context=multiprocessing.get_context("spawn"),
-                                   initializer=ignore_interrupts)
-        pending = [pool.submit(_system_picture, a.system, a.file, target(a)) for a in drawn]
-    else:
-        pending = []
+    pool, pending = None, []
     try:
+        # the pool starts its workers and its thread inside the submits: Ctrl-C there is held
+        # until they are done, and then, inside this try, stops the pool (raised before it,
+        # it left a worker no one stopped, which the interpreter's exit waited for for good,
+        # or the exit drew every system submitted)
+        with _interrupts_deferred():
+            if dot:
+                pool = ThreadPoolExecutor(max_workers=many)
+                pending = [pool.submit(by_dot, a) for a in drawn]
+            elif many > 1 and len(drawn) > 1:
+                import multiprocessing
+
+                # spawn: a fresh interpreter on every platform, nothing inherited but the
+                # arguments; Ctrl-C is this process's to handle (the workers would print
+                # their tracebacks)
+                pool = ProcessPoolExecutor(max_workers=min(many, len(drawn)),
+                                           mp_context=multiprocessing.get_context("spawn"),
+                                           initializer=ignore_interrupts)
+                with _spawned_ignoring_interrupts():
+                    pending = [pool.submit(_system_picture, a.system, a.file, target(a))
+                               for a in drawn]
         morphemes = []
         for action in drawn:
             tell(f"morphemes of {action.name}")
@@ -400,8 +431,6 @@ def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> lis
             written += [picture, path or system(action, "matplotlib")]
     except BaseException:
         if isinstance(pool, ProcessPoolExecutor):  # workers ignoring Ctrl-C are stopped now
-            from .builder import stop_pool
-
             stop_pool(pool)
         raise
     finally:
