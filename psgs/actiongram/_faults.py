@@ -23,7 +23,8 @@ from dataclasses import dataclass, field
 
 from ..errors import FormatError
 from ._checks import (_bad_displacement, _bad_duration, _bad_name, _bad_symbol, _finite,
-                      _plain_durations, _real, _refused, _shown, _times_problem)
+                      _plain_displacements, _plain_durations, _real, _refused, _shown,
+                      _times_problem)
 from ._segments import _merge, _merge_displacements
 
 __all__: list[str] = []  # private: the constructor and the readers are the interface
@@ -186,6 +187,8 @@ def _displacements_count(s: StringFields) -> Fault | None:
 
 
 def _displacement_values(s: StringFields) -> Fault | None:
+    if _plain_displacements(s.displacements or ()):  # the usual case: no value to look at alone
+        return None
     for j, disp in enumerate(s.displacements or ()):
         problem = _bad_displacement(disp)
         if problem is not None:
