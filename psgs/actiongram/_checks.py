@@ -159,7 +159,7 @@ def _plain_durations(durations: tuple) -> bool:
         return True
     if not set(map(type, durations)) <= {int, float}:
         return False
-    return min(durations) > 0 and all(map(_finite, durations))
+    return min(durations) > 0 and _all_finite(durations)
 
 
 def _plain_displacements(displacements: tuple) -> bool:
@@ -177,8 +177,18 @@ def _plain_displacements(displacements: tuple) -> bool:
     """
     if not set(map(type, displacements)) <= {int, float}:
         return False  # a bool, a numpy scalar, a Fraction, what is no number: checked one by one
+    return _all_finite(displacements)
+
+
+def _all_finite(values: tuple) -> bool:
+    """Whether every one of ``values``, ints and floats, is finite as :func:`_finite` says:
+    math.isfinite mapped in C, not a Python call a value.
+
+    >>> _all_finite((1, 2.5)), _all_finite((1, float("inf"))), _all_finite((1.0, 10**400))
+    (True, False, False)
+    """
     try:
-        return all(map(math.isfinite, displacements))
+        return all(map(math.isfinite, values))
     except OverflowError:  # an int past the floats, which _finite calls not finite
         return False
 

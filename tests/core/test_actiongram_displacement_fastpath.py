@@ -15,7 +15,8 @@ from hypothesis import strategies as st
 
 from psgs import Actiongram, FormatError
 from psgs.actiongram import _faults
-from psgs.actiongram._checks import _bad_displacement, _plain_displacements
+from psgs.actiongram._checks import (_bad_displacement, _bad_duration,
+                                     _plain_displacements, _plain_durations)
 
 #: every kind of value a displacement may be given as: the plain ones most of the time (the
 #: quick check's case), and among them what is refused or takes the slow path
@@ -66,6 +67,17 @@ def test_the_string_s_fault_is_the_one_of_each_value_s_check(row):
         assert fault is None
     else:
         assert fault == _faults.Fault(f"string 'a': {slow[1]}", (("displacements", slow[0]),))
+
+
+@settings(max_examples=300, deadline=None)
+@given(ROWS)
+def test_the_durations_quick_check_accepts_only_what_each_value_s_check_accepts(row):
+    # the same finiteness in C (math.isfinite mapped) serves the durations' quick check
+    values = tuple(abs(v) if type(v) in (int, float) and not v != v else v for v in row)
+    refused = [v for v in values if _bad_duration(v) is not None]
+    assert not (_plain_durations(values) and refused), refused
+    if set(map(type, values)) <= {int, float} and not refused:
+        assert _plain_durations(values)
 
 
 def _made(rows, keep_repeats: bool, quick: bool):
