@@ -131,21 +131,40 @@ def lead_significance(string: Timed, section: Section, follow: float | None) -> 
 def follow_rate(codes: np.ndarray) -> float | None:
     """The chance that, after two equal symbols, the next two agree too, or None.
 
-    Two models of a random string are weighed by the Bayesian information
-    criterion. The **neighbour model**: each symbol is drawn by the string's
-    symbol shares ``p``, but equals the one before it only at the string's own
-    rate ``rho`` of equal neighbours (an actiongram merges equal neighbours,
-    so ``rho`` is 0 unless it keeps repeats): then the rate is
-    ``sum_a (p_a^2 / q) (rho^2 + (1 - rho)^2 sum_(b != a) p_b^2 / (1 - p_a)^2)``,
-    ``q = sum p_a^2`` the match rate. Over ``k`` equally used letters without
-    equal neighbours that is ``1 / (k - 1)``, not ``1 / k``: a repeat is that
-    much cheaper than independent symbols say. The **chain**: a first-order
-    Markov chain of the digrams, for strings whose symbols follow each other
-    by rule (``B G R Y`` of motion), which repeat exactly far more often; its
-    rate is estimated without bias from the digram counts ``n_ab`` as
-    ``(sum n_ab^2 - (n - 1)) / (sum n_a^2 - (n - 1))``, ``n_a`` how often
-    ``a`` is followed by anything. None for a string of one symbol or under
-    three symbols long (the match rate then stands for it).
+    Models of a random string are weighed by the Bayesian information criterion
+    (``-2 ln L + m ln(n - 1)``, ``m`` free parameters, ``n - 1`` steps; ``k`` below counts
+    the letters followed by something). Three of them are **letter models**: each letter
+    ``a`` equals the one before it with chance ``rho_a``, and otherwise is ``b`` with chance
+    ``p_b / (1 - p_a)``, ``p`` the string's symbol shares; their rate is
+    ``sum_a (p_a^2 / q) (rho_a^2 + (1 - rho_a)^2 sum_(b != a) p_b^2 / (1 - p_a)^2)``,
+    ``q = sum p_a^2`` the match rate. They differ in ``rho_a``:
+
+    - the **neighbour model** (``m = k``): one rate ``rho``, the string's share of equal
+      neighbours. An actiongram merges equal neighbours, so ``rho`` is 0 unless it keeps
+      repeats; over ``k`` equally used letters without equal neighbours the rate is then
+      ``1 / (k - 1)``, not ``1 / k``: a repeat is that much cheaper than independent symbols
+      say.
+    - the **sticky model** (``m = k``): ``rho_a = theta + (1 - theta) p_a``, ``theta``
+      (at least ``-min_a p_a / (1 - p_a)``) of greatest likelihood: symbols drawn
+      independently by their shares (``theta = 0``, rate ``q``) that stay on a letter, or
+      leave it, more than that. Over uneven letters with repeats kept one ``rho`` for all
+      letters makes the rate far too low, and repeats of the common letter's runs too rare
+      (the last example, symbols drawn independently: the neighbour model says 0.30).
+    - **each letter's own** (``m = 2 k - 1``): ``rho_a = n_aa / n_a``, ``n_a`` how often
+      ``a`` is followed by anything (letters each with its own persistence); ``rho`` for a
+      letter only at the end.
+
+    The fourth is the **chain**, ``m = k (k - 1)``: a first-order Markov chain of the
+    digrams, for strings whose symbols follow each other by rule (``B G R Y`` of motion),
+    which repeat exactly far more often; its rate is estimated without bias from the digram
+    counts ``n_ab`` as ``(sum n_ab^2 - (n - 1)) / (sum n_a^2 - (n - 1))`` (not where every
+    ``n_a`` is at most 1: ``0 / 0``). Ties go to the model named first. Without equal
+    neighbours only the neighbour model and the chain are weighed: each letter's own rates
+    are then all 0, the neighbour model's fit with more parameters, and the sticky model
+    fits no better than the neighbour model (with ``c = min_a p_a``, ``theta`` at least
+    ``-c / (1 - c)``, it gives a move ``(1 - theta) p_b <= p_b / (1 - c) <= p_b / (1 - p_a)``).
+    None for a string of one symbol or under three symbols long (the match rate then stands
+    for it).
 
     Examples
     --------
@@ -155,6 +174,10 @@ def follow_rate(codes: np.ndarray) -> float | None:
     >>> no_equal = np.cumsum(letters + 1) % 4  # never equal to the one before
     >>> round(follow_rate(no_equal), 2)  # four letters: about 1 / 3, not 1 / 4
     0.34
+    >>> uneven = np.random.default_rng(2).choice(8, 200, p=[0.7] + [0.3 / 7] * 7)
+    >>> match = float(np.sum((np.bincount(uneven) / 200) ** 2))  # q
+    >>> round(follow_rate(uneven), 2), round(match, 2)  # repeats kept: independent, r = q
+    (0.52, 0.52)
     """
     if len(codes) < 3:
         return None
@@ -181,6 +204,9 @@ def follow_rate(codes: np.ndarray) -> float | None:
         moves = np.where(same, math.log(rho) if rho > 0 else 0.0,
                          math.log1p(-rho) + np.log(shares[right]) - np.log1p(-shares[left]))
     neighbours = float(np.sum(pairs * moves))
+    if rho > 0:
+        return _with_repeats(_Digrams(pairs, left, right, same, firsts, shares, steps),
+                             symbols, rho, chained, neighbours)
     extra = symbols * (symbols - 1) - symbols  # the chain's parameters beyond (shares, rho)
     if chained - neighbours > extra / 2 * math.log(steps):
         below = float(np.sum(firsts.astype(np.float64) ** 2)) - steps
@@ -190,6 +216,77 @@ def follow_rate(codes: np.ndarray) -> float | None:
     used = shares[shares > 0]
     others = (match - used ** 2) / (1 - used) ** 2
     return float(np.sum(used ** 2 / match * (rho ** 2 + (1 - rho) ** 2 * others)))
+
+
+@dataclass(frozen=True)
+class _Digrams:
+    """A string's digram counts ``pairs`` of ``left`` then ``right`` (``same`` where they are
+    equal), how often each letter is followed by anything, its symbol shares, its steps."""
+
+    pairs: np.ndarray
+    left: np.ndarray
+    right: np.ndarray
+    same: np.ndarray
+    firsts: np.ndarray
+    shares: np.ndarray
+    steps: int
+
+
+def _with_repeats(d: _Digrams, symbols: int, rho: float, chained: float,
+                  neighbours: float) -> float:
+    """:func:`follow_rate` of a string with equal neighbours (``rho > 0``): the model the
+    criterion prefers of the four, given the neighbour model's and the chain's log
+    likelihoods."""
+    stays = np.bincount(d.left[d.same], weights=d.pairs[d.same], minlength=len(d.shares))
+    own = np.where(d.firsts > 0, stays / np.maximum(d.firsts, 1), rho)
+    theta, sticky = _sticky(d, stays)
+    with np.errstate(divide="ignore"):
+        move = np.log(d.shares[d.right]) - np.log1p(-d.shares[d.left])
+        own_fit = float(np.sum(d.pairs * np.where(d.same, np.log(own[d.left]),
+                                                  np.log1p(-own[d.left]) + move)))
+    penalty = math.log(d.steps) / 2
+    fits = [(neighbours - symbols * penalty, np.full(len(d.shares), rho)),
+            (sticky - symbols * penalty, theta + (1 - theta) * d.shares),
+            (own_fit - (2 * symbols - 1) * penalty, own)]
+    best = max(range(3), key=lambda i: (fits[i][0], -i))
+    below = float(np.sum(d.firsts.astype(np.float64) ** 2)) - d.steps
+    if below > 0 and chained - symbols * (symbols - 1) * penalty > fits[best][0]:
+        return max(0.0, float(np.sum(d.pairs.astype(np.float64) ** 2) - d.steps) / below)
+    used = d.shares > 0
+    p, stay = d.shares[used], fits[best][1][used]
+    match = float(np.sum(p ** 2))
+    others = (match - p ** 2) / (1 - p) ** 2
+    return float(np.sum(p ** 2 / match * (stay ** 2 + (1 - stay) ** 2 * others)))
+
+
+def _sticky(d: _Digrams, stays: np.ndarray) -> tuple[float, float]:
+    """The sticky model's ``theta`` and log likelihood: ``theta`` maximises
+    ``sum_a n_aa ln(theta + (1 - theta) p_a) + sum_(a != b) n_ab ln((1 - theta) p_b)``, a
+    concave function, found where its slope is 0 by Newton's steps from 0 (independent
+    symbols) kept inside the interval known to hold it, halved where a step leaves it (to
+    ``theta``'s least value, where the slope is negative all along)."""
+    used = d.shares > 0
+    lo, hi, theta = -float(np.min(d.shares[used] / (1 - d.shares[used]))), 1.0, 0.0
+    held = stays > 0
+    n, p = stays[held], d.shares[held]
+    leaving = float(d.pairs[~d.same].sum())
+    for _ in range(100):
+        lean = (1 - p) / (p + theta * (1 - p))  # d/dtheta of ln(theta + (1 - theta) p_a)
+        slope = float(np.sum(n * lean)) - leaving / (1 - theta)
+        if slope > 0:
+            lo = theta
+        else:
+            hi = theta
+        step = theta + slope / (float(np.sum(n * lean ** 2)) + leaving / (1 - theta) ** 2)
+        if not lo < step < hi:
+            step = (lo + hi) / 2
+        done = abs(step - theta) < 1e-13
+        theta = step
+        if done:
+            break
+    fit = (float(np.sum(n * np.log(theta + (1 - theta) * p))) + leaving * math.log1p(-theta)
+           + float(np.sum(d.pairs[~d.same] * np.log(d.shares[d.right[~d.same]]))))
+    return theta, fit
 
 
 def copy_agreements(codes: np.ndarray, pattern, starts) -> list[float]:
