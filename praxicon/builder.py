@@ -13,13 +13,10 @@ next build picks up from there.
 from __future__ import annotations
 
 import os
-import signal
 import sys
-import threading
 import time
 from collections import Counter
 from collections.abc import Iterable
-from contextlib import contextmanager
 from concurrent.futures import Executor, Future, ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -27,6 +24,7 @@ from pathlib import Path
 from psgs._foundation.files import read_text
 from psgs.errors import MissingDependency, ValidationError
 
+from ._pools import ignore_interrupts, interrupts_deferred, stop_pool
 from ._record_checks import name_problem
 from ._values import check_count, not_all, shown
 from .datasets import Action, DatasetError
@@ -66,63 +64,6 @@ class BuildResult:
         refused = f", {len(self.refused)} refused" if self.refused else ""
         return (f"<BuildResult: {len(self.learnt)} learnt, {len(self.skipped)} already done, "
                 f"{len(self.failed)} failed{refused}; {self.praxicon!r}>")
-
-
-def ignore_interrupts() -> None:
-    """A worker process's initializer: Ctrl-C (SIGINT, sent to the whole process group) is
-    left to the process that started the pool, which cancels the work, leaves its files
-    whole and stops the workers (:func:`stop_pool`); a worker waiting for work printed a
-    traceback of its own before ``psgs: interrupted``."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-
-
-@contextmanager
-def _interrupts_deferred():
-    """Ctrl-C held back until the block ends, then delivered as it would have been.
-
-    A process pool forks its workers at the first submit; an interrupt that landed in the
-    parent's after-fork handlers (logging's release of its lock) was swallowed there
-    ("Exception ignored") and left that lock taken, so the build hung at its next fork, and one
-    that landed between the workers' start and the pool's thread's left a thread that could not
-    be joined. Python's handler can only be set from the main thread: elsewhere nothing is held.
-    """
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    caught: list[int] = []
-    previous = signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGINT, previous)
-        if caught:  # to the handler now in place: KeyboardInterrupt, or what the caller set
-            signal.raise_signal(signal.SIGINT)
-
-
-def stop_pool(pool: ProcessPoolExecutor) -> None:
-    """Stop ``pool`` now: nothing more starts, and its workers end without finishing what
-    they do (they ignore Ctrl-C, so a shutdown waited for every action being learnt)."""
-    terminate = getattr(pool, "terminate_workers", None)  # Python 3.14
-    if callable(terminate):
-        terminate()
-        return
-    # before 3.14 the pool names its processes, and the thread that manages them, only in
-    # private attributes (shutdown clears both)
-    processes = list((getattr(pool, "_processes", None) or {}).values())
-    manager = getattr(pool, "_executor_manager_thread", None)
-    pool.shutdown(wait=False, cancel_futures=True)
-    for process in processes:
-        process.terminate()
-    # that thread reaps the workers it sees end and marks the work they held as failed: wait
-    # for it first, so that the futures are done when this returns, and reap after it rather
-    # than beside it (a process two threads wait for at once can keep reading as alive, its
-    # exit code taken by the other thread)
-    # Ctrl-C can land inside the pool's first submit, between its processes' start and its
-    # thread's: that thread never ran, and joining it raised over the interrupt
-    if manager is not None and manager.ident is not None:
-        manager.join(timeout=10)
-    for process in processes:
-        process.join()
 
 
 def executor_for(workers: int | None = None, scheduler=None):
@@ -306,7 +247,7 @@ def build(actions: list[Action], out: str | Path, *, settings: Settings | None =
                 finish(action, *learn_action(action, settings))
                 bar.update(1)
         else:
-            with _interrupts_deferred():
+            with interrupts_deferred():
                 futures: dict[Future, Action] = {executor.submit(learn_action, a, settings): a
                                                  for a in schedule(todo)}
             try:

@@ -18,8 +18,6 @@ Kineteme colours follow their letters: ``B`` blue, ``G`` green, ``R`` red,
 from __future__ import annotations
 
 import os
-import signal
-from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
@@ -324,29 +322,6 @@ def _check_systems(folder, praxicon: Praxicon) -> None:
             raise ValueError(problem)
 
 
-@contextmanager
-def _spawned_ignoring_interrupts():
-    """SIGINT blocked in this thread while it spawns a pool's workers.
-
-    A spawned worker is a fresh interpreter that takes Ctrl-C as KeyboardInterrupt until its
-    initializer ignores it, a second or so of imports in which each worker printed a traceback
-    before ``psgs: interrupted`` and died; the blocked mask is what it inherits, so the
-    interrupt waits, and is dropped when the initializer ignores it. The pool must exist
-    before: its queues start multiprocessing's resource tracker, which unblocks SIGINT after
-    starting its own process. In this process the block only delays the interrupt until the
-    submits are done (:func:`~praxicon.builder._interrupts_deferred` holds it meanwhile).
-    """
-    block = getattr(signal, "pthread_sigmask", None)  # not on Windows
-    if block is None:
-        yield
-        return
-    previous = block(signal.SIG_BLOCK, {signal.SIGINT})
-    try:
-        yield
-    finally:
-        block(signal.SIG_SETMASK, previous)
-
-
 def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> list[Path]:
     from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 
@@ -354,7 +329,8 @@ def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> lis
     from psgs.draw import graphviz_available
     from psgs.errors import ValidationError
 
-    from .builder import _interrupts_deferred, ignore_interrupts, stop_pool
+    from ._pools import (ignore_interrupts, interrupts_deferred, spawned_ignoring_interrupts,
+                         stop_pool)
 
     # before any picture: a file in its place (else mkdir's bare "File exists"), or a folder
     # that cannot be written, failed at the first picture
@@ -403,7 +379,7 @@ def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> lis
         # until they are done, and then, inside this try, stops the pool (raised before it,
         # it left a worker no one stopped, which the interpreter's exit waited for for good,
         # or the exit drew every system submitted)
-        with _interrupts_deferred():
+        with interrupts_deferred():
             if dot:
                 pool = ThreadPoolExecutor(max_workers=many)
                 pending = [pool.submit(by_dot, a) for a in drawn]
@@ -416,7 +392,7 @@ def _draw_all(folder, out: Path, fmt: str, progress, workers: int | None) -> lis
                 pool = ProcessPoolExecutor(max_workers=min(many, len(drawn)),
                                            mp_context=multiprocessing.get_context("spawn"),
                                            initializer=ignore_interrupts)
-                with _spawned_ignoring_interrupts():
+                with spawned_ignoring_interrupts():
                     pending = [pool.submit(_system_picture, a.system, a.file, target(a))
                                for a in drawn]
         morphemes = []
