@@ -1,6 +1,6 @@
-"""The displacements' quick check (every value a finite int or float, checked in C) says what
-the check of one value at a time says: the same values accepted and stored, the same first
-value refused with the same message."""
+"""The quick checks of displacements and durations (every value a finite int or float,
+checked in C) say what the check of one value at a time says: the same values accepted and
+stored, the same first value refused with the same message."""
 
 from __future__ import annotations
 
