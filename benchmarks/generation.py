@@ -56,9 +56,11 @@ Figures printed and written to ``docs/data/generation.csv`` (one row per action)
 from __future__ import annotations
 
 import argparse
+import atexit
 import csv
 import importlib.machinery
 import importlib.util
+import shutil
 import sys
 import tempfile
 import time
@@ -289,6 +291,8 @@ def main(argv=None) -> int:
 
     t0 = time.perf_counter()
     work = Path(tempfile.mkdtemp(prefix="genbench-"))
+    # the praxicons built here are scratch: removed when the run ends, however it ends
+    atexit.register(shutil.rmtree, work, ignore_errors=True)
     rows, judge_rows = [], []
     for dataset in DATASETS:
         if not (MOCAP / dataset).is_dir():
