@@ -29,7 +29,8 @@ the segmentation read exactly that run:
 
 The raw curve closest to the base (L1, plus L1 of the correction's steps) under
 these conditions is a linear programme (:func:`scipy.optimize.linprog`, HiGHS dual
-simplex, its iterations capped). The relative dead band (a share of the channel's
+simplex, its iterations capped; whether the conditions can hold at all is asked first, alone,
+until some round's did). The relative dead band (a share of the channel's
 own 95th-percentile speed) depends on the answer, so the band is assumed, checked
 on the answer and the programme solved again with the answer's band when it moved
 (up to ten rounds, fewer where the bands come back to a round's: the rounds would go round
@@ -286,6 +287,15 @@ def shape(base, knots, symbols, frame_rate: float, segmentation: dict, *,
                          format="csc")
     bounds = [(b - max_change, b + max_change) for b in base] + [(0, None)] * (2 * n - 1)
     status, best = "infeasible", None
+    held = False  # whether some round's conditions could hold so far
+
+    def feasible(lower):
+        # whether the conditions can hold, asked alone (no objective): refuted several times
+        # faster than the whole programme, which on conditions that cannot hold also runs
+        # into numerical trouble (seconds where this takes hundredths)
+        return linprog(np.zeros(n), A_ub=signs, b_ub=-lower, bounds=bounds[:n],
+                       method="highs-ds", options={"maxiter": _ITERATIONS * n})
+
     for v_rule, a_rule in _STRATEGIES:  # every placement of the peaks; the nearest answer wins
         peaks_v = _peaks(v_signs, mv @ base, v_first, v_rule)
         peaks_a = _peaks(a_signs, ma @ base, a_first, a_rule)
@@ -302,21 +312,27 @@ def shape(base, knots, symbols, frame_rate: float, segmentation: dict, *,
             if lower.tobytes() in asked:
                 # the bands came back to a round's: the same programmes give the same
                 # answers, so the rounds left would go round that cycle, none settling
-                # (status "band", as after the last round), two linear programmes a round
+                # (status "band", as after the last round), a linear programme or two a round
                 break
             asked.add(lower.tobytes())
-            # first only whether the conditions can hold (no objective: several times faster
-            # to refute), then the nearest such curve, its simplex iterations capped (not its
-            # time: the answer must not depend on the machine's load); at the cap the
-            # feasible curve of the first step is kept
-            first = linprog(np.zeros(n), A_ub=signs, b_ub=-lower, bounds=bounds[:n],
-                            method="highs-ds", options={"maxiter": _ITERATIONS * n})
-            if first.status != 0:
+            # first whether the conditions can hold, then the nearest such curve, its simplex
+            # iterations capped (not its time: the answer must not depend on the machine's
+            # load); at the cap the feasible curve of the first step is kept. Once a round's
+            # conditions held, the nearest curve is asked at once and the first step only
+            # where it has no answer: an answer meets the conditions (they are its rows), so
+            # there the first step says yes and only costs time (a fifth of the programmes'),
+            # and the later rounds of a curve whose conditions held once hold too, as a rule
+            first = None if held else feasible(lower)
+            if first is None or first.status == 0:
+                answer = linprog(cost, A_ub=rows, b_ub=np.concatenate((b_abs, -lower)),
+                                 bounds=bounds, method="highs-ds",
+                                 options={"maxiter": _ITERATIONS * n})
+                if answer.status != 0 and first is None:
+                    first = feasible(lower)
+            if first is not None and first.status != 0:
                 status = "infeasible" if first.status == 2 else "budget"
                 break
-            answer = linprog(cost, A_ub=rows, b_ub=np.concatenate((b_abs, -lower)),
-                             bounds=bounds, method="highs-ds",
-                             options={"maxiter": _ITERATIONS * n})
+            held = True
             x = answer.x[:n] if answer.status == 0 else first.x
             got = {name: _band(m @ x, floors[name], relative) for name, m in (("v", mv), ("a", ma))}
             if all(_QUIET_MARGIN * bands[k] < got[k] < _PEAK_MARGIN * bands[k] for k in got):
