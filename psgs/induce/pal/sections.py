@@ -209,13 +209,22 @@ def follow_rate(codes: np.ndarray) -> float | None:
                              symbols, rho, chained, neighbours)
     extra = symbols * (symbols - 1) - symbols  # the chain's parameters beyond (shares, rho)
     if chained - neighbours > extra / 2 * math.log(steps):
-        below = float(np.sum(firsts.astype(np.float64) ** 2)) - steps
-        if below > 0:
-            return max(0.0, float(np.sum(pairs.astype(np.float64) ** 2) - steps) / below)
+        chain = _chain_rate(pairs, firsts, steps)
+        if chain is not None:
+            return chain
     match = float(np.sum(shares ** 2))
     used = shares[shares > 0]
     others = (match - used ** 2) / (1 - used) ** 2
     return float(np.sum(used ** 2 / match * (rho ** 2 + (1 - rho) ** 2 * others)))
+
+
+def _chain_rate(pairs: np.ndarray, firsts: np.ndarray, steps: int) -> float | None:
+    """The chain's rate from the digram counts, or None where every letter is followed at
+    most once (``0 / 0``)."""
+    below = float(np.sum(firsts.astype(np.float64) ** 2)) - steps
+    if below <= 0:
+        return None
+    return max(0.0, float(np.sum(pairs.astype(np.float64) ** 2) - steps) / below)
 
 
 @dataclass(frozen=True)
@@ -249,9 +258,10 @@ def _with_repeats(d: _Digrams, symbols: int, rho: float, chained: float,
             (sticky - symbols * penalty, theta + (1 - theta) * d.shares),
             (own_fit - (2 * symbols - 1) * penalty, own)]
     best = max(range(3), key=lambda i: (fits[i][0], -i))
-    below = float(np.sum(d.firsts.astype(np.float64) ** 2)) - d.steps
-    if below > 0 and chained - symbols * (symbols - 1) * penalty > fits[best][0]:
-        return max(0.0, float(np.sum(d.pairs.astype(np.float64) ** 2) - d.steps) / below)
+    if chained - symbols * (symbols - 1) * penalty > fits[best][0]:
+        chain = _chain_rate(d.pairs, d.firsts, d.steps)
+        if chain is not None:
+            return chain
     used = d.shares > 0
     p, stay = d.shares[used], fits[best][1][used]
     match = float(np.sum(p ** 2))
