@@ -39,11 +39,20 @@ def pytest_collection_modifyitems(config, items):
             item.add_marker(pytest.mark.skip(reason=reason))
 
 
+@pytest.fixture
+def examples_tempdir(tmp_path, monkeypatch):
+    """Examples written for a reader make their folders with ``tempfile.mkdtemp()``; run by a
+    test, those go under the test's own temporary folder, which pytest prunes, rather than
+    staying in the system's temporary directory after every run."""
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+    return tmp_path
+
+
 @pytest.fixture(autouse=True)
-def _doctest_temporary_folders(request, monkeypatch):
-    """Point a doctest's ``tempfile`` at a folder of pytest's, for that doctest alone."""
+def _doctest_temporary_folders(request):
+    """Every doctest's examples get :func:`examples_tempdir`."""
     if getattr(request.node, "dtest", None) is not None:
-        monkeypatch.setattr(tempfile, "tempdir", str(request.getfixturevalue("tmp_path")))
+        request.getfixturevalue("examples_tempdir")
 
 
 def _cpu_seconds() -> float:

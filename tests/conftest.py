@@ -15,7 +15,6 @@ import os
 import tempfile
 from pathlib import Path
 
-import pytest
 from hypothesis import HealthCheck, settings
 
 settings.register_profile(
@@ -170,11 +169,3 @@ def _warm_pal():
     except ImportError:
         pass
 
-
-@pytest.fixture
-def examples_tempdir(tmp_path, monkeypatch):
-    """Examples written for a reader make their folders with ``tempfile.mkdtemp()``; run by a
-    test, those go under the test's own temporary folder, which pytest prunes, rather than
-    staying in the system's temporary directory after every run."""
-    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
-    return tmp_path
